@@ -1,0 +1,180 @@
+//! The frame of ICD §4 (Table 1/2): an 8-byte header, the payload, a checksum.
+//!
+//! Readings taken (READING-NOTES.md): a frame is `8 + len + 1` bytes (note 1, the
+//! "Total Size" lines are ignored); the checksum is the XOR of every byte before it,
+//! both header bytes included, then inverted (note 2); majors run 0x10–0x15 (note 5).
+
+use super::error::{Error, Result};
+
+pub const SYNC1: u8 = 0xE7;
+pub const SYNC2: u8 = 0x7E;
+pub const HEADER_LEN: usize = 8;
+pub const MAX_PAYLOAD: usize = 255;
+/// The largest frame the one-byte length field allows; the decoder never buffers more.
+pub const MAX_FRAME: usize = HEADER_LEN + MAX_PAYLOAD + 1;
+
+/// Major/minor command id pair (Table 2 bytes 3 and 4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct MessageId {
+    pub major: u8,
+    pub minor: u8,
+}
+
+impl MessageId {
+    pub const fn new(major: u8, minor: u8) -> Self {
+        MessageId { major, minor }
+    }
+}
+
+impl std::fmt::Display for MessageId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:#04x}/{:#04x}", self.major, self.minor)
+    }
+}
+
+/// Source and destination addresses (Table 1 bytes 6 and 7). Unlisted values are kept.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Node {
+    Vpx,
+    External,
+    Unknown,
+    Broadcast,
+    Other(u8),
+}
+
+impl Node {
+    pub fn from_byte(b: u8) -> Self {
+        match b {
+            0x00 => Node::Vpx,
+            0x01 => Node::External,
+            0xFE => Node::Unknown,
+            0xFF => Node::Broadcast,
+            n => Node::Other(n),
+        }
+    }
+
+    pub fn to_byte(self) -> u8 {
+        match self {
+            Node::Vpx => 0x00,
+            Node::External => 0x01,
+            Node::Unknown => 0xFE,
+            Node::Broadcast => 0xFF,
+            Node::Other(n) => n,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Node::Vpx => "VP-X",
+            Node::External => "EFIS",
+            Node::Unknown => "unknown",
+            Node::Broadcast => "broadcast",
+            Node::Other(_) => "other",
+        }
+    }
+}
+
+/// ICD §4.1.3: XOR of all bytes, then inverted.
+#[inline]
+pub fn checksum(bytes: &[u8]) -> u8 {
+    !bytes.iter().fold(0u8, |acc, b| acc ^ b)
+}
+
+/// The header fields a caller chooses; the sync bytes and length are implied.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameHeader {
+    pub id: MessageId,
+    /// Command number: chosen by the EFIS per request and echoed in the reply;
+    /// the VP-X's own running count on broadcasts (reading note 14).
+    pub cnt: u8,
+    pub src: Node,
+    pub dst: Node,
+}
+
+/// A checked frame borrowed from a buffer: sync bytes, length and checksum are known good.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameRef<'a> {
+    bytes: &'a [u8],
+}
+
+impl<'a> FrameRef<'a> {
+    /// Checks a whole frame. `bytes` must be exactly one frame.
+    pub fn parse(bytes: &'a [u8]) -> Result<Self> {
+        if bytes.len() < HEADER_LEN + 1 {
+            return Err(Error::Truncated {
+                got: bytes.len(),
+                need: HEADER_LEN + 1,
+            });
+        }
+        if bytes[0] != SYNC1 || bytes[1] != SYNC2 {
+            return Err(Error::BadHeader);
+        }
+        let need = HEADER_LEN + bytes[7] as usize + 1;
+        if bytes.len() < need {
+            return Err(Error::Truncated {
+                got: bytes.len(),
+                need,
+            });
+        }
+        let bytes = &bytes[..need];
+        let computed = checksum(&bytes[..need - 1]);
+        let found = bytes[need - 1];
+        if computed != found {
+            return Err(Error::BadChecksum { computed, found });
+        }
+        Ok(FrameRef { bytes })
+    }
+
+    /// For the decoder, which has already checked the frame.
+    pub(crate) fn new_unchecked(bytes: &'a [u8]) -> Self {
+        FrameRef { bytes }
+    }
+
+    pub fn header(&self) -> FrameHeader {
+        FrameHeader {
+            id: self.id(),
+            cnt: self.bytes[4],
+            src: Node::from_byte(self.bytes[5]),
+            dst: Node::from_byte(self.bytes[6]),
+        }
+    }
+
+    pub fn id(&self) -> MessageId {
+        MessageId::new(self.bytes[2], self.bytes[3])
+    }
+
+    pub fn payload(&self) -> &'a [u8] {
+        &self.bytes[HEADER_LEN..self.bytes.len() - 1]
+    }
+
+    /// The whole frame, header to checksum.
+    pub fn as_bytes(&self) -> &'a [u8] {
+        self.bytes
+    }
+}
+
+/// Writes one frame into `out` and returns its length. `out` must hold
+/// `HEADER_LEN + payload.len() + 1` bytes.
+pub fn emit_frame(header: &FrameHeader, payload: &[u8], out: &mut [u8]) -> Result<usize> {
+    if payload.len() > MAX_PAYLOAD {
+        return Err(Error::PayloadTooLong(payload.len()));
+    }
+    let total = HEADER_LEN + payload.len() + 1;
+    if out.len() < total {
+        return Err(Error::Truncated {
+            got: out.len(),
+            need: total,
+        });
+    }
+    out[0] = SYNC1;
+    out[1] = SYNC2;
+    out[2] = header.id.major;
+    out[3] = header.id.minor;
+    out[4] = header.cnt;
+    out[5] = header.src.to_byte();
+    out[6] = header.dst.to_byte();
+    out[7] = payload.len() as u8;
+    out[HEADER_LEN..total - 1].copy_from_slice(payload);
+    out[total - 1] = checksum(&out[..total - 1]);
+    Ok(total)
+}

@@ -1,0 +1,328 @@
+//! Typed messages of ICD Appendix D, one type per message, grouped as in §6.
+//!
+//! Every type implements [`Payload`]: `parse` checks the payload length against the
+//! ICD and never panics; `emit` writes the payload. [`Message`] is the sum of them all
+//! and [`Packet`] is a message with its frame header.
+
+mod data;
+mod device;
+mod fault;
+mod power;
+mod status;
+mod system;
+pub mod types;
+
+pub use data::{ExternalData, ExternalValidity};
+pub use device::{
+    DeviceEnable, DeviceName, DeviceNameQuery, DeviceSpec, DeviceSpecQuery, FlapSpec, SpecAck,
+    SystemSpec, TrimSpec, WigWagSpec,
+};
+pub use fault::DeviceClear;
+pub use power::{DevicePower, FlapMove, TrimMove, WigWagMode};
+pub use status::{
+    DeviceStatus, DeviceStatusQuery, FaultStatus, FlapFlags, FlapTrimStatus, MiscFlags,
+    SwitchInputs, SystemFaultFlags, SystemStatus, TrimFlags,
+};
+pub use system::{EepromErase, Ping, SoftwareUpdate, Version};
+pub use types::*;
+
+use super::error::{Error, LenRule, Result};
+use super::frame::{
+    FrameHeader, FrameRef, HEADER_LEN, MAX_FRAME, MAX_PAYLOAD, MessageId, Node, emit_frame,
+};
+
+/// One message type of the ICD: its id, name, payload length rule, and codec.
+pub trait Payload: Sized {
+    const ID: MessageId;
+    /// The ICD's name, e.g. `DEVICE_STATUS`.
+    const NAME: &'static str;
+    const LEN: LenRule;
+
+    /// Decodes a payload whose length `LEN` allows. Called through [`Payload::parse`].
+    fn parse_payload(payload: &[u8]) -> Result<Self>;
+    fn emit_payload(&self, w: &mut Writer);
+
+    /// Checks the length, then decodes. Never panics.
+    fn parse(payload: &[u8]) -> Result<Self> {
+        if !Self::LEN.allows(payload.len()) {
+            return Err(Error::BadLength {
+                message: Self::NAME,
+                expected: Self::LEN,
+                got: payload.len(),
+            });
+        }
+        Self::parse_payload(payload)
+    }
+
+    /// The payload bytes.
+    fn emit(&self) -> PayloadBuf {
+        let mut w = Writer::new();
+        self.emit_payload(&mut w);
+        w.finish()
+    }
+}
+
+/// A payload on the stack: no message is longer than 255 bytes.
+#[derive(Clone, Copy)]
+pub struct PayloadBuf {
+    buf: [u8; MAX_PAYLOAD],
+    len: usize,
+}
+
+impl PayloadBuf {
+    pub fn as_slice(&self) -> &[u8] {
+        &self.buf[..self.len]
+    }
+}
+
+impl std::ops::Deref for PayloadBuf {
+    type Target = [u8];
+    fn deref(&self) -> &[u8] {
+        self.as_slice()
+    }
+}
+
+impl std::fmt::Debug for PayloadBuf {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:02X?}", self.as_slice())
+    }
+}
+
+/// Big-endian writer into a fixed payload buffer (ICD §3.2.1: most significant byte
+/// first). Every message's payload is far below the buffer, so writes never overflow;
+/// a write past the end is dropped rather than panicking.
+pub struct Writer {
+    buf: [u8; MAX_PAYLOAD],
+    len: usize,
+}
+
+impl Writer {
+    fn new() -> Self {
+        Writer {
+            buf: [0; MAX_PAYLOAD],
+            len: 0,
+        }
+    }
+    pub fn u8(&mut self, v: u8) {
+        if let Some(b) = self.buf.get_mut(self.len) {
+            *b = v;
+            self.len += 1;
+        }
+    }
+    pub fn u16(&mut self, v: u16) {
+        self.bytes(&v.to_be_bytes());
+    }
+    pub fn u32(&mut self, v: u32) {
+        self.bytes(&v.to_be_bytes());
+    }
+    pub fn bytes(&mut self, v: &[u8]) {
+        for &b in v {
+            self.u8(b);
+        }
+    }
+    fn finish(self) -> PayloadBuf {
+        PayloadBuf {
+            buf: self.buf,
+            len: self.len,
+        }
+    }
+}
+
+/// Big-endian reader over a payload whose length was already checked; reading past
+/// the end yields zeros instead of panicking.
+pub struct Reader<'a> {
+    p: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    pub fn new(p: &'a [u8]) -> Self {
+        Reader { p, at: 0 }
+    }
+    pub fn u8(&mut self) -> u8 {
+        let v = self.p.get(self.at).copied().unwrap_or(0);
+        self.at += 1;
+        v
+    }
+    pub fn u16(&mut self) -> u16 {
+        u16::from_be_bytes([self.u8(), self.u8()])
+    }
+    pub fn u32(&mut self) -> u32 {
+        u32::from_be_bytes([self.u8(), self.u8(), self.u8(), self.u8()])
+    }
+}
+
+/// Bit `n` (0 = LSB) of a flags byte.
+pub(crate) fn bit(b: u8, n: u8) -> bool {
+    b & (1 << n) != 0
+}
+
+/// A byte the ICD defines as 0 or 1. Anything else is reported, not guessed at.
+pub(crate) fn flag(message: &'static str, field: &'static str, b: u8) -> Result<bool> {
+    match b {
+        0 => Ok(false),
+        1 => Ok(true),
+        v => Err(Error::FieldRange {
+            message,
+            field,
+            value: v as u32,
+        }),
+    }
+}
+
+macro_rules! messages {
+    ($($v:ident),+ $(,)?) => {
+        /// Any message of ICD Appendix D.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum Message {
+            $($v($v),)+
+        }
+
+        impl Message {
+            /// Decodes the payload of message `id`.
+            pub fn parse(id: MessageId, payload: &[u8]) -> Result<Message> {
+                $(if id == $v::ID {
+                    return $v::parse(payload).map(Message::$v);
+                })+
+                Err(Error::UnknownMessage(id))
+            }
+
+            pub fn id(&self) -> MessageId {
+                match self {
+                    $(Message::$v(_) => $v::ID,)+
+                }
+            }
+
+            /// The ICD's name of the message, e.g. `DEVICE_STATUS`.
+            pub fn name(&self) -> &'static str {
+                match self {
+                    $(Message::$v(_) => $v::NAME,)+
+                }
+            }
+
+            pub fn emit(&self) -> PayloadBuf {
+                match self {
+                    $(Message::$v(m) => m.emit(),)+
+                }
+            }
+        }
+
+        $(impl From<$v> for Message {
+            fn from(m: $v) -> Message {
+                Message::$v(m)
+            }
+        })+
+
+        /// Name and length rule of a message id, if the ICD defines it (Appendix D).
+        pub fn lookup(id: MessageId) -> Option<(&'static str, LenRule)> {
+            $(if id == $v::ID {
+                return Some(($v::NAME, $v::LEN));
+            })+
+            None
+        }
+
+        /// Every message id of Appendix D.
+        pub const ALL_IDS: &[MessageId] = &[$($v::ID,)+];
+    };
+}
+
+messages!(
+    Ping,
+    Version,
+    SoftwareUpdate,
+    EepromErase,
+    DeviceSpec,
+    SystemSpec,
+    TrimSpec,
+    FlapSpec,
+    WigWagSpec,
+    DeviceSpecQuery,
+    SpecAck,
+    DeviceName,
+    DeviceNameQuery,
+    DeviceEnable,
+    SystemStatus,
+    DeviceStatus,
+    FlapTrimStatus,
+    FaultStatus,
+    DeviceStatusQuery,
+    DevicePower,
+    TrimMove,
+    FlapMove,
+    WigWagMode,
+    DeviceClear,
+    ExternalData,
+);
+
+/// A message with its frame header: what travels on the wire.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Packet {
+    pub cnt: u8,
+    pub src: Node,
+    pub dst: Node,
+    pub message: Message,
+}
+
+impl Packet {
+    /// A request from the EFIS to the unit.
+    pub fn request(cnt: u8, message: impl Into<Message>) -> Self {
+        Packet {
+            cnt,
+            src: Node::External,
+            dst: Node::Vpx,
+            message: message.into(),
+        }
+    }
+
+    /// A message from the unit to the EFIS (a reply or a broadcast).
+    pub fn from_vpx(cnt: u8, message: impl Into<Message>) -> Self {
+        Packet {
+            cnt,
+            src: Node::Vpx,
+            dst: Node::External,
+            message: message.into(),
+        }
+    }
+
+    /// Decodes a checked frame.
+    pub fn parse(frame: &FrameRef<'_>) -> Result<Packet> {
+        let h = frame.header();
+        Ok(Packet {
+            cnt: h.cnt,
+            src: h.src,
+            dst: h.dst,
+            message: Message::parse(h.id, frame.payload())?,
+        })
+    }
+
+    /// Checks and decodes one whole frame from bytes.
+    pub fn parse_bytes(bytes: &[u8]) -> Result<Packet> {
+        Packet::parse(&FrameRef::parse(bytes)?)
+    }
+
+    pub fn header(&self) -> FrameHeader {
+        FrameHeader {
+            id: self.message.id(),
+            cnt: self.cnt,
+            src: self.src,
+            dst: self.dst,
+        }
+    }
+
+    /// Writes the whole frame into `out` and returns its length.
+    pub fn emit_into(&self, out: &mut [u8; MAX_FRAME]) -> usize {
+        let payload = self.message.emit();
+        // Payloads are at most 66 bytes, so the frame always fits `MAX_FRAME`.
+        emit_frame(&self.header(), &payload, out).unwrap_or(0)
+    }
+
+    /// The whole frame as bytes.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = [0u8; MAX_FRAME];
+        let n = self.emit_into(&mut out);
+        out[..n].to_vec()
+    }
+}
+
+/// Smallest possible frame: header and checksum with no payload.
+pub const MIN_FRAME: usize = HEADER_LEN + 1;

@@ -1,0 +1,95 @@
+//! System messages, ICD §6.1 (major 0x10).
+
+use super::types::HardwareVersion;
+use super::{Payload, Reader, Writer, flag};
+use crate::protocol::error::{LenRule, Result};
+use crate::protocol::frame::MessageId;
+
+/// PING — ICD Table 10. The EFIS sends `ack = false`; the VP-X answers `ack = true`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ping {
+    pub ack: bool,
+}
+
+impl Payload for Ping {
+    const ID: MessageId = MessageId::new(0x10, 0x00);
+    const NAME: &'static str = "PING";
+    const LEN: LenRule = LenRule::Exact(1);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        Ok(Ping {
+            ack: flag(Self::NAME, "ACK flag", p[0])?,
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u8(self.ack as u8);
+    }
+}
+
+/// VERSION — ICD Table 11. The request's payload is ignored by the unit; we send zeros.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Version {
+    pub hardware_version: HardwareVersion,
+    pub software_major: u8,
+    pub software_minor: u8,
+}
+
+impl Version {
+    pub const REQUEST: Version = Version {
+        hardware_version: HardwareVersion::Unknown(0),
+        software_major: 0,
+        software_minor: 0,
+    };
+}
+
+impl Payload for Version {
+    const ID: MessageId = MessageId::new(0x10, 0x01);
+    const NAME: &'static str = "VERSION";
+    const LEN: LenRule = LenRule::Exact(3);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        let mut r = Reader::new(p);
+        Ok(Version {
+            hardware_version: HardwareVersion::from_byte(r.u8()),
+            software_major: r.u8(),
+            software_minor: r.u8(),
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u8(self.hardware_version.to_byte());
+        w.u8(self.software_major);
+        w.u8(self.software_minor);
+    }
+}
+
+/// SOFTWARE_UPDATE — ICD §6.1.3: no payload; the unit enters its bootloader.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SoftwareUpdate;
+
+impl Payload for SoftwareUpdate {
+    const ID: MessageId = MessageId::new(0x10, 0x02);
+    const NAME: &'static str = "SOFTWARE_UPDATE";
+    const LEN: LenRule = LenRule::Exact(0);
+    fn parse_payload(_: &[u8]) -> Result<Self> {
+        Ok(SoftwareUpdate)
+    }
+    fn emit_payload(&self, _: &mut Writer) {}
+}
+
+/// EEPROM_ERASE — ICD Table 12. Response code 0 means success.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EepromErase {
+    pub response_code: u8,
+}
+
+impl Payload for EepromErase {
+    const ID: MessageId = MessageId::new(0x10, 0x03);
+    const NAME: &'static str = "EEPROM_ERASE";
+    const LEN: LenRule = LenRule::Exact(1);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        Ok(EepromErase {
+            response_code: p[0],
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u8(self.response_code);
+    }
+}
