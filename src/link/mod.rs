@@ -1,1 +1,17 @@
-//! link
+//! Bytes in and out: serial ports, pseudo-terminals and in-process pipes.
+//!
+//! A [`Link`] turns bytes into [`Packet`](crate::protocol::Packet)s and packets into
+//! bytes. It knows nothing of the model: everything it sees is reported to a callback
+//! as a [`LinkEvent`], on the link's own threads. A writer thread owns the write half
+//! of the port; a supervisor thread owns the read half and reopens the port when it
+//! fails (a pulled USB cable), so the page keeps running and reconnects by itself.
+
+mod connection;
+mod pipe;
+mod pty;
+mod serial;
+
+pub use connection::{Connector, Direction, Link, LinkEvent, LinkHandle, RxItem, SendError};
+pub use pipe::{PipeEnd, PipeReader, PipeWriter, duplex_pipe, pipe_connector, pipe_pair};
+pub use pty::{PtyPair, open_pty_pair};
+pub use serial::{OpenError, PortInfo, list_ports, open_serial, serial_connector};
