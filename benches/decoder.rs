@@ -25,7 +25,7 @@ fn capture() -> Vec<u8> {
     let mut push = |out: &mut Vec<u8>, msg: vpx_efis::protocol::Message, i: usize| {
         cnt = cnt.wrapping_add(1);
         // Alternate the two destinations a unit may use for broadcasts (reading note 22).
-        let dst = if i % 2 == 0 {
+        let dst = if i.is_multiple_of(2) {
             Node::External
         } else {
             Node::Broadcast
@@ -52,7 +52,7 @@ fn capture() -> Vec<u8> {
                     starter_annunciator: false,
                     wig_wag_mode: vpx_efis::protocol::message::WigWagModeSetting::Auto,
                     software_update: false,
-                    wig_wag_active: s % 3 == 0,
+                    wig_wag_active: s.is_multiple_of(3),
                 },
                 faults: Default::default(),
                 data_integrity_code: None,
