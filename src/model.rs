@@ -163,6 +163,41 @@ impl TrimKind {
     }
 }
 
+/// A motor the page can run with TRIM_MOVE/FLAP_MOVE.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Motor {
+    Flaps,
+    Trim(TrimKind),
+}
+
+impl Motor {
+    /// The device id the motor's row has (Appendix B).
+    pub fn device_id(self) -> u8 {
+        match self {
+            Motor::Flaps => FLAPS,
+            Motor::Trim(TrimKind::Pitch) => TRIM_P,
+            Motor::Trim(TrimKind::Roll) => TRIM_R,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Motor::Flaps => "flaps",
+            Motor::Trim(TrimKind::Pitch) => "pitch trim",
+            Motor::Trim(TrimKind::Roll) => "roll trim",
+        }
+    }
+
+    /// The live fault code of this motor from FLAP_TRIM_STATUS, if any.
+    pub fn fault(self, ft: &FlapTrimStatus) -> FaultCode {
+        match self {
+            Motor::Flaps => ft.flap_fault,
+            Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_fault,
+            Motor::Trim(TrimKind::Roll) => ft.roll_trim_fault,
+        }
+    }
+}
+
 /// A circuit's state as the page and the network may show it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CircuitState {

@@ -1,0 +1,50 @@
+//! What the person is looking at: selection, sort order, overlays. Owned by the app,
+//! changed by the app in answer to control's actions, read by the widgets.
+
+use crate::model::Motor;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SortOrder {
+    /// By pin (device id), flaps and trims grouped apart.
+    #[default]
+    Pin,
+    /// By displayed name, flaps and trims grouped apart.
+    Alphabetical,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Overlay {
+    #[default]
+    None,
+    Help,
+}
+
+/// How the page knows a motor key was let go (shown on screen).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ReleaseMode {
+    /// The terminal reports key release (keyboard enhancement).
+    KeyRelease,
+    /// The terminal only repeats presses; a run ends when repeats stop.
+    #[default]
+    AutoRepeat,
+}
+
+/// The motor stream the page is sending right now, for display.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MotorRun {
+    pub motor: Motor,
+    /// "up", "down", "left", "right".
+    pub direction: &'static str,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct ViewState {
+    /// Device id of the selected row, so the selection survives re-sorting.
+    pub selected: Option<u8>,
+    pub sort: SortOrder,
+    pub overlay: Overlay,
+    pub release_mode: ReleaseMode,
+    pub motor_run: Option<MotorRun>,
+    /// A short message for the person (a refused key, a sent command).
+    pub notice: Option<String>,
+}
