@@ -10,6 +10,7 @@
 pub mod config;
 pub mod decoder;
 pub mod defaults;
+pub mod describe;
 pub mod device;
 pub mod error;
 pub mod fault;
