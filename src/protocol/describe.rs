@@ -55,7 +55,7 @@ fn opt_device(id: Option<u8>) -> String {
 }
 
 fn opt_device_json(id: Option<u8>) -> Value {
-    id.map_or(Value::Null, |id| device_json(id))
+    id.map_or(Value::Null, device_json)
 }
 
 fn device_json(id: u8) -> Value {
