@@ -6,11 +6,13 @@
 //! of the port; a supervisor thread owns the read half and reopens the port when it
 //! fails (a pulled USB cable), so the page keeps running and reconnects by itself.
 
+mod capture;
 mod connection;
 mod pipe;
 mod pty;
 mod serial;
 
+pub use capture::{CaptureError, CaptureWriter, Record, is_capture, parse_capture, read_capture};
 pub use connection::{Connector, Direction, Link, LinkEvent, LinkHandle, RxItem, SendError};
 pub use pipe::{PipeEnd, PipeReader, PipeWriter, duplex_pipe, pipe_connector, pipe_pair};
 pub use pty::{PtyPair, open_pty_pair};
