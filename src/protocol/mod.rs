@@ -17,6 +17,7 @@ pub mod fault;
 pub mod frame;
 pub mod message;
 pub mod names;
+pub mod validate;
 
 pub use decoder::{Decoder, DecoderStats, Event};
 pub use error::{Error, LenRule, Result};
