@@ -10,10 +10,12 @@ mod capture;
 mod connection;
 mod pipe;
 mod pty;
+pub mod request;
 mod serial;
 
 pub use capture::{CaptureError, CaptureWriter, Record, is_capture, parse_capture, read_capture};
 pub use connection::{Connector, Direction, Link, LinkEvent, LinkHandle, RxItem, SendError};
 pub use pipe::{PipeEnd, PipeReader, PipeWriter, duplex_pipe, pipe_connector, pipe_pair};
 pub use pty::{PtyPair, open_pty_pair};
+pub use request::{RequestError, SpecError, UnitClient};
 pub use serial::{OpenError, PortInfo, list_ports, open_serial, serial_connector};
