@@ -7,6 +7,7 @@
 //!
 //! Where the ICD contradicts itself we follow `READING-NOTES.md`; each place says so.
 
+pub mod bootloader;
 pub mod config;
 pub mod decoder;
 pub mod defaults;
