@@ -107,12 +107,21 @@ impl Decoder {
         self.stats.bytes_in += input.len() as u64;
         while self.len > 0 {
             let need = self.need();
-            let take = need.saturating_sub(self.len).min(input.len());
-            self.buf[self.len..self.len + take].copy_from_slice(&input[..take]);
-            self.len += take;
-            input = &input[take..];
             if self.len < need {
-                return;
+                if input.is_empty() {
+                    return;
+                }
+                // Top up only to the next byte that can decide the candidate: the second
+                // (sync) byte first, then `need`, which the header may shorten. Taking
+                // straight to a `need` computed from fewer bytes would hold on to a
+                // candidate that is already known to be garbage when the input runs out,
+                // so `pending` and the events would depend on where reads were split.
+                let upto = if self.len < 2 { 2 } else { need };
+                let take = (upto - self.len).min(input.len());
+                self.buf[self.len..self.len + take].copy_from_slice(&input[..take]);
+                self.len += take;
+                input = &input[take..];
+                continue;
             }
             // Re-scan the held bytes as a slice of their own; whatever is left over is
             // again an incomplete candidate that starts with the sync byte.
@@ -291,6 +300,18 @@ mod tests {
         assert_eq!(d.pending(), 0);
         let s = d.stats();
         assert_eq!((s.frames, s.bad_checksum, s.skipped_bytes), (1, 1, 10));
+    }
+
+    #[test]
+    fn held_sync_byte_followed_by_garbage_is_judged_at_once() {
+        // A read ends on 0xE7 and the next read brings one byte that is not 0x7E: the
+        // held byte is garbage now, not once 8 bytes have arrived.
+        let mut d = Decoder::new();
+        assert_eq!(collect(&mut d, &[0x00, 0xE7]), vec!["skip 1".to_string()]);
+        assert_eq!(collect(&mut d, &[0xE7]), vec!["skip 1".to_string()]);
+        assert_eq!(d.pending(), 1);
+        assert_eq!(collect(&mut d, &[0x55]), vec!["skip 2".to_string()]);
+        assert_eq!(d.pending(), 0);
     }
 
     #[test]
