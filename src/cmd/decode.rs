@@ -128,7 +128,7 @@ impl<W: Write> Writer<W> {
                 obj.insert("time".into(), json!(t.as_secs_f64()));
             }
             if let Some(d) = dir {
-                obj.insert("direction".into(), json!(direction_label(d)));
+                obj.insert("dir".into(), json!(direction_label(d)));
             }
             match line {
                 Line::Packet(p) => {
