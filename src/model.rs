@@ -452,14 +452,10 @@ impl Model {
 
     fn log_new_faults(&mut self, at: Instant, before: ([FaultCode; DEVICE_COUNT], bool)) {
         let (now_codes, now_sys) = self.faults_at(at);
-        for id in 0..DEVICE_COUNT {
-            if now_codes[id].is_fault() && !before.0[id].is_fault() {
+        for (id, (now_code, was)) in now_codes.iter().zip(before.0).enumerate() {
+            if now_code.is_fault() && !was.is_fault() {
                 let name = self.display_name(id as u8);
-                self.log(
-                    at,
-                    LogLevel::Alert,
-                    format!("{name}: {}", now_codes[id].name()),
-                );
+                self.log(at, LogLevel::Alert, format!("{name}: {}", now_code.name()));
             }
         }
         if now_sys && !before.1 {
