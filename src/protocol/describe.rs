@@ -307,9 +307,9 @@ pub fn describe(msg: &Message) -> String {
             s
         }
         Message::FlapTrimStatus(m) => format!(
-            "flap: position {}, flags {}, fault {}, up {}, down {}, midpoint 1 {}, midpoint 2 {}; \
-             pitch trim: position {}, flags {}, fault {}, up {}, down {}, neutral {}; \
-             roll trim: position {}, flags {}, fault {}, up {}, down {}, neutral {}",
+            "flap: position {} [{}], fault code {}, up {}, down {}, midpoint 1 {}, midpoint 2 {}; \
+             pitch trim: position {} [{}], fault code {}, up {}, down {}, neutral {}; \
+             roll trim: position {} [{}], fault code {}, up {}, down {}, neutral {}",
             m.flap_position,
             flags(&[
                 ("enabled", m.flap.enabled),
