@@ -174,8 +174,7 @@ mod tests {
 
     #[test]
     fn an_exact_fit_of_1460_stays_in_one_datagram() {
-        // 52-byte BUS parameters (12 + 24 + 16-byte label) and one 16-byte SINT: 27·52 + 56 …
-        // simpler: 73 parameters of 20 bytes = 1460.
+        // 73 parameters of 20 bytes (12 header + "N12345" padded to 8) = 1460 exactly.
         let p = Parameter::new(idents::TAILNUM, Value::string("N12345"));
         assert_eq!(p.wire_len(), 20);
         let mut s = Sender::new(1, 0);
