@@ -1,1 +1,245 @@
-//! control
+//! Keys become commands, and held motor keys become safe TRIM_MOVE/FLAP_MOVE streams.
+//!
+//! - [`keymap`]: a crossterm key event and the selection → an [`Action`].
+//! - [`commands`]: an action and the model → a message, or a refusal in words.
+//! - [`streamer`]: the 4 Hz move stream with its dead man (see its docs for every way
+//!   a run ends).
+//!
+//! [`Controller`] ties them together for the app's main loop. Nothing here reads a
+//! clock, sleeps, spawns or does I/O: the loop passes `now`, sends the packets it gets
+//! back on the link, and sleeps until [`Controller::next_deadline`] (or the next key,
+//! or the next received packet). Its duties, each of which the streamer's safety
+//! depends on:
+//!
+//! - call [`Controller::tick`] at `next_deadline()` and after applying received
+//!   packets to the model (so a motor fault stops the run as soon as it is heard);
+//! - call [`Controller::on_link_error`] when a write fails, [`Controller::on_focus_lost`]
+//!   on `Event::FocusLost`, [`Controller::on_quit`] before leaving;
+//! - install a panic hook and a drop guard that write
+//!   [`MotorStreamer::emergency_stop_packets`].
+
+pub mod commands;
+pub mod keymap;
+pub mod streamer;
+
+use std::time::Instant;
+
+use crossterm::event::KeyEvent;
+
+use crate::model::Model;
+use crate::protocol::message::Packet;
+use crate::ui::state::{MotorRun, ReleaseMode};
+
+pub use commands::{Refusal, command, motor_check, motor_permit};
+pub use keymap::{Action, KeyContext, KeyPhase, Selected};
+pub use streamer::{
+    Direction, MAX_WIRE_INTERVAL, MotorStreamer, StopReason, StopRecord, StreamerConfig,
+};
+
+/// What a key did.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Outcome {
+    /// To send on the link, in order.
+    pub packets: Vec<Packet>,
+    /// The action for the app to carry out (selection, sort, overlays, views, quit).
+    /// Commands and motor keys are already handled here and come back only for the
+    /// app's log; a key that only stopped a running motor comes back as `None`.
+    pub action: Option<Action>,
+    /// A short message for the person: a refusal, or why a motor stopped.
+    pub notice: Option<String>,
+}
+
+#[derive(Debug, Clone)]
+pub struct Controller {
+    streamer: MotorStreamer,
+    /// A stop the person did not ask for, kept until the app takes it for the notice.
+    pending_notice: Option<String>,
+}
+
+impl Controller {
+    pub fn new(config: StreamerConfig) -> Self {
+        Controller {
+            streamer: MotorStreamer::new(config),
+            pending_notice: None,
+        }
+    }
+
+    pub fn release_mode(&self) -> ReleaseMode {
+        self.streamer.release_mode()
+    }
+
+    /// Set once the app knows whether the terminal reports key releases.
+    pub fn set_release_mode(&mut self, now: Instant, mode: ReleaseMode) -> Vec<Packet> {
+        self.streamer.set_release_mode(now, mode)
+    }
+
+    pub fn streamer(&self) -> &MotorStreamer {
+        &self.streamer
+    }
+
+    /// A command number for the app's own requests (queries at connect), from the
+    /// same counter as the commands sent here.
+    pub fn next_cnt(&mut self) -> u8 {
+        self.streamer.next_cnt()
+    }
+
+    pub fn handle_key(
+        &mut self,
+        key: KeyEvent,
+        ctx: &KeyContext,
+        model: &Model,
+        now: Instant,
+    ) -> Outcome {
+        // Timeouts and the model's verdict come first: a key must not be what keeps
+        // alive a run that already had to end.
+        let mut out = Outcome {
+            packets: self.tick(model, now),
+            ..Outcome::default()
+        };
+        out.notice = self.take_notice();
+        let action = keymap::map(&key, ctx);
+
+        if self.streamer.running_key().is_some() {
+            match action {
+                Some(Action::Motor {
+                    motor,
+                    direction,
+                    phase,
+                }) => {
+                    let p = match phase {
+                        KeyPhase::Press => self.streamer.press(now, motor, direction),
+                        KeyPhase::Repeat => self.streamer.repeat(now, motor, direction),
+                    };
+                    out.packets.extend(p);
+                    out.action = action;
+                }
+                Some(Action::KeyReleased) => {
+                    out.packets.extend(self.streamer.release(now));
+                }
+                Some(Action::Quit) => {
+                    out.packets
+                        .extend(self.streamer.stop(now, StopReason::Quit));
+                    out.action = Some(Action::Quit);
+                }
+                // Any other key, bound or not, only stops the motor.
+                _ => {
+                    out.packets
+                        .extend(self.streamer.stop(now, StopReason::OtherKey));
+                }
+            }
+            if self.streamer.running_key().is_none() {
+                out.notice = self.stopped_notice();
+            }
+            return out;
+        }
+
+        match action {
+            Some(Action::Motor {
+                motor,
+                direction,
+                phase,
+            }) => {
+                let p = match phase {
+                    KeyPhase::Repeat => self.streamer.repeat(now, motor, direction),
+                    KeyPhase::Press if self.streamer.would_start(now, motor, direction) => {
+                        match motor_permit(model, motor, direction, now) {
+                            Ok(()) => self.streamer.press(now, motor, direction),
+                            Err(why) => {
+                                out.notice = Some(why.0);
+                                self.streamer.press_refused(now, motor, direction)
+                            }
+                        }
+                    }
+                    KeyPhase::Press => self.streamer.press(now, motor, direction),
+                };
+                out.packets.extend(p);
+                out.action = action;
+            }
+            Some(Action::KeyReleased) => {
+                out.packets.extend(self.streamer.release(now));
+            }
+            Some(Action::Unavailable(why)) => {
+                out.notice = Some(why.to_string());
+                out.action = action;
+            }
+            Some(a) if a.is_command() => {
+                match command(&a, model, now) {
+                    Ok(message) => {
+                        let cnt = self.streamer.next_cnt();
+                        out.packets.push(Packet::request(cnt, message));
+                    }
+                    Err(why) => out.notice = Some(why.0),
+                }
+                out.action = Some(a);
+            }
+            other => out.action = other,
+        }
+        out
+    }
+
+    /// Ends a run the model says must end (lost communication, a motor fault, lost
+    /// motor status), then lets the streamer end timed-out runs and re-send.
+    pub fn tick(&mut self, model: &Model, now: Instant) -> Vec<Packet> {
+        let mut out = Vec::new();
+        if let Some((motor, direction)) = self.streamer.running_key()
+            && let Err(reason) = motor_check(model, motor, direction, now)
+        {
+            out.extend(self.streamer.stop(now, reason));
+        }
+        out.extend(self.streamer.tick(now));
+        if !out.is_empty() && self.streamer.running_key().is_none() {
+            self.pending_notice = self.stopped_notice();
+        }
+        out
+    }
+
+    pub fn on_link_error(&mut self, now: Instant) -> Vec<Packet> {
+        self.stop(now, StopReason::LinkError)
+    }
+
+    pub fn on_focus_lost(&mut self, now: Instant) -> Vec<Packet> {
+        self.stop(now, StopReason::FocusLost)
+    }
+
+    pub fn on_quit(&mut self, now: Instant) -> Vec<Packet> {
+        self.stop(now, StopReason::Quit)
+    }
+
+    pub fn next_deadline(&self) -> Option<Instant> {
+        self.streamer.next_deadline()
+    }
+
+    pub fn running(&self) -> Option<MotorRun> {
+        self.streamer.running()
+    }
+
+    pub fn last_stop(&self) -> Option<&StopRecord> {
+        self.streamer.last_stop()
+    }
+
+    /// Why a motor stopped on its own since the last call, for the notice line.
+    pub fn take_notice(&mut self) -> Option<String> {
+        self.pending_notice.take()
+    }
+
+    fn stop(&mut self, now: Instant, reason: StopReason) -> Vec<Packet> {
+        let out = self.streamer.stop(now, reason);
+        if !out.is_empty() {
+            self.pending_notice = self.stopped_notice();
+        }
+        out
+    }
+
+    /// Words for the last stop, unless the person simply let go.
+    fn stopped_notice(&self) -> Option<String> {
+        let s = self.streamer.last_stop()?;
+        (!s.reason.is_normal())
+            .then(|| format!("{} stopped: {}", s.motor.name(), s.reason.describe()))
+    }
+}
+
+impl Default for Controller {
+    fn default() -> Self {
+        Controller::new(StreamerConfig::default())
+    }
+}

@@ -1,0 +1,186 @@
+//! Actions to commands, judged against what the model knows right now.
+//!
+//! Every refusal comes back in words the person can act on; nothing is sent that the
+//! ICD says the unit will not honour, or whose effect the page could not show.
+
+use std::fmt;
+use std::time::Instant;
+
+use crate::model::{CircuitKind, CircuitState, Model, Motor, TrimKind};
+use crate::protocol::device::{self, STARTER, SYSTEM_FAULT_ID};
+use crate::protocol::fault::FaultCode;
+use crate::protocol::message::{DeviceClear, DevicePower, Message, WigWagMode, WigWagModeSetting};
+
+use super::keymap::Action;
+use super::streamer::{Direction, StopReason};
+
+/// Why a key did nothing, in words for the notice line.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Refusal(pub String);
+
+impl fmt::Display for Refusal {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+fn refuse<T>(why: impl Into<String>) -> Result<T, Refusal> {
+    Err(Refusal(why.into()))
+}
+
+const COMM_LOST: &str = "COMMUNICATION LOST: nothing is sent until the VP-X is heard again, \
+                         because the result could not be seen";
+
+/// The message for a command action (`Action::is_command`), or why not. Other actions
+/// are refused as "not a command".
+pub fn command(action: &Action, model: &Model, now: Instant) -> Result<Message, Refusal> {
+    if !action.is_command() {
+        return refuse("not a command");
+    }
+    if model.comm_lost(now) {
+        return refuse(COMM_LOST);
+    }
+    match *action {
+        Action::PowerOn(id) => power(model, now, id, true),
+        Action::PowerOff(id) => power(model, now, id, false),
+        Action::Reset(id) => reset(model, now, id),
+        Action::ResetSystemFault => match model.live_faults(now) {
+            Some((_, true)) => Ok(DeviceClear {
+                device_id: SYSTEM_FAULT_ID,
+            }
+            .into()),
+            _ => refuse("there is no system fault to reset"),
+        },
+        Action::ToggleWigWag => match model.live_system(now) {
+            Some(s) => Ok(WigWagMode {
+                mode: match s.misc.wig_wag_mode {
+                    WigWagModeSetting::Auto => WigWagModeSetting::Steady,
+                    _ => WigWagModeSetting::Auto,
+                },
+            }
+            .into()),
+            None => refuse("the wig-wag mode is not known yet (no live SYSTEM_STATUS)"),
+        },
+        _ => refuse("not a command"),
+    }
+}
+
+fn circuit_state(model: &Model, now: Instant, id: u8) -> Option<(CircuitKind, CircuitState)> {
+    model
+        .circuits(now)
+        .into_iter()
+        .find(|c| c.id == id)
+        .map(|c| (c.kind, c.state))
+}
+
+fn power(model: &Model, now: Instant, id: u8, on: bool) -> Result<Message, Refusal> {
+    let name = model.display_name(id);
+    if id == STARTER {
+        // ICD Appendix B note 1, reading note 18.
+        return refuse(
+            "the starter cannot be switched from the EFIS, only reset; \
+             the VP-X turns it off above 500 RPM",
+        );
+    }
+    let Some((kind, state)) = circuit_state(model, now, id) else {
+        return refuse(format!("{name} is not on this unit's device list"));
+    };
+    match kind {
+        CircuitKind::Flaps | CircuitKind::Trim(_) => refuse(format!(
+            "{name} is a motor: it is run with the motor keys, not switched on or off"
+        )),
+        _ => match state {
+            // Appendix E: a faulted pin stays off until the fault is cleared.
+            CircuitState::Fault(code) if on => refuse(format!(
+                "{name} is faulted ({}): reset it with r first",
+                code.name()
+            )),
+            CircuitState::Unknown => refuse(format!("{name}'s state is not known yet")),
+            _ => Ok(DevicePower { device_id: id, on }.into()),
+        },
+    }
+}
+
+fn reset(model: &Model, now: Instant, id: u8) -> Result<Message, Refusal> {
+    let name = model.display_name(id);
+    if device::device(id).is_none() {
+        return refuse(format!("device {id} does not exist"));
+    }
+    match circuit_state(model, now, id) {
+        Some((_, CircuitState::Fault(code))) => match code {
+            // Appendix E: these clear only by a power cycle, so DEVICE_CLEAR is futile.
+            FaultCode::FlapDisabled | FaultCode::TrimDisabled => refuse(format!(
+                "{name}: {} clears only when the system is power cycled",
+                code.name()
+            )),
+            _ => Ok(DeviceClear { device_id: id }.into()),
+        },
+        Some((_, CircuitState::Unknown)) => refuse(format!("{name}'s state is not known yet")),
+        _ => refuse(format!("{name} has no fault to reset")),
+    }
+}
+
+/// Whether `motor` may run (or keep running) `direction` now. Each reason is also the
+/// [`StopReason`] that ends a run already going.
+pub fn motor_check(
+    model: &Model,
+    motor: Motor,
+    direction: Direction,
+    now: Instant,
+) -> Result<(), StopReason> {
+    if model.comm_lost(now) {
+        return Err(StopReason::CommLost);
+    }
+    let Some(ft) = model.live_flap_trim(now) else {
+        return Err(StopReason::MotorStatusLost);
+    };
+    let (enabled, flagged) = match motor {
+        Motor::Flaps => (ft.flap.enabled, ft.flap.fault),
+        Motor::Trim(TrimKind::Pitch) => (ft.pitch_trim.enabled, ft.pitch_trim.fault),
+        Motor::Trim(TrimKind::Roll) => (ft.roll_trim.enabled, ft.roll_trim.fault),
+    };
+    let code = motor.fault(ft);
+    if code.is_fault() {
+        return Err(StopReason::MotorFault(code));
+    }
+    // FAULT_STATUS carries the motor's device bit too; either source is enough.
+    let listed = model
+        .live_faults(now)
+        .map(|(codes, _)| codes[motor.device_id() as usize])
+        .filter(|c| c.is_fault());
+    if let Some(code) = listed {
+        return Err(StopReason::MotorFault(code));
+    }
+    if flagged {
+        return Err(StopReason::MotorFault(FaultCode::Unknown(0xFF)));
+    }
+    if !enabled {
+        return Err(StopReason::MotorDisabled);
+    }
+    if motor == Motor::Flaps && direction == Direction::Down && ft.flap.down_switch_inhibited {
+        return Err(StopReason::FlapDownInhibited);
+    }
+    Ok(())
+}
+
+/// [`motor_check`] as a refusal to start, in words.
+pub fn motor_permit(
+    model: &Model,
+    motor: Motor,
+    direction: Direction,
+    now: Instant,
+) -> Result<(), Refusal> {
+    motor_check(model, motor, direction, now).map_err(|r| {
+        Refusal(match r {
+            StopReason::CommLost => COMM_LOST.to_string(),
+            StopReason::MotorFault(_) => {
+                format!(
+                    "{} is faulted ({}): reset it with r first",
+                    motor.name(),
+                    r.describe()
+                )
+            }
+            r => format!("{} cannot run: {}", motor.name(), r.describe()),
+        })
+    })
+}

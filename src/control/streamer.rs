@@ -1,0 +1,581 @@
+//! The motor streamer: a held key becomes a TRIM_MOVE/FLAP_MOVE stream with a dead man.
+//!
+//! ICD §6.4.2/§6.4.3 and reading note 19: while a motor should run, its move message
+//! must reach the unit at 4 Hz or more (no gap over 250 ms), and the unit stops the
+//! motor when they stop coming. That rule protects against a lost stop message; this
+//! module protects against the other runaway, a page that keeps streaming after the
+//! person let go. So a run ends, with a stop message (the same message, power 0), on
+//! the first of: release, the dead-man timeout of the key auto-repeat, any other key,
+//! quit, focus loss, a link error, lost communication, a motor fault, or the maximum
+//! continuous run time. After an end the held key cannot restart the run: only a fresh
+//! press after a release (or, without release reports, a gap in the repeats) can.
+//!
+//! Nothing here reads a clock, sleeps or does I/O: every call takes `now`, and
+//! [`MotorStreamer::next_deadline`] tells the caller when to call
+//! [`MotorStreamer::tick`] next, so tests drive it on a fake clock.
+
+use std::time::{Duration, Instant};
+
+use crate::model::{Motor, TrimKind};
+use crate::protocol::fault::FaultCode;
+use crate::protocol::message::{FlapDirection, FlapMove, Packet, TrimDirection, TrimMove};
+use crate::ui::state::{MotorRun, ReleaseMode};
+
+/// Reading note 19: the longest gap the unit tolerates between move messages.
+pub const MAX_WIRE_INTERVAL: Duration = Duration::from_millis(250);
+/// The longest resend period accepted. The 50 ms left below [`MAX_WIRE_INTERVAL`] is
+/// for a main loop that wakes late (a busy redraw, a slow terminal write).
+pub const MAX_RESEND_PERIOD: Duration = Duration::from_millis(200);
+/// Below this the stream would only crowd the 57 600-baud link.
+pub const MIN_RESEND_PERIOD: Duration = Duration::from_millis(20);
+/// A configured run cap is clamped to this: it must stay below the 30 s flap max run
+/// time of ICD Appendix F, so the page's cap, not the unit's, is what people meet.
+pub const MAX_RUN_LIMIT: Duration = Duration::from_secs(25);
+/// The command number of [`MotorStreamer::emergency_stop_packets`]: the panic hook has
+/// no counter to draw from, and the unit does not need the number to be fresh.
+pub const EMERGENCY_CNT: u8 = 0;
+
+/// Which way a motor key drives. Flaps and pitch trim go up/down, roll trim left/right.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Direction {
+    Up,
+    Down,
+    Left,
+    Right,
+}
+
+impl Direction {
+    pub fn name(self) -> &'static str {
+        match self {
+            Direction::Up => "up",
+            Direction::Down => "down",
+            Direction::Left => "left",
+            Direction::Right => "right",
+        }
+    }
+
+    /// Whether `motor` moves this way: a roll trim has no "up", flaps no "left".
+    pub fn applies_to(self, motor: Motor) -> bool {
+        match motor {
+            Motor::Flaps | Motor::Trim(TrimKind::Pitch) => {
+                matches!(self, Direction::Up | Direction::Down)
+            }
+            Motor::Trim(TrimKind::Roll) => matches!(self, Direction::Left | Direction::Right),
+        }
+    }
+}
+
+/// Why a run ended, for the screen and the event log.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// The terminal reported the key's release (or any key's release).
+    Released,
+    /// Auto-repeat mode: no repeat arrived in time, so the key is taken as released.
+    RepeatsStopped,
+    OtherKey,
+    Quit,
+    FocusLost,
+    LinkError,
+    CommLost,
+    /// FLAP_TRIM_STATUS went quiet: the motor can no longer be watched.
+    MotorStatusLost,
+    MotorFault(FaultCode),
+    MotorDisabled,
+    FlapDownInhibited,
+    MaxRunTime,
+    /// The caller did not call `tick` in time, so a gap over 250 ms already went out;
+    /// the unit has stopped the motor and the page does not silently restart it.
+    Starved,
+    Panic,
+}
+
+impl StopReason {
+    pub fn describe(self) -> String {
+        match self {
+            StopReason::Released => "key released".into(),
+            StopReason::RepeatsStopped => "key released (key repeats stopped)".into(),
+            StopReason::OtherKey => "another key was pressed".into(),
+            StopReason::Quit => "quitting".into(),
+            StopReason::FocusLost => "the terminal lost focus".into(),
+            StopReason::LinkError => "the link could not send".into(),
+            StopReason::CommLost => "COMMUNICATION LOST".into(),
+            StopReason::MotorStatusLost => "no live flap/trim status".into(),
+            StopReason::MotorFault(code) => format!("motor fault {}", code.name()),
+            StopReason::MotorDisabled => "the motor is not enabled".into(),
+            StopReason::FlapDownInhibited => "flap down is inhibited".into(),
+            StopReason::MaxRunTime => "maximum run time reached; press the key again".into(),
+            StopReason::Starved => "the page fell behind the 4 Hz stream".into(),
+            StopReason::Panic => "the program failed".into(),
+        }
+    }
+
+    /// Whether the person simply let go, as opposed to the run being cut short.
+    pub fn is_normal(self) -> bool {
+        matches!(self, StopReason::Released | StopReason::RepeatsStopped)
+    }
+}
+
+/// The last run's end, kept for display and logging.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StopRecord {
+    pub motor: Motor,
+    pub direction: Direction,
+    pub reason: StopReason,
+    pub at: Instant,
+    pub ran_for: Duration,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StreamerConfig {
+    pub release_mode: ReleaseMode,
+    /// How often the move message is re-sent; clamped to
+    /// [`MIN_RESEND_PERIOD`]..=[`MAX_RESEND_PERIOD`].
+    pub resend_period: Duration,
+    /// The longest continuous run; clamped to [`MAX_RUN_LIMIT`].
+    pub max_run: Duration,
+    /// Auto-repeat mode: how long after the press the first repeat may take.
+    pub first_repeat_timeout: Duration,
+    /// Auto-repeat mode: how long after a repeat the next may take.
+    pub repeat_timeout: Duration,
+}
+
+impl Default for StreamerConfig {
+    fn default() -> Self {
+        StreamerConfig {
+            release_mode: ReleaseMode::default(),
+            resend_period: Duration::from_millis(200),
+            max_run: Duration::from_secs(10),
+            first_repeat_timeout: Duration::from_millis(600),
+            repeat_timeout: Duration::from_millis(200),
+        }
+    }
+}
+
+impl StreamerConfig {
+    fn clamped(mut self) -> Self {
+        self.resend_period = self
+            .resend_period
+            .clamp(MIN_RESEND_PERIOD, MAX_RESEND_PERIOD);
+        self.max_run = self.max_run.min(MAX_RUN_LIMIT);
+        self
+    }
+}
+
+type MotorKey = (Motor, Direction);
+
+/// The motor key we believe is held down.
+#[derive(Debug, Clone, Copy)]
+struct Held {
+    /// `None` after a focus loss in auto-repeat mode: the next motor key event of any
+    /// kind may be a repeat of a key held through the focus change, so it cannot start.
+    key: Option<MotorKey>,
+    last_event: Instant,
+    repeats_seen: bool,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Run {
+    key: MotorKey,
+    started: Instant,
+    last_sent: Instant,
+}
+
+/// Turns motor key events into the move stream. See the module docs.
+#[derive(Debug, Clone)]
+pub struct MotorStreamer {
+    config: StreamerConfig,
+    cnt: u8,
+    run: Option<Run>,
+    held: Option<Held>,
+    last_stop: Option<StopRecord>,
+}
+
+impl MotorStreamer {
+    pub fn new(config: StreamerConfig) -> Self {
+        MotorStreamer {
+            config: config.clamped(),
+            cnt: 0,
+            run: None,
+            held: None,
+            last_stop: None,
+        }
+    }
+
+    /// The configuration in force (after clamping).
+    pub fn config(&self) -> &StreamerConfig {
+        &self.config
+    }
+
+    pub fn release_mode(&self) -> ReleaseMode {
+        self.config.release_mode
+    }
+
+    /// Switching modes forgets the held key: the two modes judge "held" differently.
+    pub fn set_release_mode(&mut self, now: Instant, mode: ReleaseMode) -> Vec<Packet> {
+        let out = self.stop(now, StopReason::OtherKey);
+        self.config.release_mode = mode;
+        self.held = None;
+        out
+    }
+
+    /// The next command number, shared by every request the page sends so the unit's
+    /// echoes (reading note 14) can be told apart.
+    pub fn next_cnt(&mut self) -> u8 {
+        let c = self.cnt;
+        self.cnt = self.cnt.wrapping_add(1);
+        c
+    }
+
+    /// A key-down of a motor key. With key release reports, a press is fresh unless
+    /// the key is already down. Without them a press may be a repeat, and is judged
+    /// by the repeat timeouts. A fresh press starts a run when none is running; while
+    /// another motor key runs it only stops that run.
+    pub fn press(&mut self, now: Instant, motor: Motor, direction: Direction) -> Vec<Packet> {
+        self.key_event(now, motor, direction, true, true)
+    }
+
+    /// A key repeat the terminal marked as such. Keeps a run of the same key alive;
+    /// never starts one.
+    pub fn repeat(&mut self, now: Instant, motor: Motor, direction: Direction) -> Vec<Packet> {
+        self.key_event(now, motor, direction, false, true)
+    }
+
+    /// A fresh press the caller refused (fault, lost communication): the key is
+    /// remembered as held, so its repeats cannot start the motor once the reason goes
+    /// away; a run of another key is stopped as for any other key.
+    pub fn press_refused(
+        &mut self,
+        now: Instant,
+        motor: Motor,
+        direction: Direction,
+    ) -> Vec<Packet> {
+        self.key_event(now, motor, direction, true, false)
+    }
+
+    /// Whether [`press`](Self::press) at `now` would start a run.
+    pub fn would_start(&self, now: Instant, motor: Motor, direction: Direction) -> bool {
+        direction.applies_to(motor)
+            && self.run.is_none()
+            && !self.is_repeat(now, (motor, direction))
+    }
+
+    /// A key release (key release mode). Any release ends the run: with the key up
+    /// there is nothing to keep it alive, and a release of some other key while the
+    /// motor runs is still a key the person touched.
+    pub fn release(&mut self, now: Instant) -> Vec<Packet> {
+        let mut out = self.expire(now);
+        out.extend(self.end(now, StopReason::Released));
+        self.held = None;
+        out
+    }
+
+    /// Ends the run, if any, with a stop message. The held key stays held, so neither
+    /// its repeats nor a press the terminal cannot tell from a repeat restart it.
+    pub fn stop(&mut self, now: Instant, reason: StopReason) -> Vec<Packet> {
+        let mut out = self.expire(now);
+        out.extend(self.end(now, reason));
+        if reason == StopReason::FocusLost {
+            self.held = match self.config.release_mode {
+                // Release events for keys let go while unfocused never arrive; repeats
+                // are marked as such and cannot start a run, so forgetting is safe.
+                ReleaseMode::KeyRelease => None,
+                // Repeats of a key held through the focus change look like presses.
+                ReleaseMode::AutoRepeat => Some(Held {
+                    key: None,
+                    last_event: now,
+                    repeats_seen: true,
+                }),
+            };
+        }
+        out
+    }
+
+    /// Ends a run whose time is up and re-sends the move message when due. Call it at
+    /// [`next_deadline`](Self::next_deadline) (and whenever else is convenient).
+    pub fn tick(&mut self, now: Instant) -> Vec<Packet> {
+        let mut out = self.expire(now);
+        if let Some(run) = self.run
+            && now >= run.last_sent + self.config.resend_period
+        {
+            out.push(self.move_packet(run.key, true));
+            if let Some(r) = self.run.as_mut() {
+                r.last_sent = now;
+            }
+        }
+        out
+    }
+
+    /// When `tick` must next be called; `None` while no motor runs.
+    pub fn next_deadline(&self) -> Option<Instant> {
+        let run = self.run?;
+        let mut at =
+            (run.last_sent + self.config.resend_period).min(run.started + self.config.max_run);
+        if let Some(d) = self.dead_man_deadline() {
+            at = at.min(d);
+        }
+        Some(at)
+    }
+
+    pub fn running(&self) -> Option<MotorRun> {
+        self.run.map(|r| MotorRun {
+            motor: r.key.0,
+            direction: r.key.1.name(),
+        })
+    }
+
+    /// The running motor and direction, typed.
+    pub fn running_key(&self) -> Option<(Motor, Direction)> {
+        self.run.map(|r| r.key)
+    }
+
+    pub fn last_stop(&self) -> Option<&StopRecord> {
+        self.last_stop.as_ref()
+    }
+
+    /// Stop messages for every motor, needing no state: for the panic hook and the
+    /// drop guard, which cannot trust (or reach) the streamer. Stopping a motor that
+    /// is not running is harmless; leaving one running is not.
+    pub fn emergency_stop_packets() -> [Packet; 3] {
+        [
+            Packet::request(
+                EMERGENCY_CNT,
+                FlapMove {
+                    on: false,
+                    direction: FlapDirection::Up,
+                },
+            ),
+            Packet::request(
+                EMERGENCY_CNT,
+                TrimMove {
+                    trim_type: TrimKind::Pitch.trim_type(),
+                    on: false,
+                    direction: TrimDirection::DownOrRight,
+                },
+            ),
+            Packet::request(
+                EMERGENCY_CNT,
+                TrimMove {
+                    trim_type: TrimKind::Roll.trim_type(),
+                    on: false,
+                    direction: TrimDirection::DownOrRight,
+                },
+            ),
+        ]
+    }
+
+    // ----- internals -----
+
+    fn key_event(
+        &mut self,
+        now: Instant,
+        motor: Motor,
+        direction: Direction,
+        maybe_fresh: bool,
+        may_start: bool,
+    ) -> Vec<Packet> {
+        let mut out = self.expire(now);
+        if !direction.applies_to(motor) {
+            return out;
+        }
+        let key = (motor, direction);
+        let repeat = !maybe_fresh || self.is_repeat(now, key);
+        self.held = Some(Held {
+            key: Some(key),
+            last_event: now,
+            // After the first repeat the next comes at the repeat rate, not the delay.
+            repeats_seen: repeat,
+        });
+        match self.run {
+            Some(run) if run.key == key => {}
+            Some(_) => out.extend(self.end(now, StopReason::OtherKey)),
+            None if !repeat && may_start => {
+                self.run = Some(Run {
+                    key,
+                    started: now,
+                    last_sent: now,
+                });
+                out.push(self.move_packet(key, true));
+            }
+            None => {}
+        }
+        out
+    }
+
+    /// Whether an event of `key` at `now` continues the key already held.
+    fn is_repeat(&self, now: Instant, key: MotorKey) -> bool {
+        let Some(h) = self.held else { return false };
+        match h.key {
+            None => true,
+            Some(k) if k != key => false,
+            Some(_) => match self.config.release_mode {
+                ReleaseMode::KeyRelease => true,
+                ReleaseMode::AutoRepeat => now < h.last_event + self.window(&h),
+            },
+        }
+    }
+
+    fn window(&self, h: &Held) -> Duration {
+        if h.repeats_seen {
+            self.config.repeat_timeout
+        } else {
+            self.config.first_repeat_timeout
+        }
+    }
+
+    fn dead_man_deadline(&self) -> Option<Instant> {
+        if self.config.release_mode != ReleaseMode::AutoRepeat {
+            return None;
+        }
+        let h = self.held?;
+        Some(h.last_event + self.window(&h))
+    }
+
+    /// Ends the run if one of its clocks ran out.
+    fn expire(&mut self, now: Instant) -> Vec<Packet> {
+        let Some(run) = self.run else {
+            return Vec::new();
+        };
+        let reason = if now.saturating_duration_since(run.last_sent) > MAX_WIRE_INTERVAL {
+            Some(StopReason::Starved)
+        } else if now >= run.started + self.config.max_run {
+            Some(StopReason::MaxRunTime)
+        } else if self.dead_man_deadline().is_some_and(|d| now >= d) {
+            Some(StopReason::RepeatsStopped)
+        } else {
+            None
+        };
+        reason.map_or_else(Vec::new, |r| self.end(now, r))
+    }
+
+    fn end(&mut self, now: Instant, reason: StopReason) -> Vec<Packet> {
+        let Some(run) = self.run.take() else {
+            return Vec::new();
+        };
+        self.last_stop = Some(StopRecord {
+            motor: run.key.0,
+            direction: run.key.1,
+            reason,
+            at: now,
+            ran_for: now.saturating_duration_since(run.started),
+        });
+        vec![self.move_packet(run.key, false)]
+    }
+
+    fn move_packet(&mut self, (motor, direction): MotorKey, on: bool) -> Packet {
+        let cnt = self.next_cnt();
+        move_packet(cnt, motor, direction, on)
+    }
+}
+
+/// The move message for `motor` (ICD Tables 30, 31): TRIM_MOVE direction 1 is pitch up
+/// or roll left, 0 pitch down or roll right; FLAP_MOVE 0 is up, 1 down.
+pub fn move_packet(cnt: u8, motor: Motor, direction: Direction, on: bool) -> Packet {
+    match motor {
+        Motor::Flaps => Packet::request(
+            cnt,
+            FlapMove {
+                on,
+                direction: match direction {
+                    Direction::Down => FlapDirection::Down,
+                    _ => FlapDirection::Up,
+                },
+            },
+        ),
+        Motor::Trim(kind) => Packet::request(
+            cnt,
+            TrimMove {
+                trim_type: kind.trim_type(),
+                on,
+                direction: match direction {
+                    Direction::Up | Direction::Left => TrimDirection::UpOrLeft,
+                    Direction::Down | Direction::Right => TrimDirection::DownOrRight,
+                },
+            },
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::message::{Message, TrimType};
+
+    const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
+
+    fn ms(n: u64) -> Duration {
+        Duration::from_millis(n)
+    }
+
+    #[test]
+    fn direction_bytes_follow_tables_30_and_31() {
+        let bytes = |m, d| move_packet(7, m, d, true).message.emit().to_vec();
+        assert_eq!(bytes(PITCH, Direction::Up), [0, 1, 1]);
+        assert_eq!(bytes(PITCH, Direction::Down), [0, 1, 0]);
+        assert_eq!(
+            bytes(Motor::Trim(TrimKind::Roll), Direction::Left),
+            [1, 1, 1]
+        );
+        assert_eq!(
+            bytes(Motor::Trim(TrimKind::Roll), Direction::Right),
+            [1, 1, 0]
+        );
+        assert_eq!(bytes(Motor::Flaps, Direction::Up), [1, 0]);
+        assert_eq!(bytes(Motor::Flaps, Direction::Down), [1, 1]);
+    }
+
+    #[test]
+    fn a_resend_period_over_the_margin_is_clamped() {
+        let s = MotorStreamer::new(StreamerConfig {
+            resend_period: ms(400),
+            max_run: Duration::from_secs(60),
+            ..Default::default()
+        });
+        assert_eq!(s.config().resend_period, MAX_RESEND_PERIOD);
+        assert_eq!(s.config().max_run, MAX_RUN_LIMIT);
+    }
+
+    #[test]
+    fn a_direction_the_motor_lacks_starts_nothing() {
+        let t0 = Instant::now();
+        let mut s = MotorStreamer::new(StreamerConfig::default());
+        assert!(s.press(t0, PITCH, Direction::Left).is_empty());
+        assert!(s.running().is_none());
+    }
+
+    #[test]
+    fn command_numbers_count_up_across_packets() {
+        let t0 = Instant::now();
+        let mut s = MotorStreamer::new(StreamerConfig::default());
+        let a = s.press(t0, PITCH, Direction::Up);
+        let b = s.tick(t0 + ms(200));
+        assert_eq!(a[0].cnt + 1, b[0].cnt);
+        assert!(matches!(
+            b[0].message,
+            Message::TrimMove(TrimMove {
+                trim_type: TrimType::Pitch,
+                on: true,
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn a_late_tick_reports_starvation_and_stops() {
+        let t0 = Instant::now();
+        let mut s = MotorStreamer::new(StreamerConfig {
+            release_mode: ReleaseMode::KeyRelease,
+            ..Default::default()
+        });
+        s.press(t0, PITCH, Direction::Up);
+        let out = s.tick(t0 + ms(260));
+        assert_eq!(out.len(), 1);
+        assert!(matches!(
+            out[0].message,
+            Message::TrimMove(TrimMove { on: false, .. })
+        ));
+        assert_eq!(s.last_stop().unwrap().reason, StopReason::Starved);
+        // The key is still down: its repeats must not start the motor again.
+        assert!(s.repeat(t0 + ms(270), PITCH, Direction::Up).is_empty());
+        assert!(s.running().is_none());
+    }
+}
