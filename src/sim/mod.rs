@@ -1,1 +1,338 @@
-//! sim
+//! The virtual VP-X: a second, independent implementation of the device side of the
+//! ICD, speaking the real wire protocol over any byte stream (a pseudo-terminal's
+//! master, or one end of an in-process [`duplex_pipe`](crate::link::duplex_pipe)). It
+//! shares nothing with the page but bytes.
+//!
+//! ```no_run
+//! use vpx_efis::sim::{self, SimCommand, SimOptions};
+//! let pty = vpx_efis::link::open_pty_pair().unwrap();
+//! let reader = pty.master.try_clone_native().unwrap();
+//! let opts = SimOptions::new(sim::load_scenario("demo").unwrap());
+//! let handle = sim::spawn(opts, Box::new(reader), Box::new(pty.master));
+//! // … open pty.path as a serial port and talk to it …
+//! handle.inject(SimCommand::Switch { switch: 3, on: true });
+//! println!("{:?}", handle.stats().wire);
+//! handle.stop();
+//! ```
+//!
+//! One file per concern: [`unit`] is the pure state machine (bytes in, bytes out, a
+//! caller's clock), [`motors`] the flap and trim motors, [`eeprom`] persistence,
+//! [`scenario`] the TOML aircraft and timeline, [`bootloader`] §7. This file runs a
+//! unit on threads.
+//!
+//! Decisions where the ICD is silent (each also written where it is made):
+//!
+//! * Broadcasts run on an absolute schedule (1 Hz and 10 Hz, FLAP_TRIM_STATUS offset
+//!   from the others); broadcasts carry the unit's own count, replies echo the request.
+//! * The primary alternator wins; the secondary runs only while the primary is off or
+//!   faulted. An over-voltage trips the running one and its regulator fault goes with
+//!   it, so the other alternator takes over at the scenario's bus volts.
+//! * DEVICE_POWER overrides a pin until its switch input changes; DEVICE_POWER to a
+//!   faulted pin, the starter or a motor is ignored (counted). DEVICE_CLEAR drops the
+//!   cleared pin's override and those of every switch-11 pin (§6.5.1 note 2).
+//! * The system fault bit is only set by injection; nothing in the ICD says what sets it.
+//! * A *_SPEC whose payload does not decode (a flag byte of 2) is answered SPEC_ACK
+//!   OutOfRange with the id from the payload (253/254/0/29/30 for system, wig-wag,
+//!   flaps, roll and pitch trim). SPEC_ACK for TRIM_SPEC carries 29 (roll) or 30 (pitch).
+//! * The overspeed inhibit also refuses FLAP_MOVE down. Wig-wag lights alternate every
+//!   0.5 s. EEPROM_ERASE reports integrity code 0x01 (General EEPROM).
+//! * A silent unit still takes requests in; its replies are lost like its broadcasts.
+//! * DEVICE_ENABLE defaults to enabled; a set gets no reply, a query (flag 2) does.
+
+pub mod bootloader;
+pub mod eeprom;
+pub mod motors;
+pub mod scenario;
+pub mod unit;
+
+use std::collections::VecDeque;
+use std::io::{ErrorKind, Read, Write};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::{Receiver, Sender, bounded, select, unbounded};
+
+pub use scenario::{MotorDirection, MotorId, Scenario, load_scenario};
+pub use unit::{SimCommand, SimStats, Unit, UnitOptions, WireStats};
+
+use eeprom::{Eeprom, LoadOutcome};
+
+/// How a sim is started.
+#[derive(Debug, Clone)]
+pub struct SimOptions {
+    pub scenario: Scenario,
+    /// EEPROM file (`--eeprom`); `None` keeps it in memory.
+    pub eeprom: Option<PathBuf>,
+    /// VERSION hardware version (ICD Table 11 note 1).
+    pub hardware_version: u8,
+    pub software_version: (u8, u8),
+    /// Seed of the load noise and garbage bytes.
+    pub seed: u64,
+    /// Also print log lines on standard error (not when a terminal UI owns it).
+    pub log_to_stderr: bool,
+}
+
+impl SimOptions {
+    /// A VP-X Pro (hardware 2) with software 2.1, EEPROM in memory, quiet.
+    pub fn new(scenario: Scenario) -> Self {
+        let d = UnitOptions::default();
+        SimOptions {
+            scenario,
+            eeprom: None,
+            hardware_version: d.hardware_version,
+            software_version: d.software_version,
+            seed: d.seed,
+            log_to_stderr: false,
+        }
+    }
+}
+
+enum Ctrl {
+    Inject(SimCommand),
+    Stats(Sender<SimStats>),
+    Flash(Sender<Vec<u8>>),
+    Stop,
+}
+
+/// A running sim. Dropping it stops it.
+pub struct SimHandle {
+    ctrl: Sender<Ctrl>,
+    stop: Arc<AtomicBool>,
+    thread: Option<JoinHandle<()>>,
+}
+
+/// How many log lines the handle keeps.
+const LOG_LINES: usize = 200;
+/// The longest the run loop sleeps, so commands are never kept waiting.
+const MAX_SLEEP: Duration = Duration::from_millis(10);
+
+impl SimHandle {
+    /// A snapshot of the unit (counters, motor positions, power, faults, config, log).
+    /// Panics if the sim thread has died, which is a bug worth a loud test failure.
+    pub fn stats(&self) -> SimStats {
+        let (tx, rx) = bounded(1);
+        self.ctrl.send(Ctrl::Stats(tx)).expect("sim thread is gone");
+        rx.recv().expect("sim thread is gone")
+    }
+
+    /// Does something to the unit from outside the wire.
+    pub fn inject(&self, cmd: SimCommand) {
+        let _ = self.ctrl.send(Ctrl::Inject(cmd));
+    }
+
+    /// The whole 256 KiB program flash.
+    pub fn flash(&self) -> Vec<u8> {
+        let (tx, rx) = bounded(1);
+        self.ctrl.send(Ctrl::Flash(tx)).expect("sim thread is gone");
+        rx.recv().expect("sim thread is gone")
+    }
+
+    /// Stops the unit and waits for it.
+    pub fn stop(mut self) {
+        self.shutdown();
+    }
+
+    fn shutdown(&mut self) {
+        self.stop.store(true, Ordering::SeqCst);
+        let _ = self.ctrl.send(Ctrl::Stop);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+impl Drop for SimHandle {
+    fn drop(&mut self) {
+        self.shutdown();
+    }
+}
+
+/// Builds the unit: reads the EEPROM (file or the scenario's config) at `now`.
+pub fn build_unit(options: &SimOptions, now: Instant) -> Unit {
+    let opts = UnitOptions {
+        hardware_version: options.hardware_version,
+        software_version: options.software_version,
+        seed: options.seed,
+    };
+    // The scenario was checked when it was loaded; a hand-built one that the rules
+    // refuse falls back to the defaults rather than failing to start.
+    let (initial, mut log) = match options.scenario.unit_config() {
+        Ok(c) => (c, Vec::new()),
+        Err(e) => (
+            Default::default(),
+            vec![format!(
+                "scenario configuration refused ({e:#}); using defaults"
+            )],
+        ),
+    };
+    let (eeprom, mut outcome) = match &options.eeprom {
+        Some(path) => Eeprom::open(path, initial),
+        None => (
+            Eeprom::in_memory(initial.clone()),
+            LoadOutcome {
+                config: initial,
+                integrity: None,
+                log: Vec::new(),
+            },
+        ),
+    };
+    log.append(&mut outcome.log);
+    outcome.log = log;
+    Unit::new(&options.scenario, (eeprom, outcome), opts, now)
+}
+
+/// Runs the unit on any byte stream (a pty master, or an in-process pipe end).
+///
+/// Three threads: one reads (and stamps each chunk with its arrival time, so a motor
+/// stream's 250 ms is measured on arrival, not on when the unit got round to it), one
+/// writes (a stuck port drops bytes, like a serial line nobody listens to, instead of
+/// stalling the unit), and one runs the unit.
+pub fn spawn(
+    options: SimOptions,
+    reader: Box<dyn Read + Send>,
+    writer: Box<dyn Write + Send>,
+) -> SimHandle {
+    let (ctrl_tx, ctrl_rx) = unbounded();
+    let (rx_tx, rx_rx) = unbounded::<(Instant, Vec<u8>)>();
+    let (tx_tx, tx_rx) = bounded::<Vec<u8>>(256);
+    let stop = Arc::new(AtomicBool::new(false));
+
+    let s = stop.clone();
+    // Not joined: a reader without a timeout may block in `read` until its port closes.
+    let _ = std::thread::Builder::new()
+        .name("sim-rx".into())
+        .spawn(move || read_loop(reader, rx_tx, s));
+    let s = stop.clone();
+    let _ = std::thread::Builder::new()
+        .name("sim-tx".into())
+        .spawn(move || write_loop(writer, tx_rx, s));
+
+    let s = stop.clone();
+    let thread = std::thread::Builder::new()
+        .name("sim".into())
+        .spawn(move || run_loop(options, rx_rx, ctrl_rx, tx_tx, s))
+        .expect("cannot start the sim thread");
+    SimHandle {
+        ctrl: ctrl_tx,
+        stop,
+        thread: Some(thread),
+    }
+}
+
+fn read_loop(
+    mut reader: Box<dyn Read + Send>,
+    tx: Sender<(Instant, Vec<u8>)>,
+    stop: Arc<AtomicBool>,
+) {
+    let mut buf = [0u8; 1024];
+    while !stop.load(Ordering::SeqCst) {
+        match reader.read(&mut buf) {
+            Ok(0) => {
+                // End of file: an in-process pipe whose page has gone, or a pty whose
+                // other side is closed for now. Keep listening, gently.
+                std::thread::sleep(Duration::from_millis(20));
+            }
+            Ok(n) => {
+                if tx.send((Instant::now(), buf[..n].to_vec())).is_err() {
+                    return;
+                }
+            }
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted
+                ) => {}
+            Err(_) => std::thread::sleep(Duration::from_millis(50)),
+        }
+    }
+}
+
+fn write_loop(mut writer: Box<dyn Write + Send>, rx: Receiver<Vec<u8>>, stop: Arc<AtomicBool>) {
+    while let Ok(bytes) = rx.recv() {
+        if stop.load(Ordering::SeqCst) {
+            return;
+        }
+        // A port nobody reads times out; those bytes are lost, as on a real line.
+        if let Err(e) = writer.write_all(&bytes)
+            && e.kind() == ErrorKind::BrokenPipe
+        {
+            return;
+        }
+    }
+}
+
+fn run_loop(
+    options: SimOptions,
+    rx: Receiver<(Instant, Vec<u8>)>,
+    ctrl: Receiver<Ctrl>,
+    tx: Sender<Vec<u8>>,
+    stop: Arc<AtomicBool>,
+) {
+    let log_to_stderr = options.log_to_stderr;
+    let mut unit = build_unit(&options, Instant::now());
+    let mut log: VecDeque<String> = VecDeque::new();
+    let keep_log = |unit: &mut Unit, log: &mut VecDeque<String>| {
+        for line in unit.take_log() {
+            unit_log_line(log, log_to_stderr, line);
+        }
+    };
+    let mut dropped = 0u64;
+    while !stop.load(Ordering::SeqCst) {
+        let now = Instant::now();
+        let wait = unit
+            .next_deadline()
+            .saturating_duration_since(now)
+            .min(MAX_SLEEP);
+        select! {
+            recv(rx) -> chunk => if let Ok((at, bytes)) = chunk {
+                unit.feed(&bytes, at);
+            },
+            recv(ctrl) -> c => match c {
+                Ok(Ctrl::Inject(cmd)) => unit.apply(cmd, Instant::now()),
+                Ok(Ctrl::Stats(reply)) => {
+                    keep_log(&mut unit, &mut log);
+                    let mut s = unit.snapshot(Instant::now());
+                    s.log = log.iter().cloned().collect();
+                    let _ = reply.send(s);
+                }
+                Ok(Ctrl::Flash(reply)) => {
+                    let _ = reply.send(unit.flash.bytes.clone());
+                }
+                Ok(Ctrl::Stop) | Err(_) => break,
+            },
+            default(wait) => {},
+        }
+        // Everything that has arrived is taken in before time moves on, so a move
+        // message already here is never counted as late.
+        let now = Instant::now();
+        while let Ok((at, bytes)) = rx.try_recv() {
+            unit.feed(&bytes, at);
+        }
+        unit.tick(now);
+        let out = unit.take_output();
+        if !out.is_empty() && tx.try_send(out).is_err() {
+            dropped += 1;
+            if dropped.is_power_of_two() {
+                unit_log_line(
+                    &mut log,
+                    log_to_stderr,
+                    format!("output dropped {dropped} times: nobody is reading the port"),
+                );
+            }
+        }
+        keep_log(&mut unit, &mut log);
+    }
+}
+
+fn unit_log_line(log: &mut VecDeque<String>, to_stderr: bool, line: String) {
+    if to_stderr {
+        eprintln!("vpx-efis sim: {line}");
+    }
+    if log.len() == LOG_LINES {
+        log.pop_front();
+    }
+    log.push_back(line);
+}

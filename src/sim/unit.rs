@@ -1,0 +1,1441 @@
+//! The virtual VP-X itself: a pure state machine, bytes in and bytes out, driven by the
+//! caller's clock so tests can run it without sleeping.
+//!
+//! [`Unit::feed`] takes received bytes, [`Unit::tick`] lets time pass (broadcasts,
+//! motors, timeline), [`Unit::take_output`] hands over the bytes to send. Nothing here
+//! reads a clock or touches a port.
+//!
+//! Behaviour follows ICD §6 and §8; where the ICD is silent the decision is written at
+//! the place it is made, and summarised in the `sim` module documentation.
+
+use std::time::{Duration, Instant};
+
+use super::bootloader::{BootStats, Bootloader, Flash};
+use super::eeprom::{Eeprom, LoadOutcome};
+use super::motors::{FLAP_RATE, Geometry, Motor, TRIM_RATE};
+use super::scenario::{EventAction, MotorDirection, MotorId, Scenario};
+use crate::protocol::config::UnitConfig;
+use crate::protocol::decoder::{Decoder, Event};
+use crate::protocol::device::{
+    self, DEVICE_COUNT, EFIS, FIELD_PRI, FLAPS, STARTER, SYSTEM_FAULT_ID, SYSTEM_SPEC_ID, TRIM_P,
+    TRIM_R, WIG_WAG_SPEC_ID,
+};
+use crate::protocol::message::*;
+use crate::protocol::{FaultCode, Message, MessageId, Node, Packet, validate};
+
+/// Period of the 1 Hz broadcasts (ICD §6.3.1, §6.3.2, §6.3.4).
+pub const SLOW_PERIOD: Duration = Duration::from_secs(1);
+/// Period of FLAP_TRIM_STATUS (ICD §6.3.3, 10 Hz).
+pub const FAST_PERIOD: Duration = Duration::from_millis(100);
+/// EXTERNAL_DATA older than this sets "External Data Missing" (Table 24 note 6).
+pub const EXTERNAL_DATA_TIMEOUT: Duration = Duration::from_secs(2);
+/// Each wig-wag light is on for this long, then the other (the ICD gives no rate).
+pub const WIG_WAG_HALF_PERIOD: Duration = Duration::from_millis(500);
+/// The starter is cut above this valid RPM (Appendix B note 1, reading note 18).
+pub const STARTER_CUTOUT_RPM: u16 = 500;
+/// Motor currents while running, amps (the ICD gives none).
+const FLAP_MOTOR_AMPS: f32 = 3.5;
+const TRIM_MOTOR_AMPS: f32 = 0.8;
+
+/// Fixed facts about the unit, chosen when it is built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct UnitOptions {
+    /// VERSION hardware version (Table 11 note 1: 1 Gen 1, 2 Pro, 3 Sport).
+    pub hardware_version: u8,
+    pub software_version: (u8, u8),
+    /// Seed of the load noise and garbage bytes, so a run can be repeated.
+    pub seed: u64,
+}
+
+impl Default for UnitOptions {
+    fn default() -> Self {
+        UnitOptions {
+            hardware_version: 2,
+            software_version: (2, 1),
+            seed: 0x5650_5820,
+        }
+    }
+}
+
+/// Something done to the unit from outside the wire: by a test, the page's demo, or a
+/// scenario's timeline.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SimCommand {
+    /// External switch input 1–10 opens or closes.
+    Switch { switch: u8, on: bool },
+    /// The device faults now with `code` (for 0, 29, 30: the motor's fault).
+    Fault { device: u8, code: FaultCode },
+    /// A short appears on (or leaves) a pin: SHORT_CIRCUIT whenever it is powered.
+    Short { device: u8, on: bool },
+    /// The pin's load changes, amps.
+    Load { device: u8, amps: f32 },
+    /// Nothing leaves the unit for this long; requests are still taken in.
+    Silent(Duration),
+    /// These bytes go out on the wire as they are.
+    Garbage(Vec<u8>),
+    /// This many pseudo-random bytes go out on the wire.
+    GarbageRandom(usize),
+    /// The running alternator's regulator now holds this many volts.
+    BusVolts(f32),
+    /// Engine RPM the unit sees (as if valid in EXTERNAL_DATA); `None` forgets it.
+    Rpm(Option<u16>),
+    /// The starter button is pressed or released.
+    Starter(bool),
+    /// The motor runs by itself until the unit trips a runaway fault.
+    Runaway {
+        motor: MotorId,
+        direction: MotorDirection,
+    },
+    /// The flap or trim switch input is held in a direction, or released.
+    MotorSwitch {
+        motor: MotorId,
+        direction: Option<MotorDirection>,
+    },
+    /// Sets the system fault bit of FAULT_STATUS.
+    SystemFault,
+    /// Power off and on: RAM state is lost, the EEPROM is read again.
+    PowerCycle,
+    /// A processor reset without a power cycle (CU Warm Reset, Table 24 note 4).
+    WarmReset,
+    /// The next FLASH_PROG in the bootloader writes one byte wrong.
+    CorruptNextFlashProg,
+}
+
+impl SimCommand {
+    /// The command a scenario event stands for.
+    pub fn from_event(a: &EventAction) -> SimCommand {
+        match *a {
+            EventAction::Switch { switch, on } => SimCommand::Switch { switch, on },
+            EventAction::Fault { device, code } => SimCommand::Fault {
+                device,
+                code: code.code(),
+            },
+            EventAction::Short { device, on } => SimCommand::Short { device, on },
+            EventAction::Load { device, amps } => SimCommand::Load { device, amps },
+            EventAction::Silent { seconds } => {
+                SimCommand::Silent(Duration::from_secs_f64(seconds.max(0.0)))
+            }
+            EventAction::Garbage { bytes } => SimCommand::GarbageRandom(bytes),
+            EventAction::BusVolts { volts } => SimCommand::BusVolts(volts),
+            EventAction::Rpm { rpm } => SimCommand::Rpm(rpm),
+            EventAction::Starter { on } => SimCommand::Starter(on),
+            EventAction::Runaway { motor, direction } => SimCommand::Runaway { motor, direction },
+            EventAction::MotorSwitch { motor, direction } => {
+                SimCommand::MotorSwitch { motor, direction }
+            }
+            EventAction::SystemFault => SimCommand::SystemFault,
+            EventAction::PowerCycle => SimCommand::PowerCycle,
+            EventAction::WarmReset => SimCommand::WarmReset,
+        }
+    }
+}
+
+/// Counters of what crossed the wire.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct WireStats {
+    pub rx_bytes: u64,
+    /// Intact frames of known messages.
+    pub rx_frames: u64,
+    /// Bytes outside any frame (noise, and the first byte of each bad candidate).
+    pub garbage_bytes: u64,
+    /// Candidates with a bad checksum or impossible length, and unknown messages.
+    pub bad_frames: u64,
+    /// Intact frames whose payload does not decode (a field out of range).
+    pub malformed: u64,
+    /// Well-formed frames the unit does nothing with: messages only a VP-X sends,
+    /// requests for devices that do not exist, DEVICE_POWER to the starter or motors.
+    pub ignored: u64,
+    /// Replies sent (each echoes its request's command number).
+    pub replies: u64,
+    pub system_status: u64,
+    pub device_status: u64,
+    pub flap_trim_status: u64,
+    pub fault_status: u64,
+    pub tx_bytes: u64,
+    /// Bytes dropped because the unit was silent.
+    pub silenced_bytes: u64,
+}
+
+/// A snapshot of the unit for tests and tools.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimStats {
+    pub wire: WireStats,
+    pub boot: BootStats,
+    pub in_bootloader: bool,
+    /// Motor positions 0–255.
+    pub flap_position: u8,
+    pub pitch_trim_position: u8,
+    pub roll_trim_position: u8,
+    pub flap_running: bool,
+    pub pitch_trim_running: bool,
+    pub roll_trim_running: bool,
+    /// Streams that ended because TRIM_MOVE/FLAP_MOVE came late (reading note 19).
+    pub flap_starvations: u64,
+    pub pitch_trim_starvations: u64,
+    pub roll_trim_starvations: u64,
+    /// Power state per device id, as DEVICE_STATUS reports it.
+    pub powered: [bool; DEVICE_COUNT],
+    /// Fault per device id, as FAULT_STATUS reports it.
+    pub faults: [FaultCode; DEVICE_COUNT],
+    pub system_fault: bool,
+    pub config: UnitConfig,
+    pub data_integrity: Option<DataIntegrityCode>,
+    pub external_data_missing: bool,
+    pub software_update_flag: bool,
+    pub eeprom_writes: u64,
+    /// Broadcast command count (the unit's own, reading note 14).
+    pub broadcast_cnt: u8,
+    /// The last log lines, oldest first.
+    pub log: Vec<String>,
+}
+
+/// splitmix64: small, seedable, and good enough for load noise.
+#[derive(Debug, Clone)]
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in −1..1.
+    fn unit(&mut self) -> f32 {
+        (self.next() >> 40) as f32 / (1u64 << 23) as f32 - 1.0
+    }
+}
+
+#[derive(Debug)]
+enum Mode {
+    Normal,
+    Boot(Bootloader),
+}
+
+/// How the unit comes up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Start {
+    Cold,
+    Warm,
+    AfterUpdate,
+}
+
+/// The virtual VP-X; see the module documentation.
+pub struct Unit {
+    opts: UnitOptions,
+    eeprom: Eeprom,
+    pub config: UnitConfig,
+    decoder: Decoder,
+    mode: Mode,
+    pub flash: Flash,
+    boot_stats: BootStats,
+    out: Vec<u8>,
+    log: Vec<String>,
+    rng: Rng,
+    wire: WireStats,
+
+    // The aircraft around the unit: survives a power cycle.
+    switches: [bool; 10],
+    loads: [f32; DEVICE_COUNT],
+    shorts: [bool; DEVICE_COUNT],
+    nominal_volts: f32,
+    regulator_volts: Option<f32>,
+    battery_volts: f32,
+    aux_battery_volts: f32,
+    temperature_c: u8,
+    starter_pressed: bool,
+    engine_rpm: Option<u16>,
+    motors: [Motor; 3],
+
+    // The unit's RAM: lost on a power cycle.
+    overrides: [Option<bool>; DEVICE_COUNT],
+    faults: [FaultCode; DEVICE_COUNT],
+    powered: [bool; DEVICE_COUNT],
+    system_fault: bool,
+    over_48: bool,
+    over_60: bool,
+    wig_wag_mode: WigWagModeSetting,
+    wig_wag_since: Option<Instant>,
+    wig_wag_active: bool,
+    external: Option<(Instant, ExternalData)>,
+    booted_at: Instant,
+    software_update: bool,
+    warm_reset: bool,
+    integrity: Option<DataIntegrityCode>,
+    cnt: u8,
+    next_slow: Instant,
+    next_fast: Instant,
+    silent_until: Option<Instant>,
+
+    // The scenario's timeline.
+    events: Vec<(Duration, SimCommand)>,
+    loop_after: Option<Duration>,
+    timeline_start: Instant,
+    next_event: usize,
+}
+
+fn motor_index(m: MotorId) -> usize {
+    match m {
+        MotorId::Flap => 0,
+        MotorId::Pitch => 1,
+        MotorId::Roll => 2,
+    }
+}
+
+fn motor_device(m: MotorId) -> u8 {
+    match m {
+        MotorId::Flap => FLAPS,
+        MotorId::Pitch => TRIM_P,
+        MotorId::Roll => TRIM_R,
+    }
+}
+
+fn motor_of_device(id: u8) -> Option<MotorId> {
+    match id {
+        FLAPS => Some(MotorId::Flap),
+        TRIM_P => Some(MotorId::Pitch),
+        TRIM_R => Some(MotorId::Roll),
+        _ => None,
+    }
+}
+
+impl Unit {
+    /// A unit wired into `scenario`, powered on at `now`. `eeprom` is what its EEPROM
+    /// held at power-on (see [`Eeprom`]); use [`Unit::with_memory_eeprom`] for none.
+    pub fn new(
+        scenario: &Scenario,
+        eeprom: (Eeprom, LoadOutcome),
+        opts: UnitOptions,
+        now: Instant,
+    ) -> Self {
+        let (eeprom, outcome) = eeprom;
+        let e = &scenario.electrical;
+        let mut switches = [false; 10];
+        for &s in &e.switches {
+            if let Some(sw) = switches.get_mut(s as usize - 1) {
+                *sw = true;
+            }
+        }
+        let position = |p: Option<u8>, fallback: u8| p.unwrap_or(fallback) as f32;
+        let cfg = &outcome.config;
+        let motors = [
+            Motor::new(
+                MotorId::Flap,
+                position(scenario.flap.as_ref().and_then(|f| f.position), cfg.flap.up),
+                now,
+            ),
+            Motor::new(
+                MotorId::Pitch,
+                position(
+                    scenario.pitch_trim.as_ref().and_then(|t| t.position),
+                    cfg.pitch_trim.neutral,
+                ),
+                now,
+            ),
+            Motor::new(
+                MotorId::Roll,
+                position(
+                    scenario.roll_trim.as_ref().and_then(|t| t.position),
+                    cfg.roll_trim.neutral,
+                ),
+                now,
+            ),
+        ];
+        let mut events: Vec<(Duration, SimCommand)> = scenario
+            .events
+            .iter()
+            .map(|ev| {
+                (
+                    Duration::from_secs_f64(ev.at),
+                    SimCommand::from_event(&ev.action),
+                )
+            })
+            .collect();
+        events.sort_by_key(|(at, _)| *at);
+        let mut u = Unit {
+            opts,
+            eeprom,
+            config: outcome.config.clone(),
+            decoder: Decoder::new(),
+            mode: Mode::Normal,
+            flash: Flash::default(),
+            boot_stats: BootStats::default(),
+            out: Vec::new(),
+            log: outcome.log,
+            rng: Rng(opts.seed),
+            wire: WireStats::default(),
+            switches,
+            loads: scenario.loads(),
+            shorts: scenario.shorts(),
+            nominal_volts: e.bus_volts,
+            regulator_volts: None,
+            battery_volts: e.battery_volts,
+            aux_battery_volts: e.aux_battery_volts,
+            temperature_c: e.temperature_c,
+            starter_pressed: e.starter,
+            engine_rpm: e.rpm,
+            motors,
+            overrides: [None; DEVICE_COUNT],
+            faults: [FaultCode::NoFault; DEVICE_COUNT],
+            powered: [false; DEVICE_COUNT],
+            system_fault: false,
+            over_48: false,
+            over_60: false,
+            wig_wag_mode: WigWagModeSetting::Auto,
+            wig_wag_since: None,
+            wig_wag_active: false,
+            external: None,
+            booted_at: now,
+            software_update: false,
+            warm_reset: false,
+            integrity: outcome.integrity,
+            cnt: 0,
+            next_slow: now,
+            next_fast: now,
+            silent_until: None,
+            events,
+            loop_after: scenario
+                .loop_after
+                .filter(|s| *s > 0.0)
+                .map(Duration::from_secs_f64),
+            timeline_start: now,
+            next_event: 0,
+        };
+        if !scenario.description.is_empty() {
+            u.log(format!("scenario: {}", scenario.description));
+        }
+        u.boot(now, Start::Cold);
+        u.integrity = outcome.integrity;
+        u
+    }
+
+    /// A unit whose EEPROM lives in memory, starting from the scenario's configuration.
+    pub fn with_memory_eeprom(scenario: &Scenario, opts: UnitOptions, now: Instant) -> Self {
+        let cfg = scenario.unit_config().unwrap_or_default();
+        let outcome = LoadOutcome {
+            config: cfg.clone(),
+            integrity: None,
+            log: Vec::new(),
+        };
+        Unit::new(scenario, (Eeprom::in_memory(cfg), outcome), opts, now)
+    }
+
+    fn log(&mut self, line: String) {
+        self.log.push(line);
+    }
+
+    /// Log lines written since the last call.
+    pub fn take_log(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.log)
+    }
+
+    /// Bytes to send since the last call.
+    pub fn take_output(&mut self) -> Vec<u8> {
+        std::mem::take(&mut self.out)
+    }
+
+    pub fn in_bootloader(&self) -> bool {
+        matches!(self.mode, Mode::Boot(_))
+    }
+
+    /// (Re)starts the firmware: everything in RAM is lost, the EEPROM is read again.
+    fn boot(&mut self, now: Instant, how: Start) {
+        self.config = self.eeprom.stored().clone();
+        self.mode = Mode::Normal;
+        self.decoder.reset();
+        self.overrides = [None; DEVICE_COUNT];
+        self.faults = [FaultCode::NoFault; DEVICE_COUNT];
+        self.powered = [false; DEVICE_COUNT];
+        self.system_fault = false;
+        self.over_48 = false;
+        self.over_60 = false;
+        self.wig_wag_mode = WigWagModeSetting::Auto;
+        self.wig_wag_since = None;
+        self.wig_wag_active = false;
+        self.external = None;
+        self.booted_at = now;
+        self.regulator_volts = None;
+        for m in &mut self.motors {
+            m.halt(now);
+            m.fault = FaultCode::NoFault;
+        }
+        // Table 24 notes 1, 4, 5: what each kind of start does to the flags.
+        match how {
+            Start::Cold => {
+                self.warm_reset = false;
+                self.software_update = false;
+                self.integrity = None;
+            }
+            Start::Warm => self.warm_reset = true,
+            Start::AfterUpdate => self.software_update = true,
+        }
+        // The first broadcasts come shortly after start, the fast ones offset from
+        // the slow ones so that they do not all leave in one burst.
+        self.next_slow = now + Duration::from_millis(200);
+        self.next_fast = now + Duration::from_millis(50);
+        self.update_power(now);
+    }
+
+    // ------------------------------------------------------------------ input
+
+    /// Bytes received at `now`.
+    pub fn feed(&mut self, bytes: &[u8], now: Instant) {
+        self.wire.rx_bytes += bytes.len() as u64;
+        if let Mode::Boot(b) = &mut self.mode {
+            let mut out = Vec::new();
+            let exit = b.feed(bytes, &mut self.flash, &mut out);
+            self.boot_stats = b.stats();
+            self.emit_raw(&out, now);
+            if exit {
+                self.log("bootloader EXIT: rebooting with the Software Update flag set".into());
+                self.boot(now, Start::AfterUpdate);
+            }
+            return;
+        }
+        let mut frames: Vec<Vec<u8>> = Vec::new();
+        let wire = &mut self.wire;
+        self.decoder.push(bytes, |e| match e {
+            Event::Frame(f) => frames.push(f.as_bytes().to_vec()),
+            Event::Skipped(b) => wire.garbage_bytes += b.len() as u64,
+            Event::BadChecksum(_) | Event::BadLength(_) => {
+                wire.garbage_bytes += 1;
+                wire.bad_frames += 1;
+            }
+            Event::UnknownMessage(_) => wire.bad_frames += 1,
+        });
+        for (i, f) in frames.iter().enumerate() {
+            self.wire.rx_frames += 1;
+            let frame = crate::protocol::FrameRef::parse(f).expect("the decoder checked it");
+            match Packet::parse(&frame) {
+                Ok(p) => self.handle(p, now),
+                Err(_) => self.malformed(frame.header(), frame.payload(), now),
+            }
+            if self.in_bootloader() {
+                // SOFTWARE_UPDATE: whatever follows it is for the bootloader.
+                let rest: Vec<u8> = frames[i + 1..].concat();
+                if !rest.is_empty() {
+                    self.feed(&rest, now);
+                }
+                break;
+            }
+        }
+    }
+
+    /// An intact frame whose payload did not decode. A spec still gets its SPEC_ACK
+    /// (OutOfRange), so the EFIS learns the unit refused it rather than waiting.
+    fn malformed(&mut self, h: crate::protocol::FrameHeader, payload: &[u8], now: Instant) {
+        self.wire.malformed += 1;
+        let first = payload.first().copied().unwrap_or(0);
+        let id = match h.id {
+            DeviceSpec::ID | DeviceName::ID => Some(first),
+            SystemSpec::ID => Some(SYSTEM_SPEC_ID),
+            WigWagSpec::ID => Some(WIG_WAG_SPEC_ID),
+            FlapSpec::ID => Some(FLAPS),
+            TrimSpec::ID => Some(if first & 0x80 != 0 { TRIM_R } else { TRIM_P }),
+            _ => None,
+        };
+        if let Some(device_id) = id {
+            self.reply(
+                h.cnt,
+                SpecAck {
+                    device_id,
+                    error: Some(SpecAckError::OutOfRange),
+                },
+                now,
+            );
+        }
+    }
+
+    fn handle(&mut self, p: Packet, now: Instant) {
+        if !matches!(p.dst, Node::Vpx | Node::Broadcast) || p.src == Node::Vpx {
+            self.wire.ignored += 1;
+            return;
+        }
+        let cnt = p.cnt;
+        match p.message {
+            Message::Ping(Ping { ack: false }) => self.reply(cnt, Ping { ack: true }, now),
+            Message::Version(_) => {
+                let v = Version {
+                    hardware_version: HardwareVersion::from_byte(self.opts.hardware_version),
+                    software_major: self.opts.software_version.0,
+                    software_minor: self.opts.software_version.1,
+                };
+                self.reply(cnt, v, now)
+            }
+            Message::SoftwareUpdate(_) => {
+                // §6.1.3: no reply; the unit goes quiet and listens for §7 frames.
+                self.log("SOFTWARE_UPDATE: entering the bootloader".into());
+                for m in &mut self.motors {
+                    m.halt(now);
+                }
+                self.mode = Mode::Boot(Bootloader::default());
+            }
+            Message::EepromErase(_) => {
+                // §6.1.4: defaults back, DATA_INTEGRITY until the next power cycle.
+                let defaults = UnitConfig::default();
+                let code = match self.eeprom.store(&defaults) {
+                    Ok(()) => 0,
+                    Err(e) => {
+                        self.log(format!("EEPROM_ERASE: cannot write the EEPROM: {e}"));
+                        1
+                    }
+                };
+                self.config = defaults;
+                self.integrity = Some(DataIntegrityCode::GeneralEeprom);
+                self.log("EEPROM_ERASE: configuration back to the ICD Appendix F defaults".into());
+                self.reply(
+                    cnt,
+                    EepromErase {
+                        response_code: code,
+                    },
+                    now,
+                );
+            }
+            Message::DeviceSpecQuery(q) => self.spec_query(cnt, q.device_id, now),
+            m @ (Message::DeviceSpec(_)
+            | Message::SystemSpec(_)
+            | Message::TrimSpec(_)
+            | Message::FlapSpec(_)
+            | Message::WigWagSpec(_)
+            | Message::DeviceName(_)) => self.spec(cnt, &m, now),
+            Message::DeviceNameQuery(q) => match self.config.names.get(q.device_id as usize) {
+                Some(&name) => self.reply(
+                    cnt,
+                    DeviceName {
+                        device_id: q.device_id,
+                        name,
+                    },
+                    now,
+                ),
+                // Table 22: ids 0–30 only.
+                None => self.wire.ignored += 1,
+            },
+            Message::DeviceEnable(e) => {
+                if validate::device_enable(&self.config, &e).is_err() {
+                    self.wire.ignored += 1;
+                } else if e.flag == EnableFlag::Query {
+                    let on = self.config.enabled[e.device_id as usize];
+                    let flag = if on {
+                        EnableFlag::Enabled
+                    } else {
+                        EnableFlag::Disabled
+                    };
+                    self.reply(
+                        cnt,
+                        DeviceEnable {
+                            device_id: e.device_id,
+                            flag,
+                        },
+                        now,
+                    );
+                } else {
+                    // Table 23: a set has no answer.
+                    let mut cfg = self.config.clone();
+                    cfg.apply_device_enable(&e);
+                    self.commit(cfg);
+                }
+            }
+            Message::DeviceStatusQuery(_) => {
+                let s = self.device_status();
+                self.reply(cnt, s, now);
+            }
+            Message::DevicePower(d) => self.device_power(d, now),
+            Message::TrimMove(t) => {
+                let motor = match t.trim_type {
+                    TrimType::Pitch => MotorId::Pitch,
+                    TrimType::Roll => MotorId::Roll,
+                    TrimType::Unknown(_) => {
+                        self.wire.malformed += 1;
+                        return;
+                    }
+                };
+                let dir = match t.direction {
+                    TrimDirection::DownOrRight => MotorDirection::Down,
+                    TrimDirection::UpOrLeft => MotorDirection::Up,
+                    TrimDirection::Unknown(_) => {
+                        self.wire.malformed += 1;
+                        return;
+                    }
+                };
+                self.stream(motor, t.on, dir, now);
+            }
+            Message::FlapMove(f) => {
+                let dir = match f.direction {
+                    FlapDirection::Up => MotorDirection::Up,
+                    FlapDirection::Down => MotorDirection::Down,
+                    FlapDirection::Unknown(_) => {
+                        self.wire.malformed += 1;
+                        return;
+                    }
+                };
+                // Decision: the overspeed inhibit (Table 16 "Max Speed") also refuses
+                // FLAP_MOVE down, so the page's "inhibited" is never contradicted.
+                if f.on && dir == MotorDirection::Down && self.flap_down_inhibited(now) {
+                    self.wire.ignored += 1;
+                    return;
+                }
+                self.stream(MotorId::Flap, f.on, dir, now);
+            }
+            Message::WigWagMode(w) => match w.mode {
+                WigWagModeSetting::Unknown(_) => self.wire.malformed += 1,
+                m => self.wig_wag_mode = m,
+            },
+            Message::DeviceClear(c) => self.clear(c.device_id, now),
+            Message::ExternalData(d) => self.external = Some((now, d)),
+            // Messages only a VP-X sends.
+            _ => self.wire.ignored += 1,
+        }
+        self.update_power(now);
+    }
+
+    fn stream(&mut self, motor: MotorId, on: bool, dir: MotorDirection, now: Instant) {
+        let g = self.geometry(motor, now);
+        if !self.motors[motor_index(motor)].stream(on, dir, &g, now) {
+            self.wire.ignored += 1;
+        }
+    }
+
+    fn spec_query(&mut self, cnt: u8, id: u8, now: Instant) {
+        let c = &self.config;
+        // Reading note 13.
+        let m: Message = match id {
+            FLAPS => c.flap.into(),
+            TRIM_R => c.roll_trim.into(),
+            TRIM_P => c.pitch_trim.into(),
+            1..=28 => c.devices[id as usize].into(),
+            SYSTEM_SPEC_ID => c.system.into(),
+            WIG_WAG_SPEC_ID => c.wig_wag.into(),
+            // Table 18 note 1: invalid ids are ignored.
+            _ => {
+                self.wire.ignored += 1;
+                return;
+            }
+        };
+        self.reply(cnt, m, now);
+    }
+
+    /// A *_SPEC or DEVICE_NAME: judged by the shared §6.2 rules, stored if accepted.
+    fn spec(&mut self, cnt: u8, m: &Message, now: Instant) {
+        let device_id = match m {
+            Message::DeviceSpec(s) => s.device_id,
+            Message::DeviceName(n) => n.device_id,
+            Message::SystemSpec(_) => SYSTEM_SPEC_ID,
+            Message::WigWagSpec(_) => WIG_WAG_SPEC_ID,
+            Message::FlapSpec(_) => FLAPS,
+            // Table 19 gives no id for TRIM_SPEC; the axis's own device id is used.
+            Message::TrimSpec(t) if t.trim_type == TrimType::Roll => TRIM_R,
+            _ => TRIM_P,
+        };
+        let mut cfg = self.config.clone();
+        let verdict = validate::accept(&mut cfg, m).unwrap_or(Err(SpecAckError::BadConfig));
+        let error = match verdict {
+            Ok(()) => {
+                if self.commit(cfg) {
+                    None
+                } else {
+                    Some(SpecAckError::EepromWrite)
+                }
+            }
+            Err(e) => Some(e),
+        };
+        self.reply(cnt, SpecAck { device_id, error }, now);
+    }
+
+    /// Stores a changed configuration; `false` (and nothing changed) if the EEPROM
+    /// could not be written.
+    fn commit(&mut self, cfg: UnitConfig) -> bool {
+        match self.eeprom.store(&cfg) {
+            Ok(()) => {
+                self.config = cfg;
+                true
+            }
+            Err(e) => {
+                self.log(format!("EEPROM write failed: {e}"));
+                false
+            }
+        }
+    }
+
+    fn device_power(&mut self, d: DevicePower, now: Instant) {
+        match d.device_id {
+            // Appendix B note 1: the starter cannot be switched from outside; the
+            // motors run only by TRIM_MOVE / FLAP_MOVE.
+            STARTER | FLAPS | TRIM_R | TRIM_P => self.wire.ignored += 1,
+            id @ 2..=28 => {
+                if self.faults[id as usize].is_fault() {
+                    // Appendix E: a faulted pin stays off until DEVICE_CLEAR.
+                    self.wire.ignored += 1;
+                } else {
+                    self.overrides[id as usize] = Some(d.on);
+                }
+            }
+            _ => self.wire.ignored += 1,
+        }
+        self.update_power(now);
+    }
+
+    /// DEVICE_CLEAR, ICD §6.5.1.
+    fn clear(&mut self, id: u8, now: Instant) {
+        if id == SYSTEM_FAULT_ID {
+            self.system_fault = false;
+            return;
+        }
+        if let Some(m) = motor_of_device(id) {
+            let g = self.geometry(m, now);
+            let motor = &mut self.motors[motor_index(m)];
+            motor.advance(&g, now);
+            motor.clear();
+            return;
+        }
+        let Some(slot) = self.faults.get_mut(id as usize) else {
+            self.wire.ignored += 1;
+            return;
+        };
+        if !slot.is_fault() {
+            return;
+        }
+        *slot = FaultCode::NoFault;
+        // Note 2: the device returns to its switch's state, and every switch-11 device
+        // comes back on. Decision: that means their DEVICE_POWER overrides are dropped.
+        self.overrides[id as usize] = None;
+        for (i, d) in self.config.devices.iter().enumerate() {
+            if d.switch_id == SwitchId::AlwaysOn {
+                self.overrides[i] = None;
+            }
+        }
+        self.log(format!("device {id} fault cleared by DEVICE_CLEAR"));
+        self.update_power(now);
+    }
+
+    // ------------------------------------------------------------ commands
+
+    /// Something done from outside the wire.
+    pub fn apply(&mut self, c: SimCommand, now: Instant) {
+        match c {
+            SimCommand::Switch { switch, on } => {
+                if let Some(s) = self.switches.get_mut((switch as usize).wrapping_sub(1)) {
+                    if *s != on {
+                        // ICD Appendix A: DEVICE_POWER overrides last until the switch
+                        // is cycled; any change of the input counts.
+                        for (i, d) in self.config.devices.iter().enumerate() {
+                            if d.switch_id == SwitchId::Input(switch) {
+                                self.overrides[i] = None;
+                            }
+                        }
+                    }
+                    *s = on;
+                }
+            }
+            SimCommand::Fault { device, code } => {
+                if let Some(m) = motor_of_device(device) {
+                    self.motors[motor_index(m)].set_fault(code, now);
+                } else if let Some(f) = self.faults.get_mut(device as usize) {
+                    *f = code;
+                }
+                self.log(format!("device {device}: {} injected", code.name()));
+            }
+            SimCommand::Short { device, on } => {
+                if let Some(s) = self.shorts.get_mut(device as usize) {
+                    *s = on;
+                }
+            }
+            SimCommand::Load { device, amps } => {
+                if let Some(l) = self.loads.get_mut(device as usize) {
+                    *l = amps.max(0.0);
+                }
+            }
+            SimCommand::Silent(d) => {
+                self.log(format!("going silent for {:.1} s", d.as_secs_f64()));
+                self.silent_until = Some(now + d);
+            }
+            SimCommand::Garbage(bytes) => self.emit_raw(&bytes, now),
+            SimCommand::GarbageRandom(n) => {
+                let bytes: Vec<u8> = (0..n).map(|_| self.rng.next() as u8).collect();
+                self.emit_raw(&bytes, now);
+            }
+            SimCommand::BusVolts(v) => self.regulator_volts = Some(v),
+            SimCommand::Rpm(r) => self.engine_rpm = r,
+            SimCommand::Starter(on) => self.starter_pressed = on,
+            SimCommand::Runaway { motor, direction } => {
+                let g = self.geometry(motor, now);
+                self.motors[motor_index(motor)].runaway(direction, &g, now);
+                self.log(format!("{motor:?} motor runaway injected"));
+            }
+            SimCommand::MotorSwitch { motor, direction } => {
+                let g = self.geometry(motor, now);
+                let inhibited = motor == MotorId::Flap
+                    && direction == Some(MotorDirection::Down)
+                    && self.flap_down_inhibited(now);
+                let held = if inhibited { None } else { direction };
+                self.motors[motor_index(motor)].switch(held, &g, now);
+            }
+            SimCommand::SystemFault => self.system_fault = true,
+            SimCommand::PowerCycle => {
+                self.log("power cycle".into());
+                self.boot(now, Start::Cold);
+            }
+            SimCommand::WarmReset => {
+                self.log("warm reset".into());
+                self.boot(now, Start::Warm);
+            }
+            SimCommand::CorruptNextFlashProg => {
+                if let Mode::Boot(b) = &mut self.mode {
+                    b.corrupt_next_prog = true;
+                } else {
+                    self.log("CorruptNextFlashProg ignored: not in the bootloader".into());
+                }
+            }
+        }
+        self.update_power(now);
+    }
+
+    // ------------------------------------------------------------ time
+
+    /// Lets time pass up to `now`: the timeline, motors, power, broadcasts.
+    pub fn tick(&mut self, now: Instant) {
+        self.run_timeline(now);
+        if self.in_bootloader() {
+            return;
+        }
+        for m in [MotorId::Flap, MotorId::Pitch, MotorId::Roll] {
+            let g = self.geometry(m, now);
+            let motor = &mut self.motors[motor_index(m)];
+            let was = motor.fault;
+            motor.advance(&g, now);
+            if !g.enabled && motor.running(now) {
+                motor.halt(now);
+            }
+            if motor.fault != was {
+                let name = motor.fault.name();
+                self.log(format!("{m:?} motor: {name}"));
+            }
+        }
+        self.update_power(now);
+        if now >= self.next_slow {
+            self.broadcast_slow(now);
+            // Absolute schedule, so the long-run rate is exact; after a stall (a
+            // suspended process) the schedule restarts rather than bursting.
+            self.next_slow += SLOW_PERIOD;
+            if self.next_slow <= now {
+                self.next_slow = now + SLOW_PERIOD;
+            }
+        }
+        if now >= self.next_fast {
+            let s = self.flap_trim_status(now);
+            self.broadcast(s, now);
+            self.wire.flap_trim_status += 1;
+            self.next_fast += FAST_PERIOD;
+            if self.next_fast <= now {
+                self.next_fast = now + FAST_PERIOD;
+            }
+        }
+    }
+
+    /// When the next thing is due: the caller may sleep until then (or until input).
+    pub fn next_deadline(&self) -> Instant {
+        let mut t = self.next_slow.min(self.next_fast);
+        if let Some((at, _)) = self.events.get(self.next_event) {
+            t = t.min(self.timeline_start + *at);
+        }
+        t
+    }
+
+    fn run_timeline(&mut self, now: Instant) {
+        loop {
+            if let Some((at, cmd)) = self.events.get(self.next_event) {
+                if self.timeline_start + *at <= now {
+                    let cmd = cmd.clone();
+                    self.next_event += 1;
+                    self.apply(cmd, now);
+                    continue;
+                }
+            }
+            match self.loop_after {
+                Some(period)
+                    if self.next_event >= self.events.len()
+                        && self.timeline_start + period <= now =>
+                {
+                    self.timeline_start += period;
+                    self.next_event = 0;
+                }
+                _ => return,
+            }
+        }
+    }
+
+    fn broadcast_slow(&mut self, now: Instant) {
+        let s = self.system_status(now);
+        self.broadcast(s, now);
+        self.wire.system_status += 1;
+        let d = self.device_status();
+        self.broadcast(d, now);
+        self.wire.device_status += 1;
+        // §6.3.4: only while a fault exists (reading note 9).
+        if let Some(f) = self.fault_status() {
+            self.broadcast(f, now);
+            self.wire.fault_status += 1;
+        }
+    }
+
+    // ------------------------------------------------------------ output
+
+    fn silent(&mut self, now: Instant) -> bool {
+        match self.silent_until {
+            Some(t) if now < t => true,
+            Some(_) => {
+                self.silent_until = None;
+                self.log("talking again".into());
+                false
+            }
+            None => false,
+        }
+    }
+
+    fn emit_raw(&mut self, bytes: &[u8], now: Instant) {
+        if self.silent(now) {
+            self.wire.silenced_bytes += bytes.len() as u64;
+        } else {
+            self.wire.tx_bytes += bytes.len() as u64;
+            self.out.extend_from_slice(bytes);
+        }
+    }
+
+    fn reply(&mut self, cnt: u8, m: impl Into<Message>, now: Instant) {
+        self.wire.replies += 1;
+        let bytes = Packet::from_vpx(cnt, m).to_bytes();
+        self.emit_raw(&bytes, now);
+    }
+
+    fn broadcast(&mut self, m: impl Into<Message>, now: Instant) {
+        let cnt = self.cnt;
+        self.cnt = self.cnt.wrapping_add(1);
+        let bytes = Packet::from_vpx(cnt, m).to_bytes();
+        self.emit_raw(&bytes, now);
+    }
+
+    // ------------------------------------------------------------ the model
+
+    fn fresh_external(&self, now: Instant) -> Option<&ExternalData> {
+        self.external
+            .as_ref()
+            .filter(|(at, _)| now.saturating_duration_since(*at) <= EXTERNAL_DATA_TIMEOUT)
+            .map(|(_, d)| d)
+    }
+
+    fn external_missing(&self, now: Instant) -> bool {
+        let since = self.external.map_or(self.booted_at, |(at, _)| at);
+        now.saturating_duration_since(since) > EXTERNAL_DATA_TIMEOUT
+    }
+
+    fn ias(&self, now: Instant) -> Option<u16> {
+        self.fresh_external(now)
+            .filter(|d| d.valid.indicated_airspeed)
+            .map(|d| d.indicated_airspeed)
+    }
+
+    /// IAS, else ground speed (Table 15 note 5, Table 17 note 4).
+    fn speed(&self, now: Instant) -> Option<u16> {
+        self.ias(now).or_else(|| {
+            self.fresh_external(now)
+                .filter(|d| d.valid.ground_speed)
+                .map(|d| d.ground_speed)
+        })
+    }
+
+    fn rpm(&self, now: Instant) -> Option<u16> {
+        let ext = self
+            .fresh_external(now)
+            .filter(|d| d.valid.rpm)
+            .map(|d| d.rpm);
+        ext.or(self.engine_rpm)
+    }
+
+    fn flap_down_inhibited(&self, now: Instant) -> bool {
+        let max = self.config.flap.max_speed;
+        max > 0 && self.ias(now).is_some_and(|ias| ias > max)
+    }
+
+    fn geometry(&self, m: MotorId, now: Instant) -> Geometry {
+        let c = &self.config;
+        match m {
+            MotorId::Flap => Geometry {
+                enabled: c.flap.enabled,
+                up: c.flap.up,
+                down: c.flap.down,
+                stops: [c.flap.midpoint_1, c.flap.midpoint_2],
+                position_mode: c.flap.mode == FlapMode::PositionBased,
+                endpoint_run: Duration::from_millis(c.flap.endpoint_duration.0 as u64 * 100),
+                rate: FLAP_RATE,
+            },
+            MotorId::Pitch | MotorId::Roll => {
+                let t = if m == MotorId::Pitch {
+                    &c.pitch_trim
+                } else {
+                    &c.roll_trim
+                };
+                // Table 15 notes 5, 6: reduced power above the speed, pitch only.
+                let reduced = m == MotorId::Pitch
+                    && self.speed(now).is_some_and(|s| s > t.speed)
+                    && t.power < 100;
+                let rate = if reduced {
+                    TRIM_RATE * t.power as f32 / 100.0
+                } else {
+                    TRIM_RATE
+                };
+                Geometry {
+                    enabled: t.enabled,
+                    up: t.up,
+                    down: t.down,
+                    stops: [0, 0],
+                    position_mode: false,
+                    endpoint_run: Duration::ZERO,
+                    rate,
+                }
+            }
+        }
+    }
+
+    fn switch_on(&self, s: SwitchId) -> bool {
+        match s {
+            SwitchId::Off => false,
+            SwitchId::Input(n) => self.switches.get(n as usize - 1).copied().unwrap_or(false),
+            SwitchId::AlwaysOn => true,
+            SwitchId::Unknown(_) => false,
+        }
+    }
+
+    /// What the pin would be without faults: its switch, or a DEVICE_POWER override.
+    fn commanded(&self, id: usize) -> bool {
+        self.overrides[id].unwrap_or_else(|| self.switch_on(self.config.devices[id].switch_id))
+    }
+
+    /// Recomputes every pin: switches, overrides, alternators, wig-wag, starter, and
+    /// the faults that powering a pin can trip.
+    fn update_power(&mut self, now: Instant) {
+        if self.in_bootloader() {
+            self.powered = [false; DEVICE_COUNT];
+            return;
+        }
+        // Starter: Appendix B note 1.
+        if self.starter_pressed && self.rpm(now).is_some_and(|r| r > STARTER_CUTOUT_RPM) {
+            self.starter_pressed = false;
+            self.log("starter cut out: engine RPM above 500".into());
+        }
+        let mut want = [false; DEVICE_COUNT];
+        for (id, w) in want.iter_mut().enumerate().skip(EFIS as usize) {
+            if id <= 28 {
+                *w = self.commanded(id);
+            }
+        }
+        want[STARTER as usize] = self.starter_pressed;
+        // "Only one alternator runs at a time." Decision: the primary wins; the
+        // secondary runs only while the primary is off or faulted.
+        let primary_on = want[FIELD_PRI as usize] && !self.faults[FIELD_PRI as usize].is_fault();
+        if let Some(sec) = self.config.system.secondary_alternator
+            && primary_on
+            && let Some(w) = want.get_mut(sec as usize)
+        {
+            *w = false;
+        }
+        self.apply_wig_wag(&mut want, now);
+
+        for id in 1..=28usize {
+            if !want[id] || self.faults[id].is_fault() {
+                continue;
+            }
+            let spec = self.config.devices[id];
+            let load = self.loads[id];
+            let code = if self.shorts[id] {
+                FaultCode::ShortCircuit
+            } else if load > spec.circuit_breaker as f32 {
+                FaultCode::OverCurrent
+            } else if spec.current_fault
+                && device::device(id as u8).is_some_and(|d| d.current_fault_support)
+                && load <= 0.0
+            {
+                FaultCode::CurrentFault
+            } else {
+                continue;
+            };
+            self.faults[id] = code;
+            self.log(format!(
+                "device {id} ({}): {}",
+                device::device(id as u8).map_or("?", |d| d.system_name),
+                code.name()
+            ));
+        }
+        for (id, p) in self.powered.iter_mut().enumerate() {
+            *p = match motor_of_device(id as u8) {
+                Some(m) => self.motors[motor_index(m)].running(now),
+                None => want[id] && !self.faults[id].is_fault(),
+            };
+        }
+
+        // Table 14 note 1: above the limit the active alternator is turned off.
+        let limit = match self.config.system.overvoltage_limit {
+            OvervoltageLimit::V32 => 32.0,
+            _ => 16.0,
+        };
+        if let Some(alt) = self.active_alternator()
+            && self.bus_volts(0.0) > limit
+        {
+            self.faults[alt] = FaultCode::OverVoltage;
+            self.powered[alt] = false;
+            self.regulator_volts = None;
+            self.log(format!("device {alt}: OVER_VOLTAGE, alternator off"));
+        }
+
+        // Table 24 notes 2, 3: 48 A follows the current; 60 A clears below 48 A.
+        let total = self.total_amps();
+        self.over_48 = total > 48.0;
+        if total > 60.0 {
+            self.over_60 = true;
+        } else if total < 48.0 {
+            self.over_60 = false;
+        }
+    }
+
+    fn apply_wig_wag(&mut self, want: &mut [bool; DEVICE_COUNT], now: Instant) {
+        let ww = self.config.wig_wag;
+        let devices: Vec<usize> = [ww.device_one, ww.device_two]
+            .into_iter()
+            .flatten()
+            .map(|d| d as usize)
+            .filter(|&d| d < DEVICE_COUNT)
+            .collect();
+        let lit = !devices.is_empty() && devices.iter().all(|&d| want[d]);
+        if !lit {
+            self.wig_wag_since = None;
+            self.wig_wag_active = false;
+            return;
+        }
+        let since = *self.wig_wag_since.get_or_insert(now);
+        let warm =
+            now.saturating_duration_since(since) >= Duration::from_secs(ww.warm_up_period as u64);
+        // Table 17 note 4: no valid speed, no wig-wag.
+        let slow = self.speed(now).is_some_and(|s| s < ww.speed as u16);
+        self.wig_wag_active = self.wig_wag_mode == WigWagModeSetting::Auto && warm && slow;
+        if self.wig_wag_active {
+            let phase = (now.saturating_duration_since(since).as_millis()
+                / WIG_WAG_HALF_PERIOD.as_millis())
+                % 2;
+            for (i, &d) in devices.iter().enumerate() {
+                want[d] = (i as u128 % 2) == phase;
+            }
+        }
+    }
+
+    fn active_alternator(&self) -> Option<usize> {
+        if self.powered[FIELD_PRI as usize] {
+            return Some(FIELD_PRI as usize);
+        }
+        self.config
+            .system
+            .secondary_alternator
+            .map(|s| s as usize)
+            .filter(|&s| self.powered.get(s).copied().unwrap_or(false))
+    }
+
+    fn bus_volts(&self, noise: f32) -> f32 {
+        match self.active_alternator() {
+            Some(_) => self.regulator_volts.unwrap_or(self.nominal_volts) + noise,
+            // On the battery alone the bus sags with the load.
+            None => self.battery_volts - 0.02 * self.total_amps() + noise,
+        }
+    }
+
+    fn amps(&self, id: usize) -> f32 {
+        if !self.powered[id] {
+            return 0.0;
+        }
+        match motor_of_device(id as u8) {
+            Some(MotorId::Flap) => FLAP_MOTOR_AMPS,
+            Some(_) => TRIM_MOTOR_AMPS,
+            None => self.loads[id],
+        }
+    }
+
+    fn total_amps(&self) -> f32 {
+        (0..DEVICE_COUNT).map(|i| self.amps(i)).sum()
+    }
+
+    fn tenths(v: f32) -> u16 {
+        (v * 10.0).round().clamp(0.0, u16::MAX as f32) as u16
+    }
+
+    // ------------------------------------------------------------ messages
+
+    fn device_status(&mut self) -> DeviceStatus {
+        let mut current = [Tenths(0); DEVICE_COUNT];
+        for (id, c) in current.iter_mut().enumerate() {
+            let a = self.amps(id);
+            if a > 0.0 {
+                // ±3 % noise so the page has something alive to show.
+                let n = 1.0 + 0.03 * self.rng.unit();
+                *c = Tenths(Self::tenths(a * n).max(1));
+            }
+        }
+        DeviceStatus {
+            on: self.powered,
+            current,
+        }
+    }
+
+    fn system_status(&mut self, now: Instant) -> SystemStatus {
+        let noise = 0.05 * self.rng.unit();
+        let volts = self.bus_volts(noise);
+        let mut switches = SwitchInputs {
+            switch: self.switches,
+            ..SwitchInputs::default()
+        };
+        for (m, held) in self.motors.iter().map(|m| (m.id, m.switch_held())) {
+            let (up, down) = match m {
+                MotorId::Flap => (&mut switches.flap_up, &mut switches.flap_down),
+                MotorId::Pitch => (&mut switches.pitch_trim_up, &mut switches.pitch_trim_down),
+                MotorId::Roll => (&mut switches.roll_trim_up, &mut switches.roll_trim_down),
+            };
+            *up = held == Some(MotorDirection::Up);
+            *down = held == Some(MotorDirection::Down);
+        }
+        let total = self.total_amps() * (1.0 + 0.01 * self.rng.unit());
+        SystemStatus {
+            system_current: Tenths(Self::tenths(total)),
+            main_bus_volts: SignedTenths((volts * 10.0).round() as i16),
+            aux_battery_volts: Tenths(Self::tenths(self.aux_battery_volts)),
+            internal_temp: self.temperature_c,
+            switches,
+            misc: MiscFlags {
+                starter_annunciator: self.powered[STARTER as usize],
+                wig_wag_mode: self.wig_wag_mode,
+                software_update: self.software_update,
+                wig_wag_active: self.wig_wag_active,
+            },
+            faults: SystemFaultFlags {
+                current_over_48a: self.over_48,
+                current_over_60a: self.over_60,
+                warm_reset: self.warm_reset,
+                data_integrity_failure: self.integrity.is_some(),
+                external_data_missing: self.external_missing(now),
+            },
+            data_integrity_code: self.integrity,
+        }
+    }
+
+    fn fault_codes(&self) -> [FaultCode; DEVICE_COUNT] {
+        let mut codes = self.faults;
+        for m in &self.motors {
+            codes[motor_device(m.id) as usize] = m.fault;
+        }
+        codes
+    }
+
+    fn fault_status(&self) -> Option<FaultStatus> {
+        let codes = self.fault_codes();
+        let faulted: [bool; DEVICE_COUNT] = std::array::from_fn(|i| codes[i].is_fault());
+        if !self.system_fault && !faulted.iter().any(|&f| f) {
+            return None;
+        }
+        Some(FaultStatus {
+            faulted,
+            system_fault: self.system_fault,
+            // Table 28: the full 35 bytes, a code for every device.
+            codes: std::array::from_fn(|i| Some(codes[i])),
+        })
+    }
+
+    fn flap_trim_status(&self, now: Instant) -> FlapTrimStatus {
+        let c = &self.config;
+        let [flap, pitch, roll] = &self.motors;
+        let fg = self.geometry(MotorId::Flap, now);
+        // Table 16 note 5: flaps further down than the overspeed position with the
+        // IAS above the max flap speed.
+        let overspeed = c.flap.enabled
+            && self.flap_down_inhibited(now)
+            && fg.extension(flap.position) > fg.extension(c.flap.overspeed_position as f32);
+        let trim = |t: &TrimSpec, m: &Motor| TrimFlags {
+            enabled: t.enabled,
+            motor_running: m.running(now),
+            fault: m.faulted(),
+        };
+        // Table 27 bytes 13–18: zero when that trim is not enabled.
+        let points = |t: &TrimSpec| {
+            if t.enabled {
+                (t.up, t.down, t.neutral)
+            } else {
+                (0, 0, 0)
+            }
+        };
+        let (pu, pd, pn) = points(&c.pitch_trim);
+        let (ru, rd, rn) = points(&c.roll_trim);
+        FlapTrimStatus {
+            flap: FlapFlags {
+                enabled: c.flap.enabled,
+                motor_running: flap.running(now),
+                fault: flap.faulted(),
+                overspeed_alarm: overspeed,
+                down_switch_inhibited: c.flap.enabled && self.flap_down_inhibited(now),
+            },
+            pitch_trim: trim(&c.pitch_trim, pitch),
+            roll_trim: trim(&c.roll_trim, roll),
+            flap_position: flap.position_byte(),
+            pitch_trim_position: pitch.position_byte(),
+            roll_trim_position: roll.position_byte(),
+            flap_fault: flap.fault,
+            pitch_trim_fault: pitch.fault,
+            roll_trim_fault: roll.fault,
+            flap_up: c.flap.up,
+            flap_down: c.flap.down,
+            flap_midpoint_1: c.flap.midpoint_1,
+            flap_midpoint_2: c.flap.midpoint_2,
+            pitch_trim_up: pu,
+            pitch_trim_down: pd,
+            pitch_trim_neutral: pn,
+            roll_trim_up: ru,
+            roll_trim_down: rd,
+            roll_trim_neutral: rn,
+        }
+    }
+
+    /// A snapshot for tests and tools (`log` is filled in by the runner).
+    pub fn snapshot(&self, now: Instant) -> SimStats {
+        let [f, p, r] = &self.motors;
+        let boot = match &self.mode {
+            Mode::Boot(b) => b.stats(),
+            Mode::Normal => self.boot_stats,
+        };
+        SimStats {
+            wire: self.wire,
+            boot,
+            in_bootloader: self.in_bootloader(),
+            flap_position: f.position_byte(),
+            pitch_trim_position: p.position_byte(),
+            roll_trim_position: r.position_byte(),
+            flap_running: f.running(now),
+            pitch_trim_running: p.running(now),
+            roll_trim_running: r.running(now),
+            flap_starvations: f.starvations,
+            pitch_trim_starvations: p.starvations,
+            roll_trim_starvations: r.starvations,
+            powered: self.powered,
+            faults: self.fault_codes(),
+            system_fault: self.system_fault,
+            config: self.config.clone(),
+            data_integrity: self.integrity,
+            external_data_missing: self.external_missing(now),
+            software_update_flag: self.software_update,
+            eeprom_writes: self.eeprom.writes,
+            broadcast_cnt: self.cnt,
+            log: Vec::new(),
+        }
+    }
+}
+
+/// Messages the unit sends, by id, for callers that sort its output.
+pub fn is_broadcast(id: MessageId) -> bool {
+    matches!(
+        id,
+        SystemStatus::ID | DeviceStatus::ID | FlapTrimStatus::ID | FaultStatus::ID
+    )
+}
