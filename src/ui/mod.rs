@@ -1,3 +1,104 @@
-//! ratatui widgets that render the model and nothing else: no I/O, no clocks.
+//! ratatui widgets that render the model and nothing else: no I/O, no clocks. The
+//! caller passes `now`, so the same model renders the same frame every time.
 
+pub mod comm_banner;
+pub mod detail;
+pub mod device_list;
+pub mod help;
+pub mod key_bar;
+pub mod link_health;
+pub mod motors;
+pub mod plot;
 pub mod state;
+pub mod switches;
+pub mod system_panel;
+pub mod theme;
+pub mod title_bar;
+pub mod too_small;
+pub mod values;
+
+use std::time::Instant;
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout};
+
+use crate::model::{Circuit, Model};
+use state::{Overlay, ViewState};
+
+/// The smallest terminal the page lays out in; below it, a message says so.
+pub const MIN_WIDTH: u16 = 80;
+pub const MIN_HEIGHT: u16 = 24;
+
+/// The rows of the device list in display order (flaps and trims grouped apart from
+/// the rest; by pin or alphabetical per `view.sort`) — the app uses it to move the
+/// selection.
+pub fn ordered_circuits(model: &Model, view: &ViewState, now: Instant) -> Vec<Circuit> {
+    device_list::ordered(model, view, now)
+}
+
+/// Draws the whole page for `model` as it stands at `now`.
+pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
+    let area = frame.area();
+    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+        too_small::render(frame, MIN_WIDTH, MIN_HEIGHT);
+        return;
+    }
+    let rows = ordered_circuits(model, view, now);
+    let selected = view
+        .selected
+        .and_then(|id| rows.iter().find(|c| c.id == id));
+    let banner = comm_banner::banner(model, now);
+    // Short terminals get the link as one line above the keys, leaving the right
+    // column room for the plot.
+    let link_panel = area.height >= 36;
+    let [title, banner_area, body, link_line, footer] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Length(comm_banner::height(banner.as_ref(), area.height)),
+        Constraint::Fill(1),
+        Constraint::Length(u16::from(!link_panel)),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    title_bar::render(frame, title, model, now);
+    if let Some(b) = &banner {
+        comm_banner::render(frame, banner_area, b);
+    }
+    key_bar::render(frame, footer, view);
+    if !link_panel {
+        link_health::render_line(frame, link_line, model, now);
+    }
+
+    // The list needs ~56 columns for its seven columns; the right side gets the rest.
+    let left_w = (area.width * 55 / 100).max(56);
+    let [left, right] =
+        Layout::horizontal([Constraint::Length(left_w), Constraint::Fill(1)]).areas(body);
+    let detail_h = if body.height >= 30 { 12 } else { 7 };
+    let [list, detail_area] =
+        Layout::vertical([Constraint::Fill(1), Constraint::Length(detail_h)]).areas(left);
+    device_list::render(frame, list, &rows, view);
+    detail::render(frame, detail_area, model, selected);
+
+    let [system, switches_area, motors_area, plot_area, link] = Layout::vertical([
+        Constraint::Length(system_panel::height(model, now, right.width)),
+        Constraint::Length(switches::height(right.width)),
+        Constraint::Length(motors::height(model, now, right.width)),
+        Constraint::Fill(1),
+        Constraint::Length(if link_panel {
+            link_health::height(right.width)
+        } else {
+            0
+        }),
+    ])
+    .areas(right);
+    system_panel::render(frame, system, model, now);
+    switches::render(frame, switches_area, model, now);
+    motors::render(frame, motors_area, model, view, now);
+    plot::render(frame, plot_area, model, now);
+    if link_panel {
+        link_health::render(frame, link, model, now);
+    }
+
+    if view.overlay == Overlay::Help {
+        help::render(frame, view);
+    }
+}

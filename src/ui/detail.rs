@@ -1,0 +1,242 @@
+//! The selected device: its spec, its fault with the Appendix E description, action and
+//! how it clears, and what each key will do to it right now.
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
+
+use super::{theme, values};
+use crate::model::{Circuit, CircuitKind, CircuitState, Model, TrimKind};
+use crate::protocol::device;
+use crate::protocol::message::FlapMode;
+
+/// One key and what it does; `enabled: false` is drawn dimmed and the control module
+/// refuses it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct KeyAction {
+    pub key: &'static str,
+    pub action: String,
+    pub enabled: bool,
+}
+
+fn act(key: &'static str, action: impl Into<String>, enabled: bool) -> KeyAction {
+    KeyAction {
+        key,
+        action: action.into(),
+        enabled,
+    }
+}
+
+/// What the keys do to `c` (Appendix A: reset dimmed unless faulted; the starter can
+/// only be reset; trim and flap rows show up/down or left/right).
+pub fn key_actions(c: &Circuit) -> Vec<KeyAction> {
+    let faulted = matches!(c.state, CircuitState::Fault(_));
+    let live = c.state != CircuitState::Unknown;
+    let reset = act("r", "reset fault", faulted);
+    match c.kind {
+        CircuitKind::Starter => vec![
+            act("o/f", "starter is switched by the VP-X only", false),
+            reset,
+        ],
+        CircuitKind::Flaps => vec![
+            act("hold ↑", "flaps up", live && !faulted),
+            act("hold ↓", "flaps down", live && !faulted),
+            reset,
+        ],
+        CircuitKind::Trim(TrimKind::Pitch) => vec![
+            act("hold ↑", "pitch trim up", live && !faulted),
+            act("hold ↓", "pitch trim down", live && !faulted),
+            reset,
+        ],
+        CircuitKind::Trim(TrimKind::Roll) => vec![
+            act("hold ←", "roll trim left", live && !faulted),
+            act("hold →", "roll trim right", live && !faulted),
+            reset,
+        ],
+        CircuitKind::Device | CircuitKind::Alternator { .. } => vec![
+            act(
+                "o",
+                "on (until switch cycled)",
+                live && c.state != CircuitState::On,
+            ),
+            act(
+                "f",
+                "off (until switch cycled)",
+                live && c.state != CircuitState::Off,
+            ),
+            reset,
+        ],
+    }
+}
+
+/// Non-breaking space: a wrapped line never splits a key from what it does.
+pub const NBSP: char = '\u{a0}';
+
+pub fn key_spans(actions: &[KeyAction]) -> Vec<Span<'static>> {
+    let glue = |s: &str| s.replace(' ', &NBSP.to_string());
+    let mut spans = Vec::new();
+    for a in actions {
+        let (ks, ts) = if a.enabled {
+            (theme::key(), Style::new())
+        } else {
+            (theme::key_dimmed(), theme::key_dimmed())
+        };
+        spans.push(Span::styled(glue(&format!(" {} ", a.key)), ks));
+        spans.push(Span::styled(glue(&format!(" {}", a.action)), ts));
+        spans.push(Span::raw("  "));
+    }
+    spans
+}
+
+fn field(label: &str, value: String) -> Vec<Span<'static>> {
+    let glue = |s: &str| s.replace(' ', &NBSP.to_string());
+    vec![
+        Span::styled(glue(&format!("{label} ")), theme::label()),
+        Span::raw(glue(&value)),
+        Span::raw("  "),
+    ]
+}
+
+fn spec_line(model: &Model, c: &Circuit) -> Line<'static> {
+    let info = device::device(c.id);
+    let mut spans = Vec::new();
+    match c.kind {
+        CircuitKind::Flaps => match model.flap_spec.map(|s| s.value) {
+            Some(s) => {
+                spans.extend(field("breaker", format!("{} A", s.circuit_breaker)));
+                spans.extend(field(
+                    "mode",
+                    match s.mode {
+                        FlapMode::Momentary => "momentary".into(),
+                        FlapMode::PositionBased => "position".into(),
+                    },
+                ));
+                spans.extend(field("up/down", format!("{}/{}", s.up, s.down)));
+                spans.extend(field("mid", format!("{}/{}", s.midpoint_1, s.midpoint_2)));
+                spans.extend(field("max speed", s.max_speed.to_string()));
+            }
+            None => spans.extend(field("spec", "not received".into())),
+        },
+        CircuitKind::Trim(kind) => {
+            let spec = match kind {
+                TrimKind::Pitch => model.pitch_trim_spec,
+                TrimKind::Roll => model.roll_trim_spec,
+            };
+            spans.extend(field("breaker", "2 A fixed".into()));
+            match spec.map(|s| s.value) {
+                Some(s) => {
+                    spans.extend(field("up/down", format!("{}/{}", s.up, s.down)));
+                    spans.extend(field("neutral", s.neutral.to_string()));
+                    if kind == TrimKind::Pitch {
+                        spans.extend(field("power", format!("{}% above {}", s.power, s.speed)));
+                    }
+                }
+                None => spans.extend(field("spec", "not received".into())),
+            }
+        }
+        _ => {
+            spans.extend(field(
+                "breaker",
+                c.breaker
+                    .map_or_else(|| "not received".into(), |b| format!("{b} A")),
+            ));
+            if let Some(i) = info {
+                spans.extend(field("range", format!("{}–{} A", i.amps_min, i.amps_max)));
+            }
+            if c.kind == CircuitKind::Starter {
+                spans.extend(field("switch", "VP-X (off above 500 RPM)".into()));
+            } else {
+                spans.extend(field(
+                    "switch",
+                    c.switch
+                        .map_or_else(|| "not received".into(), |s| s.label()),
+                ));
+            }
+            let cf = model.device_specs[c.id as usize].map(|s| s.value.current_fault);
+            if let Some(cf) = cf {
+                spans.extend(field("current fault", if cf { "on" } else { "off" }.into()));
+            }
+        }
+    }
+    Line::from(spans)
+}
+
+pub fn render(frame: &mut Frame, area: Rect, model: &Model, selected: Option<&Circuit>) {
+    let block = Block::new()
+        .borders(Borders::TOP | Borders::RIGHT)
+        .border_style(theme::border());
+    let Some(c) = selected else {
+        let p = Paragraph::new(Line::styled(
+            "select a device with ↑/↓ or j/k",
+            theme::label(),
+        ))
+        .block(block.title(Span::styled(" Detail ", theme::panel_title())));
+        frame.render_widget(p, area);
+        return;
+    };
+    let role = match c.kind {
+        CircuitKind::Starter => "starter",
+        CircuitKind::Alternator { primary: true } => "primary alternator field",
+        CircuitKind::Alternator { primary: false } => "secondary alternator",
+        CircuitKind::Flaps => "flap motor",
+        CircuitKind::Trim(TrimKind::Pitch) => "pitch trim motor",
+        CircuitKind::Trim(TrimKind::Roll) => "roll trim motor",
+        CircuitKind::Device => "device",
+    };
+    let title = Line::from(vec![
+        Span::styled(format!(" {} ", c.name), theme::panel_title()),
+        Span::styled(
+            format!("pin {} · id {} · {role} ", c.pin, c.id),
+            theme::label(),
+        ),
+    ]);
+    let mut lines = vec![Line::from(vec![
+        Span::styled("state ", theme::label()),
+        Span::styled(values::state_text(c.state), theme::state(c.state)),
+        Span::styled("  amps ", theme::label()),
+        Span::styled(
+            values::amps(c.amps),
+            if c.amps.is_some() {
+                Style::new()
+            } else {
+                theme::unknown()
+            },
+        ),
+    ])];
+    // Most important first: a short panel cuts the bottom lines off.
+    let fault = match c.state {
+        CircuitState::Fault(code) => Some(code),
+        _ => None,
+    };
+    let info = fault
+        .and_then(|code| code.info())
+        .filter(|i| !i.description.is_empty());
+    if let Some(code) = fault {
+        let what = info.map_or("Code not described in ICD Appendix E.", |i| i.description);
+        lines.push(Line::from(vec![
+            Span::styled(
+                format!("FAULT {} ({:#04x}) ", code.name(), code.to_byte()),
+                theme::alert(),
+            ),
+            Span::raw(what),
+        ]));
+    }
+    lines.push(Line::from(key_spans(&key_actions(c))));
+    if let Some(i) = info {
+        lines.push(Line::from(vec![
+            Span::styled("action ", theme::label()),
+            Span::raw(i.action),
+        ]));
+        lines.push(Line::from(vec![
+            Span::styled("clears ", theme::label()),
+            Span::raw(i.clears),
+        ]));
+    }
+    lines.push(spec_line(model, c));
+    let p = Paragraph::new(lines)
+        .block(block.title(title))
+        .wrap(Wrap { trim: true });
+    frame.render_widget(p, area);
+}

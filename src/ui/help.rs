@@ -1,0 +1,87 @@
+//! The help overlay: every key the page answers to.
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Flex, Layout, Rect};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Wrap};
+
+use super::state::{ReleaseMode, ViewState};
+use super::theme;
+
+/// The key list, agreed with the control module; one place so the overlay and any
+/// test of the key map read the same words.
+pub const KEYS: &[(&str, &str)] = &[
+    ("↑/↓  j/k", "select a device (j/k also move off motor rows)"),
+    (
+        "o  Enter",
+        "turn on: DEVICE_POWER, overrides the switch until cycled",
+    ),
+    (
+        "f",
+        "turn off: DEVICE_POWER, overrides the switch until cycled",
+    ),
+    (
+        "r",
+        "reset the selected fault: DEVICE_CLEAR (only when faulted)",
+    ),
+    ("R", "reset the system fault: DEVICE_CLEAR 255"),
+    ("w", "wig-wag steady / auto: WIG_WAG_MODE"),
+    ("s", "sort the list by pin / alphabetically"),
+    (
+        "hold ↑/↓",
+        "on flaps or pitch trim: run the motor up / down",
+    ),
+    ("hold ←/→", "on roll trim: run the motor left / right"),
+    ("t", "traffic view (later)"),
+    ("c", "setup (later)"),
+    ("?", "show / hide this help"),
+    ("q", "quit"),
+];
+
+pub fn render(frame: &mut Frame, view: &ViewState) {
+    let area = frame.area();
+    let width = (KEYS
+        .iter()
+        .map(|(k, d)| 10 + d.chars().count())
+        .max()
+        .unwrap_or(40) as u16
+        + 6)
+    .min(area.width.saturating_sub(2));
+    let height = (KEYS.len() as u16 + 6).min(area.height.saturating_sub(2));
+    let [row] = Layout::vertical([Constraint::Length(height)])
+        .flex(Flex::Center)
+        .areas(area);
+    let [popup]: [Rect; 1] = Layout::horizontal([Constraint::Length(width)])
+        .flex(Flex::Center)
+        .areas(row);
+    let mut lines: Vec<Line> = KEYS
+        .iter()
+        .map(|(k, d)| {
+            Line::from(vec![
+                Span::styled(format!("{k:<10}"), theme::panel_title()),
+                Span::raw(" "),
+                Span::raw(*d),
+            ])
+        })
+        .collect();
+    lines.push(Line::raw(""));
+    let mode = match view.release_mode {
+        ReleaseMode::KeyRelease => "this terminal reports key release: a run ends when you let go",
+        ReleaseMode::AutoRepeat => "no key release here: a run ends ~0.2 s after key repeats stop",
+    };
+    lines.push(Line::styled(mode, theme::label()));
+    lines.push(Line::styled(
+        "any other key stops a run; after 10 s press again",
+        theme::label(),
+    ));
+    frame.render_widget(Clear, popup);
+    frame.render_widget(
+        Paragraph::new(lines).wrap(Wrap { trim: false }).block(
+            Block::bordered()
+                .border_type(BorderType::Rounded)
+                .title(Span::styled(" Keys ", theme::panel_title()))
+                .title_bottom(Line::styled(" ? closes ", theme::label())),
+        ),
+        popup,
+    );
+}

@@ -1,0 +1,245 @@
+//! Flaps and trim: each position on a gauge marked with its up/down ends, the trim
+//! neutral and the flap midpoints; motor running, faults, overspeed, flap-down
+//! inhibit; and which way the page knows a held key was let go.
+
+use std::time::Instant;
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
+
+use super::state::{ReleaseMode, ViewState};
+use super::{theme, values};
+use crate::model::{Model, Motor, TrimKind};
+use crate::protocol::message::FlapTrimStatus;
+
+const MOTORS: [Motor; 3] = [
+    Motor::Flaps,
+    Motor::Trim(TrimKind::Pitch),
+    Motor::Trim(TrimKind::Roll),
+];
+
+pub const POSITION_MARK: &str = "●";
+
+fn shown(model: &Model, now: Instant) -> Vec<Motor> {
+    MOTORS
+        .into_iter()
+        .filter(|m| model.is_shown(m.device_id(), now))
+        .collect()
+}
+
+pub fn height(model: &Model, now: Instant, width: u16) -> u16 {
+    let n = shown(model, now).len().max(1) as u16;
+    let chars: usize = flags(model, now)
+        .iter()
+        .map(|(t, _)| t.chars().count() + 3)
+        .sum();
+    let flag_lines = chars.div_ceil(width.max(1) as usize) as u16;
+    1 + n + flag_lines + 1
+}
+
+/// A motor's gauge geometry, in the sensor's raw 0–255 units.
+struct Gauge {
+    label: &'static str,
+    left: &'static str,
+    right: &'static str,
+    /// The sensor value at the left end ("up") and the right end ("down").
+    from: u8,
+    to: u8,
+    marks: Vec<(u8, &'static str)>,
+    position: u8,
+    running: bool,
+    faulted: bool,
+}
+
+fn gauge(m: Motor, ft: &FlapTrimStatus) -> Gauge {
+    match m {
+        Motor::Flaps => Gauge {
+            label: "Flaps",
+            left: "UP",
+            right: "DN",
+            from: ft.flap_up,
+            to: ft.flap_down,
+            marks: vec![(ft.flap_midpoint_1, "1"), (ft.flap_midpoint_2, "2")],
+            position: ft.flap_position,
+            running: ft.flap.motor_running,
+            faulted: ft.flap.fault || ft.flap_fault.is_fault(),
+        },
+        Motor::Trim(TrimKind::Pitch) => Gauge {
+            label: "Pitch",
+            left: "UP",
+            right: "DN",
+            from: ft.pitch_trim_up,
+            to: ft.pitch_trim_down,
+            marks: vec![(ft.pitch_trim_neutral, "N")],
+            position: ft.pitch_trim_position,
+            running: ft.pitch_trim.motor_running,
+            faulted: ft.pitch_trim.fault || ft.pitch_trim_fault.is_fault(),
+        },
+        // Roll "up" is left (ICD Table 30 note 2).
+        Motor::Trim(TrimKind::Roll) => Gauge {
+            label: "Roll",
+            left: " L",
+            right: "R ",
+            from: ft.roll_trim_up,
+            to: ft.roll_trim_down,
+            marks: vec![(ft.roll_trim_neutral, "N")],
+            position: ft.roll_trim_position,
+            running: ft.roll_trim.motor_running,
+            faulted: ft.roll_trim.fault || ft.roll_trim_fault.is_fault(),
+        },
+    }
+}
+
+/// Where `v` falls on a track of `w` cells from `from` to `to` (either may be larger:
+/// an inverted installation has "up" above "down"). `None` when outside the travel.
+fn cell(v: u8, from: u8, to: u8, w: usize) -> Option<usize> {
+    let (lo, hi) = (from.min(to), from.max(to));
+    if !(lo..=hi).contains(&v) || w == 0 {
+        return None;
+    }
+    if from == to {
+        return Some(0);
+    }
+    let frac = (f64::from(v) - f64::from(from)) / (f64::from(to) - f64::from(from));
+    Some(((frac * (w - 1) as f64).round() as usize).min(w - 1))
+}
+
+/// Percent of travel from the up end; clamped, since a sensor can read past an end.
+fn percent(g: &Gauge) -> u8 {
+    if g.from == g.to {
+        return 0;
+    }
+    let frac = (f64::from(g.position) - f64::from(g.from)) / (f64::from(g.to) - f64::from(g.from));
+    (frac.clamp(0.0, 1.0) * 100.0).round() as u8
+}
+
+fn gauge_line(m: Motor, ft: Option<&FlapTrimStatus>, width: u16) -> Line<'static> {
+    let label_of = |m: Motor| match m {
+        Motor::Flaps => "Flaps",
+        Motor::Trim(TrimKind::Pitch) => "Pitch",
+        Motor::Trim(TrimKind::Roll) => "Roll",
+    };
+    // label 6, ends 2+2, status 5
+    let track_w = (width as usize).saturating_sub(6 + 4 + 1 + 5).max(3);
+    let Some(ft) = ft else {
+        return Line::from(vec![
+            Span::styled(format!("{:<6}", label_of(m)), theme::label()),
+            Span::styled(
+                format!("{:^w$}", values::BLANK, w = track_w + 4),
+                theme::unknown(),
+            ),
+        ]);
+    };
+    let g = gauge(m, ft);
+    let mut track: Vec<(String, Style)> = vec![("─".into(), theme::border()); track_w];
+    for (v, mark) in &g.marks {
+        if let Some(i) = cell(*v, g.from, g.to, track_w) {
+            track[i] = ((*mark).into(), theme::label());
+        }
+    }
+    let pos_style = if g.faulted {
+        theme::alert()
+    } else {
+        Style::new().fg(theme::ON).add_modifier(Modifier::BOLD)
+    };
+    let pos = cell(g.position, g.from, g.to, track_w).unwrap_or(
+        // Past an end: pin the mark to the nearer end so it is still seen.
+        if g.position.abs_diff(g.from) < g.position.abs_diff(g.to) {
+            0
+        } else {
+            track_w - 1
+        },
+    );
+    track[pos] = (POSITION_MARK.into(), pos_style);
+    let mut spans = vec![
+        Span::styled(format!("{:<6}", g.label), theme::label()),
+        Span::styled(g.left, theme::label()),
+        Span::styled("├", theme::border()),
+    ];
+    spans.extend(track.into_iter().map(|(t, s)| Span::styled(t, s)));
+    spans.push(Span::styled("┤", theme::border()));
+    spans.push(Span::styled(g.right, theme::label()));
+    let status = if g.faulted {
+        Span::styled(" FLT", theme::alert())
+    } else if g.running {
+        Span::styled(" RUN", theme::on_off(true))
+    } else {
+        Span::styled(
+            format!("{:>4}", format!("{}%", percent(&g))),
+            theme::label(),
+        )
+    };
+    spans.push(status);
+    Line::from(spans)
+}
+
+/// Motor faults, overspeed alarm and flap-down inhibit, in words.
+fn flags(model: &Model, now: Instant) -> Vec<(String, Style)> {
+    let Some(ft) = model.live_flap_trim(now) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for m in MOTORS {
+        let code = m.fault(ft);
+        if code.is_fault() {
+            out.push((
+                format!("{} {} ({:#04x})", m.name(), code.name(), code.to_byte()),
+                theme::alert(),
+            ));
+        }
+    }
+    if ft.flap.overspeed_alarm {
+        out.push(("FLAP OVERSPEED ALARM".into(), theme::alert()));
+    }
+    if ft.flap.down_switch_inhibited {
+        out.push(("flap down inhibited".into(), theme::caution()));
+    }
+    out
+}
+
+pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, now: Instant) {
+    let ft = model.live_flap_trim(now);
+    let motors = shown(model, now);
+    let mut lines: Vec<Line> = motors
+        .iter()
+        .map(|&m| gauge_line(m, ft, area.width))
+        .collect();
+    if motors.is_empty() {
+        lines.push(Line::styled("no flaps or trim enabled", theme::label()));
+    }
+    let flags = flags(model, now);
+    if !flags.is_empty() {
+        let mut spans = Vec::new();
+        for (i, (t, s)) in flags.into_iter().enumerate() {
+            if i > 0 {
+                spans.push(Span::styled(" · ", theme::border()));
+            }
+            spans.push(Span::styled(t, s));
+        }
+        lines.push(Line::from(spans));
+    }
+    let mode = match view.release_mode {
+        ReleaseMode::KeyRelease => "keys: release seen",
+        ReleaseMode::AutoRepeat => "keys: auto-repeat",
+    };
+    let mut last = vec![Span::styled(mode, theme::label())];
+    if let Some(run) = view.motor_run {
+        last.push(Span::raw("  "));
+        last.push(Span::styled(
+            format!("▶ {} {}", run.motor.name(), run.direction),
+            Style::new().fg(theme::ON).add_modifier(Modifier::BOLD),
+        ));
+    }
+    lines.push(Line::from(last));
+    let block = Block::new()
+        .borders(Borders::TOP)
+        .border_style(theme::border())
+        .title(Span::styled(" Flaps & trim ", theme::panel_title()));
+    frame.render_widget(
+        Paragraph::new(lines).block(block).wrap(Wrap { trim: true }),
+        area,
+    );
+}

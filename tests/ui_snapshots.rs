@@ -1,0 +1,858 @@
+//! Snapshots of every state a person can reach on the electrical page, rendered into a
+//! `TestBackend`. Text snapshots hide colour, so the states where colour carries the
+//! meaning (Appendix A: green=on, white=off, red=faulted) are also snapshotted with the
+//! buffer's Debug form, which lists styles, and asserted cell by cell.
+
+use std::time::{Duration, Instant};
+
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::style::{Color, Modifier};
+
+use vpx_efis::model::{Connection, Model, Motor, Source, TrimKind};
+use vpx_efis::protocol::FaultCode;
+use vpx_efis::protocol::device::{EFIS, FIELD_PRI, FLAPS, STARTER, TRIM_P, TRIM_R};
+use vpx_efis::ui::state::{MotorRun, Overlay, ReleaseMode, SortOrder, ViewState};
+use vpx_efis::ui::{self, MIN_HEIGHT, MIN_WIDTH};
+
+mod fixtures {
+    use super::*;
+    use vpx_efis::protocol::Packet;
+    use vpx_efis::protocol::device::DEVICE_COUNT;
+    use vpx_efis::protocol::message::{
+        DataIntegrityCode, DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag,
+        FaultStatus, FlapFlags, FlapMode, FlapSpec, FlapTrimStatus, HardwareVersion, MiscFlags,
+        OvervoltageLimit, Polarity, SignedTenths, SwitchId, SwitchInputs, SystemFaultFlags,
+        SystemSpec, SystemStatus, Tenths, TrimFlags, TrimSpec, TrimType, Version,
+        WigWagModeSetting,
+    };
+
+    /// The devices the demo aircraft has wired, with names, breakers and switches.
+    pub const WIRED: &[(u8, &str, u8, SwitchId)] = &[
+        (STARTER, "", 5, SwitchId::AlwaysOn),
+        (EFIS, "EFIS", 5, SwitchId::AlwaysOn),
+        (FIELD_PRI, "Alternator", 5, SwitchId::Input(1)),
+        (4, "Nav Lt", 3, SwitchId::Input(2)),
+        (5, "Strobe Lt", 3, SwitchId::Input(3)),
+        (6, "Beacon", 2, SwitchId::Input(4)),
+        (7, "Pitot Heat", 5, SwitchId::Input(5)),
+        (8, "Radio", 3, SwitchId::AlwaysOn),
+        (0x11, "Landing Lt", 8, SwitchId::Input(6)),
+        (0x12, "Taxi Lt", 6, SwitchId::Input(6)),
+        (0x17, "Fuel Pump", 10, SwitchId::Input(7)),
+        (0x1A, "", 2, SwitchId::Off),
+    ];
+
+    /// Devices on in normal cruise, with their current in tenths of an amp.
+    pub const ON: &[(u8, u16)] = &[
+        (EFIS, 24),
+        (FIELD_PRI, 31),
+        (4, 12),
+        (5, 18),
+        (8, 21),
+        (0x17, 45),
+    ];
+
+    pub struct Unit {
+        pub model: Model,
+        pub t0: Instant,
+        cnt: u8,
+    }
+
+    pub fn system(amps: u16, volts: i16) -> SystemStatus {
+        SystemStatus {
+            system_current: Tenths(amps),
+            main_bus_volts: SignedTenths(volts),
+            aux_battery_volts: Tenths(0),
+            internal_temp: 31,
+            switches: SwitchInputs::from_word(0b0000_0000_0111_1111),
+            misc: MiscFlags {
+                starter_annunciator: false,
+                wig_wag_mode: WigWagModeSetting::Auto,
+                software_update: false,
+                wig_wag_active: false,
+            },
+            faults: SystemFaultFlags::default(),
+            data_integrity_code: None,
+        }
+    }
+
+    pub fn devices(on: &[(u8, u16)]) -> DeviceStatus {
+        let mut d = DeviceStatus {
+            on: [false; DEVICE_COUNT],
+            current: [Tenths(0); DEVICE_COUNT],
+        };
+        for &(id, amps) in on {
+            d.on[id as usize] = true;
+            d.current[id as usize] = Tenths(amps);
+        }
+        d
+    }
+
+    pub fn flap_trim() -> FlapTrimStatus {
+        FlapTrimStatus {
+            flap: FlapFlags {
+                enabled: true,
+                ..Default::default()
+            },
+            pitch_trim: TrimFlags {
+                enabled: true,
+                ..Default::default()
+            },
+            roll_trim: TrimFlags {
+                enabled: true,
+                ..Default::default()
+            },
+            flap_position: 20,
+            pitch_trim_position: 128,
+            roll_trim_position: 120,
+            flap_fault: FaultCode::NoFault,
+            pitch_trim_fault: FaultCode::NoFault,
+            roll_trim_fault: FaultCode::NoFault,
+            flap_up: 20,
+            flap_down: 220,
+            flap_midpoint_1: 90,
+            flap_midpoint_2: 160,
+            pitch_trim_up: 30,
+            pitch_trim_down: 230,
+            pitch_trim_neutral: 128,
+            roll_trim_up: 40,
+            roll_trim_down: 200,
+            roll_trim_neutral: 120,
+        }
+    }
+
+    pub fn faults(devices: &[(u8, FaultCode)], system: bool) -> FaultStatus {
+        let mut f = FaultStatus {
+            faulted: [false; DEVICE_COUNT],
+            system_fault: system,
+            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+        };
+        for &(id, code) in devices {
+            f.faulted[id as usize] = true;
+            f.codes[id as usize] = Some(code);
+        }
+        f
+    }
+
+    impl Unit {
+        /// A unit that answered every connect-time question at `t0`.
+        pub fn configured(source: Source) -> Unit {
+            let t0 = Instant::now();
+            let mut u = Unit {
+                model: Model::new(source),
+                t0,
+                cnt: 0,
+            };
+            u.model.note_connected(t0, "/dev/ttyUSB0".into());
+            u.apply(
+                0,
+                Version {
+                    hardware_version: HardwareVersion::VpxPro,
+                    software_major: 1,
+                    software_minor: 4,
+                },
+            );
+            u.apply(
+                0,
+                SystemSpec {
+                    overvoltage_limit: OvervoltageLimit::V16,
+                    secondary_alternator: None,
+                },
+            );
+            for id in 4..=28u8 {
+                let wired = WIRED.iter().any(|w| w.0 == id);
+                let flag = if wired {
+                    EnableFlag::Enabled
+                } else {
+                    EnableFlag::Disabled
+                };
+                u.apply(
+                    0,
+                    DeviceEnable {
+                        device_id: id,
+                        flag,
+                    },
+                );
+            }
+            for &(id, name, breaker, switch_id) in WIRED {
+                if !name.is_empty() {
+                    u.apply(0, DeviceName::new(id, name).unwrap());
+                }
+                u.apply(
+                    0,
+                    DeviceSpec {
+                        device_id: id,
+                        circuit_breaker: breaker,
+                        switch_id,
+                        current_fault: true,
+                    },
+                );
+            }
+            u.apply(
+                0,
+                FlapSpec {
+                    mode: FlapMode::PositionBased,
+                    enabled: true,
+                    polarity: Polarity::Standard,
+                    up: 20,
+                    down: 220,
+                    midpoint_1: 90,
+                    midpoint_2: 160,
+                    circuit_breaker: 7,
+                    overspeed_position: 90,
+                    max_speed: 100,
+                    endpoint_duration: Tenths(5),
+                },
+            );
+            for (trim_type, up, down, neutral) in [
+                (TrimType::Pitch, 30, 230, 128),
+                (TrimType::Roll, 40, 200, 120),
+            ] {
+                u.apply(
+                    0,
+                    TrimSpec {
+                        trim_type,
+                        enabled: true,
+                        polarity: Polarity::Standard,
+                        up,
+                        down,
+                        neutral,
+                        power: 60,
+                        speed: 120,
+                    },
+                );
+            }
+            u
+        }
+
+        pub fn at(&self, ms: u64) -> Instant {
+            self.t0 + Duration::from_millis(ms)
+        }
+
+        pub fn apply(&mut self, ms: u64, message: impl Into<vpx_efis::protocol::Message>) {
+            self.cnt = self.cnt.wrapping_add(1);
+            let at = self.at(ms);
+            self.model
+                .apply_packet(at, &Packet::from_vpx(self.cnt, message));
+        }
+
+        /// `secs` seconds of broadcasts starting at `from_ms`, one status pair per
+        /// second, bus volts and amps wandering so the plot has a shape.
+        pub fn run(
+            &mut self,
+            from_ms: u64,
+            secs: u64,
+            mut each: impl FnMut(
+                u64,
+                &mut SystemStatus,
+                &mut DeviceStatus,
+                &mut FlapTrimStatus,
+            ) -> Option<FaultStatus>,
+        ) {
+            for i in 0..secs {
+                let ms = from_ms + i * 1000;
+                let wobble = ((i * 7) % 11) as i16 - 5;
+                let mut s = system(145 + (i % 9) as u16 * 3, 138 + wobble);
+                let mut d = devices(ON);
+                let mut ft = flap_trim();
+                let f = each(i, &mut s, &mut d, &mut ft);
+                self.apply(ms, s);
+                self.apply(ms, d);
+                self.apply(ms + 50, ft);
+                if let Some(f) = f {
+                    self.apply(ms + 60, f);
+                }
+            }
+        }
+    }
+
+    /// Two minutes of a healthy unit; `now` is 400 ms after the last broadcasts.
+    pub fn normal() -> (Model, Instant) {
+        let mut u = Unit::configured(Source::Simulated {
+            scenario: "demo".into(),
+        });
+        u.run(1000, 120, |_, _, _, _| None);
+        let now = u.at(1000 + 119 * 1000 + 400);
+        (u.model, now)
+    }
+
+    /// `normal`, with `patch` applied to the last second.
+    pub fn normal_with(
+        mut patch: impl FnMut(
+            &mut SystemStatus,
+            &mut DeviceStatus,
+            &mut FlapTrimStatus,
+        ) -> Option<FaultStatus>,
+    ) -> (Model, Instant) {
+        let mut u = Unit::configured(Source::Simulated {
+            scenario: "demo".into(),
+        });
+        u.run(1000, 119, |_, _, _, _| None);
+        u.run(120_000, 1, |_, s, d, ft| patch(s, d, ft));
+        let now = u.at(120_400);
+        (u.model, now)
+    }
+
+    pub fn faulted_device() -> (Model, Instant) {
+        normal_with(|_, d, _| {
+            d.on[EFIS as usize] = false;
+            d.current[EFIS as usize] = Tenths(0);
+            Some(faults(&[(EFIS, FaultCode::ShortCircuit)], false))
+        })
+    }
+
+    pub fn system_fault() -> (Model, Instant) {
+        normal_with(|s, _, _| {
+            s.system_current = Tenths(612);
+            s.aux_battery_volts = Tenths(126);
+            s.faults = SystemFaultFlags {
+                current_over_48a: true,
+                current_over_60a: true,
+                warm_reset: true,
+                data_integrity_failure: true,
+                external_data_missing: true,
+            };
+            s.data_integrity_code = Some(DataIntegrityCode::FlapConfig);
+            s.misc = MiscFlags {
+                starter_annunciator: true,
+                wig_wag_mode: WigWagModeSetting::Steady,
+                software_update: true,
+                wig_wag_active: true,
+            };
+            Some(faults(&[], true))
+        })
+    }
+
+    /// Secondary alternator on 10A-3: the primary runs (green), the standby is off
+    /// (white).
+    pub fn dual_alternator() -> (Model, Instant) {
+        let mut u = Unit::configured(Source::Simulated {
+            scenario: "dual-alt".into(),
+        });
+        u.apply(
+            10,
+            SystemSpec {
+                overvoltage_limit: OvervoltageLimit::V16,
+                secondary_alternator: Some(0x13),
+            },
+        );
+        u.apply(
+            10,
+            DeviceEnable {
+                device_id: 0x13,
+                flag: EnableFlag::Enabled,
+            },
+        );
+        u.apply(10, DeviceName::new(0x13, "Alternator 2").unwrap());
+        u.apply(
+            10,
+            DeviceSpec {
+                device_id: 0x13,
+                circuit_breaker: 5,
+                switch_id: SwitchId::Input(8),
+                current_fault: false,
+            },
+        );
+        u.run(1000, 60, |_, _, _, _| None);
+        {
+            let now = u.at(60_400);
+            (u.model, now)
+        }
+    }
+
+    pub fn trim_running() -> (Model, Instant) {
+        normal_with(|s, _, ft| {
+            ft.pitch_trim.motor_running = true;
+            ft.pitch_trim_position = 90;
+            s.switches.pitch_trim_up = true;
+            None
+        })
+    }
+
+    pub fn flaps_midpoints() -> (Model, Instant) {
+        normal_with(|s, _, ft| {
+            ft.flap_position = 90;
+            ft.flap.overspeed_alarm = true;
+            ft.flap.down_switch_inhibited = true;
+            ft.roll_trim.fault = true;
+            ft.roll_trim_fault = FaultCode::TrimRunaway;
+            s.switches.flap_down = true;
+            None
+        })
+    }
+
+    /// Data stopped 5.6 s before `now` on a real serial port.
+    pub fn comm_lost() -> (Model, Instant) {
+        let mut u = Unit::configured(Source::Serial {
+            path: "/dev/ttyUSB0".into(),
+        });
+        u.run(1000, 90, |_, _, _, _| None);
+        let now = u.at(1000 + 89 * 1000 + 5600);
+        (u.model, now)
+    }
+
+    pub fn never_connected() -> (Model, Instant) {
+        let t0 = Instant::now();
+        (
+            Model::new(Source::Serial {
+                path: "/dev/ttyUSB0".into(),
+            }),
+            t0 + Duration::from_millis(300),
+        )
+    }
+
+    /// The port opened 8 s ago and the unit has said nothing.
+    pub fn connected_silent() -> (Model, Instant) {
+        let t0 = Instant::now();
+        let mut m = Model::new(Source::Serial {
+            path: "/dev/ttyUSB0".into(),
+        });
+        m.note_connected(t0, "/dev/ttyUSB0".into());
+        (m, t0 + Duration::from_secs(8))
+    }
+
+    pub fn port_lost() -> (Model, Instant) {
+        let mut u = Unit::configured(Source::Serial {
+            path: "/dev/ttyUSB0".into(),
+        });
+        u.run(1000, 30, |_, _, _, _| None);
+        let at = u.at(30_500);
+        u.model.note_link_lost(at, "device disconnected".into());
+        {
+            let now = u.at(33_000);
+            (u.model, now)
+        }
+    }
+
+    pub fn replay() -> (Model, Instant) {
+        let mut u = Unit::configured(Source::Replay {
+            file: "hangar-2024-05-01.vpxlog".into(),
+        });
+        u.run(1000, 10, |_, _, _, _| None);
+        {
+            let now = u.at(10_400);
+            (u.model, now)
+        }
+    }
+}
+
+fn draw(model: &Model, view: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
+    let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+    terminal.draw(|f| ui::render(f, model, view, now)).unwrap();
+    terminal.backend().buffer().clone()
+}
+
+/// The buffer as plain lines, for text snapshots. Non-breaking spaces (which keep a
+/// key beside its action when wrapping) look like spaces, so they are written as such.
+fn text(buf: &Buffer) -> String {
+    let w = buf.area.width as usize;
+    let mut out = String::new();
+    for (i, cell) in buf.content.iter().enumerate() {
+        out.push_str(&cell.symbol().replace('\u{a0}', " "));
+        if (i + 1) % w == 0 {
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// The first cell where `needle` starts, on a line that also contains `on_line`.
+fn find(buf: &Buffer, on_line: &str, needle: &str) -> (u16, u16) {
+    let n: Vec<String> = needle.chars().map(String::from).collect();
+    for y in 0..buf.area.height {
+        let cells: Vec<&str> = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
+        if !cells.concat().contains(on_line) {
+            continue;
+        }
+        // Cell by cell, since a cell's symbol may be several bytes.
+        if let Some(x) = (0..=cells.len().saturating_sub(n.len()))
+            .find(|&x| (0..n.len()).all(|k| cells[x + k] == n[k]))
+        {
+            return (x as u16, y);
+        }
+    }
+    panic!(
+        "{needle:?} not found on a line with {on_line:?}:\n{}",
+        text(buf)
+    );
+}
+
+/// The colour of the State column on the row of device `name`: `state` as a whole
+/// word to the right of the name.
+fn state_cell(buf: &Buffer, name: &str, state: &str) -> Color {
+    let (nx, y) = find(buf, name, name);
+    let cells: Vec<&str> = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
+    let s: Vec<String> = state.chars().map(String::from).collect();
+    let start = nx as usize + name.chars().count();
+    for x in start..cells.len() - s.len() {
+        if (0..s.len()).all(|k| cells[x + k] == s[k])
+            && cells[x + s.len()] == " "
+            && cells[x - 1] == " "
+        {
+            return buf[(x as u16, y)].fg;
+        }
+    }
+    panic!("state {state:?} not on the {name:?} row:\n{}", text(buf));
+}
+
+fn view_selecting(id: u8) -> ViewState {
+    ViewState {
+        selected: Some(id),
+        ..Default::default()
+    }
+}
+
+#[test]
+fn normal_80x24() {
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &view_selecting(EFIS), now, 80, 24);
+    insta::assert_snapshot!(text(&buf));
+}
+
+#[test]
+fn normal_160x50() {
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &view_selecting(4), now, 160, 50);
+    insta::assert_snapshot!(text(&buf));
+}
+
+#[test]
+fn normal_120x40_styles() {
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
+    insta::assert_snapshot!(format!("{buf:?}"));
+    // Appendix A colours: green=on, white=off.
+    assert_eq!(state_cell(&buf, "Nav Lt", "ON"), Color::Green);
+    assert_eq!(state_cell(&buf, "Beacon", "OFF"), Color::White);
+    assert_eq!(state_cell(&buf, "Starter", "OFF"), Color::White);
+    // The Vertical Power mark, white on black.
+    let (x, y) = find(&buf, "VERTICAL POWER", "VERTICAL POWER");
+    assert_eq!(
+        (buf[(x, y)].fg, buf[(x, y)].bg),
+        (Color::White, Color::Black)
+    );
+    assert!(!text(&buf).contains("COMMUNICATION LOST"));
+}
+
+#[test]
+fn faulted_device_names_the_fault_in_red_and_explains_it() {
+    let (m, now) = fixtures::faulted_device();
+    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
+    insta::assert_snapshot!(format!("{buf:?}"));
+    assert_eq!(state_cell(&buf, "EFIS", "SHORT_CIRCUIT"), Color::Red);
+    let t = text(&buf);
+    assert!(t.contains("Device short circuit."), "{t}");
+    assert!(t.contains("remains off until cleared"), "{t}");
+    // Reset is offered (not dimmed) for a faulted device.
+    let (x, y) = find(&buf, "reset\u{a0}fault", "\u{a0}r\u{a0}");
+    assert!(!buf[(x, y)].modifier.contains(Modifier::DIM));
+}
+
+#[test]
+fn reset_is_dimmed_unless_faulted_and_starter_cannot_be_switched() {
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
+    let (x, y) = find(&buf, "reset\u{a0}fault", "\u{a0}r\u{a0}");
+    assert!(buf[(x, y)].modifier.contains(Modifier::DIM));
+    let buf = draw(&m, &view_selecting(STARTER), now, 120, 40);
+    let t = text(&buf);
+    assert!(t.contains("starter is switched by the VP-X only"), "{t}");
+    let (x, y) = find(&buf, "starter\u{a0}is", "\u{a0}o/f\u{a0}");
+    assert!(buf[(x, y)].modifier.contains(Modifier::DIM));
+}
+
+#[test]
+fn system_fault_and_every_flag_in_words() {
+    let (m, now) = fixtures::system_fault();
+    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
+    insta::assert_snapshot!(text(&buf));
+    // The flags wrap on screen, so their words are checked before wrapping.
+    let flags: Vec<String> = ui::system_panel::flags(&m, now)
+        .into_iter()
+        .map(|(t, _)| t)
+        .collect();
+    let t = format!("{}\n{}", flags.join("\n"), text(&buf));
+    for words in [
+        "SYSTEM FAULT",
+        "OVER 60 A",
+        "OVER 48 A",
+        "DATA INTEGRITY FAILURE: Flap configuration error",
+        "WARM RESET",
+        "EXTERNAL DATA MISSING",
+        "SOFTWARE UPDATED",
+        "STARTER ENGAGED",
+        "WIG-WAG ACTIVE (steady)",
+        "aux 12.6 V",
+        "61.2 A",
+    ] {
+        assert!(t.contains(words), "missing {words:?}:\n{t}");
+    }
+    let (x, y) = find(&buf, "SYSTEM FAULT", "SYSTEM FAULT");
+    assert_eq!(buf[(x, y)].fg, Color::Red);
+}
+
+#[test]
+fn dual_alternator_running_green_standby_white() {
+    let (m, now) = fixtures::dual_alternator();
+    let buf = draw(&m, &view_selecting(0x13), now, 120, 40);
+    insta::assert_snapshot!(format!("{buf:?}"));
+    assert_eq!(state_cell(&buf, "Alternator ", "ON"), Color::Green);
+    assert_eq!(state_cell(&buf, "Alternator 2", "OFF"), Color::White);
+    let t = text(&buf);
+    assert!(t.contains("A1") && t.contains("A2"), "{t}");
+    assert!(t.contains("secondary alternator"), "{t}");
+}
+
+#[test]
+fn trim_running_shows_the_run_and_the_release_mode() {
+    let (m, now) = fixtures::trim_running();
+    let view = ViewState {
+        selected: Some(TRIM_P),
+        release_mode: ReleaseMode::KeyRelease,
+        motor_run: Some(MotorRun {
+            motor: Motor::Trim(TrimKind::Pitch),
+            direction: "up",
+        }),
+        ..Default::default()
+    };
+    let buf = draw(&m, &view, now, 120, 40);
+    insta::assert_snapshot!(text(&buf));
+    let t = text(&buf);
+    assert!(t.contains("▶ pitch trim up"), "{t}");
+    assert!(t.contains("keys: release seen"), "{t}");
+    assert!(t.contains("hold ↑") && t.contains("pitch trim down"), "{t}");
+}
+
+#[test]
+fn roll_trim_row_shows_left_and_right() {
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &view_selecting(TRIM_R), now, 120, 40);
+    let t = text(&buf);
+    assert!(
+        t.contains("roll trim left") && t.contains("roll trim right"),
+        "{t}"
+    );
+    assert!(t.contains("keys: auto-repeat"), "{t}");
+}
+
+#[test]
+fn flaps_with_midpoints_overspeed_and_inhibit() {
+    let (m, now) = fixtures::flaps_midpoints();
+    let buf = draw(&m, &view_selecting(FLAPS), now, 120, 40);
+    insta::assert_snapshot!(text(&buf));
+    let t = text(&buf);
+    assert!(t.contains("FLAP OVERSPEED ALARM"), "{t}");
+    assert!(t.contains("flap down inhibited"), "{t}");
+    assert!(t.contains("roll trim TRIM_RUNAWAY (0x0e)"), "{t}");
+    // Flaps sit on midpoint 1: the position mark replaces the "1" on the gauge.
+    let (_, y) = find(&buf, "Flaps ", "Flaps UP├");
+    let gauge: String = (0..buf.area.width)
+        .map(|x| buf[(x, y)].symbol().to_string())
+        .collect();
+    assert!(
+        gauge.contains('●') && gauge.contains('2') && !gauge.contains("─1─"),
+        "{gauge}"
+    );
+}
+
+#[test]
+fn comm_lost_80x24_blanks_every_live_value() {
+    let (m, now) = fixtures::comm_lost();
+    let buf = draw(&m, &view_selecting(EFIS), now, 80, 24);
+    insta::assert_snapshot!(format!("{buf:?}"));
+    let t = text(&buf);
+    assert!(t.contains("C O M M U N I C A T I O N   L O S T"), "{t}");
+    let (x, y) = find(&buf, "C O M M", "C O M M");
+    assert_eq!((buf[(x, y)].fg, buf[(x, y)].bg), (Color::White, Color::Red));
+    // No live reading may survive: no amps, no volts, no ON/OFF.
+    for stale in ["2.4", "13.", " ON ", " OFF ", "31 °C"] {
+        assert!(!t.contains(stale), "stale {stale:?} still shown:\n{t}");
+    }
+    assert!(t.contains("-- A") && t.contains("-- V"), "{t}");
+}
+
+#[test]
+fn comm_lost_160x50() {
+    let (m, now) = fixtures::comm_lost();
+    let buf = draw(&m, &view_selecting(EFIS), now, 160, 50);
+    insta::assert_snapshot!(text(&buf));
+}
+
+#[test]
+fn comm_lost_recovers_by_itself_when_data_returns() {
+    let (mut m, now) = fixtures::comm_lost();
+    let back = now + Duration::from_millis(100);
+    m.apply_packet(
+        back,
+        &vpx_efis::protocol::Packet::from_vpx(1, fixtures::system(150, 139)),
+    );
+    m.apply_packet(
+        back,
+        &vpx_efis::protocol::Packet::from_vpx(2, fixtures::devices(fixtures::ON)),
+    );
+    let buf = draw(&m, &view_selecting(EFIS), back, 80, 24);
+    let t = text(&buf);
+    assert!(!t.contains("C O M M U N I C A T I O N"), "{t}");
+    assert!(t.contains("13.9 V"), "{t}");
+}
+
+#[test]
+fn help_overlay_lists_every_key() {
+    let (m, now) = fixtures::normal();
+    let view = ViewState {
+        overlay: Overlay::Help,
+        ..view_selecting(EFIS)
+    };
+    let buf = draw(&m, &view, now, 100, 30);
+    insta::assert_snapshot!(text(&buf));
+    let t = text(&buf);
+    for (key, _) in ui::help::KEYS {
+        assert!(t.contains(key), "help lacks {key:?}:\n{t}");
+    }
+}
+
+#[test]
+fn help_overlay_80x24() {
+    let (m, now) = fixtures::normal();
+    let view = ViewState {
+        overlay: Overlay::Help,
+        ..view_selecting(EFIS)
+    };
+    let buf = draw(&m, &view, now, 80, 24);
+    insta::assert_snapshot!(text(&buf));
+}
+
+#[test]
+fn too_small_terminal_says_so() {
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &ViewState::default(), now, 60, 20);
+    insta::assert_snapshot!(text(&buf));
+    assert!(text(&buf).contains("needs 80×24"));
+    // One column or row short is already too small: the layout is not tried.
+    for (w, h) in [(MIN_WIDTH - 1, MIN_HEIGHT), (MIN_WIDTH, MIN_HEIGHT - 1)] {
+        assert!(text(&draw(&m, &ViewState::default(), now, w, h)).contains("too small"));
+    }
+    assert!(
+        !text(&draw(&m, &ViewState::default(), now, MIN_WIDTH, MIN_HEIGHT)).contains("too small")
+    );
+}
+
+#[test]
+fn alphabetical_sort_keeps_flaps_and_trim_apart() {
+    let (m, now) = fixtures::normal();
+    let view = ViewState {
+        sort: SortOrder::Alphabetical,
+        ..view_selecting(EFIS)
+    };
+    let buf = draw(&m, &view, now, 120, 40);
+    insta::assert_snapshot!(text(&buf));
+    let names: Vec<String> = ui::ordered_circuits(&m, &view, now)
+        .into_iter()
+        .map(|c| c.name)
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "3A-1",
+            "Alternator",
+            "Beacon",
+            "EFIS",
+            "Fuel Pump",
+            "Landing Lt",
+            "Nav Lt",
+            "Pitot Heat",
+            "Radio",
+            "Starter",
+            "Strobe Lt",
+            "Taxi Lt",
+            "Flaps",
+            "Trim_P",
+            "Trim_R",
+        ]
+    );
+}
+
+#[test]
+fn pin_order_keeps_flaps_and_trim_apart() {
+    let (m, now) = fixtures::normal();
+    let ids: Vec<u8> = ui::ordered_circuits(&m, &ViewState::default(), now)
+        .into_iter()
+        .map(|c| c.id)
+        .collect();
+    assert_eq!(
+        ids,
+        [
+            1, 2, 3, 4, 5, 6, 7, 8, 0x11, 0x12, 0x17, 0x1A, FLAPS, TRIM_R, TRIM_P
+        ]
+    );
+}
+
+#[test]
+fn never_connected() {
+    let (m, now) = fixtures::never_connected();
+    let buf = draw(&m, &ViewState::default(), now, 80, 24);
+    insta::assert_snapshot!(text(&buf));
+    let t = text(&buf);
+    assert!(
+        t.contains("N O   D A T A   Y E T") && t.contains("connecting"),
+        "{t}"
+    );
+}
+
+#[test]
+fn connected_but_silent_is_communication_lost() {
+    let (m, now) = fixtures::connected_silent();
+    let buf = draw(&m, &ViewState::default(), now, 80, 24);
+    insta::assert_snapshot!(text(&buf));
+    assert!(text(&buf).contains("nothing heard"));
+}
+
+#[test]
+fn port_lost_says_it_is_reopening() {
+    let (m, now) = fixtures::port_lost();
+    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
+    insta::assert_snapshot!(text(&buf));
+    let t = text(&buf);
+    assert!(
+        t.contains("device disconnected") && t.contains("reopening"),
+        "{t}"
+    );
+}
+
+#[test]
+fn replay_is_labelled() {
+    let (m, now) = fixtures::replay();
+    let buf = draw(&m, &ViewState::default(), now, 120, 40);
+    let (x, y) = find(&buf, "REPLAY", "REPLAY");
+    assert_eq!(buf[(x, y)].bg, Color::Magenta);
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &ViewState::default(), now, 120, 40);
+    let (x, y) = find(&buf, "SIMULATED", "SIMULATED");
+    assert_eq!(buf[(x, y)].bg, Color::Magenta);
+}
+
+#[test]
+fn notice_is_shown() {
+    let (m, now) = fixtures::normal();
+    let view = ViewState {
+        notice: Some("reset refused: EFIS is not faulted".into()),
+        ..view_selecting(EFIS)
+    };
+    let t = text(&draw(&m, &view, now, 120, 40));
+    assert!(t.contains("reset refused: EFIS is not faulted"), "{t}");
+}
+
+#[test]
+fn connection_state_kept_on_the_model() {
+    // Guard for the fixtures themselves: the states above are the ones they claim.
+    let (m, _) = fixtures::never_connected();
+    assert_eq!(m.connection, Connection::Connecting);
+    let (m, now) = fixtures::faulted_device();
+    assert!(
+        m.circuits(now)
+            .iter()
+            .any(|c| c.state == vpx_efis::model::CircuitState::Fault(FaultCode::ShortCircuit))
+    );
+}
