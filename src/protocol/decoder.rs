@@ -123,17 +123,15 @@ impl Decoder {
                 input = &input[take..];
                 continue;
             }
-            // Re-scan the held bytes as a slice of their own; whatever is left over is
-            // again an incomplete candidate that starts with the sync byte.
-            let held = self.buf;
+            // Re-scan the held bytes in place (no copy of the buffer: this runs at every
+            // read boundary); whatever is left over is again an incomplete candidate that
+            // starts with the sync byte, moved to the front.
             let n = self.len;
-            self.len = 0;
-            let done = self.scan(&held[..n], &mut on_event);
-            let rest = &held[done..n];
-            self.buf[..rest.len()].copy_from_slice(rest);
-            self.len = rest.len();
+            let done = Self::scan(&mut self.stats, &self.buf[..n], &mut on_event);
+            self.buf.copy_within(done..n, 0);
+            self.len = n - done;
         }
-        let done = self.scan(input, &mut on_event);
+        let done = Self::scan(&mut self.stats, input, &mut on_event);
         let rest = &input[done..];
         self.buf[..rest.len()].copy_from_slice(rest);
         self.len = rest.len();
@@ -157,7 +155,11 @@ impl Decoder {
 
     /// Scans a contiguous slice and returns how many bytes it consumed; the remainder
     /// (at most one frame) is an incomplete candidate.
-    fn scan<'a>(&mut self, data: &'a [u8], on_event: &mut impl FnMut(Event<'a>)) -> usize {
+    fn scan<'a>(
+        stats: &mut DecoderStats,
+        data: &'a [u8],
+        on_event: &mut impl FnMut(Event<'a>),
+    ) -> usize {
         let mut at = 0;
         let mut skip_from = 0;
         loop {
@@ -165,18 +167,18 @@ impl Decoder {
             let start = match data[at..].iter().position(|&b| b == SYNC1) {
                 Some(i) => at + i,
                 None => {
-                    self.skip(&data[skip_from..], on_event);
+                    Self::skip(stats, &data[skip_from..], on_event);
                     return data.len();
                 }
             };
-            match self.candidate(data, start, on_event, skip_from) {
+            match Self::candidate(stats, data, start, on_event, skip_from) {
                 Step::Garbage => at = start + 1,
                 Step::Reported(next) => {
                     at = next;
                     skip_from = next;
                 }
                 Step::Incomplete => {
-                    self.skip(&data[skip_from..start], on_event);
+                    Self::skip(stats, &data[skip_from..start], on_event);
                     return start;
                 }
             }
@@ -186,7 +188,7 @@ impl Decoder {
     /// Judges the candidate at `start`. Before reporting anything it flushes the run of
     /// skipped bytes that precedes the candidate, so events come out in wire order.
     fn candidate<'a>(
-        &mut self,
+        stats: &mut DecoderStats,
         data: &'a [u8],
         start: usize,
         on_event: &mut impl FnMut(Event<'a>),
@@ -208,9 +210,9 @@ impl Decoder {
         if let Some((_, rule)) = known
             && !rule.allows(len)
         {
-            self.skip(&data[skip_from..start], on_event);
-            self.stats.bad_length += 1;
-            self.stats.skipped_bytes += 1;
+            Self::skip(stats, &data[skip_from..start], on_event);
+            stats.bad_length += 1;
+            stats.skipped_bytes += 1;
             on_event(Event::BadLength(&rest[..HEADER_LEN]));
             return Step::Reported(start + 1);
         }
@@ -220,26 +222,26 @@ impl Decoder {
         }
         let frame = &rest[..total];
         if checksum(&frame[..total - 1]) != frame[total - 1] {
-            self.skip(&data[skip_from..start], on_event);
-            self.stats.bad_checksum += 1;
-            self.stats.skipped_bytes += 1;
+            Self::skip(stats, &data[skip_from..start], on_event);
+            stats.bad_checksum += 1;
+            stats.skipped_bytes += 1;
             on_event(Event::BadChecksum(frame));
             return Step::Reported(start + 1);
         }
-        self.skip(&data[skip_from..start], on_event);
+        Self::skip(stats, &data[skip_from..start], on_event);
         if known.is_some() {
-            self.stats.frames += 1;
+            stats.frames += 1;
             on_event(Event::Frame(FrameRef::new_unchecked(frame)));
         } else {
-            self.stats.unknown_message += 1;
+            stats.unknown_message += 1;
             on_event(Event::UnknownMessage(frame));
         }
         Step::Reported(start + total)
     }
 
-    fn skip<'a>(&mut self, bytes: &'a [u8], on_event: &mut impl FnMut(Event<'a>)) {
+    fn skip<'a>(stats: &mut DecoderStats, bytes: &'a [u8], on_event: &mut impl FnMut(Event<'a>)) {
         if !bytes.is_empty() {
-            self.stats.skipped_bytes += bytes.len() as u64;
+            stats.skipped_bytes += bytes.len() as u64;
             on_event(Event::Skipped(bytes));
         }
     }
