@@ -1112,11 +1112,21 @@ impl Unit {
     }
 
     /// Recomputes every pin: switches, overrides, alternators, wig-wag, starter, and
-    /// the faults that powering a pin can trip.
+    /// the faults that powering a pin can trip. A tripped alternator is replaced by
+    /// the other one in the same instant.
     fn update_power(&mut self, now: Instant) {
+        for _ in 0..3 {
+            if !self.compute_power(now) {
+                break;
+            }
+        }
+    }
+
+    /// One pass of [`Unit::update_power`]; `true` when an alternator tripped.
+    fn compute_power(&mut self, now: Instant) -> bool {
         if self.in_bootloader() {
             self.powered = [false; DEVICE_COUNT];
-            return;
+            return false;
         }
         // Starter: Appendix B note 1.
         if self.starter_pressed && self.rpm(now).is_some_and(|r| r > STARTER_CUTOUT_RPM) {
@@ -1178,12 +1188,14 @@ impl Unit {
             OvervoltageLimit::V32 => 32.0,
             _ => 16.0,
         };
+        let mut tripped = false;
         if let Some(alt) = self.active_alternator()
             && self.bus_volts(0.0) > limit
         {
             self.faults[alt] = FaultCode::OverVoltage;
             self.powered[alt] = false;
             self.regulator_volts = None;
+            tripped = true;
             self.log(format!("device {alt}: OVER_VOLTAGE, alternator off"));
         }
 
@@ -1195,6 +1207,7 @@ impl Unit {
         } else if total < 48.0 {
             self.over_60 = false;
         }
+        tripped
     }
 
     fn apply_wig_wag(&mut self, want: &mut [bool; DEVICE_COUNT], now: Instant) {
@@ -1438,4 +1451,462 @@ pub fn is_broadcast(id: MessageId) -> bool {
         id,
         SystemStatus::ID | DeviceStatus::ID | FlapTrimStatus::ID | FaultStatus::ID
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::Decoder;
+
+    /// A unit on a fake clock, and everything it has sent, decoded.
+    struct Bench {
+        unit: Unit,
+        t0: Instant,
+        now: Instant,
+        rx: Decoder,
+        seen: Vec<(Duration, Packet)>,
+        cnt: u8,
+    }
+
+    impl Bench {
+        fn new(toml: &str) -> Self {
+            let t0 = Instant::now();
+            let s = Scenario::from_toml(toml).unwrap();
+            let unit = Unit::with_memory_eeprom(&s, UnitOptions::default(), t0);
+            Bench {
+                unit,
+                t0,
+                now: t0,
+                rx: Decoder::new(),
+                seen: Vec::new(),
+                cnt: 0,
+            }
+        }
+
+        fn collect(&mut self) {
+            let out = self.unit.take_output();
+            let mut frames = Vec::new();
+            self.rx.push(&out, |e| {
+                if let Event::Frame(f) = e {
+                    frames.push(Packet::parse(&f).unwrap());
+                }
+            });
+            let at = self.now - self.t0;
+            self.seen.extend(frames.into_iter().map(|p| (at, p)));
+        }
+
+        /// Lets `ms` milliseconds pass in 10 ms ticks.
+        fn run(&mut self, ms: u64) {
+            for _ in 0..ms / 10 {
+                self.now += Duration::from_millis(10);
+                self.unit.tick(self.now);
+                self.collect();
+            }
+        }
+
+        fn send(&mut self, m: impl Into<Message>) -> u8 {
+            self.cnt = self.cnt.wrapping_add(1);
+            let bytes = Packet::request(self.cnt, m).to_bytes();
+            self.unit.feed(&bytes, self.now);
+            self.collect();
+            self.cnt
+        }
+
+        fn apply(&mut self, c: SimCommand) {
+            self.unit.apply(c, self.now);
+            self.collect();
+        }
+
+        fn count(&self, id: MessageId) -> usize {
+            self.seen
+                .iter()
+                .filter(|(_, p)| p.message.id() == id)
+                .count()
+        }
+
+        fn last<T>(&self, f: impl Fn(&Message) -> Option<T>) -> Option<T> {
+            self.seen.iter().rev().find_map(|(_, p)| f(&p.message))
+        }
+
+        fn reply_to(&self, cnt: u8) -> Option<Message> {
+            self.seen
+                .iter()
+                .find(|(_, p)| p.cnt == cnt && !is_broadcast(p.message.id()))
+                .map(|(_, p)| p.message)
+        }
+
+        fn stats(&self) -> SimStats {
+            self.unit.snapshot(self.now)
+        }
+
+        fn external(&mut self, ias: Option<u16>, rpm: Option<u16>) {
+            self.send(ExternalData {
+                indicated_airspeed: ias.unwrap_or(0),
+                rpm: rpm.unwrap_or(0),
+                valid: ExternalValidity {
+                    indicated_airspeed: ias.is_some(),
+                    rpm: rpm.is_some(),
+                    ..Default::default()
+                },
+                ..Default::default()
+            });
+        }
+    }
+
+    const PINS: &str = "
+        [system]
+        secondary_alternator = 23
+        [[device]]
+        id = 3
+        switch = 1
+        load = 2.0
+        [[device]]
+        id = 9
+        breaker = 3
+        switch = 2
+        load = 1.0
+        [[device]]
+        id = 10
+        breaker = 3
+        switch = 11
+        load = 1.0
+        [[device]]
+        id = 23
+        breaker = 5
+        switch = 4
+        load = 2.0
+    ";
+
+    #[test]
+    fn broadcasts_keep_their_rates_and_their_own_count() {
+        let mut b = Bench::new("");
+        b.run(10_000);
+        assert_eq!(b.count(SystemStatus::ID), 10);
+        assert_eq!(b.count(DeviceStatus::ID), 10);
+        assert_eq!(b.count(FlapTrimStatus::ID), 100);
+        assert_eq!(b.count(FaultStatus::ID), 0, "no fault, no FAULT_STATUS");
+        let cnts: Vec<u8> = b.seen.iter().map(|(_, p)| p.cnt).collect();
+        assert!(cnts.windows(2).all(|w| w[1] == w[0].wrapping_add(1)));
+    }
+
+    #[test]
+    fn requests_are_answered_with_their_command_number() {
+        let mut b = Bench::new("");
+        b.cnt = 41;
+        let c = b.send(Ping { ack: false });
+        assert_eq!(b.reply_to(c), Some(Message::Ping(Ping { ack: true })));
+        let c = b.send(DeviceSpecQuery { device_id: 253 });
+        assert!(matches!(b.reply_to(c), Some(Message::SystemSpec(_))));
+        let c = b.send(DeviceSpecQuery { device_id: 29 });
+        assert!(matches!(
+            b.reply_to(c),
+            Some(Message::TrimSpec(TrimSpec {
+                trim_type: TrimType::Roll,
+                ..
+            }))
+        ));
+        let c = b.send(DeviceSpecQuery { device_id: 99 });
+        assert_eq!(b.reply_to(c), None, "Table 18 note 1: ignored");
+    }
+
+    #[test]
+    fn a_spec_that_does_not_decode_gets_out_of_range_for_its_device() {
+        let mut b = Bench::new("");
+        // DEVICE_SPEC for device 9 with a current-fault flag of 2.
+        let mut bytes = Packet::request(
+            7,
+            DeviceSpec {
+                device_id: 9,
+                circuit_breaker: 3,
+                switch_id: SwitchId::Input(2),
+                current_fault: false,
+            },
+        )
+        .to_bytes();
+        bytes[8 + 3] = 2;
+        let n = bytes.len();
+        bytes[n - 1] = crate::protocol::checksum(&bytes[..n - 1]);
+        b.unit.feed(&bytes, b.now);
+        b.collect();
+        assert_eq!(
+            b.reply_to(7),
+            Some(Message::SpecAck(SpecAck {
+                device_id: 9,
+                error: Some(SpecAckError::OutOfRange)
+            }))
+        );
+        assert_eq!(b.stats().wire.malformed, 1);
+        assert_eq!(b.stats().config, UnitConfig::default(), "nothing stored");
+    }
+
+    #[test]
+    fn device_power_overrides_until_the_switch_is_cycled() {
+        let mut b = Bench::new(PINS);
+        b.send(DevicePower {
+            device_id: 9,
+            on: true,
+        });
+        assert!(b.stats().powered[9], "on although switch 2 is open");
+        b.apply(SimCommand::Switch {
+            switch: 2,
+            on: true,
+        });
+        b.apply(SimCommand::Switch {
+            switch: 2,
+            on: false,
+        });
+        assert!(!b.stats().powered[9], "the switch has the last word again");
+        b.send(DevicePower {
+            device_id: 1,
+            on: true,
+        });
+        assert!(
+            !b.stats().powered[1],
+            "the starter cannot be switched from outside"
+        );
+    }
+
+    #[test]
+    fn a_short_faults_the_pin_when_powered_and_clear_brings_back_the_switch_state() {
+        let mut b = Bench::new(PINS);
+        b.apply(SimCommand::Short {
+            device: 9,
+            on: true,
+        });
+        b.apply(SimCommand::Switch {
+            switch: 2,
+            on: true,
+        });
+        let s = b.stats();
+        assert!(!s.powered[9]);
+        assert_eq!(s.faults[9], FaultCode::ShortCircuit);
+        b.run(1_500);
+        let f = b.last(|m| match m {
+            Message::FaultStatus(f) => Some(*f),
+            _ => None,
+        });
+        let f = f.expect("FAULT_STATUS while a fault exists");
+        assert!(f.faulted[9]);
+        assert_eq!(f.codes[9], Some(FaultCode::ShortCircuit));
+        // Clearing while still shorted: faulted again at once (§6.5.1).
+        b.send(DeviceClear { device_id: 9 });
+        assert_eq!(b.stats().faults[9], FaultCode::ShortCircuit);
+        b.apply(SimCommand::Short {
+            device: 9,
+            on: false,
+        });
+        // An always-on pin the EFIS switched off comes back on with the clear (note 2).
+        b.send(DevicePower {
+            device_id: 10,
+            on: false,
+        });
+        b.send(DeviceClear { device_id: 9 });
+        let s = b.stats();
+        assert!(s.powered[9], "back to switch 2, which is on");
+        assert!(s.powered[10], "switch-11 pin powered again");
+        let before = b.count(FaultStatus::ID);
+        b.run(2_000);
+        assert_eq!(
+            b.count(FaultStatus::ID),
+            before,
+            "no fault, no FAULT_STATUS"
+        );
+    }
+
+    #[test]
+    fn over_current_and_current_fault() {
+        let mut b = Bench::new(PINS);
+        b.apply(SimCommand::Load {
+            device: 10,
+            amps: 3.5,
+        });
+        assert_eq!(b.stats().faults[10], FaultCode::OverCurrent);
+        let mut s = b.unit.config.devices[9];
+        s.current_fault = true;
+        b.send(s);
+        b.apply(SimCommand::Load {
+            device: 9,
+            amps: 0.0,
+        });
+        b.apply(SimCommand::Switch {
+            switch: 2,
+            on: true,
+        });
+        assert_eq!(b.stats().faults[9], FaultCode::CurrentFault);
+    }
+
+    #[test]
+    fn one_alternator_at_a_time_and_over_voltage_trips_the_running_one() {
+        let mut b = Bench::new(PINS);
+        b.apply(SimCommand::Switch {
+            switch: 1,
+            on: true,
+        });
+        b.apply(SimCommand::Switch {
+            switch: 4,
+            on: true,
+        });
+        let s = b.stats();
+        assert!(
+            s.powered[3] && !s.powered[23],
+            "primary runs, secondary waits"
+        );
+        b.apply(SimCommand::BusVolts(16.4));
+        let s = b.stats();
+        assert_eq!(s.faults[3], FaultCode::OverVoltage);
+        assert!(!s.powered[3] && s.powered[23], "the secondary takes over");
+        assert_eq!(s.faults[23], FaultCode::NoFault, "at normal volts");
+    }
+
+    #[test]
+    fn the_60_a_flag_clears_only_below_48_a() {
+        // Nine big pins, always on, whose loads add up to the total under test.
+        let pins: Vec<u8> = (17..=25).collect();
+        let toml: String = pins
+            .iter()
+            .map(|id| format!("[[device]]\nid = {id}\nswitch = 11\nbreaker = 10\n"))
+            .collect();
+        let mut b = Bench::new(&toml);
+        let flags = |b: &mut Bench| {
+            b.run(1_000);
+            b.last(|m| match m {
+                Message::SystemStatus(s) => {
+                    Some((s.faults.current_over_48a, s.faults.current_over_60a))
+                }
+                _ => None,
+            })
+            .unwrap()
+        };
+        for (total, want) in [
+            (50.0, (true, false)),
+            (61.0, (true, true)),
+            (49.0, (true, true)),
+            (47.0, (false, false)),
+            (49.0, (true, false)),
+        ] {
+            for &device in &pins {
+                b.apply(SimCommand::Load {
+                    device,
+                    amps: total / pins.len() as f32,
+                });
+            }
+            assert_eq!(flags(&mut b), want, "{total} A");
+        }
+        assert!(b.stats().faults.iter().all(|f| !f.is_fault()));
+    }
+
+    #[test]
+    fn the_starter_cuts_out_above_500_rpm() {
+        let mut b = Bench::new("[electrical]\nstarter = true\n");
+        assert!(b.stats().powered[1]);
+        b.external(None, Some(400));
+        assert!(b.stats().powered[1]);
+        b.external(None, Some(900));
+        assert!(!b.stats().powered[1]);
+    }
+
+    #[test]
+    fn external_data_missing_after_two_seconds() {
+        let mut b = Bench::new("");
+        b.run(1_900);
+        assert!(!b.stats().external_data_missing);
+        b.run(200);
+        assert!(b.stats().external_data_missing);
+        b.external(Some(90), None);
+        assert!(!b.stats().external_data_missing);
+        b.run(2_100);
+        assert!(b.stats().external_data_missing);
+    }
+
+    #[test]
+    fn wig_wag_flashes_below_its_speed_after_warm_up_and_steady_stops_it() {
+        let mut b = Bench::new(
+            "[[device]]\nid = 17\nswitch = 5\nbreaker = 8\nload = 6\n\
+             [[device]]\nid = 18\nswitch = 5\nbreaker = 8\nload = 5\n\
+             [wig_wag]\ndevice_one = 17\ndevice_two = 18\nwarm_up = 5\nspeed = 70\n",
+        );
+        b.apply(SimCommand::Switch {
+            switch: 5,
+            on: true,
+        });
+        let both = |b: &Bench| (b.stats().powered[17], b.stats().powered[18]);
+        for _ in 0..6 {
+            b.external(Some(40), None);
+            b.run(1_000);
+        }
+        // After the warm-up: one lamp at a time.
+        let mut patterns = std::collections::HashSet::new();
+        for _ in 0..4 {
+            b.external(Some(40), None);
+            b.run(250);
+            patterns.insert(both(&b));
+        }
+        assert!(patterns.contains(&(true, false)) && patterns.contains(&(false, true)));
+        assert!(!patterns.contains(&(true, true)));
+        b.send(WigWagMode {
+            mode: WigWagModeSetting::Steady,
+        });
+        assert_eq!(both(&b), (true, true));
+        b.send(WigWagMode {
+            mode: WigWagModeSetting::Auto,
+        });
+        b.external(Some(120), None);
+        b.run(100);
+        assert_eq!(both(&b), (true, true), "above the speed: steady");
+    }
+
+    #[test]
+    fn eeprom_erase_restores_defaults_and_flags_integrity_until_power_cycle() {
+        let mut b = Bench::new(PINS);
+        let c = b.send(EepromErase { response_code: 0 });
+        assert_eq!(
+            b.reply_to(c),
+            Some(Message::EepromErase(EepromErase { response_code: 0 }))
+        );
+        assert_eq!(b.stats().config, UnitConfig::default());
+        b.run(1_000);
+        let flag = |b: &Bench| {
+            b.last(|m| match m {
+                Message::SystemStatus(s) => Some(s.faults.data_integrity_failure),
+                _ => None,
+            })
+        };
+        assert_eq!(flag(&b), Some(true));
+        b.apply(SimCommand::PowerCycle);
+        b.run(1_000);
+        assert_eq!(flag(&b), Some(false));
+        assert_eq!(b.stats().config, UnitConfig::default(), "still erased");
+    }
+
+    #[test]
+    fn software_update_enters_the_bootloader_and_exit_sets_the_flag() {
+        let mut b = Bench::new("");
+        b.send(SoftwareUpdate);
+        let before = b.seen.len();
+        b.run(1_000);
+        assert_eq!(b.seen.len(), before, "no broadcasts in the bootloader");
+        let exit = crate::protocol::bootloader::BootCommand::Exit.emit();
+        b.unit.feed(&exit, b.now);
+        assert_eq!(b.unit.take_output(), b"x");
+        b.run(1_000);
+        let flag = b.last(|m| match m {
+            Message::SystemStatus(s) => Some(s.misc.software_update),
+            _ => None,
+        });
+        assert_eq!(flag, Some(true));
+        b.apply(SimCommand::PowerCycle);
+        assert!(!b.stats().software_update_flag);
+    }
+
+    #[test]
+    fn a_silent_unit_sends_nothing_then_resumes() {
+        let mut b = Bench::new("[[event]]\nat = 1.0\ndo = \"silent\"\nseconds = 3.0\n");
+        b.run(1_000);
+        let n = b.seen.len();
+        b.run(2_900);
+        assert_eq!(b.seen.len(), n);
+        b.run(1_100);
+        assert!(b.seen.len() > n);
+        assert!(b.stats().wire.silenced_bytes > 0);
+    }
 }
