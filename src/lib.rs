@@ -10,6 +10,7 @@ pub mod app;
 pub mod cli;
 pub mod cmd;
 pub mod control;
+pub mod flash;
 pub mod link;
 pub mod model;
 pub mod protocol;
