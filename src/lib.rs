@@ -7,6 +7,7 @@
 //! the model onto the XFSp avionics network; `app` wires everything together.
 
 pub mod app;
+pub mod backup;
 pub mod cli;
 pub mod cmd;
 pub mod control;

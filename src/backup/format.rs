@@ -1,0 +1,1319 @@
+//! The backup file: a VP-X's whole configuration as TOML a person can read and edit.
+//!
+//! ```toml
+//! format = 1
+//!
+//! [unit]                            # the unit the backup was taken from (ICD Table 11)
+//! hardware_version = 2              # 1 VP-X (Gen 1), 2 VP-X Pro, 3 VP-X Sport
+//! hardware = "VP-X Pro"             # for people; ignored when loading
+//! software = "3.7"                  # major.minor
+//!
+//! [system]                          # SYSTEM_SPEC, ICD Table 14
+//! overvoltage_limit_volts = 16      # 16 or 32
+//! secondary_alternator = "none"     # "none" or a pin as named in Table 40, e.g. "10A-2"
+//!
+//! [flaps]                           # FLAP_SPEC, Table 16; name is DEVICE_NAME 0
+//! name = "Flaps"
+//! enabled = true                    # false when the aircraft has no VP-X flaps
+//! mode = "position-based"           # or "momentary"
+//! polarity = "standard"             # or "inverted"
+//! up = 10                           # position sensor readings, 0–255
+//! midpoint_1 = 60
+//! midpoint_2 = 120
+//! down = 200
+//! breaker_amps = 7
+//! overspeed_position = 20
+//! max_speed_kt = 100
+//! endpoint_duration_s = 0.5         # in tenths of a second on the wire (reading note 23)
+//!
+//! [pitch_trim]                      # TRIM_SPEC, Table 15; name is DEVICE_NAME 30
+//! name = ""
+//! enabled = true
+//! polarity = "standard"
+//! up = 200
+//! down = 20
+//! neutral = 110
+//! reduced_power_percent = 60        # motor power above reduce_above_kt (40–90; 100 = factory)
+//! reduce_above_kt = 120
+//!
+//! [roll_trim]                       # the same fields; name is DEVICE_NAME 29
+//! # ...
+//!
+//! [wig_wag]                         # WIG_WAG_SPEC, Table 17
+//! device_one = "5A-7"               # "none" or a pin name
+//! device_two = "5A-8"
+//! warm_up_s = 5
+//! speed_kt = 70
+//!
+//! [devices.5A-3]                    # one table per pin 1–28, named as in Table 40
+//! name = "Strobe Lt"                # DEVICE_NAME: up to 16 bytes; "" = never named
+//! show_on_page = true               # DEVICE_ENABLE (pins 4–28 only)
+//! breaker_amps = 5                  # DEVICE_SPEC: within the pin's Appendix B range
+//! switch = 3                        # "off", 1–10 or "always-on"
+//! current_fault = true
+//! ```
+//!
+//! Speeds are in knots: the unit compares them with the airspeed this EFIS sends it in
+//! EXTERNAL_DATA, and this EFIS sends knots (reading note 20). Names are single bytes:
+//! each character U+0000–U+00FF is one byte (Latin-1), so a name the unit holds comes
+//! back byte for byte, while anything above U+00FF is refused.
+//!
+//! Reading is deliberately not one `serde` pass: that stops at the first problem, while a
+//! person fixing a file wants all of them at once, each by its path in the file
+//! (`devices.5A-3.breaker_amps`). The file is parsed as TOML, each value is read on its
+//! own into [`BackupFile`], and the result is judged by the same §6.2 rules the unit
+//! applies ([`validate::whole_config`]). Writing is `serde` over the same structs.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+
+use serde::Serialize;
+use serde::ser::SerializeMap;
+
+use crate::protocol::config::UnitConfig;
+use crate::protocol::device::{self, DEVICES, FLAPS, TRIM_P, TRIM_R, enable_flag_allowed};
+use crate::protocol::message::{
+    DeviceSpec, FlapMode, HardwareVersion, OvervoltageLimit, Polarity, SwitchId, Tenths, TrimSpec,
+    TrimType, Version,
+};
+use crate::protocol::validate;
+
+/// The `format` number this program writes and reads.
+pub const FORMAT: u32 = 1;
+
+/// A unit's configuration together with the version of the unit it came from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Backup {
+    pub version: Version,
+    pub config: UnitConfig,
+}
+
+/// One thing wrong with a backup file: where (a path in the file) and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    /// `devices.5A-3.breaker_amps`, `wig_wag`, or `(file)` for TOML syntax.
+    pub field: String,
+    pub message: String,
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.field, self.message)
+    }
+}
+
+// ------------------------------------------------------------------ the file's structs
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BackupFile {
+    pub format: u32,
+    pub unit: UnitSection,
+    pub system: SystemSection,
+    pub flaps: FlapSection,
+    pub pitch_trim: TrimSection,
+    pub roll_trim: TrimSection,
+    pub wig_wag: WigWagSection,
+    pub devices: Devices,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct UnitSection {
+    pub hardware_version: u8,
+    pub hardware: String,
+    pub software: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SystemSection {
+    pub overvoltage_limit_volts: u8,
+    pub secondary_alternator: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FlapSection {
+    pub name: String,
+    pub enabled: bool,
+    pub mode: String,
+    pub polarity: String,
+    pub up: u8,
+    pub midpoint_1: u8,
+    pub midpoint_2: u8,
+    pub down: u8,
+    pub breaker_amps: u8,
+    pub overspeed_position: u8,
+    pub max_speed_kt: u16,
+    pub endpoint_duration_s: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TrimSection {
+    pub name: String,
+    pub enabled: bool,
+    pub polarity: String,
+    pub up: u8,
+    pub down: u8,
+    pub neutral: u8,
+    pub reduced_power_percent: u8,
+    pub reduce_above_kt: u16,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WigWagSection {
+    pub device_one: String,
+    pub device_two: String,
+    pub warm_up_s: u8,
+    pub speed_kt: u8,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DeviceSection {
+    pub name: String,
+    /// Absent for the starter, EFIS and primary field, which are always shown.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub show_on_page: Option<bool>,
+    pub breaker_amps: u8,
+    pub switch: Switch,
+    pub current_fault: bool,
+}
+
+/// `"off"`, `1`–`10` or `"always-on"`. `Input` also carries a number outside 1–10
+/// that a unit reported, so that it is written as it is (and refused on loading).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Switch {
+    Off,
+    Input(u8),
+    AlwaysOn,
+}
+
+impl Serialize for Switch {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Switch::Off => s.serialize_str("off"),
+            Switch::Input(n) => s.serialize_u8(*n),
+            Switch::AlwaysOn => s.serialize_str("always-on"),
+        }
+    }
+}
+
+/// Pins 1–28 by Table 40 name, written in device-id order so the file reads like the
+/// table (a map would sort `10A-1` before `2A-1`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Devices(pub Vec<(String, DeviceSection)>);
+
+impl Serialize for Devices {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(self.0.len()))?;
+        for (k, v) in &self.0 {
+            m.serialize_entry(k, v)?;
+        }
+        m.end()
+    }
+}
+
+// ------------------------------------------------------------------ words ↔ values
+
+const NONE: &str = "none";
+
+fn pin_name(id: u8) -> String {
+    device::device(id).map_or_else(|| id.to_string(), |d| d.system_name.to_string())
+}
+
+fn opt_pin(id: Option<u8>) -> String {
+    id.map_or_else(|| NONE.to_string(), pin_name)
+}
+
+fn polarity_word(p: Polarity) -> &'static str {
+    match p {
+        Polarity::Standard => "standard",
+        Polarity::Inverted => "inverted",
+    }
+}
+
+fn mode_word(m: FlapMode) -> &'static str {
+    match m {
+        FlapMode::Momentary => "momentary",
+        FlapMode::PositionBased => "position-based",
+    }
+}
+
+/// The 16 name bytes up to the first NUL, one char per byte (Latin-1).
+pub fn name_text(bytes: &[u8; 16]) -> String {
+    bytes
+        .iter()
+        .take_while(|&&b| b != 0)
+        .map(|&b| b as char)
+        .collect()
+}
+
+/// What a name means: its bytes up to the first NUL, the rest zero (ICD Table 21).
+/// Bytes after a NUL are never shown by anyone, so they are not part of a backup.
+pub fn normalize_name(bytes: &[u8; 16]) -> [u8; 16] {
+    let mut out = [0u8; 16];
+    for (o, &b) in out.iter_mut().zip(bytes.iter().take_while(|&&b| b != 0)) {
+        *o = b;
+    }
+    out
+}
+
+/// `cfg` with every name normalized, for comparing what a unit holds with a file.
+pub fn normalized(cfg: &UnitConfig) -> UnitConfig {
+    let mut c = cfg.clone();
+    for n in c.names.iter_mut() {
+        *n = normalize_name(n);
+    }
+    c
+}
+
+fn switch_of(s: SwitchId) -> Switch {
+    match s {
+        SwitchId::Off => Switch::Off,
+        SwitchId::Input(n) | SwitchId::Unknown(n) => Switch::Input(n),
+        SwitchId::AlwaysOn => Switch::AlwaysOn,
+    }
+}
+
+impl BackupFile {
+    /// The file form of a backup. A value the unit reports outside the ICD's encodings
+    /// (a switch id 12, an overvoltage code 7) is written as its raw number, so nothing
+    /// the unit holds is lost; [`from_toml`] then refuses it by its path.
+    pub fn from_backup(b: &Backup) -> BackupFile {
+        let cfg = &b.config;
+        let overvoltage_limit_volts = match cfg.system.overvoltage_limit {
+            OvervoltageLimit::V16 => 16,
+            OvervoltageLimit::V32 => 32,
+            OvervoltageLimit::Unknown(n) => n,
+        };
+        let trim = |t: &TrimSpec, name_id: u8| TrimSection {
+            name: name_text(&cfg.names[name_id as usize]),
+            enabled: t.enabled,
+            polarity: polarity_word(t.polarity).into(),
+            up: t.up,
+            down: t.down,
+            neutral: t.neutral,
+            reduced_power_percent: t.power,
+            reduce_above_kt: t.speed,
+        };
+        let devices = (1..TRIM_R)
+            .map(|id| {
+                let d = &cfg.devices[id as usize];
+                let section = DeviceSection {
+                    name: name_text(&cfg.names[id as usize]),
+                    show_on_page: enable_flag_allowed(id).then_some(cfg.enabled[id as usize]),
+                    breaker_amps: d.circuit_breaker,
+                    switch: switch_of(d.switch_id),
+                    current_fault: d.current_fault,
+                };
+                (pin_name(id), section)
+            })
+            .collect();
+        BackupFile {
+            format: FORMAT,
+            unit: UnitSection {
+                hardware_version: b.version.hardware_version.to_byte(),
+                hardware: b.version.hardware_version.name(),
+                software: format!("{}.{}", b.version.software_major, b.version.software_minor),
+            },
+            system: SystemSection {
+                overvoltage_limit_volts,
+                secondary_alternator: opt_pin(cfg.system.secondary_alternator),
+            },
+            flaps: FlapSection {
+                name: name_text(&cfg.names[FLAPS as usize]),
+                enabled: cfg.flap.enabled,
+                mode: mode_word(cfg.flap.mode).into(),
+                polarity: polarity_word(cfg.flap.polarity).into(),
+                up: cfg.flap.up,
+                midpoint_1: cfg.flap.midpoint_1,
+                midpoint_2: cfg.flap.midpoint_2,
+                down: cfg.flap.down,
+                breaker_amps: cfg.flap.circuit_breaker,
+                overspeed_position: cfg.flap.overspeed_position,
+                max_speed_kt: cfg.flap.max_speed,
+                endpoint_duration_s: cfg.flap.endpoint_duration.0 as f64 / 10.0,
+            },
+            pitch_trim: trim(&cfg.pitch_trim, TRIM_P),
+            roll_trim: trim(&cfg.roll_trim, TRIM_R),
+            wig_wag: WigWagSection {
+                device_one: opt_pin(cfg.wig_wag.device_one),
+                device_two: opt_pin(cfg.wig_wag.device_two),
+                warm_up_s: cfg.wig_wag.warm_up_period,
+                speed_kt: cfg.wig_wag.speed,
+            },
+            devices: Devices(devices),
+        }
+    }
+
+    /// The TOML text, with a header that says what the file is and how to use it.
+    pub fn to_toml(&self) -> String {
+        let body = toml::to_string(self).unwrap_or_else(|e| {
+            // Only plain strings, integers, floats and tables are serialized, all of
+            // which TOML can express; a failure here is a bug, said in the file itself.
+            format!("# could not write this backup: {e}\n")
+        });
+        format!("{HEADER}\n{body}")
+    }
+}
+
+const HEADER: &str = "\
+# VP-X configuration backup written by vpx-efis.
+# Restore it with `vpx-efis restore [--port PATH] FILE`; the file is checked as a whole
+# and every problem is listed before anything is sent to the unit.
+# Units: breaker_amps in amps, *_s in seconds (to 0.1 s), *_kt in knots (the airspeed
+# unit this EFIS sends the VP-X), *_percent in percent. Pins are named as in ICD
+# Table 40. switch is \"off\", 1-10 or \"always-on\". Names are up to 16 characters.
+";
+
+/// The TOML text of a backup.
+pub fn to_toml(b: &Backup) -> String {
+    BackupFile::from_backup(b).to_toml()
+}
+
+// ------------------------------------------------------------------ reading
+
+/// Reads a backup from TOML text: every problem, from TOML syntax to a breaker outside
+/// its pin's range or a wig-wag device on no switch, is listed by its path in the file.
+pub fn from_toml(text: &str) -> Result<Backup, Vec<Problem>> {
+    let table: toml::Table = match text.parse() {
+        Ok(t) => t,
+        Err(e) => {
+            let e: toml::de::Error = e;
+            return Err(vec![Problem {
+                field: "(file)".into(),
+                message: format!("not valid TOML: {}", e.to_string().trim_end()),
+            }]);
+        }
+    };
+    let mut problems = Vec::new();
+    let backup = read_file(&table, &mut problems);
+    // A field that could not be read holds the factory value instead; judging the rest
+    // by the §6.2 rules still finds every other problem, and nothing is reported twice.
+    let reported: BTreeSet<String> = problems.iter().map(|p| p.field.clone()).collect();
+    for p in validate::whole_config(&backup.config) {
+        let field = file_path(&p.field);
+        if !reported.iter().any(|r| field.starts_with(r.as_str())) {
+            problems.push(Problem {
+                field,
+                message: p.message,
+            });
+        }
+    }
+    if problems.is_empty() {
+        Ok(backup)
+    } else {
+        Err(problems)
+    }
+}
+
+/// A `validate::whole_config` path (`devices[23].circuit_breaker`) as the path of the
+/// same value in the file (`devices.15A-1.breaker_amps`).
+pub fn file_path(config_path: &str) -> String {
+    let (head, field) = config_path.split_once('.').unwrap_or((config_path, ""));
+    let (section, renames): (String, &[(&str, &str)]) = if let Some(i) = head
+        .strip_prefix("devices[")
+        .and_then(|r| r.strip_suffix(']'))
+        .and_then(|n| n.parse::<u8>().ok())
+    {
+        let section = match i {
+            FLAPS => "flaps".to_string(),
+            TRIM_R => "roll_trim".to_string(),
+            TRIM_P => "pitch_trim".to_string(),
+            i => format!("devices.{}", pin_name(i)),
+        };
+        (
+            section,
+            &[
+                ("circuit_breaker", "breaker_amps"),
+                ("switch_id", "switch"),
+                ("device_id", ""),
+            ],
+        )
+    } else {
+        match head {
+            "system" => (
+                "system".into(),
+                &[("overvoltage_limit", "overvoltage_limit_volts")],
+            ),
+            "flap" => (
+                "flaps".into(),
+                &[
+                    ("circuit_breaker", "breaker_amps"),
+                    ("max_speed", "max_speed_kt"),
+                    ("endpoint_duration", "endpoint_duration_s"),
+                    ("mode", "mode"),
+                ],
+            ),
+            "pitch_trim" | "roll_trim" => (
+                head.to_string(),
+                &[
+                    ("power", "reduced_power_percent"),
+                    ("speed", "reduce_above_kt"),
+                    ("trim_type", ""),
+                ],
+            ),
+            "wig_wag" => (
+                "wig_wag".into(),
+                &[("warm_up_period", "warm_up_s"), ("speed", "speed_kt")],
+            ),
+            other => (other.to_string(), &[]),
+        }
+    };
+    let field = renames
+        .iter()
+        .find(|(from, _)| *from == field)
+        .map_or(field, |(_, to)| *to);
+    if field.is_empty() {
+        section
+    } else {
+        format!("{section}.{field}")
+    }
+}
+
+/// One TOML table being read: typed getters that record a problem (with the full path)
+/// instead of failing, and a check for keys nobody asked for (typos).
+struct Section<'a, 'p> {
+    table: Option<&'a toml::Table>,
+    path: String,
+    asked: Vec<&'static str>,
+    problems: &'p mut Vec<Problem>,
+}
+
+impl<'a, 'p> Section<'a, 'p> {
+    fn new(
+        parent: &'a toml::Table,
+        key: &str,
+        path: String,
+        problems: &'p mut Vec<Problem>,
+    ) -> Self {
+        let table = match parent.get(key) {
+            Some(toml::Value::Table(t)) => Some(t),
+            Some(v) => {
+                problems.push(Problem {
+                    field: path.clone(),
+                    message: format!("must be a table ([{path}]), not {}", kind(v)),
+                });
+                None
+            }
+            None => {
+                problems.push(Problem {
+                    field: path.clone(),
+                    message: format!("missing: the file has no [{path}] table"),
+                });
+                None
+            }
+        };
+        Section {
+            table,
+            path,
+            asked: Vec::new(),
+            problems,
+        }
+    }
+
+    fn problem(&mut self, key: &str, message: String) {
+        self.problems.push(Problem {
+            field: format!("{}.{key}", self.path),
+            message,
+        });
+    }
+
+    /// The raw value, or a "missing" problem. `None` too when the table itself was bad
+    /// (already reported once for the table).
+    fn value(&mut self, key: &'static str) -> Option<&'a toml::Value> {
+        self.asked.push(key);
+        let table = self.table?;
+        let v = table.get(key);
+        if v.is_none() {
+            self.problem(key, "missing".into());
+        }
+        v
+    }
+
+    fn int(&mut self, key: &'static str, max: i64, what: &str) -> Option<i64> {
+        match self.value(key)? {
+            toml::Value::Integer(n) if (0..=max).contains(n) => Some(*n),
+            toml::Value::Integer(n) => {
+                self.problem(
+                    key,
+                    format!("{n} does not fit: {what} is a whole number 0–{max}"),
+                );
+                None
+            }
+            v => {
+                self.problem(
+                    key,
+                    format!("must be a whole number 0–{max}, not {}", kind(v)),
+                );
+                None
+            }
+        }
+    }
+
+    fn u8(&mut self, key: &'static str, what: &str) -> Option<u8> {
+        self.int(key, u8::MAX as i64, what).map(|n| n as u8)
+    }
+
+    fn u16(&mut self, key: &'static str, what: &str) -> Option<u16> {
+        self.int(key, u16::MAX as i64, what).map(|n| n as u16)
+    }
+
+    fn bool(&mut self, key: &'static str) -> Option<bool> {
+        match self.value(key)? {
+            toml::Value::Boolean(b) => Some(*b),
+            v => {
+                self.problem(key, format!("must be true or false, not {}", kind(v)));
+                None
+            }
+        }
+    }
+
+    fn string(&mut self, key: &'static str) -> Option<&'a str> {
+        match self.value(key)? {
+            toml::Value::String(s) => Some(s),
+            v => {
+                self.problem(key, format!("must be a quoted string, not {}", kind(v)));
+                None
+            }
+        }
+    }
+
+    fn choice<T: Copy>(&mut self, key: &'static str, choices: &[(&str, T)]) -> Option<T> {
+        let s = self.string(key)?;
+        if let Some((_, v)) = choices.iter().find(|(w, _)| *w == s) {
+            return Some(*v);
+        }
+        let words: Vec<String> = choices.iter().map(|(w, _)| format!("\"{w}\"")).collect();
+        self.problem(key, format!("\"{s}\" is not one of {}", words.join(", ")));
+        None
+    }
+
+    /// A device name: up to 16 single-byte characters (module doc).
+    fn name(&mut self, key: &'static str) -> Option<[u8; 16]> {
+        let s = self.string(key)?;
+        let mut out = [0u8; 16];
+        for (n, c) in s.chars().enumerate() {
+            let Ok(b) = u8::try_from(c as u32) else {
+                self.problem(
+                    key,
+                    format!("\"{s}\" has '{c}', which is not a single byte; names are ASCII (ICD Table 21)"),
+                );
+                return None;
+            };
+            if b == 0 {
+                // A NUL ends the name on the unit; anything after it would be lost.
+                break;
+            }
+            if n == 16 {
+                self.problem(
+                    key,
+                    format!(
+                        "\"{s}\" is {} characters; the unit stores at most 16 (ICD Table 21)",
+                        s.chars().count()
+                    ),
+                );
+                return None;
+            }
+            out[n] = b;
+        }
+        Some(out)
+    }
+
+    /// `"none"`, a Table 40 pin name, or a device id.
+    fn pin(&mut self, key: &'static str) -> Option<Option<u8>> {
+        let v = self.value(key)?;
+        match v {
+            toml::Value::String(s) if s == NONE => Some(None),
+            toml::Value::String(s) => match DEVICES.iter().find(|d| d.system_name == s) {
+                Some(d) => Some(Some(d.id)),
+                None => {
+                    self.problem(
+                        key,
+                        format!("\"{s}\" is neither \"none\" nor a pin of ICD Table 40 (e.g. \"5A-1\", \"10A-2\")"),
+                    );
+                    None
+                }
+            },
+            toml::Value::Integer(n) if (0..=254).contains(n) => Some(Some(*n as u8)),
+            v => {
+                self.problem(
+                    key,
+                    format!(
+                        "must be \"none\" or a pin name such as \"5A-1\", not {}",
+                        kind(v)
+                    ),
+                );
+                None
+            }
+        }
+    }
+
+    fn switch(&mut self, key: &'static str) -> Option<SwitchId> {
+        let v = self.value(key)?;
+        match v {
+            toml::Value::String(s) if s == "off" => Some(SwitchId::Off),
+            toml::Value::String(s) if s == "always-on" => Some(SwitchId::AlwaysOn),
+            toml::Value::Integer(n) if (1..=10).contains(n) => Some(SwitchId::Input(*n as u8)),
+            v => {
+                let shown = match v {
+                    toml::Value::String(s) => format!("\"{s}\""),
+                    toml::Value::Integer(n) => n.to_string(),
+                    v => kind(v).to_string(),
+                };
+                self.problem(
+                    key,
+                    format!("{shown} is not a switch: use \"off\", 1–10 or \"always-on\" (ICD Table 13 note 3)"),
+                );
+                None
+            }
+        }
+    }
+
+    /// Seconds to a tenth, as the wire's tenths.
+    fn tenths(&mut self, key: &'static str) -> Option<Tenths> {
+        let v = self.value(key)?;
+        let secs = match v {
+            toml::Value::Float(f) => *f,
+            toml::Value::Integer(n) => *n as f64,
+            v => {
+                self.problem(key, format!("must be a number of seconds, not {}", kind(v)));
+                return None;
+            }
+        };
+        let t = (secs * 10.0).round();
+        if !(0.0..=u16::MAX as f64).contains(&t) {
+            self.problem(
+                key,
+                format!("{secs} s does not fit: it must be 0 s or more, in tenths"),
+            );
+            return None;
+        }
+        if (secs * 10.0 - t).abs() > 1e-6 {
+            self.problem(
+                key,
+                format!("{secs} s is not a whole number of tenths of a second (ICD Table 16)"),
+            );
+            return None;
+        }
+        Some(Tenths(t as u16))
+    }
+
+    fn finish(self) {
+        let Some(table) = self.table else { return };
+        for key in table.keys() {
+            if !self.asked.contains(&key.as_str()) {
+                self.problems.push(Problem {
+                    field: format!("{}.{key}", self.path),
+                    message: format!(
+                        "unknown setting; [{}] has {}",
+                        self.path,
+                        self.asked.join(", ")
+                    ),
+                });
+            }
+        }
+    }
+}
+
+fn kind(v: &toml::Value) -> &'static str {
+    match v {
+        toml::Value::String(_) => "a string",
+        toml::Value::Integer(_) => "a whole number",
+        toml::Value::Float(_) => "a decimal number",
+        toml::Value::Boolean(_) => "true/false",
+        toml::Value::Datetime(_) => "a date",
+        toml::Value::Array(_) => "a list",
+        toml::Value::Table(_) => "a table",
+    }
+}
+
+const POLARITIES: &[(&str, Polarity)] = &[
+    ("standard", Polarity::Standard),
+    ("inverted", Polarity::Inverted),
+];
+
+fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
+    let mut cfg = UnitConfig::default();
+    let mut version = Version {
+        hardware_version: HardwareVersion::Unknown(0),
+        software_major: 0,
+        software_minor: 0,
+    };
+
+    match t.get("format") {
+        Some(toml::Value::Integer(n)) if *n == FORMAT as i64 => {}
+        Some(v) => problems.push(Problem {
+            field: "format".into(),
+            message: format!(
+                "{} is not a format this program reads (it reads format = {FORMAT})",
+                match v {
+                    toml::Value::Integer(n) => n.to_string(),
+                    v => kind(v).to_string(),
+                }
+            ),
+        }),
+        None => problems.push(Problem {
+            field: "format".into(),
+            message: format!("missing (format = {FORMAT}); is this a vpx-efis backup?"),
+        }),
+    }
+    const TOP: &[&str] = &[
+        "format",
+        "unit",
+        "system",
+        "flaps",
+        "pitch_trim",
+        "roll_trim",
+        "wig_wag",
+        "devices",
+    ];
+    for key in t.keys() {
+        if !TOP.contains(&key.as_str()) {
+            problems.push(Problem {
+                field: key.clone(),
+                message: format!("unknown section; a backup has {}", TOP.join(", ")),
+            });
+        }
+    }
+
+    {
+        let mut s = Section::new(t, "unit", "unit".into(), problems);
+        if let Some(hw) = s.u8("hardware_version", "a hardware version") {
+            version.hardware_version = HardwareVersion::from_byte(hw);
+        }
+        // For people only; the number above is what counts.
+        let _ = s.string("hardware");
+        if let Some(sw) = s.string("software") {
+            match sw
+                .split_once('.')
+                .and_then(|(a, b)| Some((a.parse::<u8>().ok()?, b.parse::<u8>().ok()?)))
+            {
+                Some((major, minor)) => {
+                    version.software_major = major;
+                    version.software_minor = minor;
+                }
+                None => s.problem(
+                    "software",
+                    format!("\"{sw}\" is not MAJOR.MINOR with each 0–255, e.g. \"3.7\""),
+                ),
+            }
+        }
+        s.finish();
+    }
+
+    {
+        let mut s = Section::new(t, "system", "system".into(), problems);
+        if let Some(v) = s.value("overvoltage_limit_volts") {
+            match v {
+                toml::Value::Integer(16) => cfg.system.overvoltage_limit = OvervoltageLimit::V16,
+                toml::Value::Integer(32) => cfg.system.overvoltage_limit = OvervoltageLimit::V32,
+                _ => s.problem(
+                    "overvoltage_limit_volts",
+                    "must be 16 or 32 (ICD Table 14)".into(),
+                ),
+            }
+        }
+        if let Some(p) = s.pin("secondary_alternator") {
+            cfg.system.secondary_alternator = p;
+        }
+        s.finish();
+    }
+
+    {
+        let mut s = Section::new(t, "flaps", "flaps".into(), problems);
+        let f = &mut cfg.flap;
+        if let Some(n) = s.name("name") {
+            cfg.names[FLAPS as usize] = n;
+        }
+        if let Some(v) = s.bool("enabled") {
+            f.enabled = v;
+        }
+        if let Some(v) = s.choice(
+            "mode",
+            &[
+                ("momentary", FlapMode::Momentary),
+                ("position-based", FlapMode::PositionBased),
+            ],
+        ) {
+            f.mode = v;
+        }
+        if let Some(v) = s.choice("polarity", POLARITIES) {
+            f.polarity = v;
+        }
+        for (key, slot) in [
+            ("up", &mut f.up),
+            ("midpoint_1", &mut f.midpoint_1),
+            ("midpoint_2", &mut f.midpoint_2),
+            ("down", &mut f.down),
+            ("overspeed_position", &mut f.overspeed_position),
+        ] {
+            if let Some(v) = s.u8(key, "a flap position sensor reading") {
+                *slot = v;
+            }
+        }
+        if let Some(v) = s.u8("breaker_amps", "a breaker") {
+            f.circuit_breaker = v;
+        }
+        if let Some(v) = s.u16("max_speed_kt", "a speed") {
+            f.max_speed = v;
+        }
+        if let Some(v) = s.tenths("endpoint_duration_s") {
+            f.endpoint_duration = v;
+        }
+        s.finish();
+        // The flap breaker is kept in one value (UnitConfig::apply_flap_spec).
+        let flap = cfg.flap;
+        cfg.apply_flap_spec(&flap);
+    }
+
+    for (key, id, trim_type) in [
+        ("pitch_trim", TRIM_P, TrimType::Pitch),
+        ("roll_trim", TRIM_R, TrimType::Roll),
+    ] {
+        let mut s = Section::new(t, key, key.into(), problems);
+        let mut spec = *cfg.trim(trim_type);
+        if let Some(n) = s.name("name") {
+            cfg.names[id as usize] = n;
+        }
+        if let Some(v) = s.bool("enabled") {
+            spec.enabled = v;
+        }
+        if let Some(v) = s.choice("polarity", POLARITIES) {
+            spec.polarity = v;
+        }
+        for (k, slot) in [
+            ("up", &mut spec.up),
+            ("down", &mut spec.down),
+            ("neutral", &mut spec.neutral),
+        ] {
+            if let Some(v) = s.u8(k, "a trim position sensor reading") {
+                *slot = v;
+            }
+        }
+        if let Some(v) = s.u8("reduced_power_percent", "a percentage") {
+            spec.power = v;
+        }
+        if let Some(v) = s.u16("reduce_above_kt", "a speed") {
+            spec.speed = v;
+        }
+        s.finish();
+        cfg.apply_trim_spec(&spec);
+    }
+
+    {
+        let mut s = Section::new(t, "wig_wag", "wig_wag".into(), problems);
+        let w = &mut cfg.wig_wag;
+        if let Some(v) = s.pin("device_one") {
+            w.device_one = v;
+        }
+        if let Some(v) = s.pin("device_two") {
+            w.device_two = v;
+        }
+        if let Some(v) = s.u8("warm_up_s", "a warm-up time") {
+            w.warm_up_period = v;
+        }
+        if let Some(v) = s.u8("speed_kt", "a speed") {
+            w.speed = v;
+        }
+        s.finish();
+    }
+
+    read_devices(t, &mut cfg, problems);
+    Backup {
+        version,
+        config: cfg,
+    }
+}
+
+fn read_devices(t: &toml::Table, cfg: &mut UnitConfig, problems: &mut Vec<Problem>) {
+    let Some(devices) = (match t.get("devices") {
+        Some(toml::Value::Table(d)) => Some(d),
+        Some(v) => {
+            problems.push(Problem {
+                field: "devices".into(),
+                message: format!("must be tables like [devices.5A-1], not {}", kind(v)),
+            });
+            None
+        }
+        None => {
+            problems.push(Problem {
+                field: "devices".into(),
+                message: "missing: the file has no [devices.…] tables".into(),
+            });
+            None
+        }
+    }) else {
+        return;
+    };
+    let known: BTreeMap<&str, u8> = (1..TRIM_R)
+        .map(|id| (DEVICES[id as usize].system_name, id))
+        .collect();
+    for key in devices.keys() {
+        if !known.contains_key(key.as_str()) {
+            let hint = match key.as_str() {
+                "Flaps" => "the flaps are in [flaps]".to_string(),
+                "Trim_R" | "Trim_P" => "the trims are in [roll_trim] and [pitch_trim]".into(),
+                _ => "pins are named as in ICD Table 40: Starter, EFIS, Field_Pri, 5A-1 … 5A-13, \
+                      10A-1 … 10A-6, 15A-1 … 15A-3, 3A-1, 2A-1, 2A-2"
+                    .into(),
+            };
+            problems.push(Problem {
+                field: format!("devices.{key}"),
+                message: format!("no such pin; {hint}"),
+            });
+        }
+    }
+    for id in 1..TRIM_R {
+        let name = DEVICES[id as usize].system_name;
+        let path = format!("devices.{name}");
+        let mut s = Section::new(devices, name, path, problems);
+        let mut spec: DeviceSpec = cfg.devices[id as usize];
+        if let Some(n) = s.name("name") {
+            cfg.names[id as usize] = n;
+        }
+        if enable_flag_allowed(id) {
+            if let Some(v) = s.bool("show_on_page") {
+                cfg.enabled[id as usize] = v;
+            }
+        } else if s.table.is_some_and(|t| t.contains_key("show_on_page")) {
+            // Accepted only as the truth, so a hand-written `true` does no harm.
+            if s.bool("show_on_page") == Some(false) {
+                s.problem(
+                    "show_on_page",
+                    format!("{name} is always shown and cannot be hidden (ICD Table 23 note 1)"),
+                );
+            }
+        }
+        if let Some(v) = s.u8("breaker_amps", "a breaker") {
+            spec.circuit_breaker = v;
+        }
+        if let Some(v) = s.switch("switch") {
+            spec.switch_id = v;
+        }
+        if let Some(v) = s.bool("current_fault") {
+            spec.current_fault = v;
+        }
+        s.finish();
+        cfg.apply_device_spec(&spec);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::message::{DeviceName, SwitchId};
+
+    fn version() -> Version {
+        Version {
+            hardware_version: HardwareVersion::VpxPro,
+            software_major: 3,
+            software_minor: 7,
+        }
+    }
+
+    /// A configured aircraft: every kind of value away from its factory setting.
+    pub(crate) fn configured() -> UnitConfig {
+        let mut c = UnitConfig::default();
+        c.devices[6].circuit_breaker = 5;
+        c.devices[6].switch_id = SwitchId::Input(3);
+        c.devices[6].current_fault = true;
+        c.devices[10].switch_id = SwitchId::Input(4);
+        c.devices[11].switch_id = SwitchId::Input(4);
+        c.devices[3].switch_id = SwitchId::Input(1);
+        c.devices[17].switch_id = SwitchId::Input(2);
+        c.devices[0x17].circuit_breaker = 15;
+        c.devices[0x17].switch_id = SwitchId::AlwaysOn;
+        c.system.overvoltage_limit = OvervoltageLimit::V32;
+        c.system.secondary_alternator = Some(17);
+        c.wig_wag.device_one = Some(10);
+        c.wig_wag.device_two = Some(11);
+        c.wig_wag.warm_up_period = 12;
+        c.wig_wag.speed = 80;
+        c.flap.enabled = true;
+        c.flap.mode = FlapMode::PositionBased;
+        c.flap.polarity = Polarity::Inverted;
+        c.flap.up = 10;
+        c.flap.midpoint_1 = 60;
+        c.flap.midpoint_2 = 120;
+        c.flap.down = 200;
+        c.flap.overspeed_position = 20;
+        c.flap.max_speed = 100;
+        c.flap.endpoint_duration = Tenths(5);
+        let flap = c.flap;
+        c.apply_flap_spec(&FlapSpec {
+            circuit_breaker: 9,
+            ..flap
+        });
+        c.pitch_trim.enabled = true;
+        c.pitch_trim.up = 200;
+        c.pitch_trim.down = 20;
+        c.pitch_trim.neutral = 110;
+        c.pitch_trim.power = 60;
+        c.pitch_trim.speed = 120;
+        c.roll_trim.enabled = true;
+        c.roll_trim.polarity = Polarity::Inverted;
+        for (id, n) in [
+            (0, "Flaps"),
+            (6, "Strobe Lt"),
+            (10, "Wig"),
+            (17, "Standby Alt"),
+        ] {
+            c.apply_device_name(&DeviceName::new(id, n).unwrap());
+        }
+        // Every byte a unit may hold in a name comes back (ICD Table 21: 0–255).
+        c.names[12] = *b"Caf\xe9 \x01\x7f\xffsixteen!";
+        c.enabled[20] = false;
+        c
+    }
+
+    use crate::protocol::message::FlapSpec;
+
+    #[test]
+    fn a_configured_unit_round_trips_through_the_file() {
+        assert!(validate::whole_config(&configured()).is_empty());
+        let b = Backup {
+            version: version(),
+            config: configured(),
+        };
+        let text = to_toml(&b);
+        assert_eq!(from_toml(&text), Ok(b.clone()));
+        // And the text is stable: a second trip writes the same bytes.
+        assert_eq!(to_toml(&from_toml(&text).unwrap()), text);
+    }
+
+    #[test]
+    fn a_factory_unit_round_trips_too() {
+        // Factory values outside the ICD's ranges (15 A pins at 2 A, trim power 100 %)
+        // are what a fresh unit reports and must come back (reading note 16).
+        let b = Backup {
+            version: version(),
+            config: UnitConfig::default(),
+        };
+        assert_eq!(from_toml(&to_toml(&b)), Ok(b));
+    }
+
+    #[test]
+    fn the_file_reads_in_real_units_and_words() {
+        let text = to_toml(&Backup {
+            version: version(),
+            config: configured(),
+        });
+        for line in [
+            "hardware_version = 2",
+            "hardware = \"VP-X Pro\"",
+            "software = \"3.7\"",
+            "overvoltage_limit_volts = 32",
+            "secondary_alternator = \"10A-1\"",
+            "mode = \"position-based\"",
+            "endpoint_duration_s = 0.5",
+            "max_speed_kt = 100",
+            "reduced_power_percent = 60",
+            "device_one = \"5A-7\"",
+            "[devices.5A-3]\nname = \"Strobe Lt\"\nshow_on_page = true\nbreaker_amps = 5\nswitch = 3\ncurrent_fault = true\n",
+            "[devices.15A-1]\nname = \"\"\nshow_on_page = true\nbreaker_amps = 15\nswitch = \"always-on\"",
+            "[devices.Starter]\nname = \"\"\nbreaker_amps = 5\nswitch = \"always-on\"",
+            "[devices.Field_Pri]\nname = \"\"\nbreaker_amps = 5\nswitch = 1\n",
+            "[devices.5A-4]\nname = \"\"\nshow_on_page = true\nbreaker_amps = 2\nswitch = \"off\"",
+        ] {
+            assert!(text.contains(line), "missing {line:?} in\n{text}");
+        }
+        // Pins are in Table 40 order, not sorted as text.
+        let at = |s: &str| text.find(s).unwrap();
+        assert!(at("[devices.5A-13]") < at("[devices.10A-1]"));
+        assert!(at("[devices.15A-3]") < at("[devices.3A-1]"));
+    }
+
+    fn problems(text: &str) -> Vec<String> {
+        from_toml(text)
+            .unwrap_err()
+            .into_iter()
+            .map(|p| p.to_string())
+            .collect()
+    }
+
+    fn good_text() -> String {
+        to_toml(&Backup {
+            version: version(),
+            config: configured(),
+        })
+    }
+
+    #[test]
+    fn a_toml_syntax_error_says_where() {
+        let p = problems("format = 1\n[devices.5A-1\nname = \"x\"\n");
+        assert_eq!(p.len(), 1);
+        assert!(p[0].starts_with("(file): not valid TOML"), "{p:?}");
+        assert!(p[0].contains("line 2"), "{p:?}");
+    }
+
+    #[test]
+    fn every_malformed_value_is_listed_by_its_path() {
+        let text = good_text()
+            .replace(
+                "breaker_amps = 5\nswitch = 3",
+                "breaker_amps = \"five\"\nswitch = 12",
+            )
+            .replace("endpoint_duration_s = 0.5", "endpoint_duration_s = 0.55")
+            .replace(
+                "secondary_alternator = \"10A-1\"",
+                "secondary_alternator = \"10A-9\"",
+            )
+            .replace("mode = \"position-based\"", "mode = \"positional\"")
+            .replace("name = \"Strobe Lt\"", "name = \"Strobe light left wing\"")
+            .replace("neutral = 110", "neutral = 110\nneutrall = 3")
+            .replace("warm_up_s = 12\n", "");
+        let p = problems(&text);
+        let fields: Vec<&str> = p.iter().map(|s| s.split(": ").next().unwrap()).collect();
+        assert_eq!(
+            fields,
+            [
+                "system.secondary_alternator",
+                "flaps.mode",
+                "flaps.endpoint_duration_s",
+                "pitch_trim.neutrall",
+                "wig_wag.warm_up_s",
+                "devices.5A-3.name",
+                "devices.5A-3.breaker_amps",
+                "devices.5A-3.switch",
+            ],
+            "{p:#?}"
+        );
+        assert!(
+            p[0].contains("\"10A-9\" is neither \"none\" nor a pin"),
+            "{}",
+            p[0]
+        );
+        assert!(p[2].contains("not a whole number of tenths"), "{}", p[2]);
+        assert!(p[5].contains("at most 16"), "{}", p[5]);
+        assert!(
+            p[6].contains("must be a whole number 0–255, not a string"),
+            "{}",
+            p[6]
+        );
+        assert!(p[7].contains("12 is not a switch"), "{}", p[7]);
+    }
+
+    #[test]
+    fn out_of_range_values_are_judged_by_the_unit_rules_and_named_in_file_terms() {
+        let text = good_text()
+            .replace(
+                "[devices.5A-3]\nname = \"Strobe Lt\"\nshow_on_page = true\nbreaker_amps = 5",
+                "[devices.5A-3]\nname = \"Strobe Lt\"\nshow_on_page = true\nbreaker_amps = 7",
+            )
+            .replace("reduced_power_percent = 60", "reduced_power_percent = 95")
+            .replace("endpoint_duration_s = 0.5", "endpoint_duration_s = 31.5")
+            .replace("speed_kt = 80", "speed_kt = 250");
+        let p = problems(&text);
+        assert_eq!(
+            p,
+            [
+                "devices.5A-3.breaker_amps: 7 A is outside 1–5 A for 5A-3 (ICD Table 40)",
+                "flaps.endpoint_duration_s: endpoint duration 31.5 s is above 30.0 s (ICD Table 16, in tenths)",
+                "pitch_trim.reduced_power_percent: trim power 95 % is outside 40–90 % (ICD Table 15; 100 % is the factory value and also accepted)",
+                "wig_wag.speed_kt: wig-wag speed 250 is above 200 (ICD Table 17)",
+            ]
+        );
+    }
+
+    #[test]
+    fn cross_rules_are_checked_on_the_whole_file() {
+        // The wig-wag device switched always off: the unit would refuse the WIG_WAG_SPEC.
+        let text = good_text().replace(
+            "[devices.5A-7]\nname = \"Wig\"\nshow_on_page = true\nbreaker_amps = 2\nswitch = 4",
+            "[devices.5A-7]\nname = \"Wig\"\nshow_on_page = true\nbreaker_amps = 2\nswitch = \"off\"",
+        );
+        let p = problems(&text);
+        assert_eq!(p.len(), 1, "{p:?}");
+        assert!(
+            p[0].starts_with("wig_wag.device_one: 5A-7 (device 10) is off"),
+            "{p:?}"
+        );
+    }
+
+    #[test]
+    fn missing_and_unknown_sections_and_pins_are_named() {
+        let text = good_text()
+            .replace("[devices.2A-2]", "[devices.2A-3]")
+            .replace("[roll_trim]", "[roll_trimm]");
+        let p = problems(&text);
+        assert!(
+            p.contains(&"roll_trim: missing: the file has no [roll_trim] table".to_string()),
+            "{p:#?}"
+        );
+        assert!(
+            p.iter()
+                .any(|s| s.starts_with("roll_trimm: unknown section")),
+            "{p:#?}"
+        );
+        assert!(
+            p.iter().any(|s| s.starts_with("devices.2A-3: no such pin")),
+            "{p:#?}"
+        );
+        assert!(
+            p.contains(&"devices.2A-2: missing: the file has no [devices.2A-2] table".to_string()),
+            "{p:#?}"
+        );
+        assert!(
+            problems("")
+                .contains(&"format: missing (format = 1); is this a vpx-efis backup?".to_string())
+        );
+    }
+
+    #[test]
+    fn the_always_shown_pins_cannot_be_hidden() {
+        let text = good_text().replace(
+            "[devices.EFIS]\nname = \"\"\n",
+            "[devices.EFIS]\nname = \"\"\nshow_on_page = false\n",
+        );
+        assert_eq!(
+            problems(&text),
+            [
+                "devices.EFIS.show_on_page: EFIS is always shown and cannot be hidden (ICD Table 23 note 1)"
+            ]
+        );
+        let text = good_text().replace(
+            "[devices.EFIS]\nname = \"\"\n",
+            "[devices.EFIS]\nname = \"\"\nshow_on_page = true\n",
+        );
+        assert!(from_toml(&text).is_ok());
+    }
+
+    #[test]
+    fn every_whole_config_path_has_a_place_in_the_file() {
+        for (from, to) in [
+            ("devices[6].circuit_breaker", "devices.5A-3.breaker_amps"),
+            ("devices[2].switch_id", "devices.EFIS.switch"),
+            (
+                "devices[3].current_fault",
+                "devices.Field_Pri.current_fault",
+            ),
+            ("devices[9].device_id", "devices.5A-6"),
+            ("system.overvoltage_limit", "system.overvoltage_limit_volts"),
+            ("system.secondary_alternator", "system.secondary_alternator"),
+            ("flap.midpoint_1", "flaps.midpoint_1"),
+            ("flap.circuit_breaker", "flaps.breaker_amps"),
+            ("flap.max_speed", "flaps.max_speed_kt"),
+            ("flap.endpoint_duration", "flaps.endpoint_duration_s"),
+            ("pitch_trim.power", "pitch_trim.reduced_power_percent"),
+            ("pitch_trim.speed", "pitch_trim.reduce_above_kt"),
+            ("roll_trim.trim_type", "roll_trim"),
+            ("wig_wag.device_two", "wig_wag.device_two"),
+            ("wig_wag.warm_up_period", "wig_wag.warm_up_s"),
+            ("wig_wag.speed", "wig_wag.speed_kt"),
+        ] {
+            assert_eq!(file_path(from), to, "{from}");
+        }
+    }
+
+    #[test]
+    fn names_are_bytes_up_to_sixteen() {
+        let text = good_text().replace("name = \"Strobe Lt\"", "name = \"Strobe → Lt\"");
+        let p = problems(&text);
+        assert_eq!(p.len(), 1);
+        assert!(
+            p[0].starts_with("devices.5A-3.name: \"Strobe → Lt\" has '→'"),
+            "{p:?}"
+        );
+        let text = good_text().replace("name = \"Strobe Lt\"", "name = \"Sixteen chars ok\"");
+        let b = from_toml(&text).unwrap();
+        assert_eq!(&b.config.names[6], b"Sixteen chars ok");
+    }
+}

@@ -1,0 +1,235 @@
+//! Backups of a VP-X's whole configuration: the TOML file format ([`format`]), what a
+//! restore would change ([`diff`]), the order a restore writes in ([`plan`]), and
+//! reading and writing the file (here). No I/O with the unit: the `backup` and
+//! `restore` commands and the setup screens bring a [`UnitClient`](crate::link::UnitClient).
+
+pub mod diff;
+pub mod format;
+pub mod plan;
+
+use std::fmt;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+pub use diff::{Change, diff};
+pub use format::{Backup, Problem, from_toml, normalized, to_toml};
+pub use plan::{PlanError, Step, plan};
+
+use crate::protocol::message::Version;
+
+/// Why a backup file cannot be used; every problem, each by its path in the file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LoadError {
+    pub file: PathBuf,
+    pub problems: Vec<Problem>,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let n = self.problems.len();
+        write!(
+            f,
+            "{}: {n} problem{}, nothing was sent to the unit:",
+            self.file.display(),
+            if n == 1 { "" } else { "s" }
+        )?;
+        for p in &self.problems {
+            write!(f, "\n  {p}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for LoadError {}
+
+/// Reads and checks a backup file as a whole (see [`format::from_toml`]).
+pub fn load(path: &Path) -> Result<Backup, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|e| LoadError {
+        file: path.to_path_buf(),
+        problems: vec![Problem {
+            field: "(file)".into(),
+            message: format!("cannot read it: {e}"),
+        }],
+    })?;
+    from_toml(&text).map_err(|problems| LoadError {
+        file: path.to_path_buf(),
+        problems,
+    })
+}
+
+/// Refuses a backup taken from other hardware: pins, ranges and defaults differ between
+/// the VP-X models (ICD Table 11 note 1), so one model's settings are not another's.
+pub fn check_hardware(backup: &Version, unit: &Version) -> Result<(), String> {
+    if backup.hardware_version == unit.hardware_version {
+        return Ok(());
+    }
+    Err(format!(
+        "this backup is from a {} (hardware version {}) but the unit is a {} (hardware \
+         version {}); a configuration is only restored onto the hardware it was taken \
+         from. Nothing was sent to the unit.",
+        backup.hardware_version.name(),
+        backup.hardware_version.to_byte(),
+        unit.hardware_version.name(),
+        unit.hardware_version.to_byte(),
+    ))
+}
+
+/// A software version difference is allowed but worth saying.
+pub fn software_note(backup: &Version, unit: &Version) -> Option<String> {
+    let (b, u) = (
+        (backup.software_major, backup.software_minor),
+        (unit.software_major, unit.software_minor),
+    );
+    (b != u).then(|| {
+        format!(
+            "note: the backup was taken from software {}.{}; the unit runs {}.{}",
+            b.0, b.1, u.0, u.1
+        )
+    })
+}
+
+/// Writes a backup so that an interrupted write leaves either the old file or the new
+/// one, never half of one: a temporary file in the same directory (a rename is only
+/// atomic within one file system), flushed to disk, then renamed over the target, then
+/// the directory flushed so the rename itself survives a power cut.
+pub fn save(path: &Path, backup: &Backup) -> std::io::Result<()> {
+    write_atomically(path, to_toml(backup).as_bytes())
+}
+
+/// The atomic write behind [`save`], for any bytes.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::other(format!("{} is not a file name", path.display())))?;
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = (|| {
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        drop(f);
+        std::fs::rename(&tmp, path)?;
+        // Not every platform can open a directory to sync it; the file itself is safe
+        // by now, so this last step is best effort.
+        if let Ok(d) = std::fs::File::open(&dir) {
+            let _ = d.sync_all();
+        }
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::config::UnitConfig;
+    use crate::protocol::message::HardwareVersion;
+
+    fn v(hw: HardwareVersion, major: u8, minor: u8) -> Version {
+        Version {
+            hardware_version: hw,
+            software_major: major,
+            software_minor: minor,
+        }
+    }
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut e: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        e.sort();
+        e
+    }
+
+    #[test]
+    fn save_replaces_the_file_and_leaves_no_temporary_behind() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("unit.toml");
+        std::fs::write(&path, "old").unwrap();
+        let b = Backup {
+            version: v(HardwareVersion::VpxPro, 1, 2),
+            config: UnitConfig::default(),
+        };
+        save(&path, &b).unwrap();
+        assert_eq!(entries(dir.path()), ["unit.toml"]);
+        assert_eq!(load(&path).unwrap(), b);
+    }
+
+    #[test]
+    fn a_failed_write_keeps_the_old_file_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        // The rename cannot replace a non-empty directory: the write fails at its
+        // last step, as an interrupted one would.
+        let path = dir.path().join("unit.toml");
+        std::fs::create_dir(&path).unwrap();
+        std::fs::write(path.join("keep"), "old").unwrap();
+        assert!(write_atomically(&path, b"new").is_err());
+        assert_eq!(entries(dir.path()), ["unit.toml"]);
+        assert_eq!(std::fs::read_to_string(path.join("keep")).unwrap(), "old");
+    }
+
+    #[test]
+    fn a_backup_from_other_hardware_is_refused_in_words() {
+        let err = check_hardware(
+            &v(HardwareVersion::VpxPro, 1, 0),
+            &v(HardwareVersion::VpxSport, 1, 0),
+        )
+        .unwrap_err();
+        assert!(
+            err.starts_with(
+                "this backup is from a VP-X Pro (hardware version 2) but the unit is a \
+                 VP-X Sport (hardware version 3)"
+            ),
+            "{err}"
+        );
+        assert!(
+            check_hardware(
+                &v(HardwareVersion::VpxPro, 1, 0),
+                &v(HardwareVersion::VpxPro, 2, 0)
+            )
+            .is_ok()
+        );
+        assert_eq!(
+            software_note(
+                &v(HardwareVersion::VpxPro, 1, 0),
+                &v(HardwareVersion::VpxPro, 2, 1)
+            )
+            .as_deref(),
+            Some("note: the backup was taken from software 1.0; the unit runs 2.1")
+        );
+    }
+
+    #[test]
+    fn a_load_error_lists_every_problem_under_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bad.toml");
+        std::fs::write(&path, "format = 2\n").unwrap();
+        let err = load(&path).unwrap_err().to_string();
+        let mut lines = err.lines();
+        assert!(
+            lines
+                .next()
+                .unwrap()
+                .ends_with("problems, nothing was sent to the unit:")
+        );
+        assert!(
+            err.contains("\n  format: 2 is not a format this program reads"),
+            "{err}"
+        );
+        assert!(err.contains("\n  devices: missing"), "{err}");
+    }
+}
