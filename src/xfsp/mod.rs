@@ -39,16 +39,22 @@
     )
 )]
 
+pub mod consume;
 mod cursor;
 pub mod dict;
+pub mod drive;
 pub mod error;
 pub mod expire;
 pub mod format;
+pub mod gateway;
 pub mod header;
 pub mod idents;
 pub mod message;
+pub mod net;
 pub mod param;
+pub mod publish;
 pub mod receiver;
+pub mod scale;
 pub mod sender;
 
 pub use dict::{

@@ -1,0 +1,323 @@
+//! FLAPREQ/PTRIMREQ/RTRIMREQ: drive a motor toward a requested position with control's
+//! [`MotorStreamer`], so the network gets exactly the safe 4 Hz stream the keys get.
+//!
+//! A request is held for the shorter of its Expire and [`REQUEST_HOLD`]; a requester
+//! keeps a motor running only by repeating the request (we recommend 4 Hz). The run
+//! ends, with a stop message, on the first of: the target reached or passed, the
+//! request expiring (requests stopped), any reason control's `motor_check` gives (lost
+//! communication, motor fault, disabled, flap-down inhibit, lost motor status), the
+//! streamer's own limits (maximum run time, starved stream), a link error, or shutdown.
+//!
+//! After a run ends for any reason the target is *latched*: the same target does not
+//! start the motor again, so a position that settles a count away from the target, or a
+//! fault that clears, never makes the motor hunt or restart by itself. A different
+//! target, or the requests stopping and starting again, is a new request.
+//!
+//! One motor runs at a time (the streamer has one run); other requests wait their turn.
+
+use std::time::{Duration, Instant};
+
+use crate::control::{
+    Direction, MotorStreamer, StopReason, StreamerConfig, motor_check, motor_permit,
+};
+use crate::model::{LogLevel, Model, Motor, TrimKind};
+use crate::protocol::message::Packet;
+use crate::ui::state::ReleaseMode;
+
+use super::scale::Axis;
+
+/// How long a request is held without a repeat: one 1 Hz period plus 200 ms of jitter.
+pub const REQUEST_HOLD: Duration = Duration::from_millis(1200);
+/// Raw counts short of the target at which the motor is stopped: the 10 Hz position
+/// reports lag the motor, so stopping a count early lands on the target, not past it.
+pub const STOP_MARGIN: i32 = 1;
+
+pub const MOTORS: [Motor; 3] = [
+    Motor::Flaps,
+    Motor::Trim(TrimKind::Pitch),
+    Motor::Trim(TrimKind::Roll),
+];
+
+/// A motor request as heard.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MotorRequest {
+    /// On the draft's ±100000 scale.
+    pub target: i32,
+    pub src: u16,
+    pub until: Instant,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Slot {
+    req: Option<MotorRequest>,
+    /// A target already served (reached, refused or stopped).
+    latched: Option<i32>,
+}
+
+/// The run going on now.
+#[derive(Debug, Clone, Copy)]
+struct Active {
+    motor: Motor,
+    direction: Direction,
+    /// The request's target on the draft's scale, and in raw counts.
+    target: i32,
+    raw_target: u8,
+}
+
+#[derive(Debug, Clone)]
+pub struct MotorDrive {
+    streamer: MotorStreamer,
+    slots: [Slot; 3],
+    active: Option<Active>,
+}
+
+impl MotorDrive {
+    /// `config.release_mode` is forced to key-release: a network request has no key
+    /// repeats, and its dead man is the request hold instead.
+    pub fn new(mut config: StreamerConfig) -> MotorDrive {
+        config.release_mode = ReleaseMode::KeyRelease;
+        MotorDrive {
+            streamer: MotorStreamer::new(config),
+            slots: [Slot {
+                req: None,
+                latched: None,
+            }; 3],
+            active: None,
+        }
+    }
+
+    /// A command number from the streamer's counter, so every request the gateway
+    /// sends is numbered from one sequence.
+    pub fn next_cnt(&mut self) -> u8 {
+        self.streamer.next_cnt()
+    }
+
+    /// Records a request; `life` is its Expire (`None` for never).
+    pub fn request(
+        &mut self,
+        motor: Motor,
+        target: i32,
+        src: u16,
+        life: Option<Duration>,
+        now: Instant,
+    ) {
+        let hold = life.map_or(REQUEST_HOLD, |l| l.min(REQUEST_HOLD));
+        let slot = self.slot(motor);
+        if slot.latched.is_some_and(|t| t != target) {
+            slot.latched = None;
+        }
+        slot.req = Some(MotorRequest {
+            target,
+            src,
+            until: now + hold,
+        });
+    }
+
+    pub fn running(&self) -> Option<(Motor, Direction)> {
+        self.streamer.running_key()
+    }
+
+    /// The request held for each motor (flaps, pitch, roll).
+    pub fn requests(&self) -> [Option<MotorRequest>; 3] {
+        self.slots.map(|s| s.req)
+    }
+
+    /// The request held for `motor`.
+    pub fn request_for(&self, motor: Motor) -> Option<MotorRequest> {
+        let [f, p, r] = &self.slots;
+        match motor {
+            Motor::Flaps => f,
+            Motor::Trim(TrimKind::Pitch) => p,
+            Motor::Trim(TrimKind::Roll) => r,
+        }
+        .req
+    }
+
+    fn slot(&mut self, motor: Motor) -> &mut Slot {
+        let [f, p, r] = &mut self.slots;
+        match motor {
+            Motor::Flaps => f,
+            Motor::Trim(TrimKind::Pitch) => p,
+            Motor::Trim(TrimKind::Roll) => r,
+        }
+    }
+
+    pub fn next_deadline(&self) -> Option<Instant> {
+        let reqs = self.slots.iter().filter_map(|s| s.req.map(|r| r.until));
+        reqs.chain(self.streamer.next_deadline()).min()
+    }
+
+    /// Stops any run now (link error, shutdown).
+    pub fn stop(&mut self, model: &mut Model, now: Instant, reason: StopReason) -> Vec<Packet> {
+        let out = self.streamer.stop(now, reason);
+        if let Some(a) = self.active.take() {
+            log_stop(model, now, a.motor, &reason.describe());
+            self.slot(a.motor).latched = Some(a.target);
+        }
+        out
+    }
+
+    /// Expires requests, ends a run that must end, re-sends, and starts a waiting one.
+    /// Call it at [`next_deadline`](Self::next_deadline) and after every packet applied
+    /// to the model, so a reached target or a fault stops the motor at once.
+    pub fn tick(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+        let mut out = Vec::new();
+        for slot in &mut self.slots {
+            if slot.req.is_some_and(|r| now >= r.until) {
+                slot.req = None;
+                slot.latched = None;
+            }
+        }
+        if let Some(a) = self.active {
+            // (reason, words for the log, whether this target is done with)
+            let stop = match self.slot(a.motor).req {
+                None => Some((
+                    StopReason::Released,
+                    "requests stopped or expired".into(),
+                    true,
+                )),
+                // The new target starts below, from wherever the motor stopped.
+                Some(r) if r.target != a.target => Some((
+                    StopReason::Released,
+                    "a new target was requested".into(),
+                    false,
+                )),
+                Some(_) => match motor_check(model, a.motor, a.direction, now) {
+                    Err(reason) => Some((reason, reason.describe(), true)),
+                    Ok(()) => reached(model, a, now)
+                        .then(|| (StopReason::Released, "target reached".to_string(), true)),
+                },
+            };
+            if let Some((reason, why, done)) = stop {
+                out.extend(self.streamer.stop(now, reason));
+                log_stop(model, now, a.motor, &why);
+                if done {
+                    self.slot(a.motor).latched = Some(a.target);
+                }
+                self.active = None;
+            }
+        }
+        out.extend(self.streamer.tick(now));
+        if let Some(a) = self.active
+            && self.streamer.running_key().is_none()
+        {
+            // The streamer ended the run itself (maximum run time, starved stream).
+            let why = self
+                .streamer
+                .last_stop()
+                .map_or_else(|| "stream ended".to_string(), |s| s.reason.describe());
+            log_stop(model, now, a.motor, &why);
+            self.slot(a.motor).latched = Some(a.target);
+            self.active = None;
+        }
+        if self.active.is_none() {
+            out.extend(self.start_next(model, now));
+        }
+        out
+    }
+
+    fn start_next(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+        for motor in MOTORS {
+            let slot = *self.slot(motor);
+            let Some(req) = slot.req else { continue };
+            if slot.latched == Some(req.target) {
+                continue;
+            }
+            // Whatever happens next, this target has had its answer.
+            self.slot(motor).latched = Some(req.target);
+            let Some((axis, pos)) = position(model, motor, now) else {
+                model.log(
+                    now,
+                    LogLevel::Warning,
+                    format!(
+                        "XFSp {:#06x}: {} request refused: no live position or no endpoints configured",
+                        req.src,
+                        motor.name()
+                    ),
+                );
+                continue;
+            };
+            let raw_target = axis.to_raw(req.target);
+            let Some(direction) = axis
+                .direction(motor, pos, raw_target)
+                .filter(|&d| axis.remaining(motor, d, pos, raw_target) > STOP_MARGIN)
+            else {
+                model.log(
+                    now,
+                    LogLevel::Info,
+                    format!(
+                        "XFSp {:#06x}: {} already at {}",
+                        req.src,
+                        motor.name(),
+                        req.target
+                    ),
+                );
+                continue;
+            };
+            if let Err(why) = motor_permit(model, motor, direction, now) {
+                model.log(
+                    now,
+                    LogLevel::Warning,
+                    format!(
+                        "XFSp {:#06x}: {} request refused: {why}",
+                        req.src,
+                        motor.name()
+                    ),
+                );
+                continue;
+            }
+            // A fresh press: forget any key the streamer still holds from a last run.
+            let mut out = self.streamer.release(now);
+            out.extend(self.streamer.press(now, motor, direction));
+            if self.streamer.running_key() == Some((motor, direction)) {
+                self.slot(motor).latched = None;
+                self.active = Some(Active {
+                    motor,
+                    direction,
+                    target: req.target,
+                    raw_target,
+                });
+                model.log(
+                    now,
+                    LogLevel::Info,
+                    format!(
+                        "XFSp {:#06x}: moving {} {} toward {} (raw {pos} -> {raw_target})",
+                        req.src,
+                        motor.name(),
+                        direction.name(),
+                        req.target
+                    ),
+                );
+            }
+            return out;
+        }
+        Vec::new()
+    }
+}
+
+/// The live position of `motor` and its scale, if the unit reports both.
+fn position(model: &Model, motor: Motor, now: Instant) -> Option<(Axis, u8)> {
+    let ft = model.live_flap_trim(now)?;
+    let axis = Axis::for_motor(motor, ft)?;
+    let pos = match motor {
+        Motor::Flaps => ft.flap_position,
+        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
+        Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
+    };
+    Some((axis, pos))
+}
+
+fn reached(model: &Model, a: Active, now: Instant) -> bool {
+    // motor_check has already made sure the position is live.
+    position(model, a.motor, now).is_some_and(|(axis, pos)| {
+        axis.remaining(a.motor, a.direction, pos, a.raw_target) <= STOP_MARGIN
+    })
+}
+
+fn log_stop(model: &mut Model, now: Instant, motor: Motor, why: &str) {
+    model.log(
+        now,
+        LogLevel::Info,
+        format!("XFSp: {} stopped: {why}", motor.name()),
+    );
+}

@@ -1,0 +1,408 @@
+//! The gateway: the VP-X on the XFSp network. A pure core driven by the caller's clock;
+//! the sockets live in [`super::net`].
+//!
+//! # Wiring it into a main loop
+//!
+//! ```no_run
+//! # use std::time::Instant;
+//! # use vpx_efis::model::{Model, Source};
+//! # use vpx_efis::xfsp::gateway::{Gateway, GatewayConfig};
+//! # use vpx_efis::xfsp::net::{Target, XfspNet};
+//! # fn send_to_unit(_: vpx_efis::protocol::message::Packet) {}
+//! # let mut model = Model::new(Source::Simulated { scenario: "demo".into() });
+//! # let link_events = crossbeam_channel::never::<()>();
+//! let now = Instant::now();
+//! let mut gw = Gateway::new(GatewayConfig::default(), now);
+//! let net = XfspNet::open(&Target::parse("224.0.2.69:20234").unwrap(), "0.0.0.0".parse().unwrap()).unwrap();
+//! loop {
+//!     let wait = gw.next_deadline().saturating_duration_since(Instant::now());
+//!     crossbeam_channel::select! {
+//!         recv(link_events) -> _ev => {
+//!             // model.apply_packet(..) / model.note_*(..) as usual; then fall through to
+//!             // tick so a reached flap target or a new fault goes out at once.
+//!         }
+//!         recv(net.incoming()) -> d => if let Ok(d) = d {
+//!             for p in gw.receive(&d.bytes, &mut model, d.at) { send_to_unit(p) }
+//!         }
+//!         default(wait) => {}
+//!     }
+//!     let step = gw.tick(&mut model, Instant::now());
+//!     for p in step.to_unit { send_to_unit(p) }
+//!     net.send_all(&step.datagrams);
+//! }
+//! ```
+//!
+//! Duties of the caller, each of which the motor stream's safety depends on (as for
+//! control's `Controller`): call [`Gateway::tick`] at [`Gateway::next_deadline`] and
+//! after applying received packets; call [`Gateway::on_link_error`] when a write to the
+//! unit fails and [`Gateway::shutdown`] before leaving, sending what they return.
+//!
+//! Every command taken from the network, and every refusal, goes to the model's event
+//! log (`model.log`), prefixed "XFSp" and the sender's source id.
+
+use std::collections::HashMap;
+use std::time::{Duration, Instant};
+
+use crate::control::{Action, MotorStreamer, StopReason, StreamerConfig, command};
+use crate::model::{LogLevel, Model, Motor, TrimKind};
+use crate::protocol::device::DEVICE_COUNT;
+use crate::protocol::message::Packet;
+
+use super::consume::{AirData, Forwarded};
+use super::dict::{CertLevel, Confidence, EcbState};
+use super::drive::{MotorDrive, MotorRequest};
+use super::format::{CasMsg, Value, latin1};
+use super::header::Header;
+use super::idents;
+use super::param::Parameter;
+use super::publish::Publisher;
+use super::receiver::{Received, Receiver, RxStats};
+use super::sender::{MsgKind, Sender};
+
+/// The gateway re-reads the model at least this often, so changes that come from the
+/// clock alone (lost communication, a fault message aging out) go out promptly.
+pub const POLL: Duration = Duration::from_millis(100);
+/// The same circuit command from the network within this window is taken once: a
+/// requester repeating itself against packet loss should not flood the unit or the log.
+pub const COMMAND_REPEAT_WINDOW: Duration = Duration::from_secs(1);
+/// A source silent this long is forgotten, so a node that restarted (and numbers its
+/// messages from scratch) is heard again at once instead of after 32767 messages.
+pub const FORGET_SOURCE_AFTER: Duration = Duration::from_secs(10);
+
+#[derive(Debug, Clone)]
+pub struct GatewayConfig {
+    /// Our source id; messages carrying it are our own and are ignored.
+    pub source_id: u16,
+    pub cert: CertLevel,
+    /// The first message number ("an arbitrary initial value", §4.1).
+    pub first_msg_num: u16,
+    /// The motor stream's settings (resend period, maximum run).
+    pub streamer: StreamerConfig,
+}
+
+impl Default for GatewayConfig {
+    /// Source id 0x5650 ("VP"), EXPERIMENTAL, like the command line's defaults.
+    fn default() -> Self {
+        GatewayConfig {
+            source_id: 0x5650,
+            cert: CertLevel::Experimental,
+            first_msg_num: 0,
+            streamer: StreamerConfig::default(),
+        }
+    }
+}
+
+/// What one tick produced.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Step {
+    /// For the VP-X, in order.
+    pub to_unit: Vec<Packet>,
+    /// For the network, in order.
+    pub datagrams: Vec<Vec<u8>>,
+}
+
+/// Counters for a status line.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct GatewayStats {
+    /// Ordering and framing verdicts of everything not our own.
+    pub rx: RxStats,
+    /// Our own datagrams heard back (multicast loop).
+    pub own: u64,
+    /// Parameters in well-formed datagrams whose value did not decode.
+    pub undecodable: u64,
+    pub commands_taken: u64,
+    pub commands_refused: u64,
+    pub datagrams_built: u64,
+    pub build_errors: u64,
+}
+
+pub struct Gateway {
+    cfg: GatewayConfig,
+    sender: Sender,
+    receiver: Receiver,
+    heard: HashMap<u16, Instant>,
+    publisher: Publisher,
+    air: AirData,
+    drive: MotorDrive,
+    recent: HashMap<(u8, u8), Instant>,
+    last_tick: Instant,
+    stats: GatewayStats,
+}
+
+impl Gateway {
+    pub fn new(cfg: GatewayConfig, now: Instant) -> Gateway {
+        Gateway {
+            sender: Sender::new(cfg.source_id, cfg.first_msg_num),
+            receiver: Receiver::default(),
+            heard: HashMap::new(),
+            publisher: Publisher::new(cfg.cert, now),
+            air: AirData::default(),
+            drive: MotorDrive::new(cfg.streamer),
+            recent: HashMap::new(),
+            last_tick: now,
+            stats: GatewayStats::default(),
+            cfg,
+        }
+    }
+
+    pub fn config(&self) -> &GatewayConfig {
+        &self.cfg
+    }
+
+    /// Takes one datagram from the network. Returns packets for the VP-X (circuit
+    /// commands, and the first move message of a motor request) to send at once.
+    /// Malformed, duplicate, out-of-order and our own datagrams are counted and dropped.
+    pub fn receive(&mut self, datagram: &[u8], model: &mut Model, now: Instant) -> Vec<Packet> {
+        let mut out = Vec::new();
+        let src = match Header::parse(datagram) {
+            Ok(h) if h.src_id == self.cfg.source_id => {
+                self.stats.own += 1;
+                return out;
+            }
+            Ok(h) => Some(h.src_id),
+            Err(_) => None,
+        };
+        if let Some(src) = src {
+            self.note_heard(src, now);
+        }
+        let params: Vec<(u16, Result<Parameter, super::Error>)> =
+            match self.receiver.receive(datagram) {
+                Received::Fresh(view) => {
+                    let src = view.header().src_id;
+                    view.params().map(|p| (src, p.to_parameter())).collect()
+                }
+                _ => Vec::new(),
+            };
+        for (src, p) in params {
+            match p {
+                Ok(p) => self.take(src, &p, model, now, &mut out),
+                Err(_) => self.stats.undecodable += 1,
+            }
+        }
+        out.extend(self.drive.tick(model, now));
+        out
+    }
+
+    /// Everything due at `now`: the motor stream, EXTERNAL_DATA at 1 Hz, and the
+    /// published parameters packed into datagrams.
+    pub fn tick(&mut self, model: &mut Model, now: Instant) -> Step {
+        let mut to_unit = self.drive.tick(model, now);
+        if let Some(d) = self.air.due(now) {
+            to_unit.push(Packet::request(self.drive.next_cnt(), d));
+        }
+        let params = self.publisher.poll(model, now);
+        let mut datagrams = Vec::new();
+        if !params.is_empty() {
+            match self
+                .sender
+                .pack(MsgKind::flight_data(self.cfg.cert), &params)
+            {
+                Ok(d) => datagrams = d,
+                Err(e) => {
+                    self.stats.build_errors += 1;
+                    model.log(
+                        now,
+                        LogLevel::Warning,
+                        format!("XFSp: could not build a datagram: {e}"),
+                    );
+                }
+            }
+        }
+        self.stats.datagrams_built += datagrams.len() as u64;
+        self.last_tick = now;
+        Step { to_unit, datagrams }
+    }
+
+    /// When [`tick`](Self::tick) must next be called.
+    pub fn next_deadline(&self) -> Instant {
+        [
+            self.publisher.next_deadline(),
+            self.air.next_deadline(),
+            self.drive.next_deadline(),
+            Some(self.last_tick + POLL),
+        ]
+        .into_iter()
+        .flatten()
+        .min()
+        .unwrap_or(self.last_tick + POLL)
+    }
+
+    /// A write to the unit failed: stop any motor run (its stream can no longer be
+    /// trusted to arrive).
+    pub fn on_link_error(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+        self.drive.stop(model, now, StopReason::LinkError)
+    }
+
+    /// Leaving: stop messages for every motor, running or not, since a stop that is
+    /// not needed is harmless and a missing one is not.
+    pub fn shutdown(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+        let mut out = self.drive.stop(model, now, StopReason::Quit);
+        if out.is_empty() {
+            out.extend(MotorStreamer::emergency_stop_packets());
+        }
+        out
+    }
+
+    /// What is being forwarded to the VP-X as EXTERNAL_DATA (the page shows it).
+    pub fn forwarding(&self, now: Instant) -> [Forwarded; 5] {
+        self.air.forwarded(now)
+    }
+
+    /// The CAS messages we have standing on the network.
+    pub fn standing_cas(&self) -> Vec<(u16, CasMsg)> {
+        self.publisher.standing_cas()
+    }
+
+    /// The motor requests held (flaps, pitch trim, roll trim).
+    pub fn motor_requests(&self) -> [Option<MotorRequest>; 3] {
+        self.drive.requests()
+    }
+
+    pub fn running_motor(&self) -> Option<Motor> {
+        self.drive.running().map(|(m, _)| m)
+    }
+
+    pub fn stats(&self) -> GatewayStats {
+        GatewayStats {
+            rx: self.receiver.stats(),
+            ..self.stats
+        }
+    }
+
+    fn note_heard(&mut self, src: u16, now: Instant) {
+        if self
+            .heard
+            .get(&src)
+            .is_some_and(|&t| now.saturating_duration_since(t) > FORGET_SOURCE_AFTER)
+        {
+            self.receiver.forget(src);
+        }
+        self.heard.insert(src, now);
+        if self.heard.len() > 1024 {
+            // Memory stays bounded under forged source ids; losing a timestamp only
+            // means that source's restart is noticed a little later.
+            self.heard
+                .retain(|_, t| now.saturating_duration_since(*t) <= FORGET_SOURCE_AFTER);
+        }
+    }
+
+    fn take(
+        &mut self,
+        src: u16,
+        p: &Parameter,
+        model: &mut Model,
+        now: Instant,
+        out: &mut Vec<Packet>,
+    ) {
+        if self.air.offer(src, p, now).is_some() {
+            return;
+        }
+        let commanding = matches!(p.confidence, Confidence::UserSel | Confidence::SysSel);
+        if !commanding {
+            // Status from other nodes (their own ECBs, their positions) is not for us.
+            return;
+        }
+        let motor = match p.ident {
+            idents::ECBSTAT => return self.circuit_command(src, p, model, now, out),
+            idents::FLAPREQ => Motor::Flaps,
+            idents::PTRIMREQ => Motor::Trim(TrimKind::Pitch),
+            idents::RTRIMREQ => Motor::Trim(TrimKind::Roll),
+            _ => return,
+        };
+        let Value::Sint(target) = p.value else {
+            return;
+        };
+        let held = self.drive.request_for(motor);
+        if held.is_none_or(|r| r.target != target) {
+            self.stats.commands_taken += 1;
+            model.log(
+                now,
+                LogLevel::Info,
+                format!(
+                    "XFSp {src:#06x} ({}): {} to {target}",
+                    confidence_name(p.confidence),
+                    motor.name()
+                ),
+            );
+        }
+        self.drive
+            .request(motor, target, src, p.expire.duration(), now);
+    }
+
+    fn circuit_command(
+        &mut self,
+        src: u16,
+        p: &Parameter,
+        model: &mut Model,
+        now: Instant,
+        out: &mut Vec<Packet>,
+    ) {
+        let Value::Bus(bus) = &p.value else { return };
+        let Some(id) = u8::try_from(p.unit)
+            .ok()
+            .filter(|&id| usize::from(id) < DEVICE_COUNT)
+        else {
+            return;
+        };
+        let name = model.display_name(id);
+        let label = latin1(&bus.label);
+        if !label.trim().is_empty() && !label.trim().eq_ignore_ascii_case(name.trim()) {
+            // Same unit number, other words: another node's circuit, not ours.
+            return;
+        }
+        let state_name = bus.state.spec_name().unwrap_or("?");
+        let key = (id, u8::from(bus.state));
+        if self
+            .recent
+            .get(&key)
+            .is_some_and(|&t| now.saturating_duration_since(t) < COMMAND_REPEAT_WINDOW)
+        {
+            return;
+        }
+        self.recent.insert(key, now);
+        let who = format!("XFSp {src:#06x} ({})", confidence_name(p.confidence));
+        let action = match bus.state {
+            EcbState::On => Action::PowerOn(id),
+            EcbState::Off => Action::PowerOff(id),
+            EcbState::Reset => Action::Reset(id),
+            other => {
+                self.stats.commands_refused += 1;
+                model.log(
+                    now,
+                    LogLevel::Warning,
+                    format!(
+                        "{who}: {name} {}: only ON, OFF and RESET are commands",
+                        other
+                            .spec_name()
+                            .map_or_else(|| format!("state {}", u8::from(other)), str::to_string)
+                    ),
+                );
+                return;
+            }
+        };
+        match command(&action, model, now) {
+            Ok(message) => {
+                self.stats.commands_taken += 1;
+                model.log(
+                    now,
+                    LogLevel::Info,
+                    format!("{who}: {name} {state_name} -> {}", message.name()),
+                );
+                out.push(Packet::request(self.drive.next_cnt(), message));
+            }
+            Err(why) => {
+                self.stats.commands_refused += 1;
+                model.log(
+                    now,
+                    LogLevel::Warning,
+                    format!("{who}: {name} {state_name} refused: {why}"),
+                );
+            }
+        }
+    }
+}
+
+fn confidence_name(c: Confidence) -> String {
+    c.spec_name()
+        .map_or_else(|| format!("confidence {}", u8::from(c)), str::to_string)
+}

@@ -1,0 +1,306 @@
+//! The thin socket layer: one UDP socket, a receiving thread, and sending.
+//!
+//! A target `GROUP:PORT` with a multicast group (224.0.0.0/4) is the normal XFSp case:
+//! the socket binds `GROUP:PORT` with SO_REUSEADDR (so the page, a gateway and
+//! `xfsp-dump` can all listen on one host), joins the group on the configured
+//! interface, sends with that interface as the multicast interface, TTL 1 (the
+//! aircraft network is one segment) and multicast loop on (a display on the same host,
+//! and the tests, hear us; our own datagrams are then ignored by source id).
+//!
+//! Any other address is **unicast**, for tests and point-to-point bench setups:
+//! - [`XfspNet::open`] (the gateway) binds an ephemeral port on the interface
+//!   address and sends everything to the target; a peer answers to the address our
+//!   datagrams come from.
+//! - [`XfspNet::listen`] (`xfsp-dump`) binds the target address itself and only
+//!   listens.
+//!
+//! Received datagrams go through a bounded channel; when the consumer falls behind,
+//! the newest are dropped and counted (a flood cannot exhaust memory).
+
+use std::io;
+use std::net::{Ipv4Addr, SocketAddr, SocketAddrV4, UdpSocket};
+use std::os::fd::{AsRawFd, FromRawFd};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::{Receiver, TrySendError, bounded};
+
+/// The draft's default group and port (reading note 9).
+pub const DEFAULT_TARGET: &str = "224.0.2.69:20234";
+/// Datagrams queued between the receiving thread and the main loop.
+pub const QUEUE: usize = 4096;
+/// The receiving thread checks for shutdown this often.
+const READ_TIMEOUT: Duration = Duration::from_millis(100);
+/// Larger than any UDP payload, so nothing is silently truncated.
+const MAX_DATAGRAM: usize = 65_536;
+
+/// Where XFSp traffic goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    Multicast { group: Ipv4Addr, port: u16 },
+    Unicast(SocketAddrV4),
+}
+
+impl Target {
+    /// `GROUP:PORT` or `HOST:PORT` (IPv4 literals).
+    pub fn parse(s: &str) -> Result<Target, String> {
+        let addr: SocketAddrV4 = s
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{s}` is not an IPv4 address and port like 224.0.2.69:20234"))?;
+        Ok(if addr.ip().is_multicast() {
+            Target::Multicast {
+                group: *addr.ip(),
+                port: addr.port(),
+            }
+        } else {
+            Target::Unicast(addr)
+        })
+    }
+
+    pub fn addr(&self) -> SocketAddrV4 {
+        match *self {
+            Target::Multicast { group, port } => SocketAddrV4::new(group, port),
+            Target::Unicast(a) => a,
+        }
+    }
+}
+
+impl std::fmt::Display for Target {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Target::Multicast { .. } => write!(f, "multicast {}", self.addr()),
+            Target::Unicast(a) => write!(f, "unicast {a}"),
+        }
+    }
+}
+
+/// One received datagram.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Datagram {
+    pub at: Instant,
+    pub from: SocketAddr,
+    pub bytes: Vec<u8>,
+}
+
+/// A socket with its receiving thread. Dropping it stops the thread.
+pub struct XfspNet {
+    socket: UdpSocket,
+    dest: Option<SocketAddr>,
+    incoming: Receiver<Datagram>,
+    dropped: Arc<AtomicU64>,
+    send_errors: AtomicU64,
+    stop: Arc<AtomicBool>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl XfspNet {
+    /// For the gateway: listen and send (see the module docs for unicast).
+    pub fn open(target: &Target, iface: Ipv4Addr) -> io::Result<XfspNet> {
+        match *target {
+            Target::Multicast { group, port } => {
+                let s = multicast_socket(group, port, iface)?;
+                XfspNet::start(s, Some(target.addr().into()))
+            }
+            Target::Unicast(dest) => {
+                let s = UdpSocket::bind(SocketAddrV4::new(iface, 0))?;
+                XfspNet::start(s, Some(dest.into()))
+            }
+        }
+    }
+
+    /// For `xfsp-dump`: listen only.
+    pub fn listen(target: &Target, iface: Ipv4Addr) -> io::Result<XfspNet> {
+        let s = match *target {
+            Target::Multicast { group, port } => multicast_socket(group, port, iface)?,
+            Target::Unicast(a) => UdpSocket::bind(a)?,
+        };
+        XfspNet::start(s, None)
+    }
+
+    fn start(socket: UdpSocket, dest: Option<SocketAddr>) -> io::Result<XfspNet> {
+        socket.set_read_timeout(Some(READ_TIMEOUT))?;
+        let reader = socket.try_clone()?;
+        let (tx, incoming) = bounded(QUEUE);
+        let stop = Arc::new(AtomicBool::new(false));
+        let dropped = Arc::new(AtomicU64::new(0));
+        let thread = {
+            let (stop, dropped) = (stop.clone(), dropped.clone());
+            std::thread::Builder::new()
+                .name("xfsp-rx".into())
+                .spawn(move || {
+                    let mut buf = vec![0u8; MAX_DATAGRAM];
+                    while !stop.load(Ordering::SeqCst) {
+                        match reader.recv_from(&mut buf) {
+                            Ok((n, from)) => {
+                                let d = Datagram {
+                                    at: Instant::now(),
+                                    from,
+                                    bytes: buf.get(..n).unwrap_or_default().to_vec(),
+                                };
+                                match tx.try_send(d) {
+                                    Ok(()) => {}
+                                    Err(TrySendError::Full(_)) => {
+                                        dropped.fetch_add(1, Ordering::Relaxed);
+                                    }
+                                    // Nobody is listening any more.
+                                    Err(TrySendError::Disconnected(_)) => return,
+                                }
+                            }
+                            Err(e)
+                                if matches!(
+                                    e.kind(),
+                                    io::ErrorKind::WouldBlock
+                                        | io::ErrorKind::TimedOut
+                                        | io::ErrorKind::Interrupted
+                                ) => {}
+                            // An ICMP error from an earlier unicast send, or a transient
+                            // failure: keep listening, gently.
+                            Err(_) => std::thread::sleep(Duration::from_millis(10)),
+                        }
+                    }
+                })?
+        };
+        Ok(XfspNet {
+            socket,
+            dest,
+            incoming,
+            dropped,
+            send_errors: AtomicU64::new(0),
+            stop,
+            thread: Some(thread),
+        })
+    }
+
+    /// Received datagrams, in arrival order.
+    pub fn incoming(&self) -> &Receiver<Datagram> {
+        &self.incoming
+    }
+
+    pub fn local_addr(&self) -> io::Result<SocketAddr> {
+        self.socket.local_addr()
+    }
+
+    /// Sends each datagram to the target; errors are counted, and the first returned.
+    pub fn send_all(&self, datagrams: &[Vec<u8>]) -> io::Result<()> {
+        let Some(dest) = self.dest else {
+            return Err(io::Error::other("this socket only listens"));
+        };
+        let mut first = Ok(());
+        for d in datagrams {
+            if let Err(e) = self.socket.send_to(d, dest) {
+                self.send_errors.fetch_add(1, Ordering::Relaxed);
+                if first.is_ok() {
+                    first = Err(e);
+                }
+            }
+        }
+        first
+    }
+
+    /// Datagrams dropped because the main loop fell behind.
+    pub fn dropped(&self) -> u64 {
+        self.dropped.load(Ordering::Relaxed)
+    }
+
+    pub fn send_errors(&self) -> u64 {
+        self.send_errors.load(Ordering::Relaxed)
+    }
+}
+
+impl Drop for XfspNet {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::SeqCst);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+/// A socket bound to `group:port` with SO_REUSEADDR, joined on `iface`.
+fn multicast_socket(group: Ipv4Addr, port: u16, iface: Ipv4Addr) -> io::Result<UdpSocket> {
+    // std cannot set SO_REUSEADDR before bind, nor IP_MULTICAST_IF; libc can.
+    // SAFETY: plain socket(2); the descriptor is owned by the UdpSocket from here on.
+    let fd = unsafe { libc::socket(libc::AF_INET, libc::SOCK_DGRAM | libc::SOCK_CLOEXEC, 0) };
+    if fd < 0 {
+        return Err(io::Error::last_os_error());
+    }
+    // SAFETY: `fd` is a fresh, valid descriptor that nothing else owns.
+    let socket = unsafe { UdpSocket::from_raw_fd(fd) };
+    let one: libc::c_int = 1;
+    setsockopt(&socket, libc::SOL_SOCKET, libc::SO_REUSEADDR, &one)?;
+    // Binding the group address (not 0.0.0.0) keeps other groups' traffic on the same
+    // port out of this socket.
+    let addr = libc::sockaddr_in {
+        sin_family: libc::AF_INET as libc::sa_family_t,
+        sin_port: port.to_be(),
+        sin_addr: libc::in_addr {
+            s_addr: u32::from(group).to_be(),
+        },
+        sin_zero: [0; 8],
+    };
+    // SAFETY: `addr` is a valid sockaddr_in and its size is passed with it.
+    let r = unsafe {
+        libc::bind(
+            socket.as_raw_fd(),
+            (&addr as *const libc::sockaddr_in).cast(),
+            std::mem::size_of::<libc::sockaddr_in>() as libc::socklen_t,
+        )
+    };
+    if r < 0 {
+        return Err(io::Error::last_os_error());
+    }
+    socket.join_multicast_v4(&group, &iface)?;
+    let ifaddr = libc::in_addr {
+        s_addr: u32::from(iface).to_be(),
+    };
+    setsockopt(&socket, libc::IPPROTO_IP, libc::IP_MULTICAST_IF, &ifaddr)?;
+    socket.set_multicast_loop_v4(true)?;
+    socket.set_multicast_ttl_v4(1)?;
+    Ok(socket)
+}
+
+fn setsockopt<T>(s: &UdpSocket, level: libc::c_int, name: libc::c_int, v: &T) -> io::Result<()> {
+    // SAFETY: `v` points to a live T and its size is passed with it.
+    let r = unsafe {
+        libc::setsockopt(
+            s.as_raw_fd(),
+            level,
+            name,
+            (v as *const T).cast(),
+            std::mem::size_of::<T>() as libc::socklen_t,
+        )
+    };
+    if r < 0 {
+        Err(io::Error::last_os_error())
+    } else {
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn targets_tell_multicast_from_unicast() {
+        assert_eq!(
+            Target::parse(DEFAULT_TARGET),
+            Ok(Target::Multicast {
+                group: Ipv4Addr::new(224, 0, 2, 69),
+                port: 20234
+            })
+        );
+        assert_eq!(
+            Target::parse("127.0.0.1:9000"),
+            Ok(Target::Unicast(SocketAddrV4::new(
+                Ipv4Addr::LOCALHOST,
+                9000
+            )))
+        );
+        assert!(Target::parse("224.0.2.69").is_err());
+        assert!(Target::parse("[::1]:5").is_err());
+    }
+}
