@@ -1,0 +1,63 @@
+//! `vpx-efis sim --pty` as a process: the first line on stdout is a path that a
+//! serial client can open and find a VP-X behind.
+
+use std::io::{BufRead, BufReader};
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+mod sim_common;
+
+use vpx_efis::protocol::message::*;
+
+struct Kill(std::process::Child);
+
+impl Drop for Kill {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+#[test]
+fn sim_pty_prints_its_path_first_and_answers_on_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+        .args(["sim", "--pty", "--scenario", "hangar", "--eeprom"])
+        .arg(dir.path().join("e.json"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("run vpx-efis");
+    let stdout = child.stdout.take().unwrap();
+    let _guard = Kill(child);
+    let mut line = String::new();
+    BufReader::new(stdout).read_line(&mut line).unwrap();
+    let path = line.trim();
+    assert!(path.starts_with("/dev/"), "first line: {line:?}");
+    let port = serialport::new(path, 57_600)
+        .timeout(Duration::from_millis(20))
+        .open_native()
+        .expect("open the printed path");
+    let mut c = sim_common::Client::new(port);
+    assert_eq!(
+        c.request(Ping { ack: false }),
+        Message::Ping(Ping { ack: true })
+    );
+    let d = c.next("DEVICE_STATUS", |m| match m {
+        Message::DeviceStatus(d) => Some(*d),
+        _ => None,
+    });
+    assert!(d.on.iter().all(|&on| !on), "hangar: everything off");
+}
+
+#[test]
+fn an_unknown_scenario_is_a_clear_error() {
+    let out = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+        .args(["sim", "--pty", "--scenario", "nonesuch"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("nonesuch") && err.contains("demo"), "{err}");
+    assert!(out.stdout.is_empty(), "no path printed when nothing runs");
+}
