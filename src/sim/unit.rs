@@ -944,13 +944,13 @@ impl Unit {
 
     fn run_timeline(&mut self, now: Instant) {
         loop {
-            if let Some((at, cmd)) = self.events.get(self.next_event) {
-                if self.timeline_start + *at <= now {
-                    let cmd = cmd.clone();
-                    self.next_event += 1;
-                    self.apply(cmd, now);
-                    continue;
-                }
+            if let Some((at, cmd)) = self.events.get(self.next_event)
+                && self.timeline_start + *at <= now
+            {
+                let cmd = cmd.clone();
+                self.next_event += 1;
+                self.apply(cmd, now);
+                continue;
             }
             match self.loop_after {
                 Some(period)
@@ -1151,6 +1151,7 @@ impl Unit {
         }
         self.apply_wig_wag(&mut want, now);
 
+        #[allow(clippy::needless_range_loop)] // `id` indexes five arrays and names the pin
         for id in 1..=28usize {
             if !want[id] || self.faults[id].is_fault() {
                 continue;
