@@ -1,5 +1,91 @@
-use crate::cli::BackupArgs;
+//! `vpx-efis backup [--port PATH] FILE`: reads the unit's whole configuration into a
+//! TOML file (format in [`crate::backup::format`]), written atomically so that an
+//! interrupted backup leaves no half file.
 
-pub fn run(_args: BackupArgs) -> anyhow::Result<()> {
-    anyhow::bail!("`backup` is not built yet")
+use std::io::IsTerminal;
+use std::time::Duration;
+
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::backup::{self, Backup};
+use crate::cli::{BackupArgs, PortArgs};
+use crate::link::{UnitClient, duplex_pipe, pipe_connector, serial_connector};
+use crate::sim::{self, SimHandle, SimOptions};
+
+pub fn run(args: BackupArgs) -> anyhow::Result<()> {
+    let mut unit = connect(&args.port)?;
+    let bar = progress_bar(0, "reading");
+    let (version, config) = unit
+        .client
+        .query_config(|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        })
+        .context("reading the unit's configuration; no file was written")?;
+    bar.finish_and_clear();
+    let b = Backup { version, config };
+    backup::save(&args.file, &b)
+        .with_context(|| format!("cannot write {}", args.file.display()))?;
+    eprintln!(
+        "Saved the configuration of {} (software {}.{}) from {} to {}.",
+        version.hardware_version.name(),
+        version.software_major,
+        version.software_minor,
+        unit.client.port(),
+        args.file.display()
+    );
+    Ok(())
+}
+
+/// A client on the unit `--port` names, or on the built-in virtual VP-X without it.
+pub struct Connected {
+    pub client: UnitClient,
+    /// Kept so the virtual unit runs as long as the client.
+    _sim: Option<SimHandle>,
+}
+
+/// Opens `--port`, or starts the built-in virtual VP-X (its `--scenario`) on an
+/// in-process pipe, saying on standard error which it is.
+pub fn connect(port: &PortArgs) -> anyhow::Result<Connected> {
+    match &port.port {
+        Some(path) => {
+            let client = UnitClient::new(serial_connector(path.clone(), port.baud))?;
+            Ok(Connected { client, _sim: None })
+        }
+        None => {
+            let scenario = sim::load_scenario(&port.scenario)?;
+            let (ours, theirs) = duplex_pipe(Duration::from_millis(50));
+            let handle = sim::spawn(
+                SimOptions::new(scenario),
+                Box::new(theirs.reader),
+                Box::new(theirs.writer),
+            );
+            eprintln!(
+                "No --port given: using the built-in virtual VP-X (scenario {}). SIMULATED.",
+                port.scenario
+            );
+            let client = UnitClient::new(pipe_connector(ours, "the virtual VP-X"))?;
+            Ok(Connected {
+                client,
+                _sim: Some(handle),
+            })
+        }
+    }
+}
+
+/// A progress bar on standard error, hidden when that is not a terminal (a script or
+/// a test reading the output wants no control characters).
+pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
+    let target = if std::io::stderr().is_terminal() {
+        ProgressDrawTarget::stderr()
+    } else {
+        ProgressDrawTarget::hidden()
+    };
+    let bar = ProgressBar::with_draw_target(Some(len), target);
+    if let Ok(style) = ProgressStyle::with_template("{msg:>8} [{bar:40}] {pos}/{len}") {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_message(what.to_string());
+    bar
 }

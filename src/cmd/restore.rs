@@ -1,5 +1,238 @@
-use crate::cli::RestoreArgs;
+//! `vpx-efis restore [--port PATH] FILE [--yes] [--erase-first]`: writes a backup
+//! back to the unit.
+//!
+//! 1. The file is checked as a whole before the unit is even opened; an invalid file is
+//!    refused with every problem by its path, and nothing is sent.
+//! 2. VERSION: a file from other hardware is refused (only VERSION has been sent).
+//! 3. The unit's settings are read and the differences listed; the person confirms
+//!    (or `--yes`). With no terminal to ask on and no `--yes`, nothing is written.
+//! 4. With `--erase-first`, EEPROM_ERASE (ICD §6.1.4) must answer result code 0, and
+//!    the now-factory settings are read again.
+//! 5. Each differing setting is written in the order [`crate::backup::plan`] explains,
+//!    each waiting for its SPEC_ACK. The first failure stops the restore and the
+//!    report says which settings were applied and which were not.
+//! 6. Everything is read back and compared with the file.
 
-pub fn run(_args: RestoreArgs) -> anyhow::Result<()> {
-    anyhow::bail!("`restore` is not built yet")
+use std::io::{BufRead, IsTerminal, Write};
+
+use anyhow::{Context, bail};
+
+use crate::backup::{self, Step, normalized};
+use crate::cli::RestoreArgs;
+use crate::cmd::backup::{connect, progress_bar};
+use crate::link::request::{DEFAULT_TIMEOUT, DEFAULT_TRIES};
+use crate::link::{SpecError, UnitClient};
+use crate::protocol::config::UnitConfig;
+use crate::protocol::message::Message;
+use crate::protocol::validate;
+
+pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
+    let target = backup::load(&args.file)?;
+    let mut unit = connect(&args.port)?;
+    let client = &mut unit.client;
+
+    let version = client.version().context("asking the unit's VERSION")?;
+    if let Err(why) = backup::check_hardware(&target.version, &version) {
+        bail!("{}: {why}", args.file.display());
+    }
+    if let Some(note) = backup::software_note(&target.version, &version) {
+        eprintln!("{note}");
+    }
+
+    let current = read_all(client, "reading")?;
+    let changes = backup::diff(&current, &target.config);
+    if changes.is_empty() && !args.erase_first {
+        println!(
+            "The unit already holds every setting in {}; nothing to write.",
+            args.file.display()
+        );
+        return Ok(());
+    }
+    if changes.is_empty() {
+        println!(
+            "The unit already holds every setting in {}.",
+            args.file.display()
+        );
+    } else {
+        println!(
+            "{} setting(s) on the unit differ from {}:",
+            changes.len(),
+            args.file.display()
+        );
+        for c in &changes {
+            println!("  {c}");
+        }
+    }
+    let question = if args.erase_first {
+        "Erase the unit's EEPROM (every setting back to its factory default, ICD §6.1.4) and then write the backup?"
+    } else {
+        "Write these settings to the unit?"
+    };
+    if !args.yes {
+        confirm(question)?;
+    }
+
+    let current = if args.erase_first {
+        erase(client)?;
+        read_all(client, "re-read")?
+    } else {
+        current
+    };
+    let steps = backup::plan(&current, &target.config)?;
+    write_steps(client, &current, &steps, args.erase_first)?;
+
+    let after = read_all(client, "verify")?;
+    let left = backup::diff(&after, &target.config);
+    if !left.is_empty() || normalized(&after) != normalized(&target.config) {
+        let mut msg = format!(
+            "every setting was acknowledged, but reading them back, {} still differ from {}:",
+            left.len(),
+            args.file.display()
+        );
+        for c in &left {
+            msg.push_str(&format!("\n  {c}"));
+        }
+        bail!(msg);
+    }
+    eprintln!(
+        "Restored {} ({} setting(s) written) and verified by reading every setting back.",
+        args.file.display(),
+        steps.len()
+    );
+    Ok(())
+}
+
+fn read_all(client: &mut UnitClient, what: &str) -> anyhow::Result<UnitConfig> {
+    let bar = progress_bar(0, what);
+    let got = client.query_config(|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    Ok(got.context("reading the unit's settings")?.1)
+}
+
+/// Asks on the terminal; anything but yes stops here with nothing written.
+fn confirm(question: &str) -> anyhow::Result<()> {
+    if !std::io::stdin().is_terminal() {
+        bail!(
+            "standard input is not a terminal, so nobody can confirm; nothing was written. \
+             Run again with --yes to write without asking."
+        );
+    }
+    eprint!("{question} [y/N] ");
+    let _ = std::io::stderr().flush();
+    let mut line = String::new();
+    std::io::stdin().lock().read_line(&mut line)?;
+    if matches!(line.trim().to_ascii_lowercase().as_str(), "y" | "yes") {
+        Ok(())
+    } else {
+        bail!("not confirmed; nothing was written")
+    }
+}
+
+/// EEPROM_ERASE, ICD §6.1.4: only a result code of 0 lets the import go on.
+fn erase(client: &mut UnitClient) -> anyhow::Result<()> {
+    let code = client
+        .erase_eeprom()
+        .context("erasing the EEPROM; nothing was erased or written as far as we know")?;
+    if code != 0 {
+        bail!(
+            "the unit answered EEPROM_ERASE with result code {code} (not 0: the erase did \
+             not complete, ICD Table 12); nothing was written"
+        );
+    }
+    eprintln!(
+        "EEPROM erased. The unit reports a data-integrity flag until it is power-cycled \
+         (ICD §6.1.4); that is expected."
+    );
+    Ok(())
+}
+
+/// Writes `steps` in order; on the first failure, says what was and was not applied.
+fn write_steps(
+    client: &mut UnitClient,
+    current: &UnitConfig,
+    steps: &[Step],
+    erased: bool,
+) -> anyhow::Result<()> {
+    let bar = progress_bar(steps.len() as u64, "writing");
+    // What the unit holds after each acknowledged step, to explain a refusal in terms
+    // of the state the unit judged it against.
+    let mut held = current.clone();
+    for (i, step) in steps.iter().enumerate() {
+        bar.set_position(i as u64);
+        let result: Result<(), String> = match *step {
+            Step::Spec { message, .. } => client
+                .send_spec(message, DEFAULT_TIMEOUT, DEFAULT_TRIES)
+                .map_err(|e| match e {
+                    SpecError::Refused { error, .. } => {
+                        format!("{e}. {}", validate::explain(error, &held, &message))
+                    }
+                    e => e.to_string(),
+                }),
+            Step::Enable { device_id, shown } => match client.set_enable(device_id, shown) {
+                Ok(true) => Ok(()),
+                Ok(false) => Err(format!(
+                    "the unit did not store {step}: read back, it still holds the other value"
+                )),
+                Err(e) => Err(e.to_string()),
+            },
+        };
+        if let Err(why) = result {
+            bar.finish_and_clear();
+            bail!(failure_report(steps, i, &why, erased));
+        }
+        match step.message() {
+            Message::DeviceEnable(e) => held.apply_device_enable(&e),
+            m => {
+                validate::accept(&mut held, &m);
+            }
+        }
+    }
+    bar.finish_and_clear();
+    Ok(())
+}
+
+/// "Stopped at …; applied: …; not applied: …", with a warning when a setting was only
+/// cleared for a moment and its real value never written.
+pub fn failure_report(steps: &[Step], failed: usize, why: &str, erased: bool) -> String {
+    let (applied, not_applied) = steps.split_at(failed);
+    let mut out = format!("restore stopped at {}: {why}", steps[failed]);
+    out.push_str(&format!(
+        "\nApplied ({} of {}):",
+        applied.len(),
+        steps.len()
+    ));
+    if applied.is_empty() {
+        out.push_str("\n  (none)");
+    }
+    for s in applied {
+        out.push_str(&format!("\n  {s}"));
+    }
+    out.push_str(&format!("\nNot applied ({}):", not_applied.len()));
+    for s in not_applied {
+        out.push_str(&format!("\n  {s}"));
+    }
+    for s in applied {
+        if let Step::Spec {
+            message,
+            untie: true,
+        } = s
+        {
+            let what = match message {
+                Message::WigWagSpec(_) => "the unit now has no wig-wag devices",
+                _ => "the unit now has no secondary alternator",
+            };
+            out.push_str(&format!(
+                "\nWarning: {s} was applied but the final value was not: {what}."
+            ));
+        }
+    }
+    if erased {
+        out.push_str(
+            "\nThe EEPROM was erased first: every setting not applied is at its factory default.",
+        );
+    }
+    out
 }
