@@ -1,7 +1,540 @@
-//! The wiring: link, model, UI, control and (optionally) the XFSp gateway.
+//! The wiring: link, model, UI, control and the built-in virtual VP-X.
+//!
+//! Threads, after gitui and bottom:
+//! - the link's reader thread decodes bytes, applies them to the shared model, and
+//!   wakes the main loop over a crossbeam channel;
+//! - an input thread turns terminal events into messages on another channel;
+//! - the main loop selects over input, link wake-ups and a deadline: the earliest
+//!   thing that must happen next (a motor resend, a query batch, a redraw). It
+//!   redraws only when the model or the view changed, or once a second for ages.
+
+mod queries;
+mod terminal;
+
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::{Receiver, Sender, select, unbounded};
+use crossterm::event::Event as TermEvent;
+use ratatui::Terminal;
+use ratatui::backend::Backend;
 
 use crate::cli::PageArgs;
+use crate::control::{Action, Controller, KeyContext, MotorStreamer, StreamerConfig};
+use crate::link::{self, Connector, Link, LinkEvent, LinkHandle, RxItem};
+use crate::model::{Model, Source};
+use crate::protocol::message::Packet;
+use crate::sim::{self, SimHandle, SimOptions};
+use crate::ui::{self, state::Overlay, state::ReleaseMode, state::SortOrder, state::ViewState};
 
-pub fn run(_args: PageArgs) -> anyhow::Result<()> {
-    anyhow::bail!("the page is not built yet")
+pub use queries::{QueryPacer, connect_queries};
+pub use terminal::{TerminalGuard, restore as restore_terminal};
+
+/// The screen is redrawn at most this often (coalescing the 10 Hz FLAP_TRIM_STATUS
+/// with everything else) …
+const MIN_FRAME_GAP: Duration = Duration::from_millis(33);
+/// … and at least this often, so ages tick and COMMUNICATION LOST appears on time
+/// even when nothing arrives.
+const IDLE_REDRAW: Duration = Duration::from_millis(1000);
+/// How long a notice stays on screen.
+const NOTICE_FOR: Duration = Duration::from_secs(5);
+
+/// Why the link woke the main loop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Wake {
+    Data,
+    Connected,
+    LinkDown,
+    WriteError,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    Continue,
+    Quit,
+}
+
+#[derive(Debug, Clone)]
+pub struct AppOptions {
+    /// Longest continuous motor run before the key must be pressed again.
+    pub max_run: Duration,
+    pub release_mode: ReleaseMode,
+}
+
+impl Default for AppOptions {
+    fn default() -> Self {
+        AppOptions {
+            max_run: Duration::from_secs(10),
+            release_mode: ReleaseMode::AutoRepeat,
+        }
+    }
+}
+
+/// The page: everything but the terminal and the input thread, so tests can drive it
+/// with synthetic keys and a `TestBackend`.
+pub struct App {
+    model: Arc<Mutex<Model>>,
+    view: ViewState,
+    controller: Controller,
+    link: Option<Link>,
+    handle: LinkHandle,
+    wake_rx: Receiver<Wake>,
+    pacer: QueryPacer,
+    notice_until: Option<Instant>,
+    dirty: bool,
+    last_draw: Option<Instant>,
+    drawn_revision: u64,
+}
+
+impl App {
+    pub fn new(source: Source, connector: Connector, options: AppOptions) -> App {
+        let model = Arc::new(Mutex::new(Model::new(source)));
+        let (wake_tx, wake_rx) = unbounded();
+        let link = Link::start(connector, link_sink(model.clone(), wake_tx));
+        let handle = link.handle();
+        let config = StreamerConfig {
+            max_run: options.max_run,
+            release_mode: options.release_mode,
+            ..Default::default()
+        };
+        let view = ViewState {
+            release_mode: options.release_mode,
+            ..Default::default()
+        };
+        App {
+            model,
+            view,
+            controller: Controller::new(config),
+            link: Some(link),
+            handle,
+            wake_rx,
+            pacer: QueryPacer::default(),
+            notice_until: None,
+            dirty: true,
+            last_draw: None,
+            drawn_revision: 0,
+        }
+    }
+
+    pub fn model(&self) -> MutexGuard<'_, Model> {
+        lock(&self.model)
+    }
+
+    pub fn view(&self) -> &ViewState {
+        &self.view
+    }
+
+    pub fn link_handle(&self) -> LinkHandle {
+        self.handle.clone()
+    }
+
+    /// Wake-ups from the link, for a select loop.
+    pub fn wakes(&self) -> &Receiver<Wake> {
+        &self.wake_rx
+    }
+
+    fn send(&self, packets: Vec<Packet>) {
+        for p in packets {
+            // A closed link has already been reported to the model.
+            let _ = self.handle.send(p);
+        }
+    }
+
+    fn set_notice(&mut self, now: Instant, notice: Option<String>) {
+        if let Some(n) = notice {
+            self.view.notice = Some(n);
+            self.notice_until = Some(now + NOTICE_FOR);
+            self.dirty = true;
+        }
+    }
+
+    /// A terminal event: keys, focus, resize.
+    pub fn handle_term_event(&mut self, event: TermEvent, now: Instant) -> Flow {
+        self.dirty = true;
+        match event {
+            TermEvent::Key(key) => {
+                let shared = self.model.clone();
+                let outcome = {
+                    let model = lock(&shared);
+                    let rows = ui::ordered_circuits(&model, &self.view, now);
+                    let ctx = KeyContext::from_view(&self.view, &rows);
+                    let outcome = self.controller.handle_key(key, &ctx, &model, now);
+                    if let Some(action) = &outcome.action {
+                        self.apply_view_action(action, &rows);
+                    }
+                    outcome
+                };
+                self.send(outcome.packets);
+                self.set_notice(now, outcome.notice);
+                self.view.motor_run = self.controller.running();
+                if outcome.action == Some(Action::Quit) {
+                    return Flow::Quit;
+                }
+            }
+            TermEvent::FocusLost => {
+                let p = self.controller.on_focus_lost(now);
+                self.send(p);
+                let n = self.controller.take_notice();
+                self.set_notice(now, n);
+                self.view.motor_run = self.controller.running();
+            }
+            _ => {}
+        }
+        Flow::Continue
+    }
+
+    fn apply_view_action(&mut self, action: &Action, rows: &[crate::model::Circuit]) {
+        let pos = self
+            .view
+            .selected
+            .and_then(|id| rows.iter().position(|c| c.id == id));
+        match action {
+            Action::SelectNext => {
+                let next = pos.map_or(0, |p| (p + 1).min(rows.len().saturating_sub(1)));
+                self.view.selected = rows.get(next).map(|c| c.id);
+            }
+            Action::SelectPrev => {
+                let prev = pos.map_or(0, |p| p.saturating_sub(1));
+                self.view.selected = rows.get(prev).map(|c| c.id);
+            }
+            Action::ToggleSort => {
+                self.view.sort = match self.view.sort {
+                    SortOrder::Pin => SortOrder::Alphabetical,
+                    SortOrder::Alphabetical => SortOrder::Pin,
+                }
+            }
+            Action::ToggleHelp => {
+                self.view.overlay = if self.view.overlay == Overlay::Help {
+                    Overlay::None
+                } else {
+                    Overlay::Help
+                }
+            }
+            Action::CloseOverlay => self.view.overlay = Overlay::None,
+            _ => {}
+        }
+    }
+
+    /// Something arrived from the link.
+    pub fn on_wake(&mut self, wake: Wake, now: Instant) {
+        match wake {
+            Wake::Connected => self.pacer.start(now),
+            Wake::LinkDown => self.pacer.stop(),
+            Wake::WriteError => {
+                let p = self.controller.on_link_error(now);
+                self.send(p);
+                let n = self.controller.take_notice();
+                self.set_notice(now, n);
+            }
+            Wake::Data => {}
+        }
+        // Received packets may carry a motor fault: let the controller look now.
+        self.tick(now);
+    }
+
+    /// Everything time-driven: motor resends and dead-man timeouts, query batches,
+    /// notice expiry, and whether the screen needs a redraw.
+    pub fn tick(&mut self, now: Instant) {
+        let packets = {
+            let model = lock(&self.model);
+            if model.revision() != self.drawn_revision {
+                self.dirty = true;
+            }
+            self.controller.tick(&model, now)
+        };
+        self.send(packets);
+        let n = self.controller.take_notice();
+        self.set_notice(now, n);
+        let controller = &mut self.controller;
+        let queries = self.pacer.due(now, || controller.next_cnt());
+        self.send(queries);
+        if self.notice_until.is_some_and(|t| now >= t) {
+            self.view.notice = None;
+            self.notice_until = None;
+            self.dirty = true;
+        }
+        let run = self.controller.running();
+        if run != self.view.motor_run {
+            self.view.motor_run = run;
+            self.dirty = true;
+        }
+        if self
+            .last_draw
+            .is_none_or(|t| now.saturating_duration_since(t) >= IDLE_REDRAW)
+        {
+            self.dirty = true;
+        }
+    }
+
+    /// The earliest moment the main loop must call [`App::tick`] again.
+    pub fn next_deadline(&self, now: Instant) -> Instant {
+        let redraw = match self.last_draw {
+            Some(t) if self.dirty => t + MIN_FRAME_GAP,
+            Some(t) => t + IDLE_REDRAW,
+            None => now,
+        };
+        [
+            self.controller.next_deadline(),
+            self.pacer.next_deadline(),
+            self.notice_until,
+            Some(redraw),
+        ]
+        .into_iter()
+        .flatten()
+        .min()
+        .unwrap_or(now + IDLE_REDRAW)
+    }
+
+    /// Draws if something changed and the last frame is old enough.
+    pub fn draw_if_needed<B: Backend>(
+        &mut self,
+        terminal: &mut Terminal<B>,
+        now: Instant,
+    ) -> std::io::Result<bool> {
+        if !self.dirty
+            || self
+                .last_draw
+                .is_some_and(|t| now.saturating_duration_since(t) < MIN_FRAME_GAP)
+        {
+            return Ok(false);
+        }
+        self.draw(terminal, now)?;
+        Ok(true)
+    }
+
+    /// Draws now.
+    pub fn draw<B: Backend>(
+        &mut self,
+        terminal: &mut Terminal<B>,
+        now: Instant,
+    ) -> std::io::Result<()> {
+        let model = lock(&self.model);
+        if self.view.selected.is_none() {
+            self.view.selected = ui::ordered_circuits(&model, &self.view, now)
+                .first()
+                .map(|c| c.id);
+        }
+        terminal
+            .draw(|f| ui::render(f, &model, &self.view, now))
+            .map_err(|e| std::io::Error::other(e.to_string()))?;
+        self.drawn_revision = model.revision();
+        drop(model);
+        self.dirty = false;
+        self.last_draw = Some(now);
+        Ok(())
+    }
+
+    /// Runs the link and timers (no input) until `until`: for tests and for replay.
+    pub fn pump_until(&mut self, until: Instant) {
+        loop {
+            let now = Instant::now();
+            if now >= until {
+                return;
+            }
+            let deadline = self.next_deadline(now).min(until);
+            select! {
+                recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
+                default(deadline.saturating_duration_since(now)) => {}
+            }
+            self.tick(Instant::now());
+            // Keep the draw bookkeeping moving as the real loop would.
+            if self.dirty {
+                self.last_draw = Some(Instant::now());
+                self.dirty = false;
+            }
+        }
+    }
+
+    /// Stops any motor, lets the writer flush, and closes the link.
+    pub fn shutdown(mut self) {
+        self.stop_everything();
+    }
+
+    fn stop_everything(&mut self) {
+        let now = Instant::now();
+        let p = self.controller.on_quit(now);
+        self.send(p);
+        if let Some(link) = self.link.take() {
+            // Queued packets (the stop above) are written before the link closes.
+            link.shutdown();
+        }
+    }
+
+    /// The select loop over input, link wake-ups and deadlines.
+    pub fn run<B: Backend>(
+        &mut self,
+        terminal: &mut Terminal<B>,
+        input: &Receiver<TermEvent>,
+    ) -> anyhow::Result<()> {
+        loop {
+            let now = Instant::now();
+            self.tick(now);
+            self.draw_if_needed(terminal, now)?;
+            let deadline = self.next_deadline(Instant::now());
+            select! {
+                recv(input) -> ev => match ev {
+                    Ok(ev) => {
+                        if self.handle_term_event(ev, Instant::now()) == Flow::Quit {
+                            return Ok(());
+                        }
+                    }
+                    Err(_) => anyhow::bail!("the terminal input stopped"),
+                },
+                recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
+                default(deadline.saturating_duration_since(Instant::now())) => {}
+            }
+            // Drain what else is waiting so a burst is one redraw.
+            while let Ok(w) = self.wake_rx.try_recv() {
+                self.on_wake(w, Instant::now());
+            }
+        }
+    }
+}
+
+impl Drop for App {
+    /// The drop guard: whatever path leaves the page, a running motor gets its stop.
+    fn drop(&mut self) {
+        self.stop_everything();
+    }
+}
+
+fn lock(m: &Mutex<Model>) -> MutexGuard<'_, Model> {
+    // A panic elsewhere while holding the lock must not also take the page down.
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+/// The link's callback: applies what it sees to the model, then wakes the loop.
+fn link_sink(
+    model: Arc<Mutex<Model>>,
+    wake: Sender<Wake>,
+) -> impl Fn(LinkEvent) + Send + Sync + 'static {
+    move |ev| {
+        let w = {
+            let mut m = lock(&model);
+            match ev {
+                LinkEvent::Connected { port } => {
+                    m.note_connected(Instant::now(), port);
+                    Some(Wake::Connected)
+                }
+                LinkEvent::Disconnected { reason } | LinkEvent::OpenFailed { reason } => {
+                    m.note_link_lost(Instant::now(), reason);
+                    Some(Wake::LinkDown)
+                }
+                LinkEvent::Bytes { .. } => None,
+                LinkEvent::Rx {
+                    at, item, stats, ..
+                } => {
+                    m.note_decoder(stats);
+                    match item {
+                        RxItem::Packet(p) => m.apply_packet(at, &p),
+                        RxItem::Malformed(_) => m.note_malformed(),
+                        _ => {}
+                    }
+                    Some(Wake::Data)
+                }
+                LinkEvent::Tx { at, packet, .. } => {
+                    if let Some(p) = packet {
+                        m.note_sent(at, &p);
+                    }
+                    None
+                }
+                LinkEvent::WriteError { at, reason } => {
+                    m.note_write_error(at, reason);
+                    Some(Wake::WriteError)
+                }
+            }
+        };
+        if let Some(w) = w {
+            let _ = wake.send(w);
+        }
+    }
+}
+
+/// Starts the built-in virtual VP-X on one end of an in-process pipe.
+pub fn builtin_sim(scenario: &str) -> anyhow::Result<(Source, Connector, SimHandle)> {
+    let scenario_data = sim::load_scenario(scenario)?;
+    let (ours, theirs) = link::duplex_pipe(Duration::from_millis(50));
+    let sim = sim::spawn(
+        SimOptions::new(scenario_data),
+        Box::new(theirs.reader),
+        Box::new(theirs.writer),
+    );
+    let connector = link::pipe_connector(ours, "built-in virtual VP-X");
+    Ok((
+        Source::Simulated {
+            scenario: scenario.to_string(),
+        },
+        connector,
+        sim,
+    ))
+}
+
+/// `vpx-efis` with no subcommand: the page.
+pub fn run(args: PageArgs) -> anyhow::Result<()> {
+    if args.replay.is_some() {
+        anyhow::bail!("replay is not available in this build yet");
+    }
+    let mut sim = None;
+    let (source, connector) = match &args.port.port {
+        Some(path) => {
+            // Fail before taking over the terminal, with the likely fix in words.
+            drop(link::open_serial(path, args.port.baud)?);
+            let connector = link::serial_connector(path.clone(), args.port.baud);
+            (
+                Source::Serial {
+                    path: path.display().to_string(),
+                },
+                connector,
+            )
+        }
+        None => {
+            let (source, connector, handle) = builtin_sim(&args.port.scenario)?;
+            sim = Some(handle);
+            (source, connector)
+        }
+    };
+    if !(args.max_run > 0.0 && args.max_run.is_finite()) {
+        anyhow::bail!("--max-run must be a positive number of seconds");
+    }
+    let mut guard = TerminalGuard::enter()?;
+    let options = AppOptions {
+        max_run: Duration::from_secs_f64(args.max_run),
+        release_mode: if guard.key_release {
+            ReleaseMode::KeyRelease
+        } else {
+            ReleaseMode::AutoRepeat
+        },
+    };
+    let mut app = App::new(source, connector, options);
+    let handle = app.link_handle();
+    terminal::set_emergency_stop(move || {
+        for p in MotorStreamer::emergency_stop_packets() {
+            let _ = handle.send(p);
+        }
+        // Give the writer thread a moment to put the stops on the wire.
+        std::thread::sleep(Duration::from_millis(50));
+    });
+    let input = spawn_input_thread();
+    let result = app.run(&mut guard.terminal, &input);
+    app.shutdown();
+    terminal::clear_emergency_stop();
+    drop(guard);
+    if let Some(sim) = sim {
+        sim.stop();
+    }
+    result
+}
+
+fn spawn_input_thread() -> Receiver<TermEvent> {
+    let (tx, rx) = unbounded();
+    let _ = std::thread::Builder::new()
+        .name("input".into())
+        .spawn(move || {
+            while let Ok(ev) = crossterm::event::read() {
+                if tx.send(ev).is_err() {
+                    return;
+                }
+            }
+        });
+    rx
 }

@@ -249,6 +249,9 @@ pub struct Model {
     pub link: LinkHealth,
     pub history: VecDeque<BusSample>,
     pub events: VecDeque<LogEntry>,
+    /// Bumped whenever something a screen could show changes, so the page redraws
+    /// only then (and once a second for ages).
+    revision: u64,
 }
 
 impl Model {
@@ -275,14 +278,28 @@ impl Model {
             link: LinkHealth::default(),
             history: VecDeque::with_capacity(HISTORY_LEN),
             events: VecDeque::with_capacity(EVENT_LOG_LEN),
+            revision: 0,
         }
     }
 
     // ----- feeding the model -----
 
+    /// Changes whenever something shown may have changed.
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+
     /// Records a packet received from the unit.
     pub fn apply_packet(&mut self, at: Instant, packet: &Packet) {
         bump(&mut self.link.rx, packet.message.name(), at);
+        // The 10 Hz FLAP_TRIM_STATUS mostly repeats itself; only a change is news.
+        let unchanged = matches!(
+            (&packet.message, &self.flap_trim),
+            (Message::FlapTrimStatus(new), Some(old)) if *new == old.value
+        );
+        if !unchanged {
+            self.revision += 1;
+        }
         match packet.message {
             Message::SystemStatus(s) => {
                 if self.history.len() == HISTORY_LEN {
@@ -361,6 +378,7 @@ impl Model {
     pub fn note_connected(&mut self, at: Instant, port: String) {
         self.log(at, LogLevel::Info, format!("connected to {port}"));
         self.connection = Connection::Connected { port, since: at };
+        self.revision += 1;
     }
 
     pub fn note_link_lost(&mut self, at: Instant, reason: String) {
@@ -368,6 +386,7 @@ impl Model {
             self.log(at, LogLevel::Alert, format!("link lost: {reason}"));
         }
         self.connection = Connection::Lost { reason, since: at };
+        self.revision += 1;
     }
 
     pub fn note_write_error(&mut self, at: Instant, reason: String) {
@@ -385,6 +404,7 @@ impl Model {
     }
 
     pub fn log(&mut self, at: Instant, level: LogLevel, text: String) {
+        self.revision += 1;
         if self.events.len() == EVENT_LOG_LEN {
             self.events.pop_front();
         }
