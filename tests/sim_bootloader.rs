@@ -19,7 +19,7 @@ fn update_then_exit_sets_the_software_update_flag() {
         c.poll();
     }
     c.pump(std::time::Duration::from_millis(300));
-    let mut exchange = |c: &mut sim_common::Client, cmd: BootCommand, n: usize| {
+    let exchange = |c: &mut sim_common::Client, cmd: BootCommand, n: usize| {
         let from = c.raw.len();
         c.send_raw(&cmd.emit());
         c.raw_after(from, n)
