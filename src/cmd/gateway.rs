@@ -1,5 +1,284 @@
-use crate::cli::GatewayArgs;
+//! `vpx-efis gateway`: the XFSp bridge with no terminal UI, for a box that only bridges.
+//!
+//! Link → model (every received packet applied, every connection event noted) →
+//! gateway → UDP, and commands from the network back to the unit. One line per notable
+//! event (the model's event log: connection, faults, every network command) goes to
+//! standard error. Without `--port` the built-in virtual VP-X runs over an in-process
+//! pipe. Runs until SIGINT/SIGTERM, then stops any motor it was running.
 
-pub fn run(_args: GatewayArgs) -> anyhow::Result<()> {
-    anyhow::bail!("`gateway` is not built yet")
+use std::io::Write;
+use std::net::Ipv4Addr;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use crossbeam_channel::{select, unbounded};
+
+use crate::cli::GatewayArgs;
+use crate::link::{
+    CaptureWriter, Connector, Link, LinkEvent, RxItem, duplex_pipe, pipe_connector,
+    serial_connector,
+};
+use crate::model::{LogEntry, LogLevel, Model, Source};
+use crate::protocol::message::Packet;
+use crate::sim::{self, SimHandle, SimOptions};
+use crate::xfsp::CertLevel;
+use crate::xfsp::gateway::{Gateway, GatewayConfig};
+use crate::xfsp::net::{Target, XfspNet};
+
+/// The longest the loop sleeps, so a stop request is noticed promptly.
+const MAX_WAIT: Duration = Duration::from_millis(100);
+
+/// Everything the bridge needs, independent of the command line (tests build it).
+#[derive(Debug, Clone)]
+pub struct BridgeOptions {
+    /// A serial path, or `None` for the built-in virtual VP-X.
+    pub port: Option<PathBuf>,
+    pub baud: u32,
+    pub scenario: String,
+    pub target: Target,
+    pub iface: Ipv4Addr,
+    pub gateway: GatewayConfig,
+    pub record: Option<PathBuf>,
+}
+
+impl BridgeOptions {
+    pub fn from_args(args: &GatewayArgs) -> anyhow::Result<BridgeOptions> {
+        let target = args
+            .xfsp
+            .xfsp
+            .as_deref()
+            .unwrap_or(crate::xfsp::net::DEFAULT_TARGET);
+        Ok(BridgeOptions {
+            port: args.port.port.clone(),
+            baud: args.port.baud,
+            scenario: args.port.scenario.clone(),
+            target: Target::parse(target).map_err(anyhow::Error::msg)?,
+            iface: args.xfsp.xfsp_iface.parse().with_context(|| {
+                format!(
+                    "--xfsp-iface {:?} is not an IPv4 address",
+                    args.xfsp.xfsp_iface
+                )
+            })?,
+            gateway: GatewayConfig {
+                source_id: args.xfsp.xfsp_source_id,
+                cert: CertLevel::from(args.xfsp.xfsp_cert),
+                ..GatewayConfig::default()
+            },
+            record: args.record.clone(),
+        })
+    }
+}
+
+static STOP: AtomicBool = AtomicBool::new(false);
+
+extern "C" fn on_signal(_: libc::c_int) {
+    STOP.store(true, Ordering::SeqCst);
+}
+
+pub fn run(args: GatewayArgs) -> anyhow::Result<()> {
+    let opts = BridgeOptions::from_args(&args)?;
+    // SAFETY: the handler only stores to an atomic, which is async-signal-safe.
+    unsafe {
+        libc::signal(libc::SIGINT, on_signal as *const () as libc::sighandler_t);
+        libc::signal(libc::SIGTERM, on_signal as *const () as libc::sighandler_t);
+    }
+    run_bridge(&opts, &STOP, |line| eprintln!("vpx-efis gateway: {line}"))
+}
+
+/// Runs the bridge until `stop` is set. `say` gets one line per notable event.
+pub fn run_bridge(
+    opts: &BridgeOptions,
+    stop: &AtomicBool,
+    mut say: impl FnMut(&str),
+) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let (connector, source, _sim): (Connector, Source, Option<SimHandle>) = match &opts.port {
+        Some(p) => (
+            serial_connector(p.clone(), opts.baud),
+            Source::Serial {
+                path: p.display().to_string(),
+            },
+            None,
+        ),
+        None => {
+            let scenario = sim::load_scenario(&opts.scenario)?;
+            let (page_end, unit_end) = duplex_pipe(Duration::from_millis(50));
+            let handle = sim::spawn(
+                SimOptions::new(scenario),
+                Box::new(unit_end.reader),
+                Box::new(unit_end.writer),
+            );
+            (
+                pipe_connector(page_end, "virtual VP-X"),
+                Source::Simulated {
+                    scenario: opts.scenario.clone(),
+                },
+                Some(handle),
+            )
+        }
+    };
+    let mut capture = match &opts.record {
+        Some(path) => Some(
+            std::fs::File::create(path)
+                .and_then(|f| CaptureWriter::new(f, start))
+                .with_context(|| format!("cannot write the capture file {}", path.display()))?,
+        ),
+        None => None,
+    };
+    let net = XfspNet::open(&opts.target, opts.iface)
+        .with_context(|| format!("cannot open XFSp {} on {}", opts.target, opts.iface))?;
+    say(&format!(
+        "XFSp {} from {}, source id {:#06x}, {:?}{}",
+        opts.target,
+        net.local_addr()
+            .map_or_else(|_| "?".to_string(), |a| a.to_string()),
+        opts.gateway.source_id,
+        opts.gateway.cert,
+        match &source {
+            Source::Simulated { scenario } => format!(", SIMULATED VP-X ({scenario})"),
+            Source::Serial { path } => format!(", VP-X on {path}"),
+            Source::Replay { file } => format!(", replay {file}"),
+        }
+    ));
+
+    let (ev_tx, ev_rx) = unbounded();
+    let link = Link::start(connector, move |e| {
+        let _ = ev_tx.send(e);
+    });
+    let unit = link.handle();
+    let mut model = Model::new(source);
+    let mut gw = Gateway::new(opts.gateway.clone(), start);
+    let mut printed: Option<LogEntry> = None;
+    let mut net_error_said = false;
+
+    while !stop.load(Ordering::SeqCst) {
+        let now = Instant::now();
+        let wait = gw
+            .next_deadline()
+            .saturating_duration_since(now)
+            .min(MAX_WAIT);
+        let mut to_unit: Vec<Packet> = Vec::new();
+        let mut events = Vec::new();
+        select! {
+            recv(ev_rx) -> e => if let Ok(e) = e { events.push(e) },
+            recv(net.incoming()) -> d => if let Ok(d) = d {
+                to_unit.extend(gw.receive(&d.bytes, &mut model, d.at));
+            },
+            default(wait) => {},
+        }
+        events.extend(ev_rx.try_iter());
+        for e in events {
+            apply(&mut model, &mut gw, &mut capture, e, &mut to_unit);
+        }
+        while let Ok(d) = net.incoming().try_recv() {
+            to_unit.extend(gw.receive(&d.bytes, &mut model, d.at));
+        }
+        let step = gw.tick(&mut model, Instant::now());
+        to_unit.extend(step.to_unit);
+        for p in to_unit {
+            let _ = unit.send(p);
+        }
+        match net.send_all(&step.datagrams) {
+            Err(e) if !net_error_said => {
+                say(&format!("cannot send on XFSp: {e}"));
+                net_error_said = true;
+            }
+            Ok(()) if !step.datagrams.is_empty() => net_error_said = false,
+            _ => {}
+        }
+        print_new_events(&model, &mut printed, &mut say);
+    }
+
+    let now = Instant::now();
+    for p in gw.shutdown(&mut model, now) {
+        let _ = unit.send(p);
+    }
+    print_new_events(&model, &mut printed, &mut say);
+    let s = gw.stats();
+    say(&format!(
+        "stopped: {} datagrams sent, received {} fresh, {} duplicate, {} out of order, {} malformed; {} commands taken, {} refused",
+        s.datagrams_built,
+        s.rx.fresh,
+        s.rx.duplicate,
+        s.rx.out_of_order,
+        s.rx.malformed,
+        s.commands_taken,
+        s.commands_refused
+    ));
+    // Writes whatever is queued (the stop messages) before the threads end.
+    link.shutdown();
+    if let Some(c) = capture.as_mut() {
+        let _ = c.flush(Instant::now());
+    }
+    Ok(())
+}
+
+fn apply(
+    model: &mut Model,
+    gw: &mut Gateway,
+    capture: &mut Option<CaptureWriter<std::fs::File>>,
+    e: LinkEvent,
+    to_unit: &mut Vec<Packet>,
+) {
+    let now = Instant::now();
+    match e {
+        LinkEvent::Rx {
+            at, item, stats, ..
+        } => {
+            model.note_decoder(stats);
+            match item {
+                RxItem::Packet(p) => model.apply_packet(at, &p),
+                RxItem::Malformed(_) => model.note_malformed(),
+                _ => {}
+            }
+        }
+        LinkEvent::Connected { port } => model.note_connected(now, port),
+        LinkEvent::Disconnected { reason } | LinkEvent::OpenFailed { reason } => {
+            model.note_link_lost(now, reason)
+        }
+        LinkEvent::Tx {
+            at,
+            packet: Some(p),
+            ..
+        } => model.note_sent(at, &p),
+        LinkEvent::Tx { .. } => {}
+        LinkEvent::WriteError { at, reason } => {
+            model.note_write_error(at, reason);
+            to_unit.extend(gw.on_link_error(model, at));
+        }
+        LinkEvent::Bytes { at, dir, bytes } => {
+            if let Some(c) = capture.as_mut()
+                && let Err(e) = c.record(at, dir, &bytes)
+            {
+                model.note_write_error(at, format!("capture file: {e}"));
+                *capture = None;
+            }
+        }
+    }
+}
+
+/// Says each model log entry once, in order.
+fn print_new_events(model: &Model, printed: &mut Option<LogEntry>, say: &mut impl FnMut(&str)) {
+    let from = printed
+        .as_ref()
+        .and_then(|last| model.events.iter().rposition(|e| e == last))
+        .map_or(0, |i| i + 1);
+    for e in model.events.iter().skip(from) {
+        say(&format!("{}{}", prefix(e.level), e.text));
+    }
+    if let Some(last) = model.events.back() {
+        *printed = Some(last.clone());
+    }
+    let _ = std::io::stderr().flush();
+}
+
+/// Alerts stand out in a log file; plain information needs no word.
+fn prefix(level: LogLevel) -> &'static str {
+    match level {
+        LogLevel::Info => "",
+        LogLevel::Warning => "warning: ",
+        LogLevel::Alert => "ALERT: ",
+    }
 }

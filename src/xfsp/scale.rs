@@ -150,12 +150,10 @@ impl Axis {
     }
 }
 
-/// `d / span` of full scale, rounded to nearest.
+/// `d / span` of full scale, rounded to nearest (`span` is never 0 here).
 fn ratio(d: i32, span: i32) -> i32 {
-    let num = i64::from(d) * i64::from(FULL_SCALE);
-    let span = i64::from(span);
-    let q = (2 * num + span.signum() * num.signum() * span.abs()) / (2 * span);
-    q.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+    // Both fit f64 exactly; the result is clamped by the caller.
+    (f64::from(d) * f64::from(FULL_SCALE) / f64::from(span)).round() as i32
 }
 
 #[cfg(test)]
