@@ -856,3 +856,17 @@ fn connection_state_kept_on_the_model() {
             .any(|c| c.state == vpx_efis::model::CircuitState::Fault(FaultCode::ShortCircuit))
     );
 }
+
+#[test]
+fn short_terminal_scrolls_the_list_to_the_selection_and_says_what_is_hidden() {
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &view_selecting(TRIM_P), now, 80, 24);
+    insta::assert_snapshot!(text(&buf));
+    let t = text(&buf);
+    assert!(t.contains("▲"), "{t}");
+    let (x, y) = find(&buf, "Trim_P", "▶");
+    assert_eq!(x, 0);
+    assert!(buf[(1, y)].bg == Color::Indexed(236), "selected row highlighted");
+    // Scrolled to the bottom: nothing below, so no ▼.
+    assert!(!t.contains("▼"), "{t}");
+}

@@ -86,18 +86,19 @@ fn group_header(text: &'static str) -> Row<'static> {
 }
 
 pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState) {
-    let mut table_rows = Vec::with_capacity(rows.len() + 1);
+    // `None` is the flaps & trim group header.
+    let mut lines: Vec<Option<&Circuit>> = Vec::with_capacity(rows.len() + 1);
     let mut selected_index = None;
     let mut in_motors = false;
     for c in rows {
         if is_motor(c) && !in_motors {
             in_motors = true;
-            table_rows.push(group_header("flaps & trim"));
+            lines.push(None);
         }
         if view.selected == Some(c.id) {
-            selected_index = Some(table_rows.len());
+            selected_index = Some(lines.len());
         }
-        table_rows.push(row(c));
+        lines.push(Some(c));
     }
     let sort = match view.sort {
         SortOrder::Pin => "by pin",
@@ -118,8 +119,15 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState)
     // the title can say how many rows are off screen: a short terminal must never
     // hide a device silently.
     let visible = area.height.saturating_sub(2) as usize;
-    let total = table_rows.len();
+    let total = lines.len();
     let offset = selected_index.map_or(0, |i| (i + 1).saturating_sub(visible));
+    // Only the rows on screen are built: the list is the widest part of the frame.
+    let table_rows: Vec<Row> = lines
+        .iter()
+        .skip(offset)
+        .take(visible)
+        .map(|l| l.map_or_else(|| group_header("flaps/trim"), row))
+        .collect();
     let below = total.saturating_sub(offset + visible);
     let mut more = Vec::new();
     if offset > 0 {
@@ -147,8 +155,6 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState)
         .row_highlight_style(theme::selected_row())
         .highlight_symbol("▶")
         .highlight_spacing(HighlightSpacing::Always);
-    let mut state = TableState::new()
-        .with_offset(offset)
-        .with_selected(selected_index);
+    let mut state = TableState::new().with_selected(selected_index.map(|i| i - offset));
     frame.render_stateful_widget(table, area, &mut state);
 }

@@ -42,7 +42,7 @@ pub fn render(frame: &mut Frame, view: &ViewState) {
     let area = frame.area();
     let width = (KEYS
         .iter()
-        .map(|(k, d)| 10 + d.chars().count())
+        .map(|(_, d)| 10 + d.chars().count())
         .max()
         .unwrap_or(40) as u16
         + 6)

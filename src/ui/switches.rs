@@ -6,7 +6,7 @@ use std::time::Instant;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
+use ratatui::widgets::{Block, Borders, Paragraph};
 
 use super::theme;
 use crate::model::Model;
@@ -69,9 +69,8 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         .border_style(theme::border())
         .title(Span::styled(" Switch inputs ", theme::panel_title()));
     frame.render_widget(
-        Paragraph::new(lines)
-            .block(block)
-            .wrap(Wrap { trim: false }),
+        // Lines are laid out above for the width; no wrapping needed.
+        Paragraph::new(lines).block(block),
         area,
     );
 }

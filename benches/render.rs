@@ -1,0 +1,198 @@
+//! The page's two per-update costs: drawing a full frame, and folding a second of the
+//! unit's broadcasts into the model.
+//!
+//! The frame is 120×40 with a fully configured unit and ten minutes of bus history, so
+//! every widget (device list, gauges, plot over a full window) has work to do. The goal
+//! is ≤ 200 µs, which keeps redrawing on every change far below 1 % of a core.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use vpx_efis::model::{Model, Source};
+use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS};
+use vpx_efis::protocol::message::{
+    DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FaultStatus, FlapFlags,
+    FlapTrimStatus, MiscFlags, SignedTenths, SwitchId, SwitchInputs, SystemFaultFlags,
+    SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
+};
+use vpx_efis::protocol::{FaultCode, Message, Packet};
+use vpx_efis::ui::state::ViewState;
+
+fn system(i: u64) -> SystemStatus {
+    SystemStatus {
+        system_current: Tenths(140 + (i % 13) as u16),
+        main_bus_volts: SignedTenths(135 + (i % 7) as i16),
+        aux_battery_volts: Tenths(126),
+        internal_temp: 33,
+        switches: SwitchInputs::from_word(0x00FF),
+        misc: MiscFlags {
+            starter_annunciator: false,
+            wig_wag_mode: WigWagModeSetting::Auto,
+            software_update: false,
+            wig_wag_active: false,
+        },
+        faults: SystemFaultFlags::default(),
+        data_integrity_code: None,
+    }
+}
+
+fn devices() -> DeviceStatus {
+    let mut d = DeviceStatus {
+        on: [false; DEVICE_COUNT],
+        current: [Tenths(0); DEVICE_COUNT],
+    };
+    for id in (2..29).step_by(2) {
+        d.on[id] = true;
+        d.current[id] = Tenths(10 + id as u16);
+    }
+    d
+}
+
+fn flap_trim(i: u64) -> FlapTrimStatus {
+    let on = TrimFlags {
+        enabled: true,
+        ..Default::default()
+    };
+    FlapTrimStatus {
+        flap: FlapFlags {
+            enabled: true,
+            ..Default::default()
+        },
+        pitch_trim: on,
+        roll_trim: on,
+        flap_position: 20 + (i % 200) as u8,
+        pitch_trim_position: 128,
+        roll_trim_position: 120,
+        flap_fault: FaultCode::NoFault,
+        pitch_trim_fault: FaultCode::NoFault,
+        roll_trim_fault: FaultCode::NoFault,
+        flap_up: 20,
+        flap_down: 220,
+        flap_midpoint_1: 90,
+        flap_midpoint_2: 160,
+        pitch_trim_up: 30,
+        pitch_trim_down: 230,
+        pitch_trim_neutral: 128,
+        roll_trim_up: 40,
+        roll_trim_down: 200,
+        roll_trim_neutral: 120,
+    }
+}
+
+fn fault() -> FaultStatus {
+    let mut f = FaultStatus {
+        faulted: [false; DEVICE_COUNT],
+        system_fault: false,
+        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+    };
+    f.faulted[EFIS as usize] = true;
+    f.codes[EFIS as usize] = Some(FaultCode::OverCurrent);
+    f
+}
+
+/// One second of what the unit broadcasts (ICD Table 6), the busier case with a fault:
+/// SYSTEM_STATUS, DEVICE_STATUS and FAULT_STATUS at 1 Hz, FLAP_TRIM_STATUS at 10 Hz.
+fn second(i: u64) -> Vec<(Duration, Packet)> {
+    let mut out = vec![
+        (Duration::ZERO, Packet::from_vpx(0, system(i))),
+        (Duration::ZERO, Packet::from_vpx(1, devices())),
+        (Duration::from_millis(5), Packet::from_vpx(2, fault())),
+    ];
+    for k in 0..10u64 {
+        out.push((
+            Duration::from_millis(k * 100),
+            Packet::from_vpx(3 + k as u8, flap_trim(i * 10 + k)),
+        ));
+    }
+    out
+}
+
+/// A configured unit with ten minutes of history; returns the model and "now".
+fn configured() -> (Model, Instant) {
+    let t0 = Instant::now();
+    let mut m = Model::new(Source::Simulated {
+        scenario: "bench".into(),
+    });
+    m.note_connected(t0, "bench".into());
+    let setup: Vec<Message> = (4..29u8)
+        .flat_map(|id| {
+            [
+                DeviceEnable {
+                    device_id: id,
+                    flag: EnableFlag::Enabled,
+                }
+                .into(),
+                DeviceName::new(id, &format!("Circuit {id}"))
+                    .unwrap()
+                    .into(),
+                DeviceSpec {
+                    device_id: id,
+                    circuit_breaker: 2,
+                    switch_id: SwitchId::Input(id % 10 + 1),
+                    current_fault: true,
+                }
+                .into(),
+            ]
+        })
+        .collect();
+    for msg in setup {
+        m.apply_packet(t0, &Packet::from_vpx(0, msg));
+    }
+    let secs = 600;
+    for i in 0..secs {
+        let at = t0 + Duration::from_secs(i);
+        for (dt, p) in second(i) {
+            m.apply_packet(at + dt, &p);
+        }
+    }
+    (m, t0 + Duration::from_millis(secs * 1000 - 600))
+}
+
+fn bench(c: &mut Criterion) {
+    let (model, now) = configured();
+    let view = ViewState {
+        selected: Some(EFIS),
+        ..Default::default()
+    };
+    let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
+    c.bench_function("render 120x40 full frame", |b| {
+        b.iter(|| {
+            // Clearing first makes every cell differ, so this is a full redraw, not
+            // an empty diff.
+            terminal.clear().unwrap();
+            terminal
+                .draw(|f| vpx_efis::ui::render(f, black_box(&model), &view, now))
+                .unwrap();
+        })
+    });
+
+    c.bench_function("render 120x40 no clear", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| vpx_efis::ui::render(f, black_box(&model), &view, now))
+                .unwrap();
+        })
+    });
+    c.bench_function("clear only", |b| {
+        b.iter(|| {
+            terminal.clear().unwrap();
+            terminal.draw(|_| {}).unwrap();
+        })
+    });
+    let packets = second(7);
+    let mut m = model.clone();
+    let base = now;
+    c.bench_function("apply one second of broadcasts", |b| {
+        b.iter(|| {
+            for (dt, p) in &packets {
+                m.apply_packet(base + *dt, black_box(p));
+            }
+        })
+    });
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
