@@ -1,5 +1,354 @@
-use crate::cli::FlashArgs;
+//! `vpx-efis flash --port PATH FILE.hex`: update the VP-X software (ICD §6.1.3, §7).
+//!
+//! Order, so that nothing reaches the unit that a person has not agreed to:
+//! 1. the whole file is read and checked (refused files never open the port);
+//! 2. the file's hardware (name suffix or `--force-hardware`) is known, or refused;
+//! 3. the support log is opened (a log that cannot be written stops us here);
+//! 4. the port is opened and the unit probed with VERSION (QUERY_PORT only if VERSION
+//!    gets no answer); a hardware mismatch is refused here, before any bootloader frame;
+//! 5. the person confirms, with the §7.3 precautions in front of them (`--yes` skips
+//!    this; without a terminal and without `--yes` we refuse);
+//! 6. the update runs with a progress bar; every byte goes to the log.
+//!
+//! Without `--port` we refuse: flashing the built-in virtual unit would only show the
+//! sim's flash changing inside this process. `vpx-efis sim --pty` gives a virtual VP-X
+//! on a pseudo-terminal whose path can be passed as `--port`, which exercises exactly
+//! the code a real unit gets.
 
-pub fn run(_args: FlashArgs) -> anyhow::Result<()> {
-    anyhow::bail!("`flash` is not built yet")
+use std::fs::{File, OpenOptions};
+use std::io::{BufRead, IsTerminal, LineWriter, Write};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+use anyhow::{Context, bail};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::cli::FlashArgs;
+use crate::flash::hardware::hw_name;
+use crate::flash::{self, Event, Found, Image, Options};
+use crate::link::open_serial;
+use crate::protocol::bootloader::PAGE_SIZE;
+
+pub fn run(args: FlashArgs) -> anyhow::Result<()> {
+    let image = flash::load_hex(&args.file)
+        .with_context(|| format!("refusing {}: it is not a usable image", args.file.display()))?;
+    eprintln!("{}: {}", args.file.display(), image.summary());
+    let file_hw = flash::file_hardware(&args.file, args.force_hardware)?;
+
+    let Some(port_path) = args.port.port.clone() else {
+        bail!(
+            "flash needs the unit's serial port: --port PATH (`vpx-efis ports` lists them). \
+             To try it on the virtual VP-X, run `vpx-efis sim --pty` and pass the path it prints as --port"
+        );
+    };
+    let log_path = args
+        .log
+        .clone()
+        .unwrap_or_else(|| default_log_path(&args.file));
+    let mut log = FlashLog::open(&log_path)?;
+    log.line(&format!(
+        "==== vpx-efis {} flash {} to {} at {} baud",
+        env!("CARGO_PKG_VERSION"),
+        args.file.display(),
+        port_path.display(),
+        args.port.baud
+    ));
+    log.line(&format!("-- image: {}", image.summary()));
+    log.line(&format!(
+        "-- file is for hardware {file_hw}{}",
+        if args.force_hardware.is_some() {
+            " (--force-hardware)"
+        } else {
+            " (file name)"
+        }
+    ));
+
+    let mut port = open_serial(&port_path, args.port.baud)?;
+    let opts = Options::default();
+
+    let found = flash::probe(&mut port, &opts, &mut |e| log.event(&e)).map_err(|e| {
+        log.line(&format!("-- stopped: {e}"));
+        anyhow::anyhow!("{e}")
+    })?;
+    let unit_line = match found {
+        Found::Running(v) => {
+            let unit_hw = v.hardware_version.to_byte();
+            if let Err(e) = flash::check_hardware(&args.file, args.force_hardware, unit_hw) {
+                log.line(&format!(
+                    "-- refused before anything was sent to the bootloader: {e}"
+                ));
+                bail!("{e}\nNothing was sent to the bootloader; the unit still runs its software.");
+            }
+            format!(
+                "hardware {unit_hw} ({}), software {}.{}",
+                hw_name(unit_hw),
+                v.software_major,
+                v.software_minor
+            )
+        }
+        Found::Bootloader => format!(
+            "ALREADY IN ITS BOOTLOADER (an earlier update did not finish). Its hardware version cannot be read \
+             there: make sure it is hardware {file_hw} ({}) before you go on",
+            hw_name(file_hw)
+        ),
+    };
+    eprintln!("unit on {}: {unit_line}", port_path.display());
+
+    if !args.yes && !confirm(&args.file, &image, file_hw, &unit_line, args.port.baud)? {
+        log.line("-- not confirmed: nothing sent to the bootloader");
+        match found {
+            Found::Running(_) => bail!("not confirmed; nothing was changed on the unit"),
+            Found::Bootloader => bail!(
+                "not confirmed. The unit is still in its bootloader and will not run its software until an \
+                 update completes: run the same command again when ready"
+            ),
+        }
+    }
+
+    let pages = image.page_count() as u64;
+    let bar = progress_bar(pages * 2);
+    let started = Instant::now();
+    let result = flash::update(&mut port, &image, found, &opts, &mut |e| {
+        log.event(&e);
+        match e {
+            Event::Progress(p) => {
+                bar.set_length(p.pages as u64 * 2);
+                bar.set_position((p.programmed + p.verified) as u64);
+                bar.set_message(if p.programmed < p.pages {
+                    format!("pass {}: programming", p.pass)
+                } else {
+                    format!("pass {}: verifying", p.pass)
+                });
+            }
+            // Long notes (a page's bytes) are for the log only.
+            Event::Note(n) if n.len() <= 300 => bar.println(format!("  {n}")),
+            _ => {}
+        }
+    });
+    match result {
+        Ok(out) => {
+            bar.finish_with_message("done");
+            let summary = format!(
+                "updated in {:.0} s: the unit reports hardware {} ({}), software {}.{}; bootloader {}.{}; \
+                 {} pages programmed and verified{}{}",
+                started.elapsed().as_secs_f64(),
+                out.version.hardware_version.to_byte(),
+                out.version.hardware_version.name(),
+                out.version.software_major,
+                out.version.software_minor,
+                out.boot_version >> 8,
+                out.boot_version & 0xFF,
+                pages,
+                if out.repaired_pages.is_empty() {
+                    String::new()
+                } else {
+                    format!(
+                        " ({} page(s) repaired: {:?})",
+                        out.repaired_pages.len(),
+                        out.repaired_pages
+                    )
+                },
+                if out.passes > 1 {
+                    format!(" in {} passes", out.passes)
+                } else {
+                    String::new()
+                }
+            );
+            log.line(&format!("-- {summary}"));
+            log.finish();
+            eprintln!("{summary}\nlog: {}", log_path.display());
+            Ok(())
+        }
+        Err(e) => {
+            bar.abandon_with_message("stopped");
+            log.line(&format!("-- STOPPED: {e}"));
+            log.finish();
+            bail!("{e}\nThe whole exchange is in {}", log_path.display())
+        }
+    }
+}
+
+/// `FILE.hex.log`, next to the file.
+pub fn default_log_path(file: &Path) -> PathBuf {
+    let mut s = file.as_os_str().to_owned();
+    s.push(".log");
+    PathBuf::from(s)
+}
+
+/// Time on the wire for the whole update at `baud` (10 bits a byte): FLASH_PROG
+/// frames (5 + 2 + 256 bytes) and their 'P', FLASH_READ frames (9) and their page,
+/// plus a few seconds for the erase.
+fn estimate(pages: usize, baud: u32) -> Duration {
+    let bytes = pages * (5 + 2 + PAGE_SIZE + 1 + 9 + PAGE_SIZE);
+    Duration::from_secs_f64(bytes as f64 * 10.0 / baud.max(1) as f64 + 5.0)
+}
+
+fn confirm(file: &Path, image: &Image, file_hw: u8, unit: &str, baud: u32) -> anyhow::Result<bool> {
+    if !std::io::stdin().is_terminal() {
+        bail!(
+            "not asking for confirmation: standard input is not a terminal. Pass --yes to update without asking"
+        );
+    }
+    let secs = estimate(image.page_count(), baud).as_secs();
+    eprintln!();
+    eprintln!("About to replace the VP-X software.");
+    eprintln!("  unit: {unit}");
+    eprintln!(
+        "  file: {} for hardware {file_hw} ({}), {}",
+        file.display(),
+        hw_name(file_hw),
+        image.summary()
+    );
+    eprintln!("  time: about {} min {} s", secs / 60, secs % 60);
+    eprintln!();
+    eprintln!("PRECAUTIONS (ICD §7.3). Until this command says it is done:");
+    eprintln!("  - NEVER switch off or cycle power to the VP-X;");
+    eprintln!("  - NEVER unplug the serial cable.");
+    eprintln!(
+        "  If either happens the unit will probably not start, and may have to go back to Vertical Power."
+    );
+    eprintln!(
+        "  The aircraft's electrical system is not controlled by the VP-X while the update runs."
+    );
+    eprintln!();
+    eprint!("Type \"yes\" to update: ");
+    std::io::stderr().flush().ok();
+    let mut answer = String::new();
+    std::io::stdin()
+        .lock()
+        .read_line(&mut answer)
+        .context("cannot read the answer")?;
+    Ok(answer.trim().eq_ignore_ascii_case("yes"))
+}
+
+fn progress_bar(len: u64) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template(
+        "{msg:22} [{bar:40}] {pos}/{len} page steps (programmed + verified), {eta} left",
+    ) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}
+
+/// The support log: every frame both ways in hex with a timestamp, every address, and
+/// every decision. Appended to, so the runs of one update (a failure, then the resume)
+/// stay together. Written line by line, so a crash or a pulled plug loses nothing.
+struct FlashLog {
+    out: Option<LineWriter<File>>,
+    path: PathBuf,
+    start: Instant,
+    failed: bool,
+}
+
+impl FlashLog {
+    fn open(path: &Path) -> anyhow::Result<FlashLog> {
+        let f = OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(path)
+            .with_context(|| format!("cannot write the log {} (use --log FILE)", path.display()))?;
+        Ok(FlashLog {
+            out: Some(LineWriter::new(f)),
+            path: path.to_path_buf(),
+            start: Instant::now(),
+            failed: false,
+        })
+    }
+
+    fn line(&mut self, text: &str) {
+        let Some(out) = &mut self.out else { return };
+        let stamp = format!(
+            "{} +{:9.3}s",
+            utc(SystemTime::now()),
+            self.start.elapsed().as_secs_f64()
+        );
+        if let Err(e) = writeln!(out, "{stamp} {text}") {
+            if !self.failed {
+                eprintln!(
+                    "vpx-efis: cannot write the log {}: {e} (the update goes on)",
+                    self.path.display()
+                );
+            }
+            self.failed = true;
+        }
+    }
+
+    fn event(&mut self, e: &Event<'_>) {
+        match e {
+            Event::Sent { what, bytes } => self.line(&format!("TX {what}: {}", hex(bytes))),
+            Event::Received(b) => self.line(&format!("RX {}", hex(b))),
+            Event::Discarded(b) => self.line(&format!("DISCARDED {}", hex(b))),
+            Event::Note(n) => self.line(&format!("-- {n}")),
+            Event::Progress(p) if p.programmed == 0 && p.verified == 0 => {
+                self.line(&format!("-- pass {}: {} pages", p.pass, p.pages))
+            }
+            Event::Progress(_) => {}
+        }
+    }
+
+    fn finish(&mut self) {
+        if let Some(out) = &mut self.out {
+            let _ = out.flush();
+        }
+    }
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes
+        .iter()
+        .map(|b| format!("{b:02X}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// `YYYY-MM-DDTHH:MM:SS.mmmZ` without a date crate (Howard Hinnant's civil_from_days).
+fn utc(t: SystemTime) -> String {
+    let d = t.duration_since(UNIX_EPOCH).unwrap_or_default();
+    let secs = d.as_secs() as i64;
+    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}.{:03}Z",
+        rem / 3600,
+        rem / 60 % 60,
+        rem % 60,
+        d.subsec_millis()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn utc_of_known_instants() {
+        assert_eq!(utc(UNIX_EPOCH), "1970-01-01T00:00:00.000Z");
+        // 2024-02-29T12:34:56.789Z, a leap day: 1709210096 s.
+        let t = UNIX_EPOCH + Duration::from_millis(1_709_210_096_789);
+        assert_eq!(utc(t), "2024-02-29T12:34:56.789Z");
+    }
+
+    #[test]
+    fn the_log_goes_next_to_the_file() {
+        assert_eq!(
+            default_log_path(Path::new("/fw/cu_2.hex")),
+            PathBuf::from("/fw/cu_2.hex.log")
+        );
+    }
+
+    #[test]
+    fn a_full_flash_takes_minutes_not_seconds() {
+        // 1024 pages at 57600 baud: 1024 * 529 * 10 / 57600 ≈ 94 s, plus the erase.
+        let t = estimate(1024, 57_600).as_secs();
+        assert!((95..=105).contains(&t), "{t}");
+    }
 }

@@ -112,6 +112,10 @@ pub struct Options {
     pub erase_tries: u32,
     /// Times SOFTWARE_UPDATE is sent when the bootloader does not answer SERIAL_CONF.
     pub enter_tries: u32,
+    /// Time the unit gets after SOFTWARE_UPDATE to start its bootloader: bytes sent
+    /// while it jumps may be lost (the sim drops what shares a read with
+    /// SOFTWARE_UPDATE), and the tail of its last broadcast is thrown away meanwhile.
+    pub enter_delay: Duration,
     /// Extra FLASH_PROGs of a page that failed to verify, within one pass.
     pub reprogram_tries: u32,
     /// Erase–program–verify passes in all.
@@ -130,6 +134,7 @@ impl Default for Options {
             erase_timeout: Duration::from_secs(30),
             erase_tries: 2,
             enter_tries: 3,
+            enter_delay: Duration::from_millis(250),
             reprogram_tries: 2,
             passes: 2,
             reboot_timeout: Duration::from_secs(20),
@@ -306,10 +311,9 @@ pub fn probe<P: Port + ?Sized>(
         Err(f @ Fail::Link(_)) => Err(untouched(f.text())),
         Err(_) => Err(untouched(format!(
             "the unit answered neither VERSION nor QUERY_PORT ({} tries of {} ms each). Check that it is powered, \
-             that the cable is plugged in and that {} is its port",
+             that the cable is plugged in and that --port names its serial port",
             opts.tries,
             opts.timeout.as_millis(),
-            "--port"
         ))),
     }
 }
@@ -509,6 +513,15 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
         }
     }
 
+    /// Reads for `d`, throwing away what comes.
+    fn wait_discarding(&mut self, d: Duration) -> Result<(), Fail> {
+        let end = Instant::now() + d;
+        while let Some(b) = self.read_some(end)? {
+            (self.on)(Event::Discarded(&b));
+        }
+        Ok(())
+    }
+
     /// Waits until the line has been quiet for `opts.quiet` (at most 2 s), discarding
     /// what comes: a late answer to a failed try must not pass for the next one's.
     fn settle(&mut self) -> Result<(), Fail> {
@@ -664,6 +677,7 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
                     ),
                     &bytes,
                 )?;
+                self.wait_discarding(o.enter_delay)?;
                 match self.boot(&BootCommand::serial_conf(), o.timeout, o.tries) {
                     Ok(_) => {
                         entered = true;
