@@ -1,0 +1,570 @@
+//! `backup` and `restore` end to end: the virtual VP-X on the master of a real
+//! pseudo-terminal, and on its slave path either the `vpx-efis` binary itself
+//! (`--port PATH`) or a [`UnitClient`] opened like any serial port.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use serialport::TTYPort;
+use vpx_efis::link::request::{DEFAULT_TRIES, query_answers};
+use vpx_efis::link::{RequestError, SpecError, UnitClient, open_pty_pair, serial_connector};
+use vpx_efis::protocol::config::UnitConfig;
+use vpx_efis::protocol::message::{
+    DeviceName, DeviceSpec, DeviceSpecQuery, FlapSpec, Message, SpecAckError, SwitchId, SystemSpec,
+    Tenths, TrimSpec, WigWagSpec,
+};
+use vpx_efis::sim::{self, SimCommand, SimHandle, SimOptions};
+
+/// Far above what any command here needs on a loaded two-core machine; reaching it
+/// means a hang, which is the failure these tests exist to catch.
+const HANG: Duration = Duration::from_secs(60);
+
+struct Bench {
+    sim: SimHandle,
+    /// Held open so the master never sees the slave side close between commands.
+    _slave: TTYPort,
+    path: String,
+    dir: tempfile::TempDir,
+}
+
+fn bench(scenario: &str, tweak: impl FnOnce(&mut SimOptions, &Path)) -> Bench {
+    let dir = tempfile::tempdir().unwrap();
+    let pty = open_pty_pair().expect("a pseudo-terminal");
+    let reader = pty.master.try_clone_native().expect("clone the pty master");
+    let mut opts = SimOptions::new(sim::load_scenario(scenario).unwrap());
+    tweak(&mut opts, dir.path());
+    let sim = sim::spawn(opts, Box::new(reader), Box::new(pty.master));
+    Bench {
+        sim,
+        _slave: pty.slave,
+        path: pty.path,
+        dir,
+    }
+}
+
+impl Bench {
+    fn client(&self) -> UnitClient {
+        UnitClient::new(serial_connector(PathBuf::from(&self.path), 57_600))
+            .expect("open the pty slave as a serial port")
+    }
+
+    fn file(&self, name: &str) -> PathBuf {
+        self.dir.path().join(name)
+    }
+
+    /// Runs `vpx-efis ARGS --port <slave>` with no terminal on stdin.
+    fn vpx(&self, args: &[&str]) -> Output {
+        let mut all: Vec<&str> = args.to_vec();
+        all.extend(["--port", &self.path]);
+        run(&all)
+    }
+
+    fn config(&self) -> UnitConfig {
+        self.sim.stats().config
+    }
+}
+
+fn run(args: &[&str]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > HANG {
+            let _ = child.kill();
+            panic!("vpx-efis {args:?} hung for {HANG:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+#[track_caller]
+fn ok(o: &Output) {
+    assert!(
+        o.status.success(),
+        "failed: {}\nstdout:\n{}\nstderr:\n{}",
+        o.status,
+        stdout(o),
+        stderr(o)
+    );
+}
+
+fn first_pin_with(cfg: &UnitConfig, f: impl Fn(&DeviceSpec) -> bool) -> u8 {
+    (4..=28u8)
+        .find(|&i| {
+            f(&cfg.devices[i as usize])
+                && !cfg.is_wig_wag_device(i)
+                && !cfg.is_secondary_alternator(i)
+        })
+        .expect("the demo scenario has such a pin")
+}
+
+#[test]
+fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
+    let b = bench("demo", |_, _| {});
+    let first = b.file("first.toml");
+    ok(&b.vpx(&["backup", first.to_str().unwrap()]));
+    let original = b.config();
+
+    // Change the unit the way someone at the setup screens might, including a change
+    // that ties settings together: a pin that is off in the backup becomes the wig-wag
+    // device, so restoring must untie the wig-wag before it can switch that pin off.
+    let mut c = b.client();
+    let spare = first_pin_with(&original, |d| d.switch_id == SwitchId::Off);
+    let edits: Vec<Message> = vec![
+        DeviceSpec {
+            device_id: spare,
+            circuit_breaker: 1,
+            switch_id: SwitchId::Input(7),
+            current_fault: false,
+        }
+        .into(),
+        WigWagSpec {
+            device_one: Some(spare),
+            device_two: None,
+            warm_up_period: 30,
+            speed: 90,
+        }
+        .into(),
+        SystemSpec {
+            secondary_alternator: None,
+            ..original.system
+        }
+        .into(),
+        FlapSpec {
+            endpoint_duration: Tenths(12),
+            max_speed: 85,
+            ..original.flap
+        }
+        .into(),
+        TrimSpec {
+            power: 45,
+            ..original.pitch_trim
+        }
+        .into(),
+        DeviceName::new(5, "Changed").unwrap().into(),
+    ];
+    for m in edits {
+        c.send_spec(m, Duration::from_secs(1), DEFAULT_TRIES)
+            .unwrap_or_else(|e| panic!("setting up the test: {e}"));
+    }
+    assert!(c.set_enable(6, !original.enabled[6]).unwrap());
+    c.close();
+    let changed = b.file("changed.toml");
+    ok(&b.vpx(&["backup", changed.to_str().unwrap()]));
+    assert_ne!(
+        std::fs::read_to_string(&first).unwrap(),
+        std::fs::read_to_string(&changed).unwrap(),
+        "the edits must show in a backup, or this test proves nothing"
+    );
+
+    let out = b.vpx(&["restore", "--yes", first.to_str().unwrap()]);
+    ok(&out);
+    let listed = stdout(&out);
+    for words in [
+        format!(
+            "flap endpoint duration: 1.2 s → {:.1} s",
+            original.flap.endpoint_duration.0 as f64 / 10.0
+        ),
+        "Strobe Lt".into(),
+        "wig-wag device one:".into(),
+        "secondary alternator: none → 15A-1".into(),
+    ] {
+        assert!(
+            listed.contains(&words),
+            "the diff should say {words:?}:\n{listed}"
+        );
+    }
+    assert!(stderr(&out).contains("verified"), "{}", stderr(&out));
+
+    let again = b.file("again.toml");
+    ok(&b.vpx(&["backup", again.to_str().unwrap()]));
+    assert_eq!(
+        std::fs::read_to_string(&first).unwrap(),
+        std::fs::read_to_string(&again).unwrap()
+    );
+    assert_eq!(b.config(), original);
+}
+
+#[test]
+fn restore_with_erase_first_erases_then_imports() {
+    let b = bench("demo", |_, _| {});
+    let file = b.file("demo.toml");
+    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let original = b.config();
+    let writes_before = b.sim.stats().eeprom_writes;
+
+    let out = b.vpx(&["restore", "--yes", "--erase-first", file.to_str().unwrap()]);
+    ok(&out);
+    assert!(stderr(&out).contains("EEPROM erased"), "{}", stderr(&out));
+    assert_eq!(b.config(), original);
+    // Everything that differs from the factory defaults was written again, so an
+    // erase really happened in between.
+    assert!(b.sim.stats().eeprom_writes > writes_before + 10);
+}
+
+#[test]
+fn an_unchanged_unit_gets_no_writes() {
+    let b = bench("demo", |_, _| {});
+    let file = b.file("demo.toml");
+    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let writes = b.sim.stats().eeprom_writes;
+    let out = b.vpx(&["restore", "--yes", file.to_str().unwrap()]);
+    ok(&out);
+    assert!(
+        stdout(&out).contains("nothing to write"),
+        "{}",
+        stdout(&out)
+    );
+    assert_eq!(b.sim.stats().eeprom_writes, writes);
+}
+
+#[test]
+fn without_a_terminal_or_yes_the_restore_asks_nobody_and_writes_nothing() {
+    let b = bench("demo", |_, _| {});
+    let file = b.file("demo.toml");
+    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let text = std::fs::read_to_string(&file)
+        .unwrap()
+        .replace("warm_up_s = 5", "warm_up_s = 9");
+    std::fs::write(&file, text).unwrap();
+    let writes = b.sim.stats().eeprom_writes;
+    let out = b.vpx(&["restore", file.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(
+        stdout(&out).contains("wig-wag warm-up: 5 s → 9 s"),
+        "{}",
+        stdout(&out)
+    );
+    assert!(
+        stderr(&out).contains("Run again with --yes"),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(b.sim.stats().eeprom_writes, writes);
+}
+
+/// Each problem file is refused with its field named, and the unit hears nothing
+/// (nothing at all for a bad file; only VERSION for a file from other hardware).
+#[test]
+fn bad_files_are_refused_by_field_and_nothing_is_sent() {
+    let b = bench("demo", |_, _| {});
+    let good = b.file("good.toml");
+    ok(&b.vpx(&["backup", good.to_str().unwrap()]));
+    let text = std::fs::read_to_string(&good).unwrap();
+    let frames_before = b.sim.stats().wire.rx_frames;
+    let writes = b.sim.stats().eeprom_writes;
+
+    let cases = [
+        (
+            "malformed.toml",
+            text.replace("[wig_wag]", "[wig_wag"),
+            vec!["(file): not valid TOML", "line"],
+        ),
+        (
+            "typed.toml",
+            text.replace("warm_up_s = 5", "warm_up_s = \"five\""),
+            vec!["wig_wag.warm_up_s: must be a whole number 0–255, not a string"],
+        ),
+        (
+            "range.toml",
+            text.replace(
+                "overvoltage_limit_volts = 16",
+                "overvoltage_limit_volts = 24",
+            )
+            .replace("warm_up_s = 5", "warm_up_s = 61")
+            .replace("max_speed_kt = 100", "max_speed_kt = 501"),
+            vec![
+                "3 problems, nothing was sent to the unit",
+                "system.overvoltage_limit_volts: must be 16 or 32",
+                "flaps.max_speed_kt: flap max speed 501 is above 500",
+                "wig_wag.warm_up_s: warm-up 61 s is outside 5–60 s",
+            ],
+        ),
+    ];
+    for (name, body, expect) in cases {
+        let f = b.file(name);
+        std::fs::write(&f, body).unwrap();
+        let out = b.vpx(&["restore", "--yes", f.to_str().unwrap()]);
+        assert!(!out.status.success(), "{name} was accepted");
+        for e in expect {
+            assert!(
+                stderr(&out).contains(e),
+                "{name}: missing {e:?} in\n{}",
+                stderr(&out)
+            );
+        }
+    }
+    assert_eq!(
+        b.sim.stats().wire.rx_frames,
+        frames_before,
+        "a file refused on its own must not reach the unit at all"
+    );
+
+    let f = b.file("sport.toml");
+    std::fs::write(
+        &f,
+        text.replace("hardware_version = 2", "hardware_version = 3"),
+    )
+    .unwrap();
+    let out = b.vpx(&["restore", "--yes", f.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains(
+            "this backup is from a VP-X Sport (hardware version 3) but the unit is a VP-X Pro (hardware version 2)"
+        ),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(
+        b.sim.stats().wire.rx_frames,
+        frames_before + 1,
+        "only VERSION may be asked before the hardware is known"
+    );
+    assert_eq!(b.sim.stats().eeprom_writes, writes);
+}
+
+/// Every SPEC_ACK code the virtual unit can send, each shown in the words of ICD
+/// Table 20.
+#[test]
+fn every_spec_ack_error_code_is_shown_in_words() {
+    let b = bench("demo", |o, dir| {
+        o.eeprom = Some(dir.join("eeprom/unit.json"))
+    });
+    std::fs::create_dir(b.dir.path().join("eeprom")).unwrap();
+    let mut c = b.client();
+    let cfg = b.config();
+    let sec = cfg
+        .system
+        .secondary_alternator
+        .expect("demo has a secondary alternator");
+    let wig = cfg.wig_wag.device_one.expect("demo has a wig-wag");
+    let primary_switch = cfg.devices[3].switch_id;
+    let pin = |id: u8| cfg.devices[id as usize];
+
+    let cases: Vec<(Message, SpecAckError, &str)> = vec![
+        (
+            TrimSpec {
+                power: 95,
+                ..cfg.pitch_trim
+            }
+            .into(),
+            SpecAckError::OutOfRange,
+            "Parameter value out of range",
+        ),
+        (
+            DeviceSpec {
+                device_id: 0,
+                ..pin(4)
+            }
+            .into(),
+            SpecAckError::InvalidDevice,
+            "Invalid device identifier",
+        ),
+        (
+            DeviceSpec {
+                circuit_breaker: 9,
+                ..pin(4)
+            }
+            .into(),
+            SpecAckError::InvalidBreaker,
+            "Invalid circuit breaker value",
+        ),
+        (
+            DeviceSpec {
+                switch_id: SwitchId::Off,
+                ..pin(2)
+            }
+            .into(),
+            SpecAckError::InvalidSwitch,
+            "Invalid switch ID",
+        ),
+        (
+            WigWagSpec {
+                device_one: None,
+                device_two: Some(wig),
+                ..cfg.wig_wag
+            }
+            .into(),
+            SpecAckError::BadConfig,
+            "Invalid configuration",
+        ),
+        (
+            FlapSpec {
+                up: 10,
+                midpoint_1: 150,
+                midpoint_2: 100,
+                down: 200,
+                ..cfg.flap
+            }
+            .into(),
+            SpecAckError::BadOrder,
+            "Parameters out of order",
+        ),
+        (
+            DeviceSpec {
+                switch_id: SwitchId::Off,
+                ..pin(wig)
+            }
+            .into(),
+            SpecAckError::WigWagConfig,
+            "Wig-Wag configuration error",
+        ),
+        (
+            DeviceSpec {
+                switch_id: primary_switch,
+                ..pin(sec)
+            }
+            .into(),
+            SpecAckError::SecAltConfig,
+            "Secondary alternator configuration error",
+        ),
+    ];
+    for (m, code, words) in cases {
+        let err = c.send_spec(m, Duration::from_secs(1), 1).unwrap_err();
+        assert!(
+            matches!(err, SpecError::Refused { error, .. } if error == code),
+            "{m:?}: {err:?}"
+        );
+        let text = err.to_string();
+        assert!(text.contains(words), "{text}");
+        assert!(text.contains(&format!("{:#04x}", code.to_byte())), "{text}");
+    }
+
+    // EEPROM write failure: the unit's EEPROM file can no longer be written.
+    std::fs::remove_dir_all(b.dir.path().join("eeprom")).unwrap();
+    let valid = DeviceSpec {
+        circuit_breaker: 1,
+        ..pin(4)
+    };
+    let err = c.send_spec(valid, Duration::from_secs(1), 1).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            SpecError::Refused {
+                error: SpecAckError::EepromWrite,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("EEPROM write failure"), "{err}");
+}
+
+/// A refusal in the middle of a restore stops it, says what was applied and what was
+/// not, and exits non-zero.
+#[test]
+fn a_refused_setting_stops_the_restore_and_says_what_was_and_was_not_applied() {
+    let b = bench("demo", |o, dir| {
+        o.eeprom = Some(dir.join("eeprom/unit.json"))
+    });
+    std::fs::create_dir(b.dir.path().join("eeprom")).unwrap();
+    let file = b.file("demo.toml");
+    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let flap_now = b.config().flap.endpoint_duration.0 as f64 / 10.0;
+    let text = std::fs::read_to_string(&file)
+        .unwrap()
+        .replace("warm_up_s = 5", "warm_up_s = 9")
+        .replace(
+            &format!("endpoint_duration_s = {flap_now:?}"),
+            "endpoint_duration_s = 2.5",
+        );
+    std::fs::write(&file, text).unwrap();
+    std::fs::remove_dir_all(b.dir.path().join("eeprom")).unwrap();
+
+    let out = b.vpx(&["restore", "--yes", file.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let err = stderr(&out);
+    for words in [
+        "restore stopped at WIG_WAG_SPEC: the unit refused WIG_WAG_SPEC: EEPROM write failure (SPEC_ACK code 0x06)",
+        "Applied (0 of 2):\n  (none)",
+        "Not applied (2):\n  WIG_WAG_SPEC\n  FLAP_SPEC",
+    ] {
+        assert!(err.contains(words), "missing {words:?} in\n{err}");
+    }
+}
+
+#[test]
+fn a_silent_unit_is_a_timeout_not_a_hang() {
+    let b = bench("demo", |_, _| {});
+    let mut c = b.client();
+    b.sim.inject(SimCommand::Silent(Duration::from_secs(120)));
+    let start = Instant::now();
+    let err = c
+        .request(
+            DeviceSpecQuery { device_id: 6 },
+            |m| query_answers(6, m),
+            Duration::from_millis(300),
+            3,
+        )
+        .unwrap_err();
+    assert!(
+        start.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        start.elapsed()
+    );
+    assert_eq!(
+        err,
+        RequestError::Timeout {
+            what: "DEVICE_SPEC_QUERY for 5A-3".into(),
+            tries: 3
+        }
+    );
+    assert_eq!(
+        err.to_string(),
+        "the unit did not answer DEVICE_SPEC_QUERY for 5A-3 after 3 tries"
+    );
+    c.close();
+
+    // The command itself: it gives up, says on what, and leaves no file behind.
+    let file = b.file("never.toml");
+    let start = Instant::now();
+    let out = b.vpx(&["backup", file.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(
+        start.elapsed() < Duration::from_secs(20),
+        "{:?}",
+        start.elapsed()
+    );
+    assert!(
+        stderr(&out).contains("the unit did not answer VERSION after 3 tries"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!file.exists());
+    assert_eq!(
+        std::fs::read_dir(b.dir.path()).unwrap().count(),
+        0,
+        "no temporary file left"
+    );
+}
+
+#[test]
+fn a_missing_port_is_reported_without_waiting() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("x.toml");
+    let start = Instant::now();
+    let out = run(&[
+        "backup",
+        "--port",
+        "/dev/does-not-exist-vpx",
+        file.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    assert!(start.elapsed() < Duration::from_secs(10));
+    assert!(stderr(&out).contains("no such port"), "{}", stderr(&out));
+}
