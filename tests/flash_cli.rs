@@ -1,0 +1,182 @@
+//! `vpx-efis flash` as a mechanic runs it: the binary on a pseudo-terminal whose other
+//! end is the virtual VP-X, checking what reaches the unit and what is written down.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+use vpx_efis::flash::hex::to_hex_text;
+use vpx_efis::link::{PtyPair, open_pty_pair};
+use vpx_efis::protocol::bootloader::PAGE_SIZE;
+use vpx_efis::sim::{self, SimHandle, SimOptions};
+
+struct Rig {
+    sim: SimHandle,
+    _pty_slave: serialport::TTYPort,
+    path: String,
+    dir: tempfile::TempDir,
+}
+
+fn start() -> Rig {
+    let PtyPair {
+        master,
+        slave,
+        path,
+    } = open_pty_pair().unwrap();
+    let reader = master.try_clone_native().unwrap();
+    let sim = sim::spawn(
+        SimOptions::new(sim::load_scenario("demo").unwrap()),
+        Box::new(reader),
+        Box::new(master),
+    );
+    Rig {
+        sim,
+        _pty_slave: slave,
+        path,
+        dir: tempfile::tempdir().unwrap(),
+    }
+}
+
+fn bytes() -> Vec<u8> {
+    (0..5 * PAGE_SIZE + 17)
+        .map(|i| (i * 13 + 5) as u8)
+        .collect()
+}
+
+fn write_hex(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn flash(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+        .arg("flash")
+        .args(args)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Nothing reached the bootloader and the flash is as it was.
+fn untouched(rig: &Rig) {
+    let st = rig.sim.stats();
+    assert!(!st.in_bootloader);
+    assert_eq!(st.boot.commands, 0);
+    assert!(rig.sim.flash().iter().all(|&b| b == 0xFF));
+}
+
+#[test]
+fn a_full_update_from_the_command_line_writes_the_image_and_a_log_beside_it() {
+    let rig = start();
+    let data = bytes();
+    let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0x400, &data));
+    let o = flash(&["--port", &rig.path, "--yes", file.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("6 pages"),
+        "image size and pages are shown: {err}"
+    );
+    assert!(err.contains("software 2.1"), "{err}");
+    let flash = rig.sim.flash();
+    assert_eq!(&flash[0x400..0x400 + data.len()], &data[..]);
+    assert!(flash[..0x400].iter().all(|&b| b == 0xFF));
+
+    let log = std::fs::read_to_string(rig.dir.path().join("cu_2.hex.log")).unwrap();
+    // Every frame in hex with a timestamp, every address.
+    assert!(
+        log.contains(
+            "TX FLASH_PROG page 4 (byte address 0x00400, 256 bytes): 69 96 70 81 00 04 00"
+        ),
+        "{log}"
+    );
+    assert!(
+        log.contains(
+            "TX FLASH_READ page 9 (byte address 0x00900, 256 bytes): 69 96 52 02 00 09 00 00 01"
+        ),
+        "{log}"
+    );
+    assert!(
+        log.lines()
+            .any(|l| l.contains("Z +") && l.contains(" RX 50")),
+        "{log}"
+    );
+    assert!(
+        log.contains("SYSTEM_STATUS reports the Software Update flag"),
+        "{log}"
+    );
+}
+
+#[test]
+fn a_file_for_other_hardware_is_refused_before_anything_reaches_the_bootloader() {
+    let rig = start();
+    let file = write_hex(rig.dir.path(), "cu_3.hex", &to_hex_text(0, &bytes()));
+    let o = flash(&["--port", &rig.path, "--yes", file.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("hardware 3") && err.contains("hardware 2"),
+        "{err}"
+    );
+    untouched(&rig);
+    let log = std::fs::read_to_string(rig.dir.path().join("cu_3.hex.log")).unwrap();
+    assert!(
+        log.contains("refused before anything was sent to the bootloader"),
+        "{log}"
+    );
+}
+
+#[test]
+fn force_hardware_lets_an_unsuffixed_file_through_only_for_the_units_hardware() {
+    let rig = start();
+    let file = write_hex(rig.dir.path(), "cu.hex", &to_hex_text(0, &bytes()));
+    let f = file.to_str().unwrap();
+    let o = flash(&["--port", &rig.path, "--yes", f]);
+    assert!(stderr(&o).contains("--force-hardware"), "{}", stderr(&o));
+    let o = flash(&["--port", &rig.path, "--yes", "--force-hardware", "3", f]);
+    assert!(!o.status.success());
+    untouched(&rig);
+    let o = flash(&["--port", &rig.path, "--yes", "--force-hardware", "2", f]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[test]
+fn without_a_terminal_or_yes_nothing_is_sent_to_the_bootloader() {
+    let rig = start();
+    let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0, &bytes()));
+    let o = flash(&["--port", &rig.path, file.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--yes"), "{}", stderr(&o));
+    untouched(&rig);
+}
+
+#[test]
+fn a_damaged_file_is_refused_with_its_line_before_the_port_is_opened() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = to_hex_text(0, &bytes()).replacen(":10001000", ":10001001", 1);
+    let file = write_hex(dir.path(), "cu_2.hex", &text);
+    // The port does not exist: the file is judged first, so the error is the file's.
+    let o = flash(&[
+        "--port",
+        "/dev/does-not-exist-vpx",
+        "--yes",
+        file.to_str().unwrap(),
+    ]);
+    let err = stderr(&o);
+    assert!(!o.status.success());
+    assert!(err.contains("line 3:"), "{err}");
+    assert!(!dir.path().join("cu_2.hex.log").exists());
+}
+
+#[test]
+fn without_a_port_flash_says_how_to_try_it_on_the_virtual_unit() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_hex(dir.path(), "cu_2.hex", &to_hex_text(0, &bytes()));
+    let o = flash(&["--yes", file.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("vpx-efis sim --pty"), "{}", stderr(&o));
+}
