@@ -336,3 +336,57 @@ fn unit_log_line(log: &mut VecDeque<String>, to_stderr: bool, line: String) {
     }
     log.push_back(line);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::link::duplex_pipe;
+    use crate::protocol::message::Ping;
+    use crate::protocol::{Decoder, Event, Message, Packet};
+
+    /// The page's built-in default: the sim on one end of an in-process pipe.
+    #[test]
+    fn runs_on_a_pipe_end_with_the_demo_scenario() {
+        let (page, unit) = duplex_pipe(Duration::from_millis(20));
+        let handle = spawn(
+            SimOptions::new(load_scenario("demo").unwrap()),
+            Box::new(unit.reader),
+            Box::new(unit.writer),
+        );
+        let (mut r, mut w) = (page.reader, page.writer);
+        w.write_all(&Packet::request(77, Ping { ack: false }).to_bytes())
+            .unwrap();
+        let mut dec = Decoder::new();
+        let mut got = Vec::new();
+        let end = Instant::now() + Duration::from_secs(5);
+        let mut buf = [0u8; 512];
+        while Instant::now() < end
+            && !got
+                .iter()
+                .any(|p: &Packet| matches!(p.message, Message::DeviceStatus(_)))
+        {
+            if let Ok(n) = r.read(&mut buf) {
+                dec.push(&buf[..n], |e| {
+                    if let Event::Frame(f) = e {
+                        got.push(Packet::parse(&f).unwrap());
+                    }
+                });
+            }
+        }
+        assert!(
+            got.iter()
+                .any(|p| p.cnt == 77 && p.message == Ping { ack: true }.into())
+        );
+        let on = got.iter().find_map(|p| match p.message {
+            Message::DeviceStatus(d) => Some(d.on),
+            _ => None,
+        });
+        let on = on.expect("DEVICE_STATUS within 5 s");
+        assert!(
+            on[2] && on[3] && on[4],
+            "demo: EFIS, alternator and nav lights on"
+        );
+        assert!(!on[23], "demo: the standby alternator waits");
+        handle.stop();
+    }
+}
