@@ -90,10 +90,11 @@ impl Controller {
         model: &Model,
         now: Instant,
     ) -> Outcome {
-        // Timeouts and the model's verdict come first: a key must not be what keeps
-        // alive a run that already had to end.
+        // The model's verdict comes first (the streamer applies its own timeouts on
+        // every call): a key must not keep alive a run that already had to end. No
+        // resend here: a move just before this key's stop would be noise.
         let mut out = Outcome {
-            packets: self.tick(model, now),
+            packets: self.check_model(model, now),
             ..Outcome::default()
         };
         out.notice = self.take_notice();
@@ -180,17 +181,22 @@ impl Controller {
     /// Ends a run the model says must end (lost communication, a motor fault, lost
     /// motor status), then lets the streamer end timed-out runs and re-send.
     pub fn tick(&mut self, model: &Model, now: Instant) -> Vec<Packet> {
-        let mut out = Vec::new();
-        if let Some((motor, direction)) = self.streamer.running_key()
-            && let Err(reason) = motor_check(model, motor, direction, now)
-        {
-            out.extend(self.streamer.stop(now, reason));
-        }
+        let mut out = self.check_model(model, now);
         out.extend(self.streamer.tick(now));
         if !out.is_empty() && self.streamer.running_key().is_none() {
             self.pending_notice = self.stopped_notice();
         }
         out
+    }
+
+    fn check_model(&mut self, model: &Model, now: Instant) -> Vec<Packet> {
+        match self.streamer.running_key() {
+            Some((motor, direction)) => match motor_check(model, motor, direction, now) {
+                Err(reason) => self.stop(now, reason),
+                Ok(()) => Vec::new(),
+            },
+            None => Vec::new(),
+        }
     }
 
     pub fn on_link_error(&mut self, now: Instant) -> Vec<Packet> {

@@ -1,0 +1,232 @@
+//! Commands are refused, in words, where the ICD says the unit will not honour them or
+//! the page could not show their effect; otherwise the exact message goes out.
+
+use std::time::{Duration, Instant};
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use vpx_efis::control::{Action, Controller, KeyContext, Selected, command};
+use vpx_efis::model::{CircuitKind, CircuitState, Model, Source, TrimKind};
+use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS, FLAPS, STARTER, TRIM_P};
+use vpx_efis::protocol::fault::FaultCode;
+use vpx_efis::protocol::message::{
+    DeviceClear, DevicePower, DeviceStatus, FaultStatus, Message, MiscFlags, Packet, SignedTenths,
+    SystemStatus, Tenths, WigWagMode, WigWagModeSetting,
+};
+
+fn status(wig_wag: WigWagModeSetting) -> (Packet, Packet) {
+    let s = SystemStatus {
+        system_current: Tenths(100),
+        main_bus_volts: SignedTenths(138),
+        aux_battery_volts: Tenths(0),
+        internal_temp: 30,
+        switches: Default::default(),
+        misc: MiscFlags {
+            starter_annunciator: false,
+            wig_wag_mode: wig_wag,
+            software_update: false,
+            wig_wag_active: false,
+        },
+        faults: Default::default(),
+        data_integrity_code: None,
+    };
+    let mut d = DeviceStatus {
+        on: [false; DEVICE_COUNT],
+        current: [Tenths(0); DEVICE_COUNT],
+    };
+    d.on[EFIS as usize] = true;
+    (Packet::from_vpx(0, s), Packet::from_vpx(0, d))
+}
+
+fn model(at: Instant, faults: &[(u8, FaultCode)], system_fault: bool) -> Model {
+    let mut m = Model::new(Source::Simulated {
+        scenario: "test".into(),
+    });
+    let (s, d) = status(WigWagModeSetting::Auto);
+    m.apply_packet(at, &s);
+    m.apply_packet(at, &d);
+    if !faults.is_empty() || system_fault {
+        let mut f = FaultStatus {
+            faulted: [false; DEVICE_COUNT],
+            system_fault,
+            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+        };
+        for &(id, code) in faults {
+            f.faulted[id as usize] = true;
+            f.codes[id as usize] = Some(code);
+        }
+        m.apply_packet(at, &Packet::from_vpx(0, f));
+    }
+    m
+}
+
+fn refused(action: Action, m: &Model, now: Instant) -> String {
+    match command(&action, m, now) {
+        Err(r) => r.0,
+        Ok(msg) => panic!("{action:?} was sent as {msg:?}"),
+    }
+}
+
+#[test]
+fn the_starter_can_never_be_switched_only_reset() {
+    let t0 = Instant::now();
+    let m = model(t0, &[], false);
+    for a in [Action::PowerOn(STARTER), Action::PowerOff(STARTER)] {
+        assert!(refused(a, &m, t0).contains("only reset"));
+    }
+    let faulted = model(t0, &[(STARTER, FaultCode::OverCurrent)], false);
+    assert_eq!(
+        command(&Action::Reset(STARTER), &faulted, t0),
+        Ok(Message::DeviceClear(DeviceClear { device_id: STARTER }))
+    );
+}
+
+#[test]
+fn power_commands_go_out_for_ordinary_devices() {
+    let t0 = Instant::now();
+    let m = model(t0, &[], false);
+    assert_eq!(
+        command(&Action::PowerOn(7), &m, t0),
+        Ok(Message::DevicePower(DevicePower {
+            device_id: 7,
+            on: true
+        }))
+    );
+    assert_eq!(
+        command(&Action::PowerOff(EFIS), &m, t0),
+        Ok(Message::DevicePower(DevicePower {
+            device_id: EFIS,
+            on: false
+        }))
+    );
+}
+
+#[test]
+fn flaps_and_trims_are_not_switched_with_device_power() {
+    let t0 = Instant::now();
+    let mut m = model(t0, &[], false);
+    // Make them shown: the specs say they are fitted.
+    m.flap_spec = None;
+    for id in [FLAPS, TRIM_P] {
+        // Not shown (not enabled) or a motor: refused either way, never sent.
+        assert!(command(&Action::PowerOn(id), &m, t0).is_err());
+    }
+}
+
+#[test]
+fn reset_is_refused_unless_the_device_is_faulted() {
+    let t0 = Instant::now();
+    let m = model(t0, &[], false);
+    assert!(refused(Action::Reset(7), &m, t0).contains("no fault"));
+    let m = model(t0, &[(7, FaultCode::ShortCircuit)], false);
+    assert_eq!(
+        command(&Action::Reset(7), &m, t0),
+        Ok(Message::DeviceClear(DeviceClear { device_id: 7 }))
+    );
+    // A faulted device is not switched on over its fault.
+    assert!(refused(Action::PowerOn(7), &m, t0).contains("reset it"));
+}
+
+#[test]
+fn the_system_fault_reset_is_refused_unless_it_is_set() {
+    let t0 = Instant::now();
+    let m = model(t0, &[], false);
+    assert!(refused(Action::ResetSystemFault, &m, t0).contains("no system fault"));
+    let m = model(t0, &[], true);
+    assert_eq!(
+        command(&Action::ResetSystemFault, &m, t0),
+        Ok(Message::DeviceClear(DeviceClear { device_id: 255 }))
+    );
+}
+
+#[test]
+fn nothing_is_sent_while_communication_is_lost() {
+    let t0 = Instant::now();
+    let m = model(t0, &[(7, FaultCode::ShortCircuit)], true);
+    let later = t0 + Duration::from_millis(2600);
+    for a in [
+        Action::PowerOn(EFIS),
+        Action::PowerOff(EFIS),
+        Action::Reset(7),
+        Action::ResetSystemFault,
+        Action::ToggleWigWag,
+    ] {
+        assert!(refused(a, &m, later).contains("COMMUNICATION LOST"));
+    }
+}
+
+#[test]
+fn wig_wag_toggles_from_the_live_mode() {
+    let t0 = Instant::now();
+    let mut m = model(t0, &[], false);
+    assert_eq!(
+        command(&Action::ToggleWigWag, &m, t0),
+        Ok(Message::WigWagMode(WigWagMode {
+            mode: WigWagModeSetting::Steady
+        }))
+    );
+    let (s, _) = status(WigWagModeSetting::Steady);
+    m.apply_packet(t0, &s);
+    assert_eq!(
+        command(&Action::ToggleWigWag, &m, t0),
+        Ok(Message::WigWagMode(WigWagMode {
+            mode: WigWagModeSetting::Auto
+        }))
+    );
+}
+
+#[test]
+fn the_controller_sends_commands_and_shows_refusals() {
+    let t0 = Instant::now();
+    let m = model(t0, &[], false);
+    let mut ctl = Controller::default();
+    let ctx = |id, kind| KeyContext {
+        selected: Some(Selected {
+            id,
+            kind,
+            state: CircuitState::Off,
+        }),
+        overlay_open: false,
+    };
+    let o = ctl.handle_key(
+        KeyEvent::new(KeyCode::Char('o'), KeyModifiers::NONE),
+        &ctx(7, CircuitKind::Device),
+        &m,
+        t0,
+    );
+    assert_eq!(o.packets.len(), 1);
+    assert_eq!(
+        o.packets[0],
+        Packet::request(
+            o.packets[0].cnt,
+            DevicePower {
+                device_id: 7,
+                on: true
+            }
+        )
+    );
+    let o = ctl.handle_key(
+        KeyEvent::new(KeyCode::Char('f'), KeyModifiers::NONE),
+        &ctx(STARTER, CircuitKind::Starter),
+        &m,
+        t0,
+    );
+    assert!(o.packets.is_empty());
+    assert!(o.notice.unwrap().contains("starter"));
+    let o = ctl.handle_key(
+        KeyEvent::new(KeyCode::Char('u'), KeyModifiers::NONE),
+        &ctx(7, CircuitKind::Device),
+        &m,
+        t0,
+    );
+    assert!(o.packets.is_empty());
+    assert!(o.notice.unwrap().contains("flaps or trim row"));
+    // Navigation on a trim row moves the selection and sends nothing.
+    let o = ctl.handle_key(
+        KeyEvent::new(KeyCode::Down, KeyModifiers::NONE),
+        &ctx(TRIM_P, CircuitKind::Trim(TrimKind::Pitch)),
+        &m,
+        t0,
+    );
+    assert!(o.packets.is_empty());
+    assert_eq!(o.action, Some(Action::SelectNext));
+}
