@@ -10,20 +10,15 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::backup::{self, Backup};
 use crate::cli::{BackupArgs, PortArgs};
-use crate::link::{UnitClient, duplex_pipe, pipe_connector, serial_connector};
+use crate::link::{RequestError, UnitClient, duplex_pipe, pipe_connector, serial_connector};
+use crate::protocol::config::UnitConfig;
+use crate::protocol::message::Version;
 use crate::sim::{self, SimHandle, SimOptions};
 
 pub fn run(args: BackupArgs) -> anyhow::Result<()> {
     let mut unit = connect(&args.port)?;
-    let bar = progress_bar(0, "reading");
-    let (version, config) = unit
-        .client
-        .query_config(|done, total| {
-            bar.set_length(total as u64);
-            bar.set_position(done as u64);
-        })
+    let (version, config) = read_with_progress(&mut unit.client, "reading")
         .context("reading the unit's configuration; no file was written")?;
-    bar.finish_and_clear();
     let b = Backup { version, config };
     backup::save(&args.file, &b)
         .with_context(|| format!("cannot write {}", args.file.display()))?;
@@ -72,6 +67,23 @@ pub fn connect(port: &PortArgs) -> anyhow::Result<Connected> {
             })
         }
     }
+}
+
+/// [`UnitClient::query_config`] with a progress bar. The bar is made at the first
+/// report, when the number of requests is known, so it never shows an empty "0/0".
+pub fn read_with_progress(
+    client: &mut UnitClient,
+    what: &str,
+) -> Result<(Version, UnitConfig), RequestError> {
+    let mut bar: Option<ProgressBar> = None;
+    let got = client.query_config(|done, total| {
+        bar.get_or_insert_with(|| progress_bar(total as u64, what))
+            .set_position(done as u64);
+    });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    got
 }
 
 /// A progress bar on standard error, hidden when that is not a terminal (a script or

@@ -19,7 +19,7 @@ use anyhow::{Context, bail};
 
 use crate::backup::{self, Step, normalized};
 use crate::cli::RestoreArgs;
-use crate::cmd::backup::{connect, progress_bar};
+use crate::cmd::backup::{connect, progress_bar, read_with_progress};
 use crate::link::request::{DEFAULT_TIMEOUT, DEFAULT_TRIES};
 use crate::link::{SpecError, UnitClient};
 use crate::protocol::config::UnitConfig;
@@ -103,13 +103,9 @@ pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
 }
 
 fn read_all(client: &mut UnitClient, what: &str) -> anyhow::Result<UnitConfig> {
-    let bar = progress_bar(0, what);
-    let got = client.query_config(|done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
-    bar.finish_and_clear();
-    Ok(got.context("reading the unit's settings")?.1)
+    Ok(read_with_progress(client, what)
+        .context("reading the unit's settings")?
+        .1)
 }
 
 /// Asks on the terminal; anything but yes stops here with nothing written.
