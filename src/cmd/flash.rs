@@ -121,6 +121,8 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
                 });
             }
             // Long notes (a page's bytes) are for the log only.
+            // indicatif drops println when it draws nothing (no terminal): print plainly.
+            Event::Note(n) if n.len() <= 300 && bar.is_hidden() => eprintln!("  {n}"),
             Event::Note(n) if n.len() <= 300 => bar.println(format!("  {n}")),
             _ => {}
         }
