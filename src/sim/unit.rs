@@ -483,43 +483,50 @@ impl Unit {
     /// Bytes received at `now`.
     pub fn feed(&mut self, bytes: &[u8], now: Instant) {
         self.wire.rx_bytes += bytes.len() as u64;
-        if let Mode::Boot(b) = &mut self.mode {
-            let mut out = Vec::new();
-            let exit = b.feed(bytes, &mut self.flash, &mut out);
-            self.boot_stats = b.stats();
-            self.emit_raw(&out, now);
-            if exit {
-                self.log("bootloader EXIT: rebooting with the Software Update flag set".into());
-                self.boot(now, Start::AfterUpdate);
-            }
+        if self.in_bootloader() {
+            self.feed_bootloader(bytes, now);
             return;
         }
-        let mut frames: Vec<Vec<u8>> = Vec::new();
-        let wire = &mut self.wire;
-        self.decoder.push(bytes, |e| match e {
-            Event::Frame(f) => frames.push(f.as_bytes().to_vec()),
-            Event::Skipped(b) => wire.garbage_bytes += b.len() as u64,
-            Event::BadChecksum(_) | Event::BadLength(_) => {
-                wire.garbage_bytes += 1;
-                wire.bad_frames += 1;
-            }
-            Event::UnknownMessage(_) => wire.bad_frames += 1,
-        });
-        for (i, f) in frames.iter().enumerate() {
-            self.wire.rx_frames += 1;
-            let frame = crate::protocol::FrameRef::parse(f).expect("the decoder checked it");
-            match Packet::parse(&frame) {
-                Ok(p) => self.handle(p, now),
-                Err(_) => self.malformed(frame.header(), frame.payload(), now),
+        // One byte at a time (5760 bytes/s at most): a SOFTWARE_UPDATE hands every
+        // byte after its last one to the bootloader, even those in the same read.
+        for (i, b) in bytes.iter().enumerate() {
+            let mut frames: Vec<Vec<u8>> = Vec::new();
+            let wire = &mut self.wire;
+            self.decoder.push(std::slice::from_ref(b), |e| match e {
+                Event::Frame(f) => frames.push(f.as_bytes().to_vec()),
+                Event::Skipped(b) => wire.garbage_bytes += b.len() as u64,
+                Event::BadChecksum(_) | Event::BadLength(_) => {
+                    wire.garbage_bytes += 1;
+                    wire.bad_frames += 1;
+                }
+                Event::UnknownMessage(_) => wire.bad_frames += 1,
+            });
+            for f in &frames {
+                self.wire.rx_frames += 1;
+                let frame = crate::protocol::FrameRef::parse(f).expect("the decoder checked it");
+                match Packet::parse(&frame) {
+                    Ok(p) => self.handle(p, now),
+                    Err(_) => self.malformed(frame.header(), frame.payload(), now),
+                }
             }
             if self.in_bootloader() {
-                // SOFTWARE_UPDATE: whatever follows it is for the bootloader.
-                let rest: Vec<u8> = frames[i + 1..].concat();
-                if !rest.is_empty() {
-                    self.feed(&rest, now);
-                }
-                break;
+                self.feed_bootloader(&bytes[i + 1..], now);
+                return;
             }
+        }
+    }
+
+    fn feed_bootloader(&mut self, bytes: &[u8], now: Instant) {
+        let Mode::Boot(b) = &mut self.mode else {
+            return;
+        };
+        let mut out = Vec::new();
+        let exit = b.feed(bytes, &mut self.flash, &mut out);
+        self.boot_stats = b.stats();
+        self.emit_raw(&out, now);
+        if exit {
+            self.log("bootloader EXIT: rebooting with the Software Update flag set".into());
+            self.boot(now, Start::AfterUpdate);
         }
     }
 
@@ -1877,6 +1884,15 @@ mod tests {
         b.run(1_000);
         assert_eq!(flag(&b), Some(false));
         assert_eq!(b.stats().config, UnitConfig::default(), "still erased");
+    }
+
+    #[test]
+    fn bootloader_frames_in_the_same_read_as_software_update_are_not_lost() {
+        let mut b = Bench::new("");
+        let mut bytes = Packet::request(1, SoftwareUpdate).to_bytes();
+        bytes.extend(crate::protocol::bootloader::BootCommand::QueryPort.emit());
+        b.unit.feed(&bytes, b.now);
+        assert_eq!(b.unit.take_output(), b"VP_AVRBOOT");
     }
 
     #[test]
