@@ -6,11 +6,11 @@ use std::time::{Duration, Instant};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use vpx_efis::control::{Action, Controller, KeyContext, Selected, command};
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Source, TrimKind};
-use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS, FLAPS, STARTER, TRIM_P};
+use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS, FLAPS, STARTER, TRIM_P, TRIM_R};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
-    DeviceClear, DevicePower, DeviceStatus, FaultStatus, Message, MiscFlags, Packet, SignedTenths,
-    SystemStatus, Tenths, WigWagMode, WigWagModeSetting,
+    DeviceClear, DevicePower, DeviceStatus, FaultStatus, FlapTrimStatus, Message, MiscFlags,
+    Packet, Payload, SignedTenths, SystemStatus, Tenths, WigWagMode, WigWagModeSetting,
 };
 
 fn status(wig_wag: WigWagModeSetting) -> (Packet, Packet) {
@@ -104,11 +104,20 @@ fn power_commands_go_out_for_ordinary_devices() {
 fn flaps_and_trims_are_not_switched_with_device_power() {
     let t0 = Instant::now();
     let mut m = model(t0, &[], false);
-    // Make them shown: the specs say they are fitted.
-    m.flap_spec = None;
-    for id in [FLAPS, TRIM_P] {
-        // Not shown (not enabled) or a motor: refused either way, never sent.
-        assert!(command(&Action::PowerOn(id), &m, t0).is_err());
+    // FLAP_TRIM_STATUS with every motor enabled puts their rows on the page.
+    let mut payload = [0u8; 18];
+    payload[0] = 0x80;
+    payload[1] = 0x90;
+    let ft = FlapTrimStatus::parse(&payload).unwrap();
+    m.apply_packet(t0, &Packet::from_vpx(0, ft));
+    for id in [FLAPS, TRIM_P, TRIM_R] {
+        assert!(
+            m.is_shown(id, t0),
+            "{id} must be on the page for this test to mean anything"
+        );
+        for a in [Action::PowerOn(id), Action::PowerOff(id)] {
+            assert!(refused(a, &m, t0).contains("motor keys"));
+        }
     }
 }
 

@@ -123,6 +123,30 @@ pub const ROLL_KEYS: &str = "roll trim runs left/right: Shift+←/→ or ,/.";
 pub const PITCH_KEYS: &str = "this motor runs up/down: Shift+↑/↓ or u/d";
 pub const NOTHING_SELECTED: &str = "select a device first (↑/↓ or j/k)";
 
+/// Every key, in words, for the help overlay: kept beside the bindings so the two
+/// cannot drift apart.
+pub const HELP: &[(&str, &str)] = &[
+    ("↑/↓  j/k", "move the selection (never runs a motor)"),
+    ("Shift+↑  u", "flaps / pitch trim row: run up while held"),
+    ("Shift+↓  d", "flaps / pitch trim row: run down while held"),
+    ("Shift+←  ,", "roll trim row: run left while held"),
+    ("Shift+→  .", "roll trim row: run right while held"),
+    (
+        "any other key",
+        "stops a running motor (and does nothing else)",
+    ),
+    ("o  Enter", "switch the selected device on (DEVICE_POWER)"),
+    ("f", "switch the selected device off (DEVICE_POWER)"),
+    ("r", "reset the selected device's fault (DEVICE_CLEAR)"),
+    ("R", "reset the system fault (DEVICE_CLEAR 255)"),
+    ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
+    ("s", "sort by pin / by name"),
+    ("t", "traffic view"),
+    ("c", "setup"),
+    ("?  Esc", "this help"),
+    ("q  Ctrl-C", "quit"),
+];
+
 /// The action for a key, or `None` for a key that is not bound.
 pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {
     if key.kind == KeyEventKind::Release {

@@ -184,7 +184,8 @@ impl Controller {
         let mut out = self.check_model(model, now);
         out.extend(self.streamer.tick(now));
         if !out.is_empty() && self.streamer.running_key().is_none() {
-            self.pending_notice = self.stopped_notice();
+            // Keep an untaken notice rather than overwrite it with nothing.
+            self.pending_notice = self.stopped_notice().or(self.pending_notice.take());
         }
         out
     }
