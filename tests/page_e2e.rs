@@ -1,0 +1,498 @@
+//! The page end to end: the real `App` on one side of a real pseudo-terminal, the
+//! virtual VP-X on the other, and a tap in between that records every byte the page
+//! puts on the wire.
+//!
+//! The page opens a symlink to the pty's slave, as a mechanic opens
+//! /dev/serial/by-id/…: pulling the cable is closing the pty; plugging it back in is a
+//! new pty behind the same link name.
+
+use std::io::{Read, Write};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::style::Color;
+use serialport::SerialPort;
+use vpx_efis::app::{App, AppOptions};
+use vpx_efis::link::{self, PipeReader, PipeWriter};
+use vpx_efis::model::{Connection, Source};
+use vpx_efis::protocol::message::{DevicePower, Message, TrimDirection, TrimMove, TrimType};
+use vpx_efis::protocol::{Decoder, Event as DecEvent, Packet};
+use vpx_efis::sim::{self, Scenario, SimCommand, SimHandle, SimOptions};
+use vpx_efis::ui::state::ReleaseMode;
+
+const SCENARIO: &str = r#"
+description = "e2e: a few devices, pitch trim fitted, nothing scheduled"
+[electrical]
+bus_volts = 14.0
+battery_volts = 12.6
+temperature_c = 20
+switches = [2]
+[[device]]
+id = 2
+name = "EFIS 1"
+switch = 11
+load = 3.0
+[[device]]
+id = 4
+name = "Nav Lt"
+switch = 2
+load = 1.5
+[[device]]
+id = 9
+name = "GPS 1"
+breaker = 2
+switch = 0
+load = 1.0
+[pitch_trim]
+up = 30
+down = 220
+neutral = 125
+position = 120
+"#;
+
+type Wire = Arc<Mutex<Vec<(Instant, Vec<u8>)>>>;
+
+/// Joins a pty's master to the sim's pipe end and records what the page sends.
+struct Tap {
+    stop: Arc<AtomicBool>,
+    threads: Vec<JoinHandle<()>>,
+    slave_path: String,
+}
+
+impl Tap {
+    fn start(to_sim: Arc<Mutex<PipeWriter>>, from_sim: Arc<Mutex<PipeReader>>, wire: Wire) -> Tap {
+        let pty = link::open_pty_pair().expect("pty");
+        let stop = Arc::new(AtomicBool::new(false));
+        let mut master_in = pty.master.try_clone_native().expect("clone master");
+        let mut master_out = pty.master;
+        master_in.set_timeout(Duration::from_millis(20)).unwrap();
+        let slave = pty.slave;
+        let s = stop.clone();
+        let up = std::thread::spawn(move || {
+            let _keep_slave_open_until_unplugged = slave;
+            let mut buf = [0u8; 512];
+            while !s.load(Ordering::SeqCst) {
+                if let Ok(n) = master_in.read(&mut buf)
+                    && n > 0
+                {
+                    wire.lock()
+                        .unwrap()
+                        .push((Instant::now(), buf[..n].to_vec()));
+                    let _ = to_sim.lock().unwrap().write_all(&buf[..n]);
+                }
+            }
+        });
+        let s = stop.clone();
+        let down = std::thread::spawn(move || {
+            let mut buf = [0u8; 512];
+            while !s.load(Ordering::SeqCst) {
+                let r = from_sim.lock().unwrap().read(&mut buf);
+                if let Ok(n) = r
+                    && n > 0
+                {
+                    let _ = master_out.write_all(&buf[..n]);
+                }
+            }
+        });
+        Tap {
+            stop,
+            threads: vec![up, down],
+            slave_path: pty.path,
+        }
+    }
+
+    /// Closes every handle on the master: the page's reads fail, like a pulled cable.
+    fn unplug(self) {
+        self.stop.store(true, Ordering::SeqCst);
+        for t in self.threads {
+            let _ = t.join();
+        }
+    }
+}
+
+struct Rig {
+    app: App,
+    sim: SimHandle,
+    wire: Wire,
+    tap: Option<Tap>,
+    link_path: PathBuf,
+    to_sim: Arc<Mutex<PipeWriter>>,
+    from_sim: Arc<Mutex<PipeReader>>,
+    _dir: tempfile::TempDir,
+}
+
+impl Rig {
+    fn new(mode: ReleaseMode) -> Rig {
+        let (sim_side, page_side) = link::duplex_pipe(Duration::from_millis(20));
+        let scenario = Scenario::from_toml(SCENARIO).expect("scenario");
+        let sim = sim::spawn(
+            SimOptions::new(scenario),
+            Box::new(sim_side.reader),
+            Box::new(sim_side.writer),
+        );
+        let to_sim = Arc::new(Mutex::new(page_side.writer));
+        let from_sim = Arc::new(Mutex::new(page_side.reader));
+        let wire: Wire = Arc::default();
+        let tap = Tap::start(to_sim.clone(), from_sim.clone(), wire.clone());
+        let dir = tempfile::tempdir().unwrap();
+        let link_path = dir.path().join("vpx-serial");
+        std::os::unix::fs::symlink(&tap.slave_path, &link_path).unwrap();
+        let app = App::new(
+            Source::Serial {
+                path: link_path.display().to_string(),
+            },
+            link::serial_connector(link_path.clone(), 57_600),
+            AppOptions {
+                max_run: Duration::from_secs(10),
+                release_mode: mode,
+            },
+        );
+        Rig {
+            app,
+            sim,
+            wire,
+            tap: Some(tap),
+            link_path,
+            to_sim,
+            from_sim,
+            _dir: dir,
+        }
+    }
+
+    /// Pumps the page until `f` holds, or fails after `limit`.
+    fn until(&mut self, what: &str, limit: Duration, f: impl Fn(&App, Instant) -> bool) -> Instant {
+        let end = Instant::now() + limit;
+        loop {
+            let now = Instant::now();
+            if f(&self.app, now) {
+                return now;
+            }
+            assert!(now < end, "timed out waiting for {what}");
+            self.app.pump_until(now + Duration::from_millis(20));
+        }
+    }
+
+    fn key(&mut self, code: KeyCode, kind: KeyEventKind) {
+        let mut k = KeyEvent::new(code, KeyModifiers::NONE);
+        k.kind = kind;
+        self.app.handle_term_event(Event::Key(k), Instant::now());
+    }
+
+    /// Waits until the page has heard both status broadcasts and every name.
+    fn ready(&mut self) {
+        self.until("the device list", Duration::from_secs(6), |app, now| {
+            let m = app.model();
+            m.live_system(now).is_some()
+                && m.live_devices(now).is_some()
+                && m.names.iter().all(Option::is_some)
+        });
+    }
+
+    fn select(&mut self, id: u8) {
+        self.ready();
+        for _ in 0..40 {
+            if self.app.view().selected == Some(id) {
+                return;
+            }
+            self.key(KeyCode::Char('j'), KeyEventKind::Press);
+        }
+        panic!("could not select device {id}");
+    }
+
+    /// Every packet the page sent since `from` (an index into the wire log).
+    fn sent(&self, from: usize) -> Vec<(Instant, Packet)> {
+        let wire = self.wire.lock().unwrap();
+        let mut dec = Decoder::new();
+        let mut out = Vec::new();
+        for (at, bytes) in &wire[from..] {
+            dec.push(bytes, |e| {
+                if let DecEvent::Frame(f) = e {
+                    out.push((
+                        *at,
+                        Packet::parse(&f).expect("the page sends only valid frames"),
+                    ));
+                }
+            });
+        }
+        out
+    }
+
+    fn wire_len(&self) -> usize {
+        self.wire.lock().unwrap().len()
+    }
+
+    fn render(&mut self) -> Buffer {
+        let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
+        self.app.draw(&mut term, Instant::now()).unwrap();
+        term.backend().buffer().clone()
+    }
+}
+
+fn line_of(buf: &Buffer, needle: &str) -> Option<(u16, String)> {
+    (0..buf.area.height).find_map(|y| {
+        let line: String = (0..buf.area.width)
+            .map(|x| buf[(x, y)].symbol().to_string())
+            .collect();
+        line.contains(needle).then_some((y, line))
+    })
+}
+
+fn fg_of(buf: &Buffer, y: u16, line: &str, word: &str) -> Color {
+    let col = line.find(word).expect("word on line");
+    // Columns are characters; the row is ASCII up to the state column.
+    let x = line[..col].chars().count() as u16;
+    buf[(x, y)].fg
+}
+
+#[test]
+fn a_key_reaches_the_wire_as_device_power_and_the_next_status_shows_it_on() {
+    let mut rig = Rig::new(ReleaseMode::AutoRepeat);
+    rig.select(9);
+    let from = rig.wire_len();
+    let pressed = Instant::now();
+    rig.key(KeyCode::Char('o'), KeyEventKind::Press);
+    let arrived = rig.until(
+        "DEVICE_POWER on the wire",
+        Duration::from_secs(2),
+        |_, _| false || true,
+    );
+    let _ = arrived;
+    let sent_at = {
+        let end = Instant::now() + Duration::from_secs(2);
+        loop {
+            let found = rig.sent(from).into_iter().find(|(_, p)| {
+                p.message
+                    == Message::DevicePower(DevicePower {
+                        device_id: 9,
+                        on: true,
+                    })
+            });
+            if let Some((at, p)) = found {
+                assert_eq!(
+                    (p.src, p.dst),
+                    (
+                        vpx_efis::protocol::Node::External,
+                        vpx_efis::protocol::Node::Vpx
+                    )
+                );
+                break at;
+            }
+            assert!(
+                Instant::now() < end,
+                "no DEVICE_POWER 9 on reached the wire"
+            );
+            rig.app
+                .pump_until(Instant::now() + Duration::from_millis(5));
+        }
+    };
+    eprintln!(
+        "key-to-wire through the pty: {:?}",
+        sent_at.saturating_duration_since(pressed)
+    );
+    rig.until(
+        "DEVICE_STATUS with GPS 1 on",
+        Duration::from_secs(3),
+        |app, now| app.model().live_devices(now).is_some_and(|d| d.on[9]),
+    );
+    let buf = rig.render();
+    let (y, line) = line_of(&buf, "GPS 1").expect("GPS 1 row");
+    assert!(line.contains(" ON "), "{line}");
+    assert_eq!(fg_of(&buf, y, &line, "ON "), Color::Green, "{line}");
+    assert!(rig.sim.stats().powered[9]);
+}
+
+/// Holds pitch-trim up for about two seconds the way `mode` reports it, then lets go.
+fn hold_trim_up(rig: &mut Rig, mode: ReleaseMode) {
+    rig.select(30);
+    let before = rig.sim.stats().pitch_trim_position;
+    let from = rig.wire_len();
+    let start = Instant::now();
+    rig.key(KeyCode::Char('u'), KeyEventKind::Press);
+    match mode {
+        ReleaseMode::AutoRepeat => {
+            // A typical terminal: first repeat after ~500 ms, then ~30 per second.
+            rig.app.pump_until(start + Duration::from_millis(500));
+            while start.elapsed() < Duration::from_secs(2) {
+                rig.key(KeyCode::Char('u'), KeyEventKind::Press);
+                rig.app
+                    .pump_until(Instant::now() + Duration::from_millis(33));
+            }
+        }
+        ReleaseMode::KeyRelease => {
+            rig.app.pump_until(start + Duration::from_secs(2));
+            rig.key(KeyCode::Char('u'), KeyEventKind::Release);
+        }
+    }
+    let let_go = Instant::now();
+    rig.app.pump_until(let_go + Duration::from_millis(600));
+    let stats = rig.sim.stats();
+    assert!(
+        stats.pitch_trim_position < before,
+        "trim up moved the position from {before} to {}",
+        stats.pitch_trim_position
+    );
+    assert_eq!(
+        stats.pitch_trim_starvations, 0,
+        "the page streamed fast enough"
+    );
+    assert!(!stats.pitch_trim_running, "the motor stopped after release");
+
+    let moves: Vec<(Instant, TrimMove)> = rig
+        .sent(from)
+        .into_iter()
+        .filter_map(|(at, p)| match p.message {
+            Message::TrimMove(m) => Some((at, m)),
+            _ => None,
+        })
+        .collect();
+    let (on, stop): (Vec<_>, Vec<_>) = moves.iter().partition(|(_, m)| m.on);
+    assert!(
+        on.len() >= 8,
+        "about 2 s of moves at 5 Hz, got {}",
+        on.len()
+    );
+    assert!(
+        on.iter()
+            .all(|(_, m)| m.trim_type == TrimType::Pitch && m.direction == TrimDirection::UpOrLeft)
+    );
+    let worst = on.windows(2).map(|w| w[1].0 - w[0].0).max().unwrap();
+    eprintln!(
+        "{mode:?}: {} moves, worst interval on the wire {worst:?}",
+        on.len()
+    );
+    assert!(worst <= Duration::from_millis(250), "interval {worst:?}");
+    let (stop_at, last) = *stop.last().expect("a stop message");
+    assert_eq!(last.trim_type, TrimType::Pitch);
+    assert!(
+        moves.last().is_some_and(|(_, m)| !m.on),
+        "the stop is the last move message"
+    );
+    let latest_allowed = match mode {
+        ReleaseMode::KeyRelease => let_go + Duration::from_millis(100),
+        ReleaseMode::AutoRepeat => let_go + Duration::from_millis(400),
+    };
+    assert!(
+        stop_at <= latest_allowed,
+        "stop came {:?} after letting go",
+        stop_at - let_go
+    );
+}
+
+#[test]
+fn a_held_trim_key_moves_the_sims_trim_with_no_starvation_in_auto_repeat_mode() {
+    let mut rig = Rig::new(ReleaseMode::AutoRepeat);
+    hold_trim_up(&mut rig, ReleaseMode::AutoRepeat);
+}
+
+#[test]
+fn a_held_trim_key_moves_the_sims_trim_with_no_starvation_in_key_release_mode() {
+    let mut rig = Rig::new(ReleaseMode::KeyRelease);
+    hold_trim_up(&mut rig, ReleaseMode::KeyRelease);
+}
+
+#[test]
+fn a_silent_unit_brings_communication_lost_within_two_and_a_half_seconds() {
+    let mut rig = Rig::new(ReleaseMode::AutoRepeat);
+    rig.ready();
+    let last_status = |app: &App| {
+        let m = app.model();
+        m.system_status
+            .map(|s| s.at)
+            .max(m.device_status.map(|s| s.at))
+            .unwrap()
+    };
+    rig.sim.inject(SimCommand::Silent(Duration::from_secs(6)));
+    let lost_at = rig.until("COMMUNICATION LOST", Duration::from_secs(5), |app, now| {
+        app.model().comm_lost(now)
+    });
+    let heard = last_status(&rig.app);
+    assert!(
+        lost_at - heard <= Duration::from_millis(2500 + 200),
+        "lost {:?} after the last status",
+        lost_at - heard
+    );
+    let buf = rig.render();
+    assert!(line_of(&buf, "COMMUNICATION LOST").is_some());
+    let screen: String = (0..buf.area.height)
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect();
+    let (_, nav) =
+        line_of(&buf, "Nav Lt").unwrap_or_else(|| panic!("rows stay, values go:\n{screen}"));
+    assert!(
+        !nav.contains(" ON ") && !nav.contains("1.5"),
+        "no old data shown: {nav}"
+    );
+    rig.until(
+        "data back after the silence",
+        Duration::from_secs(8),
+        |app, now| !app.model().comm_lost(now),
+    );
+    let buf = rig.render();
+    assert!(line_of(&buf, "COMMUNICATION LOST").is_none());
+}
+
+#[test]
+fn a_pulled_cable_is_shown_and_the_same_path_reconnects_when_it_returns() {
+    let mut rig = Rig::new(ReleaseMode::AutoRepeat);
+    rig.ready();
+    let versions_asked = |rig: &Rig| {
+        rig.sent(0)
+            .iter()
+            .filter(|(_, p)| p.message.name() == "VERSION")
+            .count()
+    };
+    assert_eq!(versions_asked(&rig), 1);
+
+    // Unplug: every handle on the master closes and the device node goes away.
+    rig.tap.take().unwrap().unplug();
+    std::fs::remove_file(&rig.link_path).unwrap();
+    rig.until(
+        "the page to notice the pulled cable",
+        Duration::from_secs(5),
+        |app, _| matches!(app.model().connection, Connection::Lost { .. }),
+    );
+    rig.app.pump_until(Instant::now() + Duration::from_secs(1));
+    assert!(
+        matches!(rig.app.model().connection, Connection::Lost { .. }),
+        "still lost while unplugged"
+    );
+
+    // Plug back in: a new pty behind the same name.
+    let tap = Tap::start(rig.to_sim.clone(), rig.from_sim.clone(), rig.wire.clone());
+    std::os::unix::fs::symlink(&tap.slave_path, &rig.link_path).unwrap();
+    rig.tap = Some(tap);
+    rig.until(
+        "reconnected with live data",
+        Duration::from_secs(6),
+        |app, now| {
+            matches!(app.model().connection, Connection::Connected { .. })
+                && !app.model().comm_lost(now)
+        },
+    );
+    rig.until(
+        "the connect queries asked again",
+        Duration::from_secs(3),
+        |_, _| true,
+    );
+    let end = Instant::now() + Duration::from_secs(3);
+    while versions_asked(&rig) < 2 {
+        assert!(
+            Instant::now() < end,
+            "VERSION was not asked again after reconnecting"
+        );
+        rig.app
+            .pump_until(Instant::now() + Duration::from_millis(50));
+    }
+}
