@@ -359,7 +359,6 @@ impl Gateway {
         {
             return;
         }
-        self.recent.insert(key, now);
         let who = format!("XFSp {src:#06x} ({})", confidence_name(p.confidence));
         let action = match bus.state {
             EcbState::On => Action::PowerOn(id),
@@ -382,6 +381,9 @@ impl Gateway {
         };
         match command(&action, model, now) {
             Ok(message) => {
+                // Only a command taken is suppressed on repeat: a retry after a refusal
+                // may find the circuit in the state it needed.
+                self.recent.insert(key, now);
                 self.stats.commands_taken += 1;
                 model.log(
                     now,

@@ -1,0 +1,617 @@
+//! The gateway's pure core on a fake clock: a model fed hand-made VP-X packets, datagrams
+//! built with the codec's Sender, and what comes out decoded with the codec.
+
+use std::time::{Duration, Instant};
+
+use proptest::prelude::*;
+use vpx_efis::model::{Model, Source};
+use vpx_efis::protocol::device::DEVICE_COUNT;
+use vpx_efis::protocol::fault::FaultCode;
+use vpx_efis::protocol::message::{
+    DeviceStatus, FaultStatus, FlapFlags, FlapTrimStatus, Message, MiscFlags, Packet, SignedTenths,
+    SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
+};
+use vpx_efis::xfsp::gateway::{Gateway, GatewayConfig, Step};
+use vpx_efis::xfsp::publish::{CAS_UNIT_COMM_LOST, LIFETIME};
+use vpx_efis::xfsp::{
+    Body, Boolean, Bus, CasLevel, CertLevel, Confidence, EcbState, Expire, Message as XMessage,
+    MsgKind, Parameter, Sender, Value, idents,
+};
+
+const ME: u16 = 0x5650;
+const PEER: u16 = 0x0042;
+
+fn ms(n: u64) -> Duration {
+    Duration::from_millis(n)
+}
+
+fn model() -> Model {
+    Model::new(Source::Simulated {
+        scenario: "test".into(),
+    })
+}
+
+/// SYSTEM_STATUS + DEVICE_STATUS with `on` powered at 2.5 A each.
+fn status(m: &mut Model, at: Instant, on: &[u8]) {
+    let mut d = DeviceStatus {
+        on: [false; DEVICE_COUNT],
+        current: [Tenths(0); DEVICE_COUNT],
+    };
+    for &id in on {
+        d.on[id as usize] = true;
+        d.current[id as usize] = Tenths(25);
+    }
+    let s = SystemStatus {
+        system_current: Tenths(123),
+        main_bus_volts: SignedTenths(138),
+        aux_battery_volts: Tenths(126),
+        internal_temp: 30,
+        switches: Default::default(),
+        misc: MiscFlags {
+            starter_annunciator: false,
+            wig_wag_mode: WigWagModeSetting::Auto,
+            software_update: false,
+            wig_wag_active: false,
+        },
+        faults: Default::default(),
+        data_integrity_code: None,
+    };
+    m.apply_packet(at, &Packet::from_vpx(0, s));
+    m.apply_packet(at, &Packet::from_vpx(1, d));
+}
+
+fn fault(m: &mut Model, at: Instant, id: u8, code: FaultCode) {
+    let mut f = FaultStatus {
+        faulted: [false; DEVICE_COUNT],
+        system_fault: false,
+        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+    };
+    f.faulted[id as usize] = true;
+    f.codes[id as usize] = Some(code);
+    m.apply_packet(at, &Packet::from_vpx(2, f));
+}
+
+/// Flaps enabled, up endpoint 40, down 200, at `flap`.
+fn flaps(m: &mut Model, at: Instant, flap: u8) {
+    let ft = FlapTrimStatus {
+        flap: FlapFlags {
+            enabled: true,
+            ..Default::default()
+        },
+        pitch_trim: TrimFlags::default(),
+        roll_trim: TrimFlags::default(),
+        flap_position: flap,
+        pitch_trim_position: 0,
+        roll_trim_position: 0,
+        flap_fault: FaultCode::NoFault,
+        pitch_trim_fault: FaultCode::NoFault,
+        roll_trim_fault: FaultCode::NoFault,
+        flap_up: 40,
+        flap_down: 200,
+        flap_midpoint_1: 0,
+        flap_midpoint_2: 0,
+        pitch_trim_up: 0,
+        pitch_trim_down: 0,
+        pitch_trim_neutral: 0,
+        roll_trim_up: 0,
+        roll_trim_down: 0,
+        roll_trim_neutral: 0,
+    };
+    m.apply_packet(at, &Packet::from_vpx(3, ft));
+}
+
+fn params(step: &Step) -> Vec<Parameter> {
+    step.datagrams
+        .iter()
+        .flat_map(|d| {
+            let m = XMessage::parse(d).expect("our datagrams parse");
+            assert_eq!(m.src_id, ME);
+            match m.body {
+                Body::Params(p) => p,
+                Body::Raw(_) => panic!("we send parameters"),
+            }
+        })
+        .collect()
+}
+
+fn find(ps: &[Parameter], ident: vpx_efis::xfsp::Ident, unit: u16) -> Option<&Parameter> {
+    ps.iter().find(|p| p.ident == ident && p.unit == unit)
+}
+
+fn bus(p: &Parameter) -> &Bus {
+    match &p.value {
+        Value::Bus(b) => b,
+        v => panic!("not a BUS: {v:?}"),
+    }
+}
+
+fn cas(ps: &[Parameter]) -> Vec<(u16, CasLevel, String)> {
+    ps.iter()
+        .filter(|p| p.ident == idents::CASMSG)
+        .map(|p| match &p.value {
+            Value::CasMsg(c) => (p.unit, c.level, vpx_efis::xfsp::format::latin1(&c.label)),
+            v => panic!("{v:?}"),
+        })
+        .collect()
+}
+
+fn master(ps: &[Parameter]) -> Option<bool> {
+    find(ps, idents::MSTRCAUTN, 0).map(|p| p.value == Value::Bool(Boolean::True))
+}
+
+fn request(sender: &mut Sender, ps: Vec<Parameter>) -> Vec<u8> {
+    sender
+        .pack(MsgKind::flight_data(CertLevel::Experimental), &ps)
+        .unwrap()
+        .remove(0)
+}
+
+fn ecb_request(unit: u16, state: EcbState, conf: Confidence) -> Parameter {
+    Parameter::new(
+        idents::ECBSTAT,
+        Value::Bus(Bus {
+            state,
+            ..Bus::default()
+        }),
+    )
+    .unit(unit)
+    .confidence(conf)
+}
+
+#[test]
+fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let ps = params(&gw.tick(&mut m, t0));
+    let efis = find(&ps, idents::ECBSTAT, 2).expect("EFIS published");
+    let b = bus(efis);
+    assert_eq!(b.state, EcbState::On);
+    assert_eq!(b.draw_amps, 25, "2.5 A in tenths");
+    assert_eq!(b.label, b"EFIS");
+    assert_eq!(efis.expire, Expire::at_least(LIFETIME));
+    assert!(efis.expire.millis().unwrap() >= 2500);
+    assert_eq!(
+        bus(find(&ps, idents::ECBSTAT, 5).unwrap()).state,
+        EcbState::Off
+    );
+    let main = bus(find(&ps, idents::BUSSTAT, 0).unwrap());
+    assert_eq!((main.out_volts, main.draw_amps), (138, 123));
+    let aux = bus(find(&ps, idents::BUSSTAT, 1).unwrap());
+    assert_eq!((aux.state, aux.out_volts), (EcbState::On, 126));
+    assert_eq!(master(&ps), Some(false));
+    assert!(cas(&ps).is_empty());
+}
+
+#[test]
+fn every_item_is_refreshed_at_least_once_a_second_and_not_resent_unchanged_sooner() {
+    let t0 = Instant::now();
+    let mut m = model();
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut seen: Vec<(Instant, Parameter)> = Vec::new();
+    let mut now = t0;
+    while now < t0 + ms(3000) {
+        // The unit broadcasts at 1 Hz; the gateway is ticked when it asks to be.
+        status(&mut m, now - ms((now - t0).as_millis() as u64 % 1000), &[2]);
+        seen.extend(params(&gw.tick(&mut m, now)).into_iter().map(|p| (now, p)));
+        let next = gw.next_deadline();
+        assert!(
+            next > now && next <= now + ms(100),
+            "deadline in (now, now+100ms]"
+        );
+        now = next;
+    }
+    let efis: Vec<Instant> = seen
+        .iter()
+        .filter(|(_, p)| p.ident == idents::ECBSTAT && p.unit == 2)
+        .map(|(t, _)| *t)
+        .collect();
+    assert!(efis.len() >= 3, "{efis:?}");
+    for w in efis.windows(2) {
+        let gap = w[1] - w[0];
+        assert!(gap <= ms(1000), "refresh gap {gap:?}");
+        assert!(gap >= ms(100), "unchanged item re-sent after {gap:?}");
+    }
+}
+
+#[test]
+fn a_fault_raises_cas_and_master_caution_then_clear_three_times() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    gw.tick(&mut m, t0);
+    // Later than the 100 ms minimum interval, so ECBSTAT goes out with the CAS.
+    fault(&mut m, t0 + ms(200), 5, FaultCode::ShortCircuit);
+    let ps = params(&gw.tick(&mut m, t0 + ms(200)));
+    assert_eq!(
+        cas(&ps),
+        [(5, CasLevel::Warning, "5A-2: SHORT CIRCUIT".to_string())]
+    );
+    assert_eq!(
+        bus(find(&ps, idents::ECBSTAT, 5).unwrap()).state,
+        EcbState::Shorted
+    );
+    assert_eq!(master(&ps), Some(true));
+    assert_eq!(gw.standing_cas().len(), 1);
+    // Status keeps coming without FAULT_STATUS: after 2.5 s the fault has cleared.
+    let mut clears = Vec::new();
+    let mut now = t0 + ms(200);
+    let mut master_seen = Vec::new();
+    while now < t0 + ms(7000) {
+        now = gw.next_deadline();
+        status(&mut m, now, &[]);
+        let ps = params(&gw.tick(&mut m, now));
+        master_seen.extend(master(&ps));
+        for (u, level, label) in cas(&ps) {
+            if level == CasLevel::Clear {
+                clears.push((now, u, label));
+            }
+        }
+    }
+    assert_eq!(clears.len(), 3, "{clears:?}");
+    assert!(
+        clears
+            .iter()
+            .all(|(_, u, l)| *u == 5 && l == "5A-2: SHORT CIRCUIT")
+    );
+    assert!(clears[1].0 - clears[0].0 >= ms(1000));
+    assert_eq!(master_seen.last(), Some(&false));
+    assert!(gw.standing_cas().is_empty());
+}
+
+#[test]
+fn every_appendix_e_code_maps_to_a_fault_state_and_a_level() {
+    use vpx_efis::xfsp::publish::{cas_level, fault_ecb_state};
+    for b in 1..=0x20u8 {
+        let code = FaultCode::from_byte(b);
+        let s = fault_ecb_state(code);
+        assert!(u8::from(s) >= 128, "{code:?} -> {s:?} is not a fault state");
+        assert!(matches!(
+            cas_level(code),
+            CasLevel::Caution | CasLevel::Warning
+        ));
+    }
+    assert_eq!(fault_ecb_state(FaultCode::OverCurrent), EcbState::OverCur);
+    assert_eq!(fault_ecb_state(FaultCode::OverVoltage), EcbState::OverVol);
+    assert_eq!(fault_ecb_state(FaultCode::TrimRunaway), EcbState::Runaway);
+    assert_eq!(fault_ecb_state(FaultCode::FlapDisabled), EcbState::Disabled);
+}
+
+#[test]
+fn lost_communication_publishes_unknown_and_says_so_once_past_the_start_grace() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    flaps(&mut m, t0, 120);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let ps = params(&gw.tick(&mut m, t0));
+    assert_eq!(
+        find(&ps, idents::FLAPPOS, 0).map(|p| p.value.clone()),
+        Some(Value::Sint(50_000))
+    );
+    let later = t0 + ms(2600);
+    let ps = params(&gw.tick(&mut m, later));
+    let efis = find(&ps, idents::ECBSTAT, 2).expect("republished on change");
+    assert_eq!(bus(efis).state, EcbState::Unknown0);
+    assert_eq!(bus(efis).draw_amps, 0, "no stale amps");
+    assert_eq!(efis.confidence, Confidence::Useless);
+    assert_eq!(
+        bus(find(&ps, idents::BUSSTAT, 0).unwrap()).state,
+        EcbState::Unknown0
+    );
+    assert!(find(&ps, idents::FLAPPOS, 0).is_none(), "no stale position");
+    assert_eq!(
+        cas(&ps),
+        [(
+            CAS_UNIT_COMM_LOST,
+            CasLevel::Caution,
+            "VP-X COMM LOST".into()
+        )]
+    );
+    assert_eq!(master(&ps), Some(true));
+    // Heard again: the message is withdrawn.
+    status(&mut m, later + ms(500), &[2]);
+    let ps = params(&gw.tick(&mut m, later + ms(500)));
+    assert_eq!(cas(&ps)[0].1, CasLevel::Clear);
+    assert_eq!(
+        bus(find(&ps, idents::ECBSTAT, 2).unwrap()).state,
+        EcbState::On
+    );
+}
+
+#[test]
+fn a_gateway_that_never_heard_the_unit_waits_before_crying_comm_lost() {
+    let t0 = Instant::now();
+    let mut m = model();
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    assert!(cas(&params(&gw.tick(&mut m, t0 + ms(1000)))).is_empty());
+    let ps = params(&gw.tick(&mut m, t0 + ms(2600)));
+    assert_eq!(cas(&ps).len(), 1);
+}
+
+#[test]
+fn forwarded_air_data_is_valid_only_while_fresh() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    assert!(
+        gw.tick(&mut m, t0).to_unit.is_empty(),
+        "no air data heard, none sent"
+    );
+    let mut peer = Sender::new(PEER, 1);
+    let d = request(
+        &mut peer,
+        vec![
+            Parameter::new(idents::IAS, Value::Sint(88)).expire(Expire::at_least(ms(1500))),
+            Parameter::new(idents::ENGRPM, Value::Uint(2400)),
+        ],
+    );
+    assert!(gw.receive(&d, &mut m, t0 + ms(100)).is_empty());
+    let ext = |s: &Step| {
+        s.to_unit.iter().find_map(|p| match p.message {
+            Message::ExternalData(e) => Some(e),
+            _ => None,
+        })
+    };
+    let e = ext(&gw.tick(&mut m, t0 + ms(100))).expect("sent at once");
+    assert_eq!((e.indicated_airspeed, e.rpm), (88, 2400));
+    assert!(e.valid.indicated_airspeed && e.valid.rpm && !e.valid.baro_altitude);
+    assert!(
+        ext(&gw.tick(&mut m, t0 + ms(600))).is_none(),
+        "1 Hz, not faster"
+    );
+    let e = ext(&gw.tick(&mut m, t0 + ms(2100))).unwrap();
+    assert!(!e.valid.indicated_airspeed, "past its 1.5 s expire");
+    assert!(e.valid.rpm, "2.0 s old is still fresh");
+    let e = ext(&gw.tick(&mut m, t0 + ms(3100))).unwrap();
+    assert!(!e.valid.rpm, "never-expiring data is still at most 2 s old");
+    let f = gw.forwarding(t0 + ms(3100));
+    assert_eq!(f[0].last.map(|s| s.value), Some(88));
+    assert!(f.iter().all(|f| !f.fresh));
+}
+
+#[test]
+fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut peer = Sender::new(PEER, 100);
+    let on5 = request(
+        &mut peer,
+        vec![ecb_request(5, EcbState::On, Confidence::UserSel)],
+    );
+    let out = gw.receive(&on5, &mut m, t0);
+    assert!(matches!(
+        out.as_slice(),
+        [Packet {
+            message: Message::DevicePower(p),
+            ..
+        }] if p.device_id == 5 && p.on
+    ));
+    assert!(
+        m.events
+            .back()
+            .unwrap()
+            .text
+            .contains("5A-2 ON -> DEVICE_POWER")
+    );
+    // The same bytes again, and an older message: both ignored by number.
+    assert!(gw.receive(&on5, &mut m, t0 + ms(1500)).is_empty());
+    let mut old = Sender::new(PEER, 50);
+    let off2 = request(
+        &mut old,
+        vec![ecb_request(2, EcbState::Off, Confidence::SysSel)],
+    );
+    assert!(gw.receive(&off2, &mut m, t0 + ms(1600)).is_empty());
+    assert_eq!(gw.stats().rx.duplicate, 1);
+    assert_eq!(gw.stats().rx.out_of_order, 1);
+    // Status-only confidence is another node's report, not a request.
+    let high = request(
+        &mut peer,
+        vec![ecb_request(2, EcbState::Off, Confidence::High)],
+    );
+    assert!(gw.receive(&high, &mut m, t0 + ms(1700)).is_empty());
+    // The starter cannot be switched; reset only when faulted; both logged.
+    let starter = request(
+        &mut peer,
+        vec![ecb_request(1, EcbState::On, Confidence::UserSel)],
+    );
+    assert!(gw.receive(&starter, &mut m, t0 + ms(1800)).is_empty());
+    assert!(
+        m.events
+            .back()
+            .unwrap()
+            .text
+            .contains("refused: the starter")
+    );
+    let reset = request(
+        &mut peer,
+        vec![ecb_request(2, EcbState::Reset, Confidence::UserSel)],
+    );
+    assert!(gw.receive(&reset, &mut m, t0 + ms(1900)).is_empty());
+    assert!(m.events.back().unwrap().text.contains("no fault to reset"));
+    fault(&mut m, t0 + ms(1950), 2, FaultCode::OverCurrent);
+    let reset = request(
+        &mut peer,
+        vec![ecb_request(2, EcbState::Reset, Confidence::UserSel)],
+    );
+    let out = gw.receive(&reset, &mut m, t0 + ms(2000));
+    assert!(
+        matches!(out.as_slice(), [Packet { message: Message::DeviceClear(c), .. }] if c.device_id == 2)
+    );
+    // Our own messages, heard back through the multicast loop, are ignored.
+    let mut me = Sender::new(ME, 0);
+    let own = request(
+        &mut me,
+        vec![ecb_request(2, EcbState::Off, Confidence::UserSel)],
+    );
+    assert!(gw.receive(&own, &mut m, t0 + ms(2100)).is_empty());
+    assert_eq!(gw.stats().own, 1);
+    // A label that names another circuit is another node's circuit.
+    let mut other = ecb_request(2, EcbState::Off, Confidence::UserSel);
+    if let Value::Bus(b) = &mut other.value {
+        b.label = b"LANDING LT".to_vec();
+    }
+    assert!(
+        gw.receive(&request(&mut peer, vec![other]), &mut m, t0 + ms(2200))
+            .is_empty()
+    );
+}
+
+fn flap_moves(ps: &[Packet]) -> Vec<(bool, vpx_efis::protocol::message::FlapDirection)> {
+    ps.iter()
+        .filter_map(|p| match p.message {
+            Message::FlapMove(f) => Some((f.on, f.direction)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_flap_request_streams_toward_the_target_and_stops_there() {
+    use vpx_efis::protocol::message::FlapDirection::{Down, Up};
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    flaps(&mut m, t0, 40);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut peer = Sender::new(PEER, 1);
+    let req = |peer: &mut Sender, target| {
+        request(
+            peer,
+            vec![
+                Parameter::new(idents::FLAPREQ, Value::Sint(target))
+                    .confidence(Confidence::UserSel)
+                    .expire(Expire::at_least(ms(600))),
+            ],
+        )
+    };
+    // 50 % of 40..200 is raw 120.
+    let out = gw.receive(&req(&mut peer, 50_000), &mut m, t0);
+    assert_eq!(flap_moves(&out), [(true, Down)]);
+    let mut now = t0;
+    let mut sends = vec![t0];
+    let mut pos = 40u8;
+    let mut stopped = None;
+    while now < t0 + ms(5000) && stopped.is_none() {
+        now = gw.next_deadline();
+        pos = pos.saturating_add(4);
+        status(&mut m, now, &[]);
+        flaps(&mut m, now, pos);
+        let mut out = Vec::new();
+        if (now - t0).as_millis() % 400 < 100 {
+            out.extend(gw.receive(&req(&mut peer, 50_000), &mut m, now));
+        }
+        out.extend(gw.tick(&mut m, now).to_unit);
+        for (on, dir) in flap_moves(&out) {
+            assert_eq!(dir, Down);
+            if on {
+                sends.push(now);
+            } else {
+                stopped = Some((now, pos));
+            }
+        }
+    }
+    let (_, at) = stopped.unwrap_or_else(|| panic!("not stopped: {:#?}", m.events));
+    assert!((118..=121).contains(&at), "stopped at raw {at}");
+    for w in sends.windows(2) {
+        assert!(w[1] - w[0] <= ms(250), "stream gap {:?}", w[1] - w[0]);
+    }
+    // Requests for the same target keep coming: it is not restarted.
+    let out = gw.receive(&req(&mut peer, 50_000), &mut m, now + ms(50));
+    assert!(flap_moves(&out).is_empty());
+    // A new target goes the other way.
+    let out = gw.receive(&req(&mut peer, 0), &mut m, now + ms(60));
+    assert_eq!(flap_moves(&out), [(true, Up)]);
+}
+
+#[test]
+fn a_flap_request_that_is_not_repeated_stops_at_its_expiry() {
+    use vpx_efis::protocol::message::FlapDirection::Down;
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    flaps(&mut m, t0, 40);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut peer = Sender::new(PEER, 1);
+    let d = request(
+        &mut peer,
+        vec![
+            Parameter::new(idents::FLAPREQ, Value::Sint(FULL))
+                .confidence(Confidence::SysSel)
+                .expire(Expire::at_least(ms(300))),
+        ],
+    );
+    const FULL: i32 = 100_000;
+    assert_eq!(flap_moves(&gw.receive(&d, &mut m, t0)), [(true, Down)]);
+    let mut now = t0;
+    let mut stop_at = None;
+    while now < t0 + ms(2000) && stop_at.is_none() {
+        now = gw.next_deadline();
+        flaps(&mut m, now, 60);
+        if flap_moves(&gw.tick(&mut m, now).to_unit).contains(&(false, Down)) {
+            stop_at = Some(now);
+        }
+    }
+    let at = stop_at.expect("stopped");
+    // 300 ms expire encodes as exactly 300 ms.
+    assert!(
+        at - t0 >= ms(300) && at - t0 <= ms(400),
+        "stopped after {:?}",
+        at - t0
+    );
+    assert!(
+        m.events
+            .iter()
+            .any(|e| e.text.contains("requests stopped or expired"))
+    );
+}
+
+#[test]
+fn motor_requests_need_live_status_and_log_their_refusal() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut peer = Sender::new(PEER, 1);
+    let d = request(
+        &mut peer,
+        vec![Parameter::new(idents::FLAPREQ, Value::Sint(50_000)).confidence(Confidence::UserSel)],
+    );
+    assert!(gw.receive(&d, &mut m, t0).is_empty());
+    assert!(m.events.back().unwrap().text.contains("request refused"));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn arbitrary_datagrams_never_panic_the_gateway(
+        datagrams in proptest::collection::vec(proptest::collection::vec(any::<u8>(), 0..200), 1..8),
+        ecb in any::<bool>(),
+    ) {
+        let t0 = Instant::now();
+        let mut m = model();
+        status(&mut m, t0, &[2]);
+        let mut gw = Gateway::new(GatewayConfig::default(), t0);
+        for (i, mut d) in datagrams.into_iter().enumerate() {
+            if ecb && d.len() >= 24 {
+                // Steer some inputs into a valid-looking header and an ECBSTAT ident.
+                d[4] = 3;
+                d[11] = (d.len() - 12) as u8;
+                d[17] &= 0xF0;
+                d[18] = 0;
+                d[19] = 0x40; // ECBSTAT
+                d[20] = 10; // BUS
+                d[21] = 128; // USERSEL
+            }
+            let now = t0 + ms(i as u64 * 10);
+            let _ = gw.receive(&d, &mut m, now);
+            let _ = gw.tick(&mut m, now);
+        }
+    }
+}
