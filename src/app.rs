@@ -9,7 +9,9 @@
 //!   redraws only when the model or the view changed, or once a second for ages.
 
 mod queries;
+mod setup;
 mod terminal;
+mod traffic;
 
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
@@ -25,7 +27,9 @@ use crate::link::{self, Connector, Link, LinkEvent, LinkHandle, RxItem};
 use crate::model::{Model, Source};
 use crate::protocol::message::Packet;
 use crate::sim::{self, SimHandle, SimOptions};
-use crate::ui::{self, state::Overlay, state::ReleaseMode, state::SortOrder, state::ViewState};
+use crate::ui::{
+    self, state::Overlay, state::ReleaseMode, state::Screen, state::SortOrder, state::ViewState,
+};
 
 pub use queries::{QueryPacer, connect_queries};
 pub use terminal::{TerminalGuard, restore as restore_terminal};
@@ -152,6 +156,12 @@ impl App {
     pub fn handle_term_event(&mut self, event: TermEvent, now: Instant) -> Flow {
         self.dirty = true;
         match event {
+            TermEvent::Key(key) if self.view.screen == Screen::Traffic => {
+                return self.traffic_key(key, now);
+            }
+            TermEvent::Key(key) if self.view.screen == Screen::Setup => {
+                return self.setup_key(key, now);
+            }
             TermEvent::Key(key) => {
                 let shared = self.model.clone();
                 let outcome = {
@@ -211,6 +221,8 @@ impl App {
                 }
             }
             Action::CloseOverlay => self.view.overlay = Overlay::None,
+            Action::TrafficView => self.view.screen = Screen::Traffic,
+            Action::Setup => self.view.screen = Screen::Setup,
             _ => {}
         }
     }
@@ -248,6 +260,7 @@ impl App {
         let controller = &mut self.controller;
         let queries = self.pacer.due(now, || controller.next_cnt());
         self.send(queries);
+        self.setup_tick(now);
         if self.notice_until.is_some_and(|t| now >= t) {
             self.view.notice = None;
             self.notice_until = None;

@@ -229,7 +229,8 @@ impl Controller {
         self.pending_notice.take()
     }
 
-    fn stop(&mut self, now: Instant, reason: StopReason) -> Vec<Packet> {
+    /// Ends a running motor for `reason` (e.g. a key on another screen).
+    pub fn stop(&mut self, now: Instant, reason: StopReason) -> Vec<Packet> {
         let out = self.streamer.stop(now, reason);
         if !out.is_empty() {
             self.pending_notice = self.stopped_notice();

@@ -12,6 +12,18 @@ pub enum SortOrder {
     Alphabetical,
 }
 
+/// Which screen of the page is showing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Screen {
+    /// The Appendix A device list, system panel and motors.
+    #[default]
+    Devices,
+    /// Frames in both directions with their bytes (`t`).
+    Traffic,
+    /// Configuration of the unit (`c`).
+    Setup,
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Overlay {
     #[default]
@@ -39,6 +51,7 @@ pub struct MotorRun {
 
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct ViewState {
+    pub screen: Screen,
     /// Device id of the selected row, so the selection survives re-sorting.
     pub selected: Option<u8>,
     pub sort: SortOrder,
