@@ -21,14 +21,16 @@
 //!             // model.apply_packet(..) / model.note_*(..) as usual; then fall through to
 //!             // tick so a reached flap target or a new fault goes out at once.
 //!         }
-//!         recv(net.incoming()) -> d => if let Ok(d) = d {
-//!             for p in gw.receive(&d.bytes, &mut model, d.at) { send_to_unit(p) }
+//!         recv(net.incoming()) -> d => {
+//!             if let Ok(d) = d {
+//!                 for p in gw.receive(&d.bytes, &mut model, d.at) { send_to_unit(p) }
+//!             }
 //!         }
 //!         default(wait) => {}
 //!     }
 //!     let step = gw.tick(&mut model, Instant::now());
 //!     for p in step.to_unit { send_to_unit(p) }
-//!     net.send_all(&step.datagrams);
+//!     let _ = net.send_all(&step.datagrams);
 //! }
 //! ```
 //!
