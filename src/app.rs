@@ -8,7 +8,7 @@
 //!   thing that must happen next (a motor resend, a query batch, a redraw). It
 //!   redraws only when the model or the view changed, or once a second for ages.
 
-mod queries;
+pub mod queries;
 mod setup;
 mod terminal;
 mod traffic;

@@ -15,6 +15,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use crossbeam_channel::{select, unbounded};
 
+use crate::app::queries::QueryPacer;
 use crate::cli::GatewayArgs;
 use crate::link::{
     CaptureWriter, Connector, Link, LinkEvent, RxItem, duplex_pipe, pipe_connector,
@@ -151,14 +152,19 @@ pub fn run_bridge(
     let mut model = Model::new(source);
     let mut gw = Gateway::new(opts.gateway.clone(), start);
     let mut printed: Option<LogEntry> = None;
+    // The bridge asks for names and specs at every connect, as the page does, so the
+    // network sees the circuits' real labels and breakers. Its command numbers start
+    // high so they rarely meet the gateway's own motor-stream numbers.
+    let mut pacer = QueryPacer::default();
+    let mut cnt: u8 = 0x80;
     let mut net_error_said = false;
 
     while !stop.load(Ordering::SeqCst) {
         let now = Instant::now();
-        let wait = gw
+        let deadline = pacer
             .next_deadline()
-            .saturating_duration_since(now)
-            .min(MAX_WAIT);
+            .map_or(gw.next_deadline(), |d| d.min(gw.next_deadline()));
+        let wait = deadline.saturating_duration_since(now).min(MAX_WAIT);
         let mut to_unit: Vec<Packet> = Vec::new();
         let mut events = Vec::new();
         select! {
@@ -170,8 +176,17 @@ pub fn run_bridge(
         }
         events.extend(ev_rx.try_iter());
         for e in events {
+            match &e {
+                LinkEvent::Connected { .. } => pacer.start(Instant::now()),
+                LinkEvent::Disconnected { .. } | LinkEvent::OpenFailed { .. } => pacer.stop(),
+                _ => {}
+            }
             apply(&mut model, &mut gw, &mut capture, e, &mut to_unit);
         }
+        to_unit.extend(pacer.due(Instant::now(), || {
+            cnt = cnt.wrapping_add(1) | 0x80;
+            cnt
+        }));
         while let Ok(d) = net.incoming().try_recv() {
             to_unit.extend(gw.receive(&d.bytes, &mut model, d.at));
         }
