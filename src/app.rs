@@ -8,6 +8,7 @@
 //!   thing that must happen next (a motor resend, a query batch, a redraw). It
 //!   redraws only when the model or the view changed, or once a second for ages.
 
+mod gateway;
 pub mod queries;
 mod setup;
 mod terminal;
@@ -31,6 +32,7 @@ use crate::ui::{
     self, state::Overlay, state::ReleaseMode, state::Screen, state::SortOrder, state::ViewState,
 };
 
+pub use gateway::xfsp_setup;
 pub use queries::{QueryPacer, connect_queries};
 pub use terminal::{TerminalGuard, restore as restore_terminal};
 
@@ -88,6 +90,7 @@ pub struct App {
     dirty: bool,
     last_draw: Option<Instant>,
     drawn_revision: u64,
+    gateway: Option<gateway::PageGateway>,
 }
 
 impl App {
@@ -117,6 +120,7 @@ impl App {
             dirty: true,
             last_draw: None,
             drawn_revision: 0,
+            gateway: None,
         }
     }
 
@@ -235,6 +239,7 @@ impl App {
             Wake::WriteError => {
                 let p = self.controller.on_link_error(now);
                 self.send(p);
+                self.xfsp_link_error(now);
                 let n = self.controller.take_notice();
                 self.set_notice(now, n);
             }
@@ -261,6 +266,7 @@ impl App {
         let queries = self.pacer.due(now, || controller.next_cnt());
         self.send(queries);
         self.setup_tick(now);
+        self.xfsp_tick(now);
         if self.notice_until.is_some_and(|t| now >= t) {
             self.view.notice = None;
             self.notice_until = None;
@@ -290,6 +296,7 @@ impl App {
             self.controller.next_deadline(),
             self.pacer.next_deadline(),
             self.notice_until,
+            self.xfsp_deadline(),
             Some(redraw),
         ]
         .into_iter()
@@ -367,6 +374,7 @@ impl App {
         let now = Instant::now();
         let p = self.controller.on_quit(now);
         self.send(p);
+        self.xfsp_shutdown(now);
         if let Some(link) = self.link.take() {
             // Queued packets (the stop above) are written before the link closes.
             link.shutdown();
@@ -379,6 +387,7 @@ impl App {
         terminal: &mut Terminal<B>,
         input: &Receiver<TermEvent>,
     ) -> anyhow::Result<()> {
+        let xfsp = self.xfsp_incoming();
         loop {
             let now = Instant::now();
             self.tick(now);
@@ -394,6 +403,7 @@ impl App {
                     Err(_) => anyhow::bail!("the terminal input stopped"),
                 },
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
+                recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
                 default(deadline.saturating_duration_since(Instant::now())) => {}
             }
             // Drain what else is waiting so a burst is one redraw.
@@ -518,7 +528,11 @@ pub fn run(args: PageArgs) -> anyhow::Result<()> {
             ReleaseMode::AutoRepeat
         },
     };
+    let xfsp = xfsp_setup(&args.xfsp)?;
     let mut app = App::new(source, connector, options);
+    if let Some((target, iface, config)) = xfsp {
+        app.enable_xfsp(&target, iface, config)?;
+    }
     let handle = app.link_handle();
     terminal::set_emergency_stop(move || {
         for p in MotorStreamer::emergency_stop_packets() {

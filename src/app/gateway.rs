@@ -1,0 +1,115 @@
+//! The XFSp gateway inside the page (`--xfsp`): the same core the headless bridge
+//! runs, fed from the page's loop so circuits, faults and positions go out on the
+//! network while the person watches, and network commands show in the event log.
+
+use std::net::Ipv4Addr;
+use std::time::Instant;
+
+use crossbeam_channel::Receiver;
+
+use super::{App, lock};
+use crate::cli::XfspArgs;
+use crate::xfsp::dict::CertLevel;
+use crate::xfsp::gateway::{Gateway, GatewayConfig};
+use crate::xfsp::net::{Datagram, Target, XfspNet};
+
+/// A running gateway and its sockets.
+pub(super) struct PageGateway {
+    pub(super) gateway: Gateway,
+    pub(super) net: XfspNet,
+    net_error_said: bool,
+}
+
+/// Reads `--xfsp`, `--xfsp-iface`, `--xfsp-source-id` and `--xfsp-cert`.
+pub fn xfsp_setup(args: &XfspArgs) -> anyhow::Result<Option<(Target, Ipv4Addr, GatewayConfig)>> {
+    let Some(target) = &args.xfsp else {
+        return Ok(None);
+    };
+    let target = Target::parse(target).map_err(anyhow::Error::msg)?;
+    let iface: Ipv4Addr = args.xfsp_iface.parse().map_err(|_| {
+        anyhow::anyhow!("--xfsp-iface {:?} is not an IPv4 address", args.xfsp_iface)
+    })?;
+    let config = GatewayConfig {
+        source_id: args.xfsp_source_id,
+        cert: CertLevel::from(args.xfsp_cert),
+        ..GatewayConfig::default()
+    };
+    Ok(Some((target, iface, config)))
+}
+
+impl App {
+    /// Opens the XFSp sockets and starts publishing.
+    pub fn enable_xfsp(
+        &mut self,
+        target: &Target,
+        iface: Ipv4Addr,
+        config: GatewayConfig,
+    ) -> anyhow::Result<()> {
+        let net = XfspNet::open(target, iface)
+            .map_err(|e| anyhow::anyhow!("cannot open XFSp {target} on {iface}: {e}"))?;
+        let gateway = Gateway::new(config, Instant::now());
+        self.gateway = Some(PageGateway {
+            gateway,
+            net,
+            net_error_said: false,
+        });
+        Ok(())
+    }
+
+    /// Datagrams from the network, or a channel that never delivers.
+    pub(super) fn xfsp_incoming(&self) -> Receiver<Datagram> {
+        self.gateway
+            .as_ref()
+            .map_or_else(crossbeam_channel::never, |g| g.net.incoming().clone())
+    }
+
+    pub(super) fn xfsp_receive(&mut self, d: Datagram) {
+        let Some(g) = self.gateway.as_mut() else {
+            return;
+        };
+        let packets = g.gateway.receive(&d.bytes, &mut lock(&self.model), d.at);
+        self.send(packets);
+        self.dirty = true;
+    }
+
+    pub(super) fn xfsp_tick(&mut self, now: Instant) {
+        let Some(g) = self.gateway.as_mut() else {
+            return;
+        };
+        let step = g.gateway.tick(&mut lock(&self.model), now);
+        let to_unit = step.to_unit;
+        match g.net.send_all(&step.datagrams) {
+            Err(e) if !g.net_error_said => {
+                lock(&self.model).log(
+                    now,
+                    crate::model::LogLevel::Warning,
+                    format!("cannot send on XFSp: {e}"),
+                );
+                g.net_error_said = true;
+            }
+            Ok(()) if !step.datagrams.is_empty() => g.net_error_said = false,
+            _ => {}
+        }
+        self.send(to_unit);
+    }
+
+    pub(super) fn xfsp_deadline(&self) -> Option<Instant> {
+        self.gateway.as_ref().map(|g| g.gateway.next_deadline())
+    }
+
+    pub(super) fn xfsp_link_error(&mut self, now: Instant) {
+        let Some(g) = self.gateway.as_mut() else {
+            return;
+        };
+        let packets = g.gateway.on_link_error(&mut lock(&self.model), now);
+        self.send(packets);
+    }
+
+    pub(super) fn xfsp_shutdown(&mut self, now: Instant) {
+        let Some(g) = self.gateway.as_mut() else {
+            return;
+        };
+        let packets = g.gateway.shutdown(&mut lock(&self.model), now);
+        self.send(packets);
+    }
+}
