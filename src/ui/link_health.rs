@@ -7,7 +7,7 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
+use ratatui::widgets::{Block, Borders, Paragraph};
 
 use super::{theme, values};
 use crate::model::{
@@ -135,7 +135,7 @@ fn counts(model: &Model, long: bool) -> Vec<Span<'static>> {
     };
     let text = if long {
         format!(
-            "checksum {} · length {} · unknown {} · malformed {} · skipped {} B",
+            "checksum {} length {} unknown {} malformed {} skipped {} B",
             d.bad_checksum, d.bad_length, d.unknown_message, model.link.malformed, d.skipped_bytes
         )
     } else if errors == 0 {
@@ -178,14 +178,11 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
             connection_span(model, now),
         ]),
         Line::from(ages(model, now)),
-        Line::from(counts(model, true)),
+        Line::from(counts(model, area.width >= 72)),
     ];
     let block = Block::new()
         .borders(Borders::TOP)
         .border_style(theme::border())
         .title(Span::styled(" Link ", theme::panel_title()));
-    frame.render_widget(
-        Paragraph::new(lines).block(block).wrap(Wrap { trim: true }),
-        area,
-    );
+    frame.render_widget(Paragraph::new(lines).block(block), area);
 }

@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use ratatui::Frame;
-use ratatui::layout::Rect;
+use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
@@ -210,16 +210,12 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
     if motors.is_empty() {
         lines.push(Line::styled("no flaps or trim enabled", theme::label()));
     }
-    let flags = flags(model, now);
-    if !flags.is_empty() {
-        let mut spans = Vec::new();
-        for (i, (t, s)) in flags.into_iter().enumerate() {
-            if i > 0 {
-                spans.push(Span::styled(" · ", theme::border()));
-            }
-            spans.push(Span::styled(t, s));
+    let mut flag_spans = Vec::new();
+    for (i, (t, s)) in flags(model, now).into_iter().enumerate() {
+        if i > 0 {
+            flag_spans.push(Span::styled(" · ", theme::border()));
         }
-        lines.push(Line::from(spans));
+        flag_spans.push(Span::styled(t, s));
     }
     let mode = match view.release_mode {
         ReleaseMode::KeyRelease => "keys: release seen",
@@ -233,13 +229,25 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
             Style::new().fg(theme::ON).add_modifier(Modifier::BOLD),
         ));
     }
-    lines.push(Line::from(last));
     let block = Block::new()
         .borders(Borders::TOP)
         .border_style(theme::border())
         .title(Span::styled(" Flaps & trim ", theme::panel_title()));
-    frame.render_widget(
-        Paragraph::new(lines).block(block).wrap(Wrap { trim: true }),
-        area,
-    );
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    // Gauges and the mode line fit by construction; only the flags may wrap.
+    let [gauges, flags_area, mode_area] = Layout::vertical([
+        Constraint::Length(lines.len() as u16),
+        Constraint::Fill(1),
+        Constraint::Length(1),
+    ])
+    .areas(inner);
+    frame.render_widget(Paragraph::new(lines), gauges);
+    if !flag_spans.is_empty() {
+        frame.render_widget(
+            Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true }),
+            flags_area,
+        );
+    }
+    frame.render_widget(Paragraph::new(Line::from(last)), mode_area);
 }

@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use ratatui::Frame;
-use ratatui::layout::Rect;
+use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
@@ -139,15 +139,20 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         }
         flag_spans.push(Span::styled(text, style));
     }
-    lines.push(Line::from(flag_spans));
     let block = Block::new()
         .borders(Borders::TOP)
         .border_style(theme::border())
         .title(Span::styled(" System ", theme::panel_title()));
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    // Only the flags can run past the width; wrapping is the costly part of a
+    // paragraph, so the fixed drawing is not wrapped.
+    let [drawing, flags_area] =
+        Layout::vertical([Constraint::Length(lines.len() as u16), Constraint::Fill(1)])
+            .areas(inner);
+    frame.render_widget(Paragraph::new(lines), drawing);
     frame.render_widget(
-        Paragraph::new(lines)
-            .block(block)
-            .wrap(Wrap { trim: false }),
-        area,
+        Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true }),
+        flags_area,
     );
 }
