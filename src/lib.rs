@@ -16,5 +16,6 @@ pub mod link;
 pub mod model;
 pub mod protocol;
 pub mod sim;
+pub mod traffic;
 pub mod ui;
 pub mod xfsp;

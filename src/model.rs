@@ -249,6 +249,8 @@ pub struct Model {
     pub link: LinkHealth,
     pub history: VecDeque<BusSample>,
     pub events: VecDeque<LogEntry>,
+    /// Every frame and decoder drop in both directions, for the traffic view.
+    pub traffic: crate::traffic::TrafficLog,
     /// Bumped whenever something a screen could show changes, so the page redraws
     /// only then (and once a second for ages).
     revision: u64,
@@ -278,6 +280,7 @@ impl Model {
             link: LinkHealth::default(),
             history: VecDeque::with_capacity(HISTORY_LEN),
             events: VecDeque::with_capacity(EVENT_LOG_LEN),
+            traffic: crate::traffic::TrafficLog::new(),
             revision: 0,
         }
     }
