@@ -125,27 +125,9 @@ pub const NOTHING_SELECTED: &str = "select a device first (↑/↓ or j/k)";
 
 /// Every key, in words, for the help overlay: kept beside the bindings so the two
 /// cannot drift apart.
-pub const HELP: &[(&str, &str)] = &[
-    ("↑/↓  j/k", "move the selection (never runs a motor)"),
-    ("Shift+↑  u", "flaps / pitch trim row: run up while held"),
-    ("Shift+↓  d", "flaps / pitch trim row: run down while held"),
-    ("Shift+←  ,", "roll trim row: run left while held"),
-    ("Shift+→  .", "roll trim row: run right while held"),
-    (
-        "any other key",
-        "stops a running motor (and does nothing else)",
-    ),
-    ("o  Enter", "switch the selected device on (DEVICE_POWER)"),
-    ("f", "switch the selected device off (DEVICE_POWER)"),
-    ("r", "reset the selected device's fault (DEVICE_CLEAR)"),
-    ("R", "reset the system fault (DEVICE_CLEAR 255)"),
-    ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
-    ("s", "sort by pin / by name"),
-    ("t", "traffic view"),
-    ("c", "setup"),
-    ("?  Esc", "this help"),
-    ("q  Ctrl-C", "quit"),
-];
+/// The help overlay's key table lives with the widget that shows it; the keymap
+/// tests check every binding there against [`map`].
+pub const HELP: &[(&str, &str)] = crate::ui::help::KEYS;
 
 /// The action for a key, or `None` for a key that is not bound.
 pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {
@@ -276,6 +258,62 @@ mod tests {
 
     fn plain(code: KeyCode) -> KeyEvent {
         key(code, KeyModifiers::NONE)
+    }
+
+    /// Every key the help overlay names does something on the row it names.
+    #[test]
+    fn every_key_in_the_help_is_bound() {
+        let token = |t: &str| -> KeyEvent {
+            let (mods, rest) = match t.strip_prefix("Shift+") {
+                Some(r) => (KeyModifiers::SHIFT, r),
+                None => match t.strip_prefix("Ctrl-") {
+                    Some(r) => (KeyModifiers::CONTROL, r),
+                    None => (KeyModifiers::NONE, t),
+                },
+            };
+            let code = match rest {
+                "↑" => KeyCode::Up,
+                "↓" => KeyCode::Down,
+                "←" => KeyCode::Left,
+                "→" => KeyCode::Right,
+                "Enter" => KeyCode::Enter,
+                "Esc" => KeyCode::Esc,
+                "C" => KeyCode::Char('c'),
+                c if c.chars().count() == 1 => KeyCode::Char(c.chars().next().unwrap()),
+                other => panic!("help names a key the test cannot type: {other}"),
+            };
+            key(code, mods)
+        };
+        for (keys, what) in HELP {
+            if *keys == "any key" {
+                continue;
+            }
+            let row = if what.contains("roll trim") {
+                ctx(TRIM_R, CircuitKind::Trim(TrimKind::Roll))
+            } else if what.contains("flaps") {
+                ctx(FLAPS, CircuitKind::Flaps)
+            } else {
+                ctx(9, CircuitKind::Device)
+            };
+            let row = if keys.contains("Esc") {
+                KeyContext {
+                    overlay_open: true,
+                    ..row
+                }
+            } else {
+                row
+            };
+            for t in keys
+                .split(|c: char| c.is_whitespace() || c == '/')
+                .filter(|t| !t.is_empty())
+            {
+                let action = map(&token(t), &row);
+                assert!(
+                    action.is_some() && !matches!(action, Some(Action::Unavailable(_))),
+                    "help says {t:?} does {what:?}, the keymap gives {action:?}"
+                );
+            }
+        }
     }
 
     #[test]

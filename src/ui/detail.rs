@@ -41,18 +41,18 @@ pub fn key_actions(c: &Circuit) -> Vec<KeyAction> {
             reset,
         ],
         CircuitKind::Flaps => vec![
-            act("hold ↑", "flaps up", live && !faulted),
-            act("hold ↓", "flaps down", live && !faulted),
+            act("hold u / Shift+↑", "flaps up", live && !faulted),
+            act("hold d / Shift+↓", "flaps down", live && !faulted),
             reset,
         ],
         CircuitKind::Trim(TrimKind::Pitch) => vec![
-            act("hold ↑", "pitch trim up", live && !faulted),
-            act("hold ↓", "pitch trim down", live && !faulted),
+            act("hold u / Shift+↑", "pitch trim up", live && !faulted),
+            act("hold d / Shift+↓", "pitch trim down", live && !faulted),
             reset,
         ],
         CircuitKind::Trim(TrimKind::Roll) => vec![
-            act("hold ←", "roll trim left", live && !faulted),
-            act("hold →", "roll trim right", live && !faulted),
+            act("hold , / Shift+←", "roll trim left", live && !faulted),
+            act("hold . / Shift+→", "roll trim right", live && !faulted),
             reset,
         ],
         CircuitKind::Device | CircuitKind::Alternator { .. } => vec![

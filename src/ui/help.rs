@@ -11,31 +11,22 @@ use super::theme;
 /// The key list, agreed with the control module; one place so the overlay and any
 /// test of the key map read the same words.
 pub const KEYS: &[(&str, &str)] = &[
-    ("↑/↓  j/k", "select a device (j/k also move off motor rows)"),
-    (
-        "o  Enter",
-        "turn on: DEVICE_POWER, overrides the switch until cycled",
-    ),
-    (
-        "f",
-        "turn off: DEVICE_POWER, overrides the switch until cycled",
-    ),
-    (
-        "r",
-        "reset the selected fault: DEVICE_CLEAR (only when faulted)",
-    ),
-    ("R", "reset the system fault: DEVICE_CLEAR 255"),
-    ("w", "wig-wag steady / auto: WIG_WAG_MODE"),
-    ("s", "sort the list by pin / alphabetically"),
-    (
-        "hold ↑/↓",
-        "on flaps or pitch trim: run the motor up / down",
-    ),
-    ("hold ←/→", "on roll trim: run the motor left / right"),
-    ("t", "traffic view (later)"),
-    ("c", "setup (later)"),
-    ("?", "show / hide this help"),
-    ("q", "quit"),
+    ("↑/↓  j/k", "move the selection (never runs a motor)"),
+    ("Shift+↑  u", "flaps / pitch trim row: run up while held"),
+    ("Shift+↓  d", "flaps / pitch trim row: run down while held"),
+    ("Shift+←  ,", "roll trim row: run left while held"),
+    ("Shift+→  .", "roll trim row: run right while held"),
+    ("any key", "stops a running motor (and does nothing else)"),
+    ("o  Enter", "switch the selected device on (DEVICE_POWER)"),
+    ("f", "switch the selected device off (DEVICE_POWER)"),
+    ("r", "reset the selected device's fault (DEVICE_CLEAR)"),
+    ("R", "reset the system fault (DEVICE_CLEAR 255)"),
+    ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
+    ("s", "sort by pin / by name"),
+    ("t", "traffic view"),
+    ("c", "setup"),
+    ("?  Esc", "this help"),
+    ("q  Ctrl-C", "quit"),
 ];
 
 pub fn render(frame: &mut Frame, view: &ViewState) {
