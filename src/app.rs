@@ -91,6 +91,8 @@ pub struct App {
     last_draw: Option<Instant>,
     drawn_revision: u64,
     gateway: Option<gateway::PageGateway>,
+    /// The setup screens' writes waiting for the unit, and their timed requests.
+    setup: setup::SetupCtl,
 }
 
 impl App {
@@ -121,6 +123,7 @@ impl App {
             last_draw: None,
             drawn_revision: 0,
             gateway: None,
+            setup: Default::default(),
         }
     }
 
@@ -297,6 +300,7 @@ impl App {
             self.pacer.next_deadline(),
             self.notice_until,
             self.xfsp_deadline(),
+            self.setup.next_deadline(),
             Some(redraw),
         ]
         .into_iter()

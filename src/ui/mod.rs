@@ -9,6 +9,7 @@ pub mod key_bar;
 pub mod link_health;
 pub mod motors;
 pub mod plot;
+pub mod setup;
 pub mod state;
 pub mod switches;
 pub mod system_panel;
@@ -38,6 +39,9 @@ pub fn ordered_circuits(model: &Model, view: &ViewState, now: Instant) -> Vec<Ci
 
 /// Draws the whole page for `model` as it stands at `now`.
 pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
+    if view.screen == state::Screen::Setup {
+        return setup::render(frame, model, view, now);
+    }
     let area = frame.area();
     if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
         too_small::render(frame, MIN_WIDTH, MIN_HEIGHT);

@@ -60,4 +60,6 @@ pub struct ViewState {
     pub motor_run: Option<MotorRun>,
     /// A short message for the person (a refused key, a sent command).
     pub notice: Option<String>,
+    /// The setup screens (`c`): page, field, forms and where each write stands.
+    pub setup: super::setup::state::SetupView,
 }

@@ -1,0 +1,561 @@
+//! Editing the setup forms: stepping a value, typing one, picking a name, capturing a
+//! motor position, and turning a page into the messages that set it. Pure functions of
+//! the view's forms, the model and `now`, so each is tested without a terminal.
+
+use std::time::Instant;
+
+use crate::model::Model;
+use crate::protocol::config::UnitConfig;
+use crate::protocol::device::{self, enable_flag_allowed};
+use crate::protocol::message::{
+    DeviceEnable, DeviceName, EnableFlag, FlapMode as Mode, Message, OvervoltageLimit, Polarity,
+    SwitchId, Tenths, TrimSpec,
+};
+use crate::protocol::names::PIN_NAMES;
+use crate::protocol::validate;
+use crate::ui::setup::state::{
+    Field, Forms, Held, Page, device_choices, secondary_alternator_choices, wig_wag_choices,
+};
+
+/// Copies what the unit holds into the page's form (parts the model has not heard
+/// keep the form's values).
+pub fn load(forms: &mut Forms, page: Page, model: &Model) {
+    let held = Held::from_model(model, forms.device.device_id);
+    match page {
+        Page::Device => {
+            if let Some(d) = held.device {
+                forms.device = d;
+            }
+            if let Some(n) = held.name {
+                forms.name = n;
+            }
+            if let Some(s) = held.shown {
+                forms.shown = s;
+            }
+        }
+        Page::System => forms.system = held.system.unwrap_or(forms.system),
+        Page::Flaps => forms.flap = held.flap.unwrap_or(forms.flap),
+        Page::PitchTrim => forms.pitch = held.pitch.unwrap_or(forms.pitch),
+        Page::RollTrim => forms.roll = held.roll.unwrap_or(forms.roll),
+        Page::WigWag => forms.wig_wag = held.wig_wag.unwrap_or(forms.wig_wag),
+        Page::Diagnostics | Page::Backup => {}
+    }
+}
+
+/// Puts a device on the device page with the unit's values (or Appendix F's).
+pub fn select_device(forms: &mut Forms, id: u8, model: &Model) {
+    forms.device = crate::protocol::defaults::device_spec(id);
+    forms.name = String::new();
+    forms.shown = true;
+    load(forms, Page::Device, model);
+}
+
+fn cycle<T: PartialEq + Copy>(choices: &[T], current: T, step: i32) -> T {
+    let n = choices.len() as i32;
+    let i = choices.iter().position(|&c| c == current).unwrap_or(0) as i32;
+    choices[((i + step).rem_euclid(n)) as usize]
+}
+
+fn step_u8(v: u8, step: i32, lo: u8, hi: u8) -> u8 {
+    (v as i32 + step).clamp(lo as i32, hi as i32) as u8
+}
+
+fn step_u16(v: u16, step: i32, lo: u16, hi: u16) -> u16 {
+    (v as i32 + step).clamp(lo as i32, hi as i32) as u16
+}
+
+fn trim_mut(forms: &mut Forms, page: Page) -> &mut TrimSpec {
+    if page == Page::RollTrim {
+        &mut forms.roll
+    } else {
+        &mut forms.pitch
+    }
+}
+
+/// ←/→ on a field: the next or previous value within its range (choices wrap). Returns
+/// a refusal in words for a field that cannot change, and `Ok(true)` when the device
+/// page moved to another pin (its form was reloaded).
+pub fn adjust(
+    forms: &mut Forms,
+    page: Page,
+    field: Field,
+    step: i32,
+    model: &Model,
+) -> Result<bool, String> {
+    use Field::*;
+    let id = forms.device.device_id;
+    let pin = device::device(id);
+    match field {
+        DeviceId => {
+            let next = cycle(&device_choices(), id, step.signum());
+            select_device(forms, next, model);
+            return Ok(true);
+        }
+        Breaker => {
+            let d = pin.ok_or("no such pin")?;
+            forms.device.circuit_breaker =
+                step_u8(forms.device.circuit_breaker, step, d.amps_min, d.amps_max);
+        }
+        Switch => {
+            if !pin.is_some_and(|d| d.switch_assignable()) {
+                return Err(field.help(id, page));
+            }
+            let all: Vec<SwitchId> = (0..=11).map(SwitchId::from_byte).collect();
+            forms.device.switch_id = cycle(&all, forms.device.switch_id, step.signum());
+        }
+        CurrentFault => {
+            if !pin.is_some_and(|d| d.current_fault_support) {
+                return Err(field.help(id, page));
+            }
+            forms.device.current_fault = !forms.device.current_fault;
+        }
+        Name => {
+            let i = PIN_NAMES.iter().position(|&n| n == forms.name);
+            let next = match i {
+                Some(i) => (i as i32 + step.signum()).rem_euclid(PIN_NAMES.len() as i32) as usize,
+                None if step > 0 => 0,
+                None => PIN_NAMES.len() - 1,
+            };
+            forms.name = PIN_NAMES[next].to_string();
+        }
+        Shown => {
+            if !enable_flag_allowed(id) {
+                return Err(field.help(id, page));
+            }
+            forms.shown = !forms.shown;
+        }
+        Overvoltage => {
+            forms.system.overvoltage_limit = match forms.system.overvoltage_limit {
+                OvervoltageLimit::V16 => OvervoltageLimit::V32,
+                _ => OvervoltageLimit::V16,
+            }
+        }
+        SecondaryAlternator => {
+            forms.system.secondary_alternator = cycle(
+                &secondary_alternator_choices(),
+                forms.system.secondary_alternator,
+                step.signum(),
+            )
+        }
+        FlapEnabled => forms.flap.enabled = !forms.flap.enabled,
+        FlapMode => {
+            forms.flap.mode = match forms.flap.mode {
+                Mode::Momentary => Mode::PositionBased,
+                _ => Mode::Momentary,
+            }
+        }
+        FlapPolarity => forms.flap.polarity = flip(forms.flap.polarity),
+        FlapUp => forms.flap.up = step_u8(forms.flap.up, step, 0, 255),
+        FlapDown => forms.flap.down = step_u8(forms.flap.down, step, 0, 255),
+        FlapMid1 => forms.flap.midpoint_1 = step_u8(forms.flap.midpoint_1, step, 0, 255),
+        FlapMid2 => forms.flap.midpoint_2 = step_u8(forms.flap.midpoint_2, step, 0, 255),
+        FlapOverspeedPosition => {
+            forms.flap.overspeed_position = step_u8(forms.flap.overspeed_position, step, 0, 255)
+        }
+        FlapBreaker => {
+            forms.flap.circuit_breaker = step_u8(
+                forms.flap.circuit_breaker,
+                step,
+                *validate::FLAP_BREAKER_RANGE.start(),
+                *validate::FLAP_BREAKER_RANGE.end(),
+            )
+        }
+        FlapMaxSpeed => {
+            forms.flap.max_speed =
+                step_u16(forms.flap.max_speed, step, 0, validate::FLAP_MAX_SPEED_MAX)
+        }
+        FlapEndpointDuration => {
+            forms.flap.endpoint_duration = Tenths(step_u16(
+                forms.flap.endpoint_duration.0,
+                step,
+                0,
+                validate::FLAP_ENDPOINT_DURATION_MAX,
+            ))
+        }
+        TrimEnabled => {
+            let t = trim_mut(forms, page);
+            t.enabled = !t.enabled;
+        }
+        TrimPolarity => {
+            let t = trim_mut(forms, page);
+            t.polarity = flip(t.polarity);
+        }
+        TrimUp => {
+            let t = trim_mut(forms, page);
+            t.up = step_u8(t.up, step, 0, 255);
+        }
+        TrimDown => {
+            let t = trim_mut(forms, page);
+            t.down = step_u8(t.down, step, 0, 255);
+        }
+        TrimNeutral => {
+            let t = trim_mut(forms, page);
+            t.neutral = step_u8(t.neutral, step, 0, 255);
+        }
+        TrimPower | TrimSpeed if page == Page::RollTrim => return Err(field.help(id, page)),
+        TrimPower => {
+            let t = trim_mut(forms, page);
+            // 100 is the factory value: stepping from it lands in the range.
+            let lo = *validate::TRIM_POWER_RANGE.start();
+            let hi = *validate::TRIM_POWER_RANGE.end();
+            t.power = step_u8(t.power.min(hi + 1), step, lo, hi);
+        }
+        TrimSpeed => {
+            let t = trim_mut(forms, page);
+            t.speed = step_u16(t.speed, step, 0, validate::TRIM_SPEED_MAX);
+        }
+        WigWagOne => {
+            forms.wig_wag.device_one =
+                cycle(&wig_wag_choices(), forms.wig_wag.device_one, step.signum())
+        }
+        WigWagTwo => {
+            forms.wig_wag.device_two =
+                cycle(&wig_wag_choices(), forms.wig_wag.device_two, step.signum())
+        }
+        WigWagWarmUp => {
+            forms.wig_wag.warm_up_period = step_u8(
+                forms.wig_wag.warm_up_period,
+                step,
+                *validate::WIG_WAG_WARM_UP_RANGE.start(),
+                *validate::WIG_WAG_WARM_UP_RANGE.end(),
+            )
+        }
+        WigWagSpeed => {
+            forms.wig_wag.speed = step_u8(forms.wig_wag.speed, step, 0, validate::WIG_WAG_SPEED_MAX)
+        }
+        _ => return Err("Enter does this one".into()),
+    }
+    Ok(false)
+}
+
+fn flip(p: Polarity) -> Polarity {
+    match p {
+        Polarity::Standard => Polarity::Inverted,
+        Polarity::Inverted => Polarity::Standard,
+    }
+}
+
+/// Whether digits can be typed into `field` (and '.' for the run-on seconds).
+pub fn takes_digits(field: Field) -> bool {
+    use Field::*;
+    matches!(
+        field,
+        Breaker
+            | FlapUp
+            | FlapDown
+            | FlapMid1
+            | FlapMid2
+            | FlapOverspeedPosition
+            | FlapBreaker
+            | FlapMaxSpeed
+            | FlapEndpointDuration
+            | TrimUp
+            | TrimDown
+            | TrimNeutral
+            | TrimPower
+            | TrimSpeed
+            | WigWagWarmUp
+            | WigWagSpeed
+    )
+}
+
+/// Sets `field` from typed text. Not clamped: a value outside the range is kept so
+/// the §6.2 check can say why it is refused.
+pub fn set_typed(forms: &mut Forms, page: Page, field: Field, text: &str) {
+    use Field::*;
+    let n: u32 = if field == FlapEndpointDuration {
+        // Seconds with one decimal, stored in tenths.
+        let secs: f64 = text.parse().unwrap_or(0.0);
+        (secs * 10.0).round().clamp(0.0, u16::MAX as f64) as u32
+    } else {
+        text.parse::<u32>().unwrap_or(0)
+    };
+    let b = n.min(255) as u8;
+    let w = n.min(u16::MAX as u32) as u16;
+    match field {
+        Breaker => forms.device.circuit_breaker = b,
+        FlapUp => forms.flap.up = b,
+        FlapDown => forms.flap.down = b,
+        FlapMid1 => forms.flap.midpoint_1 = b,
+        FlapMid2 => forms.flap.midpoint_2 = b,
+        FlapOverspeedPosition => forms.flap.overspeed_position = b,
+        FlapBreaker => forms.flap.circuit_breaker = b,
+        FlapMaxSpeed => forms.flap.max_speed = w,
+        FlapEndpointDuration => forms.flap.endpoint_duration = Tenths(w),
+        TrimUp => trim_mut(forms, page).up = b,
+        TrimDown => trim_mut(forms, page).down = b,
+        TrimNeutral => trim_mut(forms, page).neutral = b,
+        TrimPower => trim_mut(forms, page).power = b,
+        TrimSpeed => trim_mut(forms, page).speed = w,
+        WigWagWarmUp => forms.wig_wag.warm_up_period = b,
+        WigWagSpeed => forms.wig_wag.speed = b,
+        _ => {}
+    }
+}
+
+/// Captures the live motor position into a position field. The words say what was
+/// captured, or why nothing was.
+pub fn capture(
+    forms: &mut Forms,
+    page: Page,
+    field: Field,
+    model: &Model,
+    now: Instant,
+) -> Result<String, String> {
+    use crate::model::{Motor, TrimKind};
+    let Some(motor) = page.motor() else {
+        return Err("p captures a motor position on the flaps and trim pages".into());
+    };
+    if !field.is_position() {
+        return Err(format!(
+            "select the up, down, {} field first (↑/↓), then press p",
+            if motor == Motor::Flaps {
+                "midpoint or overspeed"
+            } else {
+                "neutral"
+            }
+        ));
+    }
+    let Some(ft) = model.live_flap_trim(now) else {
+        return Err("no live FLAP_TRIM_STATUS: the position is not known".into());
+    };
+    let pos = match motor {
+        Motor::Flaps => ft.flap_position,
+        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
+        Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
+    };
+    set_typed(forms, page, field, &pos.to_string());
+    Ok(format!(
+        "{} set to the {} position {pos}; Enter sends it",
+        field.label().to_lowercase(),
+        motor.name()
+    ))
+}
+
+/// The messages that take the unit from what it holds to the page's form, in the
+/// order they are sent. A part the model has not heard is sent as it stands.
+pub fn messages(forms: &Forms, page: Page, model: &Model) -> Result<Vec<Message>, String> {
+    let held = Held::from_model(model, forms.device.device_id);
+    let mut out: Vec<Message> = Vec::new();
+    match page {
+        Page::Device => {
+            let id = forms.device.device_id;
+            if held.device != Some(forms.device) {
+                out.push(forms.device.into());
+            }
+            if held.name.as_deref() != Some(forms.name.as_str()) {
+                let name = DeviceName::new(id, &forms.name)
+                    .ok_or("a name is at most 16 ASCII characters (ICD Table 21)")?;
+                out.push(name.into());
+            }
+            if enable_flag_allowed(id) && held.shown != Some(forms.shown) {
+                out.push(
+                    DeviceEnable {
+                        device_id: id,
+                        flag: if forms.shown {
+                            EnableFlag::Enabled
+                        } else {
+                            EnableFlag::Disabled
+                        },
+                    }
+                    .into(),
+                );
+            }
+        }
+        Page::System if held.system != Some(forms.system) => out.push(forms.system.into()),
+        Page::Flaps if held.flap != Some(forms.flap) => out.push(forms.flap.into()),
+        Page::PitchTrim if held.pitch != Some(forms.pitch) => out.push(forms.pitch.into()),
+        Page::RollTrim if held.roll != Some(forms.roll) => out.push(forms.roll.into()),
+        Page::WigWag if held.wig_wag != Some(forms.wig_wag) => out.push(forms.wig_wag.into()),
+        _ => {}
+    }
+    Ok(out)
+}
+
+/// The §6.2 check of each message against the unit's configuration with the ones
+/// before it applied: the index of the first refused and why, in words.
+pub fn check(cfg: &UnitConfig, messages: &[Message]) -> Result<(), (usize, String)> {
+    let mut cfg = cfg.clone();
+    for (i, m) in messages.iter().enumerate() {
+        match m {
+            Message::DeviceEnable(e) => {
+                if validate::device_enable(&cfg, e).is_err() {
+                    return Err((i, "pins 1–3 are always shown (ICD Table 23 note 1)".into()));
+                }
+                cfg.apply_device_enable(e);
+            }
+            m => {
+                if let Some(Err(r)) = validate::check(&cfg, m) {
+                    return Err((i, format!("{}: {}", r.error.description(), r.reason)));
+                }
+                validate::accept(&mut cfg, m);
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Source;
+    use crate::protocol::Packet;
+    use crate::protocol::message::{DeviceSpec, FlapTrimStatus};
+
+    fn model() -> Model {
+        Model::new(Source::Simulated {
+            scenario: "t".into(),
+        })
+    }
+
+    #[test]
+    fn breaker_steps_stay_in_the_pins_range_but_typing_does_not() {
+        let m = model();
+        let mut f = Forms::default();
+        select_device(&mut f, 0x17, &m);
+        assert_eq!(f.device.circuit_breaker, 2, "Appendix F default");
+        adjust(&mut f, Page::Device, Field::Breaker, 1, &m).unwrap();
+        assert_eq!(f.device.circuit_breaker, 5, "into 5–15 A");
+        for _ in 0..20 {
+            adjust(&mut f, Page::Device, Field::Breaker, 1, &m).unwrap();
+        }
+        assert_eq!(f.device.circuit_breaker, 15);
+        set_typed(&mut f, Page::Device, Field::Breaker, "20");
+        assert_eq!(f.device.circuit_breaker, 20);
+        let msgs = messages(&f, Page::Device, &m).unwrap();
+        let (i, why) = check(&UnitConfig::default(), &msgs).unwrap_err();
+        assert_eq!(i, 0);
+        assert_eq!(
+            why,
+            "Invalid circuit breaker value: 20 A is outside 5–15 A for 15A-1 (ICD Table 40)"
+        );
+    }
+
+    #[test]
+    fn switch_cycles_off_1_to_10_always_on_and_the_starter_refuses() {
+        let m = model();
+        let mut f = Forms::default();
+        select_device(&mut f, 5, &m);
+        assert_eq!(f.device.switch_id, SwitchId::Off);
+        adjust(&mut f, Page::Device, Field::Switch, -1, &m).unwrap();
+        assert_eq!(f.device.switch_id, SwitchId::AlwaysOn);
+        adjust(&mut f, Page::Device, Field::Switch, 1, &m).unwrap();
+        adjust(&mut f, Page::Device, Field::Switch, 1, &m).unwrap();
+        assert_eq!(f.device.switch_id, SwitchId::Input(1));
+        select_device(&mut f, 1, &m);
+        assert!(
+            adjust(&mut f, Page::Device, Field::Switch, 1, &m)
+                .unwrap_err()
+                .contains("not assignable")
+        );
+        assert!(adjust(&mut f, Page::Device, Field::Shown, 1, &m).is_err());
+        select_device(&mut f, 3, &m);
+        assert!(
+            adjust(&mut f, Page::Device, Field::CurrentFault, 1, &m)
+                .unwrap_err()
+                .contains("no current fault checking")
+        );
+    }
+
+    #[test]
+    fn names_are_picked_from_appendix_c_and_only_changes_are_sent() {
+        let t0 = Instant::now();
+        let mut m = model();
+        let spec = DeviceSpec {
+            device_id: 9,
+            circuit_breaker: 2,
+            switch_id: SwitchId::Input(2),
+            current_fault: true,
+        };
+        m.apply_packet(t0, &Packet::from_vpx(1, spec));
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(1, DeviceName::new(9, "GPS 1").unwrap()),
+        );
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(
+                1,
+                DeviceEnable {
+                    device_id: 9,
+                    flag: EnableFlag::Enabled,
+                },
+            ),
+        );
+        let mut f = Forms::default();
+        select_device(&mut f, 9, &m);
+        assert_eq!(f.name, "GPS 1");
+        assert!(messages(&f, Page::Device, &m).unwrap().is_empty());
+        adjust(&mut f, Page::Device, Field::Name, 1, &m).unwrap();
+        assert_eq!(f.name, "GPS 2");
+        f.shown = false;
+        let msgs = messages(&f, Page::Device, &m).unwrap();
+        assert_eq!(
+            msgs,
+            vec![
+                DeviceName::new(9, "GPS 2").unwrap().into(),
+                DeviceEnable {
+                    device_id: 9,
+                    flag: EnableFlag::Disabled
+                }
+                .into()
+            ]
+        );
+        f.name = "a name far too long".into();
+        assert!(messages(&f, Page::Device, &m).is_err());
+    }
+
+    #[test]
+    fn capture_takes_the_live_position_into_the_selected_field() {
+        let t0 = Instant::now();
+        let mut m = model();
+        let mut f = Forms::default();
+        assert!(
+            capture(&mut f, Page::Flaps, Field::FlapMid1, &m, t0)
+                .unwrap_err()
+                .contains("no live")
+        );
+        let ft = FlapTrimStatus {
+            flap_position: 87,
+            roll_trim_position: 140,
+            ..<FlapTrimStatus as crate::protocol::Payload>::parse(&[0u8; 18]).unwrap()
+        };
+        m.apply_packet(t0, &Packet::from_vpx(1, ft));
+        assert!(
+            capture(&mut f, Page::Flaps, Field::FlapMaxSpeed, &m, t0)
+                .unwrap_err()
+                .contains("select the up, down")
+        );
+        capture(&mut f, Page::Flaps, Field::FlapMid1, &m, t0).unwrap();
+        assert_eq!(f.flap.midpoint_1, 87);
+        capture(&mut f, Page::RollTrim, Field::TrimNeutral, &m, t0).unwrap();
+        assert_eq!(f.roll.neutral, 140);
+        assert_eq!(f.pitch.neutral, 0, "the roll page captures into roll");
+        assert!(messages(&f, Page::Flaps, &m).unwrap()[0] == Message::FlapSpec(f.flap));
+    }
+
+    #[test]
+    fn endpoint_run_on_is_typed_in_seconds() {
+        let mut f = Forms::default();
+        set_typed(&mut f, Page::Flaps, Field::FlapEndpointDuration, "1.5");
+        assert_eq!(f.flap.endpoint_duration, Tenths(15));
+        let m = model();
+        adjust(&mut f, Page::Flaps, Field::FlapEndpointDuration, 1, &m).unwrap();
+        assert_eq!(f.flap.endpoint_duration, Tenths(16));
+    }
+
+    #[test]
+    fn a_wig_wag_conflict_is_refused_here_in_words() {
+        let mut cfg = UnitConfig::default();
+        cfg.devices[7].switch_id = SwitchId::Input(4);
+        let mut f = Forms::default();
+        f.wig_wag.device_one = Some(7);
+        f.wig_wag.device_two = Some(8);
+        let (i, why) = check(&cfg, &[f.wig_wag.into()]).unwrap_err();
+        assert_eq!(i, 0);
+        assert!(
+            why.starts_with("Invalid configuration: 5A-5 (device 8) is off;"),
+            "{why}"
+        );
+    }
+}

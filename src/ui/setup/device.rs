@@ -1,0 +1,48 @@
+//! The device page: DEVICE_SPEC, DEVICE_NAME and DEVICE_ENABLE of one pin.
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+
+use super::state::{Field, SetupView};
+use crate::model::Model;
+use crate::protocol::names::PIN_NAMES;
+use crate::ui::theme;
+
+pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView) {
+    let mut extra = Vec::new();
+    if sv.field() == Field::Name {
+        // Where ←/→ goes next in the Appendix C list.
+        let at = PIN_NAMES.iter().position(|&n| n == sv.forms.name);
+        let around: Vec<&str> = match at {
+            Some(i) => (i.saturating_sub(2)..(i + 3).min(PIN_NAMES.len()))
+                .map(|j| PIN_NAMES[j])
+                .collect(),
+            None => PIN_NAMES.iter().take(5).copied().collect(),
+        };
+        extra.push(Line::from(vec![
+            Span::styled("Appendix C: ", theme::label()),
+            Span::styled(around.join(" · "), theme::info()),
+        ]));
+        extra.push(Line::styled(
+            format!("{} of 16 characters", sv.forms.name.len()),
+            theme::label(),
+        ));
+    }
+    let id = sv.forms.device.device_id;
+    if model.secondary_alternator() == Some(id) {
+        extra.push(Line::styled(
+            "this pin is the secondary alternator: it may not share the primary's switch",
+            theme::caution(),
+        ));
+    }
+    if let Some(w) = model.wig_wag_spec.map(|w| w.value)
+        && (w.device_one == Some(id) || w.device_two == Some(id))
+    {
+        extra.push(Line::styled(
+            "this pin is a wig-wag device: it must stay on a switch 1–10",
+            theme::caution(),
+        ));
+    }
+    super::render_form(frame, area, model, sv, extra);
+}

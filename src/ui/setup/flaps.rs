@@ -1,0 +1,68 @@
+//! The flaps page: every FLAP_SPEC field (ICD Table 16), the live position, and the
+//! motor run from here to calibrate the endpoints.
+
+use std::time::Instant;
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+
+use crate::model::{Model, Motor};
+use crate::ui::state::ViewState;
+use crate::ui::theme;
+
+/// The live position line and the motor's run, shared with the trim pages.
+pub fn live_lines(
+    model: &Model,
+    view: &ViewState,
+    motor: Motor,
+    now: Instant,
+) -> Vec<Line<'static>> {
+    use crate::model::TrimKind;
+    let mut out = Vec::new();
+    let live = model.live_flap_trim(now).map(|ft| match motor {
+        Motor::Flaps => (ft.flap_position, ft.flap.enabled, ft.flap.motor_running),
+        Motor::Trim(TrimKind::Pitch) => (
+            ft.pitch_trim_position,
+            ft.pitch_trim.enabled,
+            ft.pitch_trim.motor_running,
+        ),
+        Motor::Trim(TrimKind::Roll) => (
+            ft.roll_trim_position,
+            ft.roll_trim.enabled,
+            ft.roll_trim.motor_running,
+        ),
+    });
+    let mut spans = vec![Span::styled("live position ", theme::label())];
+    match live {
+        Some((pos, enabled, running)) => {
+            spans.push(Span::styled(format!("{pos:>3}"), theme::panel_title()));
+            if running {
+                spans.push(Span::styled("  motor running", theme::caution()));
+            }
+            if !enabled {
+                spans.push(Span::styled(
+                    "  not enabled: the unit will not run it",
+                    theme::caution(),
+                ));
+            }
+        }
+        None => spans.push(Span::styled(
+            "-- (no live FLAP_TRIM_STATUS)",
+            theme::unknown(),
+        )),
+    }
+    if let Some(run) = view.motor_run.filter(|r| r.motor == motor) {
+        spans.push(Span::styled(
+            format!("  ◀ running {} while held", run.direction),
+            theme::caution(),
+        ));
+    }
+    out.push(Line::from(spans));
+    out
+}
+
+pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, now: Instant) {
+    let extra = live_lines(model, view, Motor::Flaps, now);
+    super::render_form(frame, area, model, &view.setup, extra);
+}

@@ -1,0 +1,288 @@
+//! The setup screens: one page per spec (device, system, flaps, both trims, wig-wag),
+//! diagnostics, and backup/erase. Each page is a table of its fields with the value
+//! being edited beside what the unit holds, then where each write to the unit
+//! stands. Nothing is drawn as saved unless the unit acknowledged it.
+
+pub mod backup;
+pub mod device;
+pub mod diagnostics;
+pub mod dialog;
+pub mod flaps;
+pub mod state;
+pub mod system;
+pub mod trim;
+pub mod wig_wag;
+
+use std::time::Instant;
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Row, Table, Wrap};
+
+use super::state::ViewState;
+use super::{MIN_HEIGHT, MIN_WIDTH, theme, title_bar, too_small};
+use crate::model::Model;
+use state::{Dialog, Held, Page, SetupView, Tone, WriteLine, WriteStatus, value_text};
+
+/// Draws the setup screen for `view.setup.page`.
+pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
+    let area = frame.area();
+    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+        too_small::render(frame, MIN_WIDTH, MIN_HEIGHT);
+        return;
+    }
+    let sv = &view.setup;
+    let writes_h = (sv.writes.len() as u16).clamp(1, 6) + 1;
+    let [title, tabs, body, writes, message, keys] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Length(1),
+        Constraint::Fill(1),
+        Constraint::Length(writes_h),
+        Constraint::Length(1),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    title_bar::render(frame, title, model, now);
+    render_tabs(frame, tabs, sv);
+    match sv.page {
+        Page::Device => device::render(frame, body, model, sv),
+        Page::System => system::render(frame, body, model, sv),
+        Page::Flaps => flaps::render(frame, body, model, view, now),
+        Page::PitchTrim | Page::RollTrim => trim::render(frame, body, model, view, now),
+        Page::WigWag => wig_wag::render(frame, body, model, sv),
+        Page::Diagnostics => diagnostics::render(frame, body, model, sv, now),
+        Page::Backup => backup::render(frame, body, sv),
+    }
+    render_writes(frame, writes, &sv.writes);
+    render_message(frame, message, view);
+    render_keys(frame, keys, sv);
+    match &sv.dialog {
+        Dialog::None => {}
+        d => dialog::render(frame, model, sv, d),
+    }
+}
+
+fn render_tabs(frame: &mut Frame, area: Rect, sv: &SetupView) {
+    let mut spans = vec![Span::styled("SETUP ", theme::panel_title())];
+    for p in Page::ALL {
+        let style = if p == sv.page {
+            theme::key().add_modifier(Modifier::BOLD)
+        } else {
+            theme::label()
+        };
+        let mark = if sv.is_edited(p) { "*" } else { "" };
+        spans.push(Span::styled(format!(" {}{mark} ", p.title()), style));
+        spans.push(Span::raw(" "));
+    }
+    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+}
+
+/// The field table of a form page (label, value being edited, what the unit holds),
+/// then the selected field's help and `extra` lines below it.
+pub fn render_form(
+    frame: &mut Frame,
+    area: Rect,
+    model: &Model,
+    sv: &SetupView,
+    extra: Vec<Line<'static>>,
+) {
+    let page = sv.page;
+    let fields = page.fields();
+    let held = Held::from_model(model, sv.forms.device.device_id);
+    let [heading, table_area, help] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Length(fields.len() as u16 + 1),
+        Constraint::Fill(1),
+    ])
+    .areas(area);
+    frame.render_widget(
+        Paragraph::new(Line::from(vec![
+            Span::styled(format!("{} ", page.title()), theme::panel_title()),
+            Span::styled(format!("— Enter sends {}", page.sends()), theme::label()),
+        ])),
+        heading,
+    );
+    let selected = sv.field();
+    let rows: Vec<Row> = fields
+        .iter()
+        .map(|&f| {
+            let value = match (&sv.typing, f == selected) {
+                (Some(t), true) => format!("{t}▏ → {}", value_text(f, page, &sv.forms)),
+                _ if f == selected && f.is_text() => {
+                    format!("{}▏", value_text(f, page, &sv.forms))
+                }
+                _ => value_text(f, page, &sv.forms),
+            };
+            let holds = held.text(f, page);
+            let differs = holds
+                .as_deref()
+                .is_some_and(|h| h != value_text(f, page, &sv.forms));
+            let value_style = if differs && sv.is_edited(page) {
+                theme::caution()
+            } else {
+                Style::new()
+            };
+            let holds_cell = match holds {
+                Some(h) if f == state::Field::DeviceId => Span::styled(h, theme::label()),
+                Some(h) => Span::styled(h, theme::info()),
+                None if f == state::Field::DeviceId => {
+                    Span::styled(model.display_name(sv.forms.device.device_id), theme::info())
+                }
+                None => Span::styled("?", theme::unknown()),
+            };
+            let row = Row::new(vec![
+                Line::styled(f.label(), theme::label()),
+                Line::styled(value, value_style),
+                Line::from(holds_cell),
+            ]);
+            if f == selected {
+                row.style(theme::selected_row())
+            } else {
+                row
+            }
+        })
+        .collect();
+    let table = Table::new(
+        rows,
+        [
+            Constraint::Length(22),
+            Constraint::Length(26),
+            Constraint::Fill(1),
+        ],
+    )
+    .header(Row::new(vec!["", "set to", "the unit holds"]).style(theme::label()));
+    frame.render_widget(table, table_area);
+    let mut lines = vec![Line::styled(
+        selected.help(sv.forms.device.device_id, page),
+        theme::label(),
+    )];
+    lines.extend(extra);
+    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), help);
+}
+
+/// A write's status in words and its colour: green only when acknowledged.
+pub fn status_span(s: &WriteStatus) -> Span<'static> {
+    match s {
+        WriteStatus::Queued => Span::styled("queued", theme::unknown()),
+        WriteStatus::Sending { attempt, of } => {
+            Span::styled(format!("sending (try {attempt}/{of})"), theme::caution())
+        }
+        WriteStatus::Rereading => Span::styled("acknowledged, re-reading…", theme::caution()),
+        WriteStatus::Saved {
+            holds,
+            matches: true,
+        } => Span::styled(format!("saved ✓ unit holds {holds}"), theme::on_off(true)),
+        WriteStatus::Saved { holds, .. } => {
+            Span::styled(format!("saved ✓ but unit holds {holds}"), theme::caution())
+        }
+        WriteStatus::Refused { why, by_unit } => Span::styled(
+            format!(
+                "refused{}: {why}",
+                if *by_unit {
+                    " by the unit"
+                } else {
+                    ", not sent"
+                }
+            ),
+            theme::alert(),
+        ),
+        WriteStatus::NoAnswer => Span::styled(
+            "no answer after 3 tries: not saved".to_string(),
+            theme::alert(),
+        ),
+        WriteStatus::NotSent => {
+            Span::styled("not sent (an earlier write failed)", theme::unknown())
+        }
+    }
+}
+
+fn render_writes(frame: &mut Frame, area: Rect, writes: &[WriteLine]) {
+    let mut lines = vec![Line::styled("Writes to the unit", theme::panel_title())];
+    if writes.is_empty() {
+        lines.push(Line::styled("none yet", theme::unknown()));
+    }
+    // The newest few: a restore can be long, and its end is what matters.
+    let skip = writes
+        .len()
+        .saturating_sub(area.height.saturating_sub(1) as usize);
+    for w in &writes[skip..] {
+        lines.push(Line::from(vec![
+            Span::styled(format!("{:<28}", w.what), theme::label()),
+            status_span(&w.status),
+        ]));
+    }
+    frame.render_widget(Paragraph::new(lines), area);
+}
+
+fn render_message(frame: &mut Frame, area: Rect, view: &ViewState) {
+    let line = match (&view.setup.message, &view.notice) {
+        (_, Some(n)) => Line::styled(n.clone(), theme::caution()),
+        (Some((tone, text)), None) => Line::styled(
+            text.clone(),
+            match tone {
+                Tone::Info => theme::info(),
+                Tone::Good => theme::on_off(true),
+                Tone::Bad => theme::alert(),
+            },
+        ),
+        (None, None) => Line::raw(""),
+    };
+    frame.render_widget(Paragraph::new(line), area);
+}
+
+/// The keys that work on this page now.
+pub fn keys(sv: &SetupView) -> Vec<(&'static str, &'static str)> {
+    if let Dialog::Load { .. } | Dialog::Erase { .. } = sv.dialog {
+        return vec![("y", "confirm"), ("Esc", "cancel")];
+    }
+    let mut k = vec![("Tab", "page"), ("↑↓", "field")];
+    match sv.page {
+        Page::Diagnostics | Page::Backup => {
+            k.push(("Enter", "do"));
+            if sv.field().is_text() {
+                k.push(("type", "file name"));
+            }
+        }
+        page => {
+            if sv.field().is_text() {
+                k.push(("type", "name"));
+                k.push(("←→", "Appendix C"));
+            } else {
+                k.push(("←→", "change"));
+                k.push(("0-9", "type"));
+            }
+            k.push(("Enter", "send"));
+            match page {
+                Page::Flaps | Page::PitchTrim => {
+                    k.push(("u/d", "run"));
+                    k.push(("p", "capture"));
+                }
+                Page::RollTrim => {
+                    k.push((",/.", "run"));
+                    k.push(("p", "capture"));
+                }
+                _ => {}
+            }
+        }
+    }
+    k.push((
+        "Esc",
+        if sv.is_edited(sv.page) {
+            "discard"
+        } else {
+            "back"
+        },
+    ));
+    k
+}
+
+fn render_keys(frame: &mut Frame, area: Rect, sv: &SetupView) {
+    let mut spans = Vec::new();
+    for (k, what) in keys(sv) {
+        spans.push(Span::styled(format!(" {k} "), theme::key()));
+        spans.push(Span::raw(format!(" {what} ")));
+    }
+    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+}
