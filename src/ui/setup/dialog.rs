@@ -42,7 +42,17 @@ pub fn render(frame: &mut Frame, model: &Model, sv: &SetupView, dialog: &Dialog)
             writes,
         } => ("Apply this backup?", load(file, changes, notes, *writes)),
     };
-    let area = popup(frame, lines.len() as u16 + 4);
+    // Rows once wrapped inside the border, so the last key is never cut off.
+    let inner = frame
+        .area()
+        .width
+        .saturating_sub(8)
+        .min(96)
+        .saturating_sub(2)
+        .max(1) as usize;
+    // Word wrap can take a row more than the characters need.
+    let rows: usize = lines.iter().map(|l| (l.width() + 8).div_ceil(inner)).sum();
+    let area = popup(frame, rows as u16 + 2);
     frame.render_widget(Clear, area);
     frame.render_widget(
         Paragraph::new(lines).wrap(Wrap { trim: false }).block(

@@ -34,7 +34,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
         return;
     }
     let sv = &view.setup;
-    let writes_h = (sv.writes.len() as u16).clamp(1, 6) + 1;
+    let writes_h = writes_height(&sv.writes, area.width).min(area.height / 3);
     let [title, tabs, body, writes, message, keys] = Layout::vertical([
         Constraint::Length(1),
         Constraint::Length(1),
@@ -65,7 +65,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
 }
 
 fn render_tabs(frame: &mut Frame, area: Rect, sv: &SetupView) {
-    let mut spans = vec![Span::styled("SETUP ", theme::panel_title())];
+    let mut spans = vec![Span::styled("SETUP", theme::panel_title())];
     for p in Page::ALL {
         let style = if p == sv.page {
             theme::key().add_modifier(Modifier::BOLD)
@@ -73,8 +73,8 @@ fn render_tabs(frame: &mut Frame, area: Rect, sv: &SetupView) {
             theme::label()
         };
         let mark = if sv.is_edited(p) { "*" } else { "" };
-        spans.push(Span::styled(format!(" {}{mark} ", p.title()), style));
         spans.push(Span::raw(" "));
+        spans.push(Span::styled(format!(" {}{mark} ", p.title()), style));
     }
     frame.render_widget(Paragraph::new(Line::from(spans)), area);
 }
@@ -99,7 +99,21 @@ pub fn render_form(
     .areas(area);
     frame.render_widget(
         Paragraph::new(Line::from(vec![
-            Span::styled(format!("{} ", page.title()), theme::panel_title()),
+            Span::styled(
+                match page {
+                    Page::PitchTrim => "Pitch trim ",
+                    Page::RollTrim => "Roll trim ",
+                    _ => page.title(),
+                },
+                theme::panel_title(),
+            ),
+            Span::raw(
+                if page.is_form() && !matches!(page, Page::PitchTrim | Page::RollTrim) {
+                    " "
+                } else {
+                    ""
+                },
+            ),
             Span::styled(format!("— Enter sends {}", page.sends()), theme::label()),
         ])),
         heading,
@@ -198,22 +212,37 @@ pub fn status_span(s: &WriteStatus) -> Span<'static> {
     }
 }
 
+const WHAT_W: usize = 28;
+
+/// Screen rows a write takes when its words wrap at `width`.
+fn rows_of(w: &WriteLine, width: u16) -> u16 {
+    let len = WHAT_W + status_span(&w.status).content.chars().count();
+    len.div_ceil(width.max(1) as usize) as u16
+}
+
+fn writes_height(writes: &[WriteLine], width: u16) -> u16 {
+    1 + writes.iter().map(|w| rows_of(w, width)).sum::<u16>().max(1)
+}
+
 fn render_writes(frame: &mut Frame, area: Rect, writes: &[WriteLine]) {
     let mut lines = vec![Line::styled("Writes to the unit", theme::panel_title())];
     if writes.is_empty() {
         lines.push(Line::styled("none yet", theme::unknown()));
     }
-    // The newest few: a restore can be long, and its end is what matters.
-    let skip = writes
-        .len()
-        .saturating_sub(area.height.saturating_sub(1) as usize);
+    // The newest that fit: a restore can be long, and its end is what matters.
+    let mut room = area.height.saturating_sub(1);
+    let mut skip = writes.len();
+    while skip > 0 && rows_of(&writes[skip - 1], area.width) <= room {
+        room -= rows_of(&writes[skip - 1], area.width);
+        skip -= 1;
+    }
     for w in &writes[skip..] {
         lines.push(Line::from(vec![
-            Span::styled(format!("{:<28}", w.what), theme::label()),
+            Span::styled(format!("{:<WHAT_W$}", w.what), theme::label()),
             status_span(&w.status),
         ]));
     }
-    frame.render_widget(Paragraph::new(lines), area);
+    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: false }), area);
 }
 
 fn render_message(frame: &mut Frame, area: Rect, view: &ViewState) {

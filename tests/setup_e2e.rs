@@ -1,0 +1,381 @@
+//! The setup screens end to end: the real `App` driven with keys, on the slave of a
+//! real pseudo-terminal, the virtual VP-X on its master. What the screen says is
+//! checked against what the sim really holds (`stats().config`).
+
+use std::time::{Duration, Instant};
+
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::style::Color;
+use vpx_efis::app::{App, AppOptions};
+use vpx_efis::link;
+use vpx_efis::model::Source;
+use vpx_efis::protocol::message::{DeviceSpec, SwitchId};
+use vpx_efis::sim::{self, Scenario, SimCommand, SimHandle, SimOptions};
+use vpx_efis::ui::setup::state::{Page, WriteStatus};
+use vpx_efis::ui::state::{ReleaseMode, Screen};
+
+const SCENARIO: &str = r#"
+description = "setup e2e: a few devices, flaps fitted"
+[electrical]
+bus_volts = 14.0
+battery_volts = 12.6
+switches = [2]
+[[device]]
+id = 2
+name = "EFIS 1"
+switch = 11
+load = 3.0
+[[device]]
+id = 9
+name = "GPS 1"
+breaker = 2
+switch = 2
+load = 1.0
+[flap]
+enabled = true
+mode = "momentary"
+up = 20
+down = 220
+midpoint_1 = 90
+midpoint_2 = 160
+breaker = 7
+overspeed_position = 60
+max_speed = 100
+endpoint_duration = 0.5
+position = 20
+"#;
+
+struct Rig {
+    app: App,
+    sim: SimHandle,
+    _slave: serialport::TTYPort,
+}
+
+impl Rig {
+    fn new() -> Rig {
+        let pty = link::open_pty_pair().expect("pty");
+        let reader = pty.master.try_clone_native().expect("clone master");
+        let sim = sim::spawn(
+            SimOptions::new(Scenario::from_toml(SCENARIO).unwrap()),
+            Box::new(reader),
+            Box::new(pty.master),
+        );
+        let path = std::path::PathBuf::from(&pty.path);
+        let app = App::new(
+            Source::Serial {
+                path: pty.path.clone(),
+            },
+            link::serial_connector(path, 57_600),
+            AppOptions {
+                max_run: Duration::from_secs(10),
+                release_mode: ReleaseMode::AutoRepeat,
+            },
+        );
+        Rig {
+            app,
+            sim,
+            _slave: pty.slave,
+        }
+    }
+
+    fn until(&mut self, what: &str, limit: Duration, f: impl Fn(&App) -> bool) {
+        let end = Instant::now() + limit;
+        while !f(&self.app) {
+            assert!(Instant::now() < end, "timed out waiting for {what}");
+            self.app
+                .pump_until(Instant::now() + Duration::from_millis(20));
+        }
+    }
+
+    fn key(&mut self, code: KeyCode) {
+        let k = KeyEvent::new_with_kind(code, KeyModifiers::NONE, KeyEventKind::Press);
+        self.app.handle_term_event(Event::Key(k), Instant::now());
+    }
+
+    fn keys(&mut self, s: &str) {
+        for c in s.chars() {
+            self.key(KeyCode::Char(c));
+        }
+    }
+
+    /// Connected, every spec, name and enable flag heard, then `c` from device `id`.
+    fn open_setup_on(&mut self, id: u8) {
+        self.until(
+            "the unit's whole configuration",
+            Duration::from_secs(8),
+            |app| {
+                let m = app.model();
+                m.names.iter().all(Option::is_some)
+                    && m.wig_wag_spec.is_some()
+                    && m.device_specs[28].is_some()
+                    && !m.comm_lost(Instant::now())
+            },
+        );
+        for _ in 0..40 {
+            if self.app.view().selected == Some(id) {
+                break;
+            }
+            self.key(KeyCode::Char('j'));
+        }
+        assert_eq!(self.app.view().selected, Some(id));
+        self.key(KeyCode::Char('c'));
+        self.app
+            .pump_until(Instant::now() + Duration::from_millis(50));
+        assert_eq!(self.app.view().screen, Screen::Setup);
+        assert_eq!(self.app.view().setup.page, Page::Device);
+        assert_eq!(self.app.view().setup.forms.device.device_id, id);
+    }
+
+    fn status(&self, i: usize) -> WriteStatus {
+        self.app.view().setup.writes[i].status.clone()
+    }
+
+    fn sent(&self, name: &str) -> u64 {
+        self.app.model().link.tx.get(name).map_or(0, |s| s.count)
+    }
+
+    fn render(&mut self) -> Buffer {
+        let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
+        self.app.draw(&mut term, Instant::now()).unwrap();
+        term.backend().buffer().clone()
+    }
+}
+
+fn screen(buf: &Buffer) -> String {
+    (0..buf.area.height)
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect()
+}
+
+fn fg_of(buf: &Buffer, needle: &str) -> Color {
+    for y in 0..buf.area.height {
+        let line: String = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
+        if let Some(b) = line.find(needle) {
+            return buf[(line[..b].chars().count() as u16, y)].fg;
+        }
+    }
+    panic!("{needle:?} not on screen:\n{}", screen(buf));
+}
+
+#[test]
+fn an_edited_breaker_reaches_the_sim_and_is_saved_only_after_its_spec_ack() {
+    let mut rig = Rig::new();
+    rig.open_setup_on(9);
+    rig.key(KeyCode::Down); // breaker
+    rig.keys("4");
+    rig.key(KeyCode::Down);
+    rig.key(KeyCode::Right); // switch 2 → 3
+    rig.key(KeyCode::Enter);
+    let sv = &rig.app.view().setup;
+    assert_eq!(sv.writes.len(), 1, "{:?}", sv.writes);
+    assert_eq!(
+        rig.status(0),
+        WriteStatus::Sending { attempt: 1, of: 3 },
+        "not saved before the unit answered"
+    );
+    rig.until("saved", Duration::from_secs(3), |app| {
+        matches!(app.view().setup.writes[0].status, WriteStatus::Saved { .. })
+    });
+    assert_eq!(
+        rig.status(0),
+        WriteStatus::Saved {
+            holds: "4 A, switch 3, current fault off".into(),
+            matches: true
+        }
+    );
+    let cfg = rig.sim.stats().config;
+    assert_eq!(cfg.devices[9].circuit_breaker, 4);
+    assert_eq!(cfg.devices[9].switch_id, SwitchId::Input(3));
+    let ack = rig.app.model().last_spec_ack.unwrap().value;
+    assert_eq!((ack.device_id, ack.error), (9, None));
+    assert_eq!(rig.sent("DEVICE_SPEC"), 1);
+    let buf = rig.render();
+    assert_eq!(fg_of(&buf, "saved ✓"), Color::Green);
+    assert!(!rig.app.view().setup.is_edited(Page::Device));
+
+    // A name typed and the device hidden: DEVICE_NAME acked, DEVICE_ENABLE re-read.
+    for _ in 0..2 {
+        rig.key(KeyCode::Down);
+    }
+    for _ in 0..5 {
+        rig.key(KeyCode::Backspace);
+    }
+    rig.keys("Nav 2 GPS");
+    rig.key(KeyCode::Down);
+    rig.key(KeyCode::Right);
+    rig.key(KeyCode::Enter);
+    rig.until("both saved", Duration::from_secs(4), |app| {
+        let w = &app.view().setup.writes;
+        w.len() == 2
+            && w.iter()
+                .all(|w| matches!(w.status, WriteStatus::Saved { matches: true, .. }))
+    });
+    let cfg = rig.sim.stats().config;
+    assert_eq!(&cfg.names[9][..10], b"Nav 2 GPS\0");
+    assert!(!cfg.enabled[9]);
+}
+
+#[test]
+fn refusals_are_in_words_whether_from_the_unit_or_before_sending() {
+    let mut rig = Rig::new();
+    rig.open_setup_on(9);
+    let before = rig.sim.stats().config.devices[9];
+
+    // Typed past the pin's range: refused here, nothing goes out.
+    rig.key(KeyCode::Down);
+    rig.keys("20");
+    rig.key(KeyCode::Enter);
+    match rig.status(0) {
+        WriteStatus::Refused {
+            why,
+            by_unit: false,
+        } => assert_eq!(
+            why,
+            "Invalid circuit breaker value: 20 A is outside 1–5 A for 5A-6 (ICD Table 40)"
+        ),
+        s => panic!("{s:?}"),
+    }
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(300));
+    assert_eq!(rig.sent("DEVICE_SPEC"), 0);
+
+    // The same value past our own check: the unit's SPEC_ACK code in words, and the
+    // re-read shows what it kept.
+    rig.app.setup_send_unchecked(
+        vec![
+            DeviceSpec {
+                circuit_breaker: 9,
+                ..before
+            }
+            .into(),
+        ],
+        Instant::now(),
+    );
+    rig.until("refused by the unit", Duration::from_secs(3), |app| {
+        matches!(
+            app.view().setup.writes[0].status,
+            WriteStatus::Refused { by_unit: true, .. }
+        )
+    });
+    match rig.status(0) {
+        WriteStatus::Refused { why, .. } => {
+            assert!(
+                why.starts_with(
+                    "Invalid circuit breaker value: 9 A is outside 1–5 A for 5A-6 (ICD Table 40)"
+                ),
+                "{why}"
+            );
+            assert!(
+                why.ends_with("the unit holds 2 A, switch 2, current fault off"),
+                "{why}"
+            );
+        }
+        s => panic!("{s:?}"),
+    }
+    assert_eq!(rig.sim.stats().config.devices[9], before);
+    let buf = rig.render();
+    assert_eq!(fg_of(&buf, "refused by the unit"), Color::Red);
+    assert!(screen(&buf).contains("Invalid circuit breaker value"));
+}
+
+#[test]
+fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going() {
+    let mut rig = Rig::new();
+    rig.open_setup_on(9);
+    rig.sim.inject(SimCommand::Silent(Duration::from_secs(6)));
+    rig.key(KeyCode::Down);
+    rig.keys("3");
+    let start = Instant::now();
+    rig.key(KeyCode::Enter);
+    // Keys still work while the write waits: the loop never blocks.
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(200));
+    let t = Instant::now();
+    rig.key(KeyCode::Tab);
+    assert!(t.elapsed() < Duration::from_millis(50));
+    assert_eq!(rig.app.view().setup.page, Page::System);
+    assert!(matches!(rig.status(0), WriteStatus::Sending { .. }));
+    rig.until("no answer", Duration::from_secs(5), |app| {
+        app.view().setup.writes[0].status == WriteStatus::NoAnswer
+    });
+    let took = start.elapsed();
+    assert!(
+        took >= Duration::from_millis(2900) && took < Duration::from_millis(4000),
+        "three tries a second apart, then give up: {took:?}"
+    );
+    assert_eq!(rig.sent("DEVICE_SPEC"), 3);
+    let buf = rig.render();
+    assert_eq!(fg_of(&buf, "no answer after 3 tries"), Color::Red);
+    assert!(!screen(&buf).contains("saved ✓"));
+}
+
+#[test]
+fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_carries() {
+    let mut rig = Rig::new();
+    rig.open_setup_on(9);
+    rig.key(KeyCode::Tab);
+    rig.key(KeyCode::Tab);
+    assert_eq!(rig.app.view().setup.page, Page::Flaps);
+    rig.until("live flap position", Duration::from_secs(2), |app| {
+        app.model().live_flap_trim(Instant::now()).is_some()
+    });
+    // Hold flaps down about 1.5 s as a terminal without key release reports it.
+    let start = Instant::now();
+    rig.key(KeyCode::Char('d'));
+    assert!(
+        rig.app.view().motor_run.is_some(),
+        "the motor runs from here"
+    );
+    rig.app.pump_until(start + Duration::from_millis(500));
+    while start.elapsed() < Duration::from_millis(1500) {
+        rig.key(KeyCode::Char('d'));
+        rig.app
+            .pump_until(Instant::now() + Duration::from_millis(33));
+    }
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(700));
+    let stats = rig.sim.stats();
+    assert!(!stats.flap_running, "stopped after the key");
+    assert_eq!(
+        stats.flap_starvations, 0,
+        "the same safe stream as the page"
+    );
+    let pos = stats.flap_position;
+    assert!((30..90).contains(&pos), "flaps ran down to {pos}");
+    rig.until(
+        "the status to show where it stopped",
+        Duration::from_secs(1),
+        |app| {
+            app.model()
+                .live_flap_trim(Instant::now())
+                .is_some_and(|f| f.flap_position == pos)
+        },
+    );
+
+    // Midpoint 1 is the fifth field: capture, then send.
+    for _ in 0..4 {
+        rig.key(KeyCode::Down);
+    }
+    rig.key(KeyCode::Char('p'));
+    assert_eq!(rig.app.view().setup.forms.flap.midpoint_1, pos);
+    rig.key(KeyCode::Enter);
+    rig.until("FLAP_SPEC saved", Duration::from_secs(3), |app| {
+        matches!(
+            app.view().setup.writes.first().map(|w| &w.status),
+            Some(WriteStatus::Saved { matches: true, .. })
+        )
+    });
+    assert_eq!(rig.app.view().setup.writes[0].what, "FLAP_SPEC");
+    let flap = rig.sim.stats().config.flap;
+    assert_eq!(flap.midpoint_1, pos, "the unit holds the captured position");
+    assert_eq!((flap.up, flap.midpoint_2, flap.down), (20, 160, 220));
+    assert_eq!(rig.app.model().flap_spec.unwrap().value.midpoint_1, pos);
+}

@@ -1,0 +1,414 @@
+//! Snapshots of every setup screen, their error states and the confirmation dialogs,
+//! rendered into a `TestBackend`; the states whose meaning is their colour (saved in
+//! green, refused in red) are also checked cell by cell.
+
+use std::time::{Duration, Instant};
+
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::style::Color;
+
+use vpx_efis::model::{Model, Source};
+use vpx_efis::protocol::Packet;
+use vpx_efis::protocol::Payload;
+use vpx_efis::protocol::device::{EFIS, FIELD_PRI, STARTER};
+use vpx_efis::protocol::message::{
+    DeviceEnable, DeviceName, DeviceSpec, EnableFlag, FlapMode, FlapSpec, FlapTrimStatus,
+    HardwareVersion, Message, OvervoltageLimit, Polarity, SwitchId, SystemSpec, Tenths, TrimSpec,
+    TrimType, Version, WigWagSpec,
+};
+use vpx_efis::ui;
+use vpx_efis::ui::setup::state::{
+    Dialog, Field, Forms, Held, Page, Probe, SetupView, Tone, WriteLine, WriteStatus,
+};
+use vpx_efis::ui::state::{Screen, ViewState};
+
+fn apply(m: &mut Model, at: Instant, msg: impl Into<Message>) {
+    m.apply_packet(at, &Packet::from_vpx(1, msg));
+}
+
+/// A unit that answered every connect-time question.
+fn unit(t0: Instant) -> Model {
+    let mut m = Model::new(Source::Serial {
+        path: "/dev/ttyUSB0".into(),
+    });
+    m.note_connected(t0, "/dev/ttyUSB0".into());
+    apply(
+        &mut m,
+        t0,
+        Version {
+            hardware_version: HardwareVersion::VpxPro,
+            software_major: 1,
+            software_minor: 4,
+        },
+    );
+    for id in 1..=28u8 {
+        let (cb, sw) = match id {
+            STARTER => (5, SwitchId::AlwaysOn),
+            EFIS => (5, SwitchId::AlwaysOn),
+            FIELD_PRI => (5, SwitchId::Input(1)),
+            4 => (3, SwitchId::Input(2)),
+            7 | 8 => (2, SwitchId::Input(4)),
+            _ => (2, SwitchId::Off),
+        };
+        apply(
+            &mut m,
+            t0,
+            DeviceSpec {
+                device_id: id,
+                circuit_breaker: cb,
+                switch_id: sw,
+                current_fault: id == 4,
+            },
+        );
+        if (4..=28).contains(&id) {
+            apply(
+                &mut m,
+                t0,
+                DeviceEnable {
+                    device_id: id,
+                    flag: EnableFlag::Enabled,
+                },
+            );
+        }
+    }
+    for id in 0..=30u8 {
+        let name = match id {
+            EFIS => "EFIS 1",
+            FIELD_PRI => "Alternator",
+            4 => "Nav Lt",
+            7 => "Landing Lt",
+            8 => "Taxi Light",
+            _ => "",
+        };
+        apply(&mut m, t0, DeviceName::new(id, name).unwrap());
+    }
+    apply(
+        &mut m,
+        t0,
+        SystemSpec {
+            overvoltage_limit: OvervoltageLimit::V16,
+            secondary_alternator: None,
+        },
+    );
+    apply(
+        &mut m,
+        t0,
+        FlapSpec {
+            mode: FlapMode::PositionBased,
+            enabled: true,
+            polarity: Polarity::Standard,
+            up: 20,
+            down: 220,
+            midpoint_1: 90,
+            midpoint_2: 160,
+            circuit_breaker: 7,
+            overspeed_position: 90,
+            max_speed: 100,
+            endpoint_duration: Tenths(5),
+        },
+    );
+    for (t, up, down, neutral) in [
+        (TrimType::Pitch, 30, 230, 128),
+        (TrimType::Roll, 40, 200, 120),
+    ] {
+        apply(
+            &mut m,
+            t0,
+            TrimSpec {
+                trim_type: t,
+                enabled: true,
+                polarity: Polarity::Standard,
+                up,
+                down,
+                neutral,
+                power: 60,
+                speed: 120,
+            },
+        );
+    }
+    apply(
+        &mut m,
+        t0,
+        WigWagSpec {
+            device_one: Some(7),
+            device_two: Some(8),
+            warm_up_period: 5,
+            speed: 70,
+        },
+    );
+    let mut ft = FlapTrimStatus::parse(&[0u8; 18]).unwrap();
+    ft.flap.enabled = true;
+    ft.pitch_trim.enabled = true;
+    ft.roll_trim.enabled = true;
+    ft.flap_position = 57;
+    ft.pitch_trim_position = 131;
+    ft.roll_trim_position = 118;
+    apply(&mut m, t0, ft);
+    m
+}
+
+/// The setup view on `page` with every form showing what the unit holds.
+fn view(m: &Model, page: Page, device: u8) -> ViewState {
+    let held = Held::from_model(m, device);
+    let forms = Forms {
+        device: held.device.unwrap(),
+        name: held.name.unwrap(),
+        shown: held.shown.unwrap(),
+        system: held.system.unwrap(),
+        flap: held.flap.unwrap(),
+        pitch: held.pitch.unwrap(),
+        roll: held.roll.unwrap(),
+        wig_wag: held.wig_wag.unwrap(),
+    };
+    ViewState {
+        screen: Screen::Setup,
+        setup: SetupView {
+            page,
+            forms,
+            file: "n123ab.toml".into(),
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
+fn render(m: &Model, v: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
+    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
+    term.draw(|f| ui::render(f, m, v, now)).unwrap();
+    term.backend().buffer().clone()
+}
+
+fn text(buf: &Buffer) -> String {
+    let w = buf.area.width as usize;
+    let mut out = String::new();
+    for (i, cell) in buf.content.iter().enumerate() {
+        out.push_str(cell.symbol());
+        if (i + 1) % w == 0 {
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// The foreground colour of the first cell of `needle` on screen.
+fn fg(buf: &Buffer, needle: &str) -> Color {
+    for y in 0..buf.area.height {
+        let line: Vec<String> = (0..buf.area.width)
+            .map(|x| buf[(x, y)].symbol().to_string())
+            .collect();
+        let joined: String = line.concat();
+        if let Some(byte) = joined.find(needle) {
+            let x = joined[..byte].chars().count() as u16;
+            return buf[(x, y)].fg;
+        }
+    }
+    panic!("{needle:?} is not on screen:\n{}", text(buf));
+}
+
+fn select(v: &mut ViewState, field: Field) {
+    v.setup.field = v
+        .setup
+        .page
+        .fields()
+        .iter()
+        .position(|&f| f == field)
+        .unwrap();
+}
+
+#[test]
+fn device_page_80x24() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::Device, 4);
+    select(&mut v, Field::Name);
+    insta::assert_snapshot!(text(&render(&m, &v, t0, 80, 24)));
+}
+
+#[test]
+fn device_page_edited_and_refused_by_the_unit_in_red() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::Device, 4);
+    v.setup.forms.device.circuit_breaker = 9;
+    v.setup.edited[Page::Device.index()] = true;
+    select(&mut v, Field::Breaker);
+    v.setup.writes = vec![WriteLine {
+        what: "DEVICE_SPEC for 5A-1".into(),
+        status: WriteStatus::Refused {
+            why: "Invalid circuit breaker value: 9 A is outside 1–5 A for 5A-1 (ICD Table 40); \
+                  the unit holds 3 A, switch 2, current fault on"
+                .into(),
+            by_unit: true,
+        },
+    }];
+    let buf = render(&m, &v, t0, 120, 30);
+    insta::assert_snapshot!(text(&buf));
+    assert_eq!(fg(&buf, "refused by the unit"), Color::Red);
+    assert_eq!(fg(&buf, "9 A"), Color::Yellow, "an unsent edit stands out");
+}
+
+#[test]
+fn device_page_saved_is_green_sending_is_yellow_no_answer_is_red() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::Device, 4);
+    v.setup.writes = vec![
+        WriteLine {
+            what: "DEVICE_SPEC for 5A-1".into(),
+            status: WriteStatus::Saved {
+                holds: "3 A, switch 2, current fault on".into(),
+                matches: true,
+            },
+        },
+        WriteLine {
+            what: "DEVICE_NAME for 5A-1".into(),
+            status: WriteStatus::Sending { attempt: 2, of: 3 },
+        },
+        WriteLine {
+            what: "DEVICE_ENABLE for 5A-1".into(),
+            status: WriteStatus::Queued,
+        },
+    ];
+    let buf = render(&m, &v, t0, 100, 30);
+    insta::assert_snapshot!(text(&buf));
+    assert_eq!(fg(&buf, "saved ✓"), Color::Green);
+    assert_eq!(fg(&buf, "sending (try 2/3)"), Color::Yellow);
+    v.setup.writes[1].status = WriteStatus::NoAnswer;
+    v.setup.writes[2].status = WriteStatus::NotSent;
+    let buf = render(&m, &v, t0, 100, 30);
+    assert_eq!(fg(&buf, "no answer after 3 tries"), Color::Red);
+    assert_eq!(fg(&buf, "not sent"), Color::DarkGray);
+}
+
+#[test]
+fn system_page() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::System, 4);
+    v.setup.forms.system.secondary_alternator = Some(7);
+    v.setup.edited[Page::System.index()] = true;
+    v.setup.writes = vec![WriteLine {
+        what: "SYSTEM_SPEC".into(),
+        status: WriteStatus::Refused {
+            why: "Wig-Wag configuration error: 5A-4 (device 7) is a wig-wag device; remove it \
+                  from the wig-wag before making it the secondary alternator (ICD Table 14 \
+                  note 4)"
+                .into(),
+            by_unit: false,
+        },
+    }];
+    let buf = render(&m, &v, t0, 100, 26);
+    insta::assert_snapshot!(text(&buf));
+    assert_eq!(fg(&buf, "refused, not sent"), Color::Red);
+}
+
+#[test]
+fn flaps_page_with_the_live_position_and_a_capture() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::Flaps, 4);
+    v.setup.forms.flap.midpoint_1 = 57;
+    v.setup.edited[Page::Flaps.index()] = true;
+    select(&mut v, Field::FlapMid1);
+    v.setup.message = Some((
+        Tone::Good,
+        "midpoint 1 set to the flaps position 57; Enter sends it".into(),
+    ));
+    insta::assert_snapshot!(text(&render(
+        &m,
+        &v,
+        t0 + Duration::from_millis(100),
+        80,
+        24
+    )));
+}
+
+#[test]
+fn pitch_and_roll_trim_pages() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::PitchTrim, 4);
+    select(&mut v, Field::TrimNeutral);
+    insta::assert_snapshot!("pitch", text(&render(&m, &v, t0, 80, 24)));
+    let mut v = view(&m, Page::RollTrim, 4);
+    select(&mut v, Field::TrimPower);
+    insta::assert_snapshot!("roll", text(&render(&m, &v, t0, 80, 24)));
+}
+
+#[test]
+fn wig_wag_page() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let v = view(&m, Page::WigWag, 4);
+    insta::assert_snapshot!(text(&render(&m, &v, t0, 80, 24)));
+}
+
+#[test]
+fn diagnostics_page_with_a_ping_time_and_a_silent_version() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::Diagnostics, 4);
+    v.setup.ping = Probe::Answered {
+        after: Duration::from_micros(12_400),
+    };
+    insta::assert_snapshot!("answered", text(&render(&m, &v, t0, 80, 24)));
+    v.setup.ping = Probe::NoAnswer;
+    v.setup.version = Probe::Waiting { attempt: 2, of: 3 };
+    let buf = render(&m, &v, t0, 80, 24);
+    insta::assert_snapshot!("silent", text(&buf));
+    assert_eq!(fg(&buf, "no answer"), Color::Red);
+}
+
+#[test]
+fn backup_page() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::Backup, 4);
+    select(&mut v, Field::File);
+    v.setup.message = Some((Tone::Good, "backup written to n123ab.toml".into()));
+    insta::assert_snapshot!(text(&render(&m, &v, t0, 80, 24)));
+}
+
+#[test]
+fn erase_confirmation_names_what_is_lost_and_offers_a_backup() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::Backup, 4);
+    v.setup.field = 4;
+    v.setup.dialog = Dialog::Erase {
+        missing: vec![],
+        backed_up: None,
+    };
+    insta::assert_snapshot!("complete", text(&render(&m, &v, t0, 100, 30)));
+    v.setup.dialog = Dialog::Erase {
+        missing: vec![
+            "FLAP_SPEC".into(),
+            "TRIM_SPEC (roll)".into(),
+            "DEVICE_NAME 5A-3".into(),
+            "DEVICE_NAME 5A-4".into(),
+        ],
+        backed_up: None,
+    };
+    insta::assert_snapshot!("incomplete", text(&render(&m, &v, t0, 80, 24)));
+}
+
+#[test]
+fn load_confirmation_shows_the_differences() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let mut v = view(&m, Page::Backup, 4);
+    v.setup.field = 2;
+    v.setup.dialog = Dialog::Load {
+        file: "n123ab.toml".into(),
+        changes: vec![
+            "5A-1 (Nav Lt) breaker: 3 A → 4 A".into(),
+            "5A-6 name: (no name) → \"GPS 1\"".into(),
+            "flaps midpoint 1: 90 → 57".into(),
+        ],
+        notes: vec!["note: the backup was taken from software 1.3; the unit runs 1.4".into()],
+        writes: 3,
+    };
+    insta::assert_snapshot!(text(&render(&m, &v, t0, 100, 30)));
+}
