@@ -379,3 +379,87 @@ fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_car
     assert_eq!((flap.up, flap.midpoint_2, flap.down), (20, 160, 220));
     assert_eq!(rig.app.model().flap_spec.unwrap().value.midpoint_1, pos);
 }
+
+#[test]
+fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() {
+    let mut rig = Rig::new();
+    rig.open_setup_on(9);
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("unit.toml");
+    rig.key(KeyCode::BackTab);
+    assert_eq!(rig.app.view().setup.page, Page::Backup);
+    rig.keys(file.to_str().unwrap());
+    rig.key(KeyCode::Down);
+    rig.key(KeyCode::Enter);
+    let saved = vpx_efis::backup::load(&file).expect("a backup file");
+    let original = rig.sim.stats().config;
+    assert_eq!(
+        vpx_efis::backup::normalized(&saved.config),
+        vpx_efis::backup::normalized(&original)
+    );
+
+    // Change the breaker on the device page, then load the backup back.
+    rig.key(KeyCode::Tab);
+    rig.key(KeyCode::Down);
+    rig.keys("4");
+    rig.key(KeyCode::Enter);
+    rig.until("the edit saved", Duration::from_secs(3), |app| {
+        matches!(app.view().setup.writes[0].status, WriteStatus::Saved { .. })
+    });
+    assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 4);
+    rig.key(KeyCode::BackTab);
+    rig.key(KeyCode::Down);
+    rig.key(KeyCode::Down);
+    rig.key(KeyCode::Enter); // Load a backup
+    match &rig.app.view().setup.dialog {
+        vpx_efis::ui::setup::state::Dialog::Load {
+            changes, writes, ..
+        } => {
+            assert_eq!(*writes, 1);
+            assert!(changes[0].contains("4 A → 2 A"), "{changes:?}");
+        }
+        d => panic!("{d:?} {:?}", rig.app.view().setup.message),
+    }
+    rig.keys("y");
+    rig.until("the backup applied", Duration::from_secs(3), |app| {
+        matches!(app.view().setup.writes[0].status, WriteStatus::Saved { .. })
+    });
+    assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 2);
+
+    // EEPROM_ERASE: Esc sends nothing, y erases and the page re-reads.
+    rig.key(KeyCode::Down);
+    rig.key(KeyCode::Down);
+    rig.key(KeyCode::Enter);
+    assert!(matches!(
+        rig.app.view().setup.dialog,
+        vpx_efis::ui::setup::state::Dialog::Erase { .. }
+    ));
+    let buf = rig.render();
+    assert!(
+        screen(&buf).contains("b  back up first to"),
+        "{}",
+        screen(&buf)
+    );
+    rig.key(KeyCode::Esc);
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(200));
+    assert_eq!(rig.sent("EEPROM_ERASE"), 0);
+    assert_eq!(rig.sim.stats().config, original);
+    rig.key(KeyCode::Enter);
+    rig.keys("y");
+    rig.until("the erase answered", Duration::from_secs(4), |app| {
+        matches!(
+            app.view().setup.erase,
+            vpx_efis::ui::setup::state::Probe::Answered { .. }
+        )
+    });
+    assert_eq!(
+        rig.sim.stats().config,
+        vpx_efis::protocol::config::UnitConfig::default()
+    );
+    rig.until(
+        "the re-read shows the factory breaker",
+        Duration::from_secs(4),
+        |app| app.model().device_specs[9].is_some_and(|s| s.value.switch_id == SwitchId::Off),
+    );
+}
