@@ -10,6 +10,8 @@
 
 mod gateway;
 pub mod queries;
+mod record;
+mod replay;
 mod setup;
 mod terminal;
 mod traffic;
@@ -34,6 +36,7 @@ use crate::ui::{
 
 pub use gateway::xfsp_setup;
 pub use queries::{QueryPacer, connect_queries};
+pub use record::Recorder;
 pub use terminal::{TerminalGuard, restore as restore_terminal};
 
 /// The screen is redrawn at most this often (coalescing the 10 Hz FLAP_TRIM_STATUS
@@ -91,15 +94,35 @@ pub struct App {
     last_draw: Option<Instant>,
     drawn_revision: u64,
     gateway: Option<gateway::PageGateway>,
+    /// `--record`: the link sink writes every byte here (the app keeps it to flush).
+    recorder: Option<Recorder>,
+    /// `--replay`: the page is read-only and runs on the capture's clock.
+    replay: Option<replay::Replay>,
+    /// Traffic entries at the last draw, so the traffic screen redraws as frames come.
+    traffic_drawn: u64,
     /// The setup screens' writes waiting for the unit, and their timed requests.
     setup: setup::SetupCtl,
 }
 
 impl App {
     pub fn new(source: Source, connector: Connector, options: AppOptions) -> App {
+        App::build(source, options, None, |sink, _| {
+            (Link::start(connector, move |e| sink(e)), None)
+        })
+    }
+
+    /// Starts the link through `start`, which gets the sink that feeds the model (a
+    /// replay wraps it); `recorder` gets every byte.
+    fn build(
+        source: Source,
+        options: AppOptions,
+        recorder: Option<Recorder>,
+        start: impl FnOnce(SharedSink, Arc<Mutex<Model>>) -> (Link, Option<replay::Replay>),
+    ) -> App {
         let model = Arc::new(Mutex::new(Model::new(source)));
         let (wake_tx, wake_rx) = unbounded();
-        let link = Link::start(connector, link_sink(model.clone(), wake_tx));
+        let sink: SharedSink = Arc::new(link_sink(model.clone(), wake_tx, recorder.clone()));
+        let (link, replay) = start(sink, model.clone());
         let handle = link.handle();
         let config = StreamerConfig {
             max_run: options.max_run,
@@ -123,6 +146,9 @@ impl App {
             last_draw: None,
             drawn_revision: 0,
             gateway: None,
+            recorder,
+            replay,
+            traffic_drawn: 0,
             setup: Default::default(),
         }
     }
@@ -145,6 +171,9 @@ impl App {
     }
 
     fn send(&self, packets: Vec<Packet>) {
+        if self.replay.is_some() {
+            return; // read-only: a replay never puts anything on a wire
+        }
         for p in packets {
             // A closed link has already been reported to the model.
             let _ = self.handle.send(p);
@@ -162,6 +191,9 @@ impl App {
     /// A terminal event: keys, focus, resize.
     pub fn handle_term_event(&mut self, event: TermEvent, now: Instant) -> Flow {
         self.dirty = true;
+        if let Some(flow) = self.replay_key(&event, now) {
+            return flow;
+        }
         match event {
             TermEvent::Key(key) if self.view.screen == Screen::Traffic => {
                 return self.traffic_key(key, now);
@@ -269,6 +301,7 @@ impl App {
         let queries = self.pacer.due(now, || controller.next_cnt());
         self.send(queries);
         self.setup_tick(now);
+        self.traffic_tick();
         self.xfsp_tick(now);
         if self.notice_until.is_some_and(|t| now >= t) {
             self.view.notice = None;
@@ -430,27 +463,40 @@ fn lock(m: &Mutex<Model>) -> MutexGuard<'_, Model> {
     m.lock().unwrap_or_else(|p| p.into_inner())
 }
 
+type SharedSink = Arc<dyn Fn(LinkEvent) + Send + Sync>;
+
 /// The link's callback: applies what it sees to the model, then wakes the loop.
 fn link_sink(
     model: Arc<Mutex<Model>>,
     wake: Sender<Wake>,
+    recorder: Option<Recorder>,
 ) -> impl Fn(LinkEvent) + Send + Sync + 'static {
     move |ev| {
         let w = {
             let mut m = lock(&model);
             match ev {
                 LinkEvent::Connected { port } => {
-                    m.note_connected(Instant::now(), port);
+                    let at = Instant::now();
+                    record::on_connected(&recorder, &mut m, at);
+                    m.traffic.note_connected(at);
+                    m.note_connected(at, port);
                     Some(Wake::Connected)
                 }
                 LinkEvent::Disconnected { reason } | LinkEvent::OpenFailed { reason } => {
                     m.note_link_lost(Instant::now(), reason);
                     Some(Wake::LinkDown)
                 }
-                LinkEvent::Bytes { .. } => None,
+                LinkEvent::Bytes { at, dir, bytes } => {
+                    record::on_bytes(&recorder, &mut m, at, dir, &bytes);
+                    None
+                }
                 LinkEvent::Rx {
-                    at, item, stats, ..
+                    at,
+                    item,
+                    stats,
+                    raw,
                 } => {
+                    m.traffic.note_rx(at, &item, &raw);
                     m.note_decoder(stats);
                     match item {
                         RxItem::Packet(p) => m.apply_packet(at, &p),
@@ -459,7 +505,8 @@ fn link_sink(
                     }
                     Some(Wake::Data)
                 }
-                LinkEvent::Tx { at, packet, .. } => {
+                LinkEvent::Tx { at, packet, raw } => {
+                    m.traffic.note_tx(at, packet.as_ref(), &raw);
                     if let Some(p) = packet {
                         m.note_sent(at, &p);
                     }
@@ -498,8 +545,8 @@ pub fn builtin_sim(scenario: &str) -> anyhow::Result<(Source, Connector, SimHand
 
 /// `vpx-efis` with no subcommand: the page.
 pub fn run(args: PageArgs) -> anyhow::Result<()> {
-    if args.replay.is_some() {
-        anyhow::bail!("replay is not available in this build yet");
+    if let Some(file) = &args.replay {
+        return replay::run(file, &args);
     }
     let mut sim = None;
     let (source, connector) = match &args.port.port {
@@ -523,6 +570,8 @@ pub fn run(args: PageArgs) -> anyhow::Result<()> {
     if !(args.max_run > 0.0 && args.max_run.is_finite()) {
         anyhow::bail!("--max-run must be a positive number of seconds");
     }
+    // A path that cannot be written fails here, before the terminal is taken.
+    let recorder = args.record.as_deref().map(Recorder::create).transpose()?;
     let mut guard = TerminalGuard::enter()?;
     let options = AppOptions {
         max_run: Duration::from_secs_f64(args.max_run),
@@ -533,7 +582,10 @@ pub fn run(args: PageArgs) -> anyhow::Result<()> {
         },
     };
     let xfsp = xfsp_setup(&args.xfsp)?;
-    let mut app = App::new(source, connector, options);
+    let mut app = match recorder {
+        Some(r) => App::recording(source, connector, options, r),
+        None => App::new(source, connector, options),
+    };
     if let Some((target, iface, config)) = xfsp {
         app.enable_xfsp(&target, iface, config)?;
     }

@@ -118,18 +118,27 @@ pub struct TypeStat {
 }
 
 impl TypeStat {
-    /// Messages per second over the last [`RATE_WINDOW`] before `now`; `None` until a
+    /// Messages per second over the last [`RATE_WINDOW`] before `now`, from the gaps
+    /// between arrivals (so a steady 1 Hz reads 1.0 whatever its phase); `None` until a
     /// whole window of the session has passed, so a start-up is not called slow.
     pub fn rate_hz(&self, now: Instant, origin: Instant) -> Option<f64> {
-        if now.saturating_duration_since(origin) < RATE_WINDOW {
-            return None;
-        }
-        let n = self
+        let inside: Vec<Instant> = self
             .recent
             .iter()
-            .filter(|&&t| t <= now && now.saturating_duration_since(t) < RATE_WINDOW)
-            .count();
-        Some(n as f64 / RATE_WINDOW.as_secs_f64())
+            .copied()
+            .filter(|&t| t <= now && now.saturating_duration_since(t) < RATE_WINDOW)
+            .collect();
+        let span = match (inside.first(), inside.last()) {
+            (Some(a), Some(b)) => b.saturating_duration_since(*a).as_secs_f64(),
+            _ => 0.0,
+        };
+        if inside.len() >= 2 && span > 0.0 {
+            Some((inside.len() - 1) as f64 / span)
+        } else if now.saturating_duration_since(origin) >= RATE_WINDOW {
+            Some(inside.len() as f64 / RATE_WINDOW.as_secs_f64())
+        } else {
+            None
+        }
     }
 }
 

@@ -3,7 +3,6 @@
 
 pub mod comm_banner;
 pub mod detail;
-pub mod events;
 pub mod device_list;
 pub mod help;
 pub mod key_bar;
@@ -17,6 +16,7 @@ pub mod system_panel;
 pub mod theme;
 pub mod title_bar;
 pub mod too_small;
+pub mod traffic;
 pub mod values;
 
 use std::time::Instant;
@@ -40,6 +40,9 @@ pub fn ordered_circuits(model: &Model, view: &ViewState, now: Instant) -> Vec<Ci
 
 /// Draws the whole page for `model` as it stands at `now`.
 pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
+    if view.screen == state::Screen::Traffic {
+        return traffic::render(frame, model, view, now);
+    }
     if view.screen == state::Screen::Setup {
         return setup::render(frame, model, view, now);
     }
@@ -98,18 +101,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     system_panel::render(frame, system, model, now);
     switches::render(frame, switches_area, model, now);
     motors::render(frame, motors_area, model, view, now);
-    // Tall terminals share the plot's space with the event log.
-    if plot_area.height >= 12 {
-        let [plot_part, events_part] = Layout::vertical([
-            Constraint::Fill(1),
-            Constraint::Length(plot_area.height / 2),
-        ])
-        .areas(plot_area);
-        plot::render(frame, plot_part, model, now);
-        events::render(frame, events_part, model, now);
-    } else {
-        plot::render(frame, plot_area, model, now);
-    }
+    plot::render(frame, plot_area, model, now);
     if link_panel {
         link_health::render(frame, link, model, now);
     }
