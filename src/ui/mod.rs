@@ -4,6 +4,7 @@
 pub mod comm_banner;
 pub mod detail;
 pub mod device_list;
+pub mod events;
 pub mod help;
 pub mod key_bar;
 pub mod link_health;
@@ -101,7 +102,18 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     system_panel::render(frame, system, model, now);
     switches::render(frame, switches_area, model, now);
     motors::render(frame, motors_area, model, view, now);
-    plot::render(frame, plot_area, model, now);
+    // Tall terminals share the plot's space with the event log.
+    if plot_area.height >= 12 {
+        let [plot_part, events_part] = Layout::vertical([
+            Constraint::Fill(1),
+            Constraint::Length(plot_area.height / 2),
+        ])
+        .areas(plot_area);
+        plot::render(frame, plot_part, model, now);
+        events::render(frame, events_part, model, now);
+    } else {
+        plot::render(frame, plot_area, model, now);
+    }
     if link_panel {
         link_health::render(frame, link, model, now);
     }
