@@ -37,6 +37,7 @@ use crate::ui::{
 pub use gateway::xfsp_setup;
 pub use queries::{QueryPacer, connect_queries};
 pub use record::Recorder;
+pub use replay::Capture;
 pub use terminal::{TerminalGuard, restore as restore_terminal};
 
 /// The screen is redrawn at most this often (coalescing the 10 Hz FLAP_TRIM_STATUS

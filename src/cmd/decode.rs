@@ -356,6 +356,14 @@ pub fn run(args: DecodeArgs) -> anyhow::Result<()> {
             .map_err(|e| anyhow::anyhow!("cannot open {}: {e}", args.file))?;
         Box::new(f)
     };
+    // A vpx-efis capture (`--record`) brings its own times and directions.
+    let mut reader = reader;
+    let mut head = Vec::new();
+    (&mut reader).take(8).read_to_end(&mut head)?;
+    if crate::link::is_capture(&head) {
+        return decode_capture(head, reader, args.json);
+    }
+    let reader = io::Cursor::new(head).chain(reader);
     let stdout = io::stdout().lock();
     match decode(
         &mut RawSource::new(reader),
@@ -366,6 +374,47 @@ pub fn run(args: DecodeArgs) -> anyhow::Result<()> {
         // `vpx-efis decode cap | head` is normal use, not an error.
         Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Ok(()),
         Err(e) => Err(e.into()),
+    }
+}
+
+/// The records of a vpx-efis capture file (see `link::capture` for the format).
+pub struct CaptureSource(std::vec::IntoIter<crate::link::Record>);
+
+impl CaptureSource {
+    pub fn new(records: Vec<crate::link::Record>) -> Self {
+        CaptureSource(records.into_iter())
+    }
+}
+
+impl RecordSource for CaptureSource {
+    fn next_record(&mut self) -> io::Result<Option<Record>> {
+        Ok(self.0.next().map(|r| Record {
+            time: Some(r.offset),
+            direction: Some(r.dir),
+            bytes: r.bytes,
+        }))
+    }
+}
+
+/// Decodes a capture: everything up to a cut or damage, then says what stopped it (a
+/// cut is a note, since a crash or pulled cable leaves one; damage is an error).
+fn decode_capture(head: Vec<u8>, mut rest: impl Read, json: bool) -> anyhow::Result<()> {
+    let mut data = head;
+    rest.read_to_end(&mut data)?;
+    let (records, problem, _) = crate::link::parse_capture(&data);
+    let stdout = io::stdout().lock();
+    match decode(&mut CaptureSource::new(records), json, BufWriter::new(stdout)) {
+        Ok(_) => {}
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => return Ok(()),
+        Err(e) => return Err(e.into()),
+    }
+    match problem {
+        None => Ok(()),
+        Some(e @ crate::link::CaptureError::Truncated { .. }) => {
+            eprintln!("vpx-efis decode: note: {e}");
+            Ok(())
+        }
+        Some(e) => Err(e.into()),
     }
 }
 
