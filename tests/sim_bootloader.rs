@@ -40,6 +40,9 @@ fn update_then_exit_sets_the_software_update_flag() {
     );
     // An injected bad write is caught by reading back.
     sim.inject(SimCommand::CorruptNextFlashProg);
+    // stats() answers through the same control channel, after the injection: the
+    // corruption is armed before the page's bytes can overtake it.
+    let _ = sim.stats();
     let prog6 = BootCommand::flash_prog(6, &page).unwrap();
     assert_eq!(exchange(&mut c, prog6, 1), b"P");
     assert_ne!(
