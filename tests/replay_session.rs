@@ -1,0 +1,229 @@
+//! Record a session of the real page against the virtual VP-X, replay it, and the page
+//! draws the same frames at the same instants; a capture cut at any byte replays up to
+//! the cut and says so; a corrupt one is refused in words.
+
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+
+use vpx_efis::app::{self, App, AppOptions, Capture, Recorder};
+use vpx_efis::model::Source;
+use vpx_efis::protocol::message::{Payload, SystemStatus};
+use vpx_efis::ui::{self, state::ViewState};
+
+fn text(buf: &Buffer) -> String {
+    (0..buf.area.height)
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect()
+}
+
+#[test]
+fn a_recorded_session_replays_to_the_same_frames_at_the_same_instants() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("session.vpxcap");
+    let (source, connector, sim) = app::builtin_sim("short-circuit").unwrap();
+    let mut live = App::recording(
+        source,
+        connector,
+        AppOptions::default(),
+        Recorder::create(&path).unwrap(),
+    );
+    let end = Instant::now() + Duration::from_secs(3);
+    let start = loop {
+        if let Some(s) = live.recording_started() {
+            break s;
+        }
+        assert!(Instant::now() < end, "the page never connected");
+        live.pump_until(Instant::now() + Duration::from_millis(10));
+    };
+    // Before the strobe shorts (3 s), as it shorts, and after; odd offsets so the
+    // instants fall anywhere in the broadcast cycle.
+    let replay_source = Source::Replay {
+        file: "session.vpxcap".into(),
+    };
+    let mut frames: Vec<(Duration, Buffer)> = Vec::new();
+    for ms in [730u64, 1910, 3370, 4120] {
+        live.pump_until(start + Duration::from_millis(ms));
+        // Copy the model under its lock with `now` read there, so nothing the link
+        // stamps later is in the copy and nothing stamped before is missing.
+        let (mut model, now) = {
+            let m = live.model();
+            (m.clone(), Instant::now())
+        };
+        // The frame of the same data, as a replay labels it: the source label and the
+        // port name in the event log are the only things that say where bytes came from.
+        model.source = replay_source.clone();
+        for e in model.events.iter_mut() {
+            e.text = e
+                .text
+                .replace("built-in virtual VP-X", "replay of session.vpxcap");
+        }
+        let mut view = ViewState::default();
+        view.selected = ui::ordered_circuits(&model, &view, now)
+            .first()
+            .map(|c| c.id);
+        let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
+        term.draw(|f| ui::render(f, &model, &view, now)).unwrap();
+        frames.push((now - start, term.backend().buffer().clone()));
+    }
+    live.shutdown();
+    sim.stop();
+
+    let cap = Capture::load(&path).unwrap();
+    assert_eq!(cap.problem, None);
+    let mut replay = App::replay(cap, AppOptions::default(), 1.0, true);
+    let mut differing = Vec::new();
+    for (at, want) in &frames {
+        let now = replay.replay_seek(*at).unwrap();
+        let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
+        replay.draw(&mut term, now).unwrap();
+        let got = term.backend().buffer().clone();
+        if &got != want {
+            differing.push(format!(
+                "at {at:?}\n--- live\n{}--- replay\n{}",
+                text(want),
+                text(&got)
+            ));
+        }
+    }
+    assert!(differing.is_empty(), "{}", differing.join("\n"));
+    // The fault is in the last frames, so they were not all the same picture.
+    assert!(text(&frames[3].1).contains("SHORT_CIRCUIT"));
+    assert!(!text(&frames[0].1).contains("SHORT_CIRCUIT"));
+}
+
+fn shipped() -> Vec<u8> {
+    std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/captures/normal.vpxcap"
+    ))
+    .unwrap()
+}
+
+#[test]
+fn a_capture_cut_at_any_byte_loads_up_to_the_cut_and_says_so() {
+    let data = shipped();
+    let full = Capture::from_bytes("normal.vpxcap", &data).unwrap();
+    let mut cuts_with_problem = 0;
+    for cut in 0..data.len() {
+        let c = Capture::from_bytes("cut.vpxcap", &data[..cut])
+            .unwrap_or_else(|e| panic!("cut at {cut}: {e}"));
+        assert!(c.records.len() <= full.records.len());
+        assert_eq!(
+            c.records[..],
+            full.records[..c.records.len()],
+            "cut at {cut}"
+        );
+        if let Some(p) = &c.problem {
+            assert!(p.contains("cut short at byte"), "{p}");
+            cuts_with_problem += 1;
+        }
+    }
+    // Every cut but those on a record boundary (and the header's end) is reported.
+    assert!(cuts_with_problem > data.len() * 9 / 10);
+}
+
+#[test]
+fn a_cut_capture_replays_up_to_the_cut_with_its_message_on_screen() {
+    let data = shipped();
+    let full = Capture::from_bytes("normal.vpxcap", &data).unwrap();
+    for cut in [16 + 5, data.len() / 3, data.len() / 2 + 7, data.len() - 1] {
+        let c = Capture::from_bytes("cut.vpxcap", &data[..cut]).unwrap();
+        let problem = c.problem.clone().expect("a cut mid-record");
+        let received: usize = c
+            .records
+            .iter()
+            .filter(|r| r.dir == vpx_efis::link::Direction::Rx)
+            .map(|r| r.bytes.len())
+            .sum();
+        let mut app = App::replay(c, AppOptions::default(), 1.0, true);
+        let now = app.replay_seek(full.length()).unwrap();
+        assert_eq!(
+            app.model().link.decoder.bytes_in as usize,
+            received,
+            "cut at {cut}: every byte before the cut, none after"
+        );
+        app.handle_term_event(
+            crossterm::event::Event::Key(crossterm::event::KeyEvent::new(
+                crossterm::event::KeyCode::Char('t'),
+                crossterm::event::KeyModifiers::NONE,
+            )),
+            now,
+        );
+        let mut term = Terminal::new(TestBackend::new(160, 40)).unwrap();
+        app.draw(&mut term, now).unwrap();
+        let screen = text(term.backend().buffer());
+        assert!(screen.contains(&problem[..40]), "{screen}");
+    }
+}
+
+#[test]
+fn a_corrupt_capture_is_refused_in_words_never_a_panic() {
+    let data = shipped();
+    let bad_dir = {
+        let mut d = shipped();
+        d[16] = b'Q';
+        d
+    };
+    let e = Capture::from_bytes("bad.vpxcap", &bad_dir)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("corrupt at byte 16") && e.contains("unknown direction"),
+        "{e}"
+    );
+    let e = Capture::from_bytes("raw.bin", b"\xE7\x7E\x10 not a capture at all")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("not a vpx-efis capture"), "{e}");
+    // Every single-byte corruption of the record headers: an error or a clean load,
+    // never a panic.
+    for i in 16..data.len().min(400) {
+        for b in [0x00, 0xFF, b'R', b'T'] {
+            let mut d = shipped();
+            d[i] = b;
+            let _ = Capture::from_bytes("x", &d);
+        }
+    }
+    // The binary says so before touching the terminal, and fails.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.vpxcap");
+    std::fs::write(&path, &bad_dir).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+        .arg("--replay")
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("corrupt at byte 16"), "{err}");
+}
+
+#[test]
+fn decode_reads_a_capture_with_times_and_directions() {
+    let out = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+        .arg("decode")
+        .arg(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/assets/captures/normal.vpxcap"
+        ))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let sys = text
+        .lines()
+        .find(|l| l.contains(SystemStatus::NAME))
+        .expect("a SYSTEM_STATUS line");
+    assert!(sys.trim_start().split(' ').nth(1) == Some("rx"), "{sys}");
+    assert!(text.lines().any(|l| l.contains(" tx VERSION")), "{text}");
+    assert!(text.contains("0 bad checksum"), "{text}");
+}
