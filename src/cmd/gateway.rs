@@ -18,7 +18,7 @@ use crossbeam_channel::{select, unbounded};
 use crate::app::queries::QueryPacer;
 use crate::cli::GatewayArgs;
 use crate::link::{
-    CaptureWriter, Connector, Link, LinkEvent, RxItem, duplex_pipe, pipe_connector,
+    Connector, Link, LinkEvent, RxItem, duplex_pipe, pipe_connector,
     serial_connector,
 };
 use crate::model::{LogEntry, LogLevel, Model, Source};
@@ -120,12 +120,15 @@ pub fn run_bridge(
             )
         }
     };
+    // The app's recorder: flushed by its own thread at least once a second while the
+    // link is idle, and offsets kept in order across the reader and writer threads.
     let mut capture = match &opts.record {
-        Some(path) => Some(
-            std::fs::File::create(path)
-                .and_then(|f| CaptureWriter::new(f, start))
-                .with_context(|| format!("cannot write the capture file {}", path.display()))?,
-        ),
+        Some(path) => {
+            let r = crate::app::Recorder::create(path)?;
+            r.start(start)
+                .with_context(|| format!("cannot write the capture file {}", path.display()))?;
+            Some(r)
+        }
         None => None,
     };
     let net = XfspNet::open(&opts.target, opts.iface)
@@ -225,7 +228,7 @@ pub fn run_bridge(
     // Writes whatever is queued (the stop messages) before the threads end.
     link.shutdown();
     if let Some(c) = capture.as_mut() {
-        let _ = c.flush(Instant::now());
+        c.flush();
     }
     Ok(())
 }
@@ -233,7 +236,7 @@ pub fn run_bridge(
 fn apply(
     model: &mut Model,
     gw: &mut Gateway,
-    capture: &mut Option<CaptureWriter<std::fs::File>>,
+    capture: &mut Option<crate::app::Recorder>,
     e: LinkEvent,
     to_unit: &mut Vec<Packet>,
 ) {
