@@ -83,19 +83,15 @@ impl Payload for TrimSpec {
     const LEN: LenRule = LenRule::Exact(7);
     fn parse_payload(p: &[u8]) -> Result<Self> {
         let mut r = Reader::new(p);
-        let flags = r.u8();
+        let (kind, enabled, polarity) = spec_flags(r.u8());
         Ok(TrimSpec {
-            trim_type: if bit(flags, 7) {
+            trim_type: if kind {
                 TrimType::Roll
             } else {
                 TrimType::Pitch
             },
-            enabled: bit(flags, 6),
-            polarity: if bit(flags, 5) {
-                Polarity::Inverted
-            } else {
-                Polarity::Standard
-            },
+            enabled,
+            polarity,
             up: r.u8(),
             down: r.u8(),
             neutral: r.u8(),
@@ -104,18 +100,12 @@ impl Payload for TrimSpec {
         })
     }
     fn emit_payload(&self, w: &mut Writer) {
-        let mut flags = 0u8;
         // An unknown trim type cannot be carried in one bit; anything but pitch is roll.
-        if self.trim_type != TrimType::Pitch {
-            flags |= 0x80;
-        }
-        if self.enabled {
-            flags |= 0x40;
-        }
-        if self.polarity == Polarity::Inverted {
-            flags |= 0x20;
-        }
-        w.u8(flags);
+        w.u8(emit_spec_flags(
+            self.trim_type != TrimType::Pitch,
+            self.enabled,
+            self.polarity,
+        ));
         w.u8(self.up);
         w.u8(self.down);
         w.u8(self.neutral);
@@ -149,19 +139,15 @@ impl Payload for FlapSpec {
     const LEN: LenRule = LenRule::Exact(11);
     fn parse_payload(p: &[u8]) -> Result<Self> {
         let mut r = Reader::new(p);
-        let flags = r.u8();
+        let (kind, enabled, polarity) = spec_flags(r.u8());
         Ok(FlapSpec {
-            mode: if bit(flags, 7) {
+            mode: if kind {
                 FlapMode::PositionBased
             } else {
                 FlapMode::Momentary
             },
-            enabled: bit(flags, 6),
-            polarity: if bit(flags, 5) {
-                Polarity::Inverted
-            } else {
-                Polarity::Standard
-            },
+            enabled,
+            polarity,
             up: r.u8(),
             down: r.u8(),
             midpoint_1: r.u8(),
@@ -173,17 +159,11 @@ impl Payload for FlapSpec {
         })
     }
     fn emit_payload(&self, w: &mut Writer) {
-        let mut flags = 0u8;
-        if self.mode == FlapMode::PositionBased {
-            flags |= 0x80;
-        }
-        if self.enabled {
-            flags |= 0x40;
-        }
-        if self.polarity == Polarity::Inverted {
-            flags |= 0x20;
-        }
-        w.u8(flags);
+        w.u8(emit_spec_flags(
+            self.mode == FlapMode::PositionBased,
+            self.enabled,
+            self.polarity,
+        ));
         w.u8(self.up);
         w.u8(self.down);
         w.u8(self.midpoint_1);
@@ -363,6 +343,23 @@ impl Payload for DeviceEnable {
         w.u8(self.device_id);
         w.u8(self.flag.to_byte());
     }
+}
+
+/// The first byte of TRIM_SPEC and FLAP_SPEC (ICD Tables 15, 16; reading note 15): MSB
+/// first, the kind bit (roll trim / position-based flaps), enable, polarity.
+fn spec_flags(b: u8) -> (bool, bool, Polarity) {
+    let polarity = if bit(b, 5) {
+        Polarity::Inverted
+    } else {
+        Polarity::Standard
+    };
+    (bit(b, 7), bit(b, 6), polarity)
+}
+
+fn emit_spec_flags(kind: bool, enabled: bool, polarity: Polarity) -> u8 {
+    (u8::from(kind) << 7)
+        | (u8::from(enabled) << 6)
+        | (u8::from(polarity == Polarity::Inverted) << 5)
 }
 
 fn opt_id(b: u8) -> Option<u8> {
