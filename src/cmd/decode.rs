@@ -403,7 +403,11 @@ fn decode_capture(head: Vec<u8>, mut rest: impl Read, json: bool) -> anyhow::Res
     rest.read_to_end(&mut data)?;
     let (records, problem, _) = crate::link::parse_capture(&data);
     let stdout = io::stdout().lock();
-    match decode(&mut CaptureSource::new(records), json, BufWriter::new(stdout)) {
+    match decode(
+        &mut CaptureSource::new(records),
+        json,
+        BufWriter::new(stdout),
+    ) {
         Ok(_) => {}
         Err(e) if e.kind() == io::ErrorKind::BrokenPipe => return Ok(()),
         Err(e) => return Err(e.into()),

@@ -18,8 +18,7 @@ use crossbeam_channel::{select, unbounded};
 use crate::app::queries::QueryPacer;
 use crate::cli::GatewayArgs;
 use crate::link::{
-    Connector, Link, LinkEvent, RxItem, duplex_pipe, pipe_connector,
-    serial_connector,
+    Connector, Link, LinkEvent, RxItem, duplex_pipe, pipe_connector, serial_connector,
 };
 use crate::model::{LogEntry, LogLevel, Model, Source};
 use crate::protocol::message::Packet;
