@@ -622,7 +622,10 @@ fn trim_running_shows_the_run_and_the_release_mode() {
     let t = text(&buf);
     assert!(t.contains("▶ pitch trim up"), "{t}");
     assert!(t.contains("keys: release seen"), "{t}");
-    assert!(t.contains("hold u / Shift+↑") && t.contains("pitch trim down"), "{t}");
+    assert!(
+        t.contains("hold u / Shift+↑") && t.contains("pitch trim down"),
+        "{t}"
+    );
 }
 
 #[test]
