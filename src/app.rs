@@ -38,7 +38,10 @@ pub use gateway::xfsp_setup;
 pub use queries::{QueryPacer, connect_queries};
 pub use record::Recorder;
 pub use replay::Capture;
-pub use terminal::{TerminalGuard, restore as restore_terminal};
+pub use terminal::{
+    TerminalGuard, clear_emergency_stop, install_panic_hook, restore as restore_terminal,
+    set_emergency_stop,
+};
 
 /// The screen is redrawn at most this often (coalescing the 10 Hz FLAP_TRIM_STATUS
 /// with everything else) …

@@ -490,3 +490,53 @@ fn a_pulled_cable_is_shown_and_the_same_path_reconnects_when_it_returns() {
             .pump_until(Instant::now() + Duration::from_millis(50));
     }
 }
+
+#[test]
+fn a_panic_while_trim_runs_sends_the_stop_before_anything_else() {
+    let mut rig = Rig::new(ReleaseMode::KeyRelease);
+    rig.select(30);
+    let handle = rig.app.link_handle();
+    vpx_efis::app::set_emergency_stop(move || {
+        for p in vpx_efis::control::MotorStreamer::emergency_stop_packets() {
+            let _ = handle.send(p);
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    });
+    vpx_efis::app::install_panic_hook();
+    rig.key(KeyCode::Char('u'), KeyEventKind::Press);
+    let end = Instant::now() + Duration::from_secs(2);
+    while !rig.sim.stats().pitch_trim_running {
+        assert!(Instant::now() < end, "trim never started");
+        rig.app
+            .pump_until(Instant::now() + Duration::from_millis(20));
+    }
+    let from = rig.wire_len();
+    // The page's loop dies here; nothing calls release, tick or drop before the hook.
+    let panicked = Instant::now();
+    let result = std::panic::catch_unwind(|| panic!("simulated crash in the page"));
+    assert!(result.is_err());
+    vpx_efis::app::clear_emergency_stop();
+    let is_stop = |p: &Packet| matches!(p.message, Message::TrimMove(m) if !m.on && m.trim_type == TrimType::Pitch);
+    let end = Instant::now() + Duration::from_secs(2);
+    let stop = loop {
+        if let Some(found) = rig.sent(from).into_iter().find(|(_, p)| is_stop(p)) {
+            break Some(found);
+        }
+        if Instant::now() > end {
+            break None;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let (at, _) = stop.expect("the panic hook put a pitch TRIM_MOVE off on the wire");
+    assert!(at.saturating_duration_since(panicked) < Duration::from_millis(200));
+    std::thread::sleep(Duration::from_millis(100));
+    let s = rig.sim.stats();
+    assert!(
+        !s.pitch_trim_running,
+        "the unit stopped the motor on the stop message"
+    );
+    assert_eq!(
+        s.pitch_trim_starvations, 0,
+        "stopped by the message, not by starving"
+    );
+}

@@ -100,7 +100,9 @@ pub fn clear_emergency_stop() {
     }
 }
 
-fn install_panic_hook() {
+/// Installs (once) the hook that, on any panic, first runs the emergency stop, then
+/// gives the terminal back, then prints the panic as usual.
+pub fn install_panic_hook() {
     static INSTALLED: AtomicBool = AtomicBool::new(false);
     if INSTALLED.swap(true, Ordering::SeqCst) {
         return;
