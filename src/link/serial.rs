@@ -102,16 +102,69 @@ pub fn list_ports() -> anyhow::Result<Vec<PortInfo>> {
                 }
                 SerialPortType::PciPort => "PCI".into(),
                 SerialPortType::BluetoothPort => "Bluetooth".into(),
-                SerialPortType::Unknown => "unknown".into(),
+                SerialPortType::Unknown => {
+                    usb_from_sysfs(&p.port_name).unwrap_or_else(|| "unknown".into())
+                }
             },
             path: p.port_name,
         })
         .collect())
 }
 
+/// USB vendor/product from sysfs. `serialport` is built without libudev (a fresh
+/// machine lacks its headers), so it cannot say which ports are USB adapters; the
+/// kernel's sysfs tree can: the tty's device links into the USB device that carries
+/// `idVendor` and `idProduct`.
+fn usb_from_sysfs(port: &str) -> Option<String> {
+    usb_from_sysfs_in(Path::new("/sys"), port)
+}
+
+fn usb_from_sysfs_in(sys: &Path, port: &str) -> Option<String> {
+    let name = Path::new(port).file_name()?.to_str()?;
+    let device = std::fs::canonicalize(sys.join("class/tty").join(name).join("device")).ok()?;
+    let read = |dir: &Path, f: &str| {
+        std::fs::read_to_string(dir.join(f))
+            .ok()
+            .map(|s| s.trim().to_string())
+    };
+    let mut dir = device.as_path();
+    for _ in 0..6 {
+        if let (Some(vid), Some(pid)) = (read(dir, "idVendor"), read(dir, "idProduct")) {
+            let mut d = format!("USB {vid}:{pid}");
+            for f in ["manufacturer", "product", "serial"] {
+                if let Some(v) = read(dir, f) {
+                    d.push(' ');
+                    d.push_str(&v);
+                }
+            }
+            return Some(d);
+        }
+        dir = dir.parent()?;
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn usb_ids_come_from_the_usb_device_above_the_tty_in_sysfs() {
+        let root = tempfile::tempdir().unwrap();
+        let usb = root.path().join("devices/pci0/usb1/1-2");
+        let iface = usb.join("1-2:1.0/ttyUSB0");
+        std::fs::create_dir_all(&iface).unwrap();
+        std::fs::write(usb.join("idVendor"), "0403\n").unwrap();
+        std::fs::write(usb.join("idProduct"), "6001\n").unwrap();
+        std::fs::write(usb.join("product"), "FT232R USB UART\n").unwrap();
+        std::fs::create_dir_all(root.path().join("class/tty/ttyUSB0")).unwrap();
+        std::os::unix::fs::symlink(&iface, root.path().join("class/tty/ttyUSB0/device")).unwrap();
+        assert_eq!(
+            usb_from_sysfs_in(root.path(), "/dev/ttyUSB0").as_deref(),
+            Some("USB 0403:6001 FT232R USB UART")
+        );
+        assert_eq!(usb_from_sysfs_in(root.path(), "/dev/ttyS0"), None);
+    }
 
     #[test]
     fn a_missing_port_says_so_and_how_to_find_the_right_one() {
