@@ -106,8 +106,11 @@ pub struct SimHandle {
 
 /// How many log lines the handle keeps.
 const LOG_LINES: usize = 200;
-/// The longest the run loop sleeps, so commands are never kept waiting.
-const MAX_SLEEP: Duration = Duration::from_millis(10);
+/// The longest the run loop sleeps. Bytes and commands wake it at once (they arrive on
+/// the channels it selects over), and motors are judged against each chunk's arrival
+/// time, so this only bounds how stale a quiet unit's clock may get; the 10 Hz
+/// FLAP_TRIM_STATUS deadline is shorter anyway. Waking every 10 ms cost ~1 % of a core.
+const MAX_SLEEP: Duration = Duration::from_millis(100);
 
 impl SimHandle {
     /// A snapshot of the unit (counters, motor positions, power, faults, config, log).
