@@ -714,6 +714,27 @@ fn help_overlay_lists_every_key() {
     for (key, _) in ui::help::KEYS {
         assert!(t.contains(key), "help lacks {key:?}:\n{t}");
     }
+    assert!(
+        !t.contains("replay:"),
+        "no replay keys on a live page:\n{t}"
+    );
+}
+
+#[test]
+fn help_overlay_in_replay_adds_the_replay_keys_and_says_read_only() {
+    let (m, now) = fixtures::replay();
+    let view = ViewState {
+        overlay: Overlay::Help,
+        ..view_selecting(EFIS)
+    };
+    let t = text(&draw(&m, &view, now, 120, 40));
+    for (key, what) in ui::help::REPLAY_KEYS {
+        assert!(
+            t.contains(key) && t.contains(what),
+            "help lacks {key:?}:\n{t}"
+        );
+    }
+    assert!(t.contains("read-only"), "{t}");
 }
 
 #[test]

@@ -29,23 +29,35 @@ pub const KEYS: &[(&str, &str)] = &[
     ("q  Ctrl-C", "quit"),
 ];
 
-pub fn render(frame: &mut Frame, view: &ViewState) {
+/// Extra keys while the page replays a capture (handled by the app's replay, not the
+/// keymap: nothing in replay reaches a unit).
+pub const REPLAY_KEYS: &[(&str, &str)] = &[
+    ("p", "replay: play / pause"),
+    (".", "replay: step one record"),
+    ("+  -", "replay: faster / slower"),
+];
+
+pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
+    let keys: Vec<&(&str, &str)> = KEYS
+        .iter()
+        .chain(if replay { REPLAY_KEYS } else { &[] })
+        .collect();
     let area = frame.area();
-    let width = (KEYS
+    let width = (keys
         .iter()
         .map(|(_, d)| 10 + d.chars().count())
         .max()
         .unwrap_or(40) as u16
         + 6)
     .min(area.width.saturating_sub(2));
-    let height = (KEYS.len() as u16 + 6).min(area.height.saturating_sub(2));
+    let height = (keys.len() as u16 + 6 + u16::from(replay)).min(area.height.saturating_sub(2));
     let [row] = Layout::vertical([Constraint::Length(height)])
         .flex(Flex::Center)
         .areas(area);
     let [popup]: [Rect; 1] = Layout::horizontal([Constraint::Length(width)])
         .flex(Flex::Center)
         .areas(row);
-    let mut lines: Vec<Line> = KEYS
+    let mut lines: Vec<Line> = keys
         .iter()
         .map(|(k, d)| {
             Line::from(vec![
@@ -56,6 +68,12 @@ pub fn render(frame: &mut Frame, view: &ViewState) {
         })
         .collect();
     lines.push(Line::raw(""));
+    if replay {
+        lines.push(Line::styled(
+            "REPLAY is read-only: nothing is sent to a unit",
+            theme::caution(),
+        ));
+    }
     let mode = match view.release_mode {
         ReleaseMode::KeyRelease => "this terminal reports key release: a run ends when you let go",
         ReleaseMode::AutoRepeat => "no key release here: a run ends ~0.2 s after key repeats stop",

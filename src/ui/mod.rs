@@ -119,6 +119,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     }
 
     if view.overlay == Overlay::Help {
-        help::render(frame, view);
+        let replay = matches!(model.source, crate::model::Source::Replay { .. });
+        help::render(frame, view, replay);
     }
 }
