@@ -17,9 +17,9 @@ use crate::protocol::device::{
 };
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{
-    DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, ExternalData, FaultStatus,
-    FlapSpec, FlapTrimStatus, Message, Packet, SpecAck, SwitchId, SystemSpec, SystemStatus,
-    TrimSpec, TrimType, Version, WigWagSpec,
+    DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EepromErase, EnableFlag, ExternalData,
+    FaultStatus, FlapSpec, FlapTrimStatus, Message, Packet, SpecAck, SwitchId, SystemSpec,
+    SystemStatus, TrimSpec, TrimType, Version, WigWagSpec,
 };
 
 /// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
@@ -244,6 +244,9 @@ pub struct Model {
     pub wig_wag_spec: Option<Stamped<WigWagSpec>>,
     pub last_spec_ack: Option<Stamped<SpecAck>>,
     pub last_ping_reply: Option<Instant>,
+    /// The unit's answer to EEPROM_ERASE: a response code other than zero means the
+    /// erase did not complete (ICD Table 12).
+    pub eeprom_erase: Option<Stamped<EepromErase>>,
     /// What the page (or the XFSp gateway) last sent as EXTERNAL_DATA.
     pub external_data_sent: Option<Stamped<ExternalData>>,
     pub link: LinkHealth,
@@ -276,6 +279,7 @@ impl Model {
             wig_wag_spec: None,
             last_spec_ack: None,
             last_ping_reply: None,
+            eeprom_erase: None,
             external_data_sent: None,
             link: LinkHealth::default(),
             history: VecDeque::with_capacity(HISTORY_LEN),
@@ -365,6 +369,7 @@ impl Model {
                 self.last_spec_ack = Some(Stamped::new(a, at));
             }
             Message::Ping(p) if p.ack => self.last_ping_reply = Some(at),
+            Message::EepromErase(e) => self.eeprom_erase = Some(Stamped::new(e, at)),
             _ => {}
         }
     }

@@ -56,13 +56,15 @@ struct Rig {
 
 impl Rig {
     fn new() -> Rig {
+        Rig::with_eeprom(None)
+    }
+
+    fn with_eeprom(eeprom: Option<std::path::PathBuf>) -> Rig {
         let pty = link::open_pty_pair().expect("pty");
         let reader = pty.master.try_clone_native().expect("clone master");
-        let sim = sim::spawn(
-            SimOptions::new(Scenario::from_toml(SCENARIO).unwrap()),
-            Box::new(reader),
-            Box::new(pty.master),
-        );
+        let mut options = SimOptions::new(Scenario::from_toml(SCENARIO).unwrap());
+        options.eeprom = eeprom;
+        let sim = sim::spawn(options, Box::new(reader), Box::new(pty.master));
         let path = std::path::PathBuf::from(&pty.path);
         let app = App::new(
             Source::Serial {
@@ -461,5 +463,44 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
         "the re-read shows the factory breaker",
         Duration::from_secs(4),
         |app| app.model().device_specs[9].is_some_and(|s| s.value.switch_id == SwitchId::Off),
+    );
+}
+
+/// ICD Table 12: a non-zero EEPROM_ERASE response code means the erase did not
+/// complete, so the screen must not say the unit holds the factory settings.
+#[test]
+fn a_failed_erase_is_said_plainly_and_not_shown_as_factory_settings() {
+    let dir = tempfile::tempdir().unwrap();
+    let eeprom_dir = dir.path().join("eeprom");
+    std::fs::create_dir(&eeprom_dir).unwrap();
+    let mut rig = Rig::with_eeprom(Some(eeprom_dir.join("vpx.json")));
+    rig.open_setup_on(9);
+    // The unit's EEPROM can no longer be written: its erase answers code 1.
+    std::fs::remove_dir_all(&eeprom_dir).unwrap();
+    rig.key(KeyCode::BackTab);
+    assert_eq!(rig.app.view().setup.page, Page::Backup);
+    for _ in 0..4 {
+        rig.key(KeyCode::Down);
+    }
+    rig.key(KeyCode::Enter);
+    assert!(matches!(
+        rig.app.view().setup.dialog,
+        vpx_efis::ui::setup::state::Dialog::Erase { .. }
+    ));
+    rig.keys("y");
+    rig.until("the erase answered", Duration::from_secs(4), |app| {
+        matches!(
+            app.view().setup.erase,
+            vpx_efis::ui::setup::state::Probe::Answered { .. }
+        )
+    });
+    let (_, text) = rig.app.view().setup.message.clone().expect("a message");
+    assert!(text.contains("failed (response code 1)"), "{text}");
+    assert!(!text.contains("factory settings"), "{text}");
+    let buf = rig.render();
+    assert!(
+        screen(&buf).contains("EEPROM_ERASE failed"),
+        "{}",
+        screen(&buf)
     );
 }

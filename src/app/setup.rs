@@ -621,7 +621,7 @@ impl App {
             (
                 model.last_ping_reply,
                 model.version.map(|v| v.at),
-                model.link.rx.get("EEPROM_ERASE").map(|s| s.last),
+                model.eeprom_erase.map(|e| (e.at, e.value.response_code)),
             )
         };
         if let Some(sent) = self.setup.ping {
@@ -652,9 +652,22 @@ impl App {
             }
         }
         if let Some(sent) = self.setup.erase {
-            if let Some(r) = erase_at.filter(|&r| r >= sent) {
+            if let Some((r, code)) = erase_at.filter(|&(r, _)| r >= sent) {
                 self.view.setup.erase = Probe::Answered { after: r - sent };
                 self.setup.erase = None;
+                if code != 0 {
+                    // Table 12: a non-zero code means the erase did not complete, so
+                    // nothing may be shown as reset; re-read to show what it holds.
+                    self.reread(now);
+                    self.say(
+                        Tone::Bad,
+                        &format!(
+                            "the unit reports EEPROM_ERASE failed (response code {code}); \
+                             its settings were re-read, check them before going on"
+                        ),
+                    );
+                    return;
+                }
                 // Every setting is now Appendix F's: forget edits and ask again.
                 self.view.setup.edited = [false; 8];
                 self.reread(now);
