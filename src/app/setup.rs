@@ -661,7 +661,7 @@ impl App {
                     self.reread(now);
                     self.say(
                         Tone::Bad,
-                        &format!(
+                        format!(
                             "the unit reports EEPROM_ERASE failed (response code {code}); \
                              its settings were re-read, check them before going on"
                         ),
