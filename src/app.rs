@@ -547,8 +547,23 @@ pub fn builtin_sim(scenario: &str) -> anyhow::Result<(Source, Connector, SimHand
     ))
 }
 
+/// `--max-run`: a positive number of seconds up to the streamer's cap, which stays
+/// below the flaps' 30 s (Appendix F). Anything else is refused in words rather than
+/// silently clamped or turned into a panicking `Duration`.
+fn max_run(secs: f64) -> anyhow::Result<Duration> {
+    let limit = crate::control::streamer::MAX_RUN_LIMIT;
+    if !(secs > 0.0 && secs <= limit.as_secs_f64()) {
+        anyhow::bail!(
+            "--max-run must be more than 0 and at most {} seconds, below the flaps' 30 s maximum run time",
+            limit.as_secs()
+        );
+    }
+    Ok(Duration::from_secs_f64(secs))
+}
+
 /// `vpx-efis` with no subcommand: the page.
 pub fn run(args: PageArgs) -> anyhow::Result<()> {
+    let max_run = max_run(args.max_run)?;
     if let Some(file) = &args.replay {
         return replay::run(file, &args);
     }
@@ -571,14 +586,11 @@ pub fn run(args: PageArgs) -> anyhow::Result<()> {
             (source, connector)
         }
     };
-    if !(args.max_run > 0.0 && args.max_run.is_finite()) {
-        anyhow::bail!("--max-run must be a positive number of seconds");
-    }
     // A path that cannot be written fails here, before the terminal is taken.
     let recorder = args.record.as_deref().map(Recorder::create).transpose()?;
     let mut guard = TerminalGuard::enter()?;
     let options = AppOptions {
-        max_run: Duration::from_secs_f64(args.max_run),
+        max_run,
         release_mode: if guard.key_release {
             ReleaseMode::KeyRelease
         } else {
@@ -624,4 +636,19 @@ fn spawn_input_thread() -> Receiver<TermEvent> {
             }
         });
     rx
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn max_run_refuses_nonsense_in_words_instead_of_panicking() {
+        assert_eq!(max_run(10.0).unwrap(), Duration::from_secs(10));
+        assert_eq!(max_run(25.0).unwrap(), Duration::from_secs(25));
+        for bad in [0.0, -1.0, 26.0, 1e300, f64::NAN, f64::INFINITY] {
+            let err = max_run(bad).unwrap_err().to_string();
+            assert!(err.contains("--max-run"), "{bad}: {err}");
+        }
+    }
 }

@@ -601,8 +601,12 @@ impl App {
 
 /// `vpx-efis --replay FILE [--speed N]`.
 pub fn run(file: &Path, args: &PageArgs) -> anyhow::Result<()> {
-    if !(args.speed > 0.0 && args.speed.is_finite()) {
-        anyhow::bail!("--speed must be a positive number (1 is the recorded pace)");
+    if !(SPEEDS.0..=SPEEDS.1).contains(&args.speed) {
+        anyhow::bail!(
+            "--speed must be between {} and {} (1 is the recorded pace)",
+            SPEEDS.0,
+            SPEEDS.1
+        );
     }
     if args.record.is_some() {
         anyhow::bail!("--record and --replay together would copy the capture; use cp");
