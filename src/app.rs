@@ -273,7 +273,12 @@ impl App {
     /// Something arrived from the link.
     pub fn on_wake(&mut self, wake: Wake, now: Instant) {
         match wake {
-            Wake::Connected => self.pacer.start(now),
+            Wake::Connected => {
+                // Whatever ran before the port came back (a pulled cable mid-run) is
+                // told to stop on the new connection before anything else.
+                self.send(MotorStreamer::emergency_stop_packets().to_vec());
+                self.pacer.start(now);
+            }
             Wake::LinkDown => self.pacer.stop(),
             Wake::WriteError => {
                 let p = self.controller.on_link_error(now);

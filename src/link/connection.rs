@@ -214,11 +214,9 @@ fn writer_loop(rx: Receiver<Outgoing>, sink: Sink) {
                 });
             }
             Err(e) => {
-                if e.kind() != io::ErrorKind::NotConnected {
-                    // The supervisor will notice on its side and reopen; until then
-                    // nothing can be written.
-                    port = None;
-                }
+                // The port is kept: the stop message a write error triggers must still
+                // be tried on it. Only the supervisor, which sees the read side fail,
+                // replaces the port.
                 sink(LinkEvent::WriteError {
                     at,
                     reason: e.to_string(),
@@ -429,6 +427,53 @@ mod tests {
             e,
             LinkEvent::WriteError { .. }
         )));
+        link.shutdown();
+    }
+
+    #[test]
+    fn after_a_write_error_the_next_write_is_still_tried_on_the_port() {
+        // The unit's reading end is gone but its writing end is not: our reads go on,
+        // our writes fail. The stop message that follows a failed write must still be
+        // attempted on the port, not dropped as "no open port".
+        let (ours, theirs) = duplex_pipe(Duration::from_millis(20));
+        let (store, sink) = collecting();
+        let link = Link::start(pipe_connector(ours, "pipe"), sink);
+        assert!(wait_for(&store, |e| matches!(
+            e,
+            LinkEvent::Connected { .. }
+        )));
+        let crate::link::PipeEnd {
+            reader,
+            writer: _keep_writing_end,
+        } = theirs;
+        drop(reader);
+        link.handle()
+            .send(Packet::request(1, Ping { ack: false }))
+            .unwrap();
+        link.handle()
+            .send(Packet::request(2, Ping { ack: false }))
+            .unwrap();
+        let errors = |store: &Mutex<Vec<LinkEvent>>| {
+            store
+                .lock()
+                .unwrap()
+                .iter()
+                .filter_map(|e| match e {
+                    LinkEvent::WriteError { reason, .. } => Some(reason.clone()),
+                    _ => None,
+                })
+                .collect::<Vec<_>>()
+        };
+        let end = Instant::now() + Duration::from_secs(3);
+        while errors(&store).len() < 2 {
+            assert!(Instant::now() < end, "two write errors expected");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        let reasons = errors(&store);
+        assert!(
+            reasons.iter().all(|r| !r.contains("no open port")),
+            "{reasons:?}"
+        );
         link.shutdown();
     }
 }
