@@ -73,8 +73,14 @@ fn move_stream_interval(c: &mut Criterion) {
             };
             let end = Instant::now() + Duration::from_secs(30);
             let mut seen = moves_on(&rig);
+            let mut last_repeat = Instant::now();
             while seen.len() < iters as usize + 1 {
                 assert!(Instant::now() < end, "the stream stopped");
+                // As a kitty-protocol terminal does while the key is held.
+                if last_repeat.elapsed() >= Duration::from_millis(33) {
+                    rig.key(KeyCode::Char('u'), KeyEventKind::Repeat);
+                    last_repeat = Instant::now();
+                }
                 rig.app
                     .pump_until(Instant::now() + Duration::from_millis(10));
                 seen = moves_on(&rig);

@@ -823,3 +823,70 @@ fn the_stream_goes_out_on_press_and_then_every_200_ms() {
         )
     );
 }
+
+/// Key-release mode's second dead man: the kitty protocol also sends Repeat events
+/// while a key is held, so a release that never arrives still ends the run well
+/// before the 10 s cap.
+#[test]
+fn key_release_mode_ends_a_run_whose_release_is_lost() {
+    use vpx_efis::control::Direction;
+    let cfg = StreamerConfig {
+        release_mode: ReleaseMode::KeyRelease,
+        ..Default::default()
+    };
+    let (first, between) = cfg.key_release_repeat_guard.expect("on by default");
+    let is_off = |p: &Packet| matches!(p.message, Message::TrimMove(m) if !m.on);
+
+    // Held with repeats (first after 500 ms, then every 33 ms) for 2 s: it keeps
+    // running; then the repeats stop and no release comes.
+    let t0 = Instant::now();
+    let mut s = MotorStreamer::new(cfg);
+    assert_eq!(s.press(t0, PITCH, Direction::Up).len(), 1);
+    let mut last_repeat = t0;
+    let mut stopped_at = None;
+    for step in 1..=400u64 {
+        let now = t0 + ms(step * 10);
+        let repeating = now >= t0 + ms(500) && now <= t0 + ms(2000);
+        let mut out = Vec::new();
+        if repeating && now.duration_since(last_repeat) >= ms(33) {
+            out.extend(s.repeat(now, PITCH, Direction::Up));
+            last_repeat = now;
+        }
+        out.extend(s.tick(now));
+        if out.iter().any(is_off) && stopped_at.is_none() {
+            stopped_at = Some(now);
+        }
+        if now <= t0 + ms(2000) {
+            assert!(
+                s.running().is_some(),
+                "stopped at {:?} while repeats flowed",
+                now - t0
+            );
+        }
+    }
+    let stopped_at = stopped_at.expect("a stop message without any release");
+    assert!(
+        stopped_at <= last_repeat + between + ms(10),
+        "{:?} after the last repeat",
+        stopped_at - last_repeat
+    );
+    assert_eq!(
+        s.last_stop().map(|r| r.reason),
+        Some(StopReason::RepeatsStopped)
+    );
+
+    // Pressed once, then nothing at all (a terminal that took the protocol but sends
+    // neither repeats nor releases): it ends after the first window, not the cap.
+    let mut s = MotorStreamer::new(cfg);
+    s.press(t0, PITCH, Direction::Up);
+    let mut off = None;
+    for step in 1..=300u64 {
+        let now = t0 + ms(step * 10);
+        if s.tick(now).iter().any(is_off) {
+            off = Some(now);
+            break;
+        }
+    }
+    let off = off.expect("a stop without release or repeats");
+    assert!(off - t0 <= first + ms(10), "{:?}", off - t0);
+}

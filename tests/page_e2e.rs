@@ -102,7 +102,13 @@ fn hold_trim_up(rig: &mut Rig, mode: ReleaseMode) {
             }
         }
         ReleaseMode::KeyRelease => {
-            rig.app.pump_until(start + Duration::from_secs(2));
+            // A kitty-protocol terminal: Repeat events while held, then a release.
+            rig.app.pump_until(start + Duration::from_millis(500));
+            while start.elapsed() < Duration::from_secs(2) {
+                rig.key(KeyCode::Char('u'), KeyEventKind::Repeat);
+                rig.app
+                    .pump_until(Instant::now() + Duration::from_millis(33));
+            }
             rig.key(KeyCode::Char('u'), KeyEventKind::Release);
         }
     }

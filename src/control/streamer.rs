@@ -137,6 +137,14 @@ pub struct StreamerConfig {
     pub first_repeat_timeout: Duration,
     /// Auto-repeat mode: how long after a repeat the next may take.
     pub repeat_timeout: Duration,
+    /// Key-release mode's second dead man: a terminal with the kitty keyboard protocol
+    /// also sends Repeat events while a key is held, so a release event that is lost
+    /// (or a terminal that took the protocol but not its event types) cannot leave a
+    /// run going until the cap. `(first, between)`: how long after the press the
+    /// first event may take, and after that between events. Longer than auto-repeat's
+    /// so slow desktop repeat settings still hold. `None` for a caller with a dead man
+    /// of its own (the XFSp gateway's request expiry).
+    pub key_release_repeat_guard: Option<(Duration, Duration)>,
 }
 
 impl Default for StreamerConfig {
@@ -147,6 +155,10 @@ impl Default for StreamerConfig {
             max_run: Duration::from_secs(10),
             first_repeat_timeout: Duration::from_millis(600),
             repeat_timeout: Duration::from_millis(200),
+            key_release_repeat_guard: Some((
+                Duration::from_millis(1000),
+                Duration::from_millis(500),
+            )),
         }
     }
 }
@@ -422,12 +434,16 @@ impl MotorStreamer {
         }
     }
 
+    /// When the run ends if no further event of its key arrives.
     fn dead_man_deadline(&self) -> Option<Instant> {
-        if self.config.release_mode != ReleaseMode::AutoRepeat {
-            return None;
-        }
         let h = self.held?;
-        Some(h.last_event + self.window(&h))
+        match self.config.release_mode {
+            ReleaseMode::AutoRepeat => Some(h.last_event + self.window(&h)),
+            ReleaseMode::KeyRelease => {
+                let (first, between) = self.config.key_release_repeat_guard?;
+                Some(h.last_event + if h.repeats_seen { between } else { first })
+            }
+        }
     }
 
     /// Ends the run if one of its clocks ran out.

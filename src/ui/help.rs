@@ -75,7 +75,9 @@ pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
         ));
     }
     let mode = match view.release_mode {
-        ReleaseMode::KeyRelease => "this terminal reports key release: a run ends when you let go",
+        ReleaseMode::KeyRelease => {
+            "key release seen: a run ends when you let go (or if repeats stop)"
+        }
         ReleaseMode::AutoRepeat => "no key release here: a run ends ~0.2 s after key repeats stop",
     };
     lines.push(Line::styled(mode, theme::label()));

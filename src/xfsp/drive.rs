@@ -76,6 +76,8 @@ impl MotorDrive {
     /// repeats, and its dead man is the request hold instead.
     pub fn new(mut config: StreamerConfig) -> MotorDrive {
         config.release_mode = ReleaseMode::KeyRelease;
+        // A request's own expiry is this drive's dead man; there are no key repeats.
+        config.key_release_repeat_guard = None;
         MotorDrive {
             streamer: MotorStreamer::new(config),
             slots: [Slot {
