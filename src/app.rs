@@ -25,7 +25,7 @@ use ratatui::Terminal;
 use ratatui::backend::Backend;
 
 use crate::cli::PageArgs;
-use crate::control::{Action, Controller, KeyContext, MotorStreamer, StreamerConfig};
+use crate::control::{Action, Controller, KeyContext, MotorStreamer, StopReason, StreamerConfig};
 use crate::link::{self, Connector, Link, LinkEvent, LinkHandle, RxItem};
 use crate::model::{Model, Source};
 use crate::protocol::message::Packet;
@@ -39,7 +39,7 @@ pub use queries::{QueryPacer, connect_queries};
 pub use record::Recorder;
 pub use replay::Capture;
 pub use terminal::{
-    TerminalGuard, clear_emergency_stop, install_panic_hook, restore as restore_terminal,
+    TerminalGuard, clear_emergency_stop, install_panic_hook, panicked, restore as restore_terminal,
     set_emergency_stop,
 };
 
@@ -296,6 +296,14 @@ impl App {
     /// Everything time-driven: motor resends and dead-man timeouts, query batches,
     /// notice expiry, and whether the screen needs a redraw.
     pub fn tick(&mut self, now: Instant) {
+        if terminal::panicked() {
+            // The hook has sent the emergency stop; make sure nothing here resends a
+            // move after it. The run loop then leaves.
+            let p = self.controller.stop(now, StopReason::Panic);
+            self.send(p);
+            self.xfsp_shutdown(now);
+            return;
+        }
         let packets = {
             let model = lock(&self.model);
             if model.revision() != self.drawn_revision {
@@ -437,6 +445,9 @@ impl App {
         loop {
             let now = Instant::now();
             self.tick(now);
+            if terminal::panicked() {
+                anyhow::bail!("a thread of the page panicked; motors were sent their stop");
+            }
             self.draw_if_needed(terminal, now)?;
             let deadline = self.next_deadline(Instant::now());
             select! {

@@ -19,6 +19,10 @@ use ratatui::backend::CrosstermBackend;
 /// Whether we pushed keyboard-enhancement flags, so restore pops exactly what we pushed.
 static ENHANCED: AtomicBool = AtomicBool::new(false);
 static ACTIVE: AtomicBool = AtomicBool::new(false);
+/// Set by the panic hook. A panic on another thread (the link's reader, say) leaves
+/// the main loop running, and its next resend would undo the emergency stop; the loop
+/// checks this and stops for good.
+static PANICKED: AtomicBool = AtomicBool::new(false);
 /// Run first by the panic hook: stops any motor before anything else happens.
 static EMERGENCY_STOP: Mutex<Option<Box<dyn Fn() + Send>>> = Mutex::new(None);
 
@@ -87,6 +91,11 @@ pub fn restore() {
     let _ = out.flush();
 }
 
+/// Whether any thread has panicked since the hook was installed.
+pub fn panicked() -> bool {
+    PANICKED.load(Ordering::SeqCst)
+}
+
 /// Registers what the panic hook must do first: send the motor stop messages.
 pub fn set_emergency_stop(f: impl Fn() + Send + 'static) {
     if let Ok(mut slot) = EMERGENCY_STOP.lock() {
@@ -109,6 +118,7 @@ pub fn install_panic_hook() {
     }
     let previous = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
+        PANICKED.store(true, Ordering::SeqCst);
         // try_lock: a panic while the slot is held must not deadlock the hook.
         if let Ok(slot) = EMERGENCY_STOP.try_lock()
             && let Some(stop) = slot.as_ref()
