@@ -9,7 +9,6 @@ use ratatui::buffer::Buffer;
 use ratatui::style::Color;
 use vpx_efis::app::App;
 use vpx_efis::model::Connection;
-use vpx_efis::protocol::Packet;
 use vpx_efis::protocol::message::{DevicePower, Message, TrimDirection, TrimMove, TrimType};
 use vpx_efis::sim::SimCommand;
 use vpx_efis::ui::state::ReleaseMode;
