@@ -17,6 +17,7 @@ use crossbeam_channel::{select, unbounded};
 
 use crate::app::queries::QueryPacer;
 use crate::cli::GatewayArgs;
+use crate::control::MotorStreamer;
 use crate::link::{
     Connector, Link, LinkEvent, RxItem, duplex_pipe, pipe_connector, serial_connector,
 };
@@ -83,6 +84,8 @@ pub fn run(args: GatewayArgs) -> anyhow::Result<()> {
     unsafe {
         libc::signal(libc::SIGINT, on_signal as *const () as libc::sighandler_t);
         libc::signal(libc::SIGTERM, on_signal as *const () as libc::sighandler_t);
+        // A dropped ssh session must stop the bridge (and its motor streams) cleanly too.
+        libc::signal(libc::SIGHUP, on_signal as *const () as libc::sighandler_t);
     }
     run_bridge(&opts, &STOP, |line| eprintln!("vpx-efis gateway: {line}"))
 }
@@ -151,6 +154,17 @@ pub fn run_bridge(
         let _ = ev_tx.send(e);
     });
     let unit = link.handle();
+    // As on the page: a panic anywhere sends the stop messages first, and unwinding
+    // out of this function sends them again before the link closes.
+    let hook_unit = unit.clone();
+    crate::app::set_emergency_stop(move || {
+        for p in MotorStreamer::emergency_stop_packets() {
+            let _ = hook_unit.send(p);
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    });
+    crate::app::install_panic_hook();
+    let _stop_on_unwind = StopOnDrop(unit.clone());
     let mut model = Model::new(source);
     let mut gw = Gateway::new(opts.gateway.clone(), start);
     let mut printed: Option<LogEntry> = None;
@@ -161,7 +175,7 @@ pub fn run_bridge(
     let mut cnt: u8 = 0x80;
     let mut net_error_said = false;
 
-    while !stop.load(Ordering::SeqCst) {
+    while !stop.load(Ordering::SeqCst) && !crate::app::panicked() {
         let now = Instant::now();
         let deadline = pacer
             .next_deadline()
@@ -179,7 +193,11 @@ pub fn run_bridge(
         events.extend(ev_rx.try_iter());
         for e in events {
             match &e {
-                LinkEvent::Connected { .. } => pacer.start(Instant::now()),
+                LinkEvent::Connected { .. } => {
+                    // A run cut off by a pulled cable is told to stop first.
+                    to_unit.extend(MotorStreamer::emergency_stop_packets());
+                    pacer.start(Instant::now());
+                }
                 LinkEvent::Disconnected { .. } | LinkEvent::OpenFailed { .. } => pacer.stop(),
                 _ => {}
             }
@@ -226,6 +244,7 @@ pub fn run_bridge(
     ));
     // Writes whatever is queued (the stop messages) before the threads end.
     link.shutdown();
+    crate::app::clear_emergency_stop();
     if let Some(c) = capture.as_mut() {
         c.flush();
     }
@@ -272,6 +291,18 @@ fn apply(
                 model.note_write_error(at, format!("capture file: {e}"));
                 *capture = None;
             }
+        }
+    }
+}
+
+/// Sends the stop messages when dropped: the bridge's drop guard for an unwinding
+/// panic, declared after the link so it runs while the link can still write.
+struct StopOnDrop(crate::link::LinkHandle);
+
+impl Drop for StopOnDrop {
+    fn drop(&mut self) {
+        for p in MotorStreamer::emergency_stop_packets() {
+            let _ = self.0.send(p);
         }
     }
 }
