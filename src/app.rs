@@ -198,6 +198,9 @@ impl App {
         if let Some(flow) = self.replay_key(&event, now) {
             return flow;
         }
+        if matches!(event, TermEvent::Key(_)) {
+            self.xfsp_local_key(now);
+        }
         match event {
             TermEvent::Key(key) if self.view.screen == Screen::Traffic => {
                 return self.traffic_key(key, now);

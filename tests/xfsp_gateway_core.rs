@@ -615,3 +615,54 @@ proptest! {
         }
     }
 }
+
+/// One motor stream at a time on the link: while the page's keys run a motor the
+/// network's requests wait, a key at the page stops a network run, and a network
+/// target the person overrode is not started again.
+#[test]
+fn the_pages_keys_come_before_network_motor_requests() {
+    use vpx_efis::protocol::message::FlapDirection::Down;
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    flaps(&mut m, t0, 40);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut peer = Sender::new(PEER, 1);
+    let req = |peer: &mut Sender, target| {
+        request(
+            peer,
+            vec![
+                Parameter::new(idents::FLAPREQ, Value::Sint(target))
+                    .confidence(Confidence::UserSel)
+                    .expire(Expire::at_least(ms(600))),
+            ],
+        )
+    };
+    // The page runs a motor: a network request does not start.
+    assert!(gw.set_local_motor(&mut m, t0, true).is_empty());
+    assert!(flap_moves(&gw.receive(&req(&mut peer, 50_000), &mut m, t0)).is_empty());
+    assert!(flap_moves(&gw.tick(&mut m, t0 + ms(100)).to_unit).is_empty());
+    assert_eq!(gw.running_motor(), None);
+    // The page's run ends: the waiting request starts.
+    gw.set_local_motor(&mut m, t0 + ms(150), false);
+    let out = gw.receive(&req(&mut peer, 60_000), &mut m, t0 + ms(150));
+    let mut moves = flap_moves(&out);
+    moves.extend(flap_moves(&gw.tick(&mut m, t0 + ms(160)).to_unit));
+    assert!(moves.contains(&(true, Down)), "{moves:?}");
+    // A key at the page stops it, with the stop message.
+    assert_eq!(
+        flap_moves(&gw.local_key(&mut m, t0 + ms(200))),
+        [(false, Down)]
+    );
+    assert_eq!(gw.running_motor(), None);
+    // The same target repeated is not restarted.
+    let out = gw.receive(&req(&mut peer, 60_000), &mut m, t0 + ms(250));
+    assert!(flap_moves(&out).is_empty());
+    // And a page run starting stops a network run on the next tick.
+    let out = gw.receive(&req(&mut peer, 90_000), &mut m, t0 + ms(300));
+    assert_eq!(flap_moves(&out), [(true, Down)]);
+    assert_eq!(
+        flap_moves(&gw.set_local_motor(&mut m, t0 + ms(320), true)),
+        [(false, Down)]
+    );
+}

@@ -64,20 +64,29 @@ impl App {
     }
 
     pub(super) fn xfsp_receive(&mut self, d: Datagram) {
+        let local = self.controller.running().is_some();
         let Some(g) = self.gateway.as_mut() else {
             return;
         };
-        let packets = g.gateway.receive(&d.bytes, &mut lock(&self.model), d.at);
+        // One motor stream at a time on the link: the page's keys come first.
+        let mut packets = g
+            .gateway
+            .set_local_motor(&mut lock(&self.model), d.at, local);
+        packets.extend(g.gateway.receive(&d.bytes, &mut lock(&self.model), d.at));
         self.send(packets);
         self.dirty = true;
     }
 
     pub(super) fn xfsp_tick(&mut self, now: Instant) {
+        let local = self.controller.running().is_some();
         let Some(g) = self.gateway.as_mut() else {
             return;
         };
+        let mut to_unit = g
+            .gateway
+            .set_local_motor(&mut lock(&self.model), now, local);
         let step = g.gateway.tick(&mut lock(&self.model), now);
-        let to_unit = step.to_unit;
+        to_unit.extend(step.to_unit);
         match g.net.send_all(&step.datagrams) {
             Err(e) if !g.net_error_said => {
                 lock(&self.model).log(
@@ -91,6 +100,15 @@ impl App {
             _ => {}
         }
         self.send(to_unit);
+    }
+
+    /// Any key at the page ends a network-driven motor run.
+    pub(super) fn xfsp_local_key(&mut self, now: Instant) {
+        let Some(g) = self.gateway.as_mut() else {
+            return;
+        };
+        let packets = g.gateway.local_key(&mut lock(&self.model), now);
+        self.send(packets);
     }
 
     pub(super) fn xfsp_deadline(&self) -> Option<Instant> {

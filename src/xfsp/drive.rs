@@ -69,6 +69,9 @@ pub struct MotorDrive {
     streamer: MotorStreamer,
     slots: [Slot; 3],
     active: Option<Active>,
+    /// The page's own keys are running a motor: the network waits, so two streams
+    /// (perhaps in opposite directions) never share the link.
+    local_busy: bool,
 }
 
 impl MotorDrive {
@@ -85,6 +88,7 @@ impl MotorDrive {
                 latched: None,
             }; 3],
             active: None,
+            local_busy: false,
         }
     }
 
@@ -150,6 +154,26 @@ impl MotorDrive {
     }
 
     /// Stops any run now (link error, shutdown).
+    /// Whether the page's own keys run a motor: while they do, a network run stops
+    /// (its target done with) and none starts.
+    pub fn set_local_busy(&mut self, model: &mut Model, now: Instant, busy: bool) -> Vec<Packet> {
+        self.local_busy = busy;
+        if busy && self.active.is_some() {
+            self.stop(model, now, StopReason::OtherKey)
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// A key at the page stops a network run, as any other key stops a keyed one.
+    pub fn local_key(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+        if self.active.is_some() {
+            self.stop(model, now, StopReason::OtherKey)
+        } else {
+            Vec::new()
+        }
+    }
+
     pub fn stop(&mut self, model: &mut Model, now: Instant, reason: StopReason) -> Vec<Packet> {
         let out = self.streamer.stop(now, reason);
         if let Some(a) = self.active.take() {
@@ -219,6 +243,9 @@ impl MotorDrive {
     }
 
     fn start_next(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+        if self.local_busy {
+            return Vec::new();
+        }
         for motor in MOTORS {
             let slot = *self.slot(motor);
             let Some(req) = slot.req else { continue };

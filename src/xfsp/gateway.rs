@@ -235,6 +235,17 @@ impl Gateway {
         self.drive.stop(model, now, StopReason::LinkError)
     }
 
+    /// The page's keys run a motor (`busy`): the network's motor requests wait, and a
+    /// network run in progress stops. Call before [`Gateway::tick`].
+    pub fn set_local_motor(&mut self, model: &mut Model, now: Instant, busy: bool) -> Vec<Packet> {
+        self.drive.set_local_busy(model, now, busy)
+    }
+
+    /// A key was pressed at the page: a network-driven run stops, as for any key.
+    pub fn local_key(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+        self.drive.local_key(model, now)
+    }
+
     /// Leaving: stop messages for every motor, running or not, since a stop that is
     /// not needed is harmless and a missing one is not.
     pub fn shutdown(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
