@@ -639,7 +639,17 @@ fn the_maximum_run_time_ends_the_run_and_the_held_key_does_not_restart_it() {
         let mut l = Loop::new(mode, Motor::Flaps, t0);
         let start = t0 + ms(100);
         // Held for 15 s: 5 s past the cap, repeats flowing all along.
-        let held = held_key(mode, KeyCode::Char('d'), start, ms(15_000), DELAY, RATE);
+        let mut held = held_key(mode, KeyCode::Char('d'), start, ms(15_000), DELAY, RATE);
+        if mode == ReleaseMode::KeyRelease {
+            // Repeat events can never start a run, so they alone would prove nothing
+            // here: a Press of the still-held key (a terminal that mislabels one) must
+            // not restart it either.
+            held.push((
+                start + ms(12_000),
+                Ev::Key(key(KeyCode::Char('d'), KeyEventKind::Press)),
+            ));
+            held.sort_by_key(|e| e.0);
+        }
         l.run(held, start + ms(16_000), jitter(11));
         let stop = Message::FlapMove(FlapMove {
             on: false,
