@@ -375,6 +375,11 @@ impl FaultName {
     }
 }
 
+/// The longest time a scenario may name (`at`, `loop_after`, a silence): a week.
+pub const MAX_SCENARIO_SECONDS: f64 = 7.0 * 24.0 * 3600.0;
+/// The most line noise one `garbage` event may send.
+pub const MAX_GARBAGE_BYTES: usize = 65_536;
+
 impl Scenario {
     /// Parses a scenario from TOML text and checks it (see [`Scenario::check`]).
     pub fn from_toml(text: &str) -> anyhow::Result<Scenario> {
@@ -402,11 +407,32 @@ impl Scenario {
                 );
             }
         }
+        // Times past this are surely a typo; they also keep every Instant sum in range.
+        let max = MAX_SCENARIO_SECONDS;
+        if let Some(l) = self.loop_after
+            && !(l.is_finite() && l > 0.0 && l <= max)
+        {
+            bail!("loop_after {l}: must be more than 0 and at most {max} seconds");
+        }
         for e in &self.events {
-            if !(e.at.is_finite() && e.at >= 0.0) {
-                bail!("event at {}: `at` must be seconds ≥ 0", e.at);
+            if !(e.at.is_finite() && e.at >= 0.0 && e.at <= max) {
+                bail!("event at {}: `at` must be seconds from 0 to {max}", e.at);
             }
             match e.action {
+                EventAction::Silent { seconds }
+                    if !(seconds.is_finite() && (0.0..=max).contains(&seconds)) =>
+                {
+                    bail!(
+                        "event at {}: silent for {seconds} s: must be 0 to {max} seconds",
+                        e.at
+                    )
+                }
+                EventAction::Garbage { bytes } if bytes > MAX_GARBAGE_BYTES => {
+                    bail!(
+                        "event at {}: garbage of {bytes} bytes: at most {MAX_GARBAGE_BYTES}",
+                        e.at
+                    )
+                }
                 EventAction::Switch { switch, .. } if !(1..=10).contains(&switch) => {
                     bail!("event at {}: switch {switch} is not 1–10", e.at)
                 }
@@ -633,5 +659,41 @@ mod tests {
                 direction: MotorDirection::Up
             }
         ));
+    }
+
+    /// Times and sizes that would overflow an Instant, panic in Duration, or ask for
+    /// an absurd allocation are refused in words when the file is read.
+    #[test]
+    fn absurd_times_and_sizes_are_refused_not_crashed_on() {
+        for (toml, words) in [
+            ("loop_after = inf", "loop_after"),
+            ("loop_after = 1.5e19", "loop_after"),
+            (
+                "[[event]]\nat = 1e20\ndo = \"switch\"\nswitch = 1\non = true",
+                "`at`",
+            ),
+            (
+                "[[event]]\nat = 1\ndo = \"silent\"\nseconds = inf",
+                "silent",
+            ),
+            (
+                "[[event]]\nat = 1\ndo = \"silent\"\nseconds = 1.5e19",
+                "silent",
+            ),
+            (
+                "[[event]]\nat = 1\ndo = \"garbage\"\nbytes = 9223372036854775807",
+                "garbage",
+            ),
+        ] {
+            let err = Scenario::from_toml(&format!("description = \"t\"\n{toml}"))
+                .expect_err(toml)
+                .to_string();
+            assert!(err.contains(words), "{toml}: {err}");
+            assert!(
+                err.contains("at most") || err.contains("must be"),
+                "refused by our check, not the parser: {err}"
+            );
+        }
+        assert!(Scenario::from_toml("description = \"t\"\nloop_after = 60.0").is_ok());
     }
 }
