@@ -10,6 +10,7 @@
 //! because pausing is a position in this ring and the UI renders from the model.
 
 use std::collections::{BTreeMap, VecDeque};
+use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 use crate::link::{Direction, RxItem};
@@ -51,6 +52,21 @@ pub struct Entry {
     pub dir: Direction,
     pub what: What,
     pub raw: Vec<u8>,
+    /// The lower-cased search text, built the first time a search looks at this entry:
+    /// a search runs over every visible entry at every redraw, and building
+    /// describe() and the hex each time cost tens of milliseconds under the lock.
+    search_text: SearchCache,
+}
+
+/// A cache is not part of what an entry is: two entries are equal whether or not a
+/// search has looked at them yet.
+#[derive(Debug, Clone, Default)]
+struct SearchCache(std::cell::OnceCell<String>);
+
+impl PartialEq for SearchCache {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl Entry {
@@ -94,6 +110,13 @@ impl Entry {
     pub fn haystack(&self) -> String {
         format!("{} {} {}", self.name(), self.text(), hex(&self.raw))
     }
+
+    /// [`Entry::haystack`] lower-cased, built once.
+    fn search_text(&self) -> &str {
+        self.search_text
+            .0
+            .get_or_init(|| self.haystack().to_lowercase())
+    }
 }
 
 /// Bytes as spaced upper-case hex.
@@ -103,7 +126,7 @@ pub fn hex(bytes: &[u8]) -> String {
         if i > 0 {
             s.push(' ');
         }
-        s.push_str(&format!("{b:02X}"));
+        let _ = write!(s, "{b:02X}");
     }
     s
 }
@@ -302,6 +325,7 @@ impl TrafficLog {
             dir,
             what,
             raw: raw.to_vec(),
+            search_text: SearchCache::default(),
         };
         self.next_seq += 1;
         if entry.is_error() {
@@ -375,7 +399,7 @@ impl TrafficLog {
     /// Whether an entry matches the search (case-insensitive); never with no search.
     pub fn matches(&self, e: &Entry) -> bool {
         let s = self.view.search.trim();
-        !s.is_empty() && e.haystack().to_lowercase().contains(&s.to_lowercase())
+        !s.is_empty() && e.search_text().contains(&s.to_lowercase())
     }
 
     /// New entries hidden by the pause.
