@@ -3,17 +3,16 @@
 //! interrupted backup leaves no half file.
 
 use std::io::IsTerminal;
-use std::time::Duration;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::backup::{self, Backup};
 use crate::cli::{BackupArgs, PortArgs};
-use crate::link::{RequestError, UnitClient, duplex_pipe, pipe_connector, serial_connector};
+use crate::link::{RequestError, UnitClient, serial_connector};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::message::Version;
-use crate::sim::{self, SimHandle, SimOptions};
+use crate::sim::SimHandle;
 
 pub fn run(args: BackupArgs) -> anyhow::Result<()> {
     let mut unit = connect(&args.port)?;
@@ -49,18 +48,12 @@ pub fn connect(port: &PortArgs) -> anyhow::Result<Connected> {
             Ok(Connected { client, _sim: None })
         }
         None => {
-            let scenario = sim::load_scenario(&port.scenario)?;
-            let (ours, theirs) = duplex_pipe(Duration::from_millis(50));
-            let handle = sim::spawn(
-                SimOptions::new(scenario),
-                Box::new(theirs.reader),
-                Box::new(theirs.writer),
-            );
+            let (_, connector, handle) = crate::app::builtin_sim(&port.scenario)?;
             eprintln!(
                 "No --port given: using the built-in virtual VP-X (scenario {}). SIMULATED.",
                 port.scenario
             );
-            let client = UnitClient::new(pipe_connector(ours, "the virtual VP-X"))?;
+            let client = UnitClient::new(connector)?;
             Ok(Connected {
                 client,
                 _sim: Some(handle),

@@ -18,12 +18,10 @@ use crossbeam_channel::{select, unbounded};
 use crate::app::queries::QueryPacer;
 use crate::cli::GatewayArgs;
 use crate::control::MotorStreamer;
-use crate::link::{
-    Connector, Link, LinkEvent, RxItem, duplex_pipe, pipe_connector, serial_connector,
-};
+use crate::link::{Connector, Link, LinkEvent, RxItem, serial_connector};
 use crate::model::{LogEntry, LogLevel, Model, Source};
 use crate::protocol::message::Packet;
-use crate::sim::{self, SimHandle, SimOptions};
+use crate::sim::SimHandle;
 use crate::xfsp::CertLevel;
 use crate::xfsp::gateway::{Gateway, GatewayConfig};
 use crate::xfsp::net::{Target, XfspNet};
@@ -106,20 +104,8 @@ pub fn run_bridge(
             None,
         ),
         None => {
-            let scenario = sim::load_scenario(&opts.scenario)?;
-            let (page_end, unit_end) = duplex_pipe(Duration::from_millis(50));
-            let handle = sim::spawn(
-                SimOptions::new(scenario),
-                Box::new(unit_end.reader),
-                Box::new(unit_end.writer),
-            );
-            (
-                pipe_connector(page_end, "virtual VP-X"),
-                Source::Simulated {
-                    scenario: opts.scenario.clone(),
-                },
-                Some(handle),
-            )
+            let (source, connector, handle) = crate::app::builtin_sim(&opts.scenario)?;
+            (connector, source, Some(handle))
         }
     };
     // The app's recorder: flushed by its own thread at least once a second while the
