@@ -22,7 +22,6 @@ use crate::link::{Connector, Link, LinkEvent, RxItem, serial_connector};
 use crate::model::{LogEntry, LogLevel, Model, Source};
 use crate::protocol::message::Packet;
 use crate::sim::SimHandle;
-use crate::xfsp::CertLevel;
 use crate::xfsp::gateway::{Gateway, GatewayConfig};
 use crate::xfsp::net::{Target, XfspNet};
 
@@ -44,27 +43,19 @@ pub struct BridgeOptions {
 
 impl BridgeOptions {
     pub fn from_args(args: &GatewayArgs) -> anyhow::Result<BridgeOptions> {
-        let target = args
-            .xfsp
-            .xfsp
-            .as_deref()
-            .unwrap_or(crate::xfsp::net::DEFAULT_TARGET);
+        // The bridge is always on the network: no --xfsp means the default group.
+        let mut xfsp = args.xfsp.clone();
+        xfsp.xfsp
+            .get_or_insert_with(|| crate::xfsp::net::DEFAULT_TARGET.to_string());
+        let (target, iface, gateway) =
+            crate::app::xfsp_setup(&xfsp)?.ok_or_else(|| anyhow::anyhow!("no XFSp target"))?;
         Ok(BridgeOptions {
             port: args.port.port.clone(),
             baud: args.port.baud,
             scenario: args.port.scenario.clone(),
-            target: Target::parse(target).map_err(anyhow::Error::msg)?,
-            iface: args.xfsp.xfsp_iface.parse().with_context(|| {
-                format!(
-                    "--xfsp-iface {:?} is not an IPv4 address",
-                    args.xfsp.xfsp_iface
-                )
-            })?,
-            gateway: GatewayConfig {
-                source_id: args.xfsp.xfsp_source_id,
-                cert: CertLevel::from(args.xfsp.xfsp_cert),
-                ..GatewayConfig::default()
-            },
+            target,
+            iface,
+            gateway,
             record: args.record.clone(),
         })
     }
