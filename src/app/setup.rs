@@ -391,12 +391,24 @@ impl App {
     }
 
     fn missing_for_backup(&self) -> Vec<String> {
+        self.known_for_backup().1
+    }
+
+    /// The configuration the model knows, what it lacks for a whole backup (VERSION
+    /// first), and the version: read under one lock so they agree.
+    fn known_for_backup(
+        &self,
+    ) -> (
+        crate::protocol::config::UnitConfig,
+        Vec<String>,
+        Option<Version>,
+    ) {
         let model = lock(&self.model);
-        let (_, mut missing) = write::unit_config(&model);
+        let (config, mut missing) = write::unit_config(&model);
         if model.version.is_none() {
             missing.insert(0, "VERSION".into());
         }
-        missing
+        (config, missing, model.version.map(|v| v.value))
     }
 
     /// Writes what the model knows of the unit to `file`; refuses when it does not know
@@ -405,28 +417,12 @@ impl App {
         if file.trim().is_empty() {
             return Err("type a file name in the Backup file field first".into());
         }
-        let (config, missing, version) = {
-            let model = lock(&self.model);
-            let (c, m) = write::unit_config(&model);
-            (c, m, model.version.map(|v| v.value))
-        };
-        let mut missing = missing;
-        if version.is_none() {
-            missing.insert(0, "VERSION".into());
-        }
+        let (config, missing, version) = self.known_for_backup();
         let Some(version) = version.filter(|_| missing.is_empty()) else {
             return Err(format!(
-                "not saved: the page has not heard {} setting{} yet ({}{}); choose \
-                 \"Re-read the unit\" and save again",
-                missing.len(),
-                if missing.len() == 1 { "" } else { "s" },
-                missing
-                    .iter()
-                    .take(3)
-                    .cloned()
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                if missing.len() > 3 { ", …" } else { "" }
+                "not saved: the page has not heard {} yet; choose \"Re-read the unit\" and \
+                 save again",
+                crate::ui::setup::dialog::missing_summary(&missing)
             ));
         };
         backup::save(Path::new(file.trim()), &Backup { version, config })

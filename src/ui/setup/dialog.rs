@@ -110,16 +110,8 @@ fn erase(
         None if !missing.is_empty() => {
             lines.push(Line::styled(
                 format!(
-                    "A backup now would be incomplete: the page has not heard {} setting{} ({}{}).",
-                    missing.len(),
-                    if missing.len() == 1 { "" } else { "s" },
-                    missing
-                        .iter()
-                        .take(3)
-                        .cloned()
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                    if missing.len() > 3 { ", …" } else { "" }
+                    "A backup now would be incomplete: the page has not heard {}.",
+                    missing_summary(missing)
                 ),
                 theme::caution(),
             ));
@@ -169,4 +161,21 @@ fn load(file: &str, changes: &[String], notes: &[String], writes: usize) -> Vec<
     ));
     lines.push(key("Esc", "cancel: nothing is sent".into()));
     lines
+}
+
+/// "3 settings (DEVICE_SPEC 5A-3, …)": what the page has not heard, for the words
+/// that refuse or warn about an incomplete backup.
+pub fn missing_summary(missing: &[String]) -> String {
+    format!(
+        "{} setting{} ({}{})",
+        missing.len(),
+        if missing.len() == 1 { "" } else { "s" },
+        missing
+            .iter()
+            .take(3)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", "),
+        if missing.len() > 3 { ", …" } else { "" }
+    )
 }
