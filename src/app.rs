@@ -9,6 +9,7 @@
 //!   redraws only when the model or the view changed, or once a second for ages.
 
 mod gateway;
+mod options;
 pub mod queries;
 mod record;
 mod replay;
@@ -24,7 +25,6 @@ use crossterm::event::Event as TermEvent;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
-use crate::cli::PageArgs;
 use crate::control::{Action, Controller, KeyContext, MotorStreamer, StopReason, StreamerConfig};
 use crate::link::{self, Connector, Link, LinkEvent, LinkHandle, RxItem};
 use crate::model::{Model, Source};
@@ -35,6 +35,7 @@ use crate::ui::{
 };
 
 pub use gateway::xfsp_setup;
+pub use options::{PageOptions, XfspOptions};
 pub use queries::{QueryPacer, connect_queries};
 pub use record::Recorder;
 pub use replay::Capture;
@@ -583,17 +584,17 @@ fn max_run(secs: f64) -> anyhow::Result<Duration> {
 }
 
 /// `vpx-efis` with no subcommand: the page.
-pub fn run(args: PageArgs) -> anyhow::Result<()> {
+pub fn run(args: PageOptions) -> anyhow::Result<()> {
     let max_run = max_run(args.max_run)?;
     if let Some(file) = &args.replay {
         return replay::run(file, &args);
     }
     let mut sim = None;
-    let (source, connector) = match &args.port.port {
+    let (source, connector) = match &args.port {
         Some(path) => {
             // Fail before taking over the terminal, with the likely fix in words.
-            drop(link::open_serial(path, args.port.baud)?);
-            let connector = link::serial_connector(path.clone(), args.port.baud);
+            drop(link::open_serial(path, args.baud)?);
+            let connector = link::serial_connector(path.clone(), args.baud);
             (
                 Source::Serial {
                     path: path.display().to_string(),
@@ -602,7 +603,7 @@ pub fn run(args: PageArgs) -> anyhow::Result<()> {
             )
         }
         None => {
-            let (source, connector, handle) = builtin_sim(&args.port.scenario)?;
+            let (source, connector, handle) = builtin_sim(&args.scenario)?;
             sim = Some(handle);
             (source, connector)
         }

@@ -186,11 +186,37 @@ pub struct XfspDumpArgs {
     pub json: bool,
 }
 
+impl From<XfspArgs> for crate::app::XfspOptions {
+    fn from(a: XfspArgs) -> Self {
+        crate::app::XfspOptions {
+            xfsp: a.xfsp,
+            xfsp_iface: a.xfsp_iface,
+            xfsp_source_id: a.xfsp_source_id,
+            xfsp_cert: a.xfsp_cert,
+        }
+    }
+}
+
+impl From<PageArgs> for crate::app::PageOptions {
+    fn from(a: PageArgs) -> Self {
+        crate::app::PageOptions {
+            port: a.port.port,
+            baud: a.port.baud,
+            scenario: a.port.scenario,
+            xfsp: a.xfsp.into(),
+            record: a.record,
+            replay: a.replay,
+            speed: a.speed,
+            max_run: a.max_run,
+        }
+    }
+}
+
 /// Entry point of the binary: parse, dispatch, and turn errors into words and an exit code.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => crate::app::run(cli.page),
+        None => crate::app::run(cli.page.into()),
         Some(Command::Decode(a)) => crate::cmd::decode::run(a),
         Some(Command::Sim(a)) => crate::cmd::sim::run(a),
         Some(Command::Ports) => crate::cmd::ports::run(),

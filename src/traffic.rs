@@ -13,8 +13,9 @@ use std::collections::{BTreeMap, VecDeque};
 use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
-use crate::link::{Direction, RxItem};
+use crate::link::RxItem;
 use crate::model::{COMM_LOST_AFTER, FAULT_STATUS_QUIET_AFTER, FLAP_TRIM_STALE_AFTER};
+use crate::protocol::Direction;
 use crate::protocol::Packet;
 use crate::protocol::describe::{describe, node_label};
 use crate::protocol::message::{

@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use crossbeam_channel::Receiver;
 
+use super::XfspOptions;
 use super::{App, lock};
-use crate::cli::XfspArgs;
 use crate::xfsp::dict::CertLevel;
 use crate::xfsp::gateway::{Gateway, GatewayConfig};
 use crate::xfsp::net::{Datagram, Target, XfspNet};
@@ -21,7 +21,7 @@ pub(super) struct PageGateway {
 }
 
 /// Reads `--xfsp`, `--xfsp-iface`, `--xfsp-source-id` and `--xfsp-cert`.
-pub fn xfsp_setup(args: &XfspArgs) -> anyhow::Result<Option<(Target, Ipv4Addr, GatewayConfig)>> {
+pub fn xfsp_setup(args: &XfspOptions) -> anyhow::Result<Option<(Target, Ipv4Addr, GatewayConfig)>> {
     let Some(target) = &args.xfsp else {
         return Ok(None);
     };

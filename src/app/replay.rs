@@ -29,7 +29,6 @@ use super::{
     App, AppOptions, Flow, IDLE_REDRAW, MIN_FRAME_GAP, SharedSink, TerminalGuard, lock,
     spawn_input_thread,
 };
-use crate::cli::PageArgs;
 use crate::control::Action;
 use crate::link::{
     CaptureError, Connector, Direction, Link, LinkEvent, PipeWriter, Record, parse_capture,
@@ -600,7 +599,7 @@ impl App {
 }
 
 /// `vpx-efis --replay FILE [--speed N]`.
-pub fn run(file: &Path, args: &PageArgs) -> anyhow::Result<()> {
+pub fn run(file: &Path, args: &super::PageOptions) -> anyhow::Result<()> {
     if !(SPEEDS.0..=SPEEDS.1).contains(&args.speed) {
         anyhow::bail!(
             "--speed must be between {} and {} (1 is the recorded pace)",

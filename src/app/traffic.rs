@@ -9,7 +9,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind};
 
 use super::{App, Flow, lock};
 use crate::control::StopReason;
-use crate::link::Direction;
+use crate::protocol::Direction;
 use crate::traffic::{KindFilter, TrafficLog};
 use crate::ui::state::Screen;
 

@@ -16,7 +16,7 @@ use std::time::Duration;
 use serde_json::{Map, Value, json};
 
 use crate::cli::DecodeArgs;
-use crate::link::Direction;
+use crate::protocol::Direction;
 use crate::protocol::describe::{describe, node_label, to_json};
 use crate::protocol::frame::{FrameRef, HEADER_LEN, MessageId, checksum};
 use crate::protocol::{Decoder, DecoderStats, Event, Packet, message};

@@ -44,7 +44,7 @@ pub struct BridgeOptions {
 impl BridgeOptions {
     pub fn from_args(args: &GatewayArgs) -> anyhow::Result<BridgeOptions> {
         // The bridge is always on the network: no --xfsp means the default group.
-        let mut xfsp = args.xfsp.clone();
+        let mut xfsp = crate::app::XfspOptions::from(args.xfsp.clone());
         xfsp.xfsp
             .get_or_insert_with(|| crate::xfsp::net::DEFAULT_TARGET.to_string());
         let (target, iface, gateway) =

@@ -20,13 +20,7 @@ pub type Connector =
 /// How long the supervisor waits between attempts to reopen a port.
 pub const RECONNECT_INTERVAL: Duration = Duration::from_millis(500);
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub enum Direction {
-    /// From the unit to us.
-    Rx,
-    /// From us to the unit.
-    Tx,
-}
+pub use crate::protocol::Direction;
 
 /// What the decoder made of received bytes.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -13,6 +13,7 @@ pub mod decoder;
 pub mod defaults;
 pub mod describe;
 pub mod device;
+pub mod direction;
 pub mod error;
 pub mod fault;
 pub mod frame;
@@ -21,6 +22,7 @@ pub mod names;
 pub mod validate;
 
 pub use decoder::{Decoder, DecoderStats, Event};
+pub use direction::Direction;
 pub use error::{Error, LenRule, Result};
 pub use fault::FaultCode;
 pub use frame::{FrameHeader, FrameRef, MessageId, Node, checksum};

@@ -13,8 +13,8 @@ use ratatui::widgets::{Block, Borders, Paragraph, Row, Table};
 
 use super::state::ViewState;
 use super::{MIN_HEIGHT, MIN_WIDTH, theme, title_bar, too_small, values};
-use crate::link::Direction;
 use crate::model::Model;
+use crate::protocol::Direction;
 use crate::traffic::{EXPECTED, Entry, ExpectKind, Health, KindFilter, TrafficLog, What, hex};
 
 /// The longest the rate table grows, so the list keeps most of the screen.

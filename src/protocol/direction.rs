@@ -1,0 +1,11 @@
+//! Which way a frame crossed the wire. Plain data, here at the floor, because the
+//! link that moves bytes, the capture file, the traffic log and the traffic view
+//! all speak of it and none of them should have to import another for it.
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Direction {
+    /// From the unit to us.
+    Rx,
+    /// From us to the unit.
+    Tx,
+}
