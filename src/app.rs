@@ -26,6 +26,7 @@ use ratatui::Terminal;
 use ratatui::backend::Backend;
 
 use crate::control::{Action, Controller, KeyContext, MotorStreamer, StopReason, StreamerConfig};
+use crate::exchange::Rereader;
 use crate::link::{self, Connector, Link, LinkEvent, LinkHandle, RxItem};
 use crate::model::{Model, Source};
 use crate::protocol::message::Packet;
@@ -107,6 +108,8 @@ pub struct App {
     traffic_drawn: u64,
     /// The setup screens' writes waiting for the unit, and their timed requests.
     setup: setup::SetupCtl,
+    /// Asks again for any setting a write left unknown, until the unit answers.
+    rereader: Rereader,
 }
 
 impl App {
@@ -155,6 +158,7 @@ impl App {
             replay,
             traffic_drawn: 0,
             setup: Default::default(),
+            rereader: Rereader::default(),
         }
     }
 
@@ -283,6 +287,7 @@ impl App {
                 // told to stop on the new connection before anything else.
                 self.send(MotorStreamer::emergency_stop_packets().to_vec());
                 self.pacer.start(now);
+                self.rereader.reconnected();
             }
             Wake::LinkDown => self.pacer.stop(),
             Wake::WriteError => {
@@ -324,6 +329,7 @@ impl App {
         let queries = self.pacer.due(now, || controller.next_cnt());
         self.send(queries);
         self.setup_tick(now);
+        self.reread_tick(now);
         self.traffic_tick();
         self.xfsp_tick(now);
         if self.notice_until.is_some_and(|t| now >= t) {
@@ -344,6 +350,16 @@ impl App {
         }
     }
 
+    /// Settings left unknown by an unanswered write are asked for again, paced, until
+    /// the unit answers (whichever flow wrote them).
+    fn reread_tick(&mut self, now: Instant) {
+        let queries = self.rereader.due(&lock(&self.model), now);
+        for q in queries {
+            let cnt = self.controller.next_cnt();
+            self.send(vec![Packet::request(cnt, q)]);
+        }
+    }
+
     /// The earliest moment the main loop must call [`App::tick`] again.
     pub fn next_deadline(&self, now: Instant) -> Instant {
         let redraw = match self.last_draw {
@@ -357,6 +373,7 @@ impl App {
             self.notice_until,
             self.xfsp_deadline(),
             self.setup.next_deadline(),
+            self.rereader.next_deadline(&lock(&self.model)),
             Some(redraw),
         ]
         .into_iter()

@@ -2,7 +2,9 @@
 //!
 //! The data flows one way through the modules:
 //! `protocol` (wire format, pure) → `link` (bytes in and out) → `model` (what we know,
-//! with timestamps) → `ui` (pure rendering) and `control` (keys become commands).
+//! with timestamps) → `ui` (pure rendering), `control` (keys become commands), and the flows beside
+//! it: `setup` (the setup screens' writes and re-reads) on `exchange` (request,
+//! answer, retry and re-read on the caller's clock).
 //! `sim` is a second, independent implementation of the device side; `xfsp` bridges
 //! the model onto the XFSp avionics network; `app` wires everything together.
 
@@ -11,10 +13,12 @@ pub mod backup;
 pub mod cli;
 pub mod cmd;
 pub mod control;
+pub mod exchange;
 pub mod flash;
 pub mod link;
 pub mod model;
 pub mod protocol;
+pub mod setup;
 pub mod sim;
 pub mod traffic;
 pub mod ui;

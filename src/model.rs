@@ -22,6 +22,9 @@ use crate::protocol::message::{
     SystemStatus, TrimSpec, TrimType, Version, WigWagSpec,
 };
 
+mod setting;
+pub use setting::Setting;
+
 /// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
 /// (issue: "more than 2.5 s"; both are 1 Hz broadcasts, so two missed in a row).
 pub const COMM_LOST_AFTER: Duration = Duration::from_millis(2500);
@@ -222,6 +225,9 @@ pub struct Circuit {
     pub amps: Option<f32>,
     pub breaker: Option<u8>,
     pub switch: Option<SwitchId>,
+    /// The spec behind `breaker` and `switch` is unknown since a write to it went
+    /// unanswered; it is being asked again.
+    pub spec_unknown: bool,
 }
 
 /// Everything we know about the unit.
@@ -242,6 +248,9 @@ pub struct Model {
     pub pitch_trim_spec: Option<Stamped<TrimSpec>>,
     pub roll_trim_spec: Option<Stamped<TrimSpec>>,
     pub wig_wag_spec: Option<Stamped<WigWagSpec>>,
+    /// Settings nobody knows the unit's value of (a write to them went unanswered),
+    /// and since when. Their slots above are empty until the unit answers a re-read.
+    pub unknown: BTreeMap<Setting, Instant>,
     pub last_spec_ack: Option<Stamped<SpecAck>>,
     pub last_ping_reply: Option<Instant>,
     /// The unit's answer to EEPROM_ERASE: a response code other than zero means the
@@ -277,6 +286,7 @@ impl Model {
             pitch_trim_spec: None,
             roll_trim_spec: None,
             wig_wag_spec: None,
+            unknown: BTreeMap::new(),
             last_spec_ack: None,
             last_ping_reply: None,
             eeprom_erase: None,
@@ -306,6 +316,16 @@ impl Model {
         );
         if !unchanged {
             self.revision += 1;
+        }
+        if let Some(setting) = Setting::answered_by(&packet.message) {
+            // The unit said what it holds: the setting is known again.
+            if self.unknown.remove(&setting).is_some() {
+                self.log(
+                    at,
+                    LogLevel::Info,
+                    format!("{}: the unit answered the re-read", setting.name()),
+                );
+            }
         }
         match packet.message {
             Message::SystemStatus(s) => {
@@ -381,6 +401,38 @@ impl Model {
         if let Message::ExternalData(d) = packet.message {
             self.external_data_sent = Some(Stamped::new(d, at));
         }
+    }
+
+    /// A write to `setting` went unanswered: the unit may hold the old value or the
+    /// new one, so the model forgets what it had and holds nothing for it until the
+    /// unit answers a re-read. Nothing can then show the old value as the unit's.
+    pub fn mark_unknown(&mut self, setting: Setting, at: Instant) {
+        match setting {
+            Setting::DeviceSpec(id) => clear(&mut self.device_specs, id),
+            Setting::Name(id) => clear(&mut self.names, id),
+            Setting::Enable(id) => clear(&mut self.enabled, id),
+            Setting::System => self.system_spec = None,
+            Setting::Flaps => self.flap_spec = None,
+            Setting::Trim(TrimKind::Pitch) => self.pitch_trim_spec = None,
+            Setting::Trim(TrimKind::Roll) => self.roll_trim_spec = None,
+            Setting::WigWag => self.wig_wag_spec = None,
+        }
+        if self.unknown.insert(setting, at).is_none() {
+            self.log(
+                at,
+                LogLevel::Warning,
+                format!(
+                    "{}: the write went unanswered, so what the unit holds is unknown; re-reading",
+                    setting.name()
+                ),
+            );
+        }
+        self.revision += 1;
+    }
+
+    /// Whether `setting` is unknown and being re-read.
+    pub fn is_unknown(&self, setting: Setting) -> bool {
+        self.unknown.contains_key(&setting)
     }
 
     pub fn note_connected(&mut self, at: Instant, port: String) {
@@ -498,6 +550,9 @@ impl Model {
             .get(id as usize)
             .and_then(|n| n.as_ref())
             .map(|n| n.value.text());
+        if self.is_unknown(Setting::Name(id)) {
+            return "? (name re-reading…)".into();
+        }
         match named {
             Some(n) if !n.trim().is_empty() => n,
             _ => device::device(id)
@@ -583,6 +638,11 @@ impl Model {
                     _ => CircuitState::Unknown,
                 };
                 let spec = self.device_specs[i].map(|s| s.value);
+                let spec_unknown = match kind {
+                    CircuitKind::Flaps => self.is_unknown(Setting::Flaps),
+                    CircuitKind::Trim(_) => false,
+                    _ => self.is_unknown(Setting::DeviceSpec(id)),
+                };
                 let breaker = match kind {
                     CircuitKind::Flaps => self.flap_spec.map(|s| s.value.circuit_breaker),
                     CircuitKind::Trim(_) => device::device(id).map(|d| d.amps_max),
@@ -602,9 +662,16 @@ impl Model {
                         }
                         _ => None,
                     },
+                    spec_unknown,
                 }
             })
             .collect()
+    }
+}
+
+fn clear<T>(slots: &mut [Option<Stamped<T>>], id: u8) {
+    if let Some(slot) = slots.get_mut(id as usize) {
+        *slot = None;
     }
 }
 

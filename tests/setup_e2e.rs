@@ -504,3 +504,186 @@ fn a_failed_erase_is_said_plainly_and_not_shown_as_factory_settings() {
         screen(&buf)
     );
 }
+
+/// The text of the screen row that holds `needle`.
+fn row_with(buf: &Buffer, needle: &str) -> String {
+    screen(buf)
+        .lines()
+        .find(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("{needle:?} not on screen:\n{}", screen(buf)))
+        .to_string()
+}
+
+impl Rig {
+    fn back_to_devices(&mut self) {
+        for _ in 0..3 {
+            if self.app.view().screen == Screen::Devices {
+                break;
+            }
+            self.key(KeyCode::Esc);
+        }
+        assert_eq!(self.app.view().screen, Screen::Devices);
+    }
+}
+
+#[test]
+fn a_breaker_whose_spec_ack_is_lost_is_unknown_then_reread_and_shown_as_the_unit_holds_it() {
+    let mut rig = Rig::new();
+    rig.open_setup_on(9);
+    rig.sim.inject(SimCommand::DropSpecAcks(true));
+    let queries_before = rig.sent("DEVICE_SPEC_QUERY");
+    rig.key(KeyCode::Down); // breaker 2 A → 4 A
+    rig.keys("4");
+    rig.key(KeyCode::Enter);
+    rig.until("three tries", Duration::from_secs(5), |app| {
+        app.model()
+            .link
+            .tx
+            .get("DEVICE_SPEC")
+            .map_or(0, |s| s.count)
+            == 3
+    });
+    rig.until("the write to end", Duration::from_secs(3), |app| {
+        !matches!(
+            app.view().setup.writes[0].status,
+            WriteStatus::Sending { .. }
+        )
+    });
+    // The unit stored it; only its answers were lost.
+    assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 4);
+    assert!(rig.sim.stats().wire.spec_acks_dropped >= 3);
+    // The page gave up on the write, said the breaker was unknown, and asked again.
+    assert!(
+        rig.app.model().events.iter().any(|e| e
+            .text
+            .contains("DEVICE_SPEC for 5A-6: the write went unanswered")),
+        "the breaker was marked unknown"
+    );
+    rig.until("the re-read's answer", Duration::from_secs(3), |app| {
+        matches!(
+            app.view().setup.writes[0].status,
+            WriteStatus::ReadBack { .. }
+        )
+    });
+    assert!(rig.sent("DEVICE_SPEC_QUERY") > queries_before);
+    assert_eq!(
+        rig.sent("DEVICE_SPEC"),
+        3,
+        "the write itself is not sent a fourth time"
+    );
+    assert_eq!(
+        rig.status(0),
+        WriteStatus::ReadBack {
+            holds: "4 A, switch 2, current fault off".into(),
+            matches: true,
+            acked: false
+        }
+    );
+    let buf = rig.render();
+    let text = screen(&buf);
+    assert!(
+        text.contains("no answer to the write; re-read: the unit holds 4 A"),
+        "{text}"
+    );
+    assert!(row_with(&buf, "Circuit breaker").contains("4 A"), "{text}");
+    assert!(!text.contains("? A"), "{text}");
+    rig.back_to_devices();
+    let buf = rig.render();
+    let row = row_with(&buf, "GPS 1");
+    assert!(row.contains(" 4A "), "device list CB column: {row}");
+    assert!(!row.contains("2A"), "{row}");
+}
+
+#[test]
+fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answers() {
+    let mut rig = Rig::new();
+    rig.open_setup_on(9);
+    rig.sim.inject(SimCommand::DropSpecAcks(true));
+    for _ in 0..4 {
+        rig.key(KeyCode::Down); // the name
+    }
+    for _ in 0..5 {
+        rig.key(KeyCode::Backspace);
+    }
+    rig.keys("Nav 2");
+    rig.key(KeyCode::Enter);
+    rig.until("the third try", Duration::from_secs(5), |app| {
+        app.view().setup.writes[0].status == WriteStatus::Sending { attempt: 3, of: 3 }
+    });
+    // The line goes quiet as the last try times out: the first re-reads are lost too.
+    rig.sim
+        .inject(SimCommand::Silent(Duration::from_millis(1800)));
+    rig.until("no answer", Duration::from_secs(3), |app| {
+        app.view().setup.writes[0].status == WriteStatus::NoAnswer
+    });
+    assert!(
+        rig.app
+            .model()
+            .is_unknown(vpx_efis::model::Setting::Name(9))
+    );
+    let buf = rig.render();
+    let text = screen(&buf);
+    assert!(row_with(&buf, "Name").contains("? re-reading…"), "{text}");
+    assert!(!row_with(&buf, "Name").contains("GPS 1"), "{text}");
+    assert_eq!(fg_of(&buf, "no answer after 3 tries"), Color::Red);
+    rig.until("the re-read's answer", Duration::from_secs(8), |app| {
+        matches!(
+            app.view().setup.writes[0].status,
+            WriteStatus::ReadBack { .. }
+        )
+    });
+    assert!(rig.sent("DEVICE_NAME_QUERY") >= 1);
+    assert_eq!(&rig.sim.stats().config.names[9][..6], b"Nav 2\0");
+    let buf = rig.render();
+    assert!(
+        row_with(&buf, "Name").contains("\"Nav 2\""),
+        "{}",
+        screen(&buf)
+    );
+    rig.back_to_devices();
+    let buf = rig.render();
+    assert!(screen(&buf).contains("Nav 2"), "{}", screen(&buf));
+    assert!(!screen(&buf).contains("GPS 1"), "{}", screen(&buf));
+}
+
+#[test]
+fn a_flap_spec_whose_spec_ack_is_lost_is_reread_and_the_list_shows_the_units_breaker() {
+    let mut rig = Rig::new();
+    rig.open_setup_on(9);
+    rig.key(KeyCode::Tab);
+    rig.key(KeyCode::Tab);
+    assert_eq!(rig.app.view().setup.page, Page::Flaps);
+    rig.sim.inject(SimCommand::DropSpecAcks(true));
+    for _ in 0..9 {
+        rig.key(KeyCode::Down); // the flap breaker, 7 A
+    }
+    rig.key(KeyCode::Right);
+    assert_eq!(rig.app.view().setup.forms.flap.circuit_breaker, 8);
+    rig.key(KeyCode::Enter);
+    rig.until("the re-read's answer", Duration::from_secs(8), |app| {
+        matches!(
+            app.view().setup.writes[0].status,
+            WriteStatus::ReadBack { .. }
+        )
+    });
+    assert_eq!(rig.sent("FLAP_SPEC"), 3);
+    assert_eq!(rig.sim.stats().config.flap.circuit_breaker, 8);
+    assert!(matches!(
+        rig.status(0),
+        WriteStatus::ReadBack {
+            matches: true,
+            acked: false,
+            ..
+        }
+    ));
+    assert_eq!(rig.app.model().flap_spec.unwrap().value.circuit_breaker, 8);
+    // The flaps row is below the fold of a 40-line list: its CB cell comes from this.
+    let row = rig
+        .app
+        .model()
+        .circuits(Instant::now())
+        .into_iter()
+        .find(|c| c.id == 0)
+        .unwrap();
+    assert_eq!((row.breaker, row.spec_unknown), (Some(8), false));
+}

@@ -412,3 +412,85 @@ fn load_confirmation_shows_the_differences() {
     };
     insta::assert_snapshot!(text(&render(&m, &v, t0, 100, 30)));
 }
+
+#[test]
+fn device_page_refused_by_the_unit_on_a_5a_pin_says_table_20_once_with_1_to_5_a() {
+    use vpx_efis::protocol::message::{SpecAck, SpecAckError};
+    use vpx_efis::setup::WriteQueue;
+    let t0 = Instant::now();
+    let mut m = unit(t0);
+    let mut v = view(&m, Page::Device, 9);
+    let held = m.device_specs[9].unwrap().value;
+    // 5 A on 5A-6 (1–5 A): this program's checks accept it, this unit refuses it.
+    let sent = DeviceSpec {
+        circuit_breaker: 5,
+        ..held
+    };
+    let mut q = WriteQueue::default();
+    q.start(vec![sent.into()]);
+    q.tick(&mut m, t0);
+    let t1 = t0 + Duration::from_millis(20);
+    apply(
+        &mut m,
+        t1,
+        SpecAck {
+            device_id: 9,
+            error: Some(SpecAckError::InvalidBreaker),
+        },
+    );
+    q.tick(&mut m, t1);
+    let t2 = t0 + Duration::from_millis(40);
+    apply(&mut m, t2, held);
+    q.tick(&mut m, t2);
+    v.setup.forms.device = sent;
+    v.setup.edited[Page::Device.index()] = true;
+    select(&mut v, Field::Breaker);
+    v.setup.writes = q.lines();
+    let buf = render(&m, &v, t2, 120, 30);
+    let screen = text(&buf);
+    insta::assert_snapshot!(screen);
+    assert_eq!(
+        screen.matches("Invalid circuit breaker value").count(),
+        1,
+        "Table 20's words once:\n{screen}"
+    );
+    assert!(screen.contains("gives 1–5 A"), "{screen}");
+    assert!(!screen.contains("1–10"), "not the flaps' range:\n{screen}");
+    assert_eq!(fg(&buf, "refused by the unit"), Color::Red);
+}
+
+#[test]
+fn a_breaker_left_unknown_shows_a_question_mark_on_the_setup_page_and_in_the_list() {
+    use vpx_efis::model::Setting;
+    let t0 = Instant::now();
+    let mut m = unit(t0);
+    let mut v = view(&m, Page::Device, 4);
+    v.setup.forms.device.circuit_breaker = 4;
+    v.setup.edited[Page::Device.index()] = true;
+    m.mark_unknown(Setting::DeviceSpec(4), t0);
+    v.setup.writes = vec![WriteLine {
+        what: "DEVICE_SPEC for 5A-1".into(),
+        status: WriteStatus::NoAnswer,
+    }];
+    let buf = render(&m, &v, t0, 120, 30);
+    let screen = text(&buf);
+    insta::assert_snapshot!(screen);
+    let row = screen
+        .lines()
+        .find(|l| l.contains("Circuit breaker"))
+        .unwrap();
+    assert!(row.contains("? A re-reading…"), "{row}");
+    assert!(
+        !row.contains("3 A"),
+        "the value from before the write is gone: {row}"
+    );
+    assert_eq!(fg(&buf, "? A re-reading…"), Color::Yellow);
+    assert_eq!(fg(&buf, "no answer after 3 tries"), Color::Red);
+    // The device list's CB column says the same.
+    v.screen = Screen::Devices;
+    let buf = render(&m, &v, t0, 120, 40);
+    let list = text(&buf);
+    let row = list.lines().find(|l| l.contains("Nav Lt")).unwrap();
+    assert!(row.contains("?A"), "{row}");
+    assert!(!row.contains("3A"), "{row}");
+}

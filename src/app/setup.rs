@@ -1,18 +1,14 @@
-//! Keys and timers of the setup screens (`c` from the device list).
+//! Keys and timers of the setup screens (`c` from the device list), wired to the
+//! pure flow in [`crate::setup`].
 //!
 //! Everything that waits here (a SPEC_ACK, a re-read, a PING) is a deadline checked in
 //! [`App::setup_tick`], never a blocking call: the motors, the queries and the screen
-//! keep going while the unit thinks. The forms and the write queue are pure
-//! (`setup_form`, `setup_write`); this file only wires them to keys, the link and the
-//! view.
-
-#[path = "setup_form.rs"]
-mod form;
-#[path = "setup_write.rs"]
-mod write;
+//! keep going while the unit thinks. The forms, the write queue and the timed
+//! requests are pure (`setup::form`, `setup::write`, `setup::probe`); this file only
+//! wires them to keys, the link and the view.
 
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
@@ -21,27 +17,20 @@ use crate::backup::{self, Backup};
 use crate::control::{Action, KeyContext, Selected, StopReason, keymap};
 use crate::model::{CircuitKind, CircuitState, Model, Motor};
 use crate::protocol::device::{STARTER, TRIM_R};
-use crate::protocol::message::{EepromErase, Message, Packet, Ping, Version};
-use crate::ui::setup::state::{Dialog, Field, Page, Probe, Tone};
+use crate::protocol::message::{Message, Packet, Version};
+use crate::setup::probe::{EraseEnd, Probes};
+use crate::setup::{form, write};
+use crate::ui::setup::state::{Dialog, Field, Page, Tone};
 use crate::ui::state::Screen;
 
-pub use write::{ANSWER_TIMEOUT, TRIES};
-
-/// PING is answered at once or not at all.
-const PING_TIMEOUT: Duration = Duration::from_secs(1);
-/// EEPROM_ERASE rewrites the whole EEPROM before it answers.
-const ERASE_TIMEOUT: Duration = Duration::from_secs(3);
-
-/// The setup screens' own state that the view does not need: the write queue, when
-/// each timed request went out, and a checked backup waiting for its confirmation.
+/// The setup screens' own state that the view does not need: the write queue, the
+/// timed requests, and a checked backup waiting for its confirmation.
 #[derive(Debug, Default)]
 pub(super) struct SetupCtl {
     queue: write::WriteQueue,
     /// The page a batch came from; `None` for a backup being applied.
     batch_page: Option<Option<Page>>,
-    ping: Option<Instant>,
-    version: Option<(u8, Instant)>,
-    erase: Option<Instant>,
+    probes: Probes,
     pending_load: Vec<Message>,
     on_screen: bool,
 }
@@ -49,15 +38,10 @@ pub(super) struct SetupCtl {
 impl SetupCtl {
     /// When the page loop must tick for a setup timeout.
     pub(super) fn next_deadline(&self) -> Option<Instant> {
-        [
-            self.queue.next_deadline(),
-            self.ping.map(|t| t + PING_TIMEOUT),
-            self.version.map(|(_, t)| t + ANSWER_TIMEOUT),
-            self.erase.map(|t| t + ERASE_TIMEOUT),
-        ]
-        .into_iter()
-        .flatten()
-        .min()
+        [self.queue.next_deadline(), self.probes.next_deadline()]
+            .into_iter()
+            .flatten()
+            .min()
     }
 }
 
@@ -350,17 +334,12 @@ impl App {
     fn action(&mut self, field: Field, now: Instant) {
         match field {
             Field::Ping => {
-                self.setup.ping = Some(now);
-                self.view.setup.ping = Probe::Waiting { attempt: 1, of: 1 };
-                self.send_now(Ping { ack: false }.into());
+                let m = self.setup.probes.ping(&mut self.view.setup, now);
+                self.send_now(m);
             }
             Field::Version => {
-                self.setup.version = Some((1, now));
-                self.view.setup.version = Probe::Waiting {
-                    attempt: 1,
-                    of: TRIES,
-                };
-                self.send_now(Version::REQUEST.into());
+                let m = self.setup.probes.version(&mut self.view.setup, now);
+                self.send_now(m);
             }
             Field::SaveBackup => {
                 let file = self.view.setup.file.clone();
@@ -534,9 +513,8 @@ impl App {
             }
             (Dialog::Erase { .. }, KeyCode::Char('y')) => {
                 close(self);
-                self.setup.erase = Some(now);
-                self.view.setup.erase = Probe::Waiting { attempt: 1, of: 1 };
-                self.send_now(EepromErase { response_code: 0 }.into());
+                let m = self.setup.probes.erase(&mut self.view.setup, now);
+                self.send_now(m);
                 self.say(Tone::Info, "EEPROM_ERASE sent");
             }
             (Dialog::Load { .. }, KeyCode::Char('y') | KeyCode::Enter) => {
@@ -585,13 +563,13 @@ impl App {
         self.setup.on_screen = on_screen;
 
         let messages = {
-            let model = lock(&self.model);
-            self.setup.queue.tick(&model, now)
+            let mut model = lock(&self.model);
+            self.setup.queue.tick(&mut model, now)
         };
         for m in messages {
             self.send_now(m);
         }
-        if !self.setup.queue.busy()
+        if self.setup.queue.settled()
             && let Some(page) = self.setup.batch_page.take()
             && self.setup.queue.all_saved()
         {
@@ -612,58 +590,27 @@ impl App {
     }
 
     fn probe_tick(&mut self, now: Instant) {
-        let (ping_reply, version_at, erase_at) = {
+        let (again, erase_end) = {
             let model = lock(&self.model);
-            (
-                model.last_ping_reply,
-                model.version.map(|v| v.at),
-                model.eeprom_erase.map(|e| (e.at, e.value.response_code)),
-            )
+            self.setup.probes.tick(&model, &mut self.view.setup, now)
         };
-        if let Some(sent) = self.setup.ping {
-            if let Some(r) = ping_reply.filter(|&r| r >= sent) {
-                self.view.setup.ping = Probe::Answered { after: r - sent };
-                self.setup.ping = None;
-            } else if now >= sent + PING_TIMEOUT {
-                self.view.setup.ping = Probe::NoAnswer;
-                self.setup.ping = None;
-            }
+        for m in again {
+            self.send_now(m);
         }
-        if let Some((attempt, sent)) = self.setup.version {
-            if let Some(r) = version_at.filter(|&r| r >= sent) {
-                self.view.setup.version = Probe::Answered { after: r - sent };
-                self.setup.version = None;
-            } else if now >= sent + ANSWER_TIMEOUT {
-                if attempt < TRIES {
-                    self.setup.version = Some((attempt + 1, now));
-                    self.view.setup.version = Probe::Waiting {
-                        attempt: attempt + 1,
-                        of: TRIES,
-                    };
-                    self.send_now(Version::REQUEST.into());
-                } else {
-                    self.view.setup.version = Probe::NoAnswer;
-                    self.setup.version = None;
-                }
+        match erase_end {
+            Some(EraseEnd::Answered(code)) if code != 0 => {
+                // Table 12: a non-zero code means the erase did not complete, so
+                // nothing may be shown as reset; re-read to show what it holds.
+                self.reread(now);
+                self.say(
+                    Tone::Bad,
+                    format!(
+                        "the unit reports EEPROM_ERASE failed (response code {code}); \
+                         its settings were re-read, check them before going on"
+                    ),
+                );
             }
-        }
-        if let Some(sent) = self.setup.erase {
-            if let Some((r, code)) = erase_at.filter(|&(r, _)| r >= sent) {
-                self.view.setup.erase = Probe::Answered { after: r - sent };
-                self.setup.erase = None;
-                if code != 0 {
-                    // Table 12: a non-zero code means the erase did not complete, so
-                    // nothing may be shown as reset; re-read to show what it holds.
-                    self.reread(now);
-                    self.say(
-                        Tone::Bad,
-                        format!(
-                            "the unit reports EEPROM_ERASE failed (response code {code}); \
-                             its settings were re-read, check them before going on"
-                        ),
-                    );
-                    return;
-                }
+            Some(EraseEnd::Answered(_)) => {
                 // Every setting is now Appendix F's: forget edits and ask again.
                 self.view.setup.edited = [false; 8];
                 self.reread(now);
@@ -672,15 +619,13 @@ impl App {
                     "the unit answered EEPROM_ERASE: it holds the factory settings and \
                      reports a data integrity error until its next power cycle (ICD §6.1.4)",
                 );
-            } else if now >= sent + ERASE_TIMEOUT {
-                self.view.setup.erase = Probe::NoAnswer;
-                self.setup.erase = None;
-                self.say(
-                    Tone::Bad,
-                    "no answer to EEPROM_ERASE: the unit may or may not have erased; \
-                     re-read it to see",
-                );
             }
+            Some(EraseEnd::NoAnswer) => self.say(
+                Tone::Bad,
+                "no answer to EEPROM_ERASE: the unit may or may not have erased; \
+                 re-read it to see",
+            ),
+            None => {}
         }
     }
 }

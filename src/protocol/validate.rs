@@ -637,9 +637,12 @@ pub fn accept(cfg: &mut UnitConfig, message: &Message) -> Option<Result<(), Spec
 
 /// Words for a SPEC_ACK error the unit sent in answer to `sent`, for the setup screens.
 ///
-/// When our own rules refuse `sent` with the same code, their reason is given. When they
-/// do not (the unit checks something the ICD does not tell us, or its state differs from
-/// `cfg`), a general sentence for the code is given and says so.
+/// The caller gives Table 20's words for the code ([`SpecAckError::description`]);
+/// this gives the reason after them, never those words again. When our own rules
+/// refuse `sent` with the same code, their reason is given. When they do not (the
+/// unit checks something the ICD does not tell us, or its state differs from `cfg`), a
+/// sentence about *this* message is given (the range of this pin, or of the flap
+/// motor) and says so.
 pub fn explain(err: SpecAckError, cfg: &UnitConfig, sent: &Message) -> String {
     if let Some(Err(r)) = check(cfg, sent)
         && r.error == err
@@ -652,7 +655,7 @@ pub fn explain(err: SpecAckError, cfg: &UnitConfig, sent: &Message) -> String {
             "this message cannot configure that device id (ICD Tables 13, 14, 17)"
         }
         SpecAckError::InvalidBreaker => {
-            "the breaker is outside the pin's amps in ICD Appendix B (flaps: 1–10 A)"
+            return format!("{}; this program's checks accepted it", breaker_range(sent));
         }
         SpecAckError::InvalidSwitch => {
             "switch ids are 0–11; the starter's is fixed and the EFIS is never off \
@@ -681,10 +684,31 @@ pub fn explain(err: SpecAckError, cfg: &UnitConfig, sent: &Message) -> String {
         }
         SpecAckError::Unknown(_) => "the ICD does not define this code",
     };
-    format!(
-        "{}: {hint} (the unit refused what this program's checks would accept)",
-        err.description()
-    )
+    format!("{hint} (the unit refused what this program's checks would accept)")
+}
+
+/// The breaker that was sent and the range that applies to it: the pin's amps in
+/// Appendix B, or the flap motor's in Table 16.
+fn breaker_range(sent: &Message) -> String {
+    match sent {
+        Message::DeviceSpec(s) => match device::device(s.device_id) {
+            Some(d) => format!(
+                "{} A was sent; ICD Appendix B gives {}–{} A for {}",
+                s.circuit_breaker, d.amps_min, d.amps_max, d.system_name
+            ),
+            None => format!(
+                "{} A was sent for device {}",
+                s.circuit_breaker, s.device_id
+            ),
+        },
+        Message::FlapSpec(f) => format!(
+            "{} A was sent; the flap motor takes {}–{} A (ICD Table 16)",
+            f.circuit_breaker,
+            FLAP_BREAKER_RANGE.start(),
+            FLAP_BREAKER_RANGE.end()
+        ),
+        _ => "the breaker is outside the amps ICD Appendix B gives this device".into(),
+    }
 }
 
 // ---------------------------------------------------------------- whole config
@@ -1401,8 +1425,24 @@ mod tests {
         );
         let fine = Message::DeviceSpec(dev(4, 2, on(1), false));
         let s = explain(EepromWrite, &c, &fine);
-        assert!(s.starts_with("EEPROM write failure: "), "{s}");
+        assert!(s.starts_with("the unit could not store the setting"), "{s}");
         assert!(s.contains("refused what this program"), "{s}");
+        // Table 20's words are the caller's, so they are never here twice.
+        assert!(!s.contains("EEPROM write failure"), "{s}");
+        // A unit refusing 5 A on a 1–5 A pin: this pin's range, not the flaps'.
+        let five = Message::DeviceSpec(dev(9, 5, on(1), false));
+        assert_eq!(
+            explain(InvalidBreaker, &c, &five),
+            "5 A was sent; ICD Appendix B gives 1–5 A for 5A-6; this program's checks accepted it"
+        );
+        let flap = Message::FlapSpec(FlapSpec {
+            circuit_breaker: 7,
+            ..crate::protocol::defaults::flap_spec()
+        });
+        assert_eq!(
+            explain(InvalidBreaker, &c, &flap),
+            "7 A was sent; the flap motor takes 1–10 A (ICD Table 16); this program's checks accepted it"
+        );
     }
 
     #[test]

@@ -122,8 +122,20 @@ pub struct Scenario {
     pub roll_trim: Option<TrimSection>,
     #[serde(default)]
     pub wig_wag: Option<WigWagSection>,
+    /// What the line does to the unit's answers.
+    #[serde(default)]
+    pub line: LineSection,
     #[serde(default, rename = "event")]
     pub events: Vec<Event>,
+}
+
+/// `[line]`: faults of the wire between the unit and the page.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LineSection {
+    /// Every SPEC_ACK is lost on the way out; the unit still applies and stores each
+    /// spec and keeps broadcasting (a write whose answer is lost).
+    pub drop_spec_acks: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -310,6 +322,8 @@ pub enum EventAction {
     Load { device: u8, amps: f32 },
     /// No byte leaves the unit for `seconds` (requests are still taken in).
     Silent { seconds: f64 },
+    /// SPEC_ACKs are lost from now on (`on = true`) or no longer (`on = false`).
+    DropSpecAcks { on: bool },
     /// `bytes` bytes of noise go out on the wire.
     Garbage { bytes: usize },
     /// The running alternator's regulator now holds `volts` (over the limit: it trips).

@@ -99,6 +99,9 @@ pub enum SimCommand {
     WarmReset,
     /// The next FLASH_PROG in the bootloader writes one byte wrong.
     CorruptNextFlashProg,
+    /// SPEC_ACKs are lost (or no longer lost) on the way out, as on a noisy line: the
+    /// unit still applies and stores each spec and keeps broadcasting.
+    DropSpecAcks(bool),
 }
 
 impl SimCommand {
@@ -126,6 +129,7 @@ impl SimCommand {
             EventAction::SystemFault => SimCommand::SystemFault,
             EventAction::PowerCycle => SimCommand::PowerCycle,
             EventAction::WarmReset => SimCommand::WarmReset,
+            EventAction::DropSpecAcks { on } => SimCommand::DropSpecAcks(on),
         }
     }
 }
@@ -154,6 +158,8 @@ pub struct WireStats {
     pub tx_bytes: u64,
     /// Bytes dropped because the unit was silent.
     pub silenced_bytes: u64,
+    /// SPEC_ACKs not sent because they are being dropped (the spec was applied).
+    pub spec_acks_dropped: u64,
 }
 
 /// A snapshot of the unit for tests and tools.
@@ -268,6 +274,8 @@ pub struct Unit {
     next_slow: Instant,
     next_fast: Instant,
     silent_until: Option<Instant>,
+    /// SPEC_ACKs are lost on the way out (the scenario's `[line]`, or a command).
+    drop_spec_acks: bool,
 
     // The scenario's timeline.
     events: Vec<(Duration, SimCommand)>,
@@ -395,6 +403,7 @@ impl Unit {
             next_slow: now,
             next_fast: now,
             silent_until: None,
+            drop_spec_acks: scenario.line.drop_spec_acks,
             events,
             loop_after: scenario
                 .loop_after
@@ -747,6 +756,11 @@ impl Unit {
             }
             Err(e) => Some(e),
         };
+        if self.drop_spec_acks {
+            // The spec above is applied and stored; only its answer is lost.
+            self.wire.spec_acks_dropped += 1;
+            return;
+        }
         self.reply(cnt, SpecAck { device_id, error }, now);
     }
 
@@ -856,6 +870,13 @@ impl Unit {
             SimCommand::Silent(d) => {
                 self.log(format!("going silent for {:.1} s", d.as_secs_f64()));
                 self.silent_until = Some(now + d);
+            }
+            SimCommand::DropSpecAcks(on) => {
+                self.log(format!(
+                    "{} SPEC_ACKs",
+                    if on { "dropping" } else { "sending" }
+                ));
+                self.drop_spec_acks = on;
             }
             SimCommand::Garbage(bytes) => self.emit_raw(&bytes, now),
             SimCommand::GarbageRandom(n) => {
@@ -1615,6 +1636,39 @@ mod tests {
         ));
         let c = b.send(DeviceSpecQuery { device_id: 99 });
         assert_eq!(b.reply_to(c), None, "Table 18 note 1: ignored");
+    }
+
+    #[test]
+    fn dropped_spec_acks_still_apply_the_spec_and_broadcasts_go_on() {
+        let mut b = Bench::new("[line]\ndrop_spec_acks = true\n");
+        let spec = DeviceSpec {
+            device_id: 9,
+            circuit_breaker: 3,
+            switch_id: SwitchId::Input(2),
+            current_fault: false,
+        };
+        let cnt = b.send(spec);
+        b.run(1100);
+        assert_eq!(b.reply_to(cnt), None, "no SPEC_ACK on the wire");
+        assert_eq!(b.stats().config.devices[9], spec, "but the spec is stored");
+        assert_eq!(b.stats().wire.spec_acks_dropped, 1);
+        assert!(b.count(SystemStatus::ID) >= 1, "broadcasts carry on");
+        // A query is still answered with what it holds.
+        let q = b.send(DeviceSpecQuery { device_id: 9 });
+        assert_eq!(b.reply_to(q), Some(Message::DeviceSpec(spec)));
+        // Told to stop dropping, it answers again.
+        b.apply(SimCommand::DropSpecAcks(false));
+        let again = b.send(DeviceSpec {
+            circuit_breaker: 4,
+            ..spec
+        });
+        assert_eq!(
+            b.reply_to(again),
+            Some(Message::SpecAck(SpecAck {
+                device_id: 9,
+                error: None
+            }))
+        );
     }
 
     #[test]

@@ -65,16 +65,23 @@ fn row(c: &Circuit) -> Row<'static> {
             theme::state(c.state),
         )),
         live(values::amps(c.amps), c.amps.is_some()).style(Style::new()),
-        Cell::from(
-            c.breaker
-                .map_or_else(|| values::BLANK.into(), |b| format!("{b}A")),
-        ),
-        Cell::from(match c.kind {
-            CircuitKind::Starter => "VP-X".into(),
-            CircuitKind::Flaps => "flap".into(),
-            CircuitKind::Trim(_) => "trim".into(),
-            _ => values::switch_short(c.switch),
-        }),
+        // A spec left unknown by an unanswered write is "?" until re-read, never
+        // the value from before the write.
+        if c.spec_unknown {
+            Cell::from(Span::styled("?A", theme::caution()))
+        } else {
+            Cell::from(
+                c.breaker
+                    .map_or_else(|| values::BLANK.into(), |b| format!("{b}A")),
+            )
+        },
+        match c.kind {
+            CircuitKind::Starter => Cell::from("VP-X"),
+            CircuitKind::Flaps => Cell::from("flap"),
+            CircuitKind::Trim(_) => Cell::from("trim"),
+            _ if c.spec_unknown => Cell::from(Span::styled("?", theme::caution())),
+            _ => Cell::from(values::switch_short(c.switch)),
+        },
     ])
 }
 

@@ -144,6 +144,11 @@ pub fn render_form(
                 None if f == state::Field::DeviceId => {
                     Span::styled(model.display_name(sv.forms.device.device_id), theme::info())
                 }
+                None if state::field_setting(f, page, sv.forms.device.device_id)
+                    .is_some_and(|s| model.is_unknown(s)) =>
+                {
+                    Span::styled(state::unknown_text(f), theme::caution())
+                }
                 None => Span::styled("?", theme::unknown()),
             };
             let row = Row::new(vec![
@@ -203,8 +208,36 @@ pub fn status_span(s: &WriteStatus) -> Span<'static> {
             theme::alert(),
         ),
         WriteStatus::NoAnswer => Span::styled(
-            "no answer after 3 tries: not saved".to_string(),
+            "no answer after 3 tries: what the unit holds is unknown, re-reading…",
             theme::alert(),
+        ),
+        WriteStatus::AckedUnread => Span::styled(
+            "acknowledged, but the re-read went unanswered: unknown, re-reading…",
+            theme::alert(),
+        ),
+        WriteStatus::ReadBack {
+            holds,
+            matches,
+            acked,
+        } => Span::styled(
+            format!(
+                "{}; re-read: the unit holds {holds}{}",
+                if *acked {
+                    "acknowledged"
+                } else {
+                    "no answer to the write"
+                },
+                if *matches {
+                    " (what was sent)"
+                } else {
+                    ", not what was sent"
+                }
+            ),
+            if *matches {
+                theme::on_off(true)
+            } else {
+                theme::caution()
+            },
         ),
         WriteStatus::NotSent => {
             Span::styled("not sent (an earlier write failed)", theme::unknown())

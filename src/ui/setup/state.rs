@@ -8,7 +8,7 @@
 
 use std::time::Duration;
 
-use crate::model::Model;
+use crate::model::{Model, Setting, TrimKind};
 use crate::protocol::defaults;
 use crate::protocol::device::{self, EFIS, STARTER, enable_flag_allowed};
 use crate::protocol::message::{
@@ -426,6 +426,51 @@ impl Held {
     }
 }
 
+/// The unit's setting a field shows, so a setting left unknown by an unanswered
+/// write can be marked so on every field it covers.
+pub fn field_setting(field: Field, page: Page, device_id: u8) -> Option<Setting> {
+    use Field::*;
+    Some(match field {
+        Breaker | Switch | CurrentFault => Setting::DeviceSpec(device_id),
+        Name => Setting::Name(device_id),
+        Shown => Setting::Enable(device_id),
+        Overvoltage | SecondaryAlternator => Setting::System,
+        FlapEnabled
+        | FlapMode
+        | FlapPolarity
+        | FlapUp
+        | FlapDown
+        | FlapMid1
+        | FlapMid2
+        | FlapBreaker
+        | FlapOverspeedPosition
+        | FlapMaxSpeed
+        | FlapEndpointDuration => Setting::Flaps,
+        TrimEnabled | TrimPolarity | TrimUp | TrimDown | TrimNeutral | TrimPower | TrimSpeed => {
+            Setting::Trim(if page == Page::RollTrim {
+                TrimKind::Roll
+            } else {
+                TrimKind::Pitch
+            })
+        }
+        WigWagOne | WigWagTwo | WigWagWarmUp | WigWagSpeed => Setting::WigWag,
+        _ => return None,
+    })
+}
+
+/// What an unknown value being re-read looks like: its unit with a question mark.
+pub fn unknown_text(field: Field) -> String {
+    use Field::*;
+    let unit = match field {
+        Breaker | FlapBreaker => " A",
+        FlapMaxSpeed | TrimSpeed | WigWagSpeed => " kt",
+        FlapEndpointDuration | WigWagWarmUp => " s",
+        TrimPower => " %",
+        _ => "",
+    };
+    format!("?{unit} re-reading…")
+}
+
 /// A pin in words: "5A-3 (device 6)".
 pub fn pin_text(id: u8) -> String {
     match device::device(id) {
@@ -541,8 +586,18 @@ pub enum WriteStatus {
     Saved { holds: String, matches: bool },
     /// The unit, or this program's §6.2 check before sending, refused it.
     Refused { why: String, by_unit: bool },
-    /// No answer after every retry.
+    /// No answer after every retry: the unit may or may not have stored it, so what
+    /// it holds is unknown until the re-read (still going) is answered.
     NoAnswer,
+    /// Acknowledged, but the re-read went unanswered: unknown, still re-reading.
+    AckedUnread,
+    /// Left unknown, then a re-read answered: what the unit holds, whether it is what
+    /// was sent, and whether the write itself was acknowledged.
+    ReadBack {
+        holds: String,
+        matches: bool,
+        acked: bool,
+    },
     /// Not sent because an earlier write failed.
     NotSent,
 }

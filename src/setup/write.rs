@@ -7,41 +7,47 @@
 //! re-read is its acknowledgement. Nothing here blocks or reads a clock; the app calls
 //! [`WriteQueue::tick`] with `now` and sends what comes back.
 //!
+//! A write that goes unanswered did not leave the setting "unchanged": the unit may
+//! have stored it and lost only its answer. So every path ends in one of two places:
+//! the unit said what it holds (a re-read answered), or the setting is marked unknown
+//! in the model ([`Model::mark_unknown`]) and the app's [`Rereader`] asks for it until
+//! the unit answers, when the write's line says what it holds. No path ends in a value
+//! nobody confirmed.
+//!
 //! One write is in flight at a time because SPEC_ACK says only which device it is for:
 //! DEVICE_SPEC and DEVICE_NAME of one pin are answered alike, so two in flight could
 //! not be told apart. A failed write stops the rest, as a restore does, so the screen
 //! can say exactly what was applied.
+//!
+//! [`Rereader`]: crate::exchange::Rereader
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
+use crate::exchange::{Try, Verdict};
 use crate::link::request::{setting_name, spec_ack_id};
-use crate::model::Model;
+use crate::model::{Model, Setting};
 use crate::protocol::config::UnitConfig;
-use crate::protocol::device::{FLAPS, SYSTEM_SPEC_ID, TRIM_P, TRIM_R, WIG_WAG_SPEC_ID};
-use crate::protocol::message::{
-    DeviceEnable, DeviceNameQuery, DeviceSpecQuery, EnableFlag, Message, TrimType,
-};
+use crate::protocol::device::{TRIM_P, TRIM_R};
+use crate::protocol::message::{EnableFlag, Message, TrimType};
 use crate::protocol::validate;
 use crate::ui::setup::state::{WriteLine, WriteStatus, switch_text};
 
-/// How long to wait for a SPEC_ACK or a re-read answer before sending again. The unit
-/// answers within a few frames; a second is generous and still quick to give up.
-pub const ANSWER_TIMEOUT: Duration = Duration::from_secs(1);
-/// Sends of one write (or one re-read) before "no answer".
-pub const TRIES: u8 = 3;
+pub use crate::exchange::{ANSWER_TIMEOUT, TRIES};
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum Phase {
     Queued,
-    Sending {
-        attempt: u8,
-        sent_at: Instant,
-    },
+    Sending(Try),
     Rereading {
-        attempt: u8,
-        sent_at: Instant,
+        try_: Try,
         /// `None`: acknowledged; `Some`: the unit's refusal in words.
         refused: Option<String>,
+    },
+    /// The unit did not answer: the model holds the setting as unknown since `since`
+    /// and the app re-reads it; this line waits for that answer.
+    Unknown {
+        since: Instant,
+        acked: bool,
     },
     Done(WriteStatus),
 }
@@ -89,19 +95,32 @@ impl WriteQueue {
             .collect();
     }
 
+    /// Whether a write is still waiting for the unit's SPEC_ACK or re-read. A write
+    /// left unknown is not: its re-read goes on in the background while the person
+    /// carries on.
     pub fn busy(&self) -> bool {
         self.items
             .iter()
-            .any(|i| !matches!(i.phase, Phase::Done(_)))
+            .any(|i| !matches!(i.phase, Phase::Done(_) | Phase::Unknown { .. }))
     }
 
-    /// Whether every write of the batch was acknowledged.
+    /// Whether every write has ended, a re-read of one left unknown included.
+    pub fn settled(&self) -> bool {
+        self.items.iter().all(|i| matches!(i.phase, Phase::Done(_)))
+    }
+
+    /// Whether the unit holds every write of the batch: acknowledged, or read back
+    /// as sent after its answer was lost.
     pub fn all_saved(&self) -> bool {
         !self.items.is_empty()
-            && self
-                .items
-                .iter()
-                .all(|i| matches!(i.phase, Phase::Done(WriteStatus::Saved { .. })))
+            && self.items.iter().all(|i| {
+                matches!(
+                    i.phase,
+                    Phase::Done(
+                        WriteStatus::Saved { .. } | WriteStatus::ReadBack { matches: true, .. }
+                    )
+                )
+            })
     }
 
     pub fn lines(&self) -> Vec<WriteLine> {
@@ -111,11 +130,13 @@ impl WriteQueue {
                 what: setting_name(&i.message),
                 status: match &i.phase {
                     Phase::Queued => WriteStatus::Queued,
-                    Phase::Sending { attempt, .. } => WriteStatus::Sending {
-                        attempt: *attempt,
-                        of: TRIES,
+                    Phase::Sending(t) => WriteStatus::Sending {
+                        attempt: t.attempt,
+                        of: t.of(),
                     },
                     Phase::Rereading { .. } => WriteStatus::Rereading,
+                    Phase::Unknown { acked: false, .. } => WriteStatus::NoAnswer,
+                    Phase::Unknown { acked: true, .. } => WriteStatus::AckedUnread,
                     Phase::Done(s) => s.clone(),
                 },
             })
@@ -124,22 +145,33 @@ impl WriteQueue {
 
     /// When `tick` must run again for a timeout.
     pub fn next_deadline(&self) -> Option<Instant> {
-        self.items.iter().find_map(|i| match i.phase {
-            Phase::Sending { sent_at, .. } | Phase::Rereading { sent_at, .. } => {
-                Some(sent_at + ANSWER_TIMEOUT)
-            }
+        self.items.iter().find_map(|i| match &i.phase {
+            Phase::Sending(t) | Phase::Rereading { try_: t, .. } => Some(t.deadline()),
             _ => None,
         })
     }
 
     /// Moves the batch on at `now` given what the model has heard; returns the
-    /// messages to send now.
-    pub fn tick(&mut self, model: &Model, now: Instant) -> Vec<Message> {
+    /// messages to send now. A write that goes unanswered marks its setting unknown
+    /// in `model`.
+    pub fn tick(&mut self, model: &mut Model, now: Instant) -> Vec<Message> {
         let mut out = Vec::new();
+        // A line left unknown says what the unit holds once a re-read is answered.
+        for item in &mut self.items {
+            if let Phase::Unknown { since, acked } = item.phase
+                && let Some((holds, matches)) = held_after(model, &item.message, since)
+            {
+                item.phase = Phase::Done(WriteStatus::ReadBack {
+                    holds,
+                    matches,
+                    acked,
+                });
+            }
+        }
         while let Some(idx) = self
             .items
             .iter()
-            .position(|i| !matches!(i.phase, Phase::Done(_)))
+            .position(|i| !matches!(i.phase, Phase::Done(_) | Phase::Unknown { .. }))
         {
             let item = &mut self.items[idx];
             let m = item.message;
@@ -152,98 +184,105 @@ impl WriteQueue {
                         // unit handles in order.
                         out.push(reread_query(&m));
                         Phase::Rereading {
-                            attempt: 1,
-                            sent_at: now,
+                            try_: Try::first(now),
                             refused: None,
                         }
                     } else {
-                        Phase::Sending {
-                            attempt: 1,
-                            sent_at: now,
-                        }
+                        Phase::Sending(Try::first(now))
                     }
                 }
-                Phase::Sending { attempt, sent_at } => match ack_for(model, &m, sent_at) {
-                    Some(error) => {
-                        out.push(reread_query(&m));
-                        Phase::Rereading {
-                            attempt: 1,
-                            sent_at: now,
-                            refused: error.map(|e| {
-                                let cfg = unit_config(model).0;
-                                format!("{}: {}", e.description(), validate::explain(e, &cfg, &m))
-                            }),
+                Phase::Sending(mut t) => {
+                    let ack = ack_for(model, &m, t.sent_at);
+                    match t.judge(ack.is_some(), now) {
+                        Verdict::Answered => {
+                            out.push(reread_query(&m));
+                            Phase::Rereading {
+                                try_: Try::first(now),
+                                refused: ack.flatten().map(|e| refusal(e, model, &m)),
+                            }
                         }
-                    }
-                    None if now >= sent_at + ANSWER_TIMEOUT && attempt < TRIES => {
-                        out.push(m);
-                        Phase::Sending {
-                            attempt: attempt + 1,
-                            sent_at: now,
-                        }
-                    }
-                    None if now >= sent_at + ANSWER_TIMEOUT => Phase::Done(WriteStatus::NoAnswer),
-                    None => Phase::Sending { attempt, sent_at },
-                },
-                Phase::Rereading {
-                    attempt,
-                    sent_at,
-                    refused,
-                } => match held_after(model, &m, sent_at) {
-                    Some((holds, matches)) => Phase::Done(match refused {
-                        Some(why) => WriteStatus::Refused {
-                            why: format!("{why}; the unit holds {holds}"),
-                            by_unit: true,
-                        },
-                        None if is_enable(&m) && !matches => WriteStatus::Refused {
-                            why: format!("the unit still says {holds}"),
-                            by_unit: true,
-                        },
-                        None => WriteStatus::Saved { holds, matches },
-                    }),
-                    None if now >= sent_at + ANSWER_TIMEOUT && attempt < TRIES => {
-                        if is_enable(&m) {
+                        Verdict::Resend => {
                             out.push(m);
+                            Phase::Sending(t)
                         }
-                        out.push(reread_query(&m));
-                        Phase::Rereading {
-                            attempt: attempt + 1,
-                            sent_at: now,
-                            refused,
-                        }
+                        Verdict::NoAnswer => unknown(model, &m, now, false),
+                        Verdict::Waiting => Phase::Sending(t),
                     }
-                    None if now >= sent_at + ANSWER_TIMEOUT => Phase::Done(match refused {
-                        Some(why) => WriteStatus::Refused { why, by_unit: true },
-                        // DEVICE_ENABLE is only known set by its answer.
-                        None if is_enable(&m) => WriteStatus::NoAnswer,
-                        None => WriteStatus::Saved {
-                            holds: "(acknowledged; the re-read got no answer)".into(),
-                            matches: false,
-                        },
-                    }),
-                    None => Phase::Rereading {
-                        attempt,
-                        sent_at,
-                        refused,
-                    },
-                },
-                Phase::Done(s) => Phase::Done(s),
+                }
+                Phase::Rereading { mut try_, refused } => {
+                    let held = held_after(model, &m, try_.sent_at);
+                    match try_.judge(held.is_some(), now) {
+                        Verdict::Answered => {
+                            let (holds, matches) = held.unwrap_or_default();
+                            Phase::Done(match refused {
+                                Some(why) => WriteStatus::Refused {
+                                    why: format!("{why}; the unit holds {holds}"),
+                                    by_unit: true,
+                                },
+                                None if is_enable(&m) && !matches => WriteStatus::Refused {
+                                    why: format!("the unit still says {holds}"),
+                                    by_unit: true,
+                                },
+                                None => WriteStatus::Saved { holds, matches },
+                            })
+                        }
+                        Verdict::Resend => {
+                            if is_enable(&m) {
+                                out.push(m);
+                            }
+                            out.push(reread_query(&m));
+                            Phase::Rereading { try_, refused }
+                        }
+                        // Refused: the unit kept what it held, which the model still
+                        // has from before (a refusal changes nothing).
+                        Verdict::NoAnswer if refused.is_some() => {
+                            Phase::Done(WriteStatus::Refused {
+                                why: refused.unwrap_or_default(),
+                                by_unit: true,
+                            })
+                        }
+                        // DEVICE_ENABLE is only known set by its answer; an
+                        // acknowledged spec is not known held until it is read.
+                        Verdict::NoAnswer => unknown(model, &m, now, !is_enable(&m)),
+                        Verdict::Waiting => Phase::Rereading { try_, refused },
+                    }
+                }
+                p @ (Phase::Done(_) | Phase::Unknown { .. }) => p,
             };
             let failed = matches!(
                 item.phase,
-                Phase::Done(WriteStatus::NoAnswer | WriteStatus::Refused { .. })
+                Phase::Unknown { .. } | Phase::Done(WriteStatus::Refused { .. })
             );
             if failed {
                 for later in &mut self.items[idx + 1..] {
                     later.phase = Phase::Done(WriteStatus::NotSent);
                 }
             }
-            if !matches!(self.items[idx].phase, Phase::Done(_)) || self.items[idx].phase == before {
+            let settled = matches!(
+                self.items[idx].phase,
+                Phase::Done(_) | Phase::Unknown { .. }
+            );
+            if !settled || self.items[idx].phase == before {
                 break;
             }
         }
         out
     }
+}
+
+/// The write went unanswered: nobody knows what the unit holds until it is asked.
+fn unknown(model: &mut Model, m: &Message, now: Instant, acked: bool) -> Phase {
+    if let Some(setting) = Setting::written_by(m) {
+        model.mark_unknown(setting, now);
+    }
+    Phase::Unknown { since: now, acked }
+}
+
+/// The unit's refusal in words: Table 20's words once, then why, with the range of
+/// this pin (Appendix B) or of this motor.
+fn refusal(e: crate::protocol::message::SpecAckError, model: &Model, m: &Message) -> String {
+    let cfg = unit_config(model).0;
+    format!("{}: {}", e.description(), validate::explain(e, &cfg, m))
 }
 
 fn is_enable(m: &Message) -> bool {
@@ -272,39 +311,7 @@ fn ack_for(
 
 /// The query whose answer shows what the unit holds after `m`.
 pub fn reread_query(m: &Message) -> Message {
-    match *m {
-        Message::DeviceSpec(s) => DeviceSpecQuery {
-            device_id: s.device_id,
-        }
-        .into(),
-        Message::DeviceName(n) => DeviceNameQuery {
-            device_id: n.device_id,
-        }
-        .into(),
-        Message::DeviceEnable(e) => DeviceEnable {
-            device_id: e.device_id,
-            flag: EnableFlag::Query,
-        }
-        .into(),
-        Message::SystemSpec(_) => DeviceSpecQuery {
-            device_id: SYSTEM_SPEC_ID,
-        }
-        .into(),
-        Message::WigWagSpec(_) => DeviceSpecQuery {
-            device_id: WIG_WAG_SPEC_ID,
-        }
-        .into(),
-        Message::FlapSpec(_) => DeviceSpecQuery { device_id: FLAPS }.into(),
-        Message::TrimSpec(t) => DeviceSpecQuery {
-            device_id: if t.trim_type == TrimType::Roll {
-                TRIM_R
-            } else {
-                TRIM_P
-            },
-        }
-        .into(),
-        m => m,
-    }
+    Setting::written_by(m).map_or(*m, Setting::query)
 }
 
 /// What the unit holds for `m`'s setting, heard after `since`, in words, and whether
@@ -463,8 +470,12 @@ fn pin_short(id: u8) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::time::Duration;
+
     use crate::model::Source;
     use crate::protocol::Packet;
+    use crate::protocol::device::FLAPS;
+    use crate::protocol::message::{DeviceEnable, DeviceSpecQuery};
     use crate::protocol::message::{
         DeviceName, DeviceSpec, FlapSpec, SpecAck, SpecAckError, SwitchId, TrimSpec,
     };
@@ -498,7 +509,7 @@ mod tests {
         let mut m = model();
         let mut q = WriteQueue::default();
         q.start(vec![spec9().into()]);
-        assert_eq!(q.tick(&m, t0), vec![Message::DeviceSpec(spec9())]);
+        assert_eq!(q.tick(&mut m, t0), vec![Message::DeviceSpec(spec9())]);
         assert_eq!(
             q.lines()[0].status,
             WriteStatus::Sending { attempt: 1, of: 3 }
@@ -512,7 +523,7 @@ mod tests {
                 error: None,
             },
         );
-        assert!(q.tick(&m, ms(t0, 60)).is_empty());
+        assert!(q.tick(&mut m, ms(t0, 60)).is_empty());
         assert!(matches!(q.lines()[0].status, WriteStatus::Sending { .. }));
         hear(
             &mut m,
@@ -523,13 +534,13 @@ mod tests {
             },
         );
         assert_eq!(
-            q.tick(&m, ms(t0, 90)),
+            q.tick(&mut m, ms(t0, 90)),
             vec![Message::DeviceSpecQuery(DeviceSpecQuery { device_id: 9 })]
         );
         assert_eq!(q.lines()[0].status, WriteStatus::Rereading);
-        assert!(q.tick(&m, ms(t0, 100)).is_empty());
+        assert!(q.tick(&mut m, ms(t0, 100)).is_empty());
         hear(&mut m, ms(t0, 120), spec9());
-        q.tick(&m, ms(t0, 130));
+        q.tick(&mut m, ms(t0, 130));
         assert_eq!(
             q.lines()[0].status,
             WriteStatus::Saved {
@@ -555,34 +566,37 @@ mod tests {
         );
         let mut q = WriteQueue::default();
         q.start(vec![spec9().into()]);
-        q.tick(&m, ms(t0, 10));
-        q.tick(&m, ms(t0, 20));
+        q.tick(&mut m, ms(t0, 10));
+        q.tick(&mut m, ms(t0, 20));
         assert!(matches!(q.lines()[0].status, WriteStatus::Sending { .. }));
     }
 
     #[test]
     fn silence_retries_three_times_then_says_no_answer_and_stops_the_rest() {
         let t0 = Instant::now();
-        let m = model();
+        let mut m = model();
         let mut q = WriteQueue::default();
         q.start(vec![
             spec9().into(),
             DeviceName::new(9, "GPS 1").unwrap().into(),
         ]);
-        assert_eq!(q.tick(&m, t0).len(), 1);
+        assert_eq!(q.tick(&mut m, t0).len(), 1);
         assert_eq!(q.next_deadline(), Some(t0 + ANSWER_TIMEOUT));
-        assert!(q.tick(&m, ms(t0, 999)).is_empty());
-        assert_eq!(q.tick(&m, ms(t0, 1000)), vec![Message::DeviceSpec(spec9())]);
+        assert!(q.tick(&mut m, ms(t0, 999)).is_empty());
+        assert_eq!(
+            q.tick(&mut m, ms(t0, 1000)),
+            vec![Message::DeviceSpec(spec9())]
+        );
         assert_eq!(
             q.lines()[0].status,
             WriteStatus::Sending { attempt: 2, of: 3 }
         );
-        assert_eq!(q.tick(&m, ms(t0, 2000)).len(), 1);
+        assert_eq!(q.tick(&mut m, ms(t0, 2000)).len(), 1);
         assert_eq!(
             q.lines()[0].status,
             WriteStatus::Sending { attempt: 3, of: 3 }
         );
-        assert!(q.tick(&m, ms(t0, 3000)).is_empty());
+        assert!(q.tick(&mut m, ms(t0, 3000)).is_empty());
         assert_eq!(q.lines()[0].status, WriteStatus::NoAnswer);
         assert_eq!(q.lines()[1].status, WriteStatus::NotSent);
         assert!(!q.busy());
@@ -604,7 +618,7 @@ mod tests {
         };
         let mut q = WriteQueue::default();
         q.start(vec![bad.into()]);
-        q.tick(&m, ms(t0, 10));
+        q.tick(&mut m, ms(t0, 10));
         hear(
             &mut m,
             ms(t0, 40),
@@ -613,9 +627,9 @@ mod tests {
                 error: Some(SpecAckError::InvalidBreaker),
             },
         );
-        q.tick(&m, ms(t0, 50));
+        q.tick(&mut m, ms(t0, 50));
         hear(&mut m, ms(t0, 70), kept);
-        q.tick(&m, ms(t0, 80));
+        q.tick(&mut m, ms(t0, 80));
         match &q.lines()[0].status {
             WriteStatus::Refused { why, by_unit: true } => {
                 assert!(
@@ -645,7 +659,7 @@ mod tests {
         };
         let mut q = WriteQueue::default();
         q.start(vec![roll.into(), flap.into()]);
-        q.tick(&m, t0);
+        q.tick(&mut m, t0);
         hear(
             &mut m,
             ms(t0, 10),
@@ -654,7 +668,7 @@ mod tests {
                 error: None,
             },
         );
-        q.tick(&m, ms(t0, 20));
+        q.tick(&mut m, ms(t0, 20));
         assert!(
             matches!(q.lines()[0].status, WriteStatus::Sending { .. }),
             "pitch's ack is not roll's"
@@ -668,14 +682,14 @@ mod tests {
             },
         );
         assert_eq!(
-            q.tick(&m, ms(t0, 40)),
+            q.tick(&mut m, ms(t0, 40)),
             vec![Message::DeviceSpecQuery(DeviceSpecQuery {
                 device_id: TRIM_R
             })]
         );
         hear(&mut m, ms(t0, 50), roll);
         // The roll write is saved and the flap write goes out in the same tick.
-        assert_eq!(q.tick(&m, ms(t0, 60)), vec![Message::FlapSpec(flap)]);
+        assert_eq!(q.tick(&mut m, ms(t0, 60)), vec![Message::FlapSpec(flap)]);
         hear(
             &mut m,
             ms(t0, 70),
@@ -684,9 +698,9 @@ mod tests {
                 error: None,
             },
         );
-        q.tick(&m, ms(t0, 80));
+        q.tick(&mut m, ms(t0, 80));
         hear(&mut m, ms(t0, 90), flap);
-        q.tick(&m, ms(t0, 100));
+        q.tick(&mut m, ms(t0, 100));
         assert!(q.all_saved());
     }
 
@@ -701,7 +715,7 @@ mod tests {
         let mut q = WriteQueue::default();
         q.start(vec![set.into()]);
         assert_eq!(
-            q.tick(&m, t0),
+            q.tick(&mut m, t0),
             vec![
                 Message::DeviceEnable(set),
                 Message::DeviceEnable(DeviceEnable {
@@ -718,18 +732,208 @@ mod tests {
                 flag: EnableFlag::Enabled,
             },
         );
-        q.tick(&m, ms(t0, 30));
+        q.tick(&mut m, ms(t0, 30));
         assert!(
             matches!(&q.lines()[0].status, WriteStatus::Refused { why, .. } if why == "the unit still says shown")
         );
 
         let mut q = WriteQueue::default();
         q.start(vec![set.into()]);
-        q.tick(&m, ms(t0, 100));
+        q.tick(&mut m, ms(t0, 100));
         for s in [1100, 2100, 3100] {
-            q.tick(&m, ms(t0, s));
+            q.tick(&mut m, ms(t0, s));
         }
         assert_eq!(q.lines()[0].status, WriteStatus::NoAnswer);
+    }
+
+    #[test]
+    fn a_lost_ack_leaves_the_breaker_unknown_until_the_reread_says_what_the_unit_holds() {
+        let t0 = Instant::now();
+        let mut m = model();
+        let old = DeviceSpec {
+            circuit_breaker: 4,
+            ..spec9()
+        };
+        hear(&mut m, t0, old);
+        let new = DeviceSpec {
+            circuit_breaker: 3,
+            ..spec9()
+        };
+        let mut q = WriteQueue::default();
+        q.start(vec![new.into()]);
+        q.tick(&mut m, t0);
+        q.tick(&mut m, ms(t0, 1000));
+        q.tick(&mut m, ms(t0, 2000));
+        assert!(q.tick(&mut m, ms(t0, 3000)).is_empty());
+        // Not "unchanged": the old 4 A is gone from the model, the line says unknown.
+        assert_eq!(q.lines()[0].status, WriteStatus::NoAnswer);
+        assert!(m.is_unknown(Setting::DeviceSpec(9)));
+        assert_eq!(m.device_specs[9], None);
+        let row = m
+            .circuits(ms(t0, 3000))
+            .into_iter()
+            .find(|c| c.id == 9)
+            .unwrap();
+        assert_eq!((row.breaker, row.spec_unknown), (None, true));
+        assert!(!q.busy(), "the person can carry on while it is re-read");
+        // The unit answers a re-read with what it stored.
+        hear(&mut m, ms(t0, 3100), new);
+        q.tick(&mut m, ms(t0, 3110));
+        assert_eq!(
+            q.lines()[0].status,
+            WriteStatus::ReadBack {
+                holds: "3 A, switch 3, current fault on".into(),
+                matches: true,
+                acked: false
+            }
+        );
+        assert!(!m.is_unknown(Setting::DeviceSpec(9)));
+    }
+
+    #[test]
+    fn a_name_and_a_trim_spec_left_unknown_are_marked_so_in_the_model() {
+        let t0 = Instant::now();
+        let mut m = model();
+        hear(&mut m, t0, DeviceName::new(9, "GPS 1").unwrap());
+        let mut q = WriteQueue::default();
+        q.start(vec![DeviceName::new(9, "GPS 2").unwrap().into()]);
+        for s in [0, 1000, 2000, 3000] {
+            q.tick(&mut m, ms(t0, s));
+        }
+        assert!(m.is_unknown(Setting::Name(9)));
+        assert_eq!(m.display_name(9), "? (name re-reading…)");
+        let roll = TrimSpec {
+            up: 10,
+            ..crate::protocol::defaults::trim_spec(TrimType::Roll)
+        };
+        q.start(vec![roll.into()]);
+        // Acknowledged, but the re-read goes unanswered three times: still unknown.
+        q.tick(&mut m, ms(t0, 4000));
+        hear(
+            &mut m,
+            ms(t0, 4010),
+            SpecAck {
+                device_id: TRIM_R,
+                error: None,
+            },
+        );
+        q.tick(&mut m, ms(t0, 4020));
+        for s in [5020, 6020, 7020] {
+            q.tick(&mut m, ms(t0, s));
+        }
+        assert_eq!(q.lines()[0].status, WriteStatus::AckedUnread);
+        assert!(m.is_unknown(Setting::Trim(crate::model::TrimKind::Roll)));
+        assert_eq!(m.roll_trim_spec, None);
+    }
+
+    /// Every way a write can go, on the fake clock: whether the SPEC_ACK comes (and
+    /// refuses), whether each re-read is answered. Each ends either with the unit's
+    /// own answer on the line, or with the setting unknown in the model and a line
+    /// that says so; never with a value nobody confirmed.
+    #[test]
+    fn every_path_ends_in_what_the_unit_holds_or_unknown_and_rereading() {
+        #[derive(Debug, Clone, Copy)]
+        enum Ack {
+            None,
+            Ok,
+            Refused,
+        }
+        for ack in [Ack::None, Ack::Ok, Ack::Refused] {
+            for reread_answered in [false, true] {
+                for late_answer in [false, true] {
+                    let t0 = Instant::now();
+                    let mut m = model();
+                    let kept = DeviceSpec {
+                        circuit_breaker: 2,
+                        ..spec9()
+                    };
+                    hear(&mut m, t0, kept);
+                    let sent = DeviceSpec {
+                        circuit_breaker: 4,
+                        ..spec9()
+                    };
+                    let mut q = WriteQueue::default();
+                    q.start(vec![sent.into()]);
+                    let mut t = 0;
+                    let mut unit_holds = kept;
+                    for _ in 0..40 {
+                        t += 250;
+                        let now = ms(t0, t);
+                        for out in q.tick(&mut m, now) {
+                            match (out, ack) {
+                                (Message::DeviceSpec(_), Ack::None) => unit_holds = sent,
+                                (Message::DeviceSpec(_), Ack::Ok) => {
+                                    unit_holds = sent;
+                                    hear(
+                                        &mut m,
+                                        now,
+                                        SpecAck {
+                                            device_id: 9,
+                                            error: None,
+                                        },
+                                    );
+                                }
+                                (Message::DeviceSpec(_), Ack::Refused) => hear(
+                                    &mut m,
+                                    now,
+                                    SpecAck {
+                                        device_id: 9,
+                                        error: Some(SpecAckError::InvalidBreaker),
+                                    },
+                                ),
+                                (Message::DeviceSpecQuery(_), _) if reread_answered => {
+                                    hear(&mut m, now, unit_holds)
+                                }
+                                _ => {}
+                            }
+                        }
+                    }
+                    if late_answer {
+                        // The app's re-reader is answered at last.
+                        hear(&mut m, ms(t0, t + 100), unit_holds);
+                        q.tick(&mut m, ms(t0, t + 200));
+                    }
+                    let case = format!("{ack:?} reread {reread_answered} late {late_answer}");
+                    let status = q.lines()[0].status.clone();
+                    let holds_words = describe(&unit_holds.into());
+                    match &status {
+                        WriteStatus::Saved {
+                            holds,
+                            matches: true,
+                        }
+                        | WriteStatus::ReadBack {
+                            holds,
+                            matches: true,
+                            ..
+                        } => {
+                            assert_eq!(holds, &holds_words, "{case}")
+                        }
+                        WriteStatus::Refused { why, by_unit: true } => {
+                            assert!(matches!(ack, Ack::Refused), "{case}");
+                            if reread_answered {
+                                assert!(why.ends_with(&holds_words), "{case}: {why}")
+                            }
+                            assert_eq!(m.device_specs[9].unwrap().value, kept, "{case}");
+                        }
+                        WriteStatus::NoAnswer | WriteStatus::AckedUnread => {
+                            assert!(!late_answer, "{case}");
+                            assert!(m.is_unknown(Setting::DeviceSpec(9)), "{case}");
+                            assert_eq!(m.device_specs[9], None, "{case}: no old value left");
+                        }
+                        s => panic!("{case}: ended in {s:?}"),
+                    }
+                    // Whatever the model shows now is what the unit said, or nothing.
+                    if let Some(h) = m.device_specs[9] {
+                        assert!(
+                            h.value == unit_holds || matches!(ack, Ack::Refused),
+                            "{case}: model shows {:?}",
+                            h.value
+                        );
+                    }
+                    assert!(!q.busy(), "{case}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -1,0 +1,142 @@
+//! One configuration setting of the unit, named so that it can be forgotten when a
+//! write to it goes unanswered and asked for again until the unit says what it holds.
+
+use super::TrimKind;
+use crate::protocol::device::{self, FLAPS, SYSTEM_SPEC_ID, TRIM_P, TRIM_R, WIG_WAG_SPEC_ID};
+use crate::protocol::message::{
+    DeviceEnable, DeviceNameQuery, DeviceSpecQuery, EnableFlag, Message, TrimType,
+};
+
+/// A setting the unit holds, by the message that sets it and the query that reads it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Setting {
+    /// DEVICE_SPEC of a pin 1–28 (ICD Table 13).
+    DeviceSpec(u8),
+    /// DEVICE_NAME (Table 21).
+    Name(u8),
+    /// DEVICE_ENABLE of a pin 4–28 (Table 23).
+    Enable(u8),
+    /// SYSTEM_SPEC (Table 14), read with DEVICE_SPEC_QUERY 253.
+    System,
+    /// FLAP_SPEC (Table 16), read with DEVICE_SPEC_QUERY 0.
+    Flaps,
+    /// TRIM_SPEC (Table 15), read with DEVICE_SPEC_QUERY 30 (pitch) or 29 (roll).
+    Trim(TrimKind),
+    /// WIG_WAG_SPEC (Table 17), read with DEVICE_SPEC_QUERY 254.
+    WigWag,
+}
+
+impl Setting {
+    /// The setting a write message sets.
+    pub fn written_by(m: &Message) -> Option<Setting> {
+        Some(match m {
+            Message::DeviceSpec(s) => Setting::DeviceSpec(s.device_id),
+            Message::DeviceName(n) => Setting::Name(n.device_id),
+            Message::DeviceEnable(e) if e.flag != EnableFlag::Query => Setting::Enable(e.device_id),
+            Message::SystemSpec(_) => Setting::System,
+            Message::FlapSpec(_) => Setting::Flaps,
+            Message::TrimSpec(t) => Setting::Trim(trim_kind(t.trim_type)),
+            Message::WigWagSpec(_) => Setting::WigWag,
+            _ => return None,
+        })
+    }
+
+    /// The setting an answer from the unit reports. The same messages as
+    /// [`written_by`](Self::written_by): the unit answers a query with the set message.
+    pub fn answered_by(m: &Message) -> Option<Setting> {
+        Setting::written_by(m)
+    }
+
+    /// The query whose answer says what the unit holds (ICD Tables 18, 22, 23).
+    pub fn query(self) -> Message {
+        let spec = |device_id| DeviceSpecQuery { device_id }.into();
+        match self {
+            Setting::DeviceSpec(id) => spec(id),
+            Setting::Name(id) => DeviceNameQuery { device_id: id }.into(),
+            Setting::Enable(id) => DeviceEnable {
+                device_id: id,
+                flag: EnableFlag::Query,
+            }
+            .into(),
+            Setting::System => spec(SYSTEM_SPEC_ID),
+            Setting::Flaps => spec(FLAPS),
+            Setting::Trim(TrimKind::Pitch) => spec(TRIM_P),
+            Setting::Trim(TrimKind::Roll) => spec(TRIM_R),
+            Setting::WigWag => spec(WIG_WAG_SPEC_ID),
+        }
+    }
+
+    /// "DEVICE_SPEC for 5A-3", "TRIM_SPEC (roll)", in the words of the write lines.
+    pub fn name(self) -> String {
+        let pin = |id: u8| {
+            device::device(id).map_or_else(|| format!("device {id}"), |d| d.system_name.into())
+        };
+        match self {
+            Setting::DeviceSpec(id) => format!("DEVICE_SPEC for {}", pin(id)),
+            Setting::Name(id) => format!("DEVICE_NAME for {}", pin(id)),
+            Setting::Enable(id) => format!("DEVICE_ENABLE for {}", pin(id)),
+            Setting::System => "SYSTEM_SPEC".into(),
+            Setting::Flaps => "FLAP_SPEC".into(),
+            Setting::Trim(TrimKind::Pitch) => "TRIM_SPEC (pitch)".into(),
+            Setting::Trim(TrimKind::Roll) => "TRIM_SPEC (roll)".into(),
+            Setting::WigWag => "WIG_WAG_SPEC".into(),
+        }
+    }
+}
+
+/// TRIM_SPEC's type byte: anything but roll is taken as pitch, as the model stores it.
+fn trim_kind(t: TrimType) -> TrimKind {
+    match t {
+        TrimType::Roll => TrimKind::Roll,
+        _ => TrimKind::Pitch,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::message::{DeviceName, DeviceSpec, SwitchId};
+
+    #[test]
+    fn each_write_is_read_back_with_its_own_query() {
+        let spec = DeviceSpec {
+            device_id: 9,
+            circuit_breaker: 3,
+            switch_id: SwitchId::Input(2),
+            current_fault: false,
+        };
+        let s = Setting::written_by(&spec.into()).unwrap();
+        assert_eq!(s, Setting::DeviceSpec(9));
+        // ICD Table 18: DEVICE_SPEC_QUERY carries the device id.
+        assert_eq!(s.query(), DeviceSpecQuery { device_id: 9 }.into());
+        let name = Setting::written_by(&DeviceName::new(9, "GPS").unwrap().into()).unwrap();
+        assert_eq!(name.query(), DeviceNameQuery { device_id: 9 }.into());
+        // Table 16 note: flaps are device 0; Table 15: roll trim 29, pitch 30.
+        assert_eq!(
+            Setting::Flaps.query(),
+            DeviceSpecQuery { device_id: 0 }.into()
+        );
+        assert_eq!(
+            Setting::Trim(TrimKind::Roll).query(),
+            DeviceSpecQuery { device_id: 29 }.into()
+        );
+        assert_eq!(
+            Setting::Trim(TrimKind::Pitch).query(),
+            DeviceSpecQuery { device_id: 30 }.into()
+        );
+        assert_eq!(
+            Setting::System.query(),
+            DeviceSpecQuery { device_id: 253 }.into()
+        );
+        assert_eq!(
+            Setting::WigWag.query(),
+            DeviceSpecQuery { device_id: 254 }.into()
+        );
+        // A DEVICE_ENABLE query sets nothing.
+        let q = DeviceEnable {
+            device_id: 9,
+            flag: EnableFlag::Query,
+        };
+        assert_eq!(Setting::written_by(&q.into()), None);
+    }
+}
