@@ -8,6 +8,7 @@
 //!   thing that must happen next (a motor resend, a query batch, a redraw). It
 //!   redraws only when the model or the view changed, or once a second for ages.
 
+mod background;
 mod gateway;
 mod options;
 pub mod queries;
@@ -31,10 +32,12 @@ use crate::link::{self, Connector, Link, LinkEvent, LinkHandle, RxItem};
 use crate::model::{Model, Source};
 use crate::protocol::message::Packet;
 use crate::sim::{self, SimHandle, SimOptions};
+use crate::ui::palette::ThemeChoice;
 use crate::ui::{
     self, state::Overlay, state::ReleaseMode, state::Screen, state::SortOrder, state::ViewState,
 };
 
+pub use background::choose_theme;
 pub use gateway::xfsp_setup;
 pub use options::{PageOptions, XfspOptions};
 pub use queries::{QueryPacer, connect_queries};
@@ -74,6 +77,8 @@ pub struct AppOptions {
     /// Longest continuous motor run before the key must be pressed again.
     pub max_run: Duration,
     pub release_mode: ReleaseMode,
+    /// The palette, chosen before the terminal was taken.
+    pub theme: ThemeChoice,
 }
 
 impl Default for AppOptions {
@@ -81,6 +86,7 @@ impl Default for AppOptions {
         AppOptions {
             max_run: Duration::from_secs(10),
             release_mode: ReleaseMode::AutoRepeat,
+            theme: ThemeChoice::default(),
         }
     }
 }
@@ -139,6 +145,7 @@ impl App {
         };
         let view = ViewState {
             release_mode: options.release_mode,
+            theme: options.theme,
             ..Default::default()
         };
         App {
@@ -412,7 +419,7 @@ impl App {
                 .map(|c| c.id);
         }
         terminal
-            .draw(|f| ui::render(f, &model, &self.view, now))
+            .draw(|f| ui::draw(f, &model, &self.view, now))
             .map_err(|e| std::io::Error::other(e.to_string()))?;
         self.drawn_revision = model.revision();
         drop(model);
@@ -627,9 +634,12 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
     };
     // A path that cannot be written fails here, before the terminal is taken.
     let recorder = args.record.as_deref().map(Recorder::create).transpose()?;
+    // Asked before the alternate screen, while the terminal still shows its own colours.
+    let theme = background::choose_theme(args.theme);
     let mut guard = TerminalGuard::enter()?;
     let options = AppOptions {
         max_run,
+        theme,
         release_mode: if guard.key_release {
             ReleaseMode::KeyRelease
         } else {

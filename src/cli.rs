@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// A terminal EFIS electrical page for the Vertical Power VP-X.
 ///
@@ -78,6 +78,22 @@ pub struct PageArgs {
     /// Longest continuous trim/flap run, in seconds, before the key must be pressed again.
     #[arg(long, default_value_t = 10.0, value_name = "SECONDS")]
     pub max_run: f64,
+
+    /// Colours: `dark` paints its own black background (the EFIS look), `light` is for
+    /// light terminals, `mono` uses no colour; `auto` asks the terminal for its
+    /// background (OSC 11) and picks dark or light, dark if it does not answer, and
+    /// mono when NO_COLOR is set.
+    #[arg(long, value_enum, default_value_t = ThemeArg::Auto)]
+    pub theme: ThemeArg,
+}
+
+/// `--theme`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ThemeArg {
+    Auto,
+    Dark,
+    Light,
+    Mono,
 }
 
 #[derive(Debug, Subcommand)]

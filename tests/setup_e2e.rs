@@ -74,6 +74,7 @@ impl Rig {
             AppOptions {
                 max_run: Duration::from_secs(10),
                 release_mode: ReleaseMode::AutoRepeat,
+                ..AppOptions::default()
             },
         );
         Rig {

@@ -13,8 +13,11 @@ use ratatui::style::{Color, Modifier};
 use vpx_efis::model::{Connection, Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::FaultCode;
 use vpx_efis::protocol::device::{EFIS, FIELD_PRI, FLAPS, STARTER, TRIM_P, TRIM_R};
+use vpx_efis::ui::palette::Palette;
 use vpx_efis::ui::state::{MotorRun, Overlay, ReleaseMode, SortOrder, ViewState};
 use vpx_efis::ui::{self, MIN_HEIGHT, MIN_WIDTH};
+
+mod themes;
 
 mod fixtures {
     use super::*;
@@ -897,4 +900,300 @@ fn short_terminal_scrolls_the_list_to_the_selection_and_says_what_is_hidden() {
     );
     // Scrolled to the bottom: nothing below, so no ▼.
     assert!(!t.contains("▼"), "{t}");
+}
+
+/// Every state above, as (name, model, view, now, width, height): what the themes and
+/// the contrast check go over.
+fn every_state() -> Vec<(&'static str, Model, ViewState, Instant, u16, u16)> {
+    let help = |v: ViewState| ViewState {
+        overlay: Overlay::Help,
+        ..v
+    };
+    let mut out = Vec::new();
+    let mut add = |name, (m, now): (Model, Instant), view: ViewState, w, h| {
+        out.push((name, m, view, now, w, h));
+    };
+    add(
+        "normal_80x24",
+        fixtures::normal(),
+        view_selecting(EFIS),
+        80,
+        24,
+    );
+    add(
+        "normal_120x40",
+        fixtures::normal(),
+        view_selecting(EFIS),
+        120,
+        40,
+    );
+    add(
+        "normal_160x50",
+        fixtures::normal(),
+        view_selecting(4),
+        160,
+        50,
+    );
+    add(
+        "wide_200x60",
+        fixtures::normal(),
+        view_selecting(4),
+        200,
+        60,
+    );
+    add(
+        "faulted_device",
+        fixtures::faulted_device(),
+        view_selecting(EFIS),
+        120,
+        40,
+    );
+    add(
+        "system_fault",
+        fixtures::system_fault(),
+        view_selecting(EFIS),
+        120,
+        40,
+    );
+    add(
+        "dual_alternator",
+        fixtures::dual_alternator(),
+        view_selecting(0x13),
+        120,
+        40,
+    );
+    add(
+        "trim_running",
+        fixtures::trim_running(),
+        ViewState {
+            selected: Some(TRIM_P),
+            release_mode: ReleaseMode::KeyRelease,
+            motor_run: Some(MotorRun {
+                motor: Motor::Trim(TrimKind::Pitch),
+                direction: "up",
+            }),
+            ..Default::default()
+        },
+        120,
+        40,
+    );
+    add(
+        "flaps_midpoints",
+        fixtures::flaps_midpoints(),
+        view_selecting(FLAPS),
+        120,
+        40,
+    );
+    add(
+        "comm_lost_80x24",
+        fixtures::comm_lost(),
+        view_selecting(EFIS),
+        80,
+        24,
+    );
+    add(
+        "comm_lost_160x50",
+        fixtures::comm_lost(),
+        view_selecting(EFIS),
+        160,
+        50,
+    );
+    add(
+        "help_100x30",
+        fixtures::normal(),
+        help(view_selecting(EFIS)),
+        100,
+        30,
+    );
+    add(
+        "help_80x24",
+        fixtures::normal(),
+        help(view_selecting(EFIS)),
+        80,
+        24,
+    );
+    add(
+        "help_replay",
+        fixtures::replay(),
+        help(view_selecting(EFIS)),
+        120,
+        40,
+    );
+    add(
+        "too_small",
+        fixtures::normal(),
+        ViewState::default(),
+        60,
+        20,
+    );
+    add(
+        "alphabetical",
+        fixtures::normal(),
+        ViewState {
+            sort: SortOrder::Alphabetical,
+            ..view_selecting(EFIS)
+        },
+        120,
+        40,
+    );
+    add(
+        "never_connected",
+        fixtures::never_connected(),
+        ViewState::default(),
+        80,
+        24,
+    );
+    add(
+        "connected_silent",
+        fixtures::connected_silent(),
+        ViewState::default(),
+        80,
+        24,
+    );
+    add(
+        "port_lost",
+        fixtures::port_lost(),
+        view_selecting(EFIS),
+        120,
+        40,
+    );
+    add("replay", fixtures::replay(), ViewState::default(), 120, 40);
+    add(
+        "notice",
+        fixtures::normal(),
+        ViewState {
+            notice: Some("reset refused: EFIS is not faulted".into()),
+            ..view_selecting(EFIS)
+        },
+        120,
+        40,
+    );
+    add(
+        "short_terminal_scrolled",
+        fixtures::normal(),
+        view_selecting(TRIM_P),
+        80,
+        24,
+    );
+    out
+}
+
+/// Every state in every palette, as a picture of its colours (the text is in the
+/// snapshots above and does not change with the palette).
+#[test]
+fn every_state_in_every_theme() {
+    for (name, m, view, now, w, h) in every_state() {
+        let buf = draw(&m, &view, now, w, h);
+        for palette in themes::PALETTES {
+            let painted = themes::painted(&buf, palette);
+            assert_eq!(text(&painted), text(&buf), "painting changes no text");
+            insta::assert_snapshot!(
+                format!("theme_{}_{name}", palette.name().replace(' ', "_")),
+                themes::colour_map(&painted)
+            );
+        }
+    }
+}
+
+#[test]
+fn every_state_meets_wcag_contrast_in_both_themes() {
+    let mut failures = Vec::new();
+    for (name, m, view, now, w, h) in every_state() {
+        let buf = draw(&m, &view, now, w, h);
+        for palette in [Palette::Dark, Palette::Light] {
+            failures.extend(themes::contrast_failures(
+                name,
+                &themes::painted(&buf, palette),
+                palette,
+            ));
+        }
+    }
+    themes::assert_contrast(failures);
+}
+
+/// The colours people see for Appendix A's words in each theme.
+#[test]
+fn appendix_a_colours_in_each_theme() {
+    let (m, now) = fixtures::faulted_device();
+    let buf = draw(&m, &view_selecting(4), now, 120, 40);
+    let cell = |b: &Buffer, name: &str, state: &str| {
+        let (x, y) = find(b, name, name);
+        let row: String = (x..b.area.width)
+            .map(|x| b[(x, y)].symbol().to_string())
+            .collect();
+        let dx = row.find(&format!(" {state} ")).unwrap() as u16 + 1;
+        b[(x + dx, y)].clone()
+    };
+    let dark = themes::painted(&buf, Palette::Dark);
+    assert_eq!(cell(&dark, "Radio", "ON").fg, Color::Indexed(40), "green");
+    assert_eq!(
+        cell(&dark, "Beacon", "OFF").fg,
+        Color::Indexed(231),
+        "white"
+    );
+    assert_eq!(
+        cell(&dark, "EFIS", "SHORT_CIRCUIT").fg,
+        Color::Indexed(203),
+        "red"
+    );
+    assert_eq!(
+        cell(&dark, "Beacon", "OFF").bg,
+        Color::Indexed(16),
+        "own black"
+    );
+    let light = themes::painted(&buf, Palette::Light);
+    assert_eq!(cell(&light, "Radio", "ON").fg, Color::Indexed(22));
+    assert_eq!(
+        cell(&light, "Beacon", "OFF").fg,
+        Color::Indexed(234),
+        "text colour"
+    );
+    assert_eq!(
+        cell(&light, "EFIS", "SHORT_CIRCUIT").fg,
+        Color::Indexed(124)
+    );
+    assert_eq!(
+        cell(&light, "Beacon", "OFF").bg,
+        Color::Reset,
+        "terminal's own"
+    );
+    let mono = themes::painted(&buf, Palette::Mono);
+    let fault = cell(&mono, "EFIS", "SHORT_CIRCUIT");
+    assert_eq!((fault.fg, fault.bg), (Color::Reset, Color::Reset));
+    assert!(
+        fault.modifier.contains(Modifier::BOLD),
+        "faults stand out without colour"
+    );
+    // The selection (Nav Lt) is in reverse video without colour.
+    let (x, y) = find(&mono, "Nav Lt", "Nav Lt");
+    assert!(mono[(x, y)].modifier.contains(Modifier::REVERSED));
+    let (x, y) = find(&mono, "Beacon", "Beacon");
+    assert!(!mono[(x, y)].modifier.contains(Modifier::REVERSED));
+}
+
+/// The check itself can fail, and says where: the old page's grey label on a light
+/// terminal (1.26:1 in xterm's default colours) is caught and named.
+#[test]
+fn contrast_check_names_the_cell_the_state_and_both_colours() {
+    let mut buf = Buffer::empty(ratatui::layout::Rect::new(0, 0, 6, 2));
+    buf.set_string(
+        1,
+        1,
+        "Pin",
+        ratatui::style::Style::new().fg(Color::Indexed(250)),
+    );
+    let failures = themes::contrast_failures("made up", &buf, Palette::Light);
+    assert_eq!(failures.len(), 3, "{failures:#?}");
+    assert!(
+        failures[0].contains("made up")
+            && failures[0].contains("(1,1)")
+            && failures[0].contains("#bcbcbc on bg #ffffff")
+            && failures[0].contains("1.9"),
+        "{}",
+        failures[0]
+    );
+    // A colour whose value depends on the terminal's own theme cannot be checked.
+    buf.set_string(1, 0, "x", ratatui::style::Style::new().fg(Color::White));
+    let failures = themes::contrast_failures("made up", &buf, Palette::Light);
+    assert!(failures[0].contains("unknown value"), "{failures:#?}");
 }

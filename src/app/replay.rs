@@ -612,8 +612,10 @@ pub fn run(file: &Path, args: &super::PageOptions) -> anyhow::Result<()> {
     }
     let capture = Capture::load(file)?;
     let problem = capture.problem.clone();
+    let theme = super::choose_theme(args.theme);
     let mut guard = TerminalGuard::enter()?;
     let options = AppOptions {
+        theme,
         release_mode: if guard.key_release {
             ReleaseMode::KeyRelease
         } else {

@@ -50,7 +50,7 @@ pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
         .unwrap_or(40) as u16
         + 6)
     .min(area.width.saturating_sub(2));
-    let height = (keys.len() as u16 + 6 + u16::from(replay)).min(area.height.saturating_sub(2));
+    let height = (keys.len() as u16 + 7 + u16::from(replay)).min(area.height.saturating_sub(2));
     let [row] = Layout::vertical([Constraint::Length(height)])
         .flex(Flex::Center)
         .areas(area);
@@ -85,6 +85,7 @@ pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
         "any other key stops a run; after 10 s press again",
         theme::label(),
     ));
+    lines.push(Line::styled(view.theme.to_string(), theme::label()));
     frame.render_widget(Clear, popup);
     frame.render_widget(
         Paragraph::new(lines).wrap(Wrap { trim: false }).block(

@@ -9,6 +9,8 @@ pub mod help;
 pub mod key_bar;
 pub mod link_health;
 pub mod motors;
+pub mod osc11;
+pub mod palette;
 pub mod plot;
 pub mod setup;
 pub mod state;
@@ -39,7 +41,16 @@ pub fn ordered_circuits(model: &Model, view: &ViewState, now: Instant) -> Vec<Ci
     device_list::ordered(model, view, now)
 }
 
-/// Draws the whole page for `model` as it stands at `now`.
+/// Draws the page as the person sees it: [`render`], then repainted in the palette
+/// `view.theme` chose (dark, light or no colour).
+pub fn draw(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
+    render(frame, model, view, now);
+    view.theme.palette.paint(frame.buffer_mut());
+}
+
+/// Draws the whole page for `model` as it stands at `now`, in the page's colour words
+/// (Appendix A's green=on, white=off, red=faulted); see [`palette`] for what they
+/// become on the terminal.
 pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
     if view.screen == state::Screen::Traffic {
         return traffic::render(frame, model, view, now);

@@ -62,4 +62,6 @@ pub struct ViewState {
     pub notice: Option<String>,
     /// The setup screens (`c`): page, field, forms and where each write stands.
     pub setup: super::setup::state::SetupView,
+    /// The palette the page paints in, and why (the help overlay says it).
+    pub theme: super::palette::ThemeChoice,
 }

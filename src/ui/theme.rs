@@ -1,5 +1,10 @@
 //! Every colour the page uses, in one place, so Appendix A's green=on, white=off,
 //! red=faulted cannot drift apart between widgets.
+//!
+//! These are the page's colour *words*, as Appendix A writes them. Widgets draw with
+//! them and tests assert them; what each word looks like on the person's terminal
+//! (dark, light or no colour at all) is decided afterwards by [`super::palette`], which
+//! repaints the finished frame.
 
 use ratatui::style::{Color, Modifier, Style};
 
@@ -13,6 +18,9 @@ pub const UNKNOWN: Color = Color::DarkGray;
 pub const CAUTION: Color = Color::Yellow;
 pub const INFO: Color = Color::Cyan;
 pub const LABEL: Color = Color::Gray;
+/// The selected row's background: a word like the others, painted by the palette
+/// (a lighter band on dark, a grey band on light, reverse video without colour).
+pub const SELECTION: Color = Color::Indexed(236);
 
 pub fn state(state: CircuitState) -> Style {
     match state {
@@ -62,9 +70,7 @@ pub fn key_dimmed() -> Style {
 }
 
 pub fn selected_row() -> Style {
-    Style::new()
-        .bg(Color::Indexed(236))
-        .add_modifier(Modifier::BOLD)
+    Style::new().bg(SELECTION).add_modifier(Modifier::BOLD)
 }
 
 pub fn panel_title() -> Style {

@@ -156,6 +156,7 @@ impl Rig {
             AppOptions {
                 max_run: Duration::from_secs(10),
                 release_mode: mode,
+                ..AppOptions::default()
             },
         );
         Rig {
