@@ -18,6 +18,8 @@ use vpx_efis::protocol::message::{
     HardwareVersion, Message, OvervoltageLimit, Polarity, SwitchId, SystemSpec, Tenths, TrimSpec,
     TrimType, Version, WigWagSpec,
 };
+mod themes;
+
 use vpx_efis::ui;
 use vpx_efis::ui::setup::state::{
     Dialog, Field, Forms, Held, Page, Probe, SetupView, Tone, WriteLine, WriteStatus,
@@ -177,7 +179,9 @@ fn view(m: &Model, page: Page, device: u8) -> ViewState {
 fn render(m: &Model, v: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
     let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
     term.draw(|f| ui::render(f, m, v, now)).unwrap();
-    term.backend().buffer().clone()
+    let buf = term.backend().buffer().clone();
+    themes::check_themes("setup_snapshots", &buf);
+    buf
 }
 
 fn text(buf: &Buffer) -> String {

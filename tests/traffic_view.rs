@@ -20,6 +20,8 @@ use vpx_efis::protocol::message::{
 };
 use vpx_efis::protocol::{FaultCode, Packet};
 use vpx_efis::traffic::{Health, KindFilter};
+mod themes;
+
 use vpx_efis::ui::{self, state::Screen, state::ViewState};
 
 fn system() -> SystemStatus {
@@ -174,7 +176,9 @@ fn draw(model: &Model, now: Instant, w: u16, h: u16) -> Buffer {
     let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
     term.draw(|f| ui::render(f, model, &traffic_view(), now))
         .unwrap();
-    term.backend().buffer().clone()
+    let buf = term.backend().buffer().clone();
+    themes::check_themes("traffic_view", &buf);
+    buf
 }
 
 fn lines(buf: &Buffer) -> Vec<String> {

@@ -77,10 +77,6 @@ struct Colours {
     selection: Color,
     /// Foreground words on the page's (or the selection's) background.
     on_page: fn(Color) -> Color,
-    /// Badges: a word on a coloured background of its own (keys, the mark, banners),
-    /// whose pairs are chosen together.
-    badge_fg: fn(Color) -> Color,
-    badge_bg: fn(Color) -> Color,
 }
 
 const DARK: Colours = Colours {
@@ -99,17 +95,11 @@ const DARK: Colours = Colours {
         Color::Black => Color::Indexed(16),
         other => other,
     },
-    badge_fg: |c| match c {
-        Color::White => Color::Indexed(231),
-        Color::Black | Color::Reset => Color::Indexed(16),
-        other => other,
-    },
-    badge_bg: badge_bg,
 };
 
 const LIGHT: Colours = Colours {
     background: None,
-    selection: Color::Indexed(253),
+    selection: Color::Indexed(254),
     on_page: |c| match c {
         // Appendix A's white=off is the text colour on a light screen.
         Color::Reset | Color::White | Color::Black => Color::Indexed(234),
@@ -122,16 +112,19 @@ const LIGHT: Colours = Colours {
         Color::Magenta => Color::Indexed(90),
         other => other,
     },
-    badge_fg: |c| match c {
-        Color::White => Color::Indexed(231),
-        Color::Black | Color::Reset => Color::Indexed(16),
-        other => other,
-    },
-    badge_bg: badge_bg,
 };
 
-/// Badge backgrounds are the same in both palettes: each carries its own text colour,
-/// so they read on any page.
+/// The text on a badge: white on the dark ones (the mark, COMMUNICATION LOST), black
+/// on the light ones, whatever colour word the text had on the page.
+fn badge_text(bg: Color) -> Color {
+    match bg {
+        Color::Black | Color::Red | Color::Blue | Color::DarkGray => Color::Indexed(231),
+        _ => Color::Indexed(16),
+    }
+}
+
+/// Badges (keys, the mark, banners, a search hit: words on a coloured background of
+/// their own) look the same in both palettes, since each carries its own text colour.
 fn badge_bg(c: Color) -> Color {
     match c {
         Color::Black => Color::Indexed(16),
@@ -154,8 +147,8 @@ fn paint_with(buf: &mut Buffer, p: &Colours) {
                 p.selection
             };
         } else {
-            cell.fg = (p.badge_fg)(cell.fg);
-            cell.bg = (p.badge_bg)(bg);
+            cell.fg = badge_text(bg);
+            cell.bg = badge_bg(bg);
         }
     }
 }

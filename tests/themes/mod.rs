@@ -125,3 +125,40 @@ pub fn assert_contrast(failures: Vec<String>) {
             .join("\n")
     );
 }
+
+thread_local! {
+    static FRAMES: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// For test files whose snapshots pin the page's colour words (setup, traffic): checks
+/// the frame's contrast in both colour palettes and snapshots how the light palette
+/// paints it, named `<file>__light__<test>[_<n>]` after the running test.
+pub fn check_themes(file: &str, buf: &Buffer) {
+    let test = std::thread::current()
+        .name()
+        .unwrap_or("unnamed")
+        .rsplit("::")
+        .next()
+        .unwrap_or("unnamed")
+        .to_string();
+    let n = FRAMES.with(|f| {
+        f.set(f.get() + 1);
+        f.get()
+    });
+    let mut failures = Vec::new();
+    for palette in [Palette::Dark, Palette::Light] {
+        failures.extend(contrast_failures(&test, &painted(buf, palette), palette));
+    }
+    assert_contrast(failures);
+    let name = if n == 1 {
+        format!("{file}__light__{test}")
+    } else {
+        format!("{file}__light__{test}_{n}")
+    };
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../snapshots");
+    settings.set_prepend_module_to_snapshot(false);
+    settings.bind(|| {
+        insta::assert_snapshot!(name, colour_map(&painted(buf, Palette::Light)));
+    });
+}
