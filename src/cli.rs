@@ -6,6 +6,8 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::ui::palette::Requested;
+
 /// A terminal EFIS electrical page for the Vertical Power VP-X.
 ///
 /// With no subcommand and no `--port`, the page runs against the built-in virtual
@@ -87,7 +89,7 @@ pub struct PageArgs {
     pub theme: ThemeArg,
 }
 
-/// `--theme`.
+/// `--theme`; see [`crate::ui::palette`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum ThemeArg {
     Auto,
@@ -224,6 +226,12 @@ impl From<PageArgs> for crate::app::PageOptions {
             replay: a.replay,
             speed: a.speed,
             max_run: a.max_run,
+            theme: match a.theme {
+                ThemeArg::Auto => Requested::Auto,
+                ThemeArg::Dark => Requested::Dark,
+                ThemeArg::Light => Requested::Light,
+                ThemeArg::Mono => Requested::Mono,
+            },
         }
     }
 }

@@ -4,7 +4,6 @@
 
 use std::time::Duration;
 
-use crate::cli::ThemeArg;
 use crate::ui::osc11;
 use crate::ui::palette::{Palette, Requested, Rgb, ThemeChoice};
 
@@ -13,13 +12,7 @@ use crate::ui::palette::{Palette, Requested, Rgb, ThemeChoice};
 /// the DA1 sent after it, which ends the wait at once.
 const REPLY_TIMEOUT: Duration = Duration::from_millis(300);
 
-pub fn choose_theme(arg: ThemeArg) -> ThemeChoice {
-    let requested = match arg {
-        ThemeArg::Auto => Requested::Auto,
-        ThemeArg::Dark => Requested::Dark,
-        ThemeArg::Light => Requested::Light,
-        ThemeArg::Mono => Requested::Mono,
-    };
+pub fn choose_theme(requested: Requested) -> ThemeChoice {
     // no-color.org: set and not empty.
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let choice = ThemeChoice::decide(requested, no_color, ask_background);

@@ -21,6 +21,8 @@ pub struct PageOptions {
     pub speed: f64,
     /// Longest continuous trim/flap run, in seconds, as typed (checked by `run`).
     pub max_run: f64,
+    /// `--theme`: a palette, or `Auto` to ask the terminal.
+    pub theme: crate::ui::palette::Requested,
 }
 
 /// The XFSp bridge's settings, as typed (checked by [`super::xfsp_setup`]).
