@@ -84,7 +84,7 @@ pub struct PageArgs {
     /// Colours: `dark` paints its own black background (the EFIS look), `light` is for
     /// light terminals, `mono` uses no colour; `auto` asks the terminal for its
     /// background (OSC 11) and picks dark or light, dark if it does not answer, and
-    /// mono when NO_COLOR is set.
+    /// mono when NO_COLOR is set; `terminal` keeps the terminal's own 16 colours.
     #[arg(long, value_enum, default_value_t = ThemeArg::Auto)]
     pub theme: ThemeArg,
 }
@@ -96,6 +96,7 @@ pub enum ThemeArg {
     Dark,
     Light,
     Mono,
+    Terminal,
 }
 
 #[derive(Debug, Subcommand)]
@@ -231,6 +232,7 @@ impl From<PageArgs> for crate::app::PageOptions {
                 ThemeArg::Dark => Requested::Dark,
                 ThemeArg::Light => Requested::Light,
                 ThemeArg::Mono => Requested::Mono,
+                ThemeArg::Terminal => Requested::Terminal,
             },
         }
     }

@@ -1078,13 +1078,24 @@ fn every_state() -> Vec<(&'static str, Model, ViewState, Instant, u16, u16)> {
     out
 }
 
+/// `view`, with the help overlay saying `palette` was asked for.
+fn in_theme(view: &ViewState, palette: Palette) -> ViewState {
+    ViewState {
+        theme: ui::palette::ThemeChoice {
+            palette,
+            why: ui::palette::Why::Asked,
+        },
+        ..view.clone()
+    }
+}
+
 /// Every state in every palette, as a picture of its colours (the text is in the
 /// snapshots above and does not change with the palette).
 #[test]
 fn every_state_in_every_theme() {
     for (name, m, view, now, w, h) in every_state() {
-        let buf = draw(&m, &view, now, w, h);
         for palette in themes::PALETTES {
+            let buf = draw(&m, &in_theme(&view, palette), now, w, h);
             let painted = themes::painted(&buf, palette);
             assert_eq!(text(&painted), text(&buf), "painting changes no text");
             insta::assert_snapshot!(
@@ -1099,8 +1110,8 @@ fn every_state_in_every_theme() {
 fn every_state_meets_wcag_contrast_in_both_themes() {
     let mut failures = Vec::new();
     for (name, m, view, now, w, h) in every_state() {
-        let buf = draw(&m, &view, now, w, h);
         for palette in [Palette::Dark, Palette::Light] {
+            let buf = draw(&m, &in_theme(&view, palette), now, w, h);
             failures.extend(themes::contrast_failures(
                 name,
                 &themes::painted(&buf, palette),

@@ -20,7 +20,10 @@ pub fn choose_theme(requested: Requested) -> ThemeChoice {
     // every colour change, which would wipe bold and reverse mid-line. Mono paints no
     // colour at all, so that never happens; a colour theme asked for on the command
     // line overrides NO_COLOR, as no-color.org asks.
-    if choice.palette != Palette::Mono {
+    if matches!(
+        choice.palette,
+        Palette::Dark | Palette::Light | Palette::Terminal
+    ) {
         crossterm::style::force_color_output(true);
     }
     choice

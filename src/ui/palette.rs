@@ -9,7 +9,10 @@
 //!   and amber dark enough to read on white; the background is the terminal's;
 //! - `Mono` is for NO_COLOR: no colour at all, and whatever stood on a coloured
 //!   background (the COMMUNICATION LOST banner, keys, the selection, SIMULATED) in
-//!   reverse video instead, so nothing that meant something is lost.
+//!   reverse video instead, so nothing that meant something is lost;
+//! - `Terminal` leaves the words as the terminal's own 16 colours show them (what a
+//!   tuned terminal theme may prefer; its contrast is that theme's business). It is
+//!   the type's default, for tests and tools; the page itself always chooses.
 //!
 //! Colours are xterm's 256-colour indices 16–255, whose values every 256-colour
 //! terminal agrees on (unlike 0–15, which each terminal's theme redefines), so the
@@ -24,10 +27,11 @@ use super::theme;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Palette {
-    #[default]
     Dark,
     Light,
     Mono,
+    #[default]
+    Terminal,
 }
 
 impl Palette {
@@ -36,6 +40,7 @@ impl Palette {
             Palette::Dark => "dark",
             Palette::Light => "light",
             Palette::Mono => "no colour",
+            Palette::Terminal => "terminal",
         }
     }
 
@@ -45,7 +50,7 @@ impl Palette {
         match self {
             Palette::Dark => rgb(DARK_BG),
             Palette::Light => Some(Rgb(255, 255, 255)),
-            Palette::Mono => None,
+            Palette::Mono | Palette::Terminal => None,
         }
     }
 
@@ -54,6 +59,7 @@ impl Palette {
         match self {
             Palette::Dark => paint_with(buf, &DARK),
             Palette::Light => paint_with(buf, &LIGHT),
+            Palette::Terminal => {}
             Palette::Mono => {
                 for cell in &mut buf.content {
                     if cell.bg != Color::Reset {
@@ -156,7 +162,7 @@ fn paint_with(buf: &mut Buffer, p: &Colours) {
 /// How the page came to use its palette: the help overlay says it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Why {
-    /// `--theme dark|light|mono`.
+    /// `--theme dark|light|mono|terminal`.
     Asked,
     /// NO_COLOR is set (no-color.org) and no theme was asked for.
     NoColor,
@@ -185,6 +191,7 @@ pub enum Requested {
     Dark,
     Light,
     Mono,
+    Terminal,
 }
 
 impl ThemeChoice {
@@ -203,6 +210,7 @@ impl ThemeChoice {
             Requested::Dark => asked(Palette::Dark),
             Requested::Light => asked(Palette::Light),
             Requested::Mono => asked(Palette::Mono),
+            Requested::Terminal => asked(Palette::Terminal),
             Requested::Auto if no_color => ThemeChoice {
                 palette: Palette::Mono,
                 why: Why::NoColor,
