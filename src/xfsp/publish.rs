@@ -17,7 +17,19 @@
 //!   one per fault: level by [`cas_level`], label "NAME: FAULT". When it goes away, a
 //!   CLEAR with the same unit and label is sent [`CLEAR_REPEATS`] times, one per
 //!   refresh, so one lost datagram does not leave it standing on another display.
-//! - MSTRCAUTN: TRUE while any CAUTION or WARNING we issued stands, else FALSE.
+//! - MSTRCAUTN and MSTRWARN, unit 0: TRUE while a CAUTION (for MSTRCAUTN) or a WARNING
+//!   (for MSTRWARN) we issued stands that nobody has reset. The draft: "Resets by
+//!   SYSSEL/USERSEL with value of FALSE". A reset ([`Publisher::reset_master`])
+//!   acknowledges every message of its level standing at that moment; the master stays
+//!   FALSE until a message of that level arises that was not standing then (a new fault,
+//!   or one that cleared and came back). Each level raises only its own master, as on a
+//!   glass cockpit's two annunciators: a short circuit lights Master Warning, an open
+//!   breaker Master Caution.
+//!
+//! Items that stop being published (a pin found disabled once the unit's DEVICE_ENABLE
+//! replies arrive, a position that is no longer live) are forgotten at once: nothing is
+//! due for them, so [`Publisher::next_deadline`] never points at a refresh that no poll
+//! will make (that was a busy loop). When one comes back it goes out at once.
 //!
 //! Lost communication: [`Model::circuits`] already says UNKNOWN and gives no amps, so
 //! ECBSTAT goes UNKNOWN (confidence USELESS), BUSSTAT goes UNKNOWN with zeros,
@@ -26,7 +38,7 @@
 //! for [`COMM_LOST_AFTER`] after the gateway starts, so the first seconds of opening
 //! the port do not flash an alert on every display.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::time::{Duration, Instant};
 
 use crate::model::{COMM_LOST_AFTER, CircuitState, Model, Motor, TrimKind};
@@ -121,6 +133,49 @@ struct Sent {
     at: Instant,
 }
 
+/// The two master annunciators.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Master {
+    /// MSTRCAUTN, raised by CAUTION-level CAS messages.
+    Caution,
+    /// MSTRWARN, raised by WARNING-level CAS messages.
+    Warning,
+}
+
+impl Master {
+    pub const ALL: [Master; 2] = [Master::Caution, Master::Warning];
+
+    pub fn ident(self) -> Ident {
+        match self {
+            Master::Caution => idents::MSTRCAUTN,
+            Master::Warning => idents::MSTRWARN,
+        }
+    }
+
+    pub fn from_ident(ident: Ident) -> Option<Master> {
+        Master::ALL.into_iter().find(|m| m.ident() == ident)
+    }
+
+    /// The CAS level that raises it.
+    pub fn level(self) -> CasLevel {
+        match self {
+            Master::Caution => CasLevel::Caution,
+            Master::Warning => CasLevel::Warning,
+        }
+    }
+
+    /// For the event log.
+    pub fn name(self) -> &'static str {
+        match self {
+            Master::Caution => "Master Caution",
+            Master::Warning => "Master Warning",
+        }
+    }
+}
+
+/// A CAS message as the masters see it: its unit and words.
+type CasKey = (u16, Vec<u8>);
+
 #[derive(Debug, Clone)]
 struct Clearing {
     label: Vec<u8>,
@@ -140,6 +195,9 @@ pub struct Publisher {
     clearing: BTreeMap<u16, Vec<Clearing>>,
     /// The earliest a held-back change may go out.
     pending: Option<Instant>,
+    /// Per master, the messages of its level standing when it was last reset.
+    acked_caution: BTreeSet<CasKey>,
+    acked_warning: BTreeSet<CasKey>,
 }
 
 impl Publisher {
@@ -151,6 +209,8 @@ impl Publisher {
             cas: BTreeMap::new(),
             clearing: BTreeMap::new(),
             pending: None,
+            acked_caution: BTreeSet::new(),
+            acked_warning: BTreeSet::new(),
         }
     }
 
@@ -158,20 +218,28 @@ impl Publisher {
     pub fn poll(&mut self, model: &Model, now: Instant) -> Vec<Parameter> {
         let mut out = Vec::new();
         self.pending = None;
+        let mut offered = HashSet::new();
         for p in self.status(model, now) {
+            offered.insert((p.ident, p.unit));
             self.offer(p, now, &mut out);
         }
         let cas = self.wanted_cas(model, now);
-        let caution = cas
-            .values()
-            .any(|m| matches!(m.level, CasLevel::Caution | CasLevel::Warning));
         self.update_cas(cas, now, &mut out);
-        let master = self.param(idents::MSTRCAUTN, 0, Value::Bool(Boolean::from(caution)));
-        self.offer(master, now, &mut out);
+        self.forget_withdrawn_acknowledgements();
+        for master in Master::ALL {
+            let on = self.master_active(master);
+            let p = self.param(master.ident(), 0, Value::Bool(Boolean::from(on)));
+            offered.insert((p.ident, p.unit));
+            self.offer(p, now, &mut out);
+        }
+        // What was not offered is no longer published: keeping it would leave a refresh
+        // due in the past that no poll ever makes, and the caller's loop would spin.
+        self.sent.retain(|key, _| offered.contains(key));
         out
     }
 
-    /// When `poll` next has something to send even if the model does not change.
+    /// When `poll` next has something to send even if the model does not change. After
+    /// a `poll(.., now)` this is always later than `now`.
     pub fn next_deadline(&self) -> Option<Instant> {
         let refresh = self
             .sent
@@ -180,6 +248,55 @@ impl Publisher {
             .map(|s| s.at + REFRESH);
         let clears = self.clearing.values().flatten().map(|c| c.next);
         refresh.chain(clears).chain(self.pending).min()
+    }
+
+    /// Whether `master` is TRUE now (as published at the last poll, or the next one
+    /// after a reset).
+    pub fn master_active(&self, master: Master) -> bool {
+        let acked = self.acked(master);
+        self.standing_keys(master.level())
+            .any(|key| !acked.contains(&key))
+    }
+
+    /// A SYSSEL/USERSEL FALSE for `master`: every message of its level standing now is
+    /// acknowledged, and the master goes FALSE at the next poll. Returns how many
+    /// messages were acknowledged that were not before (0: nothing to reset).
+    pub fn reset_master(&mut self, master: Master) -> usize {
+        let keys: Vec<CasKey> = self.standing_keys(master.level()).collect();
+        let acked = self.acked_mut(master);
+        keys.into_iter().filter(|k| acked.insert(k.clone())).count()
+    }
+
+    fn acked(&self, master: Master) -> &BTreeSet<CasKey> {
+        match master {
+            Master::Caution => &self.acked_caution,
+            Master::Warning => &self.acked_warning,
+        }
+    }
+
+    fn acked_mut(&mut self, master: Master) -> &mut BTreeSet<CasKey> {
+        match master {
+            Master::Caution => &mut self.acked_caution,
+            Master::Warning => &mut self.acked_warning,
+        }
+    }
+
+    fn standing_keys(&self, level: CasLevel) -> impl Iterator<Item = CasKey> + '_ {
+        self.cas
+            .iter()
+            .filter_map(move |(&unit, s)| match &s.param.value {
+                Value::CasMsg(m) if m.level == level => Some((unit, m.label.clone())),
+                _ => None,
+            })
+    }
+
+    /// A message that was withdrawn is no longer acknowledged: if it comes back it is a
+    /// new caution and raises its master again.
+    fn forget_withdrawn_acknowledgements(&mut self) {
+        for master in Master::ALL {
+            let standing: BTreeSet<CasKey> = self.standing_keys(master.level()).collect();
+            self.acked_mut(master).retain(|k| standing.contains(k));
+        }
     }
 
     /// CAS messages standing now, by unit (for the page and the tests).
@@ -409,5 +526,274 @@ impl Publisher {
                 out.push(p);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Source;
+    use crate::protocol::device::DEVICE_COUNT;
+    use crate::protocol::message::{
+        DeviceEnable, DeviceStatus, EnableFlag, FaultStatus, FlapFlags, FlapTrimStatus, MiscFlags,
+        Packet, SignedTenths, SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
+    };
+
+    fn ms(n: u64) -> Duration {
+        Duration::from_millis(n)
+    }
+
+    fn model() -> Model {
+        Model::new(Source::Simulated {
+            scenario: "test".into(),
+        })
+    }
+
+    /// The unit's two 1 Hz broadcasts, EFIS on.
+    fn status(m: &mut Model, at: Instant) {
+        let mut d = DeviceStatus {
+            on: [false; DEVICE_COUNT],
+            current: [Tenths(0); DEVICE_COUNT],
+        };
+        d.on[2] = true;
+        d.current[2] = Tenths(25);
+        let s = SystemStatus {
+            system_current: Tenths(40),
+            main_bus_volts: SignedTenths(138),
+            aux_battery_volts: Tenths(126),
+            internal_temp: 30,
+            switches: Default::default(),
+            misc: MiscFlags {
+                starter_annunciator: false,
+                wig_wag_mode: WigWagModeSetting::Auto,
+                software_update: false,
+                wig_wag_active: false,
+            },
+            faults: Default::default(),
+            data_integrity_code: None,
+        };
+        m.apply_packet(at, &Packet::from_vpx(0, s));
+        m.apply_packet(at, &Packet::from_vpx(1, d));
+    }
+
+    fn flaps_live(m: &mut Model, at: Instant) {
+        let ft = FlapTrimStatus {
+            flap: FlapFlags {
+                enabled: true,
+                ..Default::default()
+            },
+            pitch_trim: TrimFlags::default(),
+            roll_trim: TrimFlags::default(),
+            flap_position: 60,
+            pitch_trim_position: 0,
+            roll_trim_position: 0,
+            flap_fault: FaultCode::NoFault,
+            pitch_trim_fault: FaultCode::NoFault,
+            roll_trim_fault: FaultCode::NoFault,
+            flap_up: 40,
+            flap_down: 200,
+            flap_midpoint_1: 0,
+            flap_midpoint_2: 0,
+            pitch_trim_up: 0,
+            pitch_trim_down: 0,
+            pitch_trim_neutral: 0,
+            roll_trim_up: 0,
+            roll_trim_down: 0,
+            roll_trim_neutral: 0,
+        };
+        m.apply_packet(at, &Packet::from_vpx(3, ft));
+    }
+
+    fn disable(m: &mut Model, at: Instant, id: u8) {
+        let e = DeviceEnable {
+            device_id: id,
+            flag: EnableFlag::Disabled,
+        };
+        m.apply_packet(at, &Packet::from_vpx(4, e));
+    }
+
+    fn fault(m: &mut Model, at: Instant, faults: &[(u8, FaultCode)]) {
+        let mut f = FaultStatus {
+            faulted: [false; DEVICE_COUNT],
+            system_fault: false,
+            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+        };
+        for &(id, code) in faults {
+            f.faulted[id as usize] = true;
+            f.codes[id as usize] = Some(code);
+        }
+        m.apply_packet(at, &Packet::from_vpx(5, f));
+    }
+
+    /// Drives `p` the way a main loop does, from `from` to `until`: poll, then sleep to
+    /// the deadline. Every deadline must be later than the poll before it; returns the
+    /// number of polls, which a spinning loop would make in the millions.
+    fn run(p: &mut Publisher, m: &mut Model, from: Instant, until: Instant) -> usize {
+        let mut now = from;
+        let mut polls = 0;
+        while now < until {
+            // The unit's 1 Hz broadcasts, on their own schedule.
+            let second = from + ms(1000 * ((now - from).as_millis() as u64 / 1000));
+            status(m, second);
+            p.poll(m, now);
+            polls += 1;
+            let next = p.next_deadline().expect("something is always refreshed");
+            assert!(
+                next > now,
+                "poll at +{:?} left a deadline at +{:?}",
+                now - from,
+                next.saturating_duration_since(from)
+            );
+            now = next;
+        }
+        polls
+    }
+
+    #[test]
+    fn disabled_circuits_leave_no_deadline_in_the_past() {
+        let t0 = Instant::now();
+        let mut m = model();
+        status(&mut m, t0);
+        flaps_live(&mut m, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        // Before the DEVICE_ENABLE replies every pin is published once…
+        let first = p.poll(&m, t0);
+        let ecb = |ps: &[Parameter]| ps.iter().filter(|p| p.ident == idents::ECBSTAT).count();
+        assert!(ecb(&first) > 20, "{}", ecb(&first));
+        assert!(first.iter().any(|p| p.ident == idents::FLAPPOS));
+        // …then the replies say most are disabled, as on a real installation, and the
+        // flap status stops (its position is no longer live).
+        for id in 4..=28 {
+            if id != 5 {
+                disable(&mut m, t0 + ms(50), id);
+            }
+        }
+        let polls = run(&mut p, &mut m, t0 + ms(50), t0 + ms(10_000));
+        // One poll per second of refresh plus the moments things changed; a loop
+        // spinning on a past deadline would never get to 10 s at all.
+        assert!(polls <= 30, "{polls} polls in 10 s");
+        let last = p.poll(&m, t0 + ms(10_000));
+        assert!(last.iter().all(|p| p.ident != idents::FLAPPOS));
+        assert!(ecb(&last) <= 6, "only the six pins still published");
+        assert!(p.next_deadline().unwrap() > t0 + ms(10_000));
+    }
+
+    #[test]
+    fn a_circuit_that_returns_is_published_at_once() {
+        let t0 = Instant::now();
+        let mut m = model();
+        status(&mut m, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        p.poll(&m, t0);
+        disable(&mut m, t0 + ms(10), 7);
+        p.poll(&m, t0 + ms(20));
+        let enable = DeviceEnable {
+            device_id: 7,
+            flag: EnableFlag::Enabled,
+        };
+        m.apply_packet(t0 + ms(30), &Packet::from_vpx(6, enable));
+        let ps = p.poll(&m, t0 + ms(40));
+        assert!(
+            ps.iter().any(|p| p.ident == idents::ECBSTAT && p.unit == 7),
+            "not held back by the interval of the old one"
+        );
+    }
+
+    fn master(ps: &[Parameter], which: Master) -> Option<bool> {
+        ps.iter()
+            .find(|p| p.ident == which.ident())
+            .map(|p| p.value == Value::Bool(Boolean::True))
+    }
+
+    #[test]
+    fn master_caution_reset_holds_until_a_new_caution() {
+        let t0 = Instant::now();
+        let mut m = model();
+        status(&mut m, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        p.poll(&m, t0);
+        fault(&mut m, t0 + ms(200), &[(5, FaultCode::OverCurrent)]);
+        let ps = p.poll(&m, t0 + ms(200));
+        assert_eq!(master(&ps, Master::Caution), Some(true));
+        assert_eq!(master(&ps, Master::Warning), None, "unchanged: FALSE");
+        assert!(!p.master_active(Master::Warning));
+
+        assert_eq!(p.reset_master(Master::Caution), 1);
+        let ps = p.poll(&m, t0 + ms(400));
+        assert_eq!(master(&ps, Master::Caution), Some(false), "reset goes out");
+        // The fault still stands; refreshes keep saying FALSE.
+        let mut now = t0 + ms(400);
+        while now < t0 + ms(3500) {
+            fault(&mut m, now, &[(5, FaultCode::OverCurrent)]);
+            status(&mut m, now);
+            let ps = p.poll(&m, now);
+            assert_ne!(master(&ps, Master::Caution), Some(true), "at {now:?}");
+            now = p.next_deadline().unwrap();
+        }
+        assert_eq!(p.reset_master(Master::Caution), 0, "nothing new to reset");
+        // A second caution is new: up again.
+        fault(
+            &mut m,
+            now,
+            &[(5, FaultCode::OverCurrent), (6, FaultCode::CurrentFault)],
+        );
+        status(&mut m, now);
+        let ps = p.poll(&m, now);
+        assert_eq!(master(&ps, Master::Caution), Some(true));
+        assert_eq!(p.reset_master(Master::Caution), 1, "only the new one");
+    }
+
+    #[test]
+    fn a_caution_that_clears_and_returns_raises_the_master_again() {
+        let t0 = Instant::now();
+        let mut m = model();
+        status(&mut m, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        fault(&mut m, t0, &[(5, FaultCode::OverCurrent)]);
+        p.poll(&m, t0);
+        assert!(p.master_active(Master::Caution));
+        p.reset_master(Master::Caution);
+        p.poll(&m, t0 + ms(100));
+        assert!(!p.master_active(Master::Caution));
+        // No FAULT_STATUS for 2.5 s: the fault has cleared.
+        status(&mut m, t0 + ms(2700));
+        p.poll(&m, t0 + ms(2700));
+        assert!(p.standing_cas().is_empty());
+        // The same fault again.
+        fault(&mut m, t0 + ms(3000), &[(5, FaultCode::OverCurrent)]);
+        let ps = p.poll(&m, t0 + ms(3000));
+        assert_eq!(master(&ps, Master::Caution), Some(true));
+    }
+
+    #[test]
+    fn a_short_circuit_raises_master_warning_which_resets_the_same_way() {
+        let t0 = Instant::now();
+        let mut m = model();
+        status(&mut m, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        let ps = p.poll(&m, t0);
+        assert_eq!(master(&ps, Master::Warning), Some(false));
+        assert_eq!(master(&ps, Master::Caution), Some(false));
+        fault(&mut m, t0 + ms(200), &[(5, FaultCode::ShortCircuit)]);
+        let ps = p.poll(&m, t0 + ms(200));
+        assert_eq!(master(&ps, Master::Warning), Some(true));
+        assert_eq!(
+            master(&ps, Master::Caution),
+            None,
+            "a warning is not a caution"
+        );
+        // Resetting the caution does nothing to the warning.
+        assert_eq!(p.reset_master(Master::Caution), 0);
+        assert!(p.master_active(Master::Warning));
+        assert_eq!(p.reset_master(Master::Warning), 1);
+        let ps = p.poll(&m, t0 + ms(400));
+        assert_eq!(master(&ps, Master::Warning), Some(false));
+        fault(
+            &mut m,
+            t0 + ms(1500),
+            &[(5, FaultCode::ShortCircuit), (9, FaultCode::OverVoltage)],
+        );
+        let ps = p.poll(&m, t0 + ms(1500));
+        assert_eq!(master(&ps, Master::Warning), Some(true), "a new warning");
     }
 }
