@@ -135,8 +135,13 @@ fn cas(ps: &[Parameter]) -> Vec<(u16, CasLevel, String)> {
         .collect()
 }
 
+/// MSTRCAUTN as published in `ps`, if it was.
 fn master(ps: &[Parameter]) -> Option<bool> {
-    find(ps, idents::MSTRCAUTN, 0).map(|p| p.value == Value::Bool(Boolean::True))
+    master_of(ps, idents::MSTRCAUTN)
+}
+
+fn master_of(ps: &[Parameter], ident: vpx_efis::xfsp::Ident) -> Option<bool> {
+    find(ps, ident, 0).map(|p| p.value == Value::Bool(Boolean::True))
 }
 
 fn request(sender: &mut Sender, ps: Vec<Parameter>) -> Vec<u8> {
@@ -181,6 +186,7 @@ fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
     let aux = bus(find(&ps, idents::BUSSTAT, 1).unwrap());
     assert_eq!((aux.state, aux.out_volts), (EcbState::On, 126));
     assert_eq!(master(&ps), Some(false));
+    assert_eq!(master_of(&ps, idents::MSTRWARN), Some(false));
     assert!(cas(&ps).is_empty());
 }
 
@@ -216,7 +222,7 @@ fn every_item_is_refreshed_at_least_once_a_second_and_not_resent_unchanged_soone
 }
 
 #[test]
-fn a_fault_raises_cas_and_master_caution_then_clear_three_times() {
+fn a_short_circuit_raises_cas_and_master_warning_then_clear_three_times() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[]);
@@ -233,7 +239,8 @@ fn a_fault_raises_cas_and_master_caution_then_clear_three_times() {
         bus(find(&ps, idents::ECBSTAT, 5).unwrap()).state,
         EcbState::Shorted
     );
-    assert_eq!(master(&ps), Some(true));
+    assert_eq!(master_of(&ps, idents::MSTRWARN), Some(true));
+    assert_eq!(master(&ps), None, "a warning leaves Master Caution FALSE");
     assert_eq!(gw.standing_cas().len(), 1);
     // Status keeps coming without FAULT_STATUS: after 2.5 s the fault has cleared.
     let mut clears = Vec::new();
@@ -243,7 +250,7 @@ fn a_fault_raises_cas_and_master_caution_then_clear_three_times() {
         now = gw.next_deadline();
         status(&mut m, now, &[]);
         let ps = params(&gw.tick(&mut m, now));
-        master_seen.extend(master(&ps));
+        master_seen.extend(master_of(&ps, idents::MSTRWARN));
         for (u, level, label) in cas(&ps) {
             if level == CasLevel::Clear {
                 clears.push((now, u, label));
@@ -451,7 +458,8 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
     );
     assert!(gw.receive(&own, &mut m, t0 + ms(2100)).is_empty());
     assert_eq!(gw.stats().own, 1);
-    // A label that names another circuit is another node's circuit.
+    // A unit and a label that name different circuits: refused, in words, counted.
+    let refused = gw.stats().commands_refused;
     let mut other = ecb_request(2, EcbState::Off, Confidence::UserSel);
     if let Value::Bus(b) = &mut other.value {
         b.label = b"LANDING LT".to_vec();
@@ -460,6 +468,14 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
         gw.receive(&request(&mut peer, vec![other]), &mut m, t0 + ms(2200))
             .is_empty()
     );
+    assert!(
+        m.events
+            .back()
+            .unwrap()
+            .text
+            .contains("unit 2 is \"EFIS\", not \"LANDING LT\"")
+    );
+    assert_eq!(gw.stats().commands_refused, refused + 1);
 }
 
 fn flap_moves(ps: &[Packet]) -> Vec<(bool, vpx_efis::protocol::message::FlapDirection)> {
@@ -665,4 +681,358 @@ fn the_pages_keys_come_before_network_motor_requests() {
         flap_moves(&gw.set_local_motor(&mut m, t0 + ms(320), true)),
         [(false, Down)]
     );
+}
+
+fn named(m: &mut Model, at: Instant, id: u8, name: &str) {
+    use vpx_efis::protocol::message::DeviceName;
+    m.apply_packet(
+        at,
+        &Packet::from_vpx(9, DeviceName::new(id, name).expect("a valid name")),
+    );
+}
+
+fn labelled(unit: u16, label: &str, state: EcbState) -> Parameter {
+    let mut p = ecb_request(unit, state, Confidence::UserSel);
+    if let Value::Bus(b) = &mut p.value {
+        b.label = label.as_bytes().to_vec();
+    }
+    p
+}
+
+fn power(out: &[Packet]) -> Vec<(u8, bool)> {
+    out.iter()
+        .filter_map(|p| match p.message {
+            Message::DevicePower(d) => Some((d.device_id, d.on)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The draft's ECBSTAT has "Unit Usage: None": the label alone must do. Our unit
+/// numbers work too, and both together must agree.
+#[test]
+fn circuit_requests_match_by_label_by_unit_or_both_and_a_mismatch_is_refused() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    named(&mut m, t0, 5, "LANDING LT");
+    named(&mut m, t0, 6, "TAXI LT");
+    named(&mut m, t0, 7, "SPARE");
+    named(&mut m, t0, 8, "Spare");
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut peer = Sender::new(PEER, 1);
+    let mut at = t0;
+    let mut send = |gw: &mut Gateway, m: &mut Model, p: Parameter| {
+        at += ms(10);
+        gw.receive(&request(&mut peer, vec![p]), m, at)
+    };
+
+    // Label only, unit 0 as a requester following the draft sends it; any case.
+    let out = send(&mut gw, &mut m, labelled(0, "landing lt", EcbState::On));
+    assert_eq!(power(&out), [(5, true)]);
+    assert!(
+        m.events
+            .back()
+            .unwrap()
+            .text
+            .contains("LANDING LT ON -> DEVICE_POWER")
+    );
+    // Unit only.
+    let out = send(&mut gw, &mut m, labelled(6, "", EcbState::On));
+    assert_eq!(power(&out), [(6, true)]);
+    // Both, agreeing (the label NUL-padded, as the draft allows).
+    let out = send(&mut gw, &mut m, labelled(2, "EFIS\0\0\0", EcbState::Off));
+    assert_eq!(power(&out), [(2, false)]);
+    assert_eq!(gw.stats().commands_taken, 3);
+    assert_eq!(gw.stats().commands_refused, 0);
+
+    // Both, disagreeing: refused, logged with the reason, counted.
+    let out = send(&mut gw, &mut m, labelled(5, "TAXI LT", EcbState::Off));
+    assert!(out.is_empty());
+    let last = &m.events.back().unwrap().text;
+    assert!(
+        last.contains(
+            "XFSp 0x0042 (USERSEL): ECBSTAT OFF refused: unit 5 is \"LANDING LT\", not \"TAXI LT\""
+        ),
+        "{last}"
+    );
+    assert_eq!(gw.stats().commands_refused, 1);
+    // A label no circuit has, a label two share, a unit no circuit has.
+    for (p, why) in [
+        (
+            labelled(0, "PITOT HEAT", EcbState::On),
+            "no circuit is named \"PITOT HEAT\"",
+        ),
+        (
+            labelled(0, "spare", EcbState::On),
+            "2 circuits are named \"spare\" (units 7, 8)",
+        ),
+        (labelled(300, "", EcbState::On), "unit 300 is no circuit"),
+        (labelled(40, "EFIS", EcbState::On), "unit 40 is no circuit"),
+    ] {
+        assert!(send(&mut gw, &mut m, p).is_empty());
+        let last = &m.events.back().unwrap().text;
+        assert!(last.contains(why), "{last}");
+    }
+    assert_eq!(gw.stats().commands_refused, 5);
+    // The same refused request repeated within the window is one request…
+    assert!(send(&mut gw, &mut m, labelled(0, "PITOT HEAT", EcbState::On)).is_empty());
+    assert_eq!(gw.stats().commands_refused, 5);
+    // …and a unit with the label that tells the two spares apart works.
+    let out = send(&mut gw, &mut m, labelled(8, "SPARE", EcbState::On));
+    assert_eq!(power(&out), [(8, true)]);
+    assert_eq!(gw.stats().commands_taken, 4);
+    // Every refusal is in the event log as a warning.
+    let refusals = m
+        .events
+        .iter()
+        .filter(|e| e.text.contains("refused"))
+        .count();
+    assert_eq!(refusals as u64, gw.stats().commands_refused);
+}
+
+fn master_request(ident: vpx_efis::xfsp::Ident, value: bool, conf: Confidence) -> Parameter {
+    Parameter::new(ident, Value::Bool(Boolean::from(value))).confidence(conf)
+}
+
+/// Drives the gateway for `secs` seconds with the unit broadcasting `faults`, and
+/// returns every value of `ident` it published.
+fn run_masters(
+    gw: &mut Gateway,
+    m: &mut Model,
+    from: Instant,
+    secs: u64,
+    faults: &[(u8, FaultCode)],
+    ident: vpx_efis::xfsp::Ident,
+) -> (Instant, Vec<bool>) {
+    let mut now = from;
+    let mut seen = Vec::new();
+    while now < from + ms(secs * 1000) {
+        status(m, now, &[]);
+        for &(id, code) in faults {
+            fault(m, now, id, code);
+        }
+        seen.extend(master_of(&params(&gw.tick(m, now)), ident));
+        now = gw.next_deadline();
+    }
+    (now, seen)
+}
+
+#[test]
+fn master_caution_reset_by_usersel_false_stays_false_until_a_new_caution() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let oc = [(5, FaultCode::OverCurrent)];
+    let (now, seen) = run_masters(&mut gw, &mut m, t0, 1, &oc, idents::MSTRCAUTN);
+    assert_eq!(seen.last(), Some(&true));
+    // A display resets it.
+    let mut display = Sender::new(PEER, 1);
+    let reset = request(
+        &mut display,
+        vec![master_request(
+            idents::MSTRCAUTN,
+            false,
+            Confidence::UserSel,
+        )],
+    );
+    gw.receive(&reset, &mut m, now);
+    assert!(
+        m.events
+            .back()
+            .unwrap()
+            .text
+            .contains("USERSEL): Master Caution reset (1 message acknowledged)")
+    );
+    // The fault still stands, refreshed every second: FALSE for good.
+    let (now, seen) = run_masters(&mut gw, &mut m, now, 4, &oc, idents::MSTRCAUTN);
+    assert!(seen.len() >= 4, "{seen:?}");
+    assert!(seen.iter().all(|&v| !v), "came back: {seen:?}");
+    // A new caution raises it again; SYSSEL resets it too.
+    let two = [(5, FaultCode::OverCurrent), (6, FaultCode::CurrentFault)];
+    let (now, seen) = run_masters(&mut gw, &mut m, now, 1, &two, idents::MSTRCAUTN);
+    assert_eq!(seen.first(), Some(&true), "{seen:?}");
+    let reset = request(
+        &mut display,
+        vec![master_request(idents::MSTRCAUTN, false, Confidence::SysSel)],
+    );
+    gw.receive(&reset, &mut m, now);
+    let (_, seen) = run_masters(&mut gw, &mut m, now, 2, &two, idents::MSTRCAUTN);
+    assert!(seen.iter().all(|&v| !v), "{seen:?}");
+    // Status confidence is another node's report, not a reset; TRUE is refused.
+    let before = gw.stats();
+    let high = request(
+        &mut display,
+        vec![master_request(idents::MSTRCAUTN, false, Confidence::High)],
+    );
+    gw.receive(&high, &mut m, now + ms(2100));
+    assert_eq!(gw.stats().commands_taken, before.commands_taken);
+    let set = request(
+        &mut display,
+        vec![master_request(idents::MSTRCAUTN, true, Confidence::UserSel)],
+    );
+    gw.receive(&set, &mut m, now + ms(2200));
+    assert_eq!(gw.stats().commands_refused, before.commands_refused + 1);
+    assert!(
+        m.events
+            .back()
+            .unwrap()
+            .text
+            .contains("only FALSE resets it")
+    );
+    assert_eq!(gw.stats().commands_taken, 2, "the two resets");
+}
+
+#[test]
+fn master_warning_rises_on_a_short_and_resets_the_same_way() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let short = [(5, FaultCode::ShortCircuit)];
+    let (now, seen) = run_masters(&mut gw, &mut m, t0, 1, &short, idents::MSTRWARN);
+    assert_eq!(seen.last(), Some(&true));
+    assert!(!gw.master_active(vpx_efis::xfsp::publish::Master::Caution));
+    let mut display = Sender::new(PEER, 1);
+    let reset = request(
+        &mut display,
+        vec![master_request(idents::MSTRWARN, false, Confidence::SysSel)],
+    );
+    gw.receive(&reset, &mut m, now);
+    assert!(
+        m.events
+            .back()
+            .unwrap()
+            .text
+            .contains("Master Warning reset (1 message acknowledged)")
+    );
+    let (now, seen) = run_masters(&mut gw, &mut m, now, 4, &short, idents::MSTRWARN);
+    assert!(!seen.is_empty() && seen.iter().all(|&v| !v), "{seen:?}");
+    // The short clears (no FAULT_STATUS for 2.5 s) and comes back: a new warning.
+    let (now, _) = run_masters(&mut gw, &mut m, now, 3, &[], idents::MSTRWARN);
+    assert!(gw.standing_cas().is_empty());
+    let (_, seen) = run_masters(&mut gw, &mut m, now, 1, &short, idents::MSTRWARN);
+    assert_eq!(seen.first(), Some(&true), "{seen:?}");
+}
+
+/// The exit summary's counts come from these: a refused RTRIMREQ is a refusal.
+#[test]
+fn refused_and_expired_motor_requests_are_counted() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[]);
+    flaps(&mut m, t0, 40); // roll trim not configured: no scale
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut peer = Sender::new(PEER, 1);
+    let roll = request(
+        &mut peer,
+        vec![Parameter::new(idents::RTRIMREQ, Value::Sint(20_000)).confidence(Confidence::UserSel)],
+    );
+    assert!(gw.receive(&roll, &mut m, t0).is_empty());
+    assert_eq!(
+        (gw.stats().commands_taken, gw.stats().commands_refused),
+        (0, 1)
+    );
+    assert!(
+        m.events
+            .back()
+            .unwrap()
+            .text
+            .contains("roll trim request refused")
+    );
+    // Not a SINT.
+    let wrong = request(
+        &mut peer,
+        vec![Parameter::new(idents::PTRIMREQ, Value::Uint(5)).confidence(Confidence::UserSel)],
+    );
+    gw.receive(&wrong, &mut m, t0 + ms(10));
+    assert_eq!(gw.stats().commands_refused, 2);
+    // A flap request waiting behind the page's keys until it expires.
+    gw.set_local_motor(&mut m, t0 + ms(20), true);
+    let flap = request(
+        &mut peer,
+        vec![
+            Parameter::new(idents::FLAPREQ, Value::Sint(50_000))
+                .confidence(Confidence::UserSel)
+                .expire(Expire::at_least(ms(300))),
+        ],
+    );
+    gw.receive(&flap, &mut m, t0 + ms(20));
+    let mut now = t0 + ms(20);
+    while now < t0 + ms(1000) {
+        status(&mut m, now, &[]);
+        flaps(&mut m, now, 40);
+        gw.set_local_motor(&mut m, now, true);
+        gw.tick(&mut m, now);
+        now = gw.next_deadline();
+    }
+    assert_eq!(
+        (gw.stats().commands_taken, gw.stats().commands_refused),
+        (0, 3)
+    );
+    assert!(m.events.iter().any(|e| {
+        e.text
+            .contains("expired while the page's keys were running a motor")
+    }));
+}
+
+/// The loop's contract: after a tick, the next deadline is in the future, whatever the
+/// unit's enable flags, with motor requests, air data and faults coming and going.
+#[test]
+fn after_every_tick_the_gateway_deadline_is_in_the_future() {
+    use vpx_efis::protocol::message::{DeviceEnable, EnableFlag};
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    flaps(&mut m, t0, 40);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    gw.tick(&mut m, t0);
+    for id in 4..=28u8 {
+        let e = DeviceEnable {
+            device_id: id,
+            flag: if id == 5 {
+                EnableFlag::Enabled
+            } else {
+                EnableFlag::Disabled
+            },
+        };
+        m.apply_packet(t0 + ms(30), &Packet::from_vpx(8, e));
+    }
+    let mut peer = Sender::new(PEER, 1);
+    let mut now = t0 + ms(30);
+    let mut ticks = 0;
+    while now < t0 + ms(20_000) {
+        let s = (now - t0).as_secs();
+        if s % 5 != 4 {
+            // The unit broadcasts, except for one second in five (faults clear,
+            // positions go stale).
+            status(&mut m, now, &[2]);
+            if s.is_multiple_of(3) {
+                fault(&mut m, now, 5, FaultCode::OverCurrent);
+            }
+            if (now - t0).as_millis() % 1000 < 500 {
+                flaps(&mut m, now, 40 + (s as u8 % 10) * 8);
+            }
+        }
+        if s % 4 == 1 {
+            let d = request(
+                &mut peer,
+                vec![
+                    Parameter::new(idents::FLAPREQ, Value::Sint(60_000))
+                        .confidence(Confidence::UserSel)
+                        .expire(Expire::at_least(ms(300))),
+                    Parameter::new(idents::IAS, Value::Sint(70)),
+                ],
+            );
+            gw.receive(&d, &mut m, now);
+        }
+        gw.tick(&mut m, now);
+        ticks += 1;
+        let next = gw.next_deadline();
+        assert!(next > now, "tick at +{:?}: deadline not ahead", now - t0);
+        now = next;
+    }
+    // 10 Hz polling at most, plus the motor stream's 5 Hz while it runs.
+    assert!(ticks <= 20 * 16, "{ticks} ticks in 20 s");
 }

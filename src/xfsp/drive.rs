@@ -14,6 +14,10 @@
 //! target, or the requests stopping and starting again, is a new request.
 //!
 //! One motor runs at a time (the streamer has one run); other requests wait their turn.
+//!
+//! Every request gets an answer in the event log and in [`MotorDrive::counts`]: taken
+//! (a run started, or the motor was already there) or refused (no live position or
+//! scale, a motor check failed, or it expired waiting for another run to end).
 
 use std::time::{Duration, Instant};
 
@@ -64,6 +68,15 @@ struct Active {
     raw_target: u8,
 }
 
+/// How the requests this drive served ended, for the gateway's counters.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct DriveCounts {
+    /// A run started toward the target, or the motor was already there.
+    pub taken: u64,
+    /// Refused, or expired before it could be served; each logged with the reason.
+    pub refused: u64,
+}
+
 #[derive(Debug, Clone)]
 pub struct MotorDrive {
     streamer: MotorStreamer,
@@ -72,6 +85,7 @@ pub struct MotorDrive {
     /// The page's own keys are running a motor: the network waits, so two streams
     /// (perhaps in opposite directions) never share the link.
     local_busy: bool,
+    counts: DriveCounts,
 }
 
 impl MotorDrive {
@@ -89,7 +103,12 @@ impl MotorDrive {
             }; 3],
             active: None,
             local_busy: false,
+            counts: DriveCounts::default(),
         }
+    }
+
+    pub fn counts(&self) -> DriveCounts {
+        self.counts
     }
 
     /// A command number from the streamer's counter, so every request the gateway
@@ -188,10 +207,34 @@ impl MotorDrive {
     /// to the model, so a reached target or a fault stops the motor at once.
     pub fn tick(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
         let mut out = Vec::new();
-        for slot in &mut self.slots {
-            if slot.req.is_some_and(|r| now >= r.until) {
-                slot.req = None;
-                slot.latched = None;
+        let running = self.active.map(|a| a.motor);
+        for motor in MOTORS {
+            let local_busy = self.local_busy;
+            let slot = self.slot(motor);
+            let Some(r) = slot.req.filter(|r| now >= r.until) else {
+                continue;
+            };
+            let served = slot.latched == Some(r.target) || running == Some(motor);
+            slot.req = None;
+            slot.latched = None;
+            if !served {
+                // Never dropped in silence: it waited for another run and ran out.
+                self.counts.refused += 1;
+                let why = if local_busy {
+                    "the page's keys were running a motor"
+                } else {
+                    "another motor was running"
+                };
+                model.log(
+                    now,
+                    LogLevel::Warning,
+                    format!(
+                        "XFSp {:#06x}: {} request to {} refused: it expired while {why}",
+                        r.src,
+                        motor.name(),
+                        r.target
+                    ),
+                );
             }
         }
         if let Some(a) = self.active {
@@ -255,6 +298,7 @@ impl MotorDrive {
             // Whatever happens next, this target has had its answer.
             self.slot(motor).latched = Some(req.target);
             let Some((axis, pos)) = position(model, motor, now) else {
+                self.counts.refused += 1;
                 model.log(
                     now,
                     LogLevel::Warning,
@@ -271,6 +315,7 @@ impl MotorDrive {
                 .direction(motor, pos, raw_target)
                 .filter(|&d| axis.remaining(motor, d, pos, raw_target) > STOP_MARGIN)
             else {
+                self.counts.taken += 1;
                 model.log(
                     now,
                     LogLevel::Info,
@@ -284,6 +329,7 @@ impl MotorDrive {
                 continue;
             };
             if let Err(why) = motor_permit(model, motor, direction, now) {
+                self.counts.refused += 1;
                 model.log(
                     now,
                     LogLevel::Warning,
@@ -299,6 +345,7 @@ impl MotorDrive {
             let mut out = self.streamer.release(now);
             out.extend(self.streamer.press(now, motor, direction));
             if self.streamer.running_key() == Some((motor, direction)) {
+                self.counts.taken += 1;
                 self.slot(motor).latched = None;
                 self.active = Some(Active {
                     motor,
@@ -315,6 +362,17 @@ impl MotorDrive {
                         motor.name(),
                         direction.name(),
                         req.target
+                    ),
+                );
+            } else {
+                self.counts.refused += 1;
+                model.log(
+                    now,
+                    LogLevel::Warning,
+                    format!(
+                        "XFSp {:#06x}: {} request refused: the motor stream did not start",
+                        req.src,
+                        motor.name()
                     ),
                 );
             }

@@ -40,7 +40,27 @@
 //! unit fails and [`Gateway::shutdown`] before leaving, sending what they return.
 //!
 //! Every command taken from the network, and every refusal, goes to the model's event
-//! log (`model.log`), prefixed "XFSp" and the sender's source id.
+//! log (`model.log`), prefixed "XFSp" and the sender's source id, and is counted in
+//! [`GatewayStats`]: nothing with SYSSEL/USERSEL confidence is dropped in silence.
+//!
+//! # How an ECBSTAT request names its circuit
+//!
+//! The draft gives ECBSTAT "Unit Usage: None" and a label, so the label alone must do;
+//! we also publish each circuit with its VP-X device id as the unit, so a requester
+//! that copies our unit number works too. The rule ([`match_circuit`]):
+//! - a label and unit 0 (the draft's "None"): the circuit with that label;
+//! - a label and a unit other than 0: both, and they must name the same circuit;
+//! - no label: the circuit with that unit number (0 is then the flaps, device 0).
+//!
+//! Labels are compared with the names we publish, trimmed and ignoring ASCII case.
+//! A label no circuit has, a label two circuits share, a unit no circuit has, and a
+//! unit and label that disagree are refused, logged with the reason and counted.
+//!
+//! # Master Caution and Master Warning
+//!
+//! MSTRCAUTN or MSTRWARN with SYSSEL/USERSEL and FALSE resets that master (the draft's
+//! words); see [`super::publish`] for when it rises again. TRUE is refused: the masters
+//! are raised by the VP-X's faults, not by the network.
 
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
@@ -55,9 +75,9 @@ use super::dict::{CertLevel, Confidence, EcbState};
 use super::drive::{MotorDrive, MotorRequest};
 use super::format::{CasMsg, Value, latin1};
 use super::header::Header;
-use super::idents;
+use super::idents::{self, Ident};
 use super::param::Parameter;
-use super::publish::Publisher;
+use super::publish::{Master, Publisher};
 use super::receiver::{Received, Receiver, RxStats};
 use super::sender::{MsgKind, Sender};
 
@@ -112,7 +132,10 @@ pub struct GatewayStats {
     pub own: u64,
     /// Parameters in well-formed datagrams whose value did not decode.
     pub undecodable: u64,
+    /// Requests acted on: circuit commands sent, motor runs started (or the motor
+    /// already there), master resets.
     pub commands_taken: u64,
+    /// Requests refused or expired unserved, each with a line in the event log.
     pub commands_refused: u64,
     pub datagrams_built: u64,
     pub build_errors: u64,
@@ -126,7 +149,9 @@ pub struct Gateway {
     publisher: Publisher,
     air: AirData,
     drive: MotorDrive,
-    recent: HashMap<(u8, u8), Instant>,
+    /// Requests taken (or refused for naming no circuit) lately, by (ident, unit or
+    /// device id, state): a repeat within [`COMMAND_REPEAT_WINDOW`] is the same request.
+    recent: HashMap<(Ident, u16, u8, Vec<u8>), Instant>,
     last_tick: Instant,
     stats: GatewayStats,
 }
@@ -276,10 +301,18 @@ impl Gateway {
     }
 
     pub fn stats(&self) -> GatewayStats {
+        let drive = self.drive.counts();
         GatewayStats {
             rx: self.receiver.stats(),
+            commands_taken: self.stats.commands_taken + drive.taken,
+            commands_refused: self.stats.commands_refused + drive.refused,
             ..self.stats
         }
+    }
+
+    /// Whether a master annunciator is TRUE on the network now.
+    pub fn master_active(&self, master: Master) -> bool {
+        self.publisher.master_active(master)
     }
 
     fn note_heard(&mut self, src: u16, now: Instant) {
@@ -315,56 +348,143 @@ impl Gateway {
             // Status from other nodes (their own ECBs, their positions) is not for us.
             return;
         }
+        let who = format!("XFSp {src:#06x} ({})", confidence_name(p.confidence));
+        if let Some(master) = Master::from_ident(p.ident) {
+            return self.master_reset(&who, master, p, model, now);
+        }
         let motor = match p.ident {
-            idents::ECBSTAT => return self.circuit_command(src, p, model, now, out),
+            idents::ECBSTAT => return self.circuit_command(&who, p, model, now, out),
             idents::FLAPREQ => Motor::Flaps,
             idents::PTRIMREQ => Motor::Trim(TrimKind::Pitch),
             idents::RTRIMREQ => Motor::Trim(TrimKind::Roll),
             _ => return,
         };
         let Value::Sint(target) = p.value else {
-            return;
+            return self.refuse(
+                model,
+                now,
+                format!("{who}: {} request refused: not a SINT", motor.name()),
+            );
         };
         let held = self.drive.request_for(motor);
         if held.is_none_or(|r| r.target != target) {
-            self.stats.commands_taken += 1;
+            // Heard; the drive counts it as taken or refused when it answers it.
             model.log(
                 now,
                 LogLevel::Info,
-                format!(
-                    "XFSp {src:#06x} ({}): {} to {target}",
-                    confidence_name(p.confidence),
-                    motor.name()
-                ),
+                format!("{who}: {} to {target}", motor.name()),
             );
         }
         self.drive
             .request(motor, target, src, p.expire.duration(), now);
     }
 
+    fn refuse(&mut self, model: &mut Model, now: Instant, text: String) {
+        self.stats.commands_refused += 1;
+        model.log(now, LogLevel::Warning, text);
+    }
+
+    /// Whether the same request was seen within the repeat window; notes it if not.
+    fn repeated(&mut self, key: (Ident, u16, u8, Vec<u8>), now: Instant) -> bool {
+        if self
+            .recent
+            .get(&key)
+            .is_some_and(|&t| now.saturating_duration_since(t) < COMMAND_REPEAT_WINDOW)
+        {
+            return true;
+        }
+        if self.recent.len() > 1024 {
+            // Bounded under a flood of distinct requests.
+            self.recent
+                .retain(|_, t| now.saturating_duration_since(*t) < COMMAND_REPEAT_WINDOW);
+        }
+        self.recent.insert(key, now);
+        false
+    }
+
+    /// MSTRCAUTN/MSTRWARN with SYSSEL/USERSEL: FALSE resets, anything else is refused.
+    fn master_reset(
+        &mut self,
+        who: &str,
+        master: Master,
+        p: &Parameter,
+        model: &mut Model,
+        now: Instant,
+    ) {
+        let name = master.name();
+        match &p.value {
+            Value::Bool(b) if b.as_bool() == Some(false) => {
+                let acknowledged = self.publisher.reset_master(master);
+                // A reset that finds nothing new is harmless; repeats of it (a display
+                // sending its reset a few times against loss) are taken once.
+                let key = (master.ident(), 0, 0, Vec::new());
+                if acknowledged == 0 && self.repeated(key, now) {
+                    return;
+                }
+                if acknowledged > 0 {
+                    self.recent.insert((master.ident(), 0, 0, Vec::new()), now);
+                }
+                self.stats.commands_taken += 1;
+                let what = match acknowledged {
+                    0 => "nothing new was standing".to_string(),
+                    1 => "1 message acknowledged".to_string(),
+                    n => format!("{n} messages acknowledged"),
+                };
+                model.log(now, LogLevel::Info, format!("{who}: {name} reset ({what})"));
+            }
+            Value::Bool(_) => self.refuse(
+                model,
+                now,
+                format!("{who}: {name} refused: only FALSE resets it; the VP-X's faults raise it"),
+            ),
+            _ => self.refuse(model, now, format!("{who}: {name} refused: not a BOOL")),
+        }
+    }
+
     fn circuit_command(
         &mut self,
-        src: u16,
+        who: &str,
         p: &Parameter,
         model: &mut Model,
         now: Instant,
         out: &mut Vec<Packet>,
     ) {
-        let Value::Bus(bus) = &p.value else { return };
-        let Some(id) = u8::try_from(p.unit)
-            .ok()
-            .filter(|&id| usize::from(id) < DEVICE_COUNT)
-        else {
-            return;
+        let Value::Bus(bus) = &p.value else {
+            return self.refuse(model, now, format!("{who}: ECBSTAT refused: not a BUS"));
+        };
+        let state_name = bus
+            .state
+            .spec_name()
+            .map_or_else(|| format!("state {}", u8::from(bus.state)), str::to_string);
+        let label = latin1(&bus.label);
+        let id = match match_circuit(model, now, p.unit, &label) {
+            Ok(id) => id,
+            Err(why) => {
+                // A requester repeating a request that names nothing gets one answer a
+                // window, not one per datagram.
+                let key = (
+                    idents::ECBSTAT,
+                    p.unit,
+                    u8::from(bus.state),
+                    bus.label.clone(),
+                );
+                if !self.repeated(key, now) {
+                    self.refuse(
+                        model,
+                        now,
+                        format!("{who}: ECBSTAT {state_name} refused: {why}"),
+                    );
+                }
+                return;
+            }
         };
         let name = model.display_name(id);
-        let label = latin1(&bus.label);
-        if !label.trim().is_empty() && !label.trim().eq_ignore_ascii_case(name.trim()) {
-            // Same unit number, other words: another node's circuit, not ours.
-            return;
-        }
-        let state_name = bus.state.spec_name().unwrap_or("?");
-        let key = (id, u8::from(bus.state));
+        let key = (
+            idents::ECBSTAT,
+            u16::from(id),
+            u8::from(bus.state),
+            Vec::new(),
+        );
         if self
             .recent
             .get(&key)
@@ -372,24 +492,16 @@ impl Gateway {
         {
             return;
         }
-        let who = format!("XFSp {src:#06x} ({})", confidence_name(p.confidence));
         let action = match bus.state {
             EcbState::On => Action::PowerOn(id),
             EcbState::Off => Action::PowerOff(id),
             EcbState::Reset => Action::Reset(id),
-            other => {
-                self.stats.commands_refused += 1;
-                model.log(
+            _ => {
+                return self.refuse(
+                    model,
                     now,
-                    LogLevel::Warning,
-                    format!(
-                        "{who}: {name} {}: only ON, OFF and RESET are commands",
-                        other
-                            .spec_name()
-                            .map_or_else(|| format!("state {}", u8::from(other)), str::to_string)
-                    ),
+                    format!("{who}: {name} {state_name}: only ON, OFF and RESET are commands"),
                 );
-                return;
             }
         };
         match command(&action, model, now) {
@@ -405,15 +517,57 @@ impl Gateway {
                 );
                 out.push(Packet::request(self.drive.next_cnt(), message));
             }
-            Err(why) => {
-                self.stats.commands_refused += 1;
-                model.log(
-                    now,
-                    LogLevel::Warning,
-                    format!("{who}: {name} {state_name} refused: {why}"),
-                );
-            }
+            Err(why) => self.refuse(
+                model,
+                now,
+                format!("{who}: {name} {state_name} refused: {why}"),
+            ),
         }
+    }
+}
+
+/// The circuit an ECBSTAT request names (see the module's notes): by label when the
+/// unit is 0, by unit when there is no label, by both otherwise. `Err` says why none.
+pub fn match_circuit(model: &Model, now: Instant, unit: u16, label: &str) -> Result<u8, String> {
+    let label = label.trim();
+    let by_unit = u8::try_from(unit)
+        .ok()
+        .filter(|&id| usize::from(id) < DEVICE_COUNT);
+    if label.is_empty() {
+        return by_unit.ok_or_else(|| {
+            format!(
+                "no label, and unit {unit} is no circuit (units are device ids 0-{})",
+                DEVICE_COUNT - 1
+            )
+        });
+    }
+    let named = |id: u8| model.display_name(id).trim().eq_ignore_ascii_case(label);
+    if unit != 0 {
+        return match by_unit {
+            Some(id) if named(id) => Ok(id),
+            Some(id) => Err(format!(
+                "unit {unit} is {:?}, not {label:?}",
+                model.display_name(id).trim()
+            )),
+            None => Err(format!(
+                "unit {unit} is no circuit, and the label is {label:?}"
+            )),
+        };
+    }
+    let found: Vec<u8> = model
+        .circuits(now)
+        .iter()
+        .map(|c| c.id)
+        .filter(|&id| named(id))
+        .collect();
+    match found.as_slice() {
+        [id] => Ok(*id),
+        [] => Err(format!("no circuit is named {label:?}")),
+        ids => Err(format!(
+            "{} circuits are named {label:?} (units {}); give the unit too",
+            ids.len(),
+            ids.iter().map(u8::to_string).collect::<Vec<_>>().join(", ")
+        )),
     }
 }
 
