@@ -97,6 +97,10 @@ pub const BUILT_IN: &[(&str, &str)] = &[
         "runaway",
         include_str!("../../assets/scenarios/runaway.toml"),
     ),
+    (
+        "disabled-pins",
+        include_str!("../../assets/scenarios/disabled-pins.toml"),
+    ),
 ];
 
 /// A whole scenario; see the module documentation for the file format.
