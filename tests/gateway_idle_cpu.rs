@@ -1,0 +1,162 @@
+//! Issue 17: `vpx-efis gateway` against a virtual VP-X whose unused pins are disabled
+//! (as on any real installation) spun a whole core. Here both run as the separate
+//! processes a user starts, the gateway publishing to a peer on 127.0.0.1, and the
+//! gateway's own CPU time (from /proc, so another process's load does not count) is
+//! measured while the unit sends its 1 Hz and 10 Hz broadcasts and nothing changes.
+//!
+//! `IDLE_CPU_SECS=25 cargo test --release --test gateway_idle_cpu -- --nocapture`
+//! measures longer and prints the figure.
+#![cfg(target_os = "linux")]
+
+use std::collections::BTreeSet;
+use std::io::{BufRead, BufReader};
+use std::net::UdpSocket;
+use std::process::{Child, Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use vpx_efis::xfsp::{Body, Message, idents};
+
+struct Kill(Child);
+
+impl Drop for Kill {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// User plus system CPU time of a process.
+fn cpu_time(pid: u32) -> Duration {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).expect("/proc/PID/stat");
+    // The command name is in parentheses and may hold spaces: count fields after it.
+    let rest = &stat[stat.rfind(')').expect("comm") + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // utime and stime are fields 14 and 15 of the whole line, 12 and 13 after comm.
+    let ticks: u64 = fields[11].parse::<u64>().unwrap() + fields[12].parse::<u64>().unwrap();
+    // SAFETY: sysconf has no preconditions.
+    let hz = unsafe { libc::sysconf(libc::_SC_CLK_TCK) } as u64;
+    Duration::from_secs_f64(ticks as f64 / hz as f64)
+}
+
+/// ECBSTAT units in whatever datagrams arrive within `for_`.
+fn ecb_units(peer: &UdpSocket, for_: Duration) -> (usize, BTreeSet<u16>) {
+    let end = Instant::now() + for_;
+    let mut buf = [0u8; 4096];
+    let mut datagrams = 0;
+    let mut units = BTreeSet::new();
+    while Instant::now() < end {
+        let Ok(n) = peer.recv(&mut buf) else { continue };
+        datagrams += 1;
+        if let Ok(Message {
+            body: Body::Params(ps),
+            ..
+        }) = Message::parse(&buf[..n])
+        {
+            units.extend(
+                ps.iter()
+                    .filter(|p| p.ident == idents::ECBSTAT)
+                    .map(|p| p.unit),
+            );
+        }
+    }
+    (datagrams, units)
+}
+
+#[test]
+fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
+    let secs: u64 = std::env::var("IDLE_CPU_SECS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(4);
+    let exe = env!("CARGO_BIN_EXE_vpx-efis");
+    let mut sim = Command::new(exe)
+        .args(["sim", "--pty", "--scenario", "disabled-pins"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("run vpx-efis sim");
+    let stdout = sim.stdout.take().unwrap();
+    let _sim = Kill(sim);
+    let mut path = String::new();
+    BufReader::new(stdout).read_line(&mut path).unwrap();
+    let path = path.trim().to_string();
+
+    let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
+    peer.set_read_timeout(Some(Duration::from_millis(50)))
+        .unwrap();
+    let mut gateway = Command::new(exe)
+        .args([
+            "gateway",
+            "--port",
+            &path,
+            "--xfsp-iface",
+            "127.0.0.1",
+            "--xfsp",
+        ])
+        .arg(peer.local_addr().unwrap().to_string())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run vpx-efis gateway");
+    let lines = Arc::new(Mutex::new(Vec::<String>::new()));
+    {
+        let stderr = gateway.stderr.take().unwrap();
+        let lines = lines.clone();
+        std::thread::spawn(move || {
+            for l in BufReader::new(stderr).lines().map_while(Result::ok) {
+                lines.lock().unwrap().push(l);
+            }
+        });
+    }
+    let pid = gateway.id();
+    let mut gateway = Kill(gateway);
+
+    // Connected, every DEVICE_ENABLE, name and spec asked for and answered (about a
+    // second of paced requests), and a refresh round after that.
+    let (n, _) = ecb_units(&peer, Duration::from_secs(3));
+    assert!(n > 0, "nothing published: {:?}", lines.lock().unwrap());
+
+    let cpu0 = cpu_time(pid);
+    let wall0 = Instant::now();
+    let (datagrams, units) = ecb_units(&peer, Duration::from_secs(secs));
+    let cpu = cpu_time(pid) - cpu0;
+    let wall = wall0.elapsed();
+    let share = cpu.as_secs_f64() / wall.as_secs_f64();
+    eprintln!(
+        "gateway: {cpu:?} CPU in {wall:.1?} = {:.2} % of a core, {datagrams} datagrams",
+        share * 100.0
+    );
+    // Only the wired pins are refreshed: starter, EFIS, alternator, 4, 5, 7, 8, 12 and
+    // the flaps and pitch trim (29 is roll trim, disabled).
+    assert_eq!(
+        units,
+        BTreeSet::from([0, 1, 2, 3, 4, 5, 7, 8, 12, 30]),
+        "ECBSTAT units published"
+    );
+    assert!(datagrams as u64 >= secs, "the gateway is still publishing");
+    // The product promises 1 % for a release build; this is usually a debug build on
+    // a shared machine. The spinning loop took every cycle the scheduler gave it.
+    assert!(
+        share < 0.05,
+        "the gateway used {:.1} % of a core",
+        share * 100.0
+    );
+
+    // SIGINT: it stops its motors and says what it did.
+    // SAFETY: signalling a child we started and still own.
+    unsafe { libc::kill(pid as libc::pid_t, libc::SIGINT) };
+    let end = Instant::now() + Duration::from_secs(5);
+    while gateway.0.try_wait().unwrap().is_none() {
+        assert!(Instant::now() < end, "the gateway did not stop on SIGINT");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(100));
+    let lines = lines.lock().unwrap();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("stopped:") && l.contains("0 refused")),
+        "{lines:?}"
+    );
+}
