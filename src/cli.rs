@@ -116,6 +116,7 @@ pub enum Command {
     /// Bridge the VP-X onto XFSp with no terminal UI.
     Gateway(GatewayArgs),
     /// Print decoded XFSp traffic.
+    #[command(after_help = crate::cmd::xfsp_dump::SCALES_HELP)]
     XfspDump(XfspDumpArgs),
 }
 

@@ -18,6 +18,31 @@ use crate::xfsp::format::{Bus, CasMsg, Value, latin1};
 use crate::xfsp::net::{Target, XfspNet};
 use crate::xfsp::{Expire, Header, ParamView, Received, Receiver, idents};
 
+/// The scales behind the numbers, for `xfsp-dump --help` (the draft names none; the
+/// README's XFSp section says the same).
+pub const SCALES_HELP: &str = "\
+Numbers as vpx-efis publishes them (the XFSp draft names no scales; this dump prints
+BUS values already divided, in A and V):
+  ECBSTAT    unit = VP-X device id 0-30, label = the circuit's name; drawamps and
+             maxamps in tenths of an ampere (25 = 2.5 A); the volts fields are 0 (the
+             VP-X measures no voltage per pin, so INPUTVOLTS is not set)
+  BUSSTAT    unit 0 \"MAIN BUS\": outvolts in tenths of a volt (138 = 13.8 V), drawamps
+             = the unit's total current in tenths of an ampere; unit 1 \"AUX BATTERY\":
+             outvolts in tenths of a volt, drawamps 0
+  FLAPPOS    0 = flaps up endpoint, 100000 = down endpoint
+  PTRIMPOS   -100000 = nose-down endpoint, 0 = neutral, 100000 = nose-up endpoint
+  RTRIMPOS   -100000 = left endpoint, 0 = neutral, 100000 = right endpoint
+  MSTRCAUTN, MSTRWARN  unit 0, TRUE while an unreset CAUTION / WARNING stands
+Requests use the same scales (FLAPREQ, PTRIMREQ, RTRIMREQ on +-100000).
+
+Air data the gateway forwards to the VP-X (EXTERNAL_DATA) must arrive as whole
+numbers (SINT or UINT), in the units the VP-X expects; nothing is converted:
+  IAS, GROUNDSPEED  the EFIS's speed unit, the one the VP-X's flap and trim speed
+                    limits are set in (knots in vpx-efis's setup screens)
+  P-ALT             feet
+  FUELPRES          pounds per square inch
+  ENGRPM            revolutions per minute";
+
 pub fn run(args: XfspDumpArgs) -> anyhow::Result<()> {
     let target = Target::parse(&args.xfsp).map_err(anyhow::Error::msg)?;
     let iface = args
@@ -216,6 +241,29 @@ fn value_json(v: &Value) -> Json {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn help_states_the_scale_of_every_published_number_and_the_air_data_units() {
+        use clap::CommandFactory;
+        let mut cli = crate::cli::Cli::command();
+        let help = cli
+            .find_subcommand_mut("xfsp-dump")
+            .expect("xfsp-dump")
+            .render_long_help()
+            .to_string();
+        for words in [
+            "tenths of an ampere",
+            "tenths of a volt",
+            "100000 = down endpoint",
+            "-100000 = nose-down",
+            "-100000 = left",
+            "P-ALT             feet",
+            "pounds per square inch",
+            "knots",
+        ] {
+            assert!(help.contains(words), "{words:?} missing from:\n{help}");
+        }
+    }
     use crate::xfsp::{CertLevel, MsgKind, Parameter, Sender};
 
     fn from() -> SocketAddr {
