@@ -74,7 +74,10 @@ impl App {
             .set_local_motor(&mut lock(&self.model), d.at, local);
         packets.extend(g.gateway.receive(&d.bytes, &mut lock(&self.model), d.at));
         self.send(packets);
-        self.dirty = true;
+        // No redraw of its own: what the network changes on screen (a command in the
+        // event log, what is forwarded) goes through the model, whose revision `tick`
+        // watches. Marking every datagram dirty redrew the page for each of our own,
+        // heard back through the multicast loop several times a second.
     }
 
     pub(super) fn xfsp_tick(&mut self, now: Instant) {
