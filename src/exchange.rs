@@ -94,6 +94,10 @@ pub const REREAD_MAX_GAP: Duration = Duration::from_secs(4);
 /// At most this many re-reads leave in one tick, so many unknown settings (a restore
 /// cut short) go out a few at a time, like the connect-time queries.
 pub const REREAD_BATCH: usize = 4;
+/// … with this between batches. Without it the settings a full batch left behind
+/// were due already, the loop's deadline was in the past, and every batch went out
+/// back to back.
+pub const REREAD_BATCH_GAP: Duration = Duration::from_millis(60);
 
 #[derive(Debug, Clone, Copy)]
 struct Asked {
@@ -105,6 +109,8 @@ struct Asked {
 #[derive(Debug, Default)]
 pub struct Rereader {
     asked: BTreeMap<Setting, Asked>,
+    /// A full batch went out: nothing more before this.
+    held_until: Option<Instant>,
 }
 
 impl Rereader {
@@ -117,15 +123,20 @@ impl Rereader {
     /// The queries to send at `now`.
     pub fn due(&mut self, model: &Model, now: Instant) -> Vec<Message> {
         self.asked.retain(|s, _| model.unknown.contains_key(s));
+        if self.held_until.is_some_and(|t| now < t) {
+            return Vec::new();
+        }
+        self.held_until = None;
         let mut out = Vec::new();
         for &setting in model.unknown.keys() {
-            if out.len() == REREAD_BATCH {
-                break;
-            }
             let due = self
                 .asked
                 .get(&setting)
                 .is_none_or(|a| now >= a.at + Rereader::gap(a.times));
+            if due && out.len() == REREAD_BATCH {
+                self.held_until = Some(now + REREAD_BATCH_GAP);
+                break;
+            }
             if due {
                 let a = self
                     .asked
@@ -139,13 +150,19 @@ impl Rereader {
         out
     }
 
-    /// When [`due`](Self::due) next has something to send.
+    /// When [`due`](Self::due) next has something to send. After `due(.., now)` this
+    /// is later than `now` (a setting marked unknown since then is due at once).
     pub fn next_deadline(&self, model: &Model) -> Option<Instant> {
         model
             .unknown
             .keys()
-            .map(|s| self.asked.get(s).map(|a| a.at + Rereader::gap(a.times)))
-            .map(|t| t.unwrap_or(Instant::now()))
+            .map(|s| {
+                let at = self
+                    .asked
+                    .get(s)
+                    .map_or_else(Instant::now, |a| a.at + Rereader::gap(a.times));
+                self.held_until.map_or(at, |h| at.max(h))
+            })
             .min()
     }
 

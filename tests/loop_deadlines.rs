@@ -8,6 +8,8 @@
 //! - the query pacer (page and gateway): [`query_pacer`] here;
 //! - the motor streamer (page keys and network requests): [`motor_streamer`] here;
 //! - the gateway's air data and motor drive: [`air_data`], [`motor_drive`] here;
+//! - the page's re-reads of settings left unknown (`exchange::Rereader`):
+//!   [`rereader`] here;
 //! - the XFSp publisher: `xfsp::publish` unit tests (disabled pins, stale positions);
 //! - the gateway (`Gateway::next_deadline`, headless loop and page):
 //!   `tests/xfsp_gateway_core.rs`, `after_every_tick_the_gateway_deadline_is_in_the_future`;
@@ -200,4 +202,40 @@ fn motor_drive() {
         "stopped once the requests expired"
     );
     assert_eq!(drive.counts().refused, 1, "the pitch trim had no scale");
+}
+
+/// A restore cut short leaves many settings unknown: they are asked a batch at a time
+/// with a gap between batches, then paced, and the deadline is always ahead.
+#[test]
+fn rereader() {
+    use vpx_efis::exchange::{REREAD_BATCH, REREAD_BATCH_GAP, Rereader};
+    use vpx_efis::model::Setting;
+    let t0 = Instant::now();
+    let mut m = model();
+    for id in 4..=20u8 {
+        m.mark_unknown(Setting::DeviceSpec(id), t0);
+    }
+    let mut r = Rereader::default();
+    let mut now = t0;
+    let mut sent: Vec<(Instant, usize)> = Vec::new();
+    while now < t0 + ms(20_000) {
+        let q = r.due(&m, now);
+        if !q.is_empty() {
+            sent.push((now, q.len()));
+        }
+        let next = r.next_deadline(&m).expect("settings still unknown");
+        assert!(next > now, "poll at +{:?}", now - t0);
+        now = next;
+    }
+    assert!(sent.iter().all(|&(_, n)| n <= REREAD_BATCH), "{sent:?}");
+    for w in sent.windows(2) {
+        assert!(w[1].0 - w[0].0 >= REREAD_BATCH_GAP, "{sent:?}");
+    }
+    // All seventeen asked within the first half second, then every few seconds.
+    let first: usize = sent
+        .iter()
+        .filter(|(t, _)| *t < t0 + ms(500))
+        .map(|(_, n)| n)
+        .sum();
+    assert_eq!(first, 17, "{sent:?}");
 }
