@@ -113,7 +113,7 @@ pub struct App {
     /// Traffic entries at the last draw, so the traffic screen redraws as frames come.
     traffic_drawn: u64,
     /// The setup screens' writes waiting for the unit, and their timed requests.
-    setup: setup::SetupCtl,
+    setup: crate::setup::flow::SetupFlow,
     /// Asks again for any setting a write left unknown, until the unit answers.
     rereader: Rereader,
 }

@@ -7,6 +7,7 @@
 //! The request/answer/retry/re-read machinery underneath is [`crate::exchange`],
 //! which other flows share.
 
+pub mod flow;
 pub mod form;
 pub mod probe;
 pub mod write;

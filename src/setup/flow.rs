@@ -1,0 +1,682 @@
+//! The setup screens' flow: a key or a tick in, the view's state changed and what the
+//! app must do out (requests to send, a whole re-read, leave, quit). It holds the write
+//! queue, the timed requests and a checked backup waiting for its confirmation.
+//!
+//! Pure but for the backup file itself, which `backup` reads and writes: no clock, no
+//! link, no terminal. The app hands it the model it has locked and `now`, and takes the
+//! motor keys to its controller before anything comes here.
+
+use std::path::Path;
+use std::time::Instant;
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+
+use super::probe::{EraseEnd, Probes};
+use super::{form, write};
+use crate::backup::{self, Backup};
+use crate::model::Model;
+use crate::protocol::config::UnitConfig;
+use crate::protocol::device::{STARTER, TRIM_R};
+use crate::protocol::message::{Message, Version};
+use crate::ui::setup::state::{Dialog, Field, Page, SetupView, Tone};
+
+/// What the app must do after the flow moved.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub struct Out {
+    /// Requests to put on the wire, in this order, each with its own command number.
+    pub send: Vec<Message>,
+    /// Ask the unit for every spec, name and enable flag again (the connect queries).
+    pub reread_all: bool,
+    /// Back to the device list.
+    pub leave: bool,
+    pub quit: bool,
+}
+
+/// The setup screens' state that the view does not need.
+#[derive(Debug, Default)]
+pub struct SetupFlow {
+    queue: write::WriteQueue,
+    /// The page a batch came from; `None` for a backup being applied.
+    batch_page: Option<Option<Page>>,
+    probes: Probes,
+    pending_load: Vec<Message>,
+    on_screen: bool,
+}
+
+fn say(sv: &mut SetupView, tone: Tone, text: impl Into<String>) {
+    sv.message = Some((tone, text.into()));
+}
+
+const BUSY: &str = "wait: the last write is still waiting for the unit";
+const NO_FILE: &str = "type a file name in the Backup file field first";
+
+impl SetupFlow {
+    /// When the app must tick for a setup timeout.
+    pub fn next_deadline(&self) -> Option<Instant> {
+        [self.queue.next_deadline(), self.probes.next_deadline()]
+            .into_iter()
+            .flatten()
+            .min()
+    }
+
+    /// A key pressed on the setup screens that is not a motor key.
+    pub fn key(
+        &mut self,
+        key: KeyEvent,
+        sv: &mut SetupView,
+        model: &mut Model,
+        now: Instant,
+    ) -> Out {
+        let mut out = Out::default();
+        if sv.dialog != Dialog::None {
+            self.dialog_key(key, sv, model, now, &mut out);
+            return out;
+        }
+        let page = sv.page;
+        let field = sv.field();
+        match key.code {
+            KeyCode::Tab => goto_page(sv, page.next()),
+            KeyCode::BackTab => goto_page(sv, page.prev()),
+            KeyCode::Esc => {
+                if sv.typing.take().is_some() {
+                } else if page.is_form() && sv.is_edited(page) {
+                    sv.edited[page.index()] = false;
+                    reload_forms(sv, model);
+                    say(
+                        sv,
+                        Tone::Info,
+                        "edits discarded: the page shows the unit again",
+                    );
+                } else {
+                    out.leave = true;
+                }
+            }
+            KeyCode::Up | KeyCode::Down => {
+                let n = sv.page.fields().len();
+                sv.field = if key.code == KeyCode::Up {
+                    sv.field.saturating_sub(1)
+                } else {
+                    (sv.field + 1).min(n - 1)
+                };
+                sv.typing = None;
+            }
+            KeyCode::Left | KeyCode::Right => {
+                let step = if key.code == KeyCode::Left { -1 } else { 1 };
+                let step = if key.modifiers.contains(KeyModifiers::SHIFT) {
+                    step * 10
+                } else {
+                    step
+                };
+                adjust(sv, model, step);
+            }
+            KeyCode::Char('-') if !field.is_text() => adjust(sv, model, -1),
+            KeyCode::Char('+') if !field.is_text() => adjust(sv, model, 1),
+            KeyCode::Enter => {
+                if field.is_action() {
+                    self.action(field, sv, model, now, &mut out);
+                } else if page.is_form() {
+                    self.send_page(sv, model, now, &mut out);
+                }
+            }
+            KeyCode::Backspace => backspace(sv),
+            KeyCode::Char(c) if field.is_text() => type_text(sv, c),
+            KeyCode::Char(c) if c.is_ascii_digit() || c == '.' => type_digit(sv, c),
+            KeyCode::Char('p') => match form::capture(&mut sv.forms, page, field, model, now) {
+                Ok(words) => {
+                    sv.edited[page.index()] = true;
+                    say(sv, Tone::Good, words);
+                }
+                Err(why) => say(sv, Tone::Bad, why),
+            },
+            KeyCode::Char('q') => out.quit = true,
+            _ => {}
+        }
+        out
+    }
+
+    /// Enter on a form page: check what changed against the §6.2 rules, then queue it.
+    fn send_page(&mut self, sv: &mut SetupView, model: &mut Model, now: Instant, out: &mut Out) {
+        if self.queue.busy() {
+            return say(sv, Tone::Bad, BUSY);
+        }
+        sv.typing = None;
+        let page = sv.page;
+        let messages = match form::messages(&sv.forms, page, model) {
+            Ok(m) => m,
+            Err(why) => return say(sv, Tone::Bad, why),
+        };
+        if messages.is_empty() {
+            return say(
+                sv,
+                Tone::Info,
+                "nothing to send: the unit already holds these values",
+            );
+        }
+        let (cfg, _) = write::unit_config(model);
+        match form::check(&cfg, &messages) {
+            Err((i, why)) => {
+                self.queue.refused_here(&messages, i, why);
+                say(sv, Tone::Bad, "refused before sending: nothing was sent");
+            }
+            Ok(()) => {
+                self.queue.start(messages);
+                self.batch_page = Some(Some(page));
+                sv.message = None;
+            }
+        }
+        self.tick_into(sv, model, now, out);
+    }
+
+    /// Sends `messages` through the write queue without this program's own §6.2 check,
+    /// so a test can show what the screen does with the unit's own refusal.
+    pub fn send_unchecked(
+        &mut self,
+        messages: Vec<Message>,
+        sv: &mut SetupView,
+        model: &mut Model,
+        now: Instant,
+    ) -> Out {
+        self.queue.start(messages);
+        self.batch_page = Some(None);
+        let mut out = Out::default();
+        self.tick_into(sv, model, now, &mut out);
+        out
+    }
+
+    fn action(
+        &mut self,
+        field: Field,
+        sv: &mut SetupView,
+        model: &Model,
+        now: Instant,
+        out: &mut Out,
+    ) {
+        match field {
+            Field::Ping => out.send.push(self.probes.ping(sv, now)),
+            Field::Version => out.send.push(self.probes.version(sv, now)),
+            Field::SaveBackup => {
+                let file = sv.file.clone();
+                match save_backup(&file, model) {
+                    Ok(words) => say(sv, Tone::Good, words),
+                    Err(why) => say(sv, Tone::Bad, why),
+                }
+            }
+            Field::LoadBackup => self.load_backup(sv, model),
+            Field::Reread => reread(sv, out),
+            Field::Erase => {
+                sv.dialog = Dialog::Erase {
+                    missing: known_for_backup(model).1,
+                    backed_up: None,
+                };
+            }
+            _ => {}
+        }
+    }
+
+    fn load_backup(&mut self, sv: &mut SetupView, model: &Model) {
+        if self.queue.busy() {
+            return say(sv, Tone::Bad, BUSY);
+        }
+        let file = sv.file.trim().to_string();
+        if file.is_empty() {
+            return say(sv, Tone::Bad, NO_FILE);
+        }
+        let b = match backup::load(Path::new(&file)) {
+            Ok(b) => b,
+            Err(e) => {
+                let n = e.problems.len();
+                let first: Vec<String> = e.problems.iter().take(2).map(|p| p.to_string()).collect();
+                return say(
+                    sv,
+                    Tone::Bad,
+                    format!(
+                        "{file}: {n} problem{}, nothing sent: {}",
+                        if n == 1 { "" } else { "s" },
+                        first.join("; ")
+                    ),
+                );
+            }
+        };
+        let (current, missing, unit_version) = known_for_backup(model);
+        if !missing.is_empty() {
+            return say(
+                sv,
+                Tone::Bad,
+                format!(
+                    "the page has not heard {} of the unit's settings yet (e.g. {}): choose \
+                     \"Re-read the unit\" first, so only real differences are written",
+                    missing.len(),
+                    missing[0]
+                ),
+            );
+        }
+        let Some(unit_version) = unit_version else {
+            return;
+        };
+        if let Err(why) = backup::check_hardware(&b.version, &unit_version) {
+            return say(sv, Tone::Bad, why);
+        }
+        let steps = match backup::plan(&current, &b.config) {
+            Ok(s) => s,
+            Err(e) => return say(sv, Tone::Bad, e.to_string()),
+        };
+        if steps.is_empty() {
+            return say(
+                sv,
+                Tone::Good,
+                format!("the unit already holds everything in {file}"),
+            );
+        }
+        let changes = backup::diff(&current, &b.config)
+            .iter()
+            .map(|c| c.to_string())
+            .collect();
+        let notes = backup::software_note(&b.version, &unit_version)
+            .into_iter()
+            .collect();
+        self.pending_load = steps.iter().map(|s| s.message()).collect();
+        sv.dialog = Dialog::Load {
+            file,
+            changes,
+            notes,
+            writes: steps.len(),
+        };
+    }
+
+    fn dialog_key(
+        &mut self,
+        key: KeyEvent,
+        sv: &mut SetupView,
+        model: &mut Model,
+        now: Instant,
+        out: &mut Out,
+    ) {
+        match (sv.dialog.clone(), key.code) {
+            (_, KeyCode::Esc | KeyCode::Char('n')) => {
+                sv.dialog = Dialog::None;
+                self.pending_load.clear();
+                say(sv, Tone::Info, "cancelled: nothing was sent");
+            }
+            (Dialog::Erase { .. }, KeyCode::Char('b')) => {
+                let file = sv.file.clone();
+                match save_backup(&file, model) {
+                    Ok(words) => {
+                        sv.dialog = Dialog::Erase {
+                            missing: known_for_backup(model).1,
+                            backed_up: Some(words),
+                        }
+                    }
+                    Err(why) => say(sv, Tone::Bad, why),
+                }
+            }
+            (Dialog::Erase { backed_up, .. }, KeyCode::Char('r')) => {
+                reread(sv, out);
+                sv.dialog = Dialog::Erase {
+                    missing: known_for_backup(model).1,
+                    backed_up,
+                };
+            }
+            (Dialog::Erase { .. }, KeyCode::Char('y')) => {
+                sv.dialog = Dialog::None;
+                out.send.push(self.probes.erase(sv, now));
+                say(sv, Tone::Info, "EEPROM_ERASE sent");
+            }
+            (Dialog::Load { .. }, KeyCode::Char('y') | KeyCode::Enter) => {
+                sv.dialog = Dialog::None;
+                let msgs = std::mem::take(&mut self.pending_load);
+                self.queue.start(msgs);
+                self.batch_page = Some(None);
+                say(
+                    sv,
+                    Tone::Info,
+                    "applying the backup, one acknowledged write at a time",
+                );
+                self.tick_into(sv, model, now, out);
+            }
+            _ => {}
+        }
+    }
+
+    /// Writes waiting for their SPEC_ACK time out and retry here, timed requests get
+    /// their answers, and the forms follow the unit. `on_screen` says whether the
+    /// setup screens are shown; `selected` is the device list's selected pin.
+    pub fn tick(
+        &mut self,
+        sv: &mut SetupView,
+        on_screen: bool,
+        selected: Option<u8>,
+        model: &mut Model,
+        now: Instant,
+    ) -> Out {
+        if on_screen && !self.on_screen {
+            // Arriving from the device list: configure the pin that was selected there.
+            let id = selected
+                .filter(|id| (STARTER..TRIM_R).contains(id))
+                .unwrap_or(sv.forms.device.device_id);
+            if !sv.is_edited(Page::Device) {
+                form::select_device(&mut sv.forms, id, model);
+            }
+        }
+        self.on_screen = on_screen;
+        let mut out = Out::default();
+        self.tick_into(sv, model, now, &mut out);
+        self.probe_tick(sv, model, now, &mut out);
+        if on_screen {
+            reload_forms(sv, model);
+        }
+        out
+    }
+
+    fn tick_into(&mut self, sv: &mut SetupView, model: &mut Model, now: Instant, out: &mut Out) {
+        out.send.extend(self.queue.tick(model, now));
+        if self.queue.settled()
+            && let Some(page) = self.batch_page.take()
+            && self.queue.all_saved()
+        {
+            // Saved: the form follows the unit again, showing what it really holds.
+            match page {
+                Some(p) => sv.edited[p.index()] = false,
+                None => sv.edited = [false; 8],
+            }
+        }
+        sv.writes = self.queue.lines();
+    }
+
+    fn probe_tick(&mut self, sv: &mut SetupView, model: &Model, now: Instant, out: &mut Out) {
+        let (again, erase_end) = self.probes.tick(model, sv, now);
+        out.send.extend(again);
+        match erase_end {
+            Some(EraseEnd::Answered(code)) if code != 0 => {
+                // Table 12: a non-zero code means the erase did not complete, so
+                // nothing may be shown as reset; re-read to show what it holds.
+                reread(sv, out);
+                say(
+                    sv,
+                    Tone::Bad,
+                    format!(
+                        "the unit reports EEPROM_ERASE failed (response code {code}); \
+                         its settings were re-read, check them before going on"
+                    ),
+                );
+            }
+            Some(EraseEnd::Answered(_)) => {
+                // Every setting is now Appendix F's: forget edits and ask again.
+                sv.edited = [false; 8];
+                reread(sv, out);
+                say(
+                    sv,
+                    Tone::Info,
+                    "the unit answered EEPROM_ERASE: it holds the factory settings and \
+                     reports a data integrity error until its next power cycle (ICD §6.1.4)",
+                );
+            }
+            Some(EraseEnd::NoAnswer) => say(
+                sv,
+                Tone::Bad,
+                "no answer to EEPROM_ERASE: the unit may or may not have erased; \
+                 re-read it to see",
+            ),
+            None => {}
+        }
+    }
+}
+
+fn goto_page(sv: &mut SetupView, page: Page) {
+    sv.page = page;
+    sv.field = 0;
+    sv.typing = None;
+    sv.message = None;
+}
+
+fn reread(sv: &mut SetupView, out: &mut Out) {
+    out.reread_all = true;
+    say(
+        sv,
+        Tone::Info,
+        "asking the unit for every spec, name and enable flag again (about a second)",
+    );
+}
+
+fn adjust(sv: &mut SetupView, model: &Model, step: i32) {
+    sv.typing = None;
+    let (page, field) = (sv.page, sv.field());
+    if field.is_text() && field != Field::Name {
+        return;
+    }
+    match form::adjust(&mut sv.forms, page, field, step, model) {
+        Ok(true) => {
+            let discarded = sv.edited[page.index()];
+            sv.edited[page.index()] = false;
+            if discarded {
+                say(
+                    sv,
+                    Tone::Info,
+                    "unsent edits of the previous pin were discarded",
+                );
+            }
+        }
+        Ok(false) => sv.edited[page.index()] = true,
+        Err(why) => say(sv, Tone::Bad, why),
+    }
+}
+
+fn type_digit(sv: &mut SetupView, c: char) {
+    let field = sv.field();
+    if !form::takes_digits(field) || (c == '.' && field != Field::FlapEndpointDuration) {
+        return;
+    }
+    let t = sv.typing.get_or_insert_with(String::new);
+    if t.len() < 6 {
+        t.push(c);
+    }
+    let text = t.clone();
+    form::set_typed(&mut sv.forms, sv.page, field, &text);
+    sv.edited[sv.page.index()] = true;
+}
+
+fn type_text(sv: &mut SetupView, c: char) {
+    match sv.field() {
+        Field::Name => {
+            if !c.is_ascii() || c.is_ascii_control() {
+                return say(sv, Tone::Bad, "names are ASCII only (ICD Table 21)");
+            }
+            if sv.forms.name.len() >= 16 {
+                return say(
+                    sv,
+                    Tone::Bad,
+                    "names are at most 16 characters (ICD Table 21)",
+                );
+            }
+            sv.forms.name.push(c);
+            sv.edited[Page::Device.index()] = true;
+        }
+        Field::File => sv.file.push(c),
+        _ => {}
+    }
+}
+
+fn backspace(sv: &mut SetupView) {
+    let (page, field) = (sv.page, sv.field());
+    match field {
+        Field::Name => {
+            sv.forms.name.pop();
+            sv.edited[page.index()] = true;
+        }
+        Field::File => {
+            sv.file.pop();
+        }
+        _ => {
+            if let Some(t) = &mut sv.typing {
+                t.pop();
+                let text = t.clone();
+                form::set_typed(&mut sv.forms, page, field, &text);
+            }
+        }
+    }
+}
+
+/// Every form page without unsent edits follows what the unit holds.
+fn reload_forms(sv: &mut SetupView, model: &Model) {
+    for page in Page::ALL {
+        if page.is_form() && !sv.is_edited(page) {
+            form::load(&mut sv.forms, page, model);
+        }
+    }
+}
+
+/// The configuration the model knows, what it lacks for a whole backup (VERSION
+/// first), and the version.
+fn known_for_backup(model: &Model) -> (UnitConfig, Vec<String>, Option<Version>) {
+    let (config, mut missing) = write::unit_config(model);
+    if model.version.is_none() {
+        missing.insert(0, "VERSION".into());
+    }
+    (config, missing, model.version.map(|v| v.value))
+}
+
+/// Writes what the model knows of the unit to `file`; refuses when it does not know
+/// everything, since a partial backup would restore defaults over real settings.
+fn save_backup(file: &str, model: &Model) -> Result<String, String> {
+    if file.trim().is_empty() {
+        return Err(NO_FILE.into());
+    }
+    let (config, missing, version) = known_for_backup(model);
+    let Some(version) = version.filter(|_| missing.is_empty()) else {
+        return Err(format!(
+            "not saved: the page has not heard {} yet; choose \"Re-read the unit\" and \
+             save again",
+            crate::ui::setup::dialog::missing_summary(&missing)
+        ));
+    };
+    backup::save(Path::new(file.trim()), &Backup { version, config })
+        .map_err(|e| format!("could not write {}: {e}", file.trim()))?;
+    Ok(format!("backup written to {}", file.trim()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Duration;
+
+    use crossterm::event::KeyEventKind;
+
+    use crate::exchange::Rereader;
+    use crate::model::{Setting, Source};
+    use crate::protocol::Packet;
+    use crate::protocol::message::{
+        DeviceEnable, DeviceName, DeviceSpec, DeviceSpecQuery, EnableFlag, SpecAck, SwitchId,
+    };
+    use crate::ui::setup::state::WriteStatus;
+
+    fn press(code: KeyCode) -> KeyEvent {
+        KeyEvent::new_with_kind(code, KeyModifiers::NONE, KeyEventKind::Press)
+    }
+
+    fn ms(t0: Instant, n: u64) -> Instant {
+        t0 + Duration::from_millis(n)
+    }
+
+    fn held(cb: u8) -> DeviceSpec {
+        DeviceSpec {
+            device_id: 9,
+            circuit_breaker: cb,
+            switch_id: SwitchId::Input(2),
+            current_fault: false,
+        }
+    }
+
+    /// The whole flow on a fake clock, keys to what the page shows, with the unit's
+    /// side played by hand: its SPEC_ACKs are lost, it stores the spec, and it answers
+    /// the second re-read.
+    #[test]
+    fn a_typed_breaker_whose_acks_are_lost_ends_showing_what_the_unit_holds() {
+        let t0 = Instant::now();
+        let mut m = Model::new(Source::Simulated {
+            scenario: "t".into(),
+        });
+        m.apply_packet(t0, &Packet::from_vpx(1, held(4)));
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(1, DeviceName::new(9, "Landing Lt").unwrap()),
+        );
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(
+                1,
+                DeviceEnable {
+                    device_id: 9,
+                    flag: EnableFlag::Enabled,
+                },
+            ),
+        );
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        let mut rereader = Rereader::default();
+        flow.tick(&mut sv, true, Some(9), &mut m, t0);
+        assert_eq!(
+            sv.forms.device,
+            held(4),
+            "the form shows what the unit holds"
+        );
+        flow.key(press(KeyCode::Down), &mut sv, &mut m, t0);
+        flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, t0);
+        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert_eq!(out.send, vec![Message::DeviceSpec(held(3))]);
+        let mut sent = 1;
+        let mut queries = 0;
+        for t in (100..=6000).step_by(100) {
+            let now = ms(t0, t);
+            let mut out = flow.tick(&mut sv, true, Some(9), &mut m, now).send;
+            out.extend(rereader.due(&m, now));
+            for msg in out {
+                match msg {
+                    Message::DeviceSpec(_) => sent += 1,
+                    Message::DeviceSpecQuery(DeviceSpecQuery { device_id: 9 }) => {
+                        queries += 1;
+                        // The first re-read is lost on the line; the second answered.
+                        if queries == 2 {
+                            m.apply_packet(now, &Packet::from_vpx(1, held(3)));
+                        }
+                    }
+                    other => panic!("unexpected {other:?}"),
+                }
+            }
+            if t == 3000 {
+                assert_eq!(sv.writes[0].status, WriteStatus::NoAnswer);
+                assert!(m.is_unknown(Setting::DeviceSpec(9)));
+                assert_eq!(m.device_specs[9], None, "4 A is not shown as held");
+            }
+        }
+        assert_eq!(sent, 3);
+        assert_eq!(queries, 2, "asked at 3 s, again at 4 s, then answered");
+        assert!(matches!(
+            sv.writes[0].status,
+            WriteStatus::ReadBack {
+                matches: true,
+                acked: false,
+                ..
+            }
+        ));
+        assert_eq!(m.device_specs[9].unwrap().value, held(3));
+        assert!(
+            !sv.is_edited(Page::Device),
+            "the form follows the unit again"
+        );
+        // A SPEC_ACK arriving late, for nothing in flight, changes nothing.
+        m.apply_packet(
+            ms(t0, 6100),
+            &Packet::from_vpx(
+                1,
+                SpecAck {
+                    device_id: 9,
+                    error: None,
+                },
+            ),
+        );
+        assert!(
+            flow.tick(&mut sv, true, Some(9), &mut m, ms(t0, 6200))
+                .send
+                .is_empty()
+        );
+    }
+}
