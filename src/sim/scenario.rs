@@ -60,6 +60,9 @@
 //! warm_up = 5
 //! speed = 70
 //!
+//! [line]                       # what the wire does to the unit's answers
+//! drop_spec_acks = false       # true: SPEC_ACKs are lost, specs still applied
+//!
 //! [[event]]                    # the timeline; `at` is seconds after power-on
 //! at = 5.0
 //! do = "switch"                # see `EventAction` for every action and its fields
