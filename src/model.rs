@@ -35,6 +35,10 @@ pub const FLAP_TRIM_STALE_AFTER: Duration = Duration::from_millis(1000);
 /// Reading note 9: FAULT_STATUS is sent only while a fault exists, so status arriving
 /// without it for this long means "no faults", not lost communication.
 pub const FAULT_STATUS_QUIET_AFTER: Duration = Duration::from_millis(2500);
+/// The page asks for every spec, name and enable flag again every minute
+/// (`app::queries::REFRESH_EVERY`); a setting last heard longer ago than this missed
+/// a refresh, so screens show its age beside it.
+pub const SETTING_OLD_AFTER: Duration = Duration::from_secs(90);
 /// How much bus history the plot keeps (one sample per SYSTEM_STATUS).
 pub const HISTORY_LEN: usize = 600;
 /// How many lines the event log keeps.
@@ -430,6 +434,30 @@ impl Model {
         self.revision += 1;
     }
 
+    /// When the unit last reported `setting`, if the model holds it.
+    pub fn setting_heard(&self, setting: Setting) -> Option<Instant> {
+        match setting {
+            Setting::DeviceSpec(id) => self
+                .device_specs
+                .get(id as usize)
+                .and_then(|s| s.map(|s| s.at)),
+            Setting::Name(id) => self.names.get(id as usize).and_then(|s| s.map(|s| s.at)),
+            Setting::Enable(id) => self.enabled.get(id as usize).and_then(|s| s.map(|s| s.at)),
+            Setting::System => self.system_spec.map(|s| s.at),
+            Setting::Flaps => self.flap_spec.map(|s| s.at),
+            Setting::Trim(TrimKind::Pitch) => self.pitch_trim_spec.map(|s| s.at),
+            Setting::Trim(TrimKind::Roll) => self.roll_trim_spec.map(|s| s.at),
+            Setting::WigWag => self.wig_wag_spec.map(|s| s.at),
+        }
+    }
+
+    /// The age of what the model holds for `setting` when it is old enough to say so
+    /// ([`SETTING_OLD_AFTER`]); `None` when fresh or not held.
+    pub fn setting_old(&self, setting: Setting, now: Instant) -> Option<Duration> {
+        let age = now.saturating_duration_since(self.setting_heard(setting)?);
+        (age > SETTING_OLD_AFTER).then_some(age)
+    }
+
     /// Whether `setting` is unknown and being re-read.
     pub fn is_unknown(&self, setting: Setting) -> bool {
         self.unknown.contains_key(&setting)
@@ -638,11 +666,13 @@ impl Model {
                     _ => CircuitState::Unknown,
                 };
                 let spec = self.device_specs[i].map(|s| s.value);
-                let spec_unknown = match kind {
-                    CircuitKind::Flaps => self.is_unknown(Setting::Flaps),
-                    CircuitKind::Trim(_) => false,
-                    _ => self.is_unknown(Setting::DeviceSpec(id)),
+                let setting = match kind {
+                    CircuitKind::Flaps => Some(Setting::Flaps),
+                    CircuitKind::Trim(_) => None,
+                    _ => Some(Setting::DeviceSpec(id)),
                 };
+                let spec_unknown = setting.is_some_and(|s| self.is_unknown(s));
+
                 let breaker = match kind {
                     CircuitKind::Flaps => self.flap_spec.map(|s| s.value.circuit_breaker),
                     CircuitKind::Trim(_) => device::device(id).map(|d| d.amps_max),

@@ -318,6 +318,36 @@ fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going(
     let buf = rig.render();
     assert_eq!(fg_of(&buf, "no answer after 3 tries"), Color::Red);
     assert!(!screen(&buf).contains("saved ✓"));
+    // Communication is lost, so the setting stays unknown and keeps being asked for;
+    // when the unit talks again the page shows what it stored while silent.
+    assert!(
+        rig.app
+            .model()
+            .is_unknown(vpx_efis::model::Setting::DeviceSpec(9))
+    );
+    rig.until(
+        "the re-read after the silence",
+        Duration::from_secs(12),
+        |app| {
+            matches!(
+                app.view().setup.writes[0].status,
+                WriteStatus::ReadBack { .. }
+            )
+        },
+    );
+    assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 3);
+    assert_eq!(
+        rig.status(0),
+        WriteStatus::ReadBack {
+            holds: "3 A, switch 2, current fault off".into(),
+            matches: true,
+            acked: false
+        }
+    );
+    assert!(
+        rig.sent("DEVICE_SPEC_QUERY") >= 2,
+        "asked while silent, then answered"
+    );
 }
 
 #[test]

@@ -498,3 +498,21 @@ fn a_breaker_left_unknown_shows_a_question_mark_on_the_setup_page_and_in_the_lis
     assert!(row.contains("?A"), "{row}");
     assert!(!row.contains("3A"), "{row}");
 }
+
+#[test]
+fn a_setting_heard_long_ago_is_shown_with_its_age() {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let v = view(&m, Page::System, 4);
+    let fresh = text(&render(&m, &v, t0 + Duration::from_secs(60), 120, 30));
+    let row = fresh.lines().find(|l| l.contains("Overvoltage")).unwrap();
+    assert!(
+        !row.contains("ago"),
+        "a minute old is the refresh, not old: {row}"
+    );
+    let later = render(&m, &v, t0 + Duration::from_secs(300), 120, 30);
+    let screen = text(&later);
+    let row = screen.lines().find(|l| l.contains("Overvoltage")).unwrap();
+    assert!(row.contains("(heard 300 s ago)"), "{row}");
+    assert_eq!(fg(&later, "(heard 300 s ago)"), Color::DarkGray);
+}

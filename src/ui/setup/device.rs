@@ -1,5 +1,7 @@
 //! The device page: DEVICE_SPEC, DEVICE_NAME and DEVICE_ENABLE of one pin.
 
+use std::time::Instant;
+
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
@@ -9,7 +11,7 @@ use crate::model::Model;
 use crate::protocol::names::PIN_NAMES;
 use crate::ui::theme;
 
-pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView) {
+pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView, now: Instant) {
     let mut extra = Vec::new();
     if sv.field() == Field::Name {
         // Where ←/→ goes next in the Appendix C list.
@@ -44,5 +46,5 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView) {
             theme::caution(),
         ));
     }
-    super::render_form(frame, area, model, sv, extra);
+    super::render_form(frame, area, model, sv, now, extra);
 }

@@ -64,5 +64,5 @@ pub fn live_lines(
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, now: Instant) {
     let extra = live_lines(model, view, Motor::Flaps, now);
-    super::render_form(frame, area, model, &view.setup, extra);
+    super::render_form(frame, area, model, &view.setup, now, extra);
 }

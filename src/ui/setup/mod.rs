@@ -47,11 +47,11 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     title_bar::render(frame, title, model, now);
     render_tabs(frame, tabs, sv);
     match sv.page {
-        Page::Device => device::render(frame, body, model, sv),
-        Page::System => system::render(frame, body, model, sv),
+        Page::Device => device::render(frame, body, model, sv, now),
+        Page::System => system::render(frame, body, model, sv, now),
         Page::Flaps => flaps::render(frame, body, model, view, now),
         Page::PitchTrim | Page::RollTrim => trim::render(frame, body, model, view, now),
-        Page::WigWag => wig_wag::render(frame, body, model, sv),
+        Page::WigWag => wig_wag::render(frame, body, model, sv, now),
         Page::Diagnostics => diagnostics::render(frame, body, model, sv, now),
         Page::Backup => backup::render(frame, body, sv),
     }
@@ -86,6 +86,7 @@ pub fn render_form(
     area: Rect,
     model: &Model,
     sv: &SetupView,
+    now: Instant,
     extra: Vec<Line<'static>>,
 ) {
     let page = sv.page;
@@ -129,6 +130,10 @@ pub fn render_form(
                 }
                 _ => value_text(f, page, &sv.forms),
             };
+            let setting = state::field_setting(f, page, sv.forms.device.device_id);
+            // A value the unit reported long ago carries its age: it is what the unit
+            // said then, not necessarily what it holds now.
+            let old = setting.and_then(|s| model.setting_old(s, now));
             let holds = held.text(f, page);
             let differs = holds
                 .as_deref()
@@ -140,13 +145,17 @@ pub fn render_form(
             };
             let holds_cell = match holds {
                 Some(h) if f == state::Field::DeviceId => Span::styled(h, theme::label()),
-                Some(h) => Span::styled(h, theme::info()),
+                Some(h) => match old {
+                    Some(age) => Span::styled(
+                        format!("{h} (heard {} ago)", super::values::secs(age)),
+                        theme::unknown(),
+                    ),
+                    None => Span::styled(h, theme::info()),
+                },
                 None if f == state::Field::DeviceId => {
                     Span::styled(model.display_name(sv.forms.device.device_id), theme::info())
                 }
-                None if state::field_setting(f, page, sv.forms.device.device_id)
-                    .is_some_and(|s| model.is_unknown(s)) =>
-                {
+                None if setting.is_some_and(|s| model.is_unknown(s)) => {
                     Span::styled(state::unknown_text(f), theme::caution())
                 }
                 None => Span::styled("?", theme::unknown()),

@@ -1,5 +1,7 @@
 //! The system page: SYSTEM_SPEC (overvoltage limit, secondary alternator).
 
+use std::time::Instant;
+
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
@@ -9,7 +11,7 @@ use crate::model::Model;
 use crate::protocol::device::FIELD_PRI;
 use crate::ui::theme;
 
-pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView) {
+pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView, now: Instant) {
     let mut extra = Vec::new();
     let switch = |id: u8| {
         model.device_specs[id as usize]
@@ -29,5 +31,5 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView) {
             theme::label(),
         ));
     }
-    super::render_form(frame, area, model, sv, extra);
+    super::render_form(frame, area, model, sv, now, extra);
 }

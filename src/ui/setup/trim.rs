@@ -12,5 +12,5 @@ use crate::ui::state::ViewState;
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, now: Instant) {
     let motor = view.setup.page.motor().expect("a trim page");
     let extra = super::flaps::live_lines(model, view, motor, now);
-    super::render_form(frame, area, model, &view.setup, extra);
+    super::render_form(frame, area, model, &view.setup, now, extra);
 }

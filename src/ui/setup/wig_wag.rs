@@ -1,5 +1,7 @@
 //! The wig-wag page: WIG_WAG_SPEC (both devices, warm-up, speed).
 
+use std::time::Instant;
+
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
@@ -8,7 +10,7 @@ use super::state::{SetupView, switch_text};
 use crate::model::Model;
 use crate::ui::theme;
 
-pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView) {
+pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView, now: Instant) {
     let w = sv.forms.wig_wag;
     let extra = [w.device_one, w.device_two]
         .into_iter()
@@ -26,5 +28,5 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView) {
             )
         })
         .collect();
-    super::render_form(frame, area, model, sv, extra);
+    super::render_form(frame, area, model, sv, now, extra);
 }
