@@ -73,6 +73,12 @@ impl Port for Box<dyn serialport::SerialPort> {
     }
 }
 
+impl Port for crate::link::RawPort {
+    fn bytes_waiting(&mut self) -> Option<usize> {
+        crate::link::RawPort::bytes_waiting(self)
+    }
+}
+
 impl Port for serialport::TTYPort {
     fn bytes_waiting(&mut self) -> Option<usize> {
         serialport::SerialPort::bytes_to_read(self)

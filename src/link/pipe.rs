@@ -16,6 +16,7 @@ pub struct PipeReader {
     timeout: Duration,
 }
 
+#[derive(Clone)]
 pub struct PipeWriter {
     tx: Sender<Vec<u8>>,
 }
