@@ -615,13 +615,13 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
     }
     let mut sim = None;
     let (source, connector) = match &args.port {
-        Some(path) => {
+        Some(addr) => {
             // Fail before taking over the terminal, with the likely fix in words.
-            drop(link::open_serial(path, args.baud)?);
-            let connector = link::serial_connector(path.clone(), args.baud);
+            link::check_port(addr, args.baud)?;
+            let connector = link::port_connector(addr, args.baud);
             (
                 Source::Serial {
-                    path: path.display().to_string(),
+                    path: addr.to_string(),
                 },
                 connector,
             )

@@ -1,11 +1,15 @@
 //! The command line. Every subcommand's arguments live here so that `--help` is one
 //! coherent document; the work itself lives in `cmd/` and `app`.
 
+use std::net::Ipv4Addr;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::parser::ValueSource;
+use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 
+use crate::link::PortAddr;
+use crate::settings::{self, BAUD_ENV, Origin, PORT_ENV, Setting, values};
 use crate::ui::palette::Requested;
 
 /// A terminal EFIS electrical page for the Vertical Power VP-X.
@@ -13,7 +17,7 @@ use crate::ui::palette::Requested;
 /// With no subcommand and no `--port`, the page runs against the built-in virtual
 /// VP-X (the `demo` scenario), clearly labelled SIMULATED.
 #[derive(Debug, Parser)]
-#[command(name = "vpx-efis", version, about, long_about = None)]
+#[command(name = "vpx-efis", version = VERSION, about, long_about = None)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -22,15 +26,26 @@ pub struct Cli {
     pub page: PageArgs,
 }
 
+/// `--version`: ours, and the git commit when built from a checkout (see build.rs).
+pub const VERSION: &str = env!("VPX_EFIS_VERSION");
+
 #[derive(Debug, Clone, Args)]
 pub struct PortArgs {
-    /// Serial port of a real VP-X (or any serial path, e.g. one printed by `vpx-efis sim --pty`).
-    /// Without it, the built-in virtual VP-X is used.
-    #[arg(long, value_name = "PATH")]
-    pub port: Option<PathBuf>,
+    /// The VP-X: a serial port (/dev/ttyUSB0, COM3, /dev/cu.usbserial-…, or a path printed
+    /// by `vpx-efis sim --pty`), or tcp://HOST:PORT for a serial-to-network bridge (ser2net,
+    /// a WiFi serial bridge, `vpx-efis sim --tcp`). Also read from the config file. Without
+    /// one, the built-in virtual VP-X is used.
+    #[arg(long, value_name = "PATH|tcp://HOST:PORT", env = PORT_ENV, value_parser = values::port)]
+    pub port: Option<PortAddr>,
 
-    /// Baud rate. The VP-X talks 57600 8N1 (ICD §3.2.1).
-    #[arg(long, default_value_t = 57_600)]
+    /// Use the built-in virtual VP-X, even when a port is set in the environment or the
+    /// config file.
+    #[arg(long)]
+    pub sim: bool,
+
+    /// Baud rate of a serial port (a TCP bridge's rate is set on the bridge). The VP-X
+    /// talks 57600 8N1 (ICD §3.2.1).
+    #[arg(long, default_value_t = values::VPX_BAUD, env = BAUD_ENV, value_parser = values::baud)]
     pub baud: u32,
 
     /// Scenario for the built-in virtual VP-X: a name under assets/scenarios or a TOML file.
@@ -40,16 +55,17 @@ pub struct PortArgs {
 
 #[derive(Debug, Clone, Args)]
 pub struct XfspArgs {
-    /// Bridge onto an XFSp network (multicast GROUP:PORT, default 224.0.2.69:20234).
-    #[arg(long, value_name = "GROUP:PORT", num_args = 0..=1, default_missing_value = "224.0.2.69:20234")]
-    pub xfsp: Option<String>,
+    /// Bridge onto an XFSp network: multicast GROUP:PORT, or without a value the
+    /// config file's `xfsp`, else 224.0.2.69:20234.
+    #[arg(long, value_name = "GROUP:PORT", num_args = 0..=1, value_parser = values::xfsp_target)]
+    pub xfsp: Option<Option<String>>,
 
     /// Local interface address to join the XFSp group on.
-    #[arg(long, value_name = "ADDR", default_value = "0.0.0.0")]
-    pub xfsp_iface: String,
+    #[arg(long, value_name = "ADDR", default_value = "0.0.0.0", value_parser = values::iface)]
+    pub xfsp_iface: Ipv4Addr,
 
-    /// Our XFSp source id.
-    #[arg(long, value_name = "ID", default_value_t = 0x5650)]
+    /// Our XFSp source id, hex (0x5650) or decimal.
+    #[arg(long, value_name = "ID", default_value = "0x5650", value_parser = values::source_id)]
     pub xfsp_source_id: u16,
 
     /// Certification level published in our XFSp parameters.
@@ -69,8 +85,9 @@ pub struct PageArgs {
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
 
-    /// Drive the page from a capture file instead of a unit (read-only).
-    #[arg(long, value_name = "FILE", conflicts_with = "port")]
+    /// Drive the page from a capture file instead of a unit (read-only). A port set in
+    /// the environment or the config file is ignored; one given as a flag is refused.
+    #[arg(long, value_name = "FILE")]
     pub replay: Option<PathBuf>,
 
     /// Replay speed factor.
@@ -103,7 +120,7 @@ pub enum ThemeArg {
 pub enum Command {
     /// Decode a raw VP-X byte capture (or a vpx-efis capture file) into readable lines.
     Decode(DecodeArgs),
-    /// Run the virtual VP-X on a pseudo-terminal.
+    /// Run the virtual VP-X on a pseudo-terminal (--pty) or a TCP port (--tcp).
     Sim(SimArgs),
     /// List serial ports.
     Ports,
@@ -118,6 +135,12 @@ pub enum Command {
     /// Print decoded XFSp traffic.
     #[command(after_help = crate::cmd::xfsp_dump::SCALES_HELP)]
     XfspDump(XfspDumpArgs),
+    /// Show the config file's path and every setting with where it came from.
+    Config(ConfigArgs),
+    /// Print a shell completion script (bash, zsh, fish, powershell) on standard output.
+    Completions(CompletionsArgs),
+    /// Print the manual page (roff) on standard output.
+    Man,
 }
 
 #[derive(Debug, Args)]
@@ -132,9 +155,13 @@ pub struct DecodeArgs {
 
 #[derive(Debug, Args)]
 pub struct SimArgs {
-    /// Create a pseudo-terminal and print its path as the first line on stdout.
-    #[arg(long)]
+    /// Create a pseudo-terminal and print its path as the first line on stdout (Unix).
+    #[arg(long, conflicts_with = "tcp")]
     pub pty: bool,
+    /// Serve the unit on TCP, one client at a time (e.g. 127.0.0.1:5760; port 0 picks a
+    /// free one); the bound address is the first line on stdout, as tcp://HOST:PORT.
+    #[arg(long, value_name = "ADDR:PORT")]
+    pub tcp: Option<std::net::SocketAddr>,
     /// Persist settings to this file (written atomically), like the unit's EEPROM.
     #[arg(long, value_name = "FILE")]
     pub eeprom: Option<PathBuf>,
@@ -153,6 +180,8 @@ pub struct BackupArgs {
 
 #[derive(Debug, Args)]
 pub struct RestoreArgs {
+    /// Restore needs a port (a flag, VPX_EFIS_PORT or the config file), or `--sim` to
+    /// try it on the built-in virtual VP-X: never a simulator by accident.
     #[command(flatten)]
     pub port: PortArgs,
     /// The TOML backup to restore.
@@ -165,10 +194,25 @@ pub struct RestoreArgs {
     pub erase_first: bool,
 }
 
+/// `flash` talks to a real port only: flashing the built-in unit would show nothing
+/// but the sim's memory changing inside this process.
+#[derive(Debug, Clone, Args)]
+pub struct FlashPortArgs {
+    /// The VP-X's serial port (or tcp://HOST:PORT for a network bridge; the path or
+    /// address printed by `vpx-efis sim --pty` or `--tcp` for the virtual VP-X). Also
+    /// read from VPX_EFIS_PORT or the config file.
+    #[arg(long, value_name = "PATH|tcp://HOST:PORT", env = PORT_ENV, value_parser = values::port)]
+    pub port: Option<PortAddr>,
+
+    /// Baud rate of a serial port. The VP-X talks 57600 8N1 (ICD §3.2.1).
+    #[arg(long, default_value_t = values::VPX_BAUD, env = BAUD_ENV, value_parser = values::baud)]
+    pub baud: u32,
+}
+
 #[derive(Debug, Args)]
 pub struct FlashArgs {
     #[command(flatten)]
-    pub port: PortArgs,
+    pub port: FlashPortArgs,
     /// Intel HEX image, named like `cu_2.hex` for hardware version 2.
     pub file: PathBuf,
     /// Accept this hardware version even if the file name's suffix disagrees.
@@ -196,11 +240,11 @@ pub struct GatewayArgs {
 #[derive(Debug, Args)]
 pub struct XfspDumpArgs {
     /// Multicast GROUP:PORT to listen on.
-    #[arg(long, default_value = "224.0.2.69:20234", value_name = "GROUP:PORT")]
+    #[arg(long, default_value = "224.0.2.69:20234", value_name = "GROUP:PORT", value_parser = values::xfsp_target)]
     pub xfsp: String,
     /// Local interface address to join the group on.
-    #[arg(long, default_value = "0.0.0.0", value_name = "ADDR")]
-    pub xfsp_iface: String,
+    #[arg(long, default_value = "0.0.0.0", value_name = "ADDR", value_parser = values::iface)]
+    pub xfsp_iface: Ipv4Addr,
     /// JSON lines instead of text.
     #[arg(long)]
     pub json: bool,
@@ -209,7 +253,10 @@ pub struct XfspDumpArgs {
 impl From<XfspArgs> for crate::app::XfspOptions {
     fn from(a: XfspArgs) -> Self {
         crate::app::XfspOptions {
-            xfsp: a.xfsp,
+            // The command line's resolution has put the group in (flag, file or default).
+            xfsp: a
+                .xfsp
+                .map(|g| g.unwrap_or_else(|| crate::xfsp::net::DEFAULT_TARGET.to_string())),
             xfsp_iface: a.xfsp_iface,
             xfsp_source_id: a.xfsp_source_id,
             xfsp_cert: a.xfsp_cert,
@@ -228,36 +275,349 @@ impl From<PageArgs> for crate::app::PageOptions {
             replay: a.replay,
             speed: a.speed,
             max_run: a.max_run,
-            theme: match a.theme {
-                ThemeArg::Auto => Requested::Auto,
-                ThemeArg::Dark => Requested::Dark,
-                ThemeArg::Light => Requested::Light,
-                ThemeArg::Mono => Requested::Mono,
-                ThemeArg::Terminal => Requested::Terminal,
-            },
+            theme: a.theme.into(),
         }
     }
 }
 
+impl From<ThemeArg> for Requested {
+    fn from(t: ThemeArg) -> Requested {
+        match t {
+            ThemeArg::Auto => Requested::Auto,
+            ThemeArg::Dark => Requested::Dark,
+            ThemeArg::Light => Requested::Light,
+            ThemeArg::Mono => Requested::Mono,
+            ThemeArg::Terminal => Requested::Terminal,
+        }
+    }
+}
+
+impl From<Requested> for ThemeArg {
+    fn from(t: Requested) -> ThemeArg {
+        match t {
+            Requested::Auto => ThemeArg::Auto,
+            Requested::Dark => ThemeArg::Dark,
+            Requested::Light => ThemeArg::Light,
+            Requested::Mono => ThemeArg::Mono,
+            Requested::Terminal => ThemeArg::Terminal,
+        }
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct ConfigArgs {
+    /// The same options the commands take, to see how they combine with the file.
+    #[command(flatten)]
+    pub port: PortArgs,
+    #[command(flatten)]
+    pub xfsp: XfspArgs,
+    /// Colours, as the page's --theme.
+    #[arg(long, value_enum, default_value_t = ThemeArg::Auto)]
+    pub theme: ThemeArg,
+}
+
+#[derive(Debug, Args)]
+pub struct CompletionsArgs {
+    /// The shell.
+    pub shell: clap_complete::Shell,
+}
+
+/// A refusal of the command line or the config file: nothing was opened. Exit code 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct UsageError(pub String);
+
+/// Exit codes (also in the README).
+pub mod exit {
+    /// Done.
+    pub const OK: u8 = 0;
+    /// It went wrong at run time: the port, the unit, a file, the network.
+    pub const FAILURE: u8 = 1;
+    /// The command line or the config file was refused; nothing was opened (clap also
+    /// exits 2 for a usage error).
+    pub const USAGE: u8 = 2;
+}
+
+/// One effective setting for `vpx-efis config`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Effective {
+    pub key: &'static str,
+    pub value: String,
+    pub origin: Origin,
+}
+
+/// Fills what the command line left at its default from the config file, and notes
+/// where each value came from. Flags and environment variables (clap's) come first.
+struct Resolver<'a> {
+    m: &'a ArgMatches,
+    file: &'a settings::SettingsFile,
+    report: Vec<Effective>,
+}
+
+impl Resolver<'_> {
+    /// Flag or environment, if the value came from either.
+    fn explicit(&self, id: &str, env: Option<&'static str>) -> Option<Origin> {
+        // A setting with no flag (yet) can only come from the file or its default.
+        self.m.try_contains_id(id).ok()?;
+        match self.m.value_source(id) {
+            Some(ValueSource::CommandLine) => Some(Origin::Flag),
+            Some(ValueSource::EnvVariable) => Some(Origin::Env(env.unwrap_or("?"))),
+            _ => None,
+        }
+    }
+
+    fn pick<T: Clone>(
+        &mut self,
+        key: &'static str,
+        id: &str,
+        env: Option<&'static str>,
+        value: &mut T,
+        file: &Option<Setting<T>>,
+        show: impl Fn(&T) -> String,
+    ) {
+        let origin = match (self.explicit(id, env), file) {
+            (Some(o), _) => o,
+            (None, Some(s)) => {
+                *value = s.value.clone();
+                Origin::File { line: s.line }
+            }
+            (None, None) => Origin::Default,
+        };
+        self.report.push(Effective {
+            key,
+            value: show(value),
+            origin,
+        });
+    }
+
+    /// `--port`, `--sim` and `--baud`. `--sim` wins over a port from the environment or
+    /// the file; against a `--port` flag it is a contradiction.
+    fn port(&mut self, p: &mut PortArgs) -> Result<(), UsageError> {
+        if p.sim && self.m.value_source("port") == Some(ValueSource::CommandLine) {
+            return Err(UsageError(
+                "--port and --sim contradict each other: give one".into(),
+            ));
+        }
+        let file = self.file.port.clone().map(|s| Setting {
+            value: Some(s.value),
+            line: s.line,
+        });
+        self.pick("port", "port", Some(PORT_ENV), &mut p.port, &file, |_| {
+            String::new()
+        });
+        let e = self.report.last_mut().expect("just pushed");
+        if p.sim {
+            p.port = None;
+            e.origin = Origin::Flag;
+        }
+        e.value = match &p.port {
+            Some(a) => a.to_string(),
+            None => "none: the built-in virtual VP-X".into(),
+        };
+        self.pick(
+            "baud",
+            "baud",
+            Some(BAUD_ENV),
+            &mut p.baud,
+            &self.file.baud.clone(),
+            u32::to_string,
+        );
+        Ok(())
+    }
+
+    fn flash_port(&mut self, p: &mut FlashPortArgs) {
+        let file = self.file.port.clone().map(|s| Setting {
+            value: Some(s.value),
+            line: s.line,
+        });
+        self.pick("port", "port", Some(PORT_ENV), &mut p.port, &file, |a| {
+            a.as_ref()
+                .map_or_else(|| "none".into(), PortAddr::to_string)
+        });
+        self.pick(
+            "baud",
+            "baud",
+            Some(BAUD_ENV),
+            &mut p.baud,
+            &self.file.baud.clone(),
+            u32::to_string,
+        );
+    }
+
+    /// `--xfsp` without a value takes the file's group; so does `gateway` (always on
+    /// the network). The other XFSp options are filled like any setting.
+    fn xfsp(&mut self, x: &mut XfspArgs, always_on: bool) {
+        let (group, origin) = match (&x.xfsp, &self.file.xfsp) {
+            (Some(Some(g)), _) => (g.clone(), Origin::Flag),
+            (_, Some(f)) => (f.value.clone(), Origin::File { line: f.line }),
+            _ => (
+                crate::xfsp::net::DEFAULT_TARGET.to_string(),
+                Origin::Default,
+            ),
+        };
+        if always_on || x.xfsp.is_some() {
+            x.xfsp = Some(Some(group.clone()));
+        }
+        self.report.push(Effective {
+            key: "xfsp",
+            value: group,
+            origin,
+        });
+        self.pick(
+            "xfsp_iface",
+            "xfsp_iface",
+            None,
+            &mut x.xfsp_iface,
+            &self.file.xfsp_iface.clone(),
+            Ipv4Addr::to_string,
+        );
+        self.pick(
+            "xfsp_source_id",
+            "xfsp_source_id",
+            None,
+            &mut x.xfsp_source_id,
+            &self.file.xfsp_source_id.clone(),
+            |id| format!("{id:#06x}"),
+        );
+        self.pick(
+            "xfsp_cert",
+            "xfsp_cert",
+            None,
+            &mut x.xfsp_cert,
+            &self.file.xfsp_cert.clone(),
+            u8::to_string,
+        );
+    }
+
+    /// Page settings that other options own: reported from the file or their default.
+    /// `--theme`, or the file's `theme`.
+    fn theme(&mut self, theme: &mut ThemeArg) {
+        let mut t = Requested::from(*theme);
+        let file = self.file.theme.clone();
+        self.pick("theme", "theme", None, &mut t, &file, |t| {
+            values::theme_word(*t).to_string()
+        });
+        *theme = t.into();
+    }
+
+    /// Page settings whose options other work owns: reported from the file or their
+    /// default until the page takes them.
+    fn page_extras(&mut self) {
+        let delay = self.file.repeat_delay_ms.clone().map(|s| Setting {
+            value: Some(s.value),
+            line: s.line,
+        });
+        let mut d = None;
+        self.pick("repeat_delay", "repeat_delay", None, &mut d, &delay, |d| {
+            d.map_or_else(|| "the page's own".into(), |ms| format!("{ms} ms"))
+        });
+    }
+}
+
+/// Reads the config file and applies it to the commands that use it.
+fn resolve(
+    command: &mut Option<Command>,
+    page: &mut PageArgs,
+    matches: &ArgMatches,
+) -> anyhow::Result<Vec<Effective>> {
+    let uses_settings = matches!(
+        command,
+        None | Some(
+            Command::Backup(_)
+                | Command::Restore(_)
+                | Command::Flash(_)
+                | Command::Gateway(_)
+                | Command::Config(_)
+        )
+    );
+    if !uses_settings {
+        return Ok(Vec::new());
+    }
+    let loaded = settings::load().map_err(|e| UsageError(e.to_string()))?;
+    let m = matches.subcommand().map_or(matches, |(_, m)| m);
+    let mut r = Resolver {
+        m,
+        file: &loaded.file,
+        report: Vec::new(),
+    };
+    match command {
+        None => {
+            if page.replay.is_some() {
+                if m.value_source("port") == Some(ValueSource::CommandLine) {
+                    return Err(UsageError("--replay and --port contradict each other: a replay is read-only and needs no unit".into()).into());
+                }
+                page.port.port = None;
+            } else {
+                r.port(&mut page.port)?;
+            }
+            r.xfsp(&mut page.xfsp, false);
+            r.theme(&mut page.theme);
+        }
+        Some(Command::Backup(a)) => r.port(&mut a.port)?,
+        Some(Command::Restore(a)) => r.port(&mut a.port)?,
+        Some(Command::Flash(a)) => r.flash_port(&mut a.port),
+        Some(Command::Gateway(a)) => {
+            r.port(&mut a.port)?;
+            r.xfsp(&mut a.xfsp, true);
+        }
+        Some(Command::Config(a)) => {
+            r.port(&mut a.port)?;
+            r.xfsp(&mut a.xfsp, false);
+            r.theme(&mut a.theme);
+            r.page_extras();
+        }
+        _ => {}
+    }
+    let mut report = r.report;
+    if let Some(Command::Config(_)) = command {
+        report.insert(
+            0,
+            Effective {
+                key: "config file",
+                value: match (&loaded.path, loaded.exists) {
+                    (Some(p), true) => p.display().to_string(),
+                    (Some(p), false) => format!("{} (not there: nothing set)", p.display()),
+                    (None, _) => "(this system has no configuration folder)".into(),
+                },
+                origin: if std::env::var_os(settings::CONFIG_ENV).is_some_and(|v| !v.is_empty()) {
+                    Origin::Env(settings::CONFIG_ENV)
+                } else {
+                    Origin::Default
+                },
+            },
+        );
+    }
+    Ok(report)
+}
+
 /// Entry point of the binary: parse, dispatch, and turn errors into words and an exit code.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let result = match cli.command {
-        None => crate::app::run(cli.page.into()),
-        Some(Command::Decode(a)) => crate::cmd::decode::run(a),
-        Some(Command::Sim(a)) => crate::cmd::sim::run(a),
-        Some(Command::Ports) => crate::cmd::ports::run(),
-        Some(Command::Backup(a)) => crate::cmd::backup::run(a),
-        Some(Command::Restore(a)) => crate::cmd::restore::run(a),
-        Some(Command::Flash(a)) => crate::cmd::flash::run(a),
-        Some(Command::Gateway(a)) => crate::cmd::gateway::run(a),
-        Some(Command::XfspDump(a)) => crate::cmd::xfsp_dump::run(a),
-    };
+    let matches = Cli::command().get_matches();
+    let mut cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    let result =
+        resolve(&mut cli.command, &mut cli.page, &matches).and_then(|report| match cli.command {
+            None => crate::app::run(cli.page.into()),
+            Some(Command::Decode(a)) => crate::cmd::decode::run(a),
+            Some(Command::Sim(a)) => crate::cmd::sim::run(a),
+            Some(Command::Ports) => crate::cmd::ports::run(),
+            Some(Command::Backup(a)) => crate::cmd::backup::run(a),
+            Some(Command::Restore(a)) => crate::cmd::restore::run(a),
+            Some(Command::Flash(a)) => crate::cmd::flash::run(a),
+            Some(Command::Gateway(a)) => crate::cmd::gateway::run(a),
+            Some(Command::XfspDump(a)) => crate::cmd::xfsp_dump::run(a),
+            Some(Command::Config(_)) => crate::cmd::config::run(&report),
+            Some(Command::Completions(a)) => crate::cmd::completions::run(a.shell, Cli::command()),
+            Some(Command::Man) => crate::cmd::completions::man(Cli::command()),
+        });
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => ExitCode::from(exit::OK),
         Err(e) => {
             eprintln!("vpx-efis: {e:#}");
-            ExitCode::FAILURE
+            if e.downcast_ref::<UsageError>().is_some() {
+                ExitCode::from(exit::USAGE)
+            } else {
+                ExitCode::from(exit::FAILURE)
+            }
         }
     }
 }

@@ -1,6 +1,7 @@
 //! `backup` and `restore` end to end: the virtual VP-X on the master of a real
 //! pseudo-terminal, and on its slave path either the `vpx-efis` binary itself
-//! (`--port PATH`) or a [`UnitClient`] opened like any serial port.
+//! (`--port PATH`) or a [`UnitClient`] opened like any serial port; and the same over
+//! TCP (`--port tcp://…`), with the unit behind the line `vpx-efis sim --tcp` serves.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -8,7 +9,9 @@ use std::time::{Duration, Instant};
 
 use serialport::TTYPort;
 use vpx_efis::link::request::{DEFAULT_TRIES, query_answers};
-use vpx_efis::link::{RequestError, SpecError, UnitClient, open_pty_pair, serial_connector};
+use vpx_efis::link::{
+    RequestError, SpecError, UnitClient, open_pty_pair, serial_connector, serve_line,
+};
 use vpx_efis::protocol::config::UnitConfig;
 use vpx_efis::protocol::message::{
     DeviceName, DeviceSpec, DeviceSpecQuery, FlapSpec, Message, SpecAckError, SwitchId, SystemSpec,
@@ -68,6 +71,10 @@ impl Bench {
 fn run(args: &[&str]) -> Output {
     let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
         .args(args)
+        // Whatever the person running the tests has configured stays out of them.
+        .env("VPX_EFIS_CONFIG", "/nonexistent/vpx-efis-test-config.toml")
+        .env_remove("VPX_EFIS_PORT")
+        .env_remove("VPX_EFIS_BAUD")
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -101,6 +108,18 @@ fn ok(o: &Output) {
         stdout(o),
         stderr(o)
     );
+}
+
+/// A backup file's text without its `[made]` section (which differs by the time).
+fn settings_of(file: &Path) -> String {
+    let text = std::fs::read_to_string(file).unwrap();
+    let start = text.find("[made]\n").expect("a [made] section");
+    let end = start
+        + text[start..]
+            .find("\n\n")
+            .expect("a blank line after [made]")
+        + 2;
+    format!("{}{}", &text[..start], &text[end..])
 }
 
 fn first_pin_with(cfg: &UnitConfig, f: impl Fn(&DeviceSpec) -> bool) -> u8 {
@@ -167,8 +186,8 @@ fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
     let changed = b.file("changed.toml");
     ok(&b.vpx(&["backup", changed.to_str().unwrap()]));
     assert_ne!(
-        std::fs::read_to_string(&first).unwrap(),
-        std::fs::read_to_string(&changed).unwrap(),
+        settings_of(&first),
+        settings_of(&changed),
         "the edits must show in a backup, or this test proves nothing"
     );
 
@@ -193,10 +212,7 @@ fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
 
     let again = b.file("again.toml");
     ok(&b.vpx(&["backup", again.to_str().unwrap()]));
-    assert_eq!(
-        std::fs::read_to_string(&first).unwrap(),
-        std::fs::read_to_string(&again).unwrap()
-    );
+    assert_eq!(settings_of(&first), settings_of(&again));
     assert_eq!(b.config(), original);
 }
 
@@ -567,4 +583,148 @@ fn a_missing_port_is_reported_without_waiting() {
     assert!(!out.status.success());
     assert!(start.elapsed() < Duration::from_secs(10));
     assert!(stderr(&out).contains("no such port"), "{}", stderr(&out));
+}
+
+#[test]
+fn restore_without_a_port_refuses_names_the_options_and_opens_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    // Not even the file is read: the refusal comes first.
+    let file = dir.path().join("missing.toml");
+    let out = run(&["restore", "--yes", file.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let err = stderr(&out);
+    for words in [
+        "--port PATH",
+        "tcp://HOST:PORT",
+        "VPX_EFIS_PORT",
+        "--sim",
+        "Nothing was opened",
+    ] {
+        assert!(err.contains(words), "{words:?} missing from: {err}");
+    }
+    assert!(!err.contains("virtual VP-X (scenario"), "{err}");
+}
+
+#[test]
+fn restore_with_sim_goes_to_the_built_in_unit_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("sim.toml");
+    ok(&run(&["backup", file.to_str().unwrap()]));
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(text.contains("simulated = true"), "{text}");
+    assert!(
+        text.contains("from = \"the built-in virtual VP-X (scenario demo)\""),
+        "{text}"
+    );
+    let out = run(&["restore", "--sim", "--yes", file.to_str().unwrap()]);
+    ok(&out);
+    let err = stderr(&out);
+    assert!(err.contains("THE VIRTUAL VP-X, not an aircraft"), "{err}");
+    assert!(err.contains("SIMULATED"), "{err}");
+    // A port given as a flag and --sim contradict each other.
+    let out = run(&[
+        "restore",
+        "--sim",
+        "--port",
+        "/dev/ttyUSB0",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("contradict"), "{}", stderr(&out));
+}
+
+#[test]
+fn a_backup_says_when_from_what_and_by_what_and_restore_shows_it_before_asking() {
+    let b = bench("demo", |_, _| {});
+    let file = b.file("made.toml");
+    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let text = std::fs::read_to_string(&file).unwrap();
+    let (backup, made) = vpx_efis::backup::load_made(&file).unwrap();
+    let made = made.expect("a [made] section");
+    assert_eq!(made.from, b.path);
+    assert!(!made.simulated);
+    assert!(made.by.starts_with("vpx-efis 0.1.0"), "{}", made.by);
+    // YYYY-MM-DDTHH:MM:SS.mmmZ, this year or later.
+    assert_eq!(made.at.len(), 24, "{}", made.at);
+    assert!(
+        made.at.ends_with('Z') && made.at[..4] >= *"2025",
+        "{}",
+        made.at
+    );
+    assert!(text.contains("software = \"2.1\""), "{text}");
+    assert_eq!(backup.version.software_major, 2);
+
+    // Change one thing so there is something to confirm; nobody is there to confirm.
+    std::fs::write(&file, text.replace("warm_up_s = 5", "warm_up_s = 9")).unwrap();
+    let out = b.vpx(&["restore", file.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let err = stderr(&out);
+    let shown = err
+        .find(&format!("The backup was made {} from {}", made.at, b.path))
+        .unwrap_or_else(|| panic!("provenance not shown: {err}"));
+    assert!(
+        err.contains("a VP-X Pro software 2.1, by vpx-efis 0.1.0"),
+        "{err}"
+    );
+    let asked = err
+        .find("Run again with --yes")
+        .expect("the refusal to ask");
+    assert!(shown < asked, "shown after the question: {err}");
+}
+
+#[test]
+fn a_backup_from_before_provenance_still_restores_and_says_it_cannot_tell() {
+    let b = bench("demo", |_, _| {});
+    let file = b.file("old.toml");
+    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    std::fs::write(&file, settings_of(&file)).unwrap();
+    assert!(!std::fs::read_to_string(&file).unwrap().contains("[made]"));
+    let out = b.vpx(&["restore", "--yes", file.to_str().unwrap()]);
+    ok(&out);
+    assert!(
+        stderr(&out).contains("does not say when or from what it was made"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn backup_and_restore_over_tcp_bring_a_changed_unit_back() {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let line = serve_line(listener, |_| {}).unwrap();
+    let addr = format!("tcp://{}", line.local_addr);
+    let sim = sim::spawn(
+        SimOptions::new(sim::load_scenario("demo").unwrap()),
+        Box::new(line.reader),
+        Box::new(line.writer),
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("tcp.toml");
+    ok(&run(&["backup", "--port", &addr, file.to_str().unwrap()]));
+    let original = sim.stats().config;
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(text.contains(&format!("from = \"{addr}\"")), "{text}");
+
+    // Change a setting over TCP with a client, as the setup screens would.
+    let mut c = UnitClient::new(vpx_efis::link::port_connector(
+        &addr.parse().unwrap(),
+        57_600,
+    ))
+    .unwrap();
+    c.send_spec(
+        Message::from(TrimSpec {
+            power: 45,
+            ..original.pitch_trim
+        }),
+        Duration::from_secs(1),
+        DEFAULT_TRIES,
+    )
+    .unwrap();
+    c.close();
+    assert_ne!(sim.stats().config, original, "the change must have landed");
+
+    let out = run(&["restore", "--port", &addr, "--yes", file.to_str().unwrap()]);
+    ok(&out);
+    assert!(stderr(&out).contains("verified"), "{}", stderr(&out));
+    assert_eq!(sim.stats().config, original);
 }

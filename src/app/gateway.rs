@@ -26,9 +26,7 @@ pub fn xfsp_setup(args: &XfspOptions) -> anyhow::Result<Option<(Target, Ipv4Addr
         return Ok(None);
     };
     let target = Target::parse(target).map_err(anyhow::Error::msg)?;
-    let iface: Ipv4Addr = args.xfsp_iface.parse().map_err(|_| {
-        anyhow::anyhow!("--xfsp-iface {:?} is not an IPv4 address", args.xfsp_iface)
-    })?;
+    let iface = args.xfsp_iface;
     let config = GatewayConfig {
         source_id: args.xfsp_source_id,
         cert: CertLevel::from(args.xfsp_cert),

@@ -2,13 +2,16 @@
 //! fills these; `app` never looks up at clap's argument structs, so the page can be
 //! started the same way from a test, a config file or another front end.
 
+use std::net::Ipv4Addr;
 use std::path::PathBuf;
+
+use crate::link::PortAddr;
 
 /// Everything `vpx-efis` with no subcommand was given.
 #[derive(Debug, Clone)]
 pub struct PageOptions {
-    /// A serial path, or `None` for the built-in virtual VP-X.
-    pub port: Option<PathBuf>,
+    /// A serial path or a TCP bridge, or `None` for the built-in virtual VP-X.
+    pub port: Option<PortAddr>,
     pub baud: u32,
     /// Scenario of the built-in virtual VP-X.
     pub scenario: String,
@@ -31,7 +34,7 @@ pub struct XfspOptions {
     /// Multicast GROUP:PORT, or `None` for no bridge.
     pub xfsp: Option<String>,
     /// Local interface address to join the group on.
-    pub xfsp_iface: String,
+    pub xfsp_iface: Ipv4Addr,
     pub xfsp_source_id: u16,
     pub xfsp_cert: u8,
 }

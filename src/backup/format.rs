@@ -107,6 +107,9 @@ impl fmt::Display for Problem {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BackupFile {
     pub format: u32,
+    /// When, from what and by what the backup was made; optional (see [`super::made`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub made: Option<super::made::Made>,
     pub unit: UnitSection,
     pub system: SystemSection,
     pub flaps: FlapSection,
@@ -308,6 +311,7 @@ impl BackupFile {
             .collect();
         BackupFile {
             format: FORMAT,
+            made: None,
             unit: UnitSection {
                 hardware_version: b.version.hardware_version.to_byte(),
                 hardware: b.version.hardware_version.name(),
@@ -356,7 +360,7 @@ impl BackupFile {
 
 const HEADER: &str = "\
 # VP-X configuration backup written by vpx-efis.
-# Restore it with `vpx-efis restore [--port PATH] FILE`; the file is checked as a whole
+# Restore it with `vpx-efis restore --port PATH FILE`; the file is checked as a whole
 # and every problem is listed before anything is sent to the unit.
 # Units: breaker_amps in amps, *_s in seconds (to 0.1 s), *_kt in knots (the airspeed
 # unit this EFIS sends the VP-X), *_percent in percent. Pins are named as in ICD
@@ -368,11 +372,23 @@ pub fn to_toml(b: &Backup) -> String {
     BackupFile::from_backup(b).to_toml()
 }
 
+/// The TOML text of a backup with its `[made]` section.
+pub fn to_toml_made(b: &Backup, made: &super::made::Made) -> String {
+    let mut f = BackupFile::from_backup(b);
+    f.made = Some(made.clone());
+    f.to_toml()
+}
+
 // ------------------------------------------------------------------ reading
 
 /// Reads a backup from TOML text: every problem, from TOML syntax to a breaker outside
 /// its pin's range or a wig-wag device on no switch, is listed by its path in the file.
 pub fn from_toml(text: &str) -> Result<Backup, Vec<Problem>> {
+    from_toml_made(text).map(|(b, _)| b)
+}
+
+/// [`from_toml`], and the `[made]` section if the file has one.
+pub fn from_toml_made(text: &str) -> Result<(Backup, Option<super::made::Made>), Vec<Problem>> {
     let table: toml::Table = match text.parse() {
         Ok(t) => t,
         Err(e) => {
@@ -384,6 +400,7 @@ pub fn from_toml(text: &str) -> Result<Backup, Vec<Problem>> {
         }
     };
     let mut problems = Vec::new();
+    let made = super::made::read(&table, &mut problems);
     let backup = read_file(&table, &mut problems);
     // A field that could not be read holds the factory value instead; judging the rest
     // by the §6.2 rules still finds every other problem, and nothing is reported twice.
@@ -398,7 +415,7 @@ pub fn from_toml(text: &str) -> Result<Backup, Vec<Problem>> {
         }
     }
     if problems.is_empty() {
-        Ok(backup)
+        Ok((backup, made))
     } else {
         Err(problems)
     }
@@ -757,6 +774,7 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
     }
     const TOP: &[&str] = &[
         "format",
+        "made",
         "unit",
         "system",
         "flaps",

@@ -5,6 +5,7 @@
 
 pub mod diff;
 pub mod format;
+pub mod made;
 pub mod plan;
 
 use std::fmt;
@@ -12,7 +13,8 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 pub use diff::{Change, diff};
-pub use format::{Backup, Problem, from_toml, normalized, to_toml};
+pub use format::{Backup, Problem, from_toml, from_toml_made, normalized, to_toml, to_toml_made};
+pub use made::Made;
 pub use plan::{PlanError, Step, plan};
 
 use crate::protocol::message::Version;
@@ -44,6 +46,11 @@ impl std::error::Error for LoadError {}
 
 /// Reads and checks a backup file as a whole (see [`format::from_toml`]).
 pub fn load(path: &Path) -> Result<Backup, LoadError> {
+    load_made(path).map(|(b, _)| b)
+}
+
+/// [`load`], and where the backup came from if the file says.
+pub fn load_made(path: &Path) -> Result<(Backup, Option<Made>), LoadError> {
     let text = std::fs::read_to_string(path).map_err(|e| LoadError {
         file: path.to_path_buf(),
         problems: vec![Problem {
@@ -51,7 +58,7 @@ pub fn load(path: &Path) -> Result<Backup, LoadError> {
             message: format!("cannot read it: {e}"),
         }],
     })?;
-    from_toml(&text).map_err(|problems| LoadError {
+    from_toml_made(&text).map_err(|problems| LoadError {
         file: path.to_path_buf(),
         problems,
     })
@@ -94,6 +101,11 @@ pub fn software_note(backup: &Version, unit: &Version) -> Option<String> {
 /// the directory flushed so the rename itself survives a power cut.
 pub fn save(path: &Path, backup: &Backup) -> std::io::Result<()> {
     write_atomically(path, to_toml(backup).as_bytes())
+}
+
+/// [`save`] with the `[made]` section: when, from what, by which program.
+pub fn save_made(path: &Path, backup: &Backup, made: &Made) -> std::io::Result<()> {
+    write_atomically(path, to_toml_made(backup, made).as_bytes())
 }
 
 /// The atomic write behind [`save`], for any bytes.

@@ -1,15 +1,16 @@
-//! `vpx-efis backup [--port PATH] FILE`: reads the unit's whole configuration into a
-//! TOML file (format in [`crate::backup::format`]), written atomically so that an
-//! interrupted backup leaves no half file.
+//! `vpx-efis backup [--port PATH|tcp://HOST:PORT] FILE`: reads the unit's whole
+//! configuration into a TOML file (format in [`crate::backup::format`]), written
+//! atomically so that an interrupted backup leaves no half file. The file records when
+//! it was made, from what, and by which vpx-efis ([`crate::backup::made`]).
 
 use std::io::IsTerminal;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::backup::{self, Backup};
+use crate::backup::{self, Backup, Made};
 use crate::cli::{BackupArgs, PortArgs};
-use crate::link::{RequestError, UnitClient, serial_connector};
+use crate::link::{RequestError, UnitClient, port_connector};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::message::Version;
 use crate::sim::SimHandle;
@@ -19,14 +20,15 @@ pub fn run(args: BackupArgs) -> anyhow::Result<()> {
     let (version, config) = read_with_progress(&mut unit.client, "reading")
         .context("reading the unit's configuration; no file was written")?;
     let b = Backup { version, config };
-    backup::save(&args.file, &b)
+    let made = Made::now(&unit.from, unit.simulated);
+    backup::save_made(&args.file, &b, &made)
         .with_context(|| format!("cannot write {}", args.file.display()))?;
     eprintln!(
         "Saved the configuration of {} (software {}.{}) from {} to {}.",
         version.hardware_version.name(),
         version.software_major,
         version.software_minor,
-        unit.client.port(),
+        unit.from,
         args.file.display()
     );
     Ok(())
@@ -35,6 +37,9 @@ pub fn run(args: BackupArgs) -> anyhow::Result<()> {
 /// A client on the unit `--port` names, or on the built-in virtual VP-X without it.
 pub struct Connected {
     pub client: UnitClient,
+    /// What the client talks to, in words: a port, a bridge, or the virtual VP-X.
+    pub from: String,
+    pub simulated: bool,
     /// Kept so the virtual unit runs as long as the client.
     _sim: Option<SimHandle>,
 }
@@ -43,19 +48,27 @@ pub struct Connected {
 /// in-process pipe, saying on standard error which it is.
 pub fn connect(port: &PortArgs) -> anyhow::Result<Connected> {
     match &port.port {
-        Some(path) => {
-            let client = UnitClient::new(serial_connector(path.clone(), port.baud))?;
-            Ok(Connected { client, _sim: None })
+        Some(addr) => {
+            let client = UnitClient::new(port_connector(addr, port.baud))?;
+            Ok(Connected {
+                client,
+                from: addr.to_string(),
+                simulated: false,
+                _sim: None,
+            })
         }
         None => {
             let (_, connector, handle) = crate::app::builtin_sim(&port.scenario)?;
             eprintln!(
-                "No --port given: using the built-in virtual VP-X (scenario {}). SIMULATED.",
+                "{}: using the built-in virtual VP-X (scenario {}). SIMULATED.",
+                if port.sim { "--sim" } else { "No --port given" },
                 port.scenario
             );
             let client = UnitClient::new(connector)?;
             Ok(Connected {
                 client,
+                from: format!("the built-in virtual VP-X (scenario {})", port.scenario),
+                simulated: true,
                 _sim: Some(handle),
             })
         }

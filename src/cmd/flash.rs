@@ -1,6 +1,7 @@
 //! `vpx-efis flash --port PATH FILE.hex`: update the VP-X software (ICD §6.1.3, §7).
 //!
 //! Order, so that nothing reaches the unit that a person has not agreed to:
+//! 0. a port is named (a flag, `VPX_EFIS_PORT` or the config file), or we refuse;
 //! 1. the whole file is read and checked (refused files never open the port);
 //! 2. the file's hardware (name suffix or `--force-hardware`) is known, or refused;
 //! 3. the support log is opened (a log that cannot be written stops us here);
@@ -11,14 +12,14 @@
 //! 6. the update runs with a progress bar; every byte goes to the log.
 //!
 //! Without `--port` we refuse: flashing the built-in virtual unit would only show the
-//! sim's flash changing inside this process. `vpx-efis sim --pty` gives a virtual VP-X
-//! on a pseudo-terminal whose path can be passed as `--port`, which exercises exactly
-//! the code a real unit gets.
+//! sim's flash changing inside this process. `vpx-efis sim --pty` (or `--tcp`) gives a
+//! virtual VP-X on a pseudo-terminal (or a TCP port) that can be passed as `--port`,
+//! which exercises exactly the code a real unit gets.
 
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, IsTerminal, LineWriter, Write};
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+use std::time::{Duration, Instant, SystemTime};
 
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -26,21 +27,24 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use crate::cli::FlashArgs;
 use crate::flash::hardware::hw_name;
 use crate::flash::{self, Event, Found, Image, Options};
-use crate::link::open_serial;
+use crate::link::open_raw;
 use crate::protocol::bootloader::PAGE_SIZE;
 
 pub fn run(args: FlashArgs) -> anyhow::Result<()> {
+    let Some(port_path) = args.port.port.clone() else {
+        return Err(crate::cli::UsageError(
+            "flash needs the unit's port: --port PATH or tcp://HOST:PORT, VPX_EFIS_PORT, or `port` in \
+             the config file (`vpx-efis ports` lists serial ports). To try it on the virtual VP-X, run \
+             `vpx-efis sim --pty` (or `vpx-efis sim --tcp 127.0.0.1:0`) and pass what it prints as --port"
+                .into(),
+        )
+        .into());
+    };
     let image = flash::load_hex(&args.file)
         .with_context(|| format!("refusing {}: it is not a usable image", args.file.display()))?;
     eprintln!("{}: {}", args.file.display(), image.summary());
     let file_hw = flash::file_hardware(&args.file, args.force_hardware)?;
 
-    let Some(port_path) = args.port.port.clone() else {
-        bail!(
-            "flash needs the unit's serial port: --port PATH (`vpx-efis ports` lists them). \
-             To try it on the virtual VP-X, run `vpx-efis sim --pty` and pass the path it prints as --port"
-        );
-    };
     let log_path = args
         .log
         .clone()
@@ -50,7 +54,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
         "==== vpx-efis {} flash {} to {} at {} baud",
         env!("CARGO_PKG_VERSION"),
         args.file.display(),
-        port_path.display(),
+        port_path,
         args.port.baud
     ));
     log.line(&format!("-- image: {}", image.summary()));
@@ -63,7 +67,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
         }
     ));
 
-    let mut port = open_serial(&port_path, args.port.baud)?;
+    let mut port = open_raw(&port_path, args.port.baud)?;
     let opts = Options::default();
 
     let found = flash::probe(&mut port, &opts, &mut |e| log.event(&e)).map_err(|e| {
@@ -92,7 +96,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
             hw_name(file_hw)
         ),
     };
-    eprintln!("unit on {}: {unit_line}", port_path.display());
+    eprintln!("unit on {port_path}: {unit_line}");
 
     if !args.yes && !confirm(&args.file, &image, file_hw, &unit_line, args.port.baud)? {
         log.line("-- not confirmed: nothing sent to the bootloader");
@@ -262,7 +266,7 @@ impl FlashLog {
         let Some(out) = &mut self.out else { return };
         let stamp = format!(
             "{} +{:9.3}s",
-            utc(SystemTime::now()),
+            crate::utc::utc_text(SystemTime::now()),
             self.start.elapsed().as_secs_f64()
         );
         if let Err(e) = writeln!(out, "{stamp} {text}") {
@@ -304,40 +308,9 @@ fn hex(bytes: &[u8]) -> String {
         .join(" ")
 }
 
-/// `YYYY-MM-DDTHH:MM:SS.mmmZ` without a date crate (Howard Hinnant's civil_from_days).
-fn utc(t: SystemTime) -> String {
-    let d = t.duration_since(UNIX_EPOCH).unwrap_or_default();
-    let secs = d.as_secs() as i64;
-    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
-    format!(
-        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}.{:03}Z",
-        rem / 3600,
-        rem / 60 % 60,
-        rem % 60,
-        d.subsec_millis()
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn utc_of_known_instants() {
-        assert_eq!(utc(UNIX_EPOCH), "1970-01-01T00:00:00.000Z");
-        // 2024-02-29T12:34:56.789Z, a leap day: 1709210096 s.
-        let t = UNIX_EPOCH + Duration::from_millis(1_709_210_096_789);
-        assert_eq!(utc(t), "2024-02-29T12:34:56.789Z");
-    }
 
     #[test]
     fn the_log_goes_next_to_the_file() {

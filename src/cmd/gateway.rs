@@ -18,7 +18,7 @@ use crossbeam_channel::{select, unbounded};
 use crate::app::queries::QueryPacer;
 use crate::cli::GatewayArgs;
 use crate::control::MotorStreamer;
-use crate::link::{Connector, Link, LinkEvent, RxItem, serial_connector};
+use crate::link::{Connector, Link, LinkEvent, PortAddr, RxItem, port_connector};
 use crate::model::{LogEntry, LogLevel, Model, Source};
 use crate::protocol::message::Packet;
 use crate::sim::SimHandle;
@@ -31,8 +31,8 @@ const MAX_WAIT: Duration = Duration::from_millis(100);
 /// Everything the bridge needs, independent of the command line (tests build it).
 #[derive(Debug, Clone)]
 pub struct BridgeOptions {
-    /// A serial path, or `None` for the built-in virtual VP-X.
-    pub port: Option<PathBuf>,
+    /// A serial path or TCP bridge, or `None` for the built-in virtual VP-X.
+    pub port: Option<PortAddr>,
     pub baud: u32,
     pub scenario: String,
     pub target: Target,
@@ -88,9 +88,9 @@ pub fn run_bridge(
     let start = Instant::now();
     let (connector, source, _sim): (Connector, Source, Option<SimHandle>) = match &opts.port {
         Some(p) => (
-            serial_connector(p.clone(), opts.baud),
+            port_connector(p, opts.baud),
             Source::Serial {
-                path: p.display().to_string(),
+                path: p.to_string(),
             },
             None,
         ),

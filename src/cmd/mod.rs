@@ -1,6 +1,8 @@
 //! One file per subcommand. Each takes its parsed arguments and does the work.
 
 pub mod backup;
+pub mod completions;
+pub mod config;
 pub mod decode;
 pub mod flash;
 pub mod gateway;

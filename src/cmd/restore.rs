@@ -1,8 +1,11 @@
-//! `vpx-efis restore [--port PATH] FILE [--yes] [--erase-first]`: writes a backup
-//! back to the unit.
+//! `vpx-efis restore --port PATH|tcp://HOST:PORT FILE [--yes] [--erase-first]`: writes a
+//! backup back to the unit.
 //!
+//! 0. A restore writes, so it never goes to a simulator by accident: without a port (a
+//!    flag, `VPX_EFIS_PORT` or the config file) it refuses unless `--sim` says so.
 //! 1. The file is checked as a whole before the unit is even opened; an invalid file is
-//!    refused with every problem by its path, and nothing is sent.
+//!    refused with every problem by its path, and nothing is sent. Where the backup came
+//!    from (its `[made]` section) is shown before anything is asked.
 //! 2. VERSION: a file from other hardware is refused (only VERSION has been sent).
 //! 3. The unit's settings are read and the differences listed; the person confirms
 //!    (or `--yes`). With no terminal to ask on and no `--yes`, nothing is written.
@@ -18,7 +21,7 @@ use std::io::{BufRead, IsTerminal, Write};
 use anyhow::{Context, bail};
 
 use crate::backup::{self, Step, normalized};
-use crate::cli::RestoreArgs;
+use crate::cli::{RestoreArgs, UsageError};
 use crate::cmd::backup::{connect, progress_bar, read_with_progress};
 use crate::link::request::{DEFAULT_TIMEOUT, DEFAULT_TRIES};
 use crate::link::{SpecError, UnitClient};
@@ -27,8 +30,23 @@ use crate::protocol::message::Message;
 use crate::protocol::validate;
 
 pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
-    let target = backup::load(&args.file)?;
+    if args.port.port.is_none() && !args.port.sim {
+        return Err(UsageError(
+            "restore writes to a unit, so say which: --port PATH or tcp://HOST:PORT (or \
+             VPX_EFIS_PORT, or `port` in the config file; `vpx-efis ports` lists serial ports) \
+             for a real VP-X, or --sim for the built-in virtual VP-X. Nothing was opened."
+                .into(),
+        )
+        .into());
+    }
+    let (target, made) = backup::load_made(&args.file)?;
+    eprintln!("{}", backup::made::describe(made.as_ref(), &target.version));
     let mut unit = connect(&args.port)?;
+    eprintln!(
+        "Restoring to {}{}.",
+        unit.from,
+        if unit.simulated { " (SIMULATED)" } else { "" }
+    );
     let client = &mut unit.client;
 
     let version = client.version().context("asking the unit's VERSION")?;

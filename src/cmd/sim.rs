@@ -1,48 +1,102 @@
-//! `vpx-efis sim --pty`: the virtual VP-X on a pseudo-terminal, for a page (or any
-//! program) to open as a serial port. The slave's path is the first line on standard
-//! output; everything else goes to standard error. Runs until killed.
+//! `vpx-efis sim --pty | --tcp ADDR:PORT`: the virtual VP-X as a second process, for a
+//! page (or any program) to open as a serial port: on a pseudo-terminal (Unix), or on
+//! TCP as a serial-to-network bridge offers one (every OS). The path, or
+//! `tcp://HOST:PORT`, is the first line on standard output; everything else goes to
+//! standard error. Runs until killed.
 
-use std::io::Write;
+use std::io::{Read, Write};
+use std::net::TcpListener;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 
-use crate::cli::SimArgs;
-use crate::link::open_pty_pair;
+use crate::cli::{SimArgs, UsageError};
+use crate::link::{PortAddr, open_pty_pair, serve_line};
 use crate::sim::{self, SimOptions};
 
 pub fn run(args: SimArgs) -> anyhow::Result<()> {
-    if !args.pty {
-        bail!("say where the unit should be: `vpx-efis sim --pty` (the only transport so far)");
+    if !args.pty && args.tcp.is_none() {
+        return Err(UsageError(
+            "say where the virtual VP-X should be: `vpx-efis sim --pty` (a pseudo-terminal, \
+             Unix) or `vpx-efis sim --tcp 127.0.0.1:0` (TCP, any OS; port 0 picks a free one)"
+                .into(),
+        )
+        .into());
     }
     let scenario = sim::load_scenario(&args.scenario)?;
-    let pty = open_pty_pair()?;
+    let mut options = SimOptions::new(scenario);
+    options.eeprom = args.eeprom.clone();
+    options.log_to_stderr = true;
+    let eeprom = args
+        .eeprom
+        .as_ref()
+        .map(|p| format!(", EEPROM in {}", p.display()))
+        .unwrap_or_default();
+
+    let line = match args.tcp {
+        Some(addr) => tcp_line(addr)?,
+        None => pty_line()?,
+    };
+    let shown = line.shown.clone();
     {
         // The first line is the contract with scripts and tests: flush it now.
         let mut out = std::io::stdout().lock();
-        writeln!(out, "{}", pty.path).context("cannot write to standard output")?;
+        writeln!(out, "{shown}").context("cannot write to standard output")?;
         out.flush().context("cannot write to standard output")?;
     }
     eprintln!(
-        "vpx-efis sim: scenario {:?} on {} (57600 8N1){}",
+        "vpx-efis sim: scenario {:?} on {shown}{}{eeprom}",
         args.scenario,
-        pty.path,
-        args.eeprom
-            .as_ref()
-            .map(|p| format!(", EEPROM in {}", p.display()))
-            .unwrap_or_default()
+        if args.tcp.is_some() {
+            " (one client at a time)"
+        } else {
+            " (57600 8N1)"
+        }
     );
+    let handle = sim::spawn(options, line.reader, line.writer);
+    loop {
+        std::thread::sleep(std::time::Duration::from_secs(3600));
+        let _ = (&handle, &line.keep);
+    }
+}
+
+/// The unit's end of its line, and the name a page opens it by.
+struct Line {
+    reader: Box<dyn Read + Send>,
+    writer: Box<dyn Write + Send>,
+    shown: String,
+    /// Whatever must stay open as long as the unit runs.
+    keep: Box<dyn std::any::Any>,
+}
+
+fn tcp_line(addr: std::net::SocketAddr) -> anyhow::Result<Line> {
+    let listener =
+        TcpListener::bind(addr).with_context(|| format!("cannot listen on TCP {addr}"))?;
+    let line = serve_line(listener, |l| eprintln!("vpx-efis sim: {l}"))
+        .context("cannot start serving TCP")?;
+    let shown = PortAddr::Tcp {
+        host: line.local_addr.ip().to_string(),
+        port: line.local_addr.port(),
+    }
+    .to_string();
+    Ok(Line {
+        reader: Box::new(line.reader),
+        writer: Box::new(line.writer),
+        shown,
+        keep: Box::new(()),
+    })
+}
+
+fn pty_line() -> anyhow::Result<Line> {
+    let pty = open_pty_pair()?;
     let reader = pty
         .master
         .try_clone_native()
         .context("cannot clone the pseudo-terminal")?;
-    let mut options = SimOptions::new(scenario);
-    options.eeprom = args.eeprom;
-    options.log_to_stderr = true;
-    let handle = sim::spawn(options, Box::new(reader), Box::new(pty.master));
-    // Kept open so the master never sees end-of-file when a page closes its end.
-    let _slave = pty.slave;
-    loop {
-        std::thread::sleep(std::time::Duration::from_secs(3600));
-        let _ = &handle;
-    }
+    Ok(Line {
+        reader: Box::new(reader),
+        writer: Box::new(pty.master),
+        shown: pty.path,
+        // Kept open so the master never sees end-of-file when a page closes its end.
+        keep: Box::new(pty.slave),
+    })
 }

@@ -45,10 +45,7 @@ numbers (SINT or UINT), in the units the VP-X expects; nothing is converted:
 
 pub fn run(args: XfspDumpArgs) -> anyhow::Result<()> {
     let target = Target::parse(&args.xfsp).map_err(anyhow::Error::msg)?;
-    let iface = args
-        .xfsp_iface
-        .parse()
-        .with_context(|| format!("--xfsp-iface {:?} is not an IPv4 address", args.xfsp_iface))?;
+    let iface = args.xfsp_iface;
     let net = XfspNet::listen(&target, iface)
         .with_context(|| format!("cannot listen on XFSp {target}"))?;
     eprintln!("vpx-efis xfsp-dump: listening on {target}");

@@ -1,0 +1,168 @@
+//! Every value a person sets (a flag, an environment variable, a line of the config
+//! file) is read here, the same way whatever it came from, and refused in words before
+//! anything is opened.
+
+use std::net::Ipv4Addr;
+
+use crate::link::PortAddr;
+
+/// The rates a USB-serial adapter and the VP-X side of a bridge can be set to. Anything
+/// else is a typo: `--baud 0` would leave a real adapter at B0, which hangs the line up
+/// (drops DTR), and an odd rate is at best rounded by the driver.
+pub const STANDARD_BAUD_RATES: [u32; 11] = [
+    1200, 2400, 4800, 9600, 19_200, 38_400, 57_600, 115_200, 230_400, 460_800, 921_600,
+];
+
+/// The rate the VP-X talks (ICD §3.2.1).
+pub const VPX_BAUD: u32 = 57_600;
+
+/// A baud rate: a standard one, or a refusal that names them.
+pub fn baud(text: &str) -> Result<u32, String> {
+    let list = STANDARD_BAUD_RATES.map(|b| b.to_string()).join(", ");
+    match text.trim().parse::<u32>() {
+        Ok(b) if STANDARD_BAUD_RATES.contains(&b) => Ok(b),
+        Ok(0) => Err(format!(
+            "0 is not a baud rate (it would hang up a real adapter); the VP-X talks {VPX_BAUD}. \
+             Standard rates: {list}"
+        )),
+        Ok(b) => Err(format!(
+            "{b} is not a standard baud rate; the VP-X talks {VPX_BAUD}. Standard rates: {list}"
+        )),
+        Err(_) => Err(format!(
+            "{text:?} is not a number; the VP-X talks {VPX_BAUD}. Standard rates: {list}"
+        )),
+    }
+}
+
+/// A port: a serial path, or `tcp://HOST:PORT`.
+pub fn port(text: &str) -> Result<PortAddr, String> {
+    text.parse()
+}
+
+/// An XFSp source id, decimal (22096) or hex (0x5650), 16 bits.
+pub fn source_id(text: &str) -> Result<u16, String> {
+    let t = text.trim();
+    let parsed = match t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
+        Some(hex) => u16::from_str_radix(hex, 16),
+        None => t.parse::<u16>(),
+    };
+    parsed.map_err(|_| {
+        format!("{text:?} is not a 16-bit source id: write it in hex (0x5650) or decimal (0–65535)")
+    })
+}
+
+/// The interface address to join the XFSp group on.
+pub fn iface(text: &str) -> Result<Ipv4Addr, String> {
+    text.trim().parse().map_err(|_| {
+        format!(
+            "{text:?} is not an IPv4 address: give the address of this machine's interface on \
+             the avionics network (e.g. 192.168.1.20), or 0.0.0.0 for the system's choice"
+        )
+    })
+}
+
+/// An XFSp `GROUP:PORT`.
+pub fn xfsp_target(text: &str) -> Result<String, String> {
+    crate::xfsp::net::Target::parse(text)?;
+    Ok(text.trim().to_string())
+}
+
+/// The page's colours, as `--theme` takes them (see [`crate::ui::palette`]).
+pub use crate::ui::palette::Requested as Theme;
+
+/// Each theme and its word, as `--theme` spells it.
+pub const THEMES: [(&str, Theme); 5] = [
+    ("auto", Theme::Auto),
+    ("dark", Theme::Dark),
+    ("light", Theme::Light),
+    ("mono", Theme::Mono),
+    ("terminal", Theme::Terminal),
+];
+
+pub fn theme_word(t: Theme) -> &'static str {
+    THEMES
+        .iter()
+        .find(|(_, th)| *th == t)
+        .map_or("auto", |(w, _)| w)
+}
+
+pub fn theme(text: &str) -> Result<Theme, String> {
+    THEMES
+        .iter()
+        .find(|(w, _)| *w == text.trim())
+        .map(|(_, t)| *t)
+        .ok_or_else(|| {
+            format!(
+                "{text:?} is not a theme: {}",
+                THEMES.map(|(w, _)| w).join(", ")
+            )
+        })
+}
+
+/// The longest a terminal's first auto-repeat can be expected to take, in milliseconds.
+pub const MAX_REPEAT_DELAY_MS: u64 = 2000;
+
+/// A key repeat delay in milliseconds.
+pub fn repeat_delay_ms(text: &str) -> Result<u64, String> {
+    match text.trim().parse::<u64>() {
+        Ok(ms) if (1..=MAX_REPEAT_DELAY_MS).contains(&ms) => Ok(ms),
+        _ => Err(format!(
+            "{text:?} is not a repeat delay: milliseconds, 1–{MAX_REPEAT_DELAY_MS}"
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_standard_baud_rates_pass_and_zero_says_why() {
+        assert_eq!(baud("57600"), Ok(57_600));
+        assert_eq!(baud("115200"), Ok(115_200));
+        assert_eq!(baud("9600"), Ok(9600));
+        let zero = baud("0").unwrap_err();
+        assert!(zero.contains("hang up"), "{zero}");
+        assert!(zero.contains("57600"), "{zero}");
+        let odd = baud("57601").unwrap_err();
+        assert!(odd.contains("not a standard baud rate"), "{odd}");
+        assert!(odd.contains("1200, 2400"), "{odd}");
+        assert!(baud("fast").unwrap_err().contains("not a number"));
+        assert!(baud("-9600").is_err());
+    }
+
+    #[test]
+    fn source_ids_read_hex_and_decimal_within_16_bits() {
+        assert_eq!(source_id("0x5651"), Ok(0x5651));
+        assert_eq!(source_id("0X5651"), Ok(0x5651));
+        assert_eq!(source_id("22096"), Ok(22096));
+        assert_eq!(source_id("0xFFFF"), Ok(0xFFFF));
+        assert!(source_id("0x10000").unwrap_err().contains("16-bit"));
+        assert!(source_id("65536").is_err());
+        assert!(source_id("0x").is_err());
+        assert!(source_id("5651h").is_err());
+    }
+
+    #[test]
+    fn interfaces_are_ipv4_addresses() {
+        assert_eq!(iface("192.168.1.20"), Ok(Ipv4Addr::new(192, 168, 1, 20)));
+        assert_eq!(iface("0.0.0.0"), Ok(Ipv4Addr::UNSPECIFIED));
+        assert!(iface("eth0").unwrap_err().contains("not an IPv4 address"));
+        assert!(iface("192.168.1.256").is_err());
+    }
+
+    #[test]
+    fn themes_and_repeat_delays() {
+        assert_eq!(theme("light"), Ok(Theme::Light));
+        assert_eq!(theme("terminal"), Ok(Theme::Terminal));
+        assert_eq!(theme_word(Theme::Mono), "mono");
+        assert!(
+            theme("blue")
+                .unwrap_err()
+                .contains("auto, dark, light, mono, terminal")
+        );
+        assert_eq!(repeat_delay_ms("500"), Ok(500));
+        assert!(repeat_delay_ms("0").is_err());
+        assert!(repeat_delay_ms("2001").is_err());
+    }
+}
