@@ -520,6 +520,16 @@ fn resolve(
     page: &mut PageArgs,
     matches: &ArgMatches,
 ) -> anyhow::Result<Vec<Effective>> {
+    resolve_with(command, page, matches, settings::load)
+}
+
+/// [`resolve`] with the config file read by `load` (tests give one directly).
+fn resolve_with(
+    command: &mut Option<Command>,
+    page: &mut PageArgs,
+    matches: &ArgMatches,
+    load: impl FnOnce() -> Result<settings::Loaded, settings::ConfigError>,
+) -> anyhow::Result<Vec<Effective>> {
     let uses_settings = matches!(
         command,
         None | Some(
@@ -533,7 +543,7 @@ fn resolve(
     if !uses_settings {
         return Ok(Vec::new());
     }
-    let loaded = settings::load().map_err(|e| UsageError(e.to_string()))?;
+    let loaded = load().map_err(|e| UsageError(e.to_string()))?;
     let m = matches.subcommand().map_or(matches, |(_, m)| m);
     let mut r = Resolver {
         m,
@@ -619,5 +629,83 @@ pub fn main() -> ExitCode {
                 ExitCode::from(exit::FAILURE)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The page's options after the command line `args` and a config file `text`.
+    fn page_with(args: &[&str], text: &str) -> anyhow::Result<crate::app::PageOptions> {
+        let m = Cli::command().try_get_matches_from(args)?;
+        let mut cli = Cli::from_arg_matches(&m)?;
+        let file = settings::parse(text).expect("a good file");
+        resolve_with(&mut cli.command, &mut cli.page, &m, || {
+            Ok(settings::Loaded {
+                path: None,
+                exists: true,
+                file,
+            })
+        })?;
+        Ok(cli.page.into())
+    }
+
+    #[test]
+    fn the_file_fills_what_the_command_line_left_to_its_default() {
+        let file = "port = \"tcp://10.0.0.9:4001\"\nbaud = 115200\ntheme = \"light\"\n\
+                    xfsp = \"239.1.1.1:7000\"\nxfsp_iface = \"10.0.0.2\"\nxfsp_source_id = 0x5651\n";
+        let p = page_with(&["vpx-efis", "--xfsp"], file).unwrap();
+        assert_eq!(p.port, Some("tcp://10.0.0.9:4001".parse().unwrap()));
+        assert_eq!(p.baud, 115_200);
+        assert_eq!(p.theme, Requested::Light);
+        assert_eq!(p.xfsp.xfsp.as_deref(), Some("239.1.1.1:7000"));
+        assert_eq!(p.xfsp.xfsp_iface, Ipv4Addr::new(10, 0, 0, 2));
+        assert_eq!(p.xfsp.xfsp_source_id, 0x5651);
+
+        // Flags win; the file's group is no reason to start bridging.
+        let p = page_with(
+            &[
+                "vpx-efis",
+                "--port",
+                "/dev/ttyUSB1",
+                "--baud",
+                "9600",
+                "--theme",
+                "dark",
+            ],
+            file,
+        )
+        .unwrap();
+        assert_eq!(p.port, Some(PortAddr::Serial("/dev/ttyUSB1".into())));
+        assert_eq!(p.baud, 9600);
+        assert_eq!(p.theme, Requested::Dark);
+        assert_eq!(p.xfsp.xfsp, None);
+
+        // --sim wins over the file's port; a replay ignores it.
+        assert_eq!(page_with(&["vpx-efis", "--sim"], file).unwrap().port, None);
+        let replay = page_with(&["vpx-efis", "--replay", "x.vpxcap"], file).unwrap();
+        assert_eq!(replay.port, None);
+    }
+
+    #[test]
+    fn with_no_file_the_defaults_stand() {
+        let p = page_with(&["vpx-efis"], "").unwrap();
+        assert_eq!(p.port, None);
+        assert_eq!(p.baud, 57_600);
+        assert_eq!(p.theme, Requested::Auto);
+        assert_eq!(p.xfsp.xfsp_source_id, 0x5650);
+        let p = page_with(&["vpx-efis", "--xfsp"], "").unwrap();
+        assert_eq!(
+            p.xfsp.xfsp.as_deref(),
+            Some(crate::xfsp::net::DEFAULT_TARGET)
+        );
+    }
+
+    #[test]
+    fn port_and_sim_together_is_a_usage_error() {
+        let e = page_with(&["vpx-efis", "--sim", "--port", "COM3"], "").unwrap_err();
+        assert!(e.downcast_ref::<UsageError>().is_some(), "{e}");
+        assert!(e.to_string().contains("contradict"), "{e}");
     }
 }
