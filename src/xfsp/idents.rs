@@ -9,7 +9,8 @@
 //! 0x77 with RANGE is AOAR.
 //!
 //! The table was transcribed from the draft mechanically; the test at the bottom
-//! re-reads `../shared/spec/xfsp-draft-00.txt` and checks it entry by entry.
+//! re-reads the copy of the draft the repository carries, `docs/spec/xfsp-draft-00.txt`,
+//! and checks it entry by entry.
 
 use super::format::FormatId;
 
@@ -2442,7 +2443,8 @@ pub static PARAMS: &[IdentInfo] = &[
 mod tests {
     use super::*;
 
-    const SPEC: &str = "../shared/spec/xfsp-draft-00.txt";
+    /// The repository's own copy of the draft, so the test runs in a fresh clone.
+    const SPEC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/spec/xfsp-draft-00.txt");
 
     /// Removes the page headers/footers that the `.raw.txt` copy carries, so the
     /// parser works on either copy.
@@ -2499,7 +2501,7 @@ mod tests {
     #[test]
     fn every_ident_in_the_spec_is_in_our_table() {
         let text = std::fs::read_to_string(SPEC)
-            .unwrap_or_else(|e| panic!("{SPEC} must sit beside the crate: {e}"));
+            .unwrap_or_else(|e| panic!("{SPEC} is part of the repository: {e}"));
         let entries = spec_entries(&text);
         assert_eq!(entries.len(), 237, "§3.4 has 237 entries");
         assert_eq!(PARAMS.len(), entries.len(), "and so does our table");
