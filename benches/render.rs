@@ -8,8 +8,11 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
+#[cfg(unix)]
+use criterion::Throughput;
+#[cfg(unix)]
 use criterion::measurement::{Measurement, ValueFormatter};
-use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{Criterion, criterion_group, criterion_main};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use vpx_efis::model::{Model, Source};
@@ -153,9 +156,12 @@ fn configured() -> (Model, Instant) {
 }
 
 /// This thread's CPU time: on a shared, loaded machine wall time also counts the time
-/// the thread waited for a core, which says nothing about the page's cost.
+/// the thread waited for a core, which says nothing about the page's cost. Read with
+/// clock_gettime, so the CPU-time group exists on Unix only.
+#[cfg(unix)]
 struct ThreadCpu;
 
+#[cfg(unix)]
 fn thread_cpu_ns() -> u64 {
     let mut ts = libc::timespec {
         tv_sec: 0,
@@ -166,8 +172,10 @@ fn thread_cpu_ns() -> u64 {
     ts.tv_sec as u64 * 1_000_000_000 + ts.tv_nsec as u64
 }
 
+#[cfg(unix)]
 struct Nanos;
 
+#[cfg(unix)]
 impl ValueFormatter for Nanos {
     fn scale_values(&self, typical: f64, values: &mut [f64]) -> &'static str {
         let (div, unit) = if typical >= 1e6 {
@@ -189,6 +197,7 @@ impl ValueFormatter for Nanos {
     }
 }
 
+#[cfg(unix)]
 impl Measurement for ThreadCpu {
     type Intermediate = u64;
     type Value = u64;
@@ -212,6 +221,7 @@ impl Measurement for ThreadCpu {
     }
 }
 
+#[cfg(unix)]
 fn bench_cpu(c: &mut Criterion<ThreadCpu>) {
     let (model, now) = configured();
     let view = ViewState {
@@ -273,9 +283,13 @@ fn bench(c: &mut Criterion) {
 }
 
 criterion_group!(benches, bench);
+#[cfg(unix)]
 criterion_group! {
     name = cpu;
     config = Criterion::default().with_measurement(ThreadCpu);
     targets = bench_cpu
 }
+#[cfg(unix)]
 criterion_main!(benches, cpu);
+#[cfg(not(unix))]
+criterion_main!(benches);

@@ -15,6 +15,7 @@ pub mod queries;
 mod record;
 mod replay;
 mod setup;
+mod signals;
 mod terminal;
 mod traffic;
 
@@ -43,6 +44,7 @@ pub use options::{PageOptions, XfspOptions};
 pub use queries::{QueryPacer, connect_queries};
 pub use record::Recorder;
 pub use replay::Capture;
+pub use signals::{Terminated, Termination, listen as listen_for_termination};
 pub use terminal::{
     TerminalGuard, clear_emergency_stop, install_panic_hook, panicked, restore as restore_terminal,
     set_emergency_stop,
@@ -465,11 +467,14 @@ impl App {
         }
     }
 
-    /// The select loop over input, link wake-ups and deadlines.
+    /// The select loop over input, link wake-ups and deadlines. A [`Termination`]
+    /// (SIGTERM, SIGHUP, SIGINT, a closed console) leaves it as `q` does, returning
+    /// [`Terminated`]; the caller's shutdown then puts the motor stop on the wire.
     pub fn run<B: Backend>(
         &mut self,
         terminal: &mut Terminal<B>,
         input: &Receiver<TermEvent>,
+        terminations: &Receiver<Termination>,
     ) -> anyhow::Result<()> {
         let xfsp = self.xfsp_incoming();
         loop {
@@ -487,7 +492,17 @@ impl App {
                             return Ok(());
                         }
                     }
-                    Err(_) => anyhow::bail!("the terminal input stopped"),
+                    Err(_) => {
+                        // A closed terminal window ends the input and sends SIGHUP;
+                        // whichever comes first, the signal names the exit.
+                        if let Ok(t) = terminations.recv_timeout(Duration::from_millis(200)) {
+                            return Err(Terminated(t).into());
+                        }
+                        anyhow::bail!("the terminal input stopped")
+                    }
+                },
+                recv(terminations) -> t => if let Ok(t) = t {
+                    return Err(Terminated(t).into());
                 },
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
                 recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
@@ -636,6 +651,9 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
     let recorder = args.record.as_deref().map(Recorder::create).transpose()?;
     // Asked before the alternate screen, while the terminal still shows its own colours.
     let theme = background::choose_theme(args.theme);
+    // Before the terminal is taken: from here a kill or a closed window takes the
+    // same way out as `q`.
+    let terminations = signals::listen()?;
     let mut guard = TerminalGuard::enter()?;
     let options = AppOptions {
         max_run,
@@ -663,7 +681,7 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
         std::thread::sleep(Duration::from_millis(50));
     });
     let input = spawn_input_thread();
-    let result = app.run(&mut guard.terminal, &input);
+    let result = app.run(&mut guard.terminal, &input, &terminations);
     app.shutdown();
     terminal::clear_emergency_stop();
     drop(guard);

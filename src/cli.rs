@@ -625,6 +625,9 @@ pub fn main() -> ExitCode {
             eprintln!("vpx-efis: {e:#}");
             if e.downcast_ref::<UsageError>().is_some() {
                 ExitCode::from(exit::USAGE)
+            } else if let Some(t) = e.downcast_ref::<crate::app::Terminated>() {
+                // Stopped by a signal after a clean stop: 128 + n, as a shell expects.
+                ExitCode::from(t.0.exit_status())
             } else {
                 ExitCode::from(exit::FAILURE)
             }

@@ -17,6 +17,7 @@ pub mod exchange;
 pub mod flash;
 pub mod link;
 pub mod model;
+pub mod platform;
 pub mod protocol;
 pub mod settings;
 pub mod setup;

@@ -2,6 +2,8 @@
 //! pseudo-terminal, and on its slave path either the `vpx-efis` binary itself
 //! (`--port PATH`) or a [`UnitClient`] opened like any serial port; and the same over
 //! TCP (`--port tcp://…`), with the unit behind the line `vpx-efis sim --tcp` serves.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};

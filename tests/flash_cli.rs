@@ -1,5 +1,7 @@
 //! `vpx-efis flash` as a mechanic runs it: the binary on a pseudo-terminal whose other
 //! end is the virtual VP-X, checking what reaches the unit and what is written down.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};

@@ -2,6 +2,8 @@
 //! pseudo-terminal (the sim on the master, the updater on the slave's path, opened as a
 //! serial port like a real cable), plus a small scripted bootloader for what the sim
 //! cannot be told to do (a wrong signature).
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 use std::io::{Read, Write};
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -1,6 +1,8 @@
 //! The page end to end: the real `App` on one side of a real pseudo-terminal, the
 //! virtual VP-X on the other, and a tap in between that records every byte the page
 //! puts on the wire (see `page_rig`).
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 use std::time::{Duration, Instant};
 

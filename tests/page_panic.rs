@@ -1,5 +1,7 @@
 //! Panic safety of the page, in a process of its own: the panic hook is global, and a
 //! panic here must not stop the motors of unrelated tests.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 use std::time::{Duration, Instant};
 

@@ -1,6 +1,8 @@
 //! The setup screens end to end: the real `App` driven with keys, on the slave of a
 //! real pseudo-terminal, the virtual VP-X on its master. What the screen says is
 //! checked against what the sim really holds (`stats().config`).
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 use std::time::{Duration, Instant};
 

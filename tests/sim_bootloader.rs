@@ -1,5 +1,7 @@
 //! ICD §7 against the sim over a pty: SOFTWARE_UPDATE, then the bootloader frames of
 //! `protocol::bootloader`, then EXIT back to the main protocol with the flag set.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 mod sim_common;
 

@@ -1,5 +1,7 @@
 //! `vpx-efis sim --pty` as a process: the first line on stdout is a path that a
 //! serial client can open and find a VP-X behind.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};

@@ -1,5 +1,7 @@
 //! EEPROM persistence (`--eeprom FILE`): settings survive a restart of the sim; a
 //! corrupt file gives the Appendix F defaults, DATA_INTEGRITY and a log line.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 mod sim_common;
 

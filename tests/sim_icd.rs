@@ -1,5 +1,7 @@
 //! ICD §8's usage scenarios, each played against the virtual VP-X over a real
 //! pseudo-terminal by a client built from the `protocol` module.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 mod sim_common;
 

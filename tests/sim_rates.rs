@@ -1,5 +1,7 @@
 //! Broadcast rates measured on the wire (ICD §6.3): 1 Hz and 10 Hz within 5 %.
 //! In a file of its own so nothing else in the same test binary competes for the CPU.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 mod sim_common;
 

@@ -1,5 +1,7 @@
 //! The 4 Hz rule of TRIM_MOVE (ICD §6.4.2, reading note 19), on the wire: a page that
 //! streams every 200 ms keeps the motor running; a 400 ms gap stops it once.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 mod sim_common;
 

@@ -1,6 +1,8 @@
 //! End to end: the virtual VP-X on a real pseudo-terminal, the headless bridge
 //! (`cmd::gateway::run_bridge`) on a serial port to it, and a peer on real UDP sockets
 //! on 127.0.0.1. Every wait is bounded.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
 
 use std::net::{Ipv4Addr, SocketAddr, SocketAddrV4, UdpSocket};
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -26,8 +26,8 @@ use ratatui::Terminal;
 use ratatui::backend::Backend;
 
 use super::{
-    App, AppOptions, Flow, IDLE_REDRAW, MIN_FRAME_GAP, SharedSink, TerminalGuard, lock,
-    spawn_input_thread,
+    App, AppOptions, Flow, IDLE_REDRAW, MIN_FRAME_GAP, SharedSink, TerminalGuard, Terminated,
+    Termination, lock, spawn_input_thread,
 };
 use crate::control::Action;
 use crate::link::{
@@ -565,6 +565,7 @@ impl App {
         &mut self,
         terminal: &mut Terminal<B>,
         input: &Receiver<TermEvent>,
+        terminations: &Receiver<Termination>,
     ) -> anyhow::Result<()> {
         let mut last_real_draw: Option<Instant> = None;
         loop {
@@ -585,7 +586,15 @@ impl App {
                             return Ok(());
                         }
                     }
-                    Err(_) => anyhow::bail!("the terminal input stopped"),
+                    Err(_) => {
+                        if let Ok(t) = terminations.recv_timeout(Duration::from_millis(200)) {
+                            return Err(Terminated(t).into());
+                        }
+                        anyhow::bail!("the terminal input stopped")
+                    }
+                },
+                recv(terminations) -> t => if let Ok(t) = t {
+                    return Err(Terminated(t).into());
                 },
                 recv(self.wake_rx) -> w => if let Ok(w) = w { let now = self.now(); self.on_wake(w, now) },
                 default(MIN_FRAME_GAP) => {}
@@ -613,6 +622,7 @@ pub fn run(file: &Path, args: &super::PageOptions) -> anyhow::Result<()> {
     let capture = Capture::load(file)?;
     let problem = capture.problem.clone();
     let theme = super::choose_theme(args.theme);
+    let terminations = super::signals::listen()?;
     let mut guard = TerminalGuard::enter()?;
     let options = AppOptions {
         theme,
@@ -630,7 +640,7 @@ pub fn run(file: &Path, args: &super::PageOptions) -> anyhow::Result<()> {
     };
     app.set_notice(Instant::now(), Some(start_notice));
     let input = spawn_input_thread();
-    let result = app.run_replay(&mut guard.terminal, &input);
+    let result = app.run_replay(&mut guard.terminal, &input, &terminations);
     app.shutdown();
     drop(guard);
     if let Some(p) = problem {

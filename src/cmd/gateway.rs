@@ -4,17 +4,20 @@
 //! gateway → UDP, and commands from the network back to the unit. One line per notable
 //! event (the model's event log: connection, faults, every network command) goes to
 //! standard error. Without `--port` the built-in virtual VP-X runs over an in-process
-//! pipe. Runs until SIGINT/SIGTERM, then stops any motor it was running.
+//! pipe. Runs until SIGINT, SIGTERM or SIGHUP (Ctrl-C, Ctrl-Break or a closed console
+//! on Windows), then stops any motor it was running and exits 128 + the signal's number.
 
 use std::io::Write;
 use std::net::Ipv4Addr;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use crossbeam_channel::{select, unbounded};
 
+use crate::app::Terminated;
 use crate::app::queries::QueryPacer;
 use crate::cli::GatewayArgs;
 use crate::control::MotorStreamer;
@@ -61,22 +64,29 @@ impl BridgeOptions {
     }
 }
 
-static STOP: AtomicBool = AtomicBool::new(false);
-
-extern "C" fn on_signal(_: libc::c_int) {
-    STOP.store(true, Ordering::SeqCst);
-}
-
 pub fn run(args: GatewayArgs) -> anyhow::Result<()> {
     let opts = BridgeOptions::from_args(&args)?;
-    // SAFETY: the handler only stores to an atomic, which is async-signal-safe.
-    unsafe {
-        libc::signal(libc::SIGINT, on_signal as *const () as libc::sighandler_t);
-        libc::signal(libc::SIGTERM, on_signal as *const () as libc::sighandler_t);
-        // A dropped ssh session must stop the bridge (and its motor streams) cleanly too.
-        libc::signal(libc::SIGHUP, on_signal as *const () as libc::sighandler_t);
+    // SIGINT, SIGTERM, and SIGHUP (a dropped ssh session) stop the bridge and its motor
+    // streams cleanly, then the process exits 128 + n.
+    let terminations = crate::app::listen_for_termination()?;
+    let stop = Arc::new(AtomicBool::new(false));
+    let by = Arc::new(Mutex::new(None));
+    {
+        let (stop, by) = (stop.clone(), by.clone());
+        std::thread::Builder::new()
+            .name("gateway-stop".into())
+            .spawn(move || {
+                if let Ok(t) = terminations.recv() {
+                    *by.lock().unwrap_or_else(|p| p.into_inner()) = Some(t);
+                    stop.store(true, Ordering::SeqCst);
+                }
+            })?;
     }
-    run_bridge(&opts, &STOP, |line| eprintln!("vpx-efis gateway: {line}"))
+    run_bridge(&opts, &stop, |line| eprintln!("vpx-efis gateway: {line}"))?;
+    match *by.lock().unwrap_or_else(|p| p.into_inner()) {
+        Some(t) => Err(Terminated(t).into()),
+        None => Ok(()),
+    }
 }
 
 /// Runs the bridge until `stop` is set. `say` gets one line per notable event.

@@ -10,7 +10,7 @@ use std::net::TcpListener;
 use anyhow::Context;
 
 use crate::cli::{SimArgs, UsageError};
-use crate::link::{PortAddr, open_pty_pair, serve_line};
+use crate::link::{PortAddr, open_pty_unit, serve_line};
 use crate::sim::{self, SimOptions};
 
 pub fn run(args: SimArgs) -> anyhow::Result<()> {
@@ -86,17 +86,13 @@ fn tcp_line(addr: std::net::SocketAddr) -> anyhow::Result<Line> {
     })
 }
 
+/// A pseudo-terminal; where there are none (Windows) this says to use `--tcp`.
 fn pty_line() -> anyhow::Result<Line> {
-    let pty = open_pty_pair()?;
-    let reader = pty
-        .master
-        .try_clone_native()
-        .context("cannot clone the pseudo-terminal")?;
+    let pty = open_pty_unit()?;
     Ok(Line {
-        reader: Box::new(reader),
-        writer: Box::new(pty.master),
+        reader: pty.reader,
+        writer: pty.writer,
         shown: pty.path,
-        // Kept open so the master never sees end-of-file when a page closes its end.
-        keep: Box::new(pty.slave),
+        keep: pty.keep_open,
     })
 }

@@ -79,6 +79,7 @@ impl Port for crate::link::RawPort {
     }
 }
 
+#[cfg(unix)]
 impl Port for serialport::TTYPort {
     fn bytes_waiting(&mut self) -> Option<usize> {
         serialport::SerialPort::bytes_to_read(self)

@@ -22,7 +22,9 @@ pub use capture::{CaptureError, CaptureWriter, Record, is_capture, parse_capture
 pub use connection::{Connector, Direction, Link, LinkEvent, LinkHandle, RxItem, SendError};
 pub use open::{RawPort, check_port, open_raw, port_connector};
 pub use pipe::{PipeEnd, PipeReader, PipeWriter, duplex_pipe, pipe_connector, pipe_pair};
+#[cfg(unix)]
 pub use pty::{PtyPair, open_pty_pair};
+pub use pty::{PtyUnit, open_pty_unit};
 pub use request::{RequestError, SpecError, UnitClient};
 pub use serial::{OpenError, PortInfo, list_ports, open_serial, serial_connector};
 pub use tcp::{

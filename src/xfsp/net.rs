@@ -1,7 +1,7 @@
 //! The thin socket layer: one UDP socket, a receiving thread, and sending.
 //!
 //! A target `GROUP:PORT` with a multicast group (224.0.0.0/4) is the normal XFSp case:
-//! the socket binds `GROUP:PORT` with SO_REUSEADDR (so the page, a gateway and
+//! the socket binds `GROUP:PORT` (`0.0.0.0:PORT` on Windows) with SO_REUSEADDR (so the page, a gateway and
 //! `xfsp-dump` can all listen on one host), joins the group on the configured
 //! interface, sends with that interface as the multicast interface, TTL 1 (the
 //! aircraft network is one segment) and multicast loop on (a display on the same host,
@@ -19,13 +19,15 @@
 
 use std::io;
 use std::net::{Ipv4Addr, SocketAddr, SocketAddrV4, UdpSocket};
-use std::os::fd::{AsRawFd, FromRawFd};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::{Receiver, TrySendError, bounded};
+use socket2::{Domain, Protocol, Socket, Type};
+
+use crate::platform::Os;
 
 /// The draft's default group and port (reading note 9).
 pub const DEFAULT_TARGET: &str = "224.0.2.69:20234";
@@ -219,64 +221,30 @@ impl Drop for XfspNet {
     }
 }
 
-/// A socket bound to `group:port` with SO_REUSEADDR, joined on `iface`.
+/// A socket bound for `group:port` with SO_REUSEADDR, joined on `iface`, sending
+/// through `iface`. socket2 does what std cannot (SO_REUSEADDR before bind, the
+/// multicast interface) the same way on every OS, close-on-exec included.
 fn multicast_socket(group: Ipv4Addr, port: u16, iface: Ipv4Addr) -> io::Result<UdpSocket> {
-    // std cannot set SO_REUSEADDR before bind, nor IP_MULTICAST_IF; libc can.
-    // SAFETY: plain socket(2); the descriptor is owned by the UdpSocket from here on.
-    let fd = unsafe { libc::socket(libc::AF_INET, libc::SOCK_DGRAM | libc::SOCK_CLOEXEC, 0) };
-    if fd < 0 {
-        return Err(io::Error::last_os_error());
-    }
-    // SAFETY: `fd` is a fresh, valid descriptor that nothing else owns.
-    let socket = unsafe { UdpSocket::from_raw_fd(fd) };
-    let one: libc::c_int = 1;
-    setsockopt(&socket, libc::SOL_SOCKET, libc::SO_REUSEADDR, &one)?;
-    // Binding the group address (not 0.0.0.0) keeps other groups' traffic on the same
-    // port out of this socket.
-    let addr = libc::sockaddr_in {
-        sin_family: libc::AF_INET as libc::sa_family_t,
-        sin_port: port.to_be(),
-        sin_addr: libc::in_addr {
-            s_addr: u32::from(group).to_be(),
-        },
-        sin_zero: [0; 8],
-    };
-    // SAFETY: `addr` is a valid sockaddr_in and its size is passed with it.
-    let r = unsafe {
-        libc::bind(
-            socket.as_raw_fd(),
-            (&addr as *const libc::sockaddr_in).cast(),
-            std::mem::size_of::<libc::sockaddr_in>() as libc::socklen_t,
-        )
-    };
-    if r < 0 {
-        return Err(io::Error::last_os_error());
-    }
+    let socket = Socket::new(Domain::IPV4, Type::DGRAM, Some(Protocol::UDP))?;
+    socket.set_reuse_address(true)?;
+    let bind = multicast_bind_addr(Os::current(), group, port);
+    socket.bind(&SocketAddr::V4(bind).into())?;
     socket.join_multicast_v4(&group, &iface)?;
-    let ifaddr = libc::in_addr {
-        s_addr: u32::from(iface).to_be(),
-    };
-    setsockopt(&socket, libc::IPPROTO_IP, libc::IP_MULTICAST_IF, &ifaddr)?;
+    socket.set_multicast_if_v4(&iface)?;
     socket.set_multicast_loop_v4(true)?;
     socket.set_multicast_ttl_v4(1)?;
-    Ok(socket)
+    Ok(socket.into())
 }
 
-fn setsockopt<T>(s: &UdpSocket, level: libc::c_int, name: libc::c_int, v: &T) -> io::Result<()> {
-    // SAFETY: `v` points to a live T and its size is passed with it.
-    let r = unsafe {
-        libc::setsockopt(
-            s.as_raw_fd(),
-            level,
-            name,
-            (v as *const T).cast(),
-            std::mem::size_of::<T>() as libc::socklen_t,
-        )
-    };
-    if r < 0 {
-        Err(io::Error::last_os_error())
-    } else {
-        Ok(())
+/// The address a multicast listener binds. On Unix it is the group itself, which keeps
+/// other groups' traffic on the same port out of this socket (Linux hands a socket
+/// bound to 0.0.0.0 every group any socket on the host joined). Windows refuses to
+/// bind a multicast address (WSAEADDRNOTAVAIL) and only delivers a group's datagrams
+/// to sockets that joined it, so there it is 0.0.0.0.
+fn multicast_bind_addr(os: Os, group: Ipv4Addr, port: u16) -> SocketAddrV4 {
+    match os {
+        Os::Windows => SocketAddrV4::new(Ipv4Addr::UNSPECIFIED, port),
+        Os::Linux | Os::MacOs | Os::OtherUnix => SocketAddrV4::new(group, port),
     }
 }
 
@@ -302,5 +270,48 @@ mod tests {
         );
         assert!(Target::parse("224.0.2.69").is_err());
         assert!(Target::parse("[::1]:5").is_err());
+    }
+
+    #[test]
+    fn a_multicast_listener_binds_the_group_on_unix_and_any_address_on_windows() {
+        let group = Ipv4Addr::new(224, 0, 2, 69);
+        for os in [Os::Linux, Os::MacOs, Os::OtherUnix] {
+            assert_eq!(
+                multicast_bind_addr(os, group, 20234),
+                "224.0.2.69:20234".parse().unwrap(),
+                "{os:?}"
+            );
+        }
+        assert_eq!(
+            multicast_bind_addr(Os::Windows, group, 20234),
+            "0.0.0.0:20234".parse().unwrap()
+        );
+    }
+
+    /// Two listeners on one host share the group's port (SO_REUSEADDR before bind),
+    /// and a datagram sent on the loopback interface reaches both.
+    #[test]
+    fn two_listeners_share_a_group_on_loopback() {
+        let port = {
+            let probe = UdpSocket::bind("127.0.0.1:0").unwrap();
+            probe.local_addr().unwrap().port()
+        };
+        let target = Target::Multicast {
+            group: Ipv4Addr::new(239, 255, 73, 13),
+            port,
+        };
+        let a = XfspNet::listen(&target, Ipv4Addr::LOCALHOST).expect("a listener on the group");
+        let b = XfspNet::open(&target, Ipv4Addr::LOCALHOST).expect("a second socket on the port");
+        b.send_all(&[b"hello".to_vec()]).unwrap();
+        let got = a
+            .incoming()
+            .recv_timeout(Duration::from_secs(2))
+            .expect("the listener hears the sender");
+        assert_eq!(got.bytes, b"hello");
+        let echo = b
+            .incoming()
+            .recv_timeout(Duration::from_secs(2))
+            .expect("multicast loop is on");
+        assert_eq!(echo.bytes, b"hello");
     }
 }
