@@ -1,0 +1,289 @@
+//! SIGTERM and SIGHUP during a trim run, against the real `vpx-efis` binary: the page
+//! runs on a pseudo-terminal that is its controlling terminal (as in a terminal
+//! window), its `--port` is the slave of a second pty whose master the test taps on the
+//! way to the virtual VP-X. The stop must be on the wire before the process is gone,
+//! the terminal must be given back (alternate screen left, cursor shown, echo and
+//! line mode on again), and the exit status must be 128 + the signal's number.
+// Needs pseudo-terminals and POSIX signals, which only Unix has.
+#![cfg(unix)]
+
+use std::fs::File;
+use std::io::{Read, Write};
+use std::os::fd::{FromRawFd, OwnedFd};
+use std::os::unix::process::CommandExt;
+use std::process::{Child, Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use vpx_efis::link;
+use vpx_efis::protocol::message::{Message, TrimType};
+use vpx_efis::protocol::{Decoder, Event as DecEvent, Packet};
+use vpx_efis::sim::{self, Scenario, SimHandle, SimOptions};
+
+mod page_rig;
+use page_rig::{SCENARIO, Tap, Wire};
+
+/// The terminal the page runs in: the master side, with everything the page wrote.
+struct Term {
+    master: File,
+    screen: Arc<Mutex<Vec<u8>>>,
+}
+
+impl Term {
+    /// A 120×40 pty; `answer` makes it reply to the page's terminal queries as a
+    /// terminal without the kitty keyboard protocol would (so keys auto-repeat).
+    fn open() -> (Term, OwnedFd) {
+        let (mut m, mut s) = (0, 0);
+        let mut size = libc::winsize {
+            ws_row: 40,
+            ws_col: 120,
+            ws_xpixel: 0,
+            ws_ypixel: 0,
+        };
+        // SAFETY: openpty writes two descriptors; the size is read only (macOS
+        // declares it `*mut`, Linux `*const`: a raw `*mut` suits both).
+        let r = unsafe {
+            libc::openpty(
+                &mut m,
+                &mut s,
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                &raw mut size,
+            )
+        };
+        assert_eq!(r, 0, "openpty: {}", std::io::Error::last_os_error());
+        // SAFETY: both descriptors are fresh and owned by nothing else.
+        let (master, slave) = unsafe { (File::from_raw_fd(m), OwnedFd::from_raw_fd(s)) };
+        let screen = Arc::new(Mutex::new(Vec::new()));
+        let mut reader = master.try_clone().unwrap();
+        let mut answer = master.try_clone().unwrap();
+        let seen = screen.clone();
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 4096];
+            // Ends with EIO once the page and every copy of the slave are gone.
+            while let Ok(n) = reader.read(&mut buf) {
+                if n == 0 {
+                    break;
+                }
+                let mut all = seen.lock().unwrap();
+                let before = all.len();
+                all.extend_from_slice(&buf[..n]);
+                // Primary device attributes asked (after the kitty flags query): a
+                // VT220's answer, and no flags.
+                let from = before.saturating_sub(3);
+                if find(&all[from..], b"\x1b[c").is_some() {
+                    let _ = answer.write_all(b"\x1b[?62;22c");
+                }
+            }
+        });
+        (Term { master, screen }, slave)
+    }
+
+    fn typed(&mut self, keys: &[u8]) {
+        self.master.write_all(keys).unwrap();
+    }
+
+    fn output(&self) -> Vec<u8> {
+        self.screen.lock().unwrap().clone()
+    }
+
+    /// The terminal's line settings: on Linux the master reads the slave's termios.
+    fn echo_and_line_mode(&self) -> (bool, bool) {
+        use std::os::fd::AsRawFd;
+        // SAFETY: tcgetattr fills the termios it is given.
+        let mut t: libc::termios = unsafe { std::mem::zeroed() };
+        let r = unsafe { libc::tcgetattr(self.master.as_raw_fd(), &mut t) };
+        assert_eq!(r, 0, "tcgetattr: {}", std::io::Error::last_os_error());
+        (t.c_lflag & libc::ECHO != 0, t.c_lflag & libc::ICANON != 0)
+    }
+}
+
+fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
+    hay.windows(needle.len()).position(|w| w == needle)
+}
+
+struct Bench {
+    sim: SimHandle,
+    wire: Wire,
+    tap: Tap,
+}
+
+/// The virtual VP-X behind a tapped pty, as in `page_rig`.
+fn bench() -> Bench {
+    let (sim_side, page_side) = link::duplex_pipe(Duration::from_millis(20));
+    let sim = sim::spawn(
+        SimOptions::new(Scenario::from_toml(SCENARIO).unwrap()),
+        Box::new(sim_side.reader),
+        Box::new(sim_side.writer),
+    );
+    let wire: Wire = Arc::default();
+    let tap = Tap::start(
+        Arc::new(Mutex::new(page_side.writer)),
+        Arc::new(Mutex::new(page_side.reader)),
+        wire.clone(),
+    );
+    Bench { sim, wire, tap }
+}
+
+/// The page binary with `term` as its controlling terminal and standard streams.
+fn page(port: &str, slave: OwnedFd) -> Child {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_vpx-efis"));
+    cmd.args(["--port", port])
+        .env("TERM", "xterm-256color")
+        .stdin(Stdio::from(slave.try_clone().unwrap()))
+        .stdout(Stdio::from(slave.try_clone().unwrap()))
+        .stderr(Stdio::from(slave));
+    // SAFETY: only async-signal-safe calls between fork and exec.
+    unsafe {
+        cmd.pre_exec(|| {
+            // A session of its own, with the pty as its controlling terminal, as a
+            // shell in a terminal window has.
+            if libc::setsid() < 0 || libc::ioctl(0, libc::TIOCSCTTY as _, 0) < 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    cmd.spawn().expect("the page starts")
+}
+
+/// Pitch TRIM_MOVEs the page put on the wire: (when, on).
+fn pitch_moves(wire: &Wire) -> Vec<(Instant, bool)> {
+    let wire = wire.lock().unwrap();
+    let mut dec = Decoder::new();
+    let mut out = Vec::new();
+    for (at, bytes) in wire.iter() {
+        dec.push(bytes, |e| {
+            if let DecEvent::Frame(f) = e
+                && let Ok(p) = Packet::parse(&f)
+                && let Message::TrimMove(m) = p.message
+                && m.trim_type == TrimType::Pitch
+            {
+                out.push((*at, m.on));
+            }
+        });
+    }
+    out
+}
+
+fn wait_exit(child: &mut Child, limit: Duration) -> (std::process::ExitStatus, Instant) {
+    let end = Instant::now() + limit;
+    loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            return (s, Instant::now());
+        }
+        if Instant::now() > end {
+            let _ = child.kill();
+            panic!("the page did not exit within {limit:?} of the signal");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+/// Runs the pitch trim from the keyboard, sends `signal`, and checks everything.
+fn signal_during_a_trim_run(signal: libc::c_int, status: i32) {
+    let b = bench();
+    let (mut term, slave) = Term::open();
+    let mut child = page(&b.tap.slave_path, slave);
+
+    // The device list is up once the scenario's names are on the screen (drawn as
+    // changes, so looked for one by one).
+    let start = Instant::now();
+    while find(&term.output(), b"Nav Lt").is_none() || find(&term.output(), b"GPS 1").is_none() {
+        assert!(
+            start.elapsed() < Duration::from_secs(10),
+            "the page never drew its device list: {}",
+            String::from_utf8_lossy(&term.output())
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    // Motors sort last and only the pitch trim is fitted: `j` stops on its row.
+    term.typed(&[b'j'; 50]);
+    std::thread::sleep(Duration::from_millis(200));
+    // Hold `u` as a terminal's auto-repeat does, until the trim runs.
+    let start = Instant::now();
+    while !b.sim.stats().pitch_trim_running {
+        assert!(
+            start.elapsed() < Duration::from_secs(5),
+            "the pitch trim never ran; moves on the wire: {:?}",
+            pitch_moves(&b.wire)
+        );
+        term.typed(b"u");
+        std::thread::sleep(Duration::from_millis(40));
+    }
+    // A few more repeats, so the run is well under way.
+    for _ in 0..5 {
+        term.typed(b"u");
+        std::thread::sleep(Duration::from_millis(40));
+    }
+    let screen_before = term.output().len();
+    let sent = Instant::now();
+    // SAFETY: kill(2) on our own child.
+    assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, signal) }, 0);
+    let (exit, exited) = wait_exit(&mut child, Duration::from_secs(5));
+
+    assert_eq!(exit.code(), Some(status), "exit status: {exit:?}");
+    // The stop crossed the pty before the process was gone (the tap stamps bytes as
+    // it reads them, so allow it the time to read what was already written).
+    std::thread::sleep(Duration::from_millis(100));
+    let moves = pitch_moves(&b.wire);
+    let stop = moves
+        .iter()
+        .find(|(at, on)| !on && *at >= sent)
+        .unwrap_or_else(|| panic!("no stop on the wire after the signal: {moves:?}"));
+    assert!(
+        stop.0 <= exited + Duration::from_millis(50),
+        "the stop came {:?} after the exit",
+        stop.0 - exited
+    );
+    assert!(
+        moves
+            .iter()
+            .filter(|(at, _)| *at > stop.0)
+            .all(|(_, on)| !on),
+        "a move after the stop: {moves:?}"
+    );
+    let s = b.sim.stats();
+    assert!(!s.pitch_trim_running, "the unit's motor stopped");
+    assert_eq!(
+        s.pitch_trim_starvations, 0,
+        "stopped by the message, not by the unit's 250 ms cut-off"
+    );
+
+    // The terminal was given back.
+    let after = term.output()[screen_before..].to_vec();
+    let text = String::from_utf8_lossy(&after);
+    let leave = find(&after, b"\x1b[?1049l").expect("LeaveAlternateScreen after the signal");
+    let show = find(&after, b"\x1b[?25h").expect("the cursor shown after the signal");
+    assert!(show > leave, "cursor shown after leaving: {text:?}");
+    assert!(
+        find(&after, b"\x1b[?1004l").is_some(),
+        "focus reports turned off: {text:?}"
+    );
+    let name = if signal == libc::SIGTERM {
+        "SIGTERM"
+    } else {
+        "SIGHUP"
+    };
+    assert!(
+        text.contains(&format!("stopped by {name}")),
+        "says why: {text:?}"
+    );
+    assert_eq!(
+        term.echo_and_line_mode(),
+        (true, true),
+        "echo and line mode back on"
+    );
+    b.tap.unplug();
+}
+
+#[test]
+fn sigterm_during_a_trim_run_stops_the_motor_restores_the_terminal_and_exits_143() {
+    signal_during_a_trim_run(libc::SIGTERM, 143);
+}
+
+#[test]
+fn sighup_during_a_trim_run_stops_the_motor_restores_the_terminal_and_exits_129() {
+    signal_during_a_trim_run(libc::SIGHUP, 129);
+}
