@@ -209,6 +209,12 @@ impl App {
     /// A terminal event: keys, focus, resize.
     pub fn handle_term_event(&mut self, event: TermEvent, now: Instant) -> Flow {
         self.dirty = true;
+        if terminal::panicked() {
+            // The hook has sent the emergency stop and the loop is on its way out; a
+            // key (a repeat late enough to count as a new press) must not restart a
+            // motor in between.
+            return Flow::Continue;
+        }
         if let Some(flow) = self.replay_key(&event, now) {
             return flow;
         }
