@@ -154,10 +154,15 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
     // SAFETY: signalling a child we started and still own.
     unsafe { libc::kill(pid as libc::pid_t, libc::SIGINT) };
     let end = Instant::now() + Duration::from_secs(5);
-    while gateway.0.try_wait().unwrap().is_none() {
+    let status = loop {
+        if let Some(s) = gateway.0.try_wait().unwrap() {
+            break s;
+        }
         assert!(Instant::now() < end, "the gateway did not stop on SIGINT");
         std::thread::sleep(Duration::from_millis(20));
-    }
+    };
+    // After its clean stop, the exit status a shell expects of SIGINT: 128 + 2.
+    assert_eq!(status.code(), Some(130), "{status:?}");
     std::thread::sleep(Duration::from_millis(100));
     let lines = lines.lock().unwrap();
     assert!(
