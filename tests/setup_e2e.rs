@@ -426,7 +426,14 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
     rig.keys(file.to_str().unwrap());
     rig.key(KeyCode::Down);
     rig.key(KeyCode::Enter);
-    let saved = vpx_efis::backup::load(&file).expect("a backup file");
+    let (saved, made) = vpx_efis::backup::load_made(&file).expect("a backup file");
+    // It says where it came from, as `vpx-efis backup` does.
+    let made = made.expect("a [made] section");
+    assert!(made.from.starts_with("/dev/"), "{made:?}");
+    assert!(
+        !made.simulated && made.by.starts_with("vpx-efis "),
+        "{made:?}"
+    );
     let original = rig.sim.stats().config;
     assert_eq!(
         vpx_efis::backup::normalized(&saved.config),

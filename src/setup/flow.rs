@@ -13,8 +13,8 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use super::probe::{EraseEnd, Probes};
 use super::{form, write};
-use crate::backup::{self, Backup};
-use crate::model::Model;
+use crate::backup::{self, Backup, Made};
+use crate::model::{Model, Source};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{STARTER, TRIM_R};
 use crate::protocol::message::{Message, Version};
@@ -548,7 +548,16 @@ fn save_backup(file: &str, model: &Model) -> Result<String, String> {
             crate::ui::setup::dialog::missing_summary(&missing)
         ));
     };
-    backup::save(Path::new(file.trim()), &Backup { version, config })
+    // The file says where it came from, as `vpx-efis backup` writes it.
+    let made = match &model.source {
+        Source::Serial { path } => Made::now(path, false),
+        Source::Simulated { scenario } => Made::now(
+            &format!("the built-in virtual VP-X (scenario {scenario})"),
+            true,
+        ),
+        Source::Replay { file } => Made::now(&format!("a replay of {file}"), false),
+    };
+    backup::save_made(Path::new(file.trim()), &Backup { version, config }, &made)
         .map_err(|e| format!("could not write {}: {e}", file.trim()))?;
     Ok(format!("backup written to {}", file.trim()))
 }
