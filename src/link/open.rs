@@ -77,7 +77,64 @@ impl RawPort {
     pub fn bytes_waiting(&mut self) -> Option<usize> {
         match self {
             RawPort::Serial(p) => p.bytes_to_read().ok().map(|n| n as usize),
-            RawPort::Tcp(_) => None,
+            // A socket cannot say how much it holds, but a non-blocking peek can say
+            // whether anything is there, which is all a drain needs: without it every
+            // drain would wait out a read timeout, twice a page over a whole flash.
+            RawPort::Tcp(s) => {
+                let mut buf = [0u8; 1024];
+                s.set_nonblocking(true).ok()?;
+                let peeked = s.peek(&mut buf);
+                s.set_nonblocking(false).ok()?;
+                match peeked {
+                    Ok(0) => None, // closed: the next read says so
+                    Ok(n) => Some(n),
+                    Err(e) if e.kind() == io::ErrorKind::WouldBlock => Some(0),
+                    Err(_) => None,
+                }
+            }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::{Read, Write};
+    use std::time::{Duration, Instant};
+
+    #[test]
+    fn a_tcp_port_says_at_once_whether_bytes_wait_and_a_closed_one_reads_as_an_error() {
+        let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr: PortAddr = format!("tcp://{}", listener.local_addr().unwrap())
+            .parse()
+            .unwrap();
+        let mut port = open_raw(&addr, 57_600).unwrap();
+        let (mut peer, _) = listener.accept().unwrap();
+
+        let asked = Instant::now();
+        assert_eq!(port.bytes_waiting(), Some(0));
+        assert!(asked.elapsed() < Duration::from_millis(40), "it waited");
+
+        peer.write_all(&[1, 2, 3]).unwrap();
+        let end = Instant::now() + Duration::from_secs(2);
+        while port.bytes_waiting() != Some(3) {
+            assert!(Instant::now() < end, "the bytes never showed");
+        }
+        let mut buf = [0u8; 8];
+        assert_eq!(port.read(&mut buf).unwrap(), 3);
+        // Reads still time out like a serial port's after a peek.
+        let e = port.read(&mut buf).unwrap_err();
+        assert!(matches!(
+            e.kind(),
+            io::ErrorKind::WouldBlock | io::ErrorKind::TimedOut
+        ));
+
+        drop(peer);
+        let end = Instant::now() + Duration::from_secs(2);
+        while port.bytes_waiting().is_some() {
+            assert!(Instant::now() < end, "the close never showed");
+        }
+        let e = port.read(&mut buf).unwrap_err();
+        assert_eq!(e.kind(), io::ErrorKind::ConnectionAborted);
     }
 }
