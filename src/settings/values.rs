@@ -99,15 +99,18 @@ pub fn theme(text: &str) -> Result<Theme, String> {
         })
 }
 
-/// The longest a terminal's first auto-repeat can be expected to take, in milliseconds.
-pub const MAX_REPEAT_DELAY_MS: u64 = 2000;
+/// The range of a key repeat delay, in milliseconds: the page's `--repeat-delay`
+/// takes the same (below 300 ms no desktop repeats; above 1500 ms a tap would run a
+/// motor too long).
+pub const REPEAT_DELAY_MS: (u64, u64) = (300, 1500);
 
 /// A key repeat delay in milliseconds.
 pub fn repeat_delay_ms(text: &str) -> Result<u64, String> {
+    let (lo, hi) = REPEAT_DELAY_MS;
     match text.trim().parse::<u64>() {
-        Ok(ms) if (1..=MAX_REPEAT_DELAY_MS).contains(&ms) => Ok(ms),
+        Ok(ms) if (lo..=hi).contains(&ms) => Ok(ms),
         _ => Err(format!(
-            "{text:?} is not a repeat delay: milliseconds, 1–{MAX_REPEAT_DELAY_MS}"
+            "{text:?} is not a repeat delay: milliseconds, {lo}–{hi}"
         )),
     }
 }
@@ -162,7 +165,9 @@ mod tests {
                 .contains("auto, dark, light, mono, terminal")
         );
         assert_eq!(repeat_delay_ms("500"), Ok(500));
-        assert!(repeat_delay_ms("0").is_err());
-        assert!(repeat_delay_ms("2001").is_err());
+        assert_eq!(repeat_delay_ms("300"), Ok(300));
+        assert_eq!(repeat_delay_ms("1500"), Ok(1500));
+        assert!(repeat_delay_ms("299").is_err());
+        assert!(repeat_delay_ms("1501").unwrap_err().contains("300–1500"));
     }
 }
