@@ -137,6 +137,7 @@ fn configured() -> (Model, Instant) {
                     circuit_breaker: 2,
                     switch_id: SwitchId::Input(id % 10 + 1),
                     current_fault: true,
+                    switch_raw: None,
                 }
                 .into(),
             ]

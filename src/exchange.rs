@@ -228,6 +228,7 @@ mod tests {
             circuit_breaker: 3,
             switch_id: SwitchId::Input(2),
             current_fault: false,
+            switch_raw: None,
         };
         m.apply_packet(ms(t0, 11200), &Packet::from_vpx(1, held));
         assert!(!m.is_unknown(Setting::DeviceSpec(9)));

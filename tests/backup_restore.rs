@@ -152,6 +152,7 @@ fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
             circuit_breaker: 1,
             switch_id: SwitchId::Input(7),
             current_fault: false,
+            switch_raw: None,
         }
         .into(),
         WigWagSpec {

@@ -107,6 +107,7 @@ fn device_spec() {
                 circuit_breaker: 5,
                 switch_id: SwitchId::Input(3),
                 current_fault: true,
+                switch_raw: None,
             },
         ),
     );
@@ -131,6 +132,7 @@ fn device_spec_switch_255_is_always_on_and_is_sent_as_11() {
             circuit_breaker: 10,
             switch_id: SwitchId::AlwaysOn,
             current_fault: false,
+            switch_raw: None,
         },
     );
     assert_eq!(Packet::parse_bytes(&with_255), Ok(expected));

@@ -62,6 +62,7 @@ fn unit(t0: Instant) -> Model {
                 circuit_breaker: cb,
                 switch_id: sw,
                 current_fault: id == 4,
+                switch_raw: None,
             },
         );
         if (4..=28).contains(&id) {

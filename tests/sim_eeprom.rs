@@ -13,6 +13,7 @@ const SPEC: DeviceSpec = DeviceSpec {
     circuit_breaker: 4,
     switch_id: SwitchId::Input(6),
     current_fault: true,
+    switch_raw: None,
 };
 
 #[test]

@@ -106,6 +106,7 @@ fn s8_2_1_retrieve_device_settings_device_5() {
             circuit_breaker: 3,
             switch_id: SwitchId::Input(2),
             current_fault: false,
+            switch_raw: None,
         })
     );
 }
@@ -142,6 +143,7 @@ fn s8_2_3_configure_device_9() {
         circuit_breaker: 4,
         switch_id: SwitchId::Input(6),
         current_fault: true,
+        switch_raw: None,
     };
     assert_eq!(
         c.request(spec),
@@ -167,6 +169,7 @@ fn s8_2_4_configure_device_9_with_an_invalid_breaker() {
             circuit_breaker: 12,
             switch_id: SwitchId::Input(3),
             current_fault: false,
+            switch_raw: None,
         }),
         Message::SpecAck(SpecAck {
             device_id: 9,

@@ -190,6 +190,7 @@ mod fixtures {
                         circuit_breaker: breaker,
                         switch_id,
                         current_fault: true,
+                        switch_raw: None,
                     },
                 );
             }
@@ -356,6 +357,7 @@ mod fixtures {
                 circuit_breaker: 5,
                 switch_id: SwitchId::Input(8),
                 current_fault: false,
+                switch_raw: None,
             },
         );
         u.run(1000, 60, |_, _, _, _| None);

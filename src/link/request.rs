@@ -590,6 +590,7 @@ mod tests {
             circuit_breaker: 3,
             switch_id: SwitchId::Input(2),
             current_fault: true,
+            switch_raw: None,
         }
     }
 

@@ -104,6 +104,7 @@ mod tests {
             circuit_breaker: 3,
             switch_id: SwitchId::Input(2),
             current_fault: false,
+            switch_raw: None,
         };
         let s = Setting::written_by(&spec.into()).unwrap();
         assert_eq!(s, Setting::DeviceSpec(9));

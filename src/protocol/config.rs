@@ -135,6 +135,7 @@ mod tests {
             circuit_breaker: 4,
             switch_id: crate::protocol::message::SwitchId::Input(3),
             current_fault: true,
+            switch_raw: None,
         };
         c.apply_device_spec(&spec);
         assert_eq!(c.devices[9], spec);

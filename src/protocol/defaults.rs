@@ -29,6 +29,7 @@ pub fn device_spec(device_id: u8) -> DeviceSpec {
         circuit_breaker,
         switch_id,
         current_fault: false,
+        switch_raw: None,
     }
 }
 
@@ -101,7 +102,8 @@ mod tests {
                 device_id: 3,
                 circuit_breaker: 5,
                 switch_id: SwitchId::Off,
-                current_fault: false
+                current_fault: false,
+                switch_raw: None,
             }
         );
         assert_eq!(device_spec(0x17).circuit_breaker, 2);

@@ -160,6 +160,16 @@ fn switches_on(s: &SwitchInputs) -> String {
     }
 }
 
+/// The switch of a DEVICE_SPEC in words, with the byte that was on the wire where
+/// reading note 10 reads two bytes alike: "always on (255)" for 255, which the page
+/// takes as 11. A mechanic can then see which of the two a real unit uses.
+fn switch_label(m: &DeviceSpec) -> String {
+    match m.switch_raw {
+        Some(raw) if raw != m.switch_id.to_byte() => format!("{} ({raw})", m.switch_id.label()),
+        _ => m.switch_id.label(),
+    }
+}
+
 /// One message in words: its fields with ICD names and real units.
 pub fn describe(msg: &Message) -> String {
     match msg {
@@ -190,7 +200,7 @@ pub fn describe(msg: &Message) -> String {
             device_label(m.device_id),
             m.circuit_breaker,
             m.switch_id.to_byte(),
-            m.switch_id.label(),
+            switch_label(m),
             if m.current_fault {
                 "enabled"
             } else {
@@ -446,7 +456,8 @@ pub fn to_json(msg: &Message) -> Value {
             "device": device_json(m.device_id),
             "circuit_breaker_a": m.circuit_breaker,
             "switch_id": m.switch_id.to_byte(),
-            "switch": m.switch_id.label(),
+            "switch_raw": m.switch_raw.unwrap_or(m.switch_id.to_byte()),
+            "switch": switch_label(m),
             "current_fault": m.current_fault,
         }),
         Message::SystemSpec(m) => json!({
@@ -634,6 +645,53 @@ fn merge(mut a: Value, b: Value) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::protocol::Packet;
+
+    /// DEVICE_SPEC, cnt 1, VP-X → EFIS: device 4, breaker 5 A, switch `sw`, current
+    /// fault off (ICD Table 13). Checksums by hand: E7^7E^11^00^01^00^01^04^04^05^00 =
+    /// 0x8D before the switch byte; ^FF = 0x72, inverted 0x8D; ^0B = 0x86, inverted 0x79.
+    const SPEC_SW_255: [u8; 13] = [
+        0xE7, 0x7E, 0x11, 0x00, 0x01, 0x00, 0x01, 0x04, 0x04, 0x05, 0xFF, 0x00, 0x8D,
+    ];
+    const SPEC_SW_11: [u8; 13] = [
+        0xE7, 0x7E, 0x11, 0x00, 0x01, 0x00, 0x01, 0x04, 0x04, 0x05, 0x0B, 0x00, 0x79,
+    ];
+
+    #[test]
+    fn device_spec_shows_the_switch_byte_that_was_sent() {
+        // Reading note 10: 255 and 11 both mean always on; the page takes 11, and the
+        // typed message keeps the 255 that was on the wire so decode can show it.
+        let p = Packet::parse_bytes(&SPEC_SW_255).unwrap();
+        let Message::DeviceSpec(spec) = p.message else {
+            panic!("{p:?}")
+        };
+        assert_eq!(spec.switch_id, SwitchId::AlwaysOn);
+        assert_eq!(spec.switch_raw, Some(255));
+        let text = describe(&p.message);
+        assert!(text.contains("switch id 11 (always on (255))"), "{text}");
+        let j = to_json(&p.message);
+        assert_eq!(
+            (&j["switch_id"], &j["switch_raw"], &j["switch"]),
+            (&json!(11), &json!(255), &json!("always on (255)"))
+        );
+        // What the page sends for always on is 11, whatever it read (reading note 10).
+        assert_eq!(p.message.emit().as_slice(), [0x04, 0x05, 0x0B, 0x00]);
+
+        // Sent as 11: nothing to add.
+        let p = Packet::parse_bytes(&SPEC_SW_11).unwrap();
+        let text = describe(&p.message);
+        assert!(text.contains("switch id 11 (always on),"), "{text}");
+        let j = to_json(&p.message);
+        assert_eq!(
+            (&j["switch_id"], &j["switch_raw"], &j["switch"]),
+            (&json!(11), &json!(11), &json!("always on"))
+        );
+        // Both mean the same setting.
+        assert_eq!(
+            Packet::parse_bytes(&SPEC_SW_255),
+            Packet::parse_bytes(&SPEC_SW_11)
+        );
+    }
 
     #[test]
     fn system_status_shows_real_units_and_named_switches() {

@@ -797,6 +797,7 @@ mod tests {
             circuit_breaker: cb,
             switch_id: sw,
             current_fault: cf,
+            switch_raw: None,
         }
     }
 

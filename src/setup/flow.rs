@@ -591,6 +591,7 @@ mod tests {
             circuit_breaker: cb,
             switch_id: SwitchId::Input(2),
             current_fault: false,
+            switch_raw: None,
         }
     }
 

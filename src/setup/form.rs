@@ -466,6 +466,7 @@ mod tests {
             circuit_breaker: 2,
             switch_id: SwitchId::Input(2),
             current_fault: true,
+            switch_raw: None,
         };
         m.apply_packet(t0, &Packet::from_vpx(1, spec));
         m.apply_packet(

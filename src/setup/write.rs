@@ -496,6 +496,7 @@ mod tests {
             circuit_breaker: 4,
             switch_id: SwitchId::Input(3),
             current_fault: true,
+            switch_raw: None,
         }
     }
 

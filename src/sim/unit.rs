@@ -1646,6 +1646,7 @@ mod tests {
             circuit_breaker: 3,
             switch_id: SwitchId::Input(2),
             current_fault: false,
+            switch_raw: None,
         };
         let cnt = b.send(spec);
         b.run(1100);
@@ -1682,6 +1683,7 @@ mod tests {
                 circuit_breaker: 3,
                 switch_id: SwitchId::Input(2),
                 current_fault: false,
+                switch_raw: None,
             },
         )
         .to_bytes();

@@ -8,14 +8,39 @@ use crate::protocol::error::{LenRule, Result};
 use crate::protocol::frame::MessageId;
 
 /// DEVICE_SPEC — ICD Table 13.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub struct DeviceSpec {
     pub device_id: u8,
     /// Electronic circuit breaker, whole amps (range per device, Appendix B).
     pub circuit_breaker: u8,
     pub switch_id: SwitchId,
     pub current_fault: bool,
+    /// The switch byte as it was on the wire, for a spec decoded from a frame; `None`
+    /// for one built here. Reading note 10 folds 255 into 11 (always on), and a person
+    /// checking a real unit needs to see which of the two it uses. Only shown: what is
+    /// sent is always `switch_id`'s byte (11 for always on), and two specs that mean
+    /// the same setting are equal whichever byte said it.
+    #[serde(skip)]
+    pub switch_raw: Option<u8>,
 }
+
+impl PartialEq for DeviceSpec {
+    fn eq(&self, other: &Self) -> bool {
+        (
+            self.device_id,
+            self.circuit_breaker,
+            self.switch_id,
+            self.current_fault,
+        ) == (
+            other.device_id,
+            other.circuit_breaker,
+            other.switch_id,
+            other.current_fault,
+        )
+    }
+}
+
+impl Eq for DeviceSpec {}
 
 impl Payload for DeviceSpec {
     const ID: MessageId = MessageId::new(0x11, 0x00);
@@ -27,6 +52,7 @@ impl Payload for DeviceSpec {
             circuit_breaker: p[1],
             switch_id: SwitchId::from_byte(p[2]),
             current_fault: flag(Self::NAME, "Current Fault", p[3])?,
+            switch_raw: Some(p[2]),
         })
     }
     fn emit_payload(&self, w: &mut Writer) {
