@@ -141,7 +141,7 @@ fn text_output_has_one_line_per_frame_and_per_dropped_thing() {
          pitch trim: position 128 [enabled, motor running], fault code 0x00 NO FAULT, \
          up 240, down 10, neutral 128; roll trim: position 127 [enabled, fault], \
          fault code 0x0e TRIM_RUNAWAY, up 230, down 25, neutral 127",
-        "incomplete frame at end: 3 bytes",
+        "incomplete frame at end: 3 bytes: E7 7E 12",
         // Frames: PING, SYSTEM_STATUS, DEVICE_STATUS, FAULT_STATUS, PING ack 2,
         // FLAP_TRIM_STATUS = 6 (187 bytes). Skipped: 3 + (1 + 9) + (1 + 10) = 24.
         // 187 + 24 + 9 unknown + 3 incomplete = 223.
@@ -250,6 +250,7 @@ fn json_output_is_one_object_per_line_with_a_summary() {
     assert_eq!(lines[11]["dst"], 0xFF);
     assert_eq!(lines[11]["roll_trim"]["fault_code"]["name"], "TRIM_RUNAWAY");
     assert_eq!(lines[12]["bytes"], 3);
+    assert_eq!(lines[12]["hex"], "E7 7E 12");
 
     let s = &lines[13];
     for (k, v) in [
@@ -287,4 +288,87 @@ fn a_missing_file_is_an_error_that_names_it() {
     assert!(!ok);
     assert!(out.is_empty());
     assert!(err.contains("/nonexistent/capture.bin"), "{err}");
+}
+
+/// DEVICE_POWER device 5 on, cnt 2, EFIS → VP-X (ICD Table 31):
+/// E7^7E^13^00^02^01^00^02^05^01 = 0x8F, inverted 0x70 (11 bytes).
+const DEVICE_POWER: &[u8] = &[
+    0xE7, 0x7E, 0x13, 0x00, 0x02, 0x01, 0x00, 0x02, 0x05, 0x01, 0x70,
+];
+/// SPEC_ACK device 5 no error, cnt 3, VP-X → EFIS: E7^7E^11^06^03^00^01^02^05^00 =
+/// 0x8B, inverted 0x74 (11 bytes).
+const SPEC_ACK: &[u8] = &[
+    0xE7, 0x7E, 0x11, 0x06, 0x03, 0x00, 0x01, 0x02, 0x05, 0x00, 0x74,
+];
+/// DEVICE_SPEC, cnt 1, VP-X → EFIS: device 4, 5 A, switch 255, current fault off:
+/// E7^7E^11^00^01^00^01^04^04^05^FF^00 = 0x72, inverted 0x8D (13 bytes).
+const DEVICE_SPEC_255: &[u8] = &[
+    0xE7, 0x7E, 0x11, 0x00, 0x01, 0x00, 0x01, 0x04, 0x04, 0x05, 0xFF, 0x00, 0x8D,
+];
+
+#[test]
+fn a_false_header_hides_no_frame_in_a_capture() {
+    // The capture of issue 16: a PING, an unknown id claiming 250 bytes, then three
+    // intact frames and the end. Then the same with a DEVICE_STATUS header claiming
+    // its own 66 bytes (possible, so held), and with one at the very end.
+    let false_250: &[u8] = &[0xE7, 0x7E, 0x20, 0x00, 0x00, 0x00, 0x00, 0xFA];
+    let status_66: &[u8] = &[0xE7, 0x7E, 0x12, 0x01, 0x00, 0x00, 0x00, 0x42];
+    let (ok, out, err) = run(
+        &[],
+        &[PING, false_250, DEVICE_POWER, PING, SPEC_ACK].concat(),
+    );
+    assert!(ok, "{err}");
+    let ping = "PING cnt 33 EFIS→VP-X: ack flag 0 (request)";
+    let power = "DEVICE_POWER cnt 2 EFIS→VP-X: device 5 5A-2, power state on";
+    let ack = "SPEC_ACK cnt 3 VP-X→EFIS: device 5 5A-2, error code 0 (none)";
+    assert_eq!(
+        out.lines().collect::<Vec<_>>(),
+        [
+            ping,
+            "bad length: 0x20/0x00 header claims 250 bytes, no message of the ICD is longer \
+             than 66: E7 7E 20 00 00 00 00 FA",
+            "skipped 7 bytes: 7E 20 00 00 00 00 FA",
+            power,
+            ping,
+            ack,
+            "summary: 50 bytes in, 4 frames (0 undecodable), 8 bytes skipped, 0 bad checksum, \
+             1 bad length, 0 unknown message, 0 bytes incomplete at end",
+        ]
+    );
+    let (ok, out, _) = run(
+        &[],
+        &[PING, status_66, DEVICE_POWER, PING, SPEC_ACK, status_66].concat(),
+    );
+    assert!(ok);
+    assert_eq!(
+        out.lines().collect::<Vec<_>>(),
+        [
+            ping,
+            "skipped 8 bytes: E7 7E 12 01 00 00 00 42",
+            power,
+            ping,
+            ack,
+            "incomplete frame at end: 8 bytes: E7 7E 12 01 00 00 00 42",
+            "summary: 58 bytes in, 4 frames (0 undecodable), 8 bytes skipped, 0 bad checksum, \
+             0 bad length, 0 unknown message, 8 bytes incomplete at end",
+        ]
+    );
+}
+
+#[test]
+fn a_switch_read_as_always_on_shows_the_byte_that_was_sent() {
+    let (ok, out, err) = run(&[], DEVICE_SPEC_255);
+    assert!(ok, "{err}");
+    assert_eq!(
+        out.lines().next().unwrap(),
+        "DEVICE_SPEC cnt 1 VP-X→EFIS: device 4 5A-1, circuit breaker 5 A, \
+         switch id 11 (always on (255)), current fault disabled"
+    );
+    let (ok, out, _) = run(&["--json"], DEVICE_SPEC_255);
+    assert!(ok);
+    let spec: Value = serde_json::from_str(out.lines().next().unwrap()).unwrap();
+    assert_eq!(
+        (&spec["switch_id"], &spec["switch_raw"], &spec["switch"]),
+        (&11.into(), &255.into(), &"always on (255)".into())
+    );
 }

@@ -227,3 +227,50 @@ fn decode_reads_a_capture_with_times_and_directions() {
     assert!(text.lines().any(|l| l.contains(" tx VERSION")), "{text}");
     assert!(text.contains("0 bad checksum"), "{text}");
 }
+
+#[test]
+fn at_the_end_of_a_replay_the_bytes_held_back_are_scanned_again() {
+    use vpx_efis::link::{Direction, Record};
+    // PING response, cnt 1, ack 1 (E7^7E^10^00^01^00^01^01^01 = 0x89, inverted 0x76).
+    let ping_ack = vec![0xE7, 0x7E, 0x10, 0x00, 0x01, 0x00, 0x01, 0x01, 0x01, 0x76];
+    // The capture ends on a DEVICE_STATUS header claiming its own 66 bytes, inside
+    // which are an intact message of an id the ICD does not define (0x16/0x00, no
+    // payload: E7^7E^16^00^01^00^01^00 = 0x8F, inverted 0x70) and the first 4 bytes of
+    // a PING. Live, the header would still be waiting for its 75 bytes; the capture is
+    // over, so the link scans them again.
+    let tail = vec![
+        0xE7, 0x7E, 0x12, 0x01, 0x00, 0x00, 0x00, 0x42, // the false header
+        0xE7, 0x7E, 0x16, 0x00, 0x01, 0x00, 0x01, 0x00, 0x70, // unknown, intact
+        0xE7, 0x7E, 0x10, 0x00, // cut off
+    ];
+    let cap = Capture {
+        name: "tail.vpxcap".into(),
+        records: vec![
+            Record {
+                dir: Direction::Rx,
+                offset: Duration::ZERO,
+                bytes: ping_ack,
+            },
+            Record {
+                dir: Direction::Rx,
+                offset: Duration::from_millis(100),
+                bytes: tail,
+            },
+        ],
+        problem: None,
+    };
+    let mut app = App::replay(cap, AppOptions::default(), 1.0, true);
+    app.replay_seek(Duration::from_millis(100)).unwrap();
+    let end = Instant::now() + Duration::from_secs(5);
+    while app.model().link.decoder.unknown_message == 0 && Instant::now() < end {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let d = app.model().link.decoder;
+    assert_eq!(
+        (d.bytes_in, d.frames, d.unknown_message),
+        (31, 1, 1),
+        "{d:?}"
+    );
+    // The false header is skipped, the cut-off PING reported as such: every byte.
+    assert_eq!((d.skipped_bytes, d.truncated_bytes), (8, 4), "{d:?}");
+}

@@ -277,6 +277,18 @@ fn retimer(
     }
 }
 
+/// What the page sent, as the traffic view shows it: a packet, or bytes that were not one.
+fn sent_item(e: Event<'_>) -> (Option<Packet>, Vec<u8>) {
+    match e {
+        Event::Frame(f) => (Packet::parse(&f).ok(), f.as_bytes().to_vec()),
+        Event::Skipped(b)
+        | Event::BadChecksum(b)
+        | Event::BadLength(b)
+        | Event::UnknownMessage(b)
+        | Event::Truncated(b) => (None, b.to_vec()),
+    }
+}
+
 fn lock_any<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|p| p.into_inner())
 }
@@ -331,15 +343,7 @@ fn feed(shared: &Shared, records: Vec<Record>, mut pipe: PipeWriter, sink: &Shar
                     bytes: rec.bytes.clone(),
                 });
                 let mut sent = Vec::new();
-                tx_decoder.push(&rec.bytes, |e| {
-                    sent.push(match e {
-                        Event::Frame(f) => (Packet::parse(&f).ok(), f.as_bytes().to_vec()),
-                        Event::Skipped(b)
-                        | Event::BadChecksum(b)
-                        | Event::BadLength(b)
-                        | Event::UnknownMessage(b) => (None, b.to_vec()),
-                    })
-                });
+                tx_decoder.push(&rec.bytes, |e| sent.push(sent_item(e)));
                 for (packet, raw) in sent {
                     sink(LinkEvent::Tx { at, packet, raw });
                 }
@@ -347,6 +351,20 @@ fn feed(shared: &Shared, records: Vec<Record>, mut pipe: PipeWriter, sink: &Shar
         }
         shared.clock().next += 1;
         shared.cv.notify_all();
+    }
+    // The capture is over: what the page sent and what it received end here, so
+    // bytes held back as the start of a longer frame are scanned again (nothing intact
+    // among them stays hidden). The pipe stays open: the page goes on to see silence.
+    if let Some(last) = records.last() {
+        let zero = shared.clock().origin;
+        let at = zero.map_or_else(Instant::now, |z| z + last.offset);
+        let mut sent = Vec::new();
+        tx_decoder.finish(|e| sent.push(sent_item(e)));
+        for (packet, raw) in sent {
+            sink(LinkEvent::Tx { at, packet, raw });
+        }
+        wait_consumed(shared);
+        let _ = pipe.end_of_stream();
     }
     let mut c = shared.clock();
     while !c.stop {

@@ -107,7 +107,7 @@ enum Line<'a> {
     BadChecksum(&'a [u8]),
     BadLength(&'a [u8]),
     Unknown(&'a [u8]),
-    Incomplete(usize),
+    Incomplete(&'a [u8]),
 }
 
 struct Writer<W: Write> {
@@ -175,9 +175,10 @@ impl<W: Write> Writer<W> {
                     obj.insert("minor".into(), json!(b[3]));
                     obj.insert("hex".into(), json!(hex(b)));
                 }
-                Line::Incomplete(n) => {
+                Line::Incomplete(b) => {
                     obj.insert("name".into(), json!("INCOMPLETE"));
-                    obj.insert("bytes".into(), json!(n));
+                    obj.insert("bytes".into(), json!(b.len()));
+                    obj.insert("hex".into(), json!(hex(b)));
                 }
             }
             writeln!(self.out, "{}", Value::Object(obj))
@@ -220,19 +221,26 @@ impl<W: Write> Writer<W> {
                 }
                 Line::BadLength(b) => {
                     let id = MessageId::new(b[2], b[3]);
-                    let rule = message::lookup(id).map(|(_, r)| r.to_string());
+                    let allowed = match message::lookup(id) {
+                        Some((_, rule)) => format!("the ICD gives {rule}"),
+                        None => format!(
+                            "no message of the ICD is longer than {}",
+                            message::MAX_MESSAGE_LEN
+                        ),
+                    };
                     format!(
-                        "bad length: {} header claims {} bytes, the ICD gives {}: {}",
+                        "bad length: {} header claims {} bytes, {allowed}: {}",
                         name_of(id),
                         b[HEADER_LEN - 1],
-                        rule.unwrap_or_else(|| "?".into()),
                         hex(b)
                     )
                 }
                 Line::Unknown(b) => {
                     format!("unknown message {}: {}", MessageId::new(b[2], b[3]), hex(b))
                 }
-                Line::Incomplete(n) => format!("incomplete frame at end: {n} bytes"),
+                Line::Incomplete(b) => {
+                    format!("incomplete frame at end: {} bytes: {}", b.len(), hex(b))
+                }
             };
             writeln!(self.out, "{prefix}{text}")
         }
@@ -290,43 +298,43 @@ fn add(total: &mut DecoderStats, s: DecoderStats) {
     total.bad_checksum += s.bad_checksum;
     total.bad_length += s.bad_length;
     total.unknown_message += s.unknown_message;
+    total.truncated_bytes += s.truncated_bytes;
 }
 
 /// Decodes every record of `source` and writes one line per event, then the summary.
+/// At the end each direction's decoder is finished: the bytes it held are scanned
+/// again, so frames after a false header still come out, stamped with the time of the
+/// last record they arrived in.
 pub fn decode(source: &mut dyn RecordSource, json: bool, out: impl Write) -> io::Result<Summary> {
     let mut w = Writer { out, json };
     // At most three (none, rx, tx), in order of first appearance so the end-of-capture
-    // lines come out in a stable order.
-    let mut decoders: Vec<(Option<Direction>, Decoder)> = Vec::new();
+    // lines come out in a stable order; each with the time of its last record.
+    let mut decoders: Vec<(Option<Direction>, Decoder, Option<Duration>)> = Vec::new();
     let mut undecodable = 0u64;
     while let Some(rec) = source.next_record()? {
-        let i = match decoders.iter().position(|(d, _)| *d == rec.direction) {
+        let i = match decoders.iter().position(|(d, _, _)| *d == rec.direction) {
             Some(i) => i,
             None => {
-                decoders.push((rec.direction, Decoder::new()));
+                decoders.push((rec.direction, Decoder::new(), None));
                 decoders.len() - 1
             }
         };
-        let dec = &mut decoders[i].1;
+        let (_, dec, last) = &mut decoders[i];
+        *last = rec.time;
         let mut result = Ok(());
         dec.push(&rec.bytes, |e| {
-            if result.is_err() {
-                return;
+            if result.is_ok() {
+                result = w.line(rec.time, rec.direction, line(e, &mut undecodable));
             }
-            let line = match e {
-                Event::Frame(f) => match Packet::parse(&f) {
-                    Ok(p) => Line::Packet(p),
-                    Err(err) => {
-                        undecodable += 1;
-                        Line::Undecodable(f, err)
-                    }
-                },
-                Event::Skipped(b) => Line::Skipped(b),
-                Event::BadChecksum(b) => Line::BadChecksum(b),
-                Event::BadLength(b) => Line::BadLength(b),
-                Event::UnknownMessage(b) => Line::Unknown(b),
-            };
-            result = w.line(rec.time, rec.direction, line);
+        });
+        result?;
+    }
+    for (dir, dec, last) in &mut decoders {
+        let mut result = Ok(());
+        dec.finish(|e| {
+            if result.is_ok() {
+                result = w.line(*last, *dir, line(e, &mut undecodable));
+            }
         });
         result?;
     }
@@ -334,18 +342,31 @@ pub fn decode(source: &mut dyn RecordSource, json: bool, out: impl Write) -> io:
         undecodable,
         ..Summary::default()
     };
-    for (dir, dec) in &decoders {
-        let dir = *dir;
-        let pending = dec.pending();
-        if pending > 0 {
-            w.line(None, dir, Line::Incomplete(pending))?;
-            summary.incomplete_bytes += pending as u64;
-        }
+    for (_, dec, _) in &decoders {
         add(&mut summary.decoder, dec.stats());
     }
+    summary.incomplete_bytes = summary.decoder.truncated_bytes;
     w.summary(&summary)?;
     w.out.flush()?;
     Ok(summary)
+}
+
+/// The output line for one decoder event.
+fn line<'a>(e: Event<'a>, undecodable: &mut u64) -> Line<'a> {
+    match e {
+        Event::Frame(f) => match Packet::parse(&f) {
+            Ok(p) => Line::Packet(p),
+            Err(err) => {
+                *undecodable += 1;
+                Line::Undecodable(f, err)
+            }
+        },
+        Event::Skipped(b) => Line::Skipped(b),
+        Event::BadChecksum(b) => Line::BadChecksum(b),
+        Event::BadLength(b) => Line::BadLength(b),
+        Event::UnknownMessage(b) => Line::Unknown(b),
+        Event::Truncated(b) => Line::Incomplete(b),
+    }
 }
 
 pub fn run(args: DecodeArgs) -> anyhow::Result<()> {

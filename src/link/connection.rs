@@ -236,7 +236,9 @@ fn supervise(
                 sink(LinkEvent::Connected { port: name });
                 let reason = read_until_failure(&mut *reader, &mut decoder, &sink, &stop);
                 let _ = writer.send(Outgoing::Port(None));
-                decoder.reset();
+                // The stream ended: frames held back as a possible longer frame are
+                // still real (they arrived), so they come out before the news.
+                decode_end(&mut decoder, Instant::now(), &sink);
                 if let Some(reason) = reason {
                     sink(LinkEvent::Disconnected { reason });
                 } else {
@@ -287,6 +289,8 @@ fn read_until_failure(
                 });
                 decode_chunk(decoder, &buf[..n], at, sink);
             }
+            // A replay's last record: the port stays, the byte stream is over.
+            Err(e) if super::pipe::is_stream_end(&e) => decode_end(decoder, Instant::now(), sink),
             Err(e)
                 if matches!(
                     e.kind(),
@@ -301,14 +305,29 @@ fn read_until_failure(
 
 /// Decodes one chunk into events. Public to the crate so replay can reuse it.
 pub(crate) fn decode_chunk(decoder: &mut Decoder, bytes: &[u8], at: Instant, sink: &Sink) {
+    report(decoder, at, sink, |d, on| d.push(bytes, on));
+}
+
+/// The byte stream ended (the port closed, a replay ran out): whatever the decoder
+/// held is scanned again, so no intact frame among it is lost.
+pub(crate) fn decode_end(decoder: &mut Decoder, at: Instant, sink: &Sink) {
+    report(decoder, at, sink, |d, on| d.finish(on));
+}
+
+fn report(
+    decoder: &mut Decoder,
+    at: Instant,
+    sink: &Sink,
+    run: impl FnOnce(&mut Decoder, &mut dyn FnMut(Event<'_>)),
+) {
     let mut items: Vec<(RxItem, Vec<u8>)> = Vec::new();
-    decoder.push(bytes, |e| {
+    run(decoder, &mut |e| {
         items.push(match e {
             Event::Frame(f) => match Packet::parse(&f) {
                 Ok(p) => (RxItem::Packet(p), f.as_bytes().to_vec()),
                 Err(err) => (RxItem::Malformed(err), f.as_bytes().to_vec()),
             },
-            Event::Skipped(b) => (RxItem::Skipped, b.to_vec()),
+            Event::Skipped(b) | Event::Truncated(b) => (RxItem::Skipped, b.to_vec()),
             Event::BadChecksum(b) => (RxItem::BadChecksum, b.to_vec()),
             Event::BadLength(b) => (RxItem::BadLength, b.to_vec()),
             Event::UnknownMessage(b) => (RxItem::UnknownMessage, b.to_vec()),
@@ -393,6 +412,65 @@ mod tests {
             &store,
             |e| matches!(e, LinkEvent::Rx { item: RxItem::Skipped, raw, .. } if raw == &[0x00, 0x11])
         ));
+        link.shutdown();
+    }
+
+    #[test]
+    fn when_the_port_closes_the_held_bytes_are_scanned_before_the_news() {
+        let (ours, theirs) = duplex_pipe(Duration::from_millis(20));
+        let (store, sink) = collecting();
+        let link = Link::start(pipe_connector(ours, "pipe"), sink);
+        assert!(wait_for(&store, |e| matches!(
+            e,
+            LinkEvent::Connected { .. }
+        )));
+        // A DEVICE_STATUS header claiming its own 66 bytes (possible, so held), and
+        // inside what it claims an intact message of an id the ICD does not define
+        // (0x16/0x00, no payload; E7^7E^16^00^01^00^01^00 = 0x8F, inverted 0x70).
+        let mut w = theirs.writer;
+        w.write_all(&[0xE7, 0x7E, 0x12, 0x01, 0x00, 0x00, 0x00, 0x42])
+            .unwrap();
+        w.write_all(&[0xE7, 0x7E, 0x16, 0x00, 0x01, 0x00, 0x01, 0x00, 0x70])
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(50));
+        assert!(
+            !store
+                .lock()
+                .unwrap()
+                .iter()
+                .any(|e| matches!(e, LinkEvent::Rx { .. }))
+        );
+        drop(w);
+        assert!(wait_for(&store, |e| matches!(
+            e,
+            LinkEvent::Disconnected { .. }
+        )));
+        let events = store.lock().unwrap();
+        let rx: Vec<(&RxItem, usize)> = events
+            .iter()
+            .filter_map(|e| match e {
+                LinkEvent::Rx { item, raw, .. } => Some((item, raw.len())),
+                _ => None,
+            })
+            .collect();
+        assert!(
+            matches!(rx[..], [(RxItem::Skipped, 8), (RxItem::UnknownMessage, 9)]),
+            "{rx:?}"
+        );
+        let unknown_at = events.iter().position(|e| {
+            matches!(
+                e,
+                LinkEvent::Rx {
+                    item: RxItem::UnknownMessage,
+                    ..
+                }
+            )
+        });
+        let gone_at = events
+            .iter()
+            .position(|e| matches!(e, LinkEvent::Disconnected { .. }));
+        assert!(unknown_at < gone_at);
+        drop(events);
         link.shutdown();
     }
 

@@ -8,7 +8,8 @@ use std::time::Duration;
 use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, unbounded};
 
 /// The reading end. `read` waits at most `timeout`, then fails with `TimedOut` like a
-/// serial port does; it returns `Ok(0)` (end of file) once the writer is gone.
+/// serial port does; it returns `Ok(0)` (end of file) once the writer is gone, and
+/// fails once with [`StreamEnded`] where the writer said the stream ended but stays.
 pub struct PipeReader {
     rx: Receiver<Vec<u8>>,
     pending: Vec<u8>,
@@ -18,7 +19,41 @@ pub struct PipeReader {
 
 #[derive(Clone)]
 pub struct PipeWriter {
+    /// An empty chunk is the end-of-stream mark; `write` never sends one.
     tx: Sender<Vec<u8>>,
+}
+
+/// The error a [`PipeReader`] returns, once, where its writer called
+/// [`PipeWriter::end_of_stream`]: no more bytes will come, though the pipe stays open
+/// (a replay after its last record, whose page goes on seeing silence).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StreamEnded;
+
+impl std::fmt::Display for StreamEnded {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("the byte stream has ended")
+    }
+}
+
+impl std::error::Error for StreamEnded {}
+
+/// Whether a read failed because the stream ended ([`StreamEnded`]).
+pub fn is_stream_end(e: &io::Error) -> bool {
+    e.get_ref().is_some_and(|inner| inner.is::<StreamEnded>())
+}
+
+impl PipeWriter {
+    /// Says no more bytes will come, without closing the pipe.
+    pub fn end_of_stream(&mut self) -> io::Result<()> {
+        self.tx.send(Vec::new()).map_err(|_| closed())
+    }
+}
+
+fn closed() -> io::Error {
+    io::Error::new(
+        io::ErrorKind::BrokenPipe,
+        "the other end of the pipe is closed",
+    )
 }
 
 /// One direction of a pipe.
@@ -39,6 +74,9 @@ impl Read for PipeReader {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
         if self.at >= self.pending.len() {
             match self.rx.recv_timeout(self.timeout) {
+                Ok(chunk) if chunk.is_empty() => {
+                    return Err(io::Error::other(StreamEnded));
+                }
                 Ok(chunk) => {
                     self.pending = chunk;
                     self.at = 0;
@@ -56,12 +94,9 @@ impl Read for PipeReader {
 
 impl Write for PipeWriter {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        self.tx.send(buf.to_vec()).map_err(|_| {
-            io::Error::new(
-                io::ErrorKind::BrokenPipe,
-                "the other end of the pipe is closed",
-            )
-        })?;
+        if !buf.is_empty() {
+            self.tx.send(buf.to_vec()).map_err(|_| closed())?;
+        }
         Ok(buf.len())
     }
 
@@ -132,5 +167,24 @@ mod tests {
         );
         drop(w);
         assert_eq!(r.read(&mut rest).unwrap(), 0);
+    }
+
+    #[test]
+    fn end_of_stream_is_reported_once_and_the_pipe_stays_open() {
+        let (mut w, mut r) = pipe_pair(Duration::from_millis(10));
+        // An empty write is not the mark.
+        assert_eq!(w.write(&[]).unwrap(), 0);
+        w.write_all(&[7]).unwrap();
+        w.end_of_stream().unwrap();
+        let mut buf = [0u8; 4];
+        assert_eq!(r.read(&mut buf).unwrap(), 1);
+        assert!(is_stream_end(&r.read(&mut buf).unwrap_err()));
+        assert_eq!(
+            r.read(&mut buf).unwrap_err().kind(),
+            io::ErrorKind::TimedOut
+        );
+        w.write_all(&[8]).unwrap();
+        assert_eq!(r.read(&mut buf).unwrap(), 1);
+        assert_eq!(buf[0], 8);
     }
 }

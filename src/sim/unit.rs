@@ -503,7 +503,7 @@ impl Unit {
             let wire = &mut self.wire;
             self.decoder.push(std::slice::from_ref(b), |e| match e {
                 Event::Frame(f) => frames.push(f.as_bytes().to_vec()),
-                Event::Skipped(b) => wire.garbage_bytes += b.len() as u64,
+                Event::Skipped(b) | Event::Truncated(b) => wire.garbage_bytes += b.len() as u64,
                 Event::BadChecksum(_) | Event::BadLength(_) => {
                     wire.garbage_bytes += 1;
                     wire.bad_frames += 1;

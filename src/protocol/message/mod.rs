@@ -223,6 +223,23 @@ macro_rules! messages {
 
         /// Every message id of Appendix D.
         pub const ALL_IDS: &[MessageId] = &[$($v::ID,)+];
+
+        /// The longest payload any message of Appendix D can carry (DEVICE_STATUS, 66).
+        pub const MAX_MESSAGE_LEN: usize = {
+            let lens = [$(match $v::LEN {
+                LenRule::Exact(n) => n,
+                LenRule::Between(_, hi) => hi,
+            },)+];
+            let mut max = 0;
+            let mut i = 0;
+            while i < lens.len() {
+                if lens[i] > max {
+                    max = lens[i];
+                }
+                i += 1;
+            }
+            max
+        };
     };
 }
 
