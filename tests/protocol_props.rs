@@ -18,7 +18,7 @@ use vpx_efis::protocol::describe::{describe, to_json};
 use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::frame::{MAX_FRAME, SYNC1};
 use vpx_efis::protocol::message::*;
-use vpx_efis::protocol::{Decoder, Event, FaultCode, Node, Packet};
+use vpx_efis::protocol::{Decoder, Event, FaultCode, FrameRef, LenRule, MessageId, Node, Packet};
 
 fn node() -> impl Strategy<Value = Node> {
     any::<u8>().prop_map(Node::from_byte)
@@ -63,6 +63,7 @@ fn device_spec() -> impl Strategy<Value = DeviceSpec> {
         circuit_breaker: cb,
         switch_id: SwitchId::from_byte(sw),
         current_fault: cf,
+        switch_raw: None,
     })
 }
 
@@ -378,36 +379,121 @@ enum Seen {
     BadChecksum(Vec<u8>),
     BadLength(Vec<u8>),
     Unknown(Vec<u8>),
+    Truncated(Vec<u8>),
+}
+
+fn seen(seen: &mut Vec<Seen>, e: Event<'_>) {
+    let s = match e {
+        Event::Frame(f) => {
+            // Every frame the decoder passes on must be safe to parse.
+            let _ = Packet::parse(&f);
+            Seen::Frame(f.as_bytes().to_vec())
+        }
+        Event::Skipped(b) => {
+            assert!(!b.is_empty(), "empty skipped run");
+            if let Some(Seen::Skipped(prev)) = seen.last_mut() {
+                prev.extend_from_slice(b);
+                return;
+            }
+            Seen::Skipped(b.to_vec())
+        }
+        Event::BadChecksum(b) => Seen::BadChecksum(b.to_vec()),
+        Event::BadLength(b) => Seen::BadLength(b.to_vec()),
+        Event::UnknownMessage(b) => Seen::Unknown(b.to_vec()),
+        Event::Truncated(b) => Seen::Truncated(b.to_vec()),
+    };
+    seen.push(s);
 }
 
 fn feed(chunks: &[Vec<u8>]) -> (Vec<Seen>, DecoderStats, usize) {
     let mut dec = Decoder::new();
-    let mut seen: Vec<Seen> = Vec::new();
+    let mut out: Vec<Seen> = Vec::new();
     for c in chunks {
-        dec.push(c, |e| {
-            let s = match e {
-                Event::Frame(f) => {
-                    // Every frame the decoder passes on must be safe to parse.
-                    let _ = Packet::parse(&f);
-                    Seen::Frame(f.as_bytes().to_vec())
-                }
-                Event::Skipped(b) => {
-                    assert!(!b.is_empty(), "empty skipped run");
-                    if let Some(Seen::Skipped(prev)) = seen.last_mut() {
-                        prev.extend_from_slice(b);
-                        return;
-                    }
-                    Seen::Skipped(b.to_vec())
-                }
-                Event::BadChecksum(b) => Seen::BadChecksum(b.to_vec()),
-                Event::BadLength(b) => Seen::BadLength(b.to_vec()),
-                Event::UnknownMessage(b) => Seen::Unknown(b.to_vec()),
-            };
-            seen.push(s);
-        });
+        dec.push(c, |e| seen(&mut out, e));
         assert!(dec.pending() <= MAX_FRAME);
     }
-    (seen, dec.stats(), dec.pending())
+    (out, dec.stats(), dec.pending())
+}
+
+/// As [`feed`], then the end of the input: what `finish` reported, and the stats after.
+fn feed_to_end(chunks: &[Vec<u8>]) -> (Vec<Seen>, usize, Vec<Seen>, DecoderStats) {
+    let mut dec = Decoder::new();
+    let mut out: Vec<Seen> = Vec::new();
+    for c in chunks {
+        dec.push(c, |e| seen(&mut out, e));
+    }
+    let pending = dec.pending();
+    let mut end = Vec::new();
+    dec.finish(|e| seen(&mut end, e));
+    assert_eq!(dec.pending(), 0);
+    (out, pending, end, dec.stats())
+}
+
+/// Bytes the events account for: whole frames and unknown messages, skipped runs and
+/// truncated frames, and the first byte of each rejected candidate.
+fn accounted(events: &[Seen]) -> u64 {
+    events
+        .iter()
+        .map(|s| match s {
+            Seen::Frame(b) | Seen::Skipped(b) | Seen::Unknown(b) | Seen::Truncated(b) => {
+                b.len() as u64
+            }
+            Seen::BadChecksum(_) | Seen::BadLength(_) => 1,
+        })
+        .sum()
+}
+
+/// The header of a frame that is not there: `E7 7E`, an id and a length that are
+/// possible or not, and arbitrary count and addresses (which may hold sync bytes too).
+fn false_header() -> impl Strategy<Value = Vec<u8>> {
+    (0u8..4, any::<prop::sample::Index>(), any::<[u8; 5]>()).prop_map(|(kind, i, b)| {
+        let [minor, cnt, src, dst, raw] = b;
+        let known = ALL_IDS[i.index(ALL_IDS.len())];
+        let rule = lookup(known).unwrap().1;
+        let (major, minor, len) = match kind {
+            // A known id with a length its table allows.
+            0 => {
+                let len = match rule {
+                    LenRule::Exact(n) => n,
+                    LenRule::Between(lo, hi) => lo + raw as usize % (hi - lo + 1),
+                };
+                (known.major, known.minor, len as u8)
+            }
+            // A known id with a length its table does not allow.
+            1 => {
+                let len = (0..=255u8)
+                    .map(|k| raw.wrapping_add(k))
+                    .find(|&l| !rule.allows(l as usize))
+                    .unwrap();
+                (known.major, known.minor, len)
+            }
+            // An id the ICD does not define (majors are 0x10-0x15, reading note 5),
+            // with a length some message can have, then with one none can.
+            2 => (0x20 | minor, minor, raw % (MAX_MESSAGE_LEN as u8 + 1)),
+            _ => (
+                0x20 | minor,
+                minor,
+                MAX_MESSAGE_LEN as u8 + 1 + raw % (255 - MAX_MESSAGE_LEN as u8),
+            ),
+        };
+        vec![SYNC1, 0x7E, major, minor, cnt, src, dst, len]
+    })
+}
+
+/// Whether a candidate starting at `at` that is not a real frame happens to be an
+/// intact frame (possible header, good checksum): then it is a frame the stream holds,
+/// by chance, and may rightly take the place of real ones. One in 256 false headers.
+fn intact_by_chance(stream: &[u8], at: usize) -> bool {
+    let rest = &stream[at..];
+    if rest.len() < 9 || rest[1] != 0x7E {
+        return false;
+    }
+    let len = rest[7] as usize;
+    let possible = match lookup(MessageId::new(rest[2], rest[3])) {
+        Some((_, rule)) => rule.allows(len),
+        None => len <= MAX_MESSAGE_LEN,
+    };
+    possible && rest.len() >= 9 + len && FrameRef::parse(&rest[..9 + len]).is_ok()
 }
 
 proptest! {
@@ -511,9 +597,11 @@ proptest! {
                     bad_len += 1;
                     skipped += 1;
                 }
+                Seen::Truncated(_) => prop_assert!(false, "only finish reports a truncated frame"),
             }
         }
-        prop_assert!(pending <= MAX_FRAME);
+        // A candidate is never held longer than the longest message (rule 1).
+        prop_assert!(pending <= 8 + MAX_MESSAGE_LEN + 1);
         prop_assert_eq!(stats.bytes_in, stream.len() as u64);
         prop_assert_eq!(
             stats.bytes_in,
@@ -533,6 +621,7 @@ proptest! {
             0..1500,
         ),
         sprinkle in prop::collection::vec((any::<prop::sample::Index>(), packet()), 0..4),
+        headers in prop::collection::vec((any::<prop::sample::Index>(), false_header()), 0..4),
         cuts in prop::collection::vec(any::<prop::sample::Index>(), 1..24),
     ) {
         let mut stream = bytes;
@@ -540,8 +629,122 @@ proptest! {
             let i = at.index(stream.len() + 1);
             stream.splice(i..i, p.to_bytes());
         }
-        let whole = feed(&[stream.clone()]);
-        let split = feed(&split_at(&stream, &cuts));
+        for (at, h) in &headers {
+            let i = at.index(stream.len() + 1);
+            stream.splice(i..i, h.iter().copied());
+        }
+        let whole = feed_to_end(&[stream.clone()]);
+        let split = feed_to_end(&split_at(&stream, &cuts));
         prop_assert_eq!(whole, split);
+    }
+
+    #[test]
+    fn false_headers_never_hide_or_hold_back_a_frame(
+        items in prop::collection::vec(
+            (quiet_garbage(), prop::option::of((false_header(), any::<prop::sample::Index>())), packet()),
+            0..10,
+        ),
+        tail in quiet_garbage(),
+        last in prop::option::of((false_header(), 1usize..=8)),
+        cuts in prop::collection::vec(any::<prop::sample::Index>(), 0..24),
+    ) {
+        // Frames among quiet garbage, false headers put anywhere in the garbage, and
+        // the last bytes of the stream possibly a false header or the start of one.
+        let mut stream = Vec::new();
+        let mut frames = Vec::new();
+        let mut starts = Vec::new();
+        for (g, fh, p) in &items {
+            let mut g = g.clone();
+            if let Some((h, at)) = fh {
+                let i = at.index(g.len() + 1);
+                g.splice(i..i, h.iter().copied());
+            }
+            stream.extend_from_slice(&g);
+            let f = p.to_bytes();
+            starts.push(stream.len());
+            stream.extend_from_slice(&f);
+            frames.push(f);
+        }
+        stream.extend_from_slice(&tail);
+        if let Some((h, n)) = &last {
+            stream.extend_from_slice(&h[..*n]);
+        }
+        // A false header whose claimed bytes happen to check is an intact frame on the
+        // wire: nothing can tell it from a real one.
+        prop_assume!(!(0..stream.len()).any(|at| {
+            stream[at] == SYNC1 && !starts.contains(&at) && intact_by_chance(&stream, at)
+        }));
+
+        let chunks = split_at(&stream, &cuts);
+        let (events, pending, end, stats) = feed_to_end(&chunks);
+        // Every intact frame comes out, in order, while the stream is still live: none
+        // waits for the end of the input.
+        let got: Vec<Vec<u8>> = events
+            .iter()
+            .filter_map(|s| match s {
+                Seen::Frame(f) => Some(f.clone()),
+                _ => None,
+            })
+            .collect();
+        prop_assert_eq!(&got, &frames);
+        prop_assert!(end.iter().all(|s| matches!(s, Seen::Skipped(_) | Seen::Truncated(_))), "{:?}", end);
+        prop_assert!(!events.iter().chain(&end).any(|s| matches!(s, Seen::Unknown(_))));
+        // Every byte accounted for, and only what is not a frame dropped.
+        prop_assert_eq!(accounted(&events) + pending as u64, stream.len() as u64);
+        prop_assert_eq!(accounted(&events) + accounted(&end), stream.len() as u64);
+        let frame_bytes: usize = frames.iter().map(Vec::len).sum();
+        prop_assert_eq!(
+            stats.skipped_bytes + stats.truncated_bytes,
+            (stream.len() - frame_bytes) as u64
+        );
+        // What is held at the end is at most the last false header.
+        prop_assert!(pending <= last.as_ref().map_or(0, |(_, n)| *n), "{} held", pending);
+    }
+
+    #[test]
+    fn nothing_pending_hides_a_frame_at_the_end_of_input(
+        bytes in prop::collection::vec(
+            prop_oneof![4 => any::<u8>(), 1 => Just(0xE7u8), 1 => Just(0x7Eu8)],
+            0..600,
+        ),
+        sprinkle in prop::collection::vec((any::<prop::sample::Index>(), packet()), 0..4),
+        headers in prop::collection::vec((any::<prop::sample::Index>(), false_header()), 0..4),
+        cut_last in 0usize..80,
+        cuts in prop::collection::vec(any::<prop::sample::Index>(), 0..24),
+    ) {
+        // Noise, real frames and false headers anywhere, and the stream cut short
+        // anywhere in its last 80 bytes. After the last read, the held bytes hold no
+        // intact known frame; after `finish` nothing is held and every byte is counted.
+        let mut stream = bytes;
+        for (at, p) in &sprinkle {
+            let i = at.index(stream.len() + 1);
+            stream.splice(i..i, p.to_bytes());
+        }
+        for (at, h) in &headers {
+            let i = at.index(stream.len() + 1);
+            stream.splice(i..i, h.iter().copied());
+        }
+        stream.truncate(stream.len().saturating_sub(cut_last));
+        let chunks = split_at(&stream, &cuts);
+        let mut dec = Decoder::new();
+        let mut events = Vec::new();
+        for c in &chunks {
+            dec.push(c, |e| seen(&mut events, e));
+        }
+        let held = &stream[stream.len() - dec.pending()..];
+        let mut inner = Vec::new();
+        let mut probe = Decoder::new();
+        // The held bytes minus their first, which is the candidate itself, read by a
+        // fresh decoder to their end: no known frame among them.
+        if held.len() > 1 {
+            probe.push(&held[1..], |e| seen(&mut inner, e));
+        }
+        probe.finish(|e| seen(&mut inner, e));
+        prop_assert!(!inner.iter().any(|s| matches!(s, Seen::Frame(_))), "{:02X?} hides {:?}", held, inner);
+        let mut end = Vec::new();
+        dec.finish(|e| seen(&mut end, e));
+        prop_assert_eq!(dec.pending(), 0);
+        prop_assert_eq!(accounted(&events) + accounted(&end), stream.len() as u64);
+        prop_assert!(end.iter().filter(|s| matches!(s, Seen::Truncated(_))).count() <= 1);
     }
 }
