@@ -302,9 +302,12 @@ impl App {
                 // told to stop on the new connection before anything else.
                 self.send(MotorStreamer::emergency_stop_packets().to_vec());
                 self.pacer.start(now);
-                self.rereader.reconnected();
+                self.rereader.connected(now);
             }
-            Wake::LinkDown => self.pacer.stop(),
+            Wake::LinkDown => {
+                self.pacer.stop();
+                self.rereader.link_down();
+            }
             Wake::WriteError => {
                 let p = self.controller.on_link_error(now);
                 self.send(p);

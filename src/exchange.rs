@@ -99,18 +99,30 @@ pub const REREAD_BATCH: usize = 4;
 /// back to back.
 pub const REREAD_BATCH_GAP: Duration = Duration::from_millis(60);
 
+/// The connect-time queries go out in about a second (`app::queries`) and the unit
+/// answers each within a few frames. A setting still not heard this long after the
+/// port opened was lost on the line (a unit silent at connect, noise) and is asked
+/// again, rather than left to the minute's refresh while screens have nothing to show.
+pub const CONNECT_GRACE: Duration = Duration::from_secs(3);
+
 #[derive(Debug, Clone, Copy)]
 struct Asked {
     at: Instant,
     times: u32,
 }
 
-/// Asks again for every setting the model marks unknown until the unit answers.
+/// Asks again, paced, until the unit answers: for every setting the model marks
+/// unknown (a write to it went unanswered), and from [`CONNECT_GRACE`] after a
+/// connect for every setting not heard since it (the connect-time query was lost).
 #[derive(Debug, Default)]
 pub struct Rereader {
     asked: BTreeMap<Setting, Asked>,
     /// A full batch went out: nothing more before this.
     held_until: Option<Instant>,
+    /// When the port last opened; `None` while it is down.
+    connected_at: Option<Instant>,
+    /// Whether the unit's broadcasts were live at the last `due`.
+    live: bool,
 }
 
 impl Rereader {
@@ -120,32 +132,68 @@ impl Rereader {
             .min(REREAD_MAX_GAP)
     }
 
-    /// The queries to send at `now`.
+    /// The settings to keep asking for, each with the earliest moment its first
+    /// re-read may go (`None`: at once).
+    fn wanted(&self, model: &Model) -> Vec<(Setting, Option<Instant>)> {
+        let mut out: Vec<(Setting, Option<Instant>)> =
+            model.unknown.keys().map(|&s| (s, None)).collect();
+        if let Some(since) = self.connected_at {
+            let from = since + CONNECT_GRACE;
+            out.extend(
+                Setting::all()
+                    .filter(|s| !model.unknown.contains_key(s))
+                    .filter(|&s| model.setting_heard(s).is_none_or(|at| at < since))
+                    .map(|s| (s, Some(from))),
+            );
+        }
+        out
+    }
+
+    /// When `setting`'s next query may go; `None`: at once.
+    fn due_at(&self, setting: Setting, from: Option<Instant>) -> Option<Instant> {
+        match self.asked.get(&setting) {
+            Some(a) => Some(a.at + Rereader::gap(a.times)),
+            None => from,
+        }
+    }
+
+    /// The queries to send at `now`: at most [`REREAD_BATCH`], those waiting longest
+    /// first, so settings never asked are not held back behind repeats.
     pub fn due(&mut self, model: &Model, now: Instant) -> Vec<Message> {
-        self.asked.retain(|s, _| model.unknown.contains_key(s));
+        let wanted = self.wanted(model);
+        self.asked.retain(|s, _| wanted.iter().any(|(w, _)| w == s));
+        // The unit talks again after a silence: ask now rather than wait out the
+        // gaps that grew while nothing could answer.
+        let live = !model.comm_lost(now);
+        if live && !self.live {
+            self.asked.clear();
+            self.held_until = None;
+        }
+        self.live = live;
         if self.held_until.is_some_and(|t| now < t) {
             return Vec::new();
         }
         self.held_until = None;
+        let mut due: Vec<(Option<Instant>, Setting)> = wanted
+            .into_iter()
+            .map(|(s, from)| (self.due_at(s, from), s))
+            .filter(|(at, _)| at.is_none_or(|t| now >= t))
+            .collect();
+        // Stable: equal times keep the settings' order.
+        due.sort_by_key(|(at, _)| *at);
+        if due.len() > REREAD_BATCH {
+            self.held_until = Some(now + REREAD_BATCH_GAP);
+            due.truncate(REREAD_BATCH);
+        }
         let mut out = Vec::new();
-        for &setting in model.unknown.keys() {
-            let due = self
+        for (_, setting) in due {
+            let a = self
                 .asked
-                .get(&setting)
-                .is_none_or(|a| now >= a.at + Rereader::gap(a.times));
-            if due && out.len() == REREAD_BATCH {
-                self.held_until = Some(now + REREAD_BATCH_GAP);
-                break;
-            }
-            if due {
-                let a = self
-                    .asked
-                    .entry(setting)
-                    .or_insert(Asked { at: now, times: 0 });
-                a.at = now;
-                a.times += 1;
-                out.push(setting.query());
-            }
+                .entry(setting)
+                .or_insert(Asked { at: now, times: 0 });
+            a.at = now;
+            a.times += 1;
+            out.push(setting.query());
         }
         out
     }
@@ -153,23 +201,27 @@ impl Rereader {
     /// When [`due`](Self::due) next has something to send. After `due(.., now)` this
     /// is later than `now` (a setting marked unknown since then is due at once).
     pub fn next_deadline(&self, model: &Model) -> Option<Instant> {
-        model
-            .unknown
-            .keys()
-            .map(|s| {
-                let at = self
-                    .asked
-                    .get(s)
-                    .map_or_else(Instant::now, |a| a.at + Rereader::gap(a.times));
+        self.wanted(model)
+            .into_iter()
+            .map(|(s, from)| {
+                let at = self.due_at(s, from).unwrap_or_else(Instant::now);
                 self.held_until.map_or(at, |h| at.max(h))
             })
             .min()
     }
 
-    /// The port came back: ask everything unknown at once instead of waiting out
-    /// the gaps built up while nothing answered.
-    pub fn reconnected(&mut self) {
+    /// The port opened (or came back) at `now`: ask everything unknown at once
+    /// instead of waiting out the gaps built up while nothing answered, and from
+    /// [`CONNECT_GRACE`] on, everything the connect-time queries did not bring.
+    pub fn connected(&mut self, now: Instant) {
         self.asked.clear();
+        self.held_until = None;
+        self.connected_at = Some(now);
+    }
+
+    /// The port is down: nothing can be heard, so nothing new is counted unheard.
+    pub fn link_down(&mut self) {
+        self.connected_at = None;
     }
 }
 
@@ -182,6 +234,108 @@ mod tests {
 
     fn ms(t0: Instant, n: u64) -> Instant {
         t0 + Duration::from_millis(n)
+    }
+
+    /// The unit's answer to `s`'s query, as a factory-fresh unit gives it.
+    fn answer(s: Setting) -> Message {
+        use crate::model::TrimKind;
+        use crate::protocol::defaults;
+        use crate::protocol::message::{DeviceEnable, DeviceName, EnableFlag, TrimType};
+        match s {
+            Setting::DeviceSpec(id) => defaults::device_spec(id).into(),
+            Setting::Name(id) => DeviceName::new(id, "").unwrap().into(),
+            Setting::Enable(id) => DeviceEnable {
+                device_id: id,
+                flag: EnableFlag::Enabled,
+            }
+            .into(),
+            Setting::System => defaults::system_spec().into(),
+            Setting::Flaps => defaults::flap_spec().into(),
+            Setting::Trim(TrimKind::Pitch) => defaults::trim_spec(TrimType::Pitch).into(),
+            Setting::Trim(TrimKind::Roll) => defaults::trim_spec(TrimType::Roll).into(),
+            Setting::WigWag => defaults::wig_wag_spec().into(),
+        }
+    }
+
+    /// The unit answers every setting's query but `except`'s.
+    fn hear_all_but(m: &mut Model, at: Instant, except: Setting) {
+        for s in Setting::all().filter(|&s| s != except) {
+            m.apply_packet(at, &Packet::from_vpx(1, answer(s)));
+        }
+    }
+
+    fn model() -> Model {
+        Model::new(Source::Simulated {
+            scenario: "t".into(),
+        })
+    }
+
+    /// A unit silent at connect: nothing the connect-time queries asked for is heard,
+    /// so from CONNECT_GRACE on every setting is asked again, a batch at a time, and
+    /// then paced; what the unit answers is no longer asked; the rest goes on.
+    #[test]
+    fn settings_unheard_since_connect_are_asked_again_after_the_grace() {
+        let t0 = Instant::now();
+        let mut m = model();
+        let mut r = Rereader::default();
+        assert!(r.due(&m, t0).is_empty(), "not connected: nothing to ask");
+        assert_eq!(r.next_deadline(&m), None);
+        r.connected(t0);
+        // The connect queries have their chance first.
+        assert!(r.due(&m, ms(t0, 2999)).is_empty());
+        assert_eq!(r.next_deadline(&m), Some(t0 + CONNECT_GRACE));
+        let total = Setting::all().count();
+        let spec9: Message = DeviceSpecQuery { device_id: 9 }.into();
+        let mut distinct = std::collections::BTreeSet::new();
+        let mut spec9_at = Vec::new();
+        let mut t = 3000;
+        while distinct.len() < total {
+            let batch = r.due(&m, ms(t0, t));
+            assert!(batch.len() <= REREAD_BATCH, "{batch:?}");
+            if batch.contains(&spec9) {
+                spec9_at.push(t);
+            }
+            distinct.extend(batch.iter().map(|q| format!("{q:?}")));
+            let next = r.next_deadline(&m).unwrap();
+            assert!(next > ms(t0, t), "the next deadline is ahead");
+            t = (next - t0).as_millis() as u64;
+            assert!(t < 5000, "the whole set goes out in under two seconds");
+        }
+        assert_eq!(spec9_at[0], 3120, "the third batch of four, 60 ms apart");
+        assert!(
+            spec9_at.windows(2).all(|w| w[1] - w[0] >= 1000),
+            "paced: {spec9_at:?}"
+        );
+        // ICD Table 18: the flaps are read with DEVICE_SPEC_QUERY 0.
+        let flaps: Message = DeviceSpecQuery { device_id: 0 }.into();
+        assert!(distinct.contains(&format!("{flaps:?}")));
+        // The unit talks: all but device 9's spec answered.
+        hear_all_but(&mut m, ms(t0, 4500), Setting::DeviceSpec(9));
+        assert_eq!(r.due(&m, ms(t0, 6_500)), vec![spec9]);
+        let q = r.due(&m, ms(t0, 8_000));
+        assert!(q.is_empty(), "paced while silent: {q:?} {spec9_at:?}");
+        // Its broadcasts come back: what it has not answered is asked at once.
+        let status = crate::protocol::message::DeviceStatus {
+            on: [false; crate::protocol::device::DEVICE_COUNT],
+            current: [crate::protocol::message::Tenths(0); crate::protocol::device::DEVICE_COUNT],
+        };
+        m.apply_packet(ms(t0, 8_100), &Packet::from_vpx(1, status));
+        let later = r.due(&m, ms(t0, 8_100));
+        assert_eq!(later, vec![spec9], "only what is still unheard, at once");
+        m.apply_packet(
+            ms(t0, 8_200),
+            &Packet::from_vpx(1, answer(Setting::DeviceSpec(9))),
+        );
+        assert!(r.due(&m, ms(t0, 20_000)).is_empty());
+        assert_eq!(r.next_deadline(&m), None, "all heard: idle");
+        // A reconnect: what was heard before it is asked again if the new
+        // connection's queries do not bring it; the port going down stops that.
+        r.connected(ms(t0, 30_000));
+        assert!(r.due(&m, ms(t0, 32_000)).is_empty());
+        assert_eq!(r.due(&m, ms(t0, 33_000)).len(), REREAD_BATCH);
+        r.link_down();
+        assert!(r.due(&m, ms(t0, 40_000)).is_empty());
+        assert_eq!(r.next_deadline(&m), None);
     }
 
     #[test]
@@ -201,9 +355,7 @@ mod tests {
     #[test]
     fn an_unknown_setting_is_asked_at_once_then_paced_until_answered() {
         let t0 = Instant::now();
-        let mut m = Model::new(Source::Simulated {
-            scenario: "t".into(),
-        });
+        let mut m = model();
         let mut r = Rereader::default();
         assert!(r.due(&m, t0).is_empty());
         assert_eq!(r.next_deadline(&m), None);
@@ -220,7 +372,8 @@ mod tests {
         assert_eq!(r.due(&m, ms(t0, 7000)), vec![q]);
         assert_eq!(r.due(&m, ms(t0, 11000)), vec![q]);
         // A reconnect asks at once.
-        r.reconnected();
+        r.connected(ms(t0, 11100));
+        hear_all_but(&mut m, ms(t0, 11100), Setting::DeviceSpec(9));
         assert_eq!(r.due(&m, ms(t0, 11100)), vec![q]);
         // The answer makes it known: no more queries.
         let held = DeviceSpec {

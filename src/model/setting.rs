@@ -27,6 +27,26 @@ pub enum Setting {
 }
 
 impl Setting {
+    /// Every setting the page reads at connect and a backup holds: DEVICE_SPEC of pins
+    /// 1–28, FLAP_SPEC, both TRIM_SPECs, SYSTEM_SPEC, WIG_WAG_SPEC, the DEVICE_NAME of
+    /// every device 0–30 and DEVICE_ENABLE of pins 4–28 (the same set as
+    /// `app::queries::connect_queries` asks for and `setup::unit_config` needs).
+    pub fn all() -> impl Iterator<Item = Setting> {
+        let specs = (1..TRIM_R).map(Setting::DeviceSpec);
+        let motors = [
+            Setting::Flaps,
+            Setting::Trim(TrimKind::Pitch),
+            Setting::Trim(TrimKind::Roll),
+            Setting::System,
+            Setting::WigWag,
+        ];
+        let names = (0..device::DEVICE_COUNT as u8).map(Setting::Name);
+        let enables = (0..device::DEVICE_COUNT as u8)
+            .filter(|&id| device::enable_flag_allowed(id))
+            .map(Setting::Enable);
+        specs.chain(motors).chain(names).chain(enables)
+    }
+
     /// The setting a write message sets.
     pub fn written_by(m: &Message) -> Option<Setting> {
         Some(match m {
@@ -139,5 +159,24 @@ mod tests {
             flag: EnableFlag::Query,
         };
         assert_eq!(Setting::written_by(&q.into()), None);
+    }
+
+    #[test]
+    fn all_is_every_spec_name_and_enable_flag_once() {
+        let all: Vec<Setting> = Setting::all().collect();
+        let set: std::collections::BTreeSet<Setting> = all.iter().copied().collect();
+        assert_eq!(set.len(), all.len(), "no setting twice");
+        // 28 device specs, 5 motor/system specs, 31 names, 25 enable flags (4–28).
+        assert_eq!(all.len(), 28 + 5 + 31 + 25);
+        assert!(set.contains(&Setting::DeviceSpec(1)) && set.contains(&Setting::DeviceSpec(28)));
+        assert!(
+            !set.contains(&Setting::DeviceSpec(0)),
+            "device 0 is FLAP_SPEC"
+        );
+        assert!(
+            !set.contains(&Setting::Enable(3)),
+            "pins 1–3 are always shown"
+        );
+        assert!(set.contains(&Setting::Name(0)) && set.contains(&Setting::Name(30)));
     }
 }
