@@ -62,9 +62,13 @@ impl Rig {
     }
 
     fn with_eeprom(eeprom: Option<std::path::PathBuf>) -> Rig {
+        Rig::with(SCENARIO, eeprom)
+    }
+
+    fn with(scenario: &str, eeprom: Option<std::path::PathBuf>) -> Rig {
         let pty = link::open_pty_pair().expect("pty");
         let reader = pty.master.try_clone_native().expect("clone master");
-        let mut options = SimOptions::new(Scenario::from_toml(SCENARIO).unwrap());
+        let mut options = SimOptions::new(Scenario::from_toml(scenario).unwrap());
         options.eeprom = eeprom;
         let sim = sim::spawn(options, Box::new(reader), Box::new(pty.master));
         let path = std::path::PathBuf::from(&pty.path);
@@ -726,4 +730,113 @@ fn a_flap_spec_whose_spec_ack_is_lost_is_reread_and_the_list_shows_the_units_bre
         .find(|c| c.id == 0)
         .unwrap();
     assert_eq!((row.breaker, row.spec_unknown), (Some(8), false));
+}
+
+/// The page connects while the unit is silent: every connect-time query is lost. The
+/// Device page shows nothing as the unit's, Enter sends no DEVICE_SPEC built on
+/// Appendix F's values, the settings are asked again long before the minute's
+/// refresh, and once the unit answers the form shows what it holds and the write
+/// keeps the pin's switch.
+#[test]
+fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answers() {
+    let silent_at_start =
+        format!("{SCENARIO}\n[[event]]\nat = 0.0\ndo = \"silent\"\nseconds = 6.0\n");
+    let mut rig = Rig::with(&silent_at_start, None);
+    rig.until("connected", Duration::from_secs(3), |app| {
+        matches!(
+            app.model().connection,
+            vpx_efis::model::Connection::Connected { .. }
+        )
+    });
+    let connected = Instant::now();
+    for _ in 0..40 {
+        if rig.app.view().selected == Some(9) {
+            break;
+        }
+        rig.key(KeyCode::Char('j'));
+    }
+    assert_eq!(rig.app.view().selected, Some(9));
+    rig.key(KeyCode::Char('c'));
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(50));
+    assert_eq!(rig.app.view().setup.forms.device.device_id, 9);
+    let buf = rig.render();
+    let text = screen(&buf);
+    let row = row_with(&buf, "Switch");
+    assert!(row.contains("? not yet read from the unit"), "{text}");
+    assert!(
+        !row.contains(" off "),
+        "Appendix F's switch is not shown: {text}"
+    );
+    // The breaker cannot be typed, and Enter sends nothing.
+    rig.key(KeyCode::Down);
+    rig.keys("3");
+    rig.key(KeyCode::Enter);
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(200));
+    let said = rig.app.view().setup.message.clone().unwrap().1;
+    assert!(
+        said.contains("not yet read from the unit — re-reading; try again when it answers"),
+        "{said}"
+    );
+    assert_eq!(
+        rig.sent("DEVICE_SPEC"),
+        0,
+        "no DEVICE_SPEC before the spec is heard"
+    );
+    // The connect set (33 DEVICE_SPEC_QUERYs) is lost; the re-reads follow it.
+    rig.until("a re-read", Duration::from_secs(6), |app| {
+        app.model()
+            .link
+            .tx
+            .get("DEVICE_SPEC_QUERY")
+            .map_or(0, |s| s.count)
+            > 33
+    });
+    assert!(
+        connected.elapsed() < Duration::from_secs(6),
+        "re-read {:?} after connect, not at the 60 s refresh",
+        connected.elapsed()
+    );
+    assert!(rig.app.model().device_specs[9].is_none(), "still silent");
+    rig.key(KeyCode::Enter);
+    assert_eq!(rig.sent("DEVICE_SPEC"), 0);
+    // The unit talks again and answers: the form shows what it holds.
+    rig.until("pin 9's settings", Duration::from_secs(10), |app| {
+        let m = app.model();
+        m.device_specs[9].is_some() && m.names[9].is_some() && m.enabled[9].is_some()
+    });
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(100));
+    let unit = DeviceSpec {
+        device_id: 9,
+        circuit_breaker: 2,
+        switch_id: SwitchId::Input(2),
+        current_fault: false,
+    };
+    assert_eq!(rig.app.view().setup.forms.device, unit);
+    let buf = rig.render();
+    let text = screen(&buf);
+    assert!(row_with(&buf, "Circuit breaker").contains("2 A"), "{text}");
+    assert!(row_with(&buf, "Switch").contains("switch 2"), "{text}");
+    assert!(row_with(&buf, "Name").contains("GPS 1"), "{text}");
+    for label in [
+        "Circuit breaker",
+        "Switch",
+        "Current fault",
+        "Name",
+        "Shown",
+    ] {
+        assert!(!row_with(&buf, label).contains("not yet read"), "{text}");
+    }
+    assert_eq!(rig.sent("DEVICE_SPEC"), 0);
+    // Now the breaker goes out with the unit's switch kept.
+    rig.keys("3");
+    rig.key(KeyCode::Enter);
+    rig.until("saved", Duration::from_secs(3), |app| {
+        matches!(app.view().setup.writes[0].status, WriteStatus::Saved { .. })
+    });
+    let cfg = rig.sim.stats().config;
+    assert_eq!(cfg.devices[9].circuit_breaker, 3);
+    assert_eq!(cfg.devices[9].switch_id, SwitchId::Input(2), "switch kept");
 }

@@ -22,7 +22,7 @@ mod themes;
 
 use vpx_efis::ui;
 use vpx_efis::ui::setup::state::{
-    Dialog, Field, Forms, Held, Page, Probe, SetupView, Tone, WriteLine, WriteStatus,
+    Dialog, Field, Forms, FromUnit, Held, Page, Probe, SetupView, Tone, WriteLine, WriteStatus,
 };
 use vpx_efis::ui::state::{Screen, ViewState};
 
@@ -164,6 +164,7 @@ fn view(m: &Model, page: Page, device: u8) -> ViewState {
         pitch: held.pitch.unwrap(),
         roll: held.roll.unwrap(),
         wig_wag: held.wig_wag.unwrap(),
+        from_unit: FromUnit::ALL,
     };
     ViewState {
         screen: Screen::Setup,
@@ -516,4 +517,60 @@ fn a_setting_heard_long_ago_is_shown_with_its_age() {
     let row = screen.lines().find(|l| l.contains("Overvoltage")).unwrap();
     assert!(row.contains("(heard 300 s ago)"), "{row}");
     assert_eq!(fg(&later, "(heard 300 s ago)"), Color::DarkGray);
+}
+
+/// Connected while the unit was silent: nothing of the pin was heard. No Appendix F
+/// value stands in for the unit's: "set to" and "the unit holds" say it is not read,
+/// and Enter's refusal says why nothing was sent.
+#[test]
+fn a_pin_never_heard_since_connect_shows_nothing_as_the_units() {
+    let t0 = Instant::now();
+    let mut m = Model::new(Source::Serial {
+        path: "/dev/ttyUSB0".into(),
+    });
+    m.note_connected(t0, "/dev/ttyUSB0".into());
+    let mut forms = Forms::default();
+    vpx_efis::setup::form::select_device(&mut forms, 9, &m);
+    let mut v = ViewState {
+        screen: Screen::Setup,
+        setup: SetupView {
+            page: Page::Device,
+            forms,
+            message: Some((
+                Tone::Bad,
+                "nothing sent: DEVICE_SPEC for 5A-6 not yet read from the unit — re-reading; \
+                 try again when it answers"
+                    .into(),
+            )),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    select(&mut v, Field::Breaker);
+    let buf = render(&m, &v, t0, 120, 24);
+    let screen = text(&buf);
+    insta::assert_snapshot!(screen);
+    assert!(screen.contains("try again when it answers"), "{screen}");
+    for label in [
+        "Circuit breaker",
+        "Switch",
+        "Current fault",
+        "Name",
+        "Shown",
+    ] {
+        let row = screen.lines().find(|l| l.contains(label)).unwrap();
+        assert!(row.contains("? not yet read from the unit"), "{row}");
+    }
+    let row = screen.lines().find(|l| l.contains("Switch")).unwrap();
+    assert!(
+        !row.contains("off"),
+        "Appendix F's switch is not shown: {row}"
+    );
+    let row = screen
+        .lines()
+        .find(|l| l.contains("Circuit breaker"))
+        .unwrap();
+    assert!(!row.contains("2 A"), "nor its breaker: {row}");
+    assert_eq!(fg(&buf, "? not yet read from the unit"), Color::DarkGray);
+    assert_eq!(fg(&buf, "DEVICE_SPEC for 5A-6 not yet read"), Color::Red);
 }

@@ -443,6 +443,9 @@ fn adjust(sv: &mut SetupView, model: &Model, step: i32) {
     if field.is_text() && field != Field::Name {
         return;
     }
+    if refuse_unread(sv) {
+        return;
+    }
     match form::adjust(&mut sv.forms, page, field, step, model) {
         Ok(true) => {
             let discarded = sv.edited[page.index()];
@@ -465,6 +468,9 @@ fn type_digit(sv: &mut SetupView, c: char) {
     if !form::takes_digits(field) || (c == '.' && field != Field::FlapEndpointDuration) {
         return;
     }
+    if refuse_unread(sv) {
+        return;
+    }
     let t = sv.typing.get_or_insert_with(String::new);
     if t.len() < 6 {
         t.push(c);
@@ -477,6 +483,9 @@ fn type_digit(sv: &mut SetupView, c: char) {
 fn type_text(sv: &mut SetupView, c: char) {
     match sv.field() {
         Field::Name => {
+            if refuse_unread(sv) {
+                return;
+            }
             if !c.is_ascii() || c.is_ascii_control() {
                 return say(sv, Tone::Bad, "names are ASCII only (ICD Table 21)");
             }
@@ -499,6 +508,9 @@ fn backspace(sv: &mut SetupView) {
     let (page, field) = (sv.page, sv.field());
     match field {
         Field::Name => {
+            if refuse_unread(sv) {
+                return;
+            }
             sv.forms.name.pop();
             sv.edited[page.index()] = true;
         }
@@ -515,12 +527,27 @@ fn backspace(sv: &mut SetupView) {
     }
 }
 
-/// Every form page without unsent edits follows what the unit holds.
+/// Every form page without unsent edits follows what the unit holds, and on every
+/// page a part the unit had not reported fills in when it does.
 fn reload_forms(sv: &mut SetupView, model: &Model) {
     for page in Page::ALL {
-        if page.is_form() && !sv.is_edited(page) {
-            form::load(&mut sv.forms, page, model);
+        if page.is_form() {
+            let edited = sv.is_edited(page);
+            form::load(&mut sv.forms, page, model, edited);
         }
+    }
+}
+
+/// Refuses an edit of a field whose part the unit has not reported: there is no value
+/// of the unit's to change, only a stand-in. True when refused.
+fn refuse_unread(sv: &mut SetupView) -> bool {
+    match form::not_read(&sv.forms, sv.page, sv.field()) {
+        Some(why) => {
+            sv.typing = None;
+            say(sv, Tone::Bad, why);
+            true
+        }
+        None => false,
     }
 }
 
@@ -593,6 +620,103 @@ mod tests {
             current_fault: false,
             switch_raw: None,
         }
+    }
+
+    /// Connected while the unit was silent: nothing of pin 9 is heard. The page shows
+    /// no value as the unit's, refuses edits and Enter in words and sends nothing; the
+    /// re-reads go out after the connect grace, and once the unit answers the form
+    /// shows its values and the write goes out built on them.
+    #[test]
+    fn a_spec_never_heard_is_not_written_until_the_unit_reports_it() {
+        let t0 = Instant::now();
+        let mut m = Model::new(Source::Simulated {
+            scenario: "t".into(),
+        });
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        let mut rereader = Rereader::default();
+        rereader.connected(t0);
+        flow.tick(&mut sv, true, Some(9), &mut m, ms(t0, 500));
+        assert_eq!(sv.forms.device.device_id, 9);
+        assert!(
+            !sv.forms.from_unit.device,
+            "Appendix F's spec is not the unit's"
+        );
+        let mut sent = Vec::new();
+        sent.extend(
+            flow.key(press(KeyCode::Down), &mut sv, &mut m, ms(t0, 600))
+                .send,
+        );
+        sent.extend(
+            flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, ms(t0, 600))
+                .send,
+        );
+        assert!(
+            !sv.is_edited(Page::Device),
+            "the breaker could not be typed"
+        );
+        let refusal = sv.message.clone().unwrap();
+        assert_eq!(refusal.0, Tone::Bad);
+        assert!(
+            refusal
+                .1
+                .contains("not yet read from the unit — re-reading; try again when it answers"),
+            "{refusal:?}"
+        );
+        sent.extend(
+            flow.key(press(KeyCode::Enter), &mut sv, &mut m, ms(t0, 700))
+                .send,
+        );
+        assert!(sv.message.as_ref().unwrap().1.starts_with("nothing sent: "));
+        for t in (800..=2900).step_by(100) {
+            sent.extend(flow.tick(&mut sv, true, Some(9), &mut m, ms(t0, t)).send);
+            assert!(
+                rereader.due(&m, ms(t0, t)).is_empty(),
+                "the connect queries' turn"
+            );
+        }
+        assert!(sent.is_empty(), "nothing written: {sent:?}");
+        // The unit is still silent; from the grace on, pin 9's settings are re-read.
+        let mut queries = Vec::new();
+        for t in (3000..=3400).step_by(20) {
+            queries.extend(rereader.due(&m, ms(t0, t)));
+        }
+        assert!(queries.contains(&DeviceSpecQuery { device_id: 9 }.into()));
+        // It answers.
+        let unit = DeviceSpec {
+            device_id: 9,
+            circuit_breaker: 4,
+            switch_id: SwitchId::Input(6),
+            current_fault: true,
+        };
+        m.apply_packet(ms(t0, 3500), &Packet::from_vpx(1, unit));
+        m.apply_packet(
+            ms(t0, 3500),
+            &Packet::from_vpx(1, DeviceName::new(9, "Strobe").unwrap()),
+        );
+        m.apply_packet(
+            ms(t0, 3500),
+            &Packet::from_vpx(
+                1,
+                DeviceEnable {
+                    device_id: 9,
+                    flag: EnableFlag::Enabled,
+                },
+            ),
+        );
+        flow.tick(&mut sv, true, Some(9), &mut m, ms(t0, 3600));
+        assert_eq!(sv.forms.device, unit, "the form shows what the unit holds");
+        assert_eq!(sv.forms.name, "Strobe");
+        flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, ms(t0, 3700));
+        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, ms(t0, 3700));
+        assert_eq!(
+            out.send,
+            vec![Message::DeviceSpec(DeviceSpec {
+                circuit_breaker: 3,
+                ..unit
+            })],
+            "only the breaker changed; the unit's switch 6 and current fault kept"
+        );
     }
 
     /// The whole flow on a fake clock, keys to what the page shows, with the unit's

@@ -17,37 +17,62 @@ use crate::ui::setup::state::{
     Field, Forms, Held, Page, device_choices, secondary_alternator_choices, wig_wag_choices,
 };
 
-/// Copies what the unit holds into the page's form (parts the model has not heard
-/// keep the form's values).
-pub fn load(forms: &mut Forms, page: Page, model: &Model) {
+/// Copies what the unit holds into the page's form. On a page without edits every
+/// part follows the unit, and a part it has not reported (or that a lost write left
+/// unknown) is marked not from the unit. On an edited page only the parts not yet
+/// from the unit fill in as the unit answers: they could not be edited meanwhile.
+pub fn load(forms: &mut Forms, page: Page, model: &Model, edited: bool) {
+    fn follow<T>(value: &mut T, from_unit: &mut bool, held: Option<T>, edited: bool) {
+        if edited && *from_unit {
+            return;
+        }
+        *from_unit = held.is_some();
+        if let Some(h) = held {
+            *value = h;
+        }
+    }
     let held = Held::from_model(model, forms.device.device_id);
+    let f = &mut forms.from_unit;
     match page {
         Page::Device => {
-            if let Some(d) = held.device {
-                forms.device = d;
-            }
-            if let Some(n) = held.name {
-                forms.name = n;
-            }
-            if let Some(s) = held.shown {
-                forms.shown = s;
-            }
+            follow(&mut forms.device, &mut f.device, held.device, edited);
+            follow(&mut forms.name, &mut f.name, held.name, edited);
+            follow(&mut forms.shown, &mut f.shown, held.shown, edited);
         }
-        Page::System => forms.system = held.system.unwrap_or(forms.system),
-        Page::Flaps => forms.flap = held.flap.unwrap_or(forms.flap),
-        Page::PitchTrim => forms.pitch = held.pitch.unwrap_or(forms.pitch),
-        Page::RollTrim => forms.roll = held.roll.unwrap_or(forms.roll),
-        Page::WigWag => forms.wig_wag = held.wig_wag.unwrap_or(forms.wig_wag),
+        Page::System => follow(&mut forms.system, &mut f.system, held.system, edited),
+        Page::Flaps => follow(&mut forms.flap, &mut f.flap, held.flap, edited),
+        Page::PitchTrim => follow(&mut forms.pitch, &mut f.pitch, held.pitch, edited),
+        Page::RollTrim => follow(&mut forms.roll, &mut f.roll, held.roll, edited),
+        Page::WigWag => follow(&mut forms.wig_wag, &mut f.wig_wag, held.wig_wag, edited),
         Page::Diagnostics | Page::Backup => {}
     }
 }
 
-/// Puts a device on the device page with the unit's values (or Appendix F's).
+/// Puts a device on the device page with the unit's values; a part the unit has not
+/// reported keeps Appendix F's values underneath, shown as not read.
 pub fn select_device(forms: &mut Forms, id: u8, model: &Model) {
     forms.device = crate::protocol::defaults::device_spec(id);
     forms.name = String::new();
     forms.shown = true;
-    load(forms, Page::Device, model);
+    load(forms, Page::Device, model, false);
+}
+
+/// Why `field` cannot be edited or sent yet: the unit has not reported its part, so
+/// the form holds no value of the unit's to start from. `None` when it can.
+pub fn not_read(forms: &Forms, page: Page, field: Field) -> Option<String> {
+    if forms.from_unit.has(field, page) {
+        return None;
+    }
+    let setting = crate::ui::setup::state::field_setting(field, page, forms.device.device_id)?;
+    Some(format!(
+        "{} not yet read from the unit — re-reading; try again when it answers",
+        setting.name()
+    ))
+}
+
+/// The first field of `page` whose part the unit has not reported, in words.
+fn page_not_read(forms: &Forms, page: Page) -> Option<String> {
+    page.fields().iter().find_map(|&f| not_read(forms, page, f))
 }
 
 fn cycle<T: PartialEq + Copy>(choices: &[T], current: T, step: i32) -> T {
@@ -316,6 +341,9 @@ pub fn capture(
             }
         ));
     }
+    if let Some(why) = not_read(forms, page, field) {
+        return Err(why);
+    }
     let Some(ft) = model.live_flap_trim(now) else {
         return Err("no live FLAP_TRIM_STATUS: the position is not known".into());
     };
@@ -333,8 +361,13 @@ pub fn capture(
 }
 
 /// The messages that take the unit from what it holds to the page's form, in the
-/// order they are sent. A part the model has not heard is sent as it stands.
+/// order they are sent. Refused in words when a part of the page never came from the
+/// unit: whatever the form holds there is a stand-in, not a value to write. A part a
+/// lost write left unknown is sent as edited: the edit was made on the unit's values.
 pub fn messages(forms: &Forms, page: Page, model: &Model) -> Result<Vec<Message>, String> {
+    if let Some(why) = page_not_read(forms, page) {
+        return Err(format!("nothing sent: {why}"));
+    }
     let held = Held::from_model(model, forms.device.device_id);
     let mut out: Vec<Message> = Vec::new();
     match page {
@@ -400,7 +433,8 @@ mod tests {
     use super::*;
     use crate::model::Source;
     use crate::protocol::Packet;
-    use crate::protocol::message::{DeviceSpec, FlapTrimStatus};
+    use crate::protocol::defaults;
+    use crate::protocol::message::{DeviceSpec, FlapTrimStatus, TrimType};
 
     fn model() -> Model {
         Model::new(Source::Simulated {
@@ -408,9 +442,101 @@ mod tests {
         })
     }
 
+    /// The unit reports pin `id` as it leaves the factory: Appendix F's spec, no
+    /// name, shown.
+    fn factory_pin(m: &mut Model, id: u8) {
+        let t = Instant::now();
+        m.apply_packet(t, &Packet::from_vpx(1, defaults::device_spec(id)));
+        m.apply_packet(t, &Packet::from_vpx(1, DeviceName::new(id, "").unwrap()));
+        let shown = DeviceEnable {
+            device_id: id,
+            flag: EnableFlag::Enabled,
+        };
+        m.apply_packet(t, &Packet::from_vpx(1, shown));
+    }
+
+    /// Connected while the unit was silent: nothing of pin 9 heard. The form's
+    /// Appendix F values are not the unit's: they are not editable and no write is
+    /// built on them. As the unit answers, the parts fill in, an edited page's too.
+    #[test]
+    fn a_part_the_unit_never_reported_is_neither_edited_nor_written() {
+        let t0 = Instant::now();
+        let mut m = model();
+        let mut f = Forms::default();
+        select_device(&mut f, 9, &m);
+        assert!(!f.from_unit.device && !f.from_unit.name && !f.from_unit.shown);
+        let why = not_read(&f, Page::Device, Field::Breaker).unwrap();
+        assert_eq!(
+            why,
+            "DEVICE_SPEC for 5A-6 not yet read from the unit — re-reading; try again when it answers"
+        );
+        assert_eq!(not_read(&f, Page::Device, Field::DeviceId), None);
+        let refused = messages(&f, Page::Device, &m).unwrap_err();
+        assert!(
+            refused.starts_with("nothing sent: DEVICE_SPEC for 5A-6 not yet read"),
+            "{refused}"
+        );
+        // The spec arrives, the name and enable flag not yet: the page may be edited
+        // there, but Enter still sends nothing built on a name nobody read.
+        let held = DeviceSpec {
+            device_id: 9,
+            circuit_breaker: 3,
+            switch_id: SwitchId::Input(4),
+            current_fault: true,
+        };
+        m.apply_packet(t0, &Packet::from_vpx(1, held));
+        load(&mut f, Page::Device, &m, false);
+        assert_eq!(f.device, held, "the unit's switch, not Appendix F's off");
+        assert!(f.from_unit.device && !f.from_unit.name);
+        f.device.circuit_breaker = 4; // edited
+        let refused = messages(&f, Page::Device, &m).unwrap_err();
+        assert!(
+            refused.contains(": DEVICE_NAME for 5A-6 not yet read"),
+            "{refused}"
+        );
+        // The name and flag arrive while the page is edited: they fill in, the
+        // edited breaker stays, and now only the spec goes out, with the unit's switch.
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(1, DeviceName::new(9, "GPS 1").unwrap()),
+        );
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(
+                1,
+                DeviceEnable {
+                    device_id: 9,
+                    flag: EnableFlag::Enabled,
+                },
+            ),
+        );
+        load(&mut f, Page::Device, &m, true);
+        assert_eq!(f.name, "GPS 1");
+        assert_eq!(f.device.circuit_breaker, 4, "the edit is kept");
+        assert_eq!(
+            messages(&f, Page::Device, &m).unwrap(),
+            vec![Message::DeviceSpec(DeviceSpec {
+                circuit_breaker: 4,
+                ..held
+            })]
+        );
+        // The motor pages likewise: no FLAP_SPEC from defaults, and no capture.
+        assert!(
+            messages(&f, Page::Flaps, &m)
+                .unwrap_err()
+                .contains("FLAP_SPEC not yet read")
+        );
+        assert!(
+            capture(&mut f, Page::Flaps, Field::FlapUp, &m, t0)
+                .unwrap_err()
+                .starts_with("FLAP_SPEC not yet read")
+        );
+    }
+
     #[test]
     fn breaker_steps_stay_in_the_pins_range_but_typing_does_not() {
-        let m = model();
+        let mut m = model();
+        factory_pin(&mut m, 0x17);
         let mut f = Forms::default();
         select_device(&mut f, 0x17, &m);
         assert_eq!(f.device.circuit_breaker, 2, "Appendix F default");
@@ -510,7 +636,14 @@ mod tests {
     fn capture_takes_the_live_position_into_the_selected_field() {
         let t0 = Instant::now();
         let mut m = model();
+        m.apply_packet(t0, &Packet::from_vpx(1, defaults::flap_spec()));
+        for t in [TrimType::Pitch, TrimType::Roll] {
+            m.apply_packet(t0, &Packet::from_vpx(1, defaults::trim_spec(t)));
+        }
         let mut f = Forms::default();
+        for page in [Page::Flaps, Page::PitchTrim, Page::RollTrim] {
+            load(&mut f, page, &m, false);
+        }
         assert!(
             capture(&mut f, Page::Flaps, Field::FlapMid1, &m, t0)
                 .unwrap_err()

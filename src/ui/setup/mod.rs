@@ -123,7 +123,11 @@ pub fn render_form(
     let rows: Vec<Row> = fields
         .iter()
         .map(|&f| {
+            // A part the unit has not reported holds Appendix F's values underneath:
+            // never shown as if they were the unit's.
+            let read = sv.forms.from_unit.has(f, page);
             let value = match (&sv.typing, f == selected) {
+                _ if !read => state::NOT_READ.to_string(),
                 (Some(t), true) => format!("{t}▏ → {}", value_text(f, page, &sv.forms)),
                 _ if f == selected && f.is_text() => {
                     format!("{}▏", value_text(f, page, &sv.forms))
@@ -138,7 +142,9 @@ pub fn render_form(
             let differs = holds
                 .as_deref()
                 .is_some_and(|h| h != value_text(f, page, &sv.forms));
-            let value_style = if differs && sv.is_edited(page) {
+            let value_style = if !read {
+                theme::unknown()
+            } else if differs && sv.is_edited(page) {
                 theme::caution()
             } else {
                 Style::new()
@@ -158,6 +164,7 @@ pub fn render_form(
                 None if setting.is_some_and(|s| model.is_unknown(s)) => {
                     Span::styled(state::unknown_text(f), theme::caution())
                 }
+                None if setting.is_some() => Span::styled(state::NOT_READ_HOLDS, theme::unknown()),
                 None => Span::styled("?", theme::unknown()),
             };
             let row = Row::new(vec![

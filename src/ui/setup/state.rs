@@ -334,7 +334,60 @@ pub struct Forms {
     pub pitch: TrimSpec,
     pub roll: TrimSpec,
     pub wig_wag: WigWagSpec,
+    /// Which parts hold what the unit reported, rather than Appendix F's values
+    /// standing in until it does.
+    pub from_unit: FromUnit,
 }
+
+/// Per part of the forms: whether its values came from the unit. A part that did not
+/// is shown as "?", cannot be edited, and no write is built on it: a DEVICE_SPEC made
+/// of defaults would overwrite the pin's switch when only its breaker was changed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FromUnit {
+    pub device: bool,
+    pub name: bool,
+    pub shown: bool,
+    pub system: bool,
+    pub flap: bool,
+    pub pitch: bool,
+    pub roll: bool,
+    pub wig_wag: bool,
+}
+
+impl FromUnit {
+    /// Every part as the unit reported it.
+    pub const ALL: FromUnit = FromUnit {
+        device: true,
+        name: true,
+        shown: true,
+        system: true,
+        flap: true,
+        pitch: true,
+        roll: true,
+        wig_wag: true,
+    };
+
+    /// Whether `field` on `page` shows a value the unit reported (fields that are not
+    /// a setting, the pin number and the actions, always do).
+    pub fn has(&self, field: Field, page: Page) -> bool {
+        match field_setting(field, page, 0) {
+            Some(Setting::DeviceSpec(_)) => self.device,
+            Some(Setting::Name(_)) => self.name,
+            Some(Setting::Enable(_)) => self.shown,
+            Some(Setting::System) => self.system,
+            Some(Setting::Flaps) => self.flap,
+            Some(Setting::Trim(TrimKind::Pitch)) => self.pitch,
+            Some(Setting::Trim(TrimKind::Roll)) => self.roll,
+            Some(Setting::WigWag) => self.wig_wag,
+            None => true,
+        }
+    }
+}
+
+/// What a field whose part the unit has not reported shows as its value.
+pub const NOT_READ: &str = "?";
+/// … and in "the unit holds".
+pub const NOT_READ_HOLDS: &str = "? not yet read from the unit";
 
 impl Default for Forms {
     fn default() -> Self {
@@ -347,6 +400,7 @@ impl Default for Forms {
             pitch: defaults::trim_spec(TrimType::Pitch),
             roll: defaults::trim_spec(TrimType::Roll),
             wig_wag: defaults::wig_wag_spec(),
+            from_unit: FromUnit::default(),
         }
     }
 }
