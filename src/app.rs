@@ -5,11 +5,14 @@
 //!   wakes the main loop over a crossbeam channel;
 //! - an input thread turns terminal events into messages on another channel;
 //! - the main loop selects over input, link wake-ups and a deadline: the earliest
-//!   thing that must happen next (a motor resend, a query batch, a redraw). It
-//!   redraws only when the model or the view changed, or once a second for ages.
+//!   thing that must happen next (a query batch, a redraw). It redraws only when the
+//!   model or the view changed, or once a second for ages;
+//! - a motor-stream thread re-sends a held motor's move message on its own clock
+//!   (see `motor_stream`), so no redraw, terminal write or model lock delays it.
 
 mod background;
 mod gateway;
+mod motor_stream;
 mod options;
 pub mod queries;
 mod record;
@@ -37,6 +40,7 @@ use crate::ui::palette::ThemeChoice;
 use crate::ui::{
     self, state::Overlay, state::ReleaseMode, state::Screen, state::SortOrder, state::ViewState,
 };
+use motor_stream::MotorPath;
 
 pub use background::choose_theme;
 pub use gateway::xfsp_setup;
@@ -66,6 +70,8 @@ pub enum Wake {
     Connected,
     LinkDown,
     WriteError,
+    /// The motor-stream thread ended a run (dead man, run cap): show it.
+    Motor,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -81,6 +87,9 @@ pub struct AppOptions {
     pub release_mode: ReleaseMode,
     /// The palette, chosen before the terminal was taken.
     pub theme: ThemeChoice,
+    /// `--repeat-delay`: how long the first hold waits for the first key repeat, set
+    /// by hand instead of learned.
+    pub repeat_delay: Option<Duration>,
 }
 
 impl Default for AppOptions {
@@ -89,6 +98,7 @@ impl Default for AppOptions {
             max_run: Duration::from_secs(10),
             release_mode: ReleaseMode::AutoRepeat,
             theme: ThemeChoice::default(),
+            repeat_delay: None,
         }
     }
 }
@@ -98,7 +108,11 @@ impl Default for AppOptions {
 pub struct App {
     model: Arc<Mutex<Model>>,
     view: ViewState,
-    controller: Controller,
+    /// The motor controller, shared with the motor-stream thread.
+    controller: Arc<MotorPath>,
+    motor_thread: Option<std::thread::JoinHandle<()>>,
+    /// The terminal is too small to show the page: keys do nothing but quit and help.
+    hidden: bool,
     link: Option<Link>,
     handle: LinkHandle,
     wake_rx: Receiver<Wake>,
@@ -137,23 +151,40 @@ impl App {
     ) -> App {
         let model = Arc::new(Mutex::new(Model::new(source)));
         let (wake_tx, wake_rx) = unbounded();
-        let sink: SharedSink = Arc::new(link_sink(model.clone(), wake_tx, recorder.clone()));
+        let sink: SharedSink =
+            Arc::new(link_sink(model.clone(), wake_tx.clone(), recorder.clone()));
         let (link, replay) = start(sink, model.clone());
         let handle = link.handle();
-        let config = StreamerConfig {
+        let mut config = StreamerConfig {
             max_run: options.max_run,
             release_mode: options.release_mode,
             ..Default::default()
         };
+        if let Some(d) = options.repeat_delay {
+            config.first_repeat_timeout = d;
+            config.first_repeat_fixed = true;
+        }
+        let controller = Controller::new(config);
         let view = ViewState {
             release_mode: options.release_mode,
             theme: options.theme,
+            // A replay runs no motors: nothing to say about key repeats.
+            repeat: replay.is_none().then(|| controller.repeat_timing()),
             ..Default::default()
+        };
+        // A replay is read-only: no link for motors, and no thread to send on it.
+        let controller = MotorPath::new(controller, replay.is_none().then(|| handle.clone()));
+        let motor_thread = if replay.is_none() {
+            controller.spawn(wake_tx)
+        } else {
+            None
         };
         App {
             model,
             view,
-            controller: Controller::new(config),
+            controller,
+            motor_thread,
+            hidden: false,
             link: Some(link),
             handle,
             wake_rx,
@@ -215,6 +246,15 @@ impl App {
             // motor in between.
             return Flow::Continue;
         }
+        if let TermEvent::Resize(w, h) = event {
+            self.set_page_size(w, h, now);
+        }
+        if let TermEvent::Key(key) = event
+            && self.hidden
+        {
+            self.xfsp_local_key(now);
+            return self.hidden_key(key, now);
+        }
         if let Some(flow) = self.replay_key(&event, now) {
             return flow;
         }
@@ -240,7 +280,6 @@ impl App {
                     }
                     outcome
                 };
-                self.send(outcome.packets);
                 self.set_notice(now, outcome.notice);
                 self.view.motor_run = self.controller.running();
                 if outcome.action == Some(Action::Quit) {
@@ -248,8 +287,7 @@ impl App {
                 }
             }
             TermEvent::FocusLost => {
-                let p = self.controller.on_focus_lost(now);
-                self.send(p);
+                self.controller.stop(now, StopReason::FocusLost);
                 let n = self.controller.take_notice();
                 self.set_notice(now, n);
                 self.view.motor_run = self.controller.running();
@@ -257,6 +295,54 @@ impl App {
             _ => {}
         }
         Flow::Continue
+    }
+
+    /// The terminal's size, from a resize or a draw. The moment the page no longer
+    /// fits, a running motor stops with its stop message: nothing the person cannot
+    /// see may keep moving. The selection stays where it was.
+    fn set_page_size(&mut self, width: u16, height: u16, now: Instant) {
+        let hidden = width < ui::MIN_WIDTH || height < ui::MIN_HEIGHT;
+        if hidden && !self.hidden {
+            self.controller.stop(now, StopReason::PageHidden);
+            let n = self.controller.take_notice();
+            self.set_notice(now, n);
+            self.view.motor_run = self.controller.running();
+        }
+        if hidden != self.hidden {
+            self.dirty = true;
+        }
+        self.hidden = hidden;
+    }
+
+    /// A key while the page is too small to be seen: only quit and help act (on the
+    /// device list; elsewhere only Ctrl-C quits, since `q` may be text there).
+    fn hidden_key(&mut self, key: crossterm::event::KeyEvent, now: Instant) -> Flow {
+        let on_devices = self.view.screen == Screen::Devices;
+        let shared = self.model.clone();
+        let (handled, rows) = {
+            let model = lock(&shared);
+            let rows = ui::ordered_circuits(&model, &self.view, now);
+            let ctx = if on_devices {
+                KeyContext::from_view(&self.view, &rows)
+            } else {
+                KeyContext::default()
+            };
+            (self.controller.handle_key_hidden(key, &ctx, now), rows)
+        };
+        self.set_notice(now, handled.notice);
+        self.view.motor_run = self.controller.running();
+        let ctrl_c = key
+            .modifiers
+            .contains(crossterm::event::KeyModifiers::CONTROL)
+            && matches!(key.code, crossterm::event::KeyCode::Char('c' | 'C'));
+        match handled.action {
+            Some(Action::Quit) if on_devices || ctrl_c => Flow::Quit,
+            Some(a @ (Action::ToggleHelp | Action::CloseOverlay)) if on_devices => {
+                self.apply_view_action(&a, &rows);
+                Flow::Continue
+            }
+            _ => Flow::Continue,
+        }
     }
 
     fn apply_view_action(&mut self, action: &Action, rows: &[crate::model::Circuit]) {
@@ -309,13 +395,12 @@ impl App {
                 self.rereader.link_down();
             }
             Wake::WriteError => {
-                let p = self.controller.on_link_error(now);
-                self.send(p);
+                self.controller.stop(now, StopReason::LinkError);
                 self.xfsp_link_error(now);
                 let n = self.controller.take_notice();
                 self.set_notice(now, n);
             }
-            Wake::Data => {}
+            Wake::Data | Wake::Motor => {}
         }
         // No tick here: both loops tick right after draining the wake-ups, so a
         // motor fault in the packets just applied is seen at once, and a burst of N
@@ -328,22 +413,20 @@ impl App {
         if terminal::panicked() {
             // The hook has sent the emergency stop; make sure nothing here resends a
             // move after it. The run loop then leaves.
-            let p = self.controller.stop(now, StopReason::Panic);
-            self.send(p);
+            self.controller.stop(now, StopReason::Panic);
             self.xfsp_shutdown(now);
             return;
         }
-        let packets = {
+        {
             let model = lock(&self.model);
             if model.revision() != self.drawn_revision {
                 self.dirty = true;
             }
-            self.controller.tick(&model, now)
-        };
-        self.send(packets);
+            self.controller.tick(&model, now);
+        }
         let n = self.controller.take_notice();
         self.set_notice(now, n);
-        let controller = &mut self.controller;
+        let controller = &self.controller;
         let queries = self.pacer.due(now, || controller.next_cnt());
         self.send(queries);
         self.setup_tick(now);
@@ -358,6 +441,14 @@ impl App {
         let run = self.controller.running();
         if run != self.view.motor_run {
             self.view.motor_run = run;
+            self.dirty = true;
+        }
+        let repeat = self
+            .replay
+            .is_none()
+            .then(|| self.controller.repeat_timing());
+        if repeat != self.view.repeat {
+            self.view.repeat = repeat;
             self.dirty = true;
         }
         if self
@@ -385,8 +476,9 @@ impl App {
             Some(t) => t + IDLE_REDRAW,
             None => now,
         };
+        // No motor deadline: the motor-stream thread keeps its own, and wakes this
+        // loop (Wake::Motor) when a run ends.
         [
-            self.controller.next_deadline(),
             self.pacer.next_deadline(),
             self.notice_until,
             self.xfsp_deadline(),
@@ -423,17 +515,23 @@ impl App {
         terminal: &mut Terminal<B>,
         now: Instant,
     ) -> std::io::Result<()> {
-        let model = lock(&self.model);
-        if self.view.selected.is_none() {
-            self.view.selected = ui::ordered_circuits(&model, &self.view, now)
-                .first()
-                .map(|c| c.id);
+        let err = |e: B::Error| std::io::Error::other(e.to_string());
+        terminal.autoresize().map_err(err)?;
+        let area = terminal.get_frame().area();
+        self.set_page_size(area.width, area.height, now);
+        {
+            let model = lock(&self.model);
+            if self.view.selected.is_none() {
+                self.view.selected = ui::ordered_circuits(&model, &self.view, now)
+                    .first()
+                    .map(|c| c.id);
+            }
+            ui::draw(&mut terminal.get_frame(), &model, &self.view, now);
+            self.drawn_revision = model.revision();
         }
-        terminal
-            .draw(|f| ui::draw(f, &model, &self.view, now))
-            .map_err(|e| std::io::Error::other(e.to_string()))?;
-        self.drawn_revision = model.revision();
-        drop(model);
+        // The terminal write happens without the model lock: a slow terminal must not
+        // hold up the link's reader and writer, which take the lock for every frame.
+        terminal.apply_buffer().map_err(err)?;
         self.dirty = false;
         self.last_draw = Some(now);
         Ok(())
@@ -467,8 +565,11 @@ impl App {
 
     fn stop_everything(&mut self) {
         let now = Instant::now();
-        let p = self.controller.on_quit(now);
-        self.send(p);
+        self.controller.stop(now, StopReason::Quit);
+        self.controller.stop_thread();
+        if let Some(t) = self.motor_thread.take() {
+            let _ = t.join();
+        }
         self.xfsp_shutdown(now);
         if let Some(link) = self.link.take() {
             // Queued packets (the stop above) are written before the link closes.
@@ -631,9 +732,28 @@ fn max_run(secs: f64) -> anyhow::Result<Duration> {
     Ok(Duration::from_secs_f64(secs))
 }
 
+/// The range `--repeat-delay` accepts, in milliseconds. Below 300 ms no desktop
+/// repeats (and a real first repeat would be taken for a fresh press); above 1.5 s a
+/// tap would run a motor for longer than anyone means to nudge it.
+pub const REPEAT_DELAY_MS: (u64, u64) = (300, 1500);
+
+/// `--repeat-delay`: refused in words outside [`REPEAT_DELAY_MS`].
+fn repeat_delay(ms: u64) -> anyhow::Result<Duration> {
+    let (lo, hi) = REPEAT_DELAY_MS;
+    if !(lo..=hi).contains(&ms) {
+        anyhow::bail!(
+            "--repeat-delay (or the config file's repeat_delay) must be between {lo} and \
+             {hi} milliseconds: the time your terminal takes to repeat a held key for the \
+             first time (a tap runs a motor this long at most)"
+        );
+    }
+    Ok(Duration::from_millis(ms))
+}
+
 /// `vpx-efis` with no subcommand: the page.
 pub fn run(args: PageOptions) -> anyhow::Result<()> {
     let max_run = max_run(args.max_run)?;
+    let repeat_delay = args.repeat_delay.map(repeat_delay).transpose()?;
     if let Some(file) = &args.replay {
         return replay::run(file, &args);
     }
@@ -667,11 +787,8 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
     let options = AppOptions {
         max_run,
         theme,
-        release_mode: if guard.key_release {
-            ReleaseMode::KeyRelease
-        } else {
-            ReleaseMode::AutoRepeat
-        },
+        release_mode: crate::control::release_mode_here(guard.key_release),
+        repeat_delay,
     };
     let xfsp = xfsp_setup(&args.xfsp)?;
     let mut app = match recorder {
@@ -725,6 +842,20 @@ mod tests {
         for bad in [0.0, -1.0, 26.0, 1e300, f64::NAN, f64::INFINITY] {
             let err = max_run(bad).unwrap_err().to_string();
             assert!(err.contains("--max-run"), "{bad}: {err}");
+        }
+    }
+
+    #[test]
+    fn repeat_delay_refuses_values_no_terminal_uses() {
+        assert_eq!(repeat_delay(300).unwrap(), Duration::from_millis(300));
+        assert_eq!(repeat_delay(1100).unwrap(), Duration::from_millis(1100));
+        assert_eq!(repeat_delay(1500).unwrap(), Duration::from_millis(1500));
+        for bad in [0, 299, 1501, 60_000] {
+            let err = repeat_delay(bad).unwrap_err().to_string();
+            assert!(
+                err.contains("--repeat-delay") && err.contains("300 and 1500"),
+                "{bad}: {err}"
+            );
         }
     }
 }

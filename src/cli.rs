@@ -104,6 +104,13 @@ pub struct PageArgs {
     /// mono when NO_COLOR is set; `terminal` keeps the terminal's own 16 colours.
     #[arg(long, value_enum, default_value_t = ThemeArg::Auto)]
     pub theme: ThemeArg,
+
+    /// Without key-release reports, how long a held motor key may take to repeat for
+    /// the first time, in milliseconds (300-1500). By default the page waits 700 ms
+    /// and then learns the terminal's own delay; set this for a terminal that repeats
+    /// later. A tap runs the motor at most this long.
+    #[arg(long, value_name = "MS")]
+    pub repeat_delay: Option<u64>,
 }
 
 /// `--theme`; see [`crate::ui::palette`].
@@ -275,6 +282,7 @@ impl From<PageArgs> for crate::app::PageOptions {
             replay: a.replay,
             speed: a.speed,
             max_run: a.max_run,
+            repeat_delay: a.repeat_delay,
             theme: a.theme.into(),
         }
     }
@@ -500,15 +508,13 @@ impl Resolver<'_> {
         *theme = t.into();
     }
 
-    /// Page settings whose options other work owns: reported from the file or their
-    /// default until the page takes them.
-    fn page_extras(&mut self) {
+    /// `--repeat-delay`, or the file's `repeat_delay` (checked by the page).
+    fn page_extras(&mut self, d: &mut Option<u64>) {
         let delay = self.file.repeat_delay_ms.clone().map(|s| Setting {
             value: Some(s.value),
             line: s.line,
         });
-        let mut d = None;
-        self.pick("repeat_delay", "repeat_delay", None, &mut d, &delay, |d| {
+        self.pick("repeat_delay", "repeat_delay", None, d, &delay, |d| {
             d.map_or_else(|| "the page's own".into(), |ms| format!("{ms} ms"))
         });
     }
@@ -562,6 +568,7 @@ fn resolve_with(
             }
             r.xfsp(&mut page.xfsp, false);
             r.theme(&mut page.theme);
+            r.page_extras(&mut page.repeat_delay);
         }
         Some(Command::Backup(a)) => r.port(&mut a.port)?,
         Some(Command::Restore(a)) => r.port(&mut a.port)?,
@@ -574,7 +581,7 @@ fn resolve_with(
             r.port(&mut a.port)?;
             r.xfsp(&mut a.xfsp, false);
             r.theme(&mut a.theme);
-            r.page_extras();
+            r.page_extras(&mut None);
         }
         _ => {}
     }

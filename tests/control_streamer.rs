@@ -351,7 +351,7 @@ fn assert_one_run(l: &Loop, stop: Message, reason: StopReason, ended: Instant) {
     assert_eq!(l.ctl.last_stop().unwrap().reason, reason);
     assert!(l.ctl.running().is_none());
     assert!(
-        t_stop >= ended && t_stop <= ended + ms(200 + 30),
+        t_stop >= ended && t_stop <= ended + ms(150 + 30),
         "stop at {:?}, expected at {:?}",
         t_stop - run[0].0,
         ended - run[0].0
@@ -386,8 +386,11 @@ fn release_ends_the_run_in_both_modes() {
         l.run(events, t0 + ms(5000), jitter(1));
         let (ended, reason) = match mode {
             ReleaseMode::KeyRelease => (last_event, StopReason::Released),
-            // The last repeat plus the 200 ms repeat window.
-            ReleaseMode::AutoRepeat => (last_event + ms(200), StopReason::RepeatsStopped),
+            // The last repeat plus the gap learned from this hold: 3 × 33 ms.
+            ReleaseMode::AutoRepeat => {
+                assert_eq!(l.ctl.repeat_timing().end_gap, ms(99));
+                (last_event + ms(99), StopReason::RepeatsStopped)
+            }
         };
         assert_one_run(&l, pitch_stop(TrimDirection::UpOrLeft), reason, ended);
         if mode == ReleaseMode::KeyRelease {
@@ -401,7 +404,7 @@ fn release_ends_the_run_in_both_modes() {
 }
 
 #[test]
-fn auto_repeat_without_any_repeat_ends_at_the_first_repeat_delay() {
+fn auto_repeat_without_any_repeat_ends_at_the_first_repeat_window_of_700_ms() {
     let t0 = Instant::now();
     let mut l = Loop::new(ReleaseMode::AutoRepeat, PITCH, t0);
     let press = t0 + ms(100);
@@ -414,7 +417,7 @@ fn auto_repeat_without_any_repeat_ends_at_the_first_repeat_delay() {
         &l,
         pitch_stop(TrimDirection::DownOrRight),
         StopReason::RepeatsStopped,
-        press + ms(600),
+        press + ms(700),
     );
 }
 
@@ -683,7 +686,8 @@ fn the_maximum_run_time_ends_the_run_and_the_held_key_does_not_restart_it() {
 #[test]
 fn after_the_cap_taps_within_the_repeat_window_do_not_restart() {
     // Without release reports a tap cannot be told from a repeat: until a gap longer
-    // than the repeat window, key events only keep the key "held".
+    // than the repeat window (here 3 × 33 ms, learned from the hold), key events only
+    // keep the key "held".
     let t0 = Instant::now();
     let mut l = Loop::new(ReleaseMode::AutoRepeat, PITCH, t0);
     let start = t0 + ms(100);
@@ -697,7 +701,7 @@ fn after_the_cap_taps_within_the_repeat_window_do_not_restart() {
     );
     let mut t = start + ms(10_500);
     while t < start + ms(12_000) {
-        t += ms(150);
+        t += ms(80);
         events.push((t, Ev::Key(key(KeyCode::Char('u'), KeyEventKind::Press))));
     }
     l.run(events, start + ms(13_000), jitter(13));
@@ -773,7 +777,7 @@ fn no_gap_exceeds_250_ms_when_the_loop_wakes_up_to_30_ms_late() {
     }
     // Not an assertion on the exact value: it shows the margin in the test output.
     eprintln!("worst interval between move messages: {worst_seen:?}");
-    assert!(worst_seen <= ms(200 + 30));
+    assert!(worst_seen <= ms(150 + 30));
 }
 
 #[test]
@@ -798,7 +802,7 @@ fn emergency_stop_covers_flaps_pitch_and_roll() {
 }
 
 #[test]
-fn the_stream_goes_out_on_press_and_then_every_200_ms() {
+fn the_stream_goes_out_on_press_and_then_every_150_ms() {
     let t0 = Instant::now();
     let mut l = Loop::new(ReleaseMode::KeyRelease, PITCH, t0);
     let start = t0 + ms(100);
@@ -817,8 +821,8 @@ fn the_stream_goes_out_on_press_and_then_every_200_ms() {
     let times: Vec<Duration> = l.moves().iter().map(|(t, _)| *t - start).collect();
     assert_eq!(
         times,
-        [0, 200, 400, 600, 800, 1000].map(ms),
-        "press, four resends, the stop at the release"
+        [0, 150, 300, 450, 600, 750, 900, 1000].map(ms),
+        "press, six resends, the stop at the release"
     );
     let first = l.moves()[0].1;
     assert_eq!(
@@ -899,4 +903,305 @@ fn key_release_mode_ends_a_run_whose_release_is_lost() {
     }
     let off = off.expect("a stop without release or repeats");
     assert!(off - t0 <= first + ms(10), "{:?}", off - t0);
+}
+
+// ----- learning the terminal's auto-repeat -----
+
+/// A terminal's auto-repeat: the delay to the first repeat, the repeat rate, and the
+/// `--repeat-delay` a person would give for it (only a terminal slower than 700 ms
+/// needs one).
+#[derive(Clone, Copy, Debug)]
+struct Profile {
+    delay_ms: u64,
+    hz: f64,
+    repeat_delay_ms: Option<u64>,
+}
+
+impl Profile {
+    fn interval(&self) -> Duration {
+        Duration::from_secs_f64(1.0 / self.hz)
+    }
+
+    fn config(&self) -> StreamerConfig {
+        let mut c = StreamerConfig {
+            release_mode: ReleaseMode::AutoRepeat,
+            ..Default::default()
+        };
+        if let Some(d) = self.repeat_delay_ms {
+            c.first_repeat_timeout = ms(d);
+            c.first_repeat_fixed = true;
+        }
+        c
+    }
+}
+
+/// X's default, KDE and sway, GNOME, a slow one with `--repeat-delay`, a fast one.
+const PROFILES: [Profile; 5] = [
+    Profile {
+        delay_ms: 660,
+        hz: 25.0,
+        repeat_delay_ms: None,
+    },
+    Profile {
+        delay_ms: 600,
+        hz: 30.0,
+        repeat_delay_ms: None,
+    },
+    Profile {
+        delay_ms: 500,
+        hz: 33.0,
+        repeat_delay_ms: None,
+    },
+    Profile {
+        delay_ms: 1000,
+        hz: 25.0,
+        repeat_delay_ms: Some(1100),
+    },
+    Profile {
+        delay_ms: 250,
+        hz: 50.0,
+        repeat_delay_ms: None,
+    },
+];
+
+/// The interval a gap of `3 × interval` is clamped into (the module's 90–250 ms).
+fn expected_gap(interval: Duration) -> Duration {
+    (interval * 3).clamp(ms(90), ms(250))
+}
+
+/// One hold of `hold` with `p`'s repeats, on a loop that wakes `late` after each
+/// deadline; returns the times of the repeats sent.
+fn hold_with(
+    l: &mut Loop,
+    p: Profile,
+    start: Instant,
+    hold: Duration,
+    late: impl FnMut() -> Duration,
+) -> Vec<Instant> {
+    let events = held_key(
+        ReleaseMode::AutoRepeat,
+        KeyCode::Char('u'),
+        start,
+        hold,
+        ms(p.delay_ms),
+        p.interval(),
+    );
+    let times = events.iter().map(|e| e.0).collect();
+    l.run(events, start + hold + ms(2000), late);
+    times
+}
+
+/// For each profile, on a loop that wakes on time and on one up to 30 ms late: a 3 s
+/// hold is one run, with no stop while repeats flow, every gap between move messages
+/// at most 220 ms, and the stop within the learned gap after the last repeat.
+#[test]
+fn each_repeat_profile_holds_one_run_for_three_seconds_and_stops_within_the_learned_gap() {
+    for p in PROFILES {
+        for (lateness, seed) in [(false, 0), (true, 31)] {
+            let t0 = Instant::now();
+            let mut l = Loop::new(ReleaseMode::AutoRepeat, PITCH, t0);
+            l.ctl = Controller::new(p.config());
+            let start = t0 + ms(100);
+            let mut j = jitter(seed);
+            let late = move || if lateness { j() } else { Duration::ZERO };
+            let keys = hold_with(&mut l, p, start, ms(3000), late);
+            let last_repeat = *keys.last().unwrap();
+
+            let (runs, worst) = runs(&l.moves());
+            assert_eq!(runs.len(), 1, "{p:?}: one run, no stutter");
+            assert!(worst <= ms(220), "{p:?}: a gap of {worst:?} on the wire");
+            let (t_stop, _) = *runs[0].last().unwrap();
+            assert!(
+                t_stop > last_repeat,
+                "{p:?}: stopped while the key was held"
+            );
+
+            let learned = l.ctl.repeat_timing();
+            let gap = expected_gap(p.interval());
+            assert_eq!(learned.interval, Some(p.interval()), "{p:?}");
+            assert_eq!(learned.delay, Some(ms(p.delay_ms)), "{p:?}");
+            assert_eq!(learned.end_gap, gap, "{p:?}");
+            let allowed = gap + if lateness { l.worst_lateness } else { ms(0) };
+            assert!(
+                t_stop - last_repeat <= allowed,
+                "{p:?}: the stop came {:?} after the last repeat, the gap is {gap:?}",
+                t_stop - last_repeat
+            );
+            assert_eq!(
+                l.ctl.last_stop().unwrap().reason,
+                StopReason::RepeatsStopped
+            );
+        }
+    }
+}
+
+/// The first hold waits 700 ms for the first repeat and teaches 500 ms / 30 ms; the
+/// second hold uses that: a tap is a 600 ms nudge, and a hold ends 91 ms after its
+/// last repeat instead of 200.
+#[test]
+fn a_first_hold_teaches_the_repeat_and_the_second_hold_uses_it() {
+    let p = PROFILES[2];
+    let t0 = Instant::now();
+    let mut l = Loop::new(ReleaseMode::AutoRepeat, PITCH, t0);
+    let before = l.ctl.repeat_timing();
+    assert_eq!(
+        (before.first_window, before.delay, before.interval),
+        (ms(700), None, None)
+    );
+    assert_eq!(before.end_gap, ms(200));
+
+    // First hold: taught.
+    let start = t0 + ms(100);
+    hold_with(&mut l, p, start, ms(3000), || Duration::ZERO);
+    let learned = l.ctl.repeat_timing();
+    assert_eq!(learned.delay, Some(ms(500)));
+    assert_eq!(learned.first_window, ms(600), "500 ms + the 100 ms margin");
+    assert_eq!(learned.end_gap, expected_gap(p.interval()));
+
+    // A tap: a press and no repeat runs the motor for the learned window, not 700 ms.
+    let tap = start + ms(6000);
+    l.run(
+        vec![(tap, Ev::Key(key(KeyCode::Char('u'), KeyEventKind::Press)))],
+        tap + ms(2000),
+        || Duration::ZERO,
+    );
+    let (runs_now, _) = runs(&l.moves());
+    assert_eq!(runs_now.len(), 2);
+    let tap_run = &runs_now[1];
+    assert_eq!(tap_run[0].0, tap);
+    assert_eq!(tap_run.last().unwrap().0 - tap, ms(600), "a bounded nudge");
+
+    // A second hold: one run, ended one learned gap after its last repeat.
+    let second = tap + ms(3000);
+    let keys = hold_with(&mut l, p, second, ms(3000), || Duration::ZERO);
+    let (runs_now, worst) = runs(&l.moves());
+    assert_eq!(runs_now.len(), 3);
+    assert!(worst <= ms(220));
+    let stop = runs_now[2].last().unwrap().0;
+    assert_eq!(stop - *keys.last().unwrap(), expected_gap(p.interval()));
+}
+
+/// A person tapping a motor key is not an auto-repeat: taps 250 ms apart teach
+/// nothing, so a later hold still gets the 700 ms first window.
+#[test]
+fn taps_teach_nothing() {
+    let t0 = Instant::now();
+    let mut l = Loop::new(ReleaseMode::AutoRepeat, PITCH, t0);
+    let events = (0..8)
+        .map(|i| {
+            (
+                t0 + ms(100 + 250 * i),
+                Ev::Key(key(KeyCode::Char('u'), KeyEventKind::Press)),
+            )
+        })
+        .collect();
+    l.run(events, t0 + ms(4000), || Duration::ZERO);
+    let t = l.ctl.repeat_timing();
+    assert_eq!((t.delay, t.interval), (None, None));
+    assert_eq!(t.first_window, ms(700));
+}
+
+/// `--repeat-delay` is kept: learning measures the terminal but does not replace a
+/// window set by hand.
+#[test]
+fn a_repeat_delay_set_by_hand_is_kept_after_learning() {
+    let p = PROFILES[3];
+    let t0 = Instant::now();
+    let mut l = Loop::new(ReleaseMode::AutoRepeat, PITCH, t0);
+    l.ctl = Controller::new(p.config());
+    hold_with(&mut l, p, t0 + ms(100), ms(3000), || Duration::ZERO);
+    let t = l.ctl.repeat_timing();
+    assert!(t.set_by_hand);
+    assert_eq!(t.first_window, ms(1100));
+    assert_eq!(t.delay, Some(ms(1000)));
+    // Without it the same terminal stutters: its first repeat comes after 700 ms.
+    let mut l = Loop::new(ReleaseMode::AutoRepeat, PITCH, t0);
+    hold_with(&mut l, p, t0 + ms(100), ms(3000), || Duration::ZERO);
+    assert_eq!(runs(&l.moves()).0.len(), 2, "why the option exists");
+}
+
+/// A page too small to be seen: `f`, `o`, `r` and the motor keys send nothing (and
+/// a held motor key stays held, so its repeats cannot start the motor once the page
+/// is back); quit and help still act.
+#[test]
+fn keys_on_a_page_too_small_to_see_send_nothing_but_quit_and_help_act() {
+    let t0 = Instant::now();
+    let model = live_model(t0);
+    let mut ctl = Controller::new(StreamerConfig::default());
+    let device = KeyContext {
+        selected: Some(Selected {
+            id: 9,
+            kind: CircuitKind::Device,
+            state: CircuitState::On,
+        }),
+        overlay_open: false,
+    };
+    for (c, ctx) in [
+        ('f', device),
+        ('o', device),
+        ('r', device),
+        ('w', device),
+        ('R', device),
+        ('u', ctx_for(PITCH)),
+        ('d', ctx_for(Motor::Flaps)),
+        ('.', ctx_for(ROLL)),
+    ] {
+        let o = ctl.handle_key_hidden(key(KeyCode::Char(c), KeyEventKind::Press), &ctx, t0);
+        assert!(o.packets.is_empty(), "{c}: sent {:?}", o.packets);
+        assert_eq!(o.action, None, "{c}");
+    }
+    assert!(ctl.running().is_none());
+    // A `u` held while hidden stays held: its repeat, once the page is back, starts
+    // nothing.
+    let u = key(KeyCode::Char('u'), KeyEventKind::Press);
+    assert!(
+        ctl.handle_key_hidden(u, &ctx_for(PITCH), t0)
+            .packets
+            .is_empty()
+    );
+    let o = ctl.handle_key(
+        key(KeyCode::Char('u'), KeyEventKind::Press),
+        &ctx_for(PITCH),
+        &model,
+        t0 + ms(30),
+    );
+    assert!(o.packets.is_empty(), "{:?}", o.packets);
+    assert_eq!(
+        ctl.handle_key_hidden(key(KeyCode::Char('q'), KeyEventKind::Press), &device, t0)
+            .action,
+        Some(Action::Quit)
+    );
+    assert_eq!(
+        ctl.handle_key_hidden(key(KeyCode::Char('?'), KeyEventKind::Press), &device, t0)
+            .action,
+        Some(Action::ToggleHelp)
+    );
+}
+
+/// The page becoming too small ends a run with its stop message.
+#[test]
+fn a_page_too_small_to_see_ends_the_run() {
+    for mode in MODES {
+        let t0 = Instant::now();
+        let mut l = Loop::new(mode, PITCH, t0);
+        let start = t0 + ms(100);
+        l.run(
+            held_key(mode, KeyCode::Char('u'), start, ms(3000), DELAY, RATE),
+            start + ms(1200),
+            || Duration::ZERO,
+        );
+        let shrunk = start + ms(1200);
+        let p = l.ctl.stop(shrunk, StopReason::PageHidden);
+        l.send(shrunk, p);
+        assert_one_run(
+            &l,
+            pitch_stop(TrimDirection::UpOrLeft),
+            StopReason::PageHidden,
+            shrunk,
+        );
+        assert!(
+            l.ctl.take_notice().is_some_and(|n| n.contains("too small")),
+            "the stop says why"
+        );
+    }
 }

@@ -24,6 +24,8 @@ pub struct PageOptions {
     pub speed: f64,
     /// Longest continuous trim/flap run, in seconds, as typed (checked by `run`).
     pub max_run: f64,
+    /// `--repeat-delay` in milliseconds, as typed (checked by `run`).
+    pub repeat_delay: Option<u64>,
     /// `--theme`: a palette, or `Auto` to ask the terminal.
     pub theme: crate::ui::palette::Requested,
 }

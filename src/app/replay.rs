@@ -37,7 +37,7 @@ use crate::link::{
 use crate::model::{Connection, Model, Source};
 use crate::protocol::{Decoder, Event, Packet};
 use crate::traffic::ReplayStatus;
-use crate::ui::{self, state::ReleaseMode, state::Screen};
+use crate::ui::{self, state::Screen};
 
 /// The link reads at most this much at once; the replay writes no more per chunk, so
 /// each chunk is exactly one read and gets exactly its record's time.
@@ -644,11 +644,7 @@ pub fn run(file: &Path, args: &super::PageOptions) -> anyhow::Result<()> {
     let mut guard = TerminalGuard::enter()?;
     let options = AppOptions {
         theme,
-        release_mode: if guard.key_release {
-            ReleaseMode::KeyRelease
-        } else {
-            ReleaseMode::AutoRepeat
-        },
+        release_mode: crate::control::release_mode_here(guard.key_release),
         ..AppOptions::default()
     };
     let mut app = App::replay(capture, options, args.speed, false);

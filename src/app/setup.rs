@@ -39,8 +39,7 @@ fn motor_ctx(motor: Motor, model: &Model, now: Instant) -> KeyContext {
 impl App {
     pub(super) fn setup_key(&mut self, key: KeyEvent, now: Instant) -> Flow {
         if key.modifiers.contains(KeyModifiers::CONTROL) && key.code == KeyCode::Char('c') {
-            let stop = self.controller.stop(now, StopReason::Quit);
-            self.send(stop);
+            self.controller.stop(now, StopReason::Quit);
             return Flow::Quit;
         }
         let sv = &self.view.setup;
@@ -56,15 +55,13 @@ impl App {
                 Some(Action::Motor { .. }) | Some(Action::KeyReleased) => {
                     let out = self.controller.handle_key(key, &ctx, &model, now);
                     drop(model);
-                    self.send(out.packets);
                     self.set_notice(now, out.notice);
                     self.view.motor_run = self.controller.running();
                     return Flow::Continue;
                 }
                 Some(Action::Unavailable(why)) => {
                     drop(model);
-                    let stop = self.controller.stop(now, StopReason::OtherKey);
-                    self.send(stop);
+                    self.controller.stop(now, StopReason::OtherKey);
                     self.view.setup.message = Some((Tone::Bad, why.to_string()));
                     return Flow::Continue;
                 }
@@ -75,8 +72,7 @@ impl App {
             return Flow::Continue;
         }
         // Any other key stops a running motor before it does anything else.
-        let stop = self.controller.stop(now, StopReason::OtherKey);
-        self.send(stop);
+        self.controller.stop(now, StopReason::OtherKey);
         let n = self.controller.take_notice();
         self.set_notice(now, n);
         self.view.motor_run = self.controller.running();

@@ -18,8 +18,7 @@ const PAGE: usize = 20;
 impl App {
     pub(super) fn traffic_key(&mut self, key: KeyEvent, now: Instant) -> Flow {
         // Any key stops a running motor before it does anything else here.
-        let stop = self.controller.stop(now, StopReason::OtherKey);
-        self.send(stop);
+        self.controller.stop(now, StopReason::OtherKey);
         if key.kind == KeyEventKind::Release {
             return Flow::Continue;
         }

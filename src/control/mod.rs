@@ -20,6 +20,7 @@
 
 pub mod commands;
 pub mod keymap;
+pub mod release;
 pub mod streamer;
 
 use std::time::Instant;
@@ -28,10 +29,11 @@ use crossterm::event::KeyEvent;
 
 use crate::model::Model;
 use crate::protocol::message::Packet;
-use crate::ui::state::{MotorRun, ReleaseMode};
+use crate::ui::state::{MotorRun, ReleaseMode, RepeatTiming};
 
 pub use commands::{Refusal, command, motor_check, motor_permit};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};
+pub use release::{release_mode, release_mode_here};
 pub use streamer::{
     Direction, MAX_WIRE_INTERVAL, MotorStreamer, StopReason, StopRecord, StreamerConfig,
 };
@@ -75,6 +77,11 @@ impl Controller {
 
     pub fn streamer(&self) -> &MotorStreamer {
         &self.streamer
+    }
+
+    /// The auto-repeat timing in use, for the screen.
+    pub fn repeat_timing(&self) -> RepeatTiming {
+        self.streamer.repeat_timing()
     }
 
     /// A command number for the app's own requests (queries at connect), from the
@@ -186,6 +193,43 @@ impl Controller {
         if !out.is_empty() && self.streamer.running_key().is_none() {
             // Keep an untaken notice rather than overwrite it with nothing.
             self.pending_notice = self.stopped_notice().or(self.pending_notice.take());
+        }
+        out
+    }
+
+    /// The stream alone, without the model: resends and the stream's own clocks
+    /// (dead man, run cap, starvation). For a sender that must not wait on the model
+    /// lock; [`Controller::tick`] still has to run when packets arrive.
+    pub fn tick_stream(&mut self, now: Instant) -> Vec<Packet> {
+        let out = self.streamer.tick(now);
+        if !out.is_empty() && self.streamer.running_key().is_none() {
+            self.pending_notice = self.stopped_notice().or(self.pending_notice.take());
+        }
+        out
+    }
+
+    /// A key while the page cannot be seen (a terminal too small for it): it does
+    /// nothing but quit or toggle help. A motor key is only remembered as held, so
+    /// its repeats cannot start the motor once the page is shown again; a run is
+    /// stopped (it should already have been, by [`StopReason::PageHidden`]).
+    pub fn handle_key_hidden(&mut self, key: KeyEvent, ctx: &KeyContext, now: Instant) -> Outcome {
+        let mut out = Outcome {
+            packets: self.stop(now, StopReason::PageHidden),
+            ..Outcome::default()
+        };
+        out.notice = self.take_notice();
+        match keymap::map(&key, ctx) {
+            Some(Action::Motor {
+                motor, direction, ..
+            }) => out
+                .packets
+                .extend(self.streamer.press_refused(now, motor, direction)),
+            // A release still counts, or the key would stay "held" for good.
+            Some(Action::KeyReleased) => out.packets.extend(self.streamer.release(now)),
+            Some(a @ (Action::Quit | Action::ToggleHelp | Action::CloseOverlay)) => {
+                out.action = Some(a)
+            }
+            _ => {}
         }
         out
     }

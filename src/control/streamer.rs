@@ -10,6 +10,14 @@
 //! continuous run time. After an end the held key cannot restart the run: only a fresh
 //! press after a release (or, without release reports, a gap in the repeats) can.
 //!
+//! Without release reports (auto-repeat mode) the streamer learns the terminal's own
+//! repeat: the first hold waits up to [`FIRST_REPEAT_DEFAULT`] for the first repeat;
+//! once a hold has shown a steady repeat, the first-repeat window becomes the measured
+//! delay plus [`FIRST_REPEAT_MARGIN`] (within [`FIRST_WINDOW_MIN`]..=[`FIRST_WINDOW_MAX`])
+//! and the end-of-run gap about three measured intervals (within
+//! [`GAP_MIN`]..=[`GAP_MAX`]). A tap (a press with no repeat) is therefore a nudge of at
+//! most the first window.
+//!
 //! Nothing here reads a clock, sleeps or does I/O: every call takes `now`, and
 //! [`MotorStreamer::next_deadline`] tells the caller when to call
 //! [`MotorStreamer::tick`] next, so tests drive it on a fake clock.
@@ -19,13 +27,41 @@ use std::time::{Duration, Instant};
 use crate::model::{Motor, TrimKind};
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{FlapDirection, FlapMove, Packet, TrimDirection, TrimMove};
-use crate::ui::state::{MotorRun, ReleaseMode};
+use crate::ui::state::{MotorRun, ReleaseMode, RepeatTiming};
 
 /// Reading note 19: the longest gap the unit tolerates between move messages.
 pub const MAX_WIRE_INTERVAL: Duration = Duration::from_millis(250);
 /// The longest resend period accepted. The 50 ms left below [`MAX_WIRE_INTERVAL`] is
-/// for a main loop that wakes late (a busy redraw, a slow terminal write).
+/// for a sender that wakes late (a loaded machine).
 pub const MAX_RESEND_PERIOD: Duration = Duration::from_millis(200);
+/// The resend period used: 6.7 Hz, so a sender that wakes up to 100 ms late still
+/// meets the 250 ms rule. A TRIM_MOVE frame is 11 bytes, so the stream costs about
+/// 1.3 % of the 57 600-baud line.
+pub const RESEND_PERIOD: Duration = Duration::from_millis(150);
+/// Auto-repeat mode, before anything is learned: how long the first hold waits for
+/// the first repeat. Covers X (660 ms), KDE and sway (600 ms), GNOME, macOS and
+/// Windows (500 ms) defaults.
+pub const FIRST_REPEAT_DEFAULT: Duration = Duration::from_millis(700);
+/// Added to a measured repeat delay to make the first-repeat window.
+pub const FIRST_REPEAT_MARGIN: Duration = Duration::from_millis(100);
+/// The learned first-repeat window stays within these.
+pub const FIRST_WINDOW_MIN: Duration = Duration::from_millis(300);
+pub const FIRST_WINDOW_MAX: Duration = Duration::from_millis(1200);
+/// Auto-repeat mode, before an interval is learned: how long after a repeat the next
+/// may take.
+pub const GAP_DEFAULT: Duration = Duration::from_millis(200);
+/// The learned end-of-run gap (three measured intervals) stays within these: never so
+/// short that scheduling jitter ends a held run, never over the unit's own 250 ms.
+pub const GAP_MIN: Duration = Duration::from_millis(90);
+pub const GAP_MAX: Duration = Duration::from_millis(250);
+/// Learning judges a hold: its repeats must come at least this fast (10 Hz; people
+/// do not tap that fast for long) and the first must come at least twice the
+/// interval after the press, as every auto-repeat's does.
+const LEARN_MAX_INTERVAL: Duration = Duration::from_millis(100);
+const LEARN_MIN_DELAY: Duration = Duration::from_millis(150);
+const LEARN_MAX_DELAY: Duration = Duration::from_millis(1500);
+/// How many intervals a hold must show before its rate is trusted.
+const LEARN_MIN_INTERVALS: usize = 3;
 /// Below this the stream would only crowd the 57 600-baud link.
 pub const MIN_RESEND_PERIOD: Duration = Duration::from_millis(20);
 /// A configured run cap is clamped to this: it must stay below the 30 s flap max run
@@ -83,6 +119,9 @@ pub enum StopReason {
     MotorDisabled,
     FlapDownInhibited,
     MaxRunTime,
+    /// The terminal became too small to show the page: nothing the person cannot see
+    /// may keep running.
+    PageHidden,
     /// The caller did not call `tick` in time, so a gap over 250 ms already went out;
     /// the unit has stopped the motor and the page does not silently restart it.
     Starved,
@@ -104,6 +143,7 @@ impl StopReason {
             StopReason::MotorDisabled => "the motor is not enabled".into(),
             StopReason::FlapDownInhibited => "flap down is inhibited".into(),
             StopReason::MaxRunTime => "maximum run time reached; press the key again".into(),
+            StopReason::PageHidden => "the terminal is too small to show the page".into(),
             StopReason::Starved => "the page fell behind the 4 Hz stream".into(),
             StopReason::Panic => "the program failed".into(),
         }
@@ -133,9 +173,13 @@ pub struct StreamerConfig {
     pub resend_period: Duration,
     /// The longest continuous run; clamped to [`MAX_RUN_LIMIT`].
     pub max_run: Duration,
-    /// Auto-repeat mode: how long after the press the first repeat may take.
+    /// Auto-repeat mode: how long after the press the first repeat may take, until a
+    /// repeat delay is learned ([`FIRST_REPEAT_DEFAULT`], or `--repeat-delay`).
     pub first_repeat_timeout: Duration,
-    /// Auto-repeat mode: how long after a repeat the next may take.
+    /// `first_repeat_timeout` was set by hand (`--repeat-delay`): learning keeps it.
+    pub first_repeat_fixed: bool,
+    /// Auto-repeat mode: how long after a repeat the next may take, until a repeat
+    /// interval is learned.
     pub repeat_timeout: Duration,
     /// Key-release mode's second dead man: a terminal with the kitty keyboard protocol
     /// also sends Repeat events while a key is held, so a release event that is lost
@@ -151,12 +195,15 @@ impl Default for StreamerConfig {
     fn default() -> Self {
         StreamerConfig {
             release_mode: ReleaseMode::default(),
-            resend_period: Duration::from_millis(200),
+            resend_period: RESEND_PERIOD,
             max_run: Duration::from_secs(10),
-            first_repeat_timeout: Duration::from_millis(600),
-            repeat_timeout: Duration::from_millis(200),
+            first_repeat_timeout: FIRST_REPEAT_DEFAULT,
+            first_repeat_fixed: false,
+            repeat_timeout: GAP_DEFAULT,
+            // 1.3 s: Windows (which reports releases natively) lets people set a
+            // repeat delay of up to 1 s.
             key_release_repeat_guard: Some((
-                Duration::from_millis(1000),
+                Duration::from_millis(1300),
                 Duration::from_millis(500),
             )),
         }
@@ -185,6 +232,62 @@ struct Held {
     repeats_seen: bool,
 }
 
+/// The timing of the current hold, for learning the terminal's auto-repeat.
+#[derive(Debug, Clone, Copy)]
+struct HoldTiming {
+    key: MotorKey,
+    pressed: Instant,
+    last: Instant,
+    /// From the press to the first repeat.
+    delay: Option<Duration>,
+    /// The latest intervals between repeats (a ring), and how many were seen.
+    intervals: [Duration; 8],
+    seen: usize,
+}
+
+impl HoldTiming {
+    fn new(key: MotorKey, now: Instant) -> Self {
+        HoldTiming {
+            key,
+            pressed: now,
+            last: now,
+            delay: None,
+            intervals: [Duration::ZERO; 8],
+            seen: 0,
+        }
+    }
+
+    fn repeat(&mut self, now: Instant) {
+        let since = now.saturating_duration_since(self.last);
+        match self.delay {
+            None => self.delay = Some(now.saturating_duration_since(self.pressed)),
+            Some(_) => {
+                self.intervals[self.seen % self.intervals.len()] = since;
+                self.seen += 1;
+            }
+        }
+        self.last = now;
+    }
+
+    /// The median of the latest intervals, once there are enough to trust.
+    fn interval(&self) -> Option<Duration> {
+        let n = self.seen.min(self.intervals.len());
+        if n < LEARN_MIN_INTERVALS {
+            return None;
+        }
+        let mut v = self.intervals[..n].to_vec();
+        v.sort();
+        Some(v[n / 2])
+    }
+}
+
+/// What the streamer learned of the terminal's auto-repeat.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+struct Learned {
+    delay: Option<Duration>,
+    interval: Option<Duration>,
+}
+
 #[derive(Debug, Clone, Copy)]
 struct Run {
     key: MotorKey,
@@ -199,6 +302,8 @@ pub struct MotorStreamer {
     cnt: u8,
     run: Option<Run>,
     held: Option<Held>,
+    hold: Option<HoldTiming>,
+    learned: Learned,
     last_stop: Option<StopRecord>,
 }
 
@@ -209,6 +314,8 @@ impl MotorStreamer {
             cnt: 0,
             run: None,
             held: None,
+            hold: None,
+            learned: Learned::default(),
             last_stop: None,
         }
     }
@@ -220,6 +327,38 @@ impl MotorStreamer {
 
     pub fn release_mode(&self) -> ReleaseMode {
         self.config.release_mode
+    }
+
+    /// The auto-repeat timing in use, for the screen.
+    pub fn repeat_timing(&self) -> RepeatTiming {
+        RepeatTiming {
+            first_window: self.first_window(),
+            delay: self.learned.delay,
+            interval: self.learned.interval,
+            end_gap: self.gap(),
+            set_by_hand: self.config.first_repeat_fixed,
+        }
+    }
+
+    /// Auto-repeat mode: how long after a fresh press the first repeat may take. A tap
+    /// runs the motor at most this long.
+    pub fn first_window(&self) -> Duration {
+        match self.learned.delay {
+            Some(d) if !self.config.first_repeat_fixed => {
+                (d + FIRST_REPEAT_MARGIN).clamp(FIRST_WINDOW_MIN, FIRST_WINDOW_MAX)
+            }
+            _ => self.config.first_repeat_timeout,
+        }
+    }
+
+    /// Auto-repeat mode: how long after a repeat the next may take before the key is
+    /// taken as released.
+    pub fn gap(&self) -> Duration {
+        self.learned
+            .interval
+            .map_or(self.config.repeat_timeout, |i| {
+                (i * 3).clamp(GAP_MIN, GAP_MAX)
+            })
     }
 
     /// Switching modes forgets the held key: the two modes judge "held" differently.
@@ -287,6 +426,7 @@ impl MotorStreamer {
         let mut out = self.expire(now);
         out.extend(self.end(now, reason));
         if reason == StopReason::FocusLost {
+            self.hold = None;
             self.held = match self.config.release_mode {
                 // Release events for keys let go while unfocused never arrive; repeats
                 // are marked as such and cannot start a run, so forgetting is safe.
@@ -391,6 +531,7 @@ impl MotorStreamer {
         }
         let key = (motor, direction);
         let repeat = !maybe_fresh || self.is_repeat(now, key);
+        self.learn(now, key, repeat);
         self.held = Some(Held {
             key: Some(key),
             last_event: now,
@@ -428,9 +569,36 @@ impl MotorStreamer {
 
     fn window(&self, h: &Held) -> Duration {
         if h.repeats_seen {
-            self.config.repeat_timeout
+            self.gap()
         } else {
-            self.config.first_repeat_timeout
+            self.first_window()
+        }
+    }
+
+    /// Times the hold: a fresh press starts a new one, a repeat of its key adds to
+    /// it. A hold whose repeats are steady and fast teaches the interval, and the
+    /// delay to its first repeat if that is plausibly an auto-repeat delay; taps and
+    /// re-presses (slow, or a "first repeat" no longer than the rate) teach nothing.
+    fn learn(&mut self, now: Instant, key: MotorKey, repeat: bool) {
+        match self.hold.as_mut() {
+            Some(h) if repeat && h.key == key => h.repeat(now),
+            _ if repeat => return,
+            _ => {
+                self.hold = Some(HoldTiming::new(key, now));
+                return;
+            }
+        }
+        let Some(h) = self.hold else { return };
+        let Some(interval) = h.interval() else { return };
+        if interval > LEARN_MAX_INTERVAL {
+            return;
+        }
+        self.learned.interval = Some(interval);
+        if let Some(d) = h.delay
+            && d >= interval * 2
+            && (LEARN_MIN_DELAY..=LEARN_MAX_DELAY).contains(&d)
+        {
+            self.learned.delay = Some(d);
         }
     }
 

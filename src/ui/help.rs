@@ -37,6 +37,30 @@ pub const REPLAY_KEYS: &[(&str, &str)] = &[
     ("+  -", "replay: faster / slower"),
 ];
 
+/// How a held motor key is judged here, in words: what ends a run, and how far a tap
+/// moves a motor.
+pub fn release_lines(view: &ViewState) -> Vec<String> {
+    match (view.release_mode, view.repeat) {
+        (ReleaseMode::KeyRelease, _) => {
+            vec!["key release seen: a run ends when you let go (or if repeats stop)".into()]
+        }
+        (ReleaseMode::AutoRepeat, None) => vec![
+            "no key release here: a run ends ~0.2 s after key repeats stop".into(),
+            "a tap (no repeat) runs a motor until the first repeat is due".into(),
+        ],
+        (ReleaseMode::AutoRepeat, Some(t)) => vec![
+            format!(
+                "no key release here: a run ends {} ms after key repeats stop",
+                t.end_gap.as_millis()
+            ),
+            format!(
+                "a tap (no repeat) runs a motor {} ms at most",
+                t.first_window.as_millis()
+            ),
+        ],
+    }
+}
+
 pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
     let keys: Vec<&(&str, &str)> = KEYS
         .iter()
@@ -50,7 +74,9 @@ pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
         .unwrap_or(40) as u16
         + 6)
     .min(area.width.saturating_sub(2));
-    let height = (keys.len() as u16 + 7 + u16::from(replay)).min(area.height.saturating_sub(2));
+    let release = release_lines(view);
+    let height = (keys.len() as u16 + 6 + release.len() as u16 + u16::from(replay))
+        .min(area.height.saturating_sub(2));
     let [row] = Layout::vertical([Constraint::Length(height)])
         .flex(Flex::Center)
         .areas(area);
@@ -74,13 +100,9 @@ pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
             theme::caution(),
         ));
     }
-    let mode = match view.release_mode {
-        ReleaseMode::KeyRelease => {
-            "key release seen: a run ends when you let go (or if repeats stop)"
-        }
-        ReleaseMode::AutoRepeat => "no key release here: a run ends ~0.2 s after key repeats stop",
-    };
-    lines.push(Line::styled(mode, theme::label()));
+    for line in release {
+        lines.push(Line::styled(line, theme::label()));
+    }
     lines.push(Line::styled(
         "any other key stops a run; after 10 s press again",
         theme::label(),

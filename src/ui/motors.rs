@@ -10,7 +10,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
 
-use super::state::{ReleaseMode, ViewState};
+use super::state::{ReleaseMode, RepeatTiming, ViewState};
 use super::{theme, values};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
@@ -217,15 +217,26 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
         }
         flag_spans.push(Span::styled(t, s));
     }
-    let mode = match view.release_mode {
-        ReleaseMode::KeyRelease => "keys: release seen",
-        ReleaseMode::AutoRepeat => "keys: auto-repeat",
+    let run = view
+        .motor_run
+        .map(|run| format!("▶ {} {}", run.motor.name(), run.direction));
+    let run_width = run.as_ref().map_or(0, |r| r.chars().count() + 2);
+    let mut mode = match view.release_mode {
+        ReleaseMode::KeyRelease => "keys: release seen".to_string(),
+        ReleaseMode::AutoRepeat => "keys: auto-repeat".to_string(),
     };
+    // The timing the page judges repeats by, where the panel has room for it.
+    if let (ReleaseMode::AutoRepeat, Some(t)) = (view.release_mode, view.repeat) {
+        let full = format!("{mode} · {}", repeat_timing(&t));
+        if full.chars().count() + run_width <= usize::from(area.width) {
+            mode = full;
+        }
+    }
     let mut last = vec![Span::styled(mode, theme::label())];
-    if let Some(run) = view.motor_run {
+    if let Some(run) = run {
         last.push(Span::raw("  "));
         last.push(Span::styled(
-            format!("▶ {} {}", run.motor.name(), run.direction),
+            run,
             Style::new().fg(theme::ON).add_modifier(Modifier::BOLD),
         ));
     }
@@ -250,4 +261,17 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
         );
     }
     frame.render_widget(Paragraph::new(Line::from(last)), mode_area);
+}
+
+/// "660 ms / 40 ms, learned": the first-repeat delay and the repeat interval the page
+/// measured, or the wait it uses until it has.
+pub fn repeat_timing(t: &RepeatTiming) -> String {
+    let ms = |d: std::time::Duration| d.as_millis();
+    match (t.set_by_hand, t.delay, t.interval) {
+        (false, Some(d), Some(i)) => format!("{} ms / {} ms, learned", ms(d), ms(i)),
+        (false, _, Some(i)) => format!("{} ms / {} ms, learning", ms(t.first_window), ms(i)),
+        (false, _, None) => format!("{} ms, learning", ms(t.first_window)),
+        (true, _, Some(i)) => format!("{} ms set / {} ms learned", ms(t.first_window), ms(i)),
+        (true, _, None) => format!("{} ms, set", ms(t.first_window)),
+    }
 }

@@ -1,6 +1,8 @@
 //! What the person is looking at: selection, sort order, overlays. Owned by the app,
 //! changed by the app in answer to control's actions, read by the widgets.
 
+use std::time::Duration;
+
 use crate::model::Motor;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -41,6 +43,21 @@ pub enum ReleaseMode {
     AutoRepeat,
 }
 
+/// How the page judges a held motor key in auto-repeat mode, for the screen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RepeatTiming {
+    /// How long after a fresh press the first repeat may take (a tap runs this long
+    /// at most).
+    pub first_window: Duration,
+    /// Measured from this terminal's own repeats, once a hold has shown them.
+    pub delay: Option<Duration>,
+    pub interval: Option<Duration>,
+    /// How long after the last repeat a run ends.
+    pub end_gap: Duration,
+    /// `first_window` was set by hand (`--repeat-delay`).
+    pub set_by_hand: bool,
+}
+
 /// The motor stream the page is sending right now, for display.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MotorRun {
@@ -57,6 +74,8 @@ pub struct ViewState {
     pub sort: SortOrder,
     pub overlay: Overlay,
     pub release_mode: ReleaseMode,
+    /// Auto-repeat timing in use; `None` where no streamer feeds the view.
+    pub repeat: Option<RepeatTiming>,
     pub motor_run: Option<MotorRun>,
     /// A short message for the person (a refused key, a sent command).
     pub notice: Option<String>,

@@ -134,6 +134,13 @@ pub struct Rig {
 
 impl Rig {
     pub fn new(mode: ReleaseMode) -> Rig {
+        Rig::with_options(AppOptions {
+            release_mode: mode,
+            ..AppOptions::default()
+        })
+    }
+
+    pub fn with_options(options: AppOptions) -> Rig {
         let (sim_side, page_side) = link::duplex_pipe(Duration::from_millis(20));
         let scenario = Scenario::from_toml(SCENARIO).expect("scenario");
         let sim = sim::spawn(
@@ -153,11 +160,7 @@ impl Rig {
                 path: link_path.display().to_string(),
             },
             link::serial_connector(link_path.clone(), 57_600),
-            AppOptions {
-                max_run: Duration::from_secs(10),
-                release_mode: mode,
-                ..AppOptions::default()
-            },
+            options,
         );
         Rig {
             app,

@@ -1,0 +1,205 @@
+//! The motor stream's own thread: the 4 Hz resend and the dead man's stop go out on
+//! their own clock, not when the UI loop gets round to it.
+//!
+//! The UI loop can be late by a redraw, a slow terminal write, or a wait for the model
+//! lock; none of that may stretch a gap between move messages toward the unit's
+//! 250 ms. So the controller lives behind its own lock, which nothing holds while
+//! drawing or doing I/O, and this thread wakes at the controller's deadline, ticks the
+//! stream (no model needed) and queues what it gets on the link.
+//!
+//! Order on the wire is order of decision: every packet the controller gives back is
+//! queued while its lock is still held, by this thread and by the page alike, so a
+//! resend decided before a stop can never reach the wire after it.
+
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+use std::time::Instant;
+
+use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, unbounded};
+
+use crossterm::event::KeyEvent;
+
+use super::{Wake, terminal};
+use crate::control::{Action, Controller, KeyContext, StopReason};
+use crate::link::LinkHandle;
+use crate::model::Model;
+use crate::protocol::message::Packet;
+use crate::ui::state::{MotorRun, RepeatTiming};
+
+/// What a key did, its packets already queued on the link.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Handled {
+    pub action: Option<Action>,
+    pub notice: Option<String>,
+}
+
+/// The controller and the way to the link, shared by the page and the thread.
+pub struct MotorPath {
+    controller: Mutex<Controller>,
+    /// `None` in replay: nothing reaches a wire.
+    link: Option<LinkHandle>,
+    /// Tells the thread the controller changed, so it looks at the deadline again.
+    poke: Mutex<Option<Sender<()>>>,
+}
+
+impl MotorPath {
+    pub fn new(controller: Controller, link: Option<LinkHandle>) -> Arc<MotorPath> {
+        Arc::new(MotorPath {
+            controller: Mutex::new(controller),
+            link,
+            poke: Mutex::new(None),
+        })
+    }
+
+    fn lock(&self) -> MutexGuard<'_, Controller> {
+        // A panic elsewhere while holding the lock must not also stop the motor path:
+        // the stop that follows a panic goes through here.
+        self.controller.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// Reads the controller (or takes its notice, or a command number): nothing that
+    /// sends or moves its deadline.
+    pub fn with<R>(&self, f: impl FnOnce(&mut Controller) -> R) -> R {
+        f(&mut self.lock())
+    }
+
+    /// Runs `f` and queues the packets it returns before letting go of the
+    /// controller.
+    pub fn act(&self, f: impl FnOnce(&mut Controller) -> Vec<Packet>) {
+        self.act_with(|c| (f(c), ()))
+    }
+
+    /// As [`MotorPath::act`], also returning what else `f` gives.
+    pub fn act_with<R>(&self, f: impl FnOnce(&mut Controller) -> (Vec<Packet>, R)) -> R {
+        let r = {
+            let mut c = self.lock();
+            let (packets, r) = f(&mut c);
+            self.queue(packets);
+            r
+        };
+        self.poke();
+        r
+    }
+
+    // ----- the controller's calls the page makes, sending inside the lock -----
+
+    pub fn handle_key(
+        &self,
+        key: KeyEvent,
+        ctx: &KeyContext,
+        model: &Model,
+        now: Instant,
+    ) -> Handled {
+        self.act_with(|c| {
+            let o = c.handle_key(key, ctx, model, now);
+            (
+                o.packets,
+                Handled {
+                    action: o.action,
+                    notice: o.notice,
+                },
+            )
+        })
+    }
+
+    /// A key while the page cannot be seen: see [`Controller::handle_key_hidden`].
+    pub fn handle_key_hidden(&self, key: KeyEvent, ctx: &KeyContext, now: Instant) -> Handled {
+        self.act_with(|c| {
+            let o = c.handle_key_hidden(key, ctx, now);
+            (
+                o.packets,
+                Handled {
+                    action: o.action,
+                    notice: o.notice,
+                },
+            )
+        })
+    }
+
+    /// Ends a running motor for `reason`, its stop queued.
+    pub fn stop(&self, now: Instant, reason: StopReason) {
+        self.act(|c| c.stop(now, reason));
+    }
+
+    /// The model's verdict and the stream's clocks, after packets arrived.
+    pub fn tick(&self, model: &Model, now: Instant) {
+        self.act(|c| c.tick(model, now));
+    }
+
+    pub fn running(&self) -> Option<MotorRun> {
+        self.with(|c| c.running())
+    }
+
+    pub fn take_notice(&self) -> Option<String> {
+        self.with(|c| c.take_notice())
+    }
+
+    pub fn next_cnt(&self) -> u8 {
+        self.with(|c| c.next_cnt())
+    }
+
+    pub fn repeat_timing(&self) -> RepeatTiming {
+        self.with(|c| c.repeat_timing())
+    }
+
+    fn queue(&self, packets: Vec<Packet>) {
+        if let Some(link) = &self.link {
+            for p in packets {
+                // A closed link has already been reported to the model.
+                let _ = link.send(p);
+            }
+        }
+    }
+
+    fn poke(&self) {
+        if let Some(tx) = self.poke.lock().unwrap_or_else(|p| p.into_inner()).as_ref() {
+            let _ = tx.send(());
+        }
+    }
+
+    /// Starts the thread. It runs until [`MotorPath::stop_thread`].
+    pub fn spawn(self: &Arc<Self>, wake: Sender<Wake>) -> Option<JoinHandle<()>> {
+        let (tx, rx) = unbounded();
+        *self.poke.lock().unwrap_or_else(|p| p.into_inner()) = Some(tx);
+        let path = self.clone();
+        std::thread::Builder::new()
+            .name("motor-stream".into())
+            .spawn(move || path.run(&rx, &wake))
+            .ok()
+    }
+
+    /// Ends the thread (it sees the poke channel close).
+    pub fn stop_thread(&self) {
+        self.poke.lock().unwrap_or_else(|p| p.into_inner()).take();
+    }
+
+    fn run(&self, poke: &Receiver<()>, wake: &Sender<Wake>) {
+        loop {
+            let deadline = self.lock().next_deadline();
+            let got = match deadline {
+                Some(d) => poke.recv_timeout(d.saturating_duration_since(Instant::now())),
+                None => poke.recv().map_err(|_| RecvTimeoutError::Disconnected),
+            };
+            if got == Err(RecvTimeoutError::Disconnected) {
+                return;
+            }
+            let now = Instant::now();
+            let ended = {
+                let mut c = self.lock();
+                let was_running = c.running().is_some();
+                let packets = if terminal::panicked() {
+                    // The hook sent the emergency stop; never resend after it.
+                    c.stop(now, StopReason::Panic)
+                } else {
+                    c.tick_stream(now)
+                };
+                self.queue(packets);
+                was_running && c.running().is_none()
+            };
+            if ended {
+                // The page shows the stop and its reason.
+                let _ = wake.send(Wake::Motor);
+            }
+        }
+    }
+}
