@@ -286,6 +286,9 @@ impl App {
                     return Flow::Quit;
                 }
             }
+            TermEvent::FocusGained => {
+                self.controller.with(|c| c.on_focus_gained(now));
+            }
             TermEvent::FocusLost => {
                 self.controller.stop(now, StopReason::FocusLost);
                 let n = self.controller.take_notice();

@@ -252,6 +252,11 @@ impl Controller {
         self.stop(now, StopReason::FocusLost)
     }
 
+    /// The terminal has focus again: see [`MotorStreamer::focus_gained`].
+    pub fn on_focus_gained(&mut self, now: Instant) {
+        self.streamer.focus_gained(now);
+    }
+
     pub fn on_quit(&mut self, now: Instant) -> Vec<Packet> {
         self.stop(now, StopReason::Quit)
     }

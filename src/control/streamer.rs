@@ -230,6 +230,11 @@ struct Held {
     key: Option<MotorKey>,
     last_event: Instant,
     repeats_seen: bool,
+    /// With `key: None`: focus has not come back yet. Until it does, any motor key
+    /// event is taken as a repeat; once it has, only one within the repeat gap of its
+    /// return is (a key held through the change repeats at once), and a later press
+    /// starts a run as any press does.
+    awaiting_focus: bool,
 }
 
 /// The timing of the current hold, for learning the terminal's auto-repeat.
@@ -436,10 +441,23 @@ impl MotorStreamer {
                     key: None,
                     last_event: now,
                     repeats_seen: true,
+                    awaiting_focus: true,
                 }),
             };
         }
         out
+    }
+
+    /// The terminal has focus again (after [`StopReason::FocusLost`]). A key held
+    /// through the change repeats right away and is still not a fresh press; a press
+    /// after that is.
+    pub fn focus_gained(&mut self, now: Instant) {
+        if let Some(h) = self.held.as_mut()
+            && h.key.is_none()
+        {
+            h.awaiting_focus = false;
+            h.last_event = now;
+        }
     }
 
     /// Ends a run whose time is up and re-sends the move message when due. Call it at
@@ -537,6 +555,7 @@ impl MotorStreamer {
             last_event: now,
             // After the first repeat the next comes at the repeat rate, not the delay.
             repeats_seen: repeat,
+            awaiting_focus: false,
         });
         match self.run {
             Some(run) if run.key == key => {}
@@ -558,7 +577,8 @@ impl MotorStreamer {
     fn is_repeat(&self, now: Instant, key: MotorKey) -> bool {
         let Some(h) = self.held else { return false };
         match h.key {
-            None => true,
+            None if h.awaiting_focus => true,
+            None => now < h.last_event + self.window(&h),
             Some(k) if k != key => false,
             Some(_) => match self.config.release_mode {
                 ReleaseMode::KeyRelease => true,
