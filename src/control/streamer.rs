@@ -34,10 +34,11 @@ pub const MAX_WIRE_INTERVAL: Duration = Duration::from_millis(250);
 /// The longest resend period accepted. The 50 ms left below [`MAX_WIRE_INTERVAL`] is
 /// for a sender that wakes late (a loaded machine).
 pub const MAX_RESEND_PERIOD: Duration = Duration::from_millis(200);
-/// The resend period used: 6.7 Hz, so a sender that wakes up to 100 ms late still
-/// meets the 250 ms rule. A TRIM_MOVE frame is 11 bytes, so the stream costs about
-/// 1.3 % of the 57 600-baud line.
-pub const RESEND_PERIOD: Duration = Duration::from_millis(150);
+/// The resend period used: 8 Hz, so a sender that wakes up to 125 ms late still
+/// meets the 250 ms rule (at 150 ms, two busy processes on a loaded 2-core machine
+/// pushed 2 % of intervals past 220 ms in the page bench). A TRIM_MOVE frame is 12
+/// bytes, so the stream costs about 1.7 % of the 57 600-baud line.
+pub const RESEND_PERIOD: Duration = Duration::from_millis(125);
 /// Auto-repeat mode, before anything is learned: how long the first hold waits for
 /// the first repeat. Covers X (660 ms), KDE and sway (600 ms), GNOME, macOS and
 /// Windows (500 ms) defaults.
