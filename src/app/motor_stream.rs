@@ -10,6 +10,12 @@
 //! Order on the wire is order of decision: every packet the controller gives back is
 //! queued while its lock is still held, by this thread and by the page alike, so a
 //! resend decided before a stop can never reach the wire after it.
+//!
+//! One wait on the model lock remains on the way to the wire: the link's writer
+//! reports each frame it wrote to the model (traffic view, capture) before taking the
+//! next. The page draws without holding that lock while writing to the terminal, so
+//! it is held only for microseconds; reporting from another thread would cut even
+//! that, but would let the model and the capture fall behind the wire.
 
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;

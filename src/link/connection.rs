@@ -174,27 +174,6 @@ impl Drop for Link {
 }
 
 fn writer_loop(rx: Receiver<Outgoing>, sink: Sink) {
-    // What was written is reported from a thread of its own: the sink takes the page's
-    // model lock, and a packet queued behind a report must not wait for that lock (a
-    // motor's resend among them: its gap on the wire is the unit's 250 ms rule).
-    let (report_tx, report_rx) = unbounded::<LinkEvent>();
-    let reporter = std::thread::Builder::new()
-        .name("link-tx-report".into())
-        .spawn(move || {
-            for e in report_rx {
-                sink(e);
-            }
-        })
-        .expect("spawning the link report thread");
-    let sink = move |e: LinkEvent| {
-        let _ = report_tx.send(e);
-    };
-    write_all(rx, &sink);
-    drop(sink);
-    let _ = reporter.join();
-}
-
-fn write_all(rx: Receiver<Outgoing>, sink: &dyn Fn(LinkEvent)) {
     let mut port: Option<Box<dyn Write + Send>> = None;
     let mut frame = [0u8; MAX_FRAME];
     for msg in rx {
