@@ -3,6 +3,8 @@
 //!
 //! These measure real time, so they live in a binary of their own and take turns (a
 //! lock), instead of competing with `page_e2e`'s rigs for a loaded machine's cores.
+//! The rig needs a pseudo-terminal, which only Unix has.
+#![cfg(unix)]
 
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
