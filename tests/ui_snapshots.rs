@@ -1210,3 +1210,20 @@ fn contrast_check_names_the_cell_the_state_and_both_colours() {
     let failures = themes::contrast_failures("made up", &buf, Palette::Light);
     assert!(failures[0].contains("unknown value"), "{failures:#?}");
 }
+
+/// At 200×60 the device list stops at its cap and the right-hand panels take the rest:
+/// no name column of blank space, and the flap gauge and plot get the width.
+#[test]
+fn wide_terminal_gives_its_width_to_the_right_hand_panels() {
+    let (m, now) = fixtures::normal();
+    let buf = draw(&m, &view_selecting(4), now, 200, 60);
+    insta::assert_snapshot!(text(&buf));
+    let (x, _) = find(&buf, "System", "System");
+    assert!(x <= ui::LIST_MAX_WIDTH + 2, "right column starts at {x}");
+    let (name_x, _) = find(&buf, "Nav Lt", "Nav Lt");
+    let (pin_x, _) = find(&buf, "Nav Lt", "5A-1");
+    assert!(pin_x - name_x <= 22, "name column {} wide", pin_x - name_x);
+    let (gx, gy) = find(&buf, "Flaps UP", "Flaps UP");
+    let track = (gx..200).filter(|&x| buf[(x, gy)].symbol() == "─").count();
+    assert!(track > 100, "flap gauge uses the width: {track} cells");
+}

@@ -33,6 +33,9 @@ use state::{Overlay, ViewState};
 /// The smallest terminal the page lays out in; below it, a message says so.
 pub const MIN_WIDTH: u16 = 80;
 pub const MIN_HEIGHT: u16 = 24;
+/// The widest the device list (and the detail under it) gets: the name column is then
+/// 21 wide, room for DEVICE_NAME's 16 characters (ICD Table 21).
+pub const LIST_MAX_WIDTH: u16 = 66;
 
 /// The rows of the device list in display order (flaps and trims grouped apart from
 /// the rest; by pin or alphabetical per `view.sort`) — the app uses it to move the
@@ -88,8 +91,10 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
         link_health::render_line(frame, link_line, model, now);
     }
 
-    // The list needs ~56 columns for its seven columns; the right side gets the rest.
-    let left_w = (area.width * 55 / 100).max(56);
+    // The list needs ~56 columns for its seven columns, and past 66 its name column
+    // would only stretch blank space between a name and its pin: a wide terminal's
+    // extra width goes to the right-hand panels (gauges, plot, events) instead.
+    let left_w = (area.width * 55 / 100).clamp(56, LIST_MAX_WIDTH);
     let [left, right] =
         Layout::horizontal([Constraint::Length(left_w), Constraint::Fill(1)]).areas(body);
     let detail_h = if body.height >= 30 { 12 } else { 7 };
