@@ -42,6 +42,13 @@ pub fn forwarding(model: &Model, now: Instant) -> Option<Line<'static>> {
     ]))
 }
 
+/// Rows the log wants, up to `max`: its title and every line, so the plot beside it
+/// keeps the rest.
+pub fn height(model: &Model, now: Instant, max: u16) -> u16 {
+    let lines = model.events.len() + usize::from(forwarding(model, now).is_some());
+    (lines.max(1) as u16 + 1).clamp(3.min(max), max)
+}
+
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     let block = Block::new()
         .borders(Borders::TOP)

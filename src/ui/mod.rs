@@ -122,7 +122,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     if plot_area.height >= 12 {
         let [plot_part, events_part] = Layout::vertical([
             Constraint::Fill(1),
-            Constraint::Length(plot_area.height / 2),
+            Constraint::Length(events::height(model, now, plot_area.height / 2)),
         ])
         .areas(plot_area);
         plot::render(frame, plot_part, model, now);

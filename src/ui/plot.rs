@@ -1,17 +1,21 @@
-//! Bus volts and total amps over the last minutes, as sparklines: people would rather
-//! look than read. Each column is a time bucket ending at `now`, so a gap in the data
-//! (communication lost) shows as a gap, not as a line drawn through it.
+//! Bus volts and total amps over the last minutes, as charts read at a glance: a braille
+//! line against a time axis, the low and high as value labels, and on the volts chart
+//! the unit's overvoltage limit (SYSTEM_SPEC, ICD Table 14) as a red line. Samples are
+//! averaged into time buckets ending at `now`, and a bucket without samples (the
+//! unit went quiet) breaks the line: a gap is shown as a gap, never bridged.
 
 use std::time::{Duration, Instant};
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
+use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph, Sparkline};
+use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType, Paragraph};
 
 use super::theme;
 use crate::model::{BusSample, Model};
+use crate::protocol::message::OvervoltageLimit;
 
 /// How far back the plot looks.
 pub const WINDOW: Duration = Duration::from_secs(5 * 60);
@@ -40,74 +44,142 @@ pub fn buckets(
         .collect()
 }
 
-/// Scales to 1..=100 between the window's low and high (at least `min_span` apart, so
-/// sensor noise on a steady bus does not look like a swing). Zero is reserved for
-/// gaps, which the sparkline leaves blank.
-fn scale(b: &[Option<f32>], min_span: f32) -> (Vec<Option<u64>>, f32, f32) {
-    let vals = b.iter().flatten();
-    let lo = vals.clone().copied().fold(f32::INFINITY, f32::min);
-    let hi = vals.copied().fold(f32::NEG_INFINITY, f32::max);
-    if !lo.is_finite() {
-        return (vec![None; b.len()], 0.0, 0.0);
+/// The runs of consecutive buckets with data, as chart points: x in seconds before
+/// `now` (negative), y the bucket's mean.
+fn runs(b: &[Option<f32>]) -> Vec<Vec<(f64, f64)>> {
+    let per = WINDOW.as_secs_f64() / b.len().max(1) as f64;
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut current = Vec::new();
+    for (i, v) in b.iter().enumerate() {
+        match v {
+            Some(v) => {
+                let x = -WINDOW.as_secs_f64() + (i as f64 + 0.5) * per;
+                current.push((x, f64::from(*v)));
+            }
+            None if !current.is_empty() => out.push(std::mem::take(&mut current)),
+            None => {}
+        }
     }
+    if !current.is_empty() {
+        out.push(current);
+    }
+    out
+}
+
+/// The chart's value range: the data's low–high, at least `min_span` wide (so sensor
+/// noise on a steady bus is not drawn as a swing), widened to show `limit`.
+fn bounds(lo: f64, hi: f64, min_span: f64, limit: Option<f64>) -> [f64; 2] {
+    let (lo, hi) = match limit {
+        Some(l) => (lo.min(l), hi.max(l)),
+        None => (lo, hi),
+    };
     let mid = (lo + hi) / 2.0;
-    let span = (hi - lo).max(min_span);
-    let base = mid - span / 2.0;
-    let data = b
-        .iter()
-        .map(|v| v.map(|v| (1.0 + (v - base) / span * 99.0).clamp(1.0, 100.0) as u64))
-        .collect();
-    (data, lo, hi)
+    let span = (hi - lo).max(min_span) * 1.1;
+    [mid - span / 2.0, mid + span / 2.0]
 }
 
 struct Trace {
     name: &'static str,
     unit: &'static str,
     value: fn(&BusSample) -> f32,
-    min_span: f32,
+    min_span: f64,
     colour: Style,
+    /// A limit drawn across the chart in red, with its label.
+    limit: Option<f64>,
 }
 
-/// `ranged`: room to print the window's low–high beside the name.
-fn trace(frame: &mut Frame, area: Rect, model: &Model, now: Instant, t: Trace, ranged: bool) {
-    let Trace {
-        name,
-        unit,
-        value,
-        min_span,
-        colour,
-    } = t;
-    let [label_area, spark_area] =
+/// `ranged`: room to print the window's low–high beside the name; `time_axis`: this
+/// chart carries the time labels (the lower of two stacked charts shares its own).
+fn trace(
+    frame: &mut Frame,
+    area: Rect,
+    model: &Model,
+    now: Instant,
+    t: &Trace,
+    ranged: bool,
+    time_axis: bool,
+) {
+    let [label_area, chart_area] =
         Layout::vertical([Constraint::Length(1), Constraint::Fill(1)]).areas(area);
+    // Two samples a cell: braille has two dot columns in each.
     let b = buckets(
         model.history.iter().copied(),
-        value,
+        t.value,
         now,
-        spark_area.width as usize,
+        (chart_area.width as usize * 2).max(2),
     );
-    let (data, lo, hi) = scale(&b, min_span);
-    let range = if !ranged {
-        String::new()
-    } else if lo.is_finite() && hi >= lo && b.iter().any(Option::is_some) {
-        format!(" {lo:.1}–{hi:.1} {unit}")
-    } else {
-        " no data".into()
-    };
-    frame.render_widget(
-        Paragraph::new(Line::from(vec![
-            Span::styled(name.to_string(), colour),
-            Span::styled(range, theme::label()),
-        ])),
-        label_area,
-    );
-    frame.render_widget(
-        Sparkline::default()
-            .data(data)
-            .max(100)
-            .style(colour)
-            .absent_value_symbol(" "),
-        spark_area,
-    );
+    let vals = b.iter().flatten().map(|v| f64::from(*v));
+    let lo = vals.clone().fold(f64::INFINITY, f64::min);
+    let hi = vals.fold(f64::NEG_INFINITY, f64::max);
+    let mut label = vec![Span::styled(t.name, t.colour)];
+    if !lo.is_finite() {
+        label.push(Span::styled(" no data", theme::unknown()));
+    } else if ranged {
+        label.push(Span::styled(
+            format!(" {lo:.1}–{hi:.1} {}", t.unit),
+            theme::label(),
+        ));
+    }
+    if let Some(l) = t.limit {
+        label.push(Span::styled(
+            format!("  limit {l:.0} {}", t.unit),
+            theme::alert(),
+        ));
+    }
+    frame.render_widget(Paragraph::new(Line::from(label)), label_area);
+    if !lo.is_finite() || chart_area.height < 2 {
+        return;
+    }
+    let y = bounds(lo, hi, t.min_span, t.limit);
+    let x = [-WINDOW.as_secs_f64(), 0.0];
+    let runs = runs(&b);
+    let limit_line = t.limit.map(|l| [(x[0], l), (x[1], l)]);
+    let mut datasets: Vec<Dataset> = Vec::new();
+    if let Some(line) = &limit_line {
+        datasets.push(
+            Dataset::default()
+                .marker(Marker::Braille)
+                .graph_type(GraphType::Line)
+                .style(theme::alert())
+                .data(line),
+        );
+    }
+    for run in &runs {
+        datasets.push(
+            Dataset::default()
+                .marker(Marker::Braille)
+                // A lone bucket between gaps is still a point on the chart.
+                .graph_type(if run.len() > 1 {
+                    GraphType::Line
+                } else {
+                    GraphType::Scatter
+                })
+                .style(t.colour)
+                .data(run),
+        );
+    }
+    let minutes = WINDOW.as_secs() / 60;
+    let mut x_axis = Axis::default().bounds(x).style(theme::border());
+    // The time labels take two rows (axis and labels): only where the chart keeps at
+    // least two rows of plot.
+    if time_axis && chart_area.height >= 4 {
+        x_axis = x_axis.labels([
+            Span::styled(format!("-{minutes} min"), theme::label()),
+            Span::styled(
+                format!("-{} min", WINDOW.as_secs_f64() / 120.0),
+                theme::label(),
+            ),
+            Span::styled("now", theme::label()),
+        ]);
+    }
+    let chart = Chart::new(datasets)
+        .x_axis(x_axis)
+        .y_axis(Axis::default().bounds(y).style(theme::border()).labels([
+            Span::styled(format!("{:.1}", y[0]), theme::label()),
+            Span::styled(format!("{:.1}", y[1]), theme::label()),
+        ]))
+        .legend_position(None);
+    frame.render_widget(chart, chart_area);
 }
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
@@ -123,7 +195,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     if inner.height < 2 {
         return;
     }
-    let stacked = inner.height >= 4;
+    let stacked = inner.height >= 8;
     let halves = if stacked {
         Layout::vertical([Constraint::Fill(1), Constraint::Fill(1)]).split(inner)
     } else {
@@ -131,12 +203,18 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
             .spacing(1)
             .split(inner)
     };
+    let limit = model.system_spec.map(|s| match s.value.overvoltage_limit {
+        OvervoltageLimit::V16 => 16.0,
+        OvervoltageLimit::V32 => 32.0,
+        OvervoltageLimit::Unknown(_) => f64::NAN,
+    });
     let volts = Trace {
         name: "bus V",
         unit: "V",
         value: |s| s.main_bus_volts,
         min_span: 1.0,
         colour: Style::new().fg(theme::INFO),
+        limit: limit.filter(|l| l.is_finite()),
     };
     let amps = Trace {
         name: "amps",
@@ -144,8 +222,44 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         value: |s| s.system_amps,
         min_span: 2.0,
         colour: Style::new().fg(theme::CAUTION),
+        limit: None,
     };
     let ranged = stacked || inner.width >= 60;
-    trace(frame, halves[0], model, now, volts, ranged);
-    trace(frame, halves[1], model, now, amps, ranged);
+    trace(frame, halves[0], model, now, &volts, ranged, !stacked);
+    trace(frame, halves[1], model, now, &amps, ranged, true);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_gap_in_the_data_breaks_the_line() {
+        let b = [
+            Some(14.0),
+            Some(14.1),
+            None,
+            None,
+            Some(13.9),
+            None,
+            Some(14.2),
+        ];
+        let r = runs(&b);
+        assert_eq!(r.len(), 3, "{r:?}");
+        assert_eq!(r[0].len(), 2);
+        assert_eq!(r[1].len(), 1);
+        // Times run from the window's start to now, each at its bucket's middle.
+        let per = WINDOW.as_secs_f64() / 7.0;
+        assert!((r[0][0].0 - (-WINDOW.as_secs_f64() + per / 2.0)).abs() < 1e-9);
+        assert!((r[2][0].0 - (-per / 2.0)).abs() < 1e-9);
+        assert!(runs(&[None, None]).is_empty());
+    }
+
+    #[test]
+    fn the_range_is_never_narrower_than_noise_and_shows_the_limit() {
+        let [lo, hi] = bounds(14.0, 14.1, 1.0, None);
+        assert!(hi - lo >= 1.0 && lo < 14.0 && hi > 14.1, "{lo} {hi}");
+        let [lo, hi] = bounds(13.8, 14.2, 1.0, Some(16.0));
+        assert!(lo < 13.8 && hi > 16.0, "{lo} {hi}");
+    }
 }
