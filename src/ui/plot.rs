@@ -121,10 +121,11 @@ fn trace(
         ));
     }
     if let Some(l) = t.limit {
-        label.push(Span::styled(
-            format!("  limit {l:.0} {}", t.unit),
-            theme::alert(),
-        ));
+        // Only whole: the red line says it too, so a narrow label drops the words.
+        let words = Span::styled(format!("  limit {l:.0} {}", t.unit), theme::alert());
+        if Line::from(label.clone()).width() + words.width() <= label_area.width as usize {
+            label.push(words);
+        }
     }
     frame.render_widget(Paragraph::new(Line::from(label)), label_area);
     if !lo.is_finite() || chart_area.height < 2 {
@@ -174,10 +175,20 @@ fn trace(
     }
     let chart = Chart::new(datasets)
         .x_axis(x_axis)
-        .y_axis(Axis::default().bounds(y).style(theme::border()).labels([
-            Span::styled(format!("{:.1}", y[0]), theme::label()),
-            Span::styled(format!("{:.1}", y[1]), theme::label()),
-        ]))
+        .y_axis(
+            Axis::default()
+                .bounds(y)
+                .style(theme::border())
+                .labels(y.map(|v| {
+                    // A narrow chart keeps whole numbers rather than cut ones.
+                    let text = if chart_area.width >= 24 {
+                        format!("{v:.1}")
+                    } else {
+                        format!("{v:.0}")
+                    };
+                    Span::styled(text, theme::label())
+                })),
+        )
         .legend_position(None);
     frame.render_widget(chart, chart_area);
 }
