@@ -15,6 +15,8 @@ use criterion::measurement::{Measurement, ValueFormatter};
 use criterion::{Criterion, criterion_group, criterion_main};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
 use vpx_efis::model::{Model, Source};
 use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS};
 use vpx_efis::protocol::message::{
@@ -23,6 +25,8 @@ use vpx_efis::protocol::message::{
     SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
 };
 use vpx_efis::protocol::{FaultCode, Message, Packet};
+use vpx_efis::ui;
+use vpx_efis::ui::palette::{Palette, ThemeChoice, Why};
 use vpx_efis::ui::state::ViewState;
 
 fn system(i: u64) -> SystemStatus {
@@ -222,30 +226,139 @@ impl Measurement for ThreadCpu {
     }
 }
 
+/// The view the page draws with: the EFIS selected, painted in the dark palette (the
+/// palette pass is part of every frame the person sees).
+fn view() -> ViewState {
+    ViewState {
+        selected: Some(EFIS),
+        theme: ThemeChoice {
+            palette: Palette::Dark,
+            why: Why::Asked,
+        },
+        ..Default::default()
+    }
+}
+
 #[cfg(unix)]
 fn bench_cpu(c: &mut Criterion<ThreadCpu>) {
     let (model, now) = configured();
-    let view = ViewState {
-        selected: Some(EFIS),
-        ..Default::default()
-    };
+    let view = view();
     let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
     c.bench_function("cpu time: render 120x40 full frame", |b| {
         b.iter(|| {
             terminal.clear().unwrap();
             terminal
-                .draw(|f| vpx_efis::ui::render(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
                 .unwrap();
         })
     });
 }
 
+/// Each widget alone, in the area it gets in the 120×40 frame, so a regression
+/// points at its widget. Drawn over the terminal's previous frame, like the page.
+#[cfg(unix)]
+fn bench_widgets(c: &mut Criterion<ThreadCpu>) {
+    let (model, now) = configured();
+    let view = view();
+    let rows = ui::ordered_circuits(&model, &view, now);
+    let selected = rows.iter().find(|c| Some(c.id) == view.selected).cloned();
+    let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
+    let mut g = c.benchmark_group("cpu time: widget");
+    let left = Rect::new(0, 1, 66, 26);
+    let right = Rect::new(66, 1, 54, 38);
+    g.bench_function("title bar", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| ui::title_bar::render(f, Rect::new(0, 0, 120, 1), &model, now))
+                .unwrap();
+        })
+    });
+    g.bench_function("device list", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| ui::device_list::render(f, left, black_box(&rows), &view))
+                .unwrap();
+        })
+    });
+    g.bench_function("ordering the rows", |b| {
+        b.iter(|| ui::ordered_circuits(black_box(&model), &view, now))
+    });
+    g.bench_function("detail", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| {
+                    ui::detail::render(f, Rect::new(0, 27, 66, 12), &model, selected.as_ref())
+                })
+                .unwrap();
+        })
+    });
+    g.bench_function("system panel", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| ui::system_panel::render(f, Rect { height: 7, ..right }, &model, now))
+                .unwrap();
+        })
+    });
+    g.bench_function("switches", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| ui::switches::render(f, Rect { height: 3, ..right }, &model, now))
+                .unwrap();
+        })
+    });
+    g.bench_function("flaps and trim", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| ui::motors::render(f, Rect { height: 5, ..right }, &model, &view, now))
+                .unwrap();
+        })
+    });
+    g.bench_function("plot", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| {
+                    ui::plot::render(
+                        f,
+                        Rect {
+                            height: 14,
+                            ..right
+                        },
+                        &model,
+                        now,
+                    )
+                })
+                .unwrap();
+        })
+    });
+    g.bench_function("events", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| ui::events::render(f, Rect { height: 4, ..right }, &model, now))
+                .unwrap();
+        })
+    });
+    g.bench_function("link", |b| {
+        b.iter(|| {
+            terminal
+                .draw(|f| ui::link_health::render(f, Rect { height: 4, ..right }, &model, now))
+                .unwrap();
+        })
+    });
+    g.bench_function("palette: paint 120x40", |b| {
+        let mut buf = Buffer::empty(Rect::new(0, 0, 120, 40));
+        b.iter(|| Palette::Dark.paint(black_box(&mut buf)))
+    });
+    g.bench_function("baseline: draw nothing", |b| {
+        b.iter(|| {
+            terminal.draw(|_| {}).unwrap();
+        })
+    });
+    g.finish();
+}
+
 fn bench(c: &mut Criterion) {
     let (model, now) = configured();
-    let view = ViewState {
-        selected: Some(EFIS),
-        ..Default::default()
-    };
+    let view = view();
     let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
     c.bench_function("render 120x40 full frame", |b| {
         b.iter(|| {
@@ -253,7 +366,7 @@ fn bench(c: &mut Criterion) {
             // an empty diff.
             terminal.clear().unwrap();
             terminal
-                .draw(|f| vpx_efis::ui::render(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
                 .unwrap();
         })
     });
@@ -261,7 +374,7 @@ fn bench(c: &mut Criterion) {
     c.bench_function("render 120x40 unchanged frame", |b| {
         b.iter(|| {
             terminal
-                .draw(|f| vpx_efis::ui::render(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
                 .unwrap();
         })
     });
@@ -288,7 +401,7 @@ criterion_group!(benches, bench);
 criterion_group! {
     name = cpu;
     config = Criterion::default().with_measurement(ThreadCpu);
-    targets = bench_cpu
+    targets = bench_cpu, bench_widgets
 }
 #[cfg(unix)]
 criterion_main!(benches, cpu);

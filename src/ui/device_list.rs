@@ -5,10 +5,11 @@ use std::cmp::Ordering;
 use std::time::Instant;
 
 use ratatui::Frame;
-use ratatui::layout::{Constraint, Rect};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Cell, HighlightSpacing, Row, Table, TableState};
+use ratatui::widgets::{Block, Borders};
 
 use super::state::{SortOrder, ViewState};
 use super::{theme, values};
@@ -47,49 +48,70 @@ fn role(c: &Circuit) -> &'static str {
     }
 }
 
-fn row(c: &Circuit) -> Row<'static> {
+/// The columns after the name, and their widths: Pin, role, State, Amps, CB, Switch.
+const FIXED: [u16; 6] = [9, 2, 13, 4, 3, 6];
+/// Between columns.
+const SPACING: u16 = 1;
+const HIGHLIGHT: &str = "▶";
+
+/// The text and style of each of a circuit's seven cells.
+fn cells(c: &Circuit) -> [(String, Style); 7] {
     let dim = theme::unknown();
-    let live = |s: String, live: bool| {
-        if live {
-            Cell::from(s)
-        } else {
-            Cell::from(Span::styled(s, dim))
-        }
-    };
-    Row::new(vec![
-        Cell::from(c.name.clone()),
-        Cell::from(Span::styled(c.pin, theme::label())),
-        Cell::from(Span::styled(role(c), theme::info())),
-        Cell::from(Span::styled(
-            values::state_text(c.state),
-            theme::state(c.state),
-        )),
-        live(values::amps(c.amps), c.amps.is_some()).style(Style::new()),
-        // A spec left unknown by an unanswered write is "?" until re-read, never
-        // the value from before the write.
-        if c.spec_unknown {
-            Cell::from(Span::styled("?A", theme::caution()))
-        } else {
-            Cell::from(
-                c.breaker
-                    .map_or_else(|| values::BLANK.into(), |b| format!("{b}A")),
-            )
-        },
-        match c.kind {
-            CircuitKind::Starter => Cell::from("VP-X"),
-            CircuitKind::Flaps => Cell::from("flap"),
-            CircuitKind::Trim(_) => Cell::from("trim"),
-            _ if c.spec_unknown => Cell::from(Span::styled("?", theme::caution())),
-            _ => Cell::from(values::switch_short(c.switch)),
-        },
-    ])
+    [
+        (c.name.clone(), Style::new()),
+        (c.pin.to_string(), theme::label()),
+        (role(c).to_string(), theme::info()),
+        (values::state_text(c.state), theme::state(c.state)),
+        (
+            values::amps(c.amps),
+            if c.amps.is_some() { Style::new() } else { dim },
+        ),
+        (
+            c.breaker
+                .map_or_else(|| values::BLANK.into(), |b| format!("{b}A")),
+            Style::new(),
+        ),
+        (
+            match c.kind {
+                CircuitKind::Starter => "VP-X".into(),
+                CircuitKind::Flaps => "flap".into(),
+                CircuitKind::Trim(_) => "trim".into(),
+                _ => values::switch_short(c.switch),
+            },
+            Style::new(),
+        ),
+    ]
 }
 
-fn group_header(text: &'static str) -> Row<'static> {
-    Row::new(vec![Cell::from(Line::from(Span::styled(
-        text,
-        theme::label().add_modifier(Modifier::ITALIC),
-    )))])
+/// The x of each column and its width, in a list whose inside is `inner`: the
+/// highlight mark's column, then the name taking what the fixed columns leave.
+fn columns(inner: Rect) -> [(u16, u16); 7] {
+    let mark = HIGHLIGHT.chars().count() as u16;
+    let fixed: u16 = FIXED.iter().sum::<u16>() + SPACING * FIXED.len() as u16;
+    let name_w = inner.width.saturating_sub(mark + fixed);
+    let mut out = [(0, 0); 7];
+    let mut x = inner.x + mark;
+    out[0] = (x, name_w);
+    x += name_w;
+    for (i, w) in FIXED.iter().enumerate() {
+        x += SPACING;
+        out[i + 1] = (x, *w);
+        x += w;
+    }
+    out
+}
+
+/// One line of the list written straight into the buffer: the list is the largest
+/// part of the frame, and a `Table` of styled cells cost more than the rest of the
+/// page together.
+fn write_line(buf: &mut Buffer, inner: Rect, y: u16, cells: &[(&str, Style)]) {
+    let right = inner.right();
+    for ((x, w), (text, style)) in columns(inner).iter().zip(cells) {
+        let w = (*w).min(right.saturating_sub(*x));
+        if w > 0 {
+            buf.set_stringn(*x, y, text, w as usize, *style);
+        }
+    }
 }
 
 pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState) {
@@ -111,30 +133,12 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState)
         SortOrder::Pin => "by pin",
         SortOrder::Alphabetical => "A-Z",
     };
-    let header = Row::new(["Device", "Pin", "", "State", "Amps", "CB", "Switch"])
-        .style(theme::label().add_modifier(Modifier::UNDERLINED));
-    let widths = [
-        Constraint::Fill(1),
-        Constraint::Length(9),
-        Constraint::Length(2),
-        Constraint::Length(13),
-        Constraint::Length(4),
-        Constraint::Length(3),
-        Constraint::Length(6),
-    ];
-    // The offset the table would scroll to (rows are one line each), worked out here so
-    // the title can say how many rows are off screen: a short terminal must never
-    // hide a device silently.
+    // The offset that keeps the selection on screen (rows are one line each), worked
+    // out here so the title can say how many rows are off screen: a short terminal must
+    // never hide a device silently.
     let visible = area.height.saturating_sub(2) as usize;
     let total = lines.len();
     let offset = selected_index.map_or(0, |i| (i + 1).saturating_sub(visible));
-    // Only the rows on screen are built: the list is the widest part of the frame.
-    let table_rows: Vec<Row> = lines
-        .iter()
-        .skip(offset)
-        .take(visible)
-        .map(|l| l.map_or_else(|| group_header("flaps/trim"), row))
-        .collect();
     let below = total.saturating_sub(offset + visible);
     let mut more = Vec::new();
     if offset > 0 {
@@ -148,20 +152,49 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState)
     } else {
         Line::styled(format!(" {} ", more.join(" ")), theme::caution()).right_aligned()
     };
-    let table = Table::new(table_rows, widths)
-        .header(header)
-        .column_spacing(1)
-        .block(
-            Block::new()
-                .borders(Borders::TOP | Borders::RIGHT)
-                .border_style(theme::border())
-                .title(Span::styled(" Devices ", theme::panel_title()))
-                .title(Span::styled(format!("{sort} "), theme::label()))
-                .title(more),
-        )
-        .row_highlight_style(theme::selected_row())
-        .highlight_symbol("▶")
-        .highlight_spacing(HighlightSpacing::Always);
-    let mut state = TableState::new().with_selected(selected_index.map(|i| i - offset));
-    frame.render_stateful_widget(table, area, &mut state);
+    let block = Block::new()
+        .borders(Borders::TOP | Borders::RIGHT)
+        .border_style(theme::border())
+        .title(Span::styled(" Devices ", theme::panel_title()))
+        .title(Span::styled(format!("{sort} "), theme::label()))
+        .title(more);
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    if inner.height == 0 || inner.width == 0 {
+        return;
+    }
+    let buf = frame.buffer_mut();
+    let header_style = theme::label().add_modifier(Modifier::UNDERLINED);
+    buf.set_style(Rect { height: 1, ..inner }, header_style);
+    let header = ["Device", "Pin", "", "State", "Amps", "CB", "Switch"].map(|t| (t, Style::new()));
+    write_line(buf, inner, inner.y, &header);
+    // Only the rows on screen are built.
+    for (k, line) in lines.iter().skip(offset).take(visible).enumerate() {
+        let y = inner.y + 1 + k as u16;
+        if y >= inner.bottom() {
+            break;
+        }
+        match line {
+            None => write_line(
+                buf,
+                inner,
+                y,
+                &[("flaps/trim", theme::label().add_modifier(Modifier::ITALIC))],
+            ),
+            Some(c) => {
+                let cells = cells(c);
+                let refs = cells.each_ref().map(|(t, s)| (t.as_str(), *s));
+                write_line(buf, inner, y, &refs);
+            }
+        }
+        if selected_index == Some(offset + k) {
+            let row = Rect {
+                y,
+                height: 1,
+                ..inner
+            };
+            buf.set_stringn(inner.x, y, HIGHLIGHT, 1, Style::new());
+            buf.set_style(row, theme::selected_row());
+        }
+    }
 }
