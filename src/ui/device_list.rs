@@ -66,20 +66,24 @@ fn cells(c: &Circuit) -> [(String, Style); 7] {
             values::amps(c.amps),
             if c.amps.is_some() { Style::new() } else { dim },
         ),
-        (
-            c.breaker
-                .map_or_else(|| values::BLANK.into(), |b| format!("{b}A")),
-            Style::new(),
-        ),
-        (
-            match c.kind {
-                CircuitKind::Starter => "VP-X".into(),
-                CircuitKind::Flaps => "flap".into(),
-                CircuitKind::Trim(_) => "trim".into(),
-                _ => values::switch_short(c.switch),
-            },
-            Style::new(),
-        ),
+        // A spec left unknown by an unanswered write is "?" until re-read, never
+        // the value from before the write.
+        if c.spec_unknown {
+            ("?A".into(), theme::caution())
+        } else {
+            (
+                c.breaker
+                    .map_or_else(|| values::BLANK.into(), |b| format!("{b}A")),
+                Style::new(),
+            )
+        },
+        match c.kind {
+            CircuitKind::Starter => ("VP-X".into(), Style::new()),
+            CircuitKind::Flaps => ("flap".into(), Style::new()),
+            CircuitKind::Trim(_) => ("trim".into(), Style::new()),
+            _ if c.spec_unknown => ("?".into(), theme::caution()),
+            _ => (values::switch_short(c.switch), Style::new()),
+        },
     ]
 }
 

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph};
+use ratatui::widgets::{Block, Borders};
 
 use super::{theme, values};
 use crate::model::{LogLevel, Model};
@@ -79,7 +79,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     if lines.is_empty() {
         lines.push(Line::styled("nothing yet", theme::unknown()));
     }
-    frame.render_widget(Paragraph::new(lines), inner);
+    super::fast::lines(frame.buffer_mut(), inner, &lines);
 }
 
 #[cfg(test)]

@@ -4,7 +4,6 @@
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::Paragraph;
 
 use super::state::{SortOrder, ViewState};
 use super::theme;
@@ -30,5 +29,5 @@ pub fn render(frame: &mut Frame, area: Rect, view: &ViewState) {
         spans.push(Span::styled(format!(" {k} "), theme::key()));
         spans.push(Span::raw(format!(" {what}  ")));
     }
-    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+    super::fast::lines(frame.buffer_mut(), area, &[Line::from(spans)]);
 }

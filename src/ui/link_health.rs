@@ -7,7 +7,7 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph};
+use ratatui::widgets::{Block, Borders};
 
 use super::{theme, values};
 use crate::model::{
@@ -167,7 +167,7 @@ pub fn render_line(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     spans.extend(ages(model, now));
     spans.push(Span::styled(" │ ", theme::border()));
     spans.extend(counts(model, false));
-    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+    super::fast::lines(frame.buffer_mut(), area, &[Line::from(spans)]);
 }
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
@@ -184,5 +184,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         .borders(Borders::TOP)
         .border_style(theme::border())
         .title(Span::styled(" Link ", theme::panel_title()));
-    frame.render_widget(Paragraph::new(lines).block(block), area);
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    super::fast::lines(frame.buffer_mut(), inner, &lines);
 }

@@ -5,6 +5,7 @@ pub mod comm_banner;
 pub mod detail;
 pub mod device_list;
 pub mod events;
+pub mod fast;
 pub mod help;
 pub mod key_bar;
 pub mod link_health;

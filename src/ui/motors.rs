@@ -253,14 +253,14 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
         Constraint::Length(1),
     ])
     .areas(inner);
-    frame.render_widget(Paragraph::new(lines), gauges);
+    super::fast::lines(frame.buffer_mut(), gauges, &lines);
     if !flag_spans.is_empty() {
         frame.render_widget(
             Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true }),
             flags_area,
         );
     }
-    frame.render_widget(Paragraph::new(Line::from(last)), mode_area);
+    super::fast::lines(frame.buffer_mut(), mode_area, &[Line::from(last)]);
 }
 
 /// "660 ms / 40 ms, learned": the first-repeat delay and the repeat interval the page

@@ -11,7 +11,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType, Paragraph};
+use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType};
 
 use super::theme;
 use crate::model::{BusSample, Model};
@@ -127,7 +127,7 @@ fn trace(
             label.push(words);
         }
     }
-    frame.render_widget(Paragraph::new(Line::from(label)), label_area);
+    super::fast::lines(frame.buffer_mut(), label_area, &[Line::from(label)]);
     if !lo.is_finite() || chart_area.height < 2 {
         return;
     }

@@ -6,7 +6,7 @@ use std::time::Instant;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph};
+use ratatui::widgets::{Block, Borders};
 
 use super::theme;
 use crate::model::Model;
@@ -68,9 +68,8 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         .borders(Borders::TOP)
         .border_style(theme::border())
         .title(Span::styled(" Switch inputs ", theme::panel_title()));
-    frame.render_widget(
-        // Lines are laid out above for the width; no wrapping needed.
-        Paragraph::new(lines).block(block),
-        area,
-    );
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    // Lines are laid out above for the width; no wrapping needed.
+    super::fast::lines(frame.buffer_mut(), inner, &lines);
 }

@@ -150,7 +150,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     let [drawing, flags_area] =
         Layout::vertical([Constraint::Length(lines.len() as u16), Constraint::Fill(1)])
             .areas(inner);
-    frame.render_widget(Paragraph::new(lines), drawing);
+    super::fast::lines(frame.buffer_mut(), drawing, &lines);
     frame.render_widget(
         Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true }),
         flags_area,

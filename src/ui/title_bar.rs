@@ -13,7 +13,6 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::Paragraph;
 
 use super::{link_health, theme, values};
 use crate::model::{Connection, Model, Source};
@@ -24,7 +23,7 @@ const TITLE: &str = " VP-X electrical ";
 const MIN_NAME: usize = 12;
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
-    frame.render_widget(Paragraph::new(line(model, now, area.width)), area);
+    super::fast::lines(frame.buffer_mut(), area, &[line(model, now, area.width)]);
 }
 
 /// `s` in at most `max` characters, the middle replaced by "…" if it must be
