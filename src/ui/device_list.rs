@@ -113,7 +113,7 @@ fn write_line(buf: &mut Buffer, inner: Rect, y: u16, cells: &[(&str, Style)]) {
     for ((x, w), (text, style)) in columns(inner).iter().zip(cells) {
         let w = (*w).min(right.saturating_sub(*x));
         if w > 0 {
-            buf.set_stringn(*x, y, text, w as usize, *style);
+            super::fast::put(buf, *x, y, text, w, *style);
         }
     }
 }
@@ -197,7 +197,7 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState)
                 height: 1,
                 ..inner
             };
-            buf.set_stringn(inner.x, y, HIGHLIGHT, 1, Style::new());
+            super::fast::put(buf, inner.x, y, HIGHLIGHT, 1, Style::new());
             buf.set_style(row, theme::selected_row());
         }
     }
