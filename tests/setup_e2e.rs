@@ -813,6 +813,7 @@ fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answ
         circuit_breaker: 2,
         switch_id: SwitchId::Input(2),
         current_fault: false,
+        switch_raw: None,
     };
     assert_eq!(rig.app.view().setup.forms.device, unit);
     let buf = rig.render();

@@ -688,6 +688,7 @@ mod tests {
             circuit_breaker: 4,
             switch_id: SwitchId::Input(6),
             current_fault: true,
+            switch_raw: None,
         };
         m.apply_packet(ms(t0, 3500), &Packet::from_vpx(1, unit));
         m.apply_packet(

@@ -483,6 +483,7 @@ mod tests {
             circuit_breaker: 3,
             switch_id: SwitchId::Input(4),
             current_fault: true,
+            switch_raw: None,
         };
         m.apply_packet(t0, &Packet::from_vpx(1, held));
         load(&mut f, Page::Device, &m, false);
