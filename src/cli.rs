@@ -322,6 +322,9 @@ pub struct ConfigArgs {
     /// Colours, as the page's --theme.
     #[arg(long, value_enum, default_value_t = ThemeArg::Auto)]
     pub theme: ThemeArg,
+    /// The first key auto-repeat, as the page's --repeat-delay.
+    #[arg(long, value_name = "MS")]
+    pub repeat_delay: Option<u64>,
 }
 
 #[derive(Debug, Args)]
@@ -497,7 +500,6 @@ impl Resolver<'_> {
         );
     }
 
-    /// Page settings that other options own: reported from the file or their default.
     /// `--theme`, or the file's `theme`.
     fn theme(&mut self, theme: &mut ThemeArg) {
         let mut t = Requested::from(*theme);
@@ -509,13 +511,16 @@ impl Resolver<'_> {
     }
 
     /// `--repeat-delay`, or the file's `repeat_delay` (checked by the page).
-    fn page_extras(&mut self, d: &mut Option<u64>) {
+    fn repeat_delay(&mut self, d: &mut Option<u64>) {
         let delay = self.file.repeat_delay_ms.clone().map(|s| Setting {
             value: Some(s.value),
             line: s.line,
         });
         self.pick("repeat_delay", "repeat_delay", None, d, &delay, |d| {
-            d.map_or_else(|| "the page's own".into(), |ms| format!("{ms} ms"))
+            d.map_or_else(
+                || "learned from the terminal".into(),
+                |ms| format!("{ms} ms"),
+            )
         });
     }
 }
@@ -568,7 +573,7 @@ fn resolve_with(
             }
             r.xfsp(&mut page.xfsp, false);
             r.theme(&mut page.theme);
-            r.page_extras(&mut page.repeat_delay);
+            r.repeat_delay(&mut page.repeat_delay);
         }
         Some(Command::Backup(a)) => r.port(&mut a.port)?,
         Some(Command::Restore(a)) => r.port(&mut a.port)?,
@@ -581,7 +586,7 @@ fn resolve_with(
             r.port(&mut a.port)?;
             r.xfsp(&mut a.xfsp, false);
             r.theme(&mut a.theme);
-            r.page_extras(&mut None);
+            r.repeat_delay(&mut a.repeat_delay);
         }
         _ => {}
     }
@@ -672,6 +677,18 @@ mod tests {
         assert_eq!(p.xfsp.xfsp.as_deref(), Some("239.1.1.1:7000"));
         assert_eq!(p.xfsp.xfsp_iface, Ipv4Addr::new(10, 0, 0, 2));
         assert_eq!(p.xfsp.xfsp_source_id, 0x5651);
+        assert_eq!(p.repeat_delay, None);
+        let with_delay = format!("{file}repeat_delay = 900\n");
+        assert_eq!(
+            page_with(&["vpx-efis"], &with_delay).unwrap().repeat_delay,
+            Some(900)
+        );
+        assert_eq!(
+            page_with(&["vpx-efis", "--repeat-delay", "400"], &with_delay)
+                .unwrap()
+                .repeat_delay,
+            Some(400)
+        );
 
         // Flags win; the file's group is no reason to start bridging.
         let p = page_with(

@@ -99,10 +99,8 @@ pub fn theme(text: &str) -> Result<Theme, String> {
         })
 }
 
-/// The range of a key repeat delay, in milliseconds: the page's `--repeat-delay`
-/// takes the same (below 300 ms no desktop repeats; above 1500 ms a tap would run a
-/// motor too long).
-pub const REPEAT_DELAY_MS: (u64, u64) = (300, 1500);
+/// The range of a key repeat delay, in milliseconds: the page's `--repeat-delay`'s.
+pub use crate::app::REPEAT_DELAY_MS;
 
 /// A key repeat delay in milliseconds.
 pub fn repeat_delay_ms(text: &str) -> Result<u64, String> {
