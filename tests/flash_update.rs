@@ -34,6 +34,7 @@ fn fast() -> Options {
         passes: 2,
         reboot_timeout: Duration::from_secs(5),
         quiet: Duration::from_millis(50),
+        cancel: None,
     }
 }
 
@@ -276,6 +277,99 @@ fn a_link_dropped_mid_update_leaves_the_unit_in_its_bootloader_and_a_rerun_resum
     assert!(!st.in_bootloader);
     assert_eq!(st.boot.erases, 2, "the resume starts over from the erase");
     assert_eq!(out.version.hardware_version, HardwareVersion::VpxPro);
+}
+
+/// Ctrl-C while a page is being programmed: that page is finished (its 'P' awaited),
+/// nothing more is sent, EXIT above all, the error says how to resume, and a re-run
+/// does resume. Ctrl-C before the erase returns the unit to its software.
+#[test]
+fn an_interrupt_mid_update_finishes_the_page_never_exits_and_a_rerun_resumes() {
+    let rig = start_sim();
+    let img = image(0x24);
+    let mut seen = Seen::default();
+    let cancel = Arc::new(AtomicBool::new(false));
+    let opts = Options {
+        cancel: Some(cancel.clone()),
+        ..fast()
+    };
+    let mut p = port(&rig.path);
+    let found = flash::probe(&mut p, &opts, &mut |e| seen.take(&e)).unwrap();
+    let err = flash::update(&mut p, &img, found, &opts, &mut |e| {
+        // Pressed while page 3's frame is on its way, before its answer.
+        if let Event::Sent { what, .. } = e
+            && what.starts_with("FLASH_PROG page 3 ")
+        {
+            cancel.store(true, Ordering::SeqCst);
+        }
+        seen.take(&e)
+    })
+    .expect_err("an interrupted update is not a success");
+    assert_eq!(
+        err.left,
+        Left::InBootloader {
+            flash_changed: true
+        },
+        "{err}"
+    );
+    let text = err.to_string();
+    assert!(
+        text.contains("interrupted after programming page 3 (4 of 12)"),
+        "{text}"
+    );
+    assert!(text.contains("run the same command again"), "{text}");
+    let progs = seen
+        .sent
+        .iter()
+        .filter(|s| s.starts_with("FLASH_PROG"))
+        .count();
+    assert_eq!(progs, 4, "pages 0-3 and nothing after:\n{}", seen.dump());
+    assert!(!seen.sent_any("FLASH_READ"), "{}", seen.dump());
+    assert!(
+        !seen.sent_any("EXIT"),
+        "never EXIT into a half-written image"
+    );
+    let st = rig.sim.stats();
+    assert!(st.in_bootloader);
+    assert_eq!(st.boot.pages_programmed, 4, "page 3 was finished, not cut");
+    drop(p);
+
+    // The re-run, as the advice says.
+    let mut again = Seen::default();
+    let mut p = port(&rig.path);
+    let found = flash::probe(&mut p, &fast(), &mut |e| again.take(&e)).unwrap();
+    assert_eq!(found, Found::Bootloader, "{}", again.dump());
+    flash::update(&mut p, &img, found, &fast(), &mut |e| again.take(&e))
+        .unwrap_or_else(|e| panic!("{e}\n{}", again.dump()));
+    assert!(rig.sim.flash() == img.to_flash());
+    assert!(!rig.sim.stats().in_bootloader);
+}
+
+#[test]
+fn an_interrupt_before_the_erase_gives_the_unit_its_software_back() {
+    let rig = start_sim();
+    let img = image(0x25);
+    let before = rig.sim.flash();
+    let mut seen = Seen::default();
+    let cancel = Arc::new(AtomicBool::new(false));
+    let opts = Options {
+        cancel: Some(cancel.clone()),
+        ..fast()
+    };
+    let mut p = port(&rig.path);
+    let found = flash::probe(&mut p, &opts, &mut |e| seen.take(&e)).unwrap();
+    let err = flash::update(&mut p, &img, found, &opts, &mut |e| {
+        if let Event::Sent { what, .. } = e
+            && what.starts_with("SIGNATURE")
+        {
+            cancel.store(true, Ordering::SeqCst);
+        }
+        seen.take(&e)
+    })
+    .expect_err("an interrupted update is not a success");
+    assert_eq!(err.left, Left::BackToOldSoftware, "{err}\n{}", seen.dump());
+    assert!(!seen.sent_any("FLASH_ERASE"), "{}", seen.dump());
+    assert!(seen.sent_any("EXIT"), "{}", seen.dump());
+    assert!(rig.sim.flash() == before, "nothing was erased");
 }
 
 // ---------------------------------------------------------------- scripted bootloader

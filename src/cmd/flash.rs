@@ -19,11 +19,14 @@
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, IsTerminal, LineWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant, SystemTime};
 
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use crate::app::{Terminated, Termination};
 use crate::cli::FlashArgs;
 use crate::flash::hardware::hw_name;
 use crate::flash::{self, Event, Found, Image, Options};
@@ -68,7 +71,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     ));
 
     let mut port = open_raw(&port_path, args.port.baud)?;
-    let opts = Options::default();
+    let mut opts = Options::default();
 
     let found = flash::probe(&mut port, &opts, &mut |e| log.event(&e)).map_err(|e| {
         log.line(&format!("-- stopped: {e}"));
@@ -109,6 +112,9 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
         }
     }
 
+    // From here Ctrl-C (or SIGTERM, SIGHUP, a closed console) stops at the next safe
+    // point instead of killing us mid-page; see `flash::updater`.
+    let interrupted = stop_on_termination(&mut opts)?;
     let pages = image.page_count() as u64;
     let bar = progress_bar(pages * 2);
     let started = Instant::now();
@@ -169,9 +175,45 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
             bar.abandon_with_message("stopped");
             log.line(&format!("-- STOPPED: {e}"));
             log.finish();
-            bail!("{e}\nThe whole exchange is in {}", log_path.display())
+            let by = *interrupted.lock().unwrap_or_else(|p| p.into_inner());
+            match by {
+                // Our words, then the exit status of the signal (130 for Ctrl-C).
+                Some(t) => {
+                    eprintln!(
+                        "vpx-efis: {e}\nThe whole exchange is in {}",
+                        log_path.display()
+                    );
+                    Err(Terminated(t).into())
+                }
+                None => bail!("{e}\nThe whole exchange is in {}", log_path.display()),
+            }
         }
     }
+}
+
+/// Sets `opts.cancel` when the OS asks us to stop, and says so once; returns what
+/// asked, for the exit status.
+fn stop_on_termination(opts: &mut Options) -> anyhow::Result<Arc<Mutex<Option<Termination>>>> {
+    let terminations = crate::app::listen_for_termination()?;
+    let cancel = Arc::new(AtomicBool::new(false));
+    let by = Arc::new(Mutex::new(None));
+    opts.cancel = Some(cancel.clone());
+    let said = by.clone();
+    std::thread::Builder::new()
+        .name("flash-stop".into())
+        .spawn(move || {
+            while let Ok(t) = terminations.recv() {
+                if !cancel.swap(true, Ordering::SeqCst) {
+                    *said.lock().unwrap_or_else(|p| p.into_inner()) = Some(t);
+                    eprintln!(
+                        "\nvpx-efis: {}: finishing the page in progress, then stopping (the unit is never \
+                         restarted into a half-written image)",
+                        t.name()
+                    );
+                }
+            }
+        })?;
+    Ok(by)
 }
 
 /// `FILE.hex.log`, next to the file.

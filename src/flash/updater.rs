@@ -28,6 +28,11 @@
 //!   old software is still whole, so a failure there (a wrong signature, say) sends EXIT
 //!   to give the aircraft its old software back, but only if this run put the unit in
 //!   its bootloader: a unit found there may hold a half-written image from before.
+//! * **Interrupted** ([`Options::cancel`], Ctrl-C): checked between steps only, so the
+//!   page being programmed or verified is finished first. Before FLASH_ERASE this is a
+//!   failure like any other (EXIT back to the old software if this run entered the
+//!   bootloader); after it the unit stays in its bootloader, and a re-run resumes.
+//!   Once every page has verified, the update goes on to EXIT: the image is whole.
 //! * **Repair.** A page that reads back wrong is programmed again, up to
 //!   [`Options::reprogram_tries`] times. On flash that can only clear bits without an
 //!   erase (the sim ANDs programmed bytes into the page, as NOR flash does), programming
@@ -47,6 +52,8 @@
 //!   sent up to 3 times, 20 s for the rebooted unit to answer VERSION.
 
 use std::io::{self, Read, Write};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use crate::protocol::bootloader::{
@@ -131,6 +138,10 @@ pub struct Options {
     pub reboot_timeout: Duration,
     /// The line must be this long without a byte before a failed command is tried again.
     pub quiet: Duration,
+    /// Set from outside (Ctrl-C) to stop at the next safe point: the page being
+    /// programmed or verified is finished first, and EXIT is never sent into a
+    /// half-written image.
+    pub cancel: Option<Arc<AtomicBool>>,
 }
 
 impl Default for Options {
@@ -146,6 +157,7 @@ impl Default for Options {
             passes: 2,
             reboot_timeout: Duration::from_secs(20),
             quiet: Duration::from_millis(200),
+            cancel: None,
         }
     }
 }
@@ -271,12 +283,14 @@ enum Fail {
     Link(String),
     /// An answer that rules out going on (a wrong signature).
     Refused(String),
+    /// Stopped on request ([`Options::cancel`]) between two steps.
+    Interrupted(String),
 }
 
 impl Fail {
     fn text(self) -> String {
         match self {
-            Fail::NoAnswer(s) | Fail::Link(s) | Fail::Refused(s) => s,
+            Fail::NoAnswer(s) | Fail::Link(s) | Fail::Refused(s) | Fail::Interrupted(s) => s,
         }
     }
 }
@@ -335,9 +349,24 @@ pub fn update<P: Port + ?Sized>(
 ) -> Result<Outcome, UpdateError> {
     let mut s = Session::new(port, opts, on);
     let entered_here = matches!(found, Found::Running(_));
+    if let Err(f) = s.check_cancel("before anything was sent") {
+        return Err(UpdateError {
+            reason: f.text(),
+            left: if entered_here {
+                Left::Untouched
+            } else {
+                Left::InBootloader {
+                    flash_changed: true,
+                }
+            },
+        });
+    }
 
     // ---- into the bootloader and identify it; nothing is erased yet.
-    let boot_version = match s.identify(entered_here) {
+    let boot_version = match s
+        .identify(entered_here)
+        .and_then(|v| s.check_cancel("before erasing").map(|()| v))
+    {
         Ok(v) => v,
         Err(f) => return Err(s.abandon_before_erase(f, entered_here)),
     };
@@ -776,6 +805,10 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
             self.program(page, data)?;
             progress.programmed += 1;
             (self.on)(Event::Progress(progress));
+            self.check_cancel(&format!(
+                "after programming page {page} ({} of {})",
+                progress.programmed, progress.pages
+            ))?;
         }
         for (page, data) in image.pages() {
             let mut ok = self.verify(page, data)?;
@@ -798,8 +831,28 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
             }
             progress.verified += 1;
             (self.on)(Event::Progress(progress));
+            self.check_cancel(&format!(
+                "after verifying page {page} ({} of {})",
+                progress.verified, progress.pages
+            ))?;
         }
         Ok(None)
+    }
+
+    /// A stop asked for from outside, between two steps: never in the middle of a
+    /// command, so the page in progress is whole.
+    fn check_cancel(&mut self, at: &str) -> Result<(), Fail> {
+        if self
+            .opts
+            .cancel
+            .as_ref()
+            .is_some_and(|c| c.load(Ordering::SeqCst))
+        {
+            let why = format!("interrupted {at}");
+            self.note(&why);
+            return Err(Fail::Interrupted(why));
+        }
+        Ok(())
     }
 
     fn program(&mut self, page: u16, data: &[u8; PAGE_SIZE]) -> Result<(), Fail> {
