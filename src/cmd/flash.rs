@@ -115,6 +115,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     // From here Ctrl-C (or SIGTERM, SIGHUP, a closed console) stops at the next safe
     // point instead of killing us mid-page; see `flash::updater`.
     let interrupted = stop_on_termination(&mut opts)?;
+    let _awake = keep_awake(&mut log);
     let pages = image.page_count() as u64;
     let bar = progress_bar(pages * 2);
     let started = Instant::now();
@@ -187,6 +188,32 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
                 }
                 None => bail!("{e}\nThe whole exchange is in {}", log_path.display()),
             }
+        }
+    }
+}
+
+/// Keeps the machine from sleeping until dropped: a laptop that suspends mid-update
+/// leaves the unit in its bootloader. Best effort: a machine with no power manager to
+/// ask (Linux without D-Bus or logind, a container) flashes all the same, with a word.
+fn keep_awake(log: &mut FlashLog) -> Option<keepawake::KeepAwake> {
+    match keepawake::Builder::default()
+        .idle(true)
+        .sleep(true)
+        .reason("VP-X firmware update in progress")
+        .app_name("vpx-efis")
+        .app_reverse_domain("io.github.vpx-efis")
+        .create()
+    {
+        Ok(k) => {
+            log.line("-- the machine is kept awake until the update ends");
+            Some(k)
+        }
+        Err(e) => {
+            log.line(&format!("-- cannot keep the machine awake: {e}"));
+            eprintln!(
+                "note: cannot keep this machine awake ({e}); do not let it sleep until the update is done"
+            );
+            None
         }
     }
 }
