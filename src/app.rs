@@ -605,14 +605,7 @@ impl App {
                             return Ok(());
                         }
                     }
-                    Err(_) => {
-                        // A closed terminal window ends the input and sends SIGHUP;
-                        // whichever comes first, the signal names the exit.
-                        if let Ok(t) = terminations.recv_timeout(Duration::from_millis(200)) {
-                            return Err(Terminated(t).into());
-                        }
-                        anyhow::bail!("the terminal input stopped")
-                    }
+                    Err(_) => return Err(input_closed(terminations)),
                 },
                 recv(terminations) -> t => if let Ok(t) = t {
                     return Err(Terminated(t).into());
@@ -626,6 +619,15 @@ impl App {
                 self.on_wake(w, Instant::now());
             }
         }
+    }
+}
+
+/// Why the page ends when its terminal input closes. A closed terminal window ends
+/// the input and sends SIGHUP; whichever comes first, the signal names the exit.
+fn input_closed(terminations: &Receiver<Termination>) -> anyhow::Error {
+    match terminations.recv_timeout(Duration::from_millis(200)) {
+        Ok(t) => Terminated(t).into(),
+        Err(_) => anyhow::anyhow!("the terminal input stopped"),
     }
 }
 

@@ -604,12 +604,7 @@ impl App {
                             return Ok(());
                         }
                     }
-                    Err(_) => {
-                        if let Ok(t) = terminations.recv_timeout(Duration::from_millis(200)) {
-                            return Err(Terminated(t).into());
-                        }
-                        anyhow::bail!("the terminal input stopped")
-                    }
+                    Err(_) => return Err(super::input_closed(terminations)),
                 },
                 recv(terminations) -> t => if let Ok(t) = t {
                     return Err(Terminated(t).into());
