@@ -84,6 +84,8 @@ impl RawPort {
                 let mut buf = [0u8; 1024];
                 s.set_nonblocking(true).ok()?;
                 let peeked = s.peek(&mut buf);
+                // Back to blocking whatever the peek said: a socket left non-blocking
+                // would make every later read fail at once.
                 s.set_nonblocking(false).ok()?;
                 match peeked {
                     Ok(0) => None, // closed: the next read says so

@@ -29,6 +29,8 @@ pub const READ_TIMEOUT: Duration = Duration::from_millis(50);
 pub const WRITE_TIMEOUT: Duration = Duration::from_secs(2);
 /// A connection silent this long is taken as dead and reopened.
 pub const SILENCE_LIMIT: Duration = Duration::from_secs(10);
+/// How long an accepted client may be silent before the OS probes whether it is there.
+const CLIENT_KEEPALIVE: Duration = Duration::from_secs(15);
 
 /// Why a bridge could not be reached, with what to check. Sorted by `io::ErrorKind`,
 /// never by the (localised) text of the message.
@@ -243,7 +245,11 @@ pub fn serve_line(
         .name("tcp-accept".into())
         .spawn(move || {
             for stream in listener.incoming() {
-                let Ok(stream) = stream else { continue };
+                let Ok(stream) = stream else {
+                    // A lasting accept error (no file descriptors left) must not spin.
+                    std::thread::sleep(Duration::from_millis(100));
+                    continue;
+                };
                 let peer = stream
                     .peer_addr()
                     .unwrap_or_else(|_| SocketAddr::from(([0, 0, 0, 0], 0)));
@@ -256,6 +262,10 @@ pub fn serve_line(
                     continue;
                 }
                 let _ = stream.set_nodelay(true);
+                // A client whose bridge lost power never closes: keepalive probes end
+                // it, so the one client slot is freed for the next.
+                let _ = socket2::SockRef::from(&stream)
+                    .set_tcp_keepalive(&socket2::TcpKeepalive::new().with_time(CLIENT_KEEPALIVE));
                 let Ok(write_half) = stream.try_clone() else {
                     continue;
                 };
