@@ -13,6 +13,7 @@
 mod background;
 mod gateway;
 mod motor_stream;
+pub use motor_stream::LOOP_STALL;
 mod options;
 pub mod queries;
 mod record;
@@ -30,7 +31,9 @@ use crossterm::event::Event as TermEvent;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
-use crate::control::{Action, Controller, KeyContext, MotorStreamer, StopReason, StreamerConfig};
+use crate::control::{
+    Action, Controller, KeyContext, MotorStreamer, RESEND_PERIOD, StopReason, StreamerConfig,
+};
 use crate::exchange::Rereader;
 use crate::link::{self, Connector, Link, LinkEvent, LinkHandle, RxItem};
 use crate::model::{Model, Source};
@@ -479,9 +482,13 @@ impl App {
             Some(t) => t + IDLE_REDRAW,
             None => now,
         };
-        // No motor deadline: the motor-stream thread keeps its own, and wakes this
-        // loop (Wake::Motor) when a run ends.
+        // The motor-stream thread keeps the resend deadline and wakes this loop
+        // (Wake::Motor) when a run ends; but while a run is on, this loop still ticks
+        // every resend period, so COMMUNICATION LOST or a motor fault stops it on time
+        // and the thread sees the loop alive.
+        let motor = self.view.motor_run.map(|_| now + RESEND_PERIOD);
         [
+            motor,
             self.pacer.next_deadline(),
             self.notice_until,
             self.xfsp_deadline(),
@@ -605,7 +612,11 @@ impl App {
                             return Ok(());
                         }
                     }
-                    Err(_) => return Err(input_closed(terminations)),
+                    Err(_) => {
+                        // No release can arrive any more: stop before waiting for a signal.
+                        self.controller.stop(Instant::now(), StopReason::Quit);
+                        return Err(input_closed(terminations));
+                    }
                 },
                 recv(terminations) -> t => if let Ok(t) = t {
                     return Err(Terminated(t).into());

@@ -289,3 +289,36 @@ fn a_page_too_small_to_see_ignores_keys_and_a_shrink_stops_the_run() {
     assert!(!rig.sim.stats().pitch_trim_running);
     assert_eq!(rig.app.view().selected, Some(30), "the selection stays");
 }
+
+/// The motor-stream thread resends on its own clock, but the model's checks (comm
+/// loss, a fault) run in the page's loop. When that loop stalls (here: nobody pumps it,
+/// as when a terminal write blocks on a paused tty) the thread stops the run instead
+/// of streaming alone, within the stall limit plus one resend.
+#[test]
+fn a_stalled_page_loop_stops_the_motor_stream() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let mut rig = Rig::new(ReleaseMode::KeyRelease);
+    rig.select(30);
+    let from = rig.wire_len();
+    rig.key(KeyCode::Char('u'), KeyEventKind::Press);
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(200));
+    assert!(rig.app.view().motor_run.is_some(), "running");
+    // The loop stalls while the key is still held (no release ever comes).
+    let stalled = Instant::now();
+    std::thread::sleep(Duration::from_millis(1500));
+    let moves = trim_moves(&rig, from);
+    let (stop_at, _) = *moves
+        .iter()
+        .find(|(_, m)| !m.on)
+        .expect("a stop while the loop stalled");
+    assert!(
+        stop_at - stalled <= vpx_efis::app::LOOP_STALL + Duration::from_millis(125 + 150),
+        "stop {:?} after the stall",
+        stop_at - stalled
+    );
+    assert!(
+        moves.last().is_some_and(|(_, m)| !m.on),
+        "nothing after the stop: {moves:?}"
+    );
+}

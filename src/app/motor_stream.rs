@@ -19,7 +19,7 @@
 
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, unbounded};
 
@@ -46,7 +46,17 @@ pub struct MotorPath {
     link: Option<LinkHandle>,
     /// Tells the thread the controller changed, so it looks at the deadline again.
     poke: Mutex<Option<Sender<()>>>,
+    /// When the page's loop last ticked this path (real time). The model's checks
+    /// (COMMUNICATION LOST, a motor fault, lost motor status) run in that tick, so a
+    /// stalled loop — a terminal write blocked on a paused tty, say — must not leave
+    /// this thread streaming on its own.
+    heartbeat: Mutex<Option<Instant>>,
 }
+
+/// How long the page's loop may go without ticking while a motor runs. The loop ticks
+/// at least every resend period while a run is on (App::next_deadline), so this is a
+/// stall, not a slow frame.
+pub const LOOP_STALL: Duration = Duration::from_millis(500);
 
 impl MotorPath {
     pub fn new(controller: Controller, link: Option<LinkHandle>) -> Arc<MotorPath> {
@@ -54,6 +64,7 @@ impl MotorPath {
             controller: Mutex::new(controller),
             link,
             poke: Mutex::new(None),
+            heartbeat: Mutex::new(None),
         })
     }
 
@@ -129,7 +140,14 @@ impl MotorPath {
 
     /// The model's verdict and the stream's clocks, after packets arrived.
     pub fn tick(&self, model: &Model, now: Instant) {
+        *self.heartbeat.lock().unwrap_or_else(|p| p.into_inner()) = Some(Instant::now());
         self.act(|c| c.tick(model, now));
+    }
+
+    /// Whether the page's loop has not ticked for longer than [`LOOP_STALL`].
+    fn loop_stalled(&self, now: Instant) -> bool {
+        let beat = *self.heartbeat.lock().unwrap_or_else(|p| p.into_inner());
+        beat.is_some_and(|b| now.saturating_duration_since(b) > LOOP_STALL)
     }
 
     pub fn running(&self) -> Option<MotorRun> {
@@ -196,6 +214,8 @@ impl MotorPath {
                 let packets = if terminal::panicked() {
                     // The hook sent the emergency stop; never resend after it.
                     c.stop(now, StopReason::Panic)
+                } else if was_running && self.loop_stalled(now) {
+                    c.stop(now, StopReason::PageStalled)
                 } else {
                     c.tick_stream(now)
                 };

@@ -35,7 +35,8 @@ pub use commands::{Refusal, command, motor_check, motor_permit};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};
 pub use release::{release_mode, release_mode_here};
 pub use streamer::{
-    Direction, MAX_WIRE_INTERVAL, MotorStreamer, StopReason, StopRecord, StreamerConfig,
+    Direction, MAX_WIRE_INTERVAL, MotorStreamer, RESEND_PERIOD, StopReason, StopRecord,
+    StreamerConfig,
 };
 
 /// What a key did.

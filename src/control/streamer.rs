@@ -126,6 +126,9 @@ pub enum StopReason {
     /// The caller did not call `tick` in time, so a gap over 250 ms already went out;
     /// the unit has stopped the motor and the page does not silently restart it.
     Starved,
+    /// The page's loop stopped ticking (a blocked terminal write, say), so the model's
+    /// checks no longer run: the stream must not go on alone.
+    PageStalled,
     Panic,
 }
 
@@ -146,6 +149,7 @@ impl StopReason {
             StopReason::MaxRunTime => "maximum run time reached; press the key again".into(),
             StopReason::PageHidden => "the terminal is too small to show the page".into(),
             StopReason::Starved => "the page fell behind the 4 Hz stream".into(),
+            StopReason::PageStalled => "the page stopped responding".into(),
             StopReason::Panic => "the program failed".into(),
         }
     }
