@@ -677,6 +677,13 @@ fn link_sink(
                     m.note_link_lost(Instant::now(), reason);
                     Some(Wake::LinkDown)
                 }
+                // A write is recorded with its Tx event, under the same lock, so the
+                // model never lags the capture by one frame (a replay sought to any
+                // instant then shows what the live page showed).
+                LinkEvent::Bytes {
+                    dir: link::Direction::Tx,
+                    ..
+                } => None,
                 LinkEvent::Bytes { at, dir, bytes } => {
                     record::on_bytes(&recorder, &mut m, at, dir, &bytes);
                     None
@@ -697,6 +704,7 @@ fn link_sink(
                     Some(Wake::Data)
                 }
                 LinkEvent::Tx { at, packet, raw } => {
+                    record::on_bytes(&recorder, &mut m, at, link::Direction::Tx, &raw);
                     m.traffic.note_tx(at, packet.as_ref(), &raw);
                     if let Some(p) = packet {
                         m.note_sent(at, &p);
