@@ -10,6 +10,7 @@
 
 pub mod app;
 pub mod backup;
+pub mod check;
 pub mod cli;
 pub mod cmd;
 pub mod control;

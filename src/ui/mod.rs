@@ -1,6 +1,7 @@
 //! ratatui widgets that render the model and nothing else: no I/O, no clocks. The
 //! caller passes `now`, so the same model renders the same frame every time.
 
+pub mod check;
 pub mod comm_banner;
 pub mod detail;
 pub mod device_list;

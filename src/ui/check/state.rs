@@ -1,0 +1,289 @@
+//! What the installation check shows, and what its report records: the step it is on,
+//! what the person must do and what the page is watching, and every result so far.
+//! Pure data plus the words for it. The flow (`crate::check`) changes it; the screen
+//! (`ui::check`) and the report (`check::report`) read it. It lives under `ui` for
+//! the same reason as the setup screens' `SetupView`: the flow stands on the view,
+//! never the other way round.
+
+use std::time::Duration;
+
+use crate::model::Motor;
+use crate::protocol::fault::FaultCode;
+use crate::protocol::message::{SwitchId, SwitchInputs};
+
+/// The check's steps, in the order they run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub enum Step {
+    /// Before anything is powered: what will be switched on, for how long, and what
+    /// is excluded; the person confirms the aircraft is safe to power them.
+    #[default]
+    Confirm,
+    Switches,
+    Circuits,
+    Motors,
+    Loads,
+    /// The report is written; the summary and what is left to fix.
+    Done,
+}
+
+impl Step {
+    /// The steps a person may skip (`--skip`), with the word for each.
+    pub const SKIPPABLE: [(Step, &'static str); 4] = [
+        (Step::Switches, "switches"),
+        (Step::Circuits, "circuits"),
+        (Step::Motors, "motors"),
+        (Step::Loads, "loads"),
+    ];
+
+    pub fn title(self) -> &'static str {
+        match self {
+            Step::Confirm => "Before power",
+            Step::Switches => "Switch inputs",
+            Step::Circuits => "Circuits",
+            Step::Motors => "Motors",
+            Step::Loads => "Load analysis",
+            Step::Done => "Report",
+        }
+    }
+}
+
+/// A result's verdict. Never shown by colour alone: each has its symbol and word.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mark {
+    Pass,
+    Fail,
+    Warn,
+    /// The person skipped it, or it was excluded.
+    Skipped,
+    /// The check was interrupted before it got a result.
+    NotRun,
+}
+
+impl Mark {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Mark::Pass => "✓",
+            Mark::Fail => "✗",
+            Mark::Warn => "⚠",
+            Mark::Skipped => "–",
+            Mark::NotRun => "?",
+        }
+    }
+
+    pub fn word(self) -> &'static str {
+        match self {
+            Mark::Pass => "PASS",
+            Mark::Fail => "FAIL",
+            Mark::Warn => "WARN",
+            Mark::Skipped => "SKIPPED",
+            Mark::NotRun => "NOT RUN",
+        }
+    }
+}
+
+/// A switch input the check asks the person to flip: one of the ten external inputs,
+/// or one of the flap and trim switch inputs of SYSTEM_STATUS byte 8 (ICD Table 24).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Input {
+    /// 1–10.
+    Switch(u8),
+    FlapUp,
+    FlapDown,
+    PitchTrimUp,
+    PitchTrimDown,
+    RollTrimUp,
+    RollTrimDown,
+}
+
+impl Input {
+    /// Whether the input reads closed in a live SYSTEM_STATUS.
+    pub fn is_on(self, s: &SwitchInputs) -> bool {
+        match self {
+            Input::Switch(n @ 1..=10) => s.switch[usize::from(n - 1)],
+            Input::Switch(_) => false,
+            Input::FlapUp => s.flap_up,
+            Input::FlapDown => s.flap_down,
+            Input::PitchTrimUp => s.pitch_trim_up,
+            Input::PitchTrimDown => s.pitch_trim_down,
+            Input::RollTrimUp => s.roll_trim_up,
+            Input::RollTrimDown => s.roll_trim_down,
+        }
+    }
+
+    pub fn label(self) -> String {
+        match self {
+            Input::Switch(n) => format!("switch {n}"),
+            Input::FlapUp => "flap switch UP".into(),
+            Input::FlapDown => "flap switch DOWN".into(),
+            Input::PitchTrimUp => "pitch trim switch UP".into(),
+            Input::PitchTrimDown => "pitch trim switch DOWN".into(),
+            Input::RollTrimUp => "roll trim switch UP".into(),
+            Input::RollTrimDown => "roll trim switch DOWN".into(),
+        }
+    }
+}
+
+/// Why a circuit did not follow its switch.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NotFollowed {
+    /// The page (or another EFIS) holds it by DEVICE_POWER until its switch is cycled.
+    HeldByDevicePower,
+    /// Its DEVICE_SPEC assigns it to another switch (or always on / off).
+    AssignedTo(SwitchId),
+    /// It faulted when switched.
+    Faulted(FaultCode),
+    /// It changed neither way, for no reason the page can see.
+    Unexplained,
+}
+
+/// Step 2's result for one input.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SwitchFinding {
+    /// The input changed, and its circuits followed.
+    Passed,
+    /// "input never changed": a broken wire, a bad switch, or the wrong pin.
+    NeverChanged,
+    /// "input M changed instead": switches crossed.
+    OtherChanged(Vec<Input>),
+    /// "circuits did not follow", each with the reason.
+    CircuitsDidNotFollow(Vec<(u8, NotFollowed)>),
+}
+
+/// Step 3's result for one circuit.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CircuitFinding {
+    /// A current within the breaker.
+    Within { amps: f32, breaker: u8 },
+    /// "no current while on": an open circuit, a blown bulb, a load not connected.
+    NoCurrent,
+    /// "draws X A of a Y A breaker (≥ 80 %)": will trip in flight.
+    NearBreaker { amps: f32, breaker: u8 },
+    /// The circuit faulted; the report gives the Appendix E action.
+    Faulted(FaultCode),
+    /// The unit never showed it on (no answer, or two fresh DEVICE_STATUS never came).
+    DidNotSwitch,
+}
+
+/// Step 4's result for one motor.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MotorFinding {
+    /// It moves the commanded way.
+    Moves,
+    /// The motor's polarity is swapped, or the sensor is wired backwards.
+    Reversed,
+    /// The motor, the sensor or a limit.
+    NoMovement,
+    /// It runs against a limit.
+    AgainstLimit,
+    Faulted(FaultCode),
+}
+
+/// What became of one item: its finding, or why there is none.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome<F> {
+    Found(F),
+    /// Skipped by the person, excluded, or the step was skipped; the words say which.
+    Skipped(String),
+    /// The check stopped before this item got a result.
+    NotRun,
+}
+
+/// One switch input's line in the results.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwitchResult {
+    pub input: Input,
+    /// The circuits assigned to it (device ids).
+    pub circuits: Vec<u8>,
+    pub outcome: Outcome<SwitchFinding>,
+}
+
+/// One circuit's line in the results.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CircuitResult {
+    pub id: u8,
+    pub name: String,
+    pub pin: &'static str,
+    pub breaker: Option<u8>,
+    pub switch: Option<SwitchId>,
+    pub outcome: Outcome<CircuitFinding>,
+}
+
+/// One motor's line in the results, with the positions it went through.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotorResult {
+    pub motor: Motor,
+    /// Position (percent) before, after the first direction, after the second, and
+    /// after it was put back, as far as the step got.
+    pub positions: Vec<u8>,
+    pub outcome: Outcome<MotorFinding>,
+}
+
+/// What the person must do now, and what the page watches meanwhile.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Prompt {
+    /// Plain words: "Flip switch 3 on, then off."
+    pub todo: String,
+    /// "Watching switch 3 and Landing Light, Taxi Light."
+    pub watching: String,
+    /// Time left before the item times out, if it can.
+    pub time_left: Option<Duration>,
+    /// The keys that act now, with their words: ("Enter", "confirm"), ("s", "skip").
+    pub keys: Vec<(&'static str, &'static str)>,
+}
+
+/// How the check ended, if it did not finish.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Interruption {
+    /// "quit", "communication lost", "the link failed: …", "Landing Light faulted".
+    pub cause: String,
+    /// Each circuit the check left not as it found it: id, name, and in words the
+    /// state it was left in ("ON, held by DEVICE_POWER", "unknown: no answer").
+    pub left: Vec<(u8, String, String)>,
+}
+
+/// A circuit the check will switch on, and for how long.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Planned {
+    pub id: u8,
+    pub name: String,
+    pub pin: &'static str,
+    pub breaker: Option<u8>,
+    pub switch: Option<SwitchId>,
+    pub on_for: Duration,
+}
+
+/// A circuit the check leaves alone, and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Excluded {
+    pub id: u8,
+    pub name: String,
+    /// "never touched: the starter", "suggested: the name has \"pitot\"", "--exclude".
+    pub why: String,
+    /// Only a suggested exclusion may be taken back by the person.
+    pub may_include: bool,
+}
+
+/// The whole check as the screen and the report see it.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CheckView {
+    pub step: Step,
+    /// Steps the person chose to skip (`--skip`, or on the screen).
+    pub skipped_steps: Vec<Step>,
+    pub plan: Vec<Planned>,
+    pub planned_motors: Vec<(Motor, Duration)>,
+    pub excluded: Vec<Excluded>,
+    pub prompt: Option<Prompt>,
+    /// The item under test now: an index into the current step's results.
+    pub current: Option<usize>,
+    pub switches: Vec<SwitchResult>,
+    pub circuits: Vec<CircuitResult>,
+    pub motors: Vec<MotorResult>,
+    /// Circuits put back by DEVICE_POWER, which stay held by the page until their
+    /// switch is cycled (ICD §6): id, name, and the switch to cycle.
+    pub to_cycle: Vec<(u8, String, SwitchId)>,
+    /// One line of news: "Landing Light: 4.2 A", "report written to …".
+    pub message: Option<String>,
+    pub interrupted: Option<Interruption>,
+    /// Where the report went, once written.
+    pub report: Option<std::path::PathBuf>,
+}
