@@ -17,6 +17,7 @@ pub mod control;
 pub mod exchange;
 pub mod flash;
 pub mod link;
+pub mod loads;
 pub mod model;
 pub mod platform;
 pub mod protocol;

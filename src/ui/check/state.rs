@@ -286,4 +286,82 @@ pub struct CheckView {
     pub interrupted: Option<Interruption>,
     /// Where the report went, once written.
     pub report: Option<std::path::PathBuf>,
+    /// Step 5, once reached: the load analysis, or why there is none.
+    pub loads: Option<LoadsView>,
+}
+
+/// Step 5's result: the load analysis of the builder's file, or why there is none.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LoadsView {
+    /// The builder's file (its path), analysed with the check's measured currents
+    /// ([`CheckView::measured_amps`]).
+    Analysed {
+        path: std::path::PathBuf,
+        analysis: crate::loads::Analysis,
+    },
+    /// There was no file: the template was written here, for the builder to fill in
+    /// before the next check.
+    TemplateWritten(std::path::PathBuf),
+    /// The file could not be used: its path, line and what is wrong, in words.
+    Refused(String),
+}
+
+impl CheckView {
+    /// The currents step 3 measured, for the load analysis: device id and amperes.
+    /// Only a real reading counts: "no current while on" is a fault to fix, not the
+    /// circuit's load, and a faulted circuit gave none.
+    pub fn measured_amps(&self) -> Vec<(u8, f32)> {
+        self.circuits
+            .iter()
+            .filter_map(|c| match c.outcome {
+                Outcome::Found(CircuitFinding::Within { amps, .. })
+                | Outcome::Found(CircuitFinding::NearBreaker { amps, .. }) => Some((c.id, amps)),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circuit(id: u8, outcome: Outcome<CircuitFinding>) -> CircuitResult {
+        CircuitResult {
+            id,
+            name: format!("c{id}"),
+            pin: "?",
+            breaker: Some(5),
+            switch: None,
+            outcome,
+        }
+    }
+
+    #[test]
+    fn only_real_readings_are_measurements() {
+        let view = CheckView {
+            circuits: vec![
+                circuit(
+                    4,
+                    Outcome::Found(CircuitFinding::Within {
+                        amps: 1.5,
+                        breaker: 5,
+                    }),
+                ),
+                circuit(5, Outcome::Found(CircuitFinding::NoCurrent)),
+                circuit(
+                    6,
+                    Outcome::Found(CircuitFinding::NearBreaker {
+                        amps: 4.5,
+                        breaker: 5,
+                    }),
+                ),
+                circuit(7, Outcome::Found(CircuitFinding::DidNotSwitch)),
+                circuit(8, Outcome::Skipped("excluded".into())),
+                circuit(9, Outcome::NotRun),
+            ],
+            ..CheckView::default()
+        };
+        assert_eq!(view.measured_amps(), [(4, 1.5), (6, 4.5)]);
+    }
 }

@@ -1,0 +1,213 @@
+//! The load file on disk: read it, or on the first run write its template, never
+//! over a file that is there (it holds the builder's work).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use super::file::{self, LoadFile, Problem};
+use crate::model::Circuit;
+
+/// Where the file lives unless the caller says: `loads.toml` beside the config file
+/// (`~/.config/vpx-efis` on Linux, `~/Library/Application Support/vpx-efis` on
+/// macOS, `%APPDATA%\vpx-efis\config` on Windows).
+pub fn default_path() -> Option<PathBuf> {
+    directories::ProjectDirs::from("", "", "vpx-efis").map(|d| d.config_dir().join("loads.toml"))
+}
+
+/// A load file that cannot be used, named with its path (and line).
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    #[error("load file {}: {error}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        error: std::io::Error,
+    },
+    #[error("load file {}, {problem}", path.display())]
+    Bad { path: PathBuf, problem: Problem },
+}
+
+/// What the check found at the file's path.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Opened {
+    /// There was none: the template was written there, for the builder to fill in.
+    TemplateWritten(PathBuf),
+    /// The builder's file, read.
+    Read(LoadFile),
+}
+
+/// Reads the file at `path`.
+pub fn read(path: &Path) -> Result<LoadFile, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|error| LoadError::Io {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    file::parse(&text).map_err(|problem| LoadError::Bad {
+        path: path.to_path_buf(),
+        problem,
+    })
+}
+
+/// Reads the file at `path`, or, when there is none, writes the template listing
+/// `circuits` there (and the folders it needs).
+pub fn open_or_create(path: &Path, circuits: &[Circuit]) -> Result<Opened, LoadError> {
+    let io = |error| LoadError::Io {
+        path: path.to_path_buf(),
+        error,
+    };
+    if !path.exists() {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(io)?;
+        }
+        if write_new(path, file::template(circuits).as_bytes()).map_err(io)? {
+            return Ok(Opened::TemplateWritten(path.to_path_buf()));
+        }
+    }
+    read(path).map(Opened::Read)
+}
+
+/// Writes `bytes` to `path` only if nothing is there, whole or not at all. Returns
+/// whether it wrote. The text goes to a temporary file in the same folder, flushed to
+/// disk, which is then hard-linked to `path`: a link, unlike a rename, fails when the
+/// name is taken, so a file that appeared meanwhile is never replaced. On a file
+/// system without hard links, the file is created with `create_new` and written in
+/// place (still never over another; an interruption there may leave it short, and
+/// then it is refused by its line when read).
+pub fn write_new(path: &Path, bytes: &[u8]) -> std::io::Result<bool> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::other(format!("{} is not a file name", path.display())))?;
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let written = (|| {
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()
+    })();
+    let linked = written.and_then(|()| std::fs::hard_link(&tmp, path));
+    let _ = std::fs::remove_file(&tmp);
+    match linked {
+        Ok(()) => {
+            if let Ok(d) = std::fs::File::open(&dir) {
+                let _ = d.sync_all();
+            }
+            Ok(true)
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(false),
+        Err(e) if e.kind() == std::io::ErrorKind::Unsupported => {
+            match std::fs::OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(path)
+            {
+                Ok(mut f) => {
+                    f.write_all(bytes)?;
+                    f.sync_all()?;
+                    Ok(true)
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(false),
+                Err(e) => Err(e),
+            }
+        }
+        Err(e) => Err(e),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{CircuitKind, CircuitState};
+    use crate::protocol::device::EFIS;
+
+    fn efis() -> Vec<Circuit> {
+        vec![Circuit {
+            id: EFIS,
+            name: "EFIS 1".into(),
+            pin: "EFIS",
+            kind: CircuitKind::Device,
+            state: CircuitState::Unknown,
+            amps: None,
+            breaker: None,
+            switch: None,
+            spec_unknown: false,
+        }]
+    }
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut e: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        e.sort();
+        e
+    }
+
+    #[test]
+    fn the_first_run_writes_the_template_and_the_next_reads_the_builders_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("new").join("loads.toml");
+        assert_eq!(
+            open_or_create(&path, &efis()).unwrap(),
+            Opened::TemplateWritten(path.clone())
+        );
+        assert_eq!(entries(&dir.path().join("new")), ["loads.toml"]);
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            text.contains("[circuit.EFIS]\nname = \"EFIS 1\"\n"),
+            "{text}"
+        );
+        // Unedited, it is refused with the path and what to write.
+        let e = open_or_create(&path, &efis()).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!(
+                "load file {}, alternator_amps is missing: write alternator_amps = the \
+                 alternator's rated output in amperes",
+                path.display()
+            )
+        );
+        let edited = text
+            .replace("# alternator_amps = 40", "alternator_amps = 40")
+            .replace("# battery_amp_hours = 17", "battery_amp_hours = 17");
+        std::fs::write(&path, &edited).unwrap();
+        let Opened::Read(f) = open_or_create(&path, &[]).unwrap() else {
+            panic!("the builder's file was not read");
+        };
+        assert_eq!(f.circuits.len(), 1);
+        // Never written over, even with other circuits on offer.
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), edited);
+    }
+
+    #[test]
+    fn a_file_already_there_is_never_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("loads.toml");
+        std::fs::write(&path, "mine").unwrap();
+        assert!(!write_new(&path, b"template").unwrap());
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "mine");
+        assert_eq!(entries(dir.path()), ["loads.toml"]);
+        let e = open_or_create(&path, &efis()).unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!("load file {}, line 1", path.display())),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_failed_write_leaves_nothing_behind() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("missing-folder").join("loads.toml");
+        assert!(write_new(&path, b"template").is_err());
+        assert_eq!(entries(dir.path()), Vec::<String>::new());
+    }
+}

@@ -1,0 +1,656 @@
+//! The load-analysis file: TOML the builder edits by hand.
+//!
+//! ```toml
+//! alternator_amps = 40        # the alternator's rated output, A
+//! battery_amp_hours = 17      # the battery's rated capacity, Ah (its 20-hour rate)
+//! battery_usable = 0.8        # the fraction of it counted on (optional, 0.8)
+//!
+//! [circuit.5A-7]              # one VP-X output, by its pin (ICD Appendix B)
+//! name = "Landing Lt"         # what it feeds (optional; the pin if absent)
+//! amps = 7.5                  # its current if the check cannot measure it (optional)
+//! ground = false              # on in that phase: true, false, or the fraction of the
+//! taxi = true                 #   time it is on (0.1 for trim: a tenth of the time)
+//! take_off = true
+//! cruise_day = false
+//! cruise_night = false
+//! landing = true
+//! emergency = false           # on the battery alone, the alternator failed
+//! ```
+//!
+//! A phase a circuit does not mention is off in it. Every problem is named with its
+//! line and field, so the builder can go straight to it. The circuits are kept in
+//! pin order, whatever order the file lists them in.
+
+use std::collections::BTreeMap;
+use std::fmt::{self, Write};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::Phase;
+use crate::model::{Circuit, CircuitKind};
+use crate::protocol::device;
+
+/// Without a figure in the file, the share of the battery's rated capacity counted
+/// on in an emergency: 80 %, the capacity below which a battery is due for
+/// replacement (the usual capacity-test limit for aircraft batteries), so the
+/// endurance holds for a battery on the last day it would still pass.
+pub const DEFAULT_BATTERY_USABLE: f64 = 0.8;
+
+/// One circuit's line in the file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadCircuit {
+    /// The device id of its pin (Appendix B).
+    pub id: u8,
+    pub name: String,
+    /// The current the builder typed, used when the check did not measure one.
+    pub amps: Option<f64>,
+    /// Per phase (indexed by [`Phase::index`]), the fraction of the time it is on:
+    /// 1 for on, 0 for off.
+    pub duty: [f64; 7],
+}
+
+impl LoadCircuit {
+    /// The Appendix B system name of its pin.
+    pub fn pin(&self) -> &'static str {
+        device::device(self.id).map_or("?", |d| d.system_name)
+    }
+
+    pub fn duty(&self, phase: Phase) -> f64 {
+        self.duty[phase.index()]
+    }
+}
+
+/// The whole file, read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadFile {
+    pub alternator_amps: f64,
+    pub battery_amp_hours: f64,
+    /// The fraction of `battery_amp_hours` counted on in an emergency, 0 < x ≤ 1.
+    pub battery_usable: f64,
+    /// In pin order.
+    pub circuits: Vec<LoadCircuit>,
+}
+
+/// What is wrong with a file: the line (when known) and, in words, the field and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    pub line: Option<usize>,
+    pub message: String,
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(l) => write!(f, "line {l}: {}", self.message),
+            None => f.write_str(&self.message),
+        }
+    }
+}
+
+impl std::error::Error for Problem {}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Raw {
+    alternator_amps: Option<Spanned<toml::Value>>,
+    battery_amp_hours: Option<Spanned<toml::Value>>,
+    battery_usable: Option<Spanned<toml::Value>>,
+    #[serde(default)]
+    circuit: BTreeMap<Spanned<String>, RawCircuit>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCircuit {
+    name: Option<Spanned<toml::Value>>,
+    amps: Option<Spanned<toml::Value>>,
+    ground: Option<Spanned<toml::Value>>,
+    taxi: Option<Spanned<toml::Value>>,
+    take_off: Option<Spanned<toml::Value>>,
+    cruise_day: Option<Spanned<toml::Value>>,
+    cruise_night: Option<Spanned<toml::Value>>,
+    landing: Option<Spanned<toml::Value>>,
+    emergency: Option<Spanned<toml::Value>>,
+}
+
+impl RawCircuit {
+    fn phases(self) -> [(Phase, Option<Spanned<toml::Value>>); 7] {
+        [
+            (Phase::Ground, self.ground),
+            (Phase::Taxi, self.taxi),
+            (Phase::TakeOff, self.take_off),
+            (Phase::CruiseDay, self.cruise_day),
+            (Phase::CruiseNight, self.cruise_night),
+            (Phase::Landing, self.landing),
+            (Phase::Emergency, self.emergency),
+        ]
+    }
+}
+
+/// Reads the file's text. The first problem stops the reading, named by its line.
+pub fn parse(text: &str) -> Result<LoadFile, Problem> {
+    let raw: Raw = toml::from_str(text).map_err(|e| Problem {
+        line: e.span().map(|s| line_of(text, s.start)),
+        message: plain_serde_words(e.message().trim()),
+    })?;
+    let at = |v: &Spanned<toml::Value>| Some(line_of(text, v.span().start));
+
+    let required = |key: &str, v: Option<Spanned<toml::Value>>, what: &str| match v {
+        None => Err(Problem {
+            line: None,
+            message: format!("{key} is missing: write {key} = {what}"),
+        }),
+        Some(v) => {
+            let n = number(&v, key).map_err(|m| Problem {
+                line: at(&v),
+                message: m,
+            })?;
+            if n > 0.0 {
+                Ok(n)
+            } else {
+                Err(Problem {
+                    line: at(&v),
+                    message: format!("{key}: {n} must be more than 0 ({what})"),
+                })
+            }
+        }
+    };
+    let alternator_amps = required(
+        "alternator_amps",
+        raw.alternator_amps,
+        "the alternator's rated output in amperes",
+    )?;
+    let battery_amp_hours = required(
+        "battery_amp_hours",
+        raw.battery_amp_hours,
+        "the battery's rated capacity in ampere-hours",
+    )?;
+    let battery_usable = match raw.battery_usable {
+        None => DEFAULT_BATTERY_USABLE,
+        Some(v) => {
+            let bad = |m: String| Problem {
+                line: at(&v),
+                message: m,
+            };
+            let n = number(&v, "battery_usable").map_err(bad)?;
+            if n > 0.0 && n <= 1.0 {
+                n
+            } else {
+                return Err(bad(format!(
+                    "battery_usable: {n} is no share of the battery; write a number \
+                     more than 0 and at most 1 (0.8 for 80 %)"
+                )));
+            }
+        }
+    };
+
+    let mut circuits: Vec<(LoadCircuit, usize)> = Vec::new();
+    for (key, rc) in raw.circuit {
+        let key_line = line_of(text, key.span().start);
+        let key = key.into_inner();
+        let Some(dev) = device::DEVICES
+            .iter()
+            .find(|d| d.system_name.eq_ignore_ascii_case(&key))
+        else {
+            return Err(Problem {
+                line: Some(key_line),
+                message: format!(
+                    "[circuit.{key}]: {key:?} is no pin of the VP-X; the pins are {}",
+                    device::DEVICES
+                        .iter()
+                        .map(|d| d.system_name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            });
+        };
+        if let Some((_, first)) = circuits.iter().find(|(c, _)| c.id == dev.id) {
+            return Err(Problem {
+                line: Some(key_line),
+                message: format!(
+                    "[circuit.{key}]: {} is listed twice, first on line {first}",
+                    dev.system_name
+                ),
+            });
+        }
+        let field = |f: &str| format!("[circuit.{}] {f}", dev.system_name);
+        let name = match &rc.name {
+            None => dev.system_name.to_string(),
+            Some(v) => match v.get_ref() {
+                toml::Value::String(s) => s.clone(),
+                other => {
+                    return Err(Problem {
+                        line: at(v),
+                        message: format!(
+                            "{}: {} where text in quotes was expected",
+                            field("name"),
+                            kind(other)
+                        ),
+                    });
+                }
+            },
+        };
+        let amps = match &rc.amps {
+            None => None,
+            Some(v) => {
+                let bad = |m: String| Problem {
+                    line: at(v),
+                    message: m,
+                };
+                let n = number(v, &field("amps")).map_err(bad)?;
+                if n < 0.0 {
+                    return Err(bad(format!(
+                        "{}: {n} A is below zero; write the current the circuit draws",
+                        field("amps")
+                    )));
+                }
+                if n > f64::from(dev.amps_max) {
+                    return Err(bad(format!(
+                        "{}: {n} A is more than the {} pin can carry ({} A at most, ICD \
+                         Appendix B)",
+                        field("amps"),
+                        dev.system_name,
+                        dev.amps_max
+                    )));
+                }
+                Some(n)
+            }
+        };
+        let mut duty = [0.0; 7];
+        for (phase, v) in rc.phases() {
+            let Some(v) = v else { continue };
+            duty[phase.index()] = fraction(&v).map_err(|why| Problem {
+                line: at(&v),
+                message: format!("{}: {why}", field(phase.key())),
+            })?;
+        }
+        circuits.push((
+            LoadCircuit {
+                id: dev.id,
+                name,
+                amps,
+                duty,
+            },
+            key_line,
+        ));
+    }
+    let mut circuits: Vec<LoadCircuit> = circuits.into_iter().map(|(c, _)| c).collect();
+    circuits.sort_by_key(|c| c.id);
+    Ok(LoadFile {
+        alternator_amps,
+        battery_amp_hours,
+        battery_usable,
+        circuits,
+    })
+}
+
+/// A number, whole or decimal, as the field asks.
+fn number(v: &Spanned<toml::Value>, field: &str) -> Result<f64, String> {
+    match v.get_ref() {
+        toml::Value::Integer(i) => Ok(*i as f64),
+        toml::Value::Float(f) if f.is_finite() => Ok(*f),
+        toml::Value::Float(f) => Err(format!("{field}: {f} is no number of amperes")),
+        other => Err(format!(
+            "{field}: {} where a number was expected",
+            kind(other)
+        )),
+    }
+}
+
+/// A phase's value: on, off, or the fraction of the time the circuit is on.
+fn fraction(v: &Spanned<toml::Value>) -> Result<f64, String> {
+    let why = |shown: String| {
+        format!(
+            "{shown} is not on, off or a fraction of the time; write true, false, or a \
+             number from 0 to 1 (0.25 for a quarter of the time)"
+        )
+    };
+    match v.get_ref() {
+        toml::Value::Boolean(b) => Ok(if *b { 1.0 } else { 0.0 }),
+        toml::Value::Integer(i) if (0..=1).contains(i) => Ok(*i as f64),
+        toml::Value::Float(f) if (0.0..=1.0).contains(f) => Ok(*f),
+        toml::Value::Integer(i) => Err(why(i.to_string())),
+        toml::Value::Float(f) => Err(why(f.to_string())),
+        other => Err(why(kind(other).to_string())),
+    }
+}
+
+fn kind(v: &toml::Value) -> &'static str {
+    match v.type_str() {
+        "string" => "text",
+        "integer" | "float" => "a number",
+        "boolean" => "true/false",
+        "array" => "a list",
+        "table" => "a section",
+        _ => "a date",
+    }
+}
+
+/// serde's words for an unknown key list every field in its own style; ours say
+/// which keys the file knows.
+fn plain_serde_words(message: &str) -> String {
+    if message.starts_with("unknown field") {
+        let key = message.split('`').nth(1).unwrap_or("?");
+        let phases: Vec<&str> = Phase::ALL.iter().map(|p| p.key()).collect();
+        format!(
+            "unknown key {key:?}: the file's keys are alternator_amps, battery_amp_hours, \
+             battery_usable and [circuit.PIN] sections; a circuit's keys are name, amps, {}",
+            phases.join(", ")
+        )
+    } else {
+        message.to_string()
+    }
+}
+
+/// The 1-based line of a byte offset.
+fn line_of(text: &str, offset: usize) -> usize {
+    text.as_bytes()[..offset.min(text.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+/// What the template says on top: how to fill the file in.
+const HEADER: &str = "\
+# vpx-efis electrical load analysis
+#
+# The installation check reads this file each time it runs; vpx-efis never writes
+# over it. Every current the check measures is used instead of a typed one.
+#
+# alternator_amps    the alternator's rated output, in amperes
+# battery_amp_hours  the battery's rated capacity, in ampere-hours (its 20-hour rate)
+# battery_usable     the share of that capacity counted on in an emergency, 0 to 1;
+#                    0.8 if absent: a battery is due for replacement below 80 %
+#
+# Each [circuit.PIN] is one output of the VP-X, by its pin (ICD Appendix B):
+#   name      what it feeds
+#   amps      the current it draws, in amperes, if the check cannot measure it
+#   ground, taxi, take_off, cruise_day, cruise_night, landing, emergency
+#             whether it is on in that phase: true or false, or the fraction of the
+#             time it is on (0.1 for a trim motor: a tenth of the time)
+# A phase a circuit does not mention is off in it. The emergency phase runs on the
+# battery alone: the alternator has failed, and its field is off.
+";
+
+/// What the template adds: where it starts from.
+const TEMPLATE_NOTE: &str = "\
+#
+# This is a template: every circuit starts ON in every phase, the worst case, except
+# the starter (cranking only) and the alternator field in the emergency phase. Turn
+# off what is off, type a current for each circuit the check cannot measure, and
+# write the alternator's rating and the battery's capacity below (without the #).
+";
+
+/// The file's text for `file`, commented as the template is: what
+/// [`parse`] reads back as the same file.
+pub fn to_toml(file: &LoadFile) -> String {
+    let mut out = String::from(HEADER);
+    out.push('\n');
+    let _ = writeln!(out, "alternator_amps = {}", file.alternator_amps);
+    let _ = writeln!(out, "battery_amp_hours = {}", file.battery_amp_hours);
+    let _ = writeln!(out, "battery_usable = {}", file.battery_usable);
+    write_circuits(&mut out, &file.circuits);
+    out
+}
+
+/// The template written on the first run: every circuit of the unit, the worst case
+/// in each phase, and the two ratings left for the builder to write (so that an
+/// unedited template is refused, not analysed with made-up ratings).
+pub fn template(circuits: &[Circuit]) -> String {
+    let mut out = String::from(HEADER);
+    out.push_str(TEMPLATE_NOTE);
+    out.push('\n');
+    out.push_str("# alternator_amps = 40\n");
+    out.push_str("# battery_amp_hours = 17\n");
+    let _ = writeln!(out, "battery_usable = {DEFAULT_BATTERY_USABLE}");
+    write_circuits(&mut out, &template_circuits(circuits));
+    out
+}
+
+/// The template's circuits: each on in every phase, but the starter (its pin only
+/// drives the contactor while cranking) and an alternator field in the emergency
+/// phase (the alternator has failed).
+pub fn template_circuits(circuits: &[Circuit]) -> Vec<LoadCircuit> {
+    let mut out: Vec<LoadCircuit> = circuits
+        .iter()
+        .map(|c| {
+            let mut duty = [1.0; 7];
+            match c.kind {
+                CircuitKind::Starter => duty = [0.0; 7],
+                CircuitKind::Alternator { .. } => duty[Phase::Emergency.index()] = 0.0,
+                _ => {}
+            }
+            LoadCircuit {
+                id: c.id,
+                name: c.name.clone(),
+                amps: None,
+                duty,
+            }
+        })
+        .collect();
+    out.sort_by_key(|c| c.id);
+    out
+}
+
+fn write_circuits(out: &mut String, circuits: &[LoadCircuit]) {
+    let mut sorted: Vec<&LoadCircuit> = circuits.iter().collect();
+    sorted.sort_by_key(|c| c.id);
+    for c in sorted {
+        let _ = writeln!(out, "\n[circuit.{}]", c.pin());
+        let _ = writeln!(out, "name = {}", toml::Value::String(c.name.clone()));
+        match c.amps {
+            Some(a) => {
+                let _ = writeln!(out, "amps = {a}");
+            }
+            None => out.push_str("# amps = 0.0\n"),
+        }
+        for p in Phase::ALL {
+            let d = c.duty(p);
+            let _ = if d == 1.0 {
+                writeln!(out, "{} = true", p.key())
+            } else if d == 0.0 {
+                writeln!(out, "{} = false", p.key())
+            } else {
+                writeln!(out, "{} = {d}", p.key())
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::CircuitState;
+    use crate::protocol::device::{EFIS, FIELD_PRI, FLAPS, STARTER, TRIM_P};
+
+    fn circuit(id: u8, name: &str, kind: CircuitKind) -> Circuit {
+        Circuit {
+            id,
+            name: name.into(),
+            pin: device::device(id).unwrap().system_name,
+            kind,
+            state: CircuitState::Unknown,
+            amps: None,
+            breaker: None,
+            switch: None,
+            spec_unknown: false,
+        }
+    }
+
+    fn unit() -> Vec<Circuit> {
+        vec![
+            circuit(FLAPS, "Flaps", CircuitKind::Flaps),
+            circuit(STARTER, "Starter", CircuitKind::Starter),
+            circuit(EFIS, "EFIS \"left\"", CircuitKind::Device),
+            circuit(
+                FIELD_PRI,
+                "Alternator",
+                CircuitKind::Alternator { primary: true },
+            ),
+            circuit(0x0A, "Landing Lt", CircuitKind::Device),
+            circuit(
+                TRIM_P,
+                "Trim_P",
+                CircuitKind::Trim(crate::model::TrimKind::Pitch),
+            ),
+        ]
+    }
+
+    fn sample() -> LoadFile {
+        LoadFile {
+            alternator_amps: 40.0,
+            battery_amp_hours: 17.5,
+            battery_usable: 0.75,
+            circuits: vec![
+                LoadCircuit {
+                    id: EFIS,
+                    name: "EFIS \"left\" # 1".into(),
+                    amps: Some(2.25),
+                    duty: [1.0; 7],
+                },
+                LoadCircuit {
+                    id: 0x0A,
+                    name: "Landing Lt".into(),
+                    amps: None,
+                    duty: [0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0],
+                },
+                LoadCircuit {
+                    id: TRIM_P,
+                    name: "Pitch trim".into(),
+                    amps: Some(1.0),
+                    duty: [0.0, 0.05, 0.1, 0.1, 0.1, 0.1, 0.1],
+                },
+            ],
+        }
+    }
+
+    #[test]
+    fn a_file_written_is_read_back_the_same() {
+        let f = sample();
+        let text = to_toml(&f);
+        assert_eq!(parse(&text), Ok(f));
+    }
+
+    #[test]
+    fn the_template_lists_every_circuit_and_reads_back_once_the_ratings_are_written() {
+        let text = template(&unit());
+        for pin in ["Flaps", "Starter", "EFIS", "Field_Pri", "5A-7", "Trim_P"] {
+            assert!(
+                text.contains(&format!("\n[circuit.{pin}]\n")),
+                "{pin} missing"
+            );
+        }
+        // Unedited, it is refused for its missing rating, not analysed with a guess.
+        assert_eq!(
+            parse(&text).unwrap_err().message,
+            "alternator_amps is missing: write alternator_amps = the alternator's rated \
+             output in amperes"
+        );
+        let edited = text
+            .replace("# alternator_amps = 40", "alternator_amps = 60")
+            .replace("# battery_amp_hours = 17", "battery_amp_hours = 18");
+        let f = parse(&edited).unwrap();
+        assert_eq!(f.alternator_amps, 60.0);
+        assert_eq!(f.battery_amp_hours, 18.0);
+        assert_eq!(f.battery_usable, DEFAULT_BATTERY_USABLE);
+        assert_eq!(f.circuits, template_circuits(&unit()));
+        let by_id = |id| f.circuits.iter().find(|c| c.id == id).unwrap();
+        assert_eq!(by_id(STARTER).duty, [0.0; 7]);
+        assert_eq!(by_id(FIELD_PRI).duty, [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0]);
+        assert_eq!(by_id(EFIS).duty, [1.0; 7]);
+        assert_eq!(by_id(EFIS).name, "EFIS \"left\"");
+        assert_eq!(by_id(EFIS).amps, None);
+    }
+
+    fn problem(text: &str) -> String {
+        parse(text).unwrap_err().to_string()
+    }
+
+    const RATINGS: &str = "alternator_amps = 40\nbattery_amp_hours = 17\n";
+
+    #[test]
+    fn a_bad_phase_value_is_named_with_its_line_and_field() {
+        let text = format!("{RATINGS}\n[circuit.5A-7]\nname = \"Landing\"\ntaxi = 1.5\n");
+        assert_eq!(
+            problem(&text),
+            "line 6: [circuit.5A-7] taxi: 1.5 is not on, off or a fraction of the time; \
+             write true, false, or a number from 0 to 1 (0.25 for a quarter of the time)"
+        );
+        let text = format!("{RATINGS}[circuit.EFIS]\nlanding = \"yes\"\n");
+        assert_eq!(
+            problem(&text),
+            "line 4: [circuit.EFIS] landing: text is not on, off or a fraction of the time; \
+             write true, false, or a number from 0 to 1 (0.25 for a quarter of the time)"
+        );
+    }
+
+    #[test]
+    fn an_unknown_pin_a_misspelt_phase_and_a_twice_listed_pin_are_named() {
+        let text = format!("{RATINGS}\n[circuit.5A-99]\ntaxi = true\n");
+        let p = problem(&text);
+        assert!(
+            p.starts_with("line 4: [circuit.5A-99]: \"5A-99\" is no pin of the VP-X; the pins are Flaps, Starter, EFIS,"),
+            "{p}"
+        );
+        let text = format!("{RATINGS}[circuit.EFIS]\ntakeoff = true\n");
+        let p = problem(&text);
+        assert!(p.starts_with("line 4: unknown key \"takeoff\": "), "{p}");
+        assert!(p.contains("take_off"), "{p}");
+        let text = format!("{RATINGS}[circuit.efis]\ntaxi = true\n[circuit.EFIS]\n");
+        let p = problem(&text);
+        assert!(p.contains("EFIS is listed twice, first on line"), "{p}");
+    }
+
+    #[test]
+    fn ratings_and_currents_out_of_range_are_refused_in_words() {
+        assert_eq!(
+            problem("alternator_amps = 0\nbattery_amp_hours = 17\n"),
+            "line 1: alternator_amps: 0 must be more than 0 (the alternator's rated output \
+             in amperes)"
+        );
+        assert_eq!(
+            problem("alternator_amps = \"40 A\"\nbattery_amp_hours = 17\n"),
+            "line 1: alternator_amps: text where a number was expected"
+        );
+        assert_eq!(
+            problem("alternator_amps = 40\n"),
+            "battery_amp_hours is missing: write battery_amp_hours = the battery's rated \
+             capacity in ampere-hours"
+        );
+        assert_eq!(
+            problem(&format!("{RATINGS}battery_usable = 1.2\n")),
+            "line 3: battery_usable: 1.2 is no share of the battery; write a number more \
+             than 0 and at most 1 (0.8 for 80 %)"
+        );
+        assert_eq!(
+            problem(&format!("{RATINGS}[circuit.5A-1]\namps = 6\n")),
+            "line 4: [circuit.5A-1] amps: 6 A is more than the 5A-1 pin can carry (5 A at \
+             most, ICD Appendix B)"
+        );
+        assert_eq!(
+            problem(&format!("{RATINGS}[circuit.5A-1]\namps = -1\n")),
+            "line 4: [circuit.5A-1] amps: -1 A is below zero; write the current the \
+             circuit draws"
+        );
+    }
+
+    #[test]
+    fn broken_toml_is_named_with_its_line() {
+        let p = parse(&format!("{RATINGS}[circuit.EFIS\ntaxi = true\n")).unwrap_err();
+        assert_eq!(p.line, Some(3));
+    }
+
+    #[test]
+    fn whole_numbers_and_missing_phases_are_read_as_meant() {
+        let f = parse(&format!(
+            "{RATINGS}[circuit.Trim_P]\nname = \"Pitch\"\namps = 2\ntaxi = 1\ncruise_day = 0\nlanding = 0.25\n"
+        ))
+        .unwrap();
+        assert_eq!(f.circuits.len(), 1);
+        assert_eq!(f.circuits[0].amps, Some(2.0));
+        assert_eq!(f.circuits[0].duty, [0.0, 1.0, 0.0, 0.0, 0.0, 0.25, 0.0]);
+        assert_eq!(f.circuits[0].pin(), "Trim_P");
+    }
+}
