@@ -1,4 +1,384 @@
-//! The installation check's screens. Pure widgets over [`state::CheckView`]: the flow
-//! (`crate::check`) changes the view, these draw it.
+//! The installation check's screens. Pure widgets over [`state::CheckView`] and the
+//! model: the flow (`crate::check`) changes the view, these draw it.
+//!
+//! Every step's screen has the same frame: the page's title line, the steps with the
+//! one running marked, the COMMUNICATION LOST banner when the link is stale, what the
+//! person must do now (and the time left), the step's own panels, one line of news
+//! and the keys. Live values come only through the model's `live_*` accessors, so a
+//! stale link shows "--", never an old reading. Every ✓ ✗ ⚠ has its word beside it.
 
+pub mod circuits;
+pub mod confirm;
+pub mod keys;
+pub mod list;
+pub mod motors;
 pub mod state;
+pub mod summary;
+pub mod switches;
+pub mod words;
+
+use std::time::Instant;
+
+use ratatui::Frame;
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Borders};
+
+use super::state::ViewState;
+use super::{MIN_HEIGHT, MIN_WIDTH, comm_banner, fast, palette::Palette, theme, title_bar};
+use crate::model::Model;
+use state::{CheckView, Mark, Prompt, Step};
+
+/// Draws the check as the person sees it: [`render`], then repainted in the palette
+/// the page chose (`page.theme`: dark, light or no colour). `page` is the page's own
+/// view state: its theme, the motor run the page is streaming now, and its notice.
+pub fn draw(
+    frame: &mut Frame,
+    area: Rect,
+    view: &CheckView,
+    model: &Model,
+    page: &ViewState,
+    now: Instant,
+) {
+    render(frame, area, view, model, page, now);
+    paint(frame.buffer_mut(), area, page.theme.palette);
+}
+
+/// Repaints only `area`, so a check drawn in part of a frame leaves the rest alone.
+fn paint(buf: &mut Buffer, area: Rect, palette: Palette) {
+    let area = area.intersection(buf.area);
+    if area == buf.area {
+        return palette.paint(buf);
+    }
+    let mut part = Buffer::empty(area);
+    for y in area.top()..area.bottom() {
+        for x in area.left()..area.right() {
+            part[(x, y)] = buf[(x, y)].clone();
+        }
+    }
+    palette.paint(&mut part);
+    for y in area.top()..area.bottom() {
+        for x in area.left()..area.right() {
+            buf[(x, y)] = part[(x, y)].clone();
+        }
+    }
+}
+
+/// Draws the check in the page's colour words (see [`super::theme`]).
+pub fn render(
+    frame: &mut Frame,
+    area: Rect,
+    view: &CheckView,
+    model: &Model,
+    page: &ViewState,
+    now: Instant,
+) {
+    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+        return too_small(frame.buffer_mut(), area);
+    }
+    let banner = comm_banner::banner(model, now);
+    let prompt = shown_prompt(view);
+    let prompt_h = prompt.map_or(0, |p| prompt_lines(p, area.width).len() as u16 + 1);
+    let [
+        title,
+        steps,
+        banner_area,
+        prompt_area,
+        body,
+        message,
+        keys_area,
+    ] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Length(1),
+        Constraint::Length(comm_banner::height(banner.as_ref(), area.height)),
+        Constraint::Length(prompt_h),
+        Constraint::Fill(1),
+        Constraint::Length(1),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    title_bar::render(frame, title, model, now);
+    fast::lines(frame.buffer_mut(), steps, &[steps_line(view, steps.width)]);
+    if let Some(b) = &banner {
+        comm_banner::render(frame, banner_area, b);
+    }
+    if let Some(p) = prompt {
+        render_prompt(frame, prompt_area, p);
+    }
+    if view.interrupted.is_some() {
+        summary::render_interrupted(frame, body, view, model);
+    } else {
+        match view.step {
+            Step::Confirm => confirm::render(frame, body, view),
+            Step::Switches => switches::render(frame, body, view, model, now),
+            Step::Circuits => circuits::render(frame, body, view, model, now),
+            Step::Motors => motors::render(frame, body, view, model, page, now),
+            Step::Loads => summary::render_loads(frame, body, view),
+            Step::Done => summary::render_done(frame, body, view, model),
+        }
+    }
+    if let Some(m) = &view.message {
+        fast::lines(
+            frame.buffer_mut(),
+            message,
+            &[Line::styled(m.clone(), theme::info())],
+        );
+    }
+    keys::render(frame.buffer_mut(), keys_area, view, page);
+}
+
+/// The prompt, unless the check was interrupted (then nothing is asked of the person
+/// but to read what was left).
+fn shown_prompt(view: &CheckView) -> Option<&Prompt> {
+    view.prompt
+        .as_ref()
+        .filter(|p| view.interrupted.is_none() && !(p.todo.is_empty() && p.watching.is_empty()))
+}
+
+const DO_NOW: &str = " DO NOW ";
+const WATCHING: &str = "Watching ";
+
+/// What the person must do, in plain words, then what the page is watching; the
+/// time left sits at the end of the first line.
+fn prompt_lines(p: &Prompt, width: u16) -> Vec<Line<'static>> {
+    let width = usize::from(width);
+    let time = p
+        .time_left
+        .map(|t| format!("  {} left", words::duration(t)));
+    let time_w = time.as_ref().map_or(0, |t| t.chars().count());
+    let lead = DO_NOW.chars().count() + 1;
+    let todo = list::wrap(&p.todo, width.saturating_sub(lead + time_w).max(10));
+    let mut out = Vec::new();
+    for (i, part) in todo.into_iter().enumerate() {
+        let mut spans = if i == 0 {
+            vec![
+                Span::styled(DO_NOW, theme::banner_waiting()),
+                Span::raw(" "),
+            ]
+        } else {
+            vec![Span::raw(" ".repeat(lead))]
+        };
+        let len = part.chars().count();
+        spans.push(Span::styled(
+            part,
+            Style::new().add_modifier(Modifier::BOLD),
+        ));
+        if let (0, Some(t)) = (i, &time) {
+            let pad = width.saturating_sub(lead + len + time_w);
+            spans.push(Span::raw(" ".repeat(pad)));
+            spans.push(Span::styled(t.clone(), theme::caution()));
+        }
+        out.push(Line::from(spans));
+    }
+    if !p.watching.is_empty() {
+        let lead = WATCHING.chars().count();
+        for (i, part) in list::wrap(&p.watching, width.saturating_sub(lead).max(10))
+            .into_iter()
+            .enumerate()
+        {
+            let head = if i == 0 {
+                Span::styled(WATCHING, theme::label())
+            } else {
+                Span::raw(" ".repeat(lead))
+            };
+            out.push(Line::from(vec![head, Span::styled(part, theme::info())]));
+        }
+    }
+    // A prompt of a page's length would push the results off a small screen.
+    out.truncate(4);
+    out
+}
+
+fn render_prompt(frame: &mut Frame, area: Rect, p: &Prompt) {
+    let block = Block::new()
+        .borders(Borders::BOTTOM)
+        .border_style(theme::border());
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    fast::lines(frame.buffer_mut(), inner, &prompt_lines(p, area.width));
+}
+
+/// The steps' short names, for a narrow line.
+fn short(step: Step) -> &'static str {
+    match step {
+        Step::Confirm => "Power",
+        Step::Switches => "Switches",
+        Step::Circuits => "Circuits",
+        Step::Motors => "Motors",
+        Step::Loads => "Loads",
+        Step::Done => "Report",
+    }
+}
+
+pub const STEPS: [Step; 6] = [
+    Step::Confirm,
+    Step::Switches,
+    Step::Circuits,
+    Step::Motors,
+    Step::Loads,
+    Step::Done,
+];
+
+/// "INSTALLATION CHECK  1 Before power › 2 Switch inputs …": the step running on a
+/// badge, steps done in the text colour, steps to come dim, skipped ones struck
+/// through in words ("skipped"), never by colour alone.
+fn steps_line(view: &CheckView, width: u16) -> Line<'static> {
+    let head = |long: bool| match (view.interrupted.is_some(), long) {
+        (true, true) => Span::styled("CHECK INTERRUPTED ", theme::alert()),
+        (true, false) => Span::styled("STOPPED ", theme::alert()),
+        (false, true) => Span::styled("INSTALLATION CHECK ", theme::panel_title()),
+        (false, false) => Span::styled("CHECK ", theme::panel_title()),
+    };
+    // How much each step is named: 2 every one in full, 1 the running one in full,
+    // 0 none.
+    let build = |long_head: bool, full: u8| -> Vec<Span<'static>> {
+        let mut spans = vec![head(long_head)];
+        for (i, s) in STEPS.into_iter().enumerate() {
+            let skipped = view.skipped_steps.contains(&s);
+            let name = if full == 2 || (full == 1 && s == view.step) {
+                s.title()
+            } else {
+                short(s)
+            };
+            let text = if skipped {
+                format!("{} {name} skipped", i + 1)
+            } else {
+                format!("{} {name}", i + 1)
+            };
+            if i > 0 {
+                spans.push(Span::styled(" › ", theme::border()));
+            }
+            let style = if s == view.step {
+                theme::key().add_modifier(Modifier::BOLD)
+            } else if skipped || s > view.step {
+                theme::unknown()
+            } else {
+                theme::label()
+            };
+            if s == view.step {
+                spans.push(Span::styled(format!(" {text} "), style));
+            } else {
+                spans.push(Span::styled(text, style));
+            }
+        }
+        spans
+    };
+    let fits = |spans: &[Span]| {
+        spans
+            .iter()
+            .map(|s| s.content.chars().count())
+            .sum::<usize>()
+            <= usize::from(width)
+    };
+    let tries = [(true, 2), (true, 1), (false, 1), (true, 0), (false, 0)];
+    for (long_head, full) in tries {
+        let spans = build(long_head, full);
+        if fits(&spans) {
+            return Line::from(spans);
+        }
+    }
+    Line::from(build(false, 0))
+}
+
+/// A section's title over a rule, as the page's panels have them.
+pub(crate) fn section(frame: &mut Frame, area: Rect, title: &str) -> Rect {
+    let block = Block::new()
+        .borders(Borders::TOP)
+        .border_style(theme::border())
+        .title(Span::styled(format!(" {title} "), theme::panel_title()));
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    inner
+}
+
+/// The mark's badge in its colour: green pass, red fail, amber warning; skipped and
+/// not run in the label and dim colours. The word is always there.
+pub fn mark_span(mark: Mark) -> Span<'static> {
+    let style = match mark {
+        Mark::Pass => theme::on_off(true),
+        Mark::Fail => theme::alert(),
+        Mark::Warn => theme::caution(),
+        Mark::Skipped => theme::label(),
+        Mark::NotRun => theme::unknown(),
+    };
+    Span::styled(format!("{:<10}", words::badge(mark)), style)
+}
+
+/// A result's first column while its step runs: the item under test says so, items
+/// still to come say that, and a finished one has its mark.
+pub(crate) fn progress_span(mark: Mark, i: usize, current: Option<usize>) -> Span<'static> {
+    match (mark, current) {
+        (Mark::NotRun, Some(c)) if i == c => Span::styled(
+            format!("{:<10}", "▶ TESTING"),
+            theme::info().add_modifier(Modifier::BOLD),
+        ),
+        (Mark::NotRun, Some(c)) if i > c => {
+            Span::styled(format!("{:<10}", "· TO DO"), theme::unknown())
+        }
+        _ => mark_span(mark),
+    }
+}
+
+/// The words of a result while its step runs: nothing yet for one under test or to
+/// come.
+pub(crate) fn progress_words(
+    mark: Mark,
+    i: usize,
+    current: Option<usize>,
+    words: String,
+) -> String {
+    match (mark, current) {
+        (Mark::NotRun, Some(c)) if i == c => "in progress".into(),
+        (Mark::NotRun, Some(c)) if i > c => String::new(),
+        _ => words,
+    }
+}
+
+/// The mark's colour for the words after it.
+pub fn words_style(mark: Mark) -> Style {
+    match mark {
+        Mark::Fail => Style::new().fg(theme::FAULT),
+        Mark::Warn => Style::new().fg(theme::CAUTION),
+        Mark::Pass => Style::new(),
+        Mark::Skipped | Mark::NotRun => theme::label(),
+    }
+}
+
+/// The width of a result's name column (with a circuit's pin, for circuits), the
+/// same in every step so the summary's words line up.
+pub const HEAD_NAME_W: usize = 23;
+
+/// "Landing Light" padded or cut to `w` columns, with "…" where cut.
+pub fn fit(s: &str, w: usize) -> String {
+    let n = s.chars().count();
+    if n <= w {
+        format!("{s:<w$}")
+    } else if w == 0 {
+        String::new()
+    } else {
+        let cut: String = s.chars().take(w - 1).collect();
+        format!("{cut}…")
+    }
+}
+
+/// Below 80×24 the check's lists and prompts would be cut mid-word: it says so.
+fn too_small(buf: &mut Buffer, area: Rect) {
+    let lines = [
+        Line::styled("INSTALLATION CHECK", theme::panel_title()),
+        Line::styled("Terminal too small", theme::caution()),
+        Line::raw(format!(
+            "{}×{} now, needs {MIN_WIDTH}×{MIN_HEIGHT}.",
+            area.width, area.height
+        )),
+        Line::raw("Enlarge the window or use a smaller font."),
+    ];
+    let top = area.y + area.height.saturating_sub(lines.len() as u16) / 2;
+    for (i, line) in lines.iter().enumerate() {
+        let w = line.width().min(usize::from(area.width)) as u16;
+        let x = area.x + (area.width - w) / 2;
+        let row = Rect::new(x, top + i as u16, w, 1).intersection(area);
+        fast::lines(buf, row, std::slice::from_ref(line));
+    }
+}

@@ -1,0 +1,144 @@
+//! Step 3, circuits: each circuit switched on by DEVICE_POWER in turn, its current read
+//! from two fresh DEVICE_STATUS broadcasts, then put back. Shown: the circuit under
+//! test with its live state and current against its breaker (a bar, and the share in
+//! words), and the results so far. Without a live DEVICE_STATUS the current is "--".
+
+use std::time::Instant;
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+
+use super::list::{self, Row};
+use super::state::{CheckView, CircuitResult};
+use super::{fit, progress_span, progress_words, section, words, words_style};
+use crate::model::{CircuitState, Model};
+use crate::ui::{fast, theme, values};
+
+/// The current against the breaker: a bar and the share in words, in the colour of
+/// its meaning (within, tight, over).
+pub fn load_bar(amps: f32, breaker: u8, width: usize) -> Vec<Span<'static>> {
+    let share = if breaker == 0 {
+        f32::INFINITY
+    } else {
+        amps / f32::from(breaker)
+    };
+    let (style, word) = if share > 1.0 {
+        (theme::alert(), "over the breaker")
+    } else if share >= words::NEAR_BREAKER {
+        (theme::caution(), "≥ 80 %: tight")
+    } else {
+        (theme::on_off(true), "within")
+    };
+    let filled = ((share.min(1.0) * width as f32).round() as usize).min(width);
+    vec![
+        Span::styled("█".repeat(filled), style),
+        Span::styled("░".repeat(width - filled), theme::border()),
+        Span::styled(
+            if share.is_finite() {
+                format!(" {:>3.0} % ", share * 100.0)
+            } else {
+                " ? % ".into()
+            },
+            style,
+        ),
+        Span::styled(word, style),
+    ]
+}
+
+fn under_test(r: &CircuitResult, model: &Model, now: Instant, width: u16) -> Vec<Line<'static>> {
+    let live = model.circuits(now).into_iter().find(|c| c.id == r.id);
+    let state = live.as_ref().map_or(CircuitState::Unknown, |c| c.state);
+    let amps = live.as_ref().and_then(|c| c.amps);
+    let breaker = r.breaker.or(live.as_ref().and_then(|c| c.breaker));
+    let mut first = vec![
+        Span::styled(r.name.clone(), theme::panel_title()),
+        Span::styled(format!("   pin {}", r.pin), theme::label()),
+        Span::styled(
+            format!(
+                "   breaker {}",
+                breaker.map_or_else(|| values::BLANK.into(), |b| format!("{b} A"))
+            ),
+            theme::label(),
+        ),
+    ];
+    if let Some(s) = r.switch {
+        first.push(Span::styled(
+            format!("   {}", words::switch_id(s)),
+            theme::label(),
+        ));
+    }
+    let mut second = vec![
+        Span::styled("Now ", theme::label()),
+        Span::styled(
+            format!("{:<5}", values::state_text(state)),
+            theme::state(state),
+        ),
+        Span::styled(
+            format!("{:>6} A", values::amps(amps)),
+            if amps.is_some() {
+                Style::new()
+            } else {
+                theme::unknown()
+            },
+        ),
+    ];
+    match (amps, breaker) {
+        (Some(a), Some(b)) => {
+            second.push(Span::styled(format!(" of {b} A  "), theme::label()));
+            let bar_w = usize::from(width).saturating_sub(16 + 9 + 26).clamp(8, 40);
+            second.extend(load_bar(a, b, bar_w));
+        }
+        (None, _) => second.push(Span::styled(
+            "  no live DEVICE_STATUS: current unknown",
+            theme::caution(),
+        )),
+        (Some(_), None) => second.push(Span::styled("  breaker unknown", theme::label())),
+    }
+    vec![Line::from(first), Line::from(second)]
+}
+
+/// The results of step 3 as rows, for this screen and the summary.
+pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
+    view.circuits
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let mark = words::circuit_mark(&r.outcome);
+            Row {
+                head: vec![
+                    progress_span(mark, i, current),
+                    Span::raw(fit(&r.name, 16)),
+                    Span::raw(" "),
+                    Span::styled(fit(r.pin, 6), theme::label()),
+                    Span::raw(" "),
+                ],
+                words: progress_words(mark, i, current, words::circuit(r)),
+                words_style: words_style(mark),
+                current: current == Some(i),
+            }
+        })
+        .collect()
+}
+
+pub fn render(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, now: Instant) {
+    let [test_area, results_area] =
+        Layout::vertical([Constraint::Length(3), Constraint::Fill(1)]).areas(area);
+    let inner = section(frame, test_area, "Under test");
+    let lines = match view.current.and_then(|i| view.circuits.get(i)) {
+        Some(r) => under_test(r, model, now, inner.width),
+        None => vec![Line::styled("No circuit under test.", theme::label())],
+    };
+    fast::lines(frame.buffer_mut(), inner, &lines);
+    let inner = section(frame, results_area, "Results");
+    let rows = rows(view, view.current);
+    if rows.is_empty() {
+        fast::lines(
+            frame.buffer_mut(),
+            inner,
+            &[Line::styled("No circuit to test.", theme::label())],
+        );
+    }
+    list::render(frame.buffer_mut(), inner, &rows, view.current);
+}

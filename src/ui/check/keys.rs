@@ -1,0 +1,42 @@
+//! The check's bottom line: the page's last notice, then the keys that act now. The
+//! flow says which keys act (`Prompt::keys`); when it asks nothing, the one key
+//! left is the one that leaves the check.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+
+use super::state::{CheckView, Step};
+use crate::ui::state::ViewState;
+use crate::ui::{fast, theme};
+
+/// The keys shown for `view`, with their words.
+pub fn keys(view: &CheckView) -> Vec<(&'static str, &'static str)> {
+    let asked = view
+        .prompt
+        .as_ref()
+        .filter(|_| view.interrupted.is_none())
+        .map(|p| p.keys.clone())
+        .unwrap_or_default();
+    if !asked.is_empty() {
+        return asked;
+    }
+    if view.interrupted.is_some() || view.step == Step::Done {
+        vec![("q", "close the check")]
+    } else {
+        vec![("q", "stop the check")]
+    }
+}
+
+pub fn render(buf: &mut Buffer, area: Rect, view: &CheckView, page: &ViewState) {
+    let mut spans = Vec::new();
+    if let Some(n) = &page.notice {
+        spans.push(Span::styled(format!("{n} "), theme::caution()));
+        spans.push(Span::styled("│ ", theme::border()));
+    }
+    for (k, what) in keys(view) {
+        spans.push(Span::styled(format!(" {k} "), theme::key()));
+        spans.push(Span::raw(format!(" {what}  ")));
+    }
+    fast::lines(buf, area, &[Line::from(spans)]);
+}

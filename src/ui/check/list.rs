@@ -1,0 +1,214 @@
+//! A list of results under a section title: each row a few fixed columns (mark, name,
+//! reading) and then its words, wrapped rather than cut, since a finding cut in half
+//! ("no current while on: an open…") loses what the person must do. When the rows do
+//! not fit, the list keeps the item in focus in sight and says how many are hidden
+//! above and below.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+
+use crate::ui::{fast, theme};
+
+/// One entry: its fixed columns, then its words.
+pub struct Row {
+    pub head: Vec<Span<'static>>,
+    pub words: String,
+    pub words_style: Style,
+    /// The item under test now: drawn on the selection band.
+    pub current: bool,
+}
+
+/// The narrowest column the words get beside the head; below it they go under it.
+const MIN_WORDS: usize = 24;
+/// Where words that go under the head start.
+const UNDER_INDENT: usize = 4;
+
+/// A number keeps its unit on its line ("18 %", "4.2 A", "3 s"): the space between
+/// them becomes a non-breaking one.
+fn glue(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut prev_digit = false;
+    for (i, word) in text.split(' ').enumerate() {
+        let unit = word.trim_end_matches([',', ')', ';', '.', ':']);
+        if i > 0 {
+            let sticks = prev_digit && matches!(unit, "%" | "A" | "V" | "s" | "ms" | "min");
+            out.push(if sticks { '\u{a0}' } else { ' ' });
+        }
+        out.push_str(word);
+        prev_digit = word.ends_with(|c: char| c.is_ascii_digit());
+    }
+    out
+}
+
+/// `text` in lines of at most `width` characters, broken at spaces where it can.
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let text = glue(text);
+    let width = width.max(1);
+    let mut out = Vec::new();
+    let mut line = String::new();
+    let mut len = 0;
+    for word in text.split(' ').filter(|w| !w.is_empty()) {
+        let mut word: Vec<char> = word.chars().collect();
+        loop {
+            let need = if len == 0 {
+                word.len()
+            } else {
+                len + 1 + word.len()
+            };
+            if need <= width {
+                if len > 0 {
+                    line.push(' ');
+                }
+                line.extend(word.iter());
+                len = need;
+                break;
+            }
+            if len > 0 {
+                out.push(std::mem::take(&mut line));
+                len = 0;
+                continue;
+            }
+            // A word longer than a whole line: split it.
+            let rest = word.split_off(width);
+            out.push(word.iter().collect());
+            word = rest;
+        }
+    }
+    if len > 0 || out.is_empty() {
+        out.push(line);
+    }
+    out
+}
+
+fn head_width(head: &[Span]) -> usize {
+    head.iter().map(|s| s.content.chars().count()).sum()
+}
+
+/// The screen lines of `row` at `width`.
+pub fn lines_of(row: &Row, width: u16) -> Vec<Line<'static>> {
+    let width = usize::from(width);
+    let hw = head_width(&row.head);
+    let band = if row.current {
+        theme::selected_row()
+    } else {
+        Style::new()
+    };
+    let mut out = Vec::new();
+    if row.words.is_empty() {
+        out.push(Line::from(row.head.clone()).style(band));
+        return out;
+    }
+    if width >= hw + MIN_WORDS {
+        for (i, part) in wrap(&row.words, width - hw).into_iter().enumerate() {
+            let mut spans = if i == 0 {
+                row.head.clone()
+            } else {
+                vec![Span::raw(" ".repeat(hw))]
+            };
+            spans.push(Span::styled(part, row.words_style));
+            out.push(Line::from(spans).style(band));
+        }
+    } else {
+        out.push(Line::from(row.head.clone()).style(band));
+        let indent = UNDER_INDENT.min(width.saturating_sub(1));
+        for part in wrap(&row.words, width - indent) {
+            out.push(
+                Line::from(vec![
+                    Span::raw(" ".repeat(indent)),
+                    Span::styled(part, row.words_style),
+                ])
+                .style(band),
+            );
+        }
+    }
+    out
+}
+
+/// Rows `[from, to)` of `rows` to show in `height` lines so that `focus` is seen:
+/// a couple of rows before it for context, then as many after it as fit.
+fn window(heights: &[usize], height: usize, focus: usize) -> (usize, usize) {
+    let focus = focus.min(heights.len().saturating_sub(1));
+    let (mut from, mut to) = (focus, focus);
+    let mut used = 0;
+    let take_after = |to: &mut usize, used: &mut usize| {
+        while *to < heights.len() && *used + heights[*to] <= height {
+            *used += heights[*to];
+            *to += 1;
+        }
+    };
+    // Two rows of context before the focus, if they fit with it.
+    let before: usize = heights[focus.saturating_sub(2)..focus].iter().sum();
+    if before + heights.get(focus).copied().unwrap_or(0) <= height {
+        from = focus.saturating_sub(2);
+        used = before;
+    }
+    take_after(&mut to, &mut used);
+    while from > 0 && used + heights[from - 1] <= height {
+        from -= 1;
+        used += heights[from];
+    }
+    (from, to.max(from))
+}
+
+/// Draws `rows` in `area`, keeping `focus` (or the first row) in sight.
+pub fn render(buf: &mut Buffer, area: Rect, rows: &[Row], focus: Option<usize>) {
+    if area.height == 0 || rows.is_empty() {
+        return;
+    }
+    let per_row: Vec<Vec<Line>> = rows.iter().map(|r| lines_of(r, area.width)).collect();
+    let heights: Vec<usize> = per_row.iter().map(Vec::len).collect();
+    let total: usize = heights.iter().sum();
+    let h = usize::from(area.height);
+    let mut lines: Vec<Line> = Vec::new();
+    if total <= h {
+        lines = per_row.into_iter().flatten().collect();
+    } else {
+        // Room for a "more above" and a "more below" line.
+        let (from, to) = window(&heights, h.saturating_sub(2).max(1), focus.unwrap_or(0));
+        if from > 0 {
+            lines.push(more(format!("↑ {from} more above")));
+        }
+        lines.extend(per_row[from..to].iter().flatten().cloned());
+        if to < rows.len() {
+            lines.push(more(format!("↓ {} more below", rows.len() - to)));
+        }
+        lines.truncate(h);
+    }
+    fast::lines(buf, area, &lines);
+}
+
+fn more(text: String) -> Line<'static> {
+    Line::styled(text, theme::label())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wraps_at_spaces_and_splits_only_words_too_long_for_a_line() {
+        assert_eq!(
+            wrap("no current while on: an open circuit", 16),
+            ["no current while", "on: an open", "circuit"]
+        );
+        assert_eq!(wrap("abcdefghij", 4), ["abcd", "efgh", "ij"]);
+        assert_eq!(wrap("", 10), [""]);
+        // A number and its unit stay together.
+        assert_eq!(
+            wrap("moved 0 % → 18 %)", 14),
+            ["moved 0\u{a0}% →", "18\u{a0}%)"]
+        );
+    }
+
+    #[test]
+    fn the_focus_stays_in_sight_with_context_before_it() {
+        let h = [1; 10];
+        assert_eq!(window(&h, 4, 0), (0, 4));
+        assert_eq!(window(&h, 4, 6), (4, 8));
+        assert_eq!(window(&h, 4, 9), (6, 10));
+        // A tall row before the focus is dropped rather than the focus.
+        assert_eq!(window(&[5, 5, 1, 1], 3, 2), (2, 4));
+    }
+}

@@ -1,0 +1,170 @@
+//! Step 4, motors: flaps and each enabled trim run briefly each way on the page's safe
+//! stream, the position compared in FLAP_TRIM_STATUS, then put back. Shown: each
+//! motor's live position on its travel, which way the page is running it now (what
+//! the page streams, from its own view), the positions the check recorded, and the
+//! results. Without a live FLAP_TRIM_STATUS a position is "--".
+
+use std::time::Instant;
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::Modifier;
+use ratatui::text::{Line, Span};
+
+use super::list::{self, Row};
+use super::state::{CheckView, Mark};
+use super::{HEAD_NAME_W, fit, progress_span, progress_words, section, words, words_style};
+use crate::model::{Model, Motor, TrimKind};
+use crate::protocol::message::FlapTrimStatus;
+use crate::ui::state::ViewState;
+use crate::ui::{fast, theme, values};
+
+/// A motor's travel: its ends' words, the sensor at each end, and where it is now.
+fn travel(m: Motor, ft: &FlapTrimStatus) -> (&'static str, &'static str, u8, u8, u8, bool) {
+    match m {
+        Motor::Flaps => (
+            "UP",
+            "DN",
+            ft.flap_up,
+            ft.flap_down,
+            ft.flap_position,
+            ft.flap.motor_running,
+        ),
+        Motor::Trim(TrimKind::Pitch) => (
+            "UP",
+            "DN",
+            ft.pitch_trim_up,
+            ft.pitch_trim_down,
+            ft.pitch_trim_position,
+            ft.pitch_trim.motor_running,
+        ),
+        // Roll "up" is left (ICD Table 30 note 2).
+        Motor::Trim(TrimKind::Roll) => (
+            " L",
+            "R ",
+            ft.roll_trim_up,
+            ft.roll_trim_down,
+            ft.roll_trim_position,
+            ft.roll_trim.motor_running,
+        ),
+    }
+}
+
+/// Percent of travel from the up (left) end, clamped: a sensor can read past an end.
+fn percent(from: u8, to: u8, v: u8) -> u8 {
+    if from == to {
+        return 0;
+    }
+    let frac = (f64::from(v) - f64::from(from)) / (f64::from(to) - f64::from(from));
+    (frac.clamp(0.0, 1.0) * 100.0).round() as u8
+}
+
+fn gauge(m: Motor, ft: Option<&FlapTrimStatus>, page: &ViewState, width: u16) -> Line<'static> {
+    let name = Span::raw(fit(m.name(), 11));
+    let track_w = usize::from(width)
+        .saturating_sub(11 + 4 + 2 + 7 + 18)
+        .clamp(8, 50);
+    let Some(ft) = ft else {
+        return Line::from(vec![
+            name,
+            Span::styled(format!("{:<4}", values::BLANK), theme::unknown()),
+            Span::styled(
+                "position unknown: no live FLAP_TRIM_STATUS",
+                theme::caution(),
+            ),
+        ]);
+    };
+    let (left, right, from, to, pos, running) = travel(m, ft);
+    let p = percent(from, to, pos);
+    let at = (usize::from(p) * (track_w - 1) + 50) / 100;
+    let mut spans = vec![
+        name,
+        Span::styled(left, theme::label()),
+        Span::styled("├", theme::border()),
+        Span::styled("─".repeat(at), theme::border()),
+        Span::styled("●", theme::on_off(true)),
+        Span::styled("─".repeat(track_w - 1 - at), theme::border()),
+        Span::styled("┤", theme::border()),
+        Span::styled(right, theme::label()),
+        Span::raw(format!("{:>5} %", p)),
+    ];
+    match page.motor_run.filter(|r| r.motor == m) {
+        Some(run) => spans.push(Span::styled(
+            format!("  ▶ running {}", run.direction),
+            theme::on_off(true).add_modifier(Modifier::BOLD),
+        )),
+        None if running => spans.push(Span::styled("  moving", theme::caution())),
+        None => spans.push(Span::styled("  stopped", theme::label())),
+    }
+    Line::from(spans)
+}
+
+/// The results of step 4 as rows, for this screen and the summary.
+pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
+    view.motors
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let mark = words::motor_mark(&r.outcome);
+            let mut w = words::motor(r);
+            if !r.positions.is_empty() {
+                w = format!("{w} ({})", words::positions(&r.positions));
+            }
+            let w = match progress_words(mark, i, current, w) {
+                // While it runs, the positions so far are the news.
+                w if current == Some(i) && mark == Mark::NotRun && !r.positions.is_empty() => {
+                    format!("{w}, so far {}", words::positions(&r.positions))
+                }
+                w => w,
+            };
+            Row {
+                head: vec![
+                    progress_span(mark, i, current),
+                    Span::raw(fit(r.motor.name(), HEAD_NAME_W)),
+                    Span::raw(" "),
+                ],
+                words: w,
+                words_style: words_style(mark),
+                current: current == Some(i),
+            }
+        })
+        .collect()
+}
+
+pub fn render(
+    frame: &mut Frame,
+    area: Rect,
+    view: &CheckView,
+    model: &Model,
+    page: &ViewState,
+    now: Instant,
+) {
+    let mut motors: Vec<Motor> = view.planned_motors.iter().map(|(m, _)| *m).collect();
+    for r in &view.motors {
+        if !motors.contains(&r.motor) {
+            motors.push(r.motor);
+        }
+    }
+    let [gauges_area, results_area] = Layout::vertical([
+        Constraint::Length(motors.len().max(1) as u16 + 1),
+        Constraint::Fill(1),
+    ])
+    .areas(area);
+    let inner = section(frame, gauges_area, "Flaps & trim, live");
+    let ft = model.live_flap_trim(now);
+    let mut lines: Vec<Line> = motors
+        .iter()
+        .map(|&m| gauge(m, ft, page, inner.width))
+        .collect();
+    if lines.is_empty() {
+        lines.push(Line::styled("No flaps or trim enabled.", theme::label()));
+    }
+    fast::lines(frame.buffer_mut(), inner, &lines);
+    let inner = section(frame, results_area, "Results");
+    list::render(
+        frame.buffer_mut(),
+        inner,
+        &rows(view, view.current),
+        view.current,
+    );
+}

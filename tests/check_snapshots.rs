@@ -1,0 +1,992 @@
+//! Snapshots of every step's screen of the installation check, drawn from hand-built
+//! `CheckView`s and models into a `TestBackend`: the text at 80×24 and at 160×50, the
+//! colours in every palette (dark, light, no colour), the WCAG contrast of every cell
+//! in both colour palettes, and cell by cell the colours whose meaning matters
+//! (pass green, fail red, warning amber, always beside their word).
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier};
+
+use vpx_efis::model::{Model, Motor, Source, TrimKind};
+use vpx_efis::protocol::FaultCode;
+use vpx_efis::protocol::message::SwitchId;
+use vpx_efis::ui::check;
+use vpx_efis::ui::check::state::{
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, MotorFinding,
+    MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding, SwitchResult,
+};
+use vpx_efis::ui::palette::{Palette, ThemeChoice, Why};
+use vpx_efis::ui::state::{MotorRun, ViewState};
+
+mod themes;
+
+mod aircraft {
+    use super::*;
+    use vpx_efis::protocol::Packet;
+    use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS, FIELD_PRI, STARTER};
+    use vpx_efis::protocol::message::{
+        DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FlapFlags, FlapMode,
+        FlapSpec, FlapTrimStatus, HardwareVersion, Message, MiscFlags, OvervoltageLimit, Polarity,
+        SignedTenths, SwitchInputs, SystemFaultFlags, SystemSpec, SystemStatus, Tenths, TrimFlags,
+        TrimSpec, TrimType, Version, WigWagModeSetting,
+    };
+
+    /// A freshly wired aircraft: id, name, breaker, switch.
+    pub const WIRED: &[(u8, &str, u8, SwitchId)] = &[
+        (STARTER, "", 5, SwitchId::AlwaysOn),
+        (EFIS, "EFIS", 5, SwitchId::AlwaysOn),
+        (FIELD_PRI, "Alternator", 5, SwitchId::Input(1)),
+        (4, "Nav Lt", 3, SwitchId::Input(2)),
+        (5, "Strobe Lt", 3, SwitchId::Input(3)),
+        (6, "Beacon", 2, SwitchId::Input(3)),
+        (7, "Pitot Heat", 5, SwitchId::Input(5)),
+        (0x11, "Landing Lt", 8, SwitchId::Input(6)),
+        (0x12, "Taxi Lt", 6, SwitchId::Input(6)),
+        (0x17, "Fuel Pump", 10, SwitchId::Input(7)),
+    ];
+
+    pub struct Aircraft {
+        pub model: Model,
+        pub t0: Instant,
+        cnt: u8,
+    }
+
+    impl Aircraft {
+        pub fn apply(&mut self, ms: u64, msg: impl Into<Message>) {
+            self.cnt = self.cnt.wrapping_add(1);
+            let at = self.t0 + Duration::from_millis(ms);
+            self.model
+                .apply_packet(at, &Packet::from_vpx(self.cnt, msg));
+        }
+
+        /// One second of broadcasts at `ms`: switch inputs `word`, circuits `on`
+        /// (id, tenths of an amp), the flaps and trims where `positions` puts them.
+        pub fn broadcast(&mut self, ms: u64, word: u16, on: &[(u8, u16)], positions: (u8, u8, u8)) {
+            let mut d = DeviceStatus {
+                on: [false; DEVICE_COUNT],
+                current: [Tenths(0); DEVICE_COUNT],
+            };
+            for &(id, a) in on {
+                d.on[id as usize] = true;
+                d.current[id as usize] = Tenths(a);
+            }
+            self.apply(
+                ms,
+                SystemStatus {
+                    system_current: Tenths(152),
+                    main_bus_volts: SignedTenths(138),
+                    aux_battery_volts: Tenths(0),
+                    internal_temp: 24,
+                    switches: SwitchInputs::from_word(word),
+                    misc: MiscFlags {
+                        starter_annunciator: false,
+                        wig_wag_mode: WigWagModeSetting::Auto,
+                        software_update: false,
+                        wig_wag_active: false,
+                    },
+                    faults: SystemFaultFlags::default(),
+                    data_integrity_code: None,
+                },
+            );
+            self.apply(ms, d);
+            self.apply(
+                ms + 20,
+                FlapTrimStatus {
+                    flap: FlapFlags {
+                        enabled: true,
+                        ..Default::default()
+                    },
+                    pitch_trim: TrimFlags {
+                        enabled: true,
+                        ..Default::default()
+                    },
+                    roll_trim: TrimFlags {
+                        enabled: true,
+                        motor_running: true,
+                        ..Default::default()
+                    },
+                    flap_position: positions.0,
+                    pitch_trim_position: positions.1,
+                    roll_trim_position: positions.2,
+                    flap_fault: FaultCode::NoFault,
+                    pitch_trim_fault: FaultCode::NoFault,
+                    roll_trim_fault: FaultCode::NoFault,
+                    flap_up: 20,
+                    flap_down: 220,
+                    flap_midpoint_1: 90,
+                    flap_midpoint_2: 160,
+                    pitch_trim_up: 30,
+                    pitch_trim_down: 230,
+                    pitch_trim_neutral: 128,
+                    roll_trim_up: 40,
+                    roll_trim_down: 200,
+                    roll_trim_neutral: 120,
+                },
+            );
+        }
+    }
+
+    /// The unit configured at `t0`, on a real serial port.
+    pub fn configured() -> Aircraft {
+        let t0 = Instant::now();
+        let mut a = Aircraft {
+            model: Model::new(Source::Serial {
+                path: "/dev/ttyUSB0".into(),
+            }),
+            t0,
+            cnt: 0,
+        };
+        a.model.note_connected(t0, "/dev/ttyUSB0".into());
+        a.apply(
+            0,
+            Version {
+                hardware_version: HardwareVersion::VpxPro,
+                software_major: 1,
+                software_minor: 4,
+            },
+        );
+        a.apply(
+            0,
+            SystemSpec {
+                overvoltage_limit: OvervoltageLimit::V16,
+                secondary_alternator: None,
+            },
+        );
+        for id in 4..=28u8 {
+            let flag = if WIRED.iter().any(|w| w.0 == id) {
+                EnableFlag::Enabled
+            } else {
+                EnableFlag::Disabled
+            };
+            a.apply(
+                0,
+                DeviceEnable {
+                    device_id: id,
+                    flag,
+                },
+            );
+        }
+        for &(id, name, breaker, switch_id) in WIRED {
+            if !name.is_empty() {
+                a.apply(0, DeviceName::new(id, name).unwrap());
+            }
+            a.apply(
+                0,
+                DeviceSpec {
+                    device_id: id,
+                    circuit_breaker: breaker,
+                    switch_id,
+                    current_fault: true,
+                    switch_raw: None,
+                },
+            );
+        }
+        a.apply(
+            0,
+            FlapSpec {
+                mode: FlapMode::PositionBased,
+                enabled: true,
+                polarity: Polarity::Standard,
+                up: 20,
+                down: 220,
+                midpoint_1: 90,
+                midpoint_2: 160,
+                circuit_breaker: 7,
+                overspeed_position: 90,
+                max_speed: 100,
+                endpoint_duration: Tenths(5),
+            },
+        );
+        for (trim_type, up, down, neutral) in [
+            (TrimType::Pitch, 30, 230, 128),
+            (TrimType::Roll, 40, 200, 120),
+        ] {
+            a.apply(
+                0,
+                TrimSpec {
+                    trim_type,
+                    enabled: true,
+                    polarity: Polarity::Standard,
+                    up,
+                    down,
+                    neutral,
+                    power: 60,
+                    speed: 120,
+                },
+            );
+        }
+        a
+    }
+
+    /// Ten seconds of a live unit with `word` on the inputs and `on` powered; `now` is
+    /// 300 ms after the last broadcast.
+    pub fn live(word: u16, on: &[(u8, u16)], positions: (u8, u8, u8)) -> (Model, Instant) {
+        let mut a = configured();
+        for s in 1..=10 {
+            a.broadcast(s * 1000, word, on, positions);
+        }
+        (a.model, a.t0 + Duration::from_millis(10_300))
+    }
+
+    /// The same unit, silent for the last 5.3 s: every live value stale.
+    pub fn stale(word: u16, on: &[(u8, u16)]) -> (Model, Instant) {
+        let (m, now) = live(word, on, (20, 128, 120));
+        (m, now + Duration::from_secs(5))
+    }
+}
+
+const EFIS_ON: (u8, u16) = (1, 24);
+
+fn planned(id: u8, name: &str, pin: &'static str, breaker: u8, sw: u8) -> Planned {
+    Planned {
+        id,
+        name: name.into(),
+        pin,
+        breaker: Some(breaker),
+        switch: Some(SwitchId::Input(sw)),
+        on_for: Duration::from_secs(3),
+    }
+}
+
+fn plan() -> Vec<Planned> {
+    vec![
+        planned(4, "Nav Lt", "5A-1", 3, 2),
+        planned(5, "Strobe Lt", "5A-2", 3, 3),
+        planned(6, "Beacon", "5A-3", 2, 3),
+        planned(0x11, "Landing Lt", "10A-1", 8, 6),
+        planned(0x12, "Taxi Lt", "10A-2", 6, 6),
+        planned(0x17, "Fuel Pump", "15A-2", 10, 7),
+    ]
+}
+
+const MOTORS: [Motor; 3] = [
+    Motor::Flaps,
+    Motor::Trim(TrimKind::Pitch),
+    Motor::Trim(TrimKind::Roll),
+];
+
+fn excluded() -> Vec<Excluded> {
+    vec![
+        Excluded {
+            id: 0,
+            name: "Starter".into(),
+            why: "never touched: the starter".into(),
+            may_include: false,
+        },
+        Excluded {
+            id: 2,
+            name: "Alternator".into(),
+            why: "never touched: an alternator field".into(),
+            may_include: false,
+        },
+        Excluded {
+            id: 7,
+            name: "Pitot Heat".into(),
+            why: "suggested: the name has \"pitot\"".into(),
+            may_include: true,
+        },
+    ]
+}
+
+fn base() -> CheckView {
+    CheckView {
+        plan: plan(),
+        planned_motors: MOTORS
+            .into_iter()
+            .map(|m| (m, Duration::from_millis(1500)))
+            .collect(),
+        excluded: excluded(),
+        ..Default::default()
+    }
+}
+
+fn confirm() -> CheckView {
+    CheckView {
+        prompt: Some(Prompt {
+            todo: "Make sure the aircraft is safe to power the circuits listed, then press Enter."
+                .into(),
+            watching: "nothing yet: nothing is switched on until you confirm.".into(),
+            time_left: None,
+            keys: vec![
+                ("Enter", "safe: start"),
+                ("↑↓", "select"),
+                ("Space", "take back"),
+                ("q", "quit"),
+            ],
+        }),
+        current: Some(2),
+        ..base()
+    }
+}
+
+fn sw(input: Input, circuits: &[u8], outcome: Outcome<SwitchFinding>) -> SwitchResult {
+    SwitchResult {
+        input,
+        circuits: circuits.to_vec(),
+        outcome,
+    }
+}
+
+fn switch_results() -> Vec<SwitchResult> {
+    vec![
+        sw(
+            Input::Switch(2),
+            &[4],
+            Outcome::Found(SwitchFinding::Passed),
+        ),
+        sw(
+            Input::Switch(3),
+            &[5, 6],
+            Outcome::Found(SwitchFinding::OtherChanged(vec![Input::Switch(4)])),
+        ),
+        sw(
+            Input::Switch(5),
+            &[7],
+            Outcome::Skipped("skipped: Pitot Heat is excluded".into()),
+        ),
+        sw(Input::Switch(6), &[0x11, 0x12], Outcome::NotRun),
+        sw(Input::Switch(7), &[0x17], Outcome::NotRun),
+        sw(Input::FlapUp, &[], Outcome::NotRun),
+        sw(Input::FlapDown, &[], Outcome::NotRun),
+    ]
+}
+
+fn switches() -> CheckView {
+    CheckView {
+        step: Step::Switches,
+        switches: switch_results(),
+        current: Some(3),
+        prompt: Some(Prompt {
+            todo: "Flip switch 6 on, then off.".into(),
+            watching: "switch 6 and Landing Lt, Taxi Lt.".into(),
+            time_left: Some(Duration::from_millis(13_200)),
+            keys: vec![
+                ("r", "retry"),
+                ("s", "skip it"),
+                ("S", "skip step"),
+                ("q", "stop the check"),
+            ],
+        }),
+        ..base()
+    }
+}
+
+fn circ(
+    id: u8,
+    name: &str,
+    pin: &'static str,
+    cb: u8,
+    o: Outcome<CircuitFinding>,
+) -> CircuitResult {
+    CircuitResult {
+        id,
+        name: name.into(),
+        pin,
+        breaker: Some(cb),
+        switch: None,
+        outcome: o,
+    }
+}
+
+fn circuit_results() -> Vec<CircuitResult> {
+    vec![
+        circ(
+            4,
+            "Nav Lt",
+            "5A-1",
+            3,
+            Outcome::Found(CircuitFinding::Within {
+                amps: 1.2,
+                breaker: 3,
+            }),
+        ),
+        circ(
+            5,
+            "Strobe Lt",
+            "5A-2",
+            3,
+            Outcome::Found(CircuitFinding::NoCurrent),
+        ),
+        circ(
+            6,
+            "Beacon",
+            "5A-3",
+            2,
+            Outcome::Found(CircuitFinding::NearBreaker {
+                amps: 1.8,
+                breaker: 2,
+            }),
+        ),
+        circ(0x11, "Landing Lt", "10A-1", 8, Outcome::NotRun),
+        circ(0x12, "Taxi Lt", "10A-2", 6, Outcome::NotRun),
+        circ(0x17, "Fuel Pump", "15A-2", 10, Outcome::NotRun),
+    ]
+}
+
+fn circuits() -> CheckView {
+    CheckView {
+        step: Step::Circuits,
+        switches: finished_switches(),
+        circuits: circuit_results(),
+        current: Some(3),
+        prompt: Some(Prompt {
+            todo: "Nothing: Landing Lt is on, the page reads its current.".into(),
+            watching: "Landing Lt's current in two fresh DEVICE_STATUS.".into(),
+            time_left: Some(Duration::from_secs(4)),
+            keys: vec![
+                ("s", "skip it"),
+                ("S", "skip step"),
+                ("q", "stop the check"),
+            ],
+        }),
+        message: Some("Beacon: 1.8 A".into()),
+        ..base()
+    }
+}
+
+fn finished_switches() -> Vec<SwitchResult> {
+    let mut s = switch_results();
+    s[3].outcome = Outcome::Found(SwitchFinding::CircuitsDidNotFollow(vec![(
+        0x12,
+        NotFollowed::HeldByDevicePower,
+    )]));
+    s[4].outcome = Outcome::Found(SwitchFinding::NeverChanged);
+    s[5].outcome = Outcome::Found(SwitchFinding::Passed);
+    s[6].outcome = Outcome::Found(SwitchFinding::Passed);
+    s
+}
+
+fn finished_circuits() -> Vec<CircuitResult> {
+    let mut c = circuit_results();
+    c[3].outcome = Outcome::Found(CircuitFinding::Within {
+        amps: 6.9,
+        breaker: 8,
+    });
+    c[4].outcome = Outcome::Found(CircuitFinding::Faulted(FaultCode::ShortCircuit));
+    c[5].outcome = Outcome::Found(CircuitFinding::Within {
+        amps: 4.5,
+        breaker: 10,
+    });
+    c
+}
+
+fn motors() -> CheckView {
+    CheckView {
+        step: Step::Motors,
+        switches: finished_switches(),
+        circuits: finished_circuits(),
+        motors: vec![
+            MotorResult {
+                motor: Motor::Flaps,
+                positions: vec![0, 18, 0, 0],
+                outcome: Outcome::Found(MotorFinding::Moves),
+            },
+            MotorResult {
+                motor: Motor::Trim(TrimKind::Pitch),
+                positions: vec![49, 44, 55, 49],
+                outcome: Outcome::Found(MotorFinding::Reversed),
+            },
+            MotorResult {
+                motor: Motor::Trim(TrimKind::Roll),
+                positions: vec![50, 56],
+                outcome: Outcome::NotRun,
+            },
+        ],
+        current: Some(2),
+        prompt: Some(Prompt {
+            todo: "Keep clear of the ailerons: roll trim runs left, then right.".into(),
+            watching: "roll trim's position in FLAP_TRIM_STATUS.".into(),
+            time_left: None,
+            keys: vec![("s", "skip it"), ("q", "stop the check")],
+        }),
+        ..base()
+    }
+}
+
+fn finished_motors() -> Vec<MotorResult> {
+    vec![
+        MotorResult {
+            motor: Motor::Flaps,
+            positions: vec![0, 18, 0, 0],
+            outcome: Outcome::Found(MotorFinding::Moves),
+        },
+        MotorResult {
+            motor: Motor::Trim(TrimKind::Pitch),
+            positions: vec![49, 44, 55, 49],
+            outcome: Outcome::Found(MotorFinding::Reversed),
+        },
+        MotorResult {
+            motor: Motor::Trim(TrimKind::Roll),
+            positions: vec![50, 50, 50, 50],
+            outcome: Outcome::Found(MotorFinding::NoMovement),
+        },
+    ]
+}
+
+fn to_cycle() -> Vec<(u8, String, SwitchId)> {
+    vec![
+        (4, "Nav Lt".into(), SwitchId::Input(2)),
+        (0x11, "Landing Lt".into(), SwitchId::Input(6)),
+        (0x12, "Taxi Lt".into(), SwitchId::Input(6)),
+    ]
+}
+
+fn loads() -> CheckView {
+    CheckView {
+        step: Step::Loads,
+        switches: finished_switches(),
+        circuits: finished_circuits(),
+        motors: finished_motors(),
+        ..base()
+    }
+}
+
+fn done() -> CheckView {
+    CheckView {
+        step: Step::Done,
+        switches: finished_switches(),
+        circuits: finished_circuits(),
+        motors: finished_motors(),
+        to_cycle: to_cycle(),
+        report: Some(PathBuf::from(
+            "/home/pilot/n123ab/vpx-check-2026-12-01-1834.md",
+        )),
+        message: Some("Report and CSV written.".into()),
+        ..base()
+    }
+}
+
+fn all_passed() -> CheckView {
+    let mut v = done();
+    v.switches.truncate(1);
+    v.circuits.truncate(1);
+    v.motors.truncate(1);
+    v.to_cycle.truncate(1);
+    v.skipped_steps = vec![Step::Loads];
+    v
+}
+
+fn interrupted() -> CheckView {
+    CheckView {
+        step: Step::Circuits,
+        switches: finished_switches(),
+        circuits: {
+            let mut c = circuit_results();
+            c[3].outcome = Outcome::NotRun;
+            c
+        },
+        current: Some(3),
+        to_cycle: vec![(4, "Nav Lt".into(), SwitchId::Input(2))],
+        interrupted: Some(Interruption {
+            cause: "COMMUNICATION LOST while Landing Lt was on".into(),
+            left: vec![
+                (
+                    0x11,
+                    "Landing Lt".into(),
+                    "unknown: no answer, last seen ON".into(),
+                ),
+                (4, "Nav Lt".into(), "OFF, held by DEVICE_POWER".into()),
+            ],
+        }),
+        report: Some(PathBuf::from(
+            "/home/pilot/n123ab/vpx-check-2026-12-01-1834.md",
+        )),
+        // The flow's last prompt must not be shown once it stopped.
+        prompt: circuits().prompt,
+        ..base()
+    }
+}
+
+fn quit_clean() -> CheckView {
+    CheckView {
+        step: Step::Switches,
+        switches: switch_results(),
+        current: Some(3),
+        interrupted: Some(Interruption {
+            cause: "quit".into(),
+            left: vec![],
+        }),
+        ..base()
+    }
+}
+
+fn page(palette: Palette) -> ViewState {
+    ViewState {
+        theme: ThemeChoice {
+            palette,
+            why: Why::Asked,
+        },
+        ..Default::default()
+    }
+}
+
+/// Switch 6 closed, Landing and Taxi on; flaps up, trims near neutral.
+const SW6: u16 = 0b10_0010;
+
+/// Every state a person can reach, with its model and the page's view.
+fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
+    let p = page(Palette::Terminal);
+    let on6 = [EFIS_ON, (0x11, 61), (0x12, 38)];
+    let (live6, t6) = aircraft::live(SW6, &on6, (20, 128, 120));
+    let (stale6, ts) = aircraft::stale(SW6, &on6);
+    let landing = [EFIS_ON, (0x11, 69)];
+    let (lc, tc) = aircraft::live(0, &landing, (20, 128, 120));
+    let (lm, tm) = aircraft::live(0, &[EFIS_ON], (20, 117, 133));
+    let (idle, ti) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let mut running = p.clone();
+    running.motor_run = Some(MotorRun {
+        motor: Motor::Trim(TrimKind::Roll),
+        direction: "right",
+    });
+    vec![
+        ("confirm", confirm(), idle.clone(), p.clone(), ti),
+        ("switches", switches(), live6, p.clone(), t6),
+        (
+            "switches_link_stale",
+            switches(),
+            stale6.clone(),
+            p.clone(),
+            ts,
+        ),
+        ("circuits", circuits(), lc, p.clone(), tc),
+        (
+            "circuits_link_stale",
+            circuits(),
+            stale6.clone(),
+            p.clone(),
+            ts,
+        ),
+        ("motors", motors(), lm, running, tm),
+        ("motors_link_stale", motors(), stale6.clone(), p.clone(), ts),
+        ("loads", loads(), idle.clone(), p.clone(), ti),
+        ("done", done(), idle.clone(), p.clone(), ti),
+        ("done_all_passed", all_passed(), idle.clone(), p.clone(), ti),
+        (
+            "interrupted_comm_lost",
+            interrupted(),
+            stale6,
+            p.clone(),
+            ts,
+        ),
+        ("interrupted_quit_clean", quit_clean(), idle, p, ti),
+    ]
+}
+
+fn render(view: &CheckView, m: &Model, page: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
+    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
+    term.draw(|f| check::render(f, f.area(), view, m, page, now))
+        .unwrap();
+    term.backend().buffer().clone()
+}
+
+fn text(buf: &Buffer) -> String {
+    let w = buf.area.width as usize;
+    let mut out = String::new();
+    for (i, cell) in buf.content.iter().enumerate() {
+        out.push_str(&cell.symbol().replace('\u{a0}', " "));
+        if (i + 1) % w == 0 {
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// The cell where `needle` starts, on the first line holding `on_line` and it.
+fn find(buf: &Buffer, on_line: &str, needle: &str) -> (u16, u16) {
+    let n: Vec<String> = needle.chars().map(String::from).collect();
+    for y in 0..buf.area.height {
+        let cells: Vec<&str> = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
+        if !cells.concat().contains(on_line) {
+            continue;
+        }
+        if let Some(x) = (0..=cells.len().saturating_sub(n.len()))
+            .find(|&x| (0..n.len()).all(|k| cells[x + k] == n[k]))
+        {
+            return (x as u16, y);
+        }
+    }
+    panic!("{needle:?} not on a line with {on_line:?}:\n{}", text(buf));
+}
+
+#[test]
+fn every_step_at_80x24() {
+    for (name, v, m, p, now) in every_state() {
+        let buf = render(&v, &m, &p, now, 80, 24);
+        insta::assert_snapshot!(format!("{name}_80x24"), text(&buf));
+    }
+}
+
+#[test]
+fn every_step_at_160x50() {
+    for (name, v, m, p, now) in every_state() {
+        let buf = render(&v, &m, &p, now, 160, 50);
+        insta::assert_snapshot!(format!("{name}_160x50"), text(&buf));
+    }
+}
+
+/// Every step's colours in every palette, as a picture of them (the text is in the
+/// snapshots above and the palette changes none of it).
+#[test]
+fn every_step_in_every_theme() {
+    for (name, v, m, p, now) in every_state() {
+        let buf = render(&v, &m, &p, now, 80, 24);
+        for palette in themes::PALETTES {
+            let painted = themes::painted(&buf, palette);
+            assert_eq!(text(&painted), text(&buf), "painting changes no text");
+            insta::assert_snapshot!(
+                format!("theme_{}_{name}", palette.name().replace(' ', "_")),
+                themes::colour_map(&painted)
+            );
+        }
+    }
+}
+
+#[test]
+fn every_step_meets_wcag_contrast_in_both_themes() {
+    let mut failures = Vec::new();
+    for (name, v, m, p, now) in every_state() {
+        for (w, h) in [(80, 24), (120, 40), (160, 50)] {
+            let buf = render(&v, &m, &p, now, w, h);
+            for palette in [Palette::Dark, Palette::Light] {
+                failures.extend(themes::contrast_failures(
+                    &format!("{name} {w}x{h}"),
+                    &themes::painted(&buf, palette),
+                    palette,
+                ));
+            }
+        }
+    }
+    themes::assert_contrast(failures);
+}
+
+/// The colour of the first cell of `needle` on the line holding `on_line`.
+fn cell(buf: &Buffer, on_line: &str, needle: &str) -> ratatui::buffer::Cell {
+    let (x, y) = find(buf, on_line, needle);
+    buf[(x, y)].clone()
+}
+
+/// Pass green, fail red, warning amber, each as its palette paints it, and always with
+/// its symbol and word, so without colour (mono) nothing is lost.
+#[test]
+fn marks_have_their_colour_and_always_their_word() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let buf = render(&done(), &m, &page(Palette::Terminal), now, 160, 50);
+    let t = text(&buf);
+    for (line, badge, word, dark, light) in [
+        ("Nav Lt", "✓ PASS", Color::Green, 40, 22),
+        ("Strobe Lt", "✗ FAIL", Color::Red, 203, 124),
+        ("Beacon", "⚠ WARN", Color::Yellow, 220, 94),
+    ] {
+        assert!(t.contains(badge), "{badge} on screen:\n{t}");
+        assert_eq!(cell(&buf, line, badge).fg, word, "{badge} on {line}");
+        let d = themes::painted(&buf, Palette::Dark);
+        assert_eq!(
+            cell(&d, line, badge).fg,
+            Color::Indexed(dark),
+            "dark {badge}"
+        );
+        let l = themes::painted(&buf, Palette::Light);
+        assert_eq!(
+            cell(&l, line, badge).fg,
+            Color::Indexed(light),
+            "light {badge}"
+        );
+        let mono = themes::painted(&buf, Palette::Mono);
+        let c = cell(&mono, line, badge);
+        assert_eq!((c.fg, c.bg), (Color::Reset, Color::Reset));
+        assert!(
+            c.modifier.contains(Modifier::BOLD),
+            "{badge} bold without colour"
+        );
+    }
+    // The words after a failure are red too, not just its mark.
+    assert_eq!(cell(&buf, "Strobe Lt", "no current").fg, Color::Red);
+}
+
+#[test]
+fn the_input_under_test_is_on_a_badge_reversed_without_colour() {
+    let (m, now) = aircraft::live(SW6, &[EFIS_ON, (0x11, 61), (0x12, 38)], (20, 128, 120));
+    let buf = render(&switches(), &m, &page(Palette::Terminal), now, 80, 24);
+    let badge = cell(&buf, "▶ 6●◀", "▶ 6●◀");
+    assert_eq!(badge.bg, Color::Gray, "{}", text(&buf));
+    let mono = themes::painted(&buf, Palette::Mono);
+    assert!(
+        cell(&mono, "▶ 6●◀", "▶")
+            .modifier
+            .contains(Modifier::REVERSED)
+    );
+    assert!(
+        !cell(&mono, "▶ 6●◀", " 7○")
+            .modifier
+            .contains(Modifier::REVERSED)
+    );
+    // The live readings are there, and the circuits' live states are green ON.
+    assert_eq!(cell(&buf, "Landing Lt", "ON").fg, Color::Green);
+    assert!(text(&buf).contains("6.1"));
+}
+
+/// With the link stale, nothing on any step's screen reads like a live value: no
+/// input mark, no ON, no current, no position; the banner says why.
+#[test]
+fn a_stale_link_never_looks_current() {
+    let on6 = [EFIS_ON, (0x11, 61), (0x12, 38)];
+    let (m, now) = aircraft::stale(SW6, &on6);
+    let p = page(Palette::Terminal);
+    for (name, v) in [
+        ("switches", switches()),
+        ("circuits", circuits()),
+        ("motors", motors()),
+    ] {
+        let t = text(&render(&v, &m, &p, now, 80, 24));
+        assert!(
+            t.contains("C O M M U N I C A T I O N   L O S T"),
+            "{name}:\n{t}"
+        );
+        for live in ["●", "○", " ON ", "6.1", "3.8", "6.9", "%  stopped"] {
+            assert!(
+                !t.contains(live),
+                "{name} shows {live:?} with a stale link:\n{t}"
+            );
+        }
+    }
+    let t = text(&render(&switches(), &m, &p, now, 80, 24));
+    assert!(t.contains("inputs unknown: no live status"), "{t}");
+    let t = text(&render(&circuits(), &m, &p, now, 80, 24));
+    assert!(t.contains("no live DEVICE_STATUS: current unknown"), "{t}");
+    let t = text(&render(&motors(), &m, &p, now, 80, 24));
+    assert!(t.contains("position unknown"), "{t}");
+}
+
+#[test]
+fn a_tight_breaker_is_amber_and_says_so() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, 69)], (20, 128, 120));
+    let buf = render(&circuits(), &m, &page(Palette::Terminal), now, 80, 24);
+    assert!(text(&buf).contains("86 % ≥ 80 %: tight"), "{}", text(&buf));
+    assert_eq!(cell(&buf, "Now ON", "86 %").fg, Color::Yellow);
+    assert_eq!(cell(&buf, "Now ON", "█").fg, Color::Yellow);
+    // Within the breaker, the same bar is green and says so.
+    let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, 30)], (20, 128, 120));
+    let buf = render(&circuits(), &m, &page(Palette::Terminal), now, 80, 24);
+    assert_eq!(cell(&buf, "Now ON", "█").fg, Color::Green);
+    assert!(text(&buf).contains("38 % within"), "{}", text(&buf));
+}
+
+#[test]
+fn once_stopped_the_check_asks_nothing_more() {
+    let (m, now) = aircraft::stale(SW6, &[EFIS_ON]);
+    let buf = render(&interrupted(), &m, &page(Palette::Terminal), now, 80, 24);
+    let t = text(&buf);
+    assert!(!t.contains("DO NOW"), "{t}");
+    assert!(!t.contains("skip step"), "{t}");
+    assert!(t.contains("q  close the check"), "{t}");
+    assert!(
+        t.contains("Landing Lt       unknown: no answer, last seen ON"),
+        "{t}"
+    );
+    assert!(
+        t.contains("Nav Lt           OFF, held by DEVICE_POWER"),
+        "{t}"
+    );
+    assert_eq!(cell(&buf, "Stopped:", "STOP").bg, Color::Red);
+}
+
+#[test]
+fn too_small_terminal_says_so() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    for (w, h) in [(79, 24), (80, 23)] {
+        let t = text(&render(
+            &switches(),
+            &m,
+            &page(Palette::Terminal),
+            now,
+            w,
+            h,
+        ));
+        assert!(t.contains("Terminal too small"), "{t}");
+        assert!(t.contains(&format!("{w}×{h} now, needs 80×24.")), "{t}");
+    }
+    let buf = render(&switches(), &m, &page(Palette::Terminal), now, 60, 20);
+    insta::assert_snapshot!(text(&buf));
+}
+
+/// `draw` paints in the page's palette, and only inside its area.
+#[test]
+fn draw_paints_in_the_pages_theme_inside_its_area_only() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let mut term = Terminal::new(TestBackend::new(100, 30)).unwrap();
+    let area = Rect::new(10, 3, 80, 24);
+    term.draw(|f| check::draw(f, area, &done(), &m, &page(Palette::Dark), now))
+        .unwrap();
+    let buf = term.backend().buffer();
+    assert_eq!(buf[(0, 0)].bg, Color::Reset, "outside the area");
+    assert_eq!(buf[(99, 29)].bg, Color::Reset, "outside the area");
+    assert_eq!(
+        buf[(10, 3)].bg,
+        Color::Indexed(16),
+        "inside: dark's own black"
+    );
+    assert_eq!(
+        buf[(89, 26)].bg,
+        Color::Indexed(16),
+        "inside: dark's own black"
+    );
+    assert_eq!(cell(buf, "Strobe Lt", "✗ FAIL").fg, Color::Indexed(203));
+}
+
+/// A long plan is packed into columns so every circuit that will be powered is seen
+/// before the person confirms; one too long even for that says how many are hidden.
+#[test]
+fn a_long_plan_is_all_seen_or_says_what_is_hidden() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let many = |n: u8| -> CheckView {
+        let mut v = confirm();
+        v.plan = (0..n)
+            .map(|i| planned(4 + i, &format!("Circuit {i:02}"), "5A-1", 3, 2))
+            .collect();
+        v
+    };
+    let v = many(24);
+    let t = text(&render(&v, &m, &page(Palette::Terminal), now, 80, 24));
+    for i in 0..24 {
+        assert!(t.contains(&format!("Circuit {i:02}")), "circuit {i}:\n{t}");
+    }
+    assert!(!t.contains("not shown"), "{t}");
+    insta::assert_snapshot!(t);
+    let t = text(&render(
+        &many(40),
+        &m,
+        &page(Palette::Terminal),
+        now,
+        80,
+        24,
+    ));
+    let shown = (0..40)
+        .filter(|i| t.contains(&format!("Circuit {i:02}")))
+        .count();
+    assert!(
+        t.contains(&format!(
+            "{} more not shown: enlarge the window",
+            40 - shown
+        )),
+        "{shown} shown:\n{t}"
+    );
+    // At 160×50 the same forty fit.
+    let t = text(&render(
+        &many(40),
+        &m,
+        &page(Palette::Terminal),
+        now,
+        160,
+        50,
+    ));
+    assert!(
+        (0..40).all(|i| t.contains(&format!("Circuit {i:02}"))),
+        "{t}"
+    );
+}
