@@ -3,7 +3,7 @@
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Write};
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
@@ -62,4 +62,57 @@ fn an_unknown_scenario_is_a_clear_error() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("nonesuch") && err.contains("demo"), "{err}");
     assert!(out.stdout.is_empty(), "no path printed when nothing runs");
+}
+
+/// A person at the sim's keyboard works the cockpit switches; the `install` scenario's
+/// wiring decides which inputs the unit sees, and the sim keeps running when its
+/// standard input ends.
+#[test]
+fn switches_worked_on_standard_input_go_through_the_wiring() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+        .args(["sim", "--pty", "--scenario", "install"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("run vpx-efis");
+    let stdout = child.stdout.take().unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let _guard = Kill(child);
+    let mut line = String::new();
+    BufReader::new(stdout).read_line(&mut line).unwrap();
+    let port = serialport::new(line.trim(), 57_600)
+        .timeout(Duration::from_millis(20))
+        .open_native()
+        .expect("open the printed path");
+    let mut c = sim_common::Client::new(port);
+    let inputs = |c: &mut sim_common::Client| {
+        c.next("SYSTEM_STATUS", |m| match m {
+            Message::SystemStatus(s) => Some(s.switches.switch),
+            _ => None,
+        })
+    };
+    assert_eq!(inputs(&mut c), [false; 10], "install: every switch off");
+    // Switch 5 is crossed with 6, and 7 is dead; 2 is wired right.
+    stdin
+        .write_all(b"help\nswitch 5 on\nswitch 7 on\nnonsense\nswitch 2 on\n")
+        .unwrap();
+    stdin.flush().unwrap();
+    let mut want = [false; 10];
+    want[1] = true;
+    want[5] = true;
+    let mut seen = inputs(&mut c);
+    for _ in 0..3 {
+        if seen == want {
+            break;
+        }
+        seen = inputs(&mut c);
+    }
+    assert_eq!(seen, want, "inputs 2 and 6 closed; 5 and 7 open");
+    drop(stdin);
+    assert_eq!(
+        c.request(Ping { ack: false }),
+        Message::Ping(Ping { ack: true }),
+        "still running after standard input ended"
+    );
 }

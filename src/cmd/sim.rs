@@ -2,15 +2,18 @@
 //! page (or any program) to open as a serial port: on a pseudo-terminal (Unix), or on
 //! TCP as a serial-to-network bridge offers one (every OS). The path, or
 //! `tcp://HOST:PORT`, is the first line on standard output; everything else goes to
-//! standard error. Runs until killed.
+//! standard error. Standard input takes the hands of a person in the cockpit, one
+//! line at a time (`switch 3 on`, `flip 3`, `help`: see `sim::console`). Runs until
+//! killed, also after standard input ends.
 
-use std::io::{Read, Write};
+use std::io::{BufRead, Read, Write};
 use std::net::TcpListener;
 
 use anyhow::Context;
 
 use crate::cli::{SimArgs, UsageError};
 use crate::link::{PortAddr, open_pty_unit, serve_line};
+use crate::sim::console::{self, ConsoleLine};
 use crate::sim::{self, SimOptions};
 
 pub fn run(args: SimArgs) -> anyhow::Result<()> {
@@ -53,9 +56,31 @@ pub fn run(args: SimArgs) -> anyhow::Result<()> {
         }
     );
     let handle = sim::spawn(options, line.reader, line.writer);
+    eprintln!("vpx-efis sim: type `help` for the switches and faults you can work by hand");
+    console(&handle);
+    // Standard input ended (a script's </dev/null): the unit carries on until killed.
     loop {
         std::thread::sleep(std::time::Duration::from_secs(3600));
         let _ = (&handle, &line.keep);
+    }
+}
+
+/// Reads standard input line by line and does what each says to the unit, until
+/// it ends. Answers go to standard error, as every other word from the sim does.
+fn console(handle: &sim::SimHandle) {
+    for line in std::io::stdin().lock().lines() {
+        let Ok(line) = line else {
+            return;
+        };
+        match console::parse_line(&line) {
+            Ok(ConsoleLine::Nothing) => {}
+            Ok(ConsoleLine::Help) => eprintln!("{}", console::HELP),
+            Ok(ConsoleLine::Command(cmd)) => {
+                eprintln!("vpx-efis sim: {}", line.trim());
+                handle.inject(cmd);
+            }
+            Err(e) => eprintln!("vpx-efis sim: {e}"),
+        }
     }
 }
 

@@ -40,6 +40,7 @@
 //! * DEVICE_ENABLE defaults to enabled; a set gets no reply, a query (flag 2) does.
 
 pub mod bootloader;
+pub mod console;
 pub mod eeprom;
 pub mod motors;
 pub mod scenario;
@@ -55,7 +56,7 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::{Receiver, Sender, bounded, select, unbounded};
 
-pub use scenario::{MotorDirection, MotorId, Scenario, load_scenario};
+pub use scenario::{MotorDirection, MotorId, MotorWiring, Scenario, load_scenario};
 pub use unit::{SimCommand, SimStats, Unit, UnitOptions, WireStats};
 
 use eeprom::{Eeprom, LoadOutcome};
@@ -124,6 +125,20 @@ impl SimHandle {
     /// Does something to the unit from outside the wire.
     pub fn inject(&self, cmd: SimCommand) {
         let _ = self.ctrl.send(Ctrl::Inject(cmd));
+    }
+
+    /// A person sets cockpit switch 1–10 on or off. What the unit's inputs see goes
+    /// through the scenario's wiring (a dead input never changes; crossed switches
+    /// close each other's input).
+    pub fn set_switch(&self, switch: u8, on: bool) {
+        self.inject(SimCommand::Switch { switch, on });
+    }
+
+    /// A person flips cockpit switch 1–10 to its other position and back `hold`
+    /// later, without blocking the caller. Hold it over a second: the unit shows its
+    /// inputs once a second (SYSTEM_STATUS), so a page may miss a shorter flip.
+    pub fn flip_switch(&self, switch: u8, hold: Duration) {
+        self.inject(SimCommand::FlipSwitch { switch, hold });
     }
 
     /// The whole 256 KiB program flash.

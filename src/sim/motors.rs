@@ -52,6 +52,11 @@ pub struct Geometry {
     pub endpoint_run: Duration,
     /// Position units per second right now (speed-reduced for pitch trim).
     pub rate: f32,
+    /// The motor runs the other way from the one it is driven: its leads swapped,
+    /// unless the polarity setting undoes it (a wiring fault, `reversed`).
+    pub reversed: bool,
+    /// Driven, but the position never changes (a wiring fault, `stuck`).
+    pub stuck: bool,
 }
 
 impl Geometry {
@@ -317,8 +322,19 @@ impl Motor {
             _ => {}
         }
         let secs = until.saturating_duration_since(from).as_secs_f32();
+        // `sign` is where the unit drives the motor, and what its endpoint logic
+        // watches for; the wiring decides where the position really goes. A reversed
+        // motor so runs away from its endpoint until the run cap or the sensor's end,
+        // and a stuck one until the run cap. An injected runaway's direction is
+        // already the one the position takes.
         let sign = g.sign(d.dir);
-        let mut pos = self.position + sign * g.rate * secs;
+        let travel = match d.source {
+            _ if g.stuck => 0.0,
+            Source::Runaway { .. } => sign,
+            _ if g.reversed => -sign,
+            _ => sign,
+        };
+        let mut pos = self.position + travel * g.rate * secs;
         // Switch and position-mode runs stop at their endpoint or target.
         let limit = match d.source {
             Source::Switch => Some(match d.dir {
@@ -362,6 +378,8 @@ mod tests {
             position_mode: false,
             endpoint_run: Duration::ZERO,
             rate: 20.0,
+            reversed: false,
+            stuck: false,
         }
     }
 
@@ -438,6 +456,47 @@ mod tests {
         m.switch(None, &g, ms(t0, 20_100));
         m.advance(&g, ms(t0, 40_000));
         assert_eq!(m.position, 20.0);
+    }
+
+    #[test]
+    fn a_reversed_motor_runs_the_other_way_and_past_its_endpoint_to_the_run_cap() {
+        let t0 = Instant::now();
+        let g = Geometry {
+            reversed: true,
+            ..geom()
+        };
+        let mut m = Motor::new(MotorId::Flap, 100.0, t0);
+        m.stream(true, MotorDirection::Down, &g, t0);
+        m.advance(&g, ms(t0, 200));
+        assert!(
+            (m.position - 96.0).abs() < 0.01,
+            "down shrinks: {}",
+            m.position
+        );
+        // The switch drives it toward `down` (220); it never gets there, so it runs
+        // until the sensor's end (0) and stops at the 30 s cap.
+        let mut s = Motor::new(MotorId::Flap, 100.0, t0);
+        s.switch(Some(MotorDirection::Down), &g, t0);
+        s.advance(&g, ms(t0, 2_000));
+        assert!((s.position - 60.0).abs() < 0.01, "{}", s.position);
+        assert!(s.running(ms(t0, 2_000)));
+        s.advance(&g, ms(t0, 31_000));
+        assert_eq!(s.position, 0.0);
+        assert!(!s.running(ms(t0, 31_000)), "stopped by the run cap");
+    }
+
+    #[test]
+    fn a_stuck_motor_runs_without_moving() {
+        let t0 = Instant::now();
+        let g = Geometry {
+            stuck: true,
+            ..geom()
+        };
+        let mut m = Motor::new(MotorId::Pitch, 120.0, t0);
+        m.stream(true, MotorDirection::Up, &g, t0);
+        m.advance(&g, ms(t0, 200));
+        assert!(m.running(ms(t0, 200)));
+        assert_eq!(m.position, 120.0);
     }
 
     #[test]

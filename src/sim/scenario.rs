@@ -17,6 +17,8 @@
 //! switches = [1, 3]            # external switch inputs closed at start (1–10)
 //! starter = false              # starter engaged (cranking) at start
 //! rpm = 2400                   # engine RPM the unit sees even without EXTERNAL_DATA
+//! dead_switches = [7]          # wiring fault: input 7 never changes, whatever its switch does
+//! crossed_switches = [[5, 6]]  # wiring fault: switch 5 drives input 6 and 6 drives 5
 //!
 //! [system]                     # SYSTEM_SPEC, ICD Table 14
 //! overvoltage_limit = 16       # 16 or 32
@@ -31,6 +33,7 @@
 //! enabled = true               # DEVICE_ENABLE (4–28 only)
 //! load = 1.4                   # amps drawn when powered
 //! short = false                # a short: SHORT_CIRCUIT as soon as it is powered
+//! open_circuit = false         # wiring fault: the load is not connected, 0 A while on
 //!
 //! [flap]                       # FLAP_SPEC, Table 16; endpoint_duration in seconds
 //! enabled = true
@@ -44,6 +47,8 @@
 //! max_speed = 100
 //! endpoint_duration = 0.5
 //! position = 20                # where the flaps are at start
+//! reversed = false             # wiring fault: the motor runs the other way
+//! stuck = false                # wiring fault: the motor runs but the position never moves
 //!
 //! [pitch_trim]                 # TRIM_SPEC, Table 15 (also [roll_trim])
 //! enabled = true
@@ -104,6 +109,10 @@ pub const BUILT_IN: &[(&str, &str)] = &[
         "disabled-pins",
         include_str!("../../assets/scenarios/disabled-pins.toml"),
     ),
+    (
+        "install",
+        include_str!("../../assets/scenarios/install.toml"),
+    ),
 ];
 
 /// A whole scenario; see the module documentation for the file format.
@@ -155,6 +164,11 @@ pub struct Electrical {
     pub switches: Vec<u8>,
     pub starter: bool,
     pub rpm: Option<u16>,
+    /// Wiring fault: these inputs (1–10) never change, whatever their switches do (a
+    /// broken wire, a bad switch, the wrong pin): they always read open.
+    pub dead_switches: Vec<u8>,
+    /// Wiring fault: each pair's switches are wired to each other's input.
+    pub crossed_switches: Vec<[u8; 2]>,
 }
 
 impl Default for Electrical {
@@ -167,6 +181,8 @@ impl Default for Electrical {
             switches: Vec::new(),
             starter: false,
             rpm: None,
+            dead_switches: Vec::new(),
+            crossed_switches: Vec::new(),
         }
     }
 }
@@ -203,6 +219,10 @@ pub struct DeviceSection {
     pub load: f32,
     #[serde(default)]
     pub short: bool,
+    /// Wiring fault: the load is not connected (a broken wire, a blown bulb): the pin
+    /// draws 0 A while on, whatever `load` says.
+    #[serde(default)]
+    pub open_circuit: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -231,6 +251,12 @@ pub struct FlapSection {
     pub endpoint_duration: f32,
     #[serde(default)]
     pub position: Option<u8>,
+    /// Wiring fault: see [`MotorWiring::reversed`].
+    #[serde(default)]
+    pub reversed: bool,
+    /// Wiring fault: see [`MotorWiring::stuck`].
+    #[serde(default)]
+    pub stuck: bool,
 }
 
 fn yes() -> bool {
@@ -264,6 +290,25 @@ pub struct TrimSection {
     pub speed: u16,
     #[serde(default)]
     pub position: Option<u8>,
+    /// Wiring fault: see [`MotorWiring::reversed`].
+    #[serde(default)]
+    pub reversed: bool,
+    /// Wiring fault: see [`MotorWiring::stuck`].
+    #[serde(default)]
+    pub stuck: bool,
+}
+
+/// Wiring faults of a flap or trim motor (keys `reversed` and `stuck` of `[flap]`,
+/// `[pitch_trim]`, `[roll_trim]`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MotorWiring {
+    /// The motor's leads are swapped: it runs the other way from the one the unit
+    /// drives (by TRIM_MOVE/FLAP_MOVE and by its switches). The polarity setting
+    /// (`inverted`, the Table 15/16 flag) undoes it, as it would on the aircraft.
+    pub reversed: bool,
+    /// The motor is driven (and reported running) but the position never changes: a
+    /// jammed motor, a broken motor lead, or a disconnected position sensor.
+    pub stuck: bool,
 }
 
 fn hundred() -> u8 {
@@ -415,6 +460,29 @@ impl Scenario {
         for &s in &self.electrical.switches {
             if !(1..=10).contains(&s) {
                 bail!("electrical.switches: switch {s} is not 1–10");
+            }
+        }
+        let e = &self.electrical;
+        for &s in &e.dead_switches {
+            if !(1..=10).contains(&s) {
+                bail!("electrical.dead_switches: switch {s} is not 1–10");
+            }
+        }
+        let mut crossed = Vec::new();
+        for &[a, b] in &e.crossed_switches {
+            if !(1..=10).contains(&a) || !(1..=10).contains(&b) || a == b {
+                bail!(
+                    "electrical.crossed_switches: [{a}, {b}] must be two different switches 1–10"
+                );
+            }
+            for s in [a, b] {
+                if crossed.contains(&s) || e.dead_switches.contains(&s) {
+                    bail!(
+                        "electrical.crossed_switches: switch {s} is in more than one \
+                         wiring fault; give each switch at most one"
+                    );
+                }
+                crossed.push(s);
             }
         }
         for d in &self.devices {
@@ -592,6 +660,47 @@ impl Scenario {
         out
     }
 
+    /// Pins whose load is not connected (`open_circuit`).
+    pub fn open_circuits(&self) -> [bool; DEVICE_COUNT] {
+        let mut out = [false; DEVICE_COUNT];
+        for d in &self.devices {
+            out[d.id as usize] = d.open_circuit;
+        }
+        out
+    }
+
+    /// The wiring faults of a motor (none when its section is absent).
+    pub fn motor_wiring(&self, m: MotorId) -> MotorWiring {
+        let (reversed, stuck) = match m {
+            MotorId::Flap => self.flap.as_ref().map(|f| (f.reversed, f.stuck)),
+            MotorId::Pitch => self.pitch_trim.as_ref().map(|t| (t.reversed, t.stuck)),
+            MotorId::Roll => self.roll_trim.as_ref().map(|t| (t.reversed, t.stuck)),
+        }
+        .unwrap_or_default();
+        MotorWiring { reversed, stuck }
+    }
+
+    /// Which input each cockpit switch 1–10 drives: index `n − 1` holds the 0-based
+    /// input, or `None` for a dead one (`dead_switches`, `crossed_switches`).
+    pub fn switch_wiring(&self) -> [Option<usize>; 10] {
+        let mut map: [Option<usize>; 10] = std::array::from_fn(Some);
+        for &[a, b] in &self.electrical.crossed_switches {
+            let (a, b) = (a as usize - 1, b as usize - 1);
+            map[a] = Some(b);
+            map[b] = Some(a);
+        }
+        // A dead input reads open whichever switch is wired to it.
+        for &d in &self.electrical.dead_switches {
+            let dead = d as usize - 1;
+            for m in &mut map {
+                if *m == Some(dead) {
+                    *m = None;
+                }
+            }
+        }
+        map
+    }
+
     pub fn shorts(&self) -> [bool; DEVICE_COUNT] {
         let mut out = [false; DEVICE_COUNT];
         for d in &self.devices {
@@ -716,5 +825,101 @@ mod tests {
             );
         }
         assert!(Scenario::from_toml("description = \"t\"\nloop_after = 60.0").is_ok());
+    }
+
+    #[test]
+    fn wiring_faults_map_switches_to_inputs() {
+        let s = Scenario::from_toml(
+            "[electrical]\ndead_switches = [7]\ncrossed_switches = [[5, 6], [1, 10]]\n",
+        )
+        .unwrap();
+        let map = s.switch_wiring();
+        assert_eq!(map[4], Some(5), "switch 5 drives input 6");
+        assert_eq!(map[5], Some(4), "switch 6 drives input 5");
+        assert_eq!((map[0], map[9]), (Some(9), Some(0)));
+        assert_eq!(map[6], None, "input 7 is dead");
+        assert_eq!(map[2], Some(2), "the rest straight through");
+    }
+
+    #[test]
+    fn impossible_wiring_is_refused_in_words() {
+        for (toml, words) in [
+            ("[electrical]\ndead_switches = [11]", "dead_switches"),
+            ("[electrical]\ncrossed_switches = [[3, 3]]", "two different"),
+            ("[electrical]\ncrossed_switches = [[0, 3]]", "1–10"),
+            (
+                "[electrical]\ncrossed_switches = [[1, 2], [2, 3]]",
+                "more than one",
+            ),
+            (
+                "[electrical]\ndead_switches = [2]\ncrossed_switches = [[1, 2]]",
+                "more than one",
+            ),
+            (
+                "[pitch_trim]\nup = 1\ndown = 2\nneutral = 1\nreverse = true",
+                "reverse",
+            ),
+        ] {
+            let err = format!("{:#}", Scenario::from_toml(toml).expect_err(toml));
+            assert!(err.contains(words), "{toml}: {err}");
+        }
+    }
+
+    /// The `install` scenario's faults are a contract with the installation check's
+    /// end-to-end test and the README: exactly these, and nothing else.
+    #[test]
+    fn install_has_exactly_its_six_wiring_faults() {
+        let s = load_scenario("install").unwrap();
+        let open: Vec<usize> = (0..DEVICE_COUNT)
+            .filter(|&i| s.open_circuits()[i])
+            .collect();
+        assert_eq!(open, [6], "Beacon");
+        let cfg = s.unit_config().unwrap();
+        let near: Vec<u8> = s
+            .devices
+            .iter()
+            .filter(|d| d.load >= 0.8 * cfg.devices[d.id as usize].circuit_breaker as f32)
+            .map(|d| d.id)
+            .collect();
+        assert_eq!(near, [17], "Landing Lt, 7.2 A of 8 A");
+        assert_eq!(s.electrical.dead_switches, [7]);
+        assert_eq!(s.electrical.crossed_switches, [[5, 6]]);
+        assert!(s.devices.iter().all(|d| !d.short));
+        assert!(s.electrical.switches.is_empty(), "every switch off");
+        assert_eq!(
+            [MotorId::Flap, MotorId::Pitch, MotorId::Roll].map(|m| s.motor_wiring(m)),
+            [
+                MotorWiring::default(),
+                MotorWiring {
+                    reversed: true,
+                    stuck: false
+                },
+                MotorWiring {
+                    reversed: false,
+                    stuck: true
+                },
+            ]
+        );
+        assert!(s.events.is_empty(), "nothing happens by itself");
+        let names: Vec<(u8, String)> = [6u8, 17, 18, 19, 20]
+            .iter()
+            .map(|&i| {
+                let name = DeviceName {
+                    device_id: i,
+                    name: cfg.names[i as usize],
+                };
+                (i, name.text())
+            })
+            .collect();
+        assert_eq!(
+            names,
+            [
+                (6, "Beacon".to_string()),
+                (17, "Landing Lt".into()),
+                (18, "Taxi Lt".into()),
+                (19, "Boost Pump".into()),
+                (20, "Pitot Heat".into())
+            ]
+        );
     }
 }

@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use super::bootloader::{BootStats, Bootloader, Flash};
 use super::eeprom::{Eeprom, LoadOutcome};
 use super::motors::{FLAP_RATE, Geometry, Motor, TRIM_RATE};
-use super::scenario::{EventAction, MotorDirection, MotorId, Scenario};
+use super::scenario::{EventAction, MotorDirection, MotorId, MotorWiring, Scenario};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::decoder::{Decoder, Event};
 use crate::protocol::device::{
@@ -61,8 +61,14 @@ impl Default for UnitOptions {
 /// scenario's timeline.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SimCommand {
-    /// External switch input 1–10 opens or closes.
+    /// Cockpit switch 1–10 is set on (closed) or off, as a person would. It drives
+    /// the unit's input of the same number, unless the scenario's wiring says
+    /// otherwise (`dead_switches`, `crossed_switches`).
     Switch { switch: u8, on: bool },
+    /// A person flips cockpit switch 1–10 to its other position, and back after
+    /// `hold`. Decision: the unit broadcasts its inputs at 1 Hz (SYSTEM_STATUS), so a
+    /// hold under about a second may never be seen by a page, as on a real unit.
+    FlipSwitch { switch: u8, hold: Duration },
     /// The device faults now with `code` (for 0, 29, 30: the motor's fault).
     Fault { device: u8, code: FaultCode },
     /// A short appears on (or leaves) a pin: SHORT_CIRCUIT whenever it is powered.
@@ -243,7 +249,18 @@ pub struct Unit {
     wire: WireStats,
 
     // The aircraft around the unit: survives a power cycle.
+    /// The cockpit switches 1–10 (index n − 1), where a person left them.
+    cockpit: [bool; 10],
+    /// Which input each cockpit switch drives (`None`: its input is dead).
+    switch_wiring: [Option<usize>; 10],
+    /// The unit's external switch inputs 1–10, as the wiring delivers the switches.
     switches: [bool; 10],
+    /// Pins whose load is not connected (0 A while on).
+    open_circuits: [bool; DEVICE_COUNT],
+    /// Per motor (flap, pitch, roll): reversed leads, a jammed motor or sensor.
+    motor_wiring: [MotorWiring; 3],
+    /// Things a person does later (the second half of a flip), on the unit's clock.
+    pending: Vec<(Instant, SimCommand)>,
     loads: [f32; DEVICE_COUNT],
     shorts: [bool; DEVICE_COUNT],
     nominal_volts: f32,
@@ -320,12 +337,13 @@ impl Unit {
     ) -> Self {
         let (eeprom, outcome) = eeprom;
         let e = &scenario.electrical;
-        let mut switches = [false; 10];
+        let mut cockpit = [false; 10];
         for &s in &e.switches {
-            if let Some(sw) = switches.get_mut(s as usize - 1) {
+            if let Some(sw) = cockpit.get_mut(s as usize - 1) {
                 *sw = true;
             }
         }
+        let switch_wiring = scenario.switch_wiring();
         let position = |p: Option<u8>, fallback: u8| p.unwrap_or(fallback) as f32;
         let cfg = &outcome.config;
         let motors = [
@@ -374,7 +392,13 @@ impl Unit {
             log: outcome.log,
             rng: Rng(opts.seed),
             wire: WireStats::default(),
-            switches,
+            cockpit,
+            switch_wiring,
+            switches: inputs(&cockpit, &switch_wiring),
+            open_circuits: scenario.open_circuits(),
+            motor_wiring: [MotorId::Flap, MotorId::Pitch, MotorId::Roll]
+                .map(|m| scenario.motor_wiring(m)),
+            pending: Vec::new(),
             loads: scenario.loads(),
             shorts: scenario.shorts(),
             nominal_volts: e.bus_volts,
@@ -835,18 +859,12 @@ impl Unit {
     /// Something done from outside the wire.
     pub fn apply(&mut self, c: SimCommand, now: Instant) {
         match c {
-            SimCommand::Switch { switch, on } => {
-                if let Some(s) = self.switches.get_mut((switch as usize).wrapping_sub(1)) {
-                    if *s != on {
-                        // ICD Appendix A: DEVICE_POWER overrides last until the switch
-                        // is cycled; any change of the input counts.
-                        for (i, d) in self.config.devices.iter().enumerate() {
-                            if d.switch_id == SwitchId::Input(switch) {
-                                self.overrides[i] = None;
-                            }
-                        }
-                    }
-                    *s = on;
+            SimCommand::Switch { switch, on } => self.set_cockpit_switch(switch, on),
+            SimCommand::FlipSwitch { switch, hold } => {
+                if let Some(&was) = self.cockpit.get((switch as usize).wrapping_sub(1)) {
+                    self.set_cockpit_switch(switch, !was);
+                    self.pending
+                        .push((now + hold, SimCommand::Switch { switch, on: was }));
                 }
             }
             SimCommand::Fault { device, code } => {
@@ -919,11 +937,34 @@ impl Unit {
         self.update_power(now);
     }
 
+    /// A cockpit switch moves; the inputs it reaches through the wiring follow.
+    fn set_cockpit_switch(&mut self, switch: u8, on: bool) {
+        let Some(s) = self.cockpit.get_mut((switch as usize).wrapping_sub(1)) else {
+            return;
+        };
+        *s = on;
+        let now_in = inputs(&self.cockpit, &self.switch_wiring);
+        for (i, (&was, &is)) in self.switches.iter().zip(&now_in).enumerate() {
+            if was != is {
+                // ICD Appendix A: DEVICE_POWER overrides last until the switch is
+                // cycled; any change of the input counts.
+                let input = SwitchId::Input(i as u8 + 1);
+                for (d, spec) in self.config.devices.iter().enumerate() {
+                    if spec.switch_id == input {
+                        self.overrides[d] = None;
+                    }
+                }
+            }
+        }
+        self.switches = now_in;
+    }
+
     // ------------------------------------------------------------ time
 
     /// Lets time pass up to `now`: the timeline, motors, power, broadcasts.
     pub fn tick(&mut self, now: Instant) {
         self.run_timeline(now);
+        self.run_pending(now);
         if self.in_bootloader() {
             return;
         }
@@ -967,7 +1008,20 @@ impl Unit {
         if let Some((at, _)) = self.events.get(self.next_event) {
             t = t.min(self.timeline_start + *at);
         }
+        if let Some(at) = self.pending.iter().map(|(at, _)| *at).min() {
+            t = t.min(at);
+        }
         t
+    }
+
+    /// What a person set out to do later and whose time has come, in order.
+    fn run_pending(&mut self, now: Instant) {
+        self.pending.sort_by_key(|(at, _)| *at);
+        let due = self.pending.partition_point(|(at, _)| *at <= now);
+        let due: Vec<_> = self.pending.drain(..due).collect();
+        for (_, cmd) in due {
+            self.apply(cmd, now);
+        }
     }
 
     fn run_timeline(&mut self, now: Instant) {
@@ -1096,6 +1150,8 @@ impl Unit {
                 position_mode: c.flap.mode == FlapMode::PositionBased,
                 endpoint_run: Duration::from_millis(c.flap.endpoint_duration.0 as u64 * 100),
                 rate: FLAP_RATE,
+                reversed: self.runs_reversed(m, c.flap.polarity),
+                stuck: self.motor_wiring[motor_index(m)].stuck,
             },
             MotorId::Pitch | MotorId::Roll => {
                 let t = if m == MotorId::Pitch {
@@ -1120,9 +1176,17 @@ impl Unit {
                     position_mode: false,
                     endpoint_run: Duration::ZERO,
                     rate,
+                    reversed: self.runs_reversed(m, t.polarity),
+                    stuck: self.motor_wiring[motor_index(m)].stuck,
                 }
             }
         }
+    }
+
+    /// Table 15/16 note 3: the polarity flag sets the direction the motor runs, so
+    /// an inverted setting undoes leads that are swapped (and swaps good ones).
+    fn runs_reversed(&self, m: MotorId, polarity: Polarity) -> bool {
+        self.motor_wiring[motor_index(m)].reversed ^ (polarity == Polarity::Inverted)
     }
 
     fn switch_on(&self, s: SwitchId) -> bool {
@@ -1185,7 +1249,7 @@ impl Unit {
                 continue;
             }
             let spec = self.config.devices[id];
-            let load = self.loads[id];
+            let load = self.load(id);
             let code = if self.shorts[id] {
                 FaultCode::ShortCircuit
             } else if load > spec.circuit_breaker as f32 {
@@ -1295,7 +1359,16 @@ impl Unit {
         match motor_of_device(id as u8) {
             Some(MotorId::Flap) => FLAP_MOTOR_AMPS,
             Some(_) => TRIM_MOTOR_AMPS,
-            None => self.loads[id],
+            None => self.load(id),
+        }
+    }
+
+    /// What the pin's wiring draws while powered: nothing if the load is not connected.
+    fn load(&self, id: usize) -> f32 {
+        if self.open_circuits[id] {
+            0.0
+        } else {
+            self.loads[id]
         }
     }
 
@@ -1474,6 +1547,18 @@ impl Unit {
     }
 }
 
+/// The unit's inputs 1–10 as the wiring delivers the cockpit switches: an input is
+/// closed when any switch wired to it is.
+fn inputs(cockpit: &[bool; 10], wiring: &[Option<usize>; 10]) -> [bool; 10] {
+    let mut out = [false; 10];
+    for (&on, to) in cockpit.iter().zip(wiring) {
+        if let Some(i) = *to {
+            out[i] |= on;
+        }
+    }
+    out
+}
+
 /// Messages the unit sends, by id, for callers that sort its output.
 pub fn is_broadcast(id: MessageId) -> bool {
     matches!(
@@ -1494,6 +1579,8 @@ mod tests {
         now: Instant,
         rx: Decoder,
         seen: Vec<(Duration, Packet)>,
+        /// Every byte the unit sent, as it left.
+        raw: Vec<u8>,
         cnt: u8,
     }
 
@@ -1508,12 +1595,14 @@ mod tests {
                 now: t0,
                 rx: Decoder::new(),
                 seen: Vec::new(),
+                raw: Vec::new(),
                 cnt: 0,
             }
         }
 
         fn collect(&mut self) {
             let out = self.unit.take_output();
+            self.raw.extend_from_slice(&out);
             let mut frames = Vec::new();
             self.rx.push(&out, |e| {
                 if let Event::Frame(f) = e {
@@ -1981,5 +2070,345 @@ mod tests {
         b.run(1_100);
         assert!(b.seen.len() > n);
         assert!(b.stats().wire.silenced_bytes > 0);
+    }
+
+    /// The payloads of every frame with this major/minor id the unit sent since raw
+    /// byte `from`, cut out by hand from ICD Table 1 (E7 7E, major, minor, cnt, src,
+    /// dst, len, data, checksum): independent of our decoder.
+    fn payloads(b: &Bench, from: usize, major: u8, minor: u8) -> Vec<Vec<u8>> {
+        let raw = &b.raw[from..];
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i + 8 <= raw.len() {
+            if raw[i] == 0xE7 && raw[i + 1] == 0x7E {
+                let len = raw[i + 7] as usize;
+                let end = i + 8 + len + 1;
+                assert!(end <= raw.len(), "a frame cut short");
+                // Source 0x00 (VP-X), destination 0x01 (external system).
+                assert_eq!((raw[i + 5], raw[i + 6]), (0x00, 0x01));
+                if raw[i + 2] == major && raw[i + 3] == minor {
+                    out.push(raw[i + 8..i + 8 + len].to_vec());
+                }
+                i = end;
+            } else {
+                i += 1;
+            }
+        }
+        out
+    }
+
+    /// The last SYSTEM_STATUS (0x12/0x00) payload after a second more.
+    fn system_status_bytes(b: &mut Bench) -> Vec<u8> {
+        let from = b.raw.len();
+        b.run(1_000);
+        let p = payloads(b, from, 0x12, 0x00);
+        let last = p.last().expect("SYSTEM_STATUS every second").clone();
+        assert_eq!(last.len(), 12, "Table 24: 12 bytes");
+        last
+    }
+
+    /// The last DEVICE_STATUS (0x12/0x01) payload after a second more.
+    fn device_status_bytes(b: &mut Bench) -> Vec<u8> {
+        let from = b.raw.len();
+        b.run(1_000);
+        let p = payloads(b, from, 0x12, 0x01);
+        let last = p.last().expect("DEVICE_STATUS every second").clone();
+        assert_eq!(last.len(), 66, "Table 26: 66 bytes");
+        last
+    }
+
+    /// Table 26: device `id`'s current, tenths of amps, big-endian at bytes 5 + 2·id.
+    fn current_tenths(payload: &[u8], id: usize) -> u16 {
+        u16::from_be_bytes([payload[4 + 2 * id], payload[5 + 2 * id]])
+    }
+
+    /// FLAP_TRIM_STATUS (0x12/0x02) payloads after `ms` more milliseconds.
+    fn flap_trim_bytes(b: &mut Bench, ms: u64) -> Vec<Vec<u8>> {
+        let from = b.raw.len();
+        b.run(ms);
+        payloads(b, from, 0x12, 0x02)
+    }
+
+    const WIRING: &str = "
+        [electrical]
+        dead_switches = [7]
+        crossed_switches = [[5, 6]]
+        [[device]]
+        id = 4
+        breaker = 3
+        switch = 3
+        load = 1.5
+        [[device]]
+        id = 6
+        breaker = 2
+        switch = 3
+        load = 1.1
+        open_circuit = true
+        [[device]]
+        id = 17
+        breaker = 8
+        switch = 5
+        load = 7.2
+        [[device]]
+        id = 18
+        breaker = 7
+        switch = 6
+        load = 4.0
+        [[device]]
+        id = 19
+        breaker = 6
+        switch = 7
+        load = 3.5
+    ";
+
+    fn person_sets(b: &mut Bench, switch: u8, on: bool) {
+        b.apply(SimCommand::Switch { switch, on });
+    }
+
+    #[test]
+    fn an_open_circuit_is_on_and_draws_nothing() {
+        let mut b = Bench::new(WIRING);
+        person_sets(&mut b, 3, true);
+        let d = device_status_bytes(&mut b);
+        // Table 26 byte 1: device 7 is the MSB, device 0 the LSB; 4 and 6 are on.
+        // The EFIS (2) is on too: always on by default (Appendix F).
+        assert_eq!(d[0], 0b0101_0100);
+        assert_eq!(
+            current_tenths(&d, 6),
+            0,
+            "the beacon's load is not connected"
+        );
+        let nav = current_tenths(&d, 4);
+        assert!(
+            (14..=16).contains(&nav),
+            "the good circuit draws 1.5 A: {nav}"
+        );
+        // Switched on by DEVICE_POWER instead, the same: on, and 0 A.
+        person_sets(&mut b, 3, false);
+        b.send(DevicePower {
+            device_id: 6,
+            on: true,
+        });
+        let d = device_status_bytes(&mut b);
+        assert_eq!(d[0], 0b0100_0100);
+        assert_eq!(current_tenths(&d, 6), 0);
+    }
+
+    #[test]
+    fn an_open_circuit_with_current_fault_detection_faults() {
+        // The unit's own check (Table 13 note): a pin that should draw and does not.
+        let mut b = Bench::new(
+            "[[device]]\nid = 6\nswitch = 3\nload = 1.1\nopen_circuit = true\n\
+             current_fault = true\n",
+        );
+        person_sets(&mut b, 3, true);
+        assert_eq!(b.stats().faults[6], FaultCode::CurrentFault);
+    }
+
+    #[test]
+    fn a_load_near_its_breaker_draws_close_to_it_without_tripping() {
+        let mut b = Bench::new(WIRING);
+        let from = b.raw.len();
+        person_sets(&mut b, 5, true);
+        person_sets(&mut b, 6, true);
+        let d = device_status_bytes(&mut b);
+        // Byte 3 holds devices 16–23: 17 is bit 1, 18 bit 2.
+        assert_eq!(d[2], 0b0000_0110);
+        let amps = current_tenths(&d, 17);
+        // 7.2 A ± 3 % noise, of an 8 A breaker: 87–93 %.
+        assert!((70..=74).contains(&amps), "{amps} tenths");
+        b.run(2_000);
+        assert!(
+            payloads(&b, from, 0x12, 0x03).is_empty(),
+            "no FAULT_STATUS: the breaker holds"
+        );
+    }
+
+    #[test]
+    fn a_dead_switch_input_never_changes() {
+        let mut b = Bench::new(WIRING);
+        person_sets(&mut b, 7, true);
+        let s = system_status_bytes(&mut b);
+        // Table 24 byte 9: switch 8 is the MSB … switch 1 the LSB. Nothing closed.
+        assert_eq!((s[7], s[8]), (0x00, 0x00));
+        assert!(!b.stats().powered[19], "the boost pump stays off");
+        // The switch next to it works, and the person's switch 7 is still on.
+        person_sets(&mut b, 4, true);
+        let s = system_status_bytes(&mut b);
+        assert_eq!((s[7], s[8]), (0x00, 0b0000_1000));
+        person_sets(&mut b, 7, false);
+        let s = system_status_bytes(&mut b);
+        assert_eq!((s[7], s[8]), (0x00, 0b0000_1000));
+    }
+
+    #[test]
+    fn crossed_switches_close_each_others_input_and_power_each_others_circuits() {
+        let mut b = Bench::new(WIRING);
+        person_sets(&mut b, 5, true);
+        let s = system_status_bytes(&mut b);
+        // Switch 5 is bit 4 (0x10), switch 6 bit 5 (0x20): input 6 closed.
+        assert_eq!(s[8], 0b0010_0000);
+        let d = device_status_bytes(&mut b);
+        assert_eq!(
+            d[2], 0b0000_0100,
+            "the taxi light (18) on, not the landing light"
+        );
+        person_sets(&mut b, 5, false);
+        person_sets(&mut b, 6, true);
+        let s = system_status_bytes(&mut b);
+        assert_eq!(s[8], 0b0001_0000, "switch 6 closes input 5");
+        let d = device_status_bytes(&mut b);
+        assert_eq!(d[2], 0b0000_0010, "the landing light (17) on");
+    }
+
+    #[test]
+    fn a_switch_change_through_the_wiring_still_ends_a_device_power_hold() {
+        let mut b = Bench::new(WIRING);
+        // The page switched the taxi light off; cycling its input ends the hold.
+        b.send(DevicePower {
+            device_id: 18,
+            on: false,
+        });
+        person_sets(&mut b, 5, true);
+        assert!(
+            b.stats().powered[18],
+            "input 6 changed, so the hold is gone"
+        );
+    }
+
+    const MOTORS: &str = "
+        [flap]
+        up = 20
+        down = 220
+        position = 100
+        [pitch_trim]
+        up = 30
+        down = 220
+        neutral = 125
+        position = 125
+        reversed = true
+        [roll_trim]
+        up = 40
+        down = 210
+        neutral = 125
+        position = 125
+        stuck = true
+    ";
+
+    /// Streams TRIM_MOVE every 100 ms for `ms` (a page's safe stream), then stops.
+    fn trim_run(b: &mut Bench, axis: TrimType, dir: TrimDirection, ms: u64) -> Vec<Vec<u8>> {
+        let mut status = Vec::new();
+        for _ in 0..ms / 100 {
+            b.send(TrimMove {
+                trim_type: axis,
+                on: true,
+                direction: dir,
+            });
+            status.extend(flap_trim_bytes(b, 100));
+        }
+        b.send(TrimMove {
+            trim_type: axis,
+            on: false,
+            direction: dir,
+        });
+        status
+    }
+
+    #[test]
+    fn a_reversed_trim_runs_the_other_way_and_its_polarity_setting_undoes_it() {
+        let mut b = Bench::new(MOTORS);
+        let before = flap_trim_bytes(&mut b, 100).last().unwrap().clone();
+        // Table 27 byte 4: pitch position. Down is toward 220, the larger number.
+        assert_eq!(before[3], 125);
+        let during = trim_run(&mut b, TrimType::Pitch, TrimDirection::DownOrRight, 1_000);
+        // Byte 2 MSB first: pitch enabled 0x80, running 0x40; roll enabled 0x10.
+        assert!(during.iter().any(|p| p[1] == 0b1101_0000), "running");
+        let after = flap_trim_bytes(&mut b, 300).last().unwrap().clone();
+        assert_eq!(after[1], 0b1001_0000, "stopped");
+        assert!(
+            (98..=102).contains(&after[3]),
+            "commanded down, went up: {}",
+            after[3]
+        );
+        // The installer sets the polarity to inverted (Table 15 note 3): fixed.
+        let spec = TrimSpec {
+            polarity: Polarity::Inverted,
+            power: 60,
+            ..b.unit.config.pitch_trim
+        };
+        b.send(spec);
+        trim_run(&mut b, TrimType::Pitch, TrimDirection::DownOrRight, 1_000);
+        let fixed = flap_trim_bytes(&mut b, 300).last().unwrap().clone();
+        assert!(
+            fixed[3] > after[3] + 20,
+            "now down: {} → {}",
+            after[3],
+            fixed[3]
+        );
+    }
+
+    #[test]
+    fn a_stuck_trim_runs_and_never_moves() {
+        let mut b = Bench::new(MOTORS);
+        let during = trim_run(&mut b, TrimType::Roll, TrimDirection::UpOrLeft, 1_000);
+        // Byte 2: roll enabled 0x10, roll running 0x08 (pitch enabled 0x80).
+        assert!(during.iter().any(|p| p[1] == 0b1001_1000), "roll running");
+        // Byte 5: roll position, byte 8: roll fault code (none).
+        assert!(during.iter().all(|p| p[4] == 125 && p[7] == 0));
+        // Flaps, wired right, move as commanded (byte 3; down is the larger number).
+        for _ in 0..10 {
+            b.send(FlapMove {
+                on: true,
+                direction: FlapDirection::Down,
+            });
+            b.run(100);
+        }
+        b.send(FlapMove {
+            on: false,
+            direction: FlapDirection::Down,
+        });
+        let s = flap_trim_bytes(&mut b, 300).last().unwrap().clone();
+        assert!((118..=122).contains(&s[2]), "flaps went down: {}", s[2]);
+    }
+
+    #[test]
+    fn a_flipped_switch_comes_back_after_its_hold() {
+        let mut b = Bench::new(WIRING);
+        b.apply(SimCommand::FlipSwitch {
+            switch: 3,
+            hold: Duration::from_millis(2_500),
+        });
+        // SYSTEM_STATUS leaves at 0.2 s, 1.2 s, 2.2 s, 3.2 s … after power-on.
+        for (window, want) in [(1, 0b0000_0100), (2, 0b0000_0100), (3, 0b0000_0100), (4, 0)] {
+            let s = system_status_bytes(&mut b);
+            assert_eq!(s[8], want, "switch 3 in the broadcast before {window} s");
+        }
+        // A switch that was on flips off, then on again (at 4 s, back at 5.5 s).
+        person_sets(&mut b, 4, true);
+        b.apply(SimCommand::FlipSwitch {
+            switch: 4,
+            hold: Duration::from_millis(1_500),
+        });
+        for want in [0, 0, 0b0000_1000] {
+            let s = system_status_bytes(&mut b);
+            assert_eq!(s[8], want);
+        }
+    }
+
+    #[test]
+    fn held_flap_and_trim_switches_show_in_system_status_byte_8() {
+        let mut b = Bench::new(MOTORS);
+        b.apply(SimCommand::MotorSwitch {
+            motor: MotorId::Flap,
+            direction: Some(MotorDirection::Down),
+        });
+        b.apply(SimCommand::MotorSwitch {
+            motor: MotorId::Pitch,
+            direction: Some(MotorDirection::Up),
+        });
+        let s = system_status_bytes(&mut b);
+        // Table 24 byte 8, MSB first: roll down, roll up, pitch down, pitch up (0x10),
+        // flap down (0x08), flap up, switch 10, switch 9.
+        assert_eq!(s[7], 0b0001_1000);
     }
 }
