@@ -20,6 +20,7 @@ mod record;
 mod replay;
 mod setup;
 mod signals;
+mod stop_gate;
 mod terminal;
 mod traffic;
 
@@ -52,6 +53,7 @@ pub use queries::{QueryPacer, connect_queries};
 pub use record::Recorder;
 pub use replay::Capture;
 pub use signals::{Terminated, Termination, listen as listen_for_termination};
+pub use stop_gate::StopGate;
 pub use terminal::{
     TerminalGuard, clear_emergency_stop, install_panic_hook, panicked, restore as restore_terminal,
     set_emergency_stop,
@@ -118,6 +120,8 @@ pub struct App {
     hidden: bool,
     link: Option<Link>,
     handle: LinkHandle,
+    /// Every packet the page sends goes through here; `None` in replay.
+    gate: Option<Arc<StopGate>>,
     wake_rx: Receiver<Wake>,
     pacer: QueryPacer,
     notice_until: Option<Instant>,
@@ -176,7 +180,10 @@ impl App {
             ..Default::default()
         };
         // A replay is read-only: no link for motors, and no thread to send on it.
-        let controller = MotorPath::new(controller, replay.is_none().then(|| handle.clone()));
+        let gate = replay
+            .is_none()
+            .then(|| Arc::new(StopGate::new(handle.clone())));
+        let controller = MotorPath::new(controller, gate.clone());
         let motor_thread = if replay.is_none() {
             controller.spawn(wake_tx)
         } else {
@@ -190,6 +197,7 @@ impl App {
             hidden: false,
             link: Some(link),
             handle,
+            gate,
             wake_rx,
             pacer: QueryPacer::default(),
             notice_until: None,
@@ -223,12 +231,21 @@ impl App {
     }
 
     fn send(&self, packets: Vec<Packet>) {
-        if self.replay.is_some() {
-            return; // read-only: a replay never puts anything on a wire
+        // A replay (no gate) is read-only: it never puts anything on a wire.
+        if let Some(gate) = &self.gate {
+            gate.send(packets);
         }
-        for p in packets {
-            // A closed link has already been reported to the model.
-            let _ = self.handle.send(p);
+    }
+
+    /// Makes the panic hook's first act the stop of every motor, queued through the
+    /// page's own way to the wire so that nothing queued after it moves a motor.
+    pub fn arm_emergency_stop(&self) {
+        if let Some(gate) = self.gate.clone() {
+            terminal::set_emergency_stop(move || {
+                gate.emergency_stop();
+                // Give the writer thread a moment to put the stops on the wire.
+                std::thread::sleep(Duration::from_millis(50));
+            });
         }
     }
 
@@ -822,14 +839,7 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
     if let Some((target, iface, config)) = xfsp {
         app.enable_xfsp(&target, iface, config)?;
     }
-    let handle = app.link_handle();
-    terminal::set_emergency_stop(move || {
-        for p in MotorStreamer::emergency_stop_packets() {
-            let _ = handle.send(p);
-        }
-        // Give the writer thread a moment to put the stops on the wire.
-        std::thread::sleep(Duration::from_millis(50));
-    });
+    app.arm_emergency_stop();
     let input = spawn_input_thread();
     let result = app.run(&mut guard.terminal, &input, &terminations);
     app.shutdown();

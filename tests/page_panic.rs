@@ -20,13 +20,8 @@ use page_rig::*;
 fn a_panic_while_trim_runs_sends_the_stop_and_nothing_restarts_it() {
     let mut rig = Rig::new(ReleaseMode::AutoRepeat);
     rig.select(30);
-    let handle = rig.app.link_handle();
-    vpx_efis::app::set_emergency_stop(move || {
-        for p in vpx_efis::control::MotorStreamer::emergency_stop_packets() {
-            let _ = handle.send(p);
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    });
+    // As `vpx-efis` arms it: the stop goes through the page's own way to the wire.
+    rig.app.arm_emergency_stop();
     vpx_efis::app::install_panic_hook();
     let start = Instant::now();
     rig.key(KeyCode::Char('u'), KeyEventKind::Press);

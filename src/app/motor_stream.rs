@@ -9,7 +9,10 @@
 //!
 //! Order on the wire is order of decision: every packet the controller gives back is
 //! queued while its lock is still held, by this thread and by the page alike, so a
-//! resend decided before a stop can never reach the wire after it.
+//! resend decided before a stop can never reach the wire after it. The queueing goes
+//! through the page's [`StopGate`], which the panic hook's emergency stop closes to
+//! moves: a resend this thread decided just as another thread panicked is either on
+//! the wire before the hook's stop or not at all.
 //!
 //! One wait on the model lock remains on the way to the wire: the link's writer
 //! reports each frame it wrote to the model (traffic view, capture) before taking the
@@ -25,9 +28,9 @@ use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, unbounded};
 
 use crossterm::event::KeyEvent;
 
+use super::stop_gate::StopGate;
 use super::{Wake, terminal};
 use crate::control::{Action, Controller, KeyContext, StopReason};
-use crate::link::LinkHandle;
 use crate::model::Model;
 use crate::protocol::message::Packet;
 use crate::ui::state::{MotorRun, RepeatTiming};
@@ -43,7 +46,7 @@ pub struct Handled {
 pub struct MotorPath {
     controller: Mutex<Controller>,
     /// `None` in replay: nothing reaches a wire.
-    link: Option<LinkHandle>,
+    link: Option<Arc<StopGate>>,
     /// Tells the thread the controller changed, so it looks at the deadline again.
     poke: Mutex<Option<Sender<()>>>,
     /// When the page's loop last ticked this path (real time). The model's checks
@@ -59,7 +62,7 @@ pub struct MotorPath {
 pub const LOOP_STALL: Duration = Duration::from_millis(500);
 
 impl MotorPath {
-    pub fn new(controller: Controller, link: Option<LinkHandle>) -> Arc<MotorPath> {
+    pub fn new(controller: Controller, link: Option<Arc<StopGate>>) -> Arc<MotorPath> {
         Arc::new(MotorPath {
             controller: Mutex::new(controller),
             link,
@@ -168,11 +171,13 @@ impl MotorPath {
 
     fn queue(&self, packets: Vec<Packet>) {
         if let Some(link) = &self.link {
-            for p in packets {
-                // A closed link has already been reported to the model.
-                let _ = link.send(p);
-            }
+            link.send(packets);
         }
+    }
+
+    /// Whether the panic hook's emergency stop has gone out (or is going out).
+    fn halted(&self) -> bool {
+        terminal::panicked() || self.link.as_ref().is_some_and(|l| l.halted())
     }
 
     fn poke(&self) {
@@ -211,7 +216,7 @@ impl MotorPath {
             let ended = {
                 let mut c = self.lock();
                 let was_running = c.running().is_some();
-                let packets = if terminal::panicked() {
+                let packets = if self.halted() {
                     // The hook sent the emergency stop; never resend after it.
                     c.stop(now, StopReason::Panic)
                 } else if was_running && self.loop_stalled(now) {

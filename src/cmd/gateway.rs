@@ -17,8 +17,8 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use crossbeam_channel::{select, unbounded};
 
-use crate::app::Terminated;
 use crate::app::queries::QueryPacer;
+use crate::app::{StopGate, Terminated};
 use crate::cli::GatewayArgs;
 use crate::control::MotorStreamer;
 use crate::link::{Connector, Link, LinkEvent, PortAddr, RxItem, port_connector};
@@ -143,11 +143,12 @@ pub fn run_bridge(
     let unit = link.handle();
     // As on the page: a panic anywhere sends the stop messages first, and unwinding
     // out of this function sends them again before the link closes.
-    let hook_unit = unit.clone();
+    // Everything the loop sends goes through the gate, which the hook's stop closes
+    // to moves, so a resend decided before a panic cannot follow its stop.
+    let gate = Arc::new(StopGate::new(unit.clone()));
+    let hook_gate = gate.clone();
     crate::app::set_emergency_stop(move || {
-        for p in MotorStreamer::emergency_stop_packets() {
-            let _ = hook_unit.send(p);
-        }
+        hook_gate.emergency_stop();
         std::thread::sleep(Duration::from_millis(50));
     });
     crate::app::install_panic_hook();
@@ -199,9 +200,7 @@ pub fn run_bridge(
         }
         let step = gw.tick(&mut model, Instant::now());
         to_unit.extend(step.to_unit);
-        for p in to_unit {
-            let _ = unit.send(p);
-        }
+        gate.send(to_unit);
         match net.send_all(&step.datagrams) {
             Err(e) if !net_error_said => {
                 say(&format!("cannot send on XFSp: {e}"));
@@ -214,9 +213,7 @@ pub fn run_bridge(
     }
 
     let now = Instant::now();
-    for p in gw.shutdown(&mut model, now) {
-        let _ = unit.send(p);
-    }
+    gate.send(gw.shutdown(&mut model, now));
     print_new_events(&model, &mut printed, &mut say);
     let s = gw.stats();
     say(&format!(
