@@ -803,6 +803,27 @@ fn a_motor_does_not_start_while_communication_is_lost() {
     assert!(ctl.running().is_none());
 }
 
+/// A page that cannot stream (its motor thread did not start) refuses the press that
+/// would otherwise start the trim, in the words it was given.
+#[test]
+fn a_motor_does_not_start_where_motors_are_refused() {
+    let t0 = Instant::now();
+    let model = live_model(t0);
+    let press = key(KeyCode::Char('u'), KeyEventKind::Press);
+    let mut fine = Controller::default();
+    let o = fine.handle_key(press, &ctx_for(PITCH), &model, t0);
+    assert_eq!(o.packets.len(), 1, "a healthy page starts the trim");
+    assert!(fine.running().is_some());
+
+    let mut ctl = Controller::default();
+    ctl.refuse_motors("motors unavailable: no thread".into());
+    assert_eq!(ctl.motors_refused(), Some("motors unavailable: no thread"));
+    let o = ctl.handle_key(press, &ctx_for(PITCH), &model, t0);
+    assert!(o.packets.is_empty(), "{:?}", o.packets);
+    assert!(ctl.running().is_none());
+    assert_eq!(o.notice.as_deref(), Some("motors unavailable: no thread"));
+}
+
 #[test]
 fn no_gap_exceeds_250_ms_when_the_loop_wakes_up_to_30_ms_late() {
     let mut worst_seen = Duration::ZERO;

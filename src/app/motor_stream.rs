@@ -191,10 +191,27 @@ impl MotorPath {
         let (tx, rx) = unbounded();
         *self.poke.lock().unwrap_or_else(|p| p.into_inner()) = Some(tx);
         let path = self.clone();
-        std::thread::Builder::new()
+        let spawned = std::thread::Builder::new()
             .name("motor-stream".into())
-            .spawn(move || path.run(&rx, &wake))
-            .ok()
+            .spawn(move || path.run(&rx, &wake));
+        self.started(spawned)
+    }
+
+    /// Without its thread nothing would resend a held motor's move on time, so a
+    /// page whose thread did not start refuses every motor run, and says why.
+    fn started(&self, spawned: std::io::Result<JoinHandle<()>>) -> Option<JoinHandle<()>> {
+        match spawned {
+            Ok(t) => Some(t),
+            Err(e) => {
+                self.stop_thread();
+                self.with(|c| {
+                    c.refuse_motors(format!(
+                        "motors unavailable: the motor-stream thread could not start ({e})"
+                    ))
+                });
+                None
+            }
+        }
     }
 
     /// Ends the thread (it sees the poke channel close).
@@ -232,5 +249,25 @@ impl MotorPath {
                 let _ = wake.send(Wake::Motor);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A page whose motor-stream thread could not start refuses every motor run
+    /// (tests/control_streamer.rs shows a refused controller refusing a press), and
+    /// says why at once.
+    #[test]
+    fn no_motor_thread_means_motors_refused_and_the_page_says_so() {
+        let path = MotorPath::new(Controller::default(), None);
+        let t = path.started(Err(std::io::Error::other("out of threads")));
+        assert!(t.is_none());
+        let why = path.with(|c| c.motors_refused().map(str::to_owned));
+        let why = why.expect("motor runs refused");
+        assert!(why.contains("motors unavailable"), "{why}");
+        assert!(why.contains("out of threads"), "{why}");
+        assert_eq!(path.take_notice(), Some(why), "said at once");
     }
 }

@@ -57,6 +57,8 @@ pub struct Controller {
     streamer: MotorStreamer,
     /// A stop the person did not ask for, kept until the app takes it for the notice.
     pending_notice: Option<String>,
+    /// Why no motor may run at all (the page cannot stream one safely), in words.
+    motors_refused: Option<String>,
 }
 
 impl Controller {
@@ -64,7 +66,21 @@ impl Controller {
         Controller {
             streamer: MotorStreamer::new(config),
             pending_notice: None,
+            motors_refused: None,
         }
+    }
+
+    /// From now on every motor press is refused with `why` (shown at once as a
+    /// notice too): for a page that cannot keep a move stream going on its own
+    /// clock. Called before any run can start.
+    pub fn refuse_motors(&mut self, why: String) {
+        self.pending_notice = Some(why.clone());
+        self.motors_refused = Some(why);
+    }
+
+    /// Why motor runs are refused, if they are.
+    pub fn motors_refused(&self) -> Option<&str> {
+        self.motors_refused.as_deref()
     }
 
     pub fn release_mode(&self) -> ReleaseMode {
@@ -151,7 +167,11 @@ impl Controller {
                 let p = match phase {
                     KeyPhase::Repeat => self.streamer.repeat(now, motor, direction),
                     KeyPhase::Press if self.streamer.would_start(now, motor, direction) => {
-                        match motor_permit(model, motor, direction, now) {
+                        let permit = match &self.motors_refused {
+                            Some(why) => Err(Refusal(why.clone())),
+                            None => motor_permit(model, motor, direction, now),
+                        };
+                        match permit {
                             Ok(()) => self.streamer.press(now, motor, direction),
                             Err(why) => {
                                 out.notice = Some(why.0);
