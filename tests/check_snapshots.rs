@@ -320,7 +320,8 @@ fn confirm() -> CheckView {
                 ("q", "quit"),
             ],
         }),
-        current: Some(2),
+        // Pitot Heat: the selection runs down the plan, then the exclusions.
+        current: Some(plan().len() + 2),
         ..base()
     }
 }
@@ -484,17 +485,17 @@ fn motors() -> CheckView {
         motors: vec![
             MotorResult {
                 motor: Motor::Flaps,
-                positions: vec![0, 18, 0, 0],
+                positions: vec![20, 56, 20, 20],
                 outcome: Outcome::Found(MotorFinding::Moves),
             },
             MotorResult {
                 motor: Motor::Trim(TrimKind::Pitch),
-                positions: vec![49, 44, 55, 49],
+                positions: vec![128, 118, 140, 128],
                 outcome: Outcome::Found(MotorFinding::Reversed),
             },
             MotorResult {
                 motor: Motor::Trim(TrimKind::Roll),
-                positions: vec![50, 56],
+                positions: vec![120, 131],
                 outcome: Outcome::NotRun,
             },
         ],
@@ -513,17 +514,17 @@ fn finished_motors() -> Vec<MotorResult> {
     vec![
         MotorResult {
             motor: Motor::Flaps,
-            positions: vec![0, 18, 0, 0],
+            positions: vec![20, 56, 20, 20],
             outcome: Outcome::Found(MotorFinding::Moves),
         },
         MotorResult {
             motor: Motor::Trim(TrimKind::Pitch),
-            positions: vec![49, 44, 55, 49],
+            positions: vec![128, 118, 140, 128],
             outcome: Outcome::Found(MotorFinding::Reversed),
         },
         MotorResult {
             motor: Motor::Trim(TrimKind::Roll),
-            positions: vec![50, 50, 50, 50],
+            positions: vec![120, 120, 120, 120],
             outcome: Outcome::Found(MotorFinding::NoMovement),
         },
     ]
@@ -884,7 +885,7 @@ fn once_stopped_the_check_asks_nothing_more() {
     let t = text(&buf);
     assert!(!t.contains("DO NOW"), "{t}");
     assert!(!t.contains("skip step"), "{t}");
-    assert!(t.contains("q  close the check"), "{t}");
+    assert!(t.contains("Esc  back to the device list"), "{t}");
     assert!(
         t.contains("Landing Lt       unknown: no answer, last seen ON"),
         "{t}"

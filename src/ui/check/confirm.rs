@@ -22,8 +22,8 @@ fn breaker(b: Option<u8>) -> String {
     b.map_or_else(|| values::BLANK.into(), |b| format!("{b} A"))
 }
 
-fn row(p: &Planned) -> Line<'static> {
-    Line::from(vec![
+fn row(p: &Planned, selected: bool, width: u16) -> Line<'static> {
+    let mut line = Line::from(vec![
         Span::raw(fit(&p.name, NAME_W)),
         Span::raw(" "),
         Span::styled(format!("{:<6}", p.pin), theme::label()),
@@ -33,7 +33,13 @@ fn row(p: &Planned) -> Line<'static> {
             theme::label(),
         ),
         Span::styled(format!("{:>7}", words::duration(p.on_for)), theme::info()),
-    ])
+    ]);
+    if selected {
+        let pad = usize::from(width).saturating_sub(line.width());
+        line.spans.push(Span::raw(" ".repeat(pad)));
+        line = line.style(theme::selected_row());
+    }
+    line
 }
 
 fn header() -> Line<'static> {
@@ -48,10 +54,20 @@ fn header() -> Line<'static> {
 
 /// The plan as a table if it fits, else names and times in as many columns as the
 /// width allows; the lines it takes, and how many circuits it could not show.
-fn plan_lines(plan: &[Planned], width: u16, height: usize) -> (Vec<Line<'static>>, usize) {
+/// `selected` is the plan row the person has selected, if any.
+fn plan_lines(
+    plan: &[Planned],
+    selected: Option<usize>,
+    width: u16,
+    height: usize,
+) -> (Vec<Line<'static>>, usize) {
     if plan.len() < height {
         let mut out = vec![header()];
-        out.extend(plan.iter().map(row));
+        out.extend(
+            plan.iter()
+                .enumerate()
+                .map(|(i, p)| row(p, selected == Some(i), width)),
+        );
         return (out, 0);
     }
     // Two columns in the narrowest left column (46).
@@ -74,13 +90,19 @@ fn plan_lines(plan: &[Planned], width: u16, height: usize) -> (Vec<Line<'static>
         let mut spans = Vec::new();
         for c in 0..cols {
             // Down the columns, as one reads a list.
-            let Some(p) = plan.get(c * rows + r).filter(|_| c * rows + r < shown) else {
+            let i = c * rows + r;
+            let Some(p) = plan.get(i).filter(|_| i < shown) else {
                 continue;
             };
-            spans.push(Span::raw(fit(&p.name, PACKED_NAME_W)));
+            let band = if selected == Some(i) {
+                theme::selected_row()
+            } else {
+                Style::new()
+            };
+            spans.push(Span::styled(fit(&p.name, PACKED_NAME_W), band));
             spans.push(Span::styled(
                 format!("{:>6}  ", words::duration(p.on_for)),
-                theme::info(),
+                theme::info().patch(band),
             ));
         }
         out.push(Line::from(spans));
@@ -100,7 +122,10 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView) {
     // The circuits get the whole left column: it is what the person confirms.
     let inner = section(frame, left, "Will switch on, one at a time");
     let room = inner.height.saturating_sub(1);
-    let (mut lines, hidden) = plan_lines(&view.plan, inner.width, room.into());
+    // The selection runs down the plan, then the exclusions (as the flow moves it).
+    let selected = view.current.filter(|&c| c < view.plan.len());
+    let selected_excluded = view.current.and_then(|c| c.checked_sub(view.plan.len()));
+    let (mut lines, hidden) = plan_lines(&view.plan, selected, inner.width, room.into());
     if view.plan.is_empty() {
         lines = vec![Line::styled("No circuit is switched on.", theme::label())];
     }
@@ -163,8 +188,8 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView) {
             } else {
                 Style::new().fg(theme::LABEL)
             },
-            current: view.current == Some(i),
+            current: selected_excluded == Some(i),
         })
         .collect();
-    list::render(frame.buffer_mut(), inner, &rows, view.current);
+    list::render(frame.buffer_mut(), inner, &rows, selected_excluded);
 }

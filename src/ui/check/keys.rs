@@ -1,6 +1,6 @@
 //! The check's bottom line: the page's last notice, then the keys that act now. The
-//! flow says which keys act (`Prompt::keys`); when it asks nothing, the one key
-//! left is the one that leaves the check.
+//! flow says which keys act (`Prompt::keys`); when it asks nothing (or the check
+//! stopped), the one key left is the one that leaves (Esc, as the flow reads it).
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -22,9 +22,9 @@ pub fn keys(view: &CheckView) -> Vec<(&'static str, &'static str)> {
         return asked;
     }
     if view.interrupted.is_some() || view.step == Step::Done {
-        vec![("q", "close the check")]
+        vec![("Esc", "back to the device list")]
     } else {
-        vec![("q", "stop the check")]
+        vec![("Esc", "stop the check")]
     }
 }
 

@@ -96,8 +96,16 @@ pub fn lines_of(row: &Row, width: u16) -> Vec<Line<'static>> {
         Style::new()
     };
     let mut out = Vec::new();
+    // The band of the item under test runs the whole width, as the page's selection.
+    let pad = |mut line: Line<'static>| -> Line<'static> {
+        let w = line.width();
+        if row.current && w < width {
+            line.spans.push(Span::raw(" ".repeat(width - w)));
+        }
+        line
+    };
     if row.words.is_empty() {
-        out.push(Line::from(row.head.clone()).style(band));
+        out.push(pad(Line::from(row.head.clone()).style(band)));
         return out;
     }
     if width >= hw + MIN_WORDS {
@@ -108,19 +116,17 @@ pub fn lines_of(row: &Row, width: u16) -> Vec<Line<'static>> {
                 vec![Span::raw(" ".repeat(hw))]
             };
             spans.push(Span::styled(part, row.words_style));
-            out.push(Line::from(spans).style(band));
+            out.push(pad(Line::from(spans).style(band)));
         }
     } else {
-        out.push(Line::from(row.head.clone()).style(band));
+        out.push(pad(Line::from(row.head.clone()).style(band)));
         let indent = UNDER_INDENT.min(width.saturating_sub(1));
         for part in wrap(&row.words, width - indent) {
-            out.push(
-                Line::from(vec![
-                    Span::raw(" ".repeat(indent)),
-                    Span::styled(part, row.words_style),
-                ])
-                .style(band),
-            );
+            out.push(pad(Line::from(vec![
+                Span::raw(" ".repeat(indent)),
+                Span::styled(part, row.words_style),
+            ])
+            .style(band)));
         }
     }
     out

@@ -108,7 +108,7 @@ pub fn render(
         render_prompt(frame, prompt_area, p);
     }
     if view.interrupted.is_some() {
-        summary::render_interrupted(frame, body, view, model);
+        summary::render_interrupted(frame, body, view, model, now);
     } else {
         match view.step {
             Step::Confirm => confirm::render(frame, body, view),
@@ -116,7 +116,7 @@ pub fn render(
             Step::Circuits => circuits::render(frame, body, view, model, now),
             Step::Motors => motors::render(frame, body, view, model, page, now),
             Step::Loads => summary::render_loads(frame, body, view),
-            Step::Done => summary::render_done(frame, body, view, model),
+            Step::Done => summary::render_done(frame, body, view, model, now),
         }
     }
     if let Some(m) = &view.message {

@@ -50,6 +50,35 @@ fn travel(m: Motor, ft: &FlapTrimStatus) -> (&'static str, &'static str, u8, u8,
     }
 }
 
+/// A motor's travel ends in sensor counts: the live FLAP_TRIM_STATUS's, else the
+/// spec the unit reported (configuration, not a reading, so it may be old).
+fn ends(m: Motor, model: &Model, now: Instant) -> Option<(u8, u8)> {
+    if let Some(ft) = model.live_flap_trim(now) {
+        let (_, _, from, to, _, _) = travel(m, ft);
+        return Some((from, to));
+    }
+    match m {
+        Motor::Flaps => model.flap_spec.map(|s| (s.value.up, s.value.down)),
+        Motor::Trim(TrimKind::Pitch) => model.pitch_trim_spec.map(|s| (s.value.up, s.value.down)),
+        Motor::Trim(TrimKind::Roll) => model.roll_trim_spec.map(|s| (s.value.up, s.value.down)),
+    }
+}
+
+/// The positions a motor went through (raw counts) as percent of its travel from
+/// the up end, or as counts when its ends are not known.
+fn positions(m: Motor, raw: &[u8], model: &Model, now: Instant) -> String {
+    match ends(m, model, now) {
+        Some((from, to)) if from != to => {
+            let p: Vec<u8> = raw.iter().map(|&v| percent(from, to, v)).collect();
+            words::positions(&p)
+        }
+        _ => {
+            let p: Vec<String> = raw.iter().map(|v| v.to_string()).collect();
+            format!("{} counts", p.join(" → "))
+        }
+    }
+}
+
 /// Percent of travel from the up (left) end, clamped: a sensor can read past an end.
 fn percent(from: u8, to: u8, v: u8) -> u8 {
     if from == to {
@@ -100,7 +129,7 @@ fn gauge(m: Motor, ft: Option<&FlapTrimStatus>, page: &ViewState, width: u16) ->
 }
 
 /// The results of step 4 as rows, for this screen and the summary.
-pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
+pub fn rows(view: &CheckView, model: &Model, now: Instant, current: Option<usize>) -> Vec<Row> {
     view.motors
         .iter()
         .enumerate()
@@ -108,12 +137,15 @@ pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
             let mark = words::motor_mark(&r.outcome);
             let mut w = words::motor(r);
             if !r.positions.is_empty() {
-                w = format!("{w} ({})", words::positions(&r.positions));
+                w = format!("{w} ({})", positions(r.motor, &r.positions, model, now));
             }
             let w = match progress_words(mark, i, current, w) {
                 // While it runs, the positions so far are the news.
                 w if current == Some(i) && mark == Mark::NotRun && !r.positions.is_empty() => {
-                    format!("{w}, so far {}", words::positions(&r.positions))
+                    format!(
+                        "{w}, so far {}",
+                        positions(r.motor, &r.positions, model, now)
+                    )
                 }
                 w => w,
             };
@@ -164,7 +196,7 @@ pub fn render(
     list::render(
         frame.buffer_mut(),
         inner,
-        &rows(view, view.current),
+        &rows(view, model, now, view.current),
         view.current,
     );
 }

@@ -4,6 +4,8 @@
 //! a check that was interrupted: why, and exactly which circuits were left in which
 //! state.
 
+use std::time::Instant;
+
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
@@ -18,7 +20,7 @@ use crate::ui::title_bar::middle_ellipsis;
 use crate::ui::{fast, theme};
 
 /// Every result of every step, in step order.
-fn all_rows(view: &CheckView, model: &Model) -> Vec<(Step, Mark, Row)> {
+fn all_rows(view: &CheckView, model: &Model, now: Instant) -> Vec<(Step, Mark, Row)> {
     let mut out = Vec::new();
     for (r, row) in view.switches.iter().zip(switches::rows(view, model, None)) {
         out.push((Step::Switches, words::switch_mark(&r.outcome), row));
@@ -26,7 +28,7 @@ fn all_rows(view: &CheckView, model: &Model) -> Vec<(Step, Mark, Row)> {
     for (r, row) in view.circuits.iter().zip(circuits::rows(view, None)) {
         out.push((Step::Circuits, words::circuit_mark(&r.outcome), row));
     }
-    for (r, row) in view.motors.iter().zip(motors::rows(view, None)) {
+    for (r, row) in view.motors.iter().zip(motors::rows(view, model, now, None)) {
         out.push((Step::Motors, words::motor_mark(&r.outcome), row));
     }
     out
@@ -110,8 +112,8 @@ fn cycle_height(view: &CheckView) -> u16 {
 }
 
 /// What is left to fix (failures and warnings), then every result.
-fn results_rows(view: &CheckView, model: &Model) -> Vec<Row> {
-    let all = all_rows(view, model);
+fn results_rows(view: &CheckView, model: &Model, now: Instant) -> Vec<Row> {
+    let all = all_rows(view, model, now);
     let mut rows = Vec::new();
     let fix: Vec<&Row> = all
         .iter()
@@ -154,8 +156,8 @@ fn results_rows(view: &CheckView, model: &Model) -> Vec<Row> {
     rows
 }
 
-pub fn render_done(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model) {
-    let marks: Vec<Mark> = all_rows(view, model)
+pub fn render_done(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, now: Instant) {
+    let marks: Vec<Mark> = all_rows(view, model, now)
         .into_iter()
         .map(|(_, m, _)| m)
         .collect();
@@ -178,16 +180,22 @@ pub fn render_done(frame: &mut Frame, area: Rect, view: &CheckView, model: &Mode
     list::render(
         frame.buffer_mut(),
         inner,
-        &results_rows(view, model),
+        &results_rows(view, model, now),
         view.current,
     );
 }
 
-pub fn render_interrupted(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model) {
+pub fn render_interrupted(
+    frame: &mut Frame,
+    area: Rect,
+    view: &CheckView,
+    model: &Model,
+    now: Instant,
+) {
     let Some(int) = &view.interrupted else {
         return;
     };
-    let marks: Vec<Mark> = all_rows(view, model)
+    let marks: Vec<Mark> = all_rows(view, model, now)
         .into_iter()
         .map(|(_, m, _)| m)
         .collect();
@@ -259,7 +267,12 @@ pub fn render_interrupted(frame: &mut Frame, area: Rect, view: &CheckView, model
     let [counts, rest] =
         Layout::vertical([Constraint::Length(1), Constraint::Fill(1)]).areas(inner);
     fast::lines(frame.buffer_mut(), counts, &[count_line(&marks)]);
-    list::render(frame.buffer_mut(), rest, &results_rows(view, model), None);
+    list::render(
+        frame.buffer_mut(),
+        rest,
+        &results_rows(view, model, now),
+        None,
+    );
 }
 
 /// Step 5 while the load analysis is worked out: the currents measured in step 3,
