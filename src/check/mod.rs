@@ -4,3 +4,17 @@
 //! must send out. Pure and driven on the caller's clock; the app only wires it to the
 //! link, the page's controller (so every motor rule and stop cause applies) and the
 //! terminal.
+
+mod circuits;
+pub mod flow;
+mod motors;
+pub mod plan;
+mod switches;
+
+pub use circuits::{NEAR_BREAKER, judge as judge_current};
+pub use flow::{Cause, CheckFlow, Command, Options, Out, Timing};
+pub use motors::{expected_sign, judge as judge_motor};
+pub use plan::{Choices, SUGGEST_EXCLUDING};
+
+#[cfg(test)]
+mod tests;

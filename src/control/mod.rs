@@ -23,11 +23,11 @@ pub mod keymap;
 pub mod release;
 pub mod streamer;
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crossterm::event::KeyEvent;
 
-use crate::model::Model;
+use crate::model::{Model, Motor};
 use crate::protocol::message::Packet;
 use crate::ui::state::{MotorRun, ReleaseMode, RepeatTiming};
 
@@ -263,6 +263,23 @@ impl Controller {
             },
             None => Vec::new(),
         }
+    }
+
+    /// Runs `motor` `direction` for `length` with no key behind it (the installation
+    /// check), if the model permits it now ([`motor_permit`]). From then on it is a
+    /// run like any other: [`Controller::tick`] ends it on lost communication, a
+    /// fault or lost status, any key or quit ends it, and the stream ends it at
+    /// `length` ([`StopReason::RunDone`]).
+    pub fn run_for(
+        &mut self,
+        model: &Model,
+        motor: Motor,
+        direction: Direction,
+        length: Duration,
+        now: Instant,
+    ) -> Result<Vec<Packet>, Refusal> {
+        motor_permit(model, motor, direction, now)?;
+        Ok(self.streamer.run_for(now, motor, direction, length))
     }
 
     pub fn on_link_error(&mut self, now: Instant) -> Vec<Packet> {

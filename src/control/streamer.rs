@@ -130,6 +130,8 @@ pub enum StopReason {
     /// checks no longer run: the stream must not go on alone.
     PageStalled,
     Panic,
+    /// A timed run ([`MotorStreamer::run_for`]) reached its end.
+    RunDone,
 }
 
 impl StopReason {
@@ -151,12 +153,16 @@ impl StopReason {
             StopReason::Starved => "the page fell behind the 4 Hz stream".into(),
             StopReason::PageStalled => "the page stopped responding".into(),
             StopReason::Panic => "the program failed".into(),
+            StopReason::RunDone => "the timed run ended".into(),
         }
     }
 
     /// Whether the person simply let go, as opposed to the run being cut short.
     pub fn is_normal(self) -> bool {
-        matches!(self, StopReason::Released | StopReason::RepeatsStopped)
+        matches!(
+            self,
+            StopReason::Released | StopReason::RepeatsStopped | StopReason::RunDone
+        )
     }
 }
 
@@ -303,6 +309,9 @@ struct Run {
     key: MotorKey,
     started: Instant,
     last_sent: Instant,
+    /// A timed run ([`MotorStreamer::run_for`]): it ends here, and no key keeps it
+    /// alive or ends it early but as any key does (another key, release).
+    until: Option<Instant>,
 }
 
 /// Turns motor key events into the move stream. See the module docs.
@@ -418,6 +427,37 @@ impl MotorStreamer {
         direction.applies_to(motor)
             && self.run.is_none()
             && !self.is_repeat(now, (motor, direction))
+    }
+
+    /// Runs `motor` `direction` for `length` (at most the run cap) with no key behind
+    /// it: the installation check's brief test runs. The same stream and stop causes
+    /// as a held key, with the run's end as its dead man, so the stream's own thread
+    /// ends it on time even when the caller is late. A run going on is stopped first
+    /// (another key); a key held before is forgotten, so its repeats cannot extend or
+    /// restart this run.
+    pub fn run_for(
+        &mut self,
+        now: Instant,
+        motor: Motor,
+        direction: Direction,
+        length: Duration,
+    ) -> Vec<Packet> {
+        let mut out = self.expire(now);
+        out.extend(self.end(now, StopReason::OtherKey));
+        self.held = None;
+        self.hold = None;
+        if !direction.applies_to(motor) {
+            return out;
+        }
+        let key = (motor, direction);
+        self.run = Some(Run {
+            key,
+            started: now,
+            last_sent: now,
+            until: Some(now + length.min(self.config.max_run)),
+        });
+        out.push(self.move_packet(key, true));
+        out
     }
 
     /// A key release (key release mode). Any release ends the run: with the key up
@@ -570,6 +610,7 @@ impl MotorStreamer {
                     key,
                     started: now,
                     last_sent: now,
+                    until: None,
                 });
                 out.push(self.move_packet(key, true));
             }
@@ -629,6 +670,9 @@ impl MotorStreamer {
 
     /// When the run ends if no further event of its key arrives.
     fn dead_man_deadline(&self) -> Option<Instant> {
+        if let Some(until) = self.run.and_then(|r| r.until) {
+            return Some(until);
+        }
         let h = self.held?;
         match self.config.release_mode {
             ReleaseMode::AutoRepeat => Some(h.last_event + self.window(&h)),
@@ -648,6 +692,8 @@ impl MotorStreamer {
             Some(StopReason::Starved)
         } else if now >= run.started + self.config.max_run {
             Some(StopReason::MaxRunTime)
+        } else if run.until.is_some_and(|u| now >= u) {
+            Some(StopReason::RunDone)
         } else if self.dead_man_deadline().is_some_and(|d| now >= d) {
             Some(StopReason::RepeatsStopped)
         } else {
@@ -741,6 +787,51 @@ mod tests {
         });
         assert_eq!(s.config().resend_period, MAX_RESEND_PERIOD);
         assert_eq!(s.config().max_run, MAX_RUN_LIMIT);
+    }
+
+    /// The installation check's runs: no key, the same 8 Hz stream, and the run's end
+    /// is its dead man (even in auto-repeat mode, whose 700 ms first window would
+    /// otherwise end a 1.5 s run); a held key's repeats neither extend nor restart it.
+    #[test]
+    fn a_timed_run_streams_until_its_end_then_stops_with_its_reason() {
+        let t0 = Instant::now();
+        let mut s = MotorStreamer::new(StreamerConfig::default());
+        let at = |n| t0 + ms(n);
+        let start = s.run_for(t0, PITCH, Direction::Up, ms(1500));
+        assert_eq!(start.len(), 1);
+        assert_eq!(start[0].message.emit().to_vec(), [0, 1, 1], "pitch up, on");
+        let mut t = 0;
+        let mut resends = 0;
+        while let Some(d) = s.next_deadline() {
+            let n = (d - t0).as_millis() as u64;
+            assert!(n - t <= 125, "a resend every period: {t} -> {n}");
+            t = n;
+            for p in s.tick(at(t)) {
+                if p.message.emit()[1] == 1 {
+                    resends += 1;
+                } else {
+                    assert_eq!(t, 1500, "the stop at the run's end");
+                    assert_eq!(p.message.emit().to_vec(), [0, 0, 1]);
+                }
+            }
+            // A key repeat of the same key arriving meanwhile changes nothing.
+            if t == 1000 {
+                assert!(s.repeat(at(t), PITCH, Direction::Up).is_empty());
+            }
+        }
+        assert_eq!(resends, 11, "125 ms apart from 125 to 1375 ms");
+        assert_eq!(s.last_stop().unwrap().reason, StopReason::RunDone);
+        assert!(StopReason::RunDone.is_normal());
+        // The run is capped by max_run, and any key stop ends it early.
+        let mut s = MotorStreamer::new(StreamerConfig::default());
+        s.run_for(t0, Motor::Flaps, Direction::Down, Duration::from_secs(60));
+        assert_eq!(s.next_deadline(), Some(at(125)));
+        let stop = s.stop(at(200), StopReason::OtherKey);
+        assert_eq!(stop[0].message.emit().to_vec(), [0, 1]);
+        assert!(s.running().is_none());
+        // A direction the motor lacks starts nothing.
+        assert_eq!(s.run_for(at(300), PITCH, Direction::Left, ms(500)).len(), 0);
+        assert!(s.running().is_none());
     }
 
     #[test]

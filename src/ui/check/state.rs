@@ -212,8 +212,8 @@ pub struct CircuitResult {
 #[derive(Debug, Clone, PartialEq)]
 pub struct MotorResult {
     pub motor: Motor,
-    /// Position (percent) before, after the first direction, after the second, and
-    /// after it was put back, as far as the step got.
+    /// Position (raw FLAP_TRIM_STATUS counts, 0–255) before, after the first
+    /// direction, after the second, and after it was run back, as far as the step got.
     pub positions: Vec<u8>,
     pub outcome: Outcome<MotorFinding>,
 }
@@ -273,7 +273,10 @@ pub struct CheckView {
     pub planned_motors: Vec<(Motor, Duration)>,
     pub excluded: Vec<Excluded>,
     pub prompt: Option<Prompt>,
-    /// The item under test now: an index into the current step's results.
+    /// The item under test now: an index into the current step's results. Before
+    /// power (`Step::Confirm`), the selected row: an index into `plan`, then
+    /// `excluded` (`plan.len() + i`). Every item has its line in the results from the
+    /// confirmation on; one not reached yet (or under test) is `Outcome::NotRun`.
     pub current: Option<usize>,
     pub switches: Vec<SwitchResult>,
     pub circuits: Vec<CircuitResult>,
@@ -363,5 +366,226 @@ mod tests {
             ..CheckView::default()
         };
         assert_eq!(view.measured_amps(), [(4, 1.5), (6, 4.5)]);
+    }
+}
+
+fn circuits_words(ids: &[u8], name_of: &dyn Fn(u8) -> String) -> String {
+    ids.iter()
+        .map(|&i| name_of(i))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl NotFollowed {
+    pub fn words(&self) -> String {
+        match self {
+            NotFollowed::HeldByDevicePower => {
+                "held by DEVICE_POWER until its switch is cycled (ICD §6)".into()
+            }
+            NotFollowed::AssignedTo(SwitchId::Input(n)) => format!("assigned to switch {n}"),
+            NotFollowed::AssignedTo(SwitchId::AlwaysOn) => "assigned to always on".into(),
+            NotFollowed::AssignedTo(SwitchId::Off) => "assigned to no switch (always off)".into(),
+            NotFollowed::AssignedTo(SwitchId::Unknown(b)) => format!("assigned to switch id {b}"),
+            NotFollowed::Faulted(code) => format!("faulted ({})", code.name()),
+            NotFollowed::Unexplained => {
+                "no reason the page can see: check the wiring from the VP-X pin".into()
+            }
+        }
+    }
+}
+
+impl SwitchFinding {
+    pub fn mark(&self) -> Mark {
+        match self {
+            SwitchFinding::Passed => Mark::Pass,
+            _ => Mark::Fail,
+        }
+    }
+
+    /// The finding in words; `name_of` names a circuit by id.
+    pub fn words(&self, name_of: &dyn Fn(u8) -> String) -> String {
+        match self {
+            SwitchFinding::Passed => "the input changed, and its circuits followed".into(),
+            SwitchFinding::NeverChanged => {
+                "input never changed: a broken wire, a bad switch, or the wrong pin".into()
+            }
+            SwitchFinding::OtherChanged(inputs) => format!(
+                "{} changed instead: switches crossed",
+                inputs
+                    .iter()
+                    .map(|i| i.label())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            SwitchFinding::CircuitsDidNotFollow(list) => format!(
+                "circuits did not follow: {}",
+                list.iter()
+                    .map(|(id, why)| format!(
+                        "{} ({})",
+                        circuits_words(&[*id], name_of),
+                        why.words()
+                    ))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ),
+        }
+    }
+}
+
+impl CircuitFinding {
+    pub fn mark(&self) -> Mark {
+        match self {
+            CircuitFinding::Within { .. } => Mark::Pass,
+            CircuitFinding::NearBreaker { .. } => Mark::Warn,
+            _ => Mark::Fail,
+        }
+    }
+
+    pub fn words(&self) -> String {
+        match self {
+            CircuitFinding::Within { amps, breaker } => {
+                format!("draws {amps:.1} A of a {breaker} A breaker")
+            }
+            CircuitFinding::NoCurrent => {
+                "no current while on: an open circuit, a blown bulb, a load not connected".into()
+            }
+            CircuitFinding::NearBreaker { amps, breaker } => format!(
+                "draws {amps:.1} A of a {breaker} A breaker (≥ 80 %): the breaker is tight \
+                 and will trip in flight"
+            ),
+            CircuitFinding::Faulted(code) => fault_words(*code),
+            CircuitFinding::DidNotSwitch => {
+                "did not switch on: the unit never showed it on after DEVICE_POWER".into()
+            }
+        }
+    }
+}
+
+/// A fault's name with its Appendix E (Table 43) action and how it clears.
+pub fn fault_words(code: FaultCode) -> String {
+    match code.info() {
+        Some(i) if !i.action.is_empty() => {
+            format!(
+                "faulted: {} ({}). {} {}",
+                i.name, i.description, i.action, i.clears
+            )
+        }
+        _ => format!("faulted: {}", code.name()),
+    }
+}
+
+impl MotorFinding {
+    pub fn mark(&self) -> Mark {
+        match self {
+            MotorFinding::Moves => Mark::Pass,
+            MotorFinding::AgainstLimit => Mark::Warn,
+            _ => Mark::Fail,
+        }
+    }
+
+    pub fn words(&self) -> String {
+        match self {
+            MotorFinding::Moves => "it moves the commanded way".into(),
+            MotorFinding::Reversed => {
+                "reversed: the motor's polarity is swapped, or the sensor is wired backwards".into()
+            }
+            MotorFinding::NoMovement => "no movement: the motor, the sensor or a limit".into(),
+            MotorFinding::AgainstLimit => "runs against a limit".into(),
+            MotorFinding::Faulted(code) => fault_words(*code),
+        }
+    }
+}
+
+impl<F> Outcome<F> {
+    /// The mark, given the finding's own.
+    pub fn mark_with(&self, mark: impl Fn(&F) -> Mark) -> Mark {
+        match self {
+            Outcome::Found(f) => mark(f),
+            Outcome::Skipped(_) => Mark::Skipped,
+            Outcome::NotRun => Mark::NotRun,
+        }
+    }
+}
+
+impl SwitchResult {
+    pub fn mark(&self) -> Mark {
+        self.outcome.mark_with(SwitchFinding::mark)
+    }
+}
+
+impl CircuitResult {
+    pub fn mark(&self) -> Mark {
+        self.outcome.mark_with(CircuitFinding::mark)
+    }
+}
+
+impl MotorResult {
+    pub fn mark(&self) -> Mark {
+        self.outcome.mark_with(MotorFinding::mark)
+    }
+}
+
+impl CheckView {
+    /// Every result's mark, switches then circuits then motors.
+    pub fn marks(&self) -> impl Iterator<Item = Mark> + '_ {
+        self.switches
+            .iter()
+            .map(SwitchResult::mark)
+            .chain(self.circuits.iter().map(CircuitResult::mark))
+            .chain(self.motors.iter().map(MotorResult::mark))
+    }
+
+    /// Whether anything failed (a warning is not a failure).
+    pub fn any_failed(&self) -> bool {
+        self.marks().any(|m| m == Mark::Fail)
+    }
+
+    /// A circuit's name by id, from the results or the plan.
+    pub fn name_of(&self, id: u8) -> String {
+        self.circuits
+            .iter()
+            .find(|c| c.id == id)
+            .map(|c| c.name.clone())
+            .or_else(|| {
+                self.plan
+                    .iter()
+                    .find(|p| p.id == id)
+                    .map(|p| p.name.clone())
+            })
+            .or_else(|| {
+                self.excluded
+                    .iter()
+                    .find(|e| e.id == id)
+                    .map(|e| e.name.clone())
+            })
+            .unwrap_or_else(|| format!("device {id}"))
+    }
+
+    /// What is left to fix, one line each: every failure and warning.
+    pub fn to_fix(&self) -> Vec<String> {
+        let name_of = |id| self.name_of(id);
+        let mut out = Vec::new();
+        for s in &self.switches {
+            if let Outcome::Found(f) = &s.outcome
+                && f.mark() != Mark::Pass
+            {
+                out.push(format!("{}: {}", s.input.label(), f.words(&name_of)));
+            }
+        }
+        for c in &self.circuits {
+            if let Outcome::Found(f) = &c.outcome
+                && f.mark() != Mark::Pass
+            {
+                out.push(format!("{} ({}): {}", c.name, c.pin, f.words()));
+            }
+        }
+        for m in &self.motors {
+            if let Outcome::Found(f) = &m.outcome
+                && f.mark() != Mark::Pass
+            {
+                out.push(format!("{}: {}", m.motor.name(), f.words()));
+            }
+        }
+        out
     }
 }

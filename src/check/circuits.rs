@@ -1,0 +1,330 @@
+//! Step 3, circuits: each planned circuit switched on by DEVICE_POWER (ICD §6.4.1),
+//! its current read from the second DEVICE_STATUS (Table 26) heard after the command,
+//! then switched back off.
+//!
+//! DEVICE_POWER has no answer of its own; the unit's DEVICE_STATUS showing the new
+//! state is the answer, so the request is judged by an [`exchange::Try`] on that.
+//! The second fresh broadcast, not the first: the first may have been made before the
+//! unit acted on the command, or in the load's inrush. A circuit already on (its
+//! switch is on) is measured as it is and nothing is sent, so nothing of it is held.
+//! A circuit put back by DEVICE_POWER stays held by the unit until its switch is
+//! cycled (ICD Appendix A): it goes on the list of switches to cycle.
+//!
+//! [`exchange::Try`]: crate::exchange::Try
+
+use std::time::Instant;
+
+use super::flow::{CheckFlow, Command, Io, Phase, Powered, next_step};
+use super::switches::news;
+use crate::exchange::{Try, Verdict};
+use crate::model::{CircuitState, Model};
+use crate::ui::check::state::{CheckView, CircuitFinding, CircuitResult, Outcome, Prompt, Step};
+
+/// A draw at or above this share of the breaker is "tight".
+pub const NEAR_BREAKER: f32 = 0.8;
+/// Below this a circuit that is on draws "no current" (the unit reports tenths).
+pub const NO_CURRENT_BELOW: f32 = 0.05;
+
+/// One line per circuit, in pin order: the planned ones to run, the ones left alone
+/// with why (motors have their own step).
+pub(super) fn rows(view: &CheckView, model: &Model, now: Instant) -> Vec<CircuitResult> {
+    model
+        .circuits(now)
+        .into_iter()
+        .filter_map(|c| {
+            let outcome = if view.plan.iter().any(|p| p.id == c.id) {
+                Outcome::NotRun
+            } else {
+                let e = view.excluded.iter().find(|e| e.id == c.id)?;
+                if view
+                    .planned_motors
+                    .iter()
+                    .any(|(m, _)| m.device_id() == c.id)
+                    || matches!(
+                        c.kind,
+                        crate::model::CircuitKind::Flaps | crate::model::CircuitKind::Trim(_)
+                    )
+                {
+                    return None;
+                }
+                Outcome::Skipped(e.why.clone())
+            };
+            Some(CircuitResult {
+                id: c.id,
+                name: c.name,
+                pin: c.pin,
+                breaker: c.breaker,
+                switch: c.switch,
+                outcome,
+            })
+        })
+        .collect()
+}
+
+/// What a circuit's amps say against its breaker.
+pub fn judge(amps: f32, breaker: Option<u8>) -> CircuitFinding {
+    let breaker_a = breaker.unwrap_or(0);
+    if amps < NO_CURRENT_BELOW {
+        CircuitFinding::NoCurrent
+    } else if breaker.is_some_and(|b| amps >= NEAR_BREAKER * f32::from(b)) {
+        CircuitFinding::NearBreaker {
+            amps,
+            breaker: breaker_a,
+        }
+    } else {
+        CircuitFinding::Within {
+            amps,
+            breaker: breaker_a,
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+enum Stage {
+    /// Switched on (or found on), waiting for two fresh DEVICE_STATUS.
+    Measure {
+        statuses_at_send: u64,
+        /// `None`: it was on already, nothing sent.
+        request: Option<Try>,
+    },
+    /// DEVICE_POWER off sent, waiting to see it off.
+    PutBack { request: Try },
+}
+
+/// The circuit under test.
+#[derive(Debug, Clone)]
+pub(super) struct CircuitItem {
+    pub idx: usize,
+    pub id: u8,
+    started: Instant,
+    stage: Stage,
+    on_for: std::time::Duration,
+}
+
+impl CircuitItem {
+    pub fn deadline(&self) -> Option<Instant> {
+        Some(match &self.stage {
+            Stage::Measure {
+                request: Some(t), ..
+            } => t.deadline().min(self.started + self.on_for),
+            Stage::Measure { request: None, .. } => self.started + self.on_for,
+            Stage::PutBack { request } => request.deadline(),
+        })
+    }
+
+    /// The check stops here: switch it off if the check switched it on. Returns the
+    /// circuit to watch go off.
+    pub fn stop(&self, _flow: &CheckFlow, io: &mut Io) -> Option<Powered> {
+        match &self.stage {
+            Stage::Measure {
+                request: Some(_), ..
+            }
+            | Stage::PutBack { .. } => {
+                io.power(self.id, false);
+                Some(Powered { id: self.id })
+            }
+            Stage::Measure { request: None, .. } => None,
+        }
+    }
+}
+
+fn state(model: &Model, now: Instant, id: u8) -> CircuitState {
+    model
+        .circuits(now)
+        .into_iter()
+        .find(|c| c.id == id)
+        .map_or(CircuitState::Unknown, |c| c.state)
+}
+
+impl CheckFlow {
+    pub(super) fn circuits_begin(&mut self, view: &mut CheckView, io: &mut Io, _skipped: bool) {
+        self.circuit_next(0, view, io);
+    }
+
+    fn circuit_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
+        if self.opts.skip.contains(&Step::Circuits) {
+            let mut any = false;
+            for r in view
+                .circuits
+                .iter_mut()
+                .filter(|r| r.outcome == Outcome::NotRun)
+            {
+                r.outcome = Outcome::Skipped("step skipped".into());
+                any = true;
+            }
+            if any || from == 0 {
+                io.out.news.push("– Circuits: skipped".into());
+            }
+        }
+        let Some(idx) =
+            (from..view.circuits.len()).find(|&i| view.circuits[i].outcome == Outcome::NotRun)
+        else {
+            self.phase = Phase::Done;
+            return self.enter_step(next_step(Step::Circuits), view, io);
+        };
+        self.circuit_start(idx, view, io);
+    }
+
+    fn circuit_start(&mut self, idx: usize, view: &mut CheckView, io: &mut Io) {
+        let id = view.circuits[idx].id;
+        let name = view.circuits[idx].name.clone();
+        view.current = Some(idx);
+        let now = io.now;
+        let st = state(io.model, now, id);
+        if let CircuitState::Fault(code) = st {
+            // Faulted before the check touched it: that is its finding.
+            self.known_faults.insert(id);
+            record(view, idx, CircuitFinding::Faulted(code), io);
+            return self.circuit_next(idx + 1, view, io);
+        }
+        let was_on = st == CircuitState::On;
+        let request = (!was_on).then(|| {
+            io.power(id, true);
+            Try::with(
+                now,
+                self.opts.timing.power_timeout,
+                self.opts.timing.power_tries,
+            )
+        });
+        view.prompt = Some(Prompt {
+            todo: if was_on {
+                format!("{name} is on already: measuring it as it is.")
+            } else {
+                format!("Switching {name} on to measure it, then back off.")
+            },
+            watching: format!("{name}'s state and current (DEVICE_STATUS, once a second)"),
+            time_left: Some(self.opts.timing.on_for),
+            keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
+        });
+        self.phase = Phase::Circuits(CircuitItem {
+            idx,
+            id,
+            started: now,
+            stage: Stage::Measure {
+                statuses_at_send: io.statuses(),
+                request,
+            },
+            on_for: self.opts.timing.on_for,
+        });
+    }
+
+    pub(super) fn circuits_tick(&mut self, view: &mut CheckView, io: &mut Io) {
+        let Phase::Circuits(item) = &mut self.phase else {
+            return;
+        };
+        let (idx, id, now) = (item.idx, item.id, io.now);
+        let st = state(io.model, now, id);
+        if let Some(p) = view.prompt.as_mut() {
+            p.time_left = item.deadline().map(|d| d.saturating_duration_since(now));
+        }
+        match &mut item.stage {
+            Stage::Measure {
+                statuses_at_send,
+                request,
+            } => {
+                let finding = if let CircuitState::Fault(code) = st {
+                    self.known_faults.insert(id);
+                    Some(CircuitFinding::Faulted(code))
+                } else if io.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
+                    let amps = io
+                        .model
+                        .live_devices(now)
+                        .map_or(0.0, |d| d.current[id as usize].value());
+                    Some(judge(amps, view.circuits[idx].breaker))
+                } else if now >= item.started + item.on_for {
+                    Some(CircuitFinding::DidNotSwitch)
+                } else {
+                    match request
+                        .as_mut()
+                        .map(|t| t.judge(st == CircuitState::On, now))
+                    {
+                        Some(Verdict::Resend) => {
+                            io.power(id, true);
+                            None
+                        }
+                        Some(Verdict::NoAnswer) => Some(CircuitFinding::DidNotSwitch),
+                        _ => None,
+                    }
+                };
+                let Some(f) = finding else { return };
+                let sent = request.is_some();
+                record(view, idx, f, io);
+                if sent {
+                    self.circuit_put_back(view, io);
+                } else {
+                    self.circuit_next(idx + 1, view, io);
+                }
+            }
+            Stage::PutBack { request } => {
+                let off = matches!(st, CircuitState::Off | CircuitState::Fault(_));
+                match request.judge(off, now) {
+                    Verdict::Answered => {
+                        self.put_back(id, view, io.model, now);
+                        self.circuit_next(idx + 1, view, io);
+                    }
+                    Verdict::Resend => io.power(id, false),
+                    Verdict::NoAnswer => {
+                        self.trouble_ahead = Some(format!(
+                            "{} did not switch back off",
+                            view.circuits[idx].name
+                        ));
+                    }
+                    Verdict::Waiting => {}
+                }
+            }
+        }
+    }
+
+    fn circuit_put_back(&mut self, view: &mut CheckView, io: &mut Io) {
+        let Phase::Circuits(item) = &mut self.phase else {
+            return;
+        };
+        io.power(item.id, false);
+        item.stage = Stage::PutBack {
+            request: Try::with(
+                io.now,
+                self.opts.timing.power_timeout,
+                self.opts.timing.power_tries,
+            ),
+        };
+        if let Some(p) = view.prompt.as_mut() {
+            p.todo = format!("Switching {} back off.", view.circuits[item.idx].name);
+        }
+    }
+
+    pub(super) fn circuits_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
+        let Phase::Circuits(item) = &self.phase else {
+            return;
+        };
+        let idx = item.idx;
+        if cmd != Command::SkipItem {
+            return;
+        }
+        match &item.stage {
+            Stage::Measure { request, .. } => {
+                let sent = request.is_some();
+                if view.circuits[idx].outcome == Outcome::NotRun {
+                    view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
+                    io.out
+                        .news
+                        .push(format!("– {}: skipped", view.circuits[idx].name));
+                }
+                if sent {
+                    self.circuit_put_back(view, io);
+                } else {
+                    self.circuit_next(idx + 1, view, io);
+                }
+            }
+            // Already going back off: the skip takes effect once it is.
+            Stage::PutBack { .. } => {}
+        }
+    }
+}
+
+fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, io: &mut Io) {
+    let row = &mut view.circuits[idx];
+    let what = format!("{} ({})", row.name, row.pin);
+    io.out.news.push(news(f.mark(), &what, &f.words()));
+    view.message = Some(format!("{}: {}", row.name, f.words()));
+    row.outcome = Outcome::Found(f);
+}

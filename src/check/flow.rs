@@ -1,0 +1,813 @@
+//! The check's driver: the steps in order, the person's commands, and interruption.
+//!
+//! The app (or `vpx-efis check`) calls [`CheckFlow::tick`] at
+//! [`CheckFlow::next_deadline`] and after packets arrive, [`CheckFlow::command`] for
+//! what the person does, and [`CheckFlow::interrupt`] for what ends the check from
+//! outside (quit, a signal, a panic). Each call gets the page's [`Controller`], so a
+//! motor test is a run of the page's own safe stream (every stop cause of the page
+//! applies), and gives back the packets to queue, in order, while the controller is
+//! still held. The flow itself notices COMMUNICATION LOST, a link that cannot send,
+//! and a fault that appears mid-step, from the model.
+
+use std::collections::BTreeSet;
+use std::time::{Duration, Instant};
+
+use super::plan::{self, Choices};
+use crate::control::{Controller, StopReason};
+use crate::model::{Connection, Model, Motor};
+use crate::protocol::device::DEVICE_COUNT;
+use crate::protocol::message::{DevicePower, Packet, SwitchId};
+use crate::ui::check::state::{CheckView, Interruption, Prompt, Step};
+
+use super::circuits::CircuitItem;
+use super::motors::MotorItem;
+use super::switches::SwitchItem;
+
+/// The check's clocks. Defaults suit a real unit (1 Hz status, 10 Hz flap/trim status).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timing {
+    /// How long the person has to flip a switch on and off.
+    pub switch_timeout: Duration,
+    /// After an input changed, how long its circuits have to follow (DEVICE_STATUS
+    /// comes once a second).
+    pub follow_wait: Duration,
+    /// DEVICE_POWER has no answer of its own: the unit's DEVICE_STATUS showing the
+    /// circuit in the new state is the answer. Wait this long before sending again …
+    pub power_timeout: Duration,
+    /// … this many times in all.
+    pub power_tries: u8,
+    /// The longest a circuit stays on: two fresh DEVICE_STATUS take about two seconds.
+    pub on_for: Duration,
+    /// Each direction's run of a motor.
+    pub motor_run: Duration,
+    /// After a run, FLAP_TRIM_STATUS (10 Hz) has this long to show where it stopped.
+    pub motor_settle: Duration,
+    /// After an interruption, how long the check waits to see a circuit go back off.
+    pub stop_wait: Duration,
+}
+
+impl Default for Timing {
+    fn default() -> Self {
+        Timing {
+            switch_timeout: Duration::from_secs(30),
+            follow_wait: Duration::from_millis(2500),
+            power_timeout: Duration::from_millis(2500),
+            power_tries: 2,
+            on_for: Duration::from_secs(5),
+            motor_run: Duration::from_millis(600),
+            motor_settle: Duration::from_millis(400),
+            stop_wait: Duration::from_secs(3),
+        }
+    }
+}
+
+impl Timing {
+    /// How long one motor's test takes at most: two runs, their settling, and the
+    /// run back.
+    pub fn motor_for(&self) -> Duration {
+        (self.motor_run + self.motor_settle) * 3
+    }
+}
+
+/// How the check was asked to run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Options {
+    /// Steps not to run (`--skip`).
+    pub skip: Vec<Step>,
+    pub choices: Choices,
+    /// `--yes`: the person already confirmed the aircraft is safe to power.
+    pub yes: bool,
+    pub timing: Timing,
+}
+
+/// What the person does. The app maps keys to these, `vpx-efis check` typed answers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Command {
+    /// Confirm (before power), or go on after a timed-out item.
+    Enter,
+    Up,
+    Down,
+    /// Before power: exclude the selected circuit, or take back a suggested exclusion.
+    Toggle,
+    /// Skip the item under test.
+    SkipItem,
+    /// Skip the rest of the step.
+    SkipStep,
+    /// Try a timed-out or stopped item again.
+    Retry,
+    /// Stop the check: put back what it changed, and say what is left.
+    Stop,
+}
+
+/// What the caller must do after the flow moved.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub struct Out {
+    /// To queue on the link, in this order, before letting go of the controller.
+    pub packets: Vec<Packet>,
+    /// Each result as it came, in words, for a headless run to print.
+    pub news: Vec<String>,
+}
+
+/// What ended the check from outside.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Cause {
+    /// The person stopped the check (or quit the page).
+    Quit,
+    /// SIGTERM, SIGHUP, SIGINT, a closed console.
+    Signal(String),
+    /// A thread of the program panicked.
+    Panic,
+}
+
+impl Cause {
+    fn words(&self) -> String {
+        match self {
+            Cause::Quit => "stopped by you".into(),
+            Cause::Signal(s) => format!("ended by a signal ({s})"),
+            Cause::Panic => "the program failed".into(),
+        }
+    }
+
+    fn stop_reason(&self) -> StopReason {
+        match self {
+            Cause::Panic => StopReason::Panic,
+            _ => StopReason::Quit,
+        }
+    }
+}
+
+/// A circuit the check switched on and has not yet seen back off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Powered {
+    pub id: u8,
+}
+
+#[derive(Debug, Clone)]
+pub(super) enum Phase {
+    Confirm,
+    Switches(SwitchItem),
+    Circuits(CircuitItem),
+    Motors(MotorItem),
+    /// Interrupted: waiting to see `Powered` go off before the list of what is left
+    /// is final.
+    Stopping {
+        powered: Powered,
+        until: Instant,
+        cause: String,
+        left: Vec<(u8, String, String)>,
+    },
+    Done,
+}
+
+/// What the calls share: the model, the controller and where the packets go.
+pub(super) struct Io<'a> {
+    pub model: &'a Model,
+    pub ctl: &'a mut Controller,
+    pub now: Instant,
+    pub out: &'a mut Out,
+}
+
+impl Io<'_> {
+    pub fn power(&mut self, id: u8, on: bool) {
+        let cnt = self.ctl.next_cnt();
+        self.out
+            .packets
+            .push(Packet::request(cnt, DevicePower { device_id: id, on }));
+    }
+
+    /// How many DEVICE_STATUS broadcasts the page has heard so far.
+    pub fn statuses(&self) -> u64 {
+        self.model
+            .link
+            .rx
+            .get("DEVICE_STATUS")
+            .map_or(0, |s| s.count)
+    }
+}
+
+/// The installation check in progress. See the module docs.
+#[derive(Debug, Clone)]
+pub struct CheckFlow {
+    pub(super) opts: Options,
+    pub(super) phase: Phase,
+    /// Faults present when the check started (or found on the item under test):
+    /// only a new fault elsewhere interrupts.
+    pub(super) known_faults: BTreeSet<u8>,
+    system_fault_at_start: bool,
+    write_errors_at_start: u64,
+    /// Circuits this check put back by DEVICE_POWER (held until their switch cycles).
+    pub(super) held: BTreeSet<u8>,
+    /// A step found something that ends the check (a circuit that will not go back
+    /// off, a motor stopped by lost communication): handled at the end of the tick.
+    pub(super) trouble_ahead: Option<String>,
+}
+
+impl CheckFlow {
+    /// A new check on the unit the model describes; the view starts over.
+    pub fn new(opts: Options, view: &mut CheckView, model: &Model, now: Instant) -> CheckFlow {
+        *view = CheckView {
+            skipped_steps: opts.skip.clone(),
+            ..CheckView::default()
+        };
+        let (codes, system) = model
+            .live_faults(now)
+            .unwrap_or(([crate::protocol::FaultCode::NoFault; DEVICE_COUNT], false));
+        let flow = CheckFlow {
+            known_faults: (0..DEVICE_COUNT as u8)
+                .filter(|&i| codes[i as usize].is_fault())
+                .collect(),
+            system_fault_at_start: system,
+            write_errors_at_start: model.link.write_errors,
+            opts,
+            phase: Phase::Confirm,
+            held: BTreeSet::new(),
+            trouble_ahead: None,
+        };
+        flow.replan(view, model, now);
+        flow
+    }
+
+    pub fn timing(&self) -> &Timing {
+        &self.opts.timing
+    }
+
+    /// Whether the check has ended (finished or interrupted, all put back that could be).
+    pub fn finished(&self) -> bool {
+        matches!(self.phase, Phase::Done)
+    }
+
+    /// When the flow must be ticked next, if it waits on a clock.
+    pub fn next_deadline(&self) -> Option<Instant> {
+        match &self.phase {
+            Phase::Confirm | Phase::Done => None,
+            Phase::Switches(i) => i.deadline(),
+            Phase::Circuits(i) => i.deadline(),
+            Phase::Motors(i) => i.deadline(),
+            Phase::Stopping { until, .. } => Some(*until),
+        }
+    }
+
+    fn replan(&self, view: &mut CheckView, model: &Model, now: Instant) {
+        let t = &self.opts.timing;
+        let p = plan::build(model, now, &self.opts.choices, t.on_for, t.motor_for());
+        view.plan = p.circuits;
+        view.planned_motors = p.motors;
+        view.excluded = p.excluded;
+        let ready = plan::ready(model, now);
+        let confirm = if self.opts.yes {
+            "confirmed with --yes"
+        } else {
+            "Enter: the aircraft is safe to power these"
+        };
+        view.prompt = Some(Prompt {
+            todo: match &ready {
+                Ok(()) => format!(
+                    "Make sure the aircraft is safe to power the circuits listed and to move \
+                     its flaps and trims; {confirm}."
+                ),
+                Err(why) => why.clone(),
+            },
+            watching: "what the unit says it holds: names, switches, breakers".into(),
+            time_left: None,
+            keys: vec![
+                ("Enter", "confirm"),
+                ("x", "exclude / include"),
+                ("Esc", "leave"),
+            ],
+        });
+        let rows = view.plan.len() + view.excluded.len();
+        view.current = match view.current {
+            Some(c) if rows > 0 => Some(c.min(rows - 1)),
+            _ if rows > 0 => Some(0),
+            _ => None,
+        };
+    }
+
+    /// A command from the person.
+    pub fn command(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+    ) -> Out {
+        let mut out = Out::default();
+        if cmd == Command::Stop {
+            if !self.finished() {
+                self.interrupt(Cause::Quit, true, view, model, ctl, now, &mut out);
+            }
+            return out;
+        }
+        match &mut self.phase {
+            Phase::Confirm => self.confirm_command(cmd, view, model, ctl, now, &mut out),
+            Phase::Switches(_) | Phase::Circuits(_) | Phase::Motors(_) => {
+                let mut io = Io {
+                    model,
+                    ctl,
+                    now,
+                    out: &mut out,
+                };
+                self.item_command(cmd, view, &mut io);
+            }
+            Phase::Stopping { .. } | Phase::Done => {}
+        }
+        out
+    }
+
+    fn confirm_command(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+        out: &mut Out,
+    ) {
+        let rows = view.plan.len() + view.excluded.len();
+        match cmd {
+            Command::Up => view.current = view.current.map(|c| c.saturating_sub(1)),
+            Command::Down => {
+                view.current = view.current.map(|c| (c + 1).min(rows.saturating_sub(1)))
+            }
+            Command::Toggle => {
+                let Some(c) = view.current else { return };
+                if let Some(p) = view.plan.get(c) {
+                    self.opts.choices.exclude.push(p.name.clone());
+                    view.message = Some(format!("{} excluded", p.name));
+                } else if let Some(e) = view.excluded.get(c - view.plan.len()) {
+                    if e.may_include {
+                        self.opts.choices.include.push(e.id);
+                        view.message = Some(format!("{} included", e.name));
+                    } else if let Some(i) = self
+                        .opts
+                        .choices
+                        .exclude
+                        .iter()
+                        .position(|x| plan::names(x, &e.name, ""))
+                    {
+                        self.opts.choices.exclude.remove(i);
+                        view.message = Some(format!("{} included", e.name));
+                    } else {
+                        view.message = Some(format!("{}: {}", e.name, e.why));
+                    }
+                }
+                self.replan(view, model, now);
+            }
+            Command::Enter => self.start(view, model, ctl, now, out),
+            _ => {}
+        }
+    }
+
+    /// Starts the steps, once the unit's settings are known and the person confirmed.
+    fn start(
+        &mut self,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+        out: &mut Out,
+    ) {
+        self.replan(view, model, now);
+        if let Err(why) = plan::ready(model, now) {
+            view.message = Some(format!("not yet: {why}"));
+            return;
+        }
+        view.message = None;
+        out.news.push(format!(
+            "Confirmed: {} circuits to power, {} motors to run, {} left alone",
+            view.plan.len(),
+            view.planned_motors.len(),
+            view.excluded.len()
+        ));
+        // Every item gets its line now, so an interruption leaves the ones never
+        // reached listed as not run.
+        view.switches = super::switches::rows(view, model, now);
+        view.circuits = super::circuits::rows(view, model, now);
+        view.motors = super::motors::rows(view);
+        let mut io = Io {
+            model,
+            ctl,
+            now,
+            out,
+        };
+        self.enter_step(Step::Switches, view, &mut io);
+    }
+
+    /// Moves to `step` (or the first one after it not skipped) and starts its first item.
+    pub(super) fn enter_step(&mut self, mut step: Step, view: &mut CheckView, io: &mut Io) {
+        loop {
+            view.step = step;
+            view.current = None;
+            view.prompt = None;
+            let skipped = self.opts.skip.contains(&step);
+            let started = match step {
+                Step::Confirm => false,
+                Step::Switches => {
+                    self.switches_begin(view, io, skipped);
+                    matches!(self.phase, Phase::Switches(_))
+                }
+                Step::Circuits => {
+                    self.circuits_begin(view, io, skipped);
+                    matches!(self.phase, Phase::Circuits(_))
+                }
+                Step::Motors => {
+                    self.motors_begin(view, io, skipped);
+                    matches!(self.phase, Phase::Motors(_))
+                }
+                Step::Loads => {
+                    // The load analysis (`crate::loads`) is not part of this build yet:
+                    // say so rather than pass it in silence.
+                    if !skipped {
+                        io.out.news.push(
+                            "– Load analysis: not in this build yet; the measured currents \
+                             are in the results"
+                                .into(),
+                        );
+                        view.message =
+                            Some("the electrical load analysis is not in this build yet".into());
+                    }
+                    false
+                }
+                Step::Done => {
+                    self.finish(view, io);
+                    return;
+                }
+            };
+            if started {
+                return;
+            }
+            step = next_step(step);
+        }
+    }
+
+    fn finish(&mut self, view: &mut CheckView, io: &mut Io) {
+        self.phase = Phase::Done;
+        view.step = Step::Done;
+        view.current = None;
+        let fails = view
+            .marks()
+            .filter(|m| *m == crate::ui::check::state::Mark::Fail);
+        let n = fails.count();
+        view.prompt = Some(Prompt {
+            todo: if view.interrupted.is_some() {
+                "The check was interrupted: see what it left, below.".into()
+            } else if n == 0 {
+                "The check is complete: nothing failed.".into()
+            } else {
+                format!("The check is complete: {n} failed; the list of what to fix is below.")
+            },
+            watching: String::new(),
+            time_left: None,
+            keys: vec![("Esc", "back to the device list")],
+        });
+        if view.interrupted.is_none() {
+            io.out
+                .news
+                .push(format!("Check complete: {} to fix", view.to_fix().len()));
+        }
+    }
+
+    fn item_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
+        match cmd {
+            Command::SkipStep => {
+                // The item under test is skipped (and put back); each step's next
+                // item then sees its step skipped and marks the rest so.
+                let step = view.step;
+                self.opts.skip.push(step);
+                if !view.skipped_steps.contains(&step) {
+                    view.skipped_steps.push(step);
+                }
+                self.item_command(Command::SkipItem, view, io);
+            }
+            _ => match self.phase {
+                Phase::Switches(_) => self.switches_command(cmd, view, io),
+                Phase::Circuits(_) => self.circuits_command(cmd, view, io),
+                Phase::Motors(_) => self.motors_command(cmd, view, io),
+                _ => {}
+            },
+        }
+    }
+
+    /// Time passed or packets arrived.
+    pub fn tick(
+        &mut self,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+    ) -> Out {
+        let mut out = Out::default();
+        if matches!(self.phase, Phase::Confirm) {
+            self.replan(view, model, now);
+            if self.opts.yes && plan::ready(model, now).is_ok() {
+                self.start(view, model, ctl, now, &mut out);
+            }
+            return out;
+        }
+        if let Some(cause) = self.trouble(view, model, now) {
+            self.interrupt_with(cause, true, view, model, ctl, now, &mut out);
+            return out;
+        }
+        let mut io = Io {
+            model,
+            ctl,
+            now,
+            out: &mut out,
+        };
+        match self.phase {
+            Phase::Switches(_) => self.switches_tick(view, &mut io),
+            Phase::Circuits(_) => self.circuits_tick(view, &mut io),
+            Phase::Motors(_) => self.motors_tick(view, &mut io),
+            Phase::Stopping { .. } => self.stopping_tick(view, &mut io),
+            Phase::Confirm | Phase::Done => {}
+        }
+        if let Some(cause) = self.trouble_ahead.take() {
+            self.interrupt_with(cause, true, view, model, ctl, now, &mut out);
+        }
+        out
+    }
+
+    /// Something that ends the check, seen in the model: lost communication, a link
+    /// that failed or cannot send, a new fault elsewhere than the item under test.
+    fn trouble(&self, view: &CheckView, model: &Model, now: Instant) -> Option<String> {
+        if matches!(self.phase, Phase::Stopping { .. } | Phase::Done) {
+            return None;
+        }
+        if let Connection::Lost { reason, .. } = &model.connection {
+            return Some(format!("the link failed: {reason}"));
+        }
+        if model.link.write_errors > self.write_errors_at_start {
+            let why = model.link.last_write_error.clone().unwrap_or_default();
+            return Some(format!("the link could not send: {why}"));
+        }
+        if model.comm_lost(now) {
+            return Some("COMMUNICATION LOST".into());
+        }
+        let (codes, system) = model.live_faults(now)?;
+        if system && !self.system_fault_at_start {
+            return Some("a system fault (FAULT_STATUS)".into());
+        }
+        let under_test = self.under_test();
+        (0..DEVICE_COUNT as u8)
+            .filter(|&i| codes[i as usize].is_fault())
+            .find(|i| !self.known_faults.contains(i) && !under_test.contains(i))
+            .map(|i| {
+                let name = view_or_model_name(view, model, i);
+                format!("{name} faulted ({})", codes[i as usize].name())
+            })
+    }
+
+    /// The devices whose fault is a finding rather than an interruption: the circuit
+    /// or motor under test, or the circuits the switch under test powers.
+    fn under_test(&self) -> Vec<u8> {
+        match &self.phase {
+            Phase::Switches(i) => i.circuits().to_vec(),
+            Phase::Circuits(i) => vec![i.id],
+            Phase::Motors(i) => vec![i.motor.device_id()],
+            _ => Vec::new(),
+        }
+    }
+
+    /// Ends the check from outside: quit, a signal, a panic. `may_wait`: the caller
+    /// keeps ticking, so a circuit switched off now can be seen off before the list
+    /// of what is left is final; otherwise it is listed as sent but not confirmed.
+    #[allow(clippy::too_many_arguments)]
+    pub fn interrupt_for(
+        &mut self,
+        cause: Cause,
+        may_wait: bool,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+    ) -> Out {
+        let mut out = Out::default();
+        if !matches!(self.phase, Phase::Done) {
+            self.interrupt(cause, may_wait, view, model, ctl, now, &mut out);
+        }
+        out
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn interrupt(
+        &mut self,
+        cause: Cause,
+        may_wait: bool,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+        out: &mut Out,
+    ) {
+        let reason = cause.stop_reason();
+        if matches!(self.phase, Phase::Confirm) {
+            // Nothing was touched yet.
+            ctl_stop(ctl, now, reason, out);
+            view.interrupted = Some(Interruption {
+                cause: cause.words(),
+                left: Vec::new(),
+            });
+            let mut io = Io {
+                model,
+                ctl,
+                now,
+                out,
+            };
+            self.finish(view, &mut io);
+            return;
+        }
+        if let Phase::Stopping { until, .. } = &mut self.phase {
+            // A second stop (quit while waiting to see a circuit off): stop waiting.
+            *until = now;
+            let mut io = Io {
+                model,
+                ctl,
+                now,
+                out,
+            };
+            self.stopping_tick(view, &mut io);
+            return;
+        }
+        ctl_stop(ctl, now, reason, out);
+        self.interrupt_with(cause.words(), may_wait, view, model, ctl, now, out);
+    }
+
+    /// Stops the item under test, puts back what it can, marks the rest not run, and
+    /// fills [`Interruption::left`].
+    #[allow(clippy::too_many_arguments)]
+    fn interrupt_with(
+        &mut self,
+        cause: String,
+        may_wait: bool,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+        out: &mut Out,
+    ) {
+        let link_failed = model.link.write_errors > self.write_errors_at_start
+            || !matches!(model.connection, Connection::Connected { .. });
+        let comm = !model.comm_lost(now) && !link_failed;
+        let mut left: Vec<(u8, String, String)> = Vec::new();
+        let mut powered = None;
+        let mut io = Io {
+            model,
+            ctl,
+            now,
+            out,
+        };
+        match std::mem::replace(&mut self.phase, Phase::Done) {
+            Phase::Circuits(item) => {
+                if let Some(p) = item.stop(self, &mut io) {
+                    powered = Some(p);
+                }
+            }
+            Phase::Motors(item) => {
+                // Stopped already (ctl_stop, or the controller's own tick); say where
+                // it stopped if it had moved.
+                io.out.packets.extend(io.ctl.stop(now, StopReason::Quit));
+                if let Some(words) = item.left_words(io.model, now) {
+                    left.push((item.motor.device_id(), item.name(), words));
+                }
+            }
+            _ => {}
+        }
+        io.out.news.push(format!("Interrupted: {cause}"));
+        match powered {
+            Some(p) if may_wait && comm => {
+                self.phase = Phase::Stopping {
+                    powered: p,
+                    until: now + self.opts.timing.stop_wait,
+                    cause,
+                    left,
+                };
+                view.prompt = Some(Prompt {
+                    todo: format!(
+                        "Stopping: switching {} back off.",
+                        view_or_model_name(view, model, p.id)
+                    ),
+                    watching: "DEVICE_STATUS, to see it off".into(),
+                    time_left: Some(self.opts.timing.stop_wait),
+                    keys: vec![],
+                });
+            }
+            Some(p) => {
+                let name = view_or_model_name(view, model, p.id);
+                let why = if comm {
+                    "ON when the check stopped: DEVICE_POWER off sent, not confirmed".to_string()
+                } else {
+                    format!(
+                        "unknown: it was ON; DEVICE_POWER off sent, not confirmed ({})",
+                        if link_failed {
+                            "the link could not send"
+                        } else {
+                            "COMMUNICATION LOST"
+                        }
+                    )
+                };
+                left.insert(0, (p.id, name, why));
+                self.end_interrupted(cause, left, view, &mut io);
+            }
+            None => self.end_interrupted(cause, left, view, &mut io),
+        }
+    }
+
+    fn stopping_tick(&mut self, view: &mut CheckView, io: &mut Io) {
+        let Phase::Stopping { powered, until, .. } = &self.phase else {
+            return;
+        };
+        let (powered, until) = (*powered, *until);
+        let state = circuit_on(io.model, io.now, powered.id);
+        let off = state == Some(false);
+        if !off && io.now < until {
+            if let Some(p) = view.prompt.as_mut() {
+                p.time_left = Some(until.saturating_duration_since(io.now));
+            }
+            return;
+        }
+        let Phase::Stopping {
+            cause, mut left, ..
+        } = std::mem::replace(&mut self.phase, Phase::Done)
+        else {
+            return;
+        };
+        let name = view_or_model_name(view, io.model, powered.id);
+        if off {
+            self.put_back(powered.id, view, io.model, io.now);
+        } else {
+            let why = match state {
+                Some(true) => "ON: DEVICE_POWER off sent, the unit still shows it on",
+                _ => "unknown: it was ON; DEVICE_POWER off sent, no status since",
+            };
+            left.insert(0, (powered.id, name, why.to_string()));
+        }
+        self.end_interrupted(cause, left, view, io);
+    }
+
+    fn end_interrupted(
+        &mut self,
+        cause: String,
+        left: Vec<(u8, String, String)>,
+        view: &mut CheckView,
+        io: &mut Io,
+    ) {
+        for (id, name, why) in &left {
+            io.out
+                .news
+                .push(format!("  left: {name} (device {id}): {why}"));
+        }
+        view.interrupted = Some(Interruption { cause, left });
+        self.finish(view, io);
+    }
+
+    /// `id` was switched back off by DEVICE_POWER: the unit holds it off until its
+    /// switch is cycled (ICD Appendix A, §6.4.1), so the person is told which.
+    pub(super) fn put_back(&mut self, id: u8, view: &mut CheckView, model: &Model, now: Instant) {
+        self.held.insert(id);
+        let spec = model.circuits(now).into_iter().find(|c| c.id == id);
+        if let Some(SwitchId::Input(n)) = spec.and_then(|c| c.switch)
+            && !view.to_cycle.iter().any(|(i, ..)| *i == id)
+        {
+            view.to_cycle
+                .push((id, view_or_model_name(view, model, id), SwitchId::Input(n)));
+        }
+    }
+}
+
+fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut Out) {
+    out.packets.extend(ctl.stop(now, reason));
+}
+
+/// The step after `step`.
+pub(super) fn next_step(step: Step) -> Step {
+    match step {
+        Step::Confirm => Step::Switches,
+        Step::Switches => Step::Circuits,
+        Step::Circuits => Step::Motors,
+        Step::Motors => Step::Loads,
+        Step::Loads | Step::Done => Step::Done,
+    }
+}
+
+pub(super) fn view_or_model_name(view: &CheckView, model: &Model, id: u8) -> String {
+    view.circuits
+        .iter()
+        .find(|c| c.id == id)
+        .map(|c| c.name.clone())
+        .unwrap_or_else(|| model.display_name(id))
+}
+
+/// Whether `id` is on in the live DEVICE_STATUS (`None`: no live status).
+pub(super) fn circuit_on(model: &Model, now: Instant, id: u8) -> Option<bool> {
+    model.live_devices(now).map(|d| d.on[id as usize])
+}
+
+/// The motor's name as the results show it.
+pub(super) fn motor_name(m: Motor) -> String {
+    let n = m.name();
+    let mut c = n.chars();
+    c.next()
+        .map(|f| f.to_uppercase().collect::<String>() + c.as_str())
+        .unwrap_or_default()
+}

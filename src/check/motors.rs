@@ -1,0 +1,475 @@
+//! Step 4, motors: flaps and each enabled trim run briefly one way, then the other,
+//! through the page's controller ([`Controller::run_for`]): the same 4 Hz stream and
+//! every stop cause of the page. The position in FLAP_TRIM_STATUS (ICD Table 27)
+//! before and after each run says whether it moved, and which way; then it is run
+//! back to where it was.
+//!
+//! Which way the position should go comes from the endpoints FLAP_TRIM_STATUS
+//! carries: flaps down, pitch trim down and roll trim right move toward the "down"
+//! endpoint. Where the ICD is silent (endpoints not configured, both 0) the decision
+//! is that those directions make the number grow, as the virtual VP-X does. The first
+//! run goes away from the nearer endpoint, so a motor parked at a limit is not first
+//! driven into it.
+//!
+//! [`Controller::run_for`]: crate::control::Controller::run_for
+
+use std::time::{Duration, Instant};
+
+use super::flow::{CheckFlow, Command, Io, Phase, motor_name, next_step};
+use super::switches::news;
+use crate::control::{Direction, StopReason, motor_check};
+use crate::model::{Model, Motor, TrimKind};
+use crate::protocol::message::FlapTrimStatus;
+use crate::ui::check::state::{CheckView, MotorFinding, MotorResult, Outcome, Prompt, Step};
+
+/// A run moved the motor if its position changed at least this many counts.
+pub const MOVED: i32 = 3;
+/// Within this many counts of an endpoint (or the sensor's 0 / 255), the motor is at
+/// that limit.
+pub const AT_LIMIT: i32 = 3;
+/// Put back when it ends within this many counts of where it was.
+pub const BACK_WITHIN: i32 = 3;
+
+pub(super) fn rows(view: &CheckView) -> Vec<MotorResult> {
+    view.planned_motors
+        .iter()
+        .map(|(motor, _)| MotorResult {
+            motor: *motor,
+            positions: Vec::new(),
+            outcome: Outcome::NotRun,
+        })
+        .collect()
+}
+
+/// The two directions a motor is run.
+fn directions(motor: Motor) -> [Direction; 2] {
+    match motor {
+        Motor::Flaps | Motor::Trim(TrimKind::Pitch) => [Direction::Down, Direction::Up],
+        Motor::Trim(TrimKind::Roll) => [Direction::Right, Direction::Left],
+    }
+}
+
+fn opposite(d: Direction) -> Direction {
+    match d {
+        Direction::Up => Direction::Down,
+        Direction::Down => Direction::Up,
+        Direction::Left => Direction::Right,
+        Direction::Right => Direction::Left,
+    }
+}
+
+/// The (down-or-right, up-or-left) endpoints of `motor` in FLAP_TRIM_STATUS.
+fn endpoints(motor: Motor, ft: &FlapTrimStatus) -> (u8, u8) {
+    match motor {
+        Motor::Flaps => (ft.flap_down, ft.flap_up),
+        Motor::Trim(TrimKind::Pitch) => (ft.pitch_trim_down, ft.pitch_trim_up),
+        Motor::Trim(TrimKind::Roll) => (ft.roll_trim_down, ft.roll_trim_up),
+    }
+}
+
+pub fn position(motor: Motor, ft: &FlapTrimStatus) -> u8 {
+    match motor {
+        Motor::Flaps => ft.flap_position,
+        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
+        Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
+    }
+}
+
+/// +1 when running `motor` `direction` should make the position grow, −1 when shrink.
+pub fn expected_sign(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> i32 {
+    let (down, up) = endpoints(motor, ft);
+    let down_grows = if down >= up { 1 } else { -1 };
+    match direction {
+        Direction::Down | Direction::Right => down_grows,
+        Direction::Up | Direction::Left => -down_grows,
+    }
+}
+
+/// Whether `pos` is at the limit `direction` runs toward: its endpoint, or the end of
+/// the sensor's range.
+pub fn at_limit(motor: Motor, direction: Direction, pos: u8, ft: &FlapTrimStatus) -> bool {
+    let (down, up) = endpoints(motor, ft);
+    let s = expected_sign(motor, direction, ft);
+    let end = match direction {
+        Direction::Down | Direction::Right => down,
+        Direction::Up | Direction::Left => up,
+    };
+    let pos = i32::from(pos);
+    let configured = down != up && (i32::from(end) - pos) * s <= AT_LIMIT;
+    let sensor = if s > 0 {
+        pos >= 255 - AT_LIMIT
+    } else {
+        pos <= AT_LIMIT
+    };
+    configured || sensor
+}
+
+/// The finding from the two runs: `moves[k]` is the change of position while running
+/// `dirs[k]`, which started at `starts[k]`.
+pub fn judge(
+    motor: Motor,
+    dirs: [Direction; 2],
+    starts: [u8; 2],
+    moves: [i32; 2],
+    ft: &FlapTrimStatus,
+) -> MotorFinding {
+    let moved = moves.map(|m| m.abs() >= MOVED);
+    let right = [0, 1].map(|k| moves[k].signum() == expected_sign(motor, dirs[k], ft));
+    let wrong = (0..2).any(|k| moved[k] && !right[k]);
+    if wrong {
+        return MotorFinding::Reversed;
+    }
+    match moved {
+        [true, true] => MotorFinding::Moves,
+        [false, false] => MotorFinding::NoMovement,
+        _ => {
+            let still = if moved[0] { 1 } else { 0 };
+            if at_limit(motor, dirs[still], starts[still], ft) {
+                MotorFinding::AgainstLimit
+            } else {
+                MotorFinding::NoMovement
+            }
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Stage {
+    /// Waiting for a live position to start from.
+    Start,
+    Running {
+        since: Instant,
+        length: Duration,
+    },
+    Settle {
+        until: Instant,
+    },
+    /// A run was cut short (a key, focus, the terminal too small): retry or skip.
+    Paused,
+}
+
+/// The motor under test.
+#[derive(Debug, Clone)]
+pub(super) struct MotorItem {
+    pub idx: usize,
+    pub motor: Motor,
+    dirs: [Direction; 2],
+    p0: Option<u8>,
+    /// 0 and 1: the test runs; 2: the run back.
+    leg: usize,
+    starts: [u8; 2],
+    moves: [i32; 2],
+    stage: Stage,
+    run: Duration,
+    settle: Duration,
+    /// The item is done once back (or skipped while out).
+    skipped: bool,
+}
+
+impl MotorItem {
+    pub fn deadline(&self) -> Option<Instant> {
+        match self.stage {
+            Stage::Running { since, length } => Some(since + length + Duration::from_millis(50)),
+            Stage::Settle { until } => Some(until),
+            Stage::Start | Stage::Paused => None,
+        }
+    }
+
+    pub fn name(&self) -> String {
+        motor_name(self.motor)
+    }
+
+    /// Where the check left it, if not where it found it.
+    pub fn left_words(&self, model: &Model, now: Instant) -> Option<String> {
+        let p0 = self.p0?;
+        match model.live_flap_trim(now).map(|ft| position(self.motor, ft)) {
+            Some(p) if (i32::from(p) - i32::from(p0)).abs() <= BACK_WITHIN => None,
+            Some(p) => Some(format!(
+                "stopped at position {p}, it was at {p0}: not run back"
+            )),
+            None if matches!(self.stage, Stage::Start) => None,
+            None => Some(format!(
+                "stopped; position unknown (no live FLAP_TRIM_STATUS), it was at {p0}"
+            )),
+        }
+    }
+}
+
+impl CheckFlow {
+    pub(super) fn motors_begin(&mut self, view: &mut CheckView, io: &mut Io, _skipped: bool) {
+        self.motor_next(0, view, io);
+    }
+
+    fn motor_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
+        if self.opts.skip.contains(&Step::Motors) {
+            let mut any = false;
+            for r in view
+                .motors
+                .iter_mut()
+                .filter(|r| r.outcome == Outcome::NotRun)
+            {
+                r.outcome = Outcome::Skipped("step skipped".into());
+                any = true;
+            }
+            if any || from == 0 {
+                io.out.news.push("– Motors: skipped".into());
+            }
+        }
+        let Some(idx) =
+            (from..view.motors.len()).find(|&i| view.motors[i].outcome == Outcome::NotRun)
+        else {
+            self.phase = Phase::Done;
+            return self.enter_step(next_step(Step::Motors), view, io);
+        };
+        let motor = view.motors[idx].motor;
+        view.current = Some(idx);
+        view.motors[idx].positions.clear();
+        view.prompt = Some(Prompt {
+            todo: format!(
+                "Running the {} briefly each way, then back: keep clear of it.",
+                motor.name()
+            ),
+            watching: format!("the {} position (FLAP_TRIM_STATUS)", motor.name()),
+            time_left: None,
+            keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
+        });
+        self.phase = Phase::Motors(MotorItem {
+            idx,
+            motor,
+            dirs: directions(motor),
+            p0: None,
+            leg: 0,
+            starts: [0; 2],
+            moves: [0; 2],
+            stage: Stage::Start,
+            run: self.opts.timing.motor_run,
+            settle: self.opts.timing.motor_settle,
+            skipped: false,
+        });
+        self.motors_tick(view, io);
+    }
+
+    pub(super) fn motors_tick(&mut self, view: &mut CheckView, io: &mut Io) {
+        let Phase::Motors(item) = &mut self.phase else {
+            return;
+        };
+        let now = io.now;
+        let Some(ft) = io.model.live_flap_trim(now).copied() else {
+            return;
+        };
+        let pos = position(item.motor, &ft);
+        match item.stage {
+            Stage::Paused => {}
+            Stage::Start => {
+                item.p0 = Some(pos);
+                view.motors[item.idx].positions.push(pos);
+                // Away from the nearer limit first.
+                let [a, b] = directions(item.motor);
+                item.dirs = if at_limit(item.motor, a, pos, &ft) {
+                    [b, a]
+                } else {
+                    [a, b]
+                };
+                let d = item.dirs[0];
+                let length = item.run;
+                self.motor_run(d, length, view, io);
+            }
+            Stage::Running { since, .. } => {
+                if io.ctl.running().is_some_and(|r| r.motor == item.motor) {
+                    return;
+                }
+                let stop = io
+                    .ctl
+                    .last_stop()
+                    .filter(|s| s.at >= since && s.motor == item.motor)
+                    .map(|s| s.reason);
+                match stop {
+                    Some(StopReason::RunDone) | None => {
+                        item.stage = Stage::Settle {
+                            until: now + item.settle,
+                        };
+                    }
+                    Some(StopReason::MotorFault(code)) => {
+                        let code = if code.is_fault() {
+                            code
+                        } else {
+                            item.motor.fault(&ft)
+                        };
+                        self.known_faults.insert(item.motor.device_id());
+                        let idx = item.idx;
+                        record(view, idx, MotorFinding::Faulted(code), io);
+                        self.motor_next(idx + 1, view, io);
+                    }
+                    Some(
+                        r @ (StopReason::CommLost
+                        | StopReason::LinkError
+                        | StopReason::Panic
+                        | StopReason::Quit
+                        | StopReason::MotorStatusLost
+                        | StopReason::PageStalled
+                        | StopReason::Starved),
+                    ) => {
+                        self.trouble_ahead = Some(format!(
+                            "the {} stopped: {}",
+                            item.motor.name(),
+                            r.describe()
+                        ));
+                    }
+                    Some(r) => {
+                        item.stage = Stage::Paused;
+                        let why = r.describe();
+                        view.prompt = Some(Prompt {
+                            todo: format!(
+                                "The {} stopped: {why}. r: run the test again; s: skip it.",
+                                item.motor.name()
+                            ),
+                            watching: format!("the {} position", item.motor.name()),
+                            time_left: None,
+                            keys: vec![("r", "retry"), ("s", "skip"), ("Esc", "stop")],
+                        });
+                        io.out
+                            .news
+                            .push(format!("  {} stopped: {why}", item.motor.name()));
+                    }
+                }
+            }
+            Stage::Settle { until } => {
+                if now < until {
+                    return;
+                }
+                view.motors[item.idx].positions.push(pos);
+                if item.leg < 2 {
+                    let start = item.starts[item.leg];
+                    item.moves[item.leg] = i32::from(pos) - i32::from(start);
+                    item.leg += 1;
+                }
+                if item.leg == 1 {
+                    let d = item.dirs[1];
+                    let length = item.run;
+                    return self.motor_run(d, length, view, io);
+                }
+                let idx = item.idx;
+                if item.leg == 2 && view.motors[idx].outcome == Outcome::NotRun && !item.skipped {
+                    let f = judge(item.motor, item.dirs, item.starts, item.moves, &ft);
+                    record(view, idx, f, io);
+                }
+                self.motor_return(pos, view, io);
+            }
+        }
+    }
+
+    /// Runs the motor back toward where it was, once, if it is not there; else the
+    /// next motor.
+    fn motor_return(&mut self, pos: u8, view: &mut CheckView, io: &mut Io) {
+        let Phase::Motors(item) = &mut self.phase else {
+            return;
+        };
+        let idx = item.idx;
+        let back = item.p0.map_or(0, |p0| i32::from(p0) - i32::from(pos));
+        // The leg that moved most tells the rate and which way is which.
+        let k = if item.moves[0].abs() >= item.moves[1].abs() {
+            0
+        } else {
+            1
+        };
+        let (moved, dir) = (item.moves[k], item.dirs[k]);
+        if item.leg >= 3 || back.abs() <= BACK_WITHIN || moved.abs() < MOVED {
+            return self.motor_next(idx + 1, view, io);
+        }
+        item.leg = 3;
+        let dir = if back.signum() == moved.signum() {
+            dir
+        } else {
+            opposite(dir)
+        };
+        let ratio = back.abs() as f32 / moved.abs() as f32;
+        let length = item.run.mul_f32(ratio.min(2.0));
+        self.motor_run(dir, length, view, io);
+    }
+
+    fn motor_run(&mut self, d: Direction, length: Duration, view: &mut CheckView, io: &mut Io) {
+        let Phase::Motors(item) = &mut self.phase else {
+            return;
+        };
+        let now = io.now;
+        if let Some(ft) = io.model.live_flap_trim(now)
+            && item.leg < 2
+        {
+            item.starts[item.leg] = position(item.motor, ft);
+        }
+        match io.ctl.run_for(io.model, item.motor, d, length, now) {
+            Ok(p) => {
+                io.out.packets.extend(p);
+                item.stage = Stage::Running { since: now, length };
+            }
+            Err(why) => {
+                let idx = item.idx;
+                match motor_check(io.model, item.motor, d, now) {
+                    Err(StopReason::MotorFault(code)) => {
+                        self.known_faults.insert(item.motor.device_id());
+                        record(view, idx, MotorFinding::Faulted(code), io);
+                    }
+                    Err(StopReason::CommLost) => {
+                        self.trouble_ahead = Some("COMMUNICATION LOST".into());
+                        return;
+                    }
+                    _ if view.motors[idx].outcome == Outcome::NotRun => {
+                        view.motors[idx].outcome = Outcome::Skipped(why.0.clone());
+                        io.out
+                            .news
+                            .push(format!("– {}: {}", motor_name(item.motor), why.0));
+                    }
+                    _ => {}
+                }
+                self.motor_next(idx + 1, view, io);
+            }
+        }
+    }
+
+    pub(super) fn motors_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
+        let Phase::Motors(item) = &mut self.phase else {
+            return;
+        };
+        let idx = item.idx;
+        match cmd {
+            Command::SkipItem => {
+                io.out
+                    .packets
+                    .extend(io.ctl.stop(io.now, StopReason::OtherKey));
+                if view.motors[idx].outcome == Outcome::NotRun {
+                    view.motors[idx].outcome = Outcome::Skipped("you skipped it".into());
+                    io.out
+                        .news
+                        .push(format!("– {}: skipped", motor_name(item.motor)));
+                }
+                item.skipped = true;
+                // Run it back first if it moved.
+                match io
+                    .model
+                    .live_flap_trim(io.now)
+                    .map(|ft| position(item.motor, ft))
+                {
+                    Some(pos) if item.p0.is_some() && item.leg < 3 => {
+                        item.leg = 2;
+                        self.motor_return(pos, view, io)
+                    }
+                    _ => self.motor_next(idx + 1, view, io),
+                }
+            }
+            Command::Retry if matches!(item.stage, Stage::Paused) => {
+                view.motors[idx].outcome = Outcome::NotRun;
+                self.motor_next(idx, view, io);
+            }
+            _ => {}
+        }
+    }
+}
+
+fn record(view: &mut CheckView, idx: usize, f: MotorFinding, io: &mut Io) {
+    let row = &mut view.motors[idx];
+    let what = motor_name(row.motor);
+    let words = f.words();
+    io.out.news.push(news(f.mark(), &what, &words));
+    view.message = Some(format!("{what}: {words}"));
+    row.outcome = Outcome::Found(f);
+}

@@ -1,0 +1,379 @@
+//! Step 2, switch inputs: the person flips each input on and off; the page watches
+//! the live inputs (SYSTEM_STATUS bytes 8–9, ICD Table 24) and the circuits assigned
+//! to it (DEVICE_STATUS, Table 26).
+//!
+//! An input passes when it changed and each of its circuits changed with it. Both
+//! broadcasts come once a second, so the prompt asks the person to wait for the
+//! circuits before flipping back, and the circuits get [`Timing::follow_wait`] from
+//! the input's first change. Another input changing and changing back while the one
+//! asked for never did is a crossed pair, said at once. Nothing at all by
+//! [`Timing::switch_timeout`] is "never changed"; the person may retry.
+//!
+//! [`Timing::follow_wait`]: super::flow::Timing::follow_wait
+//! [`Timing::switch_timeout`]: super::flow::Timing::switch_timeout
+
+use std::collections::BTreeSet;
+use std::time::Instant;
+
+use super::flow::{CheckFlow, Command, Io, Phase, circuit_on, next_step};
+use crate::model::{CircuitKind, Model, Motor, TrimKind};
+use crate::protocol::message::{SwitchId, SwitchInputs};
+use crate::ui::check::state::{
+    CheckView, Input, Mark, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult,
+};
+
+/// Every input SYSTEM_STATUS reports, for spotting one that changed instead.
+const ALL_INPUTS: [Input; 16] = [
+    Input::Switch(1),
+    Input::Switch(2),
+    Input::Switch(3),
+    Input::Switch(4),
+    Input::Switch(5),
+    Input::Switch(6),
+    Input::Switch(7),
+    Input::Switch(8),
+    Input::Switch(9),
+    Input::Switch(10),
+    Input::FlapUp,
+    Input::FlapDown,
+    Input::PitchTrimUp,
+    Input::PitchTrimDown,
+    Input::RollTrimUp,
+    Input::RollTrimDown,
+];
+
+/// One line per input to flip: the inputs 1–10 with circuits assigned (the planned
+/// ones watched; one whose circuits are all left alone is skipped, as flipping it
+/// would power them), then the flap and trim inputs of the motors the plan runs.
+pub(super) fn rows(view: &CheckView, model: &Model, now: Instant) -> Vec<SwitchResult> {
+    let circuits = model.circuits(now);
+    let mut out = Vec::new();
+    for n in 1..=10u8 {
+        let assigned: Vec<_> = circuits
+            .iter()
+            .filter(|c| matches!(c.kind, CircuitKind::Device | CircuitKind::Alternator { .. }))
+            .filter(|c| c.switch == Some(SwitchId::Input(n)))
+            .collect();
+        if assigned.is_empty() {
+            continue;
+        }
+        let watched: Vec<u8> = assigned
+            .iter()
+            .filter(|c| view.plan.iter().any(|p| p.id == c.id))
+            .map(|c| c.id)
+            .collect();
+        let outcome = if watched.is_empty() {
+            let names: Vec<_> = assigned.iter().map(|c| c.name.as_str()).collect();
+            Outcome::Skipped(format!(
+                "only circuits left alone are on it: {}",
+                names.join(", ")
+            ))
+        } else {
+            Outcome::NotRun
+        };
+        out.push(SwitchResult {
+            input: Input::Switch(n),
+            circuits: watched,
+            outcome,
+        });
+    }
+    for (motor, _) in &view.planned_motors {
+        let inputs = match motor {
+            Motor::Flaps => [Input::FlapUp, Input::FlapDown],
+            Motor::Trim(TrimKind::Pitch) => [Input::PitchTrimUp, Input::PitchTrimDown],
+            Motor::Trim(TrimKind::Roll) => [Input::RollTrimUp, Input::RollTrimDown],
+        };
+        out.extend(inputs.map(|input| SwitchResult {
+            input,
+            circuits: Vec::new(),
+            outcome: Outcome::NotRun,
+        }));
+    }
+    out
+}
+
+/// The input under test.
+#[derive(Debug, Clone)]
+pub(super) struct SwitchItem {
+    pub idx: usize,
+    input: Input,
+    circuits: Vec<u8>,
+    deadline: Instant,
+    /// The inputs and the circuits as they were when the item started.
+    base: Option<(SwitchInputs, Vec<(u8, bool)>)>,
+    changed_at: Option<Instant>,
+    returned: bool,
+    followed: BTreeSet<u8>,
+    /// Other inputs that changed, and whether each changed back.
+    others: Vec<(Input, bool)>,
+    /// Timed out with its finding recorded: waiting for retry or go on.
+    timed_out: bool,
+    follow_wait: std::time::Duration,
+}
+
+impl SwitchItem {
+    pub fn circuits(&self) -> &[u8] {
+        &self.circuits
+    }
+
+    pub fn deadline(&self) -> Option<Instant> {
+        if self.timed_out {
+            return None;
+        }
+        let follow = self.changed_at.map(|at| at + self.follow_wait);
+        Some(follow.map_or(self.deadline, |d| d.min(self.deadline)))
+    }
+}
+
+impl CheckFlow {
+    pub(super) fn switches_begin(&mut self, view: &mut CheckView, io: &mut Io, skipped: bool) {
+        if skipped {
+            for r in view
+                .switches
+                .iter_mut()
+                .filter(|r| r.outcome == Outcome::NotRun)
+            {
+                r.outcome = Outcome::Skipped("step skipped".into());
+            }
+            io.out.news.push("– Switch inputs: skipped".into());
+            return;
+        }
+        self.switch_next(0, view, io);
+    }
+
+    /// Starts the first item from `from` not done yet, or the next step.
+    fn switch_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
+        if self
+            .opts
+            .skip
+            .contains(&crate::ui::check::state::Step::Switches)
+        {
+            for r in view
+                .switches
+                .iter_mut()
+                .filter(|r| r.outcome == Outcome::NotRun)
+            {
+                r.outcome = Outcome::Skipped("step skipped".into());
+            }
+        }
+        let Some(idx) =
+            (from..view.switches.len()).find(|&i| view.switches[i].outcome == Outcome::NotRun)
+        else {
+            self.phase = Phase::Done;
+            return self.enter_step(next_step(crate::ui::check::state::Step::Switches), view, io);
+        };
+        self.switch_start(idx, view, io);
+    }
+
+    fn switch_start(&mut self, idx: usize, view: &mut CheckView, io: &mut Io) {
+        let row = &mut view.switches[idx];
+        row.outcome = Outcome::NotRun;
+        let item = SwitchItem {
+            idx,
+            input: row.input,
+            circuits: row.circuits.clone(),
+            deadline: io.now + self.opts.timing.switch_timeout,
+            base: None,
+            changed_at: None,
+            returned: false,
+            followed: BTreeSet::new(),
+            others: Vec::new(),
+            timed_out: false,
+            follow_wait: self.opts.timing.follow_wait,
+        };
+        let names: Vec<String> = item.circuits.iter().map(|&i| view.name_of(i)).collect();
+        let label = item.input.label();
+        view.current = Some(idx);
+        view.prompt = Some(Prompt {
+            todo: if names.is_empty() {
+                format!("Move the {label} on, then back off.")
+            } else {
+                format!("Flip {label} on, wait until its circuits show ON, then flip it off.")
+            },
+            watching: if names.is_empty() {
+                format!("{label} (SYSTEM_STATUS)")
+            } else {
+                format!("{label} and {}", names.join(", "))
+            },
+            time_left: Some(self.opts.timing.switch_timeout),
+            keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
+        });
+        io.out.news.push(format!(
+            "Switch inputs: {} (you have {} s)",
+            view.prompt.as_ref().map_or("", |p| p.todo.as_str()),
+            self.opts.timing.switch_timeout.as_secs()
+        ));
+        self.phase = Phase::Switches(item);
+        self.switches_tick(view, io);
+    }
+
+    pub(super) fn switches_tick(&mut self, view: &mut CheckView, io: &mut Io) {
+        let Phase::Switches(item) = &mut self.phase else {
+            return;
+        };
+        if item.timed_out {
+            return;
+        }
+        let now = io.now;
+        let Some(sys) = io.model.live_system(now) else {
+            return;
+        };
+        let cur = sys.switches;
+        let Some((base, base_on)) = &item.base else {
+            let on = item
+                .circuits
+                .iter()
+                .map(|&id| (id, circuit_on(io.model, now, id).unwrap_or(false)))
+                .collect();
+            item.base = Some((cur, on));
+            return;
+        };
+        if item.input.is_on(&cur) != item.input.is_on(base) {
+            item.changed_at.get_or_insert(now);
+        } else if item.changed_at.is_some() {
+            item.returned = true;
+        }
+        for other in ALL_INPUTS.into_iter().filter(|&i| i != item.input) {
+            let differs = other.is_on(&cur) != other.is_on(base);
+            match item.others.iter_mut().find(|(i, _)| *i == other) {
+                Some((_, back)) if !differs => *back = true,
+                Some(_) => {}
+                None if differs => item.others.push((other, false)),
+                None => {}
+            }
+        }
+        for (id, was) in base_on {
+            if circuit_on(io.model, now, *id).is_some_and(|on| on != *was) {
+                item.followed.insert(*id);
+            }
+        }
+        if let Some(p) = view.prompt.as_mut() {
+            p.time_left = Some(item.deadline.saturating_duration_since(now));
+        }
+        let all_followed = item.followed.len() == item.circuits.len();
+        let finding = match item.changed_at {
+            Some(at)
+                if item.returned && (all_followed || now >= at + self.opts.timing.follow_wait) =>
+            {
+                Some(follow_finding(item, io.model, now, &self.held))
+            }
+            None if item.others.iter().any(|(_, back)| *back) => Some(SwitchFinding::OtherChanged(
+                item.others.iter().map(|(i, _)| *i).collect(),
+            )),
+            _ => None,
+        };
+        if let Some(f) = finding {
+            let idx = item.idx;
+            record(view, idx, f, io);
+            return self.switch_next(idx + 1, view, io);
+        }
+        if now >= item.deadline {
+            let f = if item.changed_at.is_some() {
+                follow_finding(item, io.model, now, &self.held)
+            } else if !item.others.is_empty() {
+                SwitchFinding::OtherChanged(item.others.iter().map(|(i, _)| *i).collect())
+            } else {
+                SwitchFinding::NeverChanged
+            };
+            item.timed_out = true;
+            let idx = item.idx;
+            let label = item.input.label();
+            record(view, idx, f, io);
+            view.prompt = Some(Prompt {
+                todo: format!("Time is up for {label}. r: try it again; Enter: go on to the next."),
+                watching: String::new(),
+                time_left: None,
+                keys: vec![
+                    ("r", "retry"),
+                    ("Enter", "next"),
+                    ("S", "skip step"),
+                    ("Esc", "stop"),
+                ],
+            });
+            io.out
+                .news
+                .push(format!("  {label}: time is up (r: retry, Enter: next)"));
+        }
+    }
+
+    pub(super) fn switches_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
+        let Phase::Switches(item) = &self.phase else {
+            return;
+        };
+        let (idx, timed_out) = (item.idx, item.timed_out);
+        match cmd {
+            Command::SkipItem => {
+                view.switches[idx].outcome = Outcome::Skipped("you skipped it".into());
+                io.out
+                    .news
+                    .push(format!("– {}: skipped", view.switches[idx].input.label()));
+                self.switch_next(idx + 1, view, io);
+            }
+            Command::Retry => self.switch_start(idx, view, io),
+            Command::Enter if timed_out => self.switch_next(idx + 1, view, io),
+            _ => {}
+        }
+    }
+}
+
+/// The input changed: did its circuits follow, and if not, why.
+fn follow_finding(
+    item: &SwitchItem,
+    model: &Model,
+    now: Instant,
+    held: &BTreeSet<u8>,
+) -> SwitchFinding {
+    let circuits = model.circuits(now);
+    let missing: Vec<(u8, NotFollowed)> = item
+        .circuits
+        .iter()
+        .filter(|id| !item.followed.contains(id))
+        .map(|&id| {
+            let c = circuits.iter().find(|c| c.id == id);
+            let why = match c {
+                Some(c) if matches!(c.state, crate::model::CircuitState::Fault(_)) => {
+                    let crate::model::CircuitState::Fault(code) = c.state else {
+                        unreachable!()
+                    };
+                    NotFollowed::Faulted(code)
+                }
+                Some(c)
+                    if c.switch
+                        .is_some_and(|s| Some(s) != input_switch(item.input)) =>
+                {
+                    NotFollowed::AssignedTo(c.switch.unwrap_or(SwitchId::Off))
+                }
+                _ if held.contains(&id) => NotFollowed::HeldByDevicePower,
+                _ => NotFollowed::Unexplained,
+            };
+            (id, why)
+        })
+        .collect();
+    if missing.is_empty() {
+        SwitchFinding::Passed
+    } else {
+        SwitchFinding::CircuitsDidNotFollow(missing)
+    }
+}
+
+fn input_switch(input: Input) -> Option<SwitchId> {
+    match input {
+        Input::Switch(n) => Some(SwitchId::Input(n)),
+        _ => None,
+    }
+}
+
+fn record(view: &mut CheckView, idx: usize, f: SwitchFinding, io: &mut Io) {
+    let name_of = |id| view.name_of(id);
+    let words = f.words(&name_of);
+    let mark = f.mark();
+    let label = view.switches[idx].input.label();
+    io.out.news.push(news(mark, &label, &words));
+    view.message = Some(format!("{label}: {words}"));
+    view.switches[idx].outcome = Outcome::Found(f);
+}
+
+/// A result as a headless run prints it: "✓ PASS switch 3: …".
+pub(super) fn news(mark: Mark, what: &str, words: &str) -> String {
+    format!("{} {} {what}: {words}", mark.symbol(), mark.word())
+}

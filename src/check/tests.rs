@@ -1,0 +1,1032 @@
+//! The flow on a fake clock against the virtual VP-X's sans-IO unit: every packet the
+//! flow and the page's controller give back goes into the unit, every frame the unit
+//! writes is decoded into the model, 10 ms at a time. Nothing here sleeps.
+
+use std::time::{Duration, Instant};
+
+use super::flow::{Cause, CheckFlow, Command, Options};
+use super::plan::Choices;
+use crate::control::{Controller, StopReason};
+use crate::model::{Model, Motor, Setting, Source, TrimKind};
+use crate::protocol::FaultCode;
+use crate::protocol::decoder::{Decoder, Event};
+use crate::protocol::message::{Message, Packet, SwitchId};
+use crate::sim::{Scenario, SimCommand, Unit, UnitOptions};
+use crate::ui::check::state::{
+    CheckView, CircuitFinding, Input, Mark, MotorFinding, NotFollowed, Outcome, Step, SwitchFinding,
+};
+
+/// A small aircraft: one circuit of each kind the findings need.
+fn scenario() -> String {
+    let mut s = String::from(
+        r#"
+description = "check tests"
+[electrical]
+battery_volts = 12.6
+[system]
+secondary_alternator = 23
+[[device]]
+id = 2
+name = "EFIS"
+breaker = 5
+switch = 11
+load = 2.0
+[[device]]
+id = 3
+name = "Main Alt"
+switch = 1
+load = 2.0
+[[device]]
+id = 4
+name = "Nav Lt"
+breaker = 3
+switch = 2
+load = 1.5
+[[device]]
+id = 5
+name = "Strobe"
+breaker = 4
+switch = 2
+load = 0.0
+[[device]]
+id = 17
+name = "Landing Lt"
+breaker = 8
+switch = 3
+load = 7.0
+[[device]]
+id = 7
+name = "Pitot Heat"
+breaker = 5
+switch = 4
+load = 3.0
+[[device]]
+id = 18
+name = "Boost Pump"
+breaker = 5
+switch = 0
+load = 3.0
+short = true
+[[device]]
+id = 23
+name = "Standby Alt"
+breaker = 5
+switch = 7
+load = 2.0
+[flap]
+enabled = true
+up = 20
+down = 220
+position = 20
+[pitch_trim]
+enabled = true
+up = 30
+down = 220
+neutral = 125
+power = 100
+position = 125
+[roll_trim]
+enabled = false
+up = 0
+down = 0
+neutral = 0
+"#,
+    );
+    for id in (6..=28).filter(|i| ![7, 17, 18, 23].contains(i)) {
+        s.push_str(&format!("[[device]]\nid = {id}\nenabled = false\n"));
+    }
+    s
+}
+
+struct Rig {
+    unit: Unit,
+    rx: Decoder,
+    model: Model,
+    ctl: Controller,
+    flow: CheckFlow,
+    view: CheckView,
+    t0: Instant,
+    now: Instant,
+    /// Every packet that went to the unit, with when.
+    sent: Vec<(Duration, Packet)>,
+    news: Vec<String>,
+    /// Drop DEVICE_POWER on the way (a unit that does not act on it).
+    deaf_to_power: bool,
+    /// The link is cut: nothing goes in or out.
+    cut: bool,
+}
+
+impl Rig {
+    fn new(opts: Options) -> Rig {
+        Rig::with(&scenario(), opts)
+    }
+
+    fn with(toml: &str, opts: Options) -> Rig {
+        let t0 = Instant::now();
+        let s = Scenario::from_toml(toml).unwrap();
+        let unit = Unit::with_memory_eeprom(&s, UnitOptions::default(), t0);
+        let mut model = Model::new(Source::Simulated {
+            scenario: "check".into(),
+        });
+        model.note_connected(t0, "test".into());
+        let mut r = Rig {
+            unit,
+            rx: Decoder::new(),
+            model,
+            ctl: Controller::default(),
+            flow: CheckFlow::new(
+                opts.clone(),
+                &mut CheckView::default(),
+                &Model::new(Source::Simulated {
+                    scenario: "x".into(),
+                }),
+                t0,
+            ),
+            view: CheckView::default(),
+            t0,
+            now: t0,
+            sent: Vec::new(),
+            news: Vec::new(),
+            deaf_to_power: false,
+            cut: false,
+        };
+        // The page's connect-time queries.
+        let queries: Vec<Packet> = Setting::all()
+            .enumerate()
+            .map(|(i, s)| Packet::request(i as u8, s.query()))
+            .collect();
+        r.send(queries);
+        r.idle(1500);
+        r.flow = CheckFlow::new(opts, &mut r.view, &r.model, r.now);
+        r
+    }
+
+    fn send(&mut self, packets: Vec<Packet>) {
+        for p in packets {
+            self.sent.push((self.now - self.t0, p));
+            if self.cut || (self.deaf_to_power && matches!(p.message, Message::DevicePower(_))) {
+                continue;
+            }
+            self.unit.feed(&p.to_bytes(), self.now);
+        }
+    }
+
+    fn collect(&mut self) {
+        let out = self.unit.take_output();
+        if self.cut {
+            return;
+        }
+        let mut frames = Vec::new();
+        self.rx.push(&out, |e| {
+            if let Event::Frame(f) = e {
+                frames.push(Packet::parse(&f).unwrap());
+            }
+        });
+        for p in frames {
+            self.model.apply_packet(self.now, &p);
+        }
+    }
+
+    /// Time passes without the flow (before it is made).
+    fn idle(&mut self, ms: u64) {
+        for _ in 0..ms / 10 {
+            self.now += Duration::from_millis(10);
+            self.unit.tick(self.now);
+            self.collect();
+        }
+    }
+
+    /// `ms` of the page's loop: unit, model, controller, flow.
+    fn run(&mut self, ms: u64) {
+        for _ in 0..ms / 10 {
+            self.now += Duration::from_millis(10);
+            self.unit.tick(self.now);
+            self.collect();
+            let p = self.ctl.tick(&self.model, self.now);
+            self.send(p);
+            let out = self
+                .flow
+                .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
+            self.news.extend(out.news);
+            self.send(out.packets);
+        }
+    }
+
+    /// Runs until `done` holds, at most `ms`.
+    fn run_until(&mut self, ms: u64, done: impl Fn(&Rig) -> bool) {
+        for _ in 0..ms / 10 {
+            if done(self) {
+                return;
+            }
+            self.run(10);
+        }
+        assert!(
+            done(self),
+            "not done after {ms} ms: {:#?}",
+            self.view.prompt
+        );
+    }
+
+    fn cmd(&mut self, c: Command) {
+        let out = self
+            .flow
+            .command(c, &mut self.view, &self.model, &mut self.ctl, self.now);
+        self.news.extend(out.news);
+        self.send(out.packets);
+    }
+
+    fn interrupt(&mut self, cause: Cause, may_wait: bool) {
+        let out = self.flow.interrupt_for(
+            cause,
+            may_wait,
+            &mut self.view,
+            &self.model,
+            &mut self.ctl,
+            self.now,
+        );
+        self.news.extend(out.news);
+        self.send(out.packets);
+    }
+
+    fn flip(&mut self, n: u8, on: bool) {
+        self.unit
+            .apply(SimCommand::Switch { switch: n, on }, self.now);
+    }
+
+    /// A person flips switch `n` on, waits `hold` ms, flips it off.
+    fn flip_on_off(&mut self, n: u8, hold: u64) {
+        self.flip(n, true);
+        self.run(hold);
+        self.flip(n, false);
+    }
+
+    fn circuit(&self, id: u8) -> &Outcome<CircuitFinding> {
+        &self
+            .view
+            .circuits
+            .iter()
+            .find(|c| c.id == id)
+            .unwrap()
+            .outcome
+    }
+
+    fn switch(&self, input: Input) -> &Outcome<SwitchFinding> {
+        &self
+            .view
+            .switches
+            .iter()
+            .find(|s| s.input == input)
+            .unwrap()
+            .outcome
+    }
+
+    /// The DEVICE_POWER commands sent for `id`, in order.
+    fn powers(&self, id: u8) -> Vec<bool> {
+        self.sent
+            .iter()
+            .filter_map(|(_, p)| match p.message {
+                Message::DevicePower(d) if d.device_id == id => Some(d.on),
+                _ => None,
+            })
+            .collect()
+    }
+
+    fn on(&self, id: u8) -> bool {
+        self.model.live_devices(self.now).unwrap().on[id as usize]
+    }
+
+    fn switches_only() -> Options {
+        Options {
+            skip: vec![Step::Circuits, Step::Motors, Step::Loads],
+            ..Options::default()
+        }
+    }
+
+    fn circuits_only() -> Options {
+        Options {
+            skip: vec![Step::Switches, Step::Motors, Step::Loads],
+            ..Options::default()
+        }
+    }
+
+    fn motors_only() -> Options {
+        Options {
+            skip: vec![Step::Switches, Step::Circuits, Step::Loads],
+            ..Options::default()
+        }
+    }
+
+    fn start(&mut self) {
+        self.cmd(Command::Enter);
+        assert_ne!(self.view.step, Step::Confirm, "{:?}", self.view.message);
+    }
+}
+
+// ----- before power -----
+
+#[test]
+fn the_plan_never_touches_the_starter_or_the_alternator_fields_and_suggests_pitot_heat() {
+    let r = Rig::new(Options::default());
+    let v = &r.view;
+    assert_eq!(v.step, Step::Confirm);
+    let planned: Vec<u8> = v.plan.iter().map(|p| p.id).collect();
+    assert_eq!(
+        planned,
+        vec![2, 4, 5, 17, 18],
+        "EFIS, Nav, Strobe, Landing, Boost"
+    );
+    let why = |id: u8| v.excluded.iter().find(|e| e.id == id).unwrap().clone();
+    assert_eq!(why(1).why, "never touched: the starter");
+    assert!(!why(1).may_include);
+    assert_eq!(why(3).why, "never touched: an alternator field");
+    assert_eq!(
+        why(23).why,
+        "never touched: an alternator field",
+        "secondary"
+    );
+    assert_eq!(why(7).why, "suggested: the name has \"pitot\"");
+    assert!(why(7).may_include);
+    let motors: Vec<Motor> = v.planned_motors.iter().map(|(m, _)| *m).collect();
+    assert_eq!(motors, vec![Motor::Flaps, Motor::Trim(TrimKind::Pitch)]);
+    assert!(v.plan.iter().all(|p| p.on_for == Duration::from_secs(5)));
+    assert!(v.prompt.as_ref().unwrap().todo.contains("safe to power"));
+    assert!(
+        r.sent
+            .iter()
+            .all(|(_, p)| !matches!(p.message, Message::DevicePower(_)))
+    );
+}
+
+#[test]
+fn exclusions_by_name_or_pin_and_a_suggestion_taken_back_on_the_screen() {
+    let mut r = Rig::new(Options {
+        choices: Choices {
+            exclude: vec!["landing lt".into(), "5A-1".into()],
+            include: vec![],
+        },
+        ..Options::default()
+    });
+    let planned: Vec<u8> = r.view.plan.iter().map(|p| p.id).collect();
+    assert_eq!(planned, vec![2, 5, 18]);
+    // Select Pitot Heat among the excluded and take the suggestion back.
+    let at = r.view.plan.len() + r.view.excluded.iter().position(|e| e.id == 7).unwrap();
+    for _ in 0..at {
+        r.cmd(Command::Down);
+    }
+    r.cmd(Command::Toggle);
+    assert!(
+        r.view.plan.iter().any(|p| p.id == 7),
+        "{:?}",
+        r.view.message
+    );
+    // The starter cannot be taken back.
+    r.view.current =
+        Some(r.view.plan.len() + r.view.excluded.iter().position(|e| e.id == 1).unwrap());
+    r.cmd(Command::Toggle);
+    assert!(!r.view.plan.iter().any(|p| p.id == 1));
+    assert_eq!(
+        super::plan::unmatched(&r.model, r.now, &["nope".into(), "EFIS".into()]),
+        vec!["nope".to_string()]
+    );
+}
+
+#[test]
+fn nothing_starts_until_the_settings_are_heard_and_yes_confirms_by_itself() {
+    let t0 = Instant::now();
+    let mut view = CheckView::default();
+    let model = Model::new(Source::Simulated {
+        scenario: "x".into(),
+    });
+    let mut ctl = Controller::default();
+    let mut flow = CheckFlow::new(Options::default(), &mut view, &model, t0);
+    let out = flow.command(Command::Enter, &mut view, &model, &mut ctl, t0);
+    assert!(out.packets.is_empty());
+    assert_eq!(view.step, Step::Confirm);
+    assert!(
+        view.message.as_ref().unwrap().starts_with("not yet"),
+        "{:?}",
+        view.message
+    );
+
+    let mut r = Rig::new(Options {
+        yes: true,
+        ..Rig::circuits_only()
+    });
+    r.run(20);
+    assert_eq!(
+        r.view.step,
+        Step::Circuits,
+        "--yes confirms once the unit is heard"
+    );
+}
+
+// ----- switch inputs -----
+
+#[test]
+fn a_switch_that_works_passes_once_its_circuits_followed() {
+    let mut r = Rig::new(Rig::switches_only());
+    r.start();
+    assert_eq!(r.view.step, Step::Switches);
+    let inputs: Vec<Input> = r.view.switches.iter().map(|s| s.input).collect();
+    assert_eq!(
+        inputs,
+        vec![
+            Input::Switch(1),
+            Input::Switch(2),
+            Input::Switch(3),
+            Input::Switch(4),
+            Input::Switch(7),
+            Input::FlapUp,
+            Input::FlapDown,
+            Input::PitchTrimUp,
+            Input::PitchTrimDown
+        ]
+    );
+    // Switch 1 has only the alternator field, switch 4 the pitot heat, switch 7 the
+    // standby alternator: nothing to watch, so nothing to flip.
+    assert!(matches!(r.switch(Input::Switch(1)), Outcome::Skipped(w) if w.contains("Main Alt")));
+    assert!(matches!(r.switch(Input::Switch(4)), Outcome::Skipped(_)));
+    assert_eq!(r.view.current, Some(1));
+    assert!(r.view.prompt.as_ref().unwrap().todo.contains("switch 2"));
+    assert!(
+        r.view
+            .prompt
+            .as_ref()
+            .unwrap()
+            .watching
+            .contains("Nav Lt, Strobe")
+    );
+    r.run(100);
+    r.flip_on_off(2, 1500);
+    r.run_until(4000, |r| r.view.current == Some(2));
+    assert_eq!(
+        r.switch(Input::Switch(2)),
+        &Outcome::Found(SwitchFinding::Passed)
+    );
+    assert!(
+        r.news.iter().any(|n| n.starts_with("✓ PASS switch 2")),
+        "{:?}",
+        r.news
+    );
+    assert!(r.powers(4).is_empty(), "the switch step sends nothing");
+}
+
+#[test]
+fn a_switch_never_flipped_times_out_and_can_be_retried() {
+    let mut r = Rig::new(Rig::switches_only());
+    r.start();
+    r.run(30_100);
+    assert_eq!(
+        r.switch(Input::Switch(2)),
+        &Outcome::Found(SwitchFinding::NeverChanged)
+    );
+    assert_eq!(r.view.current, Some(1), "waits for retry or go on");
+    assert!(r.flow.next_deadline().is_none());
+    r.cmd(Command::Retry);
+    assert_eq!(r.switch(Input::Switch(2)), &Outcome::NotRun);
+    r.run(100);
+    r.flip_on_off(2, 1500);
+    r.run_until(4000, |r| r.view.current == Some(2));
+    assert_eq!(
+        r.switch(Input::Switch(2)),
+        &Outcome::Found(SwitchFinding::Passed)
+    );
+    // Time out again on switch 3 and go on with Enter.
+    r.run(30_100);
+    assert_eq!(
+        r.switch(Input::Switch(3)),
+        &Outcome::Found(SwitchFinding::NeverChanged)
+    );
+    r.cmd(Command::Enter);
+    assert_eq!(
+        r.view.switches[r.view.current.unwrap()].input,
+        Input::FlapUp
+    );
+}
+
+#[test]
+fn another_input_changing_instead_is_a_crossed_pair() {
+    let mut r = Rig::new(Rig::switches_only());
+    r.start();
+    r.run(100);
+    r.flip_on_off(3, 1500); // asked for 2, the person's switch 2 is wired to input 3
+    r.run(1500);
+    assert_eq!(
+        r.switch(Input::Switch(2)),
+        &Outcome::Found(SwitchFinding::OtherChanged(vec![Input::Switch(3)]))
+    );
+    assert!(
+        r.news
+            .iter()
+            .any(|n| n.contains("switch 3 changed instead: switches crossed"))
+    );
+}
+
+#[test]
+fn circuits_that_do_not_follow_say_why() {
+    // Nav Lt held off by an earlier DEVICE_POWER (the check's own put-back), Strobe
+    // shorted: flipping switch 2 turns on neither.
+    let toml = scenario().replace("name = \"Strobe\"", "name = \"Strobe\"\nshort = true");
+    let mut r = Rig::with(&toml, Rig::switches_only());
+    r.send(vec![Packet::request(
+        9,
+        crate::protocol::message::DevicePower {
+            device_id: 4,
+            on: false,
+        },
+    )]);
+    r.flow.held.insert(4);
+    r.start();
+    r.run(100);
+    r.flip(2, true);
+    // The override ends when the switch changes (ICD Appendix A), so the sim
+    // turns Nav Lt on with it; hold it with a DEVICE_POWER off again, as another EFIS
+    // would.
+    r.send(vec![Packet::request(
+        10,
+        crate::protocol::message::DevicePower {
+            device_id: 4,
+            on: false,
+        },
+    )]);
+    r.run(1500);
+    r.flip(2, false);
+    r.run_until(5000, |r| r.view.current != Some(1));
+    assert_eq!(
+        r.switch(Input::Switch(2)),
+        &Outcome::Found(SwitchFinding::CircuitsDidNotFollow(vec![
+            (4, NotFollowed::HeldByDevicePower),
+            (5, NotFollowed::Faulted(FaultCode::ShortCircuit)),
+        ]))
+    );
+    assert!(
+        r.view.interrupted.is_none(),
+        "a watched circuit's fault is a finding"
+    );
+    let words = r.view.switches[1].outcome.clone();
+    let Outcome::Found(f) = words else { panic!() };
+    let w = f.words(&|id| r.view.name_of(id));
+    assert!(w.contains("Nav Lt (held by DEVICE_POWER"), "{w}");
+    assert!(w.contains("Strobe (faulted (SHORT_CIRCUIT))"), "{w}");
+}
+
+#[test]
+fn skipping_an_input_and_the_rest_of_the_step() {
+    let mut r = Rig::new(Options {
+        skip: vec![Step::Circuits, Step::Motors, Step::Loads],
+        ..Options::default()
+    });
+    r.start();
+    r.cmd(Command::SkipItem);
+    assert!(matches!(r.switch(Input::Switch(2)), Outcome::Skipped(w) if w == "you skipped it"));
+    assert_eq!(r.view.current, Some(2));
+    r.cmd(Command::SkipStep);
+    assert!(
+        r.view.switches[2..]
+            .iter()
+            .all(|s| matches!(s.outcome, Outcome::Skipped(_))),
+        "{:?}",
+        r.view.switches
+    );
+    assert_eq!(r.view.step, Step::Done);
+    assert!(r.view.skipped_steps.contains(&Step::Switches));
+    assert!(
+        r.view
+            .circuits
+            .iter()
+            .all(|c| matches!(c.outcome, Outcome::Skipped(_)))
+    );
+}
+
+// ----- circuits -----
+
+#[test]
+fn each_circuit_is_measured_judged_and_put_back() {
+    let mut r = Rig::new(Rig::circuits_only());
+    r.start();
+    r.run_until(40_000, |r| r.view.step == Step::Done);
+    // EFIS is on already (always on): measured as it is, nothing sent.
+    assert_eq!(
+        r.circuit(2),
+        &Outcome::Found(CircuitFinding::Within {
+            amps: 2.0,
+            breaker: 5
+        })
+    );
+    assert!(r.powers(2).is_empty());
+    assert_eq!(
+        r.circuit(4),
+        &Outcome::Found(CircuitFinding::Within {
+            amps: 1.5,
+            breaker: 3
+        })
+    );
+    assert_eq!(r.circuit(5), &Outcome::Found(CircuitFinding::NoCurrent));
+    assert!(
+        matches!(
+            r.circuit(17),
+            Outcome::Found(CircuitFinding::NearBreaker { amps, breaker: 8 }) if (6.4..=8.0).contains(amps)
+        ),
+        "about 7 A is ≥ 80 % of 8 A: {:?}",
+        r.circuit(17)
+    );
+    assert_eq!(
+        r.circuit(18),
+        &Outcome::Found(CircuitFinding::Faulted(FaultCode::ShortCircuit))
+    );
+    assert!(matches!(r.circuit(7), Outcome::Skipped(w) if w.contains("pitot")));
+    assert!(matches!(r.circuit(3), Outcome::Skipped(w) if w.contains("alternator")));
+    // Each one on, then off; and off it is.
+    for id in [4, 5, 17, 18] {
+        assert_eq!(r.powers(id), vec![true, false], "device {id}");
+        assert!(!r.on(id), "device {id} left on");
+    }
+    assert_eq!(
+        r.view.to_cycle,
+        vec![
+            (4, "Nav Lt".to_string(), SwitchId::Input(2)),
+            (5, "Strobe".to_string(), SwitchId::Input(2)),
+            (17, "Landing Lt".to_string(), SwitchId::Input(3)),
+        ],
+        "Boost Pump has no switch to cycle"
+    );
+    assert!(r.view.interrupted.is_none());
+    let fix = r.view.to_fix();
+    assert_eq!(fix.len(), 3, "{fix:?}");
+    assert!(fix[2].contains("SHORT_CIRCUIT") && fix[2].contains("remains off until cleared"));
+    assert!(fix[1].contains("A of a 8 A breaker (≥ 80 %)"), "{fix:?}");
+    assert!(r.view.any_failed());
+    // Each circuit was on no longer than its plan says.
+    let on_at = r
+        .sent
+        .iter()
+        .find(|(_, p)| {
+            p.message
+                == Message::DevicePower(crate::protocol::message::DevicePower {
+                    device_id: 17,
+                    on: true,
+                })
+        })
+        .unwrap()
+        .0;
+    let off_at = r
+        .sent
+        .iter()
+        .find(|(_, p)| {
+            p.message
+                == Message::DevicePower(crate::protocol::message::DevicePower {
+                    device_id: 17,
+                    on: false,
+                })
+        })
+        .unwrap()
+        .0;
+    assert!(
+        off_at - on_at <= Duration::from_secs(5),
+        "{:?}",
+        off_at - on_at
+    );
+    assert!(
+        off_at - on_at >= Duration::from_millis(900),
+        "two fresh statuses"
+    );
+}
+
+#[test]
+fn a_unit_that_never_switches_the_circuit_on_is_said_so() {
+    let mut r = Rig::new(Rig::circuits_only());
+    r.deaf_to_power = true;
+    r.start();
+    r.run_until(10_000, |r| r.circuit(4) != &Outcome::NotRun);
+    assert_eq!(r.circuit(4), &Outcome::Found(CircuitFinding::DidNotSwitch));
+    assert_eq!(
+        r.powers(4),
+        vec![true, true, false],
+        "tried twice, then put back"
+    );
+}
+
+#[test]
+fn skipping_a_circuit_while_it_is_on_still_puts_it_back() {
+    let mut r = Rig::new(Rig::circuits_only());
+    r.start();
+    r.run_until(10_000, |r| {
+        r.view.current == r.view.circuits.iter().position(|c| c.id == 4) && r.on(4)
+    });
+    r.cmd(Command::SkipItem);
+    assert!(matches!(r.circuit(4), Outcome::Skipped(_)));
+    r.run(2000);
+    assert_eq!(r.powers(4), vec![true, false]);
+    assert!(!r.on(4));
+}
+
+// ----- motors -----
+
+#[test]
+fn motors_run_each_way_through_the_controller_and_go_back() {
+    let mut r = Rig::new(Rig::motors_only());
+    r.start();
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    for m in &r.view.motors {
+        assert_eq!(m.outcome, Outcome::Found(MotorFinding::Moves), "{m:?}");
+        let p = &m.positions;
+        assert!(p.len() >= 3, "{p:?}");
+        let back = (i32::from(*p.last().unwrap()) - i32::from(p[0])).abs();
+        assert!(back <= super::motors::BACK_WITHIN, "{p:?}");
+    }
+    // Flaps at their up endpoint: the first run is down, away from it.
+    assert!(r.view.motors[0].positions[1] > r.view.motors[0].positions[0]);
+    // Every run ended with its stop on the wire.
+    let moves: Vec<&Packet> = r
+        .sent
+        .iter()
+        .map(|(_, p)| p)
+        .filter(|p| matches!(p.message, Message::FlapMove(_) | Message::TrimMove(_)))
+        .collect();
+    let last = moves.last().unwrap();
+    assert!(matches!(last.message, Message::TrimMove(t) if !t.on));
+    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::RunDone);
+    // No gap over 250 ms inside a run.
+    let mut prev: Option<Duration> = None;
+    for (at, p) in &r.sent {
+        let on = match p.message {
+            Message::FlapMove(f) => f.on,
+            Message::TrimMove(t) => t.on,
+            _ => continue,
+        };
+        if let Some(pv) = prev {
+            assert!(*at - pv <= Duration::from_millis(250), "gap {:?}", *at - pv);
+        }
+        prev = on.then_some(*at);
+    }
+}
+
+#[test]
+fn the_motor_findings_from_positions() {
+    use super::motors::judge;
+    use crate::control::Direction::{Down, Up};
+    let r = Rig::new(Rig::motors_only());
+    let ft = *r.model.live_flap_trim(r.now).unwrap(); // flaps up 20, down 220
+    let f = Motor::Flaps;
+    assert_eq!(
+        judge(f, [Down, Up], [20, 32], [12, -12], &ft),
+        MotorFinding::Moves
+    );
+    assert_eq!(
+        judge(f, [Down, Up], [100, 88], [-12, 12], &ft),
+        MotorFinding::Reversed
+    );
+    assert_eq!(
+        judge(f, [Down, Up], [100, 100], [0, 1], &ft),
+        MotorFinding::NoMovement
+    );
+    // Down at the down endpoint does not move; up does.
+    assert_eq!(
+        judge(f, [Down, Up], [219, 219], [0, -12], &ft),
+        MotorFinding::AgainstLimit
+    );
+    // The same stall mid-travel is no movement.
+    assert_eq!(
+        judge(f, [Down, Up], [120, 120], [0, -12], &ft),
+        MotorFinding::NoMovement
+    );
+    assert_eq!(MotorFinding::AgainstLimit.mark(), Mark::Warn);
+}
+
+#[test]
+fn a_motor_fault_mid_run_is_its_finding_and_the_stop_goes_out() {
+    let mut r = Rig::new(Rig::motors_only());
+    r.start();
+    r.run(200);
+    assert!(r.ctl.running().is_some());
+    r.unit.apply(
+        SimCommand::Fault {
+            device: 0,
+            code: FaultCode::FlapRunaway,
+        },
+        r.now,
+    );
+    r.run_until(2000, |r| r.view.motors[0].outcome != Outcome::NotRun);
+    assert_eq!(
+        r.view.motors[0].outcome,
+        Outcome::Found(MotorFinding::Faulted(FaultCode::FlapRunaway))
+    );
+    assert!(matches!(
+        r.ctl.last_stop().unwrap().reason,
+        StopReason::MotorFault(_)
+    ));
+    assert!(
+        r.sent
+            .iter()
+            .any(|(_, p)| matches!(p.message, Message::FlapMove(f) if !f.on))
+    );
+    assert!(r.view.interrupted.is_none());
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    assert_eq!(
+        r.view.motors[1].outcome,
+        Outcome::Found(MotorFinding::Moves)
+    );
+}
+
+// ----- interruptions -----
+
+/// Runs the circuit step until Landing Lt (17) is on, under test.
+fn landing_light_on(r: &mut Rig) {
+    r.start();
+    r.run_until(30_000, |r| {
+        r.view.current == r.view.circuits.iter().position(|c| c.id == 17) && r.on(17)
+    });
+}
+
+#[test]
+fn quit_mid_circuit_switches_it_back_off_and_waits_to_see_it() {
+    let mut r = Rig::new(Rig::circuits_only());
+    landing_light_on(&mut r);
+    r.interrupt(Cause::Quit, true);
+    assert_eq!(r.powers(17), vec![true, false]);
+    assert!(!r.flow.finished(), "waits to see it off");
+    r.run_until(3000, |r| r.flow.finished());
+    let i = r.view.interrupted.clone().unwrap();
+    assert_eq!(i.cause, "stopped by you");
+    assert_eq!(i.left, vec![], "seen off: nothing left changed");
+    assert!(r.view.to_cycle.iter().any(|(id, ..)| *id == 17));
+    assert_eq!(r.circuit(18), &Outcome::NotRun, "never reached");
+    assert_eq!(r.view.step, Step::Done);
+}
+
+#[test]
+fn quit_that_cannot_wait_says_the_circuit_was_sent_off_unconfirmed() {
+    let mut r = Rig::new(Rig::circuits_only());
+    landing_light_on(&mut r);
+    r.interrupt(Cause::Signal("SIGTERM".into()), false);
+    assert!(r.flow.finished());
+    let i = r.view.interrupted.clone().unwrap();
+    assert_eq!(i.cause, "ended by a signal (SIGTERM)");
+    assert_eq!(
+        i.left,
+        vec![(
+            17,
+            "Landing Lt".to_string(),
+            "ON when the check stopped: DEVICE_POWER off sent, not confirmed".to_string()
+        )]
+    );
+    assert_eq!(r.powers(17), vec![true, false]);
+}
+
+#[test]
+fn communication_lost_mid_circuit_leaves_it_unknown() {
+    let mut r = Rig::new(Rig::circuits_only());
+    landing_light_on(&mut r);
+    r.unit
+        .apply(SimCommand::Silent(Duration::from_secs(10)), r.now);
+    r.run_until(4000, |r| r.flow.finished());
+    let i = r.view.interrupted.clone().unwrap();
+    assert_eq!(i.cause, "COMMUNICATION LOST");
+    assert_eq!(
+        i.left,
+        vec![(
+            17,
+            "Landing Lt".to_string(),
+            "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)"
+                .to_string()
+        )]
+    );
+    assert_eq!(r.powers(17), vec![true, false], "off is sent all the same");
+}
+
+#[test]
+fn a_link_that_cannot_send_ends_the_check() {
+    let mut r = Rig::new(Rig::circuits_only());
+    landing_light_on(&mut r);
+    r.model.note_write_error(r.now, "Input/output error".into());
+    r.cut = true;
+    r.run(10);
+    assert!(r.flow.finished());
+    let i = r.view.interrupted.clone().unwrap();
+    assert_eq!(i.cause, "the link could not send: Input/output error");
+    assert_eq!(i.left[0].0, 17);
+    assert_eq!(
+        i.left[0].2,
+        "unknown: it was ON; DEVICE_POWER off sent, not confirmed (the link could not send)"
+    );
+}
+
+#[test]
+fn a_fault_elsewhere_mid_step_stops_the_check_and_puts_the_circuit_back() {
+    let mut r = Rig::new(Rig::circuits_only());
+    landing_light_on(&mut r);
+    // EFIS (measured already, on by its switch) faults while Landing Lt is on.
+    r.unit.apply(
+        SimCommand::Short {
+            device: 2,
+            on: true,
+        },
+        r.now,
+    );
+    r.run_until(5000, |r| r.flow.finished());
+    let i = r.view.interrupted.clone().unwrap();
+    assert_eq!(i.cause, "EFIS faulted (SHORT_CIRCUIT)");
+    assert_eq!(i.left, vec![], "Landing Lt seen back off");
+    assert!(!r.on(17));
+    assert_eq!(r.powers(17), vec![true, false]);
+    assert_eq!(r.circuit(18), &Outcome::NotRun);
+}
+
+#[test]
+fn quit_mid_motor_run_sends_its_stop_and_says_where_it_was_left() {
+    let mut r = Rig::new(Rig::motors_only());
+    r.start();
+    r.run(400);
+    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
+    let before = r.sent.len();
+    r.interrupt(Cause::Quit, true);
+    assert!(r.ctl.running().is_none());
+    assert!(
+        r.sent[before..]
+            .iter()
+            .any(|(_, p)| matches!(p.message, Message::FlapMove(f) if !f.on)),
+        "the stop went out"
+    );
+    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Quit);
+    r.run(300);
+    assert!(
+        r.sent[before..]
+            .iter()
+            .all(|(_, p)| !matches!(p.message, Message::FlapMove(f) if f.on)),
+        "nothing after the stop"
+    );
+    let i = r.view.interrupted.clone().unwrap();
+    assert_eq!(i.left.len(), 1, "{:?}", i.left);
+    assert_eq!(i.left[0].0, 0);
+    assert!(
+        i.left[0].2.contains("it was at 20: not run back"),
+        "{:?}",
+        i.left
+    );
+}
+
+#[test]
+fn a_panic_stops_the_motor_with_the_panic_reason() {
+    let mut r = Rig::new(Rig::motors_only());
+    r.start();
+    r.run(300);
+    r.interrupt(Cause::Panic, false);
+    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Panic);
+    assert_eq!(
+        r.view.interrupted.as_ref().unwrap().cause,
+        "the program failed"
+    );
+}
+
+#[test]
+fn communication_lost_mid_motor_run_is_an_interruption() {
+    let mut r = Rig::new(Rig::motors_only());
+    r.start();
+    r.run(300);
+    r.unit
+        .apply(SimCommand::Silent(Duration::from_secs(10)), r.now);
+    r.run_until(4000, |r| r.flow.finished());
+    assert!(r.ctl.running().is_none());
+    let i = r.view.interrupted.clone().unwrap();
+    // The controller's own tick stops the run first (FLAP_TRIM_STATUS goes quiet
+    // after 1 s, before COMMUNICATION LOST at 2.5 s).
+    assert!(
+        i.cause.contains("no live flap/trim status") || i.cause == "COMMUNICATION LOST",
+        "{}",
+        i.cause
+    );
+    assert!(
+        r.sent
+            .iter()
+            .any(|(_, p)| matches!(p.message, Message::FlapMove(f) if !f.on))
+    );
+}
+
+#[test]
+fn the_whole_check_in_order_with_results_as_they_come() {
+    let mut r = Rig::new(Options {
+        skip: vec![Step::Switches],
+        ..Options::default()
+    });
+    r.start();
+    r.run_until(60_000, |r| r.flow.finished());
+    assert!(r.view.interrupted.is_none());
+    assert_eq!(r.view.step, Step::Done);
+    let order: Vec<&str> = r
+        .news
+        .iter()
+        .filter_map(|n| {
+            if n.contains("Landing Lt") {
+                Some("circuit")
+            } else if n.contains("Flaps:") {
+                Some("motor")
+            } else if n.contains("Load analysis") {
+                Some("loads")
+            } else {
+                None
+            }
+        })
+        .collect();
+    assert_eq!(order, vec!["circuit", "motor", "loads"], "{:?}", r.news);
+    assert!(r.news.last().unwrap().starts_with("Check complete"));
+}
