@@ -325,50 +325,6 @@ impl CheckView {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn circuit(id: u8, outcome: Outcome<CircuitFinding>) -> CircuitResult {
-        CircuitResult {
-            id,
-            name: format!("c{id}"),
-            pin: "?",
-            breaker: Some(5),
-            switch: None,
-            outcome,
-        }
-    }
-
-    #[test]
-    fn only_real_readings_are_measurements() {
-        let view = CheckView {
-            circuits: vec![
-                circuit(
-                    4,
-                    Outcome::Found(CircuitFinding::Within {
-                        amps: 1.5,
-                        breaker: 5,
-                    }),
-                ),
-                circuit(5, Outcome::Found(CircuitFinding::NoCurrent)),
-                circuit(
-                    6,
-                    Outcome::Found(CircuitFinding::NearBreaker {
-                        amps: 4.5,
-                        breaker: 5,
-                    }),
-                ),
-                circuit(7, Outcome::Found(CircuitFinding::DidNotSwitch)),
-                circuit(8, Outcome::Skipped("excluded".into())),
-                circuit(9, Outcome::NotRun),
-            ],
-            ..CheckView::default()
-        };
-        assert_eq!(view.measured_amps(), [(4, 1.5), (6, 4.5)]);
-    }
-}
-
 fn circuits_words(ids: &[u8], name_of: &dyn Fn(u8) -> String) -> String {
     ids.iter()
         .map(|&i| name_of(i))
@@ -587,5 +543,49 @@ impl CheckView {
             }
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circuit(id: u8, outcome: Outcome<CircuitFinding>) -> CircuitResult {
+        CircuitResult {
+            id,
+            name: format!("c{id}"),
+            pin: "?",
+            breaker: Some(5),
+            switch: None,
+            outcome,
+        }
+    }
+
+    #[test]
+    fn only_real_readings_are_measurements() {
+        let view = CheckView {
+            circuits: vec![
+                circuit(
+                    4,
+                    Outcome::Found(CircuitFinding::Within {
+                        amps: 1.5,
+                        breaker: 5,
+                    }),
+                ),
+                circuit(5, Outcome::Found(CircuitFinding::NoCurrent)),
+                circuit(
+                    6,
+                    Outcome::Found(CircuitFinding::NearBreaker {
+                        amps: 4.5,
+                        breaker: 5,
+                    }),
+                ),
+                circuit(7, Outcome::Found(CircuitFinding::DidNotSwitch)),
+                circuit(8, Outcome::Skipped("excluded".into())),
+                circuit(9, Outcome::NotRun),
+            ],
+            ..CheckView::default()
+        };
+        assert_eq!(view.measured_amps(), [(4, 1.5), (6, 4.5)]);
     }
 }
