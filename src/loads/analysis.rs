@@ -136,7 +136,7 @@ pub fn analyse(file: &LoadFile, measured: &[(u8, f32)]) -> Analysis {
             .iter()
             .rev()
             .find(|m| m.0 == id)
-            .map(|m| f64::from(m.1))
+            .map(|m| decimal(m.1))
     };
     let rows: Vec<Row> = file
         .circuits
@@ -162,7 +162,7 @@ pub fn analyse(file: &LoadFile, measured: &[(u8, f32)]) -> Analysis {
     for &(id, amps) in measured {
         if !file.circuits.iter().any(|c| c.id == id) {
             unlisted.retain(|u| u.0 != id);
-            unlisted.push((id, f64::from(amps)));
+            unlisted.push((id, decimal(amps)));
         }
     }
     unlisted.sort_by_key(|u| u.0);
@@ -176,8 +176,19 @@ pub fn analyse(file: &LoadFile, measured: &[(u8, f32)]) -> Analysis {
     }
 }
 
+/// A measured `f32` as the decimal it stands for (4.8, not 4.800000190734863).
+fn decimal(a: f32) -> f64 {
+    a.to_string().parse().unwrap_or(f64::from(a))
+}
+
+/// Totals, margins and minutes are kept to a millionth, so that binary fractions
+/// never turn a margin of 12 % into 11.999… (and its "under 20 %" into a false one).
+fn micro(x: f64) -> f64 {
+    (x * 1e6).round() / 1e6
+}
+
 fn phase_total(file: &LoadFile, rows: &[Row], phase: Phase) -> PhaseTotal {
-    let amps: f64 = rows.iter().map(|r| r.in_phase(phase)).sum();
+    let amps = micro(rows.iter().map(|r| r.in_phase(phase)).sum());
     let missing: Vec<u8> = rows
         .iter()
         .filter(|r| r.is_on_in(phase) && r.figure == Figure::Missing)
@@ -185,14 +196,14 @@ fn phase_total(file: &LoadFile, rows: &[Row], phase: Phase) -> PhaseTotal {
         .collect();
     let (margin_percent, endurance_minutes, mut level) = if phase.on_battery() {
         let endurance =
-            (amps > 0.0).then(|| file.battery_amp_hours * file.battery_usable * 60.0 / amps);
+            (amps > 0.0).then(|| micro(file.battery_amp_hours * file.battery_usable * 60.0 / amps));
         let level = match endurance {
             Some(m) if m < ENDURANCE_WARNING_MINUTES => Level::Warn,
             _ => Level::Ok,
         };
         (None, endurance, level)
     } else {
-        let margin = (file.alternator_amps - amps) * 100.0 / file.alternator_amps;
+        let margin = micro((file.alternator_amps - amps) * 100.0 / file.alternator_amps);
         let level = if margin < 0.0 {
             Level::Fail
         } else if margin < MARGIN_WARNING_PERCENT {
@@ -436,7 +447,7 @@ mod tests {
         let e = a.phase(Phase::Emergency);
         assert!(close(e.amps, 4.1), "{}", e.amps);
         assert_eq!(e.margin_percent, None);
-        assert!(close(e.endurance_minutes.unwrap(), 13.6 / 4.1 * 60.0));
+        assert!((e.endurance_minutes.unwrap() - 13.6 / 4.1 * 60.0).abs() < 1e-6);
         assert!((e.endurance_minutes.unwrap() - 199.02).abs() < 0.01);
         assert_eq!(e.level, Level::Ok);
 
@@ -537,6 +548,29 @@ mod tests {
             a.warnings().last().unwrap(),
             "the 15A-1 pin draws 9 A but is not in the load file: it is in no phase"
         );
+    }
+
+    #[test]
+    fn binary_fractions_do_not_move_a_margin_across_a_whole_percent() {
+        // 2.5 + 3 + 12 + 0.1 = 17.6 A of 20 A: (20 − 17.6)·100/20 = 12 %, which the
+        // floating-point sum makes 11.99999999999999 unless it is rounded.
+        let file = LoadFile {
+            alternator_amps: 20.0,
+            battery_amp_hours: 10.0,
+            battery_usable: 0.8,
+            circuits: vec![
+                c(EFIS, "EFIS", None, [1.0; 7]),
+                c(FIELD_PRI, "Field", Some(3.0), [1.0; 7]),
+                c(PITOT, "Pitot", Some(12.0), [1.0; 7]),
+                c(TRIM_P, "Trim", Some(1.0), [0.1; 7]),
+            ],
+        };
+        // The measured 4.8 A of an f32 is 4.800000190734863 as it stands.
+        let a = analyse(&file, &[(EFIS, 2.5), (NAV, 4.8)]);
+        assert_eq!(a.phase(Phase::Ground).amps, 17.6);
+        assert_eq!(a.phase(Phase::Ground).margin_percent, Some(12.0));
+        assert_eq!(a.verdict(Phase::Ground), "margin 12 % of 20 A: under 20 %");
+        assert_eq!(a.unlisted, [(NAV, 4.8)]);
     }
 
     #[test]

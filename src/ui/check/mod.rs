@@ -12,6 +12,7 @@ pub mod confirm;
 pub mod keys;
 pub mod list;
 pub mod motors;
+pub mod loads;
 pub mod state;
 pub mod summary;
 pub mod switches;
