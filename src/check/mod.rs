@@ -9,6 +9,7 @@ mod circuits;
 pub mod flow;
 mod motors;
 pub mod plan;
+pub mod report;
 mod switches;
 
 pub use circuits::{NEAR_BREAKER, judge as judge_current};

@@ -11,13 +11,8 @@ use crate::loads::analysis::{MARGIN_WARNING_PERCENT, amps_text, minutes_text};
 use crate::loads::{Analysis, Figure, Level, Phase};
 use crate::ui::theme;
 
-/// The mark a phase's level is shown with.
-pub fn mark(level: Level) -> Mark {
-    match level {
-        Level::Ok => Mark::Pass,
-        Level::Warn => Mark::Warn,
-        Level::Fail => Mark::Fail,
-    }
+fn mark(level: Level) -> Mark {
+    Mark::of(level)
 }
 
 fn mark_style(level: Level) -> Style {

@@ -309,6 +309,17 @@ pub enum LoadsView {
     Refused(String),
 }
 
+impl Mark {
+    /// The mark a load-analysis phase is shown with.
+    pub fn of(level: crate::loads::Level) -> Mark {
+        match level {
+            crate::loads::Level::Ok => Mark::Pass,
+            crate::loads::Level::Warn => Mark::Warn,
+            crate::loads::Level::Fail => Mark::Fail,
+        }
+    }
+}
+
 impl CheckView {
     /// The currents step 3 measured, for the load analysis: device id and amperes.
     /// Only a real reading counts: "no current while on" is a fault to fix, not the

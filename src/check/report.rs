@@ -1,0 +1,798 @@
+//! The installation check's report for the builder's log: a Markdown file a person
+//! reads (on screen or printed: plain tables, symbols with their words, nothing that
+//! needs colour or a wide page of box art) and a CSV of every measurement for a
+//! spreadsheet. Both are named with the check's time, `vpx-check-2026-12-01T1830Z.md`
+//! and `.csv`, and written atomically: each file is there whole or not at all.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+use crate::loads::analysis::amps_text;
+use crate::loads::{Analysis, Figure, Phase};
+use crate::protocol::device;
+use crate::protocol::message::{SwitchId, Version};
+use crate::ui::check::state::{
+    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, Outcome, Step,
+};
+use crate::ui::check::words::{self, badge, switch_id as switch_text};
+
+/// Where and when the check ran, beside what it found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct About {
+    pub when: SystemTime,
+    /// The port as the person named it: `/dev/ttyUSB0`, `tcp://192.168.4.1:8880`.
+    pub port: String,
+    /// The unit's VERSION; `None` if it never answered.
+    pub unit: Option<Version>,
+    /// Ours: `env!("CARGO_PKG_VERSION")`.
+    pub ours: String,
+}
+
+/// The two files written.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Written {
+    pub markdown: PathBuf,
+    pub csv: PathBuf,
+}
+
+/// `vpx-check-2026-12-01T1830Z`: the check's time in UTC to the minute, sortable and
+/// without the colons some file systems refuse.
+pub fn stem(when: SystemTime) -> String {
+    let t = crate::utc::utc_text(when); // 2026-12-01T18:30:12.345Z
+    format!("vpx-check-{}T{}{}Z", &t[..10], &t[11..13], &t[14..16])
+}
+
+/// Writes the Markdown report and the CSV into `dir`, each atomically (a temporary
+/// file flushed, then renamed into place). A second check in the same minute gets
+/// `-2`, `-3`…: a report in the log is never replaced. If the second file cannot be
+/// written the first is taken back, so a failed write leaves nothing behind.
+pub fn write(dir: &Path, view: &CheckView, about: &About) -> std::io::Result<Written> {
+    let stem = stem(about.when);
+    let free = (1..1000)
+        .map(|n| {
+            let s = if n == 1 {
+                stem.clone()
+            } else {
+                format!("{stem}-{n}")
+            };
+            (dir.join(format!("{s}.md")), dir.join(format!("{s}.csv")))
+        })
+        .find(|(md, csv)| !md.exists() && !csv.exists())
+        .ok_or_else(|| std::io::Error::other(format!("{stem}: a thousand reports this minute")))?;
+    let (md, csv_path) = free;
+    write_both(&md, &markdown(view, about), &csv_path, &csv(view, about))?;
+    Ok(Written {
+        markdown: md,
+        csv: csv_path,
+    })
+}
+
+/// Both files or neither: each written atomically, the first taken back if the
+/// second fails.
+fn write_both(md: &Path, md_text: &str, csv_path: &Path, csv_text: &str) -> std::io::Result<()> {
+    crate::backup::write_atomically(md, md_text.as_bytes())?;
+    if let Err(e) = crate::backup::write_atomically(csv_path, csv_text.as_bytes()) {
+        let _ = std::fs::remove_file(md);
+        return Err(e);
+    }
+    Ok(())
+}
+
+fn unit_text(v: Option<Version>) -> String {
+    v.map_or_else(
+        || "did not answer VERSION".into(),
+        |v| {
+            format!(
+                "{}, software {}.{}",
+                v.hardware_version.name(),
+                v.software_major,
+                v.software_minor
+            )
+        },
+    )
+}
+
+/// A table cell: no `|` to split it, no line break to end the row.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|").replace(['\n', '\r'], " ")
+}
+
+/// Whether the load analysis has anything to say (a warning or worse).
+fn loads_level_warns(view: &CheckView) -> bool {
+    match &view.loads {
+        Some(LoadsView::Analysed { analysis, .. }) => analysis.level() != crate::loads::Level::Ok,
+        Some(_) => true,
+        None => false,
+    }
+}
+
+/// Every result's mark: switches, circuits, motors.
+fn marks(view: &CheckView) -> Vec<Mark> {
+    view.switches
+        .iter()
+        .map(|s| words::switch_mark(&s.outcome))
+        .chain(
+            view.circuits
+                .iter()
+                .map(|c| words::circuit_mark(&c.outcome)),
+        )
+        .chain(view.motors.iter().map(|m| words::motor_mark(&m.outcome)))
+        .collect()
+}
+
+/// A circuit's name by id, from the results, the plan or the exclusions.
+fn name_of(view: &CheckView, id: u8) -> String {
+    view.circuits
+        .iter()
+        .find(|c| c.id == id)
+        .map(|c| c.name.clone())
+        .or_else(|| {
+            view.plan
+                .iter()
+                .find(|p| p.id == id)
+                .map(|p| p.name.clone())
+        })
+        .or_else(|| {
+            view.excluded
+                .iter()
+                .find(|e| e.id == id)
+                .map(|e| e.name.clone())
+        })
+        .unwrap_or_else(|| device::device(id).map_or("?", |d| d.system_name).into())
+}
+
+/// The counts of the results, for the line at the top.
+fn tally(view: &CheckView) -> String {
+    let marks = marks(view);
+    let n = |m: Mark| marks.iter().filter(|&&x| x == m).count();
+    let mut parts = vec![];
+    for (m, one, many) in [
+        (Mark::Fail, "failed", "failed"),
+        (Mark::Warn, "warning", "warnings"),
+        (Mark::Pass, "passed", "passed"),
+        (Mark::Skipped, "skipped", "skipped"),
+        (Mark::NotRun, "not run", "not run"),
+    ] {
+        match n(m) {
+            0 => {}
+            1 => parts.push(format!("1 {one}")),
+            k => parts.push(format!("{k} {many}")),
+        }
+    }
+    if parts.is_empty() {
+        "no results".into()
+    } else {
+        parts.join(", ")
+    }
+}
+
+/// A circuit the check knows: id, name, pin, breaker, switch.
+type Known = (u8, String, &'static str, Option<u8>, Option<SwitchId>);
+
+/// One row per circuit the check knows, in pin order.
+fn circuits_known(view: &CheckView) -> Vec<Known> {
+    let mut out: Vec<Known> = Vec::new();
+    let mut add = |id: u8, name: &str, pin: &'static str, breaker, switch| {
+        if !out.iter().any(|c| c.0 == id) {
+            out.push((id, name.to_string(), pin, breaker, switch));
+        }
+    };
+    for c in &view.circuits {
+        add(c.id, &c.name, c.pin, c.breaker, c.switch);
+    }
+    for p in &view.plan {
+        add(p.id, &p.name, p.pin, p.breaker, p.switch);
+    }
+    for e in &view.excluded {
+        let pin = device::device(e.id).map_or("?", |d| d.system_name);
+        add(e.id, &e.name, pin, None, None);
+    }
+    out.sort_by_key(|c| c.0);
+    out
+}
+
+fn or_dash<T>(v: Option<T>, f: impl Fn(T) -> String) -> String {
+    v.map_or_else(|| "—".into(), f)
+}
+
+fn step_skipped(view: &CheckView, step: Step) -> bool {
+    view.skipped_steps.contains(&step)
+}
+
+/// The report as Markdown.
+pub fn markdown(view: &CheckView, about: &About) -> String {
+    let mut o = String::new();
+    let when = crate::utc::utc_text(about.when);
+    let _ = writeln!(
+        o,
+        "# VP-X installation check, {} {} UTC\n",
+        &when[..10],
+        &when[11..16]
+    );
+    match &view.interrupted {
+        Some(i) => {
+            let _ = writeln!(
+                o,
+                "**Result: INCOMPLETE.** The check was interrupted ({}) and did not finish; \
+                 see \"Interrupted\" below for what it left in which state. So far: {}.\n",
+                i.cause,
+                tally(view)
+            );
+        }
+        None => {
+            let marks = marks(view);
+            let verdict = if marks.contains(&Mark::Fail) {
+                "FAILED"
+            } else if marks.contains(&Mark::Warn) || loads_level_warns(view) {
+                "PASSED with warnings"
+            } else {
+                "PASSED"
+            };
+            let _ = writeln!(o, "**Result: {verdict}.** {}.\n", tally(view));
+        }
+    }
+    let _ = writeln!(o, "- When: {when}");
+    let _ = writeln!(o, "- Port: {}", about.port);
+    let _ = writeln!(o, "- Unit: {}", unit_text(about.unit));
+    let _ = writeln!(o, "- vpx-efis: {}", about.ours);
+    if !view.skipped_steps.is_empty() {
+        let steps: Vec<&str> = view.skipped_steps.iter().map(|s| s.title()).collect();
+        let _ = writeln!(o, "- Steps skipped by the user: {}", steps.join(", "));
+    }
+    o.push('\n');
+
+    o.push_str("## The circuits\n\n");
+    let known = circuits_known(view);
+    if known.is_empty() {
+        o.push_str("The check learned no circuit of the unit.\n\n");
+    } else {
+        o.push_str("| Pin | Circuit | Breaker | Switch |\n|---|---|---|---|\n");
+        for (_, name, pin, breaker, switch) in &known {
+            let _ = writeln!(
+                o,
+                "| {pin} | {} | {} | {} |",
+                cell(name),
+                or_dash(*breaker, |b| format!("{b} A")),
+                or_dash(*switch, switch_text)
+            );
+        }
+        o.push('\n');
+    }
+
+    before_power(&mut o, view);
+    switches(&mut o, view);
+    circuits(&mut o, view);
+    motors(&mut o, view);
+    loads(&mut o, view);
+
+    o.push_str("## Left to fix\n\n");
+    let fix = to_fix(view);
+    if fix.is_empty() {
+        if view.interrupted.is_some() {
+            o.push_str("Nothing found so far; the check did not finish.\n\n");
+        } else {
+            o.push_str("Nothing: every result passed.\n\n");
+        }
+    } else {
+        for (i, f) in fix.iter().enumerate() {
+            let _ = writeln!(o, "{}. {f}", i + 1);
+        }
+        o.push('\n');
+    }
+
+    if !view.to_cycle.is_empty() {
+        o.push_str("## Switches to cycle\n\n");
+        o.push_str(
+            "The check put these circuits back by DEVICE_POWER; the unit holds them so \
+             until their switch is cycled (ICD §6). Cycle each switch off and on again:\n\n",
+        );
+        for (_, name, switch) in &view.to_cycle {
+            let _ = writeln!(o, "- {name}: {}", switch_text(*switch));
+        }
+        o.push('\n');
+    }
+
+    if let Some(i) = &view.interrupted {
+        o.push_str("## Interrupted\n\n");
+        let _ = writeln!(o, "The check stopped: {}.\n", i.cause);
+        if i.left.is_empty() {
+            o.push_str("It left every circuit as it found it.\n\n");
+        } else {
+            o.push_str(
+                "It could not put everything back. It left these circuits so:\n\n\
+                 | Circuit | Pin | Left |\n|---|---|---|\n",
+            );
+            for (id, name, state) in &i.left {
+                let pin = device::device(*id).map_or("?", |d| d.system_name);
+                let _ = writeln!(o, "| {} | {pin} | {} |", cell(name), cell(state));
+            }
+            o.push('\n');
+        }
+    }
+    let _ = writeln!(
+        o,
+        "The measurements are also in the CSV file of the same name."
+    );
+    o
+}
+
+fn before_power(o: &mut String, view: &CheckView) {
+    o.push_str("## Before power\n\n");
+    if view.plan.is_empty() && view.planned_motors.is_empty() {
+        o.push_str("Nothing was to be switched on.\n\n");
+    } else {
+        o.push_str("What the check was to switch on, and for how long:\n\n");
+        o.push_str("| Circuit | Pin | On for |\n|---|---|---|\n");
+        for p in &view.plan {
+            let _ = writeln!(
+                o,
+                "| {} | {} | {:.1} s |",
+                cell(&p.name),
+                p.pin,
+                p.on_for.as_secs_f32()
+            );
+        }
+        for (m, d) in &view.planned_motors {
+            let _ = writeln!(
+                o,
+                "| {} (each way) | — | {:.1} s |",
+                m.name(),
+                d.as_secs_f32()
+            );
+        }
+        o.push('\n');
+    }
+    if view.excluded.is_empty() {
+        o.push_str("No circuit was excluded.\n\n");
+    } else {
+        o.push_str(
+            "Left alone (never switched by the check):\n\n| Circuit | Pin | Why |\n|---|---|---|\n",
+        );
+        for e in &view.excluded {
+            let pin = device::device(e.id).map_or("?", |d| d.system_name);
+            let _ = writeln!(o, "| {} | {pin} | {} |", cell(&e.name), cell(&e.why));
+        }
+        o.push('\n');
+    }
+}
+
+fn skipped_or_empty(o: &mut String, view: &CheckView, step: Step, empty: &str) -> bool {
+    if step_skipped(view, step) {
+        o.push_str("Skipped by the user.\n\n");
+        true
+    } else if match step {
+        Step::Switches => view.switches.is_empty(),
+        Step::Circuits => view.circuits.is_empty(),
+        _ => view.motors.is_empty(),
+    } {
+        if view.interrupted.is_some() {
+            o.push_str("Not run: the check stopped before this step.\n\n");
+        } else {
+            o.push_str(empty);
+        }
+        true
+    } else {
+        false
+    }
+}
+
+fn switches(o: &mut String, view: &CheckView) {
+    o.push_str("## Switch inputs\n\n");
+    if skipped_or_empty(
+        o,
+        view,
+        Step::Switches,
+        "No switch input has a circuit assigned.\n\n",
+    ) {
+        return;
+    }
+    o.push_str("| Input | Circuits | Result | What happened |\n|---|---|---|---|\n");
+    for s in &view.switches {
+        let names: Vec<String> = s.circuits.iter().map(|&id| name_of(view, id)).collect();
+        let _ = writeln!(
+            o,
+            "| {} | {} | {} | {} |",
+            s.input.label(),
+            cell(&if names.is_empty() {
+                "—".to_string()
+            } else {
+                names.join(", ")
+            }),
+            badge(words::switch_mark(&s.outcome)),
+            cell(&words::switch(s, |id| name_of(view, id)))
+        );
+    }
+    o.push('\n');
+}
+
+fn measured(c: &CircuitResult) -> String {
+    match &c.outcome {
+        Outcome::Found(CircuitFinding::Within { amps, .. })
+        | Outcome::Found(CircuitFinding::NearBreaker { amps, .. }) => format!("{amps:.1} A"),
+        Outcome::Found(CircuitFinding::NoCurrent) => "0 A".into(),
+        _ => "—".into(),
+    }
+}
+
+fn circuits(o: &mut String, view: &CheckView) {
+    o.push_str("## Circuits\n\n");
+    if skipped_or_empty(o, view, Step::Circuits, "No circuit was to be tested.\n\n") {
+        return;
+    }
+    o.push_str(
+        "Each circuit switched on alone, its current read from two fresh DEVICE_STATUS \
+         broadcasts, then put back as it was.\n\n\
+         | Circuit | Pin | Breaker | Result | Current | What happened |\n|---|---|---|---|---|---|\n",
+    );
+    for c in &view.circuits {
+        let _ = writeln!(
+            o,
+            "| {} | {} | {} | {} | {} | {} |",
+            cell(&c.name),
+            c.pin,
+            or_dash(c.breaker, |b| format!("{b} A")),
+            badge(words::circuit_mark(&c.outcome)),
+            measured(c),
+            cell(&words::circuit(c))
+        );
+    }
+    o.push('\n');
+}
+
+fn motors(o: &mut String, view: &CheckView) {
+    o.push_str("## Motors\n\n");
+    if skipped_or_empty(o, view, Step::Motors, "No motor is enabled.\n\n") {
+        return;
+    }
+    o.push_str(
+        "Each run briefly each way on the page's safe motor stream; the positions are \
+         FLAP_TRIM_STATUS's before, after each run, and after it was run back.\n\n\
+         | Motor | Result | Positions | What happened |\n|---|---|---|---|\n",
+    );
+    for m in &view.motors {
+        let pos: Vec<String> = m.positions.iter().map(u8::to_string).collect();
+        let _ = writeln!(
+            o,
+            "| {} | {} | {} | {} |",
+            m.motor.name(),
+            badge(words::motor_mark(&m.outcome)),
+            if pos.is_empty() {
+                "—".to_string()
+            } else {
+                pos.join(" → ")
+            },
+            cell(&words::motor(m))
+        );
+    }
+    o.push('\n');
+}
+
+/// The phases' short names for the circuit table's columns.
+const PHASE_COLUMNS: [&str; 7] = [
+    "Ground",
+    "Taxi",
+    "Take-off",
+    "Day",
+    "Night",
+    "Landing",
+    "Emergency",
+];
+
+fn duty_text(d: f64) -> String {
+    if d >= 1.0 {
+        "on".into()
+    } else if d <= 0.0 {
+        "–".into()
+    } else {
+        format!("{d}")
+    }
+}
+
+fn loads(o: &mut String, view: &CheckView) {
+    o.push_str("## Load analysis\n\n");
+    if step_skipped(view, Step::Loads) {
+        o.push_str("Skipped by the user.\n\n");
+        return;
+    }
+    match &view.loads {
+        None if view.interrupted.is_some() => {
+            o.push_str("Not run: the check stopped before this step.\n\n")
+        }
+        None => o.push_str("Not run.\n\n"),
+        Some(LoadsView::TemplateWritten(path)) => {
+            let _ = writeln!(
+                o,
+                "No load file yet: a template listing every circuit was written to \
+                 `{}`. Fill it in (the alternator's rating, the battery's capacity, \
+                 which circuit is on in which phase, a current for each circuit the \
+                 check cannot measure) and run the check again.\n",
+                path.display()
+            );
+        }
+        Some(LoadsView::Refused(why)) => {
+            let _ = writeln!(o, "The load file could not be used: {why}\n");
+        }
+        Some(LoadsView::Analysed { path, analysis }) => analysed(o, path, analysis),
+    }
+}
+
+fn analysed(o: &mut String, path: &Path, a: &Analysis) {
+    let _ = writeln!(o, "- Load file: `{}`", path.display());
+    let _ = writeln!(o, "- Alternator: {} A rated", amps_text(a.alternator_amps));
+    let _ = writeln!(
+        o,
+        "- Battery: {} Ah rated × {} usable = {} Ah\n",
+        amps_text(a.battery_amp_hours),
+        a.battery_usable,
+        amps_text(a.usable_amp_hours())
+    );
+    o.push_str("| Phase | Total | Result | Margin or endurance |\n|---|---|---|---|\n");
+    for p in &a.phases {
+        let m = Mark::of(p.level);
+        let _ = writeln!(
+            o,
+            "| {} | {} A | {} | {} |",
+            p.phase.title(),
+            amps_text(p.amps),
+            badge(m),
+            cell(&a.verdict(p.phase))
+        );
+    }
+    o.push('\n');
+    o.push_str(
+        "Total of a phase = Σ current × share of the phase the circuit is on. Margin = \
+         (alternator rating − total) × 100 / rating; under 20 % is a warning. Endurance \
+         (emergency, battery only) = capacity × usable share × 60 / total, in minutes; \
+         under 30 min is a warning.\n\n",
+    );
+    let _ = writeln!(
+        o,
+        "| Circuit | Pin | Current | From | {} |\n|---|---|---|---|{}",
+        PHASE_COLUMNS.join(" | "),
+        "---|".repeat(7)
+    );
+    for r in &a.rows {
+        let from = match (r.figure, r.typed) {
+            (Figure::Measured(m), Some(t)) if (m - t).abs() > 1e-9 => {
+                format!("measured (typed {} A)", amps_text(t))
+            }
+            (f, _) => f.source().to_string(),
+        };
+        let current = match r.figure {
+            Figure::Missing => "none".to_string(),
+            f => format!("{} A", amps_text(f.amps())),
+        };
+        let duty: Vec<String> = Phase::ALL
+            .iter()
+            .map(|&p| duty_text(r.duty[p.index()]))
+            .collect();
+        let _ = writeln!(
+            o,
+            "| {} | {} | {current} | {from} | {} |",
+            cell(&r.name),
+            r.pin,
+            duty.join(" | ")
+        );
+    }
+    o.push('\n');
+    if !a.unlisted.is_empty() {
+        o.push_str("Measured but not in the load file (in no phase):\n\n");
+        for &(id, amps) in &a.unlisted {
+            let pin = device::device(id).map_or("?", |d| d.system_name);
+            let _ = writeln!(o, "- {pin}: {} A", amps_text(amps));
+        }
+        o.push('\n');
+    }
+}
+
+/// Everything left to fix: the results that failed or warned, and the load analysis'
+/// warnings (or its missing file).
+pub fn to_fix(view: &CheckView) -> Vec<String> {
+    let mut out = Vec::new();
+    for s in &view.switches {
+        if matches!(words::switch_mark(&s.outcome), Mark::Fail | Mark::Warn) {
+            out.push(format!(
+                "{}: {}",
+                s.input.label(),
+                words::switch(s, |id| name_of(view, id))
+            ));
+        }
+    }
+    for c in &view.circuits {
+        if matches!(words::circuit_mark(&c.outcome), Mark::Fail | Mark::Warn) {
+            out.push(format!("{} ({}): {}", c.name, c.pin, words::circuit(c)));
+        }
+    }
+    for m in &view.motors {
+        if matches!(words::motor_mark(&m.outcome), Mark::Fail | Mark::Warn) {
+            out.push(format!("{}: {}", m.motor.name(), words::motor(m)));
+        }
+    }
+    match &view.loads {
+        Some(LoadsView::Analysed { analysis, .. }) => {
+            out.extend(
+                analysis
+                    .warnings()
+                    .into_iter()
+                    .map(|w| format!("Load analysis, {w}")),
+            );
+        }
+        Some(LoadsView::TemplateWritten(path)) => out.push(format!(
+            "Load analysis: fill in the load file {} and run the check again",
+            path.display()
+        )),
+        Some(LoadsView::Refused(why)) => out.push(format!("Load analysis: {why}")),
+        None => {}
+    }
+    for (_, name, switch) in &view.to_cycle {
+        out.push(format!(
+            "{name}: cycle {} (held by DEVICE_POWER since the check)",
+            switch_text(*switch)
+        ));
+    }
+    if let Some(i) = &view.interrupted {
+        for (id, name, state) in &i.left {
+            let pin = device::device(*id).map_or("?", |d| d.system_name);
+            out.push(format!(
+                "{name} ({pin}): left {state} by the interrupted check"
+            ));
+        }
+    }
+    out
+}
+
+/// A CSV field, quoted when it must be (RFC 4180).
+fn field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
+/// Every measurement and result, one row each, for a spreadsheet: the switch inputs,
+/// the circuits with their current, the motors with their positions, and the load
+/// analysis' phases with their totals.
+pub fn csv(view: &CheckView, about: &About) -> String {
+    let when = crate::utc::utc_text(about.when);
+    let mut o =
+        String::from("when,step,item,pin,breaker_a,switch,result,amps,positions,detail\r\n");
+    let mut row = |step: &str,
+                   item: &str,
+                   pin: &str,
+                   breaker: String,
+                   switch: String,
+                   result: Mark,
+                   amps: String,
+                   positions: String,
+                   detail: String| {
+        let fields = [
+            when.as_str(),
+            step,
+            item,
+            pin,
+            &breaker,
+            &switch,
+            result.word(),
+            &amps,
+            &positions,
+            &detail,
+        ];
+        let line: Vec<String> = fields.iter().map(|f| field(f)).collect();
+        o.push_str(&line.join(","));
+        o.push_str("\r\n");
+    };
+    for s in &view.switches {
+        let names: Vec<String> = s.circuits.iter().map(|&id| name_of(view, id)).collect();
+        row(
+            "switches",
+            &s.input.label(),
+            "",
+            String::new(),
+            String::new(),
+            words::switch_mark(&s.outcome),
+            String::new(),
+            String::new(),
+            if names.is_empty() {
+                words::switch(s, |id| name_of(view, id))
+            } else {
+                format!(
+                    "{} (circuits: {})",
+                    words::switch(s, |id| name_of(view, id)),
+                    names.join(", ")
+                )
+            },
+        );
+    }
+    for c in &view.circuits {
+        let amps = match &c.outcome {
+            Outcome::Found(CircuitFinding::Within { amps, .. })
+            | Outcome::Found(CircuitFinding::NearBreaker { amps, .. }) => amps.to_string(),
+            Outcome::Found(CircuitFinding::NoCurrent) => "0".into(),
+            _ => String::new(),
+        };
+        row(
+            "circuits",
+            &c.name,
+            c.pin,
+            c.breaker.map(|b| b.to_string()).unwrap_or_default(),
+            c.switch.map(switch_text).unwrap_or_default(),
+            words::circuit_mark(&c.outcome),
+            amps,
+            String::new(),
+            words::circuit(c),
+        );
+    }
+    for m in &view.motors {
+        let pos: Vec<String> = m.positions.iter().map(u8::to_string).collect();
+        row(
+            "motors",
+            m.motor.name(),
+            device::device(m.motor.device_id()).map_or("", |d| d.system_name),
+            String::new(),
+            String::new(),
+            words::motor_mark(&m.outcome),
+            String::new(),
+            pos.join(" "),
+            words::motor(m),
+        );
+    }
+    if let Some(LoadsView::Analysed { analysis, .. }) = &view.loads {
+        for p in &analysis.phases {
+            row(
+                "loads",
+                p.phase.title(),
+                "",
+                String::new(),
+                String::new(),
+                Mark::of(p.level),
+                format!("{}", p.amps),
+                String::new(),
+                analysis.verdict(p.phase),
+            );
+        }
+    }
+    o
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut e: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        e.sort();
+        e
+    }
+
+    #[test]
+    fn a_csv_that_cannot_be_written_takes_the_markdown_back_and_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let md = dir.path().join("vpx-check-2026-12-01T1830Z.md");
+        // The rename cannot replace a non-empty directory: the CSV fails at its last
+        // step, after the Markdown file is already in place.
+        let csv = dir.path().join("vpx-check-2026-12-01T1830Z.csv");
+        std::fs::create_dir(&csv).unwrap();
+        std::fs::write(csv.join("keep"), "x").unwrap();
+        assert!(write_both(&md, "# report", &csv, "when,step").is_err());
+        assert_eq!(entries(dir.path()), ["vpx-check-2026-12-01T1830Z.csv"]);
+        assert_eq!(entries(&csv), ["keep"]);
+    }
+
+    #[test]
+    fn a_name_is_the_minute_in_utc() {
+        let t = std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812);
+        assert_eq!(stem(t), "vpx-check-2026-12-01T1830Z");
+    }
+
+    #[test]
+    fn table_cells_keep_their_row_whole() {
+        assert_eq!(cell("Nav | Strobe\nnew"), "Nav \\| Strobe new");
+        assert_eq!(field("plain"), "plain");
+        assert_eq!(field("a, \"b\""), "\"a, \"\"b\"\"\"");
+    }
+}

@@ -1,0 +1,466 @@
+//! The installation check's report, from hand-built views: a check that ran to the end
+//! with a fault of each kind, and one interrupted half-way. The Markdown and the CSV
+//! are pinned as snapshots (the README's sample is the first), and what a builder
+//! and an inspector look for is asserted line by line.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
+
+use vpx_efis::check::report::{self, About};
+use vpx_efis::loads;
+use vpx_efis::model::{Motor, TrimKind};
+use vpx_efis::protocol::fault::FaultCode;
+use vpx_efis::protocol::message::{HardwareVersion, SwitchId, Version};
+use vpx_efis::ui::check::state::{
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
+    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Step, SwitchFinding, SwitchResult,
+};
+
+/// 2026-12-01T18:30:12Z.
+fn when() -> SystemTime {
+    UNIX_EPOCH + Duration::from_secs(1_796_149_812)
+}
+
+fn about() -> About {
+    About {
+        when: when(),
+        port: "/dev/ttyUSB0".into(),
+        unit: Some(Version {
+            hardware_version: HardwareVersion::VpxPro,
+            software_major: 1,
+            software_minor: 4,
+        }),
+        ours: "0.1.0".into(),
+    }
+}
+
+/// id, name, pin, breaker, switch.
+const CIRCUITS: [(u8, &str, &str, u8, SwitchId); 6] = [
+    (0x02, "EFIS 1", "EFIS", 5, SwitchId::AlwaysOn),
+    (0x04, "Nav Lt", "5A-1", 3, SwitchId::Input(2)),
+    (0x05, "Strobe", "5A-2", 3, SwitchId::Input(2)),
+    (0x0A, "Taxi Light", "5A-7", 5, SwitchId::Input(4)),
+    (0x11, "Landing Lt", "10A-1", 8, SwitchId::Input(4)),
+    (0x12, "Boost pump", "10A-2", 5, SwitchId::Input(5)),
+];
+
+fn result(i: usize, outcome: Outcome<CircuitFinding>) -> CircuitResult {
+    let (id, name, pin, breaker, switch) = CIRCUITS[i];
+    CircuitResult {
+        id,
+        name: name.into(),
+        pin,
+        breaker: Some(breaker),
+        switch: Some(switch),
+        outcome,
+    }
+}
+
+const LOAD_FILE: &str = r#"
+alternator_amps = 25
+battery_amp_hours = 17
+
+[circuit.EFIS]
+name = "EFIS 1"
+ground = true
+taxi = true
+take_off = true
+cruise_day = true
+cruise_night = true
+landing = true
+emergency = true
+
+[circuit.5A-1]
+name = "Nav Lt"
+cruise_night = true
+landing = true
+emergency = true
+
+[circuit.5A-2]
+name = "Strobe"
+amps = 1.8
+taxi = true
+take_off = true
+cruise_day = true
+cruise_night = true
+landing = true
+
+[circuit.5A-7]
+name = "Taxi Light"
+amps = 3.5
+taxi = true
+
+[circuit.10A-1]
+name = "Landing Lt"
+amps = 7
+take_off = true
+landing = true
+
+[circuit.15A-1]
+name = "Pitot heat"
+amps = 9
+take_off = true
+cruise_day = true
+cruise_night = true
+landing = true
+"#;
+
+/// A check that ran to the end and found one fault of each kind.
+fn finished() -> CheckView {
+    let plan = CIRCUITS
+        .iter()
+        .map(|&(id, name, pin, breaker, switch)| Planned {
+            id,
+            name: name.into(),
+            pin,
+            breaker: Some(breaker),
+            switch: Some(switch),
+            on_for: Duration::from_millis(1500),
+        })
+        .collect();
+    let mut view = CheckView {
+        step: Step::Done,
+        plan,
+        planned_motors: vec![
+            (Motor::Flaps, Duration::from_millis(500)),
+            (Motor::Trim(TrimKind::Pitch), Duration::from_millis(300)),
+        ],
+        excluded: vec![
+            Excluded {
+                id: 0x01,
+                name: "Starter".into(),
+                why: "never touched: the starter".into(),
+                may_include: false,
+            },
+            Excluded {
+                id: 0x17,
+                name: "Pitot heat".into(),
+                why: "suggested: the name has \"pitot\"".into(),
+                may_include: true,
+            },
+        ],
+        switches: vec![
+            SwitchResult {
+                input: Input::Switch(2),
+                circuits: vec![0x04, 0x05],
+                outcome: Outcome::Found(SwitchFinding::Passed),
+            },
+            SwitchResult {
+                input: Input::Switch(4),
+                circuits: vec![0x0A, 0x11],
+                outcome: Outcome::Found(SwitchFinding::OtherChanged(vec![Input::Switch(5)])),
+            },
+            SwitchResult {
+                input: Input::Switch(5),
+                circuits: vec![0x12],
+                outcome: Outcome::Found(SwitchFinding::CircuitsDidNotFollow(vec![(
+                    0x12,
+                    NotFollowed::HeldByDevicePower,
+                )])),
+            },
+            SwitchResult {
+                input: Input::FlapUp,
+                circuits: vec![],
+                outcome: Outcome::Skipped("skipped by you".into()),
+            },
+        ],
+        circuits: vec![
+            result(
+                0,
+                Outcome::Found(CircuitFinding::Within {
+                    amps: 2.1,
+                    breaker: 5,
+                }),
+            ),
+            result(
+                1,
+                Outcome::Found(CircuitFinding::Within {
+                    amps: 1.2,
+                    breaker: 3,
+                }),
+            ),
+            result(2, Outcome::Found(CircuitFinding::NoCurrent)),
+            result(
+                3,
+                Outcome::Found(CircuitFinding::NearBreaker {
+                    amps: 4.3,
+                    breaker: 5,
+                }),
+            ),
+            result(
+                4,
+                Outcome::Found(CircuitFinding::Faulted(FaultCode::ShortCircuit)),
+            ),
+            result(5, Outcome::Skipped("skipped by you".into())),
+        ],
+        motors: vec![
+            MotorResult {
+                motor: Motor::Flaps,
+                positions: vec![20, 60, 20, 20],
+                outcome: Outcome::Found(MotorFinding::Moves),
+            },
+            MotorResult {
+                motor: Motor::Trim(TrimKind::Pitch),
+                positions: vec![128, 110, 128, 128],
+                outcome: Outcome::Found(MotorFinding::Reversed),
+            },
+        ],
+        to_cycle: vec![(0x12, "Boost pump".into(), SwitchId::Input(5))],
+        ..CheckView::default()
+    };
+    let file = loads::file::parse(LOAD_FILE).unwrap();
+    view.loads = Some(LoadsView::Analysed {
+        path: PathBuf::from("/home/builder/.config/vpx-efis/loads.toml"),
+        analysis: loads::analyse(&file, &view.measured_amps()),
+    });
+    view
+}
+
+/// Quit in the middle of the circuits: the landing light was on when the link went.
+fn interrupted() -> CheckView {
+    let mut view = finished();
+    view.step = Step::Circuits;
+    view.switches.truncate(1);
+    view.circuits = vec![
+        result(
+            0,
+            Outcome::Found(CircuitFinding::Within {
+                amps: 2.1,
+                breaker: 5,
+            }),
+        ),
+        result(1, Outcome::NotRun),
+        result(4, Outcome::NotRun),
+    ];
+    view.motors = vec![];
+    view.to_cycle = vec![];
+    view.loads = None;
+    view.skipped_steps = vec![Step::Motors];
+    view.interrupted = Some(Interruption {
+        cause: "communication lost".into(),
+        left: vec![(
+            0x11,
+            "Landing Lt".into(),
+            "unknown: ON when the link went".into(),
+        )],
+    });
+    view
+}
+
+#[test]
+fn a_finished_check_reports_every_result_and_what_is_left_to_fix() {
+    let md = report::markdown(&finished(), &about());
+    insta::assert_snapshot!("finished_markdown", md);
+    assert!(md.starts_with("# VP-X installation check, 2026-12-01 18:30 UTC\n\n**Result: FAILED.** 5 failed, 1 warning, 4 passed, 2 skipped.\n"), "{md}");
+    for line in [
+        "- When: 2026-12-01T18:30:12.000Z",
+        "- Port: /dev/ttyUSB0",
+        "- Unit: VP-X Pro, software 1.4",
+        "- vpx-efis: 0.1.0",
+        "| EFIS | EFIS 1 | 5 A | always on |",
+        "| 10A-1 | Landing Lt | 8 A | switch 4 |",
+        "| 15A-1 | Pitot heat | — | — |",
+        "| Pitot heat | 15A-1 | suggested: the name has \"pitot\" |",
+        "| switch 4 | Taxi Light, Landing Lt | ✗ FAIL | switch 5 changed instead: switches crossed |",
+        "| flap switch UP | — | – SKIPPED | skipped by you |",
+        "| Strobe | 5A-2 | 3 A | ✗ FAIL | 0 A | no current while on: an open circuit, a blown bulb, a load not connected |",
+        "| Boost pump | 10A-2 | 5 A | – SKIPPED | — | skipped by you |",
+        "| pitch trim | ✗ FAIL | 128 → 110 → 128 → 128 | reversed: the motor's polarity is swapped, or the sensor is wired backwards |",
+        "- Boost pump: switch 5",
+    ] {
+        assert!(md.lines().any(|l| l == line), "no line {line:?} in\n{md}");
+    }
+    // The list of what is left to fix: each failure and warning, once, in step order,
+    // then the load analysis'.
+    let fix: Vec<&str> = md
+        .split("## Left to fix\n\n")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .take_while(|l| !l.is_empty())
+        .collect();
+    assert_eq!(
+        fix,
+        [
+            "1. switch 4: switch 5 changed instead: switches crossed",
+            "2. switch 5: circuits did not follow: Boost pump held by DEVICE_POWER until its switch is cycled",
+            "3. Strobe (5A-2): no current while on: an open circuit, a blown bulb, a load not connected",
+            "4. Taxi Light (5A-7): draws 4.3 A of a 5 A breaker (≥ 80 %): the breaker is tight and will trip in flight",
+            "5. Landing Lt (10A-1): SHORT_CIRCUIT: Device short circuit. Device faulted and disabled, FAULT_STATUS message broadcast.",
+            "6. pitch trim: reversed: the motor's polarity is swapped, or the sensor is wired backwards",
+            "7. Load analysis, landing: margin 15 % of 25 A: under 20 %",
+            "8. Boost pump: cycle switch 5 (held by DEVICE_POWER since the check)",
+        ]
+    );
+    // The load analysis, by hand. Measured: EFIS 2.1, Nav 1.2, Taxi Light 4.3 (typed
+    // 3.5). Typed: Strobe 1.8 (its "no current" is a fault, not its load), Landing
+    // Lt 7 (it faulted), Pitot heat 9 (excluded from the check). Alternator 25 A.
+    // take-off  2.1 + 1.8 + 7 + 9       = 19.9 A, (25 − 19.9)·100/25 = 20.4 %
+    // landing   2.1 + 1.2 + 1.8 + 7 + 9 = 21.1 A, (25 − 21.1)·100/25 = 15.6 %: warning
+    // emergency 2.1 + 1.2               =  3.3 A, 17 × 0.8 × 60 / 3.3 = 247.3 min
+    for line in [
+        "| take-off | 19.9 A | ✓ PASS | margin 20 % of 25 A |",
+        "| landing | 21.1 A | ⚠ WARN | margin 15 % of 25 A: under 20 % |",
+        "| emergency (battery only) | 3.3 A | ✓ PASS | endurance 247 min |",
+    ] {
+        assert!(md.lines().any(|l| l == line), "no line {line:?} in\n{md}");
+    }
+    assert!(
+        md.contains("| Taxi Light | 5A-7 | 4.3 A | measured (typed 3.5 A) |"),
+        "{md}"
+    );
+    assert!(md.contains("| Strobe | 5A-2 | 1.8 A | typed |"), "{md}");
+    assert!(
+        md.contains("- Battery: 17 Ah rated × 0.8 usable = 13.6 Ah"),
+        "{md}"
+    );
+    assert!(!md.contains("INCOMPLETE"));
+    assert!(!md.contains("## Interrupted"));
+}
+
+/// Paper: no colour codes, no box drawing that breaks when printed, only pipes and
+/// dashes in the tables.
+fn assert_prints_on_paper(md: &str) {
+    assert!(!md.contains('\u{1b}'), "an escape code");
+    let boxy: Vec<char> = md
+        .chars()
+        .filter(|c| matches!(*c as u32, 0x2500..=0x259F))
+        .collect();
+    assert!(boxy.is_empty(), "box drawing {boxy:?}");
+    for l in md.lines().filter(|l| l.starts_with('|')) {
+        assert!(l.ends_with('|'), "a table row cut short: {l:?}");
+    }
+}
+
+#[test]
+fn the_reports_print_on_paper() {
+    assert_prints_on_paper(&report::markdown(&finished(), &about()));
+    assert_prints_on_paper(&report::markdown(&interrupted(), &about()));
+}
+
+#[test]
+fn an_interrupted_check_says_incomplete_and_what_it_left_in_which_state() {
+    let md = report::markdown(&interrupted(), &about());
+    insta::assert_snapshot!("interrupted_markdown", md);
+    assert!(
+        md.contains("**Result: INCOMPLETE.** The check was interrupted (communication lost)"),
+        "{md}"
+    );
+    let after = md
+        .split("## Interrupted\n\n")
+        .nth(1)
+        .expect("an Interrupted section");
+    assert!(
+        after.starts_with("The check stopped: communication lost.\n"),
+        "{after}"
+    );
+    assert!(
+        after.contains("| Landing Lt | 10A-1 | unknown: ON when the link went |"),
+        "{after}"
+    );
+    assert!(
+        md.contains(
+            "| Nav Lt | 5A-1 | 3 A | ? NOT RUN | — | not run: the check stopped before it |"
+        ),
+        "{md}"
+    );
+    // The motors were skipped by the person, the load analysis never reached.
+    let section = |name: &str| {
+        md.split(&format!("## {name}\n\n"))
+            .nth(1)
+            .unwrap()
+            .lines()
+            .next()
+            .unwrap()
+            .to_string()
+    };
+    assert_eq!(section("Motors"), "Skipped by the user.");
+    assert_eq!(
+        section("Load analysis"),
+        "Not run: the check stopped before this step."
+    );
+    assert_eq!(
+        section("Left to fix"),
+        "1. Landing Lt (10A-1): left unknown: ON when the link went by the interrupted check"
+    );
+    assert!(md.contains("- Steps skipped by the user: Motors"), "{md}");
+}
+
+#[test]
+fn the_csv_has_a_row_for_each_measurement() {
+    let csv = report::csv(&finished(), &about());
+    insta::assert_snapshot!("finished_csv", csv);
+    let rows: Vec<&str> = csv.split("\r\n").filter(|l| !l.is_empty()).collect();
+    assert_eq!(
+        rows[0],
+        "when,step,item,pin,breaker_a,switch,result,amps,positions,detail"
+    );
+    // 4 switch inputs, 6 circuits, 2 motors, 7 phases.
+    assert_eq!(rows.len(), 1 + 4 + 6 + 2 + 7);
+    assert!(rows.contains(
+        &"2026-12-01T18:30:12.000Z,circuits,Taxi Light,5A-7,5,switch 4,WARN,4.3,,draws 4.3 A of a 5 A breaker (≥ 80 %): the breaker is tight and will trip in flight"
+    ));
+    assert!(rows.contains(
+        &"2026-12-01T18:30:12.000Z,motors,flaps,Flaps,,,PASS,,20 60 20 20,moves the commanded way"
+    ));
+    // A detail with a comma is quoted whole.
+    assert!(
+        rows.iter().any(|r| r.starts_with("2026-12-01T18:30:12.000Z,circuits,Strobe,5A-2,3,switch 2,FAIL,0,,\"no current while on: an open circuit, a blown bulb")),
+        "{csv}"
+    );
+}
+
+fn entries(dir: &Path) -> Vec<String> {
+    let mut e: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    e.sort();
+    e
+}
+
+#[test]
+fn the_files_are_named_with_the_time_and_never_replace_an_earlier_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let view = finished();
+    let w = report::write(dir.path(), &view, &about()).unwrap();
+    assert_eq!(w.markdown, dir.path().join("vpx-check-2026-12-01T1830Z.md"));
+    assert_eq!(w.csv, dir.path().join("vpx-check-2026-12-01T1830Z.csv"));
+    assert_eq!(
+        std::fs::read_to_string(&w.markdown).unwrap(),
+        report::markdown(&view, &about())
+    );
+    assert_eq!(
+        std::fs::read_to_string(&w.csv).unwrap(),
+        report::csv(&view, &about())
+    );
+    // A second check in the same minute.
+    let again = report::write(dir.path(), &interrupted(), &about()).unwrap();
+    assert_eq!(
+        again.markdown,
+        dir.path().join("vpx-check-2026-12-01T1830Z-2.md")
+    );
+    assert_eq!(
+        entries(dir.path()),
+        [
+            "vpx-check-2026-12-01T1830Z-2.csv",
+            "vpx-check-2026-12-01T1830Z-2.md",
+            "vpx-check-2026-12-01T1830Z.csv",
+            "vpx-check-2026-12-01T1830Z.md",
+        ]
+    );
+    assert!(
+        std::fs::read_to_string(&w.markdown)
+            .unwrap()
+            .contains("**Result: FAILED.**"),
+        "the first report is untouched"
+    );
+}
+
+#[test]
+fn a_failed_write_leaves_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("no-such-folder");
+    assert!(report::write(&missing, &finished(), &about()).is_err());
+    assert_eq!(entries(dir.path()), Vec::<String>::new());
+}
