@@ -175,6 +175,10 @@ pub struct SimArgs {
     /// Scenario: a name under assets/scenarios or a TOML file.
     #[arg(long, default_value = "demo", value_name = "NAME|FILE")]
     pub scenario: String,
+    /// Send and take bytes as fast as the pty or socket goes, instead of at the real
+    /// line's 5760 bytes a second (57600 baud, 8N1) each way.
+    #[arg(long)]
+    pub no_pace: bool,
 }
 
 #[derive(Debug, Args)]

@@ -4,7 +4,8 @@
 //! `tcp://HOST:PORT`, is the first line on standard output; everything else goes to
 //! standard error. Standard input takes the hands of a person in the cockpit, one
 //! line at a time (`switch 3 on`, `flip 3`, `help`: see `sim::console`). Runs until
-//! killed, also after standard input ends.
+//! killed, also after standard input ends. The line is paced at a real cable's 5760
+//! bytes a second each way (`sim::line_rate`) unless `--no-pace` is given.
 
 use std::io::{BufRead, Read, Write};
 use std::net::TcpListener;
@@ -29,6 +30,9 @@ pub fn run(args: SimArgs) -> anyhow::Result<()> {
     let mut options = SimOptions::new(scenario);
     options.eeprom = args.eeprom.clone();
     options.log_to_stderr = true;
+    if !args.no_pace {
+        options = options.paced();
+    }
     let eeprom = args
         .eeprom
         .as_ref()
@@ -47,12 +51,17 @@ pub fn run(args: SimArgs) -> anyhow::Result<()> {
         out.flush().context("cannot write to standard output")?;
     }
     eprintln!(
-        "vpx-efis sim: scenario {:?} on {shown}{}{eeprom}",
+        "vpx-efis sim: scenario {:?} on {shown}{}{}{eeprom}",
         args.scenario,
         if args.tcp.is_some() {
             " (one client at a time)"
         } else {
             " (57600 8N1)"
+        },
+        if args.no_pace {
+            ", not paced"
+        } else {
+            ", paced at 5760 bytes/s"
         }
     );
     let handle = sim::spawn(options, line.reader, line.writer);

@@ -42,6 +42,7 @@
 pub mod bootloader;
 pub mod console;
 pub mod eeprom;
+pub mod line_rate;
 pub mod motors;
 pub mod scenario;
 pub mod unit;
@@ -74,6 +75,10 @@ pub struct SimOptions {
     pub seed: u64,
     /// Also print log lines on standard error (not when a terminal UI owns it).
     pub log_to_stderr: bool,
+    /// Bytes a second the line carries each way ([`line_rate::BYTES_PER_SECOND`] for
+    /// a real 57600 8N1 cable); `None`: as fast as the pipe goes, for tests that
+    /// need speed. `vpx-efis sim` paces unless told `--no-pace`.
+    pub line_rate: Option<u32>,
 }
 
 impl SimOptions {
@@ -87,7 +92,14 @@ impl SimOptions {
             software_version: d.software_version,
             seed: d.seed,
             log_to_stderr: false,
+            line_rate: None,
         }
+    }
+
+    /// The same, at the real line's 5760 bytes a second each way.
+    pub fn paced(mut self) -> Self {
+        self.line_rate = Some(line_rate::BYTES_PER_SECOND);
+        self
     }
 }
 
@@ -207,7 +219,9 @@ pub fn build_unit(options: &SimOptions, now: Instant) -> Unit {
 /// Three threads: one reads (and stamps each chunk with its arrival time, so a motor
 /// stream's 250 ms is measured on arrival, not on when the unit got round to it), one
 /// writes (a stuck port drops bytes, like a serial line nobody listens to, instead of
-/// stalling the unit), and one runs the unit.
+/// stalling the unit), and one runs the unit. With a `line_rate`, the reader hands
+/// on bytes only once they would have crossed a real line, and the writer lets them
+/// out no faster than one would carry them.
 pub fn spawn(
     options: SimOptions,
     reader: Box<dyn Read + Send>,
@@ -218,15 +232,18 @@ pub fn spawn(
     let (tx_tx, tx_rx) = bounded::<Vec<u8>>(256);
     let stop = Arc::new(AtomicBool::new(false));
 
+    let pacer = || options.line_rate.map(line_rate::LinePacer::new);
+    let (rx_pacer, tx_pacer) = (pacer(), pacer());
+
     let s = stop.clone();
     // Not joined: a reader without a timeout may block in `read` until its port closes.
     let _ = std::thread::Builder::new()
         .name("sim-rx".into())
-        .spawn(move || read_loop(reader, rx_tx, s));
+        .spawn(move || read_loop(reader, rx_tx, s, rx_pacer));
     let s = stop.clone();
     let _ = std::thread::Builder::new()
         .name("sim-tx".into())
-        .spawn(move || write_loop(writer, tx_rx, s));
+        .spawn(move || write_loop(writer, tx_rx, s, tx_pacer));
 
     let s = stop.clone();
     let thread = std::thread::Builder::new()
@@ -240,10 +257,19 @@ pub fn spawn(
     }
 }
 
+/// Sleeps until `t` (at once if it has passed).
+fn sleep_until(t: Instant) {
+    let now = Instant::now();
+    if t > now {
+        std::thread::sleep(t - now);
+    }
+}
+
 fn read_loop(
     mut reader: Box<dyn Read + Send>,
     tx: Sender<(Instant, Vec<u8>)>,
     stop: Arc<AtomicBool>,
+    mut pacer: Option<line_rate::LinePacer>,
 ) {
     let mut buf = [0u8; 1024];
     while !stop.load(Ordering::SeqCst) {
@@ -254,8 +280,19 @@ fn read_loop(
                 std::thread::sleep(Duration::from_millis(20));
             }
             Ok(n) => {
-                if tx.send((Instant::now(), buf[..n].to_vec())).is_err() {
-                    return;
+                let now = Instant::now();
+                let Some(p) = pacer.as_mut() else {
+                    if tx.send((now, buf[..n].to_vec())).is_err() {
+                        return;
+                    }
+                    continue;
+                };
+                // The unit gets each piece when its last byte would have arrived.
+                for (piece, at) in p.schedule(now, n) {
+                    sleep_until(at);
+                    if tx.send((at, buf[piece].to_vec())).is_err() {
+                        return;
+                    }
                 }
             }
             Err(e)
@@ -268,16 +305,29 @@ fn read_loop(
     }
 }
 
-fn write_loop(mut writer: Box<dyn Write + Send>, rx: Receiver<Vec<u8>>, stop: Arc<AtomicBool>) {
+fn write_loop(
+    mut writer: Box<dyn Write + Send>,
+    rx: Receiver<Vec<u8>>,
+    stop: Arc<AtomicBool>,
+    mut pacer: Option<line_rate::LinePacer>,
+) {
     while let Ok(bytes) = rx.recv() {
-        if stop.load(Ordering::SeqCst) {
-            return;
-        }
-        // A port nobody reads times out; those bytes are lost, as on a real line.
-        if let Err(e) = writer.write_all(&bytes)
-            && e.kind() == ErrorKind::BrokenPipe
-        {
-            return;
+        let pieces = match pacer.as_mut() {
+            Some(p) => p.schedule(Instant::now(), bytes.len()),
+            None => vec![(0..bytes.len(), Instant::now())],
+        };
+        for (piece, at) in pieces {
+            if stop.load(Ordering::SeqCst) {
+                return;
+            }
+            // Paced, a piece is let out once its last byte would have crossed the line.
+            sleep_until(at);
+            // A port nobody reads times out; those bytes are lost, as on a real line.
+            if let Err(e) = writer.write_all(&bytes[piece])
+                && e.kind() == ErrorKind::BrokenPipe
+            {
+                return;
+            }
         }
     }
 }
