@@ -182,3 +182,33 @@ fn without_a_port_flash_says_how_to_try_it_on_the_virtual_unit() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("vpx-efis sim --pty"), "{}", stderr(&o));
 }
+
+/// SIGTERM mid-update: flash finishes the page in progress, leaves the unit in its
+/// bootloader (never restarted into a half-written image), says to run it again, and
+/// exits 128 + 15 as the README's exit-code table promises, not 1.
+#[test]
+fn a_signal_mid_update_stops_at_a_safe_point_and_exits_128_plus_n() {
+    let rig = start();
+    // Many pages, so the update is still running when the signal comes.
+    let data: Vec<u8> = (0..400 * PAGE_SIZE).map(|i| (i * 7 + 3) as u8).collect();
+    let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0x400, &data));
+    let child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+        .arg("flash")
+        .args(["--port", &rig.path, "--yes", file.to_str().unwrap()])
+        .stdin(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let until = std::time::Instant::now() + std::time::Duration::from_secs(20);
+    while rig.sim.stats().boot.commands < 5 {
+        assert!(std::time::Instant::now() < until, "the update never began");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    // SAFETY: a plain kill(2) of the child we spawned.
+    unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGTERM) };
+    let o = child.wait_with_output().unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(143), "{err}");
+    assert!(err.contains("SIGTERM"), "{err}");
+    assert!(rig.sim.stats().in_bootloader, "left in its bootloader");
+}
