@@ -510,7 +510,7 @@ impl App {
             self.notice_until,
             self.xfsp_deadline(),
             self.setup.next_deadline(),
-            self.rereader.next_deadline(&lock(&self.model)),
+            self.rereader.next_deadline(&lock(&self.model), now),
             Some(redraw),
         ]
         .into_iter()

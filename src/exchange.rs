@@ -198,13 +198,14 @@ impl Rereader {
         out
     }
 
-    /// When [`due`](Self::due) next has something to send. After `due(.., now)` this
-    /// is later than `now` (a setting marked unknown since then is due at once).
-    pub fn next_deadline(&self, model: &Model) -> Option<Instant> {
+    /// When [`due`](Self::due) next has something to send, on the caller's clock:
+    /// `now` for a setting due at once. After `due(.., now)` this is later than `now`
+    /// (a setting marked unknown since then is due at once).
+    pub fn next_deadline(&self, model: &Model, now: Instant) -> Option<Instant> {
         self.wanted(model)
             .into_iter()
             .map(|(s, from)| {
-                let at = self.due_at(s, from).unwrap_or_else(Instant::now);
+                let at = self.due_at(s, from).unwrap_or(now);
                 self.held_until.map_or(at, |h| at.max(h))
             })
             .min()
@@ -279,11 +280,11 @@ mod tests {
         let mut m = model();
         let mut r = Rereader::default();
         assert!(r.due(&m, t0).is_empty(), "not connected: nothing to ask");
-        assert_eq!(r.next_deadline(&m), None);
+        assert_eq!(r.next_deadline(&m, t0), None);
         r.connected(t0);
         // The connect queries have their chance first.
         assert!(r.due(&m, ms(t0, 2999)).is_empty());
-        assert_eq!(r.next_deadline(&m), Some(t0 + CONNECT_GRACE));
+        assert_eq!(r.next_deadline(&m, ms(t0, 2999)), Some(t0 + CONNECT_GRACE));
         let total = Setting::all().count();
         let spec9: Message = DeviceSpecQuery { device_id: 9 }.into();
         let mut distinct = std::collections::BTreeSet::new();
@@ -296,7 +297,7 @@ mod tests {
                 spec9_at.push(t);
             }
             distinct.extend(batch.iter().map(|q| format!("{q:?}")));
-            let next = r.next_deadline(&m).unwrap();
+            let next = r.next_deadline(&m, ms(t0, t)).unwrap();
             assert!(next > ms(t0, t), "the next deadline is ahead");
             t = (next - t0).as_millis() as u64;
             assert!(t < 5000, "the whole set goes out in under two seconds");
@@ -327,7 +328,7 @@ mod tests {
             &Packet::from_vpx(1, answer(Setting::DeviceSpec(9))),
         );
         assert!(r.due(&m, ms(t0, 20_000)).is_empty());
-        assert_eq!(r.next_deadline(&m), None, "all heard: idle");
+        assert_eq!(r.next_deadline(&m, ms(t0, 20_000)), None, "all heard: idle");
         // A reconnect: what was heard before it is asked again if the new
         // connection's queries do not bring it; the port going down stops that.
         r.connected(ms(t0, 30_000));
@@ -335,7 +336,7 @@ mod tests {
         assert_eq!(r.due(&m, ms(t0, 33_000)).len(), REREAD_BATCH);
         r.link_down();
         assert!(r.due(&m, ms(t0, 40_000)).is_empty());
-        assert_eq!(r.next_deadline(&m), None);
+        assert_eq!(r.next_deadline(&m, ms(t0, 40_000)), None);
     }
 
     #[test]
@@ -358,12 +359,16 @@ mod tests {
         let mut m = model();
         let mut r = Rereader::default();
         assert!(r.due(&m, t0).is_empty());
-        assert_eq!(r.next_deadline(&m), None);
+        assert_eq!(r.next_deadline(&m, t0), None);
         m.mark_unknown(Setting::DeviceSpec(9), t0);
+        // Due at once, on the caller's clock (a fake one here, an hour ahead of the
+        // real one), not the real clock's now.
+        let fake = ms(t0, 3_600_000);
+        assert_eq!(r.next_deadline(&m, fake), Some(fake));
         let q: Message = DeviceSpecQuery { device_id: 9 }.into();
         assert_eq!(r.due(&m, t0), vec![q]);
         assert!(r.due(&m, ms(t0, 999)).is_empty());
-        assert_eq!(r.next_deadline(&m), Some(ms(t0, 1000)));
+        assert_eq!(r.next_deadline(&m, ms(t0, 999)), Some(ms(t0, 1000)));
         // Gaps of 1, 2, 4, 4 s while nothing answers.
         assert_eq!(r.due(&m, ms(t0, 1000)), vec![q]);
         assert!(r.due(&m, ms(t0, 2999)).is_empty());
@@ -387,6 +392,6 @@ mod tests {
         assert!(!m.is_unknown(Setting::DeviceSpec(9)));
         assert_eq!(m.device_specs[9].unwrap().value, held);
         assert!(r.due(&m, ms(t0, 20000)).is_empty());
-        assert_eq!(r.next_deadline(&m), None);
+        assert_eq!(r.next_deadline(&m, ms(t0, 20000)), None);
     }
 }

@@ -223,7 +223,7 @@ fn rereader() {
         if !q.is_empty() {
             sent.push((now, q.len()));
         }
-        let next = r.next_deadline(&m).expect("settings still unknown");
+        let next = r.next_deadline(&m, now).expect("settings still unknown");
         assert!(next > now, "poll at +{:?}", now - t0);
         now = next;
     }
