@@ -447,6 +447,7 @@ fn circuits() -> CheckView {
             ],
         }),
         message: Some("Beacon: 1.8 A".into()),
+        to_cycle: vec![(4, "Nav Lt".into(), SwitchId::Input(2))],
         ..base()
     }
 }

@@ -99,6 +99,23 @@ fn under_test(r: &CircuitResult, model: &Model, now: Instant, width: u16) -> Vec
     vec![Line::from(first), Line::from(second)]
 }
 
+/// The circuits put back so far by DEVICE_POWER, which the page now holds until
+/// their switch is cycled (ICD §6): said as the step goes, not only at its end.
+fn held_line(view: &CheckView) -> Option<Line<'static>> {
+    if view.to_cycle.is_empty() {
+        return None;
+    }
+    let each: Vec<String> = view
+        .to_cycle
+        .iter()
+        .map(|(_, name, sw)| format!("{name} ({})", words::switch_id(*sw)))
+        .collect();
+    Some(Line::from(vec![
+        Span::styled("Held until its switch is cycled: ", theme::caution()),
+        Span::raw(each.join(", ")),
+    ]))
+}
+
 /// The results of step 3 as rows, for this screen and the summary.
 pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
     view.circuits
@@ -123,13 +140,18 @@ pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
 }
 
 pub fn render(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, now: Instant) {
-    let [test_area, results_area] =
-        Layout::vertical([Constraint::Length(3), Constraint::Fill(1)]).areas(area);
+    let held = held_line(view);
+    let [test_area, results_area] = Layout::vertical([
+        Constraint::Length(3 + u16::from(held.is_some())),
+        Constraint::Fill(1),
+    ])
+    .areas(area);
     let inner = section(frame, test_area, "Under test");
-    let lines = match view.current.and_then(|i| view.circuits.get(i)) {
+    let mut lines = match view.current.and_then(|i| view.circuits.get(i)) {
         Some(r) => under_test(r, model, now, inner.width),
         None => vec![Line::styled("No circuit under test.", theme::label())],
     };
+    lines.extend(held);
     fast::lines(frame.buffer_mut(), inner, &lines);
     let inner = section(frame, results_area, "Results");
     let rows = rows(view, view.current);

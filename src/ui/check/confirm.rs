@@ -151,7 +151,7 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView) {
     if !view.planned_motors.is_empty() {
         let inner = section(frame, motors_area, "Motors, run both ways and back");
         let mut m = vec![Line::styled(
-            format!("{:<NAME_W$} {:>9}", "Motor", "Each way"),
+            format!("{:<NAME_W$} {:>9}", "Motor", "In all"),
             theme::label(),
         )];
         for (motor, d) in &view.planned_motors {
