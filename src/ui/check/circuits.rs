@@ -122,7 +122,7 @@ pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
         .iter()
         .enumerate()
         .map(|(i, r)| {
-            let mark = words::circuit_mark(&r.outcome);
+            let mark = r.mark();
             Row {
                 head: vec![
                     progress_span(mark, i, current),

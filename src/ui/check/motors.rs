@@ -134,7 +134,7 @@ pub fn rows(view: &CheckView, model: &Model, now: Instant, current: Option<usize
         .iter()
         .enumerate()
         .map(|(i, r)| {
-            let mark = words::motor_mark(&r.outcome);
+            let mark = r.mark();
             let mut w = words::motor(r);
             if !r.positions.is_empty() {
                 w = format!("{w} ({})", positions(r.motor, &r.positions, model, now));

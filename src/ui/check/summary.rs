@@ -23,13 +23,13 @@ use crate::ui::{fast, theme};
 fn all_rows(view: &CheckView, model: &Model, now: Instant) -> Vec<(Step, Mark, Row)> {
     let mut out = Vec::new();
     for (r, row) in view.switches.iter().zip(switches::rows(view, model, None)) {
-        out.push((Step::Switches, words::switch_mark(&r.outcome), row));
+        out.push((Step::Switches, r.mark(), row));
     }
     for (r, row) in view.circuits.iter().zip(circuits::rows(view, None)) {
-        out.push((Step::Circuits, words::circuit_mark(&r.outcome), row));
+        out.push((Step::Circuits, r.mark(), row));
     }
     for (r, row) in view.motors.iter().zip(motors::rows(view, model, now, None)) {
-        out.push((Step::Motors, words::motor_mark(&r.outcome), row));
+        out.push((Step::Motors, r.mark(), row));
     }
     out
 }
@@ -283,7 +283,7 @@ pub fn render_loads(frame: &mut Frame, area: Rect, view: &CheckView) {
         .circuits
         .iter()
         .map(|r| {
-            let mark = words::circuit_mark(&r.outcome);
+            let mark = r.mark();
             Row {
                 head: vec![mark_span(mark), Span::raw(fit(&r.name, 16)), Span::raw(" ")],
                 words: words::circuit(r),

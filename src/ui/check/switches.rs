@@ -138,7 +138,7 @@ pub fn rows(view: &CheckView, model: &Model, current: Option<usize>) -> Vec<Row>
         .iter()
         .enumerate()
         .map(|(i, r)| {
-            let mark = words::switch_mark(&r.outcome);
+            let mark = r.mark();
             Row {
                 head: vec![
                     progress_span(mark, i, current),

@@ -5,49 +5,17 @@
 use std::time::Duration;
 
 use super::state::{
-    CircuitFinding, CircuitResult, Input, Mark, MotorFinding, MotorResult, NotFollowed, Outcome,
-    SwitchFinding, SwitchResult,
+    CircuitFinding, CircuitResult, Mark, MotorFinding, MotorResult, Outcome, SwitchResult,
 };
-use crate::protocol::fault::FaultCode;
 use crate::protocol::message::SwitchId;
 
-/// The share of its breaker at which a circuit's draw is called tight (issue 14: ≥ 80 %).
+/// The share of its breaker at which the bar calls a draw tight (issue 14: ≥ 80 %),
+/// the flow's `check::NEAR_BREAKER`, which `ui` may not import.
 pub const NEAR_BREAKER: f32 = 0.8;
 
 /// "✓ PASS": the symbol and the word, always together.
 pub fn badge(mark: Mark) -> String {
     format!("{} {}", mark.symbol(), mark.word())
-}
-
-fn outcome_mark<F>(o: &Outcome<F>, found: impl Fn(&F) -> Mark) -> Mark {
-    match o {
-        Outcome::Found(f) => found(f),
-        Outcome::Skipped(_) => Mark::Skipped,
-        Outcome::NotRun => Mark::NotRun,
-    }
-}
-
-pub fn switch_mark(o: &Outcome<SwitchFinding>) -> Mark {
-    outcome_mark(o, |f| match f {
-        SwitchFinding::Passed => Mark::Pass,
-        _ => Mark::Fail,
-    })
-}
-
-pub fn circuit_mark(o: &Outcome<CircuitFinding>) -> Mark {
-    outcome_mark(o, |f| match f {
-        CircuitFinding::Within { .. } => Mark::Pass,
-        CircuitFinding::NearBreaker { .. } => Mark::Warn,
-        _ => Mark::Fail,
-    })
-}
-
-pub fn motor_mark(o: &Outcome<MotorFinding>) -> Mark {
-    outcome_mark(o, |f| match f {
-        MotorFinding::Moves => Mark::Pass,
-        MotorFinding::AgainstLimit => Mark::Warn,
-        _ => Mark::Fail,
-    })
 }
 
 /// "switch 4", "always on", "always off": what a circuit's DEVICE_SPEC assigns it to.
@@ -60,35 +28,9 @@ pub fn switch_id(s: SwitchId) -> String {
     }
 }
 
-/// A fault with Appendix E's description and action, as far as Table 43 has them.
-pub fn fault(code: FaultCode) -> String {
-    match code.info() {
-        Some(i) if !i.description.is_empty() => {
-            format!("{}: {} {}", code.name(), i.description, i.action)
-        }
-        _ => format!("{}: a code Appendix E does not list", code.name()),
-    }
-}
-
-fn not_followed(why: &NotFollowed) -> String {
-    match why {
-        NotFollowed::HeldByDevicePower => "held by DEVICE_POWER until its switch is cycled".into(),
-        NotFollowed::AssignedTo(s) => format!("assigned to {}", switch_id(*s)),
-        NotFollowed::Faulted(code) => format!("faulted, {}", code.name()),
-        NotFollowed::Unexplained => "no reason the page can see".into(),
-    }
-}
-
-fn inputs(list: &[Input]) -> String {
-    let labels: Vec<String> = list.iter().map(|i| i.label()).collect();
-    match labels.as_slice() {
-        [] => "another input".into(),
-        [one] => one.clone(),
-        [init @ .., last] => format!("{} and {last}", init.join(", ")),
-    }
-}
-
-fn skipped_or_not_run<F>(o: &Outcome<F>, found: impl Fn(&F) -> String) -> String {
+/// An outcome's words: the finding's own (the vocabulary's, shared with the report
+/// and the headless run), or why there is none.
+fn outcome<F>(o: &Outcome<F>, found: impl Fn(&F) -> String) -> String {
     match o {
         Outcome::Found(f) => found(f),
         Outcome::Skipped(why) if why.is_empty() => "skipped".into(),
@@ -99,58 +41,15 @@ fn skipped_or_not_run<F>(o: &Outcome<F>, found: impl Fn(&F) -> String) -> String
 
 /// A switch input's result in words; `name` gives a circuit's name from its id.
 pub fn switch(r: &SwitchResult, name: impl Fn(u8) -> String) -> String {
-    skipped_or_not_run(&r.outcome, |f| match f {
-        SwitchFinding::Passed => "the input changed, and its circuits followed".into(),
-        SwitchFinding::NeverChanged => {
-            "input never changed: a broken wire, a bad switch, or the wrong pin".into()
-        }
-        SwitchFinding::OtherChanged(others) => {
-            format!("{} changed instead: switches crossed", inputs(others))
-        }
-        SwitchFinding::CircuitsDidNotFollow(list) => {
-            let each: Vec<String> = list
-                .iter()
-                .map(|(id, why)| format!("{} {}", name(*id), not_followed(why)))
-                .collect();
-            format!("circuits did not follow: {}", each.join("; "))
-        }
-    })
-}
-
-/// "4.2 A of a 5 A breaker".
-fn of_breaker(amps: f32, breaker: u8) -> String {
-    format!("{amps:.1} A of a {breaker} A breaker")
+    outcome(&r.outcome, |f| f.words(&name))
 }
 
 pub fn circuit(r: &CircuitResult) -> String {
-    skipped_or_not_run(&r.outcome, |f| match f {
-        CircuitFinding::Within { amps, breaker } => {
-            format!("{}, within it", of_breaker(*amps, *breaker))
-        }
-        CircuitFinding::NoCurrent => {
-            "no current while on: an open circuit, a blown bulb, a load not connected".into()
-        }
-        CircuitFinding::NearBreaker { amps, breaker } => format!(
-            "draws {} (≥ 80 %): the breaker is tight and will trip in flight",
-            of_breaker(*amps, *breaker)
-        ),
-        CircuitFinding::Faulted(code) => fault(*code),
-        CircuitFinding::DidNotSwitch => {
-            "did not switch on: no answer, or no two fresh DEVICE_STATUS".into()
-        }
-    })
+    outcome(&r.outcome, CircuitFinding::words)
 }
 
 pub fn motor(r: &MotorResult) -> String {
-    skipped_or_not_run(&r.outcome, |f| match f {
-        MotorFinding::Moves => "moves the commanded way".into(),
-        MotorFinding::Reversed => {
-            "reversed: the motor's polarity is swapped, or the sensor is wired backwards".into()
-        }
-        MotorFinding::NoMovement => "no movement: the motor, the sensor or a limit".into(),
-        MotorFinding::AgainstLimit => "runs against a limit".into(),
-        MotorFinding::Faulted(code) => fault(*code),
-    })
+    outcome(&r.outcome, MotorFinding::words)
 }
 
 /// "57 % → 62 % → 50 % → 57 %": the positions a motor went through.
@@ -180,6 +79,7 @@ pub fn duration(d: Duration) -> String {
 
 #[cfg(test)]
 mod tests {
+    use super::super::state::SwitchFinding;
     use super::*;
 
     #[test]
@@ -192,63 +92,25 @@ mod tests {
     }
 
     #[test]
-    fn findings_get_the_issue_words_and_their_marks() {
+    fn an_outcome_without_a_finding_says_why() {
         let r = |outcome| SwitchResult {
-            input: Input::Switch(3),
+            input: super::super::state::Input::Switch(3),
             circuits: vec![7],
             outcome,
         };
         let name = |id: u8| format!("dev{id}");
-        let crossed = r(Outcome::Found(SwitchFinding::OtherChanged(vec![
-            Input::Switch(4),
-        ])));
         assert_eq!(
-            switch(&crossed, name),
-            "switch 4 changed instead: switches crossed"
+            switch(&r(Outcome::Skipped("excluded: --exclude".into())), name),
+            "excluded: --exclude"
         );
-        assert_eq!(switch_mark(&crossed.outcome), Mark::Fail);
-        let held = r(Outcome::Found(SwitchFinding::CircuitsDidNotFollow(vec![
-            (7, NotFollowed::HeldByDevicePower),
-            (8, NotFollowed::AssignedTo(SwitchId::Input(5))),
-        ])));
+        assert_eq!(switch(&r(Outcome::Skipped(String::new())), name), "skipped");
         assert_eq!(
-            switch(&held, name),
-            "circuits did not follow: dev7 held by DEVICE_POWER until its switch is cycled; \
-             dev8 assigned to switch 5"
-        );
-        let c = CircuitResult {
-            id: 7,
-            name: "Landing Lt".into(),
-            pin: "10A-1",
-            breaker: Some(5),
-            switch: None,
-            outcome: Outcome::Found(CircuitFinding::NearBreaker {
-                amps: 4.4,
-                breaker: 5,
-            }),
-        };
-        assert_eq!(
-            circuit(&c),
-            "draws 4.4 A of a 5 A breaker (≥ 80 %): the breaker is tight and will trip in flight"
-        );
-        assert_eq!(circuit_mark(&c.outcome), Mark::Warn);
-        let f = CircuitResult {
-            outcome: Outcome::Found(CircuitFinding::Faulted(FaultCode::ShortCircuit)),
-            ..c
-        };
-        assert_eq!(
-            circuit(&f),
-            "SHORT_CIRCUIT: Device short circuit. Device faulted and disabled, \
-             FAULT_STATUS message broadcast."
+            switch(&r(Outcome::NotRun), name),
+            "not run: the check stopped before it"
         );
         assert_eq!(
-            motor_mark(&Outcome::Found(MotorFinding::AgainstLimit)),
-            Mark::Warn
-        );
-        assert_eq!(motor_mark(&Outcome::NotRun), Mark::NotRun);
-        assert_eq!(
-            motor_mark(&Outcome::<MotorFinding>::Skipped("by you".into())),
-            Mark::Skipped
+            switch(&r(Outcome::Found(SwitchFinding::NeverChanged)), name),
+            "input never changed: a broken wire, a bad switch, or the wrong pin"
         );
     }
 
