@@ -13,13 +13,15 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier};
 
+use vpx_efis::loads;
 use vpx_efis::model::{Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::FaultCode;
 use vpx_efis::protocol::message::SwitchId;
 use vpx_efis::ui::check;
 use vpx_efis::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, MotorFinding,
-    MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding, SwitchResult,
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
+    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding,
+    SwitchResult,
 };
 use vpx_efis::ui::palette::{Palette, ThemeChoice, Why};
 use vpx_efis::ui::state::{MotorRun, ViewState};
@@ -261,7 +263,7 @@ fn plan() -> Vec<Planned> {
         planned(6, "Beacon", "5A-3", 2, 3),
         planned(0x11, "Landing Lt", "10A-1", 8, 6),
         planned(0x12, "Taxi Lt", "10A-2", 6, 6),
-        planned(0x17, "Fuel Pump", "15A-2", 10, 7),
+        planned(0x17, "Fuel Pump", "15A-1", 10, 7),
     ]
 }
 
@@ -426,7 +428,7 @@ fn circuit_results() -> Vec<CircuitResult> {
         ),
         circ(0x11, "Landing Lt", "10A-1", 8, Outcome::NotRun),
         circ(0x12, "Taxi Lt", "10A-2", 6, Outcome::NotRun),
-        circ(0x17, "Fuel Pump", "15A-2", 10, Outcome::NotRun),
+        circ(0x17, "Fuel Pump", "15A-1", 10, Outcome::NotRun),
     ]
 }
 
@@ -539,12 +541,61 @@ fn to_cycle() -> Vec<(u8, String, SwitchId)> {
     ]
 }
 
+/// The builder's load file for the aircraft: a small alternator, so take-off and
+/// landing are tight.
+const LOAD_FILE: &str = r#"
+alternator_amps = 18
+battery_amp_hours = 10
+
+[circuit.EFIS]
+name = "EFIS"
+amps = 2.4
+ground = true
+taxi = true
+take_off = true
+cruise_day = true
+cruise_night = true
+landing = true
+emergency = true
+
+[circuit.5A-1]
+name = "Nav Lt"
+cruise_night = true
+landing = true
+emergency = true
+
+[circuit.10A-1]
+name = "Landing Lt"
+taxi = true
+take_off = true
+landing = true
+
+[circuit.15A-1]
+name = "Fuel Pump"
+take_off = true
+landing = true
+"#;
+
+fn analysed() -> LoadsView {
+    let file = loads::file::parse(LOAD_FILE).unwrap();
+    let measured: Vec<(u8, f32)> = CheckView {
+        circuits: finished_circuits(),
+        ..Default::default()
+    }
+    .measured_amps();
+    LoadsView::Analysed {
+        path: PathBuf::from("/home/pilot/n123ab/loads.toml"),
+        analysis: loads::analyse(&file, &measured),
+    }
+}
+
 fn loads() -> CheckView {
     CheckView {
         step: Step::Loads,
         switches: finished_switches(),
         circuits: finished_circuits(),
         motors: finished_motors(),
+        loads: Some(analysed()),
         ..base()
     }
 }
@@ -556,6 +607,7 @@ fn done() -> CheckView {
         circuits: finished_circuits(),
         motors: finished_motors(),
         to_cycle: to_cycle(),
+        loads: Some(analysed()),
         report: Some(PathBuf::from(
             "/home/pilot/n123ab/vpx-check-2026-12-01-1834.md",
         )),
@@ -571,7 +623,18 @@ fn all_passed() -> CheckView {
     v.motors.truncate(1);
     v.to_cycle.truncate(1);
     v.skipped_steps = vec![Step::Loads];
+    v.loads = None;
     v
+}
+
+fn no_load_file() -> CheckView {
+    CheckView {
+        loads: Some(LoadsView::TemplateWritten(PathBuf::from(
+            "/home/pilot/.config/vpx-efis/loads.toml",
+        ))),
+        skipped_steps: vec![],
+        ..all_passed()
+    }
 }
 
 fn interrupted() -> CheckView {
@@ -669,6 +732,13 @@ fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
         ("loads", loads(), idle.clone(), p.clone(), ti),
         ("done", done(), idle.clone(), p.clone(), ti),
         ("done_all_passed", all_passed(), idle.clone(), p.clone(), ti),
+        (
+            "done_no_load_file",
+            no_load_file(),
+            idle.clone(),
+            p.clone(),
+            ti,
+        ),
         (
             "interrupted_comm_lost",
             interrupted(),

@@ -171,8 +171,12 @@ pub fn render(buf: &mut Buffer, area: Rect, rows: &[Row], focus: Option<usize>) 
     if total <= h {
         lines = per_row.into_iter().flatten().collect();
     } else {
-        // Room for a "more above" and a "more below" line.
-        let (from, to) = window(&heights, h.saturating_sub(2).max(1), focus.unwrap_or(0));
+        // Room for a "more below" line, and a "more above" one only when needed.
+        let focus = focus.unwrap_or(0);
+        let (mut from, mut to) = window(&heights, h.saturating_sub(1).max(1), focus);
+        if from > 0 && to < rows.len() {
+            (from, to) = window(&heights, h.saturating_sub(2).max(1), focus);
+        }
         if from > 0 {
             lines.push(more(format!("↑ {from} more above")));
         }

@@ -116,7 +116,14 @@ pub fn render(
             Step::Switches => switches::render(frame, body, view, model, now),
             Step::Circuits => circuits::render(frame, body, view, model, now),
             Step::Motors => motors::render(frame, body, view, model, page, now),
-            Step::Loads => summary::render_loads(frame, body, view),
+            // The load analysis's own widget (issue-14-loads), its circuits scrolled
+            // from the selection.
+            Step::Loads => loads::render(
+                frame.buffer_mut(),
+                body,
+                view.loads.as_ref(),
+                view.current.unwrap_or(0),
+            ),
             Step::Done => summary::render_done(frame, body, view, model, now),
         }
     }

@@ -12,8 +12,9 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
-use super::state::{CheckView, Mark, Step};
-use super::{circuits, fit, mark_span, motors, section, switches, words};
+use super::state::{CheckView, LoadsView, Mark, Step};
+use super::{HEAD_NAME_W, circuits, fit, mark_span, motors, section, switches, words, words_style};
+use crate::loads::Level;
 use crate::model::Model;
 use crate::protocol::message::SwitchId;
 use crate::ui::title_bar::middle_ellipsis;
@@ -31,7 +32,72 @@ fn all_rows(view: &CheckView, model: &Model, now: Instant) -> Vec<(Step, Mark, R
     for (r, row) in view.motors.iter().zip(motors::rows(view, model, now, None)) {
         out.push((Step::Motors, r.mark(), row));
     }
+    out.extend(
+        load_rows(view)
+            .into_iter()
+            .map(|(m, r)| (Step::Loads, m, r)),
+    );
     out
+}
+
+/// Step 5's results: each phase with its verdict, each measured circuit missing from
+/// the load file, or why there is no analysis.
+fn load_rows(view: &CheckView) -> Vec<(Mark, Row)> {
+    let row = |mark: Mark, name: &str, words: String| {
+        (
+            mark,
+            Row {
+                head: vec![
+                    mark_span(mark),
+                    Span::raw(fit(name, HEAD_NAME_W)),
+                    Span::raw(" "),
+                ],
+                words,
+                words_style: words_style(mark),
+                current: false,
+            },
+        )
+    };
+    match &view.loads {
+        None => Vec::new(),
+        Some(LoadsView::TemplateWritten(path)) => vec![row(
+            Mark::Skipped,
+            "load file",
+            format!(
+                "none yet: a template was written to {}; fill it in and run the check again",
+                path.display()
+            ),
+        )],
+        Some(LoadsView::Refused(why)) => vec![row(Mark::Warn, "load file", why.clone())],
+        Some(LoadsView::Analysed { analysis, .. }) => {
+            let mut out: Vec<(Mark, Row)> = analysis
+                .phases
+                .iter()
+                .map(|p| {
+                    row(
+                        Mark::of(p.level),
+                        p.phase.title(),
+                        analysis.verdict(p.phase),
+                    )
+                })
+                .collect();
+            // The warnings list the phases that are not OK first, then the circuits
+            // measured but missing from the file.
+            let phase_warnings = analysis
+                .phases
+                .iter()
+                .filter(|p| p.level != Level::Ok)
+                .count();
+            out.extend(
+                analysis
+                    .warnings()
+                    .into_iter()
+                    .skip(phase_warnings)
+                    .map(|w| row(Mark::Warn, "load file", w)),
+            );
+            out
+        }
+    }
 }
 
 fn count_line(marks: &[Mark]) -> Line<'static> {
@@ -273,34 +339,4 @@ pub fn render_interrupted(
         &results_rows(view, model, now),
         None,
     );
-}
-
-/// Step 5 while the load analysis is worked out: the currents measured in step 3,
-/// which the analysis uses in place of the typed ones.
-pub fn render_loads(frame: &mut Frame, area: Rect, view: &CheckView) {
-    let inner = section(frame, area, "Measured currents for the load analysis");
-    let rows: Vec<Row> = view
-        .circuits
-        .iter()
-        .map(|r| {
-            let mark = r.mark();
-            Row {
-                head: vec![mark_span(mark), Span::raw(fit(&r.name, 16)), Span::raw(" ")],
-                words: words::circuit(r),
-                words_style: super::words_style(mark),
-                current: false,
-            }
-        })
-        .collect();
-    if rows.is_empty() {
-        fast::lines(
-            frame.buffer_mut(),
-            inner,
-            &[Line::styled(
-                "No current measured: the analysis uses the typed ones.",
-                theme::label(),
-            )],
-        );
-    }
-    list::render(frame.buffer_mut(), inner, &rows, None);
 }

@@ -5,7 +5,8 @@
 use std::time::Duration;
 
 use super::state::{
-    CircuitFinding, CircuitResult, Mark, MotorFinding, MotorResult, Outcome, SwitchResult,
+    CircuitFinding, CircuitResult, Mark, MotorFinding, MotorResult, Outcome, SwitchFinding,
+    SwitchResult,
 };
 use crate::protocol::message::SwitchId;
 
@@ -26,6 +27,19 @@ pub fn switch_id(s: SwitchId) -> String {
         SwitchId::AlwaysOn => "always on".into(),
         SwitchId::Unknown(n) => format!("switch code {n} (not in the ICD)"),
     }
+}
+
+/// An outcome's mark: its finding's, or skipped / not run.
+pub fn switch_mark(o: &Outcome<SwitchFinding>) -> Mark {
+    o.mark_with(SwitchFinding::mark)
+}
+
+pub fn circuit_mark(o: &Outcome<CircuitFinding>) -> Mark {
+    o.mark_with(CircuitFinding::mark)
+}
+
+pub fn motor_mark(o: &Outcome<MotorFinding>) -> Mark {
+    o.mark_with(MotorFinding::mark)
 }
 
 /// An outcome's words: the finding's own (the vocabulary's, shared with the report
@@ -79,7 +93,6 @@ pub fn duration(d: Duration) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::super::state::SwitchFinding;
     use super::*;
 
     #[test]
