@@ -464,3 +464,20 @@ fn a_failed_write_leaves_no_file() {
     assert!(report::write(&missing, &finished(), &about()).is_err());
     assert_eq!(entries(dir.path()), Vec::<String>::new());
 }
+
+/// The README's sample report is this file's finished check, word for word.
+#[test]
+fn the_readme_sample_is_the_report_of_the_finished_check() {
+    let readme = include_str!("../README.md");
+    let sample = readme
+        .split("<summary>A sample report")
+        .nth(1)
+        .and_then(|s| s.split("````markdown\n").nth(1))
+        .and_then(|s| s.split("\n````").next())
+        .expect("the README has a sample report");
+    assert_eq!(
+        sample,
+        report::markdown(&finished(), &about()).trim_end(),
+        "the README's sample report is out of date"
+    );
+}

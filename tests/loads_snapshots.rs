@@ -289,3 +289,38 @@ fn the_bars_are_drawn_to_scale_against_the_alternator() {
     let e = bar_row("emergency ");
     assert_eq!(buf[(13 + 60, e)].symbol(), " ");
 }
+
+/// The README's load-file example reads as it says, and its screen is this file's.
+#[test]
+fn the_readme_example_file_and_screen_are_what_the_code_does() {
+    let readme = include_str!("../README.md");
+    let section = readme
+        .split("## Electrical load analysis\n")
+        .nth(1)
+        .expect("the README has the load-analysis section");
+    let toml = section
+        .split("```toml\n")
+        .nth(1)
+        .and_then(|s| s.split("\n```").next())
+        .unwrap();
+    let f = loads::file::parse(toml).unwrap();
+    assert_eq!(f.alternator_amps, 40.0);
+    assert_eq!(f.battery_amp_hours, 17.0);
+    assert_eq!(f.battery_usable, 0.8);
+    assert_eq!(f.circuits.len(), 1);
+    assert_eq!(f.circuits[0].pin(), "10A-1");
+    assert_eq!(f.circuits[0].name, "Landing Lt");
+    assert_eq!(f.circuits[0].amps, Some(7.5));
+    assert_eq!(f.circuits[0].duty, [0., 1., 1., 0., 0., 1., 0.]);
+    let screen = section
+        .split("```text\n")
+        .nth(1)
+        .and_then(|s| s.split("\n```").next())
+        .unwrap();
+    let drawn = text(&draw(Some(&warned()), 0, 80, 24));
+    let drawn: Vec<&str> = drawn.lines().map(str::trim_end).collect();
+    assert_eq!(
+        screen.lines().collect::<Vec<_>>(),
+        drawn[..screen.lines().count()]
+    );
+}
