@@ -283,10 +283,10 @@ fn a_finished_check_reports_every_result_and_what_is_left_to_fix() {
         fix,
         [
             "1. switch 4: switch 5 changed instead: switches crossed",
-            "2. switch 5: circuits did not follow: Boost pump held by DEVICE_POWER until its switch is cycled",
+            "2. switch 5: circuits did not follow: Boost pump (held by DEVICE_POWER until its switch is cycled (ICD §6))",
             "3. Strobe (5A-2): no current while on: an open circuit, a blown bulb, a load not connected",
             "4. Taxi Light (5A-7): draws 4.3 A of a 5 A breaker (≥ 80 %): the breaker is tight and will trip in flight",
-            "5. Landing Lt (10A-1): SHORT_CIRCUIT: Device short circuit. Device faulted and disabled, FAULT_STATUS message broadcast.",
+            "5. Landing Lt (10A-1): faulted: SHORT_CIRCUIT (Device short circuit.). Device faulted and disabled, FAULT_STATUS message broadcast. The faulted pin remains off until cleared by the external system.",
             "6. pitch trim: reversed: the motor's polarity is swapped, or the sensor is wired backwards",
             "7. Load analysis, landing: margin 15 % of 25 A: under 20 %",
             "8. Boost pump: cycle switch 5 (held by DEVICE_POWER since the check)",
@@ -401,7 +401,7 @@ fn the_csv_has_a_row_for_each_measurement() {
         &"2026-12-01T18:30:12.000Z,circuits,Taxi Light,5A-7,5,switch 4,WARN,4.3,,draws 4.3 A of a 5 A breaker (≥ 80 %): the breaker is tight and will trip in flight"
     ));
     assert!(rows.contains(
-        &"2026-12-01T18:30:12.000Z,motors,flaps,Flaps,,,PASS,,20 60 20 20,moves the commanded way"
+        &"2026-12-01T18:30:12.000Z,motors,flaps,Flaps,,,PASS,,20 60 20 20,it moves the commanded way"
     ));
     // A detail with a comma is quoted whole.
     assert!(

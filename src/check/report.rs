@@ -13,9 +13,10 @@ use crate::loads::{Analysis, Figure, Phase};
 use crate::protocol::device;
 use crate::protocol::message::{SwitchId, Version};
 use crate::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, Outcome, Step,
+    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, MotorFinding, MotorResult, Outcome,
+    Step, SwitchResult,
 };
-use crate::ui::check::words::{self, badge, switch_id as switch_text};
+use crate::ui::check::words::{badge, switch_id as switch_text};
 
 /// Where and when the check ran, beside what it found.
 #[derive(Debug, Clone, PartialEq)]
@@ -107,44 +108,32 @@ fn loads_level_warns(view: &CheckView) -> bool {
     }
 }
 
-/// Every result's mark: switches, circuits, motors.
-fn marks(view: &CheckView) -> Vec<Mark> {
-    view.switches
-        .iter()
-        .map(|s| words::switch_mark(&s.outcome))
-        .chain(
-            view.circuits
-                .iter()
-                .map(|c| words::circuit_mark(&c.outcome)),
-        )
-        .chain(view.motors.iter().map(|m| words::motor_mark(&m.outcome)))
-        .collect()
+/// What became of an item, in words: its finding's, why it was skipped (the mark
+/// beside it says SKIPPED), or that the check stopped before it.
+fn outcome_words<F>(o: &Outcome<F>, words: impl Fn(&F) -> String) -> String {
+    match o {
+        Outcome::Found(f) => words(f),
+        Outcome::Skipped(why) if why.is_empty() => "skipped".into(),
+        Outcome::Skipped(why) => why.clone(),
+        Outcome::NotRun => "not run: the check stopped before it".into(),
+    }
 }
 
-/// A circuit's name by id, from the results, the plan or the exclusions.
-fn name_of(view: &CheckView, id: u8) -> String {
-    view.circuits
-        .iter()
-        .find(|c| c.id == id)
-        .map(|c| c.name.clone())
-        .or_else(|| {
-            view.plan
-                .iter()
-                .find(|p| p.id == id)
-                .map(|p| p.name.clone())
-        })
-        .or_else(|| {
-            view.excluded
-                .iter()
-                .find(|e| e.id == id)
-                .map(|e| e.name.clone())
-        })
-        .unwrap_or_else(|| device::device(id).map_or("?", |d| d.system_name).into())
+fn switch_words(view: &CheckView, s: &SwitchResult) -> String {
+    outcome_words(&s.outcome, |f| f.words(&|id| view.name_of(id)))
+}
+
+fn circuit_words(c: &CircuitResult) -> String {
+    outcome_words(&c.outcome, CircuitFinding::words)
+}
+
+fn motor_words(m: &MotorResult) -> String {
+    outcome_words(&m.outcome, MotorFinding::words)
 }
 
 /// The counts of the results, for the line at the top.
 fn tally(view: &CheckView) -> String {
-    let marks = marks(view);
+    let marks: Vec<Mark> = view.marks().collect();
     let n = |m: Mark| marks.iter().filter(|&&x| x == m).count();
     let mut parts = vec![];
     for (m, one, many) in [
@@ -221,7 +210,7 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
             );
         }
         None => {
-            let marks = marks(view);
+            let marks: Vec<Mark> = view.marks().collect();
             let verdict = if marks.contains(&Mark::Fail) {
                 "FAILED"
             } else if marks.contains(&Mark::Warn) || loads_level_warns(view) {
@@ -389,7 +378,7 @@ fn switches(o: &mut String, view: &CheckView) {
     }
     o.push_str("| Input | Circuits | Result | What happened |\n|---|---|---|---|\n");
     for s in &view.switches {
-        let names: Vec<String> = s.circuits.iter().map(|&id| name_of(view, id)).collect();
+        let names: Vec<String> = s.circuits.iter().map(|&id| view.name_of(id)).collect();
         let _ = writeln!(
             o,
             "| {} | {} | {} | {} |",
@@ -399,8 +388,8 @@ fn switches(o: &mut String, view: &CheckView) {
             } else {
                 names.join(", ")
             }),
-            badge(words::switch_mark(&s.outcome)),
-            cell(&words::switch(s, |id| name_of(view, id)))
+            badge(s.mark()),
+            cell(&switch_words(view, s))
         );
     }
     o.push('\n');
@@ -432,9 +421,9 @@ fn circuits(o: &mut String, view: &CheckView) {
             cell(&c.name),
             c.pin,
             or_dash(c.breaker, |b| format!("{b} A")),
-            badge(words::circuit_mark(&c.outcome)),
+            badge(c.mark()),
             measured(c),
-            cell(&words::circuit(c))
+            cell(&circuit_words(c))
         );
     }
     o.push('\n');
@@ -456,13 +445,13 @@ fn motors(o: &mut String, view: &CheckView) {
             o,
             "| {} | {} | {} | {} |",
             m.motor.name(),
-            badge(words::motor_mark(&m.outcome)),
+            badge(m.mark()),
             if pos.is_empty() {
                 "—".to_string()
             } else {
                 pos.join(" → ")
             },
-            cell(&words::motor(m))
+            cell(&motor_words(m))
         );
     }
     o.push('\n');
@@ -589,26 +578,7 @@ fn analysed(o: &mut String, path: &Path, a: &Analysis) {
 /// Everything left to fix: the results that failed or warned, and the load analysis'
 /// warnings (or its missing file).
 pub fn to_fix(view: &CheckView) -> Vec<String> {
-    let mut out = Vec::new();
-    for s in &view.switches {
-        if matches!(words::switch_mark(&s.outcome), Mark::Fail | Mark::Warn) {
-            out.push(format!(
-                "{}: {}",
-                s.input.label(),
-                words::switch(s, |id| name_of(view, id))
-            ));
-        }
-    }
-    for c in &view.circuits {
-        if matches!(words::circuit_mark(&c.outcome), Mark::Fail | Mark::Warn) {
-            out.push(format!("{} ({}): {}", c.name, c.pin, words::circuit(c)));
-        }
-    }
-    for m in &view.motors {
-        if matches!(words::motor_mark(&m.outcome), Mark::Fail | Mark::Warn) {
-            out.push(format!("{}: {}", m.motor.name(), words::motor(m)));
-        }
-    }
+    let mut out = view.to_fix();
     match &view.loads {
         Some(LoadsView::Analysed { analysis, .. }) => {
             out.extend(
@@ -684,24 +654,20 @@ pub fn csv(view: &CheckView, about: &About) -> String {
         o.push_str("\r\n");
     };
     for s in &view.switches {
-        let names: Vec<String> = s.circuits.iter().map(|&id| name_of(view, id)).collect();
+        let names: Vec<String> = s.circuits.iter().map(|&id| view.name_of(id)).collect();
         row(
             "switches",
             &s.input.label(),
             "",
             String::new(),
             String::new(),
-            words::switch_mark(&s.outcome),
+            s.mark(),
             String::new(),
             String::new(),
             if names.is_empty() {
-                words::switch(s, |id| name_of(view, id))
+                switch_words(view, s)
             } else {
-                format!(
-                    "{} (circuits: {})",
-                    words::switch(s, |id| name_of(view, id)),
-                    names.join(", ")
-                )
+                format!("{} (circuits: {})", switch_words(view, s), names.join(", "))
             },
         );
     }
@@ -718,10 +684,10 @@ pub fn csv(view: &CheckView, about: &About) -> String {
             c.pin,
             c.breaker.map(|b| b.to_string()).unwrap_or_default(),
             c.switch.map(switch_text).unwrap_or_default(),
-            words::circuit_mark(&c.outcome),
+            c.mark(),
             amps,
             String::new(),
-            words::circuit(c),
+            circuit_words(c),
         );
     }
     for m in &view.motors {
@@ -732,10 +698,10 @@ pub fn csv(view: &CheckView, about: &About) -> String {
             device::device(m.motor.device_id()).map_or("", |d| d.system_name),
             String::new(),
             String::new(),
-            words::motor_mark(&m.outcome),
+            m.mark(),
             String::new(),
             pos.join(" "),
-            words::motor(m),
+            motor_words(m),
         );
     }
     if let Some(LoadsView::Analysed { analysis, .. }) = &view.loads {
