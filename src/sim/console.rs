@@ -22,6 +22,8 @@ commands (one per line):
   flap up|down|off        hold the flap switch, or let it go
   trim pitch|roll up|down|off
                           hold a trim switch, or let it go
+  press flap|pitch|roll up|down [SECONDS]
+                          hold that switch and let go after SECONDS (2)
   load DEVICE AMPS        the pin's load changes
   short DEVICE on|off     a short appears on the pin, or goes away
   fault DEVICE CODE       the device faults now (Appendix E code number)
@@ -68,6 +70,8 @@ pub fn parse_line(line: &str) -> Result<ConsoleLine, String> {
             },
             direction: direction(dir)?,
         },
+        ["press", motor, dir] => press(motor, dir, DEFAULT_FLIP_HOLD)?,
+        ["press", motor, dir, secs] => press(motor, dir, seconds(secs)?)?,
         ["load", d, amps] => {
             let amps: f32 = amps
                 .parse()
@@ -100,6 +104,21 @@ pub fn parse_line(line: &str) -> Result<ConsoleLine, String> {
         }
     };
     Ok(ConsoleLine::Command(cmd))
+}
+
+fn press(motor: &str, dir: &str, hold: Duration) -> Result<SimCommand, String> {
+    let motor = match motor {
+        "flap" | "flaps" => MotorId::Flap,
+        "pitch" => MotorId::Pitch,
+        "roll" => MotorId::Roll,
+        other => return Err(format!("press {other:?}: say flap, pitch or roll")),
+    };
+    let direction = direction(dir)?.ok_or_else(|| format!("press {dir:?}: say up or down"))?;
+    Ok(SimCommand::PressMotorSwitch {
+        motor,
+        direction,
+        hold,
+    })
 }
 
 fn switch_number(n: &str) -> Result<u8, String> {
@@ -201,6 +220,22 @@ mod tests {
             }
         );
         assert_eq!(
+            cmd("press pitch up 1.5"),
+            SimCommand::PressMotorSwitch {
+                motor: MotorId::Pitch,
+                direction: MotorDirection::Up,
+                hold: Duration::from_millis(1500)
+            }
+        );
+        assert_eq!(
+            cmd("press flap down"),
+            SimCommand::PressMotorSwitch {
+                motor: MotorId::Flap,
+                direction: MotorDirection::Down,
+                hold: Duration::from_secs(2)
+            }
+        );
+        assert_eq!(
             cmd("load 17 7.5"),
             SimCommand::Load {
                 device: 17,
@@ -248,6 +283,8 @@ mod tests {
             ("flip 3 1e9", "seconds"),
             ("trim yaw up", "pitch or roll"),
             ("flap sideways", "up, down or off"),
+            ("press yaw up", "flap, pitch or roll"),
+            ("press flap off", "up or down"),
             ("load 31 1.0", "0 to 30"),
             ("load 9 -2", "0 or more"),
             ("fault 9 short", "number"),

@@ -153,6 +153,17 @@ impl SimHandle {
         self.inject(SimCommand::FlipSwitch { switch, hold });
     }
 
+    /// A person holds the flap or trim switch in `direction` and lets go `hold`
+    /// later, without blocking the caller (SYSTEM_STATUS byte 8 shows it meanwhile,
+    /// and the motor runs as its switch drives it).
+    pub fn press_motor_switch(&self, motor: MotorId, direction: MotorDirection, hold: Duration) {
+        self.inject(SimCommand::PressMotorSwitch {
+            motor,
+            direction,
+            hold,
+        });
+    }
+
     /// The whole 256 KiB program flash.
     pub fn flash(&self) -> Vec<u8> {
         let (tx, rx) = bounded(1);

@@ -97,6 +97,13 @@ pub enum SimCommand {
         motor: MotorId,
         direction: Option<MotorDirection>,
     },
+    /// A person holds the flap or trim switch in `direction` and lets go after
+    /// `hold` (the motor runs as the switch drives it, meanwhile).
+    PressMotorSwitch {
+        motor: MotorId,
+        direction: MotorDirection,
+        hold: Duration,
+    },
     /// Sets the system fault bit of FAULT_STATUS.
     SystemFault,
     /// Power off and on: RAM state is lost, the EEPROM is read again.
@@ -916,6 +923,24 @@ impl Unit {
                     && self.flap_down_inhibited(now);
                 let held = if inhibited { None } else { direction };
                 self.motors[motor_index(motor)].switch(held, &g, now);
+            }
+            SimCommand::PressMotorSwitch {
+                motor,
+                direction,
+                hold,
+            } => {
+                self.apply(
+                    SimCommand::MotorSwitch {
+                        motor,
+                        direction: Some(direction),
+                    },
+                    now,
+                );
+                let release = SimCommand::MotorSwitch {
+                    motor,
+                    direction: None,
+                };
+                self.pending.push((now + hold, release));
             }
             SimCommand::SystemFault => self.system_fault = true,
             SimCommand::PowerCycle => {
@@ -2410,5 +2435,23 @@ mod tests {
         // Table 24 byte 8, MSB first: roll down, roll up, pitch down, pitch up (0x10),
         // flap down (0x08), flap up, switch 10, switch 9.
         assert_eq!(s[7], 0b0001_1000);
+        b.apply(SimCommand::MotorSwitch {
+            motor: MotorId::Flap,
+            direction: None,
+        });
+        b.apply(SimCommand::MotorSwitch {
+            motor: MotorId::Pitch,
+            direction: None,
+        });
+        // Pressed for 1.5 s: roll trim up (0x40) in the next broadcast, gone after.
+        b.apply(SimCommand::PressMotorSwitch {
+            motor: MotorId::Roll,
+            direction: MotorDirection::Up,
+            hold: Duration::from_millis(1_500),
+        });
+        for want in [0b0100_0000, 0b0100_0000, 0] {
+            let s = system_status_bytes(&mut b);
+            assert_eq!(s[7], want);
+        }
     }
 }
