@@ -6,8 +6,8 @@ use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use vpx_efis::control::{
-    Action, Controller, KeyContext, MAX_WIRE_INTERVAL, MotorStreamer, Selected, StopReason,
-    StreamerConfig,
+    Action, Controller, Direction, KeyContext, MAX_WIRE_INTERVAL, MotorStreamer, Selected,
+    StopReason, StreamerConfig,
 };
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::device::{DEVICE_COUNT, FLAPS, TRIM_P, TRIM_R};
@@ -822,6 +822,30 @@ fn a_motor_does_not_start_where_motors_are_refused() {
     assert!(o.packets.is_empty(), "{:?}", o.packets);
     assert!(ctl.running().is_none());
     assert_eq!(o.notice.as_deref(), Some("motors unavailable: no thread"));
+}
+
+/// The installation check's timed runs go through the same refusal: a page that
+/// cannot stream must not start a run nothing resends.
+#[test]
+fn a_timed_run_does_not_start_where_motors_are_refused() {
+    let t0 = Instant::now();
+    let model = live_model(t0);
+    let mut fine = Controller::default();
+    let p = fine
+        .run_for(&model, PITCH, Direction::Up, ms(600), t0)
+        .expect("a healthy page runs the trim");
+    assert_eq!(p.len(), 1, "{p:?}");
+    assert!(fine.running().is_some());
+
+    let mut ctl = Controller::default();
+    ctl.refuse_motors("motors unavailable: no thread".into());
+    let r = ctl.run_for(&model, PITCH, Direction::Up, ms(600), t0);
+    assert_eq!(r.unwrap_err().0, "motors unavailable: no thread");
+    assert!(ctl.running().is_none());
+    assert!(
+        ctl.tick(&model, t0 + ms(250)).is_empty(),
+        "nothing to resend"
+    );
 }
 
 #[test]

@@ -266,10 +266,11 @@ impl Controller {
     }
 
     /// Runs `motor` `direction` for `length` with no key behind it (the installation
-    /// check), if the model permits it now ([`motor_permit`]). From then on it is a
-    /// run like any other: [`Controller::tick`] ends it on lost communication, a
-    /// fault or lost status, any key or quit ends it, and the stream ends it at
-    /// `length` ([`StopReason::RunDone`]).
+    /// check), if the page may stream a motor at all ([`Controller::refuse_motors`])
+    /// and the model permits it now ([`motor_permit`]). From then on it is a run
+    /// like any other: [`Controller::tick`] ends it on lost communication, a fault or
+    /// lost status, any key or quit ends it, and the stream ends it at `length`
+    /// ([`StopReason::RunDone`]).
     pub fn run_for(
         &mut self,
         model: &Model,
@@ -278,6 +279,11 @@ impl Controller {
         length: Duration,
         now: Instant,
     ) -> Result<Vec<Packet>, Refusal> {
+        // A page whose motor thread did not start has nothing to resend the move:
+        // the unit would see one move and then a gap, not a stream.
+        if let Some(why) = &self.motors_refused {
+            return Err(Refusal(why.clone()));
+        }
         motor_permit(model, motor, direction, now)?;
         Ok(self.streamer.run_for(now, motor, direction, length))
     }
