@@ -18,12 +18,10 @@ use super::flow::{CheckFlow, Command, Io, Phase, Powered, next_step};
 use super::switches::news;
 use crate::exchange::{Try, Verdict};
 use crate::model::{CircuitState, Model};
-use crate::ui::check::state::{CheckView, CircuitFinding, CircuitResult, Outcome, Prompt, Step};
-
-/// A draw at or above this share of the breaker is "tight".
-pub const NEAR_BREAKER: f32 = 0.8;
-/// Below this a circuit that is on draws "no current" (the unit reports tenths).
-pub const NO_CURRENT_BELOW: f32 = 0.05;
+use crate::protocol::message::Tenths;
+use crate::ui::check::state::{
+    BreakerLoad, CheckView, CircuitFinding, CircuitResult, Outcome, Prompt, Step,
+};
 
 /// One line per circuit, in pin order: the planned ones to run, the ones left alone
 /// with why (motors have their own step).
@@ -61,12 +59,14 @@ pub(super) fn rows(view: &CheckView, model: &Model, now: Instant) -> Vec<Circuit
         .collect()
 }
 
-/// What a circuit's amps say against its breaker.
-pub fn judge(amps: f32, breaker: Option<u8>) -> CircuitFinding {
+/// What a circuit's current, as the unit sent it, says against its breaker: none at
+/// all (the unit's smallest step is a tenth), tight or over ([`BreakerLoad`]), within.
+pub fn judge(current: Tenths, breaker: Option<u8>) -> CircuitFinding {
     let breaker_a = breaker.unwrap_or(0);
-    if amps < NO_CURRENT_BELOW {
+    let amps = current.value();
+    if current.0 == 0 {
         CircuitFinding::NoCurrent
-    } else if breaker.is_some_and(|b| amps >= NEAR_BREAKER * f32::from(b)) {
+    } else if breaker.is_some_and(|b| BreakerLoad::of(current, b) != BreakerLoad::Within) {
         CircuitFinding::NearBreaker {
             amps,
             breaker: breaker_a,
@@ -226,11 +226,11 @@ impl CheckFlow {
                     self.known_faults.insert(id);
                     Some(CircuitFinding::Faulted(code))
                 } else if io.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
-                    let amps = io
+                    let current = io
                         .model
                         .live_devices(now)
-                        .map_or(0.0, |d| d.current[id as usize].value());
-                    Some(judge(amps, view.circuits[idx].breaker))
+                        .map_or(Tenths(0), |d| d.current[id as usize]);
+                    Some(judge(current, view.circuits[idx].breaker))
                 } else if now >= item.started + item.on_for {
                     Some(CircuitFinding::DidNotSwitch)
                 } else {

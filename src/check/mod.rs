@@ -12,7 +12,7 @@ pub mod plan;
 pub mod report;
 mod switches;
 
-pub use circuits::{NEAR_BREAKER, judge as judge_current};
+pub use circuits::judge as judge_current;
 pub use flow::{Cause, CheckFlow, Command, Options, Out, Timing};
 pub use motors::{expected_sign, judge as judge_motor};
 pub use plan::{Choices, SUGGEST_EXCLUDING};

@@ -692,6 +692,40 @@ fn each_circuit_is_measured_judged_and_put_back() {
     );
 }
 
+/// Issue 14's "≥ 80 %" includes 80 % itself, for the breaker sizes where 0.8 × the
+/// rating is not exact in binary (worked by hand: 80 % of 13 A is 10.4 A, 104 tenths).
+#[test]
+fn a_draw_of_exactly_80_percent_of_the_breaker_is_tight() {
+    use super::circuits::judge;
+    use crate::protocol::message::Tenths;
+    for b in [9u8, 13, 18, 21, 26] {
+        let at = u16::from(b) * 8;
+        assert_eq!(
+            judge(Tenths(at), Some(b)),
+            CircuitFinding::NearBreaker {
+                amps: Tenths(at).value(),
+                breaker: b
+            },
+            "{b} A"
+        );
+        assert_eq!(
+            judge(Tenths(at - 1), Some(b)),
+            CircuitFinding::Within {
+                amps: Tenths(at - 1).value(),
+                breaker: b
+            },
+            "{b} A"
+        );
+    }
+    assert!(
+        judge(Tenths(104), Some(13))
+            .words()
+            .starts_with("draws 10.4 A of a 13 A breaker (≥ 80 %)")
+    );
+    assert_eq!(judge(Tenths(0), Some(13)), CircuitFinding::NoCurrent);
+    assert_eq!(judge(Tenths(1), Some(13)).mark(), Mark::Pass);
+}
+
 #[test]
 fn a_unit_that_never_switches_the_circuit_on_is_said_so() {
     let mut r = Rig::new(Rig::circuits_only());

@@ -11,25 +11,24 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
-use super::state::{CheckView, CircuitResult};
+use super::state::{BreakerLoad, CheckView, CircuitResult};
 use super::{fit, progress_span, progress_words, section, words, words_style};
 use crate::model::{CircuitState, Model};
+use crate::protocol::message::Tenths;
 use crate::ui::{fast, theme, values};
 
 /// The current against the breaker: a bar and the share in words, in the colour of
-/// its meaning (within, tight, over).
-pub fn load_bar(amps: f32, breaker: u8, width: usize) -> Vec<Span<'static>> {
+/// its meaning (within, tight, over), judged as the flow judges it ([`BreakerLoad`]).
+pub fn load_bar(current: Tenths, breaker: u8, width: usize) -> Vec<Span<'static>> {
     let share = if breaker == 0 {
         f32::INFINITY
     } else {
-        amps / f32::from(breaker)
+        current.value() / f32::from(breaker)
     };
-    let (style, word) = if share > 1.0 {
-        (theme::alert(), "over the breaker")
-    } else if share >= words::NEAR_BREAKER {
-        (theme::caution(), "≥ 80 %: tight")
-    } else {
-        (theme::on_off(true), "within")
+    let (style, word) = match BreakerLoad::of(current, breaker) {
+        BreakerLoad::Over => (theme::alert(), "over the breaker"),
+        BreakerLoad::Tight => (theme::caution(), "≥ 80 %: tight"),
+        BreakerLoad::Within => (theme::on_off(true), "within"),
     };
     let filled = ((share.min(1.0) * width as f32).round() as usize).min(width);
     vec![
@@ -88,7 +87,8 @@ fn under_test(r: &CircuitResult, model: &Model, now: Instant, width: u16) -> Vec
         (Some(a), Some(b)) => {
             second.push(Span::styled(format!(" of {b} A  "), theme::label()));
             let bar_w = usize::from(width).saturating_sub(16 + 9 + 26).clamp(8, 40);
-            second.extend(load_bar(a, b, bar_w));
+            // The model's amps are the unit's tenths over ten: back to tenths exactly.
+            second.extend(load_bar(Tenths((a * 10.0).round() as u16), b, bar_w));
         }
         (None, _) => second.push(Span::styled(
             "  no live DEVICE_STATUS: current unknown",
@@ -163,4 +163,28 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, no
         );
     }
     list::render(frame.buffer_mut(), inner, &rows, view.current);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn word(current: u16, breaker: u8) -> String {
+        load_bar(Tenths(current), breaker, 10)
+            .last()
+            .unwrap()
+            .content
+            .to_string()
+    }
+
+    /// The bar says what the flow found: exactly 80 % of a 9 A breaker (72 tenths,
+    /// worked by hand) is tight, as the finding says.
+    #[test]
+    fn the_bar_calls_exactly_80_percent_tight_as_the_flow_does() {
+        assert_eq!(word(72, 9), "≥ 80 %: tight");
+        assert_eq!(word(71, 9), "within");
+        assert_eq!(word(208, 26), "≥ 80 %: tight");
+        assert_eq!(word(260, 26), "≥ 80 %: tight");
+        assert_eq!(word(261, 26), "over the breaker");
+    }
 }

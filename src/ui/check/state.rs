@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use crate::model::Motor;
 use crate::protocol::fault::FaultCode;
-use crate::protocol::message::{SwitchId, SwitchInputs};
+use crate::protocol::message::{SwitchId, SwitchInputs, Tenths};
 
 /// The check's steps, in the order they run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
@@ -147,6 +147,39 @@ pub enum SwitchFinding {
     OtherChanged(Vec<Input>),
     /// "circuits did not follow", each with the reason.
     CircuitsDidNotFollow(Vec<(u8, NotFollowed)>),
+}
+
+/// The share of its breaker, in percent, at which a circuit's draw is called tight
+/// (issue 14: "≥ 80 %").
+pub const NEAR_BREAKER_PERCENT: u16 = 80;
+
+/// What a circuit's current is against its breaker. Judged on the unit's own tenths
+/// of an amp (ICD Table 26), in integers: in `f32`, 80 % of a 9 A breaker is
+/// 7.2000003 while 72 tenths are 7.1999998, so a draw of exactly 80 % of a 9, 13, 18,
+/// 21 or 26 A breaker would read as "within". The flow's finding and the screen's bar
+/// both come from here, so they cannot disagree.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BreakerLoad {
+    Within,
+    /// At or above [`NEAR_BREAKER_PERCENT`], up to the breaker's rating.
+    Tight,
+    /// More than the breaker's rating.
+    Over,
+}
+
+impl BreakerLoad {
+    pub fn of(current: Tenths, breaker: u8) -> BreakerLoad {
+        // tenths × 100 against percent × amps × 10, in u32: no rounding anywhere.
+        let tenths = u32::from(current.0) * 100;
+        let rating = u32::from(breaker) * 10;
+        if breaker == 0 || tenths > rating * 100 {
+            BreakerLoad::Over
+        } else if tenths >= rating * u32::from(NEAR_BREAKER_PERCENT) {
+            BreakerLoad::Tight
+        } else {
+            BreakerLoad::Within
+        }
+    }
 }
 
 /// Step 3's result for one circuit.
@@ -560,6 +593,39 @@ impl CheckView {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Exactly 80 % of every breaker size from 1 to 30 A is tight, one tenth less is
+    /// within, one tenth over the rating is over (worked by hand: 80 % of 9 A is 7.2 A,
+    /// 72 tenths).
+    #[test]
+    fn a_draw_of_exactly_80_percent_is_tight_for_every_breaker() {
+        assert_eq!(BreakerLoad::of(Tenths(72), 9), BreakerLoad::Tight);
+        assert_eq!(BreakerLoad::of(Tenths(71), 9), BreakerLoad::Within);
+        assert_eq!(BreakerLoad::of(Tenths(90), 9), BreakerLoad::Tight);
+        assert_eq!(BreakerLoad::of(Tenths(91), 9), BreakerLoad::Over);
+        for b in 1..=30u8 {
+            let at = u16::from(b) * 8;
+            assert_eq!(BreakerLoad::of(Tenths(at), b), BreakerLoad::Tight, "{b} A");
+            assert_eq!(
+                BreakerLoad::of(Tenths(at - 1), b),
+                BreakerLoad::Within,
+                "{b} A"
+            );
+            let rating = u16::from(b) * 10;
+            assert_eq!(
+                BreakerLoad::of(Tenths(rating), b),
+                BreakerLoad::Tight,
+                "{b} A"
+            );
+            assert_eq!(
+                BreakerLoad::of(Tenths(rating + 1), b),
+                BreakerLoad::Over,
+                "{b} A"
+            );
+        }
+        // A 0 A breaker: any current is over it.
+        assert_eq!(BreakerLoad::of(Tenths(1), 0), BreakerLoad::Over);
+    }
 
     fn circuit(id: u8, outcome: Outcome<CircuitFinding>) -> CircuitResult {
         CircuitResult {

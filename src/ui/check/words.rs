@@ -10,10 +10,6 @@ use super::state::{
 };
 use crate::protocol::message::SwitchId;
 
-/// The share of its breaker at which the bar calls a draw tight (issue 14: ≥ 80 %),
-/// the flow's `check::NEAR_BREAKER`, which `ui` may not import.
-pub const NEAR_BREAKER: f32 = 0.8;
-
 /// "✓ PASS": the symbol and the word, always together.
 pub fn badge(mark: Mark) -> String {
     format!("{} {}", mark.symbol(), mark.word())
