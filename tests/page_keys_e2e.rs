@@ -50,6 +50,10 @@ fn trim_moves(rig: &Rig, from: usize) -> Vec<(Instant, TrimMove)> {
         .collect()
 }
 
+/// Repeats 40 ms apart delivered at worst this far apart: the machine woke the test's
+/// own thread within 20 ms, and will have woken the page's as promptly.
+const QUIET_DELIVERY: Duration = Duration::from_millis(60);
+
 /// What one hold through the pty gave.
 struct Hold {
     moves: Vec<(Instant, TrimMove)>,
@@ -102,7 +106,7 @@ fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
     rig.select(30);
     let mut hold = hold_x_default(&mut rig);
     for _ in 0..2 {
-        if hold.worst_delivery <= Duration::from_millis(100) {
+        if hold.worst_delivery <= QUIET_DELIVERY {
             break;
         }
         eprintln!(
@@ -117,7 +121,9 @@ fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
         hold.worst_delivery
     );
     let Hold {
-        moves, last_repeat, ..
+        ref moves,
+        last_repeat,
+        ..
     } = hold;
     let stops: Vec<_> = moves.iter().filter(|(_, m)| !m.on).collect();
     assert_eq!(stops.len(), 1, "one run, one stop: {moves:?}");
@@ -150,13 +156,23 @@ fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
         stop_at - last_repeat
     );
     assert!(worst <= Duration::from_millis(220), "interval {worst:?}");
-    // The learned gap is 3 × 40 ms = 120 ms; alone on a machine the stop is written
-    // ~121 ms after the last repeat (the goal is 150 ms). On a shared machine at a load
-    // average of ~11 the motor thread waited up to ~30 ms more for a core, so the
-    // bound here leaves 25 ms over the goal; the old fixed 200 ms gap still fails it.
+    // The learned gap is 3 × 40 ms = 120 ms, and the stop is written ~120.2 ms after
+    // the last repeat (measured with other builds running, load average ~5): issue
+    // 12's promise is 150 ms, and a hold on a machine that woke this test's own
+    // thread on time is held to it. Where every hold found the machine saturated (4
+    // busy loops on 2 cores put the stop at 128–178 ms: the motor thread and the
+    // link's writer each wait for a core after the deadline) the bound is 175 ms;
+    // the old fixed 200 ms gap fails both.
+    let bound = if hold.worst_delivery <= QUIET_DELIVERY {
+        Duration::from_millis(150)
+    } else {
+        Duration::from_millis(175)
+    };
     assert!(
-        after <= Duration::from_millis(175),
-        "stop written {after:?} after the last repeat"
+        after <= bound,
+        "stop written {after:?} after the last repeat (bound {bound:?}, repeats delivered \
+         at worst {:?} apart)",
+        hold.worst_delivery
     );
     assert_eq!(rig.sim.stats().pitch_trim_starvations, 0);
     assert!(!rig.sim.stats().pitch_trim_running);
