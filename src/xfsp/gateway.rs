@@ -87,6 +87,11 @@ pub const POLL: Duration = Duration::from_millis(100);
 /// The same circuit command from the network within this window is taken once: a
 /// requester repeating itself against packet loss should not flood the unit or the log.
 pub const COMMAND_REPEAT_WINDOW: Duration = Duration::from_secs(1);
+/// At most this many requests are remembered for [`COMMAND_REPEAT_WINDOW`]. Their
+/// keys hold labels from the network, so a flood of distinct ones within the window
+/// must not grow the map without end; past this the oldest is forgotten (its repeat
+/// is then taken, or refused, once more: harmless).
+pub const RECENT_MAX: usize = 1024;
 /// A source silent this long is forgotten, so a node that restarted (and numbers its
 /// messages from scratch) is heard again at once instead of after 32767 messages.
 pub const FORGET_SOURCE_AFTER: Duration = Duration::from_secs(10);
@@ -393,13 +398,26 @@ impl Gateway {
         {
             return true;
         }
-        if self.recent.len() > 1024 {
-            // Bounded under a flood of distinct requests.
+        self.remember(key, now);
+        false
+    }
+
+    /// Notes a request as seen at `now`, keeping at most [`RECENT_MAX`].
+    fn remember(&mut self, key: (Ident, u16, u8, Vec<u8>), now: Instant) {
+        if self.recent.len() >= RECENT_MAX && !self.recent.contains_key(&key) {
             self.recent
                 .retain(|_, t| now.saturating_duration_since(*t) < COMMAND_REPEAT_WINDOW);
+            if self.recent.len() >= RECENT_MAX
+                && let Some(oldest) = self
+                    .recent
+                    .iter()
+                    .min_by_key(|(_, t)| **t)
+                    .map(|(k, _)| k.clone())
+            {
+                self.recent.remove(&oldest);
+            }
         }
         self.recent.insert(key, now);
-        false
     }
 
     /// MSTRCAUTN/MSTRWARN with SYSSEL/USERSEL: FALSE resets, anything else is refused.
@@ -422,7 +440,7 @@ impl Gateway {
                     return;
                 }
                 if acknowledged > 0 {
-                    self.recent.insert((master.ident(), 0, 0, Vec::new()), now);
+                    self.remember((master.ident(), 0, 0, Vec::new()), now);
                 }
                 self.stats.commands_taken += 1;
                 let what = match acknowledged {
@@ -508,7 +526,7 @@ impl Gateway {
             Ok(message) => {
                 // Only a command taken is suppressed on repeat: a retry after a refusal
                 // may find the circuit in the state it needed.
-                self.recent.insert(key, now);
+                self.remember(key, now);
                 self.stats.commands_taken += 1;
                 model.log(
                     now,
@@ -574,4 +592,25 @@ pub fn match_circuit(model: &Model, now: Instant, unit: u16, label: &str) -> Res
 fn confidence_name(c: Confidence) -> String {
     c.spec_name()
         .map_or_else(|| format!("confidence {}", u8::from(c)), str::to_string)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Refused requests naming labels nobody has, each one different, all within the
+    /// repeat window: the memory of them stays bounded, and the newest is remembered.
+    #[test]
+    fn a_flood_of_distinct_labels_keeps_the_recent_map_bounded() {
+        let t0 = Instant::now();
+        let mut gw = Gateway::new(GatewayConfig::default(), t0);
+        for i in 0..5 * RECENT_MAX as u32 {
+            let key = (idents::ECBSTAT, 0, 1, i.to_be_bytes().to_vec());
+            assert!(!gw.repeated(key, t0 + Duration::from_micros(u64::from(i))));
+        }
+        assert!(gw.recent.len() <= RECENT_MAX, "{}", gw.recent.len());
+        let last = (5 * RECENT_MAX as u32 - 1).to_be_bytes().to_vec();
+        let now = t0 + Duration::from_millis(100);
+        assert!(gw.repeated((idents::ECBSTAT, 0, 1, last), now));
+    }
 }
