@@ -122,8 +122,8 @@ fn finished() -> CheckView {
         step: Step::Done,
         plan,
         planned_motors: vec![
-            (Motor::Flaps, Duration::from_millis(500)),
-            (Motor::Trim(TrimKind::Pitch), Duration::from_millis(300)),
+            (Motor::Flaps, Duration::from_secs(6)),
+            (Motor::Trim(TrimKind::Pitch), Duration::from_secs(4)),
         ],
         excluded: vec![
             Excluded {

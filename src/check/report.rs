@@ -325,7 +325,7 @@ fn before_power(o: &mut String, view: &CheckView) {
         for (m, d) in &view.planned_motors {
             let _ = writeln!(
                 o,
-                "| {} (each way) | — | {:.1} s |",
+                "| {}, both ways and back | — | {:.1} s in all |",
                 m.name(),
                 d.as_secs_f32()
             );
