@@ -48,6 +48,7 @@ pub fn stem(when: SystemTime) -> String {
 /// file flushed, then renamed into place). A second check in the same minute gets
 /// `-2`, `-3`…: a report in the log is never replaced. If the second file cannot be
 /// written the first is taken back, so a failed write leaves nothing behind.
+/// `dir` must exist: a mistyped folder is an error, not a new folder somewhere.
 pub fn write(dir: &Path, view: &CheckView, about: &About) -> std::io::Result<Written> {
     let stem = stem(about.when);
     let free = (1..1000)
