@@ -5,8 +5,8 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
 
+use super::panel::Panel;
 use super::{theme, values};
 use crate::model::{Circuit, CircuitKind, CircuitState, Model, TrimKind};
 use crate::protocol::device;
@@ -164,16 +164,19 @@ fn spec_line(model: &Model, c: &Circuit) -> Line<'static> {
 }
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, selected: Option<&Circuit>) {
-    let block = Block::new()
-        .borders(Borders::TOP | Borders::RIGHT)
-        .border_style(theme::border());
+    let panel = |frame: &mut Frame, title: Line| {
+        Panel {
+            right_side: true,
+            border: theme::border(),
+            titles: &[title],
+            right_title: None,
+        }
+        .render(area, frame.buffer_mut())
+    };
     let Some(c) = selected else {
-        let p = Paragraph::new(Line::styled(
-            "select a device with ↑/↓ or j/k",
-            theme::label(),
-        ))
-        .block(block.title(Span::styled(" Detail ", theme::panel_title())));
-        frame.render_widget(p, area);
+        let inner = panel(frame, Line::styled(" Detail ", theme::panel_title()));
+        let hint = Line::styled("select a device with ↑/↓ or j/k", theme::label());
+        super::fast::lines(frame.buffer_mut(), inner, &[hint]);
         return;
     };
     let role = match c.kind {
@@ -235,8 +238,6 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, selected: Option<&Ci
         ]));
     }
     lines.push(spec_line(model, c));
-    let p = Paragraph::new(lines)
-        .block(block.title(title))
-        .wrap(Wrap { trim: true });
-    frame.render_widget(p, area);
+    let inner = panel(frame, title);
+    super::fast::wrapped(frame.buffer_mut(), inner, &lines);
 }

@@ -8,9 +8,9 @@ use ratatui::Frame;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
-use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders};
+use ratatui::text::Line;
 
+use super::panel::Panel;
 use super::state::{SortOrder, ViewState};
 use super::{theme, values};
 use crate::model::{Circuit, CircuitKind, Model};
@@ -151,19 +151,19 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState)
     if below > 0 {
         more.push(format!("▼{below} more"));
     }
-    let more = if more.is_empty() {
-        Line::default()
-    } else {
-        Line::styled(format!(" {} ", more.join(" ")), theme::caution()).right_aligned()
-    };
-    let block = Block::new()
-        .borders(Borders::TOP | Borders::RIGHT)
-        .border_style(theme::border())
-        .title(Span::styled(" Devices ", theme::panel_title()))
-        .title(Span::styled(format!("{sort} "), theme::label()))
-        .title(more);
-    let inner = block.inner(area);
-    frame.render_widget(block, area);
+    let more =
+        (!more.is_empty()).then(|| Line::styled(format!(" {} ", more.join(" ")), theme::caution()));
+    let titles = [
+        Line::styled(" Devices ", theme::panel_title()),
+        Line::styled(format!("{sort} "), theme::label()),
+    ];
+    let inner = Panel {
+        right_side: true,
+        border: theme::border(),
+        titles: &titles,
+        right_title: more.as_ref(),
+    }
+    .render(area, frame.buffer_mut());
     if inner.height == 0 || inner.width == 0 {
         return;
     }

@@ -7,8 +7,8 @@ use std::time::{Duration, Instant};
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders};
 
+use super::panel::Panel;
 use super::{theme, values};
 use crate::model::{LogLevel, Model};
 
@@ -50,12 +50,14 @@ pub fn height(model: &Model, now: Instant, max: u16) -> u16 {
 }
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
-    let block = Block::new()
-        .borders(Borders::TOP)
-        .border_style(theme::border())
-        .title(Span::styled(" Events ", theme::panel_title()));
-    let inner = block.inner(area);
-    frame.render_widget(block, area);
+    let title = [Line::from(Span::styled(" Events ", theme::panel_title()))];
+    let inner = Panel {
+        right_side: false,
+        border: theme::border(),
+        titles: &title,
+        right_title: None,
+    }
+    .render(area, frame.buffer_mut());
     let mut lines: Vec<Line> = Vec::new();
     if let Some(f) = forwarding(model, now) {
         lines.push(f);

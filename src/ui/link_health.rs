@@ -7,8 +7,8 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders};
 
+use super::panel::Panel;
 use super::{theme, values};
 use crate::model::{
     COMM_LOST_AFTER, Connection, FAULT_STATUS_QUIET_AFTER, FLAP_TRIM_STALE_AFTER, Model, Source,
@@ -180,11 +180,13 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         Line::from(ages(model, now)),
         Line::from(counts(model, area.width >= 72)),
     ];
-    let block = Block::new()
-        .borders(Borders::TOP)
-        .border_style(theme::border())
-        .title(Span::styled(" Link ", theme::panel_title()));
-    let inner = block.inner(area);
-    frame.render_widget(block, area);
+    let title = [Line::from(Span::styled(" Link ", theme::panel_title()))];
+    let inner = Panel {
+        right_side: false,
+        border: theme::border(),
+        titles: &title,
+        right_title: None,
+    }
+    .render(area, frame.buffer_mut());
     super::fast::lines(frame.buffer_mut(), inner, &lines);
 }

@@ -1,6 +1,7 @@
 //! ratatui widgets that render the model and nothing else: no I/O, no clocks. The
 //! caller passes `now`, so the same model renders the same frame every time.
 
+pub mod chart;
 pub mod check;
 pub mod comm_banner;
 pub mod detail;
@@ -13,6 +14,7 @@ pub mod link_health;
 pub mod motors;
 pub mod osc11;
 pub mod palette;
+pub mod panel;
 pub mod plot;
 pub mod setup;
 pub mod state;

@@ -8,8 +8,8 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
 
+use super::panel::Panel;
 use super::state::{ReleaseMode, RepeatTiming, ViewState};
 use super::{theme, values};
 use crate::model::{Model, Motor, TrimKind};
@@ -240,12 +240,17 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
             Style::new().fg(theme::ON).add_modifier(Modifier::BOLD),
         ));
     }
-    let block = Block::new()
-        .borders(Borders::TOP)
-        .border_style(theme::border())
-        .title(Span::styled(" Flaps & trim ", theme::panel_title()));
-    let inner = block.inner(area);
-    frame.render_widget(block, area);
+    let title = [Line::from(Span::styled(
+        " Flaps & trim ",
+        theme::panel_title(),
+    ))];
+    let inner = Panel {
+        right_side: false,
+        border: theme::border(),
+        titles: &title,
+        right_title: None,
+    }
+    .render(area, frame.buffer_mut());
     // Gauges and the mode line fit by construction; only the flags may wrap.
     let [gauges, flags_area, mode_area] = Layout::vertical([
         Constraint::Length(lines.len() as u16),
@@ -255,10 +260,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
     .areas(inner);
     super::fast::lines(frame.buffer_mut(), gauges, &lines);
     if !flag_spans.is_empty() {
-        frame.render_widget(
-            Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true }),
-            flags_area,
-        );
+        super::fast::wrapped(frame.buffer_mut(), flags_area, &[Line::from(flag_spans)]);
     }
     super::fast::lines(frame.buffer_mut(), mode_area, &[Line::from(last)]);
 }

@@ -57,8 +57,8 @@ impl Palette {
     /// Repaints `buf` from the page's colour words into this palette's colours.
     pub fn paint(self, buf: &mut Buffer) {
         match self {
-            Palette::Dark => paint_with(buf, &DARK),
-            Palette::Light => paint_with(buf, &LIGHT),
+            Palette::Dark => paint_with(buf, Some(DARK_BG), Color::Indexed(235), dark_word),
+            Palette::Light => paint_with(buf, None, Color::Indexed(254), light_word),
             Palette::Terminal => {}
             Palette::Mono => {
                 for cell in &mut buf.content {
@@ -76,19 +76,9 @@ impl Palette {
 /// The page's dark background: black, as an EFIS screen.
 const DARK_BG: Color = Color::Indexed(16);
 
-/// One palette's colour for each colour word.
-struct Colours {
-    /// `None`: leave the background to the terminal.
-    background: Option<Color>,
-    selection: Color,
-    /// Foreground words on the page's (or the selection's) background.
-    on_page: fn(Color) -> Color,
-}
-
-const DARK: Colours = Colours {
-    background: Some(DARK_BG),
-    selection: Color::Indexed(235),
-    on_page: |c| match c {
+/// The dark palette's colour for each foreground colour word.
+fn dark_word(c: Color) -> Color {
+    match c {
         Color::Reset => Color::Indexed(255),
         Color::White => Color::Indexed(231),
         Color::Gray => Color::Indexed(250),
@@ -100,13 +90,12 @@ const DARK: Colours = Colours {
         Color::Magenta => Color::Indexed(207),
         Color::Black => Color::Indexed(16),
         other => other,
-    },
-};
+    }
+}
 
-const LIGHT: Colours = Colours {
-    background: None,
-    selection: Color::Indexed(254),
-    on_page: |c| match c {
+/// The light palette's colour for each foreground colour word.
+fn light_word(c: Color) -> Color {
+    match c {
         // Appendix A's white=off is the text colour on a light screen.
         Color::Reset | Color::White | Color::Black => Color::Indexed(234),
         Color::Gray => Color::Indexed(237),
@@ -117,8 +106,8 @@ const LIGHT: Colours = Colours {
         Color::Cyan => Color::Indexed(25),
         Color::Magenta => Color::Indexed(90),
         other => other,
-    },
-};
+    }
+}
 
 /// The text on a badge: white on the dark ones (the mark, COMMUNICATION LOST), black
 /// on the light ones, whatever colour word the text had on the page.
@@ -142,16 +131,21 @@ fn badge_bg(c: Color) -> Color {
     }
 }
 
-fn paint_with(buf: &mut Buffer, p: &Colours) {
+/// One palette's pass over the frame: `background` for the page's own (`None`: the
+/// terminal's), `selection` for the selected row's band, `on_page` for the words on
+/// either (a function item, so the pass is compiled per palette with it inlined).
+fn paint_with(
+    buf: &mut Buffer,
+    background: Option<Color>,
+    selection: Color,
+    on_page: impl Fn(Color) -> Color,
+) {
+    let page = background.unwrap_or(Color::Reset);
     for cell in &mut buf.content {
         let bg = cell.bg;
         if bg == Color::Reset || bg == theme::SELECTION {
-            cell.fg = (p.on_page)(cell.fg);
-            cell.bg = if bg == Color::Reset {
-                p.background.unwrap_or(Color::Reset)
-            } else {
-                p.selection
-            };
+            cell.fg = on_page(cell.fg);
+            cell.bg = if bg == Color::Reset { page } else { selection };
         } else {
             cell.fg = badge_text(bg);
             cell.bg = badge_bg(bg);

@@ -8,11 +8,11 @@ use std::time::{Duration, Instant};
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::Style;
-use ratatui::symbols::Marker;
+use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType};
 
+use super::chart::{Chart, Series};
+use super::panel::Panel;
 use super::theme;
 use crate::model::{BusSample, Model};
 use crate::protocol::message::OvervoltageLimit;
@@ -101,9 +101,14 @@ fn trace(
 ) {
     let [label_area, chart_area] =
         Layout::vertical([Constraint::Length(1), Constraint::Fill(1)]).areas(area);
+    // The history is in time order (the model appends), so the samples older than the
+    // window are skipped without a look at each: half the history, on every frame.
+    let start = model
+        .history
+        .partition_point(|s| now.saturating_duration_since(s.at) >= WINDOW);
     // Two samples a cell: braille has two dot columns in each.
     let b = buckets(
-        model.history.iter().copied(),
+        model.history.range(start..).copied(),
         t.value,
         now,
         (chart_area.width as usize * 2).max(2),
@@ -135,74 +140,69 @@ fn trace(
     let x = [-WINDOW.as_secs_f64(), 0.0];
     let runs = runs(&b);
     let limit_line = t.limit.map(|l| [(x[0], l), (x[1], l)]);
-    let mut datasets: Vec<Dataset> = Vec::new();
+    let mut series: Vec<Series> = Vec::with_capacity(runs.len() + 1);
     if let Some(line) = &limit_line {
-        datasets.push(
-            Dataset::default()
-                .marker(Marker::Braille)
-                .graph_type(GraphType::Line)
-                .style(theme::alert())
-                .data(line),
-        );
+        series.push(Series {
+            points: line,
+            colour: theme::FAULT,
+            joined: true,
+        });
     }
+    let colour = t.colour.fg.unwrap_or(Color::Reset);
     for run in &runs {
-        datasets.push(
-            Dataset::default()
-                .marker(Marker::Braille)
-                // A lone bucket between gaps is still a point on the chart.
-                .graph_type(if run.len() > 1 {
-                    GraphType::Line
-                } else {
-                    GraphType::Scatter
-                })
-                .style(t.colour)
-                .data(run),
-        );
+        // A lone bucket between gaps is still a point on the chart.
+        series.push(Series {
+            points: run,
+            colour,
+            joined: run.len() > 1,
+        });
     }
     let minutes = WINDOW.as_secs() / 60;
-    let mut x_axis = Axis::default().bounds(x).style(theme::border());
     // The time labels take two rows (axis and labels): only where the chart keeps at
     // least two rows of plot.
-    if time_axis && chart_area.height >= 4 {
-        x_axis = x_axis.labels([
+    let time_labels = if time_axis && chart_area.height >= 4 {
+        vec![
             Span::styled(format!("-{minutes} min"), theme::label()),
             Span::styled(
                 format!("-{} min", WINDOW.as_secs_f64() / 120.0),
                 theme::label(),
             ),
             Span::styled("now", theme::label()),
-        ]);
-    }
-    let chart = Chart::new(datasets)
-        .x_axis(x_axis)
-        .y_axis(
-            Axis::default()
-                .bounds(y)
-                .style(theme::border())
-                .labels(y.map(|v| {
-                    // A narrow chart keeps whole numbers rather than cut ones.
-                    let text = if chart_area.width >= 24 {
-                        format!("{v:.1}")
-                    } else {
-                        format!("{v:.0}")
-                    };
-                    Span::styled(text, theme::label())
-                })),
-        )
-        .legend_position(None);
-    frame.render_widget(chart, chart_area);
+        ]
+    } else {
+        Vec::new()
+    };
+    let value_labels = y.map(|v| {
+        // A narrow chart keeps whole numbers rather than cut ones.
+        let text = if chart_area.width >= 24 {
+            format!("{v:.1}")
+        } else {
+            format!("{v:.0}")
+        };
+        Span::styled(text, theme::label())
+    });
+    let chart = Chart {
+        x_bounds: x,
+        y_bounds: y,
+        x_labels: &time_labels,
+        y_labels: &value_labels,
+        axis_style: theme::border(),
+    };
+    chart.render(chart_area, frame.buffer_mut(), &series);
 }
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
-    let block = Block::new()
-        .borders(Borders::TOP)
-        .border_style(theme::border())
-        .title(Span::styled(
-            format!(" Last {} min ", WINDOW.as_secs() / 60),
-            theme::panel_title(),
-        ));
-    let inner = block.inner(area);
-    frame.render_widget(block, area);
+    let title = [Line::styled(
+        format!(" Last {} min ", WINDOW.as_secs() / 60),
+        theme::panel_title(),
+    )];
+    let inner = Panel {
+        right_side: false,
+        border: theme::border(),
+        titles: &title,
+        right_title: None,
+    }
+    .render(area, frame.buffer_mut());
     if inner.height < 2 {
         return;
     }

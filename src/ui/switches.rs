@@ -6,8 +6,8 @@ use std::time::Instant;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders};
 
+use super::panel::Panel;
 use super::theme;
 use crate::model::Model;
 
@@ -64,12 +64,17 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         lines.push(Line::from(flap));
         lines.push(Line::from(trim));
     }
-    let block = Block::new()
-        .borders(Borders::TOP)
-        .border_style(theme::border())
-        .title(Span::styled(" Switch inputs ", theme::panel_title()));
-    let inner = block.inner(area);
-    frame.render_widget(block, area);
+    let title = [Line::from(Span::styled(
+        " Switch inputs ",
+        theme::panel_title(),
+    ))];
+    let inner = Panel {
+        right_side: false,
+        border: theme::border(),
+        titles: &title,
+        right_title: None,
+    }
+    .render(area, frame.buffer_mut());
     // Lines are laid out above for the width; no wrapping needed.
     super::fast::lines(frame.buffer_mut(), inner, &lines);
 }

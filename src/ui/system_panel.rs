@@ -7,8 +7,8 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
 
+use super::panel::Panel;
 use super::{theme, values};
 use crate::model::Model;
 use crate::protocol::message::{SystemStatus, WigWagModeSetting};
@@ -139,20 +139,19 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         }
         flag_spans.push(Span::styled(text, style));
     }
-    let block = Block::new()
-        .borders(Borders::TOP)
-        .border_style(theme::border())
-        .title(Span::styled(" System ", theme::panel_title()));
-    let inner = block.inner(area);
-    frame.render_widget(block, area);
+    let title = [Line::from(Span::styled(" System ", theme::panel_title()))];
+    let inner = Panel {
+        right_side: false,
+        border: theme::border(),
+        titles: &title,
+        right_title: None,
+    }
+    .render(area, frame.buffer_mut());
     // Only the flags can run past the width; wrapping is the costly part of a
     // paragraph, so the fixed drawing is not wrapped.
     let [drawing, flags_area] =
         Layout::vertical([Constraint::Length(lines.len() as u16), Constraint::Fill(1)])
             .areas(inner);
     super::fast::lines(frame.buffer_mut(), drawing, &lines);
-    frame.render_widget(
-        Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true }),
-        flags_area,
-    );
+    super::fast::wrapped(frame.buffer_mut(), flags_area, &[Line::from(flag_spans)]);
 }
