@@ -1227,3 +1227,45 @@ fn wide_terminal_gives_its_width_to_the_right_hand_panels() {
     let track = (gx..200).filter(|&x| buf[(x, gy)].symbol() == "─").count();
     assert!(track > 100, "flap gauge uses the width: {track} cells");
 }
+
+/// `--theme terminal` keeps to the terminal's own 16 colours, whose values only the
+/// terminal's theme knows. A colour of fixed value would stand on a palette it was not
+/// chosen for: the dark band the selection had (index 236) gave about 1.6:1 under
+/// xterm's default black on white. The selection is reverse video in the terminal's
+/// own text colour instead, legible on any palette.
+#[test]
+fn terminal_theme_uses_only_the_terminals_own_colours_and_reverses_the_selection() {
+    for (name, m, view, now, w, h) in every_state() {
+        let buf = draw(&m, &in_theme(&view, Palette::Terminal), now, w, h);
+        let painted = themes::painted(&buf, Palette::Terminal);
+        for (i, cell) in painted.content.iter().enumerate() {
+            for c in [cell.fg, cell.bg] {
+                assert!(
+                    ui::palette::rgb(c).is_none(),
+                    "{name}: cell ({},{}) {:?} has {c:?}, a colour of fixed value",
+                    i as u16 % w,
+                    i as u16 / w,
+                    cell.symbol()
+                );
+            }
+        }
+    }
+    let (m, now) = fixtures::normal();
+    let buf = themes::painted(
+        &draw(&m, &view_selecting(4), now, 120, 40),
+        Palette::Terminal,
+    );
+    for (row, text) in [("Nav Lt", "Nav Lt"), ("Nav Lt", "ON")] {
+        let (x, y) = find(&buf, row, text);
+        let cell = &buf[(x + 1, y)];
+        assert_eq!((cell.fg, cell.bg), (Color::Reset, Color::Reset), "{text}");
+        assert!(cell.modifier.contains(Modifier::REVERSED), "{text}");
+    }
+    let (x, y) = find(&buf, "Beacon", "OFF");
+    assert_eq!(
+        buf[(x, y)].fg,
+        Color::White,
+        "rows not selected keep their words"
+    );
+    assert!(!buf[(x, y)].modifier.contains(Modifier::REVERSED));
+}

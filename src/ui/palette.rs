@@ -11,8 +11,10 @@
 //!   background (the COMMUNICATION LOST banner, keys, the selection, SIMULATED) in
 //!   reverse video instead, so nothing that meant something is lost;
 //! - `Terminal` leaves the words as the terminal's own 16 colours show them (what a
-//!   tuned terminal theme may prefer; its contrast is that theme's business). It is
-//!   the type's default, for tests and tools; the page itself always chooses.
+//!   tuned terminal theme may prefer; its contrast is that theme's business). The
+//!   selection, which has no colour among those 16, is in reverse video, which reads
+//!   on any terminal's palette, light or dark. It is the type's default, for tests and
+//!   tools; the page itself always chooses.
 //!
 //! Colours are xterm's 256-colour indices 16–255, whose values every 256-colour
 //! terminal agrees on (unlike 0–15, which each terminal's theme redefines), so the
@@ -59,7 +61,19 @@ impl Palette {
         match self {
             Palette::Dark => paint_with(buf, Some(DARK_BG), Color::Indexed(235), dark_word),
             Palette::Light => paint_with(buf, None, Color::Indexed(254), light_word),
-            Palette::Terminal => {}
+            Palette::Terminal => {
+                for cell in &mut buf.content {
+                    if cell.bg == theme::SELECTION {
+                        // The terminal's own text colour, reversed: a coloured word
+                        // reversed would stand on its colour in the terminal's
+                        // background colour, unreadable for white (OFF) on a light
+                        // terminal. The words say the state.
+                        cell.fg = Color::Reset;
+                        cell.bg = Color::Reset;
+                        cell.modifier.insert(Modifier::REVERSED);
+                    }
+                }
+            }
             Palette::Mono => {
                 for cell in &mut buf.content {
                     if cell.bg != Color::Reset {
