@@ -2,7 +2,8 @@
 //! source, the link state and the unit's version.
 //!
 //! A narrow terminal never gets a word cut in half: the line is built whole pieces at a
-//! time, dropping the least needed first ("VP-X electrical", then the mark), shortening
+//! time, dropping the least needed first ("VP-X electrical", shortened to "electrical"
+//! where that fits, then the mark), shortening
 //! a long port path, scenario or capture name with an ellipsis in its middle, and
 //! saying the connection state in its short form. The connection state, SIMULATED or
 //! REPLAY, and the unit's version always stay.
@@ -19,6 +20,9 @@ use crate::model::{Connection, Model, Source};
 
 pub const MARK: &str = " VERTICAL POWER ";
 const TITLE: &str = " VP-X electrical ";
+/// The page's name where the whole one does not fit: the mark beside it already says
+/// whose unit, and the version at the end which one.
+const SHORT_TITLE: &str = " electrical ";
 /// The shortest a shortened name gets: enough for "/dev/…port0".
 const MIN_NAME: usize = 12;
 
@@ -80,13 +84,13 @@ pub fn line(model: &Model, now: Instant, width: u16) -> Line<'static> {
             theme::label(),
         )
     });
-    let build = |mark: bool, title: bool, name_max: usize, short: bool| {
+    let build = |mark: bool, title: Option<&'static str>, name_max: usize, short: bool| {
         let mut spans = Vec::new();
         if mark {
             spans.push(Span::styled(MARK, theme::brand()));
         }
-        if title {
-            spans.push(Span::styled(TITLE, theme::panel_title()));
+        if let Some(title) = title {
+            spans.push(Span::styled(title, theme::panel_title()));
         } else if mark {
             spans.push(Span::raw(" "));
         }
@@ -111,10 +115,14 @@ pub fn line(model: &Model, now: Instant, width: u16) -> Line<'static> {
     let full = name.chars().count();
     // Least needed first: the page's name, the path's middle, the port's error text,
     // the mark, and last whatever of the name is left.
-    let mut tries = vec![(true, true, full, false), (true, false, full, false)];
+    let mut tries = vec![
+        (true, Some(TITLE), full, false),
+        (true, Some(SHORT_TITLE), full, false),
+        (true, None, full, false),
+    ];
     for keep_mark in [true, false] {
         for short in [false, true] {
-            tries.push((keep_mark, false, usize::MAX, short));
+            tries.push((keep_mark, None, usize::MAX, short));
         }
     }
     for (mark, title, name_max, short) in tries {
@@ -129,7 +137,7 @@ pub fn line(model: &Model, now: Instant, width: u16) -> Line<'static> {
             return build(mark, title, fitted, short);
         }
     }
-    build(false, false, 0, true)
+    build(false, None, 0, true)
 }
 
 #[cfg(test)]
@@ -200,6 +208,30 @@ mod tests {
         );
         let t = text(&line(&m, now, 80));
         assert!(t.contains("SIMULATED demo") && t.ends_with("sw 2.1"), "{t}");
+    }
+
+    /// Where the whole name does not fit, the short one takes the room it would have
+    /// left blank; the name goes only where neither fits.
+    #[test]
+    fn the_page_name_is_shortened_before_it_is_dropped() {
+        let demo = Source::Simulated {
+            scenario: "demo".into(),
+        };
+        for source in [demo, Source::Serial { path: BY_ID.into() }] {
+            let (m, now) = model(source, false);
+            for w in 60..=200u16 {
+                let l = line(&m, now, w);
+                let t = text(&l);
+                // The name goes before the mark: without the mark there is no name.
+                if t.contains("VERTICAL POWER") && !t.contains("electrical") {
+                    let blank = usize::from(w) - l.width();
+                    assert!(
+                        blank < SHORT_TITLE.len() - 1,
+                        "{w}: {blank} columns left blank without the page's name: {t}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
