@@ -1269,3 +1269,28 @@ fn terminal_theme_uses_only_the_terminals_own_colours_and_reverses_the_selection
     );
     assert!(!buf[(x, y)].modifier.contains(Modifier::REVERSED));
 }
+
+/// The overvoltage limit is told from the bus trace without colour: where its label
+/// does not fit (80 columns), a red line among the trace's lines said "limit" by
+/// colour alone, and under NO_COLOR not at all. It is dashed.
+#[test]
+fn the_limit_line_is_dashed_so_no_colour_still_tells_it_from_the_trace() {
+    let (m, now) = fixtures::normal();
+    let buf = themes::painted(&draw(&m, &view_selecting(EFIS), now, 80, 24), Palette::Mono);
+    let (bx, by) = find(&buf, "bus V", "bus V");
+    assert!(
+        !text(&buf).contains("limit"),
+        "the label fits here; this test is about where it does not"
+    );
+    // The chart's first row: the y label, the axis, then the limit (16 V, above the
+    // 13-14 V trace).
+    let row: Vec<&str> = (bx..80).map(|x| buf[(x, by + 1)].symbol()).collect();
+    let axis = row.iter().position(|s| *s == "│").expect("y axis") + 1;
+    let line: String = row[axis..axis + 8].concat();
+    assert_eq!(line, "⠉ ⠉ ⠉ ⠉ ", "{}", text(&buf));
+    // The trace itself stays solid.
+    let trace: String = (bx..80)
+        .map(|x| buf[(x, by + 2)].symbol().to_string())
+        .collect();
+    assert!(trace.contains("⢄⣄⢄⣀"), "{trace}");
+}

@@ -19,6 +19,9 @@ pub struct Series<'a> {
     pub colour: Color,
     /// Consecutive points joined by a line; otherwise dots only.
     pub joined: bool,
+    /// Drawn in every other cell only: a dashed line, told from a solid one without
+    /// colour (the limit a trace is read against).
+    pub dashed: bool,
 }
 
 pub struct Chart<'a> {
@@ -224,7 +227,11 @@ impl Dots {
         let mut layer = vec![0u8; cells];
         for s in series {
             let (mut lo, mut hi) = (usize::MAX, 0);
+            let dashed = s.dashed;
             let mut paint = |dx: usize, dy: usize| {
+                if dashed && dx / 2 % 2 == 1 {
+                    return;
+                }
                 let i = dy / 4 * w + dx / 2;
                 if let Some(cell) = layer.get_mut(i) {
                     *cell |= 1 << (dx % 2 + 2 * (dy % 4));
@@ -456,6 +463,7 @@ mod tests {
                 points,
                 colour: *colour,
                 joined: *joined,
+                dashed: false,
             })
             .collect();
         chart.render(area, &mut got, &series);
@@ -518,6 +526,33 @@ mod tests {
             let (got, want) = both(area, &chart, &series);
             assert_eq!(got, want, "case {case}: {area:?}");
         }
+    }
+
+    #[test]
+    fn a_dashed_line_leaves_every_other_cell_blank() {
+        let area = Rect::new(0, 0, 12, 3);
+        let mut buf = Buffer::empty(area);
+        let labels = [Span::raw("1"), Span::raw("2")];
+        let chart = Chart {
+            x_bounds: [0.0, 1.0],
+            y_bounds: [0.0, 1.0],
+            x_labels: &[],
+            y_labels: &labels,
+            axis_style: Style::new(),
+        };
+        let line = [(0.0, 1.0), (1.0, 1.0)];
+        let series = |dashed| Series {
+            points: &line,
+            colour: Color::Red,
+            joined: true,
+            dashed,
+        };
+        chart.render(area, &mut buf, &[series(true)]);
+        let top: String = (2..12).map(|x| buf[(x, 0)].symbol().to_string()).collect();
+        assert_eq!(top, "⠉ ⠉ ⠉ ⠉ ⠉ ");
+        chart.render(area, &mut buf, &[series(false)]);
+        let top: String = (2..12).map(|x| buf[(x, 0)].symbol().to_string()).collect();
+        assert_eq!(top, "⠉⠉⠉⠉⠉⠉⠉⠉⠉⠉");
     }
 
     #[test]

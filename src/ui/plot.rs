@@ -1,6 +1,7 @@
 //! Bus volts and total amps over the last minutes, as charts read at a glance: a braille
 //! line against a time axis, the low and high as value labels, and on the volts chart
-//! the unit's overvoltage limit (SYSTEM_SPEC, ICD Table 14) as a red line. Samples are
+//! the unit's overvoltage limit (SYSTEM_SPEC, ICD Table 14) as a dashed red line, told
+//! from the bus trace by its dashes where colour is not shown. Samples are
 //! averaged into time buckets ending at `now`, and a bucket without samples (the
 //! unit went quiet) breaks the line: a gap is shown as a gap, never bridged.
 
@@ -126,7 +127,7 @@ fn trace(
         ));
     }
     if let Some(l) = t.limit {
-        // Only whole: the red line says it too, so a narrow label drops the words.
+        // Only whole: the dashed red line says it too, so a narrow label drops the words.
         let words = Span::styled(format!("  limit {l:.0} {}", t.unit), theme::alert());
         if Line::from(label.clone()).width() + words.width() <= label_area.width as usize {
             label.push(words);
@@ -146,6 +147,7 @@ fn trace(
             points: line,
             colour: theme::FAULT,
             joined: true,
+            dashed: true,
         });
     }
     let colour = t.colour.fg.unwrap_or(Color::Reset);
@@ -155,6 +157,7 @@ fn trace(
             points: run,
             colour,
             joined: run.len() > 1,
+            dashed: false,
         });
     }
     let minutes = WINDOW.as_secs() / 60;
