@@ -1231,10 +1231,10 @@ fn wide_terminal_gives_its_width_to_the_right_hand_panels() {
 /// `--theme terminal` keeps to the terminal's own 16 colours, whose values only the
 /// terminal's theme knows. A colour of fixed value would stand on a palette it was not
 /// chosen for: the dark band the selection had (index 236) gave about 1.6:1 under
-/// xterm's default black on white. The selection is reverse video in the terminal's
-/// own text colour instead, legible on any palette.
+/// xterm's default black on white. The selection is underlined on the terminal's own
+/// background instead, each word in its usual colour, legible on any palette.
 #[test]
-fn terminal_theme_uses_only_the_terminals_own_colours_and_reverses_the_selection() {
+fn terminal_theme_uses_only_the_terminals_own_colours_and_underlines_the_selection() {
     for (name, m, view, now, w, h) in every_state() {
         let buf = draw(&m, &in_theme(&view, Palette::Terminal), now, w, h);
         let painted = themes::painted(&buf, Palette::Terminal);
@@ -1255,11 +1255,11 @@ fn terminal_theme_uses_only_the_terminals_own_colours_and_reverses_the_selection
         &draw(&m, &view_selecting(4), now, 120, 40),
         Palette::Terminal,
     );
-    for (row, text) in [("Nav Lt", "Nav Lt"), ("Nav Lt", "ON")] {
-        let (x, y) = find(&buf, row, text);
+    for (text, fg) in [("Nav Lt", Color::Reset), ("ON", Color::Green)] {
+        let (x, y) = find(&buf, "Nav Lt", text);
         let cell = &buf[(x + 1, y)];
-        assert_eq!((cell.fg, cell.bg), (Color::Reset, Color::Reset), "{text}");
-        assert!(cell.modifier.contains(Modifier::REVERSED), "{text}");
+        assert_eq!((cell.fg, cell.bg), (fg, Color::Reset), "{text}");
+        assert!(cell.modifier.contains(Modifier::UNDERLINED), "{text}");
     }
     let (x, y) = find(&buf, "Beacon", "OFF");
     assert_eq!(
@@ -1267,7 +1267,7 @@ fn terminal_theme_uses_only_the_terminals_own_colours_and_reverses_the_selection
         Color::White,
         "rows not selected keep their words"
     );
-    assert!(!buf[(x, y)].modifier.contains(Modifier::REVERSED));
+    assert!(!buf[(x, y)].modifier.contains(Modifier::UNDERLINED));
 }
 
 /// The overvoltage limit is told from the bus trace without colour: where its label

@@ -12,9 +12,9 @@
 //!   reverse video instead, so nothing that meant something is lost;
 //! - `Terminal` leaves the words as the terminal's own 16 colours show them (what a
 //!   tuned terminal theme may prefer; its contrast is that theme's business). The
-//!   selection, which has no colour among those 16, is in reverse video, which reads
-//!   on any terminal's palette, light or dark. It is the type's default, for tests and
-//!   tools; the page itself always chooses.
+//!   selection, which has no colour among those 16, is underlined on the terminal's
+//!   own background instead of a band, so it reads on any palette, light or dark. It is
+//!   the type's default, for tests and tools; the page itself always chooses.
 //!
 //! Colours are xterm's 256-colour indices 16–255, whose values every 256-colour
 //! terminal agrees on (unlike 0–15, which each terminal's theme redefines), so the
@@ -64,13 +64,12 @@ impl Palette {
             Palette::Terminal => {
                 for cell in &mut buf.content {
                     if cell.bg == theme::SELECTION {
-                        // The terminal's own text colour, reversed: a coloured word
-                        // reversed would stand on its colour in the terminal's
-                        // background colour, unreadable for white (OFF) on a light
-                        // terminal. The words say the state.
-                        cell.fg = Color::Reset;
+                        // Not reverse video: a coloured word reversed stands on its
+                        // colour in the terminal's background colour, unreadable for
+                        // white=off on a light terminal. Underlined (and bold, and
+                        // marked ▶), each word keeps its Appendix A colour.
                         cell.bg = Color::Reset;
-                        cell.modifier.insert(Modifier::REVERSED);
+                        cell.modifier.insert(Modifier::UNDERLINED);
                     }
                 }
             }

@@ -19,8 +19,8 @@ pub const CAUTION: Color = Color::Yellow;
 pub const INFO: Color = Color::Cyan;
 pub const LABEL: Color = Color::Gray;
 /// The selected row's background: a word like the others, painted by the palette
-/// (a lighter band on dark, a grey band on light, reverse video without colour and in
-/// the terminal's own colours).
+/// (a lighter band on dark, a grey band on light, reverse video without colour,
+/// underlined in the terminal's own colours).
 pub const SELECTION: Color = Color::Indexed(236);
 
 pub fn state(state: CircuitState) -> Style {
