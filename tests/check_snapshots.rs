@@ -1062,3 +1062,25 @@ fn a_long_plan_is_all_seen_or_says_what_is_hidden() {
         "{t}"
     );
 }
+
+/// A check stopped before most items ran, with nothing failed, must not read as a
+/// clean installation: no green "nothing left to fix".
+#[test]
+fn a_stopped_check_with_nothing_failed_does_not_read_clean() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let mut v = quit_clean();
+    v.switches
+        .retain(|s| !matches!(s.outcome, Outcome::Found(_)));
+    let buf = render(&v, &m, &page(Palette::Terminal), now, 80, 24);
+    let t = text(&buf);
+    assert!(!t.contains("Nothing left to fix"), "{t}");
+    assert!(
+        t.contains("Nothing failed so far, but 4 not run: check again."),
+        "{t}"
+    );
+    assert_eq!(cell(&buf, "Nothing failed", "Nothing").fg, Color::Yellow);
+    // Every item run and none failed: then it is green.
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let buf = render(&all_passed(), &m, &page(Palette::Terminal), now, 80, 24);
+    assert_eq!(cell(&buf, "Nothing left", "Nothing").fg, Color::Green);
+}

@@ -192,9 +192,20 @@ fn results_rows(view: &CheckView, model: &Model, now: Instant) -> Vec<Row> {
         words_style: Style::new(),
         current: false,
     };
+    let not_run = all.iter().filter(|(_, m, _)| *m == Mark::NotRun).count();
     if fix.is_empty() {
+        // Green only when everything ran: "nothing to fix" with items never tested
+        // would read as a clean installation.
+        let head = if not_run == 0 {
+            Span::styled("Nothing left to fix.", theme::on_off(true))
+        } else {
+            Span::styled(
+                format!("Nothing failed so far, but {not_run} not run: check again."),
+                theme::caution(),
+            )
+        };
         rows.push(Row {
-            head: vec![Span::styled("Nothing left to fix.", theme::on_off(true))],
+            head: vec![head],
             words: String::new(),
             words_style: Style::new(),
             current: false,
