@@ -144,8 +144,11 @@ enum Stage {
     Settle {
         until: Instant,
     },
-    /// A run was cut short (a key, focus, the terminal too small): retry or skip.
-    Paused,
+    /// A run was cut short (a key, focus, the terminal too small) after running
+    /// `ran`: retry or skip.
+    Paused {
+        ran: Duration,
+    },
 }
 
 /// The motor under test.
@@ -159,6 +162,9 @@ pub(super) struct MotorItem {
     leg: usize,
     starts: [u8; 2],
     moves: [i32; 2],
+    /// How long each test run ran: the whole run, or until it was cut short. With
+    /// `moves` it gives the rate for the run back.
+    ran: [Duration; 2],
     stage: Stage,
     run: Duration,
     settle: Duration,
@@ -171,7 +177,7 @@ impl MotorItem {
         match self.stage {
             Stage::Running { since, length } => Some(since + length + Duration::from_millis(50)),
             Stage::Settle { until } => Some(until),
-            Stage::Start | Stage::Paused => None,
+            Stage::Start | Stage::Paused { .. } => None,
         }
     }
 
@@ -224,15 +230,7 @@ impl CheckFlow {
         let motor = view.motors[idx].motor;
         view.current = Some(idx);
         view.motors[idx].positions.clear();
-        view.prompt = Some(Prompt {
-            todo: format!(
-                "Running the {} briefly each way, then back: keep clear of it.",
-                motor.name()
-            ),
-            watching: format!("the {} position (FLAP_TRIM_STATUS)", motor.name()),
-            time_left: None,
-            keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
-        });
+        view.prompt = Some(running_prompt(motor));
         self.phase = Phase::Motors(MotorItem {
             idx,
             motor,
@@ -241,6 +239,7 @@ impl CheckFlow {
             leg: 0,
             starts: [0; 2],
             moves: [0; 2],
+            ran: [Duration::ZERO; 2],
             stage: Stage::Start,
             run: self.opts.timing.motor_run,
             settle: self.opts.timing.motor_settle,
@@ -259,7 +258,7 @@ impl CheckFlow {
         };
         let pos = position(item.motor, &ft);
         match item.stage {
-            Stage::Paused => {}
+            Stage::Paused { .. } => {}
             Stage::Start => {
                 item.p0 = Some(pos);
                 view.motors[item.idx].positions.push(pos);
@@ -282,8 +281,9 @@ impl CheckFlow {
                     .ctl
                     .last_stop()
                     .filter(|s| s.at >= since && s.motor == item.motor)
-                    .map(|s| s.reason);
-                match stop {
+                    .map(|s| (s.reason, s.at));
+                let stopped_at = stop.map_or(now, |(_, at)| at);
+                match stop.map(|(r, _)| r) {
                     Some(StopReason::RunDone) | None => {
                         item.stage = Stage::Settle {
                             until: now + item.settle,
@@ -316,7 +316,9 @@ impl CheckFlow {
                         ));
                     }
                     Some(r) => {
-                        item.stage = Stage::Paused;
+                        item.stage = Stage::Paused {
+                            ran: stopped_at.saturating_duration_since(since),
+                        };
                         let why = r.describe();
                         view.prompt = Some(Prompt {
                             todo: format!(
@@ -341,6 +343,7 @@ impl CheckFlow {
                 if item.leg < 2 {
                     let start = item.starts[item.leg];
                     item.moves[item.leg] = i32::from(pos) - i32::from(start);
+                    item.ran[item.leg] = item.run;
                     item.leg += 1;
                 }
                 if item.leg == 1 {
@@ -372,8 +375,15 @@ impl CheckFlow {
         } else {
             1
         };
-        let (moved, dir) = (item.moves[k], item.dirs[k]);
-        if item.leg >= 3 || back.abs() <= BACK_WITHIN || moved.abs() < MOVED {
+        let (moved, dir, ran) = (item.moves[k], item.dirs[k], item.ran[k]);
+        if item.leg >= 3 || back.abs() <= BACK_WITHIN || moved.abs() < MOVED || ran.is_zero() {
+            if back.abs() > BACK_WITHIN
+                && let Some(p0) = item.p0
+            {
+                // Not back, and no run left that would bring it: say where it is.
+                let motor = item.motor;
+                not_back(view, idx, motor, pos, p0, io);
+            }
             return self.motor_next(idx + 1, view, io);
         }
         item.leg = 3;
@@ -383,7 +393,7 @@ impl CheckFlow {
             opposite(dir)
         };
         let ratio = back.abs() as f32 / moved.abs() as f32;
-        let length = item.run.mul_f32(ratio.min(2.0));
+        let length = ran.mul_f32(ratio).min(item.run * 2);
         self.motor_run(dir, length, view, io);
     }
 
@@ -443,26 +453,98 @@ impl CheckFlow {
                         .push(format!("– {}: skipped", motor_name(item.motor)));
                 }
                 item.skipped = true;
-                // Run it back first if it moved.
-                match io
+                let pos = io
                     .model
                     .live_flap_trim(io.now)
-                    .map(|ft| position(item.motor, ft))
+                    .map(|ft| position(item.motor, ft));
+                // A test run cut short by this skip (or paused before it) counts
+                // for as far as it went, so the run back knows the way and the rate.
+                if let Some(pos) = pos
+                    && item.leg < 2
                 {
+                    let ran = match item.stage {
+                        Stage::Running { since, length } => {
+                            io.now.saturating_duration_since(since).min(length)
+                        }
+                        Stage::Paused { ran } => ran,
+                        Stage::Settle { .. } => item.run,
+                        Stage::Start => Duration::ZERO,
+                    };
+                    item.moves[item.leg] = i32::from(pos) - i32::from(item.starts[item.leg]);
+                    item.ran[item.leg] = ran;
+                }
+                // Run it back first if it moved.
+                match pos {
                     Some(pos) if item.p0.is_some() && item.leg < 3 => {
                         item.leg = 2;
                         self.motor_return(pos, view, io)
                     }
+                    Some(pos) if let Some(p0) = item.p0 => {
+                        // Skipped during the run back: it stays where it is.
+                        if (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN {
+                            let motor = item.motor;
+                            not_back(view, idx, motor, pos, p0, io);
+                        }
+                        self.motor_next(idx + 1, view, io)
+                    }
                     _ => self.motor_next(idx + 1, view, io),
                 }
             }
-            Command::Retry if matches!(item.stage, Stage::Paused) => {
-                view.motors[idx].outcome = Outcome::NotRun;
-                self.motor_next(idx, view, io);
+            Command::Retry if matches!(item.stage, Stage::Paused { .. }) => {
+                // The same item again, from where it paused: where it started (p0),
+                // the first direction and a run already measured are kept, so the
+                // run back still goes to where the check found it.
+                view.prompt = Some(running_prompt(item.motor));
+                if item.leg < 2 {
+                    let (d, length) = (item.dirs[item.leg], item.run);
+                    self.motor_run(d, length, view, io);
+                } else {
+                    let pos = io
+                        .model
+                        .live_flap_trim(io.now)
+                        .map(|ft| position(item.motor, ft));
+                    item.leg = 2;
+                    match pos {
+                        Some(pos) => self.motor_return(pos, view, io),
+                        None => self.motor_next(idx + 1, view, io),
+                    }
+                }
             }
             _ => {}
         }
     }
+}
+
+fn running_prompt(motor: Motor) -> Prompt {
+    Prompt {
+        todo: format!(
+            "Running the {} briefly each way, then back: keep clear of it.",
+            motor.name()
+        ),
+        watching: format!("the {} position (FLAP_TRIM_STATUS)", motor.name()),
+        time_left: None,
+        keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
+    }
+}
+
+/// The motor ends its item away from where the check found it: said in the news, and
+/// in the result when it was skipped (a finding keeps its words; its positions show
+/// where it ended).
+fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, io: &mut Io) {
+    let words = format!("stopped at position {pos}, it was at {p0}: not run back");
+    io.out
+        .news
+        .push(format!("  {}: {words}", motor_name(motor)));
+    let row = &mut view.motors[idx];
+    if row.positions.last() != Some(&pos) {
+        row.positions.push(pos);
+    }
+    if let Outcome::Skipped(why) = &mut row.outcome
+        && !why.contains("not run back")
+    {
+        *why = format!("{why}; {words}");
+    }
+    view.message = Some(format!("{}: {words}", motor_name(motor)));
 }
 
 fn record(view: &mut CheckView, idx: usize, f: MotorFinding, io: &mut Io) {

@@ -795,6 +795,73 @@ fn motors_run_each_way_through_the_controller_and_go_back() {
     }
 }
 
+fn flaps_at(r: &Rig) -> u8 {
+    r.model.live_flap_trim(r.now).unwrap().flap_position
+}
+
+/// Skipped in the middle of its first run, the flaps are still run back to where the
+/// check found them (20, their up endpoint), and the result says it was skipped.
+#[test]
+fn a_motor_skipped_during_its_first_run_is_run_back() {
+    let mut r = Rig::new(Rig::motors_only());
+    r.start();
+    r.run(400);
+    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
+    r.run(100);
+    let out = flaps_at(&r);
+    assert!(out >= 20 + 6, "it moved: {out}");
+    r.cmd(Command::SkipItem);
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    let back = flaps_at(&r);
+    assert!(
+        (i32::from(back) - 20).abs() <= super::motors::BACK_WITHIN,
+        "left at {back}, was at 20, skipped at {out}"
+    );
+    assert!(
+        matches!(&r.view.motors[0].outcome, Outcome::Skipped(w) if w == "you skipped it"),
+        "{:?}",
+        r.view.motors[0].outcome
+    );
+}
+
+/// A run cut short (focus lost) and tried again still ends where the check found the
+/// flaps, not where the first try was cut.
+#[test]
+fn a_retry_after_a_pause_returns_the_motor_to_where_the_check_found_it() {
+    let mut r = Rig::new(Rig::motors_only());
+    r.start();
+    r.run(450);
+    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
+    let p = r.ctl.on_focus_lost(r.now);
+    r.send(p);
+    r.run(600);
+    let paused_at = flaps_at(&r);
+    assert!(
+        paused_at >= 20 + 6,
+        "it moved before the pause: {paused_at}"
+    );
+    assert!(
+        r.view
+            .prompt
+            .as_ref()
+            .unwrap()
+            .todo
+            .contains("r: run the test again")
+    );
+    r.cmd(Command::Retry);
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    assert_eq!(
+        r.view.motors[0].outcome,
+        Outcome::Found(MotorFinding::Moves)
+    );
+    let back = flaps_at(&r);
+    assert!(
+        (i32::from(back) - 20).abs() <= super::motors::BACK_WITHIN,
+        "left at {back}, the check found it at 20, paused at {paused_at}"
+    );
+    assert_eq!(r.view.motors[0].positions[0], 20);
+}
+
 #[test]
 fn the_motor_findings_from_positions() {
     use super::motors::judge;
