@@ -128,10 +128,12 @@ impl Cause {
         }
     }
 
+    /// A signal ends the check as it ends the page: as a quit (the page's own stop
+    /// cause for SIGTERM/SIGHUP).
     fn stop_reason(&self) -> StopReason {
         match self {
             Cause::Panic => StopReason::Panic,
-            _ => StopReason::Quit,
+            Cause::Quit | Cause::Signal(_) => StopReason::Quit,
         }
     }
 }
@@ -505,8 +507,8 @@ impl CheckFlow {
             }
             return out;
         }
-        if let Some(cause) = self.trouble(view, model, now) {
-            self.interrupt_with(cause, true, view, model, ctl, now, &mut out);
+        if let Some((cause, reason)) = self.trouble(view, model, now) {
+            self.interrupt_with(cause, reason, true, view, model, ctl, now, &mut out);
             return out;
         }
         let mut io = Io {
@@ -523,30 +525,53 @@ impl CheckFlow {
             Phase::Confirm | Phase::Done => {}
         }
         if let Some(cause) = self.trouble_ahead.take() {
-            self.interrupt_with(cause, true, view, model, ctl, now, &mut out);
+            // The step already stopped its motor (the controller's own reason stands);
+            // a circuit that will not go back off has no motor running.
+            self.interrupt_with(
+                cause,
+                StopReason::Quit,
+                true,
+                view,
+                model,
+                ctl,
+                now,
+                &mut out,
+            );
         }
         out
     }
 
     /// Something that ends the check, seen in the model: lost communication, a link
-    /// that failed or cannot send, a new fault elsewhere than the item under test.
-    fn trouble(&self, view: &CheckView, model: &Model, now: Instant) -> Option<String> {
+    /// that failed or cannot send, a new fault elsewhere than the item under test;
+    /// with the reason a motor under test stops for.
+    fn trouble(
+        &self,
+        view: &CheckView,
+        model: &Model,
+        now: Instant,
+    ) -> Option<(String, StopReason)> {
         if matches!(self.phase, Phase::Stopping { .. } | Phase::Done) {
             return None;
         }
         if let Connection::Lost { reason, .. } = &model.connection {
-            return Some(format!("the link failed: {reason}"));
+            return Some((format!("the link failed: {reason}"), StopReason::LinkError));
         }
         if model.link.write_errors > self.write_errors_at_start {
             let why = model.link.last_write_error.clone().unwrap_or_default();
-            return Some(format!("the link could not send: {why}"));
+            return Some((
+                format!("the link could not send: {why}"),
+                StopReason::LinkError,
+            ));
         }
         if model.comm_lost(now) {
-            return Some("COMMUNICATION LOST".into());
+            return Some(("COMMUNICATION LOST".into(), StopReason::CommLost));
         }
         let (codes, system) = model.live_faults(now)?;
         if system && !self.system_fault_at_start {
-            return Some("a system fault (FAULT_STATUS)".into());
+            return Some((
+                "a system fault (FAULT_STATUS)".into(),
+                StopReason::UnitFault,
+            ));
         }
         let under_test = self.under_test();
         (0..DEVICE_COUNT as u8)
@@ -554,7 +579,10 @@ impl CheckFlow {
             .find(|i| !self.known_faults.contains(i) && !under_test.contains(i))
             .map(|i| {
                 let name = view_or_model_name(view, model, i);
-                format!("{name} faulted ({})", codes[i as usize].name())
+                (
+                    format!("{name} faulted ({})", codes[i as usize].name()),
+                    StopReason::UnitFault,
+                )
             })
     }
 
@@ -630,7 +658,7 @@ impl CheckFlow {
             return;
         }
         ctl_stop(ctl, now, reason, out);
-        self.interrupt_with(cause.words(), may_wait, view, model, ctl, now, out);
+        self.interrupt_with(cause.words(), reason, may_wait, view, model, ctl, now, out);
     }
 
     /// Stops the item under test, puts back what it can, marks the rest not run, and
@@ -639,6 +667,7 @@ impl CheckFlow {
     fn interrupt_with(
         &mut self,
         cause: String,
+        reason: StopReason,
         may_wait: bool,
         view: &mut CheckView,
         model: &Model,
@@ -664,9 +693,10 @@ impl CheckFlow {
                 }
             }
             Phase::Motors(item) => {
-                // Stopped already (ctl_stop, or the controller's own tick); say where
-                // it stopped if it had moved.
-                io.out.packets.extend(io.ctl.stop(now, StopReason::Quit));
+                // Stopped here for the check's own reason, unless stopped already
+                // (ctl_stop, or the controller's own tick, whose reason stands); say
+                // where it stopped if it had moved.
+                io.out.packets.extend(io.ctl.stop(now, reason));
                 if let Some(words) = item.left_words(io.model, now) {
                     left.push((item.motor.device_id(), item.name(), words));
                 }

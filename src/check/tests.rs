@@ -1066,6 +1066,33 @@ fn quit_mid_motor_run_sends_its_stop_and_says_where_it_was_left() {
     );
 }
 
+/// A fault elsewhere during a motor run stops the motor for that reason, not as a
+/// quit the person never asked for.
+#[test]
+fn a_fault_elsewhere_mid_motor_run_stops_it_for_that_reason() {
+    // A run long enough for the fault's broadcast to come during it.
+    let mut opts = Rig::motors_only();
+    opts.timing.motor_run = Duration::from_secs(4);
+    let mut r = Rig::new(opts);
+    r.start();
+    r.run(300);
+    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
+    r.unit.apply(
+        SimCommand::Short {
+            device: 2,
+            on: true,
+        },
+        r.now,
+    );
+    r.run_until(5000, |r| r.flow.finished());
+    assert!(r.ctl.running().is_none());
+    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::UnitFault);
+    assert_eq!(
+        r.view.interrupted.as_ref().unwrap().cause,
+        "EFIS faulted (SHORT_CIRCUIT)"
+    );
+}
+
 #[test]
 fn a_panic_stops_the_motor_with_the_panic_reason() {
     let mut r = Rig::new(Rig::motors_only());

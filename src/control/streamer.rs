@@ -132,6 +132,9 @@ pub enum StopReason {
     Panic,
     /// A timed run ([`MotorStreamer::run_for`]) reached its end.
     RunDone,
+    /// A fault elsewhere on the unit (another circuit, or FAULT_STATUS's system
+    /// fault) ended the installation check the run was part of.
+    UnitFault,
 }
 
 impl StopReason {
@@ -154,6 +157,7 @@ impl StopReason {
             StopReason::PageStalled => "the page stopped responding".into(),
             StopReason::Panic => "the program failed".into(),
             StopReason::RunDone => "the timed run ended".into(),
+            StopReason::UnitFault => "a fault elsewhere on the unit".into(),
         }
     }
 
