@@ -3,13 +3,15 @@
 //! master, or one end of an in-process [`duplex_pipe`](crate::link::duplex_pipe)). It
 //! shares nothing with the page but bytes.
 //!
-//! ```no_run
+//! ```
+//! use std::time::Duration;
 //! use vpx_efis::sim::{self, SimCommand, SimOptions};
-//! let pty = vpx_efis::link::open_pty_pair().unwrap();
-//! let reader = pty.master.try_clone_native().unwrap();
+//! // Any byte stream will do; this one builds and runs on every OS. (`sim --pty`
+//! // gives the unit a pseudo-terminal's master instead, on Unix.)
+//! let (ours, unit) = vpx_efis::link::duplex_pipe(Duration::from_millis(50));
 //! let opts = SimOptions::new(sim::load_scenario("demo").unwrap());
-//! let handle = sim::spawn(opts, Box::new(reader), Box::new(pty.master));
-//! // … open pty.path as a serial port and talk to it …
+//! let handle = sim::spawn(opts, Box::new(unit.reader), Box::new(unit.writer));
+//! // … read the unit's broadcasts from `ours.reader`, write requests to `ours.writer` …
 //! handle.inject(SimCommand::Switch { switch: 3, on: true });
 //! println!("{:?}", handle.stats().wire);
 //! handle.stop();
