@@ -21,6 +21,7 @@ use crate::app::queries::QueryPacer;
 use crate::app::{StopGate, Terminated};
 use crate::cli::GatewayArgs;
 use crate::control::MotorStreamer;
+use crate::exchange::Rereader;
 use crate::link::{Connector, Link, LinkEvent, PortAddr, RxItem, port_connector};
 use crate::model::{LogEntry, LogLevel, Model, Source};
 use crate::protocol::message::Packet;
@@ -159,14 +160,14 @@ pub fn run_bridge(
     // The bridge asks for names and specs at every connect, as the page does, so the
     // network sees the circuits' real labels and breakers. Its command numbers start
     // high so they rarely meet the gateway's own motor-stream numbers.
-    let mut pacer = QueryPacer::default();
+    let mut asking = Asking::default();
     let mut cnt: u8 = 0x80;
     let mut net_error_said = false;
 
     while !stop.load(Ordering::SeqCst) && !crate::app::panicked() {
         let now = Instant::now();
-        let deadline = pacer
-            .next_deadline()
+        let deadline = asking
+            .next_deadline(&model, now)
             .map_or(gw.next_deadline(), |d| d.min(gw.next_deadline()));
         let wait = deadline.saturating_duration_since(now).min(MAX_WAIT);
         let mut to_unit: Vec<Packet> = Vec::new();
@@ -184,14 +185,14 @@ pub fn run_bridge(
                 LinkEvent::Connected { .. } => {
                     // A run cut off by a pulled cable is told to stop first.
                     to_unit.extend(MotorStreamer::emergency_stop_packets());
-                    pacer.start(Instant::now());
+                    asking.connected(Instant::now());
                 }
-                LinkEvent::Disconnected { .. } | LinkEvent::OpenFailed { .. } => pacer.stop(),
+                LinkEvent::Disconnected { .. } | LinkEvent::OpenFailed { .. } => asking.link_down(),
                 _ => {}
             }
             apply(&mut model, &mut gw, &mut capture, e, &mut to_unit);
         }
-        to_unit.extend(pacer.due(Instant::now(), || {
+        to_unit.extend(asking.due(&model, Instant::now(), || {
             cnt = cnt.wrapping_add(1) | 0x80;
             cnt
         }));
@@ -279,6 +280,51 @@ fn apply(
     }
 }
 
+/// What the bridge asks the unit, as the page does: the connect-time queries and the
+/// minute's refresh ([`QueryPacer`]), and, from a few seconds after a connect, again
+/// for every setting the connect-time queries did not bring ([`Rereader`]), rather
+/// than leaving the network without labels and breakers until the minute is up.
+#[derive(Default)]
+struct Asking {
+    pacer: QueryPacer,
+    rereader: Rereader,
+}
+
+impl Asking {
+    fn connected(&mut self, now: Instant) {
+        self.pacer.start(now);
+        self.rereader.connected(now);
+    }
+
+    fn link_down(&mut self) {
+        self.pacer.stop();
+        self.rereader.link_down();
+    }
+
+    fn next_deadline(&self, model: &Model, now: Instant) -> Option<Instant> {
+        [
+            self.pacer.next_deadline(),
+            self.rereader.next_deadline(model, now),
+        ]
+        .into_iter()
+        .flatten()
+        .min()
+    }
+
+    fn due(
+        &mut self,
+        model: &Model,
+        now: Instant,
+        mut next_cnt: impl FnMut() -> u8,
+    ) -> Vec<Packet> {
+        let mut out = self.pacer.due(now, &mut next_cnt);
+        for q in self.rereader.due(model, now) {
+            out.push(Packet::request(next_cnt(), q));
+        }
+        out
+    }
+}
+
 /// Sends the stop messages when dropped: the bridge's drop guard for an unwinding
 /// panic, declared after the link so it runs while the link can still write.
 struct StopOnDrop(crate::link::LinkHandle);
@@ -312,5 +358,38 @@ fn prefix(level: LogLevel) -> &'static str {
         LogLevel::Info => "",
         LogLevel::Warning => "warning: ",
         LogLevel::Alert => "ALERT: ",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit that answered none of the connect-time queries (noise on the line, a
+    /// unit still booting) is asked again a few seconds later, not a minute later.
+    #[test]
+    fn settings_lost_at_connect_are_asked_again_within_seconds() {
+        let t0 = Instant::now();
+        let model = Model::new(Source::Simulated {
+            scenario: "t".into(),
+        });
+        let mut asking = Asking::default();
+        asking.connected(t0);
+        let mut cnt = 0u8;
+        let mut next = || {
+            cnt = cnt.wrapping_add(1);
+            cnt
+        };
+        // The connect-time queries go out over the first second or so.
+        let mut t = t0;
+        while t < t0 + Duration::from_secs(2) {
+            asking.due(&model, t, &mut next);
+            t += Duration::from_millis(10);
+        }
+        let grace = t0 + crate::exchange::CONNECT_GRACE;
+        let deadline = asking.next_deadline(&model, t).expect("something to ask");
+        assert!(deadline <= grace, "next ask at +{:?}", deadline - t0);
+        let again = asking.due(&model, grace, &mut next);
+        assert!(!again.is_empty(), "nothing asked again at the grace's end");
     }
 }
