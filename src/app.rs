@@ -11,6 +11,7 @@
 //!   (see `motor_stream`), so no redraw, terminal write or model lock delays it.
 
 mod background;
+mod check;
 mod gateway;
 mod motor_stream;
 pub use motor_stream::LOOP_STALL;
@@ -47,6 +48,7 @@ use crate::ui::{
 use motor_stream::MotorPath;
 
 pub use background::choose_theme;
+pub use check::{CheckEnd, HeadlessCheck, run_headless, run_headless_with};
 pub use gateway::xfsp_setup;
 pub use options::{PageOptions, XfspOptions};
 pub use queries::{QueryPacer, connect_queries};
@@ -139,6 +141,8 @@ pub struct App {
     setup: crate::setup::flow::SetupFlow,
     /// Asks again for any setting a write left unknown, until the unit answers.
     rereader: Rereader,
+    /// The installation check (`i`), its view and its results in words.
+    check: check::CheckState,
 }
 
 impl App {
@@ -210,6 +214,7 @@ impl App {
             traffic_drawn: 0,
             setup: Default::default(),
             rereader: Rereader::default(),
+            check: Default::default(),
         }
     }
 
@@ -288,6 +293,9 @@ impl App {
             TermEvent::Key(key) if self.view.screen == Screen::Setup => {
                 return self.setup_key(key, now);
             }
+            TermEvent::Key(key) if self.view.screen == Screen::Check => {
+                return self.check_key(key, now);
+            }
             TermEvent::Key(key) => {
                 let shared = self.model.clone();
                 let outcome = {
@@ -304,6 +312,9 @@ impl App {
                 self.view.motor_run = self.controller.running();
                 if outcome.action == Some(Action::Quit) {
                     return Flow::Quit;
+                }
+                if outcome.action == Some(Action::InstallCheck) {
+                    self.open_check_from_list(now);
                 }
             }
             TermEvent::FocusGained => {
@@ -437,6 +448,7 @@ impl App {
             // The hook has sent the emergency stop; make sure nothing here resends a
             // move after it. The run loop then leaves.
             self.controller.stop(now, StopReason::Panic);
+            self.check_interrupt(crate::check::Cause::Panic, false, now);
             self.xfsp_shutdown(now);
             return;
         }
@@ -453,6 +465,7 @@ impl App {
         let queries = self.pacer.due(now, || controller.next_cnt());
         self.send(queries);
         self.setup_tick(now);
+        self.check_tick(now);
         self.reread_tick(now);
         self.traffic_tick();
         self.xfsp_tick(now);
@@ -510,6 +523,7 @@ impl App {
             self.notice_until,
             self.xfsp_deadline(),
             self.setup.next_deadline(),
+            self.check_deadline(),
             self.rereader.next_deadline(&lock(&self.model), now),
             Some(redraw),
         ]
@@ -553,7 +567,13 @@ impl App {
                     .first()
                     .map(|c| c.id);
             }
-            ui::draw(&mut terminal.get_frame(), &model, &self.view, now);
+            if self.view.screen == Screen::Check {
+                let mut frame = terminal.get_frame();
+                let area = frame.area();
+                ui::check::draw(&mut frame, area, self.check_view(), &model, &self.view, now);
+            } else {
+                ui::draw(&mut terminal.get_frame(), &model, &self.view, now);
+            }
             self.drawn_revision = model.revision();
         }
         // The terminal write happens without the model lock: a slow terminal must not
@@ -593,6 +613,8 @@ impl App {
     fn stop_everything(&mut self) {
         let now = Instant::now();
         self.controller.stop(now, StopReason::Quit);
+        // A check still running switches its circuit back off before the link closes.
+        self.check_interrupt(crate::check::Cause::Quit, false, now);
         self.controller.stop_thread();
         if let Some(t) = self.motor_thread.take() {
             let _ = t.join();
@@ -632,10 +654,16 @@ impl App {
                     Err(_) => {
                         // No release can arrive any more: stop before waiting for a signal.
                         self.controller.stop(Instant::now(), StopReason::Quit);
+                        self.check_interrupt(crate::check::Cause::Quit, false, Instant::now());
                         return Err(input_closed(terminations));
                     }
                 },
                 recv(terminations) -> t => if let Ok(t) = t {
+                    self.check_interrupt(
+                        crate::check::Cause::Signal(t.name().into()),
+                        false,
+                        Instant::now(),
+                    );
                     return Err(Terminated(t).into());
                 },
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },

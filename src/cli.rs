@@ -148,6 +148,33 @@ pub enum Command {
     Completions(CompletionsArgs),
     /// Print the manual page (roff) on standard output.
     Man,
+    /// The installation check with no screen: every switch, circuit and motor, results
+    /// as they come. Exits 0 when everything passed, 1 when anything failed, 2 when it
+    /// was interrupted.
+    Check(CheckArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    #[command(flatten)]
+    pub port: PortArgs,
+    /// Answer the safety confirmation: the aircraft is safe to power the circuits the
+    /// check lists and to move its flaps and trims.
+    #[arg(long)]
+    pub yes: bool,
+    /// Steps not to run: switches, circuits, motors, loads (comma-separated or repeated).
+    #[arg(long, value_delimiter = ',', value_name = "STEP,...")]
+    pub skip: Vec<String>,
+    /// A circuit never to power, by its name or its pin (5A-3); repeat for more.
+    #[arg(long, value_name = "NAME")]
+    pub exclude: Vec<String>,
+    /// Where to write the report (Markdown and CSV, named with the date).
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
+    /// The load analysis file (default: loads.toml beside the config file; its
+    /// template is written there on the first run).
+    #[arg(long, value_name = "FILE")]
+    pub loads: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]
@@ -549,6 +576,7 @@ fn resolve_with(
         command,
         None | Some(
             Command::Backup(_)
+                | Command::Check(_)
                 | Command::Restore(_)
                 | Command::Flash(_)
                 | Command::Gateway(_)
@@ -580,6 +608,7 @@ fn resolve_with(
             r.repeat_delay(&mut page.repeat_delay);
         }
         Some(Command::Backup(a)) => r.port(&mut a.port)?,
+        Some(Command::Check(a)) => r.port(&mut a.port)?,
         Some(Command::Restore(a)) => r.port(&mut a.port)?,
         Some(Command::Flash(a)) => r.flash_port(&mut a.port),
         Some(Command::Gateway(a)) => {
@@ -634,12 +663,15 @@ pub fn main() -> ExitCode {
             Some(Command::Config(_)) => crate::cmd::config::run(&report),
             Some(Command::Completions(a)) => crate::cmd::completions::run(a.shell, Cli::command()),
             Some(Command::Man) => crate::cmd::completions::man(Cli::command()),
+            Some(Command::Check(a)) => crate::cmd::check::run(a),
         });
     match result {
         Ok(()) => ExitCode::from(exit::OK),
         Err(e) => {
             eprintln!("vpx-efis: {e:#}");
-            if e.downcast_ref::<UsageError>().is_some() {
+            if let Some(end) = e.downcast_ref::<crate::cmd::check::Ended>() {
+                ExitCode::from(end.0.code())
+            } else if e.downcast_ref::<UsageError>().is_some() {
                 ExitCode::from(exit::USAGE)
             } else if let Some(t) = e.downcast_ref::<crate::app::Terminated>() {
                 // Stopped by a signal after a clean stop: 128 + n, as a shell expects.

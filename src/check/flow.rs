@@ -77,6 +77,8 @@ pub struct Options {
     pub choices: Choices,
     /// `--yes`: the person already confirmed the aircraft is safe to power.
     pub yes: bool,
+    /// The load analysis file (`crate::loads`); `None`: the step says there is none.
+    pub loads_file: Option<std::path::PathBuf>,
     pub timing: Timing,
 }
 
@@ -418,16 +420,10 @@ impl CheckFlow {
                     matches!(self.phase, Phase::Motors(_))
                 }
                 Step::Loads => {
-                    // The load analysis (`crate::loads`) is not part of this build yet:
-                    // say so rather than pass it in silence.
                     if !skipped {
-                        io.out.news.push(
-                            "– Load analysis: not in this build yet; the measured currents \
-                             are in the results"
-                                .into(),
-                        );
-                        view.message =
-                            Some("the electrical load analysis is not in this build yet".into());
+                        self.loads(view, io);
+                    } else {
+                        io.out.news.push("– Load analysis: skipped".into());
                     }
                     false
                 }
@@ -441,6 +437,53 @@ impl CheckFlow {
             }
             step = next_step(step);
         }
+    }
+
+    /// Step 5: the builder's load file with the currents just measured, or its
+    /// template written for next time. The one step that touches a file, as the
+    /// setup flow's backup does.
+    fn loads(&mut self, view: &mut CheckView, io: &mut Io) {
+        use crate::loads::disk::{Opened, open_or_create};
+        use crate::ui::check::state::LoadsView;
+        let Some(path) = self.opts.loads_file.clone() else {
+            view.loads = Some(LoadsView::Refused(
+                "no place for the load file (no config folder on this system)".into(),
+            ));
+            io.out
+                .news
+                .push("– Load analysis: no place for the load file".into());
+            return;
+        };
+        let loads = match open_or_create(&path, &io.model.circuits(io.now)) {
+            Ok(Opened::Read(file)) => {
+                let analysis = crate::loads::analyse(&file, &view.measured_amps());
+                io.out
+                    .news
+                    .push(format!("Load analysis ({}):", path.display()));
+                for phase in crate::loads::Phase::ALL {
+                    io.out.news.push(format!(
+                        "  {}: {:.1} A, {}",
+                        phase.title(),
+                        analysis.phase(phase).amps,
+                        analysis.verdict(phase)
+                    ));
+                }
+                LoadsView::Analysed { path, analysis }
+            }
+            Ok(Opened::TemplateWritten(p)) => {
+                io.out.news.push(format!(
+                    "– Load analysis: no load file yet; its template, listing every \
+                     circuit, was written to {}: fill it in and run the check again",
+                    p.display()
+                ));
+                LoadsView::TemplateWritten(p)
+            }
+            Err(e) => {
+                io.out.news.push(format!("✗ Load analysis: {e}"));
+                LoadsView::Refused(e.to_string())
+            }
+        };
+        view.loads = Some(loads);
     }
 
     fn finish(&mut self, view: &mut CheckView, io: &mut Io) {

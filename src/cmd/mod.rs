@@ -1,6 +1,7 @@
 //! One file per subcommand. Each takes its parsed arguments and does the work.
 
 pub mod backup;
+pub mod check;
 pub mod completions;
 pub mod config;
 pub mod decode;

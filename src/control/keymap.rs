@@ -100,6 +100,8 @@ pub enum Action {
     Quit,
     TrafficView,
     Setup,
+    /// The installation check (`i`).
+    InstallCheck,
     /// A bound key that does nothing here; the words say where it works.
     Unavailable(&'static str),
 }
@@ -191,6 +193,7 @@ pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {
         KeyCode::Char('q') => Some(Action::Quit),
         KeyCode::Char('t') => Some(Action::TrafficView),
         KeyCode::Char('c') => Some(Action::Setup),
+        KeyCode::Char('i') => Some(Action::InstallCheck),
         _ => None,
     }
 }
@@ -464,6 +467,10 @@ mod tests {
             Some(Action::TrafficView)
         );
         assert_eq!(map(&plain(KeyCode::Char('c')), &c), Some(Action::Setup));
+        assert_eq!(
+            map(&plain(KeyCode::Char('i')), &c),
+            Some(Action::InstallCheck)
+        );
         assert_eq!(map(&plain(KeyCode::Char('x')), &c), None);
         assert_eq!(
             map(&plain(KeyCode::Char('o')), &KeyContext::default()),

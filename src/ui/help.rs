@@ -24,7 +24,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
     ("s", "sort by pin / by name"),
     ("t", "traffic view"),
-    ("c", "setup"),
+    ("c  i", "setup / installation check"),
     ("?  Esc", "this help"),
     ("q  Ctrl-C", "quit"),
 ];

@@ -24,6 +24,8 @@ pub enum Screen {
     Traffic,
     /// Configuration of the unit (`c`).
     Setup,
+    /// The installation check (`i`), drawn by `ui::check` from the app's `CheckView`.
+    Check,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -1,0 +1,548 @@
+//! The installation check wired to its flow ([`crate::check`]): `i` on the device list
+//! opens it, keys become the flow's commands, the page's loop ticks it at its
+//! deadlines and after every packet, and `vpx-efis check` runs the same flow with no
+//! screen, printing each result as it comes.
+//!
+//! Everything it does to the aircraft goes through the page's own paths: its packets
+//! are queued under the motor controller's lock (so a stop decided after a move never
+//! reaches the wire before it), its motor runs are the controller's, and every way
+//! the page ends (quit, a signal, a closed terminal, a panic, the drop guard) first
+//! interrupts the check, which switches off the circuit it has on.
+
+use std::io::BufRead;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::{Receiver, select, unbounded};
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+
+use super::{App, AppOptions, Flow, builtin_sim, lock, signals};
+use crate::check::{Cause, CheckFlow, Command, Options, plan};
+use crate::control::{MotorStreamer, StopReason};
+use crate::link::{self, PortAddr};
+use crate::model::Source;
+use crate::ui::check::state::{CheckView, Mark, Step};
+use crate::ui::state::Screen;
+
+/// The check as the app holds it.
+#[derive(Debug, Default)]
+pub(super) struct CheckState {
+    flow: Option<CheckFlow>,
+    view: CheckView,
+    /// Results as they came, for a headless run to print.
+    news: Vec<String>,
+}
+
+/// The options of a check opened from the page: everything run, the load file beside
+/// the config file.
+fn page_options() -> Options {
+    Options {
+        loads_file: crate::loads::disk::default_path(),
+        ..Options::default()
+    }
+}
+
+impl App {
+    /// Starts a new check and shows its screen.
+    pub fn open_check(&mut self, options: Options, now: Instant) {
+        let shared = self.model.clone();
+        let model = lock(&shared);
+        self.check.flow = Some(CheckFlow::new(options, &mut self.check.view, &model, now));
+        self.check.news.clear();
+        self.view.screen = Screen::Check;
+        self.dirty = true;
+    }
+
+    pub fn check_view(&self) -> &CheckView {
+        &self.check.view
+    }
+
+    /// Whether no check is running (none opened, or it ended).
+    pub fn check_finished(&self) -> bool {
+        self.check.flow.as_ref().is_none_or(CheckFlow::finished)
+    }
+
+    /// The results that came since the last call, in words.
+    pub fn take_check_news(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.check.news)
+    }
+
+    /// Runs `f` on the flow with the model and the controller, queueing the packets
+    /// it returns before letting go of the controller.
+    fn with_check(
+        &mut self,
+        f: impl FnOnce(
+            &mut CheckFlow,
+            &mut CheckView,
+            &crate::model::Model,
+            &mut crate::control::Controller,
+        ) -> crate::check::Out,
+    ) {
+        let Some(flow) = self.check.flow.as_mut() else {
+            return;
+        };
+        let view = &mut self.check.view;
+        let before = view.clone();
+        let shared = self.model.clone();
+        let out = {
+            let model = lock(&shared);
+            self.controller.act_with(|c| {
+                let mut out = f(flow, view, &model, c);
+                (std::mem::take(&mut out.packets), out)
+            })
+        };
+        self.check.news.extend(out.news);
+        if *view != before {
+            self.dirty = true;
+        }
+        self.view.motor_run = self.controller.running();
+    }
+
+    /// Something the person did, as the flow's command.
+    pub fn check_command(&mut self, cmd: Command, now: Instant) {
+        self.with_check(|flow, view, model, c| flow.command(cmd, view, model, c, now));
+    }
+
+    /// Ends a running check from outside (quit, a signal, a panic). `may_wait`: the
+    /// caller goes on ticking, so a circuit switched off now is seen off.
+    pub fn check_interrupt(&mut self, cause: Cause, may_wait: bool, now: Instant) {
+        if self.check_finished() {
+            return;
+        }
+        self.with_check(|flow, view, model, c| {
+            flow.interrupt_for(cause, may_wait, view, model, c, now)
+        });
+    }
+
+    /// The flow's clocks, after the controller's tick saw the model.
+    pub(super) fn check_tick(&mut self, now: Instant) {
+        if self.check_finished() {
+            return;
+        }
+        self.with_check(|flow, view, model, c| flow.tick(view, model, c, now));
+    }
+
+    pub(super) fn check_deadline(&self) -> Option<Instant> {
+        self.check.flow.as_ref().and_then(CheckFlow::next_deadline)
+    }
+
+    /// `i` on the device list.
+    pub(super) fn open_check_from_list(&mut self, now: Instant) {
+        // A check left open (finished or stopped) is shown again; a new one starts
+        // only from the device list after it was left with Esc.
+        if self.check.flow.is_some() {
+            self.view.screen = Screen::Check;
+            self.dirty = true;
+            return;
+        }
+        self.open_check(page_options(), now);
+    }
+
+    /// A key on the check screen.
+    pub(super) fn check_key(&mut self, key: KeyEvent, now: Instant) -> Flow {
+        if key.kind == KeyEventKind::Release {
+            return Flow::Continue;
+        }
+        self.dirty = true;
+        if key.modifiers.contains(KeyModifiers::CONTROL)
+            && matches!(key.code, KeyCode::Char('c' | 'C'))
+        {
+            self.controller.stop(now, StopReason::Quit);
+            self.check_interrupt(Cause::Quit, false, now);
+            return Flow::Quit;
+        }
+        // Any key stops a running motor before it does anything else, as everywhere.
+        self.controller.stop(now, StopReason::OtherKey);
+        let n = self.controller.take_notice();
+        self.set_notice(now, n);
+        self.view.motor_run = self.controller.running();
+        let leave = matches!(key.code, KeyCode::Esc | KeyCode::Char('q'));
+        if self.check_finished() || (leave && self.check.view.step == Step::Confirm) {
+            if leave || key.code == KeyCode::Enter {
+                // Nothing is running (or nothing was touched yet): back to the list.
+                self.check.flow = None;
+                self.view.screen = Screen::Devices;
+            }
+            return Flow::Continue;
+        }
+        let cmd = match key.code {
+            KeyCode::Esc | KeyCode::Char('q') => Command::Stop,
+            KeyCode::Enter => Command::Enter,
+            KeyCode::Up | KeyCode::Char('k') => Command::Up,
+            KeyCode::Down | KeyCode::Char('j') => Command::Down,
+            KeyCode::Char('x') => Command::Toggle,
+            KeyCode::Char('s') => Command::SkipItem,
+            KeyCode::Char('S') => Command::SkipStep,
+            KeyCode::Char('r') => Command::Retry,
+            _ => return Flow::Continue,
+        };
+        self.check_command(cmd, now);
+        Flow::Continue
+    }
+}
+
+/// `vpx-efis check`'s arguments, parsed.
+#[derive(Debug, Clone)]
+pub struct HeadlessCheck {
+    /// `None`: the built-in virtual VP-X with `scenario`.
+    pub port: Option<PortAddr>,
+    pub baud: u32,
+    pub scenario: String,
+    pub options: Options,
+    /// `--report DIR`.
+    pub report: Option<PathBuf>,
+}
+
+/// How a headless check ended, for its exit status: 0 all passed, 1 something
+/// failed, 2 interrupted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CheckEnd {
+    Passed,
+    Failed,
+    Interrupted,
+}
+
+impl CheckEnd {
+    pub fn of(view: &CheckView) -> CheckEnd {
+        if view.interrupted.is_some() {
+            CheckEnd::Interrupted
+        } else if view.any_failed() {
+            CheckEnd::Failed
+        } else {
+            CheckEnd::Passed
+        }
+    }
+
+    pub fn code(self) -> u8 {
+        match self {
+            CheckEnd::Passed => 0,
+            CheckEnd::Failed => 1,
+            CheckEnd::Interrupted => 2,
+        }
+    }
+}
+
+/// How long a headless check waits for the unit's settings before giving up.
+const READY_WITHIN: Duration = Duration::from_secs(10);
+
+/// Lines typed on standard input, each trimmed.
+fn stdin_lines() -> Receiver<String> {
+    let (tx, rx) = unbounded();
+    let _ = std::thread::Builder::new()
+        .name("stdin".into())
+        .spawn(move || {
+            for line in std::io::stdin().lock().lines() {
+                let Ok(line) = line else { return };
+                if tx.send(line.trim().to_string()).is_err() {
+                    return;
+                }
+            }
+        });
+    rx
+}
+
+/// What a typed line asks of the flow.
+fn typed(line: &str) -> Option<Command> {
+    Some(match line {
+        "" => Command::Enter,
+        "s" | "skip" => Command::SkipItem,
+        "S" | "skip step" => Command::SkipStep,
+        "r" | "retry" => Command::Retry,
+        "q" | "quit" | "stop" => Command::Stop,
+        _ => return None,
+    })
+}
+
+/// Runs the check with no screen. `out` gets every line meant for the person (the
+/// plan, each result as it comes, the summary); `lines` what the person types.
+pub fn run_headless_with(
+    h: HeadlessCheck,
+    lines: &Receiver<String>,
+    terminations: &Receiver<signals::Termination>,
+    out: &mut dyn std::io::Write,
+) -> anyhow::Result<CheckEnd> {
+    let mut sim = None;
+    let (source, connector) = match &h.port {
+        Some(addr) => {
+            link::check_port(addr, h.baud)?;
+            (
+                Source::Serial {
+                    path: addr.to_string(),
+                },
+                link::port_connector(addr, h.baud),
+            )
+        }
+        None => {
+            let (source, connector, handle) = builtin_sim(&h.scenario)?;
+            sim = Some(handle);
+            (source, connector)
+        }
+    };
+    let mut app = App::new(source, connector, AppOptions::default());
+    let handle = app.link_handle();
+    super::terminal::install_panic_hook();
+    super::terminal::set_emergency_stop(move || {
+        for p in MotorStreamer::emergency_stop_packets() {
+            let _ = handle.send(p);
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    });
+    let result = headless_loop(&mut app, h, lines, terminations, out);
+    app.shutdown();
+    super::terminal::clear_emergency_stop();
+    if let Some(s) = sim {
+        s.stop();
+    }
+    result
+}
+
+/// Waits for wake-ups, typed lines or a signal until `until` or `done`.
+fn pump(
+    app: &mut App,
+    lines: &Receiver<String>,
+    terminations: &Receiver<signals::Termination>,
+    until: Instant,
+    mut on_line: impl FnMut(&mut App, String),
+    done: impl Fn(&App) -> bool,
+    mut after_tick: impl FnMut(&mut App),
+) -> Option<signals::Termination> {
+    loop {
+        let now = Instant::now();
+        app.tick(now);
+        // No screen: nothing is ever waiting to be drawn.
+        app.dirty = false;
+        app.last_draw = Some(now);
+        after_tick(app);
+        if done(app) || now >= until {
+            return None;
+        }
+        let deadline = app.next_deadline(now).min(until);
+        select! {
+            recv(app.wake_rx) -> w => if let Ok(w) = w { app.on_wake(w, Instant::now()) },
+            recv(lines) -> l => if let Ok(l) = l { on_line(app, l) },
+            recv(terminations) -> t => if let Ok(t) = t { return Some(t) },
+            default(deadline.saturating_duration_since(Instant::now())) => {}
+        }
+        while let Ok(w) = app.wake_rx.try_recv() {
+            app.on_wake(w, Instant::now());
+        }
+    }
+}
+
+fn headless_loop(
+    app: &mut App,
+    h: HeadlessCheck,
+    lines: &Receiver<String>,
+    terminations: &Receiver<signals::Termination>,
+    out: &mut dyn std::io::Write,
+) -> anyhow::Result<CheckEnd> {
+    let port = h.port.as_ref().map_or_else(
+        || format!("the built-in virtual VP-X ({})", h.scenario),
+        |p| p.to_string(),
+    );
+    writeln!(
+        out,
+        "Installation check on {port}: waiting for the unit's settings…"
+    )?;
+    let ready = |app: &App| plan::ready(&app.model(), Instant::now()).is_ok();
+    if let Some(t) = pump(
+        app,
+        lines,
+        terminations,
+        Instant::now() + READY_WITHIN,
+        |_, _| {},
+        ready,
+        |_| {},
+    ) {
+        writeln!(out, "Stopped by {} before anything was touched.", t.name())?;
+        return Ok(CheckEnd::Interrupted);
+    }
+    if let Err(why) = plan::ready(&app.model(), Instant::now()) {
+        anyhow::bail!(
+            "{port}: {why} after {} s; is the VP-X on and the cable in?",
+            READY_WITHIN.as_secs()
+        );
+    }
+    let unmatched = plan::unmatched(&app.model(), Instant::now(), &h.options.choices.exclude);
+    if !unmatched.is_empty() {
+        let names: Vec<String> = app
+            .model()
+            .circuits(Instant::now())
+            .iter()
+            .map(|c| format!("{} ({})", c.name, c.pin))
+            .collect();
+        return Err(crate::cli::UsageError(format!(
+            "--exclude {}: no circuit has that name or pin; the unit's circuits are: {}",
+            unmatched.join(", "),
+            names.join(", ")
+        ))
+        .into());
+    }
+    let yes = h.options.yes;
+    let report_dir = h.report.clone();
+    app.open_check(h.options, Instant::now());
+    print_plan(app.check_view(), out)?;
+    if !yes {
+        writeln!(
+            out,
+            "Is the aircraft safe to power these circuits and to move its flaps and trims? \
+             Type yes and Enter to start; anything else stops here."
+        )?;
+        out.flush()?;
+        let signal = pump(
+            app,
+            lines,
+            terminations,
+            Instant::now() + Duration::from_secs(24 * 3600),
+            |app, l| {
+                let cmd = if matches!(l.to_ascii_lowercase().as_str(), "y" | "yes") {
+                    Command::Enter
+                } else {
+                    Command::Stop
+                };
+                app.check_command(cmd, Instant::now());
+            },
+            |app| app.check_view().step != Step::Confirm || app.check_finished(),
+            |_| {},
+        );
+        if let Some(t) = signal {
+            app.check_interrupt(Cause::Signal(t.name().into()), false, Instant::now());
+        }
+    }
+    writeln!(
+        out,
+        "Where you must act, the check asks. Type Enter to go on, s to skip an item, S to \
+         skip the rest of a step, r to retry, q to stop (it puts back what it changed)."
+    )?;
+    let mut news = |app: &mut App| {
+        for line in app.take_check_news() {
+            let _ = writeln!(out, "{line}");
+        }
+        let _ = out.flush();
+    };
+    let far = Instant::now() + Duration::from_secs(24 * 3600);
+    let on_line = |app: &mut App, l: String| {
+        if let Some(cmd) = typed(&l) {
+            app.check_command(cmd, Instant::now());
+        }
+    };
+    if let Some(t) = pump(
+        app,
+        lines,
+        terminations,
+        far,
+        on_line,
+        App::check_finished,
+        &mut news,
+    ) {
+        // Ctrl-C or SIGTERM: stop the motor, switch the circuit back off, and wait
+        // (a few seconds at most) to see it off before saying what is left.
+        app.check_interrupt(Cause::Signal(t.name().into()), true, Instant::now());
+        let soon = Instant::now() + Duration::from_secs(5);
+        pump(
+            app,
+            lines,
+            terminations,
+            soon,
+            |_, _| {},
+            App::check_finished,
+            &mut news,
+        );
+        app.check_interrupt(Cause::Signal(t.name().into()), false, Instant::now());
+    }
+    news(app);
+    let view = app.check_view().clone();
+    if let Some(dir) = report_dir {
+        writeln!(
+            out,
+            "--report {}: the written report is not in this build yet; the results above \
+             are the record",
+            dir.display()
+        )?;
+    }
+    print_summary(&view, out)?;
+    Ok(CheckEnd::of(&view))
+}
+
+/// `vpx-efis check` on this process's terminal.
+pub fn run_headless(h: HeadlessCheck) -> anyhow::Result<CheckEnd> {
+    let terminations = signals::listen()?;
+    let lines = stdin_lines();
+    let mut out = std::io::stdout();
+    run_headless_with(h, &lines, &terminations, &mut out)
+}
+
+fn print_plan(view: &CheckView, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "Before power, the check will switch on, one at a time:"
+    )?;
+    for p in &view.plan {
+        writeln!(
+            out,
+            "  {} ({}), breaker {}, for up to {} s",
+            p.name,
+            p.pin,
+            p.breaker.map_or("?".into(), |b| format!("{b} A")),
+            p.on_for.as_secs()
+        )?;
+    }
+    for (m, d) in &view.planned_motors {
+        writeln!(
+            out,
+            "  {}: run briefly each way and back, about {} s",
+            m.name(),
+            d.as_secs()
+        )?;
+    }
+    if !view.excluded.is_empty() {
+        writeln!(out, "It leaves alone:")?;
+        for e in &view.excluded {
+            writeln!(out, "  {}: {}", e.name, e.why)?;
+        }
+    }
+    Ok(())
+}
+
+/// The end of a headless run: what is left to fix, the switches to cycle, what an
+/// interruption left.
+fn print_summary(view: &CheckView, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let count = |m| view.marks().filter(|x| *x == m).count();
+    writeln!(
+        out,
+        "Summary: {} passed, {} failed, {} warnings, {} skipped, {} not run",
+        count(Mark::Pass),
+        count(Mark::Fail),
+        count(Mark::Warn),
+        count(Mark::Skipped),
+        count(Mark::NotRun)
+    )?;
+    let fix = view.to_fix();
+    if !fix.is_empty() {
+        writeln!(out, "Left to fix:")?;
+        for f in fix {
+            writeln!(out, "  - {f}")?;
+        }
+    }
+    if !view.to_cycle.is_empty() {
+        writeln!(
+            out,
+            "Held by the page until their switch is cycled (ICD §6): cycle these switches:"
+        )?;
+        for (_, name, sw) in &view.to_cycle {
+            if let crate::protocol::message::SwitchId::Input(n) = sw {
+                writeln!(out, "  - switch {n}: {name}")?;
+            }
+        }
+    }
+    if let Some(i) = &view.interrupted {
+        writeln!(out, "The check was interrupted: {}", i.cause)?;
+        if i.left.is_empty() {
+            writeln!(out, "  Every circuit it touched is as it found it.")?;
+        }
+        for (id, name, why) in &i.left {
+            writeln!(out, "  - {name} (device {id}): {why}")?;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,111 @@
+//! `vpx-efis check [--port PATH] [--yes] [--skip STEP,…] [--exclude NAME]… [--report DIR]`:
+//! the installation check with no screen ([`crate::app::run_headless`]). Exit status
+//! 0 when everything passed, 1 when anything failed, 2 when it was interrupted (or
+//! the command line was refused).
+
+use crate::app::{CheckEnd, HeadlessCheck, run_headless};
+use crate::check::{Choices, Options};
+use crate::cli::{CheckArgs, UsageError};
+use crate::ui::check::state::Step;
+
+/// How the check ended, carried to `main` for the exit status; its text is the
+/// one-line verdict printed last.
+#[derive(Debug, thiserror::Error)]
+#[error("{}", match .0 {
+    CheckEnd::Passed => "the check passed",
+    CheckEnd::Failed => "the check found things to fix (listed above)",
+    CheckEnd::Interrupted => "the check was interrupted (what it left is listed above)",
+})]
+pub struct Ended(pub CheckEnd);
+
+/// `--skip` words as steps, or a clear error naming the words that are not steps.
+pub fn steps(words: &[String]) -> Result<Vec<Step>, UsageError> {
+    let mut out = Vec::new();
+    for w in words.iter().map(|w| w.trim()).filter(|w| !w.is_empty()) {
+        let Some((step, _)) = Step::SKIPPABLE
+            .iter()
+            .find(|(_, word)| word.eq_ignore_ascii_case(w))
+        else {
+            let all: Vec<&str> = Step::SKIPPABLE.iter().map(|(_, w)| *w).collect();
+            return Err(UsageError(format!(
+                "--skip {w}: not a step; the steps are {}",
+                all.join(", ")
+            )));
+        };
+        out.push(*step);
+    }
+    Ok(out)
+}
+
+/// The headless check's settings from its arguments.
+pub fn headless(args: CheckArgs) -> Result<HeadlessCheck, UsageError> {
+    let skip = steps(&args.skip)?;
+    if let Some(bad) = args.exclude.iter().find(|e| e.trim().is_empty()) {
+        return Err(UsageError(format!(
+            "--exclude {bad:?}: give a circuit's name or pin"
+        )));
+    }
+    if let Some(dir) = &args.report
+        && dir.exists()
+        && !dir.is_dir()
+    {
+        return Err(UsageError(format!(
+            "--report {}: that is a file; give a folder",
+            dir.display()
+        )));
+    }
+    Ok(HeadlessCheck {
+        port: if args.port.sim { None } else { args.port.port },
+        baud: args.port.baud,
+        scenario: args.port.scenario,
+        options: Options {
+            skip,
+            choices: Choices {
+                exclude: args.exclude,
+                include: Vec::new(),
+            },
+            yes: args.yes,
+            loads_file: args.loads.or_else(crate::loads::disk::default_path),
+            ..Options::default()
+        },
+        report: args.report,
+    })
+}
+
+pub fn run(args: CheckArgs) -> anyhow::Result<()> {
+    let h = headless(args)?;
+    match run_headless(h)? {
+        CheckEnd::Passed => Ok(()),
+        end => Err(Ended(end).into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn skip_takes_the_four_steps_and_names_a_wrong_one() {
+        let w = |s: &[&str]| s.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+        assert_eq!(
+            steps(&w(&["switches", "Loads"])).unwrap(),
+            vec![Step::Switches, Step::Loads]
+        );
+        assert_eq!(
+            steps(&w(&["circuits", "motors"])).unwrap(),
+            vec![Step::Circuits, Step::Motors]
+        );
+        let e = steps(&w(&["switch"])).unwrap_err().0;
+        assert_eq!(
+            e,
+            "--skip switch: not a step; the steps are switches, circuits, motors, loads"
+        );
+    }
+
+    #[test]
+    fn exit_codes_are_0_passed_1_failed_2_interrupted() {
+        assert_eq!(CheckEnd::Passed.code(), 0);
+        assert_eq!(CheckEnd::Failed.code(), 1);
+        assert_eq!(CheckEnd::Interrupted.code(), 2);
+    }
+}
