@@ -1,0 +1,558 @@
+//! The installation check end to end: the real `App` (and the headless
+//! `vpx-efis check` runner) on the slave of a real pseudo-terminal, the virtual VP-X
+//! with the `install` scenario on its master, a test playing the person at the
+//! switches. What the check says is held against what the sim really did.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
+
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::unbounded;
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use vpx_efis::app::{App, AppOptions, CheckEnd, HeadlessCheck, run_headless_with};
+use vpx_efis::check::{Options, Timing};
+use vpx_efis::link;
+use vpx_efis::model::{Motor, Source, TrimKind};
+use vpx_efis::sim::{self, MotorDirection, MotorId, SimCommand, SimHandle, SimOptions};
+use vpx_efis::ui::check::state::{
+    CircuitFinding, Input, MotorFinding, Outcome, Step, SwitchFinding,
+};
+use vpx_efis::ui::state::Screen;
+
+/// One rig at a time: each is a sim, a page and a pty, and a loaded machine that
+/// runs them all at once can starve a unit's 1 Hz status into COMMUNICATION LOST.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+struct Rig {
+    _turn: std::sync::MutexGuard<'static, ()>,
+    app: App,
+    sim: SimHandle,
+    path: String,
+    _slave: serialport::TTYPort,
+    dir: tempfile::TempDir,
+}
+
+impl Rig {
+    fn new() -> Rig {
+        let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+        let pty = link::open_pty_pair().expect("pty");
+        let reader = pty.master.try_clone_native().expect("clone master");
+        let options = SimOptions::new(sim::load_scenario("install").unwrap());
+        let sim = sim::spawn(options, Box::new(reader), Box::new(pty.master));
+        let app = App::new(
+            Source::Serial {
+                path: pty.path.clone(),
+            },
+            link::serial_connector(std::path::PathBuf::from(&pty.path), 57_600),
+            AppOptions::default(),
+        );
+        let mut r = Rig {
+            _turn: turn,
+            app,
+            sim,
+            path: pty.path.clone(),
+            _slave: pty.slave,
+            dir: tempfile::tempdir().unwrap(),
+        };
+        let end = Instant::now() + Duration::from_secs(20);
+        loop {
+            let ready = vpx_efis::check::plan::ready(&r.app.model(), Instant::now());
+            let Err(why) = ready else { break };
+            assert!(Instant::now() < end, "the unit's settings: {why}");
+            r.pump(20);
+        }
+        r
+    }
+
+    fn options(&self) -> Options {
+        Options {
+            loads_file: Some(self.dir.path().join("loads.toml")),
+            timing: Timing {
+                switch_timeout: Duration::from_secs(6),
+                ..Timing::default()
+            },
+            ..Options::default()
+        }
+    }
+
+    fn until(&mut self, what: &str, limit: Duration, f: impl Fn(&App) -> bool) {
+        let end = Instant::now() + limit;
+        while !f(&self.app) {
+            assert!(
+                Instant::now() < end,
+                "timed out waiting for {what}: {:#?}",
+                self.app.check_view().prompt
+            );
+            self.app
+                .pump_until(Instant::now() + Duration::from_millis(20));
+        }
+    }
+
+    fn pump(&mut self, ms: u64) {
+        self.app
+            .pump_until(Instant::now() + Duration::from_millis(ms));
+    }
+
+    fn key(&mut self, code: KeyCode) {
+        let k = KeyEvent::new_with_kind(code, KeyModifiers::NONE, KeyEventKind::Press);
+        self.app.handle_term_event(Event::Key(k), Instant::now());
+    }
+
+    /// The person moves a flap or trim switch one way for a while, then lets go.
+    fn hold_motor_switch(&mut self, motor: MotorId, direction: MotorDirection) {
+        self.sim.inject(SimCommand::MotorSwitch {
+            motor,
+            direction: Some(direction),
+        });
+        self.pump(1500);
+        self.sim.inject(SimCommand::MotorSwitch {
+            motor,
+            direction: None,
+        });
+    }
+
+    /// Plays the person through the switch step: each input asked for is flipped on
+    /// and off (switch 7's wire is dead, 5 and 6 are crossed: the person cannot tell).
+    fn do_the_switches(&mut self) {
+        let mut done = 0;
+        while self.app.check_view().step == Step::Switches {
+            let v = self.app.check_view();
+            let Some(i) = v.current else {
+                self.pump(20);
+                continue;
+            };
+            let input = v.switches[i].input;
+            let waiting = v.switches[i].outcome != Outcome::NotRun;
+            if waiting {
+                // Timed out: go on to the next.
+                self.key(KeyCode::Enter);
+                continue;
+            }
+            if i < done {
+                self.pump(20);
+                continue;
+            }
+            done = i + 1;
+            match input {
+                Input::Switch(n) => {
+                    self.sim.flip_switch(n, Duration::from_millis(1500));
+                }
+                Input::FlapUp => self.hold_motor_switch(MotorId::Flap, MotorDirection::Up),
+                Input::FlapDown => self.hold_motor_switch(MotorId::Flap, MotorDirection::Down),
+                Input::PitchTrimUp => self.hold_motor_switch(MotorId::Pitch, MotorDirection::Up),
+                Input::PitchTrimDown => {
+                    self.hold_motor_switch(MotorId::Pitch, MotorDirection::Down)
+                }
+                Input::RollTrimUp => self.hold_motor_switch(MotorId::Roll, MotorDirection::Up),
+                Input::RollTrimDown => self.hold_motor_switch(MotorId::Roll, MotorDirection::Down),
+            }
+            self.until("the input's result", Duration::from_secs(12), |app| {
+                let v = app.check_view();
+                v.current != Some(i) || v.switches[i].outcome != Outcome::NotRun
+            });
+        }
+    }
+}
+
+/// The install scenario's six faults, as the list of what is left to fix says them.
+fn injected() -> Vec<String> {
+    [
+        "switch 5: switch 6 changed instead: switches crossed",
+        "switch 6: switch 5 changed instead: switches crossed",
+        "switch 7: input never changed: a broken wire, a bad switch, or the wrong pin",
+        "Beacon (5A-3): no current while on: an open circuit, a blown bulb, a load not connected",
+        "pitch trim: reversed: the motor's polarity is swapped, or the sensor is wired backwards",
+        "roll trim: no movement: the motor, the sensor or a limit",
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
+#[test]
+fn the_install_scenario_finds_each_injected_fault_and_puts_everything_back() {
+    let mut r = Rig::new();
+    let before = r.sim.stats();
+    // `i` on the device list opens the check; leave it, and open one with a shorter
+    // switch timeout (the dead switch 7 waits it out).
+    r.key(KeyCode::Char('i'));
+    assert_eq!(r.app.view().screen, Screen::Check);
+    assert_eq!(r.app.check_view().step, Step::Confirm);
+    r.key(KeyCode::Esc);
+    assert_eq!(r.app.view().screen, Screen::Devices);
+    let opts = r.options();
+    r.app.open_check(opts, Instant::now());
+    let v = r.app.check_view();
+    assert!(
+        v.excluded
+            .iter()
+            .any(|e| e.name == "Pitot Heat" && e.may_include)
+    );
+    assert!(!v.plan.iter().any(|p| [1, 3, 20].contains(&p.id)));
+    r.key(KeyCode::Enter);
+    assert_eq!(r.app.check_view().step, Step::Switches);
+    r.do_the_switches();
+    r.until("the end of the check", Duration::from_secs(120), |app| {
+        app.check_finished()
+    });
+    let v = r.app.check_view().clone();
+    assert!(v.interrupted.is_none(), "{:?}", v.interrupted);
+
+    // Each injected fault found and named; the Landing Lt's tight breaker too.
+    let fix = v.to_fix();
+    for f in injected() {
+        assert!(fix.contains(&f), "missing {f:?} in {fix:#?}");
+    }
+    let landing: Vec<&String> = fix.iter().filter(|f| f.starts_with("Landing Lt")).collect();
+    assert_eq!(landing.len(), 1, "{fix:#?}");
+    assert!(landing[0].contains("of a 8 A breaker (≥ 80 %)"), "{fix:#?}");
+    assert_eq!(
+        fix.len(),
+        injected().len() + 1,
+        "exactly the faults: {fix:#?}"
+    );
+
+    // The good ones pass.
+    let switch = |n| {
+        v.switches
+            .iter()
+            .find(|s| s.input == Input::Switch(n))
+            .unwrap()
+            .outcome
+            .clone()
+    };
+    for n in [2, 3, 4] {
+        assert_eq!(
+            switch(n),
+            Outcome::Found(SwitchFinding::Passed),
+            "switch {n}"
+        );
+    }
+    for s in v
+        .switches
+        .iter()
+        .filter(|s| !matches!(s.input, Input::Switch(_)))
+    {
+        assert_eq!(s.outcome, Outcome::Found(SwitchFinding::Passed), "{s:?}");
+    }
+    for c in &v.circuits {
+        match c.id {
+            6 => assert_eq!(c.outcome, Outcome::Found(CircuitFinding::NoCurrent)),
+            17 => assert!(matches!(
+                c.outcome,
+                Outcome::Found(CircuitFinding::NearBreaker { breaker: 8, .. })
+            )),
+            1 | 3 | 20 => assert!(matches!(c.outcome, Outcome::Skipped(_)), "{c:?}"),
+            _ => assert!(
+                matches!(c.outcome, Outcome::Found(CircuitFinding::Within { .. })),
+                "{c:?}"
+            ),
+        }
+    }
+    let motor = |m| {
+        v.motors
+            .iter()
+            .find(|r| r.motor == m)
+            .unwrap()
+            .outcome
+            .clone()
+    };
+    assert_eq!(motor(Motor::Flaps), Outcome::Found(MotorFinding::Moves));
+    assert_eq!(
+        motor(Motor::Trim(TrimKind::Pitch)),
+        Outcome::Found(MotorFinding::Reversed)
+    );
+    assert_eq!(
+        motor(Motor::Trim(TrimKind::Roll)),
+        Outcome::Found(MotorFinding::NoMovement)
+    );
+
+    // Every circuit is as it was, and the moving motors are back where they were.
+    r.pump(1200);
+    let after = r.sim.stats();
+    assert_eq!(after.powered, before.powered, "every circuit put back");
+    // (The person's flap and trim switches moved them in the switch step; the motor
+    // step puts them back where it found them.)
+    let found = |m| v.motors.iter().find(|r| r.motor == m).unwrap().positions[0];
+    for (a, b) in [
+        (after.flap_position, found(Motor::Flaps)),
+        (
+            after.pitch_trim_position,
+            found(Motor::Trim(TrimKind::Pitch)),
+        ),
+    ] {
+        assert!((i32::from(a) - i32::from(b)).abs() <= 4, "{a} vs {b}");
+    }
+    assert_eq!(
+        (
+            after.flap_starvations,
+            after.pitch_trim_starvations,
+            after.roll_trim_starvations
+        ),
+        (0, 0, 0),
+        "every run ended with its stop, never by starving the unit"
+    );
+    // Circuits switched back off by DEVICE_POWER are held until their switch cycles.
+    assert!(v.to_cycle.iter().any(|(id, ..)| *id == 6));
+    // The template of the load file was written for next time.
+    assert!(r.dir.path().join("loads.toml").exists());
+}
+
+/// Starts a check of the circuits only and waits until Landing Lt (17) is on.
+fn landing_light_on(r: &mut Rig) {
+    let opts = Options {
+        skip: vec![Step::Switches, Step::Motors, Step::Loads],
+        ..r.options()
+    };
+    r.app.open_check(opts, Instant::now());
+    r.key(KeyCode::Enter);
+    let at = r
+        .app
+        .check_view()
+        .circuits
+        .iter()
+        .position(|c| c.id == 17)
+        .unwrap();
+    r.until("Landing Lt on", Duration::from_secs(90), |app| {
+        app.check_view().current == Some(at)
+            && app
+                .model()
+                .live_devices(Instant::now())
+                .is_some_and(|d| d.on[17])
+    });
+}
+
+#[test]
+fn quit_mid_circuit_puts_it_back_and_says_nothing_is_left() {
+    let mut r = Rig::new();
+    landing_light_on(&mut r);
+    assert!(r.sim.stats().powered[17]);
+    r.key(KeyCode::Esc);
+    r.until("the check to stop", Duration::from_secs(5), |app| {
+        app.check_finished()
+    });
+    let i = r.app.check_view().interrupted.clone().unwrap();
+    assert_eq!(i.cause, "stopped by you");
+    assert_eq!(i.left, vec![]);
+    assert!(!r.sim.stats().powered[17], "Landing Lt back off");
+    let v = r.app.check_view();
+    let not_run: Vec<u8> = v
+        .circuits
+        .iter()
+        .filter(|c| c.outcome == Outcome::NotRun)
+        .map(|c| c.id)
+        .collect();
+    assert_eq!(
+        not_run,
+        vec![17, 18, 19],
+        "the one under test and those after it have no result"
+    );
+    r.key(KeyCode::Esc);
+    assert_eq!(r.app.view().screen, Screen::Devices);
+}
+
+#[test]
+fn communication_lost_mid_circuit_says_the_state_is_unknown() {
+    let mut r = Rig::new();
+    landing_light_on(&mut r);
+    r.sim.inject(SimCommand::Silent(Duration::from_secs(6)));
+    r.until("the check to stop", Duration::from_secs(8), |app| {
+        app.check_finished()
+    });
+    let i = r.app.check_view().interrupted.clone().unwrap();
+    assert_eq!(i.cause, "COMMUNICATION LOST");
+    assert_eq!(
+        i.left,
+        vec![(
+            17,
+            "Landing Lt".to_string(),
+            "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)"
+                .to_string()
+        )]
+    );
+    // The off was sent all the same, and a silent unit still hears: it is off.
+    assert!(!r.sim.stats().powered[17]);
+}
+
+#[test]
+fn a_fault_mid_step_stops_the_check_and_the_circuit_goes_back_off() {
+    let mut r = Rig::new();
+    landing_light_on(&mut r);
+    // The EFIS (measured already, on by its switch) shorts while Landing Lt is on.
+    r.sim.inject(SimCommand::Short {
+        device: 2,
+        on: true,
+    });
+    r.until("the check to stop", Duration::from_secs(8), |app| {
+        app.check_finished()
+    });
+    let i = r.app.check_view().interrupted.clone().unwrap();
+    assert_eq!(i.cause, "EFIS faulted (SHORT_CIRCUIT)");
+    assert_eq!(i.left, vec![], "Landing Lt seen back off");
+    assert!(!r.sim.stats().powered[17]);
+}
+
+#[test]
+fn quit_mid_motor_run_puts_the_stop_on_the_wire() {
+    let mut r = Rig::new();
+    let opts = Options {
+        skip: vec![Step::Switches, Step::Circuits, Step::Loads],
+        ..r.options()
+    };
+    let before = r.sim.stats().flap_starvations;
+    r.app.open_check(opts, Instant::now());
+    r.key(KeyCode::Enter);
+    r.until("the flaps running", Duration::from_secs(5), |app| {
+        app.view().motor_run.is_some()
+    });
+    // Until they have clearly moved from 20 (the up endpoint), down.
+    while r.sim.stats().flap_position < 26 {
+        r.pump(20);
+    }
+    assert!(r.sim.stats().flap_running);
+    r.key(KeyCode::Esc);
+    r.pump(150);
+    let s = r.sim.stats();
+    assert!(!s.flap_running, "stopped within 150 ms");
+    assert_eq!(
+        s.flap_starvations, before,
+        "by its stop message, not by starving"
+    );
+    r.until("the check to stop", Duration::from_secs(5), |app| {
+        app.check_finished()
+    });
+    let i = r.app.check_view().interrupted.clone().unwrap();
+    assert_eq!(i.left.len(), 1, "{:?}", i.left);
+    assert_eq!(i.left[0].0, 0, "the flaps");
+    assert!(i.left[0].2.contains("not run back"), "{:?}", i.left);
+}
+
+#[test]
+fn headless_check_prints_results_and_exits_by_what_it_found() {
+    let r = Rig::new();
+    let (_tx, lines) = unbounded();
+    let (_ttx, terminations) = unbounded();
+    let mut out = Vec::new();
+    let h = HeadlessCheck {
+        port: Some(r.path.parse().unwrap()),
+        baud: 57_600,
+        scenario: "install".into(),
+        options: Options {
+            skip: vec![Step::Switches, Step::Motors],
+            yes: true,
+            choices: vpx_efis::check::Choices {
+                exclude: vec!["Landing Lt".into(), "5A-2".into()],
+                include: vec![],
+            },
+            ..r.options()
+        },
+        report: None,
+    };
+    // The page of the rig is closed first: one program on the port at a time.
+    let Rig { app, sim, .. } = r;
+    app.shutdown();
+    let end = run_headless_with(h, &lines, &terminations, &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert_eq!(end, CheckEnd::Failed, "{text}");
+    assert!(
+        text.contains("✗ FAIL Beacon (5A-3): no current while on"),
+        "{text}"
+    );
+    assert!(text.contains("✓ PASS Nav Lt (5A-1): draws"), "{text}");
+    assert!(
+        text.contains("Landing Lt: excluded by you (--exclude)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("Strobe Lt: excluded by you (--exclude)"),
+        "{text}"
+    );
+    assert!(
+        !text.contains("Landing Lt (10A-1)"),
+        "never powered: {text}"
+    );
+    assert!(text.contains("– Switch inputs: skipped"), "{text}");
+    assert!(text.contains("Left to fix:\n  - Beacon (5A-3)"), "{text}");
+    assert!(text.contains("  - switch 3: Beacon"), "{text}");
+    assert_eq!(sim.stats().powered[6], false);
+}
+
+#[test]
+fn headless_check_stopped_by_a_signal_puts_back_and_exits_interrupted() {
+    let r = Rig::new();
+    let (_tx, lines) = unbounded();
+    let (ttx, terminations) = unbounded();
+    let h = HeadlessCheck {
+        port: Some(r.path.parse().unwrap()),
+        baud: 57_600,
+        scenario: "install".into(),
+        options: Options {
+            skip: vec![Step::Switches, Step::Motors],
+            yes: true,
+            ..r.options()
+        },
+        report: None,
+    };
+    let Rig { app, sim, .. } = r;
+    app.shutdown();
+    // SIGTERM once the Nav Lt (the first circuit the check switches on) is on.
+    let stats = std::sync::Arc::new(sim);
+    let watcher = {
+        let sim = stats.clone();
+        std::thread::spawn(move || {
+            let end = Instant::now() + Duration::from_secs(30);
+            while !sim.stats().powered[4] && Instant::now() < end {
+                std::thread::sleep(Duration::from_millis(20));
+            }
+            let _ = ttx.send(vpx_efis::app::Termination::Terminate);
+        })
+    };
+    let mut out = Vec::new();
+    let end = run_headless_with(h, &lines, &terminations, &mut out).unwrap();
+    watcher.join().unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert_eq!(end, CheckEnd::Interrupted, "{text}");
+    assert!(
+        text.contains("Interrupted: ended by a signal (SIGTERM)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("Every circuit it touched is as it found it."),
+        "{text}"
+    );
+    assert!(!stats.stats().powered[4], "Nav Lt back off");
+}
+
+#[test]
+fn headless_check_refuses_an_exclude_that_names_no_circuit() {
+    let r = Rig::new();
+    let (_tx, lines) = unbounded();
+    let (_ttx, terminations) = unbounded();
+    let h = HeadlessCheck {
+        port: Some(r.path.parse().unwrap()),
+        baud: 57_600,
+        scenario: "install".into(),
+        options: Options {
+            yes: true,
+            choices: vpx_efis::check::Choices {
+                exclude: vec!["Pitot Heeat".into()],
+                include: vec![],
+            },
+            ..r.options()
+        },
+        report: None,
+    };
+    let Rig { app, sim, .. } = r;
+    app.shutdown();
+    let mut out = Vec::new();
+    let e = run_headless_with(h, &lines, &terminations, &mut out).unwrap_err();
+    let words = e.to_string();
+    assert!(
+        words.starts_with("--exclude Pitot Heeat: no circuit has that name or pin"),
+        "{words}"
+    );
+    assert!(words.contains("Pitot Heat (10A-4)"), "{words}");
+    assert!(
+        !sim.stats().log.iter().any(|l| l.contains("DEVICE_POWER")),
+        "nothing was powered"
+    );
+}
