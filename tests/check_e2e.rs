@@ -473,7 +473,7 @@ fn headless_check_prints_results_and_exits_by_what_it_found() {
     assert!(text.contains("– Switch inputs: skipped"), "{text}");
     assert!(text.contains("Left to fix:\n  - Beacon (5A-3)"), "{text}");
     assert!(text.contains("  - switch 3: Beacon"), "{text}");
-    assert_eq!(sim.stats().powered[6], false);
+    assert!(!sim.stats().powered[6], "Beacon back off");
 }
 
 #[test]
