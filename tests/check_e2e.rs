@@ -445,10 +445,10 @@ fn headless_check_prints_results_and_exits_by_what_it_found() {
             },
             ..r.options()
         },
-        report: None,
+        report: Some(r.dir.path().join("reports")),
     };
     // The page of the rig is closed first: one program on the port at a time.
-    let Rig { app, sim, .. } = r;
+    let Rig { app, sim, dir, .. } = r;
     app.shutdown();
     let end = run_headless_with(h, &lines, &terminations, &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
@@ -474,6 +474,18 @@ fn headless_check_prints_results_and_exits_by_what_it_found() {
     assert!(text.contains("Left to fix:\n  - Beacon (5A-3)"), "{text}");
     assert!(text.contains("  - switch 3: Beacon"), "{text}");
     assert!(!sim.stats().powered[6], "Beacon back off");
+    let reports: Vec<_> = std::fs::read_dir(dir.path().join("reports"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(reports.len(), 2, "Markdown and CSV: {reports:?}");
+    let md = reports
+        .iter()
+        .find(|p| p.extension().unwrap() == "md")
+        .unwrap();
+    let md = std::fs::read_to_string(md).unwrap();
+    assert!(md.contains("Beacon"), "{md}");
+    assert!(text.contains("Report written: "), "{text}");
 }
 
 #[test]

@@ -31,6 +31,10 @@ pub(super) struct CheckState {
     view: CheckView,
     /// Results as they came, for a headless run to print.
     news: Vec<String>,
+    /// Where the report goes once the check ends, and when the check started.
+    report_dir: Option<PathBuf>,
+    started: Option<std::time::SystemTime>,
+    reported: bool,
 }
 
 /// The options of a check opened from the page: everything run, the load file beside
@@ -49,6 +53,8 @@ impl App {
         let model = lock(&shared);
         self.check.flow = Some(CheckFlow::new(options, &mut self.check.view, &model, now));
         self.check.news.clear();
+        self.check.started = Some(std::time::SystemTime::now());
+        self.check.reported = false;
         self.view.screen = Screen::Check;
         self.dirty = true;
     }
@@ -120,6 +126,64 @@ impl App {
             return;
         }
         self.with_check(|flow, view, model, c| flow.tick(view, model, c, now));
+        if self.check_finished() {
+            self.write_check_report();
+        }
+    }
+
+    /// Sets where the report of the check goes (`--report DIR`; the page's folder).
+    pub fn set_check_report_dir(&mut self, dir: Option<PathBuf>) {
+        self.check.report_dir = dir;
+    }
+
+    /// Writes the report of an ended check, once, into the report folder: Markdown
+    /// and CSV (`crate::check::report`), complete or not.
+    fn write_check_report(&mut self) {
+        if self.check.reported || self.check.flow.is_none() {
+            return;
+        }
+        let Some(dir) = self.check.report_dir.clone() else {
+            return;
+        };
+        self.check.reported = true;
+        let (port, unit) = {
+            // One lock for both: two guards in one expression would deadlock.
+            let m = self.model();
+            let port = match &m.source {
+                Source::Serial { path } => path.clone(),
+                Source::Simulated { scenario } => format!("built-in virtual VP-X ({scenario})"),
+                Source::Replay { file } => file.clone(),
+            };
+            (port, m.version.map(|v| v.value))
+        };
+        let about = crate::check::report::About {
+            when: self
+                .check
+                .started
+                .unwrap_or_else(std::time::SystemTime::now),
+            port,
+            unit,
+            ours: crate::cli::VERSION.to_string(),
+        };
+        let written = std::fs::create_dir_all(&dir)
+            .and_then(|()| crate::check::report::write(&dir, &self.check.view, &about));
+        let line = match written {
+            Ok(w) => {
+                self.check.view.report = Some(w.markdown.clone());
+                format!(
+                    "Report written: {} and {}",
+                    w.markdown.display(),
+                    w.csv.display()
+                )
+            }
+            Err(e) => format!(
+                "✗ The report could not be written to {}: {e}",
+                dir.display()
+            ),
+        };
+        self.check.view.message = Some(line.clone());
+        self.check.news.push(line);
+        self.dirty = true;
     }
 
     pub(super) fn check_deadline(&self) -> Option<Instant> {
@@ -136,6 +200,10 @@ impl App {
             return;
         }
         self.open_check(page_options(), now);
+        // The report goes beside the config file, with the load file.
+        let dir =
+            crate::loads::disk::default_path().and_then(|p| p.parent().map(|d| d.join("reports")));
+        self.set_check_report_dir(dir);
     }
 
     /// A key on the check screen.
@@ -379,7 +447,7 @@ fn headless_loop(
         .into());
     }
     let yes = h.options.yes;
-    let report_dir = h.report.clone();
+    app.set_check_report_dir(h.report.clone());
     app.open_check(h.options, Instant::now());
     print_plan(app.check_view(), out)?;
     if !yes {
@@ -450,16 +518,9 @@ fn headless_loop(
         );
         app.check_interrupt(Cause::Signal(t.name().into()), false, Instant::now());
     }
+    app.write_check_report();
     news(app);
     let view = app.check_view().clone();
-    if let Some(dir) = report_dir {
-        writeln!(
-            out,
-            "--report {}: the written report is not in this build yet; the results above \
-             are the record",
-            dir.display()
-        )?;
-    }
     print_summary(&view, out)?;
     Ok(CheckEnd::of(&view))
 }
