@@ -16,6 +16,7 @@ use std::time::Instant;
 
 use super::flow::{CheckFlow, Command, Io, Phase, Powered, next_step};
 use super::switches::news;
+use crate::control::Refusal;
 use crate::exchange::{Try, Verdict};
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::Tenths;
@@ -113,17 +114,17 @@ impl CircuitItem {
     }
 
     /// The check stops here: switch it off if the check switched it on. Returns the
-    /// circuit to watch go off.
-    pub fn stop(&self, _flow: &CheckFlow, io: &mut Io) -> Option<Powered> {
+    /// circuit to watch go off, or why the off could not be sent.
+    pub fn stop(&self, io: &mut Io) -> Result<Option<Powered>, Refusal> {
         match &self.stage {
             Stage::Measure {
                 request: Some(_), ..
             }
             | Stage::PutBack { .. } => {
-                io.power(self.id, false);
-                Some(Powered { id: self.id })
+                io.power_off(self.id)?;
+                Ok(Some(Powered { id: self.id }))
             }
-            Stage::Measure { request: None, .. } => None,
+            Stage::Measure { request: None, .. } => Ok(None),
         }
     }
 }
@@ -178,8 +179,11 @@ impl CheckFlow {
             return self.circuit_next(idx + 1, view, io);
         }
         let was_on = st == CircuitState::On;
+        if !was_on && let Err(why) = io.power_on(id) {
+            // Refused by the page's own rule: nothing sent, and the words say why.
+            return self.not_switched(idx, why, view, io);
+        }
         let request = (!was_on).then(|| {
-            io.power(id, true);
             Try::with(
                 now,
                 self.opts.timing.power_timeout,
@@ -238,10 +242,18 @@ impl CheckFlow {
                         .as_mut()
                         .map(|t| t.judge(st == CircuitState::On, now))
                     {
-                        Some(Verdict::Resend) => {
-                            io.power(id, true);
-                            None
-                        }
+                        Some(Verdict::Resend) => match io.power_on(id) {
+                            Ok(()) => None,
+                            Err(why) => {
+                                // The first on went out: put it back all the same.
+                                let why = format!("not switched: {why}");
+                                view.circuits[idx].outcome = Outcome::Skipped(why.clone());
+                                io.out
+                                    .news
+                                    .push(format!("– {}: {why}", view.circuits[idx].name));
+                                return self.circuit_put_back(view, io);
+                            }
+                        },
                         Some(Verdict::NoAnswer) => Some(CircuitFinding::DidNotSwitch),
                         _ => None,
                     }
@@ -262,7 +274,14 @@ impl CheckFlow {
                         self.put_back(id, view, io.model, now);
                         self.circuit_next(idx + 1, view, io);
                     }
-                    Verdict::Resend => io.power(id, false),
+                    Verdict::Resend => {
+                        if let Err(why) = io.power_off(id) {
+                            self.trouble_ahead = Some(format!(
+                                "{} could not be switched back off: {why}",
+                                view.circuits[idx].name
+                            ));
+                        }
+                    }
                     Verdict::NoAnswer => {
                         self.trouble_ahead = Some(format!(
                             "{} did not switch back off",
@@ -279,7 +298,12 @@ impl CheckFlow {
         let Phase::Circuits(item) = &mut self.phase else {
             return;
         };
-        io.power(item.id, false);
+        if let Err(why) = io.power_off(item.id) {
+            self.trouble_ahead = Some(format!(
+                "{} could not be switched back off: {why}",
+                view.circuits[item.idx].name
+            ));
+        }
         item.stage = Stage::PutBack {
             request: Try::with(
                 io.now,
@@ -318,6 +342,21 @@ impl CheckFlow {
             // Already going back off: the skip takes effect once it is.
             Stage::PutBack { .. } => {}
         }
+    }
+}
+
+impl CheckFlow {
+    /// The page's rule refused to switch the circuit on: that is its line, in
+    /// control's words, and the next circuit.
+    fn not_switched(&mut self, idx: usize, why: Refusal, view: &mut CheckView, io: &mut Io) {
+        let why = format!("not switched: {why}");
+        let row = &mut view.circuits[idx];
+        io.out
+            .news
+            .push(format!("– {} ({}): {why}", row.name, row.pin));
+        view.message = Some(format!("{}: {why}", row.name));
+        row.outcome = Outcome::Skipped(why);
+        self.circuit_next(idx + 1, view, io);
     }
 }
 

@@ -13,10 +13,10 @@ use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
 
 use super::plan::{self, Choices};
-use crate::control::{Controller, StopReason};
+use crate::control::{Controller, Refusal, StopReason, device_power, put_back_off};
 use crate::model::{Connection, Model, Motor};
 use crate::protocol::device::DEVICE_COUNT;
-use crate::protocol::message::{DevicePower, Packet, SwitchId};
+use crate::protocol::message::{Message, Packet, SwitchId};
 use crate::ui::check::state::{CheckView, Interruption, Prompt, Step};
 
 use super::circuits::CircuitItem;
@@ -172,11 +172,25 @@ pub(super) struct Io<'a> {
 }
 
 impl Io<'_> {
-    pub fn power(&mut self, id: u8, on: bool) {
+    /// Switches circuit `id` on by the rule of the page's own power keys
+    /// ([`device_power`]: never the starter or a motor, not a faulted pin, not a state
+    /// the page does not know); on a refusal nothing is sent and the words say why.
+    pub fn power_on(&mut self, id: u8) -> Result<(), Refusal> {
+        let message = device_power(self.model, self.now, id, true)?;
+        self.send(message);
+        Ok(())
+    }
+
+    /// Switches back off a circuit this check switched on ([`put_back_off`]).
+    pub fn power_off(&mut self, id: u8) -> Result<(), Refusal> {
+        let message = put_back_off(self.model, id)?;
+        self.send(message);
+        Ok(())
+    }
+
+    fn send(&mut self, message: Message) {
         let cnt = self.ctl.next_cnt();
-        self.out
-            .packets
-            .push(Packet::request(cnt, DevicePower { device_id: id, on }));
+        self.out.packets.push(Packet::request(cnt, message));
     }
 
     /// How many DEVICE_STATUS broadcasts the page has heard so far.
@@ -730,11 +744,14 @@ impl CheckFlow {
             out,
         };
         match std::mem::replace(&mut self.phase, Phase::Done) {
-            Phase::Circuits(item) => {
-                if let Some(p) = item.stop(self, &mut io) {
-                    powered = Some(p);
-                }
-            }
+            Phase::Circuits(item) => match item.stop(&mut io) {
+                Ok(p) => powered = p,
+                Err(why) => left.push((
+                    item.id,
+                    view_or_model_name(view, model, item.id),
+                    format!("ON when the check stopped: DEVICE_POWER off not sent: {why}"),
+                )),
+            },
             Phase::Motors(item) => {
                 // Stopped here for the check's own reason, unless stopped already
                 // (ctl_stop, or the controller's own tick, whose reason stands); say

@@ -1158,3 +1158,65 @@ fn the_whole_check_in_order_with_results_as_they_come() {
     assert_eq!(order, vec!["circuit", "motor", "loads"], "{:?}", r.news);
     assert!(r.news.last().unwrap().starts_with("Check complete"));
 }
+
+// ===== check-motors: DEVICE_POWER through control's rules, motors at their endpoints =====
+
+impl Rig {
+    /// `ms` of the page's loop, as [`Rig::run`], with every message named `drop`
+    /// lost on the way from the unit.
+    fn run_dropping(&mut self, ms: u64, drop: &str) {
+        for _ in 0..ms / 10 {
+            self.now += Duration::from_millis(10);
+            self.unit.tick(self.now);
+            let out = self.unit.take_output();
+            let mut frames = Vec::new();
+            self.rx.push(&out, |e| {
+                if let Event::Frame(f) = e {
+                    frames.push(Packet::parse(&f).unwrap());
+                }
+            });
+            for p in frames.into_iter().filter(|p| p.message.name() != drop) {
+                self.model.apply_packet(self.now, &p);
+            }
+            let p = self.ctl.tick(&self.model, self.now);
+            self.send(p);
+            let out = self
+                .flow
+                .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
+            self.news.extend(out.news);
+            self.send(out.packets);
+        }
+    }
+}
+
+/// Review item 9: the check switches a circuit on only by the page's own rule
+/// (`control::device_power`). A unit whose DEVICE_STATUS went quiet (SYSTEM_STATUS
+/// still comes, so communication is not lost) leaves each circuit's state unknown,
+/// which the page's power key refuses: the circuit's line says so in control's
+/// words, and no DEVICE_POWER goes out for it.
+#[test]
+fn a_circuit_the_page_may_not_switch_is_not_switched_and_says_why() {
+    let mut r = Rig::new(Rig::circuits_only());
+    r.start();
+    // EFIS (always on) is measured first, nothing sent; from now on no DEVICE_STATUS.
+    r.run_dropping(9000, "DEVICE_STATUS");
+    assert!(!r.model.comm_lost(r.now));
+    let words = "not switched: Nav Lt's state is not known yet";
+    assert_eq!(r.circuit(4), &Outcome::Skipped(words.to_string()));
+    assert!(r.powers(4).is_empty(), "nothing on the wire for it");
+    assert!(r.news.iter().any(|n| n.contains(words)), "{:?}", r.news);
+    for id in [5, 17, 18] {
+        assert!(
+            matches!(r.circuit(id), Outcome::Skipped(w) if w.starts_with("not switched: ")),
+            "device {id}: {:?}",
+            r.circuit(id)
+        );
+        assert!(r.powers(id).is_empty(), "device {id}");
+    }
+    assert!(
+        !r.sent
+            .iter()
+            .any(|(_, p)| matches!(p.message, Message::DevicePower(_))),
+        "no DEVICE_POWER at all"
+    );
+}

@@ -7,7 +7,7 @@ use std::fmt;
 use std::time::Instant;
 
 use crate::model::{CircuitKind, CircuitState, Model, Motor, TrimKind};
-use crate::protocol::device::{self, STARTER, SYSTEM_FAULT_ID};
+use crate::protocol::device::{self, FLAPS, STARTER, SYSTEM_FAULT_ID, TRIM_P, TRIM_R};
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{DeviceClear, DevicePower, Message, WigWagMode, WigWagModeSetting};
 
@@ -41,8 +41,8 @@ pub fn command(action: &Action, model: &Model, now: Instant) -> Result<Message, 
         return refuse(COMM_LOST);
     }
     match *action {
-        Action::PowerOn(id) => power(model, now, id, true),
-        Action::PowerOff(id) => power(model, now, id, false),
+        Action::PowerOn(id) => device_power(model, now, id, true),
+        Action::PowerOff(id) => device_power(model, now, id, false),
         Action::Reset(id) => reset(model, now, id),
         Action::ResetSystemFault => match model.live_faults(now) {
             Some((_, true)) => Ok(DeviceClear {
@@ -71,6 +71,36 @@ fn circuit_state(model: &Model, now: Instant, id: u8) -> Option<(CircuitKind, Ci
         .into_iter()
         .find(|c| c.id == id)
         .map(|c| (c.kind, c.state))
+}
+
+/// DEVICE_POWER for circuit `id`, or why not: the rule for the page's power keys and
+/// the installation check's switching on alike (ICD §6.4.1).
+pub fn device_power(model: &Model, now: Instant, id: u8, on: bool) -> Result<Message, Refusal> {
+    if model.comm_lost(now) {
+        return refuse(COMM_LOST);
+    }
+    power(model, now, id, on)
+}
+
+/// DEVICE_POWER off for a circuit the page itself switched on (the installation
+/// check putting back what it changed), or why not. What no DEVICE_POWER may ever
+/// touch still refuses (the starter, a motor). Unlike [`device_power`], neither
+/// COMMUNICATION LOST nor an unknown state stops it: an off that undoes the page's
+/// own on is the safe side even unseen (the unit may still hear the page when the
+/// page no longer hears the unit), and the caller says it is not confirmed.
+pub fn put_back_off(model: &Model, id: u8) -> Result<Message, Refusal> {
+    let name = model.display_name(id);
+    match id {
+        STARTER => refuse("the starter cannot be switched from the EFIS, only reset"),
+        FLAPS | TRIM_P | TRIM_R => refuse(format!(
+            "{name} is a motor: it is run with the motor keys, not switched on or off"
+        )),
+        _ => Ok(DevicePower {
+            device_id: id,
+            on: false,
+        }
+        .into()),
+    }
 }
 
 fn power(model: &Model, now: Instant, id: u8, on: bool) -> Result<Message, Refusal> {

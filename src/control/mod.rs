@@ -31,7 +31,7 @@ use crate::model::{Model, Motor};
 use crate::protocol::message::Packet;
 use crate::ui::state::{MotorRun, ReleaseMode, RepeatTiming};
 
-pub use commands::{Refusal, command, motor_check, motor_permit};
+pub use commands::{Refusal, command, device_power, motor_check, motor_permit, put_back_off};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};
 pub use release::{release_mode, release_mode_here};
 pub use streamer::{
