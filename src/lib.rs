@@ -15,6 +15,7 @@ pub mod cli;
 pub mod cmd;
 pub mod control;
 pub mod exchange;
+pub mod files;
 pub mod flash;
 pub mod link;
 pub mod loads;

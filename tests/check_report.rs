@@ -458,11 +458,28 @@ fn the_files_are_named_with_the_time_and_never_replace_an_earlier_report() {
 }
 
 #[test]
-fn a_failed_write_leaves_no_file() {
+fn a_missing_folder_is_made_and_a_failed_write_leaves_no_file() {
     let dir = tempfile::tempdir().unwrap();
-    let missing = dir.path().join("no-such-folder");
-    assert!(report::write(&missing, &finished(), &about()).is_err());
-    assert_eq!(entries(dir.path()), Vec::<String>::new());
+    let missing = dir.path().join("logs").join("checks");
+    let w = report::write(&missing, &finished(), &about()).unwrap();
+    assert_eq!(w.markdown, missing.join("vpx-check-2026-12-01T1830Z.md"));
+    assert_eq!(
+        entries(&missing),
+        [
+            "vpx-check-2026-12-01T1830Z.csv",
+            "vpx-check-2026-12-01T1830Z.md"
+        ]
+    );
+    // A file where the folder must go: an error, and nothing written anywhere.
+    let other = tempfile::tempdir().unwrap();
+    let blocked = other.path().join("checks");
+    std::fs::write(&blocked, "not a folder").unwrap();
+    let e = report::write(&blocked.join("reports"), &finished(), &about()).unwrap_err();
+    assert!(
+        e.to_string().starts_with("cannot make the report folder "),
+        "{e}"
+    );
+    assert_eq!(entries(other.path()), ["checks"]);
 }
 
 /// The README's sample report is this file's finished check, word for word.

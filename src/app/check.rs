@@ -165,8 +165,7 @@ impl App {
             unit,
             ours: crate::cli::VERSION.to_string(),
         };
-        let written = std::fs::create_dir_all(&dir)
-            .and_then(|()| crate::check::report::write(&dir, &self.check.view, &about));
+        let written = crate::check::report::write(&dir, &self.check.view, &about);
         let line = match written {
             Ok(w) => {
                 self.check.view.report = Some(w.markdown.clone());

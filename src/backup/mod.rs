@@ -9,7 +9,6 @@ pub mod made;
 pub mod plan;
 
 use std::fmt;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 pub use diff::{Change, diff};
@@ -96,52 +95,14 @@ pub fn software_note(backup: &Version, unit: &Version) -> Option<String> {
 }
 
 /// Writes a backup so that an interrupted write leaves either the old file or the new
-/// one, never half of one: a temporary file in the same directory (a rename is only
-/// atomic within one file system), flushed to disk, then renamed over the target, then
-/// the directory flushed so the rename itself survives a power cut.
+/// one, never half of one ([`crate::files::write_atomically`]).
 pub fn save(path: &Path, backup: &Backup) -> std::io::Result<()> {
-    write_atomically(path, to_toml(backup).as_bytes())
+    crate::files::write_atomically(path, to_toml(backup).as_bytes())
 }
 
 /// [`save`] with the `[made]` section: when, from what, by which program.
 pub fn save_made(path: &Path, backup: &Backup, made: &Made) -> std::io::Result<()> {
-    write_atomically(path, to_toml_made(backup, made).as_bytes())
-}
-
-/// The atomic write behind [`save`], for any bytes.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::other(format!("{} is not a file name", path.display())))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| {
-        let mut f = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        drop(f);
-        std::fs::rename(&tmp, path)?;
-        // Not every platform can open a directory to sync it; the file itself is safe
-        // by now, so this last step is best effort.
-        if let Ok(d) = std::fs::File::open(&dir) {
-            let _ = d.sync_all();
-        }
-        Ok(())
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    crate::files::write_atomically(path, to_toml_made(backup, made).as_bytes())
 }
 
 #[cfg(test)]
@@ -179,19 +140,6 @@ mod tests {
         save(&path, &b).unwrap();
         assert_eq!(entries(dir.path()), ["unit.toml"]);
         assert_eq!(load(&path).unwrap(), b);
-    }
-
-    #[test]
-    fn a_failed_write_keeps_the_old_file_whole() {
-        let dir = tempfile::tempdir().unwrap();
-        // The rename cannot replace a non-empty directory: the write fails at its
-        // last step, as an interrupted one would.
-        let path = dir.path().join("unit.toml");
-        std::fs::create_dir(&path).unwrap();
-        std::fs::write(path.join("keep"), "old").unwrap();
-        assert!(write_atomically(&path, b"new").is_err());
-        assert_eq!(entries(dir.path()), ["unit.toml"]);
-        assert_eq!(std::fs::read_to_string(path.join("keep")).unwrap(), "old");
     }
 
     #[test]

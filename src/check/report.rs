@@ -2,12 +2,13 @@
 //! reads (on screen or printed: plain tables, symbols with their words, nothing that
 //! needs colour or a wide page of box art) and a CSV of every measurement for a
 //! spreadsheet. Both are named with the check's time, `vpx-check-2026-12-01T1830Z.md`
-//! and `.csv`, and written atomically: each file is there whole or not at all.
+//! and `.csv`, each there whole or not at all, never over an earlier report.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
+use crate::files;
 use crate::loads::analysis::amps_text;
 use crate::loads::{Analysis, Figure, Phase};
 use crate::protocol::device;
@@ -44,41 +45,64 @@ pub fn stem(when: SystemTime) -> String {
     format!("vpx-check-{}T{}{}Z", &t[..10], &t[11..13], &t[14..16])
 }
 
-/// Writes the Markdown report and the CSV into `dir`, each atomically (a temporary
-/// file flushed, then renamed into place). A second check in the same minute gets
-/// `-2`, `-3`…: a report in the log is never replaced. If the second file cannot be
-/// written the first is taken back, so a failed write leaves nothing behind.
-/// `dir` must exist: a mistyped folder is an error, not a new folder somewhere.
+/// Writes the Markdown report and the CSV into `dir`, creating the folder (and its
+/// parents) if it is missing: the report comes at the end of a check that took the
+/// builder many minutes, and refusing it then for a folder not made yet would lose
+/// it. (The headless check makes the folder before it starts, so a folder that cannot
+/// be made is said before anything is switched on; the path written is printed.)
+///
+/// Each file is written whole or not at all and never over another
+/// ([`crate::files::write_new`]): a second check in the same minute gets `-2`, `-3`…,
+/// the name chosen by the write itself, so a report that appears between choosing a
+/// name and writing it is never replaced. The two files share their name: when the
+/// CSV's is taken (a stray file), the Markdown just written is taken back and the next
+/// pair is tried; when the CSV cannot be written, the Markdown is taken back too, so a
+/// failed write leaves nothing behind.
 pub fn write(dir: &Path, view: &CheckView, about: &About) -> std::io::Result<Written> {
+    prepare(dir)?;
     let stem = stem(about.when);
-    let free = (1..1000)
-        .map(|n| {
-            let s = if n == 1 {
-                stem.clone()
-            } else {
-                format!("{stem}-{n}")
-            };
-            (dir.join(format!("{s}.md")), dir.join(format!("{s}.csv")))
-        })
-        .find(|(md, csv)| !md.exists() && !csv.exists())
-        .ok_or_else(|| std::io::Error::other(format!("{stem}: a thousand reports this minute")))?;
-    let (md, csv_path) = free;
-    write_both(&md, &markdown(view, about), &csv_path, &csv(view, about))?;
-    Ok(Written {
-        markdown: md,
-        csv: csv_path,
-    })
+    let (md_text, csv_text) = (markdown(view, about), csv(view, about));
+    for n in 1..1000 {
+        let name = if n == 1 {
+            stem.clone()
+        } else {
+            format!("{stem}-{n}")
+        };
+        let md = dir.join(format!("{name}.md"));
+        let csv_path = dir.join(format!("{name}.csv"));
+        if !files::write_new(&md, md_text.as_bytes())? {
+            continue;
+        }
+        match files::write_new(&csv_path, csv_text.as_bytes()) {
+            Ok(true) => {
+                return Ok(Written {
+                    markdown: md,
+                    csv: csv_path,
+                });
+            }
+            Ok(false) => {
+                let _ = std::fs::remove_file(&md);
+            }
+            Err(e) => {
+                let _ = std::fs::remove_file(&md);
+                return Err(e);
+            }
+        }
+    }
+    Err(std::io::Error::other(format!(
+        "{}: a thousand reports named {stem} already",
+        dir.display()
+    )))
 }
 
-/// Both files or neither: each written atomically, the first taken back if the
-/// second fails.
-fn write_both(md: &Path, md_text: &str, csv_path: &Path, csv_text: &str) -> std::io::Result<()> {
-    crate::backup::write_atomically(md, md_text.as_bytes())?;
-    if let Err(e) = crate::backup::write_atomically(csv_path, csv_text.as_bytes()) {
-        let _ = std::fs::remove_file(md);
-        return Err(e);
-    }
-    Ok(())
+/// Makes the report folder if it is missing; an error names the folder.
+pub fn prepare(dir: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| {
+        std::io::Error::new(
+            e.kind(),
+            format!("cannot make the report folder {}: {e}", dir.display()),
+        )
+    })
 }
 
 fn unit_text(v: Option<Version>) -> String {
@@ -737,17 +761,60 @@ mod tests {
     }
 
     #[test]
-    fn a_csv_that_cannot_be_written_takes_the_markdown_back_and_leaves_nothing() {
+    fn a_name_half_taken_moves_both_files_to_the_next_name() {
         let dir = tempfile::tempdir().unwrap();
-        let md = dir.path().join("vpx-check-2026-12-01T1830Z.md");
-        // The rename cannot replace a non-empty directory: the CSV fails at its last
-        // step, after the Markdown file is already in place.
-        let csv = dir.path().join("vpx-check-2026-12-01T1830Z.csv");
-        std::fs::create_dir(&csv).unwrap();
-        std::fs::write(csv.join("keep"), "x").unwrap();
-        assert!(write_both(&md, "# report", &csv, "when,step").is_err());
-        assert_eq!(entries(dir.path()), ["vpx-check-2026-12-01T1830Z.csv"]);
-        assert_eq!(entries(&csv), ["keep"]);
+        let view = CheckView::default();
+        let about = About {
+            when: std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812),
+            port: "/dev/ttyUSB0".into(),
+            unit: None,
+            ours: "0.1.0".into(),
+        };
+        // A CSV left alone under the first name (its report deleted), a report alone
+        // under the second: the check's pair goes to the third, and neither is touched.
+        std::fs::write(dir.path().join("vpx-check-2026-12-01T1830Z.csv"), "old csv").unwrap();
+        std::fs::write(dir.path().join("vpx-check-2026-12-01T1830Z-2.md"), "old md").unwrap();
+        let w = write(dir.path(), &view, &about).unwrap();
+        assert_eq!(
+            w.markdown,
+            dir.path().join("vpx-check-2026-12-01T1830Z-3.md")
+        );
+        assert_eq!(w.csv, dir.path().join("vpx-check-2026-12-01T1830Z-3.csv"));
+        assert_eq!(
+            entries(dir.path()),
+            [
+                "vpx-check-2026-12-01T1830Z-2.md",
+                "vpx-check-2026-12-01T1830Z-3.csv",
+                "vpx-check-2026-12-01T1830Z-3.md",
+                "vpx-check-2026-12-01T1830Z.csv",
+            ]
+        );
+        let read = |n: &str| std::fs::read_to_string(dir.path().join(n)).unwrap();
+        assert_eq!(read("vpx-check-2026-12-01T1830Z.csv"), "old csv");
+        assert_eq!(read("vpx-check-2026-12-01T1830Z-2.md"), "old md");
+        assert_eq!(
+            read("vpx-check-2026-12-01T1830Z-3.md"),
+            markdown(&view, &about)
+        );
+    }
+
+    #[test]
+    fn a_missing_folder_is_made_and_one_that_cannot_be_is_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let folder = dir.path().join("logs").join("checks");
+        prepare(&folder).unwrap();
+        assert!(folder.is_dir());
+        // A file where a folder must go.
+        let blocked = dir.path().join("file");
+        std::fs::write(&blocked, "x").unwrap();
+        let e = prepare(&blocked.join("reports")).unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!(
+                "cannot make the report folder {}: ",
+                blocked.join("reports").display()
+            )),
+            "{e}"
+        );
     }
 
     #[test]

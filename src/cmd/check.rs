@@ -74,6 +74,11 @@ pub fn headless(args: CheckArgs) -> Result<HeadlessCheck, UsageError> {
 
 pub fn run(args: CheckArgs) -> anyhow::Result<()> {
     let h = headless(args)?;
+    // A report folder that cannot be made is said now, before the port is opened,
+    // not at the end of the check when the report would be lost.
+    if let Some(dir) = &h.report {
+        crate::check::report::prepare(dir).map_err(|e| UsageError(format!("--report: {e}")))?;
+    }
     match run_headless(h)? {
         CheckEnd::Passed => Ok(()),
         end => Err(Ended(end).into()),

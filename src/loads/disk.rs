@@ -1,7 +1,6 @@
 //! The load file on disk: read it, or on the first run write its template, never
 //! over a file that is there (it holds the builder's work).
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::file::{self, LoadFile, Problem};
@@ -59,68 +58,11 @@ pub fn open_or_create(path: &Path, circuits: &[Circuit]) -> Result<Opened, LoadE
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(io)?;
         }
-        if write_new(path, file::template(circuits).as_bytes()).map_err(io)? {
+        if crate::files::write_new(path, file::template(circuits).as_bytes()).map_err(io)? {
             return Ok(Opened::TemplateWritten(path.to_path_buf()));
         }
     }
     read(path).map(Opened::Read)
-}
-
-/// Writes `bytes` to `path` only if nothing is there, whole or not at all. Returns
-/// whether it wrote. The text goes to a temporary file in the same folder, flushed to
-/// disk, which is then hard-linked to `path`: a link, unlike a rename, fails when the
-/// name is taken, so a file that appeared meanwhile is never replaced. On a file
-/// system without hard links, the file is created with `create_new` and written in
-/// place (still never over another; an interruption there may leave it short, and
-/// then it is refused by its line when read).
-pub fn write_new(path: &Path, bytes: &[u8]) -> std::io::Result<bool> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::other(format!("{} is not a file name", path.display())))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let written = (|| {
-        let mut f = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()
-    })();
-    let linked = written.and_then(|()| std::fs::hard_link(&tmp, path));
-    let _ = std::fs::remove_file(&tmp);
-    match linked {
-        Ok(()) => {
-            if let Ok(d) = std::fs::File::open(&dir) {
-                let _ = d.sync_all();
-            }
-            Ok(true)
-        }
-        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(false),
-        Err(e) if e.kind() == std::io::ErrorKind::Unsupported => {
-            match std::fs::OpenOptions::new()
-                .write(true)
-                .create_new(true)
-                .open(path)
-            {
-                Ok(mut f) => {
-                    f.write_all(bytes)?;
-                    f.sync_all()?;
-                    Ok(true)
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(false),
-                Err(e) => Err(e),
-            }
-        }
-        Err(e) => Err(e),
-    }
 }
 
 #[cfg(test)]
@@ -193,7 +135,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("loads.toml");
         std::fs::write(&path, "mine").unwrap();
-        assert!(!write_new(&path, b"template").unwrap());
+        assert!(!crate::files::write_new(&path, b"template").unwrap());
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "mine");
         assert_eq!(entries(dir.path()), ["loads.toml"]);
         let e = open_or_create(&path, &efis()).unwrap_err().to_string();
@@ -201,13 +143,5 @@ mod tests {
             e.starts_with(&format!("load file {}, line 1", path.display())),
             "{e}"
         );
-    }
-
-    #[test]
-    fn a_failed_write_leaves_nothing_behind() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("missing-folder").join("loads.toml");
-        assert!(write_new(&path, b"template").is_err());
-        assert_eq!(entries(dir.path()), Vec::<String>::new());
     }
 }

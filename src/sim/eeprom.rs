@@ -11,7 +11,6 @@
 //! starts from the Appendix F defaults with DATA_INTEGRITY set and a Table 25 code. The
 //! bad file is kept beside it as `FILE.corrupt` for a person to look at, never lost.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
@@ -203,25 +202,7 @@ impl Eeprom {
             config: config.clone(),
         };
         let text = serde_json::to_vec_pretty(&image).map_err(std::io::Error::other)?;
-        let dir = path
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        let name = path
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "eeprom".into());
-        let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-        let result = (|| {
-            let mut f = std::fs::File::create(&tmp)?;
-            f.write_all(&text)?;
-            f.sync_all()?;
-            std::fs::rename(&tmp, path)
-        })();
-        if result.is_err() {
-            let _ = std::fs::remove_file(&tmp);
-        }
-        result
+        crate::files::write_atomically(path, &text)
     }
 }
 
