@@ -452,18 +452,18 @@ impl App {
             self.xfsp_shutdown(now);
             return;
         }
-        {
+        let queries = {
             let model = lock(&self.model);
             if model.revision() != self.drawn_revision {
                 self.dirty = true;
             }
             self.controller.tick(&model, now);
-        }
+            let controller = &self.controller;
+            self.pacer.due(now, &model, || controller.next_cnt())
+        };
+        self.send(queries);
         let n = self.controller.take_notice();
         self.set_notice(now, n);
-        let controller = &self.controller;
-        let queries = self.pacer.due(now, || controller.next_cnt());
-        self.send(queries);
         self.setup_tick(now);
         self.check_tick(now);
         self.reread_tick(now);

@@ -113,7 +113,7 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
     let mut gateway = Kill(gateway);
 
     // Only the wired pins are refreshed, once every DEVICE_ENABLE, name and spec has
-    // been asked for and answered (about a second of paced requests): starter, EFIS,
+    // been asked for and answered (about a third of a second at the line's rate): starter, EFIS,
     // alternator, 4, 5, 7, 8, 12, flaps and pitch trim (29 is roll trim, disabled).
     let wired = BTreeSet::from([0, 1, 2, 3, 4, 5, 7, 8, 12, 30]);
     let end = Instant::now() + Duration::from_secs(20);

@@ -65,11 +65,13 @@ fn query_pacer() {
         "nothing to ask before a connection"
     );
     p.start(t0);
+    // A unit that answers nothing: every request waits out its time.
+    let m = model();
     let mut now = t0;
     let mut cnt = 0u8;
     let mut polls = 0;
     while now < t0 + ms(150_000) {
-        p.due(now, || {
+        p.due(now, &m, || {
             cnt = cnt.wrapping_add(1);
             cnt
         });
@@ -78,7 +80,8 @@ fn query_pacer() {
         assert!(next > now, "poll at +{:?}", now - t0);
         now = next;
     }
-    // Three rounds of batches (connect and two refreshes), then nothing but waiting.
+    // Three rounds (connect and two refreshes) of four requests per wait, then
+    // nothing but waiting.
     assert!(polls < 3 * 30, "{polls} polls");
     p.stop();
     assert_eq!(p.next_deadline(), None);

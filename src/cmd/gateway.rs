@@ -317,7 +317,7 @@ impl Asking {
         now: Instant,
         mut next_cnt: impl FnMut() -> u8,
     ) -> Vec<Packet> {
-        let mut out = self.pacer.due(now, &mut next_cnt);
+        let mut out = self.pacer.due(now, model, &mut next_cnt);
         for q in self.rereader.due(model, now) {
             out.push(Packet::request(next_cnt(), q));
         }
