@@ -34,10 +34,17 @@ struct Rig {
 
 impl Rig {
     fn new() -> Rig {
+        Rig::with(|_| {})
+    }
+
+    /// The `install` scenario as `change` leaves it.
+    fn with(change: impl FnOnce(&mut sim::Scenario)) -> Rig {
         let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
         let pty = link::open_pty_pair().expect("pty");
         let reader = pty.master.try_clone_native().expect("clone master");
-        let options = SimOptions::new(sim::load_scenario("install").unwrap());
+        let mut scenario = sim::load_scenario("install").unwrap();
+        change(&mut scenario);
+        let options = SimOptions::new(scenario);
         let sim = sim::spawn(options, Box::new(reader), Box::new(pty.master));
         let app = App::new(
             Source::Serial {
@@ -566,5 +573,60 @@ fn headless_check_refuses_an_exclude_that_names_no_circuit() {
     assert!(
         !sim.stats().log.iter().any(|l| l.contains("DEVICE_POWER")),
         "nothing was powered"
+    );
+}
+
+/// Review item 8 through the real parts: the install scenario's reversed pitch trim
+/// parked 5 counts from its up endpoint (30). The check's first run is "down", the
+/// side with more room, but the swapped leads drive it up, toward 30: the page stops
+/// it there with its stop message, and the sim's own sensor never reads past 30.
+#[test]
+fn a_reversed_trim_parked_near_its_endpoint_never_passes_it() {
+    let mut r = Rig::with(|s| {
+        let pitch = s.pitch_trim.as_mut().expect("install has a pitch trim");
+        assert!(pitch.reversed && pitch.up == 30 && pitch.down == 220);
+        pitch.position = Some(35);
+    });
+    let opts = Options {
+        skip: vec![Step::Switches, Step::Circuits, Step::Loads],
+        ..r.options()
+    };
+    let before = r.sim.stats();
+    assert_eq!(before.pitch_trim_position, 35);
+    r.app.open_check(opts, Instant::now());
+    r.key(KeyCode::Enter);
+    let end = Instant::now() + Duration::from_secs(60);
+    let mut lowest = 255;
+    while !r.app.check_finished() {
+        assert!(Instant::now() < end, "{:#?}", r.app.check_view().prompt);
+        r.pump(20);
+        lowest = lowest.min(r.sim.stats().pitch_trim_position);
+    }
+    assert!(
+        lowest >= 30,
+        "the pitch trim passed its up endpoint 30: {lowest}"
+    );
+    assert!(lowest <= 33, "it did run toward it: {lowest}");
+    let v = r.app.check_view().clone();
+    let pitch = v
+        .motors
+        .iter()
+        .find(|m| m.motor == Motor::Trim(TrimKind::Pitch))
+        .unwrap();
+    assert_eq!(
+        pitch.outcome,
+        Outcome::Found(MotorFinding::Reversed),
+        "{pitch:?}"
+    );
+    let after = r.sim.stats();
+    assert_eq!(
+        after.pitch_trim_starvations, before.pitch_trim_starvations,
+        "stopped by its stop message, not by starving the unit"
+    );
+    assert!(!after.pitch_trim_running);
+    assert!(
+        (i32::from(after.pitch_trim_position) - 35).abs() <= 4,
+        "put back: {}",
+        after.pitch_trim_position
     );
 }

@@ -195,6 +195,7 @@ fn the_controller_sends_commands_and_shows_refusals() {
             state: CircuitState::Off,
         }),
         overlay_open: false,
+        past_endpoints: false,
     };
     let o = ctl.handle_key(
         KeyEvent::new(KeyCode::Char('o'), KeyModifiers::NONE),

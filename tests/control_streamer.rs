@@ -141,6 +141,7 @@ fn ctx_for(motor: Motor) -> KeyContext {
             state: CircuitState::Off,
         }),
         overlay_open: false,
+        past_endpoints: false,
     }
 }
 
@@ -1238,6 +1239,7 @@ fn keys_on_a_page_too_small_to_see_send_nothing_but_quit_and_help_act() {
             state: CircuitState::On,
         }),
         overlay_open: false,
+        past_endpoints: false,
     };
     for (c, ctx) in [
         ('f', device),

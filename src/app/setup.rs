@@ -18,7 +18,8 @@ use crate::ui::setup::state::{Dialog, Tone};
 use crate::ui::state::Screen;
 
 /// The key context that makes the controller run `motor`, as if its row were selected
-/// on the device list: the same keys, checks and 4 Hz stream.
+/// on the device list: the same keys, checks and 4 Hz stream; but past the configured
+/// endpoints, which is how new ones are found here (`control::endpoints`).
 fn motor_ctx(motor: Motor, model: &Model, now: Instant) -> KeyContext {
     let id = motor.device_id();
     let state = model
@@ -33,6 +34,7 @@ fn motor_ctx(motor: Motor, model: &Model, now: Instant) -> KeyContext {
     KeyContext {
         selected: Some(Selected { id, kind, state }),
         overlay_open: false,
+        past_endpoints: true,
     }
 }
 

@@ -7,9 +7,19 @@
 //! Which way the position should go comes from the endpoints FLAP_TRIM_STATUS
 //! carries: flaps down, pitch trim down and roll trim right move toward the "down"
 //! endpoint. Where the ICD is silent (endpoints not configured, both 0) the decision
-//! is that those directions make the number grow, as the virtual VP-X does. The first
-//! run goes away from the nearer endpoint, so a motor parked at a limit is not first
-//! driven into it.
+//! is that those directions make the number grow, as the virtual VP-X does
+//! ([`expected_sign`]).
+//!
+//! The unit does not keep TRIM_MOVE/FLAP_MOVE to the endpoints (ICD Table 15 note 4,
+//! Table 16 note 1), so the runs do, through the controller's one rule for keys and
+//! check alike ([`crate::control::endpoints`]): a run ends at the endpoint it is moving
+//! toward (or just before it would pass), with its stop on the wire, and on a position
+//! gone stale. Here: the first run goes toward the side with more room; the second
+//! run is no longer than the first run's rate says reaches its endpoint; a run with
+//! no room (within [`endpoints::START_ROOM`] of its endpoint) is not made (it counts
+//! as not moving, at its limit); a motor with no room either way is not run at all,
+//! and its line says why. A run ended at its endpoint
+//! that still moved is a pass; one that could not move for it "runs against a limit".
 //!
 //! [`Controller::run_for`]: crate::control::Controller::run_for
 
@@ -17,6 +27,8 @@ use std::time::{Duration, Instant};
 
 use super::flow::{CheckFlow, Command, Io, Phase, motor_name, next_step};
 use super::switches::news;
+pub use crate::control::endpoints::expected_sign;
+use crate::control::endpoints::{self, ends, heads_for, position, room};
 use crate::control::{Direction, StopReason, motor_check};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
@@ -58,44 +70,12 @@ fn opposite(d: Direction) -> Direction {
     }
 }
 
-/// The (down-or-right, up-or-left) endpoints of `motor` in FLAP_TRIM_STATUS.
-fn endpoints(motor: Motor, ft: &FlapTrimStatus) -> (u8, u8) {
-    match motor {
-        Motor::Flaps => (ft.flap_down, ft.flap_up),
-        Motor::Trim(TrimKind::Pitch) => (ft.pitch_trim_down, ft.pitch_trim_up),
-        Motor::Trim(TrimKind::Roll) => (ft.roll_trim_down, ft.roll_trim_up),
-    }
-}
-
-pub fn position(motor: Motor, ft: &FlapTrimStatus) -> u8 {
-    match motor {
-        Motor::Flaps => ft.flap_position,
-        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
-        Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
-    }
-}
-
-/// +1 when running `motor` `direction` should make the position grow, −1 when shrink.
-pub fn expected_sign(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> i32 {
-    let (down, up) = endpoints(motor, ft);
-    let down_grows = if down >= up { 1 } else { -1 };
-    match direction {
-        Direction::Down | Direction::Right => down_grows,
-        Direction::Up | Direction::Left => -down_grows,
-    }
-}
-
 /// Whether `pos` is at the limit `direction` runs toward: its endpoint, or the end of
 /// the sensor's range.
 pub fn at_limit(motor: Motor, direction: Direction, pos: u8, ft: &FlapTrimStatus) -> bool {
-    let (down, up) = endpoints(motor, ft);
     let s = expected_sign(motor, direction, ft);
-    let end = match direction {
-        Direction::Down | Direction::Right => down,
-        Direction::Up | Direction::Left => up,
-    };
+    let configured = room(motor, direction, pos, ft).is_some_and(|r| r <= AT_LIMIT);
     let pos = i32::from(pos);
-    let configured = down != up && (i32::from(end) - pos) * s <= AT_LIMIT;
     let sensor = if s > 0 {
         pos >= 255 - AT_LIMIT
     } else {
@@ -113,9 +93,27 @@ pub fn judge(
     moves: [i32; 2],
     ft: &FlapTrimStatus,
 ) -> MotorFinding {
+    judge_runs(motor, dirs, starts, moves, [None; 2], ft)
+}
+
+/// [`judge`], where `ended_at[k]` is the endpoint run `k` was stopped at (or was not
+/// made for, having no room): a run stopped at the endpoint it heads for that did not
+/// move ran against its limit; one stopped at the other endpoint went the wrong way,
+/// however little it moved before it was stopped.
+pub fn judge_runs(
+    motor: Motor,
+    dirs: [Direction; 2],
+    starts: [u8; 2],
+    moves: [i32; 2],
+    ended_at: [Option<u8>; 2],
+    ft: &FlapTrimStatus,
+) -> MotorFinding {
     let moved = moves.map(|m| m.abs() >= MOVED);
     let right = [0, 1].map(|k| moves[k].signum() == expected_sign(motor, dirs[k], ft));
-    let wrong = (0..2).any(|k| moved[k] && !right[k]);
+    let own = [0, 1].map(|k| heads_for(motor, dirs[k], ft));
+    let limited = [0, 1].map(|k| ended_at[k].is_some() && ended_at[k] == own[k]);
+    let wrong =
+        (0..2).any(|k| (moved[k] && !right[k]) || (ended_at[k].is_some() && ended_at[k] != own[k]));
     if wrong {
         return MotorFinding::Reversed;
     }
@@ -124,7 +122,7 @@ pub fn judge(
         [false, false] => MotorFinding::NoMovement,
         _ => {
             let still = if moved[0] { 1 } else { 0 };
-            if at_limit(motor, dirs[still], starts[still], ft) {
+            if limited[still] || at_limit(motor, dirs[still], starts[still], ft) {
                 MotorFinding::AgainstLimit
             } else {
                 MotorFinding::NoMovement
@@ -162,6 +160,8 @@ pub(super) struct MotorItem {
     leg: usize,
     starts: [u8; 2],
     moves: [i32; 2],
+    /// The endpoint each test run was stopped at, or had no room to be made for.
+    ended_at: [Option<u8>; 2],
     /// How long each test run ran: the whole run, or until it was cut short. With
     /// `moves` it gives the rate for the run back.
     ran: [Duration; 2],
@@ -239,6 +239,7 @@ impl CheckFlow {
             leg: 0,
             starts: [0; 2],
             moves: [0; 2],
+            ended_at: [None; 2],
             ran: [Duration::ZERO; 2],
             stage: Stage::Start,
             run: self.opts.timing.motor_run,
@@ -262,12 +263,30 @@ impl CheckFlow {
             Stage::Start => {
                 item.p0 = Some(pos);
                 view.motors[item.idx].positions.push(pos);
-                // Away from the nearer limit first.
                 let [a, b] = directions(item.motor);
-                item.dirs = if at_limit(item.motor, a, pos, &ft) {
-                    [b, a]
-                } else {
-                    [a, b]
+                item.dirs = match (room(item.motor, a, pos, &ft), room(item.motor, b, pos, &ft)) {
+                    // No room to show a movement either way: not run.
+                    (Some(ra), Some(rb)) if ra.max(rb) <= endpoints::START_ROOM => {
+                        let e = ends(item.motor, &ft).expect("rooms come from endpoints");
+                        let why = format!(
+                            "not run: no room to move it either way (position {pos}, {} \
+                             endpoint {}, {} endpoint {})",
+                            b.name(),
+                            e.up,
+                            a.name(),
+                            e.down
+                        );
+                        let (idx, motor) = (item.idx, item.motor);
+                        io.out.news.push(format!("– {}: {why}", motor_name(motor)));
+                        view.motors[idx].outcome = Outcome::Skipped(why);
+                        return self.motor_next(idx + 1, view, io);
+                    }
+                    // Toward the side with more room first.
+                    (Some(ra), Some(rb)) if rb > ra => [b, a],
+                    (Some(_), Some(_)) => [a, b],
+                    // No endpoints: away from the nearer end of the sensor first.
+                    _ if at_limit(item.motor, a, pos, &ft) => [b, a],
+                    _ => [a, b],
                 };
                 let d = item.dirs[0];
                 let length = item.run;
@@ -285,6 +304,21 @@ impl CheckFlow {
                 let stopped_at = stop.map_or(now, |(_, at)| at);
                 match stop.map(|(r, _)| r) {
                     Some(StopReason::RunDone) | None => {
+                        item.stage = Stage::Settle {
+                            until: now + item.settle,
+                        };
+                    }
+                    // Stopped at its endpoint by the controller: the run is over, for
+                    // as far as it went.
+                    Some(StopReason::AtEndpoint(end)) => {
+                        if item.leg < 2 {
+                            item.ended_at[item.leg] = Some(end);
+                            item.ran[item.leg] = stopped_at.saturating_duration_since(since);
+                        }
+                        io.out.news.push(format!(
+                            "  {} stopped at its endpoint ({end}), position {pos}",
+                            motor_name(item.motor)
+                        ));
                         item.stage = Stage::Settle {
                             until: now + item.settle,
                         };
@@ -319,19 +353,8 @@ impl CheckFlow {
                         item.stage = Stage::Paused {
                             ran: stopped_at.saturating_duration_since(since),
                         };
-                        let why = r.describe();
-                        view.prompt = Some(Prompt {
-                            todo: format!(
-                                "The {} stopped: {why}. r: run the test again; s: skip it.",
-                                item.motor.name()
-                            ),
-                            watching: format!("the {} position", item.motor.name()),
-                            time_left: None,
-                            keys: vec![("r", "retry"), ("s", "skip"), ("Esc", "stop")],
-                        });
-                        io.out
-                            .news
-                            .push(format!("  {} stopped: {why}", item.motor.name()));
+                        let why = format!("The {} stopped: {}", item.motor.name(), r.describe());
+                        self.motor_pause(&why, view, io);
                     }
                 }
             }
@@ -343,17 +366,30 @@ impl CheckFlow {
                 if item.leg < 2 {
                     let start = item.starts[item.leg];
                     item.moves[item.leg] = i32::from(pos) - i32::from(start);
-                    item.ran[item.leg] = item.run;
                     item.leg += 1;
                 }
                 if item.leg == 1 {
                     let d = item.dirs[1];
-                    let length = item.run;
+                    // No longer than the first run's rate says reaches its endpoint.
+                    let rate = item.moves[0].abs() as f32 / item.ran[0].as_secs_f32().max(1e-3);
+                    let length = match room(item.motor, d, pos, &ft) {
+                        Some(r) if item.moves[0].abs() >= MOVED && r > 0 => {
+                            item.run.min(Duration::from_secs_f32(r as f32 / rate))
+                        }
+                        _ => item.run,
+                    };
                     return self.motor_run(d, length, view, io);
                 }
                 let idx = item.idx;
                 if item.leg == 2 && view.motors[idx].outcome == Outcome::NotRun && !item.skipped {
-                    let f = judge(item.motor, item.dirs, item.starts, item.moves, &ft);
+                    let f = judge_runs(
+                        item.motor,
+                        item.dirs,
+                        item.starts,
+                        item.moves,
+                        item.ended_at,
+                        &ft,
+                    );
                     record(view, idx, f, io);
                 }
                 self.motor_return(pos, view, io);
@@ -405,11 +441,23 @@ impl CheckFlow {
         if let Some(ft) = io.model.live_flap_trim(now)
             && item.leg < 2
         {
-            item.starts[item.leg] = position(item.motor, ft);
+            let pos = position(item.motor, ft);
+            item.starts[item.leg] = pos;
+            if room(item.motor, d, pos, ft).is_some_and(|r| r <= endpoints::START_ROOM) {
+                // At (or past) the endpoint it heads for: this run is not made; it
+                // counts as not moving, against its limit.
+                item.ended_at[item.leg] = heads_for(item.motor, d, ft);
+                item.stage = Stage::Settle { until: now };
+                return;
+            }
         }
         match io.ctl.run_for(io.model, item.motor, d, length, now) {
             Ok(p) => {
                 io.out.packets.extend(p);
+                if item.leg < 2 {
+                    // As planned; a run ended early at its endpoint says how long.
+                    item.ran[item.leg] = length;
+                }
                 item.stage = Stage::Running { since: now, length };
             }
             Err(why) => {
@@ -423,6 +471,17 @@ impl CheckFlow {
                         self.trouble_ahead = Some("COMMUNICATION LOST".into());
                         return;
                     }
+                    // No position to go by (none fresh enough to keep it off its
+                    // endpoint, or none at all): it waits, as a run cut short does,
+                    // for the person to try again or skip it (which runs it back).
+                    Err(StopReason::MotorStatusLost) => return self.motor_pause(&why.0, view, io),
+                    _ if io
+                        .model
+                        .flap_trim
+                        .is_some_and(|st| st.age(now) > endpoints::POSITION_FRESH) =>
+                    {
+                        return self.motor_pause(&why.0, view, io);
+                    }
                     _ if view.motors[idx].outcome == Outcome::NotRun => {
                         view.motors[idx].outcome = Outcome::Skipped(why.0.clone());
                         io.out
@@ -434,6 +493,31 @@ impl CheckFlow {
                 self.motor_next(idx + 1, view, io);
             }
         }
+    }
+
+    /// The motor under test waits for the person: `why` (a sentence without its
+    /// full stop), then retry or skip.
+    fn motor_pause(&mut self, why: &str, view: &mut CheckView, io: &mut Io) {
+        let Phase::Motors(item) = &mut self.phase else {
+            return;
+        };
+        if !matches!(item.stage, Stage::Paused { .. }) {
+            item.stage = Stage::Paused {
+                ran: Duration::ZERO,
+            };
+        }
+        let mut c = why.chars();
+        let why = c
+            .next()
+            .map(|f| f.to_uppercase().collect::<String>() + c.as_str())
+            .unwrap_or_default();
+        view.prompt = Some(Prompt {
+            todo: format!("{why}. r: run the test again; s: skip it."),
+            watching: format!("the {} position", item.motor.name()),
+            time_left: None,
+            keys: vec![("r", "retry"), ("s", "skip"), ("Esc", "stop")],
+        });
+        io.out.news.push(format!("  {why}"));
     }
 
     pub(super) fn motors_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {

@@ -1220,3 +1220,299 @@ fn a_circuit_the_page_may_not_switch_is_not_switched_and_says_why() {
         "no DEVICE_POWER at all"
     );
 }
+
+/// The test aircraft with the pitch trim parked at `pos` (endpoints up 30, down 220),
+/// its leads swapped if `reversed`.
+fn pitch_at(pos: u8, reversed: bool) -> String {
+    scenario().replace(
+        "power = 100\nposition = 125",
+        &format!("power = 100\nposition = {pos}\nreversed = {reversed}"),
+    )
+}
+
+impl Rig {
+    /// Runs `ms` as [`Rig::run`], keeping the unit's own position of `motor` (its
+    /// sensor, not what the page heard) every 10 ms.
+    fn run_watching(&mut self, ms: u64, motor: Motor) -> Vec<u8> {
+        let mut seen = Vec::new();
+        for _ in 0..ms / 10 {
+            self.run(10);
+            let s = self.unit.snapshot(self.now);
+            seen.push(match motor {
+                Motor::Flaps => s.flap_position,
+                Motor::Trim(TrimKind::Pitch) => s.pitch_trim_position,
+                Motor::Trim(TrimKind::Roll) => s.roll_trim_position,
+            });
+        }
+        seen
+    }
+
+    /// The move messages sent, as (ms since start, on).
+    fn moves(&self) -> Vec<(u128, bool)> {
+        self.sent
+            .iter()
+            .filter_map(|(at, p)| match p.message {
+                Message::FlapMove(f) => Some((at.as_millis(), f.on)),
+                Message::TrimMove(t) => Some((at.as_millis(), t.on)),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
+
+/// Review item 8: the unit does not stop TRIM_MOVE at the endpoints (Table 15 note
+/// 4), so the page does. A timed run (the check's) of the pitch trim 5 counts from its
+/// up endpoint, heading up for 1.5 s (37 counts at 25 a second), ends at the endpoint
+/// with its stop on the wire, and the trim never passes it.
+#[test]
+fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
+    let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());
+    let p = r
+        .ctl
+        .run_for(
+            &r.model,
+            PITCH,
+            crate::control::Direction::Up,
+            Duration::from_millis(1500),
+            r.now,
+        )
+        .unwrap();
+    let t_start = (r.now - r.t0).as_millis();
+    r.send(p);
+    let seen = r.run_watching(2000, PITCH);
+    let lowest = *seen.iter().min().unwrap();
+    assert!(lowest >= 30, "passed the up endpoint 30: down to {lowest}");
+    assert!(lowest <= 33, "stopped short of the endpoint: {lowest}");
+    let stop = *r.ctl.last_stop().unwrap();
+    assert_eq!(stop.reason, StopReason::AtEndpoint(30));
+    assert!(stop.ran_for < Duration::from_millis(500), "{stop:?}");
+    // The stop went out as a TRIM_MOVE off, and nothing after it.
+    let moves = r.moves();
+    let last = *moves.last().unwrap();
+    assert!(!last.1, "the last move is a stop: {moves:?}");
+    assert!(last.0 - t_start < 500);
+    assert_eq!(moves.iter().filter(|(_, on)| !on).count(), 1);
+    // And from there it does not start up again: no room.
+    let refused = r.ctl.run_for(
+        &r.model,
+        PITCH,
+        crate::control::Direction::Up,
+        Duration::from_millis(600),
+        r.now,
+    );
+    assert!(
+        matches!(&refused, Err(w) if w.0.contains("at its up endpoint")),
+        "{refused:?}"
+    );
+}
+
+/// The same rule for the page's own motor key on the device list: held up from 5
+/// counts below the endpoint, the trim stops there (the key still held). On the setup
+/// screens, where endpoints are found by running past them, the same hold goes on.
+#[test]
+fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_screens() {
+    use crate::control::{KeyContext, Selected, StreamerConfig};
+    use crate::model::{CircuitKind, CircuitState};
+    use crate::ui::state::ReleaseMode;
+    use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+    for setup in [false, true] {
+        let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());
+        r.ctl = Controller::new(StreamerConfig {
+            release_mode: ReleaseMode::KeyRelease,
+            ..StreamerConfig::default()
+        });
+        let ctx = KeyContext {
+            selected: Some(Selected {
+                id: PITCH.device_id(),
+                kind: CircuitKind::Trim(TrimKind::Pitch),
+                state: CircuitState::Off,
+            }),
+            overlay_open: false,
+            past_endpoints: setup,
+        };
+        let mut lowest = 255;
+        for i in 0..60 {
+            let kind = if i == 0 {
+                KeyEventKind::Press
+            } else {
+                KeyEventKind::Repeat
+            };
+            let key = KeyEvent::new_with_kind(KeyCode::Char('u'), KeyModifiers::NONE, kind);
+            let out = r.ctl.handle_key(key, &ctx, &r.model, r.now);
+            r.send(out.packets);
+            lowest = lowest.min(*r.run_watching(30, PITCH).iter().min().unwrap());
+        }
+        if setup {
+            assert!(lowest < 25, "the setup screen runs past it: {lowest}");
+            assert!(r.ctl.running().is_some());
+        } else {
+            assert!((30..=33).contains(&lowest), "device list: {lowest}");
+            assert_eq!(
+                r.ctl.last_stop().unwrap().reason,
+                StopReason::AtEndpoint(30)
+            );
+            assert!(
+                r.ctl.running().is_none(),
+                "the held key does not restart it"
+            );
+            assert!(!r.moves().last().unwrap().1, "its stop on the wire");
+        }
+    }
+}
+
+/// The first run goes toward the side with more room, whichever that is: from 200
+/// (20 counts from the down endpoint 220, 170 from up 30) the first run is up.
+#[test]
+fn the_first_direction_is_toward_the_side_with_more_room() {
+    for (pos, first_down) in [(200u8, false), (60, true)] {
+        let mut r = Rig::with(&pitch_at(pos, false), Rig::motors_only());
+        r.start();
+        r.run_until(20_000, |r| r.view.step == Step::Done);
+        let m = &r.view.motors[1];
+        assert_eq!(m.motor, PITCH);
+        assert_eq!(m.outcome, Outcome::Found(MotorFinding::Moves), "{m:?}");
+        let p = &m.positions;
+        assert_eq!(p[0], pos);
+        assert_eq!(p[1] > p[0], first_down, "from {pos}: {p:?}");
+    }
+}
+
+/// A reversed pitch trim 5 counts below its up endpoint: the first run is "down"
+/// (more room), but the motor goes up, toward 30. It is stopped there, never past,
+/// found reversed, and put back.
+#[test]
+fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
+    let mut r = Rig::with(&pitch_at(35, true), Rig::motors_only());
+    r.start();
+    let mut seen = Vec::new();
+    while r.view.step != Step::Done && seen.len() < 2000 {
+        seen.extend(r.run_watching(10, PITCH));
+    }
+    let lowest = *seen.iter().min().unwrap();
+    assert!(lowest >= 30, "passed the up endpoint 30: down to {lowest}");
+    let m = &r.view.motors[1];
+    assert_eq!(m.outcome, Outcome::Found(MotorFinding::Reversed), "{m:?}");
+    assert!(
+        r.news
+            .iter()
+            .any(|n| n.contains("stopped at its endpoint (30)")),
+        "{:?}",
+        r.news
+    );
+    let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
+    assert!(
+        (back - 35).abs() <= super::motors::BACK_WITHIN,
+        "left at {back}"
+    );
+}
+
+/// Flaps between close endpoints (up 20, down 50) at 38, with 1.5 s runs (30 counts
+/// at 20 a second): each run ends at its endpoint, the flaps never leave 20..=50, and
+/// having moved they pass.
+#[test]
+fn flap_runs_longer_than_their_room_stop_at_both_endpoints() {
+    let toml = scenario().replace(
+        "[flap]\nenabled = true\nup = 20\ndown = 220\nposition = 20",
+        "[flap]\nenabled = true\nup = 20\ndown = 50\nposition = 38",
+    );
+    let mut opts = Rig::motors_only();
+    opts.timing.motor_run = Duration::from_millis(1500);
+    let mut r = Rig::with(&toml, opts);
+    r.start();
+    let mut seen = Vec::new();
+    while r.view.motors[0].outcome == Outcome::NotRun && seen.len() < 2000 {
+        seen.extend(r.run_watching(10, Motor::Flaps));
+    }
+    let (lo, hi) = (*seen.iter().min().unwrap(), *seen.iter().max().unwrap());
+    assert!(lo >= 20 && hi <= 50, "left 20..=50: {lo}..={hi}");
+    assert!(lo <= 23, "ran up to the endpoint: {lo}");
+    assert_eq!(
+        r.view.motors[0].outcome,
+        Outcome::Found(MotorFinding::Moves)
+    );
+    assert!(
+        r.news
+            .iter()
+            .any(|n| n.contains("stopped at its endpoint (20)")),
+        "{:?}",
+        r.news
+    );
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    let back = i32::from(r.unit.snapshot(r.now).flap_position);
+    assert!(
+        (back - 38).abs() <= super::motors::BACK_WITHIN,
+        "left at {back}"
+    );
+}
+
+/// Endpoints 2 counts apart with the flaps between: no run could show a movement
+/// without reaching one, so none is made, and the line says why.
+#[test]
+fn a_motor_with_no_room_either_way_is_not_run_and_says_why() {
+    let toml = scenario().replace(
+        "[flap]\nenabled = true\nup = 20\ndown = 220\nposition = 20",
+        "[flap]\nenabled = true\nup = 20\ndown = 22\nposition = 21",
+    );
+    let mut r = Rig::with(&toml, Rig::motors_only());
+    r.start();
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    assert_eq!(
+        r.view.motors[0].outcome,
+        Outcome::Skipped(
+            "not run: no room to move it either way (position 21, up endpoint 20, down \
+             endpoint 22)"
+                .into()
+        )
+    );
+    assert!(
+        !r.sent
+            .iter()
+            .any(|(_, p)| matches!(p.message, Message::FlapMove(_))),
+        "no FLAP_MOVE at all"
+    );
+}
+
+/// FLAP_TRIM_STATUS stops coming in the middle of a run (everything else still
+/// comes): the run is stopped once the position is 0.4 s old, not at the model's
+/// second for "no live status", and the check waits with the reason in words.
+#[test]
+fn a_stale_position_mid_run_stops_the_motor_and_says_why() {
+    let mut opts = Rig::motors_only();
+    opts.timing.motor_run = Duration::from_millis(2000);
+    let mut r = Rig::new(opts);
+    r.start();
+    r.run(300);
+    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
+    let last_heard = r.model.flap_trim.unwrap().at;
+    r.run_dropping(1000, "FLAP_TRIM_STATUS");
+    let stop = *r.ctl.last_stop().unwrap();
+    assert_eq!(stop.reason, StopReason::PositionStale);
+    let late = stop.at - last_heard;
+    assert!(
+        late > super::super::control::endpoints::POSITION_FRESH
+            && late <= super::super::control::endpoints::POSITION_FRESH + Duration::from_millis(20),
+        "stopped {late:?} after the last position"
+    );
+    assert!(!r.moves().last().unwrap().1, "its stop on the wire");
+    let todo = &r.view.prompt.as_ref().unwrap().todo;
+    assert!(
+        todo.contains("The flaps stopped: its position is not fresh")
+            && todo.contains("r: run the test again"),
+        "{todo}"
+    );
+    // Positions again: retried, it finishes and is put back.
+    r.run(300);
+    r.cmd(Command::Retry);
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    assert_eq!(
+        r.view.motors[0].outcome,
+        Outcome::Found(MotorFinding::Moves)
+    );
+    let back = i32::from(flaps_at(&r));
+    assert!(
+        (back - 20).abs() <= super::motors::BACK_WITHIN,
+        "left at {back}"
+    );
+}

@@ -44,6 +44,9 @@ impl Selected {
 pub struct KeyContext {
     pub selected: Option<Selected>,
     pub overlay_open: bool,
+    /// Motor keys here may run past the configured endpoints: the setup screens,
+    /// where they are how a person finds new ones (`control::endpoints`).
+    pub past_endpoints: bool,
 }
 
 impl KeyContext {
@@ -58,6 +61,7 @@ impl KeyContext {
                 })
             }),
             overlay_open: view.overlay != Overlay::None,
+            past_endpoints: false,
         }
     }
 
@@ -252,6 +256,7 @@ mod tests {
                 state: CircuitState::Off,
             }),
             overlay_open: false,
+            past_endpoints: false,
         }
     }
 

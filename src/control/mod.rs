@@ -19,6 +19,7 @@
 //!   [`MotorStreamer::emergency_stop_packets`].
 
 pub mod commands;
+pub mod endpoints;
 pub mod keymap;
 pub mod release;
 pub mod streamer;
@@ -59,6 +60,9 @@ pub struct Controller {
     pending_notice: Option<String>,
     /// Why no motor may run at all (the page cannot stream one safely), in words.
     motors_refused: Option<String>,
+    /// The running motor's watch over its endpoints ([`endpoints`]); `None` for a run
+    /// that may pass them (the setup screens') or no run.
+    watch: Option<endpoints::Watch>,
 }
 
 impl Controller {
@@ -67,6 +71,7 @@ impl Controller {
             streamer: MotorStreamer::new(config),
             pending_notice: None,
             motors_refused: None,
+            watch: None,
         }
     }
 
@@ -122,8 +127,26 @@ impl Controller {
             ..Outcome::default()
         };
         out.notice = self.take_notice();
-        let action = keymap::map(&key, ctx);
+        let before = self.streamer.running_key();
+        self.handle_mapped(keymap::map(&key, ctx), ctx, model, now, &mut out);
+        // A run this key started keeps to the endpoints unless the screen runs motors
+        // past them on purpose (the setup screens).
+        if before.is_none()
+            && let Some((motor, direction)) = self.streamer.running_key()
+        {
+            self.watch = (!ctx.past_endpoints).then(|| endpoints::Watch::new(motor, direction));
+        }
+        out
+    }
 
+    fn handle_mapped(
+        &mut self,
+        action: Option<Action>,
+        ctx: &KeyContext,
+        model: &Model,
+        now: Instant,
+        out: &mut Outcome,
+    ) {
         if self.streamer.running_key().is_some() {
             match action {
                 Some(Action::Motor {
@@ -155,7 +178,7 @@ impl Controller {
             if self.streamer.running_key().is_none() {
                 out.notice = self.stopped_notice();
             }
-            return out;
+            return;
         }
 
         match action {
@@ -169,7 +192,13 @@ impl Controller {
                     KeyPhase::Press if self.streamer.would_start(now, motor, direction) => {
                         let permit = match &self.motors_refused {
                             Some(why) => Err(Refusal(why.clone())),
-                            None => motor_permit(model, motor, direction, now),
+                            None => motor_permit(model, motor, direction, now).and_then(|()| {
+                                if ctx.past_endpoints {
+                                    Ok(())
+                                } else {
+                                    endpoints::permit(model, motor, direction, now).map_err(Refusal)
+                                }
+                            }),
                         };
                         match permit {
                             Ok(()) => self.streamer.press(now, motor, direction),
@@ -203,7 +232,6 @@ impl Controller {
             }
             other => out.action = other,
         }
-        out
     }
 
     /// Ends a run the model says must end (lost communication, a motor fault, lost
@@ -256,21 +284,26 @@ impl Controller {
     }
 
     fn check_model(&mut self, model: &Model, now: Instant) -> Vec<Packet> {
-        match self.streamer.running_key() {
-            Some((motor, direction)) => match motor_check(model, motor, direction, now) {
-                Err(reason) => self.stop(now, reason),
-                Ok(()) => Vec::new(),
-            },
-            None => Vec::new(),
+        let Some((motor, direction)) = self.streamer.running_key() else {
+            return Vec::new();
+        };
+        let endpoint = match self.watch.as_mut() {
+            Some(w) if w.motor == motor && w.direction == direction => w.check(model, now),
+            _ => Ok(()),
+        };
+        match motor_check(model, motor, direction, now).and(endpoint) {
+            Err(reason) => self.stop(now, reason),
+            Ok(()) => Vec::new(),
         }
     }
 
     /// Runs `motor` `direction` for `length` with no key behind it (the installation
-    /// check), if the page may stream a motor at all ([`Controller::refuse_motors`])
-    /// and the model permits it now ([`motor_permit`]). From then on it is a run
-    /// like any other: [`Controller::tick`] ends it on lost communication, a fault or
-    /// lost status, any key or quit ends it, and the stream ends it at `length`
-    /// ([`StopReason::RunDone`]).
+    /// check), if the page may stream a motor at all ([`Controller::refuse_motors`]),
+    /// the model permits it now ([`motor_permit`]) and it is not at the endpoint it
+    /// heads for ([`endpoints::permit`]). From then on it is a run like any other:
+    /// [`Controller::tick`] ends it on lost communication, a fault or lost status, at
+    /// its endpoint or on a stale position ([`endpoints`]), any key or quit ends it,
+    /// and the stream ends it at `length` ([`StopReason::RunDone`]).
     pub fn run_for(
         &mut self,
         model: &Model,
@@ -285,7 +318,12 @@ impl Controller {
             return Err(Refusal(why.clone()));
         }
         motor_permit(model, motor, direction, now)?;
-        Ok(self.streamer.run_for(now, motor, direction, length))
+        endpoints::permit(model, motor, direction, now).map_err(Refusal)?;
+        let out = self.streamer.run_for(now, motor, direction, length);
+        if self.streamer.running_key() == Some((motor, direction)) {
+            self.watch = Some(endpoints::Watch::new(motor, direction));
+        }
+        Ok(out)
     }
 
     pub fn on_link_error(&mut self, now: Instant) -> Vec<Packet> {

@@ -135,6 +135,12 @@ pub enum StopReason {
     /// A fault elsewhere on the unit (another circuit, or FAULT_STATUS's system
     /// fault) ended the installation check the run was part of.
     UnitFault,
+    /// The position reached (or was about to pass) the configured endpoint it was
+    /// moving toward, here (`control::endpoints`).
+    AtEndpoint(u8),
+    /// The position was no longer fresh enough to keep the run off its endpoint
+    /// (`control::endpoints::POSITION_FRESH`).
+    PositionStale,
 }
 
 impl StopReason {
@@ -158,6 +164,12 @@ impl StopReason {
             StopReason::Panic => "the program failed".into(),
             StopReason::RunDone => "the timed run ended".into(),
             StopReason::UnitFault => "a fault elsewhere on the unit".into(),
+            StopReason::AtEndpoint(end) => format!("at its endpoint (position {end})"),
+            StopReason::PositionStale => format!(
+                "its position is not fresh (no FLAP_TRIM_STATUS for over {:.1} s), so it \
+                 cannot be kept off its endpoint",
+                super::endpoints::POSITION_FRESH.as_secs_f32()
+            ),
         }
     }
 
