@@ -33,14 +33,6 @@ pub enum Error {
         available: usize,
     },
 
-    /// A padding byte after a parameter's data is not zero.
-    #[error("parameter at offset {offset}: padding byte {index} is {value:#04x}, must be zero")]
-    BadPadding {
-        offset: usize,
-        index: usize,
-        value: u8,
-    },
-
     /// The format octet names no format of §3.3.
     #[error("unknown attribute format {0}")]
     UnknownFormat(u8),

@@ -23,7 +23,7 @@ pub struct MessageView<'a> {
 
 impl<'a> MessageView<'a> {
     /// Checks the header, `len` against the datagram size, and (for MAINT/OP) that
-    /// every parameter is whole and zero-padded. Parameter *values* are not decoded,
+    /// every parameter is whole (padding is skipped unread). Parameter *values* are not decoded,
     /// so a parameter of an unknown format does not make the datagram malformed.
     pub fn parse(datagram: &'a [u8]) -> Result<MessageView<'a>, Error> {
         let header = Header::parse(datagram)?;
@@ -252,6 +252,31 @@ mod tests {
     }
 
     #[test]
+    fn a_datagram_with_non_zero_padding_is_read_whole() {
+        // Written from draft §3.1/§3.2: source 1001, message 20, class FLIGHTDATA (3),
+        // id 2, flags 0x0005, tcid 0, len 32; TAILNUM "N1" (STRING, 2 bytes) padded
+        // with 0xAA 0x55, then COMSQL 53 as in `RADIO`.
+        let bytes: [u8; 44] = [
+            0x03, 0xE9, 0x00, 0x14, 0x03, 0x02, 0x00, 0x05, 0x00, 0x00, 0x00, 0x20, // header
+            0x00, 0x00, 0x00, 0x00, 0x00, 0x20, 0x00, 0x92, 0x04, 0x00, 0xFF, 0x00, // TAILNUM
+            b'N', b'1', 0xAA, 0x55, // "N1" and padding that is not zero
+            0x00, 0x02, 0x00, 0x00, 0x00, 0x40, 0x00, 0x28, 0x02, 0x80, 0xFF, 0x05, // COMSQL
+            0x00, 0x00, 0x00, 0x35, // 53
+        ];
+        let Body::Params(params) = Message::parse(&bytes).unwrap().body else {
+            panic!("FLIGHTDATA carries parameters");
+        };
+        let values: Vec<_> = params.into_iter().map(|p| (p.ident, p.value)).collect();
+        assert_eq!(
+            values,
+            vec![
+                (idents::TAILNUM, Value::string("N1")),
+                (idents::COMSQL, Value::Uint(53))
+            ]
+        );
+    }
+
+    #[test]
     fn malformed_datagrams_each_get_their_own_error() {
         assert_eq!(
             Message::parse(&RADIO[..5]),
@@ -280,17 +305,12 @@ mod tests {
                 available: 20
             })
         );
-        // Data length 3 for a UINT: padding byte 0x7E is not zero.
+        // Data length 3 for a UINT: its last byte (0x7E) is padding now, skipped
+        // unread (draft §3.2), and the UINT is the wrong length.
         let mut pad = RADIO;
         pad[17] = 0x30;
-        assert_eq!(
-            Message::parse(&pad),
-            Err(Error::BadPadding {
-                offset: 12,
-                index: 0,
-                value: 0x7E
-            })
-        );
+        assert!(MessageView::parse(&pad).is_ok(), "framing is fine");
+        assert!(matches!(Message::parse(&pad), Err(Error::BadLength { .. })));
         // Unknown format 6: framing is fine, decoding is not.
         let mut fmt = RADIO;
         fmt[20] = 6;

@@ -137,7 +137,8 @@ impl ParamView<'_> {
 }
 
 /// Walks a block of parameters (a message body), checking framing: each header is
-/// whole, each padded data block lies inside the block, and padding is zero. Yields
+/// whole and each padded data block lies inside the block (padding bytes are not
+/// looked at: senders pad with zeros, receivers skip them, draft §3.2). Yields
 /// the first framing error and then stops. It does not decode values, so a parameter
 /// of a format we do not know can still be skipped or relayed.
 #[derive(Debug, Clone)]
@@ -173,14 +174,10 @@ impl<'a> Params<'a> {
             available: after_header.len(),
         };
         let (block, rest) = after_header.split_at_checked(padded).ok_or(past_end)?;
-        let (data, padding) = block.split_at_checked(len).ok_or(past_end)?;
-        if let Some((index, &value)) = padding.iter().enumerate().find(|(_, b)| **b != 0) {
-            return Err(Error::BadPadding {
-                offset,
-                index,
-                value,
-            });
-        }
+        // Draft §3.2: data "MUST be padded to a multiple of four bytes"; that the
+        // padding is zero is only our sending rule (reading note XFSp 2), so on
+        // receipt its bytes are skipped whatever they hold.
+        let data = block.get(..len).ok_or(past_end)?;
         self.rest = rest;
         self.offset += PARAM_HEADER_LEN + padded;
         Ok(ParamView { header, data })
@@ -378,19 +375,19 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn nonzero_padding_is_rejected_with_its_position() {
-        let p = Parameter::new(idents::TAILNUM, Value::string("N1"));
-        let mut out = Vec::new();
-        p.emit(&mut out).unwrap();
-        out[15] = 0x20;
-        assert_eq!(
-            Parameter::parse(&out),
-            Err(Error::BadPadding {
-                offset: 0,
-                index: 1,
-                value: 0x20
-            })
-        );
+    fn nonzero_padding_is_skipped_on_receipt() {
+        // TAILNUM "N1" (STRING, format 4: §3.3.4 "%d4"), unit 0, subunit 0, written
+        // from draft §3.2: data length 2 in the top 12 bits of the fourth field, ident
+        // %x00.00.92, then format, confidence, expire, pflags, then "N1" and two
+        // padding bytes that are not zero.
+        let bytes = [
+            0x00, 0x00, 0x00, 0x00, // unit, subunit
+            0x00, 0x20, 0x00, 0x92, // length 2, ident
+            0x04, 0x00, 0xFF, 0x00, // format STRING, confidence, expire never, pflags
+            b'N', b'1', 0x20, 0x7E, // data and non-zero padding
+        ];
+        let (p, used) = Parameter::parse(&bytes).unwrap();
+        assert_eq!((p.value, used), (Value::string("N1"), 16));
     }
 
     #[test]
