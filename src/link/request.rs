@@ -473,15 +473,17 @@ pub fn query_answers(id: u8, m: &Message) -> bool {
 /// The device id the SPEC_ACK to `spec` carries (ICD Table 19 and its note 1), or `None`
 /// when any id is accepted.
 ///
-/// TRIM_SPEC carries no device id and the ICD names none for its SPEC_ACK (29/30 is
-/// only the query's mapping, reading note 13), so for it the echoed command number
-/// alone identifies the answer.
+/// Table 19's byte 1 is "the device identifier used when sending the specification
+/// request", and note 1 names only 253 (SYSTEM_SPEC) and 254 (WIG_WAG_SPEC).
+/// TRIM_SPEC and FLAP_SPEC carry no device id, so the ICD names none for their
+/// SPEC_ACK (0, 29 and 30 are only the query's mapping, reading note 13): for them
+/// the echoed command number alone identifies the answer, whatever id it carries.
+/// (The virtual VP-X answers FLAP_SPEC with 0 and TRIM_SPEC with 29/30.)
 pub fn spec_ack_id(spec: &Message) -> Option<u8> {
     match spec {
         Message::DeviceSpec(s) => Some(s.device_id),
         Message::SystemSpec(_) => Some(SYSTEM_SPEC_ID),
         Message::WigWagSpec(_) => Some(WIG_WAG_SPEC_ID),
-        Message::FlapSpec(_) => Some(FLAPS),
         Message::DeviceName(n) => Some(n.device_id),
         _ => None,
     }
@@ -712,6 +714,43 @@ mod tests {
             c.send_spec(spec(6), Duration::from_millis(100), 1),
             Err(SpecError::Request(RequestError::Timeout { .. }))
         ));
+    }
+
+    #[test]
+    fn flap_and_trim_spec_acks_are_matched_by_command_number_whatever_their_id() {
+        // Table 19 names no id for the SPEC_ACK of FLAP_SPEC or TRIM_SPEC: an
+        // independent unit may answer with any (here 0xFF and 7), and the echoed
+        // command number is what makes it the answer. A DEVICE_SPEC's ack still
+        // needs its id (see `a_spec_ack_for_another_device_is_not_this_ones`).
+        let (mut c, _unit) = client_with(|p| {
+            let id = match p.message {
+                Message::FlapSpec(_) => 0xFF,
+                _ => 7,
+            };
+            vec![Packet::from_vpx(
+                p.cnt,
+                SpecAck {
+                    device_id: id,
+                    error: None,
+                },
+            )]
+        });
+        c.send_spec(
+            crate::protocol::defaults::flap_spec(),
+            Duration::from_millis(300),
+            1,
+        )
+        .unwrap();
+        c.send_spec(
+            crate::protocol::defaults::trim_spec(TrimType::Pitch),
+            Duration::from_millis(300),
+            1,
+        )
+        .unwrap();
+        assert_eq!(
+            spec_ack_id(&crate::protocol::defaults::flap_spec().into()),
+            None
+        );
     }
 
     #[test]

@@ -27,7 +27,7 @@ use crate::exchange::{Try, Verdict};
 use crate::link::request::{setting_name, spec_ack_id};
 use crate::model::{Model, Setting};
 use crate::protocol::config::UnitConfig;
-use crate::protocol::device::{TRIM_P, TRIM_R};
+use crate::protocol::device::{FLAPS, TRIM_P, TRIM_R};
 use crate::protocol::message::{EnableFlag, Message, TrimType};
 use crate::protocol::validate;
 use crate::ui::setup::state::{WriteLine, WriteStatus, switch_text};
@@ -289,12 +289,14 @@ fn is_enable(m: &Message) -> bool {
     matches!(m, Message::DeviceEnable(_))
 }
 
-/// The SPEC_ACK id the unit answers `m` with. TRIM_SPEC carries no id; the virtual
-/// unit (and, we take it, the real one) answers with the axis's device id.
+/// The SPEC_ACK id the unit answers `m` with. TRIM_SPEC and FLAP_SPEC carry no id;
+/// the virtual unit (and, we take it, the real one) answers with the motor's device
+/// id. (The model keeps no command number to match by, unlike `link::request`.)
 fn ack_id(m: &Message) -> Option<u8> {
     match m {
         Message::TrimSpec(t) if t.trim_type == TrimType::Roll => Some(TRIM_R),
         Message::TrimSpec(_) => Some(TRIM_P),
+        Message::FlapSpec(_) => Some(FLAPS),
         m => spec_ack_id(m),
     }
 }
