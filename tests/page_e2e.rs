@@ -125,6 +125,10 @@ fn hold_trim_up(rig: &mut Rig, mode: ReleaseMode) {
         stats.pitch_trim_starvations, 0,
         "the page streamed fast enough"
     );
+    assert_eq!(
+        stats.pitch_trim_late, 0,
+        "no gap over 250 ms between TRIM_MOVEs (the unit forgives 300)"
+    );
     assert!(!stats.pitch_trim_running, "the motor stopped after release");
 
     let moves: Vec<(Instant, TrimMove)> = rig

@@ -14,7 +14,9 @@
 
 use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::message::*;
-use vpx_efis::protocol::{Decoder, Error, Event, FaultCode, LenRule, MessageId, Node, Packet};
+use vpx_efis::protocol::{
+    Decoder, Error, Event, FaultCode, FrameRef, LenRule, MessageId, Node, Packet,
+};
 
 /// Parses `bytes` and compares with `expected`; emits `expected` and compares with `bytes`.
 #[track_caller]
@@ -710,12 +712,15 @@ fn external_data() {
 
 // ---------------------------------------------------------------- errors
 
-/// Appendix D (plus §6.2.8–6.2.10) by hand: id, name, payload length rule.
+/// Appendix D (plus §6.2.8–6.2.10) by hand: id, name, payload length rule. The table
+/// sizes are maxima (§6 intro): VERSION's and DEVICE_STATUS_QUERY's request payload is
+/// ignored (up to 66 bytes, DEVICE_STATUS's length), EEPROM_ERASE's request may come
+/// without its byte, DEVICE_NAME's name may be cut short after its NUL.
 const TABLE: &[(u8, u8, &str, LenRule)] = &[
     (0x10, 0x00, "PING", LenRule::Exact(1)),
-    (0x10, 0x01, "VERSION", LenRule::Exact(3)),
+    (0x10, 0x01, "VERSION", LenRule::Between(0, 66)),
     (0x10, 0x02, "SOFTWARE_UPDATE", LenRule::Exact(0)),
-    (0x10, 0x03, "EEPROM_ERASE", LenRule::Exact(1)),
+    (0x10, 0x03, "EEPROM_ERASE", LenRule::Between(0, 1)),
     (0x11, 0x00, "DEVICE_SPEC", LenRule::Exact(4)),
     (0x11, 0x01, "SYSTEM_SPEC", LenRule::Exact(2)),
     (0x11, 0x02, "TRIM_SPEC", LenRule::Exact(7)),
@@ -723,14 +728,14 @@ const TABLE: &[(u8, u8, &str, LenRule)] = &[
     (0x11, 0x04, "WIG_WAG_SPEC", LenRule::Exact(4)),
     (0x11, 0x05, "DEVICE_SPEC_QUERY", LenRule::Exact(1)),
     (0x11, 0x06, "SPEC_ACK", LenRule::Exact(2)),
-    (0x11, 0x07, "DEVICE_NAME", LenRule::Exact(17)),
+    (0x11, 0x07, "DEVICE_NAME", LenRule::Between(2, 17)),
     (0x11, 0x08, "DEVICE_NAME_QUERY", LenRule::Exact(1)),
     (0x11, 0x09, "DEVICE_ENABLE", LenRule::Exact(2)),
     (0x12, 0x00, "SYSTEM_STATUS", LenRule::Exact(12)),
     (0x12, 0x01, "DEVICE_STATUS", LenRule::Exact(66)),
     (0x12, 0x02, "FLAP_TRIM_STATUS", LenRule::Exact(18)),
     (0x12, 0x03, "FAULT_STATUS", LenRule::Between(4, 35)),
-    (0x12, 0x04, "DEVICE_STATUS_QUERY", LenRule::Exact(0)),
+    (0x12, 0x04, "DEVICE_STATUS_QUERY", LenRule::Between(0, 66)),
     (0x13, 0x00, "DEVICE_POWER", LenRule::Exact(2)),
     (0x13, 0x01, "TRIM_MOVE", LenRule::Exact(3)),
     (0x13, 0x02, "FLAP_MOVE", LenRule::Exact(2)),
@@ -837,5 +842,70 @@ fn unknown_message_id_is_an_error_naming_the_id() {
     assert_eq!(
         Packet::parse_bytes(&bytes),
         Err(Error::UnknownMessage(MessageId::new(0x16, 0x00)))
+    );
+}
+
+// ---------------------------------------------------------------- leniency on receipt
+
+/// A frame written by hand from ICD Table 1 and §4.1.3 (XOR of every byte, inverted).
+fn hand_frame(major: u8, minor: u8, cnt: u8, src: u8, dst: u8, payload: &[u8]) -> Vec<u8> {
+    let mut f = vec![0xE7, 0x7E, major, minor, cnt, src, dst, payload.len() as u8];
+    f.extend_from_slice(payload);
+    let x = f.iter().fold(0u8, |a, b| a ^ b);
+    f.push(!x);
+    f
+}
+
+#[test]
+fn short_device_names_and_odd_request_payloads_are_taken() {
+    // DEVICE_NAME for device 9, "Taxi" and its NUL: 6 bytes, not Table 21's 17.
+    let f = hand_frame(
+        0x11,
+        0x07,
+        4,
+        0x00,
+        0x01,
+        &[0x09, b'T', b'a', b'x', b'i', 0x00],
+    );
+    // E7^7E^11^07^04^00^01^06 = 8C; ^09^54^61^78^69^00 = A1; !A1 = 5E.
+    assert_eq!(*f.last().unwrap(), 0x5E, "checksum worked by hand");
+    let p = Packet::parse(&FrameRef::parse(&f).unwrap()).unwrap();
+    let Message::DeviceName(n) = p.message else {
+        panic!("{p:?}")
+    };
+    assert_eq!((n.device_id, n.text()), (9, "Taxi".to_string()));
+    // An id alone is not a name.
+    assert!(Message::parse(MessageId::new(0x11, 0x07), &[0x09]).is_err());
+    // DEVICE_STATUS_QUERY with a stray byte is still the query.
+    assert_eq!(
+        Message::parse(MessageId::new(0x12, 0x04), &[0x00]),
+        Ok(Message::DeviceStatusQuery(DeviceStatusQuery))
+    );
+    // VERSION with 4 bytes: the first three are Table 11's.
+    assert_eq!(
+        Message::parse(MessageId::new(0x10, 0x01), &[2, 2, 1, 9]),
+        Ok(Message::Version(Version {
+            hardware_version: HardwareVersion::from_byte(2),
+            software_major: 2,
+            software_minor: 1
+        }))
+    );
+    // VERSION and EEPROM_ERASE with no payload are frames (the unit answers them),
+    // but carry no version and no result code: neither is made up.
+    for (minor, name) in [(0x01, "VERSION"), (0x03, "EEPROM_ERASE")] {
+        let f = hand_frame(0x10, minor, 7, 0x01, 0x00, &[]);
+        let frame = FrameRef::parse(&f).expect("a frame the decoder passes");
+        assert!(
+            matches!(Packet::parse(&frame), Err(Error::BadLength { message, .. }) if message == name),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn ignored_payloads_stay_within_the_longest_message() {
+    assert_eq!(
+        vpx_efis::protocol::message::IGNORED_PAYLOAD_MAX,
+        MAX_MESSAGE_LEN
     );
 }

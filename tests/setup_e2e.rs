@@ -387,6 +387,7 @@ fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_car
         stats.flap_starvations, 0,
         "the same safe stream as the page"
     );
+    assert_eq!(stats.flap_late, 0, "no gap over 250 ms between FLAP_MOVEs");
     let pos = stats.flap_position;
     assert!((30..90).contains(&pos), "flaps ran down to {pos}");
     rig.until(

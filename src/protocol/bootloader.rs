@@ -13,10 +13,11 @@
 //! * **Frame sizes** come from the tables, not the "Total Size" lines (note 24):
 //!   SERIAL_CONF is 5 + 6 = 11 bytes, not 9.
 //! * **FLASH_PROG's command character is lower-case `'p'`** and its reply upper-case
-//!   `'P'` (§7.5.3, note 17). Table 35's list says `P`; we send `'p'` and the decoder
-//!   takes only `'p'`, so a host that sends `'P'` meets silence in the simulator just
-//!   as the ICD's own section says it would. Table 35's list also names an `O` that no
-//!   section describes; it is not a command here and is ignored like any unknown one.
+//!   `'P'` (§7.5.3, note 17): we send `'p'`. Table 35's and Table 36's lists (and
+//!   Appendix D) say `P`, so a host written from those tables sends `'P'`; the
+//!   device-side decoder takes both as FLASH_PROG (liberal on receipt). Table 35's list
+//!   also names an `O` that no section describes; it is not a command here and is
+//!   ignored like any unknown one.
 //! * **Address unit** (note 24): the 16-bit address of FLASH_PROG and FLASH_READ is a
 //!   **page number** (byte address / 256). The ATmega2560 (SIGNATURE 1E 98 01, note
 //!   17) has 256 KiB of flash: byte addresses (0–262143) and even word addresses
@@ -420,7 +421,7 @@ pub struct BootDecoderStats {
 /// panics, and resyncs on `0x69 0x96` one byte at a time.
 ///
 /// A frame is taken only if its command character is one of Table 36's, its `num`
-/// fits that command (0 for E/Q/S/V/X, 3 for `!`, 2 for `R`, at least 1 for `p`) and
+/// fits that command (0 for E/Q/S/V/X, 3 for `!`, 2 for `R`, at least 1 for `p`/`P`) and
 /// its jump byte is 0; otherwise its first byte is dropped and the search goes on from
 /// the next, so a real frame hidden behind a false start is still found. FLASH_PROG
 /// is passed on with whatever data length it carried; the bootloader judges the page.
@@ -441,7 +442,8 @@ fn num_fits(code: u8, num: u8) -> Option<bool> {
     Some(match code {
         b'!' => num == 3,
         b'R' => num == 2,
-        b'p' => num >= 1,
+        // FLASH_PROG: 'p' by §7.5.3, 'P' by Tables 35 and 36.
+        b'p' | b'P' => num >= 1,
         b'E' | b'Q' | b'S' | b'V' | b'X' => num == 0,
         _ => return None,
     })
@@ -535,7 +537,7 @@ fn parse_frame(f: &[u8]) -> Option<BootCommand> {
             security: p.get(2..6)?.try_into().ok()?,
         },
         b'E' => BootCommand::FlashErase,
-        b'p' => BootCommand::FlashProg {
+        b'p' | b'P' => BootCommand::FlashProg {
             address: le(0)?,
             data: p.get(2..)?.to_vec(),
         },
@@ -662,16 +664,26 @@ mod tests {
     }
 
     #[test]
-    fn upper_case_p_and_unknown_characters_are_ignored() {
+    fn upper_case_p_is_flash_prog_too_and_unknown_characters_are_ignored() {
         let mut d = BootCommandDecoder::new();
-        // 'P' (0x50) carrying a page, then 'O' (0x4F), then a real QUERY_PORT.
-        let mut bytes = vec![0x69, 0x96, 0x50, 0x81, 0x00, 0x00, 0x00];
-        bytes.extend([0u8; 256]);
+        // Table 36's 'P' (0x50): 129 words, page 0x0003 (low byte first), 256 bytes
+        // of 0xA5; then 'O' (0x4F), then a real QUERY_PORT.
+        let mut bytes = vec![0x69, 0x96, 0x50, 0x81, 0x00, 0x03, 0x00];
+        bytes.extend([0xA5; 256]);
         bytes.extend([0x69, 0x96, 0x4F, 0x00, 0x00]);
         bytes.extend([0x69, 0x96, 0x51, 0x00, 0x00]);
-        assert_eq!(d.feed(&bytes), vec![BootCommand::QueryPort]);
-        assert_eq!(d.stats().ignored_frames, 2);
-        assert_eq!(d.stats().commands, 1);
+        assert_eq!(
+            d.feed(&bytes),
+            vec![
+                BootCommand::FlashProg {
+                    address: 3,
+                    data: vec![0xA5; 256]
+                },
+                BootCommand::QueryPort
+            ]
+        );
+        assert_eq!(d.stats().ignored_frames, 1);
+        assert_eq!(d.stats().commands, 2);
     }
 
     #[test]

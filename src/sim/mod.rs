@@ -39,7 +39,19 @@
 //! * The overspeed inhibit also refuses FLAP_MOVE down. Wig-wag lights alternate every
 //!   0.5 s. EEPROM_ERASE reports integrity code 0x01 (General EEPROM).
 //! * A silent unit still takes requests in; its replies are lost like its broadcasts.
-//! * DEVICE_ENABLE defaults to enabled; a set gets no reply, a query (flag 2) does.
+//! * DEVICE_ENABLE defaults to enabled; a set gets no reply, a query (flag 2) does,
+//!   for every id 0–30 (1–3 always enabled, 0/29/30 as their FLAP_SPEC/TRIM_SPEC
+//!   enable flag says; Table 23 notes 1 and 2); a set outside 4–28 is ignored.
+//! * A TRIM_MOVE/FLAP_MOVE run lasts 300 ms after its last message: the 250 ms of the
+//!   4 Hz rule plus a margin for an EFIS streaming at exactly 4 Hz. Messages more than
+//!   250 ms apart are counted (`SimStats::*_late`) so our tests still hold the page to
+//!   250 ms. A stop (power 0) is honoured whatever its direction or trim type byte.
+//! * Liberal on receipt: VERSION of any payload length (§6.1.2), EEPROM_ERASE without
+//!   its byte, DEVICE_NAME of 2–17 bytes, DEVICE_STATUS_QUERY with any payload; FLASH_PROG
+//!   as `'p'` or `'P'`. Every reply is sent at its table's size.
+//! * DATA_INTEGRITY from EEPROM_ERASE clears at any restart (warm reset, bootloader
+//!   EXIT, power cycle; §6.1.4). The Software Update flag is set by an EXIT only when a
+//!   page was programmed (Table 24 note 1).
 
 pub mod bootloader;
 pub mod console;
@@ -230,7 +242,7 @@ pub fn build_unit(options: &SimOptions, now: Instant) -> Unit {
 /// Runs the unit on any byte stream (a pty master, or an in-process pipe end).
 ///
 /// Three threads: one reads (and stamps each chunk with its arrival time, so a motor
-/// stream's 250 ms is measured on arrival, not on when the unit got round to it), one
+/// stream's timing is measured on arrival, not on when the unit got round to it), one
 /// writes (a stuck port drops bytes, like a serial line nobody listens to, instead of
 /// stalling the unit), and one runs the unit. With a `line_rate`, the reader hands
 /// on bytes only once they would have crossed a real line, and the writer lets them

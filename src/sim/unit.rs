@@ -188,10 +188,16 @@ pub struct SimStats {
     pub flap_running: bool,
     pub pitch_trim_running: bool,
     pub roll_trim_running: bool,
-    /// Streams that ended because TRIM_MOVE/FLAP_MOVE came late (reading note 19).
+    /// Streams that ended because no TRIM_MOVE/FLAP_MOVE came for 300 ms (the 250 ms
+    /// of reading note 19 plus the unit's margin, see `sim::motors`).
     pub flap_starvations: u64,
     pub pitch_trim_starvations: u64,
     pub roll_trim_starvations: u64,
+    /// TRIM_MOVE/FLAP_MOVE messages that came more than 250 ms after the one before
+    /// while the run went on: forgiven by the unit, a gap the EFIS should not leave.
+    pub flap_late: u64,
+    pub pitch_trim_late: u64,
+    pub roll_trim_late: u64,
     /// Power state per device id, as DEVICE_STATUS reports it.
     pub powered: [bool; DEVICE_COUNT],
     /// Fault per device id, as FAULT_STATUS reports it.
@@ -238,7 +244,10 @@ enum Mode {
 enum Start {
     Cold,
     Warm,
-    AfterUpdate,
+    /// The bootloader's EXIT; `programmed` when a page of flash was written.
+    BootloaderExit {
+        programmed: bool,
+    },
 }
 
 /// The virtual VP-X; see the module documentation.
@@ -508,8 +517,22 @@ impl Unit {
                 self.software_update = false;
                 self.integrity = None;
             }
-            Start::Warm => self.warm_reset = true,
-            Start::AfterUpdate => self.software_update = true,
+            // §6.1.4: the DATA_INTEGRITY an EEPROM_ERASE raised "should clear
+            // automatically after resetting or cycling power", so every kind of start
+            // clears it (a bootloader EXIT restarts the processor too). A corrupt EEPROM
+            // found at power-on is raised again by the caller after `boot`.
+            Start::Warm => {
+                self.warm_reset = true;
+                self.integrity = None;
+            }
+            // Table 24 note 1: the flag says the software "was updated during the last
+            // power cycle". Decision: an EXIT after no FLASH_PROG (a flasher that only
+            // looked, or gave up before writing) updated nothing, so it leaves the flag
+            // as it was; it clears only on a power cycle.
+            Start::BootloaderExit { programmed } => {
+                self.software_update |= programmed;
+                self.integrity = None;
+            }
         }
         // The first broadcasts come shortly after start, the fast ones offset from
         // the slow ones so that they do not all leave in one burst.
@@ -544,9 +567,20 @@ impl Unit {
             for f in &frames {
                 self.wire.rx_frames += 1;
                 let frame = crate::protocol::FrameRef::parse(f).expect("the decoder checked it");
+                let h = frame.header();
                 match Packet::parse(&frame) {
                     Ok(p) => self.handle(p, now),
-                    Err(_) => self.malformed(frame.header(), frame.payload(), now),
+                    // §6.1.2: the VP-X ignores a VERSION request's payload, so one of
+                    // any length (too short to decode as Table 11) is still answered;
+                    // so is an EEPROM_ERASE request without its byte (§6.1.4).
+                    Err(_) if h.id == Version::ID && self.for_us(h.src, h.dst) => {
+                        self.version(h.cnt, now)
+                    }
+                    Err(_) if h.id == EepromErase::ID && self.for_us(h.src, h.dst) => {
+                        self.eeprom_erase(h.cnt, now);
+                        self.update_power(now);
+                    }
+                    Err(_) => self.malformed(h, frame.payload(), now),
                 }
             }
             if self.in_bootloader() {
@@ -565,8 +599,13 @@ impl Unit {
         self.boot_stats = b.stats();
         self.emit_raw(&out, now);
         if exit {
-            self.log("bootloader EXIT: rebooting with the Software Update flag set".into());
-            self.boot(now, Start::AfterUpdate);
+            let programmed = self.boot_stats.pages_programmed > 0;
+            self.log(if programmed {
+                "bootloader EXIT: rebooting with the Software Update flag set".into()
+            } else {
+                "bootloader EXIT: nothing was programmed, rebooting".into()
+            });
+            self.boot(now, Start::BootloaderExit { programmed });
         }
     }
 
@@ -595,22 +634,53 @@ impl Unit {
         }
     }
 
+    /// Whether a frame from `src` to `dst` is a request for this unit.
+    fn for_us(&self, src: Node, dst: Node) -> bool {
+        matches!(dst, Node::Vpx | Node::Broadcast) && src != Node::Vpx
+    }
+
+    /// The VERSION reply (ICD Table 11).
+    fn version(&mut self, cnt: u8, now: Instant) {
+        let v = Version {
+            hardware_version: HardwareVersion::from_byte(self.opts.hardware_version),
+            software_major: self.opts.software_version.0,
+            software_minor: self.opts.software_version.1,
+        };
+        self.reply(cnt, v, now)
+    }
+
+    /// EEPROM_ERASE, ICD §6.1.4: defaults back, DATA_INTEGRITY until the next reset or
+    /// power cycle.
+    fn eeprom_erase(&mut self, cnt: u8, now: Instant) {
+        let defaults = UnitConfig::default();
+        let code = match self.eeprom.store(&defaults) {
+            Ok(()) => 0,
+            Err(e) => {
+                self.log(format!("EEPROM_ERASE: cannot write the EEPROM: {e}"));
+                1
+            }
+        };
+        self.config = defaults;
+        self.integrity = Some(DataIntegrityCode::GeneralEeprom);
+        self.log("EEPROM_ERASE: configuration back to the ICD Appendix F defaults".into());
+        self.reply(
+            cnt,
+            EepromErase {
+                response_code: code,
+            },
+            now,
+        );
+    }
+
     fn handle(&mut self, p: Packet, now: Instant) {
-        if !matches!(p.dst, Node::Vpx | Node::Broadcast) || p.src == Node::Vpx {
+        if !self.for_us(p.src, p.dst) {
             self.wire.ignored += 1;
             return;
         }
         let cnt = p.cnt;
         match p.message {
             Message::Ping(Ping { ack: false }) => self.reply(cnt, Ping { ack: true }, now),
-            Message::Version(_) => {
-                let v = Version {
-                    hardware_version: HardwareVersion::from_byte(self.opts.hardware_version),
-                    software_major: self.opts.software_version.0,
-                    software_minor: self.opts.software_version.1,
-                };
-                self.reply(cnt, v, now)
-            }
+            Message::Version(_) => self.version(cnt, now),
             Message::SoftwareUpdate(_) => {
                 // §6.1.3: no reply; the unit goes quiet and listens for §7 frames.
                 self.log("SOFTWARE_UPDATE: entering the bootloader".into());
@@ -619,27 +689,7 @@ impl Unit {
                 }
                 self.mode = Mode::Boot(Bootloader::default());
             }
-            Message::EepromErase(_) => {
-                // §6.1.4: defaults back, DATA_INTEGRITY until the next power cycle.
-                let defaults = UnitConfig::default();
-                let code = match self.eeprom.store(&defaults) {
-                    Ok(()) => 0,
-                    Err(e) => {
-                        self.log(format!("EEPROM_ERASE: cannot write the EEPROM: {e}"));
-                        1
-                    }
-                };
-                self.config = defaults;
-                self.integrity = Some(DataIntegrityCode::GeneralEeprom);
-                self.log("EEPROM_ERASE: configuration back to the ICD Appendix F defaults".into());
-                self.reply(
-                    cnt,
-                    EepromErase {
-                        response_code: code,
-                    },
-                    now,
-                );
-            }
+            Message::EepromErase(_) => self.eeprom_erase(cnt, now),
             Message::DeviceSpecQuery(q) => self.spec_query(cnt, q.device_id, now),
             m @ (Message::DeviceSpec(_)
             | Message::SystemSpec(_)
@@ -659,6 +709,35 @@ impl Unit {
                 // Table 22: ids 0–30 only.
                 None => self.wire.ignored += 1,
             },
+            // Decision (Table 23 notes 1 and 2): a query for a device whose display
+            // cannot be set is still answered with what holds: Starter, EFIS and
+            // Field_Pri (1–3) are always enabled; the flaps (0) and trims (29, 30)
+            // are as their FLAP_SPEC / TRIM_SPEC enable flag says. Setting them is
+            // ignored, as the table's range 4–28 says.
+            Message::DeviceEnable(DeviceEnable {
+                device_id: id @ (0..=3 | TRIM_R | TRIM_P),
+                flag: EnableFlag::Query,
+            }) => {
+                let on = match id {
+                    FLAPS => self.config.flap.enabled,
+                    TRIM_R => self.config.roll_trim.enabled,
+                    TRIM_P => self.config.pitch_trim.enabled,
+                    _ => true,
+                };
+                let flag = if on {
+                    EnableFlag::Enabled
+                } else {
+                    EnableFlag::Disabled
+                };
+                self.reply(
+                    cnt,
+                    DeviceEnable {
+                        device_id: id,
+                        flag,
+                    },
+                    now,
+                );
+            }
             Message::DeviceEnable(e) => {
                 if validate::device_enable(&self.config, &e).is_err() {
                     self.wire.ignored += 1;
@@ -689,10 +768,16 @@ impl Unit {
                 self.reply(cnt, s, now);
             }
             Message::DevicePower(d) => self.device_power(d, now),
+            // Decision: a stop (power 0) is honoured whatever its other bytes hold, so
+            // a motor never runs on to the stream timeout because the stop message
+            // carried a direction (or, for TRIM_MOVE, a trim type) outside Tables 30
+            // and 31. A stop of an unknown trim type stops both trims. A run ("on")
+            // with such a byte is refused: the unit cannot know which way to go.
             Message::TrimMove(t) => {
-                let motor = match t.trim_type {
-                    TrimType::Pitch => MotorId::Pitch,
-                    TrimType::Roll => MotorId::Roll,
+                let motors: &[MotorId] = match t.trim_type {
+                    TrimType::Pitch => &[MotorId::Pitch],
+                    TrimType::Roll => &[MotorId::Roll],
+                    TrimType::Unknown(_) if !t.on => &[MotorId::Pitch, MotorId::Roll],
                     TrimType::Unknown(_) => {
                         self.wire.malformed += 1;
                         return;
@@ -701,17 +786,31 @@ impl Unit {
                 let dir = match t.direction {
                     TrimDirection::DownOrRight => MotorDirection::Down,
                     TrimDirection::UpOrLeft => MotorDirection::Up,
+                    // Not looked at by a stop.
+                    TrimDirection::Unknown(_) if !t.on => MotorDirection::Up,
                     TrimDirection::Unknown(_) => {
                         self.wire.malformed += 1;
                         return;
                     }
                 };
-                self.stream(motor, t.on, dir, now);
+                if matches!(t.trim_type, TrimType::Unknown(_))
+                    || matches!(t.direction, TrimDirection::Unknown(_))
+                {
+                    self.wire.malformed += 1;
+                }
+                for &motor in motors {
+                    self.stream(motor, t.on, dir, now);
+                }
             }
             Message::FlapMove(f) => {
                 let dir = match f.direction {
                     FlapDirection::Up => MotorDirection::Up,
                     FlapDirection::Down => MotorDirection::Down,
+                    FlapDirection::Unknown(_) if !f.on => {
+                        // A stop all the same (see TRIM_MOVE above), counted as odd.
+                        self.wire.malformed += 1;
+                        MotorDirection::Up
+                    }
                     FlapDirection::Unknown(_) => {
                         self.wire.malformed += 1;
                         return;
@@ -1558,6 +1657,9 @@ impl Unit {
             flap_starvations: f.starvations,
             pitch_trim_starvations: p.starvations,
             roll_trim_starvations: r.starvations,
+            flap_late: f.late,
+            pitch_trim_late: p.late,
+            roll_trim_late: r.late,
             powered: self.powered,
             faults: self.fault_codes(),
             system_fault: self.system_fault,
@@ -2067,14 +2169,22 @@ mod tests {
 
     #[test]
     fn software_update_enters_the_bootloader_and_exit_sets_the_flag() {
+        use crate::protocol::bootloader::{BootCommand, PAGE_SIZE};
         let mut b = Bench::new("");
         b.send(SoftwareUpdate);
         let before = b.seen.len();
         b.run(1_000);
         assert_eq!(b.seen.len(), before, "no broadcasts in the bootloader");
-        let exit = crate::protocol::bootloader::BootCommand::Exit.emit();
-        b.unit.feed(&exit, b.now);
-        assert_eq!(b.unit.take_output(), b"x");
+        let mut bytes = BootCommand::serial_conf().emit();
+        bytes.extend(BootCommand::FlashErase.emit());
+        bytes.extend(
+            BootCommand::flash_prog(0, &[0x0C; PAGE_SIZE])
+                .unwrap()
+                .emit(),
+        );
+        bytes.extend(BootCommand::Exit.emit());
+        b.unit.feed(&bytes, b.now);
+        assert_eq!(b.unit.take_output(), b"!!!ePx");
         b.run(1_000);
         let flag = b.last(|m| match m {
             Message::SystemStatus(s) => Some(s.misc.software_update),

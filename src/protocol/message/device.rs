@@ -312,13 +312,18 @@ impl DeviceName {
     }
 }
 
+/// Table 21's 17 bytes are a maximum (§6 intro: "payload size ... represent the maximum
+/// size"; the name is "up to 16 bytes", shorter ones "should be null-terminated").
+/// Decision: we send 17; we take 2–17 (the id and at least the terminating NUL, or a
+/// name cut short), the missing bytes read as NUL.
 impl Payload for DeviceName {
     const ID: MessageId = MessageId::new(0x11, 0x07);
     const NAME: &'static str = "DEVICE_NAME";
-    const LEN: LenRule = LenRule::Exact(17);
+    const LEN: LenRule = LenRule::Between(2, 17);
     fn parse_payload(p: &[u8]) -> Result<Self> {
         let mut name = [0u8; 16];
-        name.copy_from_slice(&p[1..17]);
+        let given = &p[1..];
+        name[..given.len()].copy_from_slice(given);
         Ok(DeviceName {
             device_id: p[0],
             name,

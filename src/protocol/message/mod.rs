@@ -170,6 +170,13 @@ pub(crate) fn flag(message: &'static str, field: &'static str, b: u8) -> Result<
     }
 }
 
+/// The longest payload taken where the request's payload is ignored (VERSION,
+/// §6.1.2) or not described at all (DEVICE_STATUS_QUERY, reading note 6): the length
+/// of DEVICE_STATUS, the longest message of the ICD, so that such a frame never
+/// stretches the decoder's bound ([`MAX_MESSAGE_LEN`], checked by a test). A longer
+/// one is not a frame of the ICD.
+pub const IGNORED_PAYLOAD_MAX: usize = 66;
+
 macro_rules! messages {
     ($($v:ident),+ $(,)?) => {
         /// Any message of ICD Appendix D.

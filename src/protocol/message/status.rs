@@ -1,7 +1,7 @@
 //! Status messages, ICD §6.3 (major 0x12). Broadcast by the unit.
 
 use super::types::{DataIntegrityCode, SignedTenths, Tenths, WigWagModeSetting};
-use super::{Payload, Reader, Writer, bit};
+use super::{IGNORED_PAYLOAD_MAX, Payload, Reader, Writer, bit};
 use crate::protocol::device::DEVICE_COUNT;
 use crate::protocol::error::{LenRule, Result};
 use crate::protocol::fault::FaultCode;
@@ -371,14 +371,15 @@ impl Payload for FaultStatus {
 }
 
 /// DEVICE_STATUS_QUERY — Appendix D only (0x12/0x04); reading note 6: no payload, asks
-/// for an immediate DEVICE_STATUS.
+/// for an immediate DEVICE_STATUS. No table describes a payload, so whatever one comes
+/// (up to [`IGNORED_PAYLOAD_MAX`] bytes) is ignored; we send none.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceStatusQuery;
 
 impl Payload for DeviceStatusQuery {
     const ID: MessageId = MessageId::new(0x12, 0x04);
     const NAME: &'static str = "DEVICE_STATUS_QUERY";
-    const LEN: LenRule = LenRule::Exact(0);
+    const LEN: LenRule = LenRule::Between(0, IGNORED_PAYLOAD_MAX);
     fn parse_payload(_: &[u8]) -> Result<Self> {
         Ok(DeviceStatusQuery)
     }

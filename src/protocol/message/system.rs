@@ -1,8 +1,8 @@
 //! System messages, ICD §6.1 (major 0x10).
 
 use super::types::HardwareVersion;
-use super::{Payload, Reader, Writer, flag};
-use crate::protocol::error::{LenRule, Result};
+use super::{IGNORED_PAYLOAD_MAX, Payload, Reader, Writer, flag};
+use crate::protocol::error::{Error, LenRule, Result};
 use crate::protocol::frame::MessageId;
 
 /// PING — ICD Table 10. The EFIS sends `ack = false`; the VP-X answers `ack = true`.
@@ -25,7 +25,15 @@ impl Payload for Ping {
     }
 }
 
-/// VERSION — ICD Table 11. The request's payload is ignored by the unit; we send zeros.
+/// VERSION — ICD Table 11. The request's payload is ignored by the unit (§6.1.2:
+/// "Payload data sent by the external system is ignored by the VP-X"); we send three
+/// zeros, the table's size.
+///
+/// Decision, for what we receive: a payload of any length up to
+/// [`IGNORED_PAYLOAD_MAX`] passes the frame check (so a request of another length
+/// reaches the virtual VP-X, which answers it); the three fields of Table 11 decode
+/// from a payload of at least 3 bytes, bytes after them are ignored, and a shorter
+/// one is a [`Error::BadLength`] (no version is made up).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Version {
     pub hardware_version: HardwareVersion,
@@ -44,8 +52,16 @@ impl Version {
 impl Payload for Version {
     const ID: MessageId = MessageId::new(0x10, 0x01);
     const NAME: &'static str = "VERSION";
-    const LEN: LenRule = LenRule::Exact(3);
+    /// Any length: see the type's documentation.
+    const LEN: LenRule = LenRule::Between(0, IGNORED_PAYLOAD_MAX);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        if p.len() < 3 {
+            return Err(Error::BadLength {
+                message: Self::NAME,
+                expected: LenRule::Between(3, IGNORED_PAYLOAD_MAX),
+                got: p.len(),
+            });
+        }
         let mut r = Reader::new(p);
         Ok(Version {
             hardware_version: HardwareVersion::from_byte(r.u8()),
@@ -75,6 +91,12 @@ impl Payload for SoftwareUpdate {
 }
 
 /// EEPROM_ERASE — ICD Table 12. Response code 0 means success.
+///
+/// The request carries no meaning in its byte (§6.1.4 gives the table for the
+/// response), and an EFIS may send it with no payload at all. Decision: the frame
+/// check takes 0 or 1 bytes; the typed message needs its response code, so an empty
+/// payload is a [`Error::BadLength`] here (an empty *reply* never reads as success)
+/// and the virtual VP-X answers an empty *request* all the same. We send 1 byte.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EepromErase {
     pub response_code: u8,
@@ -83,8 +105,15 @@ pub struct EepromErase {
 impl Payload for EepromErase {
     const ID: MessageId = MessageId::new(0x10, 0x03);
     const NAME: &'static str = "EEPROM_ERASE";
-    const LEN: LenRule = LenRule::Exact(1);
+    const LEN: LenRule = LenRule::Between(0, 1);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        if p.is_empty() {
+            return Err(Error::BadLength {
+                message: Self::NAME,
+                expected: LenRule::Exact(1),
+                got: 0,
+            });
+        }
         Ok(EepromErase {
             response_code: p[0],
         })
