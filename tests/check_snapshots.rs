@@ -21,7 +21,7 @@ use vpx_efis::ui::check;
 use vpx_efis::ui::check::state::{
     CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
     MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding,
-    SwitchResult,
+    SwitchResult, Unasked,
 };
 use vpx_efis::ui::palette::{Palette, ThemeChoice, Why};
 use vpx_efis::ui::state::{MotorRun, ViewState};
@@ -304,6 +304,11 @@ fn base() -> CheckView {
             .map(|m| (m, Duration::from_millis(1500)))
             .collect(),
         excluded: excluded(),
+        unasked: vec![Unasked {
+            input: Input::Switch(5),
+            circuits: vec![7],
+            why: "switch 5 powers only Pitot Heat (excluded): not asked".into(),
+        }],
         ..Default::default()
     }
 }
@@ -351,7 +356,7 @@ fn switch_results() -> Vec<SwitchResult> {
         sw(
             Input::Switch(5),
             &[7],
-            Outcome::Skipped("skipped: Pitot Heat is excluded".into()),
+            Outcome::Skipped("switch 5 powers only Pitot Heat (excluded): not asked".into()),
         ),
         sw(Input::Switch(6), &[0x11, 0x12], Outcome::NotRun),
         sw(Input::Switch(7), &[0x17], Outcome::NotRun),

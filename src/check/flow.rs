@@ -271,6 +271,7 @@ impl CheckFlow {
         view.plan = p.circuits;
         view.planned_motors = p.motors;
         view.excluded = p.excluded;
+        view.unasked = p.unasked;
         let ready = plan::ready(model, now);
         let confirm = if self.opts.yes {
             "confirmed with --yes"

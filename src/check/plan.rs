@@ -7,11 +7,21 @@
 //! engine stopped only drains the battery and heats the field winding). Suggested for
 //! exclusion, which the person may take back on the screen: names with "pitot",
 //! "heat" or "starter" (a pitot heater burns out on the ground).
+//!
+//! Nor is the person ever asked to flip a switch input that would power something
+//! left alone: an input 1–10 carrying a planned circuit and an excluded one, the
+//! starter or an alternator field is not asked at all (its planned circuits are then
+//! untested by the switch step, and the plan says so in words). The flap and trim
+//! switch inputs of SYSTEM_STATUS byte 8 (ICD Table 24) drive only their own motor:
+//! Appendix B gives flaps the switch "Flaps, not assignable", and DEVICE_SPEC's
+//! switch id (Table 13) names only inputs 1–10, so no circuit can follow a flap or
+//! trim input. They are not asked exactly when their motor is excluded.
 
 use std::time::{Duration, Instant};
 
-use crate::model::{CircuitKind, Model, Motor, TrimKind};
-use crate::ui::check::state::{Excluded, Planned};
+use crate::model::{Circuit, CircuitKind, Model, Motor, TrimKind};
+use crate::protocol::message::SwitchId;
+use crate::ui::check::state::{Excluded, Input, Planned, Unasked};
 
 /// Words in a circuit's name that make the check suggest leaving it alone.
 pub const SUGGEST_EXCLUDING: [&str; 3] = ["pitot", "heat", "starter"];
@@ -25,12 +35,14 @@ pub struct Choices {
     pub include: Vec<u8>,
 }
 
-/// The plan: circuits to power, motors to run, circuits left alone.
+/// The plan: circuits to power, motors to run, circuits left alone, and the switch
+/// inputs the person will not be asked to flip because they power one left alone.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Plan {
     pub circuits: Vec<Planned>,
     pub motors: Vec<(Motor, Duration)>,
     pub excluded: Vec<Excluded>,
+    pub unasked: Vec<Unasked>,
 }
 
 /// Whether `name` (or `pin`) is what `--exclude NAME` names.
@@ -65,7 +77,8 @@ pub fn build(
     motor_for: Duration,
 ) -> Plan {
     let mut plan = Plan::default();
-    for c in model.circuits(now) {
+    let circuits = model.circuits(now);
+    for c in circuits.iter().cloned() {
         let by_name = choices.exclude.iter().any(|e| names(e, &c.name, c.pin));
         let never = match c.kind {
             CircuitKind::Starter => Some("never touched: the starter"),
@@ -113,7 +126,75 @@ pub fn build(
         Motor::Trim(TrimKind::Pitch) => 1,
         Motor::Trim(TrimKind::Roll) => 2,
     });
+    plan.unasked = unasked(&circuits, &plan);
     plan
+}
+
+/// The circuits a switch input 1–10 powers, as the unit's DEVICE_SPEC assigns them
+/// (ICD Table 13): every circuit on the input, whether the check plans it or not.
+pub fn on_input(circuits: &[Circuit], n: u8) -> Vec<&Circuit> {
+    circuits
+        .iter()
+        .filter(|c| matches!(c.kind, CircuitKind::Device | CircuitKind::Alternator { .. }))
+        .filter(|c| c.switch == Some(SwitchId::Input(n)))
+        .collect()
+}
+
+/// "Pitot Heat (excluded)", "Main Alt (an alternator field)": a circuit left alone,
+/// named with why, for the words of an input not asked.
+fn left_alone(c: &Circuit) -> String {
+    let why = match c.kind {
+        CircuitKind::Starter => "the starter",
+        CircuitKind::Alternator { .. } => "an alternator field",
+        _ => "excluded",
+    };
+    format!("{} ({why})", c.name)
+}
+
+/// The inputs the person is not asked to flip, in the order the switch step runs:
+/// an input 1–10 carrying any circuit the plan leaves alone, and the flap and trim
+/// inputs of an excluded motor (see the module docs).
+fn unasked(circuits: &[Circuit], plan: &Plan) -> Vec<Unasked> {
+    let planned = |id: u8| plan.circuits.iter().any(|p| p.id == id);
+    let mut out = Vec::new();
+    for n in 1..=10u8 {
+        let on = on_input(circuits, n);
+        let left: Vec<String> = on
+            .iter()
+            .filter(|c| !planned(c.id))
+            .map(|c| left_alone(c))
+            .collect();
+        if left.is_empty() {
+            continue;
+        }
+        let how = if left.len() == on.len() {
+            "powers only"
+        } else {
+            "also powers"
+        };
+        out.push(Unasked {
+            input: Input::Switch(n),
+            circuits: on.iter().map(|c| c.id).collect(),
+            why: format!("switch {n} {how} {}: not asked", left.join(", ")),
+        });
+    }
+    for c in circuits {
+        let inputs = match c.kind {
+            CircuitKind::Flaps => [Input::FlapUp, Input::FlapDown],
+            CircuitKind::Trim(TrimKind::Pitch) => [Input::PitchTrimUp, Input::PitchTrimDown],
+            CircuitKind::Trim(TrimKind::Roll) => [Input::RollTrimUp, Input::RollTrimDown],
+            _ => continue,
+        };
+        if !plan.excluded.iter().any(|e| e.id == c.id) {
+            continue;
+        }
+        out.extend(inputs.map(|input| Unasked {
+            input,
+            circuits: Vec::new(),
+            why: format!("{} drives {} (excluded): not asked", input.label(), c.name),
+        }));
+    }
+    out
 }
 
 /// Whether the page has heard every setting the plan depends on (specs, names,

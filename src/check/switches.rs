@@ -16,7 +16,8 @@ use std::collections::BTreeSet;
 use std::time::Instant;
 
 use super::flow::{CheckFlow, Command, Io, Phase, circuit_on, next_step};
-use crate::model::{CircuitKind, Model, Motor, TrimKind};
+use super::plan;
+use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::{SwitchId, SwitchInputs};
 use crate::ui::check::state::{
     CheckView, Input, Mark, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult,
@@ -42,52 +43,56 @@ const ALL_INPUTS: [Input; 16] = [
     Input::RollTrimDown,
 ];
 
-/// One line per input to flip: the inputs 1–10 with circuits assigned (the planned
-/// ones watched; one whose circuits are all left alone is skipped, as flipping it
-/// would power them), then the flap and trim inputs of the motors the plan runs.
+/// One line per input: the inputs 1–10 with circuits assigned, then the flap and
+/// trim inputs of the motors the plan runs or excludes. An input the plan does not
+/// ask for (it would power a circuit left alone, `plan::unasked`) is skipped with
+/// the plan's words, before anything is asked.
 pub(super) fn rows(view: &CheckView, model: &Model, now: Instant) -> Vec<SwitchResult> {
     let circuits = model.circuits(now);
+    let unasked = |input: Input| view.unasked.iter().find(|u| u.input == input);
     let mut out = Vec::new();
     for n in 1..=10u8 {
-        let assigned: Vec<_> = circuits
-            .iter()
-            .filter(|c| matches!(c.kind, CircuitKind::Device | CircuitKind::Alternator { .. }))
-            .filter(|c| c.switch == Some(SwitchId::Input(n)))
-            .collect();
-        if assigned.is_empty() {
+        let on = plan::on_input(&circuits, n);
+        if on.is_empty() {
             continue;
         }
-        let watched: Vec<u8> = assigned
-            .iter()
-            .filter(|c| view.plan.iter().any(|p| p.id == c.id))
-            .map(|c| c.id)
-            .collect();
-        let outcome = if watched.is_empty() {
-            let names: Vec<_> = assigned.iter().map(|c| c.name.as_str()).collect();
-            Outcome::Skipped(format!(
-                "only circuits left alone are on it: {}",
-                names.join(", ")
-            ))
-        } else {
-            Outcome::NotRun
-        };
-        out.push(SwitchResult {
-            input: Input::Switch(n),
-            circuits: watched,
-            outcome,
+        let input = Input::Switch(n);
+        out.push(match unasked(input) {
+            Some(u) => SwitchResult {
+                input,
+                circuits: u.circuits.clone(),
+                outcome: Outcome::Skipped(u.why.clone()),
+            },
+            None => SwitchResult {
+                input,
+                circuits: on.iter().map(|c| c.id).collect(),
+                outcome: Outcome::NotRun,
+            },
         });
     }
-    for (motor, _) in &view.planned_motors {
+    let planned = |m: Motor| view.planned_motors.iter().any(|(p, _)| *p == m);
+    for motor in [
+        Motor::Flaps,
+        Motor::Trim(TrimKind::Pitch),
+        Motor::Trim(TrimKind::Roll),
+    ] {
         let inputs = match motor {
             Motor::Flaps => [Input::FlapUp, Input::FlapDown],
             Motor::Trim(TrimKind::Pitch) => [Input::PitchTrimUp, Input::PitchTrimDown],
             Motor::Trim(TrimKind::Roll) => [Input::RollTrimUp, Input::RollTrimDown],
         };
-        out.extend(inputs.map(|input| SwitchResult {
-            input,
-            circuits: Vec::new(),
-            outcome: Outcome::NotRun,
-        }));
+        for input in inputs {
+            let outcome = match unasked(input) {
+                Some(u) => Outcome::Skipped(u.why.clone()),
+                None if planned(motor) => Outcome::NotRun,
+                None => continue,
+            };
+            out.push(SwitchResult {
+                input,
+                circuits: Vec::new(),
+                outcome,
+            });
+        }
     }
     out
 }
@@ -137,6 +142,10 @@ impl CheckFlow {
             }
             io.out.news.push("– Switch inputs: skipped".into());
             return;
+        }
+        // What will not be asked, and why, before the first thing that is.
+        for u in &view.unasked {
+            io.out.news.push(format!("– {}", u.why));
         }
         self.switch_next(0, view, io);
     }

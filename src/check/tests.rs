@@ -1516,3 +1516,169 @@ fn a_stale_position_mid_run_stops_the_motor_and_says_why() {
         "left at {back}"
     );
 }
+
+// ===== check-switches: the switch step never powers what is left alone, and says
+// truthfully why circuits did not follow (review items 6 and 7) =====
+
+/// The scenario with Strobe moved to switch 4 beside Pitot Heat, and Landing Lt to
+/// switch 1 beside the alternator field.
+fn shared_switches() -> String {
+    scenario()
+        .replace(
+            "name = \"Strobe\"\nbreaker = 4\nswitch = 2",
+            "name = \"Strobe\"\nbreaker = 4\nswitch = 4",
+        )
+        .replace(
+            "name = \"Landing Lt\"\nbreaker = 8\nswitch = 3",
+            "name = \"Landing Lt\"\nbreaker = 8\nswitch = 1",
+        )
+}
+
+fn skip_words(r: &Rig, input: Input) -> String {
+    match r.switch(input) {
+        Outcome::Skipped(w) => w.clone(),
+        o => panic!("{input:?}: {o:?}"),
+    }
+}
+
+#[test]
+fn an_input_that_also_powers_something_left_alone_is_never_asked() {
+    let mut r = Rig::with(&shared_switches(), Rig::switches_only());
+    // Before power, the plan says which inputs it will not ask for, and why.
+    let unasked: Vec<(Input, &str)> = r
+        .view
+        .unasked
+        .iter()
+        .map(|u| (u.input, u.why.as_str()))
+        .collect();
+    assert_eq!(
+        unasked,
+        vec![
+            (
+                Input::Switch(1),
+                "switch 1 also powers Main Alt (an alternator field): not asked"
+            ),
+            (
+                Input::Switch(4),
+                "switch 4 also powers Pitot Heat (excluded): not asked"
+            ),
+            (
+                Input::Switch(7),
+                "switch 7 powers only Standby Alt (an alternator field): not asked"
+            ),
+        ]
+    );
+    r.start();
+    for n in [1, 4, 7] {
+        assert_eq!(
+            skip_words(&r, Input::Switch(n)),
+            r.view
+                .unasked
+                .iter()
+                .find(|u| u.input == Input::Switch(n))
+                .unwrap()
+                .why
+        );
+    }
+    assert!(
+        r.news
+            .iter()
+            .any(|n| n == "– switch 4 also powers Pitot Heat (excluded): not asked"),
+        "{:?}",
+        r.news
+    );
+    // The person does every input asked for; none of them is 1, 4 or 7, and nothing
+    // on those switches is ever switched.
+    let mut asked = Vec::new();
+    while r.view.step == Step::Switches {
+        let i = r.view.current.unwrap();
+        let input = r.view.switches[i].input;
+        asked.push(input);
+        let todo = r.view.prompt.as_ref().unwrap().todo.clone();
+        assert!(
+            !["switch 1 ", "switch 4 ", "switch 7 "]
+                .iter()
+                .any(|s| todo.contains(s)),
+            "{todo}"
+        );
+        r.run(100);
+        match input {
+            Input::Switch(n) => r.flip_on_off(n, 1500),
+            _ => r.cmd(Command::SkipItem),
+        }
+        r.run_until(6000, |r| {
+            r.view.current != Some(i) || r.view.step != Step::Switches
+        });
+    }
+    assert_eq!(
+        asked,
+        vec![
+            Input::Switch(2),
+            Input::FlapUp,
+            Input::FlapDown,
+            Input::PitchTrimUp,
+            Input::PitchTrimDown
+        ]
+    );
+    assert_eq!(
+        r.switch(Input::Switch(2)),
+        &Outcome::Found(SwitchFinding::Passed)
+    );
+    for id in [3, 5, 7, 17, 23] {
+        assert!(r.powers(id).is_empty(), "device {id}");
+        assert!(!r.on(id), "device {id} never powered");
+    }
+}
+
+#[test]
+fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inputs() {
+    let mut r = Rig::new(Options {
+        choices: Choices {
+            exclude: vec!["Nav Lt".into(), "Flaps".into()],
+            include: vec![],
+        },
+        ..Rig::switches_only()
+    });
+    r.start();
+    assert_eq!(
+        skip_words(&r, Input::Switch(2)),
+        "switch 2 also powers Nav Lt (excluded): not asked"
+    );
+    assert_eq!(
+        skip_words(&r, Input::FlapUp),
+        "flap switch UP drives Flaps (excluded): not asked"
+    );
+    assert_eq!(
+        skip_words(&r, Input::FlapDown),
+        "flap switch DOWN drives Flaps (excluded): not asked"
+    );
+    // The first input asked is switch 3; the pitch trim's inputs are still asked.
+    assert_eq!(
+        r.view.switches[r.view.current.unwrap()].input,
+        Input::Switch(3)
+    );
+    assert!(
+        r.view
+            .switches
+            .iter()
+            .any(|s| s.input == Input::PitchTrimUp && s.outcome == Outcome::NotRun)
+    );
+    // Taking the exclusion back on the screen asks switch 2 again.
+    let mut r = Rig::new(Options {
+        choices: Choices {
+            exclude: vec!["Nav Lt".into()],
+            include: vec![],
+        },
+        ..Rig::switches_only()
+    });
+    assert!(r.view.unasked.iter().any(|u| u.input == Input::Switch(2)));
+    r.view.current =
+        Some(r.view.plan.len() + r.view.excluded.iter().position(|e| e.id == 4).unwrap());
+    r.cmd(Command::Toggle);
+    assert!(!r.view.unasked.iter().any(|u| u.input == Input::Switch(2)));
+    r.start();
+    assert_eq!(
+        r.view.switches[r.view.current.unwrap()].input,
+        Input::Switch(2)
+    );
+}

@@ -1,6 +1,7 @@
 //! Before anything is powered: every circuit the check will switch on and for how
 //! long, the motors it will run, and beside them what it leaves alone and why, with
-//! the exclusions the person may take back. The person confirms from this screen, so
+//! the exclusions the person may take back, and the switch inputs it will not ask
+//! for because they power one left alone. The person confirms from this screen, so
 //! nothing that will be powered is ever hidden: a list too long for the terminal is
 //! packed into columns, and if even that does not fit the screen says how many are
 //! not shown and asks for a larger window.
@@ -190,6 +191,23 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView) {
             },
             current: selected_excluded == Some(i),
         })
+        // Then the switch inputs the person will not be asked to flip, each because it
+        // powers something above: never selectable, they follow the exclusions.
+        .chain(view.unasked.iter().map(|u| {
+            let label = u.input.label();
+            let words = u
+                .why
+                .strip_prefix(&format!("{label} "))
+                .unwrap_or(&u.why)
+                .to_string();
+            Row {
+                // Its label only, not the name column: the words get the room.
+                head: vec![Span::raw(label), Span::raw(" ")],
+                words,
+                words_style: theme::caution(),
+                current: false,
+            }
+        }))
         .collect();
     list::render(frame.buffer_mut(), inner, &rows, selected_excluded);
 }

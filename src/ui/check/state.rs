@@ -296,6 +296,19 @@ pub struct Excluded {
     pub may_include: bool,
 }
 
+/// A switch input the check will not ask the person to flip: flipping it would power
+/// a circuit the check leaves alone (excluded, the starter, an alternator field), or
+/// drive an excluded motor. The plan decides it; the confirm screen shows it and the
+/// input's result carries `why` as its skip reason.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unasked {
+    pub input: Input,
+    /// Every circuit on the input (device ids), planned or not.
+    pub circuits: Vec<u8>,
+    /// "switch 4 also powers Pitot Heat (excluded): not asked".
+    pub why: String,
+}
+
 /// The whole check as the screen and the report see it.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct CheckView {
@@ -305,6 +318,8 @@ pub struct CheckView {
     pub plan: Vec<Planned>,
     pub planned_motors: Vec<(Motor, Duration)>,
     pub excluded: Vec<Excluded>,
+    /// Switch inputs the person will not be asked to flip, and why.
+    pub unasked: Vec<Unasked>,
     pub prompt: Option<Prompt>,
     /// The item under test now: an index into the current step's results. Before
     /// power (`Step::Confirm`), the selected row: an index into `plan`, then
