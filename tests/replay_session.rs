@@ -53,10 +53,26 @@ fn a_recorded_session_replays_to_the_same_frames_at_the_same_instants() {
     for ms in [730u64, 1910, 3370, 4120] {
         live.pump_until(start + Duration::from_millis(ms));
         // Copy the model under its lock with `now` read there, so nothing the link
-        // stamps later is in the copy and nothing stamped before is missing.
-        let (mut model, now) = {
-            let m = live.model();
-            (m.clone(), Instant::now())
+        // stamps later is in the copy. A frame the link thread stamped before `now`
+        // but had not yet applied (it stamps before it takes the lock) would be
+        // missing from the copy while the replay has it: on a loaded machine that
+        // happens, so such a copy is taken again a moment later.
+        let newest = |m: &vpx_efis::model::Model, now: Instant| {
+            m.traffic
+                .entries()
+                .filter(|e| e.at <= now)
+                .map(|e| e.seq)
+                .max()
+        };
+        let (mut model, now) = loop {
+            let (copy, now) = {
+                let m = live.model();
+                (m.clone(), Instant::now())
+            };
+            live.pump_until(Instant::now() + Duration::from_millis(30));
+            if newest(&live.model(), now) == newest(&copy, now) {
+                break (copy, now);
+            }
         };
         // The frame of the same data, as a replay labels it: the source label and the
         // port name in the event log are the only things that say where bytes came from.
