@@ -67,6 +67,11 @@ const MIN_FRAME_GAP: Duration = Duration::from_millis(33);
 /// … and at least this often, so ages tick and COMMUNICATION LOST appears on time
 /// even when nothing arrives.
 const IDLE_REDRAW: Duration = Duration::from_millis(1000);
+/// A change from the link is drawn this long after it arrived, not at once: the unit
+/// sends its 1 Hz SYSTEM_STATUS, DEVICE_STATUS and FAULT_STATUS back to back (140
+/// bytes, 24 ms at 5760 bytes a second), and drawn at the first frame they cost two
+/// redraws a second instead of one, about half of an idle page's CPU.
+const LINK_SETTLE: Duration = MIN_FRAME_GAP;
 /// How long a notice stays on screen.
 const NOTICE_FOR: Duration = Duration::from_secs(5);
 
@@ -128,6 +133,9 @@ pub struct App {
     pacer: QueryPacer,
     notice_until: Option<Instant>,
     dirty: bool,
+    /// When the link made the screen dirty (and nothing else had): drawn
+    /// [`LINK_SETTLE`] later, with whatever else came meanwhile.
+    news_at: Option<Instant>,
     last_draw: Option<Instant>,
     drawn_revision: u64,
     gateway: Option<gateway::PageGateway>,
@@ -206,6 +214,7 @@ impl App {
             pacer: QueryPacer::default(),
             notice_until: None,
             dirty: true,
+            news_at: None,
             last_draw: None,
             drawn_revision: 0,
             gateway: None,
@@ -452,18 +461,32 @@ impl App {
             self.xfsp_shutdown(now);
             return;
         }
-        let queries = {
+        let (ticked, queries) = {
             let model = lock(&self.model);
-            if model.revision() != self.drawn_revision {
+            if model.revision() != self.drawn_revision && !self.dirty {
                 self.dirty = true;
+                self.news_at = Some(now);
             }
-            self.controller.tick(&model, now);
+            let ticked = self.controller.tick(&model, now);
             let controller = &self.controller;
-            self.pacer.due(now, &model, || controller.next_cnt())
+            (
+                ticked,
+                self.pacer.due(now, &model, || controller.next_cnt()),
+            )
         };
         self.send(queries);
-        let n = self.controller.take_notice();
-        self.set_notice(now, n);
+        self.set_notice(now, ticked.notice);
+        // The flows below that start or stop a run (the check) set `motor_run`
+        // themselves.
+        if ticked.running != self.view.motor_run {
+            self.view.motor_run = ticked.running;
+            self.dirty = true;
+        }
+        let repeat = self.replay.is_none().then_some(ticked.repeat);
+        if repeat != self.view.repeat {
+            self.view.repeat = repeat;
+            self.dirty = true;
+        }
         self.setup_tick(now);
         self.check_tick(now);
         self.reread_tick(now);
@@ -472,19 +495,6 @@ impl App {
         if self.notice_until.is_some_and(|t| now >= t) {
             self.view.notice = None;
             self.notice_until = None;
-            self.dirty = true;
-        }
-        let run = self.controller.running();
-        if run != self.view.motor_run {
-            self.view.motor_run = run;
-            self.dirty = true;
-        }
-        let repeat = self
-            .replay
-            .is_none()
-            .then(|| self.controller.repeat_timing());
-        if repeat != self.view.repeat {
-            self.view.repeat = repeat;
             self.dirty = true;
         }
         if self
@@ -508,7 +518,7 @@ impl App {
     /// The earliest moment the main loop must call [`App::tick`] again.
     pub fn next_deadline(&self, now: Instant) -> Instant {
         let redraw = match self.last_draw {
-            Some(t) if self.dirty => t + MIN_FRAME_GAP,
+            Some(t) if self.dirty => self.redraw_from(t),
             Some(t) => t + IDLE_REDRAW,
             None => now,
         };
@@ -539,11 +549,7 @@ impl App {
         terminal: &mut Terminal<B>,
         now: Instant,
     ) -> std::io::Result<bool> {
-        if !self.dirty
-            || self
-                .last_draw
-                .is_some_and(|t| now.saturating_duration_since(t) < MIN_FRAME_GAP)
-        {
+        if !self.dirty || self.last_draw.is_some_and(|t| now < self.redraw_from(t)) {
             return Ok(false);
         }
         self.draw(terminal, now)?;
@@ -580,8 +586,15 @@ impl App {
         // hold up the link's reader and writer, which take the lock for every frame.
         terminal.apply_buffer().map_err(err)?;
         self.dirty = false;
+        self.news_at = None;
         self.last_draw = Some(now);
         Ok(())
+    }
+
+    /// When a dirty screen may be drawn, the last frame drawn at `last`.
+    fn redraw_from(&self, last: Instant) -> Instant {
+        let settled = self.news_at.map(|t| t + LINK_SETTLE);
+        (last + MIN_FRAME_GAP).max(settled.unwrap_or(last))
     }
 
     /// Runs the link and timers (no input) until `until`: for tests and for replay.
@@ -598,9 +611,12 @@ impl App {
             }
             self.tick(Instant::now());
             // Keep the draw bookkeeping moving as the real loop would.
-            if self.dirty {
-                self.last_draw = Some(Instant::now());
+            let now = Instant::now();
+            if self.dirty && self.last_draw.is_none_or(|t| now >= self.redraw_from(t)) {
+                self.last_draw = Some(now);
                 self.dirty = false;
+                self.news_at = None;
+                self.drawn_revision = lock(&self.model).revision();
             }
         }
     }

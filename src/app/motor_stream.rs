@@ -42,18 +42,53 @@ pub struct Handled {
     pub notice: Option<String>,
 }
 
+/// What the page's loop needs of the controller after its tick, read under the same
+/// lock as the tick.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Ticked {
+    pub notice: Option<String>,
+    pub running: Option<MotorRun>,
+    pub repeat: RepeatTiming,
+}
+
 /// The controller and the way to the link, shared by the page and the thread.
 pub struct MotorPath {
-    controller: Mutex<Controller>,
+    shared: Mutex<Shared>,
     /// `None` in replay: nothing reaches a wire.
     link: Option<Arc<StopGate>>,
-    /// Tells the thread the controller changed, so it looks at the deadline again.
-    poke: Mutex<Option<Sender<()>>>,
+}
+
+/// Everything the page and the thread share, behind one lock: each pass of either
+/// loop takes it once.
+struct Shared {
+    controller: Controller,
     /// When the page's loop last ticked this path (real time). The model's checks
     /// (COMMUNICATION LOST, a motor fault, lost motor status) run in that tick, so a
     /// stalled loop — a terminal write blocked on a paused tty, say — must not leave
     /// this thread streaming on its own.
-    heartbeat: Mutex<Option<Instant>>,
+    heartbeat: Option<Instant>,
+    /// Wakes the thread early; `None` once the thread is told to end (or never ran).
+    poke: Option<Sender<()>>,
+    /// The deadline the thread last read and sleeps until (`None`: until poked).
+    sleeping_until: Option<Instant>,
+}
+
+impl Shared {
+    /// Wakes the thread if the controller now needs it before it would wake anyway:
+    /// a run started, or a key moved a deadline earlier. A deadline moved later (a
+    /// resend just sent, a run stopped) costs the thread at most one early look, so
+    /// a page with no run never wakes it.
+    fn poke_if_earlier(&mut self) {
+        let Some(d) = self.controller.next_deadline() else {
+            return;
+        };
+        if self.sleeping_until.is_none_or(|s| d < s)
+            && let Some(tx) = &self.poke
+        {
+            let _ = tx.send(());
+            self.sleeping_until = Some(d);
+        }
+    }
 }
 
 /// How long the page's loop may go without ticking while a motor runs. The loop ticks
@@ -64,23 +99,26 @@ pub const LOOP_STALL: Duration = Duration::from_millis(500);
 impl MotorPath {
     pub fn new(controller: Controller, link: Option<Arc<StopGate>>) -> Arc<MotorPath> {
         Arc::new(MotorPath {
-            controller: Mutex::new(controller),
+            shared: Mutex::new(Shared {
+                controller,
+                heartbeat: None,
+                poke: None,
+                sleeping_until: None,
+            }),
             link,
-            poke: Mutex::new(None),
-            heartbeat: Mutex::new(None),
         })
     }
 
-    fn lock(&self) -> MutexGuard<'_, Controller> {
+    fn lock(&self) -> MutexGuard<'_, Shared> {
         // A panic elsewhere while holding the lock must not also stop the motor path:
         // the stop that follows a panic goes through here.
-        self.controller.lock().unwrap_or_else(|p| p.into_inner())
+        self.shared.lock().unwrap_or_else(|p| p.into_inner())
     }
 
     /// Reads the controller (or takes its notice, or a command number): nothing that
     /// sends or moves its deadline.
     pub fn with<R>(&self, f: impl FnOnce(&mut Controller) -> R) -> R {
-        f(&mut self.lock())
+        f(&mut self.lock().controller)
     }
 
     /// Runs `f` and queues the packets it returns before letting go of the
@@ -91,13 +129,10 @@ impl MotorPath {
 
     /// As [`MotorPath::act`], also returning what else `f` gives.
     pub fn act_with<R>(&self, f: impl FnOnce(&mut Controller) -> (Vec<Packet>, R)) -> R {
-        let r = {
-            let mut c = self.lock();
-            let (packets, r) = f(&mut c);
-            self.queue(packets);
-            r
-        };
-        self.poke();
+        let mut s = self.lock();
+        let (packets, r) = f(&mut s.controller);
+        self.queue(packets);
+        s.poke_if_earlier();
         r
     }
 
@@ -141,16 +176,20 @@ impl MotorPath {
         self.act(|c| c.stop(now, reason));
     }
 
-    /// The model's verdict and the stream's clocks, after packets arrived.
-    pub fn tick(&self, model: &Model, now: Instant) {
-        *self.heartbeat.lock().unwrap_or_else(|p| p.into_inner()) = Some(Instant::now());
-        self.act(|c| c.tick(model, now));
-    }
-
-    /// Whether the page's loop has not ticked for longer than [`LOOP_STALL`].
-    fn loop_stalled(&self, now: Instant) -> bool {
-        let beat = *self.heartbeat.lock().unwrap_or_else(|p| p.into_inner());
-        beat.is_some_and(|b| now.saturating_duration_since(b) > LOOP_STALL)
+    /// The model's verdict and the stream's clocks, after packets arrived; what the
+    /// page shows of the controller afterwards, read under the same lock.
+    pub fn tick(&self, model: &Model, now: Instant) -> Ticked {
+        let mut s = self.lock();
+        s.heartbeat = Some(Instant::now());
+        let packets = s.controller.tick(model, now);
+        self.queue(packets);
+        s.poke_if_earlier();
+        let c = &mut s.controller;
+        Ticked {
+            notice: c.take_notice(),
+            running: c.running(),
+            repeat: c.repeat_timing(),
+        }
     }
 
     pub fn running(&self) -> Option<MotorRun> {
@@ -165,10 +204,6 @@ impl MotorPath {
         self.with(|c| c.next_cnt())
     }
 
-    pub fn repeat_timing(&self) -> RepeatTiming {
-        self.with(|c| c.repeat_timing())
-    }
-
     fn queue(&self, packets: Vec<Packet>) {
         if let Some(link) = &self.link {
             link.send(packets);
@@ -180,16 +215,10 @@ impl MotorPath {
         terminal::panicked() || self.link.as_ref().is_some_and(|l| l.halted())
     }
 
-    fn poke(&self) {
-        if let Some(tx) = self.poke.lock().unwrap_or_else(|p| p.into_inner()).as_ref() {
-            let _ = tx.send(());
-        }
-    }
-
     /// Starts the thread. It runs until [`MotorPath::stop_thread`].
     pub fn spawn(self: &Arc<Self>, wake: Sender<Wake>) -> Option<JoinHandle<()>> {
         let (tx, rx) = unbounded();
-        *self.poke.lock().unwrap_or_else(|p| p.into_inner()) = Some(tx);
+        self.lock().poke = Some(tx);
         let path = self.clone();
         let spawned = std::thread::Builder::new()
             .name("motor-stream".into())
@@ -216,12 +245,19 @@ impl MotorPath {
 
     /// Ends the thread (it sees the poke channel close).
     pub fn stop_thread(&self) {
-        self.poke.lock().unwrap_or_else(|p| p.into_inner()).take();
+        self.lock().poke.take();
     }
 
+    /// Sleeps until the controller's own deadline (or a poke that moved it earlier),
+    /// then, under one lock, ticks the stream, queues what it gives and reads the
+    /// next deadline.
     fn run(&self, poke: &Receiver<()>, wake: &Sender<Wake>) {
+        let mut deadline = {
+            let mut s = self.lock();
+            s.sleeping_until = s.controller.next_deadline();
+            s.sleeping_until
+        };
         loop {
-            let deadline = self.lock().next_deadline();
             let got = match deadline {
                 Some(d) => poke.recv_timeout(d.saturating_duration_since(Instant::now())),
                 None => poke.recv().map_err(|_| RecvTimeoutError::Disconnected),
@@ -229,20 +265,29 @@ impl MotorPath {
             if got == Err(RecvTimeoutError::Disconnected) {
                 return;
             }
+            // Pokes that came meanwhile are answered by this one look.
+            while poke.try_recv().is_ok() {}
             let now = Instant::now();
             let ended = {
-                let mut c = self.lock();
+                let mut s = self.lock();
+                let stalled = s
+                    .heartbeat
+                    .is_some_and(|b| now.saturating_duration_since(b) > LOOP_STALL);
+                let c = &mut s.controller;
                 let was_running = c.running().is_some();
                 let packets = if self.halted() {
                     // The hook sent the emergency stop; never resend after it.
                     c.stop(now, StopReason::Panic)
-                } else if was_running && self.loop_stalled(now) {
+                } else if was_running && stalled {
                     c.stop(now, StopReason::PageStalled)
                 } else {
                     c.tick_stream(now)
                 };
                 self.queue(packets);
-                was_running && c.running().is_none()
+                let ended = was_running && c.running().is_none();
+                deadline = c.next_deadline();
+                s.sleeping_until = deadline;
+                ended
             };
             if ended {
                 // The page shows the stop and its reason.
@@ -255,6 +300,28 @@ impl MotorPath {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The page's loop ticks the path on every frame from the unit (13 a second at
+    /// rest); with no run those ticks must not wake the thread, which has nothing to
+    /// do until a run starts. (That a run's start does wake it is what every motor
+    /// test through the page shows: without it nothing would resend the move.)
+    #[test]
+    fn ticks_without_a_run_leave_the_thread_asleep() {
+        let path = MotorPath::new(Controller::default(), None);
+        let (tx, rx) = unbounded();
+        path.lock().poke = Some(tx);
+        let model = Model::new(crate::model::Source::Simulated {
+            scenario: "t".into(),
+        });
+        let t0 = Instant::now();
+        for i in 0..20 {
+            let ticked = path.tick(&model, t0 + Duration::from_millis(100 * i));
+            assert_eq!(ticked.running, None);
+        }
+        path.stop(t0, StopReason::Quit);
+        assert!(rx.try_recv().is_err(), "the thread was woken for nothing");
+        assert!(path.lock().heartbeat.is_some(), "the ticks were seen");
+    }
 
     /// A page whose motor-stream thread could not start refuses every motor run
     /// (tests/control_streamer.rs shows a refused controller refusing a press), and
