@@ -123,6 +123,12 @@ pub struct Rereader {
     connected_at: Option<Instant>,
     /// Whether the unit's broadcasts were live at the last `due`.
     live: bool,
+    /// Every setting has been heard since the connect, so the look for those the
+    /// connect-time queries did not bring is over until the next connect: a setting
+    /// once heard stays heard (one a write leaves unknown is in `model.unknown`).
+    /// Without this the page's loop went through every setting twice a tick, half
+    /// of an idle tick's work.
+    all_heard: bool,
 }
 
 impl Rereader {
@@ -137,7 +143,9 @@ impl Rereader {
     fn wanted(&self, model: &Model) -> Vec<(Setting, Option<Instant>)> {
         let mut out: Vec<(Setting, Option<Instant>)> =
             model.unknown.keys().map(|&s| (s, None)).collect();
-        if let Some(since) = self.connected_at {
+        if let Some(since) = self.connected_at
+            && !self.all_heard
+        {
             let from = since + CONNECT_GRACE;
             out.extend(
                 Setting::all()
@@ -161,6 +169,8 @@ impl Rereader {
     /// first, so settings never asked are not held back behind repeats.
     pub fn due(&mut self, model: &Model, now: Instant) -> Vec<Message> {
         let wanted = self.wanted(model);
+        self.all_heard =
+            self.connected_at.is_some() && wanted.iter().all(|(_, from)| from.is_none());
         self.asked.retain(|s, _| wanted.iter().any(|(w, _)| w == s));
         // The unit talks again after a silence: ask now rather than wait out the
         // gaps that grew while nothing could answer.
@@ -218,6 +228,7 @@ impl Rereader {
         self.asked.clear();
         self.held_until = None;
         self.connected_at = Some(now);
+        self.all_heard = false;
     }
 
     /// The port is down: nothing can be heard, so nothing new is counted unheard.

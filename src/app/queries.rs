@@ -174,7 +174,7 @@ impl QueryPacer {
         if self.queue.is_empty() && self.next_refresh.is_some_and(|t| now >= t) {
             self.start(now);
         }
-        if self.round.is_none_or(|t| now < t) {
+        if self.queue.is_empty() || self.round.is_none_or(|t| now < t) {
             return Vec::new();
         }
         // Answered (heard since it was sent), or waited for long enough.

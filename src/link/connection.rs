@@ -20,6 +20,9 @@ pub type Connector =
 /// How long the supervisor waits between attempts to reopen a port.
 pub const RECONNECT_INTERVAL: Duration = Duration::from_millis(500);
 
+/// One byte on the ICD's line (§3.2.1: 57600 baud, 8N1, ten bits a byte): 173.6 µs.
+const LINE_BYTE_TIME: Duration = Duration::from_nanos(1_000_000_000 * 10 / 57_600);
+
 pub use crate::protocol::Direction;
 
 /// What the decoder made of received bytes.
@@ -288,6 +291,16 @@ fn read_until_failure(
                     bytes: buf[..n].to_vec(),
                 });
                 decode_chunk(decoder, &buf[..n], at, sink);
+                // A frame is still crossing the line: read again once the rest of it
+                // can be there, not for each piece a serial port hands over (at most
+                // a frame's 13 ms; on a faster link a frame rarely arrives in parts).
+                // Nothing is later for it: the frame cannot be judged before then.
+                // An idle page read a paced line about 50 times a second for 13
+                // frames; this halves that.
+                let rest = decoder.awaiting();
+                if rest > 0 {
+                    std::thread::sleep(LINE_BYTE_TIME * rest as u32);
+                }
             }
             // A replay's last record: the port stays, the byte stream is over.
             Err(e) if super::pipe::is_stream_end(&e) => decode_end(decoder, Instant::now(), sink),

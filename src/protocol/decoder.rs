@@ -150,6 +150,16 @@ impl Decoder {
         self.len
     }
 
+    /// How many more bytes the held candidate needs before it can be judged: 0 when
+    /// nothing is held. A reader can wait for them to cross the line instead of
+    /// waking for each piece of the frame.
+    pub fn awaiting(&self) -> usize {
+        if self.len == 0 {
+            return 0;
+        }
+        self.need().saturating_sub(self.len)
+    }
+
     /// Forgets a partial frame without looking at it, for when the bytes before are
     /// meaningless (a unit rebooting, a switch to the bootloader protocol). Counted as
     /// skipped. Where the input simply ended, use [`Decoder::finish`].

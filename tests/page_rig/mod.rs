@@ -8,6 +8,8 @@
 //! new pty behind the same link name.
 #![allow(dead_code)]
 
+pub mod terminal;
+
 use std::io::{Read, Write};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -1,0 +1,5 @@
+//! Shared by the integration tests that include it (`mod common;`): each test crate
+//! uses some of it.
+#![allow(dead_code)]
+
+pub mod cpu;
