@@ -17,6 +17,9 @@ use std::time::{Duration, Instant};
 
 use vpx_efis::xfsp::{Body, Message, idents};
 
+mod common;
+use common::cpu::process_cpu_time;
+
 struct Kill(Child);
 
 impl Drop for Kill {
@@ -24,19 +27,6 @@ impl Drop for Kill {
         let _ = self.0.kill();
         let _ = self.0.wait();
     }
-}
-
-/// User plus system CPU time of a process.
-fn cpu_time(pid: u32) -> Duration {
-    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).expect("/proc/PID/stat");
-    // The command name is in parentheses and may hold spaces: count fields after it.
-    let rest = &stat[stat.rfind(')').expect("comm") + 2..];
-    let fields: Vec<&str> = rest.split_whitespace().collect();
-    // utime and stime are fields 14 and 15 of the whole line, 12 and 13 after comm.
-    let ticks: u64 = fields[11].parse::<u64>().unwrap() + fields[12].parse::<u64>().unwrap();
-    // SAFETY: sysconf has no preconditions.
-    let hz = unsafe { libc::sysconf(libc::_SC_CLK_TCK) } as u64;
-    Duration::from_secs_f64(ticks as f64 / hz as f64)
 }
 
 /// ECBSTAT units in whatever datagrams arrive within `for_`.
@@ -130,10 +120,10 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
         );
     }
 
-    let cpu0 = cpu_time(pid);
+    let cpu0 = process_cpu_time(pid).unwrap();
     let wall0 = Instant::now();
     let (datagrams, units) = ecb_units(&peer, Duration::from_secs(secs));
-    let cpu = cpu_time(pid) - cpu0;
+    let cpu = process_cpu_time(pid).unwrap() - cpu0;
     let wall = wall0.elapsed();
     let share = cpu.as_secs_f64() / wall.as_secs_f64();
     eprintln!(

@@ -10,9 +10,10 @@ use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+mod common;
 mod sim_common;
 
-use sim_common::process_cpu_time;
+use common::cpu::process_cpu_time;
 use vpx_efis::protocol::message::*;
 
 struct Kill(std::process::Child);
@@ -51,10 +52,10 @@ fn idle_share(extra: &[&str], secs: u64) -> (f64, usize) {
     // Past start-up, then measured.
     c.pump(Duration::from_millis(500));
     let frames0 = c.log.len();
-    let cpu0 = process_cpu_time(pid);
+    let cpu0 = process_cpu_time(pid).unwrap();
     let wall0 = Instant::now();
     c.pump(Duration::from_secs(secs));
-    let cpu = process_cpu_time(pid) - cpu0;
+    let cpu = process_cpu_time(pid).unwrap() - cpu0;
     let share = cpu.as_secs_f64() / wall0.elapsed().as_secs_f64();
     (share, c.log.len() - frames0)
 }
