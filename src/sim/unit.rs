@@ -1444,9 +1444,12 @@ impl Unit {
         let since = *self.wig_wag_since.get_or_insert(now);
         let warm =
             now.saturating_duration_since(since) >= Duration::from_secs(ww.warm_up_period as u64);
-        // Table 17 note 4: no valid speed, no wig-wag.
-        let slow = self.speed(now).is_some_and(|s| s < ww.speed as u16);
-        self.wig_wag_active = self.wig_wag_mode == WigWagModeSetting::Auto && warm && slow;
+        // Table 17: "the speed at which the wig-wag function is engaged"; Table 44:
+        // "speed to start wig-wag" (70). Decision: the lights flash at that speed and
+        // above (in flight, where they make the aircraft seen) and burn steady below it
+        // (taxiing, where they light the way). Note 4: no valid speed, no wig-wag.
+        let fast_enough = self.speed(now).is_some_and(|s| s >= ww.speed as u16);
+        self.wig_wag_active = self.wig_wag_mode == WigWagModeSetting::Auto && warm && fast_enough;
         if self.wig_wag_active {
             let phase = (now.saturating_duration_since(since).as_millis()
                 / WIG_WAG_HALF_PERIOD.as_millis())
@@ -2099,7 +2102,7 @@ mod tests {
     }
 
     #[test]
-    fn wig_wag_flashes_below_its_speed_after_warm_up_and_steady_stops_it() {
+    fn wig_wag_flashes_at_and_above_its_speed_after_warm_up_and_steady_stops_it() {
         let mut b = Bench::new(
             "[[device]]\nid = 17\nswitch = 5\nbreaker = 8\nload = 6\n\
              [[device]]\nid = 18\nswitch = 5\nbreaker = 8\nload = 5\n\
@@ -2110,19 +2113,40 @@ mod tests {
             on: true,
         });
         let both = |b: &Bench| (b.stats().powered[17], b.stats().powered[18]);
+        let patterns = |b: &mut Bench, ias: u16| {
+            let mut seen = std::collections::HashSet::new();
+            for _ in 0..4 {
+                b.external(Some(ias), None);
+                b.run(250);
+                seen.insert(both(b));
+            }
+            seen
+        };
+        // Taxiing at 40 kt, through the warm-up and after it: steady.
         for _ in 0..6 {
             b.external(Some(40), None);
             b.run(1_000);
         }
-        // After the warm-up: one lamp at a time.
-        let mut patterns = std::collections::HashSet::new();
-        for _ in 0..4 {
-            b.external(Some(40), None);
-            b.run(250);
-            patterns.insert(both(&b));
+        assert_eq!(
+            patterns(&mut b, 40),
+            std::collections::HashSet::from([(true, true)]),
+            "below the speed: steady"
+        );
+        // At 70 kt exactly (Table 17's "speed at which the wig-wag is engaged") and
+        // above: one lamp at a time.
+        for ias in [70, 120] {
+            let p = patterns(&mut b, ias);
+            assert!(
+                p.contains(&(true, false)) && p.contains(&(false, true)),
+                "{ias} kt: {p:?}"
+            );
+            assert!(!p.contains(&(true, true)), "{ias} kt: {p:?}");
+            let active = b.last(|m| match m {
+                Message::SystemStatus(s) => Some(s.misc.wig_wag_active),
+                _ => None,
+            });
+            assert_eq!(active, Some(true), "Table 24's Wig-Wag Active at {ias} kt");
         }
-        assert!(patterns.contains(&(true, false)) && patterns.contains(&(false, true)));
-        assert!(!patterns.contains(&(true, true)));
         b.send(WigWagMode {
             mode: WigWagModeSetting::Steady,
         });
@@ -2130,9 +2154,9 @@ mod tests {
         b.send(WigWagMode {
             mode: WigWagModeSetting::Auto,
         });
-        b.external(Some(120), None);
+        b.external(Some(69), None);
         b.run(100);
-        assert_eq!(both(&b), (true, true), "above the speed: steady");
+        assert_eq!(both(&b), (true, true), "below the speed again: steady");
     }
 
     #[test]
