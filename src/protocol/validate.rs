@@ -14,6 +14,13 @@
 //!   2 A (Tables 40 and 44). As reading note 16 does for trim power, the pin's own
 //!   factory default is accepted although outside its range: a restore of a backup
 //!   taken from a fresh unit must not be refused, and the unit itself reports it.
+//!   The same holds for pitch trim power 100 % against Table 15's 40–90 (reading
+//!   note 16). A strict reading would answer these with 0x03 / 0x01; we take the
+//!   unit's own values over the table's range.
+//! * **DEVICE_SPEC for 0, 29 and 30.** Table 13's id range is 0–30, but the flaps and
+//!   trims are configured by FLAP_SPEC and TRIM_SPEC (their DEVICE_SPEC_QUERY answers
+//!   with those, reading note 13), and a breaker or switch for them would be stored
+//!   where nothing reads it back: refused `InvalidDevice` (0x02).
 //! * **"Same switch" for the alternators** (Table 13 note 6, Table 14 note 5) means the
 //!   same switch 1–10 or both always on (11). Both always off (0) is not a shared
 //!   switch: it is the factory state of the primary alternator and of every pin, and
@@ -1533,5 +1540,21 @@ mod tests {
         }
         let p = whole_config(&c);
         assert!(p.len() >= 28, "{}", p.len());
+    }
+
+    #[test]
+    fn device_spec_for_the_flaps_and_trims_is_an_invalid_device() {
+        let c = UnitConfig::default();
+        for id in [FLAPS, TRIM_R, TRIM_P] {
+            let spec = DeviceSpec {
+                device_id: id,
+                ..super::super::defaults::device_spec(5)
+            };
+            assert_eq!(
+                device_spec(&c, &spec),
+                Err(SpecAckError::InvalidDevice),
+                "device {id}"
+            );
+        }
     }
 }
