@@ -43,7 +43,7 @@ fn the_page_publishes_its_circuits_on_xfsp() {
                 efis_on |= ps.iter().any(|p| {
                     p.ident == idents::ECBSTAT
                         && p.unit == 2
-                        && matches!(&p.value, Value::Bus(b) if b.state == EcbState::On && b.label == b"EFIS 1")
+                        && matches!(&p.value, Value::Bus(b) if b.state == EcbState::On && b.label == b"VP-X/EFIS 1")
                 });
             }
         }

@@ -125,6 +125,9 @@ fn bus(p: &Parameter) -> &Bus {
     }
 }
 
+/// The CASMSG unit we send: GatewayConfig::default()'s source id.
+const OUR_CAS: u16 = 0x5650;
+
 fn cas(ps: &[Parameter]) -> Vec<(u16, CasLevel, String)> {
     ps.iter()
         .filter(|p| p.ident == idents::CASMSG)
@@ -174,7 +177,8 @@ fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
     let b = bus(efis);
     assert_eq!(b.state, EcbState::On);
     assert_eq!(b.draw_amps, 25, "2.5 A in tenths");
-    assert_eq!(b.label, b"EFIS");
+    // Draft Table 18: "Label for BUS Message (System/Item)".
+    assert_eq!(b.label, b"VP-X/EFIS");
     assert_eq!(efis.expire, Expire::at_least(LIFETIME));
     assert!(efis.expire.millis().unwrap() >= 2500);
     assert_eq!(
@@ -183,8 +187,10 @@ fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
     );
     let main = bus(find(&ps, idents::BUSSTAT, 0).unwrap());
     assert_eq!((main.out_volts, main.draw_amps), (138, 123));
+    assert_eq!(main.label, b"VP-X/MAIN BUS");
     let aux = bus(find(&ps, idents::BUSSTAT, 1).unwrap());
     assert_eq!((aux.state, aux.out_volts), (EcbState::On, 126));
+    assert_eq!(aux.label, b"VP-X/AUX BATTERY");
     assert_eq!(master(&ps), Some(false));
     assert_eq!(master_of(&ps, idents::MSTRWARN), Some(false));
     assert!(cas(&ps).is_empty());
@@ -231,9 +237,15 @@ fn a_short_circuit_raises_cas_and_master_warning_then_clear_three_times() {
     // Later than the 100 ms minimum interval, so ECBSTAT goes out with the CAS.
     fault(&mut m, t0 + ms(200), 5, FaultCode::ShortCircuit);
     let ps = params(&gw.tick(&mut m, t0 + ms(200)));
+    // Unit: "CAS System ID" (draft CASMSG), ours = our source id; the label tells
+    // alerts apart.
     assert_eq!(
         cas(&ps),
-        [(5, CasLevel::Warning, "5A-2: SHORT CIRCUIT".to_string())]
+        [(
+            OUR_CAS,
+            CasLevel::Warning,
+            "5A-2: SHORT CIRCUIT".to_string()
+        )]
     );
     assert_eq!(
         bus(find(&ps, idents::ECBSTAT, 5).unwrap()).state,
@@ -261,7 +273,7 @@ fn a_short_circuit_raises_cas_and_master_warning_then_clear_three_times() {
     assert!(
         clears
             .iter()
-            .all(|(_, u, l)| *u == 5 && l == "5A-2: SHORT CIRCUIT")
+            .all(|(_, u, l)| *u == OUR_CAS && l == "5A-2: SHORT CIRCUIT")
     );
     assert!(clears[1].0 - clears[0].0 >= ms(1000));
     assert_eq!(master_seen.last(), Some(&false));
@@ -311,13 +323,10 @@ fn lost_communication_publishes_unknown_and_says_so_once_past_the_start_grace() 
     assert!(find(&ps, idents::FLAPPOS, 0).is_none(), "no stale position");
     assert_eq!(
         cas(&ps),
-        [(
-            CAS_UNIT_COMM_LOST,
-            CasLevel::Caution,
-            "VP-X COMM LOST".into()
-        )]
+        [(OUR_CAS, CasLevel::Caution, "VP-X COMM LOST".into())]
     );
     assert_eq!(master(&ps), Some(true));
+    assert_eq!(gw.standing_cas()[0].0, CAS_UNIT_COMM_LOST, "our key inside");
     // Heard again: the message is withdrawn.
     status(&mut m, later + ms(500), &[2]);
     let ps = params(&gw.tick(&mut m, later + ms(500)));
@@ -1035,4 +1044,127 @@ fn after_every_tick_the_gateway_deadline_is_in_the_future() {
     }
     // 10 Hz polling at most, plus the motor stream's 5 Hz while it runs.
     assert!(ticks <= 20 * 16, "{ticks} ticks in 20 s");
+}
+
+/// Draft Table 18: a BUS label is "System/Item". A request labelled with our system
+/// ("VP-X/LANDING LT", as we publish it) or plainly ("LANDING LT") names our circuit;
+/// one for another system never does, even when the item matches one of ours.
+#[test]
+fn system_item_labels_name_our_circuits_and_other_systems_are_refused() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    named(&mut m, t0, 5, "LANDING LT");
+    named(&mut m, t0, 6, "TAXI LT");
+    named(&mut m, t0, 7, "NAV/STROBE");
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut peer = Sender::new(PEER, 1);
+    let mut at = t0;
+    let mut send = |gw: &mut Gateway, m: &mut Model, p: Parameter| {
+        at += ms(10);
+        gw.receive(&request(&mut peer, vec![p]), m, at)
+    };
+    let out = send(
+        &mut gw,
+        &mut m,
+        labelled(0, "VP-X/LANDING LT", EcbState::On),
+    );
+    assert_eq!(power(&out), [(5, true)]);
+    let out = send(
+        &mut gw,
+        &mut m,
+        labelled(6, " vp-x / taxi lt ", EcbState::On),
+    );
+    assert_eq!(power(&out), [(6, true)]);
+    // One of our names holding a '/' still matches whole, plain or with our system.
+    let out = send(&mut gw, &mut m, labelled(0, "NAV/STROBE", EcbState::On));
+    assert_eq!(power(&out), [(7, true)]);
+    let out = send(
+        &mut gw,
+        &mut m,
+        labelled(0, "VP-X/NAV/STROBE", EcbState::Off),
+    );
+    assert_eq!(power(&out), [(7, false)]);
+    // Another system's breaker with the same item: not ours, refused in words.
+    assert!(
+        send(
+            &mut gw,
+            &mut m,
+            labelled(0, "ECU/LANDING LT", EcbState::Off)
+        )
+        .is_empty()
+    );
+    let last = &m.events.back().unwrap().text;
+    assert!(
+        last.contains("\"ECU/LANDING LT\" is for system \"ECU\", not VP-X"),
+        "{last}"
+    );
+    assert_eq!(gw.stats().commands_taken, 4);
+    assert_eq!(gw.stats().commands_refused, 1);
+}
+
+/// We send FLIGHTDATA (see `xfsp::gateway`'s notes); a request sent as DEVSTATUS, the
+/// draft's other operation, is read all the same.
+#[test]
+fn a_request_sent_as_devstatus_is_taken() {
+    use vpx_efis::xfsp::MsgOp;
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let kind = MsgKind {
+        op: MsgOp::DevStatus,
+        ..MsgKind::flight_data(CertLevel::Experimental)
+    };
+    let d = Sender::new(PEER, 1)
+        .pack(kind, &[ecb_request(5, EcbState::On, Confidence::UserSel)])
+        .unwrap()
+        .remove(0);
+    assert_eq!(d[5], 3, "the header says DEVSTATUS");
+    assert_eq!(power(&gw.receive(&d, &mut m, t0)), [(5, true)]);
+}
+
+/// Draft §4.4: a message numbered below the last one from its source "MUST be
+/// discarded". Our decision: a source silent for 10 s (FORGET_SOURCE_AFTER) is
+/// forgotten, so a node that restarted and numbers from scratch is heard at once.
+#[test]
+fn an_older_number_is_discarded_until_its_source_was_silent_for_10_s() {
+    use vpx_efis::xfsp::gateway::FORGET_SOURCE_AFTER;
+    assert_eq!(FORGET_SOURCE_AFTER, Duration::from_secs(10));
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let before = Sender::new(PEER, 100)
+        .pack(
+            MsgKind::flight_data(CertLevel::Experimental),
+            &[ecb_request(5, EcbState::On, Confidence::UserSel)],
+        )
+        .unwrap()
+        .remove(0);
+    assert_eq!(power(&gw.receive(&before, &mut m, t0)), [(5, true)]);
+    // The node restarts and numbers from 7: within 10 s of its last message, discarded.
+    let restarted = |n| {
+        Sender::new(PEER, n)
+            .pack(
+                MsgKind::flight_data(CertLevel::Experimental),
+                &[ecb_request(6, EcbState::On, Confidence::UserSel)],
+            )
+            .unwrap()
+            .remove(0)
+    };
+    assert!(gw.receive(&restarted(7), &mut m, t0 + ms(9_000)).is_empty());
+    assert_eq!(gw.stats().rx.out_of_order, 1);
+    // Heard again 9 s later (18 s after its last fresh message but only 9 s after the
+    // discarded one): still within 10 s of hearing it, so still discarded.
+    status(&mut m, t0 + ms(18_000), &[2, 5]);
+    assert!(
+        gw.receive(&restarted(8), &mut m, t0 + ms(18_000))
+            .is_empty()
+    );
+    assert_eq!(gw.stats().rx.out_of_order, 2);
+    // More than 10 s of silence: forgotten, and its low number is taken.
+    status(&mut m, t0 + ms(28_500), &[2, 5]);
+    let out = gw.receive(&restarted(9), &mut m, t0 + ms(28_500));
+    assert_eq!(power(&out), [(6, true)]);
 }

@@ -23,12 +23,14 @@ use crate::xfsp::{Expire, Header, ParamView, Received, Receiver, idents};
 pub const SCALES_HELP: &str = "\
 Numbers as vpx-efis publishes them (the XFSp draft names no scales; this dump prints
 BUS values already divided, in A and V):
-  ECBSTAT    unit = VP-X device id 0-30, label = the circuit's name; drawamps and
-             maxamps in tenths of an ampere (25 = 2.5 A); the volts fields are 0 (the
-             VP-X measures no voltage per pin, so INPUTVOLTS is not set)
-  BUSSTAT    unit 0 \"MAIN BUS\": outvolts in tenths of a volt (138 = 13.8 V), drawamps
-             = the unit's total current in tenths of an ampere; unit 1 \"AUX BATTERY\":
-             outvolts in tenths of a volt, drawamps 0
+  ECBSTAT    unit = VP-X device id 0-30, label \"VP-X/\" and the circuit's name
+             (System/Item); drawamps and maxamps in tenths of an ampere (25 = 2.5 A);
+             the volts fields are 0 (the VP-X measures no voltage per pin, so
+             INPUTVOLTS is not set)
+  BUSSTAT    unit 0 \"VP-X/MAIN BUS\": outvolts in tenths of a volt (138 = 13.8 V),
+             drawamps = the unit's total current in tenths of an ampere; unit 1
+             \"VP-X/AUX BATTERY\": outvolts in tenths of a volt, drawamps 0
+  CASMSG     unit = our CAS system id (our XFSp source id), label \"NAME: FAULT\"
   FLAPPOS    0 = flaps up endpoint, 100000 = down endpoint
   PTRIMPOS   -100000 = nose-down endpoint, 0 = neutral, 100000 = nose-up endpoint
   RTRIMPOS   -100000 = left endpoint, 0 = neutral, 100000 = right endpoint

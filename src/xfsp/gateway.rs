@@ -52,9 +52,28 @@
 //! - a label and a unit other than 0: both, and they must name the same circuit;
 //! - no label: the circuit with that unit number (0 is then the flaps, device 0).
 //!
-//! Labels are compared with the names we publish, trimmed and ignoring ASCII case.
-//! A label no circuit has, a label two circuits share, a unit no circuit has, and a
-//! unit and label that disagree are refused, logged with the reason and counted.
+//! A label is taken in the draft's "System/Item" form (Table 18), as we publish it
+//! ("VP-X/LANDING LT"), or as the plain item ("LANDING LT"): the item is compared with
+//! the circuits' names, trimmed and ignoring ASCII case. A label whose system part is
+//! not ours ("ECU/FUEL PUMP") is for another system's breakers and is refused, never
+//! matched by its item alone. (A name of ours that itself holds a '/' still matches
+//! whole.) A label no circuit has, a label two circuits share, a unit no circuit has,
+//! and a unit and label that disagree are refused, logged with the reason and counted.
+//!
+//! # Message classes and order
+//!
+//! We send OP/FLIGHTDATA (draft Table 2, value 2). The draft names DEVSTATUS (3,
+//! "Device Status") but says nothing of what goes in it, and its one worked message
+//! (§5.1) carries one device's state (a radio's frequency) as FLIGHTDATA; so does our
+//! electrical state. On receipt every OP and MAINT message with parameters is read,
+//! FLIGHTDATA, DEVSTATUS or any other operation.
+//!
+//! §4.4: a message numbered at or below the last one from its source is discarded
+//! ([`super::receiver`], serial-number arithmetic). Decision: a source silent for
+//! [`FORGET_SOURCE_AFTER`] (10 s) is forgotten, and its next message is taken whatever
+//! its number. A node that restarts numbers "with an arbitrary initial value" (§4.1);
+//! without this it would be ignored until its numbers passed the old ones (up to
+//! 32767 messages). An old message replayed after 10 s of silence is taken once.
 //!
 //! # Master Caution and Master Warning
 //!
@@ -77,7 +96,7 @@ use super::format::{CasMsg, Value, latin1};
 use super::header::Header;
 use super::idents::{self, Ident};
 use super::param::Parameter;
-use super::publish::{Master, Publisher};
+use super::publish::{Master, Publisher, SYSTEM_LABEL};
 use super::receiver::{Received, Receiver, RxStats};
 use super::sender::{MsgKind, Sender};
 
@@ -94,6 +113,8 @@ pub const COMMAND_REPEAT_WINDOW: Duration = Duration::from_secs(1);
 pub const RECENT_MAX: usize = 1024;
 /// A source silent this long is forgotten, so a node that restarted (and numbers its
 /// messages from scratch) is heard again at once instead of after 32767 messages.
+/// A deliberate exception to the draft's §4.4 "MUST be discarded": see the module's
+/// notes on order.
 pub const FORGET_SOURCE_AFTER: Duration = Duration::from_secs(10);
 
 #[derive(Debug, Clone)]
@@ -167,7 +188,7 @@ impl Gateway {
             sender: Sender::new(cfg.source_id, cfg.first_msg_num),
             receiver: Receiver::default(),
             heard: HashMap::new(),
-            publisher: Publisher::new(cfg.cert, now),
+            publisher: Publisher::new(cfg.cert, cfg.source_id, now),
             air: AirData::default(),
             drive: MotorDrive::new(cfg.streamer),
             recent: HashMap::new(),
@@ -545,9 +566,27 @@ impl Gateway {
 }
 
 /// The circuit an ECBSTAT request names (see the module's notes): by label when the
-/// unit is 0, by unit when there is no label, by both otherwise. `Err` says why none.
+/// unit is 0, by unit when there is no label, by both otherwise; a "System/Item" label
+/// by its item when the system is ours. `Err` says why none.
 pub fn match_circuit(model: &Model, now: Instant, unit: u16, label: &str) -> Result<u8, String> {
     let label = label.trim();
+    let whole_is_a_name = || {
+        model
+            .circuits(now)
+            .iter()
+            .any(|c| model.display_name(c.id).trim().eq_ignore_ascii_case(label))
+    };
+    let label = match label.split_once('/') {
+        Some(_) if whole_is_a_name() => label,
+        Some((system, item)) if system.trim().eq_ignore_ascii_case(SYSTEM_LABEL) => item.trim(),
+        Some((system, _)) => {
+            return Err(format!(
+                "{label:?} is for system {:?}, not {SYSTEM_LABEL}",
+                system.trim()
+            ));
+        }
+        None => label,
+    };
     let by_unit = u8::try_from(unit)
         .ok()
         .filter(|&id| usize::from(id) < DEVICE_COUNT);

@@ -4,19 +4,30 @@
 //! least every [`REFRESH`], with an Expire of [`LIFETIME`]: a receiver that misses two
 //! refreshes in a row sees our data go stale rather than showing it as current.
 //!
-//! Items (unit numbers are ours where the draft says "None"):
-//! - ECBSTAT, unit = device id, label = the device's name: state from
-//!   [`ecb_state`], drawn amps, breaker as `maxamps`, volts fields unused (0, no
-//!   INPUTVOLTS flag: the VP-X measures no per-pin voltage).
-//! - BUSSTAT unit 0 "MAIN BUS": main bus volts as `outvolts`, total system current as
-//!   `drawamps`. BUSSTAT unit 1 "AUX BATTERY": aux battery volts; the VP-X measures no
-//!   aux battery current, so `drawamps` is 0; state OFF below 1 V (none fitted).
+//! Items (unit numbers are ours where the draft says "None"; see below):
+//! - ECBSTAT, unit = device id, label "VP-X/" and the device's name (Table 18's
+//!   "System/Item"): state from [`ecb_state`], drawn amps, breaker as `maxamps`, volts
+//!   fields unused (0, no INPUTVOLTS flag: the VP-X measures no per-pin voltage).
+//! - BUSSTAT unit 0 "VP-X/MAIN BUS": main bus volts as `outvolts`, total system current
+//!   as `drawamps`. BUSSTAT unit 1 "VP-X/AUX BATTERY": aux battery volts; the VP-X
+//!   measures no aux battery current, so `drawamps` is 0; state OFF below 1 V.
 //! - FLAPPOS/PTRIMPOS/RTRIMPOS, unit 0, scaled by [`super::scale`]; only while the motor
 //!   is enabled and its position is live.
-//! - CASMSG, unit = device id (255 for the system fault, 256 for lost communication),
-//!   one per fault: level by [`cas_level`], label "NAME: FAULT". When it goes away, a
-//!   CLEAR with the same unit and label is sent [`CLEAR_REPEATS`] times, one per
-//!   refresh, so one lost datagram does not leave it standing on another display.
+//! - CASMSG, unit = our CAS system id (the draft's "Unit Usage: CAS System ID": the
+//!   system raising the alert, which is us; the gateway gives its XFSp source id), one
+//!   per fault: level by [`cas_level`], label "NAME: FAULT" (which tells the alerts
+//!   apart). When it goes away, a CLEAR with the same unit and label is sent
+//!   [`CLEAR_REPEATS`] times, one per refresh, so one lost datagram does not leave it
+//!   standing on another display. Inside, each alert is still keyed by its device id
+//!   (255 system fault, 256 lost communication): [`Publisher::standing_cas`].
+//!
+//! Why ECBSTAT and BUSSTAT carry a unit although the draft says "Unit Usage: None":
+//! "None" gives the field no meaning; it does not say "set to 0" as the draft does
+//! where a field must be zero ("Reserved, set to 0" in CASMSG). A receiver that follows
+//! the draft ignores it and tells circuits apart by their "System/Item" label; one that
+//! keys every parameter by ident and unit, as the rest of the draft's parameters are
+//! keyed, keeps our 31 circuits and 2 buses apart instead of folding them onto unit 0.
+//! Requests are taken with unit 0 (see `gateway`).
 //! - MSTRCAUTN and MSTRWARN, unit 0: TRUE while a CAUTION (for MSTRCAUTN) or a WARNING
 //!   (for MSTRWARN) we issued stands that nobody has reset. The draft: "Resets by
 //!   SYSSEL/USERSEL with value of FALSE". A reset ([`Publisher::reset_master`])
@@ -62,8 +73,16 @@ pub const MIN_INTERVAL: Duration = Duration::from_millis(100);
 pub const LIFETIME: Duration = Duration::from_millis(2500);
 /// How many times a CLEAR is sent.
 pub const CLEAR_REPEATS: u8 = 3;
-/// CASMSG unit for "VP-X COMM LOST" (above every device id and 255).
+/// The key of "VP-X COMM LOST" among our alerts (above every device id and 255).
 pub const CAS_UNIT_COMM_LOST: u16 = 256;
+/// The system part of our BUS labels (draft Table 18: "Label for BUS Message
+/// (System/Item)").
+pub const SYSTEM_LABEL: &str = "VP-X";
+
+/// A BUS label in the draft's "System/Item" form: "VP-X/LANDING LT".
+pub fn bus_label(item: &str) -> Vec<u8> {
+    super::format::latin1_bytes(&format!("{SYSTEM_LABEL}/{item}"))
+}
 /// BUSSTAT units.
 pub const BUS_MAIN: u16 = 0;
 pub const BUS_AUX: u16 = 1;
@@ -188,6 +207,8 @@ struct Clearing {
 #[derive(Debug, Clone)]
 pub struct Publisher {
     cert: CertLevel,
+    /// CASMSG's unit: "CAS System ID", ours.
+    cas_system: u16,
     started: Instant,
     sent: HashMap<(Ident, u16), Sent>,
     /// CAS messages standing, by unit.
@@ -201,9 +222,11 @@ pub struct Publisher {
 }
 
 impl Publisher {
-    pub fn new(cert: CertLevel, now: Instant) -> Publisher {
+    /// `cas_system` is the unit our CASMSGs carry (the gateway gives its source id).
+    pub fn new(cert: CertLevel, cas_system: u16, now: Instant) -> Publisher {
         Publisher {
             cert,
+            cas_system,
             started: now,
             sent: HashMap::new(),
             cas: BTreeMap::new(),
@@ -354,7 +377,7 @@ impl Publisher {
                 flags: EcbFlags::default(),
                 draw_amps: c.amps.map_or(0, Bus::to_tenths),
                 max_amps: c.breaker.map_or(0, |b| Bus::to_tenths(f32::from(b))),
-                label: super::format::latin1_bytes(&c.name),
+                label: bus_label(&c.name),
                 ..Bus::default()
             };
             let confidence = if state == EcbState::Unknown0 {
@@ -393,7 +416,7 @@ impl Publisher {
         };
         for (unit, mut bus, label) in [(BUS_MAIN, main, "MAIN BUS"), (BUS_AUX, aux, "AUX BATTERY")]
         {
-            bus.label = label.as_bytes().to_vec();
+            bus.label = bus_label(label);
             let confidence = if bus.state == EcbState::Unknown0 {
                 Confidence::Useless
             } else {
@@ -502,11 +525,11 @@ impl Publisher {
             list.retain(|c| c.left > 0);
         }
         self.clearing.retain(|_, l| !l.is_empty());
-        for (unit, m) in clears {
-            out.push(self.param(idents::CASMSG, unit, Value::CasMsg(m)));
+        for (_, m) in clears {
+            out.push(self.param(idents::CASMSG, self.cas_system, Value::CasMsg(m)));
         }
         for (unit, msg) in want {
-            let p = self.param(idents::CASMSG, unit, Value::CasMsg(msg.clone()));
+            let p = self.param(idents::CASMSG, self.cas_system, Value::CasMsg(msg.clone()));
             let due = self.cas.get(&unit).is_none_or(|s| now >= s.at + REFRESH);
             if due {
                 if !self.cas.contains_key(&unit)
@@ -655,7 +678,7 @@ mod tests {
         let mut m = model();
         status(&mut m, t0);
         flaps_live(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
         // Before the DEVICE_ENABLE replies every pin is published once…
         let first = p.poll(&m, t0);
         let ecb = |ps: &[Parameter]| ps.iter().filter(|p| p.ident == idents::ECBSTAT).count();
@@ -683,7 +706,7 @@ mod tests {
         let t0 = Instant::now();
         let mut m = model();
         status(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
         p.poll(&m, t0);
         disable(&mut m, t0 + ms(10), 7);
         p.poll(&m, t0 + ms(20));
@@ -710,7 +733,7 @@ mod tests {
         let t0 = Instant::now();
         let mut m = model();
         status(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
         p.poll(&m, t0);
         fault(&mut m, t0 + ms(200), &[(5, FaultCode::OverCurrent)]);
         let ps = p.poll(&m, t0 + ms(200));
@@ -748,7 +771,7 @@ mod tests {
         let t0 = Instant::now();
         let mut m = model();
         status(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
         fault(&mut m, t0, &[(5, FaultCode::OverCurrent)]);
         p.poll(&m, t0);
         assert!(p.master_active(Master::Caution));
@@ -770,7 +793,7 @@ mod tests {
         let t0 = Instant::now();
         let mut m = model();
         status(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, t0);
+        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
         let ps = p.poll(&m, t0);
         assert_eq!(master(&ps, Master::Warning), Some(false));
         assert_eq!(master(&ps, Master::Caution), Some(false));
