@@ -630,9 +630,12 @@ fn a_reversed_trim_parked_near_its_endpoint_never_passes_it() {
         "stopped by its stop message, not by starving the unit"
     );
     assert!(!after.pitch_trim_running);
+    // Put back (the check's tolerance, 3 counts): the run back is "up", which on
+    // these swapped leads moves away from 30.
     assert!(
-        (i32::from(after.pitch_trim_position) - 35).abs() <= 4,
-        "put back: {}",
-        after.pitch_trim_position
+        (i32::from(after.pitch_trim_position) - 35).abs() <= 3,
+        "put back: {} ({:?})",
+        after.pitch_trim_position,
+        pitch.positions
     );
 }

@@ -290,7 +290,7 @@ impl CheckFlow {
                 };
                 let d = item.dirs[0];
                 let length = item.run;
-                self.motor_run(d, length, view, io);
+                self.motor_run(d, length, None, view, io);
             }
             Stage::Running { since, .. } => {
                 if io.ctl.running().is_some_and(|r| r.motor == item.motor) {
@@ -378,7 +378,7 @@ impl CheckFlow {
                         }
                         _ => item.run,
                     };
-                    return self.motor_run(d, length, view, io);
+                    return self.motor_run(d, length, None, view, io);
                 }
                 let idx = item.idx;
                 if item.leg == 2 && view.motors[idx].outcome == Outcome::NotRun && !item.skipped {
@@ -430,10 +430,20 @@ impl CheckFlow {
         };
         let ratio = back.abs() as f32 / moved.abs() as f32;
         let length = ran.mul_f32(ratio).min(item.run * 2);
-        self.motor_run(dir, length, view, io);
+        self.motor_run(dir, length, Some(back.signum()), view, io);
     }
 
-    fn motor_run(&mut self, d: Direction, length: Duration, view: &mut CheckView, io: &mut Io) {
+    /// Runs the motor `d` for `length`; `way` is which way the check expects the
+    /// position to go when it knows better than the direction (the run back, after it
+    /// saw the motor go), so the run keeps off the endpoint it will really reach.
+    fn motor_run(
+        &mut self,
+        d: Direction,
+        length: Duration,
+        way: Option<i32>,
+        view: &mut CheckView,
+        io: &mut Io,
+    ) {
         let Phase::Motors(item) = &mut self.phase else {
             return;
         };
@@ -451,7 +461,10 @@ impl CheckFlow {
                 return;
             }
         }
-        match io.ctl.run_for(io.model, item.motor, d, length, now) {
+        match io
+            .ctl
+            .run_for_moving(io.model, item.motor, d, way, length, now)
+        {
             Ok(p) => {
                 io.out.packets.extend(p);
                 if item.leg < 2 {
@@ -489,6 +502,21 @@ impl CheckFlow {
                             .push(format!("– {}: {}", motor_name(item.motor), why.0));
                     }
                     _ => {}
+                }
+                // A run back that could not be made leaves it where it is: said so.
+                let pos = io
+                    .model
+                    .live_flap_trim(now)
+                    .map(|ft| position(item.motor, ft));
+                if item.leg >= 3
+                    && let (Some(p0), Some(pos)) = (item.p0, pos)
+                    && (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN
+                {
+                    let motor = item.motor;
+                    io.out
+                        .news
+                        .push(format!("  {}: not run back: {}", motor_name(motor), why.0));
+                    not_back(view, idx, motor, pos, p0, io);
                 }
                 self.motor_next(idx + 1, view, io);
             }
@@ -581,7 +609,7 @@ impl CheckFlow {
                 view.prompt = Some(running_prompt(item.motor));
                 if item.leg < 2 {
                     let (d, length) = (item.dirs[item.leg], item.run);
-                    self.motor_run(d, length, view, io);
+                    self.motor_run(d, length, None, view, io);
                 } else {
                     let pos = io
                         .model

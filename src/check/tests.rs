@@ -1379,33 +1379,40 @@ fn the_first_direction_is_toward_the_side_with_more_room() {
     }
 }
 
-/// A reversed pitch trim 5 counts below its up endpoint: the first run is "down"
-/// (more room), but the motor goes up, toward 30. It is stopped there, never past,
-/// found reversed, and put back.
+/// A reversed pitch trim 5 (or 8) counts below its up endpoint: the first run is
+/// "down" (more room), but the motor goes up, toward 30. It is stopped there, never
+/// past, found reversed, and put back: the run back is "up", which on this motor
+/// moves away from 30, so the endpoint it keeps off is the down one.
 #[test]
 fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
-    let mut r = Rig::with(&pitch_at(35, true), Rig::motors_only());
-    r.start();
-    let mut seen = Vec::new();
-    while r.view.step != Step::Done && seen.len() < 2000 {
-        seen.extend(r.run_watching(10, PITCH));
+    for at in [35, 38] {
+        let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+        r.start();
+        let mut seen = Vec::new();
+        while r.view.step != Step::Done && seen.len() < 2000 {
+            seen.extend(r.run_watching(10, PITCH));
+        }
+        let lowest = *seen.iter().min().unwrap();
+        assert!(
+            lowest >= 30,
+            "from {at}: passed the up endpoint 30: {lowest}"
+        );
+        let m = &r.view.motors[1];
+        assert_eq!(m.outcome, Outcome::Found(MotorFinding::Reversed), "{m:?}");
+        assert!(
+            r.news
+                .iter()
+                .any(|n| n.contains("stopped at its endpoint (30)")),
+            "{:?}",
+            r.news
+        );
+        let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
+        assert!(
+            (back - i32::from(at)).abs() <= super::motors::BACK_WITHIN,
+            "from {at}: left at {back}; {m:?} {:?}",
+            r.news
+        );
     }
-    let lowest = *seen.iter().min().unwrap();
-    assert!(lowest >= 30, "passed the up endpoint 30: down to {lowest}");
-    let m = &r.view.motors[1];
-    assert_eq!(m.outcome, Outcome::Found(MotorFinding::Reversed), "{m:?}");
-    assert!(
-        r.news
-            .iter()
-            .any(|n| n.contains("stopped at its endpoint (30)")),
-        "{:?}",
-        r.news
-    );
-    let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
-    assert!(
-        (back - 35).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}"
-    );
 }
 
 /// Flaps between close endpoints (up 20, down 50) at 38, with 1.5 s runs (30 counts

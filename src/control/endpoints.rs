@@ -124,6 +124,10 @@ pub fn no_room(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Optio
 pub struct Watch {
     pub motor: Motor,
     pub direction: Direction,
+    /// The way the position is expected to go (+1 grow, −1 shrink) until the run
+    /// shows its own: the direction's ([`expected_sign`]), or what the caller saw
+    /// this motor do (a reversed motor run back by the installation check).
+    way: Option<i32>,
     /// The latest positions with when the page heard them, oldest first.
     samples: Vec<(Instant, u8)>,
 }
@@ -133,7 +137,16 @@ impl Watch {
         Watch {
             motor,
             direction,
+            way: None,
             samples: Vec::new(),
+        }
+    }
+
+    /// A run whose position the caller expects to go `way` (+1 grow, −1 shrink).
+    pub fn moving(motor: Motor, direction: Direction, way: i32) -> Watch {
+        Watch {
+            way: Some(way.signum()),
+            ..Watch::new(motor, direction)
         }
     }
 
@@ -176,7 +189,8 @@ impl Watch {
         let way = if rate.abs() >= STILL_RATE {
             rate.signum() as i32
         } else {
-            expected_sign(self.motor, self.direction, ft)
+            self.way
+                .unwrap_or_else(|| expected_sign(self.motor, self.direction, ft))
         };
         let ahead = f32::from(pos) + rate * (age + LOOKAHEAD).as_secs_f32();
         let end = if way > 0 { hi } else { lo };
@@ -200,6 +214,18 @@ pub fn permit(
     direction: Direction,
     now: Instant,
 ) -> Result<(), String> {
+    permit_moving(model, motor, direction, None, now)
+}
+
+/// [`permit`] for a run whose position the caller expects to go `way` (+1 grow,
+/// −1 shrink; `None`: the direction's way): the room is toward the endpoint that way.
+pub fn permit_moving(
+    model: &Model,
+    motor: Motor,
+    direction: Direction,
+    way: Option<i32>,
+    now: Instant,
+) -> Result<(), String> {
     let Some(st) = model.flap_trim.as_ref() else {
         return Ok(()); // `motor_permit` already says there is no live status.
     };
@@ -210,5 +236,22 @@ pub fn permit(
             StopReason::PositionStale.describe()
         ));
     }
-    no_room(motor, direction, &st.value).map_or(Ok(()), Err)
+    let ft = &st.value;
+    match way {
+        Some(w) if w.signum() != expected_sign(motor, direction, ft) => {
+            // Run one way to move the other: the room is toward the endpoint it will
+            // really reach, which is the other direction's.
+            no_room(motor, opposite(direction), ft).map_or(Ok(()), Err)
+        }
+        _ => no_room(motor, direction, ft).map_or(Ok(()), Err),
+    }
+}
+
+fn opposite(d: Direction) -> Direction {
+    match d {
+        Direction::Up => Direction::Down,
+        Direction::Down => Direction::Up,
+        Direction::Left => Direction::Right,
+        Direction::Right => Direction::Left,
+    }
 }

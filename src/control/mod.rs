@@ -317,11 +317,33 @@ impl Controller {
         if let Some(why) = &self.motors_refused {
             return Err(Refusal(why.clone()));
         }
+        self.run_for_moving(model, motor, direction, None, length, now)
+    }
+
+    /// [`Controller::run_for`] of a run whose position the caller expects to go `way`
+    /// (+1 grow, −1 shrink) rather than the direction's own way: the installation
+    /// check running back a motor it saw go the wrong way. The endpoint that way is
+    /// the one the run keeps off; any other stop is as for every run.
+    pub fn run_for_moving(
+        &mut self,
+        model: &Model,
+        motor: Motor,
+        direction: Direction,
+        way: Option<i32>,
+        length: Duration,
+        now: Instant,
+    ) -> Result<Vec<Packet>, Refusal> {
+        if let Some(why) = &self.motors_refused {
+            return Err(Refusal(why.clone()));
+        }
         motor_permit(model, motor, direction, now)?;
-        endpoints::permit(model, motor, direction, now).map_err(Refusal)?;
+        endpoints::permit_moving(model, motor, direction, way, now).map_err(Refusal)?;
         let out = self.streamer.run_for(now, motor, direction, length);
         if self.streamer.running_key() == Some((motor, direction)) {
-            self.watch = Some(endpoints::Watch::new(motor, direction));
+            self.watch = Some(match way {
+                Some(w) => endpoints::Watch::moving(motor, direction, w),
+                None => endpoints::Watch::new(motor, direction),
+            });
         }
         Ok(out)
     }
