@@ -211,7 +211,10 @@ fn the_install_scenario_finds_each_injected_fault_and_puts_everything_back() {
     }
     let landing: Vec<&String> = fix.iter().filter(|f| f.starts_with("Landing Lt")).collect();
     assert_eq!(landing.len(), 1, "{fix:#?}");
-    assert!(landing[0].contains("of a 8 A breaker (≥ 80 %)"), "{fix:#?}");
+    assert!(
+        landing[0].contains("of an 8 A breaker (≥ 80 %)"),
+        "{fix:#?}"
+    );
     assert_eq!(
         fix.len(),
         injected().len() + 1,
@@ -485,7 +488,10 @@ fn headless_check_prints_results_and_exits_by_what_it_found() {
     );
     assert!(text.contains("– Switch inputs: skipped"), "{text}");
     assert!(text.contains("Left to fix:\n  - Beacon (5A-3)"), "{text}");
-    assert!(text.contains("  - switch 3: Beacon"), "{text}");
+    assert!(
+        text.contains("  - Beacon: flip switch 3 to the other position and back"),
+        "{text}"
+    );
     assert!(!sim.stats().powered[6], "Beacon back off");
     let reports: Vec<_> = std::fs::read_dir(dir.path().join("reports"))
         .unwrap()
@@ -540,8 +546,16 @@ fn headless_check_stopped_by_a_signal_puts_back_and_exits_interrupted() {
         text.contains("Interrupted: ended by a signal (SIGTERM)"),
         "{text}"
     );
+    // Back as it was, but held so by DEVICE_POWER: said, with the switch to flip.
     assert!(
-        text.contains("Every circuit it touched is as it found it."),
+        text.contains(
+            "Every circuit it touched is back as it found it, but held there by \
+             DEVICE_POWER: flip the switches listed above."
+        ),
+        "{text}"
+    );
+    assert!(
+        text.contains("  - Nav Lt: flip switch 2 to the other position and back"),
         "{text}"
     );
     assert!(!stats.stats().powered[4], "Nav Lt back off");

@@ -136,6 +136,7 @@ fn every_state() -> Vec<(&'static str, Option<LoadsView>, usize, u16, u16)> {
         ("analysed_80x24", Some(warned()), 0, 80, 24),
         ("analysed_scrolled_80x24", Some(warned()), 3, 80, 24),
         ("troubled_120x40", Some(troubled()), 0, 120, 40),
+        ("troubled_80x24", Some(troubled()), 0, 80, 24),
         ("short_80x14", Some(warned()), 0, 80, 14),
         (
             "template_written",
@@ -246,6 +247,29 @@ fn warnings_are_in_words_as_well_as_colour() {
     assert!(t.contains("⚠ no current"), "{t}");
     let (x, y) = find(&buf, "over the alternator", "✗");
     assert_eq!(buf[(x, y)].fg, Color::Red);
+}
+
+/// At 80 columns the longest verdicts ("9.9 A over the alternator's 20 A; at least:
+/// no current for Com radio") are wrapped under themselves, never cut at the edge.
+#[test]
+fn at_80_columns_no_verdict_is_cut() {
+    let LoadsView::Analysed { analysis, .. } = troubled() else {
+        unreachable!()
+    };
+    let t = text(&draw(Some(&troubled()), 0, 80, 24));
+    // The screen's words, joined back where they were wrapped.
+    let joined = t.lines().map(str::trim).collect::<Vec<_>>().join(" ");
+    for p in Phase::ALL {
+        let v = analysis.verdict(p);
+        assert!(joined.contains(&v), "{v:?} not whole in\n{t}");
+    }
+    assert!(
+        joined.contains("the 5A-3 pin draws 1.2 A but is not in the load file: it is in no phase"),
+        "{t}"
+    );
+    for l in t.lines() {
+        assert!(l.chars().count() <= 80, "{l:?}");
+    }
 }
 
 #[test]

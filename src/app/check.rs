@@ -22,6 +22,7 @@ use crate::control::{MotorStreamer, StopReason};
 use crate::link::{self, PortAddr};
 use crate::model::Source;
 use crate::ui::check::state::{CheckView, Mark, Step};
+use crate::ui::check::words;
 use crate::ui::state::Screen;
 
 /// The check as the app holds it.
@@ -110,7 +111,10 @@ impl App {
     }
 
     /// Ends a running check from outside (quit, a signal, a panic). `may_wait`: the
-    /// caller goes on ticking, so a circuit switched off now is seen off.
+    /// caller goes on ticking, so a circuit switched off now is seen off. Once the
+    /// check has ended, its report is written (marked INCOMPLETE, with what it left in
+    /// which state), as the headless check writes it: the page may be on its way
+    /// out, and a report written later would never be.
     pub fn check_interrupt(&mut self, cause: Cause, may_wait: bool, now: Instant) {
         if self.check_finished() {
             return;
@@ -118,6 +122,9 @@ impl App {
         self.with_check(|flow, view, model, c| {
             flow.interrupt_for(cause, may_wait, view, model, c, now)
         });
+        if self.check_finished() {
+            self.write_check_report();
+        }
     }
 
     /// The flow's clocks, after the controller's tick saw the model.
@@ -146,15 +153,26 @@ impl App {
             return;
         };
         self.check.reported = true;
-        let (port, unit) = {
-            // One lock for both: two guards in one expression would deadlock.
+        let (port, unit, travel) = {
+            // One lock for all: two guards in one expression would deadlock.
             let m = self.model();
             let port = match &m.source {
                 Source::Serial { path } => path.clone(),
                 Source::Simulated { scenario } => format!("built-in virtual VP-X ({scenario})"),
                 Source::Replay { file } => file.clone(),
             };
-            (port, m.version.map(|v| v.value))
+            let now = Instant::now();
+            // The ends the screen showed the positions on.
+            let travel = self
+                .check
+                .view
+                .motors
+                .iter()
+                .filter_map(|r| {
+                    crate::ui::check::motors::ends(r.motor, &m, now).map(|e| (r.motor, e))
+                })
+                .collect();
+            (port, m.version.map(|v| v.value), travel)
         };
         let about = crate::check::report::About {
             when: self
@@ -164,6 +182,7 @@ impl App {
             port,
             unit,
             ours: crate::cli::VERSION.to_string(),
+            travel,
         };
         let written = crate::check::report::write(&dir, &self.check.view, &about);
         let line = match written {
@@ -570,35 +589,30 @@ fn print_summary(view: &CheckView, out: &mut dyn std::io::Write) -> std::io::Res
     let count = |m| view.marks().filter(|x| *x == m).count();
     writeln!(
         out,
-        "Summary: {} passed, {} failed, {} warnings, {} skipped, {} not run",
+        "Summary: {} passed, {} failed, {}, {} skipped, {} not run",
         count(Mark::Pass),
         count(Mark::Fail),
-        count(Mark::Warn),
+        words::count(count(Mark::Warn), "warning", "warnings"),
         count(Mark::Skipped),
         count(Mark::NotRun)
     )?;
-    let fix = view.to_fix();
+    let fix = view.left_to_fix();
     if !fix.is_empty() {
         writeln!(out, "Left to fix:")?;
         for f in fix {
             writeln!(out, "  - {f}")?;
         }
     }
-    if !view.to_cycle.is_empty() {
-        writeln!(
-            out,
-            "Held by the page until their switch is cycled (ICD §6): cycle these switches:"
-        )?;
-        for (_, name, sw) in &view.to_cycle {
-            if let crate::protocol::message::SwitchId::Input(n) = sw {
-                writeln!(out, "  - switch {n}: {name}")?;
-            }
-        }
-    }
     if let Some(i) = &view.interrupted {
         writeln!(out, "The check was interrupted: {}", i.cause)?;
-        if i.left.is_empty() {
+        if i.left.is_empty() && view.to_cycle.is_empty() {
             writeln!(out, "  Every circuit it touched is as it found it.")?;
+        } else if i.left.is_empty() {
+            writeln!(
+                out,
+                "  Every circuit it touched is back as it found it, but held there by \
+                 DEVICE_POWER: flip the switches listed above."
+            )?;
         }
         for (id, name, why) in &i.left {
             writeln!(out, "  - {name} (device {id}): {why}")?;

@@ -503,7 +503,11 @@ impl CheckFlow {
 
     fn finish(&mut self, view: &mut CheckView, io: &mut Io) {
         self.phase = Phase::Done;
-        view.step = Step::Done;
+        // An interrupted check stays on the step where it stopped: the step bar must
+        // not show the report as reached.
+        if view.interrupted.is_none() {
+            view.step = Step::Done;
+        }
         view.current = None;
         let fails = view
             .marks()
@@ -522,9 +526,10 @@ impl CheckFlow {
             keys: vec![("Esc", "back to the device list")],
         });
         if view.interrupted.is_none() {
-            io.out
-                .news
-                .push(format!("Check complete: {} to fix", view.to_fix().len()));
+            io.out.news.push(format!(
+                "Check complete: {} to fix",
+                view.left_to_fix().len()
+            ));
         }
     }
 

@@ -103,6 +103,9 @@ pub fn build(
             plan.excluded.push(Excluded {
                 id: c.id,
                 name: c.name.clone(),
+                pin: c.pin,
+                breaker: c.breaker,
+                switch: c.switch,
                 why,
                 may_include,
             });

@@ -11,13 +11,13 @@ use std::time::SystemTime;
 use crate::files;
 use crate::loads::analysis::amps_text;
 use crate::loads::{Analysis, Figure, Phase};
+use crate::model::Motor;
 use crate::protocol::device;
 use crate::protocol::message::{SwitchId, Version};
 use crate::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, MotorFinding, MotorResult, Outcome,
-    Step, SwitchResult,
+    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, Outcome, Step, SwitchResult,
 };
-use crate::ui::check::words::{badge, switch_id as switch_text};
+use crate::ui::check::words::{self, badge, switch_id as switch_text};
 
 /// Where and when the check ran, beside what it found.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,6 +29,16 @@ pub struct About {
     pub unit: Option<Version>,
     /// Ours: `env!("CARGO_PKG_VERSION")`.
     pub ours: String,
+    /// Each motor's travel ends in sensor counts (up or left end, down or right end),
+    /// as the unit gave them, so its positions read as percent of travel beside the
+    /// raw counts, as on the screen. A motor missing here gets counts only.
+    pub travel: Vec<(Motor, (u8, u8))>,
+}
+
+impl About {
+    fn ends(&self, m: Motor) -> Option<(u8, u8)> {
+        self.travel.iter().find(|(t, _)| *t == m).map(|(_, e)| *e)
+    }
 }
 
 /// The two files written.
@@ -133,27 +143,8 @@ fn loads_level_warns(view: &CheckView) -> bool {
     }
 }
 
-/// What became of an item, in words: its finding's, why it was skipped (the mark
-/// beside it says SKIPPED), or that the check stopped before it.
-fn outcome_words<F>(o: &Outcome<F>, words: impl Fn(&F) -> String) -> String {
-    match o {
-        Outcome::Found(f) => words(f),
-        Outcome::Skipped(why) if why.is_empty() => "skipped".into(),
-        Outcome::Skipped(why) => why.clone(),
-        Outcome::NotRun => "not run: the check stopped before it".into(),
-    }
-}
-
 fn switch_words(view: &CheckView, s: &SwitchResult) -> String {
-    outcome_words(&s.outcome, |f| f.words(&|id| view.name_of(id)))
-}
-
-fn circuit_words(c: &CircuitResult) -> String {
-    outcome_words(&c.outcome, CircuitFinding::words)
-}
-
-fn motor_words(m: &MotorResult) -> String {
-    outcome_words(&m.outcome, MotorFinding::words)
+    words::switch(s, |id| view.name_of(id))
 }
 
 /// The counts of the results, for the line at the top.
@@ -199,8 +190,7 @@ fn circuits_known(view: &CheckView) -> Vec<Known> {
         add(p.id, &p.name, p.pin, p.breaker, p.switch);
     }
     for e in &view.excluded {
-        let pin = device::device(e.id).map_or("?", |d| d.system_name);
-        add(e.id, &e.name, pin, None, None);
+        add(e.id, &e.name, e.pin, e.breaker, e.switch);
     }
     out.sort_by_key(|c| c.0);
     out
@@ -277,11 +267,11 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
     before_power(&mut o, view);
     switches(&mut o, view);
     circuits(&mut o, view);
-    motors(&mut o, view);
+    motors(&mut o, view, about);
     loads(&mut o, view);
 
     o.push_str("## Left to fix\n\n");
-    let fix = to_fix(view);
+    let fix = view.left_to_fix();
     if fix.is_empty() {
         if view.interrupted.is_some() {
             o.push_str("Nothing found so far; the check did not finish.\n\n");
@@ -297,12 +287,16 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
 
     if !view.to_cycle.is_empty() {
         o.push_str("## Switches to cycle\n\n");
-        o.push_str(
-            "The check put these circuits back by DEVICE_POWER; the unit holds them so \
-             until their switch is cycled (ICD §6). Cycle each switch off and on again:\n\n",
+        let _ = writeln!(
+            o,
+            "The check put these circuits back as it found them, by DEVICE_POWER. The unit \
+             now holds each so, whatever its switch says, until that switch is cycled \
+             ({}). Flip each switch to the other position and back, so it ends where it \
+             was:\n",
+            words::HOLD_RULE
         );
         for (_, name, switch) in &view.to_cycle {
-            let _ = writeln!(o, "- {name}: {}", switch_text(*switch));
+            let _ = writeln!(o, "- {name}: {}", words::cycle(*switch));
         }
         o.push('\n');
     }
@@ -310,8 +304,17 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
     if let Some(i) = &view.interrupted {
         o.push_str("## Interrupted\n\n");
         let _ = writeln!(o, "The check stopped: {}.\n", i.cause);
+        let held = held_words(view);
         if i.left.is_empty() {
-            o.push_str("It left every circuit as it found it.\n\n");
+            match held {
+                None => o.push_str("It left every circuit as it found it.\n\n"),
+                Some(h) => {
+                    let _ = writeln!(
+                        o,
+                        "Every circuit it switched is back as it found it, but {h}.\n"
+                    );
+                }
+            }
         } else {
             o.push_str(
                 "It could not put everything back. It left these circuits so:\n\n\
@@ -322,6 +325,9 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
                 let _ = writeln!(o, "| {} | {pin} | {} |", cell(name), cell(state));
             }
             o.push('\n');
+            if let Some(h) = held {
+                let _ = writeln!(o, "Of the circuits it put back, {h}.\n");
+            }
         }
     }
     let _ = writeln!(
@@ -329,6 +335,23 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
         "The measurements are also in the CSV file of the same name."
     );
     o
+}
+
+/// "Nav Lt and Strobe are held there by DEVICE_POWER until their switch is cycled
+/// (see "Switches to cycle")", or `None` when the check left nothing held.
+fn held_words(view: &CheckView) -> Option<String> {
+    let names: Vec<&str> = view.to_cycle.iter().map(|(_, n, _)| n.as_str()).collect();
+    let (last, rest) = names.split_last()?;
+    let (who, verb) = if rest.is_empty() {
+        (last.to_string(), "is")
+    } else {
+        (format!("{} and {last}", rest.join(", ")), "are")
+    };
+    Some(format!(
+        "{who} {verb} held there by DEVICE_POWER until {} switch is cycled (see \
+         \"Switches to cycle\")",
+        if rest.is_empty() { "its" } else { "their" }
+    ))
 }
 
 fn before_power(o: &mut String, view: &CheckView) {
@@ -364,8 +387,7 @@ fn before_power(o: &mut String, view: &CheckView) {
             "Left alone (never switched by the check):\n\n| Circuit | Pin | Why |\n|---|---|---|\n",
         );
         for e in &view.excluded {
-            let pin = device::device(e.id).map_or("?", |d| d.system_name);
-            let _ = writeln!(o, "| {} | {pin} | {} |", cell(&e.name), cell(&e.why));
+            let _ = writeln!(o, "| {} | {} | {} |", cell(&e.name), e.pin, cell(&e.why));
         }
         o.push('\n');
     }
@@ -448,13 +470,24 @@ fn circuits(o: &mut String, view: &CheckView) {
             or_dash(c.breaker, |b| format!("{b} A")),
             badge(c.mark()),
             measured(c),
-            cell(&circuit_words(c))
+            cell(&words::circuit(c))
         );
     }
     o.push('\n');
 }
 
-fn motors(o: &mut String, view: &CheckView) {
+/// "128 → 159 → 128 counts (50 % → 62 % → 50 % of travel)", or "—".
+fn positions_cell(about: &About, m: Motor, raw: &[u8]) -> String {
+    if raw.is_empty() {
+        return "—".into();
+    }
+    match words::travel(raw, about.ends(m)) {
+        Some(t) => format!("{} ({t})", words::counts(raw)),
+        None => words::counts(raw),
+    }
+}
+
+fn motors(o: &mut String, view: &CheckView, about: &About) {
     o.push_str("## Motors\n\n");
     if skipped_or_empty(o, view, Step::Motors, "No motor is enabled.\n\n") {
         return;
@@ -465,18 +498,13 @@ fn motors(o: &mut String, view: &CheckView) {
          | Motor | Result | Positions | What happened |\n|---|---|---|---|\n",
     );
     for m in &view.motors {
-        let pos: Vec<String> = m.positions.iter().map(u8::to_string).collect();
         let _ = writeln!(
             o,
             "| {} | {} | {} | {} |",
             m.motor.name(),
             badge(m.mark()),
-            if pos.is_empty() {
-                "—".to_string()
-            } else {
-                pos.join(" → ")
-            },
-            cell(&motor_words(m))
+            positions_cell(about, m.motor, &m.positions),
+            cell(&words::motor(m))
         );
     }
     o.push('\n');
@@ -600,43 +628,6 @@ fn analysed(o: &mut String, path: &Path, a: &Analysis) {
     }
 }
 
-/// Everything left to fix: the results that failed or warned, and the load analysis'
-/// warnings (or its missing file).
-pub fn to_fix(view: &CheckView) -> Vec<String> {
-    let mut out = view.to_fix();
-    match &view.loads {
-        Some(LoadsView::Analysed { analysis, .. }) => {
-            out.extend(
-                analysis
-                    .warnings()
-                    .into_iter()
-                    .map(|w| format!("Load analysis, {w}")),
-            );
-        }
-        Some(LoadsView::TemplateWritten(path)) => out.push(format!(
-            "Load analysis: fill in the load file {} and run the check again",
-            path.display()
-        )),
-        Some(LoadsView::Refused(why)) => out.push(format!("Load analysis: {why}")),
-        None => {}
-    }
-    for (_, name, switch) in &view.to_cycle {
-        out.push(format!(
-            "{name}: cycle {} (held by DEVICE_POWER since the check)",
-            switch_text(*switch)
-        ));
-    }
-    if let Some(i) = &view.interrupted {
-        for (id, name, state) in &i.left {
-            let pin = device::device(*id).map_or("?", |d| d.system_name);
-            out.push(format!(
-                "{name} ({pin}): left {state} by the interrupted check"
-            ));
-        }
-    }
-    out
-}
-
 /// A CSV field, quoted when it must be (RFC 4180).
 fn field(text: &str) -> String {
     if text.contains([',', '"', '\n', '\r']) {
@@ -652,7 +643,7 @@ fn field(text: &str) -> String {
 pub fn csv(view: &CheckView, about: &About) -> String {
     let when = crate::utc::utc_text(about.when);
     let mut o =
-        String::from("when,step,item,pin,breaker_a,switch,result,amps,positions,detail\r\n");
+        String::from("when,step,item,pin,breaker_a,switch,result,amps,positions_counts,detail\r\n");
     let mut row = |step: &str,
                    item: &str,
                    pin: &str,
@@ -692,7 +683,7 @@ pub fn csv(view: &CheckView, about: &About) -> String {
             if names.is_empty() {
                 switch_words(view, s)
             } else {
-                format!("{} (circuits: {})", switch_words(view, s), names.join(", "))
+                format!("{}; circuits: {}", switch_words(view, s), names.join(", "))
             },
         );
     }
@@ -712,7 +703,7 @@ pub fn csv(view: &CheckView, about: &About) -> String {
             c.mark(),
             amps,
             String::new(),
-            circuit_words(c),
+            words::circuit(c),
         );
     }
     for m in &view.motors {
@@ -726,7 +717,7 @@ pub fn csv(view: &CheckView, about: &About) -> String {
             m.mark(),
             String::new(),
             pos.join(" "),
-            motor_words(m),
+            words::motor(m),
         );
     }
     if let Some(LoadsView::Analysed { analysis, .. }) = &view.loads {
@@ -769,6 +760,7 @@ mod tests {
             port: "/dev/ttyUSB0".into(),
             unit: None,
             ours: "0.1.0".into(),
+            travel: vec![],
         };
         // A CSV left alone under the first name (its report deleted), a report alone
         // under the second: the check's pair goes to the third, and neither is touched.

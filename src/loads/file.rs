@@ -383,14 +383,46 @@ const TEMPLATE_NOTE: &str = "\
 # write the alternator's rating and the battery's capacity below (without the #).
 ";
 
+/// A number as TOML reads it back, exactly: Rust's shortest form ("40", "2.25"),
+/// except where that form is an integer TOML cannot hold. Past 2^63 "{}" writes all
+/// the digits of a whole number ("10000000000000000000"), which TOML takes for an
+/// integer and refuses; there (from 2^53 on, where f64 has no fractions left) the
+/// exponent form ("1e19") is a TOML float that reads back as the same f64.
+fn number_text(v: f64) -> String {
+    if !v.is_finite() {
+        // Refused by `parse` anyway; written as TOML spells them, not as Rust does.
+        return if v.is_nan() {
+            "nan".into()
+        } else if v > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        };
+    }
+    let text = format!("{v}");
+    if text.contains(['.', 'e']) || v.abs() < 9_007_199_254_740_992.0 {
+        text
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// The file's text for `file`, commented as the template is: what
 /// [`parse`] reads back as the same file.
 pub fn to_toml(file: &LoadFile) -> String {
     let mut out = String::from(HEADER);
     out.push('\n');
-    let _ = writeln!(out, "alternator_amps = {}", file.alternator_amps);
-    let _ = writeln!(out, "battery_amp_hours = {}", file.battery_amp_hours);
-    let _ = writeln!(out, "battery_usable = {}", file.battery_usable);
+    let _ = writeln!(
+        out,
+        "alternator_amps = {}",
+        number_text(file.alternator_amps)
+    );
+    let _ = writeln!(
+        out,
+        "battery_amp_hours = {}",
+        number_text(file.battery_amp_hours)
+    );
+    let _ = writeln!(out, "battery_usable = {}", number_text(file.battery_usable));
     write_circuits(&mut out, &file.circuits);
     out
 }
@@ -442,7 +474,7 @@ fn write_circuits(out: &mut String, circuits: &[LoadCircuit]) {
         let _ = writeln!(out, "name = {}", toml::Value::String(c.name.clone()));
         match c.amps {
             Some(a) => {
-                let _ = writeln!(out, "amps = {a}");
+                let _ = writeln!(out, "amps = {}", number_text(a));
             }
             None => out.push_str("# amps = 0.0\n"),
         }
@@ -453,7 +485,7 @@ fn write_circuits(out: &mut String, circuits: &[LoadCircuit]) {
             } else if d == 0.0 {
                 writeln!(out, "{} = false", p.key())
             } else {
-                writeln!(out, "{} = {d}", p.key())
+                writeln!(out, "{} = {}", p.key(), number_text(d))
             };
         }
     }
@@ -531,6 +563,32 @@ mod tests {
         let f = sample();
         let text = to_toml(&f);
         assert_eq!(parse(&text), Ok(f));
+    }
+
+    /// Ratings past 2^63 were written as integer digits TOML refuses; and the sizes
+    /// either side of where the exponent form takes over.
+    #[test]
+    fn huge_ratings_are_written_as_toml_reads_them_back() {
+        for v in [
+            40.0,
+            0.1,
+            9_007_199_254_740_991.0,
+            9_007_199_254_740_992.0,
+            9.3e18,
+            1e19,
+            1.5e300,
+            f64::MAX,
+        ] {
+            let mut f = sample();
+            f.alternator_amps = v;
+            f.battery_amp_hours = v;
+            let text = to_toml(&f);
+            assert_eq!(parse(&text), Ok(f), "{v}: {text}");
+        }
+        assert_eq!(number_text(40.0), "40");
+        assert_eq!(number_text(2.25), "2.25");
+        assert_eq!(number_text(1e19), "1e19");
+        assert_eq!(number_text(f64::INFINITY), "inf");
     }
 
     #[test]

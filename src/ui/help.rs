@@ -24,7 +24,8 @@ pub const KEYS: &[(&str, &str)] = &[
     ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
     ("s", "sort by pin / by name"),
     ("t", "traffic view"),
-    ("c  i", "setup / installation check"),
+    ("c", "setup screens"),
+    ("i", "installation check"),
     ("?  Esc", "this help"),
     ("q  Ctrl-C", "quit"),
 ];
@@ -108,6 +109,10 @@ pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
         theme::label(),
     ));
     lines.push(Line::styled(view.theme.to_string(), theme::label()));
+    // Short of room (80×24), the blank line under the keys goes before any words do.
+    if lines.len() > usize::from(popup.height.saturating_sub(2)) {
+        lines.remove(keys.len());
+    }
     frame.render_widget(Clear, popup);
     frame.render_widget(
         Paragraph::new(lines).wrap(Wrap { trim: false }).block(

@@ -100,7 +100,7 @@ fn under_test(r: &CircuitResult, model: &Model, now: Instant, width: u16) -> Vec
 }
 
 /// The circuits put back so far by DEVICE_POWER, which the page now holds until
-/// their switch is cycled (ICD §6): said as the step goes, not only at its end.
+/// their switch is cycled (ICD Appendix A): said as the step goes, not only at its end.
 fn held_line(view: &CheckView) -> Option<Line<'static>> {
     if view.to_cycle.is_empty() {
         return None;

@@ -33,7 +33,8 @@ fn glue(text: &str) -> String {
     for (i, word) in text.split(' ').enumerate() {
         let unit = word.trim_end_matches([',', ')', ';', '.', ':']);
         if i > 0 {
-            let sticks = prev_digit && matches!(unit, "%" | "A" | "V" | "s" | "ms" | "min");
+            let sticks =
+                prev_digit && matches!(unit, "%" | "A" | "V" | "s" | "ms" | "min" | "counts");
             out.push(if sticks { '\u{a0}' } else { ' ' });
         }
         out.push_str(word);
@@ -79,7 +80,9 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
     if len > 0 || out.is_empty() {
         out.push(line);
     }
-    out
+    // The glue only keeps a number with its unit while breaking lines; the screen
+    // (and a copy from it) gets plain spaces.
+    out.into_iter().map(|l| l.replace('\u{a0}', " ")).collect()
 }
 
 fn head_width(head: &[Span]) -> usize {
@@ -205,11 +208,9 @@ mod tests {
         );
         assert_eq!(wrap("abcdefghij", 4), ["abcd", "efgh", "ij"]);
         assert_eq!(wrap("", 10), [""]);
-        // A number and its unit stay together.
-        assert_eq!(
-            wrap("moved 0 % → 18 %)", 14),
-            ["moved 0\u{a0}% →", "18\u{a0}%)"]
-        );
+        // A number and its unit stay together, and come out with a plain space.
+        assert_eq!(wrap("moved 0 % → 18 %)", 14), ["moved 0 % →", "18 %)"]);
+        assert_eq!(wrap("at 128 → 159 counts", 14), ["at 128 →", "159 counts"]);
     }
 
     #[test]

@@ -231,17 +231,22 @@ pub const STEPS: [Step; 6] = [
 
 /// "INSTALLATION CHECK  1 Before power › 2 Switch inputs …": the step running on a
 /// badge, steps done in the text colour, steps to come dim, skipped ones struck
-/// through in words ("skipped"), never by colour alone.
+/// through in words ("skipped"), never by colour alone. An interrupted check shows
+/// the step where it stopped ("3 Circuits stopped", on the alarm badge), the steps
+/// after it (the report's included) as never reached.
 fn steps_line(view: &CheckView, width: u16) -> Line<'static> {
-    let head = |long: bool| match (view.interrupted.is_some(), long) {
-        (true, true) => Span::styled("CHECK INTERRUPTED ", theme::alert()),
-        (true, false) => Span::styled("STOPPED ", theme::alert()),
-        (false, true) => Span::styled("INSTALLATION CHECK ", theme::panel_title()),
-        (false, false) => Span::styled("CHECK ", theme::panel_title()),
+    // The head in full, short, or (the narrowest, when the step's own badge already
+    // says "stopped") none.
+    let head = |long: Option<bool>| match (view.interrupted.is_some(), long) {
+        (_, None) => Span::raw(""),
+        (true, Some(true)) => Span::styled("CHECK INTERRUPTED ", theme::alert()),
+        (true, Some(false)) => Span::styled("STOPPED ", theme::alert()),
+        (false, Some(true)) => Span::styled("INSTALLATION CHECK ", theme::panel_title()),
+        (false, Some(false)) => Span::styled("CHECK ", theme::panel_title()),
     };
     // How much each step is named: 2 every one in full, 1 the running one in full,
     // 0 none.
-    let build = |long_head: bool, full: u8| -> Vec<Span<'static>> {
+    let build = |long_head: Option<bool>, full: u8| -> Vec<Span<'static>> {
         let mut spans = vec![head(long_head)];
         for (i, s) in STEPS.into_iter().enumerate() {
             let skipped = view.skipped_steps.contains(&s);
@@ -250,7 +255,11 @@ fn steps_line(view: &CheckView, width: u16) -> Line<'static> {
             } else {
                 short(s)
             };
-            let text = if skipped {
+            // An interrupted check stays on the step where it stopped, said in words.
+            let stopped = view.interrupted.is_some() && s == view.step;
+            let text = if stopped {
+                format!("{} {name} stopped", i + 1)
+            } else if skipped {
                 format!("{} {name} skipped", i + 1)
             } else {
                 format!("{} {name}", i + 1)
@@ -258,7 +267,9 @@ fn steps_line(view: &CheckView, width: u16) -> Line<'static> {
             if i > 0 {
                 spans.push(Span::styled(" › ", theme::border()));
             }
-            let style = if s == view.step {
+            let style = if stopped {
+                theme::banner_lost()
+            } else if s == view.step {
                 theme::key().add_modifier(Modifier::BOLD)
             } else if skipped || s > view.step {
                 theme::unknown()
@@ -280,14 +291,21 @@ fn steps_line(view: &CheckView, width: u16) -> Line<'static> {
             .sum::<usize>()
             <= usize::from(width)
     };
-    let tries = [(true, 2), (true, 1), (false, 1), (true, 0), (false, 0)];
+    let tries = [
+        (Some(true), 2),
+        (Some(true), 1),
+        (Some(false), 1),
+        (Some(true), 0),
+        (Some(false), 0),
+        (None, 0),
+    ];
     for (long_head, full) in tries {
         let spans = build(long_head, full);
         if fits(&spans) {
             return Line::from(spans);
         }
     }
-    Line::from(build(false, 0))
+    Line::from(build(None, 0))
 }
 
 /// A section's title over a rule, as the page's panels have them.

@@ -52,7 +52,7 @@ fn travel(m: Motor, ft: &FlapTrimStatus) -> (&'static str, &'static str, u8, u8,
 
 /// A motor's travel ends in sensor counts: the live FLAP_TRIM_STATUS's, else the
 /// spec the unit reported (configuration, not a reading, so it may be old).
-fn ends(m: Motor, model: &Model, now: Instant) -> Option<(u8, u8)> {
+pub fn ends(m: Motor, model: &Model, now: Instant) -> Option<(u8, u8)> {
     if let Some(ft) = model.live_flap_trim(now) {
         let (_, _, from, to, _, _) = travel(m, ft);
         return Some((from, to));
@@ -67,25 +67,7 @@ fn ends(m: Motor, model: &Model, now: Instant) -> Option<(u8, u8)> {
 /// The positions a motor went through (raw counts) as percent of its travel from
 /// the up end, or as counts when its ends are not known.
 fn positions(m: Motor, raw: &[u8], model: &Model, now: Instant) -> String {
-    match ends(m, model, now) {
-        Some((from, to)) if from != to => {
-            let p: Vec<u8> = raw.iter().map(|&v| percent(from, to, v)).collect();
-            words::positions(&p)
-        }
-        _ => {
-            let p: Vec<String> = raw.iter().map(|v| v.to_string()).collect();
-            format!("{} counts", p.join(" → "))
-        }
-    }
-}
-
-/// Percent of travel from the up (left) end, clamped: a sensor can read past an end.
-fn percent(from: u8, to: u8, v: u8) -> u8 {
-    if from == to {
-        return 0;
-    }
-    let frac = (f64::from(v) - f64::from(from)) / (f64::from(to) - f64::from(from));
-    (frac.clamp(0.0, 1.0) * 100.0).round() as u8
+    words::positions(raw, ends(m, model, now))
 }
 
 fn gauge(m: Motor, ft: Option<&FlapTrimStatus>, page: &ViewState, width: u16) -> Line<'static> {
@@ -104,7 +86,7 @@ fn gauge(m: Motor, ft: Option<&FlapTrimStatus>, page: &ViewState, width: u16) ->
         ]);
     };
     let (left, right, from, to, pos, running) = travel(m, ft);
-    let p = percent(from, to, pos);
+    let p = words::percent_of_travel((from, to), pos);
     let at = (usize::from(p) * (track_w - 1) + 50) / 100;
     let mut spans = vec![
         name,

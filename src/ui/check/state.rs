@@ -1,7 +1,8 @@
 //! What the installation check shows, and what its report records: the step it is on,
 //! what the person must do and what the page is watching, and every result so far.
-//! Pure data plus the words for it. The flow (`crate::check`) changes it; the screen
-//! (`ui::check`) and the report (`check::report`) read it. It lives under `ui` for
+//! Pure data and the verdicts (marks); the words for it are in [`super::words`]. The
+//! flow (`crate::check`) changes it; the screen (`ui::check`) and the report
+//! (`check::report`) read it. It lives under `ui` for
 //! the same reason as the setup screens' `SetupView`: the flow stands on the view,
 //! never the other way round.
 
@@ -290,6 +291,11 @@ pub struct Planned {
 pub struct Excluded {
     pub id: u8,
     pub name: String,
+    /// The VP-X pin, its breaker and its switch, as for a planned circuit: the report
+    /// lists every circuit with them, the ones left alone too.
+    pub pin: &'static str,
+    pub breaker: Option<u8>,
+    pub switch: Option<SwitchId>,
     /// "never touched: the starter", "suggested: the name has \"pitot\"", "--exclude".
     pub why: String,
     /// Only a suggested exclusion may be taken back by the person.
@@ -330,7 +336,7 @@ pub struct CheckView {
     pub circuits: Vec<CircuitResult>,
     pub motors: Vec<MotorResult>,
     /// Circuits put back by DEVICE_POWER, which stay held by the page until their
-    /// switch is cycled (ICD §6): id, name, and the switch to cycle.
+    /// switch is flipped (ICD Appendix A): id, name, and the switch to flip.
     pub to_cycle: Vec<(u8, String, SwitchId)>,
     /// One line of news: "Landing Light: 4.2 A", "report written to …".
     pub message: Option<String>,
@@ -384,65 +390,11 @@ impl CheckView {
     }
 }
 
-fn circuits_words(ids: &[u8], name_of: &dyn Fn(u8) -> String) -> String {
-    ids.iter()
-        .map(|&i| name_of(i))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-impl NotFollowed {
-    pub fn words(&self) -> String {
-        match self {
-            NotFollowed::HeldByDevicePower => {
-                "held by DEVICE_POWER until its switch is cycled (ICD §6)".into()
-            }
-            NotFollowed::AssignedTo(SwitchId::Input(n)) => format!("assigned to switch {n}"),
-            NotFollowed::AssignedTo(SwitchId::AlwaysOn) => "assigned to always on".into(),
-            NotFollowed::AssignedTo(SwitchId::Off) => "assigned to no switch (always off)".into(),
-            NotFollowed::AssignedTo(SwitchId::Unknown(b)) => format!("assigned to switch id {b}"),
-            NotFollowed::Faulted(code) => format!("faulted ({})", code.name()),
-            NotFollowed::Unexplained => {
-                "no reason the page can see: check the wiring from the VP-X pin".into()
-            }
-        }
-    }
-}
-
 impl SwitchFinding {
     pub fn mark(&self) -> Mark {
         match self {
             SwitchFinding::Passed => Mark::Pass,
             _ => Mark::Fail,
-        }
-    }
-
-    /// The finding in words; `name_of` names a circuit by id.
-    pub fn words(&self, name_of: &dyn Fn(u8) -> String) -> String {
-        match self {
-            SwitchFinding::Passed => "the input changed, and its circuits followed".into(),
-            SwitchFinding::NeverChanged => {
-                "input never changed: a broken wire, a bad switch, or the wrong pin".into()
-            }
-            SwitchFinding::OtherChanged(inputs) => format!(
-                "{} changed instead: switches crossed",
-                inputs
-                    .iter()
-                    .map(|i| i.label())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-            SwitchFinding::CircuitsDidNotFollow(list) => format!(
-                "circuits did not follow: {}",
-                list.iter()
-                    .map(|(id, why)| format!(
-                        "{} ({})",
-                        circuits_words(&[*id], name_of),
-                        why.words()
-                    ))
-                    .collect::<Vec<_>>()
-                    .join("; ")
-            ),
         }
     }
 }
@@ -455,38 +407,6 @@ impl CircuitFinding {
             _ => Mark::Fail,
         }
     }
-
-    pub fn words(&self) -> String {
-        match self {
-            CircuitFinding::Within { amps, breaker } => {
-                format!("draws {amps:.1} A of a {breaker} A breaker")
-            }
-            CircuitFinding::NoCurrent => {
-                "no current while on: an open circuit, a blown bulb, a load not connected".into()
-            }
-            CircuitFinding::NearBreaker { amps, breaker } => format!(
-                "draws {amps:.1} A of a {breaker} A breaker (≥ 80 %): the breaker is tight \
-                 and will trip in flight"
-            ),
-            CircuitFinding::Faulted(code) => fault_words(*code),
-            CircuitFinding::DidNotSwitch => {
-                "did not switch on: the unit never showed it on after DEVICE_POWER".into()
-            }
-        }
-    }
-}
-
-/// A fault's name with its Appendix E (Table 43) action and how it clears.
-pub fn fault_words(code: FaultCode) -> String {
-    match code.info() {
-        Some(i) if !i.action.is_empty() => {
-            format!(
-                "faulted: {} ({}). {} {}",
-                i.name, i.description, i.action, i.clears
-            )
-        }
-        _ => format!("faulted: {}", code.name()),
-    }
 }
 
 impl MotorFinding {
@@ -495,18 +415,6 @@ impl MotorFinding {
             MotorFinding::Moves => Mark::Pass,
             MotorFinding::AgainstLimit => Mark::Warn,
             _ => Mark::Fail,
-        }
-    }
-
-    pub fn words(&self) -> String {
-        match self {
-            MotorFinding::Moves => "it moves the commanded way".into(),
-            MotorFinding::Reversed => {
-                "reversed: the motor's polarity is swapped, or the sensor is wired backwards".into()
-            }
-            MotorFinding::NoMovement => "no movement: the motor, the sensor or a limit".into(),
-            MotorFinding::AgainstLimit => "runs against a limit".into(),
-            MotorFinding::Faulted(code) => fault_words(*code),
         }
     }
 }
@@ -574,34 +482,6 @@ impl CheckView {
                     .map(|e| e.name.clone())
             })
             .unwrap_or_else(|| format!("device {id}"))
-    }
-
-    /// What is left to fix, one line each: every failure and warning.
-    pub fn to_fix(&self) -> Vec<String> {
-        let name_of = |id| self.name_of(id);
-        let mut out = Vec::new();
-        for s in &self.switches {
-            if let Outcome::Found(f) = &s.outcome
-                && f.mark() != Mark::Pass
-            {
-                out.push(format!("{}: {}", s.input.label(), f.words(&name_of)));
-            }
-        }
-        for c in &self.circuits {
-            if let Outcome::Found(f) = &c.outcome
-                && f.mark() != Mark::Pass
-            {
-                out.push(format!("{} ({}): {}", c.name, c.pin, f.words()));
-            }
-        }
-        for m in &self.motors {
-            if let Outcome::Found(f) = &m.outcome
-                && f.mark() != Mark::Pass
-            {
-                out.push(format!("{}: {}", m.motor.name(), f.words()));
-            }
-        }
-        out
     }
 }
 

@@ -1,6 +1,6 @@
-//! The end of the check: every result with what is left to fix first, the circuits
-//! the person must cycle (a circuit put back by DEVICE_POWER stays held by the page
-//! until its switch is cycled, ICD §6), and where the report went. And the screen of
+//! The end of the check: every result with what is left to fix first, the switches
+//! the person must flip (a circuit put back by DEVICE_POWER stays held by the unit
+//! until its switch is cycled, ICD Appendix A), and where the report went. And the screen of
 //! a check that was interrupted: why, and exactly which circuits were left in which
 //! state.
 
@@ -135,7 +135,8 @@ fn report_line(view: &CheckView, width: u16) -> Line<'static> {
     }
 }
 
-/// "switch 6: Landing Lt, Taxi Lt": the circuits to cycle, by switch.
+/// "Flip switch 6 to the other position and back: Landing Lt, Taxi Lt": the circuits
+/// to release, by switch.
 fn cycle_lines(view: &CheckView) -> Vec<Line<'static>> {
     let mut groups: Vec<(SwitchId, Vec<String>)> = Vec::new();
     for (_, name, sw) in &view.to_cycle {
@@ -147,10 +148,12 @@ fn cycle_lines(view: &CheckView) -> Vec<Line<'static>> {
     groups
         .into_iter()
         .map(|(sw, names)| {
-            let what = match sw {
-                SwitchId::Input(n) => format!("Cycle switch {n} off and on"),
-                other => format!("{}: cycle it", words::switch_id(other)),
-            };
+            let what = words::cycle(sw);
+            let mut c = what.chars();
+            let what: String = c
+                .next()
+                .map(|f| f.to_uppercase().collect::<String>() + c.as_str())
+                .unwrap_or_default();
             Line::from(vec![
                 Span::styled(format!("{what}: "), theme::caution()),
                 Span::raw(names.join(", ")),
@@ -159,12 +162,15 @@ fn cycle_lines(view: &CheckView) -> Vec<Line<'static>> {
         .collect()
 }
 
-/// The circuits to cycle, in a section of their own; the rows it took.
+/// The circuits to release, in a section of their own.
 fn render_cycle(frame: &mut Frame, area: Rect, view: &CheckView) {
     let inner = section(
         frame,
         area,
-        "Held by the page until you cycle the switch (ICD §6)",
+        &format!(
+            "Held by DEVICE_POWER until the switch is cycled ({})",
+            words::HOLD_RULE
+        ),
     );
     fast::lines(frame.buffer_mut(), inner, &cycle_lines(view));
 }
@@ -277,10 +283,18 @@ pub fn render_interrupted(
         .map(|(_, m, _)| m)
         .collect();
     let left_lines: Vec<Line> = if int.left.is_empty() {
-        vec![Line::styled(
-            "Every circuit the check switched was put back as it found it.",
-            theme::label(),
-        )]
+        // "As it found it" only when nothing is held: a circuit put back by
+        // DEVICE_POWER is in its old state but held there (the section below).
+        let text = if view.to_cycle.is_empty() {
+            "Every circuit the check switched was put back as it found it."
+        } else {
+            "Every circuit the check switched is back as it found it, but held there by \
+             DEVICE_POWER: flip the switches below."
+        };
+        list::wrap(text, usize::from(area.width))
+            .into_iter()
+            .map(|l| Line::styled(l, theme::label()))
+            .collect()
     } else {
         int.left
             .iter()

@@ -1,13 +1,16 @@
-//! Every result of the check as a mark and plain words: the screen shows them, and the
-//! headless run and the report may print the same words, so a finding reads the same
+//! The check's one vocabulary: every result as a mark and plain words, what is left
+//! to fix, what to do with a circuit the check left held. The screen shows them, and
+//! the headless run and the report print the same words, so a finding reads the same
 //! wherever it is seen. A mark is never shown without its word (colour is a bonus).
 
 use std::time::Duration;
 
 use super::state::{
-    CircuitFinding, CircuitResult, Mark, MotorFinding, MotorResult, Outcome, SwitchFinding,
-    SwitchResult,
+    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, MotorFinding, MotorResult,
+    NEAR_BREAKER_PERCENT, NotFollowed, Outcome, SwitchFinding, SwitchResult,
 };
+use crate::protocol::device;
+use crate::protocol::fault::FaultCode;
 use crate::protocol::message::SwitchId;
 
 /// "✓ PASS": the symbol and the word, always together.
@@ -25,21 +28,142 @@ pub fn switch_id(s: SwitchId) -> String {
     }
 }
 
-/// An outcome's mark: its finding's, or skipped / not run.
-pub fn switch_mark(o: &Outcome<SwitchFinding>) -> Mark {
-    o.mark_with(SwitchFinding::mark)
+/// "a" or "an" before a number said aloud: "an 8 A breaker", "an 11 A", "an 18 A",
+/// "a 5 A". (Eight, eleven, eighteen, eighty… begin with a vowel sound.)
+pub fn article(n: u32) -> &'static str {
+    let digits = n.to_string();
+    // Eleven and eighteen, alone or leading a group of thousands (11 000, 18 500).
+    let lead = match digits.len() % 3 {
+        2 => &digits[..2],
+        _ => "",
+    };
+    if digits.starts_with('8') || lead == "11" || lead == "18" {
+        "an"
+    } else {
+        "a"
+    }
 }
 
-pub fn circuit_mark(o: &Outcome<CircuitFinding>) -> Mark {
-    o.mark_with(CircuitFinding::mark)
+/// "an 8 A breaker".
+fn breaker(b: u8) -> String {
+    format!("{} {b} A breaker", article(u32::from(b)))
 }
 
-pub fn motor_mark(o: &Outcome<MotorFinding>) -> Mark {
-    o.mark_with(MotorFinding::mark)
+/// What the person does to end a hold by DEVICE_POWER: the unit holds a circuit the
+/// page (or the check) switched until its switch is cycled (ICD Appendix A). Said as
+/// a flip to the other position and back, so a switch found off is left off.
+pub fn cycle(s: SwitchId) -> String {
+    match s {
+        SwitchId::Input(n) => format!("flip switch {n} to the other position and back"),
+        other => format!("{}: there is no switch to flip", switch_id(other)),
+    }
 }
 
-/// An outcome's words: the finding's own (the vocabulary's, shared with the report
-/// and the headless run), or why there is none.
+/// The ICD's place for the hold rule, as the words cite it.
+pub const HOLD_RULE: &str = "ICD Appendix A";
+
+impl NotFollowed {
+    /// Said after the circuit's name: "Landing Lt is held by DEVICE_POWER…".
+    pub fn words(&self) -> String {
+        match self {
+            NotFollowed::HeldByDevicePower => {
+                format!("is held by DEVICE_POWER until its switch is cycled ({HOLD_RULE})")
+            }
+            NotFollowed::AssignedTo(SwitchId::Off) => {
+                "is assigned to no switch (always off)".into()
+            }
+            NotFollowed::AssignedTo(s) => format!("is assigned to {}", switch_id(*s)),
+            NotFollowed::Faulted(code) => format!("faulted with {}", code.name()),
+            NotFollowed::Unexplained => {
+                "did not change, for no reason the page can see: check the wiring from the \
+                 VP-X pin"
+                    .into()
+            }
+        }
+    }
+}
+
+impl SwitchFinding {
+    /// The finding in words; `name_of` names a circuit by id.
+    pub fn words(&self, name_of: &dyn Fn(u8) -> String) -> String {
+        match self {
+            SwitchFinding::Passed => "the input changed, and its circuits followed".into(),
+            SwitchFinding::NeverChanged => {
+                "input never changed: a broken wire, a bad switch, or the wrong pin".into()
+            }
+            SwitchFinding::OtherChanged(inputs) => format!(
+                "{} changed instead: switches crossed",
+                inputs
+                    .iter()
+                    .map(|i| i.label())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            SwitchFinding::CircuitsDidNotFollow(list) => format!(
+                "circuits did not follow: {}",
+                list.iter()
+                    .map(|(id, why)| format!("{} {}", name_of(*id), why.words()))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ),
+        }
+    }
+}
+
+impl CircuitFinding {
+    pub fn words(&self) -> String {
+        match self {
+            CircuitFinding::Within { amps, breaker: b } => {
+                format!("draws {amps:.1} A of {}", breaker(*b))
+            }
+            CircuitFinding::NoCurrent => {
+                "no current while on: an open circuit, a blown bulb, a load not connected".into()
+            }
+            CircuitFinding::NearBreaker { amps, breaker: b } => format!(
+                "draws {amps:.1} A of {} (≥ {NEAR_BREAKER_PERCENT} %): the breaker is \
+                 tight and will trip in flight",
+                breaker(*b)
+            ),
+            CircuitFinding::Faulted(code) => fault(*code),
+            CircuitFinding::DidNotSwitch => {
+                "did not switch on: the unit never showed it on after DEVICE_POWER".into()
+            }
+        }
+    }
+}
+
+impl MotorFinding {
+    pub fn words(&self) -> String {
+        match self {
+            MotorFinding::Moves => "it moves the commanded way".into(),
+            MotorFinding::Reversed => {
+                "reversed: the motor's polarity is swapped, or the sensor is wired backwards".into()
+            }
+            MotorFinding::NoMovement => "no movement: the motor, the sensor or a limit".into(),
+            MotorFinding::AgainstLimit => "runs against a limit".into(),
+            MotorFinding::Faulted(code) => fault(*code),
+        }
+    }
+}
+
+/// A fault's name with its Appendix E (Table 43) action and how it clears.
+pub fn fault(code: FaultCode) -> String {
+    match code.info() {
+        Some(i) if !i.action.is_empty() => {
+            // The table's description ends with its own full stop.
+            format!(
+                "faulted: {} ({}). {} {}",
+                i.name,
+                i.description.trim_end_matches('.'),
+                i.action,
+                i.clears
+            )
+        }
+        _ => format!("faulted: {}", code.name()),
+    }
+}
+
+/// An outcome's words: the finding's own, or why there is none.
 fn outcome<F>(o: &Outcome<F>, found: impl Fn(&F) -> String) -> String {
     match o {
         Outcome::Found(f) => found(f),
@@ -62,12 +186,106 @@ pub fn motor(r: &MotorResult) -> String {
     outcome(&r.outcome, MotorFinding::words)
 }
 
-/// "57 % → 62 % → 50 % → 57 %": the positions a motor went through.
-pub fn positions(p: &[u8]) -> String {
-    p.iter()
-        .map(|v| format!("{v} %"))
-        .collect::<Vec<_>>()
-        .join(" → ")
+impl CheckView {
+    /// The findings to fix, one line each: each result that failed or warned.
+    pub fn to_fix(&self) -> Vec<String> {
+        let name_of = |id| self.name_of(id);
+        let mut out = Vec::new();
+        for s in &self.switches {
+            if let Outcome::Found(f) = &s.outcome
+                && f.mark() != Mark::Pass
+            {
+                out.push(format!("{}: {}", s.input.label(), f.words(&name_of)));
+            }
+        }
+        for c in &self.circuits {
+            if let Outcome::Found(f) = &c.outcome
+                && f.mark() != Mark::Pass
+            {
+                out.push(format!("{} ({}): {}", c.name, c.pin, f.words()));
+            }
+        }
+        for m in &self.motors {
+            if let Outcome::Found(f) = &m.outcome
+                && f.mark() != Mark::Pass
+            {
+                out.push(format!("{}: {}", m.motor.name(), f.words()));
+            }
+        }
+        out
+    }
+
+    /// Everything left to fix, one line each, the same in the headless summary and
+    /// the report: [`CheckView::to_fix`], then the load analysis' warnings (or its
+    /// missing or refused file), each switch to flip for a circuit the check left
+    /// held, and each circuit an interrupted check left changed.
+    pub fn left_to_fix(&self) -> Vec<String> {
+        let mut out = self.to_fix();
+        match &self.loads {
+            Some(LoadsView::Analysed { analysis, .. }) => out.extend(
+                analysis
+                    .warnings()
+                    .into_iter()
+                    .map(|w| format!("Load analysis, {w}")),
+            ),
+            Some(LoadsView::TemplateWritten(path)) => out.push(format!(
+                "Load analysis: fill in the load file {} and run the check again",
+                path.display()
+            )),
+            Some(LoadsView::Refused(why)) => out.push(format!("Load analysis: {why}")),
+            None => {}
+        }
+        for (_, name, switch) in &self.to_cycle {
+            out.push(format!(
+                "{name}: {} (the check left it held by DEVICE_POWER)",
+                cycle(*switch)
+            ));
+        }
+        if let Some(i) = &self.interrupted {
+            for (id, name, state) in &i.left {
+                let pin = device::device(*id).map_or("?", |d| d.system_name);
+                out.push(format!(
+                    "{name} ({pin}), left by the interrupted check: {state}"
+                ));
+            }
+        }
+        out
+    }
+}
+
+/// Where a motor was, as percent of its travel from the up (left) end (`ends`: the
+/// up and down ends in sensor counts), clamped: a sensor can read past an end.
+pub fn percent_of_travel(ends: (u8, u8), v: u8) -> u8 {
+    let (from, to) = ends;
+    if from == to {
+        return 0;
+    }
+    let frac = (f64::from(v) - f64::from(from)) / (f64::from(to) - f64::from(from));
+    (frac.clamp(0.0, 1.0) * 100.0).round() as u8
+}
+
+/// "50 % → 62 % → 50 % of travel": the positions a motor went through (raw
+/// FLAP_TRIM_STATUS counts) on its travel; `None` when its ends are not known (or the
+/// same).
+pub fn travel(raw: &[u8], ends: Option<(u8, u8)>) -> Option<String> {
+    let ends = ends.filter(|(a, b)| a != b)?;
+    let p: Vec<String> = raw
+        .iter()
+        .map(|&v| format!("{} %", percent_of_travel(ends, v)))
+        .collect();
+    Some(format!("{} of travel", p.join(" → ")))
+}
+
+/// "128 → 159 → 128 counts": the raw sensor readings.
+pub fn counts(raw: &[u8]) -> String {
+    let p: Vec<String> = raw.iter().map(u8::to_string).collect();
+    format!("{} counts", p.join(" → "))
+}
+
+/// The positions as the screen shows them: on the travel where its ends are known,
+/// else in counts.
+pub fn positions(raw: &[u8], ends: Option<(u8, u8)>) -> String {
+    travel(raw, ends).unwrap_or_else(|| counts(raw))
 }
 
 /// A duration as a person says it: "800 ms", "3 s", "1 min 30 s".
@@ -85,6 +303,11 @@ pub fn duration(d: Duration) -> String {
     } else {
         format!("{} min {} s", s / 60, s % 60)
     }
+}
+
+/// "1 warning", "2 warnings".
+pub fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 #[cfg(test)]
@@ -130,6 +353,69 @@ mod tests {
         assert_eq!(duration(Duration::from_secs(14)), "14 s");
         assert_eq!(duration(Duration::from_secs(120)), "2 min");
         assert_eq!(duration(Duration::from_secs(90)), "1 min 30 s");
-        assert_eq!(positions(&[57, 62, 50, 57]), "57 % → 62 % → 50 % → 57 %");
+    }
+
+    #[test]
+    fn positions_have_their_units() {
+        // Travel from 0 (up) to 200 (down): 100 counts are half way.
+        assert_eq!(
+            positions(&[100, 124, 100], Some((0, 200))),
+            "50 % → 62 % → 50 % of travel"
+        );
+        // A sensor past an end reads as the end.
+        assert_eq!(percent_of_travel((20, 220), 5), 0);
+        assert_eq!(percent_of_travel((220, 20), 5), 100);
+        assert_eq!(positions(&[100, 124], None), "100 → 124 counts");
+        assert_eq!(positions(&[100, 124], Some((7, 7))), "100 → 124 counts");
+        assert_eq!(counts(&[20]), "20 counts");
+    }
+
+    #[test]
+    fn numbers_take_their_article_as_they_are_said() {
+        for n in [8, 11, 18, 80, 83, 800, 8000, 11_000, 18_500] {
+            assert_eq!(article(n), "an", "{n}");
+        }
+        for n in [1, 2, 5, 10, 15, 20, 25, 30, 110, 180, 1100, 1800, 111_000] {
+            assert_eq!(article(n), "a", "{n}");
+        }
+        assert_eq!(
+            CircuitFinding::NearBreaker {
+                amps: 6.4,
+                breaker: 8
+            }
+            .words(),
+            "draws 6.4 A of an 8 A breaker (≥ 80 %): the breaker is tight and will trip \
+             in flight"
+        );
+        assert_eq!(
+            CircuitFinding::Within {
+                amps: 1.0,
+                breaker: 5
+            }
+            .words(),
+            "draws 1.0 A of a 5 A breaker"
+        );
+        assert_eq!(count(1, "warning", "warnings"), "1 warning");
+        assert_eq!(count(2, "warning", "warnings"), "2 warnings");
+        assert_eq!(count(0, "warning", "warnings"), "0 warnings");
+    }
+
+    #[test]
+    fn a_circuit_that_did_not_follow_is_said_without_brackets_in_brackets() {
+        let name = |id: u8| format!("dev{id}");
+        let w = SwitchFinding::CircuitsDidNotFollow(vec![
+            (4, NotFollowed::HeldByDevicePower),
+            (5, NotFollowed::AssignedTo(SwitchId::Input(3))),
+        ])
+        .words(&name);
+        assert_eq!(
+            w,
+            "circuits did not follow: dev4 is held by DEVICE_POWER until its switch is \
+             cycled (ICD Appendix A); dev5 is assigned to switch 3"
+        );
+        assert_eq!(
+            cycle(SwitchId::Input(5)),
+            "flip switch 5 to the other position and back"
+        );
     }
 }

@@ -1,0 +1,202 @@
+//! The page writes the check's report when the page itself ends mid-check, as the
+//! headless check does: Ctrl-C on the check screen, and a signal reaching the page's
+//! own loop (`App::run`). The real `App` on the slave of a real pseudo-terminal, the
+//! virtual VP-X (`install` scenario) on its master; the report read back from disk.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::unbounded;
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use vpx_efis::app::{App, AppOptions, Flow, Terminated, Termination};
+use vpx_efis::check::Options;
+use vpx_efis::link;
+use vpx_efis::model::Source;
+use vpx_efis::sim::{self, SimHandle, SimOptions};
+use vpx_efis::ui::check::state::Step;
+
+/// One rig at a time: a loaded machine running several can starve the unit's 1 Hz
+/// status into COMMUNICATION LOST.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+struct Rig {
+    _turn: std::sync::MutexGuard<'static, ()>,
+    app: App,
+    sim: SimHandle,
+    _slave: serialport::TTYPort,
+    dir: tempfile::TempDir,
+}
+
+impl Rig {
+    /// A page on the install scenario with a check running: switches skipped,
+    /// confirmed, and the first circuit switched on under test.
+    fn mid_circuit() -> Rig {
+        let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+        let pty = link::open_pty_pair().expect("pty");
+        let reader = pty.master.try_clone_native().expect("clone master");
+        let sim = sim::spawn(
+            SimOptions::new(sim::load_scenario("install").unwrap()),
+            Box::new(reader),
+            Box::new(pty.master),
+        );
+        let app = App::new(
+            Source::Serial {
+                path: pty.path.clone(),
+            },
+            link::serial_connector(PathBuf::from(&pty.path), 57_600),
+            AppOptions::default(),
+        );
+        let mut r = Rig {
+            _turn: turn,
+            app,
+            sim,
+            _slave: pty.slave,
+            dir: tempfile::tempdir().unwrap(),
+        };
+        r.until("the unit's settings", Duration::from_secs(20), |app| {
+            vpx_efis::check::plan::ready(&app.model(), Instant::now()).is_ok()
+        });
+        let options = Options {
+            skip: vec![Step::Switches],
+            loads_file: Some(r.dir.path().join("loads.toml")),
+            ..Options::default()
+        };
+        r.app
+            .set_check_report_dir(Some(r.dir.path().join("reports")));
+        // A circuit on already (its switch on) is measured as it is; the one wanted
+        // here is one the check itself switches on.
+        let on_before = r.app.model().live_devices(Instant::now()).unwrap().on;
+        r.app.open_check(options, Instant::now());
+        r.key(KeyCode::Enter, KeyModifiers::NONE);
+        r.until(
+            "a circuit switched on by the check",
+            Duration::from_secs(30),
+            move |app| {
+                let v = app.check_view();
+                let on = app.model().live_devices(Instant::now()).map(|d| d.on);
+                v.step == Step::Circuits
+                    && v.current.and_then(|i| v.circuits.get(i)).is_some_and(|c| {
+                        let id = usize::from(c.id);
+                        !on_before[id] && on.is_some_and(|on| on[id])
+                    })
+            },
+        );
+        r
+    }
+
+    fn until(&mut self, what: &str, limit: Duration, f: impl Fn(&App) -> bool) {
+        let end = Instant::now() + limit;
+        while !f(&self.app) {
+            assert!(Instant::now() < end, "timed out waiting for {what}");
+            self.app
+                .pump_until(Instant::now() + Duration::from_millis(20));
+        }
+    }
+
+    fn key(&mut self, code: KeyCode, mods: KeyModifiers) -> Flow {
+        let k = KeyEvent::new_with_kind(code, mods, KeyEventKind::Press);
+        self.app.handle_term_event(Event::Key(k), Instant::now())
+    }
+
+    fn reports(&self) -> PathBuf {
+        self.dir.path().join("reports")
+    }
+
+    /// The circuit under test when the check stopped.
+    fn under_test(&self) -> String {
+        let v = self.app.check_view();
+        v.circuits[v.current.expect("an item under test")]
+            .name
+            .clone()
+    }
+}
+
+/// The Markdown report in `dir`, the only one there, with its CSV beside it.
+fn the_report(dir: &Path) -> String {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("no report folder {}: {e}", dir.display()))
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 2, "{names:?}");
+    assert!(
+        names[0].starts_with("vpx-check-") && names[0].ends_with(".csv"),
+        "{names:?}"
+    );
+    assert_eq!(names[1], names[0].replace(".csv", ".md"));
+    std::fs::read_to_string(dir.join(&names[1])).unwrap()
+}
+
+/// What every report of a check stopped mid-circuit must say.
+fn says_incomplete_and_what_was_left(md: &str, cause: &str, circuit: &str) {
+    assert!(
+        md.contains(&format!(
+            "**Result: INCOMPLETE.** The check was interrupted ({cause})"
+        )),
+        "{md}"
+    );
+    let after = md
+        .split("## Interrupted\n\n")
+        .nth(1)
+        .expect("an Interrupted section");
+    assert!(
+        after.starts_with(&format!("The check stopped: {cause}.\n")),
+        "{after}"
+    );
+    // The page could not wait to see the circuit off: it says it sent the off and
+    // that it was not confirmed, naming the circuit.
+    assert!(
+        after.contains(&format!("| {circuit} |"))
+            && after.contains("DEVICE_POWER off sent, not confirmed"),
+        "{after}"
+    );
+    assert!(
+        md.contains("not run: the check stopped before it"),
+        "the circuits after it are not run: {md}"
+    );
+    assert!(
+        !md.contains("It left every circuit as it found it."),
+        "{md}"
+    );
+}
+
+#[test]
+fn ctrl_c_on_the_check_screen_writes_an_incomplete_report_before_the_page_quits() {
+    let mut r = Rig::mid_circuit();
+    let circuit = r.under_test();
+    assert!(!r.reports().exists(), "no report before the check ends");
+    assert_eq!(r.key(KeyCode::Char('c'), KeyModifiers::CONTROL), Flow::Quit);
+    let md = the_report(&r.reports());
+    says_incomplete_and_what_was_left(&md, "stopped by you", &circuit);
+    // The step bar stays where it stopped.
+    assert_eq!(r.app.check_view().step, Step::Circuits);
+    r.sim.stop();
+}
+
+#[test]
+fn a_signal_to_the_page_writes_an_incomplete_report() {
+    let mut r = Rig::mid_circuit();
+    let circuit = r.under_test();
+    let mut terminal = Terminal::new(TestBackend::new(100, 30)).unwrap();
+    let (_keys_tx, keys) = unbounded();
+    let (signal_tx, signals) = unbounded();
+    signal_tx.send(Termination::Terminate).unwrap();
+    let err = r
+        .app
+        .run(&mut terminal, &keys, &signals)
+        .expect_err("a signal ends the page");
+    assert!(
+        matches!(
+            err.downcast_ref::<Terminated>(),
+            Some(Terminated(Termination::Terminate))
+        ),
+        "{err}"
+    );
+    let md = the_report(&r.reports());
+    says_incomplete_and_what_was_left(&md, "ended by a signal (SIGTERM)", &circuit);
+    r.sim.stop();
+}
