@@ -25,6 +25,7 @@ pub mod protocol;
 pub mod settings;
 pub mod setup;
 pub mod sim;
+pub mod toml_lines;
 pub mod traffic;
 pub mod ui;
 pub mod utc;

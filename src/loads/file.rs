@@ -27,6 +27,8 @@ use std::fmt::{self, Write};
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::toml_lines::{self, Value};
+
 use super::Phase;
 use crate::model::{Circuit, CircuitKind};
 use crate::protocol::device;
@@ -93,9 +95,9 @@ impl std::error::Error for Problem {}
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Raw {
-    alternator_amps: Option<Spanned<toml::Value>>,
-    battery_amp_hours: Option<Spanned<toml::Value>>,
-    battery_usable: Option<Spanned<toml::Value>>,
+    alternator_amps: Option<Value>,
+    battery_amp_hours: Option<Value>,
+    battery_usable: Option<Value>,
     #[serde(default)]
     circuit: BTreeMap<Spanned<String>, RawCircuit>,
 }
@@ -103,19 +105,19 @@ struct Raw {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawCircuit {
-    name: Option<Spanned<toml::Value>>,
-    amps: Option<Spanned<toml::Value>>,
-    ground: Option<Spanned<toml::Value>>,
-    taxi: Option<Spanned<toml::Value>>,
-    take_off: Option<Spanned<toml::Value>>,
-    cruise_day: Option<Spanned<toml::Value>>,
-    cruise_night: Option<Spanned<toml::Value>>,
-    landing: Option<Spanned<toml::Value>>,
-    emergency: Option<Spanned<toml::Value>>,
+    name: Option<Value>,
+    amps: Option<Value>,
+    ground: Option<Value>,
+    taxi: Option<Value>,
+    take_off: Option<Value>,
+    cruise_day: Option<Value>,
+    cruise_night: Option<Value>,
+    landing: Option<Value>,
+    emergency: Option<Value>,
 }
 
 impl RawCircuit {
-    fn phases(self) -> [(Phase, Option<Spanned<toml::Value>>); 7] {
+    fn phases(self) -> [(Phase, Option<Value>); 7] {
         [
             (Phase::Ground, self.ground),
             (Phase::Taxi, self.taxi),
@@ -130,13 +132,13 @@ impl RawCircuit {
 
 /// Reads the file's text. The first problem stops the reading, named by its line.
 pub fn parse(text: &str) -> Result<LoadFile, Problem> {
-    let raw: Raw = toml::from_str(text).map_err(|e| Problem {
-        line: e.span().map(|s| line_of(text, s.start)),
-        message: plain_serde_words(e.message().trim()),
+    let raw: Raw = toml_lines::parse(text).map_err(|r| Problem {
+        line: r.line,
+        message: plain_serde_words(r),
     })?;
-    let at = |v: &Spanned<toml::Value>| Some(line_of(text, v.span().start));
+    let at = |v: &Value| Some(toml_lines::line(text, v));
 
-    let required = |key: &str, v: Option<Spanned<toml::Value>>, what: &str| match v {
+    let required = |key: &str, v: Option<Value>, what: &str| match v {
         None => Err(Problem {
             line: None,
             message: format!("{key} is missing: write {key} = {what}"),
@@ -187,7 +189,7 @@ pub fn parse(text: &str) -> Result<LoadFile, Problem> {
 
     let mut circuits: Vec<(LoadCircuit, usize)> = Vec::new();
     for (key, rc) in raw.circuit {
-        let key_line = line_of(text, key.span().start);
+        let key_line = toml_lines::line(text, &key);
         let key = key.into_inner();
         let Some(dev) = device::DEVICES
             .iter()
@@ -286,7 +288,7 @@ pub fn parse(text: &str) -> Result<LoadFile, Problem> {
 }
 
 /// A number, whole or decimal, as the field asks.
-fn number(v: &Spanned<toml::Value>, field: &str) -> Result<f64, String> {
+fn number(v: &Value, field: &str) -> Result<f64, String> {
     match v.get_ref() {
         toml::Value::Integer(i) => Ok(*i as f64),
         toml::Value::Float(f) if f.is_finite() => Ok(*f),
@@ -299,7 +301,7 @@ fn number(v: &Spanned<toml::Value>, field: &str) -> Result<f64, String> {
 }
 
 /// A phase's value: on, off, or the fraction of the time the circuit is on.
-fn fraction(v: &Spanned<toml::Value>) -> Result<f64, String> {
+fn fraction(v: &Value) -> Result<f64, String> {
     let why = |shown: String| {
         format!(
             "{shown} is not on, off or a fraction of the time; write true, false, or a \
@@ -329,27 +331,18 @@ fn kind(v: &toml::Value) -> &'static str {
 
 /// serde's words for an unknown key list every field in its own style; ours say
 /// which keys the file knows.
-fn plain_serde_words(message: &str) -> String {
-    if message.starts_with("unknown field") {
-        let key = message.split('`').nth(1).unwrap_or("?");
-        let phases: Vec<&str> = Phase::ALL.iter().map(|p| p.key()).collect();
-        format!(
-            "unknown key {key:?}: the file's keys are alternator_amps, battery_amp_hours, \
-             battery_usable and [circuit.PIN] sections; a circuit's keys are name, amps, {}",
-            phases.join(", ")
-        )
-    } else {
-        message.to_string()
+fn plain_serde_words(r: toml_lines::Refusal) -> String {
+    match r.unknown_key {
+        Some(key) => {
+            let phases: Vec<&str> = Phase::ALL.iter().map(|p| p.key()).collect();
+            format!(
+                "unknown key {key:?}: the file's keys are alternator_amps, battery_amp_hours, \
+                 battery_usable and [circuit.PIN] sections; a circuit's keys are name, amps, {}",
+                phases.join(", ")
+            )
+        }
+        None => r.message,
     }
-}
-
-/// The 1-based line of a byte offset.
-fn line_of(text: &str, offset: usize) -> usize {
-    text.as_bytes()[..offset.min(text.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
 }
 
 /// What the template says on top: how to fill the file in.

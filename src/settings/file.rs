@@ -16,8 +16,8 @@
 
 use std::net::Ipv4Addr;
 
+use crate::toml_lines::{self, Value};
 use serde::Deserialize;
-use toml::Spanned;
 
 use super::values::{self, Theme};
 use crate::link::PortAddr;
@@ -64,28 +64,29 @@ pub struct FileProblem {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Raw {
-    port: Option<Spanned<toml::Value>>,
-    baud: Option<Spanned<toml::Value>>,
-    theme: Option<Spanned<toml::Value>>,
-    repeat_delay: Option<Spanned<toml::Value>>,
-    xfsp: Option<Spanned<toml::Value>>,
-    xfsp_iface: Option<Spanned<toml::Value>>,
-    xfsp_source_id: Option<Spanned<toml::Value>>,
-    xfsp_cert: Option<Spanned<toml::Value>>,
+    port: Option<Value>,
+    baud: Option<Value>,
+    theme: Option<Value>,
+    repeat_delay: Option<Value>,
+    xfsp: Option<Value>,
+    xfsp_iface: Option<Value>,
+    xfsp_source_id: Option<Value>,
+    xfsp_cert: Option<Value>,
 }
 
 /// Reads the file's text. The first problem stops the reading: one wrong line is
 /// enough to refuse the file, and it is named.
 pub fn parse(text: &str) -> Result<SettingsFile, FileProblem> {
-    let raw: Raw = toml::from_str(text).map_err(|e| FileProblem {
-        line: e.span().map(|s| line_of(text, s.start)),
-        message: with_keys(e.message().trim()),
+    let raw: Raw = toml_lines::parse(text).map_err(|r| FileProblem {
+        line: r.line,
+        message: match r.unknown_key {
+            Some(key) => format!("unknown key {key:?}; the keys are {}", KEYS.join(", ")),
+            None => r.message,
+        },
     })?;
-    let read = |key: &str,
-                v: Option<Spanned<toml::Value>>|
-     -> Result<Option<(String, usize)>, FileProblem> {
+    let read = |key: &str, v: Option<Value>| -> Result<Option<(String, usize)>, FileProblem> {
         let Some(v) = v else { return Ok(None) };
-        let line = line_of(text, v.span().start);
+        let line = toml_lines::line(text, &v);
         match v.into_inner() {
             toml::Value::String(s) => Ok(Some((s, line))),
             toml::Value::Integer(i) => Ok(Some((i.to_string(), line))),
@@ -144,25 +145,6 @@ pub fn parse(text: &str) -> Result<SettingsFile, FileProblem> {
                 .map_err(|_| format!("{t:?} is not a certification level (0–255)"))
         })?,
     })
-}
-
-/// serde's "unknown field" names what it expected in its own words; ours are shorter.
-fn with_keys(message: &str) -> String {
-    if message.starts_with("unknown field") {
-        let key = message.split('`').nth(1).unwrap_or("?");
-        format!("unknown key {key:?}; the keys are {}", KEYS.join(", "))
-    } else {
-        message.to_string()
-    }
-}
-
-/// The 1-based line of a byte offset.
-fn line_of(text: &str, offset: usize) -> usize {
-    text.as_bytes()[..offset.min(text.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
 }
 
 #[cfg(test)]
