@@ -102,8 +102,8 @@ pub struct PageArgs {
     /// light terminals, `mono` uses no colour; `auto` asks the terminal for its
     /// background (OSC 11) and picks dark or light, dark if it does not answer, and
     /// mono when NO_COLOR is set; `terminal` keeps the terminal's own 16 colours.
-    #[arg(long, value_enum, default_value_t = ThemeArg::Auto)]
-    pub theme: ThemeArg,
+    #[arg(long, value_enum, default_value_t = Requested::Auto)]
+    pub theme: Requested,
 
     /// Without key-release reports, how long a held motor key may take to repeat for
     /// the first time, in milliseconds (300-1500). By default the page waits 700 ms
@@ -113,14 +113,25 @@ pub struct PageArgs {
     pub repeat_delay: Option<u64>,
 }
 
-/// `--theme`; see [`crate::ui::palette`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ThemeArg {
-    Auto,
-    Dark,
-    Light,
-    Mono,
-    Terminal,
+/// `--theme` takes the words the config file takes ([`values::THEMES`]); see
+/// [`crate::ui::palette`].
+impl ValueEnum for Requested {
+    fn value_variants<'a>() -> &'a [Self] {
+        const ALL: [Requested; values::THEMES.len()] = {
+            let mut all = [Requested::Auto; values::THEMES.len()];
+            let mut i = 0;
+            while i < all.len() {
+                all[i] = values::THEMES[i].1;
+                i += 1;
+            }
+            all
+        };
+        &ALL
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        Some(clap::builder::PossibleValue::new(values::theme_word(*self)))
+    }
 }
 
 #[derive(Debug, Subcommand)]
@@ -314,31 +325,7 @@ impl From<PageArgs> for crate::app::PageOptions {
             speed: a.speed,
             max_run: a.max_run,
             repeat_delay: a.repeat_delay,
-            theme: a.theme.into(),
-        }
-    }
-}
-
-impl From<ThemeArg> for Requested {
-    fn from(t: ThemeArg) -> Requested {
-        match t {
-            ThemeArg::Auto => Requested::Auto,
-            ThemeArg::Dark => Requested::Dark,
-            ThemeArg::Light => Requested::Light,
-            ThemeArg::Mono => Requested::Mono,
-            ThemeArg::Terminal => Requested::Terminal,
-        }
-    }
-}
-
-impl From<Requested> for ThemeArg {
-    fn from(t: Requested) -> ThemeArg {
-        match t {
-            Requested::Auto => ThemeArg::Auto,
-            Requested::Dark => ThemeArg::Dark,
-            Requested::Light => ThemeArg::Light,
-            Requested::Mono => ThemeArg::Mono,
-            Requested::Terminal => ThemeArg::Terminal,
+            theme: a.theme,
         }
     }
 }
@@ -351,8 +338,8 @@ pub struct ConfigArgs {
     #[command(flatten)]
     pub xfsp: XfspArgs,
     /// Colours, as the page's --theme.
-    #[arg(long, value_enum, default_value_t = ThemeArg::Auto)]
-    pub theme: ThemeArg,
+    #[arg(long, value_enum, default_value_t = Requested::Auto)]
+    pub theme: Requested,
     /// The first key auto-repeat, as the page's --repeat-delay.
     #[arg(long, value_name = "MS")]
     pub repeat_delay: Option<u64>,
@@ -386,6 +373,15 @@ pub struct Effective {
     pub key: &'static str,
     pub value: String,
     pub origin: Origin,
+}
+
+/// A file's setting as the value of a flag that may be absent (`--port`,
+/// `--repeat-delay`).
+fn optional<T: Clone>(s: &Option<Setting<T>>) -> Option<Setting<Option<T>>> {
+    s.clone().map(|s| Setting {
+        value: Some(s.value),
+        line: s.line,
+    })
 }
 
 /// Fills what the command line left at its default from the config file, and notes
@@ -440,10 +436,7 @@ impl Resolver<'_> {
                 "--port and --sim contradict each other: give one".into(),
             ));
         }
-        let file = self.file.port.clone().map(|s| Setting {
-            value: Some(s.value),
-            line: s.line,
-        });
+        let file = optional(&self.file.port);
         self.pick("port", "port", Some(PORT_ENV), &mut p.port, &file, |_| {
             String::new()
         });
@@ -456,34 +449,23 @@ impl Resolver<'_> {
             Some(a) => a.to_string(),
             None => "none: the built-in virtual VP-X".into(),
         };
-        self.pick(
-            "baud",
-            "baud",
-            Some(BAUD_ENV),
-            &mut p.baud,
-            &self.file.baud.clone(),
-            u32::to_string,
-        );
+        self.baud(&mut p.baud);
         Ok(())
     }
 
     fn flash_port(&mut self, p: &mut FlashPortArgs) {
-        let file = self.file.port.clone().map(|s| Setting {
-            value: Some(s.value),
-            line: s.line,
-        });
+        let file = optional(&self.file.port);
         self.pick("port", "port", Some(PORT_ENV), &mut p.port, &file, |a| {
             a.as_ref()
                 .map_or_else(|| "none".into(), PortAddr::to_string)
         });
-        self.pick(
-            "baud",
-            "baud",
-            Some(BAUD_ENV),
-            &mut p.baud,
-            &self.file.baud.clone(),
-            u32::to_string,
-        );
+        self.baud(&mut p.baud);
+    }
+
+    /// `--baud` (or its environment variable), or the file's `baud`.
+    fn baud(&mut self, baud: &mut u32) {
+        let file = self.file.baud.clone();
+        self.pick("baud", "baud", Some(BAUD_ENV), baud, &file, u32::to_string);
     }
 
     /// `--xfsp` without a value takes the file's group; so does `gateway` (always on
@@ -532,21 +514,16 @@ impl Resolver<'_> {
     }
 
     /// `--theme`, or the file's `theme`.
-    fn theme(&mut self, theme: &mut ThemeArg) {
-        let mut t = Requested::from(*theme);
+    fn theme(&mut self, theme: &mut Requested) {
         let file = self.file.theme.clone();
-        self.pick("theme", "theme", None, &mut t, &file, |t| {
+        self.pick("theme", "theme", None, theme, &file, |t| {
             values::theme_word(*t).to_string()
         });
-        *theme = t.into();
     }
 
     /// `--repeat-delay`, or the file's `repeat_delay` (checked by the page).
     fn repeat_delay(&mut self, d: &mut Option<u64>) {
-        let delay = self.file.repeat_delay_ms.clone().map(|s| Setting {
-            value: Some(s.value),
-            line: s.line,
-        });
+        let delay = optional(&self.file.repeat_delay_ms);
         self.pick("repeat_delay", "repeat_delay", None, d, &delay, |d| {
             d.map_or_else(
                 || "learned from the terminal".into(),
