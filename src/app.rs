@@ -54,7 +54,7 @@ pub use options::{PageOptions, XfspOptions};
 pub use queries::{QueryPacer, connect_queries};
 pub use record::Recorder;
 pub use replay::Capture;
-pub use signals::{Terminated, Termination, listen as listen_for_termination};
+pub use signals::{StopFlag, Terminated, Termination, listen as listen_for_termination, stop_flag};
 pub use stop_gate::StopGate;
 pub use terminal::{
     TerminalGuard, clear_emergency_stop, install_panic_hook, panicked, restore as restore_terminal,

@@ -9,6 +9,8 @@
 //! pure function here, tested on every build.
 
 use std::io;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 
 use crossbeam_channel::{Receiver, unbounded};
 
@@ -97,6 +99,55 @@ pub fn listen() -> io::Result<Receiver<Termination>> {
     let (tx, rx) = unbounded();
     os::listen(tx)?;
     Ok(rx)
+}
+
+/// A flag the OS's request to stop raises, and what asked, for a command that runs
+/// its own loop (`flash`, `gateway`) rather than selecting over [`listen`]'s channel.
+#[derive(Debug, Clone, Default)]
+pub struct StopFlag {
+    pub raised: Arc<AtomicBool>,
+    by: Arc<Mutex<Option<Termination>>>,
+}
+
+impl StopFlag {
+    /// What asked to stop, once the flag is raised.
+    pub fn by(&self) -> Option<Termination> {
+        *self.by.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// Records what asked, then raises the flag: in that order, so a run that sees
+    /// the flag and returns always finds the signal for its exit status (the other
+    /// order let a quick return find nothing and exit 1). Only the first counts;
+    /// returns whether this was it.
+    pub fn note(&self, t: Termination) -> bool {
+        {
+            let mut by = self.by.lock().unwrap_or_else(|p| p.into_inner());
+            if by.is_some() {
+                return false;
+            }
+            *by = Some(t);
+        }
+        self.raised.store(true, Ordering::SeqCst);
+        true
+    }
+}
+
+/// Starts listening ([`listen`]) and a thread `name` that raises the returned flag
+/// at the first request to stop; `first` is told of it there.
+pub fn stop_flag(name: &str, first: impl Fn(Termination) + Send + 'static) -> io::Result<StopFlag> {
+    let terminations = listen()?;
+    let flag = StopFlag::default();
+    let noted = flag.clone();
+    std::thread::Builder::new()
+        .name(name.into())
+        .spawn(move || {
+            while let Ok(t) = terminations.recv() {
+                if noted.note(t) {
+                    first(t);
+                }
+            }
+        })?;
+    Ok(flag)
 }
 
 /// Windows' console control events (wincon.h). Here as numbers so the mapping above is
@@ -207,6 +258,33 @@ mod os {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A command returns as soon as it sees the flag, and its caller then looks for
+    /// the signal to name the exit status: the signal must be recorded before the
+    /// flag is raised, never after (that order let a quick return exit 1).
+    #[test]
+    fn the_signal_is_recorded_before_the_flag_is_raised() {
+        let flag = StopFlag::default();
+        // Someone is reading the record: the signal cannot be written yet, so the
+        // flag must not be raised yet either.
+        let reading = flag.by.lock().unwrap();
+        let noting = {
+            let flag = flag.clone();
+            std::thread::spawn(move || flag.note(Termination::Terminate))
+        };
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        assert!(
+            !flag.raised.load(Ordering::SeqCst),
+            "raised before the signal was recorded"
+        );
+        drop(reading);
+        assert!(noting.join().unwrap());
+        assert!(flag.raised.load(Ordering::SeqCst));
+        assert_eq!(flag.by(), Some(Termination::Terminate));
+        // A second signal changes nothing: the first names the exit.
+        assert!(!flag.note(Termination::HangUp));
+        assert_eq!(flag.by(), Some(Termination::Terminate));
+    }
 
     #[test]
     fn exit_status_is_128_plus_the_signal() {

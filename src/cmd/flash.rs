@@ -19,14 +19,12 @@
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, IsTerminal, LineWriter, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant, SystemTime};
 
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::app::{Terminated, Termination};
+use crate::app::{StopFlag, Terminated};
 use crate::cli::FlashArgs;
 use crate::flash::hardware::hw_name;
 use crate::flash::{self, Event, Found, Image, Options};
@@ -176,7 +174,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
             bar.abandon_with_message("stopped");
             log.line(&format!("-- STOPPED: {e}"));
             log.finish();
-            let by = *interrupted.lock().unwrap_or_else(|p| p.into_inner());
+            let by = interrupted.by();
             match by {
                 // Our words, then the exit status of the signal (130 for Ctrl-C).
                 Some(t) => {
@@ -218,44 +216,18 @@ fn keep_awake(log: &mut FlashLog) -> Option<keepawake::KeepAwake> {
     }
 }
 
-/// Sets `opts.cancel` when the OS asks us to stop, and says so once; returns what
-/// asked, for the exit status.
-fn stop_on_termination(opts: &mut Options) -> anyhow::Result<Arc<Mutex<Option<Termination>>>> {
-    let terminations = crate::app::listen_for_termination()?;
-    let cancel = Arc::new(AtomicBool::new(false));
-    let by = Arc::new(Mutex::new(None));
-    opts.cancel = Some(cancel.clone());
-    let said = by.clone();
-    std::thread::Builder::new()
-        .name("flash-stop".into())
-        .spawn(move || {
-            while let Ok(t) = terminations.recv() {
-                if note_termination(t, &cancel, &said) {
-                    eprintln!(
-                        "\nvpx-efis: {}: finishing the page in progress, then stopping (the unit is never \
-                         restarted into a half-written image)",
-                        t.name()
-                    );
-                }
-            }
-        })?;
-    Ok(by)
-}
-
-/// Records what asked us to stop, then tells the updater: in that order, so the run
-/// that sees the cancel and returns always finds the signal for its exit status
-/// (the other order let a quick return find nothing and exit 1). Only the first
-/// counts; returns whether this was it.
-fn note_termination(t: Termination, cancel: &AtomicBool, by: &Mutex<Option<Termination>>) -> bool {
-    {
-        let mut by = by.lock().unwrap_or_else(|p| p.into_inner());
-        if by.is_some() {
-            return false;
-        }
-        *by = Some(t);
-    }
-    cancel.store(true, Ordering::SeqCst);
-    true
+/// Sets `opts.cancel` when the OS asks us to stop, and says so once; the flag says
+/// what asked, for the exit status.
+fn stop_on_termination(opts: &mut Options) -> anyhow::Result<StopFlag> {
+    let flag = crate::app::stop_flag("flash-stop", |t| {
+        eprintln!(
+            "\nvpx-efis: {}: finishing the page in progress, then stopping (the unit is never \
+             restarted into a half-written image)",
+            t.name()
+        );
+    })?;
+    opts.cancel = Some(flag.raised.clone());
+    Ok(flag)
 }
 
 /// `FILE.hex.log`, next to the file.
@@ -402,34 +374,6 @@ mod tests {
             default_log_path(Path::new("/fw/cu_2.hex")),
             PathBuf::from("/fw/cu_2.hex.log")
         );
-    }
-
-    /// The updater returns as soon as it sees the cancel, and its caller then looks
-    /// for the signal to name the exit status: the signal must be recorded before the
-    /// cancel is raised, never after (that order let a quick return exit 1).
-    #[test]
-    fn the_signal_is_recorded_before_the_updater_is_cancelled() {
-        let cancel = Arc::new(AtomicBool::new(false));
-        let by = Arc::new(Mutex::new(None));
-        // Someone is reading the record: the signal cannot be written yet, so the
-        // updater must not be cancelled yet either.
-        let reading = by.lock().unwrap();
-        let noting = {
-            let (cancel, by) = (cancel.clone(), by.clone());
-            std::thread::spawn(move || note_termination(Termination::Terminate, &cancel, &by))
-        };
-        std::thread::sleep(std::time::Duration::from_millis(50));
-        assert!(
-            !cancel.load(Ordering::SeqCst),
-            "cancelled before the signal was recorded"
-        );
-        drop(reading);
-        assert!(noting.join().unwrap());
-        assert!(cancel.load(Ordering::SeqCst));
-        assert_eq!(*by.lock().unwrap(), Some(Termination::Terminate));
-        // A second signal changes nothing: the first names the exit.
-        assert!(!note_termination(Termination::HangUp, &cancel, &by));
-        assert_eq!(*by.lock().unwrap(), Some(Termination::Terminate));
     }
 
     #[test]

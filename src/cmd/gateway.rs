@@ -10,8 +10,8 @@
 use std::io::Write;
 use std::net::Ipv4Addr;
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
@@ -69,22 +69,11 @@ pub fn run(args: GatewayArgs) -> anyhow::Result<()> {
     let opts = BridgeOptions::from_args(&args)?;
     // SIGINT, SIGTERM, and SIGHUP (a dropped ssh session) stop the bridge and its motor
     // streams cleanly, then the process exits 128 + n.
-    let terminations = crate::app::listen_for_termination()?;
-    let stop = Arc::new(AtomicBool::new(false));
-    let by = Arc::new(Mutex::new(None));
-    {
-        let (stop, by) = (stop.clone(), by.clone());
-        std::thread::Builder::new()
-            .name("gateway-stop".into())
-            .spawn(move || {
-                if let Ok(t) = terminations.recv() {
-                    *by.lock().unwrap_or_else(|p| p.into_inner()) = Some(t);
-                    stop.store(true, Ordering::SeqCst);
-                }
-            })?;
-    }
-    run_bridge(&opts, &stop, |line| eprintln!("vpx-efis gateway: {line}"))?;
-    match *by.lock().unwrap_or_else(|p| p.into_inner()) {
+    let stop = crate::app::stop_flag("gateway-stop", |_| {})?;
+    run_bridge(&opts, &stop.raised, |line| {
+        eprintln!("vpx-efis gateway: {line}")
+    })?;
+    match stop.by() {
         Some(t) => Err(Terminated(t).into()),
         None => Ok(()),
     }
