@@ -502,6 +502,24 @@ mod tests {
         }
     }
 
+    /// Device 9 with a breaker of `amps`.
+    fn spec9_at(amps: u8) -> DeviceSpec {
+        DeviceSpec {
+            circuit_breaker: amps,
+            ..spec9()
+        }
+    }
+
+    /// A unit heard at `t0` holding `held` on device 9, and a write of `written`
+    /// started.
+    fn writing(t0: Instant, held: DeviceSpec, written: DeviceSpec) -> (Model, WriteQueue) {
+        let mut m = model();
+        hear(&mut m, t0, held);
+        let mut q = WriteQueue::default();
+        q.start(vec![written.into()]);
+        (m, q)
+    }
+
     fn ms(t0: Instant, n: u64) -> Instant {
         t0 + Duration::from_millis(n)
     }
@@ -609,18 +627,8 @@ mod tests {
     #[test]
     fn a_refusal_is_in_words_and_the_reread_shows_what_the_unit_kept() {
         let t0 = Instant::now();
-        let mut m = model();
-        let kept = DeviceSpec {
-            circuit_breaker: 2,
-            ..spec9()
-        };
-        hear(&mut m, t0, kept);
-        let bad = DeviceSpec {
-            circuit_breaker: 9,
-            ..spec9()
-        };
-        let mut q = WriteQueue::default();
-        q.start(vec![bad.into()]);
+        let kept = spec9_at(2);
+        let (mut m, mut q) = writing(t0, kept, spec9_at(9));
         q.tick(&mut m, ms(t0, 10));
         hear(
             &mut m,
@@ -752,18 +760,8 @@ mod tests {
     #[test]
     fn a_lost_ack_leaves_the_breaker_unknown_until_the_reread_says_what_the_unit_holds() {
         let t0 = Instant::now();
-        let mut m = model();
-        let old = DeviceSpec {
-            circuit_breaker: 4,
-            ..spec9()
-        };
-        hear(&mut m, t0, old);
-        let new = DeviceSpec {
-            circuit_breaker: 3,
-            ..spec9()
-        };
-        let mut q = WriteQueue::default();
-        q.start(vec![new.into()]);
+        let new = spec9_at(3);
+        let (mut m, mut q) = writing(t0, spec9_at(4), new);
         q.tick(&mut m, t0);
         q.tick(&mut m, ms(t0, 1000));
         q.tick(&mut m, ms(t0, 2000));
