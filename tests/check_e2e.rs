@@ -301,6 +301,11 @@ fn the_install_scenario_finds_each_injected_fault_and_puts_everything_back() {
         (0, 0, 0),
         "every run ended with its stop, never by starving the unit"
     );
+    assert_eq!(
+        (after.flap_late, after.pitch_trim_late, after.roll_trim_late),
+        (0, 0, 0),
+        "no gap over 250 ms between move messages (the unit forgives up to 300 ms)"
+    );
     // Circuits switched back off by DEVICE_POWER are held until their switch cycles.
     assert!(v.to_cycle.iter().any(|(id, ..)| *id == 6));
     // The template of the load file was written for next time.
@@ -433,6 +438,7 @@ fn quit_mid_motor_run_puts_the_stop_on_the_wire() {
         s.flap_starvations, before,
         "by its stop message, not by starving"
     );
+    assert_eq!(s.flap_late, 0, "no gap over 250 ms between move messages");
     r.until("the check to stop", Duration::from_secs(5), |app| {
         app.check_finished()
     });
@@ -642,6 +648,10 @@ fn a_reversed_trim_parked_near_its_endpoint_never_passes_it() {
     assert_eq!(
         after.pitch_trim_starvations, before.pitch_trim_starvations,
         "stopped by its stop message, not by starving the unit"
+    );
+    assert_eq!(
+        after.pitch_trim_late, before.pitch_trim_late,
+        "no gap over 250 ms between move messages"
     );
     assert!(!after.pitch_trim_running);
     // Put back (the check's tolerance, 3 counts): the run back is "up", which on

@@ -69,4 +69,8 @@ fn a_panic_while_trim_runs_sends_the_stop_and_nothing_restarts_it() {
         s.pitch_trim_starvations, 0,
         "stopped by the message, not by starving"
     );
+    assert_eq!(
+        s.pitch_trim_late, 0,
+        "no gap over 250 ms between move messages"
+    );
 }

@@ -146,6 +146,10 @@ fn signal_during_a_trim_run(signal: libc::c_int, status: i32) {
         s.pitch_trim_starvations, 0,
         "stopped by the message, not by the unit's 250 ms cut-off"
     );
+    assert_eq!(
+        s.pitch_trim_late, 0,
+        "no gap over 250 ms between move messages"
+    );
 
     // The terminal was given back.
     let after = term.output()[screen_before..].to_vec();

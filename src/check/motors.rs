@@ -28,17 +28,22 @@ use std::time::{Duration, Instant};
 use super::flow::{CheckFlow, Command, Io, Phase, motor_name, next_step};
 use super::switches::news;
 pub use crate::control::endpoints::expected_sign;
-use crate::control::endpoints::{self, ends, heads_for, position, room};
+use crate::control::endpoints::{self, ends, heads_for, opposite, position, room};
 use crate::control::{Direction, StopReason, motor_check};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 use crate::ui::check::state::{CheckView, MotorFinding, MotorResult, Outcome, Prompt, Step};
 
-/// A run moved the motor if its position changed at least this many counts.
-pub const MOVED: i32 = 3;
+/// A run moved the motor if its position changed at least this many counts (the
+/// same count the controller's watch needs before it takes a run to go the other way).
+pub use crate::control::endpoints::MOVED;
 /// Within this many counts of an endpoint (or the sensor's 0 / 255), the motor is at
 /// that limit.
 pub const AT_LIMIT: i32 = 3;
+/// Probes in a row that showed no way before a test run is taken as not moving.
+const MAX_PROBES: u8 = 4;
+/// After a probe's stop, long enough for two FLAP_TRIM_STATUS (10 Hz).
+const PROBE_SETTLE: Duration = Duration::from_millis(200);
 /// Put back when it ends within this many counts of where it was.
 pub const BACK_WITHIN: i32 = 3;
 
@@ -58,15 +63,6 @@ fn directions(motor: Motor) -> [Direction; 2] {
     match motor {
         Motor::Flaps | Motor::Trim(TrimKind::Pitch) => [Direction::Down, Direction::Up],
         Motor::Trim(TrimKind::Roll) => [Direction::Right, Direction::Left],
-    }
-}
-
-fn opposite(d: Direction) -> Direction {
-    match d {
-        Direction::Up => Direction::Down,
-        Direction::Down => Direction::Up,
-        Direction::Left => Direction::Right,
-        Direction::Right => Direction::Left,
     }
 }
 
@@ -98,8 +94,9 @@ pub fn judge(
 
 /// [`judge`], where `ended_at[k]` is the endpoint run `k` was stopped at (or was not
 /// made for, having no room): a run stopped at the endpoint it heads for that did not
-/// move ran against its limit; one stopped at the other endpoint went the wrong way,
-/// however little it moved before it was stopped.
+/// move ran against its limit; one stopped at the other endpoint went the wrong way
+/// if its position did go that way, however little, before it was stopped (a run
+/// that ended there having gone its own way is not called reversed).
 pub fn judge_runs(
     motor: Motor,
     dirs: [Direction; 2],
@@ -112,8 +109,9 @@ pub fn judge_runs(
     let right = [0, 1].map(|k| moves[k].signum() == expected_sign(motor, dirs[k], ft));
     let own = [0, 1].map(|k| heads_for(motor, dirs[k], ft));
     let limited = [0, 1].map(|k| ended_at[k].is_some() && ended_at[k] == own[k]);
-    let wrong =
-        (0..2).any(|k| (moved[k] && !right[k]) || (ended_at[k].is_some() && ended_at[k] != own[k]));
+    let wrong = (0..2).any(|k| {
+        !right[k] && (moved[k] || (moves[k] != 0 && ended_at[k].is_some() && ended_at[k] != own[k]))
+    });
     if wrong {
         return MotorFinding::Reversed;
     }
@@ -165,6 +163,12 @@ pub(super) struct MotorItem {
     /// How long each test run ran: the whole run, or until it was cut short. With
     /// `moves` it gives the rate for the run back.
     ran: [Duration; 2],
+    /// While the test run is a probe ([`endpoints::probe`]): the rest of its length,
+    /// run once the probe showed its way.
+    rest: Option<Duration>,
+    /// Probes made in this test run, and how long they ran.
+    probes: u8,
+    probed: Duration,
     stage: Stage,
     run: Duration,
     settle: Duration,
@@ -241,6 +245,9 @@ impl CheckFlow {
             moves: [0; 2],
             ended_at: [None; 2],
             ran: [Duration::ZERO; 2],
+            rest: None,
+            probes: 0,
+            probed: Duration::ZERO,
             stage: Stage::Start,
             run: self.opts.timing.motor_run,
             settle: self.opts.timing.motor_settle,
@@ -304,8 +311,13 @@ impl CheckFlow {
                 let stopped_at = stop.map_or(now, |(_, at)| at);
                 match stop.map(|(r, _)| r) {
                     Some(StopReason::RunDone) | None => {
+                        // A probe only needs the next position after its stop.
+                        let settle = match item.rest {
+                            Some(_) => PROBE_SETTLE.min(item.settle),
+                            None => item.settle,
+                        };
                         item.stage = Stage::Settle {
-                            until: now + item.settle,
+                            until: now + settle,
                         };
                     }
                     // Stopped at its endpoint by the controller: the run is over, for
@@ -313,7 +325,9 @@ impl CheckFlow {
                     Some(StopReason::AtEndpoint(end)) => {
                         if item.leg < 2 {
                             item.ended_at[item.leg] = Some(end);
-                            item.ran[item.leg] = stopped_at.saturating_duration_since(since);
+                            item.ran[item.leg] =
+                                item.probed + stopped_at.saturating_duration_since(since);
+                            item.rest = None;
                         }
                         io.out.news.push(format!(
                             "  {} stopped at its endpoint ({end}), position {pos}",
@@ -362,8 +376,35 @@ impl CheckFlow {
                 if now < until {
                     return;
                 }
+                if item.leg < 2
+                    && let Some(rest) = item.rest.take()
+                {
+                    // A probe: on the way it showed, the rest of the run; no way yet,
+                    // another probe; the other way, the run is over there (the
+                    // controller's watch stops it at that endpoint otherwise).
+                    let d = item.dirs[item.leg];
+                    let way = expected_sign(item.motor, d, &ft);
+                    let went = (i32::from(pos) - i32::from(item.starts[item.leg])) * way;
+                    item.probed = item.ran[item.leg];
+                    if went > 0 {
+                        return self.motor_run(d, rest, Some(way), view, io);
+                    }
+                    if went == 0 && item.probes < MAX_PROBES {
+                        return self.motor_run(d, rest, None, view, io);
+                    }
+                    if went < 0 {
+                        item.ended_at[item.leg] = heads_for(item.motor, opposite(d), &ft);
+                        io.out.news.push(format!(
+                            "  {} went the other way from {} to {pos}: run no further",
+                            motor_name(item.motor),
+                            item.starts[item.leg]
+                        ));
+                    }
+                }
                 view.motors[item.idx].positions.push(pos);
                 if item.leg < 2 {
+                    item.probes = 0;
+                    item.probed = Duration::ZERO;
                     let start = item.starts[item.leg];
                     item.moves[item.leg] = i32::from(pos) - i32::from(start);
                     item.leg += 1;
@@ -448,17 +489,30 @@ impl CheckFlow {
             return;
         };
         let now = io.now;
+        let mut length = length;
         if let Some(ft) = io.model.live_flap_trim(now)
             && item.leg < 2
+            && way.is_none()
         {
             let pos = position(item.motor, ft);
-            item.starts[item.leg] = pos;
+            if item.probes == 0 {
+                item.starts[item.leg] = pos;
+            }
             if room(item.motor, d, pos, ft).is_some_and(|r| r <= endpoints::START_ROOM) {
                 // At (or past) the endpoint it heads for: this run is not made; it
                 // counts as not moving, against its limit.
                 item.ended_at[item.leg] = heads_for(item.motor, d, ft);
                 item.stage = Stage::Settle { until: now };
                 return;
+            }
+            // Near the endpoint behind it, and its way not known: a probe first.
+            item.rest = None;
+            if let Some(p) = endpoints::probe(item.motor, d, pos, ft)
+                && p < length
+            {
+                item.rest = Some(length - p);
+                item.probes += 1;
+                length = p;
             }
         }
         match io
@@ -469,7 +523,7 @@ impl CheckFlow {
                 io.out.packets.extend(p);
                 if item.leg < 2 {
                     // As planned; a run ended early at its endpoint says how long.
-                    item.ran[item.leg] = length;
+                    item.ran[item.leg] = item.probed + length;
                 }
                 item.stage = Stage::Running { since: now, length };
             }
@@ -608,6 +662,7 @@ impl CheckFlow {
                 // run back still goes to where the check found it.
                 view.prompt = Some(running_prompt(item.motor));
                 if item.leg < 2 {
+                    (item.rest, item.probes, item.probed) = (None, 0, Duration::ZERO);
                     let (d, length) = (item.dirs[item.leg], item.run);
                     self.motor_run(d, length, None, view, io);
                 } else {

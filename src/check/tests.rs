@@ -320,6 +320,14 @@ impl Rig {
         self.cmd(Command::Enter);
         assert_ne!(self.view.step, Step::Confirm, "{:?}", self.view.message);
     }
+
+    /// Until the flaps, parked at their up endpoint, have shown their way in probes
+    /// and run the rest of their first test run (a probe moves them one count at most).
+    fn past_probes(&mut self) {
+        self.run_until(3000, |r| {
+            r.ctl.running().is_some_and(|m| m.motor == Motor::Flaps) && flaps_at(r) >= 22
+        });
+    }
 }
 
 // ----- before power -----
@@ -805,6 +813,7 @@ fn flaps_at(r: &Rig) -> u8 {
 fn a_motor_skipped_during_its_first_run_is_run_back() {
     let mut r = Rig::new(Rig::motors_only());
     r.start();
+    r.past_probes();
     r.run(400);
     assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
     r.run(100);
@@ -830,7 +839,8 @@ fn a_motor_skipped_during_its_first_run_is_run_back() {
 fn a_retry_after_a_pause_returns_the_motor_to_where_the_check_found_it() {
     let mut r = Rig::new(Rig::motors_only());
     r.start();
-    r.run(450);
+    r.past_probes();
+    r.run(300);
     assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
     let p = r.ctl.on_focus_lost(r.now);
     r.send(p);
@@ -892,12 +902,28 @@ fn the_motor_findings_from_positions() {
         MotorFinding::NoMovement
     );
     assert_eq!(MotorFinding::AgainstLimit.mark(), Mark::Warn);
+    // Review item 2: a run stopped at the other endpoint is reversed only if its
+    // position went that way: one that went its own way (or nowhere) is not.
+    use super::motors::judge_runs;
+    assert_ne!(
+        judge_runs(f, [Down, Up], [20, 60], [0, -40], [Some(20), None], &ft),
+        MotorFinding::Reversed
+    );
+    assert_ne!(
+        judge_runs(f, [Down, Up], [20, 60], [1, -40], [Some(20), None], &ft),
+        MotorFinding::Reversed
+    );
+    assert_eq!(
+        judge_runs(f, [Down, Up], [21, 60], [-1, -40], [Some(20), None], &ft),
+        MotorFinding::Reversed
+    );
 }
 
 #[test]
 fn a_motor_fault_mid_run_is_its_finding_and_the_stop_goes_out() {
     let mut r = Rig::new(Rig::motors_only());
     r.start();
+    r.past_probes();
     r.run(200);
     assert!(r.ctl.running().is_some());
     r.unit.apply(
@@ -1041,6 +1067,7 @@ fn a_fault_elsewhere_mid_step_stops_the_check_and_puts_the_circuit_back() {
 fn quit_mid_motor_run_sends_its_stop_and_says_where_it_was_left() {
     let mut r = Rig::new(Rig::motors_only());
     r.start();
+    r.past_probes();
     r.run(400);
     assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
     let before = r.sent.len();
@@ -1079,6 +1106,7 @@ fn a_fault_elsewhere_mid_motor_run_stops_it_for_that_reason() {
     opts.timing.motor_run = Duration::from_secs(4);
     let mut r = Rig::new(opts);
     r.start();
+    r.past_probes();
     r.run(300);
     assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
     r.unit.apply(
@@ -1101,6 +1129,7 @@ fn a_fault_elsewhere_mid_motor_run_stops_it_for_that_reason() {
 fn a_panic_stops_the_motor_with_the_panic_reason() {
     let mut r = Rig::new(Rig::motors_only());
     r.start();
+    r.past_probes();
     r.run(300);
     r.interrupt(Cause::Panic, false);
     assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Panic);
@@ -1419,6 +1448,71 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
     }
 }
 
+/// Review item 1: a pitch trim with its leads swapped, parked exactly at its up
+/// endpoint 30 (or one count off it): the check's first run is "down" (all the room),
+/// but the trim really goes up. Its way is not known yet and the endpoint behind it
+/// is near, so the run starts as probes short enough that, at the fastest motor
+/// speed, it passes 30 by less than the sensor's one count of noise: it never reads
+/// below 29 from 30 (nor below 30 from 31), every probe ends with its stop on the
+/// wire, it is found reversed and it is not run on toward 28.
+#[test]
+fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
+    for (at, floor) in [(30u8, 29u8), (31, 30)] {
+        let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+        r.start();
+        let mut seen = Vec::new();
+        while r.view.step != Step::Done && seen.len() < 3000 {
+            seen.extend(r.run_watching(10, PITCH));
+        }
+        let lowest = *seen.iter().min().unwrap();
+        assert!(lowest >= floor, "from {at}: down to {lowest}; {:?}", r.news);
+        let m = &r.view.motors[1];
+        assert_eq!(
+            m.outcome,
+            Outcome::Found(MotorFinding::Reversed),
+            "{m:?} {:?}",
+            r.news
+        );
+        // Every TRIM_MOVE on is followed by its off: no run ended by starving.
+        let moves: Vec<(u128, bool)> = r
+            .sent
+            .iter()
+            .filter_map(|(at, p)| match p.message {
+                Message::TrimMove(t) => Some((at.as_millis(), t.on)),
+                _ => None,
+            })
+            .collect();
+        assert!(!moves.is_empty() && !moves.last().unwrap().1, "{moves:?}");
+        assert_eq!(r.unit.snapshot(r.now).pitch_trim_starvations, 0);
+    }
+}
+
+/// The same probes on a trim wired right: from its up endpoint it shows its way
+/// within a probe or two, runs the rest of the test run, and passes.
+#[test]
+fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
+    let mut r = Rig::with(&pitch_at(30, false), Rig::motors_only());
+    r.start();
+    let mut seen = Vec::new();
+    while r.view.step != Step::Done && seen.len() < 3000 {
+        seen.extend(r.run_watching(10, PITCH));
+    }
+    assert!(*seen.iter().min().unwrap() >= 30, "passed its up endpoint");
+    let m = &r.view.motors[1];
+    assert_eq!(
+        m.outcome,
+        Outcome::Found(MotorFinding::Moves),
+        "{m:?} {:?}",
+        r.news
+    );
+    assert!(m.positions[1] >= 40, "the rest of the run was made: {m:?}");
+    let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
+    assert!(
+        (back - 30).abs() <= super::motors::BACK_WITHIN,
+        "left at {back}"
+    );
+}
+
 /// Flaps between close endpoints (up 20, down 50) at 38, with 1.5 s runs (30 counts
 /// at 20 a second): each run ends at its endpoint, the flaps never leave 20..=50, and
 /// having moved they pass.
@@ -1494,6 +1588,7 @@ fn a_stale_position_mid_run_stops_the_motor_and_says_why() {
     opts.timing.motor_run = Duration::from_millis(2000);
     let mut r = Rig::new(opts);
     r.start();
+    r.past_probes();
     r.run(300);
     assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
     let last_heard = r.model.flap_trim.unwrap().at;

@@ -42,9 +42,15 @@ const RATE_SPAN: Duration = Duration::from_millis(80);
 /// a run has shown its rate (a second position, 100 ms on) the page cannot project
 /// it, and 100 ms is 2.5 counts at the virtual VP-X's trim speed.
 pub const START_ROOM: i32 = 3;
-/// Slower than this (counts a second) the motor is taken as not moving, and its way
-/// is the commanded one.
+/// Slower than this (counts a second) the motor is taken as not moving: no rate
+/// projects its position.
 const STILL_RATE: f32 = 2.0;
+/// A run is taken to go the other way from the expected one only once its position
+/// has moved this many counts that way (as the installation check's "moved").
+pub const MOVED: i32 = 3;
+/// Counts of sensor noise: a motor started at an endpoint may read this far past it
+/// without having moved.
+pub const NOISE: i32 = 1;
 
 /// A motor's two endpoints, raw sensor counts 0–255.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -130,6 +136,8 @@ pub struct Watch {
     way: Option<i32>,
     /// The latest positions with when the page heard them, oldest first.
     samples: Vec<(Instant, u8)>,
+    /// The run's first position.
+    first: Option<u8>,
 }
 
 impl Watch {
@@ -139,6 +147,7 @@ impl Watch {
             direction,
             way: None,
             samples: Vec::new(),
+            first: None,
         }
     }
 
@@ -163,6 +172,15 @@ impl Watch {
     }
 
     /// Whether the run may go on: takes the model's latest position, and says why not.
+    ///
+    /// The way it really moves is the expected one (the direction's, or the caller's)
+    /// until the position has gone [`MOVED`] counts the other way since the run's
+    /// first sample: one count of sensor noise does not turn it round. Then the run
+    /// ends by position against both endpoints: at or past the one it is moving
+    /// toward (or about to pass it, at a rate that agrees with that way), and at or
+    /// past the one behind it once it has moved toward that one, beyond one count of
+    /// noise ([`NOISE`]) when it started at it. So a motor that runs the wrong way is
+    /// stopped at the endpoint behind it without waiting to be sure of its way.
     pub fn check(&mut self, model: &Model, now: Instant) -> Result<(), StopReason> {
         let Some(st) = model.flap_trim.as_ref() else {
             return Err(StopReason::MotorStatusLost);
@@ -173,6 +191,7 @@ impl Watch {
         }
         let ft = &st.value;
         let pos = position(self.motor, ft);
+        let first = *self.first.get_or_insert(pos);
         if self.samples.last().is_none_or(|(t, _)| *t != st.at) {
             self.samples.push((st.at, pos));
             if self.samples.len() > 6 {
@@ -182,29 +201,61 @@ impl Watch {
         let Some(e) = ends(self.motor, ft) else {
             return Ok(());
         };
-        let (lo, hi) = (e.down.min(e.up), e.down.max(e.up));
-        let rate = self.rate().unwrap_or(0.0);
-        // The way it really moves (a reversed motor heads for the other endpoint),
-        // or the commanded way while it has not shown one.
-        let way = if rate.abs() >= STILL_RATE {
-            rate.signum() as i32
+        let (lo, hi) = (i32::from(e.down.min(e.up)), i32::from(e.down.max(e.up)));
+        let expected = self
+            .way
+            .unwrap_or_else(|| expected_sign(self.motor, self.direction, ft));
+        let (pos, first) = (i32::from(pos), i32::from(first));
+        let way = if (pos - first) * -expected >= MOVED {
+            -expected
         } else {
-            self.way
-                .unwrap_or_else(|| expected_sign(self.motor, self.direction, ft))
+            expected
         };
-        let ahead = f32::from(pos) + rate * (age + LOOKAHEAD).as_secs_f32();
-        let end = if way > 0 { hi } else { lo };
-        let reached = if way > 0 {
-            ahead >= f32::from(hi)
-        } else {
-            ahead <= f32::from(lo)
-        };
-        if reached {
-            Err(StopReason::AtEndpoint(end))
-        } else {
-            Ok(())
+        let end = |w: i32| if w > 0 { hi } else { lo };
+        // Ahead: at or past it now, or before the page looks again at a rate that
+        // agrees with the way it moves (noise the other way projects nothing).
+        let rate = self
+            .rate()
+            .filter(|r| r.abs() >= STILL_RATE && r.signum() as i32 == way)
+            .unwrap_or(0.0);
+        let ahead = pos as f32 + rate * (age + LOOKAHEAD).as_secs_f32();
+        if (ahead - end(way) as f32) * way as f32 >= 0.0 {
+            return Err(StopReason::AtEndpoint(end(way) as u8));
         }
+        // Behind: reached having moved toward it, beyond the noise it started in.
+        let behind = end(-way);
+        let toward = (pos - first) * -way;
+        let noise = if (first - behind) * way <= 0 {
+            NOISE
+        } else {
+            0
+        };
+        if (pos - behind) * way <= 0 && toward > noise {
+            return Err(StopReason::AtEndpoint(behind as u8));
+        }
+        Ok(())
     }
+}
+
+/// The fastest a flap or trim motor is taken to move, counts a second: the virtual
+/// VP-X's trim (25; its flaps run at 20). A probe is sized by it.
+pub const MAX_RATE: f32 = 25.0;
+/// Within this many counts of the endpoint behind it, a run whose real way is not
+/// known yet starts as a probe ([`probe`]): 10 Hz positions at [`MAX_RATE`] are 2.5
+/// counts apart, and a motor wired the wrong way would pass that endpoint between two.
+pub const NEAR: i32 = 10;
+
+/// How long a run `direction` from `pos`, whose real way is not known yet, may go
+/// before a motor running the wrong way could pass the endpoint behind it by more
+/// than [`NOISE`] (half a count kept for the sensor's rounding); `None` when that
+/// endpoint is [`NEAR`] or farther, or there are no endpoints. The caller runs that
+/// long, looks which way it went, and only then runs the rest.
+pub fn probe(motor: Motor, direction: Direction, pos: u8, ft: &FlapTrimStatus) -> Option<Duration> {
+    let behind = room(motor, opposite(direction), pos, ft)?;
+    (behind < NEAR).then(|| {
+        let counts = (behind.max(0) + NOISE) as f32 - 0.5;
+        Duration::from_secs_f32(counts / MAX_RATE)
+    })
 }
 
 /// Whether a run that keeps to the endpoints may start `direction` now, in words.
@@ -247,11 +298,123 @@ pub fn permit_moving(
     }
 }
 
-fn opposite(d: Direction) -> Direction {
+/// The other way.
+pub fn opposite(d: Direction) -> Direction {
     match d {
         Direction::Up => Direction::Down,
         Direction::Down => Direction::Up,
         Direction::Left => Direction::Right,
         Direction::Right => Direction::Left,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Source, Stamped};
+    use crate::protocol::fault::FaultCode;
+    use crate::protocol::message::{FlapFlags, TrimFlags};
+
+    /// Flaps up 20 / down 220 and pitch trim up 30 / down 220, at `flap` and `pitch`.
+    fn status(flap: u8, pitch: u8) -> FlapTrimStatus {
+        FlapTrimStatus {
+            flap: FlapFlags::default(),
+            pitch_trim: TrimFlags::default(),
+            roll_trim: TrimFlags::default(),
+            flap_position: flap,
+            pitch_trim_position: pitch,
+            roll_trim_position: 0,
+            flap_fault: FaultCode::NoFault,
+            pitch_trim_fault: FaultCode::NoFault,
+            roll_trim_fault: FaultCode::NoFault,
+            flap_up: 20,
+            flap_down: 220,
+            flap_midpoint_1: 0,
+            flap_midpoint_2: 0,
+            pitch_trim_up: 30,
+            pitch_trim_down: 220,
+            pitch_trim_neutral: 125,
+            roll_trim_up: 0,
+            roll_trim_down: 0,
+            roll_trim_neutral: 0,
+        }
+    }
+
+    /// What the watch says at each of `positions`, heard 100 ms apart (10 Hz).
+    fn watch(motor: Motor, direction: Direction, positions: &[u8]) -> Vec<Result<(), StopReason>> {
+        let t0 = Instant::now();
+        let mut model = Model::new(Source::Simulated {
+            scenario: "t".into(),
+        });
+        let mut w = Watch::new(motor, direction);
+        positions
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| {
+                let at = t0 + Duration::from_millis(100 * i as u64);
+                let ft = match motor {
+                    Motor::Flaps => status(p, 125),
+                    _ => status(20, p),
+                };
+                model.flap_trim = Some(Stamped::new(ft, at));
+                w.check(&model, at + Duration::from_millis(5))
+            })
+            .collect()
+    }
+
+    const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
+
+    /// Review item 2: flaps at their up endpoint running down read one count of noise
+    /// (20, 19, 20) before they move: the run goes on.
+    #[test]
+    fn one_count_of_noise_at_the_endpoint_behind_does_not_stop_a_run() {
+        let seen = watch(Motor::Flaps, Direction::Down, &[20, 19, 20, 21, 23, 25, 27]);
+        assert!(seen.iter().all(|r| r.is_ok()), "{seen:?}");
+        // Nor one count of noise back once it has moved off.
+        let seen = watch(Motor::Flaps, Direction::Down, &[40, 39, 40, 42]);
+        assert!(seen.iter().all(|r| r.is_ok()), "{seen:?}");
+    }
+
+    /// Review item 1: a run down whose motor really goes up (leads swapped) is stopped
+    /// the moment its position reaches the up endpoint, without waiting to be sure of
+    /// its way: from 31, at 30.
+    #[test]
+    fn a_wrong_way_run_stops_at_the_endpoint_behind_by_position() {
+        let seen = watch(PITCH, Direction::Down, &[31, 30]);
+        assert_eq!(seen, vec![Ok(()), Err(StopReason::AtEndpoint(30))]);
+        let seen = watch(PITCH, Direction::Down, &[33, 32, 30]);
+        assert_eq!(seen[2], Err(StopReason::AtEndpoint(30)));
+        // Started at it: one count past is the sensor's noise, two is not.
+        let seen = watch(PITCH, Direction::Down, &[30, 29, 28]);
+        assert_eq!(seen, vec![Ok(()), Ok(()), Err(StopReason::AtEndpoint(30))]);
+    }
+
+    /// Going its own way it still ends at the endpoint ahead, by position or just
+    /// before it passes it at its rate.
+    #[test]
+    fn a_run_still_ends_at_the_endpoint_ahead() {
+        let seen = watch(PITCH, Direction::Up, &[40, 38, 35, 33]);
+        assert_eq!(seen[3], Err(StopReason::AtEndpoint(30)), "{seen:?}");
+        let seen = watch(PITCH, Direction::Down, &[200, 203, 206, 220]);
+        assert!(seen[..3].iter().all(|r| r.is_ok()), "{seen:?}");
+        assert_eq!(seen[3], Err(StopReason::AtEndpoint(220)));
+    }
+
+    /// A probe is sized so a motor going the wrong way at the fastest rate passes the
+    /// endpoint behind it by less than one count and a half; far from it, no probe.
+    #[test]
+    fn a_probe_near_the_endpoint_behind_is_short() {
+        let ft = status(20, 30);
+        let p = probe(PITCH, Direction::Down, 30, &ft).unwrap();
+        assert_eq!(p, Duration::from_millis(20));
+        let p = probe(PITCH, Direction::Down, 35, &ft).unwrap();
+        assert_eq!(
+            p.as_millis(),
+            219,
+            "5.5 counts at 25 a second, rounded down"
+        );
+        assert_eq!(probe(PITCH, Direction::Down, 40, &ft), None);
+        let p = probe(PITCH, Direction::Up, 215, &ft).unwrap();
+        assert_eq!(p.as_millis(), 219);
     }
 }
