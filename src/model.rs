@@ -22,7 +22,9 @@ use crate::protocol::message::{
     SystemStatus, TrimSpec, TrimType, Version, WigWagSpec,
 };
 
+mod hold;
 mod setting;
+pub use hold::{Hold, Holds};
 pub use setting::Setting;
 
 /// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
@@ -262,6 +264,9 @@ pub struct Model {
     pub eeprom_erase: Option<Stamped<EepromErase>>,
     /// What the page (or the XFSp gateway) last sent as EXTERNAL_DATA.
     pub external_data_sent: Option<Stamped<ExternalData>>,
+    /// The DEVICE_POWER holds the page sent that the unit still holds, as far as the
+    /// page can tell (`hold`: when one ends).
+    pub holds: Holds,
     pub link: LinkHealth,
     pub history: VecDeque<BusSample>,
     pub events: VecDeque<LogEntry>,
@@ -295,6 +300,7 @@ impl Model {
             last_ping_reply: None,
             eeprom_erase: None,
             external_data_sent: None,
+            holds: Holds::default(),
             link: LinkHealth::default(),
             history: VecDeque::with_capacity(HISTORY_LEN),
             events: VecDeque::with_capacity(EVENT_LOG_LEN),
@@ -333,6 +339,11 @@ impl Model {
         }
         match packet.message {
             Message::SystemStatus(s) => {
+                let before = self
+                    .system_status
+                    .as_ref()
+                    .map(|b| (&b.value, b.at, b.age(at) > COMM_LOST_AFTER));
+                self.holds.status(before, &s, &self.specs());
                 if self.history.len() == HISTORY_LEN {
                     self.history.pop_front();
                 }
@@ -405,6 +416,19 @@ impl Model {
         if let Message::ExternalData(d) = packet.message {
             self.external_data_sent = Some(Stamped::new(d, at));
         }
+        let specs = self.specs();
+        self.holds.sent(at, &packet.message, &specs);
+    }
+
+    /// Each device's DEVICE_SPEC as the model holds it now.
+    fn specs(&self) -> [Option<DeviceSpec>; DEVICE_COUNT] {
+        self.device_specs.map(|s| s.map(|s| s.value))
+    }
+
+    /// The DEVICE_POWER hold the page sent on `id` that the unit still holds, as far
+    /// as the page can tell.
+    pub fn hold(&self, id: u8) -> Option<Hold> {
+        self.holds.get(id)
     }
 
     /// A write to `setting` went unanswered: the unit may hold the old value or the
@@ -465,6 +489,8 @@ impl Model {
 
     pub fn note_connected(&mut self, at: Instant, port: String) {
         self.log(at, LogLevel::Info, format!("connected to {port}"));
+        // While the link was down the unit may have restarted or its switches moved.
+        self.holds.forget();
         self.connection = Connection::Connected { port, since: at };
         self.revision += 1;
     }

@@ -163,7 +163,12 @@ fn finished() -> CheckView {
                 circuits: vec![0x12],
                 outcome: Outcome::Found(SwitchFinding::CircuitsDidNotFollow(vec![(
                     0x12,
-                    NotFollowed::HeldByDevicePower,
+                    // Sent from the page's soft keys at 16:41:00 UTC, five minutes before.
+                    NotFollowed::HeldByPage {
+                        on: false,
+                        sent_at: Some(std::time::UNIX_EPOCH + Duration::from_secs(1_764_002_460)),
+                        ago: Duration::from_secs(300),
+                    },
                 )])),
             },
             SwitchResult {
@@ -279,7 +284,7 @@ fn a_finished_check_reports_every_result_and_what_is_left_to_fix() {
         // 20 up to 220 down: 60 is 20 % of the way).
         "| flaps | ✓ PASS | 20 → 60 → 20 → 20 counts (0 % → 20 % → 0 % → 0 % of travel) | it moves the commanded way |",
         "| pitch trim | ✗ FAIL | 128 → 110 → 128 → 128 counts | reversed: the motor's polarity is swapped, or the sensor is wired backwards |",
-        "| switch 5 | Boost pump | ✗ FAIL | circuits did not follow: Boost pump is held by DEVICE_POWER until its switch is cycled (ICD Appendix A) |",
+        "| switch 5 | Boost pump | ✗ FAIL | circuits did not follow: Boost pump is held off by DEVICE_POWER sent from this page at 16:41:00 UTC (ICD Appendix A): flip the switch to the other position and back to release it |",
         "- Boost pump: flip switch 5 to the other position and back",
     ] {
         assert!(md.lines().any(|l| l == line), "no line {line:?} in\n{md}");
@@ -297,7 +302,7 @@ fn a_finished_check_reports_every_result_and_what_is_left_to_fix() {
         fix,
         [
             "1. switch 4: switch 5 changed instead: switches crossed",
-            "2. switch 5: circuits did not follow: Boost pump is held by DEVICE_POWER until its switch is cycled (ICD Appendix A)",
+            "2. switch 5: circuits did not follow: Boost pump is held off by DEVICE_POWER sent from this page at 16:41:00 UTC (ICD Appendix A): flip the switch to the other position and back to release it",
             "3. Strobe (5A-2): no current while on: an open circuit, a blown bulb, a load not connected",
             "4. Taxi Light (5A-7): draws 4.3 A of a 5 A breaker (≥ 80 %): the breaker is tight and will trip in flight",
             "5. Landing Lt (10A-1): faulted: SHORT_CIRCUIT (Device short circuit). Device faulted and disabled, FAULT_STATUS message broadcast. The faulted pin remains off until cleared by the external system.",

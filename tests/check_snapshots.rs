@@ -472,7 +472,12 @@ fn finished_switches() -> Vec<SwitchResult> {
     let mut s = switch_results();
     s[3].outcome = Outcome::Found(SwitchFinding::CircuitsDidNotFollow(vec![(
         0x12,
-        NotFollowed::HeldByDevicePower,
+        // Sent from the page's soft keys at 16:41:00 UTC, five minutes before.
+        NotFollowed::HeldByPage {
+            on: false,
+            sent_at: Some(std::time::UNIX_EPOCH + Duration::from_secs(1_764_002_460)),
+            ago: Duration::from_secs(300),
+        },
     )]));
     s[4].outcome = Outcome::Found(SwitchFinding::NeverChanged);
     s[5].outcome = Outcome::Found(SwitchFinding::Passed);

@@ -49,12 +49,16 @@ fn page_options() -> Options {
 
 impl App {
     /// Starts a new check and shows its screen.
-    pub fn open_check(&mut self, options: Options, now: Instant) {
+    pub fn open_check(&mut self, mut options: Options, now: Instant) {
         let shared = self.model.clone();
         let model = lock(&shared);
+        // The wall clock at `now`, so findings can say the time of day ("sent at
+        // 21:40:12 UTC"); the flow itself reads no clock.
+        let wall = std::time::SystemTime::now();
+        options.clock = Some(wall);
         self.check.flow = Some(CheckFlow::new(options, &mut self.check.view, &model, now));
         self.check.news.clear();
-        self.check.started = Some(std::time::SystemTime::now());
+        self.check.started = Some(wall);
         self.check.reported = false;
         self.view.screen = Screen::Check;
         self.dirty = true;

@@ -80,6 +80,10 @@ pub struct Options {
     /// The load analysis file (`crate::loads`); `None`: the step says there is none.
     pub loads_file: Option<std::path::PathBuf>,
     pub timing: Timing,
+    /// The wall-clock time at the `now` the flow is made with ([`CheckFlow::new`]), so
+    /// a finding can name the time of day something happened ("sent at 21:40:12
+    /// UTC"); `None`: it says how long before instead. The flow never reads a clock.
+    pub clock: Option<std::time::SystemTime>,
 }
 
 /// What the person does. The app maps keys to these, `vpx-efis check` typed answers.
@@ -213,8 +217,8 @@ pub struct CheckFlow {
     pub(super) known_faults: BTreeSet<u8>,
     system_fault_at_start: bool,
     write_errors_at_start: u64,
-    /// Circuits this check put back by DEVICE_POWER (held until their switch cycles).
-    pub(super) held: BTreeSet<u8>,
+    /// The `now` the flow was made with: [`Options::clock`]'s instant.
+    made_at: Instant,
     /// A step found something that ends the check (a circuit that will not go back
     /// off, a motor stopped by lost communication): handled at the end of the tick.
     pub(super) trouble_ahead: Option<String>,
@@ -238,11 +242,24 @@ impl CheckFlow {
             write_errors_at_start: model.link.write_errors,
             opts,
             phase: Phase::Confirm,
-            held: BTreeSet::new(),
+            made_at: now,
             trouble_ahead: None,
         };
         flow.replan(view, model, now);
         flow
+    }
+
+    /// The wall-clock time of an instant, if the caller gave the flow its clock.
+    pub(super) fn wall(&self) -> impl Fn(Instant) -> Option<std::time::SystemTime> + use<> {
+        let (clock, made_at) = (self.opts.clock, self.made_at);
+        move |at| {
+            let clock = clock?;
+            if at >= made_at {
+                clock.checked_add(at - made_at)
+            } else {
+                clock.checked_sub(made_at - at)
+            }
+        }
     }
 
     pub fn timing(&self) -> &Timing {
@@ -860,7 +877,6 @@ impl CheckFlow {
     /// `id` was switched back off by DEVICE_POWER: the unit holds it off until its
     /// switch is cycled (ICD Appendix A, §6.4.1), so the person is told which.
     pub(super) fn put_back(&mut self, id: u8, view: &mut CheckView, model: &Model, now: Instant) {
-        self.held.insert(id);
         let spec = model.circuits(now).into_iter().find(|c| c.id == id);
         if let Some(SwitchId::Input(n)) = spec.and_then(|c| c.switch)
             && !view.to_cycle.iter().any(|(i, ..)| *i == id)

@@ -12,12 +12,12 @@
 //! [`Timing::follow_wait`]: super::flow::Timing::follow_wait
 //! [`Timing::switch_timeout`]: super::flow::Timing::switch_timeout
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 use super::flow::{CheckFlow, Command, Io, Phase, circuit_on, next_step};
 use super::plan;
-use crate::model::{Model, Motor, TrimKind};
+use crate::model::{CircuitState, Hold, Model, Motor, TrimKind};
 use crate::protocol::message::{SwitchId, SwitchInputs};
 use crate::ui::check::state::{
     CheckView, Input, Mark, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult,
@@ -109,6 +109,12 @@ pub(super) struct SwitchItem {
     changed_at: Option<Instant>,
     returned: bool,
     followed: BTreeSet<u8>,
+    /// Circuits seen changed while another input (the first here) was away from
+    /// where it started and this one was not: the circuit follows that input.
+    moved_with: BTreeMap<u8, Input>,
+    /// DEVICE_POWER holds of this page seen on the circuits during the item (the
+    /// model's, `model::hold`), the latest of each.
+    holds: BTreeMap<u8, Hold>,
     /// Other inputs that changed, and whether each changed back.
     others: Vec<(Input, bool)>,
     /// Timed out with its finding recorded: waiting for retry or go on.
@@ -186,6 +192,8 @@ impl CheckFlow {
             changed_at: None,
             returned: false,
             followed: BTreeSet::new(),
+            moved_with: BTreeMap::new(),
+            holds: BTreeMap::new(),
             others: Vec::new(),
             timed_out: false,
             follow_wait: self.opts.timing.follow_wait,
@@ -217,6 +225,7 @@ impl CheckFlow {
     }
 
     pub(super) fn switches_tick(&mut self, view: &mut CheckView, io: &mut Io) {
+        let wall = self.wall();
         let Phase::Switches(item) = &mut self.phase else {
             return;
         };
@@ -251,9 +260,29 @@ impl CheckFlow {
                 None => {}
             }
         }
+        // Which input a circuit's change belongs to: this one, when it is away from
+        // where it started (whatever else is); another, when that one is away and this
+        // one is not. A circuit seen changed before its input's SYSTEM_STATUS (the two
+        // broadcasts need not come together) counts once the input shows changed.
+        let this_away = item.input.is_on(&cur) != item.input.is_on(base);
+        let other_away = ALL_INPUTS
+            .into_iter()
+            .find(|&i| i != item.input && i.is_on(&cur) != i.is_on(base));
         for (id, was) in base_on {
-            if circuit_on(io.model, now, *id).is_some_and(|on| on != *was) {
-                item.followed.insert(*id);
+            if let Some(h) = io.model.hold(*id) {
+                item.holds.insert(*id, h);
+            }
+            if circuit_on(io.model, now, *id).is_none_or(|on| on == *was) {
+                continue;
+            }
+            match (this_away, other_away) {
+                (true, _) => {
+                    item.followed.insert(*id);
+                }
+                (false, Some(other)) => {
+                    item.moved_with.entry(*id).or_insert(other);
+                }
+                (false, None) => {}
             }
         }
         if let Some(p) = view.prompt.as_mut() {
@@ -264,7 +293,7 @@ impl CheckFlow {
             Some(at)
                 if item.returned && (all_followed || now >= at + self.opts.timing.follow_wait) =>
             {
-                Some(follow_finding(item, io.model, now, &self.held))
+                Some(follow_finding(item, io.model, now, &wall))
             }
             None if item.others.iter().any(|(_, back)| *back) => Some(SwitchFinding::OtherChanged(
                 item.others.iter().map(|(i, _)| *i).collect(),
@@ -278,7 +307,7 @@ impl CheckFlow {
         }
         if now >= item.deadline {
             let f = if item.changed_at.is_some() {
-                follow_finding(item, io.model, now, &self.held)
+                follow_finding(item, io.model, now, &wall)
             } else if !item.others.is_empty() {
                 SwitchFinding::OtherChanged(item.others.iter().map(|(i, _)| *i).collect())
             } else {
@@ -325,34 +354,43 @@ impl CheckFlow {
     }
 }
 
-/// The input changed: did its circuits follow, and if not, why.
+/// The input changed: did its circuits follow, and if not, why, from what the page
+/// saw: a fault; the freshest DEVICE_SPEC naming another switch; the circuit changing
+/// with another input during the item; a DEVICE_POWER hold this page sent; and
+/// otherwise a state that did not follow its own input with no hold of this page
+/// known (another display's, which the page cannot see). `wall` gives the time of
+/// day of an instant, when the check has a clock.
 fn follow_finding(
     item: &SwitchItem,
     model: &Model,
     now: Instant,
-    held: &BTreeSet<u8>,
+    wall: &dyn Fn(Instant) -> Option<std::time::SystemTime>,
 ) -> SwitchFinding {
     let circuits = model.circuits(now);
+    let live = model.live_devices(now).is_some();
     let missing: Vec<(u8, NotFollowed)> = item
         .circuits
         .iter()
         .filter(|id| !item.followed.contains(id))
         .map(|&id| {
             let c = circuits.iter().find(|c| c.id == id);
-            let why = match c {
-                Some(c) if matches!(c.state, crate::model::CircuitState::Fault(_)) => {
-                    let crate::model::CircuitState::Fault(code) = c.state else {
-                        unreachable!()
-                    };
-                    NotFollowed::Faulted(code)
+            let why = match c.map(|c| (c.state, c.switch)) {
+                Some((CircuitState::Fault(code), _)) => NotFollowed::Faulted(code),
+                Some((_, Some(s))) if Some(s) != input_switch(item.input) => {
+                    NotFollowed::AssignedTo(s)
                 }
-                Some(c)
-                    if c.switch
-                        .is_some_and(|s| Some(s) != input_switch(item.input)) =>
-                {
-                    NotFollowed::AssignedTo(c.switch.unwrap_or(SwitchId::Off))
+                _ if item.moved_with.contains_key(&id) => {
+                    NotFollowed::FollowedOther(item.moved_with[&id])
                 }
-                _ if held.contains(&id) => NotFollowed::HeldByDevicePower,
+                _ if item.holds.contains_key(&id) => {
+                    let h = item.holds[&id];
+                    NotFollowed::HeldByPage {
+                        on: h.on,
+                        sent_at: wall(h.at),
+                        ago: now.saturating_duration_since(h.at),
+                    }
+                }
+                _ if live && item.base.is_some() => NotFollowed::NotHeldByPage,
                 _ => NotFollowed::Unexplained,
             };
             (id, why)

@@ -164,7 +164,13 @@ impl Rig {
     fn send(&mut self, packets: Vec<Packet>) {
         for p in packets {
             self.sent.push((self.now - self.t0, p));
-            if self.cut || (self.deaf_to_power && matches!(p.message, Message::DevicePower(_))) {
+            if self.cut {
+                continue;
+            }
+            // Written: the page's model records it as the app does on its Tx event
+            // (a DEVICE_POWER starts a hold, `model::hold`).
+            self.model.note_sent(self.now, &p);
+            if self.deaf_to_power && matches!(p.message, Message::DevicePower(_)) {
                 continue;
             }
             self.unit.feed(&p.to_bytes(), self.now);
@@ -543,7 +549,6 @@ fn circuits_that_do_not_follow_say_why() {
             on: false,
         },
     )]);
-    r.flow.held.insert(4);
     r.start();
     r.run(100);
     r.flip(2, true);
@@ -560,12 +565,26 @@ fn circuits_that_do_not_follow_say_why() {
     r.run(1500);
     r.flip(2, false);
     r.run_until(5000, |r| r.view.current != Some(1));
-    assert_eq!(
-        r.switch(Input::Switch(2)),
-        &Outcome::Found(SwitchFinding::CircuitsDidNotFollow(vec![
-            (4, NotFollowed::HeldByDevicePower),
-            (5, NotFollowed::Faulted(FaultCode::ShortCircuit)),
-        ]))
+    let Outcome::Found(SwitchFinding::CircuitsDidNotFollow(why)) = r.switch(Input::Switch(2))
+    else {
+        panic!("{:?}", r.switch(Input::Switch(2)));
+    };
+    assert!(
+        matches!(
+            why.as_slice(),
+            [
+                (
+                    4,
+                    NotFollowed::HeldByPage {
+                        on: false,
+                        sent_at: None,
+                        ..
+                    }
+                ),
+                (5, NotFollowed::Faulted(FaultCode::ShortCircuit)),
+            ]
+        ),
+        "{why:?}"
     );
     assert!(
         r.view.interrupted.is_none(),
@@ -574,7 +593,10 @@ fn circuits_that_do_not_follow_say_why() {
     let words = r.view.switches[1].outcome.clone();
     let Outcome::Found(f) = words else { panic!() };
     let w = f.words(&|id| r.view.name_of(id));
-    assert!(w.contains("Nav Lt is held by DEVICE_POWER"), "{w}");
+    assert!(
+        w.contains("Nav Lt is held off by DEVICE_POWER sent from this page"),
+        "{w}"
+    );
     assert!(w.contains("Strobe faulted with SHORT_CIRCUIT"), "{w}");
 }
 
@@ -1786,5 +1808,178 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
     assert_eq!(
         r.view.switches[r.view.current.unwrap()].input,
         Input::Switch(2)
+    );
+}
+
+/// 1_764_000_000 s after the epoch is 2025-11-24T16:00:00Z (20416 days of 86400 s,
+/// and 57600 s = 16 h): the check's wall clock when the flow is made.
+fn at_four_pm() -> Options {
+    Options {
+        clock: Some(std::time::UNIX_EPOCH + Duration::from_secs(1_764_000_000)),
+        ..Rig::switches_only()
+    }
+}
+
+impl Rig {
+    /// Another display on the unit's bus sends `message`: the unit acts on it, this
+    /// page's model never hears of it.
+    fn sent_by_another_display(&mut self, message: impl Into<Message>) {
+        self.unit
+            .feed(&Packet::request(99, message).to_bytes(), self.now);
+    }
+
+    fn not_followed(&self, input: Input) -> Vec<(u8, NotFollowed)> {
+        match self.switch(input) {
+            Outcome::Found(SwitchFinding::CircuitsDidNotFollow(v)) => v.clone(),
+            o => panic!("{input:?}: {o:?}"),
+        }
+    }
+}
+
+fn power(id: u8, on: bool) -> crate::protocol::message::DevicePower {
+    crate::protocol::message::DevicePower { device_id: id, on }
+}
+
+/// Switch 2 (Nav Lt, Strobe) flipped on; at once (before the unit's broadcasts show
+/// it) `hold` holds Nav Lt off against it; 1.5 s later flipped off.
+fn flip_two_while(r: &mut Rig, hold: impl FnOnce(&mut Rig)) {
+    r.start();
+    r.run(100);
+    r.flip(2, true);
+    r.run(10);
+    hold(r);
+    r.run(1500);
+    r.flip(2, false);
+    r.run_until(5000, |r| r.view.current != Some(1));
+}
+
+#[test]
+fn a_circuit_held_by_this_page_says_when_the_page_sent_it_and_how_to_release_it() {
+    let mut r = Rig::with(&scenario(), at_four_pm());
+    let made = r.now;
+    // The gateway forwarding another display's command goes out through the page's
+    // own send path: the model records the hold.
+    flip_two_while(&mut r, |r| {
+        r.send(vec![Packet::request(9, power(4, false))])
+    });
+    let sent = r.sent.last().unwrap().0;
+    assert!(
+        r.sent
+            .iter()
+            .any(|(at, p)| *at == sent && p.message == Message::DevicePower(power(4, false)))
+    );
+    let why = r.not_followed(Input::Switch(2));
+    assert_eq!(why.len(), 1, "{why:?}: Strobe followed");
+    let (4, NotFollowed::HeldByPage { on, sent_at, .. }) = why[0].clone() else {
+        panic!("{why:?}")
+    };
+    assert!(!on);
+    // Sent 0.11 s after the flow was made at 16:00:00.
+    assert_eq!(made + Duration::from_millis(110) - r.t0, sent);
+    let w = why[0].1.words();
+    assert_eq!(
+        w,
+        "is held off by DEVICE_POWER sent from this page at 16:00:00 UTC (ICD Appendix \
+         A): flip the switch to the other position and back to release it"
+    );
+    assert!(sent_at.is_some());
+    // The person's flip off ended that hold too: the model knows none now.
+    assert_eq!(r.model.hold(4), None);
+}
+
+#[test]
+fn a_circuit_held_by_another_display_says_no_hold_from_this_page_is_known() {
+    let mut r = Rig::with(&scenario(), at_four_pm());
+    flip_two_while(&mut r, |r| r.sent_by_another_display(power(4, false)));
+    let why = r.not_followed(Input::Switch(2));
+    assert_eq!(why, vec![(4, NotFollowed::NotHeldByPage)]);
+    assert_eq!(
+        why[0].1.words(),
+        "did not follow its input, and no DEVICE_POWER from this page holds it: another \
+         display may hold it (ICD Appendix A): flip the switch to the other position and \
+         back to release it"
+    );
+}
+
+#[test]
+fn a_circuit_that_follows_another_switch_names_it() {
+    // The unit has Landing Lt on switch 3; the page's freshest spec says switch 2 (a
+    // spec changed on the unit since the page read it). The person flips switch 2,
+    // then switch 3: Landing Lt changes with 3.
+    let mut r = Rig::with(
+        &scenario(),
+        Options {
+            timing: super::flow::Timing {
+                follow_wait: Duration::from_secs(8),
+                ..Default::default()
+            },
+            ..Rig::switches_only()
+        },
+    );
+    let stale = crate::protocol::message::DeviceSpec {
+        device_id: 17,
+        circuit_breaker: 8,
+        switch_id: SwitchId::Input(2),
+        current_fault: true,
+        switch_raw: None,
+    };
+    r.model.apply_packet(r.now, &Packet::from_vpx(0, stale));
+    r.flow = CheckFlow::new(
+        Options {
+            timing: super::flow::Timing {
+                follow_wait: Duration::from_secs(8),
+                ..Default::default()
+            },
+            ..Rig::switches_only()
+        },
+        &mut r.view,
+        &r.model,
+        r.now,
+    );
+    r.start();
+    assert_eq!(r.view.switches[1].circuits, vec![4, 5, 17]);
+    r.run(100);
+    r.flip_on_off(2, 1500);
+    r.run(500);
+    r.flip_on_off(3, 1500);
+    r.run_until(9000, |r| r.view.current != Some(1));
+    assert_eq!(
+        r.not_followed(Input::Switch(2)),
+        vec![(17, NotFollowed::FollowedOther(Input::Switch(3)))]
+    );
+    assert_eq!(
+        NotFollowed::FollowedOther(Input::Switch(3)).words(),
+        "changed with switch 3 instead: the unit has it on that switch"
+    );
+}
+
+#[test]
+fn a_circuit_whose_freshest_spec_names_another_switch_says_which() {
+    // The page's spec changes mid-item (the page's minute re-read): Nav Lt is now on
+    // switch 5, and it does not follow switch 2.
+    let mut r = Rig::new(Rig::switches_only());
+    r.start();
+    r.run(100);
+    let moved = crate::protocol::message::DeviceSpec {
+        device_id: 4,
+        circuit_breaker: 3,
+        switch_id: SwitchId::Input(5),
+        current_fault: true,
+        switch_raw: None,
+    };
+    r.send(vec![
+        Packet::request(9, moved),
+        Packet::request(10, Setting::DeviceSpec(4).query()),
+    ]);
+    r.run(200);
+    assert_eq!(
+        r.model.device_specs[4].unwrap().value.switch_id,
+        SwitchId::Input(5)
+    );
+    r.flip_on_off(2, 1500);
+    r.run_until(5000, |r| r.view.current != Some(1));
+    assert_eq!(
+        r.not_followed(Input::Switch(2)),
+        vec![(4, NotFollowed::AssignedTo(SwitchId::Input(5)))]
     );
 }

@@ -1070,8 +1070,9 @@ impl Unit {
         let now_in = inputs(&self.cockpit, &self.switch_wiring);
         for (i, (&was, &is)) in self.switches.iter().zip(&now_in).enumerate() {
             if was != is {
-                // ICD Appendix A: DEVICE_POWER overrides last until the switch is
-                // cycled; any change of the input counts.
+                // ICD Appendix A: DEVICE_POWER overrides last "until the switch is
+                // cycled". Our reading, the page's too (`model::hold`): ANY change of
+                // the input ends the override, a single change, not a round trip.
                 let input = SwitchId::Input(i as u8 + 1);
                 for (d, spec) in self.config.devices.iter().enumerate() {
                     if spec.switch_id == input {
@@ -1946,6 +1947,31 @@ mod tests {
         assert!(
             !b.stats().powered[1],
             "the starter cannot be switched from outside"
+        );
+    }
+
+    /// The reading of "cycled" (ICD Appendix A) the page's model shares: one change
+    /// of the input ends the hold; the switch then has the word both ways.
+    #[test]
+    fn a_single_change_of_the_input_ends_a_device_power_hold() {
+        let mut b = Bench::new(PINS);
+        b.apply(SimCommand::Switch {
+            switch: 2,
+            on: true,
+        });
+        // Held ON while switch 2 is on: only the end of the hold can turn it off.
+        b.send(DevicePower {
+            device_id: 9,
+            on: true,
+        });
+        assert!(b.stats().powered[9]);
+        b.apply(SimCommand::Switch {
+            switch: 2,
+            on: false,
+        });
+        assert!(
+            !b.stats().powered[9],
+            "one change (on to off) ended the hold: the switch has the word"
         );
     }
 

@@ -124,16 +124,29 @@ impl Input {
     }
 }
 
-/// Why a circuit did not follow its switch.
+/// Why a circuit did not follow its switch, as far as the page can see.
 #[derive(Debug, Clone, PartialEq)]
 pub enum NotFollowed {
-    /// The page (or another EFIS) holds it by DEVICE_POWER until its switch is cycled.
-    HeldByDevicePower,
-    /// Its DEVICE_SPEC assigns it to another switch (or always on / off).
+    /// This page sent DEVICE_POWER on it (its soft keys, this check, the gateway
+    /// forwarding another display's command), which the unit holds against the switch
+    /// until the switch is cycled (ICD Appendix A). `sent_at` is the wall-clock time
+    /// when the check knows it; `ago` is how long before the finding it was sent.
+    HeldByPage {
+        on: bool,
+        sent_at: Option<std::time::SystemTime>,
+        ago: Duration,
+    },
+    /// It did not follow its own input (its DEVICE_SPEC says this switch) and no
+    /// DEVICE_POWER from this page holds it: another display may hold it.
+    NotHeldByPage,
+    /// The freshest DEVICE_SPEC the page has assigns it to another switch (or always
+    /// on / off).
     AssignedTo(SwitchId),
+    /// It changed when this other input changed during the step, not with this one.
+    FollowedOther(Input),
     /// It faulted when switched.
     Faulted(FaultCode),
-    /// It changed neither way, for no reason the page can see.
+    /// The page could not see it: no live DEVICE_STATUS while the input was flipped.
     Unexplained,
 }
 

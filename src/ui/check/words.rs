@@ -62,22 +62,41 @@ pub fn cycle(s: SwitchId) -> String {
 /// The ICD's place for the hold rule, as the words cite it.
 pub const HOLD_RULE: &str = "ICD Appendix A";
 
+/// "flip the switch to the other position and back": what ends a DEVICE_POWER hold
+/// (ICD Appendix A), said so a switch found off is left off.
+const RELEASE: &str = "flip the switch to the other position and back to release it";
+
 impl NotFollowed {
-    /// Said after the circuit's name: "Landing Lt is held by DEVICE_POWER…".
+    /// Said after the circuit's name: "Landing Lt is held off by DEVICE_POWER…".
     pub fn words(&self) -> String {
         match self {
-            NotFollowed::HeldByDevicePower => {
-                format!("is held by DEVICE_POWER until its switch is cycled ({HOLD_RULE})")
+            NotFollowed::HeldByPage { on, sent_at, ago } => {
+                let state = if *on { "on" } else { "off" };
+                let when = match sent_at {
+                    // 2026-12-01T21:40:12.345Z: the time of day, to the second, in UTC.
+                    Some(t) => format!("at {} UTC", &crate::utc::utc_text(*t)[11..19]),
+                    None => format!("{} before", duration(*ago)),
+                };
+                format!(
+                    "is held {state} by DEVICE_POWER sent from this page {when} \
+                     ({HOLD_RULE}): {RELEASE}"
+                )
             }
+            NotFollowed::NotHeldByPage => format!(
+                "did not follow its input, and no DEVICE_POWER from this page holds it: \
+                 another display may hold it ({HOLD_RULE}): {RELEASE}"
+            ),
             NotFollowed::AssignedTo(SwitchId::Off) => {
                 "is assigned to no switch (always off)".into()
             }
             NotFollowed::AssignedTo(s) => format!("is assigned to {}", switch_id(*s)),
+            NotFollowed::FollowedOther(input) => format!(
+                "changed with {} instead: the unit has it on that switch",
+                input.label()
+            ),
             NotFollowed::Faulted(code) => format!("faulted with {}", code.name()),
             NotFollowed::Unexplained => {
-                "did not change, for no reason the page can see: check the wiring from the \
-                 VP-X pin"
-                    .into()
+                "could not be seen: no live DEVICE_STATUS while the switch was flipped".into()
             }
         }
     }
@@ -404,14 +423,22 @@ mod tests {
     fn a_circuit_that_did_not_follow_is_said_without_brackets_in_brackets() {
         let name = |id: u8| format!("dev{id}");
         let w = SwitchFinding::CircuitsDidNotFollow(vec![
-            (4, NotFollowed::HeldByDevicePower),
+            (
+                4,
+                NotFollowed::HeldByPage {
+                    on: false,
+                    sent_at: None,
+                    ago: Duration::from_secs(90),
+                },
+            ),
             (5, NotFollowed::AssignedTo(SwitchId::Input(3))),
         ])
         .words(&name);
         assert_eq!(
             w,
-            "circuits did not follow: dev4 is held by DEVICE_POWER until its switch is \
-             cycled (ICD Appendix A); dev5 is assigned to switch 3"
+            "circuits did not follow: dev4 is held off by DEVICE_POWER sent from this page \
+             1 min 30 s before (ICD Appendix A): flip the switch to the other position and \
+             back to release it; dev5 is assigned to switch 3"
         );
         assert_eq!(
             cycle(SwitchId::Input(5)),
