@@ -26,6 +26,7 @@ commands (one per line):
                           hold that switch and let go after SECONDS (2)
   load DEVICE AMPS        the pin's load changes
   short DEVICE on|off     a short appears on the pin, or goes away
+  power DEVICE on|off     another display sends DEVICE_POWER (held until the switch changes)
   fault DEVICE CODE       the device faults now (Appendix E code number)
   help                    this list";
 
@@ -84,6 +85,10 @@ pub fn parse_line(line: &str) -> Result<ConsoleLine, String> {
             }
         }
         ["short", d, state] => SimCommand::Short {
+            device: device(d)?,
+            on: on_off(state)?,
+        },
+        ["power", d, state] => SimCommand::OtherDisplayPower {
             device: device(d)?,
             on: on_off(state)?,
         },

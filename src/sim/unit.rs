@@ -61,6 +61,9 @@ impl Default for UnitOptions {
 /// scenario's timeline.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SimCommand {
+    /// Another display on the unit's serial bus sends DEVICE_POWER: the unit holds
+    /// the device so until its switch changes, and the page never hears of it.
+    OtherDisplayPower { device: u8, on: bool },
     /// Cockpit switch 1–10 is set on (closed) or off, as a person would. It drives
     /// the unit's input of the same number, unless the scenario's wiring says
     /// otherwise (`dead_switches`, `crossed_switches`).
@@ -980,6 +983,16 @@ impl Unit {
                     *f = code;
                 }
                 self.log(format!("device {device}: {} injected", code.name()));
+            }
+            SimCommand::OtherDisplayPower { device, on } => {
+                self.log(format!("another display: DEVICE_POWER {device} {on}"));
+                self.device_power(
+                    DevicePower {
+                        device_id: device,
+                        on,
+                    },
+                    now,
+                );
             }
             SimCommand::Short { device, on } => {
                 if let Some(s) = self.shorts.get_mut(device as usize) {
