@@ -464,7 +464,10 @@ impl CheckFlow {
                     return;
                 }
             };
-            if started {
+            // A step with nothing to do may already have gone on by itself (its
+            // `*_next` enters the next step): going on here too would run the rest
+            // twice, and say "Check complete" twice.
+            if started || view.step != step {
                 return;
             }
             step = next_step(step);

@@ -1983,3 +1983,16 @@ fn a_circuit_whose_freshest_spec_names_another_switch_says_which() {
         vec![(4, NotFollowed::AssignedTo(SwitchId::Input(5)))]
     );
 }
+
+#[test]
+fn the_steps_after_the_switches_run_once_when_skipped() {
+    let mut r = Rig::new(Rig::switches_only());
+    r.start();
+    r.cmd(Command::SkipStep);
+    assert_eq!(r.view.step, Step::Done);
+    let count = |s: &str| r.news.iter().filter(|n| n.starts_with(s)).count();
+    assert_eq!(count("Check complete"), 1, "{:?}", r.news);
+    assert_eq!(count("– Circuits: skipped"), 1, "{:?}", r.news);
+    assert_eq!(count("– Motors: skipped"), 1, "{:?}", r.news);
+    assert_eq!(count("– Load analysis: skipped"), 1, "{:?}", r.news);
+}
