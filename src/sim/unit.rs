@@ -727,38 +727,14 @@ impl Unit {
                     TRIM_P => self.config.pitch_trim.enabled,
                     _ => true,
                 };
-                let flag = if on {
-                    EnableFlag::Enabled
-                } else {
-                    EnableFlag::Disabled
-                };
-                self.reply(
-                    cnt,
-                    DeviceEnable {
-                        device_id: id,
-                        flag,
-                    },
-                    now,
-                );
+                self.reply_enable(cnt, id, on, now);
             }
             Message::DeviceEnable(e) => {
                 if validate::device_enable(&self.config, &e).is_err() {
                     self.wire.ignored += 1;
                 } else if e.flag == EnableFlag::Query {
                     let on = self.config.enabled[e.device_id as usize];
-                    let flag = if on {
-                        EnableFlag::Enabled
-                    } else {
-                        EnableFlag::Disabled
-                    };
-                    self.reply(
-                        cnt,
-                        DeviceEnable {
-                            device_id: e.device_id,
-                            flag,
-                        },
-                        now,
-                    );
+                    self.reply_enable(cnt, e.device_id, on, now);
                 } else {
                     // Table 23: a set has no answer.
                     let mut cfg = self.config.clone();
@@ -1226,6 +1202,16 @@ impl Unit {
         self.wire.replies += 1;
         let bytes = Packet::from_vpx(cnt, m).to_bytes();
         self.emit_raw(&bytes, now);
+    }
+
+    /// DEVICE_ENABLE's answer to a query (Table 23, flag 2 asked, 0 or 1 told).
+    fn reply_enable(&mut self, cnt: u8, device_id: u8, on: bool, now: Instant) {
+        let flag = if on {
+            EnableFlag::Enabled
+        } else {
+            EnableFlag::Disabled
+        };
+        self.reply(cnt, DeviceEnable { device_id, flag }, now);
     }
 
     fn broadcast(&mut self, m: impl Into<Message>, now: Instant) {
