@@ -73,15 +73,28 @@ fn fault(m: &mut Model, at: Instant, id: u8, code: FaultCode) {
 
 /// Flaps enabled, up endpoint 40, down 200, at `flap`.
 fn flaps(m: &mut Model, at: Instant, flap: u8) {
+    flap_trim(m, at, flap, None);
+}
+
+/// As [`flaps`] at 40, and the pitch trim enabled at `pos`, its endpoints as the
+/// `install` scenario's: up (nose-up) 30, down 220, neutral 125.
+fn pitch(m: &mut Model, at: Instant, pos: u8) {
+    flap_trim(m, at, 40, Some(pos));
+}
+
+fn flap_trim(m: &mut Model, at: Instant, flap: u8, pitch: Option<u8>) {
     let ft = FlapTrimStatus {
         flap: FlapFlags {
             enabled: true,
             ..Default::default()
         },
-        pitch_trim: TrimFlags::default(),
+        pitch_trim: TrimFlags {
+            enabled: pitch.is_some(),
+            ..Default::default()
+        },
         roll_trim: TrimFlags::default(),
         flap_position: flap,
-        pitch_trim_position: 0,
+        pitch_trim_position: pitch.unwrap_or(0),
         roll_trim_position: 0,
         flap_fault: FaultCode::NoFault,
         pitch_trim_fault: FaultCode::NoFault,
@@ -90,9 +103,9 @@ fn flaps(m: &mut Model, at: Instant, flap: u8) {
         flap_down: 200,
         flap_midpoint_1: 0,
         flap_midpoint_2: 0,
-        pitch_trim_up: 0,
-        pitch_trim_down: 0,
-        pitch_trim_neutral: 0,
+        pitch_trim_up: if pitch.is_some() { 30 } else { 0 },
+        pitch_trim_down: if pitch.is_some() { 220 } else { 0 },
+        pitch_trim_neutral: if pitch.is_some() { 125 } else { 0 },
         roll_trim_up: 0,
         roll_trim_down: 0,
         roll_trim_neutral: 0,
@@ -1167,4 +1180,204 @@ fn an_older_number_is_discarded_until_its_source_was_silent_for_10_s() {
     status(&mut m, t0 + ms(28_500), &[2, 5]);
     let out = gw.receive(&restarted(9), &mut m, t0 + ms(28_500));
     assert_eq!(power(&out), [(6, true)]);
+}
+
+// ----- network motor runs under the endpoint rule (review item 4) -----
+
+/// How long a decided move or stop takes to act on the motor: the serial write at
+/// 57600 baud and the unit's own loop.
+const ACT_AFTER: Duration = Duration::from_millis(20);
+
+/// A pitch trim on the fake clock against the gateway: while the last TRIM_MOVE that
+/// reached it (each [`ACT_AFTER`] after it was sent) said on, its position changes
+/// `travel` counts a second whichever way it was driven (negative: toward the up
+/// endpoint 30, as a run "down" does with its leads swapped). FLAP_TRIM_STATUS comes
+/// every 100 ms from `phase`, until `status_until`; the request is repeated every
+/// 250 ms, as a requester should.
+struct TrimRun {
+    /// The true position at each 5 ms step, and when.
+    track: Vec<(Duration, f32)>,
+    /// TRIM_MOVE on/off as sent, and when.
+    moves: Vec<(Duration, bool)>,
+    events: Vec<String>,
+    refused: u64,
+}
+
+impl TrimRun {
+    fn go(start: u8, target: i32, travel: f32, phase: u64, status_until: Duration) -> TrimRun {
+        let t0 = Instant::now();
+        let mut m = model();
+        status(&mut m, t0, &[]);
+        pitch(&mut m, t0, start);
+        let mut gw = Gateway::new(GatewayConfig::default(), t0);
+        let mut peer = Sender::new(PEER, 1);
+        let mut pos = f32::from(start);
+        let mut on = false;
+        let mut pending: Vec<(Duration, bool)> = Vec::new();
+        let mut run = TrimRun {
+            track: Vec::new(),
+            moves: Vec::new(),
+            events: Vec::new(),
+            refused: 0,
+        };
+        for step in 0..800u64 {
+            let t = ms(step * 5);
+            let now = t0 + t;
+            pending.retain(|&(at, o)| {
+                if at <= t {
+                    on = o;
+                }
+                at > t
+            });
+            if on {
+                pos = (pos + travel * 0.005).clamp(0.0, 255.0);
+            }
+            run.track.push((t, pos));
+            let mut out = Vec::new();
+            if step % 50 == 0 {
+                let d = request(
+                    &mut peer,
+                    vec![
+                        Parameter::new(idents::PTRIMREQ, Value::Sint(target))
+                            .confidence(Confidence::UserSel)
+                            .expire(Expire::at_least(ms(600))),
+                    ],
+                );
+                out.extend(gw.receive(&d, &mut m, now));
+            }
+            let heard = (step * 5) % 100 == phase % 100;
+            if heard {
+                status(&mut m, now, &[]);
+                if t < status_until {
+                    pitch(&mut m, now, pos.round() as u8);
+                }
+            }
+            if heard || now >= gw.next_deadline() {
+                out.extend(gw.tick(&mut m, now).to_unit);
+            }
+            for p in &out {
+                if let Message::TrimMove(tm) = p.message {
+                    run.moves.push((t, tm.on));
+                    pending.push((t + ACT_AFTER, tm.on));
+                }
+            }
+        }
+        run.events = m.events.iter().map(|e| e.text.clone()).collect();
+        run.refused = gw.stats().commands_refused;
+        run
+    }
+
+    /// When the first stop went out, and the lowest and highest the trim went.
+    fn stopped(&self) -> Option<Duration> {
+        self.moves.iter().find(|(_, on)| !on).map(|(t, _)| *t)
+    }
+
+    fn range(&self) -> (f32, f32) {
+        let lo = self.track.iter().map(|p| p.1).fold(f32::MAX, f32::min);
+        let hi = self.track.iter().map(|p| p.1).fold(f32::MIN, f32::max);
+        (lo, hi)
+    }
+
+    fn said(&self, what: &str) -> bool {
+        self.events.iter().any(|e| e.contains(what))
+    }
+}
+
+/// A trim sent nose-down (PTRIMREQ −80000, raw 201 from 125) whose leads are
+/// swapped runs nose-up, away from its target: the run ends within a few counts,
+/// its stop on the wire, says why, and the repeated request does not start it again.
+/// Before, it ran to the run cap (10 s, some 250 counts) past its endpoint.
+#[test]
+fn a_network_run_going_away_from_its_target_stops_within_a_few_counts() {
+    for phase in (0..100).step_by(10) {
+        let run = TrimRun::go(125, -80_000, -25.0, phase, ms(4000));
+        let stop = run
+            .stopped()
+            .unwrap_or_else(|| panic!("never stopped: {:#?}", run.events));
+        let (lo, _) = run.range();
+        let away = 125.0 - lo;
+        assert!(
+            away <= (vpx_efis::xfsp::drive::AWAY + 3) as f32,
+            "phase {phase}: went {away} counts the wrong way"
+        );
+        assert!(stop <= ms(400), "phase {phase}: stopped after {stop:?}");
+        assert!(run.said("moved away from its target"), "{:#?}", run.events);
+        // One run, one stop: the same target is latched.
+        let ons = run.moves.iter().filter(|m| m.1).count();
+        assert_eq!(ons, run.moves.iter().position(|m| !m.1).unwrap());
+        assert!(run.moves.iter().skip_while(|m| m.1).all(|m| !m.1));
+    }
+    // The same trim wired right gets there and stops on "target reached".
+    let run = TrimRun::go(125, -80_000, 25.0, 30, ms(4000));
+    let (_, hi) = run.range();
+    assert!((199.0..=202.0).contains(&hi), "ended at {hi}");
+    assert!(run.said("target reached"), "{:#?}", run.events);
+}
+
+/// Sent to its nose-up endpoint (PTRIMREQ +100000 is raw 30), the trim stops just
+/// before it at its rate rather than a count short of it by "target reached": it
+/// never passes 30, whatever the phase of the 10 Hz positions.
+#[test]
+fn a_network_run_to_the_endpoint_stops_before_passing_it() {
+    for phase in (0..100).step_by(10) {
+        let run = TrimRun::go(60, 100_000, -25.0, phase, ms(4000));
+        let (lo, _) = run.range();
+        assert!(lo >= 30.0, "phase {phase}: passed the endpoint to {lo}");
+        assert!(lo <= 34.0, "phase {phase}: stopped short at {lo}");
+        assert!(
+            run.said("at its endpoint (position 30)") || run.said("target reached"),
+            "{:#?}",
+            run.events
+        );
+    }
+}
+
+/// A run with swapped leads started two counts off the endpoint behind it is stopped
+/// by position as it reaches that endpoint, before it has gone [`AWAY`] counts.
+/// (It can still pass by up to one 10 Hz position's travel: 2.5 counts at 25 a
+/// second; the installation check probes there, the gateway does not yet.)
+#[test]
+fn a_reversed_network_run_near_the_endpoint_behind_stops_there() {
+    for phase in (0..100).step_by(10) {
+        let run = TrimRun::go(32, -50_000, -25.0, phase, ms(4000));
+        assert!(run.stopped().is_some(), "{:#?}", run.events);
+        let (lo, _) = run.range();
+        assert!(lo >= 27.0, "phase {phase}: passed the endpoint to {lo}");
+        assert!(
+            run.said("at its endpoint (position 30)") || run.said("moved away from its target"),
+            "{:#?}",
+            run.events
+        );
+    }
+}
+
+/// Within START_ROOM of the endpoint it heads for, a run does not start, and the
+/// refusal says why and is counted.
+#[test]
+fn a_network_run_at_its_endpoint_is_refused() {
+    let room = vpx_efis::control::endpoints::START_ROOM;
+    let at = 30 + room as u8;
+    // +100000 is raw 30; from `at` that is `room` counts away, more than STOP_MARGIN.
+    let run = TrimRun::go(at, 100_000, -25.0, 0, ms(4000));
+    assert!(run.moves.is_empty(), "{:?}", run.moves);
+    assert!(run.said("at its up endpoint"), "{:#?}", run.events);
+    assert_eq!(run.refused, 1);
+    // One count more room, and it runs.
+    let run = TrimRun::go(at + 1, 100_000, -25.0, 0, ms(4000));
+    assert!(!run.moves.is_empty(), "{:#?}", run.events);
+}
+
+/// When FLAP_TRIM_STATUS stops coming (SYSTEM_STATUS still does), a network run ends
+/// once its position is older than 0.4 s, the page's rule, not the model's 1 s.
+#[test]
+fn a_network_run_stops_on_a_position_older_than_0_4_s() {
+    let run = TrimRun::go(125, -80_000, 25.0, 0, ms(500));
+    let stop = run.stopped().expect("stopped");
+    // The last position was heard at 400 ms (statuses at 0, 100, ... 400).
+    assert!(
+        stop > ms(800) && stop <= ms(900),
+        "stopped at {stop:?}: {:#?}",
+        run.events
+    );
+    assert!(run.said("its position is not fresh"), "{:#?}", run.events);
 }

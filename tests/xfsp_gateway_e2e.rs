@@ -290,3 +290,154 @@ fn multicast_pinned_to_loopback_reaches_a_listener_on_the_same_host() {
     }
     assert!(seen, "no ECBSTAT ON for the demo's EFIS on {target}");
 }
+
+/// Sends `ident` = `target` every 250 ms for `for_` (numbering from `*num`), and
+/// reads the unit's position of that motor meanwhile: (lowest, highest) seen.
+fn drive(
+    peer: &mut Peer,
+    num: &mut u16,
+    sim: &SimHandle,
+    ident: vpx_efis::xfsp::Ident,
+    target: i32,
+    for_: Duration,
+) -> (u8, u8) {
+    let pos = |s: &sim::SimStats| {
+        if ident == idents::FLAPREQ {
+            s.flap_position
+        } else {
+            s.pitch_trim_position
+        }
+    };
+    let first = pos(&sim.stats());
+    let (mut lo, mut hi) = (first, first);
+    let end = Instant::now() + for_;
+    let mut next = Instant::now();
+    while Instant::now() < end {
+        if Instant::now() >= next {
+            let d = peer.datagram(
+                *num,
+                vec![
+                    Parameter::new(ident, Value::Sint(target))
+                        .confidence(Confidence::UserSel)
+                        .expire(vpx_efis::xfsp::Expire::at_least(Duration::from_millis(600))),
+                ],
+            );
+            *num += 1;
+            peer.send(&d);
+            next += Duration::from_millis(250);
+        }
+        let p = pos(&sim.stats());
+        (lo, hi) = (lo.min(p), hi.max(p));
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    (lo, hi)
+}
+
+/// Review item 4 over real parts: the `install` scenario's pitch trim has its leads
+/// swapped. Sent nose-down from neutral (PTRIMREQ −80000, raw 201 from 125), it runs
+/// nose-up, away from its target: the gateway stops it within a few counts (it ran to
+/// the unit's run cap before, some 250 counts, far past the endpoint at 30), with the
+/// stop on the wire (no starved stream, no move late) and the reason on its standard
+/// error. The flaps, wired right and parked at 200, sent to their down endpoint 220
+/// (FLAPREQ 100000) stop just before it, by the endpoint rule, not past it.
+#[test]
+fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_wire() {
+    let mut scenario = sim::load_scenario("install").unwrap();
+    scenario.flap.as_mut().unwrap().position = Some(200);
+    let pty = open_pty_pair().unwrap();
+    let reader = pty.master.try_clone_native().unwrap();
+    let sim = sim::spawn(
+        SimOptions::new(scenario),
+        Box::new(reader),
+        Box::new(pty.master),
+    );
+    let mut peer = Peer::new();
+    let bridge = Bridge::start(BridgeOptions {
+        port: Some(pty.path.clone().into()),
+        baud: 57_600,
+        scenario: "install".into(),
+        target: Target::Unicast(peer.addr()),
+        iface: Ipv4Addr::LOCALHOST,
+        gateway: GatewayConfig::default(),
+        record: None,
+    });
+    assert!(
+        peer.wait_for(secs(8), |p| p.ident == idents::PTRIMPOS),
+        "no PTRIMPOS published; bridge said {:#?}",
+        bridge.lines()
+    );
+    assert!(peer.wait_for(secs(3), |p| p.ident == idents::FLAPPOS));
+    let mut num = 2000;
+
+    let (lo, hi) = drive(
+        &mut peer,
+        &mut num,
+        &sim,
+        idents::PTRIMREQ,
+        -80_000,
+        Duration::from_millis(2500),
+    );
+    let s = sim.stats();
+    eprintln!("reversed trim sent nose-down from 125: went {lo}..={hi}");
+    assert!(
+        !s.pitch_trim_running,
+        "still running at {}",
+        s.pitch_trim_position
+    );
+    assert!(
+        lo >= 125 - 10 && hi <= 125,
+        "the trim went {lo}..={hi} from 125; bridge said {:#?}",
+        bridge.lines()
+    );
+    assert!(
+        bridge
+            .lines()
+            .iter()
+            .any(|l| l.contains("pitch trim stopped: it moved away from its target")),
+        "{:#?}",
+        bridge.lines()
+    );
+
+    let (lo, hi) = drive(
+        &mut peer,
+        &mut num,
+        &sim,
+        idents::FLAPREQ,
+        100_000,
+        Duration::from_millis(2500),
+    );
+    let s = sim.stats();
+    eprintln!("flaps sent to their endpoint 220 from 200: went {lo}..={hi}");
+    assert!(!s.flap_running, "still running at {}", s.flap_position);
+    assert!(
+        lo >= 200 && (210..=220).contains(&hi),
+        "the flaps went {lo}..={hi} from 200 toward 220; bridge said {:#?}",
+        bridge.lines()
+    );
+    assert!(
+        bridge
+            .lines()
+            .iter()
+            .any(|l| l.contains("flaps stopped: at its endpoint (position 220)")),
+        "{:#?}",
+        bridge.lines()
+    );
+
+    // Every run ended by its stop message, and no move came late.
+    let s = sim.stats();
+    assert_eq!(
+        (
+            s.flap_starvations,
+            s.pitch_trim_starvations,
+            s.roll_trim_starvations
+        ),
+        (0, 0, 0)
+    );
+    assert_eq!(
+        (s.flap_late, s.pitch_trim_late, s.roll_trim_late),
+        (0, 0, 0)
+    );
+    drop(bridge);
+    sim.stop();
+    drop(pty.slave);
+}

@@ -8,6 +8,16 @@
 //! communication, motor fault, disabled, flap-down inhibit, lost motor status), the
 //! streamer's own limits (maximum run time, starved stream), a link error, or shutdown.
 //!
+//! The unit does not stop a TRIM_MOVE/FLAP_MOVE stream at the motor's endpoints (ICD
+//! Tables 15 and 16), so a network run keeps to them by the same rule as the page's own
+//! runs ([`endpoints::Watch`]): it is refused within [`endpoints::START_ROOM`] of the
+//! endpoint it heads for, and ends at the endpoint ahead (or just before it would pass
+//! it at the rate it is moving), at the endpoint behind once it moves toward it, and on
+//! a position older than [`endpoints::POSITION_FRESH`]. And since a run here has a
+//! target, it also ends once the position has gone [`AWAY`] counts away from it (from
+//! the nearest it came): a motor with swapped leads or polarity runs away from where it
+//! was sent, and is stopped there rather than at the far endpoint.
+//!
 //! After a run ends for any reason the target is *latched*: the same target does not
 //! start the motor again, so a position that settles a count away from the target, or a
 //! fault that clears, never makes the motor hunt or restart by itself. A different
@@ -17,10 +27,12 @@
 //!
 //! Every request gets an answer in the event log and in [`MotorDrive::counts`]: taken
 //! (a run started, or the motor was already there) or refused (no live position or
-//! scale, a motor check failed, or it expired waiting for another run to end).
+//! scale, a motor check failed, at its endpoint, or it expired waiting for another
+//! run to end).
 
 use std::time::{Duration, Instant};
 
+use crate::control::endpoints::{self, Watch};
 use crate::control::{
     Direction, MotorStreamer, StopReason, StreamerConfig, motor_check, motor_permit,
 };
@@ -35,6 +47,11 @@ pub const REQUEST_HOLD: Duration = Duration::from_millis(1200);
 /// Raw counts short of the target at which the motor is stopped: the 10 Hz position
 /// reports lag the motor, so stopping a count early lands on the target, not past it.
 pub const STOP_MARGIN: i32 = 1;
+/// Counts a run's position may go away from its target (from the nearest it came)
+/// before the run ends as going the wrong way ([`StopReason::WrongWay`]): the
+/// installation check's "moved" ([`endpoints::MOVED`]), so one count of sensor noise,
+/// or two, never ends a good run.
+pub const AWAY: i32 = endpoints::MOVED;
 
 pub const MOTORS: [Motor; 3] = [
     Motor::Flaps,
@@ -59,13 +76,17 @@ struct Slot {
 }
 
 /// The run going on now.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Active {
     motor: Motor,
     direction: Direction,
     /// The request's target on the draft's scale, and in raw counts.
     target: i32,
     raw_target: u8,
+    /// Its watch over the endpoints and the position's age.
+    watch: Watch,
+    /// The fewest counts it has been short of the target (see [`AWAY`]).
+    closest: i32,
 }
 
 /// How the requests this drive served ended, for the gateway's counters.
@@ -207,7 +228,7 @@ impl MotorDrive {
     /// to the model, so a reached target or a fault stops the motor at once.
     pub fn tick(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
         let mut out = Vec::new();
-        let running = self.active.map(|a| a.motor);
+        let running = self.active.as_ref().map(|a| a.motor);
         for motor in MOTORS {
             let local_busy = self.local_busy;
             let slot = self.slot(motor);
@@ -237,7 +258,7 @@ impl MotorDrive {
                 );
             }
         }
-        if let Some(a) = self.active {
+        if let Some(mut a) = self.active.take() {
             // (reason, words for the log, whether this target is done with)
             let stop = match self.slot(a.motor).req {
                 None => Some((
@@ -251,24 +272,28 @@ impl MotorDrive {
                     "a new target was requested".into(),
                     false,
                 )),
-                Some(_) => match motor_check(model, a.motor, a.direction, now) {
+                Some(_) => match motor_check(model, a.motor, a.direction, now)
+                    .and_then(|()| a.watch.check(model, now))
+                {
                     Err(reason) => Some((reason, reason.describe(), true)),
-                    Ok(()) => reached(model, a, now)
-                        .then(|| (StopReason::Released, "target reached".to_string(), true)),
+                    Ok(()) => a.progress(model, now),
                 },
             };
-            if let Some((reason, why, done)) = stop {
-                out.extend(self.streamer.stop(now, reason));
-                log_stop(model, now, a.motor, &why);
-                if done {
-                    self.slot(a.motor).latched = Some(a.target);
+            match stop {
+                Some((reason, why, done)) => {
+                    out.extend(self.streamer.stop(now, reason));
+                    log_stop(model, now, a.motor, &why);
+                    if done {
+                        self.slot(a.motor).latched = Some(a.target);
+                    }
                 }
-                self.active = None;
+                None => self.active = Some(a),
             }
         }
         out.extend(self.streamer.tick(now));
-        if let Some(a) = self.active
-            && self.streamer.running_key().is_none()
+        if let Some(a) = self
+            .active
+            .take_if(|_| self.streamer.running_key().is_none())
         {
             // The streamer ended the run itself (maximum run time, starved stream).
             let why = self
@@ -277,7 +302,6 @@ impl MotorDrive {
                 .map_or_else(|| "stream ended".to_string(), |s| s.reason.describe());
             log_stop(model, now, a.motor, &why);
             self.slot(a.motor).latched = Some(a.target);
-            self.active = None;
         }
         if self.active.is_none() {
             out.extend(self.start_next(model, now));
@@ -328,7 +352,13 @@ impl MotorDrive {
                 );
                 continue;
             };
-            if let Err(why) = motor_permit(model, motor, direction, now) {
+            // The page's own rule for a run that keeps to the endpoints: no start at
+            // (or within a run's first unwatched travel of) the endpoint ahead, nor on
+            // a position too old to keep it off it.
+            let permit = motor_permit(model, motor, direction, now)
+                .map_err(|r| r.0)
+                .and_then(|()| endpoints::permit(model, motor, direction, now));
+            if let Err(why) = permit {
                 self.counts.refused += 1;
                 model.log(
                     now,
@@ -352,6 +382,8 @@ impl MotorDrive {
                     direction,
                     target: req.target,
                     raw_target,
+                    watch: Watch::new(motor, direction),
+                    closest: axis.remaining(motor, direction, pos, raw_target),
                 });
                 model.log(
                     now,
@@ -394,11 +426,29 @@ fn position(model: &Model, motor: Motor, now: Instant) -> Option<(Axis, u8)> {
     Some((axis, pos))
 }
 
-fn reached(model: &Model, a: Active, now: Instant) -> bool {
-    // motor_check has already made sure the position is live.
-    position(model, a.motor, now).is_some_and(|(axis, pos)| {
-        axis.remaining(a.motor, a.direction, pos, a.raw_target) <= STOP_MARGIN
-    })
+impl Active {
+    /// Whether the run ends by its position against its target (the endpoints and
+    /// the position's age are the watch's): reached, or gone [`AWAY`] from it.
+    fn progress(&mut self, model: &Model, now: Instant) -> Option<(StopReason, String, bool)> {
+        // motor_check and the watch have already made sure the position is live.
+        let (axis, pos) = position(model, self.motor, now)?;
+        let remaining = axis.remaining(self.motor, self.direction, pos, self.raw_target);
+        if remaining <= STOP_MARGIN {
+            return Some((StopReason::Released, "target reached".to_string(), true));
+        }
+        self.closest = self.closest.min(remaining);
+        (remaining - self.closest >= AWAY).then(|| {
+            let reason = StopReason::WrongWay;
+            let why = format!(
+                "{} (raw {pos}, {} counts from target {} after {})",
+                reason.describe(),
+                remaining,
+                self.raw_target,
+                self.closest
+            );
+            (reason, why, true)
+        })
+    }
 }
 
 fn log_stop(model: &mut Model, now: Instant, motor: Motor, why: &str) {
