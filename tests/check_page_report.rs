@@ -200,3 +200,119 @@ fn a_signal_to_the_page_writes_an_incomplete_report() {
     says_incomplete_and_what_was_left(&md, "ended by a signal (SIGTERM)", &circuit);
     r.sim.stop();
 }
+
+/// The report folder cannot be written when the check ends (here a file stands where
+/// the folder must go; a USB stick pulled or a folder made read-only fail the same
+/// way): the page says why and keeps the results; Esc once warns instead of leaving;
+/// `w` writes it again once the folder is there, without leaving the screen.
+#[test]
+fn a_report_that_cannot_be_written_is_said_and_written_again_with_w() {
+    let mut r = Rig::mid_circuit();
+    let blocked = r.dir.path().join("usb");
+    std::fs::write(&blocked, "a file where the folder must go").unwrap();
+    let folder = blocked.join("reports");
+    r.app.set_check_report_dir(Some(folder.clone()));
+    r.key(KeyCode::Esc, KeyModifiers::NONE);
+    r.until("the check to end", Duration::from_secs(20), |app| {
+        app.check_finished()
+    });
+    let why = r
+        .app
+        .check_report_error()
+        .expect("the write failed")
+        .to_string();
+    assert!(why.starts_with(&folder.display().to_string()), "{why}");
+    let v = r.app.check_view();
+    assert_eq!(v.report, None);
+    assert!(
+        v.message.as_deref().unwrap().contains("w writes it again"),
+        "{:?}",
+        v.message
+    );
+    assert!(
+        vpx_efis::ui::check::keys::keys(v).contains(&("w", "write the report again")),
+        "{:?}",
+        vpx_efis::ui::check::keys::keys(v)
+    );
+    // Esc once: not left, the results would go with the screen.
+    r.key(KeyCode::Esc, KeyModifiers::NONE);
+    assert_eq!(r.app.view().screen, vpx_efis::ui::state::Screen::Check);
+    assert!(
+        r.app
+            .check_view()
+            .message
+            .as_deref()
+            .unwrap()
+            .contains("Esc again leaves"),
+        "{:?}",
+        r.app.check_view().message
+    );
+    // The stick is back: `w` writes the same report, complete with what it left.
+    std::fs::remove_file(&blocked).unwrap();
+    r.key(KeyCode::Char('w'), KeyModifiers::NONE);
+    assert_eq!(r.app.check_report_error(), None);
+    let md = the_report(&folder);
+    assert!(md.contains("**Result: INCOMPLETE.**"), "{md}");
+    assert_eq!(
+        r.app
+            .check_view()
+            .report
+            .as_deref()
+            .map(|p| p.parent().unwrap()),
+        Some(folder.as_path())
+    );
+    // Written once: `w` again writes no second copy.
+    r.key(KeyCode::Char('w'), KeyModifiers::NONE);
+    assert_eq!(std::fs::read_dir(&folder).unwrap().count(), 2);
+    r.sim.stop();
+}
+
+/// Headless, a report that cannot be written at the end is an error of the run: the
+/// folder and the reason said, exit non-zero (1), after the summary was printed.
+#[test]
+fn headless_a_report_that_cannot_be_written_is_an_error_naming_the_folder() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let pty = link::open_pty_pair().expect("pty");
+    let reader = pty.master.try_clone_native().expect("clone master");
+    let sim = sim::spawn(
+        SimOptions::new(sim::load_scenario("install").unwrap()),
+        Box::new(reader),
+        Box::new(pty.master),
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let blocked = dir.path().join("usb");
+    std::fs::write(&blocked, "a file where the folder must go").unwrap();
+    let h = vpx_efis::app::HeadlessCheck {
+        port: Some(pty.path.parse().unwrap()),
+        baud: 57_600,
+        scenario: "install".into(),
+        options: Options {
+            skip: vec![Step::Switches, Step::Circuits, Step::Motors, Step::Loads],
+            yes: true,
+            ..Options::default()
+        },
+        report: Some(blocked.join("reports")),
+    };
+    let (_tx, lines) = unbounded();
+    let (_ttx, terminations) = unbounded();
+    let mut out = Vec::new();
+    let err = vpx_efis::app::run_headless_with(h, &lines, &terminations, &mut out)
+        .expect_err("the report was not written");
+    let text = String::from_utf8(out).unwrap();
+    let e = format!("{err:#}");
+    assert!(
+        e.starts_with(&format!(
+            "the report could not be written to {}: ",
+            blocked.join("reports").display()
+        )),
+        "{e}"
+    );
+    assert!(err.downcast_ref::<vpx_efis::cmd::check::Ended>().is_none());
+    assert!(
+        text.contains("✗ The report could not be written to"),
+        "{text}"
+    );
+    assert!(text.contains("Summary: "), "{text}");
+    drop(pty.slave);
+    sim.stop();
+}

@@ -337,6 +337,61 @@ fn a_finished_check_reports_every_result_and_what_is_left_to_fix() {
     assert!(!md.contains("## Interrupted"));
 }
 
+/// `S` in the middle of the switch step: the inputs tested before it keep their
+/// results in the report (and the count), the rest say the step was skipped.
+#[test]
+fn a_step_skipped_part_way_keeps_what_it_found() {
+    let mut view = finished();
+    view.skipped_steps = vec![Step::Switches];
+    view.switches[2].outcome = Outcome::Skipped("you skipped it".into());
+    view.switches[3].outcome = Outcome::Skipped("step skipped".into());
+    let md = report::markdown(&view, &about());
+    assert!(
+        md.contains(
+            "- Steps skipped by the user: Switch inputs (the rest of it, after 2 results)\n"
+        ),
+        "{md}"
+    );
+    let section = md
+        .split("## Switch inputs\n\n")
+        .nth(1)
+        .unwrap()
+        .split("\n## ")
+        .next()
+        .unwrap();
+    assert!(
+        section.starts_with(
+            "The user skipped the rest of this step; what it found before stands.\n\n"
+        ),
+        "{section}"
+    );
+    for line in [
+        "| switch 2 | Nav Lt, Strobe | ✓ PASS | the input changed, and its circuits followed |",
+        "| switch 4 | Taxi Light, Landing Lt | ✗ FAIL | switch 5 changed instead: switches crossed |",
+        "| switch 5 | Boost pump | – SKIPPED | you skipped it |",
+        "| flap switch UP | — | – SKIPPED | step skipped |",
+    ] {
+        assert!(
+            section.lines().any(|l| l == line),
+            "no {line:?} in\n{section}"
+        );
+    }
+    assert!(md.contains("1. switch 4: switch 5 changed instead"), "{md}");
+    // A step skipped before any result is still said in one line.
+    view.switches.iter_mut().for_each(|s| {
+        s.outcome = Outcome::Skipped("step skipped".into());
+    });
+    let md = report::markdown(&view, &about());
+    assert!(
+        md.contains("## Switch inputs\n\nSkipped by the user.\n\n"),
+        "{md}"
+    );
+    assert!(
+        md.contains("- Steps skipped by the user: Switch inputs\n"),
+        "{md}"
+    );
+}
+
 /// Paper: no colour codes, no box drawing that breaks when printed, only pipes and
 /// dashes in the tables.
 fn assert_prints_on_paper(md: &str) {

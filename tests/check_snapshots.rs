@@ -700,6 +700,51 @@ fn quit_clean() -> CheckView {
     }
 }
 
+/// The ended check scrolled past its end (kept at its last line by the screen).
+fn done_scrolled_to_end() -> CheckView {
+    CheckView {
+        scroll: 1000,
+        ..done()
+    }
+}
+
+/// The report folder went read-only (a USB stick pulled): the results stay, `w`
+/// writes them again.
+fn done_report_not_written() -> CheckView {
+    let why = "/media/usb/n123ab: Read-only file system (os error 30)";
+    CheckView {
+        report: None,
+        report_error: Some(why.into()),
+        message: Some(format!("✗ The report could not be written to {why}")),
+        ..done()
+    }
+}
+
+/// `l` after the check: the load analysis' table and bar chart.
+fn done_load_analysis() -> CheckView {
+    CheckView {
+        show_loads: true,
+        ..done()
+    }
+}
+
+/// The circuits step with the circuits left alone among the results: pins as long as
+/// "Field_Pri" and "Starter" are shown whole.
+fn circuits_long_pins() -> CheckView {
+    let mut v = circuits();
+    let left_alone = excluded().into_iter().map(|e| CircuitResult {
+        id: e.id,
+        name: e.name,
+        pin: e.pin,
+        breaker: e.breaker,
+        switch: e.switch,
+        outcome: Outcome::Skipped(e.why),
+    });
+    v.circuits.splice(0..0, left_alone.take(2));
+    v.current = Some(5);
+    v
+}
+
 fn page(palette: Palette) -> ViewState {
     ViewState {
         theme: ThemeChoice {
@@ -750,6 +795,34 @@ fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
         ("motors_link_stale", motors(), stale6.clone(), p.clone(), ts),
         ("loads", loads(), idle.clone(), p.clone(), ti),
         ("done", done(), idle.clone(), p.clone(), ti),
+        (
+            "done_scrolled_to_end",
+            done_scrolled_to_end(),
+            idle.clone(),
+            p.clone(),
+            ti,
+        ),
+        (
+            "done_report_not_written",
+            done_report_not_written(),
+            idle.clone(),
+            p.clone(),
+            ti,
+        ),
+        (
+            "done_load_analysis",
+            done_load_analysis(),
+            idle.clone(),
+            p.clone(),
+            ti,
+        ),
+        (
+            "circuits_long_pins",
+            circuits_long_pins(),
+            idle.clone(),
+            p.clone(),
+            ti,
+        ),
         ("done_all_passed", all_passed(), idle.clone(), p.clone(), ti),
         (
             "done_no_load_file",
@@ -1102,4 +1175,160 @@ fn a_stopped_check_with_nothing_failed_does_not_read_clean() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
     let buf = render(&all_passed(), &m, &page(Palette::Terminal), now, 80, 24);
     assert_eq!(cell(&buf, "Nothing left", "Nothing").fg, Color::Green);
+}
+
+/// The ended check's results scroll: at the top it says how much is below and which
+/// keys scroll; at the end (and past it) the last result is on the screen under how
+/// much is above; the app's limit is where the screen stops.
+#[test]
+fn the_ended_check_scrolls_to_every_result_and_says_its_keys() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let p = page(Palette::Terminal);
+    let top = text(&render(&done(), &m, &p, now, 80, 24));
+    assert!(top.contains("more lines below"), "{top}");
+    assert!(!top.contains("more lines above"), "{top}");
+    assert!(top.contains("↑↓ PgUp PgDn Home End  scroll"), "{top}");
+    assert!(top.contains("l  load analysis"), "{top}");
+    let max = check::results_scroll_max(&done(), &m, &p, now, Rect::new(0, 0, 80, 24));
+    assert!(max > 20, "{max}");
+    let at = |scroll| {
+        let v = CheckView { scroll, ..done() };
+        text(&render(&v, &m, &p, now, 80, 24))
+    };
+    let end = at(max);
+    assert_eq!(end, at(max + 50), "kept at the end");
+    assert_ne!(
+        end,
+        at(max - 1),
+        "one line short of the end is another screen"
+    );
+    assert!(end.contains(&format!("↑ {max} more lines above")), "{end}");
+    assert!(!end.contains("more lines below"), "{end}");
+    // The last result: the load analysis' last phase.
+    assert!(end.contains("emergency"), "{end}");
+    // Still running: nothing scrolls.
+    assert_eq!(
+        check::results_scroll_max(&circuits(), &m, &p, now, Rect::new(0, 0, 80, 24)),
+        0
+    );
+}
+
+/// A report that could not be written says why, in red with its mark and word, and
+/// the key that writes it again; the results stay on the screen.
+#[test]
+fn a_report_not_written_says_why_and_the_key_to_write_it_again() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    for (w, h) in [(80, 24), (120, 40)] {
+        let buf = render(
+            &done_report_not_written(),
+            &m,
+            &page(Palette::Terminal),
+            now,
+            w,
+            h,
+        );
+        let t = text(&buf);
+        assert!(t.contains("✗ Report NOT written: "), "{t}");
+        assert!(t.contains("w: write it again"), "{t}");
+        assert!(t.contains(" w  write the report again"), "{t}");
+        assert!(t.contains("Left to fix"), "{t}");
+        assert_eq!(cell(&buf, "Report NOT written", "✗").fg, Color::Red);
+    }
+}
+
+/// After the check, `l` shows the load analysis whole: the phases' table, the bar
+/// chart against the alternator, and the circuits.
+#[test]
+fn the_load_analysis_is_seen_after_the_check() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let t = text(&render(
+        &done_load_analysis(),
+        &m,
+        &page(Palette::Terminal),
+        now,
+        120,
+        40,
+    ));
+    for want in [
+        "Load analysis",
+        "Verdict",
+        "│ alternator 18 A",
+        "Circuit",
+        "l  results",
+    ] {
+        assert!(t.contains(want), "no {want:?} in\n{t}");
+    }
+    // At 80×24 it scrolls: the chart and the last circuit are reached.
+    let p = page(Palette::Terminal);
+    let max =
+        check::results_scroll_max(&done_load_analysis(), &m, &p, now, Rect::new(0, 0, 80, 24));
+    assert!(max > 0);
+    let seen: String = (0..=max)
+        .map(|scroll| {
+            let v = CheckView {
+                scroll,
+                ..done_load_analysis()
+            };
+            text(&render(&v, &m, &p, now, 80, 24))
+        })
+        .collect();
+    for want in ["│ alternator 18 A", "Fuel Pump      15A-1", "emergency"] {
+        assert!(seen.contains(want), "no {want:?} at any scroll");
+    }
+}
+
+/// The pin column holds the longest pin whole ("Field_Pri", "Starter"), at 80 and at
+/// 120 columns, and the names beside it are not cut when there is room.
+#[test]
+fn circuit_rows_show_the_longest_pin_whole() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    for (w, h) in [(80, 24), (120, 40)] {
+        let t = text(&render(
+            &circuits_long_pins(),
+            &m,
+            &page(Palette::Terminal),
+            now,
+            w,
+            h,
+        ));
+        assert!(t.contains(" Field_Pri never touched"), "{t}");
+        assert!(t.contains("Starter       Starter   never touched"), "{t}");
+        assert!(t.contains("Alternator    Field_Pri never touched"), "{t}");
+        assert!(!t.contains("Field…") && !t.contains("Start…"), "{t}");
+    }
+}
+
+/// The summary counts what the report and the headless run count: the items tested,
+/// with the load analysis' warnings apart.
+#[test]
+fn the_summary_counts_as_the_report_does() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    for v in [done(), no_load_file()] {
+        let t = text(&render(&v, &m, &page(Palette::Terminal), now, 160, 50));
+        let about = vpx_efis::check::report::About {
+            when: std::time::UNIX_EPOCH,
+            port: "/dev/ttyUSB0".into(),
+            unit: None,
+            ours: "0".into(),
+            travel: vec![],
+        };
+        let md = vpx_efis::check::report::markdown(&v, &about);
+        let n = |m| v.marks().filter(|x| *x == m).count();
+        use vpx_efis::ui::check::state::Mark;
+        let skipped = n(Mark::Skipped);
+        if skipped > 0 {
+            assert!(
+                t.contains(&format!("– {skipped} skipped")),
+                "{skipped} skipped:\n{t}"
+            );
+            assert!(md.contains(&format!("{skipped} skipped")), "{md}");
+        } else {
+            // The load file's row is skipped, but it is not an item: not counted.
+            assert!(!t.contains(" skipped  "), "{t}");
+            assert!(!md.contains(" skipped."), "{md}");
+        }
+        let passed = n(Mark::Pass);
+        assert!(t.contains(&format!("✓ {passed} passed")), "{t}");
+        assert!(md.contains(&format!("{passed} passed")), "{md}");
+    }
 }

@@ -36,6 +36,8 @@ pub(super) struct CheckState {
     report_dir: Option<PathBuf>,
     started: Option<std::time::SystemTime>,
     reported: bool,
+    /// Esc was pressed once with the report not written: the next one leaves.
+    leave_asked: bool,
 }
 
 /// The options of a check opened from the page: everything run, the load file beside
@@ -60,6 +62,7 @@ impl App {
         self.check.news.clear();
         self.check.started = Some(wall);
         self.check.reported = false;
+        self.check.leave_asked = false;
         self.view.screen = Screen::Check;
         self.dirty = true;
     }
@@ -156,7 +159,6 @@ impl App {
         let Some(dir) = self.check.report_dir.clone() else {
             return;
         };
-        self.check.reported = true;
         let (port, unit, travel) = {
             // One lock for all: two guards in one expression would deadlock.
             let m = self.model();
@@ -189,23 +191,35 @@ impl App {
             travel,
         };
         let written = crate::check::report::write(&dir, &self.check.view, &about);
+        // Only a report on the disk counts as written: one that failed (a USB stick
+        // pulled, a folder made read-only) stays to be written again with `w`, the
+        // results still in memory.
         let line = match written {
             Ok(w) => {
+                self.check.reported = true;
                 self.check.view.report = Some(w.markdown.clone());
-                format!(
-                    "Report written: {} and {}",
-                    w.markdown.display(),
-                    w.csv.display()
-                )
+                self.check.view.report_error = None;
+                words::report_written(&w.markdown, &w.csv)
             }
-            Err(e) => format!(
-                "✗ The report could not be written to {}: {e}",
-                dir.display()
-            ),
+            Err(e) => {
+                let why = format!("{}: {e}", dir.display());
+                self.check.view.report_error = Some(why.clone());
+                format!("✗ The report could not be written to {why}")
+            }
         };
-        self.check.view.message = Some(line.clone());
+        // The screen's one line of news is short (the summary's head has the path
+        // and the reason); the headless run prints the whole line.
+        self.check.view.message = Some(match &self.check.view.report_error {
+            Some(_) => "✗ The report could not be written (why: above); w writes it again.".into(),
+            None => line.clone(),
+        });
         self.check.news.push(line);
         self.dirty = true;
+    }
+
+    /// Why the report of an ended check is not on the disk, if it failed.
+    pub fn check_report_error(&self) -> Option<&str> {
+        self.check.view.report_error.as_deref()
     }
 
     pub(super) fn check_deadline(&self) -> Option<Instant> {
@@ -228,6 +242,25 @@ impl App {
         self.set_check_report_dir(dir);
     }
 
+    /// Scrolls the results (or the load analysis) of an ended check by `by` lines,
+    /// kept within the list as the terminal shows it now.
+    fn check_scroll(&mut self, by: isize) -> Flow {
+        let (w, h) = crossterm::terminal::size().unwrap_or((80, 24));
+        let max = {
+            let m = self.model();
+            crate::ui::check::results_scroll_max(
+                &self.check.view,
+                &m,
+                &self.view,
+                Instant::now(),
+                ratatui::layout::Rect::new(0, 0, w, h),
+            )
+        };
+        let v = &mut self.check.view;
+        v.scroll = v.scroll.saturating_add_signed(by).min(max);
+        Flow::Continue
+    }
+
     /// A key on the check screen.
     pub(super) fn check_key(&mut self, key: KeyEvent, now: Instant) -> Flow {
         if key.kind == KeyEventKind::Release {
@@ -247,6 +280,39 @@ impl App {
         self.set_notice(now, n);
         self.view.motor_run = self.controller.running();
         let leave = matches!(key.code, KeyCode::Esc | KeyCode::Char('q'));
+        if self.check_finished() && self.check.flow.is_some() {
+            match key.code {
+                // The report again, into the same folder, after a write that failed.
+                KeyCode::Char('w') if !self.check.reported => {
+                    self.write_check_report();
+                    return Flow::Continue;
+                }
+                KeyCode::Char('l') if self.check.view.loads.is_some() => {
+                    self.check.view.show_loads = !self.check.view.show_loads;
+                    self.check.view.scroll = 0;
+                    return Flow::Continue;
+                }
+                KeyCode::Up | KeyCode::Char('k') => return self.check_scroll(-1),
+                KeyCode::Down | KeyCode::Char('j') => return self.check_scroll(1),
+                KeyCode::PageUp => return self.check_scroll(-(page_lines() as isize)),
+                KeyCode::PageDown => return self.check_scroll(page_lines() as isize),
+                KeyCode::Home => return self.check_scroll(isize::MIN / 2),
+                KeyCode::End => return self.check_scroll(isize::MAX / 2),
+                _ => {}
+            }
+        }
+        if self.check_finished()
+            && leave
+            && self.check.view.report_error.is_some()
+            && !self.check.leave_asked
+        {
+            // Leaving drops the results, and the report is not on the disk yet.
+            self.check.leave_asked = true;
+            self.check.view.message = Some(
+                "The report is not written: w writes it again; Esc again leaves without it.".into(),
+            );
+            return Flow::Continue;
+        }
         if self.check_finished() || (leave && self.check.view.step == Step::Confirm) {
             if leave || key.code == KeyCode::Enter {
                 // Nothing is running (or nothing was touched yet): back to the list.
@@ -269,6 +335,13 @@ impl App {
         self.check_command(cmd, now);
         Flow::Continue
     }
+}
+
+/// How far PgUp and PgDn scroll the results: most of a screen, from the terminal's
+/// height now, keeping a few lines of the last page in sight.
+fn page_lines() -> usize {
+    let (_, h) = crossterm::terminal::size().unwrap_or((80, 24));
+    usize::from(h).saturating_sub(16).max(5)
 }
 
 /// `vpx-efis check`'s arguments, parsed.
@@ -544,7 +617,16 @@ fn headless_loop(
     news(app);
     let view = app.check_view().clone();
     print_summary(&view, out)?;
-    Ok(CheckEnd::of(&view))
+    let end = CheckEnd::of(&view);
+    // A report asked for and not written is an error of the run (exit 1, the reason
+    // on stderr), whatever the check found; an interrupted check keeps its 2, the
+    // state it left the aircraft in being the more urgent news.
+    match &view.report_error {
+        Some(why) if end != CheckEnd::Interrupted => {
+            anyhow::bail!("the report could not be written to {why}")
+        }
+        _ => Ok(end),
+    }
 }
 
 /// `vpx-efis check` on this process's terminal.
@@ -582,6 +664,14 @@ fn print_plan(view: &CheckView, out: &mut dyn std::io::Write) -> std::io::Result
         writeln!(out, "It leaves alone:")?;
         for e in &view.excluded {
             writeln!(out, "  {}: {}", e.name, e.why)?;
+        }
+    }
+    // The confirm screen's words for the same inputs (the plan's, `plan::unasked`), so
+    // the person confirming here knows as much as one confirming on the page.
+    if !view.unasked.is_empty() && !view.skipped_steps.contains(&Step::Switches) {
+        writeln!(out, "It will not ask you to flip:")?;
+        for u in &view.unasked {
+            writeln!(out, "  {}", u.why)?;
         }
     }
     Ok(())
@@ -623,4 +713,63 @@ fn print_summary(view: &CheckView, out: &mut dyn std::io::Write) -> std::io::Res
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ui::check::state::{Excluded, Input, Unasked};
+
+    fn view() -> CheckView {
+        CheckView {
+            excluded: vec![Excluded {
+                id: 7,
+                name: "Pitot Heat".into(),
+                pin: "10A-4",
+                breaker: Some(10),
+                switch: None,
+                why: "suggested: the name has \"pitot\"".into(),
+                may_include: true,
+            }],
+            unasked: vec![
+                Unasked {
+                    input: Input::Switch(8),
+                    circuits: vec![7],
+                    why: "switch 8 powers only Pitot Heat (excluded): not asked".into(),
+                },
+                Unasked {
+                    input: Input::FlapUp,
+                    circuits: vec![],
+                    why: "flap switch UP drives Flaps (excluded): not asked".into(),
+                },
+            ],
+            ..CheckView::default()
+        }
+    }
+
+    /// The headless plan says, before the person confirms, which switch inputs the
+    /// check will not ask for and why, in the plan's words (the confirm screen's).
+    #[test]
+    fn the_headless_plan_lists_the_inputs_it_will_not_ask_for() {
+        let mut out = Vec::new();
+        print_plan(&view(), &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(
+            text.ends_with(
+                "It leaves alone:\n  Pitot Heat: suggested: the name has \"pitot\"\n\
+                 It will not ask you to flip:\n  \
+                 switch 8 powers only Pitot Heat (excluded): not asked\n  \
+                 flap switch UP drives Flaps (excluded): not asked\n"
+            ),
+            "{text}"
+        );
+        // With the switch step skipped nothing is asked anyway: not said.
+        let mut out = Vec::new();
+        let skipped = CheckView {
+            skipped_steps: vec![Step::Switches],
+            ..view()
+        };
+        print_plan(&skipped, &mut out).unwrap();
+        assert!(!String::from_utf8(out).unwrap().contains("flip"));
+    }
 }

@@ -241,7 +241,11 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
     let _ = writeln!(o, "- Unit: {}", unit_text(about.unit));
     let _ = writeln!(o, "- vpx-efis: {}", about.ours);
     if !view.skipped_steps.is_empty() {
-        let steps: Vec<&str> = view.skipped_steps.iter().map(|s| s.title()).collect();
+        let steps: Vec<String> = view
+            .skipped_steps
+            .iter()
+            .map(|&s| skipped_step_words(view, s))
+            .collect();
         let _ = writeln!(o, "- Steps skipped by the user: {}", steps.join(", "));
     }
     o.push('\n');
@@ -393,8 +397,48 @@ fn before_power(o: &mut String, view: &CheckView) {
     }
 }
 
+/// How many of `step`'s items got a result before the person skipped the rest of it
+/// (`S` in the middle of a step keeps what was found).
+fn found_in(view: &CheckView, step: Step) -> usize {
+    let found = |o: bool| usize::from(o);
+    match step {
+        Step::Switches => view
+            .switches
+            .iter()
+            .map(|s| found(matches!(s.outcome, Outcome::Found(_))))
+            .sum(),
+        Step::Circuits => view
+            .circuits
+            .iter()
+            .map(|c| found(matches!(c.outcome, Outcome::Found(_))))
+            .sum(),
+        Step::Motors => view
+            .motors
+            .iter()
+            .map(|m| found(matches!(m.outcome, Outcome::Found(_))))
+            .sum(),
+        _ => 0,
+    }
+}
+
+/// "Switch inputs", or "Switch inputs (after 1 result)" for a step skipped part way.
+fn skipped_step_words(view: &CheckView, step: Step) -> String {
+    match found_in(view, step) {
+        0 => step.title().to_string(),
+        n => format!(
+            "{} (the rest of it, after {})",
+            step.title(),
+            words::count(n, "result", "results")
+        ),
+    }
+}
+
 fn skipped_or_empty(o: &mut String, view: &CheckView, step: Step, empty: &str) -> bool {
-    if step_skipped(view, step) {
+    if step_skipped(view, step) && found_in(view, step) > 0 {
+        // Skipped part way: the results found stand, the rest say "step skipped".
+        o.push_str("The user skipped the rest of this step; what it found before stands.\n\n");
+        false
+    } else if step_skipped(view, step) {
         o.push_str("Skipped by the user.\n\n");
         true
     } else if match step {

@@ -118,6 +118,9 @@ fn held_line(view: &CheckView) -> Option<Line<'static>> {
 
 /// The results of step 3 as rows, for this screen and the summary.
 pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
+    // The name and the pin share the head's width; the pin always whole.
+    let (_, pin_w) = super::circuit_columns(view);
+    let name_w = super::head_w(view) - 1 - pin_w;
     view.circuits
         .iter()
         .enumerate()
@@ -126,9 +129,9 @@ pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
             Row {
                 head: vec![
                     progress_span(mark, i, current),
-                    Span::raw(fit(&r.name, 16)),
+                    Span::raw(fit(&r.name, name_w)),
                     Span::raw(" "),
-                    Span::styled(fit(r.pin, 6), theme::label()),
+                    Span::styled(fit(r.pin, pin_w), theme::label()),
                     Span::raw(" "),
                 ],
                 words: progress_words(mark, i, current, words::circuit(r)),

@@ -12,6 +12,33 @@ use crate::ui::{fast, theme};
 
 /// The keys shown for `view`, with their words.
 pub fn keys(view: &CheckView) -> Vec<(&'static str, &'static str)> {
+    if view.interrupted.is_some() || view.step == Step::Done {
+        // The check has ended: what is left is to read it, and to leave.
+        // Shorter words when `w` must fit too: the line holds at 80 columns.
+        let (leave, scroll, loads) = match (view.report_error.is_some(), view.show_loads) {
+            (true, true) => ("leave", "↑↓ PgUp PgDn", "results"),
+            (true, false) => ("leave", "↑↓ PgUp PgDn", "loads"),
+            (false, true) => (
+                "back to the device list",
+                "↑↓ PgUp PgDn Home End",
+                "results",
+            ),
+            (false, false) => (
+                "back to the device list",
+                "↑↓ PgUp PgDn Home End",
+                "load analysis",
+            ),
+        };
+        let mut k = vec![("Esc", leave)];
+        if view.report_error.is_some() {
+            k.push(("w", "write the report again"));
+        }
+        k.push((scroll, "scroll"));
+        if view.loads.is_some() {
+            k.push(("l", loads));
+        }
+        return k;
+    }
     let asked = view
         .prompt
         .as_ref()
@@ -21,11 +48,7 @@ pub fn keys(view: &CheckView) -> Vec<(&'static str, &'static str)> {
     if !asked.is_empty() {
         return asked;
     }
-    if view.interrupted.is_some() || view.step == Step::Done {
-        vec![("Esc", "back to the device list")]
-    } else {
-        vec![("Esc", "stop the check")]
-    }
+    vec![("Esc", "stop the check")]
 }
 
 pub fn render(buf: &mut Buffer, area: Rect, view: &CheckView, page: &ViewState) {

@@ -192,6 +192,90 @@ pub fn render(buf: &mut Buffer, area: Rect, rows: &[Row], focus: Option<usize>) 
     fast::lines(buf, area, &lines);
 }
 
+/// What a scrolled list shows: from line `top`, `body` lines, with a line above
+/// saying how many are hidden above, and one below for those below.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Scrolled {
+    pub top: usize,
+    pub body: usize,
+    pub above: bool,
+    pub below: bool,
+}
+
+/// The furthest a list of `total` lines scrolls in `height`: its last line at the
+/// bottom, under the "above" line.
+pub fn scroll_max_of(total: usize, height: usize) -> usize {
+    if total <= height {
+        0
+    } else {
+        total - height.saturating_sub(1).max(1)
+    }
+}
+
+/// Where a list of `total` lines scrolled to `top` shows its lines in `height`.
+pub fn scrolled(total: usize, height: usize, top: usize) -> Scrolled {
+    if total <= height {
+        return Scrolled {
+            top: 0,
+            body: total,
+            above: false,
+            below: false,
+        };
+    }
+    let top = top.min(scroll_max_of(total, height));
+    let above = top > 0;
+    let room = height.saturating_sub(usize::from(above)).max(1);
+    let left = total - top;
+    if left <= room {
+        Scrolled {
+            top,
+            body: left,
+            above,
+            below: false,
+        }
+    } else {
+        Scrolled {
+            top,
+            body: room.saturating_sub(1).max(1),
+            above,
+            below: true,
+        }
+    }
+}
+
+/// The lines of `rows` at `width`, one after the other.
+fn all_lines(rows: &[Row], width: u16) -> Vec<Line<'static>> {
+    rows.iter().flat_map(|r| lines_of(r, width)).collect()
+}
+
+/// How far [`render_scrolled`] lets `rows` scroll in `area`.
+pub fn scroll_max(area: Rect, rows: &[Row]) -> usize {
+    scroll_max_of(all_lines(rows, area.width).len(), usize::from(area.height))
+}
+
+/// Draws `rows` in `area` from line `top` on (kept within the list), saying how many
+/// lines are hidden above and below: the results of an ended check, which the
+/// person scrolls (↑↓ PgUp PgDn Home End).
+pub fn render_scrolled(buf: &mut Buffer, area: Rect, rows: &[Row], top: usize) {
+    if area.height == 0 || rows.is_empty() {
+        return;
+    }
+    let all = all_lines(rows, area.width);
+    let s = scrolled(all.len(), usize::from(area.height), top);
+    let mut lines = Vec::new();
+    if s.above {
+        lines.push(more(format!("↑ {} more lines above", s.top)));
+    }
+    lines.extend(all[s.top..s.top + s.body].iter().cloned());
+    if s.below {
+        lines.push(more(format!(
+            "↓ {} more lines below",
+            all.len() - s.top - s.body
+        )));
+    }
+    fast::lines(buf, area, &lines);
+}
+
 fn more(text: String) -> Line<'static> {
     Line::styled(text, theme::label())
 }
@@ -211,6 +295,64 @@ mod tests {
         // A number and its unit stay together, and come out with a plain space.
         assert_eq!(wrap("moved 0 % → 18 %)", 14), ["moved 0 % →", "18 %)"]);
         assert_eq!(wrap("at 128 → 159 counts", 14), ["at 128 →", "159 counts"]);
+    }
+
+    /// Scrolled to the top, the end, or past it: every line is reachable, the last
+    /// one ends at the bottom, and what is hidden is said.
+    #[test]
+    fn a_scrolled_list_reaches_every_line_and_says_what_is_hidden() {
+        let s = |total, h, top| scrolled(total, h, top);
+        // Fits: all of it, nothing said.
+        assert_eq!(
+            s(5, 10, 3),
+            Scrolled {
+                top: 0,
+                body: 5,
+                above: false,
+                below: false
+            }
+        );
+        // 30 lines in 10: the first 9 and "below".
+        assert_eq!(
+            s(30, 10, 0),
+            Scrolled {
+                top: 0,
+                body: 9,
+                above: false,
+                below: true
+            }
+        );
+        // In the middle: "above", 8 lines, "below".
+        assert_eq!(
+            s(30, 10, 5),
+            Scrolled {
+                top: 5,
+                body: 8,
+                above: true,
+                below: true
+            }
+        );
+        // The end, and past it: "above" and the last 9 lines, 21..30.
+        assert_eq!(scroll_max_of(30, 10), 21);
+        for top in [21, 22, 1000] {
+            assert_eq!(
+                s(30, 10, top),
+                Scrolled {
+                    top: 21,
+                    body: 9,
+                    above: true,
+                    below: false
+                }
+            );
+        }
+        // Every line is shown at some scroll.
+        let mut seen = [false; 30];
+        for top in 0..=scroll_max_of(30, 10) {
+            let v = s(30, 10, top);
+            assert!(v.body + usize::from(v.above) + usize::from(v.below) <= 10);
+            seen[v.top..v.top + v.body].iter_mut().for_each(|x| *x = true);
+        }
+        assert!(seen.iter().all(|&x| x));
     }
 
     #[test]

@@ -81,7 +81,6 @@ pub fn render(
     }
     let banner = comm_banner::banner(model, now);
     let prompt = shown_prompt(view);
-    let prompt_h = prompt.map_or(0, |p| prompt_lines(p, area.width).len() as u16 + 1);
     let [
         title,
         steps,
@@ -90,16 +89,7 @@ pub fn render(
         body,
         message,
         keys_area,
-    ] = Layout::vertical([
-        Constraint::Length(1),
-        Constraint::Length(1),
-        Constraint::Length(comm_banner::height(banner.as_ref(), area.height)),
-        Constraint::Length(prompt_h),
-        Constraint::Fill(1),
-        Constraint::Length(1),
-        Constraint::Length(1),
-    ])
-    .areas(area);
+    ] = layout(view, model, area, now);
     title_bar::render(frame, title, model, now);
     fast::lines(frame.buffer_mut(), steps, &[steps_line(view, steps.width)]);
     if let Some(b) = &banner {
@@ -108,7 +98,9 @@ pub fn render(
     if let Some(p) = prompt {
         render_prompt(frame, prompt_area, p);
     }
-    if view.interrupted.is_some() {
+    if view.interrupted.is_some() && view.show_loads {
+        summary::render_done(frame, body, view, model, now);
+    } else if view.interrupted.is_some() {
         summary::render_interrupted(frame, body, view, model, now);
     } else {
         match view.step {
@@ -135,6 +127,39 @@ pub fn render(
         );
     }
     keys::render(frame.buffer_mut(), keys_area, view, page);
+}
+
+/// The screen's lines: title, steps, banner, prompt, the step's body, news, keys.
+fn layout(view: &CheckView, model: &Model, area: Rect, now: Instant) -> [Rect; 7] {
+    let banner = comm_banner::banner(model, now);
+    let prompt_h = shown_prompt(view).map_or(0, |p| prompt_lines(p, area.width).len() as u16 + 1);
+    Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Length(1),
+        Constraint::Length(comm_banner::height(banner.as_ref(), area.height)),
+        Constraint::Length(prompt_h),
+        Constraint::Fill(1),
+        Constraint::Length(1),
+        Constraint::Length(1),
+    ])
+    .areas(area)
+}
+
+/// How far the results of an ended check (or its load analysis) scroll on a screen
+/// of `area`: the app keeps [`CheckView::scroll`] within it, so ↑ acts at once after
+/// End. 0 while the check runs.
+pub fn results_scroll_max(
+    view: &CheckView,
+    model: &Model,
+    _page: &ViewState,
+    now: Instant,
+    area: Rect,
+) -> usize {
+    let ended = view.interrupted.is_some() || view.step == Step::Done;
+    if !ended || area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+        return 0;
+    }
+    summary::scroll_max(view, model, now, layout(view, model, area, now)[4])
 }
 
 /// The prompt, unless the check was interrupted (then nothing is asked of the person
@@ -372,9 +397,41 @@ pub fn words_style(mark: Mark) -> Style {
     }
 }
 
-/// The width of a result's name column (with a circuit's pin, for circuits), the
-/// same in every step so the summary's words line up.
+/// The narrowest a result's name column is (with a circuit's pin, for circuits).
 pub const HEAD_NAME_W: usize = 23;
+
+/// The widest a circuit's name gets in a result's head before it is cut.
+const CIRCUIT_NAME_MAX: usize = 16;
+
+/// A circuit's columns in a result's head: its name's width and its pin's, from the
+/// circuits the check has (the longest pin whole: "Field_Pri", "Starter").
+pub fn circuit_columns(view: &CheckView) -> (usize, usize) {
+    let pin_w = view
+        .circuits
+        .iter()
+        .map(|c| c.pin.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(3);
+    let name_w = view
+        .circuits
+        .iter()
+        .map(|c| c.name.chars().count())
+        .max()
+        .unwrap_or(0)
+        .min(CIRCUIT_NAME_MAX)
+        .max(HEAD_NAME_W.saturating_sub(1 + pin_w));
+    (name_w, pin_w)
+}
+
+/// The width of a result's name column (with a circuit's pin, for circuits), the
+/// same in every step so the summary's words line up: [`HEAD_NAME_W`], or wider when
+/// the circuits' names and pins need it (at most a 16-character name and the
+/// longest pin: 26 columns, which leaves the words 43 at 80 columns).
+pub fn head_w(view: &CheckView) -> usize {
+    let (name_w, pin_w) = circuit_columns(view);
+    HEAD_NAME_W.max(name_w + 1 + pin_w)
+}
 
 /// "Landing Light" padded or cut to `w` columns, with "…" where cut.
 pub fn fit(s: &str, w: usize) -> String {

@@ -13,7 +13,7 @@ use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
 use super::state::{CheckView, Mark};
-use super::{HEAD_NAME_W, fit, progress_span, progress_words, section, words, words_style};
+use super::{fit, head_w, progress_span, progress_words, section, words, words_style};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 use crate::ui::state::ViewState;
@@ -134,7 +134,7 @@ pub fn rows(view: &CheckView, model: &Model, now: Instant, current: Option<usize
             Row {
                 head: vec![
                     progress_span(mark, i, current),
-                    Span::raw(fit(r.motor.name(), HEAD_NAME_W)),
+                    Span::raw(fit(r.motor.name(), head_w(view))),
                     Span::raw(" "),
                 ],
                 words: w,

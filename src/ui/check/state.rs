@@ -356,6 +356,15 @@ pub struct CheckView {
     pub interrupted: Option<Interruption>,
     /// Where the report went, once written.
     pub report: Option<std::path::PathBuf>,
+    /// Why the report could not be written (the folder and the system's error): the
+    /// results are still here, and `w` writes them again.
+    pub report_error: Option<String>,
+    /// Once the check has ended: the results scrolled this many lines down (the app
+    /// keeps it within the list, [`super::results_scroll_max`]).
+    pub scroll: usize,
+    /// Once the check has ended: the load analysis (table, bar chart, circuits)
+    /// shown instead of the results (`l`).
+    pub show_loads: bool,
     /// Step 5, once reached: the load analysis, or why there is none.
     pub loads: Option<LoadsView>,
 }

@@ -7,13 +7,14 @@
 use std::time::Instant;
 
 use ratatui::Frame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
 use super::state::{CheckView, LoadsView, Mark, Step};
-use super::{HEAD_NAME_W, circuits, fit, mark_span, motors, section, switches, words, words_style};
+use super::{circuits, fit, head_w, mark_span, motors, section, switches, words, words_style};
 use crate::loads::Level;
 use crate::model::Model;
 use crate::protocol::message::SwitchId;
@@ -49,7 +50,7 @@ fn load_rows(view: &CheckView) -> Vec<(Mark, Row)> {
             Row {
                 head: vec![
                     mark_span(mark),
-                    Span::raw(fit(name, HEAD_NAME_W)),
+                    Span::raw(fit(name, head_w(view))),
                     Span::raw(" "),
                 ],
                 words,
@@ -100,7 +101,32 @@ fn load_rows(view: &CheckView) -> Vec<(Mark, Row)> {
     }
 }
 
-fn count_line(marks: &[Mark]) -> Line<'static> {
+/// The counts of the items tested, as the report and the headless run count them,
+/// then the load analysis' own, apart: its phases are not items of the check.
+fn count_line(marks: &[Mark], view: &CheckView) -> Line<'static> {
+    let mut line = item_counts(marks);
+    let loads: Vec<Mark> = load_rows(view).into_iter().map(|(m, _)| m).collect();
+    let n = |m| loads.iter().filter(|&&x| x == m).count();
+    let said: Vec<(Mark, usize)> = [Mark::Fail, Mark::Warn]
+        .into_iter()
+        .map(|m| (m, n(m)))
+        .filter(|(_, k)| *k > 0)
+        .collect();
+    if !said.is_empty() {
+        line.spans
+            .push(Span::styled("│ load analysis ", theme::label()));
+        for (m, k) in said {
+            let what = if m == Mark::Fail { "failed" } else { "warned" };
+            line.spans.push(Span::styled(
+                format!("{} {k} {what}  ", m.symbol()),
+                mark_span(m).style,
+            ));
+        }
+    }
+    line
+}
+
+fn item_counts(marks: &[Mark]) -> Line<'static> {
     let mut spans = Vec::new();
     for (mark, what) in [
         (Mark::Pass, "passed"),
@@ -122,15 +148,31 @@ fn count_line(marks: &[Mark]) -> Line<'static> {
     Line::from(spans)
 }
 
+/// Where the report went (its file name whole, the folder shortened if it must be,
+/// and the CSV beside it), or why it is not on the disk and the key that writes it
+/// again.
 fn report_line(view: &CheckView, width: u16) -> Line<'static> {
+    let width = usize::from(width);
+    if let Some(why) = &view.report_error {
+        let lead = format!("{} Report NOT written: ", Mark::Fail.symbol());
+        let tail = "  w: write it again";
+        let room = width.saturating_sub(lead.chars().count() + tail.chars().count());
+        return Line::from(vec![
+            Span::styled(lead, theme::alert()),
+            Span::styled(middle_ellipsis(why, room), theme::caution()),
+            Span::styled(tail, theme::key()),
+        ]);
+    }
     match &view.report {
-        Some(p) => Line::from(vec![
-            Span::styled("Report ", theme::label()),
-            Span::styled(
-                middle_ellipsis(&p.display().to_string(), usize::from(width) - 7),
-                theme::info(),
-            ),
-        ]),
+        Some(p) => {
+            let also = " (and .csv)";
+            let room = width.saturating_sub("Report ".len() + also.len());
+            Line::from(vec![
+                Span::styled("Report ", theme::label()),
+                Span::styled(words::path_fit(p, room), theme::info()),
+                Span::styled(also, theme::label()),
+            ])
+        }
         None => Line::styled("No report written yet.", theme::label()),
     }
 }
@@ -239,50 +281,137 @@ fn results_rows(view: &CheckView, model: &Model, now: Instant) -> Vec<Row> {
     rows
 }
 
-pub fn render_done(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, now: Instant) {
-    let marks: Vec<Mark> = all_rows(view, model, now)
-        .into_iter()
-        .map(|(_, m, _)| m)
-        .collect();
-    let [head, cycle, results] = Layout::vertical([
+/// Below a section's title: where its lines go.
+fn under_title(area: Rect) -> Rect {
+    Rect {
+        y: area.y.saturating_add(1).min(area.bottom()),
+        height: area.height.saturating_sub(1),
+        ..area
+    }
+}
+
+/// The ended check's areas: its head (counts, report), the switches to cycle, and
+/// the results (or the load analysis, `l`).
+fn done_areas(view: &CheckView, area: Rect) -> [Rect; 3] {
+    Layout::vertical([
         Constraint::Length(3),
         Constraint::Length(cycle_height(view)),
         Constraint::Fill(1),
     ])
-    .areas(area);
+    .areas(area)
+}
+
+/// The counts of the items tested (switches, circuits, motors), the same as the
+/// report's and the headless summary's: the load analysis is said in its own rows.
+fn item_marks(view: &CheckView) -> Vec<Mark> {
+    view.marks().collect()
+}
+
+/// The load analysis drawn whole (its table, its bar chart, every circuit) on a
+/// page as tall as it needs, and the lines it took.
+fn loads_page(view: &CheckView, width: u16) -> (Buffer, usize) {
+    let rows = match &view.loads {
+        Some(LoadsView::Analysed { analysis, .. }) => analysis.rows.len() + analysis.unlisted.len(),
+        _ => 0,
+    };
+    // Head, phases, chart and circuits: 40 lines and a line a circuit is room enough;
+    // what is left blank at the end is trimmed.
+    let tall = Rect::new(0, 0, width, 40 + 2 * rows as u16);
+    let mut page = Buffer::empty(tall);
+    super::loads::render(&mut page, tall, view.loads.as_ref(), 0);
+    let used = (0..tall.height)
+        .rev()
+        .find(|&y| (0..width).any(|x| page[(x, y)].symbol() != " "))
+        .map_or(0, |y| usize::from(y) + 1);
+    (page, used)
+}
+
+/// After the check (`l`): the load analysis, all of it, scrolled by lines like the
+/// results, so its bar chart and every circuit are seen at 80×24 too.
+fn render_loads(buf: &mut Buffer, area: Rect, view: &CheckView) {
+    let (page, total) = loads_page(view, area.width);
+    let s = list::scrolled(total, usize::from(area.height), view.scroll);
+    let mut y = area.y;
+    let say = |buf: &mut Buffer, y: u16, text: String| {
+        fast::lines(
+            buf,
+            Rect::new(area.x, y, area.width, 1),
+            &[Line::styled(text, theme::label())],
+        );
+    };
+    if s.above {
+        say(buf, y, format!("↑ {} more lines above", s.top));
+        y += 1;
+    }
+    for line in s.top..s.top + s.body {
+        for x in 0..area.width {
+            buf[(area.x + x, y)] = page[(x, line as u16)].clone();
+        }
+        y += 1;
+    }
+    if s.below {
+        say(
+            buf,
+            y,
+            format!("↓ {} more lines below", total - s.top - s.body),
+        );
+    }
+}
+
+pub fn render_done(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, now: Instant) {
+    if view.show_loads {
+        // The whole body: the analysis needs its height more than the head.
+        let inner = section(frame, area, "Load analysis (l: back to the results)");
+        return render_loads(frame.buffer_mut(), inner, view);
+    }
+    let [head, cycle, results] = done_areas(view, area);
     let inner = section(frame, head, "Check complete");
     fast::lines(
         frame.buffer_mut(),
         inner,
-        &[count_line(&marks), report_line(view, inner.width)],
+        &[
+            count_line(&item_marks(view), view),
+            report_line(view, inner.width),
+        ],
     );
     if !view.to_cycle.is_empty() {
         render_cycle(frame, cycle, view);
     }
     let inner = section(frame, results, "Results");
-    list::render(
+    list::render_scrolled(
         frame.buffer_mut(),
         inner,
         &results_rows(view, model, now),
-        view.current,
+        view.scroll,
     );
 }
 
-pub fn render_interrupted(
-    frame: &mut Frame,
-    area: Rect,
-    view: &CheckView,
-    model: &Model,
-    now: Instant,
-) {
-    let Some(int) = &view.interrupted else {
-        return;
+/// How far the ended check's results (or its load analysis' circuits) scroll in
+/// `area`, the body of the screen.
+pub fn scroll_max(view: &CheckView, model: &Model, now: Instant, area: Rect) -> usize {
+    if view.show_loads {
+        let inner = under_title(area);
+        let (_, total) = loads_page(view, inner.width);
+        return list::scroll_max_of(total, usize::from(inner.height));
+    }
+    let results = match &view.interrupted {
+        Some(_) => interrupted_areas(view, area).3,
+        None => done_areas(view, area)[2],
     };
-    let marks: Vec<Mark> = all_rows(view, model, now)
-        .into_iter()
-        .map(|(_, m, _)| m)
-        .collect();
-    let left_lines: Vec<Line> = if int.left.is_empty() {
+    let mut inner = under_title(results);
+    if view.interrupted.is_some() {
+        // The counts' line.
+        inner = under_title(inner);
+    }
+    list::scroll_max(inner, &results_rows(view, model, now))
+}
+
+/// What an interrupted check left, a line each (or that it left nothing changed).
+fn left_lines(view: &CheckView, area: Rect) -> Vec<Line<'static>> {
+    let Some(int) = &view.interrupted else {
+        return Vec::new();
+    };
+    if int.left.is_empty() {
         // "As it found it" only when nothing is held: a circuit put back by
         // DEVICE_POWER is in its old state but held there (the section below).
         let text = if view.to_cycle.is_empty() {
@@ -306,8 +435,15 @@ pub fn render_interrupted(
                 ])
             })
             .collect()
-    };
-    let left_h = (left_lines.len() as u16 + 1).min(area.height / 3).max(2);
+    }
+}
+
+/// The interrupted check's areas: its head, what it left, the switches to cycle, the
+/// results so far.
+fn interrupted_areas(view: &CheckView, area: Rect) -> (Rect, Rect, Rect, Rect) {
+    let left_h = (left_lines(view, area).len() as u16 + 1)
+        .min(area.height / 3)
+        .max(2);
     let [head, left, cycle, results] = Layout::vertical([
         Constraint::Length(2),
         Constraint::Length(left_h),
@@ -315,6 +451,22 @@ pub fn render_interrupted(
         Constraint::Fill(1),
     ])
     .areas(area);
+    (head, left, cycle, results)
+}
+
+pub fn render_interrupted(
+    frame: &mut Frame,
+    area: Rect,
+    view: &CheckView,
+    model: &Model,
+    now: Instant,
+) {
+    let Some(int) = &view.interrupted else {
+        return;
+    };
+    let marks = item_marks(view);
+    let left_lines = left_lines(view, area);
+    let (head, left, cycle, results) = interrupted_areas(view, area);
     let mut head_lines = list::wrap(
         &format!("Stopped: {}.", int.cause),
         usize::from(area.width.saturating_sub(8)),
@@ -329,16 +481,20 @@ pub fn render_interrupted(
         ])
     })
     .collect::<Vec<_>>();
-    head_lines.push(Line::styled(
-        match &view.report {
-            Some(p) => format!(
+    head_lines.push(match (&view.report, &view.report_error) {
+        (_, Some(_)) => report_line(view, area.width),
+        (Some(p), None) => Line::styled(
+            format!(
                 "Report, marked incomplete: {}",
-                middle_ellipsis(&p.display().to_string(), usize::from(area.width) - 27)
+                words::path_fit(p, usize::from(area.width).saturating_sub(27))
             ),
-            None => "No report written: the check is incomplete.".into(),
-        },
-        theme::label(),
-    ));
+            theme::label(),
+        ),
+        (None, None) => Line::styled(
+            "No report written: the check is incomplete.",
+            theme::label(),
+        ),
+    });
     fast::lines(frame.buffer_mut(), head, &head_lines);
     let inner = section(frame, left, "Left by the check in this state");
     let hidden = left_lines.len().saturating_sub(usize::from(inner.height));
@@ -357,11 +513,11 @@ pub fn render_interrupted(
     let inner = section(frame, results, "Results so far");
     let [counts, rest] =
         Layout::vertical([Constraint::Length(1), Constraint::Fill(1)]).areas(inner);
-    fast::lines(frame.buffer_mut(), counts, &[count_line(&marks)]);
-    list::render(
+    fast::lines(frame.buffer_mut(), counts, &[count_line(&marks, view)]);
+    list::render_scrolled(
         frame.buffer_mut(),
         rest,
         &results_rows(view, model, now),
-        None,
+        view.scroll,
     );
 }

@@ -13,7 +13,7 @@ use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
 use super::state::{CheckView, Input};
-use super::{HEAD_NAME_W, fit, progress_span, progress_words, section, words, words_style};
+use super::{fit, head_w, progress_span, progress_words, section, words, words_style};
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::SwitchInputs;
 use crate::ui::switches::{OFF_MARK, ON_MARK};
@@ -142,7 +142,7 @@ pub fn rows(view: &CheckView, model: &Model, current: Option<usize>) -> Vec<Row>
             Row {
                 head: vec![
                     progress_span(mark, i, current),
-                    Span::raw(fit(&r.input.label(), HEAD_NAME_W)),
+                    Span::raw(fit(&r.input.label(), head_w(view))),
                     Span::raw(" "),
                 ],
                 words: progress_words(

@@ -272,6 +272,57 @@ impl CheckView {
     }
 }
 
+/// "Report written: vpx-check-2026-12-01T1830Z.md and .csv in /home/me/reports": the
+/// file names whole, then the folder they share.
+pub fn report_written(markdown: &std::path::Path, csv: &std::path::Path) -> String {
+    let name = |p: &std::path::Path| {
+        p.file_name().map_or_else(
+            || p.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        )
+    };
+    let (md, csv_name) = (name(markdown), name(csv));
+    // The CSV shares the Markdown's stem: said as ".csv" after it.
+    let csv_said = match (md.strip_suffix(".md"), csv_name.strip_suffix(".csv")) {
+        (Some(a), Some(b)) if a == b => ".csv".to_string(),
+        _ => csv_name,
+    };
+    match markdown.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) => format!("Report written: {md} and {csv_said} in {}", dir.display()),
+        None => format!("Report written: {md} and {csv_said}"),
+    }
+}
+
+/// `path` in at most `width` characters: the file name kept whole (it is what a
+/// person looks for), the folder shortened in its middle ("/home/…/reports/").
+/// Only a file name wider than `width` itself is cut, at its start.
+pub fn path_fit(path: &std::path::Path, width: usize) -> String {
+    let full = path.display().to_string();
+    if full.chars().count() <= width {
+        return full;
+    }
+    let name = path
+        .file_name()
+        .map_or_else(|| full.clone(), |n| n.to_string_lossy().into_owned());
+    let name_w = name.chars().count();
+    let sep = std::path::MAIN_SEPARATOR;
+    // "…/" and the name at least.
+    if name_w + 2 > width {
+        let keep = width.saturating_sub(1);
+        let tail: String = name.chars().skip(name_w.saturating_sub(keep)).collect();
+        return format!("…{tail}").chars().take(width).collect();
+    }
+    let dir = path
+        .parent()
+        .map(|d| format!("{}{sep}", d.display()))
+        .unwrap_or_default();
+    let room = width - name_w;
+    format!(
+        "{}{name}",
+        crate::ui::title_bar::middle_ellipsis(&dir, room)
+    )
+}
+
 /// Where a motor was, as percent of its travel from the up (left) end (`ends`: the
 /// up and down ends in sensor counts), clamped: a sensor can read past an end.
 pub fn percent_of_travel(ends: (u8, u8), v: u8) -> u8 {
@@ -362,6 +413,27 @@ mod tests {
         assert_eq!(
             switch(&r(Outcome::Found(SwitchFinding::NeverChanged)), name),
             "input never changed: a broken wire, a bad switch, or the wrong pin"
+        );
+    }
+
+    #[test]
+    fn a_path_too_long_keeps_its_file_name_whole() {
+        use std::path::Path;
+        let p = Path::new("/home/builder/.config/vpx-efis/reports/vpx-check-2026-12-02T0028Z.md");
+        assert_eq!(path_fit(p, 200), p.display().to_string());
+        let short = path_fit(p, 50);
+        assert_eq!(short.chars().count(), 50, "{short}");
+        assert!(short.ends_with("/vpx-check-2026-12-02T0028Z.md"), "{short}");
+        assert!(short.starts_with("/home/"), "{short}");
+        assert!(short.contains('…'), "{short}");
+        // Narrower than the name: the end of the name, which tells the reports apart.
+        assert_eq!(path_fit(p, 10), "…T0028Z.md");
+        assert_eq!(
+            report_written(
+                Path::new("/r/vpx-check-2026-12-02T0028Z.md"),
+                Path::new("/r/vpx-check-2026-12-02T0028Z.csv")
+            ),
+            "Report written: vpx-check-2026-12-02T0028Z.md and .csv in /r"
         );
     }
 
