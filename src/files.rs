@@ -6,6 +6,15 @@
 //! Both ways write a temporary file in the target's own folder first (a rename or a
 //! link only stays on one file system), flush it to the disk, and only then give it
 //! its name. Temporary files are named `.NAME.tmp-PID-N` and removed on every error.
+//!
+//! A process killed between creating its temporary file and giving it its name (a
+//! SIGKILL, a power cut) leaves one behind; nothing else ever removes it. So each
+//! write first removes the stale ones of its own kind in its folder ([`STALE_AFTER`],
+//! [`ours_and_stale`]): a hidden file of exactly this form, for the same name or one
+//! of the same family (the same up to its first digit and with the same extension:
+//! the dated reports `vpx-check-2026-12-01T1830Z.md`, the backups), a regular file,
+//! and last written more than ten minutes ago. Anything else, another program's files
+//! above all, is never touched.
 
 use std::fs::{File, OpenOptions};
 use std::io::{self, Write};
@@ -115,6 +124,73 @@ fn fill(
 /// Distinguishes the temporary files of threads of one process.
 static NEXT: AtomicU32 = AtomicU32::new(0);
 
+/// How old a temporary file of ours must be before a later write takes it for left
+/// behind. Judged by age and not by whether its process is still alive: a PID is
+/// reused (a live one may not be the writer), finding whether one lives takes code
+/// per platform, and a temporary file of a live writer is never this old: it lives
+/// for one write and one flush, milliseconds, seconds on the slowest USB stick. Ten
+/// minutes is a margin of hundreds over that, and short enough that a folder a
+/// builder opens again the same day is clean.
+pub const STALE_AFTER: std::time::Duration = std::time::Duration::from_secs(600);
+
+/// A name's family: the part before its first digit, and its extension.
+/// `vpx-check-2026-12-01T1830Z-2.md` → (`vpx-check-`, `md`); `loads.toml` →
+/// (`loads.toml`, `toml`): a name with no digit is its own family.
+fn family(name: &str) -> (&str, &str) {
+    let stem = name
+        .find(|c: char| c.is_ascii_digit())
+        .map_or(name, |i| &name[..i]);
+    let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
+    (stem, ext)
+}
+
+/// Whether `entry` (a file name in the target's folder) is a temporary file this
+/// module made for a file of `name`'s family: `.NAME.tmp-PID-N` with digits for PID
+/// and N.
+fn ours(entry: &str, name: &str) -> bool {
+    let Some(rest) = entry.strip_prefix('.') else {
+        return false;
+    };
+    let Some((target, tail)) = rest.rsplit_once(".tmp-") else {
+        return false;
+    };
+    let Some((pid, n)) = tail.split_once('-') else {
+        return false;
+    };
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    digits(pid) && digits(n) && !target.is_empty() && family(target) == family(name)
+}
+
+/// The temporary files of ours for `name`'s family in `dir` that a killed writer
+/// left: see the module's docs. Regular files only (never a link or a folder), older
+/// than `stale_after` by their last write.
+fn ours_and_stale(dir: &Path, name: &str, stale_after: std::time::Duration) -> Vec<PathBuf> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let now = std::time::SystemTime::now();
+    entries
+        .filter_map(Result::ok)
+        .filter(|e| ours(&e.file_name().to_string_lossy(), name))
+        .filter(|e| {
+            // `symlink_metadata`: a link is not followed, and not a regular file.
+            std::fs::symlink_metadata(e.path()).is_ok_and(|m| {
+                m.file_type().is_file()
+                    && m.modified()
+                        .is_ok_and(|t| now.duration_since(t).is_ok_and(|age| age > stale_after))
+            })
+        })
+        .map(|e| e.path())
+        .collect()
+}
+
+/// Removes what [`ours_and_stale`] finds; best effort, a write goes on regardless.
+fn remove_stale(dir: &Path, name: &str) {
+    for path in ours_and_stale(dir, name, STALE_AFTER) {
+        let _ = std::fs::remove_file(path);
+    }
+}
+
 /// A new temporary file beside `path`: its folder, its name, the file open for
 /// writing. Never one already there (another writer's, or one a crash left).
 fn temporary(path: &Path) -> io::Result<(PathBuf, PathBuf, File)> {
@@ -127,6 +203,7 @@ fn temporary(path: &Path) -> io::Result<(PathBuf, PathBuf, File)> {
         .ok_or_else(|| io::Error::other(format!("{} is not a file name", path.display())))?
         .to_string_lossy()
         .into_owned();
+    remove_stale(&dir, &name);
     let mut last = None;
     for _ in 0..100 {
         let n = NEXT.fetch_add(1, Ordering::Relaxed);
@@ -150,6 +227,7 @@ fn sync_dir(dir: &Path) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::time::Duration;
 
     fn entries(dir: &Path) -> Vec<String> {
         let mut e: Vec<String> = std::fs::read_dir(dir)
@@ -303,6 +381,66 @@ mod tests {
         assert!(write_atomically(&path, b"new").is_err());
         assert_eq!(entries(dir.path()), ["unit.toml"]);
         assert_eq!(std::fs::read_to_string(path.join("keep")).unwrap(), "old");
+    }
+
+    /// A writer killed between creating its temporary file and naming it leaves
+    /// `.NAME.tmp-PID-N`: the next write of that name, or of one of its family,
+    /// removes it once it is older than [`STALE_AFTER`]. A fresh one (a writer busy
+    /// now), one of another family, a name of another form, a folder or a link of
+    /// that form, are left alone.
+    #[test]
+    fn stale_temporary_files_of_ours_are_removed_and_nothing_else() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let old = std::time::SystemTime::now() - STALE_AFTER - Duration::from_secs(60);
+        let make = |name: &str, when: Option<std::time::SystemTime>| {
+            let f = File::create(d.join(name)).unwrap();
+            if let Some(t) = when {
+                f.set_modified(t).unwrap();
+            }
+        };
+        // Ours and stale: the same name, and a report of another minute.
+        make(".vpx-check-2026-12-01T1830Z.md.tmp-4242-0", Some(old));
+        make(".vpx-check-2026-11-30T0900Z-2.md.tmp-77-3", Some(old));
+        // Ours but fresh: a writer at work now.
+        make(".vpx-check-2026-12-01T1830Z.md.tmp-4243-1", None);
+        // Not ours, however old: another family, another extension, other forms.
+        make(".loads.toml.tmp-4242-0", Some(old));
+        make(".vpx-check-2026-12-01T1830Z.csv.tmp-4242-0", Some(old));
+        make(".vpx-check-2026-12-01T1830Z.md.tmp-abc-0", Some(old));
+        make(".vpx-check-2026-12-01T1830Z.md.tmp-4242", Some(old));
+        make("vpx-check-2026-12-01T1830Z.md.tmp-4242-0", Some(old));
+        make(".vpx-check-2026-12-01T1830Z.md.swp", Some(old));
+        std::fs::create_dir(d.join(".vpx-check-2026-12-01T1830Z.md.tmp-9-9")).unwrap();
+        let before = entries(d);
+        assert!(write_new(&d.join("vpx-check-2026-12-02T0800Z.md"), b"# new").unwrap());
+        let mut expected: Vec<String> = before
+            .into_iter()
+            .filter(|e| {
+                e != ".vpx-check-2026-12-01T1830Z.md.tmp-4242-0"
+                    && e != ".vpx-check-2026-11-30T0900Z-2.md.tmp-77-3"
+            })
+            .collect();
+        expected.push("vpx-check-2026-12-02T0800Z.md".into());
+        expected.sort();
+        assert_eq!(entries(d), expected);
+        // The load file's write takes its own stale one, not the reports'.
+        write_atomically(&d.join("loads.toml"), b"x").unwrap();
+        assert!(!entries(d).contains(&".loads.toml.tmp-4242-0".to_string()));
+        assert!(entries(d).contains(&".vpx-check-2026-12-01T1830Z.md.tmp-4243-1".to_string()));
+    }
+
+    #[test]
+    fn a_names_family_is_its_part_before_the_first_digit_and_its_extension() {
+        assert_eq!(
+            family("vpx-check-2026-12-01T1830Z-2.md"),
+            ("vpx-check-", "md")
+        );
+        assert_eq!(family("loads.toml"), ("loads.toml", "toml"));
+        assert!(ours(".report.md.tmp-1-2", "report.md"));
+        assert!(!ours(".report.md.tmp-1-2", "other.md"));
+        assert!(!ours(".report.md.tmp--2", "report.md"));
+        assert!(!ours("..tmp-1-2", ".md"));
     }
 
     /// Two threads writing the same file at once: each has its own temporary file,
