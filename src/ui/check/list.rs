@@ -350,7 +350,9 @@ mod tests {
         for top in 0..=scroll_max_of(30, 10) {
             let v = s(30, 10, top);
             assert!(v.body + usize::from(v.above) + usize::from(v.below) <= 10);
-            seen[v.top..v.top + v.body].iter_mut().for_each(|x| *x = true);
+            seen[v.top..v.top + v.body]
+                .iter_mut()
+                .for_each(|x| *x = true);
         }
         assert!(seen.iter().all(|&x| x));
     }
