@@ -344,47 +344,38 @@ fn line_dots((x1, y1): (usize, usize), (x2, y2): (usize, usize), f: &mut impl Fn
     } else if dy == 0 {
         (x1.min(x2)..=x1.max(x2)).for_each(|x| f(x, y1));
     } else if dy < dx {
-        let ((x1, y1), (x2, y2)) = if x1 > x2 {
-            ((x2, y2), (x1, y1))
-        } else {
-            ((x1, y1), (x2, y2))
-        };
-        let (dx, dy) = ((x2 - x1) as isize, (y2 as isize - y1 as isize).abs());
-        let mut d = 2 * dy - dx;
-        let mut y = y1;
-        for x in x1..=x2 {
-            f(x, y);
-            if d > 0 {
-                y = if y1 > y2 {
-                    y.saturating_sub(1)
-                } else {
-                    y.saturating_add(1)
-                };
-                d -= 2 * dx;
-            }
-            d += 2 * dy;
-        }
+        along_major((x1, y1), (x2, y2), f);
     } else {
-        let ((x1, y1), (x2, y2)) = if y1 > y2 {
-            ((x2, y2), (x1, y1))
-        } else {
-            ((x1, y1), (x2, y2))
-        };
-        let (dx, dy) = ((x2 as isize - x1 as isize).abs(), (y2 - y1) as isize);
-        let mut d = 2 * dx - dy;
-        let mut x = x1;
-        for y in y1..=y2 {
-            f(x, y);
-            if d > 0 {
-                x = if x1 > x2 {
-                    x.saturating_sub(1)
-                } else {
-                    x.saturating_add(1)
-                };
-                d -= 2 * dy;
-            }
-            d += 2 * dx;
+        along_major((y1, x1), (y2, x2), &mut |y, x| f(x, y));
+    }
+}
+
+/// Bresenham along the major axis, the first coordinate of each point (x for a line
+/// flatter than 45°, y for a steeper one), one dot a step from its lower end.
+fn along_major(
+    (p1, q1): (usize, usize),
+    (p2, q2): (usize, usize),
+    f: &mut impl FnMut(usize, usize),
+) {
+    let ((p1, q1), (p2, q2)) = if p1 > p2 {
+        ((p2, q2), (p1, q1))
+    } else {
+        ((p1, q1), (p2, q2))
+    };
+    let (dp, dq) = ((p2 - p1) as isize, (q2 as isize - q1 as isize).abs());
+    let mut d = 2 * dq - dp;
+    let mut q = q1;
+    for p in p1..=p2 {
+        f(p, q);
+        if d > 0 {
+            q = if q1 > q2 {
+                q.saturating_sub(1)
+            } else {
+                q.saturating_add(1)
+            };
+            d -= 2 * dp;
         }
+        d += 2 * dq;
     }
 }
 

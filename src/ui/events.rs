@@ -8,7 +8,7 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
-use super::panel::Panel;
+use super::panel;
 use super::{theme, values};
 use crate::model::{LogLevel, Model};
 
@@ -50,14 +50,7 @@ pub fn height(model: &Model, now: Instant, max: u16) -> u16 {
 }
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
-    let title = [Line::from(Span::styled(" Events ", theme::panel_title()))];
-    let inner = Panel {
-        right_side: false,
-        border: theme::border(),
-        titles: &title,
-        right_title: None,
-    }
-    .render(area, frame.buffer_mut());
+    let inner = panel::titled(frame.buffer_mut(), area, " Events ");
     let mut lines: Vec<Line> = Vec::new();
     if let Some(f) = forwarding(model, now) {
         lines.push(f);

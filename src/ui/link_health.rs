@@ -8,7 +8,7 @@ use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
-use super::panel::Panel;
+use super::panel;
 use super::{theme, values};
 use crate::model::{
     COMM_LOST_AFTER, Connection, FAULT_STATUS_QUIET_AFTER, FLAP_TRIM_STALE_AFTER, Model, Source,
@@ -180,13 +180,6 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         Line::from(ages(model, now)),
         Line::from(counts(model, area.width >= 72)),
     ];
-    let title = [Line::from(Span::styled(" Link ", theme::panel_title()))];
-    let inner = Panel {
-        right_side: false,
-        border: theme::border(),
-        titles: &title,
-        right_title: None,
-    }
-    .render(area, frame.buffer_mut());
+    let inner = panel::titled(frame.buffer_mut(), area, " Link ");
     super::fast::lines(frame.buffer_mut(), inner, &lines);
 }

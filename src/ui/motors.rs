@@ -9,7 +9,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 
-use super::panel::Panel;
+use super::panel;
 use super::state::{ReleaseMode, RepeatTiming, ViewState};
 use super::{theme, values};
 use crate::model::{Model, Motor, TrimKind};
@@ -240,17 +240,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
             Style::new().fg(theme::ON).add_modifier(Modifier::BOLD),
         ));
     }
-    let title = [Line::from(Span::styled(
-        " Flaps & trim ",
-        theme::panel_title(),
-    ))];
-    let inner = Panel {
-        right_side: false,
-        border: theme::border(),
-        titles: &title,
-        right_title: None,
-    }
-    .render(area, frame.buffer_mut());
+    let inner = panel::titled(frame.buffer_mut(), area, " Flaps & trim ");
     // Gauges and the mode line fit by construction; only the flags may wrap.
     let [gauges, flags_area, mode_area] = Layout::vertical([
         Constraint::Length(lines.len() as u16),

@@ -8,7 +8,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
 use ratatui::style::Style;
 use ratatui::symbols::line;
-use ratatui::text::Line;
+use ratatui::text::{Line, Span};
 use ratatui::widgets::Widget;
 
 /// Draws the frame of a panel in `area` and returns its inside.
@@ -83,6 +83,18 @@ impl Panel<'_> {
     }
 }
 
+/// The frame of one of the right column's panels, titled `title` (" Events "): a line
+/// along its top and no side (the list's line is their left edge). Returns the inside.
+pub fn titled(buf: &mut Buffer, area: Rect, title: &str) -> Rect {
+    Panel {
+        right_side: false,
+        border: super::theme::border(),
+        titles: &[Line::from(Span::styled(title, super::theme::panel_title()))],
+        right_title: None,
+    }
+    .render(area, buf)
+}
+
 fn cell(buf: &mut Buffer, x: u16, y: u16, symbol: &str, style: Style) {
     let i = buf.index_of(x, y);
     buf.content[i].set_symbol(symbol).set_style(style);
@@ -105,7 +117,6 @@ fn put_line(buf: &mut Buffer, at: Rect, title: &Line, alignment: Alignment) {
 mod tests {
     use super::*;
     use ratatui::style::{Color, Modifier};
-    use ratatui::text::Span;
     use ratatui::widgets::{Block, Borders};
 
     #[test]

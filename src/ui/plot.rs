@@ -13,7 +13,7 @@ use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 
 use super::chart::{Chart, Series};
-use super::panel::Panel;
+use super::panel;
 use super::theme;
 use crate::model::{BusSample, Model};
 use crate::protocol::message::OvervoltageLimit;
@@ -195,17 +195,8 @@ fn trace(
 }
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
-    let title = [Line::styled(
-        format!(" Last {} min ", WINDOW.as_secs() / 60),
-        theme::panel_title(),
-    )];
-    let inner = Panel {
-        right_side: false,
-        border: theme::border(),
-        titles: &title,
-        right_title: None,
-    }
-    .render(area, frame.buffer_mut());
+    let title = format!(" Last {} min ", WINDOW.as_secs() / 60);
+    let inner = panel::titled(frame.buffer_mut(), area, &title);
     if inner.height < 2 {
         return;
     }

@@ -7,7 +7,7 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
-use super::panel::Panel;
+use super::panel;
 use super::theme;
 use crate::model::Model;
 
@@ -64,17 +64,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         lines.push(Line::from(flap));
         lines.push(Line::from(trim));
     }
-    let title = [Line::from(Span::styled(
-        " Switch inputs ",
-        theme::panel_title(),
-    ))];
-    let inner = Panel {
-        right_side: false,
-        border: theme::border(),
-        titles: &title,
-        right_title: None,
-    }
-    .render(area, frame.buffer_mut());
+    let inner = panel::titled(frame.buffer_mut(), area, " Switch inputs ");
     // Lines are laid out above for the width; no wrapping needed.
     super::fast::lines(frame.buffer_mut(), inner, &lines);
 }

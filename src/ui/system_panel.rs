@@ -8,7 +8,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
-use super::panel::Panel;
+use super::panel;
 use super::{theme, values};
 use crate::model::Model;
 use crate::protocol::message::{SystemStatus, WigWagModeSetting};
@@ -139,14 +139,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         }
         flag_spans.push(Span::styled(text, style));
     }
-    let title = [Line::from(Span::styled(" System ", theme::panel_title()))];
-    let inner = Panel {
-        right_side: false,
-        border: theme::border(),
-        titles: &title,
-        right_title: None,
-    }
-    .render(area, frame.buffer_mut());
+    let inner = panel::titled(frame.buffer_mut(), area, " System ");
     // Only the flags can run past the width; wrapping is the costly part of a
     // paragraph, so the fixed drawing is not wrapped.
     let [drawing, flags_area] =
