@@ -62,6 +62,9 @@ struct Hold {
     /// machine can hold the test's own thread back; past the page's learned end gap
     /// that is a key let go, not a terminal's auto-repeat.
     worst_delivery: Duration,
+    /// The gap after which the page takes a key as let go, as it stood after the
+    /// hold (three learned intervals, never under `GAP_MIN`'s 90 ms).
+    end_gap: Duration,
 }
 
 /// Holds `u` on the pitch-trim row as X's default auto-repeat does: the first repeat
@@ -84,10 +87,28 @@ fn hold_x_default(rig: &mut Rig) -> Hold {
         next += Duration::from_millis(40);
     }
     rig.app.pump_until(last_repeat + Duration::from_millis(500));
+    let end_gap = rig
+        .app
+        .view()
+        .repeat
+        .expect("a live page learns repeats")
+        .end_gap;
     Hold {
         moves: trim_moves(rig, from),
         last_repeat,
         worst_delivery,
+        end_gap,
+    }
+}
+
+impl Hold {
+    /// The repeats came as X sends them: no gap over 100 ms, nor one the page's own
+    /// end gap takes for a let-go key (it may be as short as 90 ms when bunched
+    /// repeats taught it 30 ms), less 10 ms for the two threads' own clock readings.
+    fn delivered(&self) -> bool {
+        let limit =
+            Duration::from_millis(100).min(self.end_gap.saturating_sub(Duration::from_millis(10)));
+        self.worst_delivery <= limit
     }
 }
 
@@ -97,28 +118,30 @@ fn hold_x_default(rig: &mut Rig) -> Hold {
 /// learned the 40 ms interval during the hold. The page then shows what it learned.
 ///
 /// A hold during which this test itself could not deliver the repeats on time (a
-/// gap over 100 ms between them) did not test the page and is tried again, up to
-/// three times; the page is judged on a hold that was delivered as X delivers it.
+/// gap over 100 ms between them, or over the end gap the page had learned) did not
+/// test the page and is tried again, up to five times; the page is judged on a hold
+/// that was delivered as X delivers it.
 #[test]
 fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let mut rig = Rig::new(ReleaseMode::AutoRepeat);
     rig.select(30);
     let mut hold = hold_x_default(&mut rig);
-    for _ in 0..2 {
-        if hold.worst_delivery <= Duration::from_millis(100) {
+    for _ in 0..4 {
+        if hold.delivered() {
             break;
         }
         eprintln!(
-            "the test delivered a repeat {:?} late; holding again",
-            hold.worst_delivery
+            "the test delivered a repeat {:?} late (end gap {:?}); holding again",
+            hold.worst_delivery, hold.end_gap
         );
         hold = hold_x_default(&mut rig);
     }
     assert!(
-        hold.worst_delivery <= Duration::from_millis(100),
-        "the machine is too loaded to deliver repeats every 40 ms: {:?}",
-        hold.worst_delivery
+        hold.delivered(),
+        "the machine is too loaded to deliver repeats every 40 ms: {:?} (end gap {:?})",
+        hold.worst_delivery,
+        hold.end_gap
     );
     let Hold {
         ref moves,
