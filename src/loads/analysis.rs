@@ -249,8 +249,26 @@ impl Analysis {
     /// "endurance 55 min", "endurance 20 min: under 30 min"; with, when a circuit on
     /// in it has no current, "at least: no current for Landing Lt".
     pub fn verdict(&self, phase: Phase) -> String {
+        let mut words = self.figures_verdict(phase);
         let p = self.phase(phase);
-        let mut words = match (p.margin_percent, p.endurance_minutes) {
+        if !p.missing.is_empty() {
+            words.push_str(&format!(
+                "; at least: no current for {}",
+                self.names(&p.missing)
+            ));
+        }
+        words
+    }
+
+    fn names(&self, ids: &[u8]) -> String {
+        let names: Vec<String> = ids.iter().map(|&id| self.name_of(id)).collect();
+        names.join(", ")
+    }
+
+    /// [`Analysis::verdict`] of the figures alone, without the circuits missing.
+    fn figures_verdict(&self, phase: Phase) -> String {
+        let p = self.phase(phase);
+        match (p.margin_percent, p.endurance_minutes) {
             (Some(m), _) if m < 0.0 => format!(
                 "{} A over the alternator's {} A",
                 amps_text(p.amps - self.alternator_amps),
@@ -272,24 +290,53 @@ impl Analysis {
             ),
             (None, Some(min)) => format!("endurance {} min", minutes_text(min)),
             (None, None) => "nothing on: no load on the battery".into(),
-        };
-        if !p.missing.is_empty() {
-            let names: Vec<String> = p.missing.iter().map(|&id| self.name_of(id)).collect();
-            words.push_str(&format!("; at least: no current for {}", names.join(", ")));
         }
-        words
     }
 
     /// Everything the builder should look at, one line each, for the list of what is
-    /// left to fix: each phase that is not OK, and each circuit measured but not in
-    /// the file.
+    /// left to fix: [`Analysis::phase_warnings`], then [`Analysis::file_warnings`].
     pub fn warnings(&self) -> Vec<String> {
-        let mut out: Vec<String> = self
-            .phases
+        let mut out = self.phase_warnings();
+        out.extend(self.file_warnings());
+        out
+    }
+
+    /// Each phase whose figures are not OK (a margin or an endurance under its rule,
+    /// a total over the alternator), with its verdict of the figures. A phase that
+    /// is only a lower bound is not one of them: the circuits it misses are said once,
+    /// in [`Analysis::file_warnings`], not once a phase (a template straight from the
+    /// check lists every circuit in every phase).
+    pub fn phase_warnings(&self) -> Vec<String> {
+        self.phases
             .iter()
-            .filter(|p| p.level != Level::Ok)
-            .map(|p| format!("{}: {}", p.phase.title(), self.verdict(p.phase)))
+            .filter(|p| {
+                p.margin_percent.is_some_and(|m| m < MARGIN_WARNING_PERCENT)
+                    || p.endurance_minutes
+                        .is_some_and(|m| m < ENDURANCE_WARNING_MINUTES)
+            })
+            .map(|p| format!("{}: {}", p.phase.title(), self.figures_verdict(p.phase)))
+            .collect()
+    }
+
+    /// What the load file leaves out: the circuits on in some phase with no current
+    /// at all (not measured, none typed), all in one line; and each circuit measured
+    /// but not in the file.
+    pub fn file_warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let missing: Vec<u8> = self
+            .rows
+            .iter()
+            .map(|r| r.id)
+            .filter(|id| self.phases.iter().any(|p| p.missing.contains(id)))
             .collect();
+        if !missing.is_empty() {
+            out.push(format!(
+                "no current for {}: not measured, and no amps in the load file, so every \
+                 phase they are on in counts them as 0 A (its total is at least what it \
+                 says); type their amps in the file",
+                self.names(&missing)
+            ));
+        }
         for &(id, amps) in &self.unlisted {
             out.push(format!(
                 "the {} pin draws {} A but is not in the load file: it is in no phase",
@@ -334,7 +381,7 @@ pub fn minutes_text(m: f64) -> String {
 mod tests {
     use super::*;
     use crate::loads::file::LoadCircuit;
-    use crate::protocol::device::{EFIS, FIELD_PRI, TRIM_P};
+    use crate::protocol::device::{EFIS, FIELD_PRI, FLAPS, TRIM_P};
 
     const NAV: u8 = 0x04; // 5A-1
     const COM: u8 = 0x05; // 5A-2
@@ -544,10 +591,57 @@ mod tests {
         );
         // The pitot heat was measured but the file leaves it out of every phase.
         assert_eq!(a.unlisted, [(PITOT, 9.0)]);
+        // Said once for all six phases it is on in, not once a phase; no phase's
+        // figures warn (95 %, 408 min).
         assert_eq!(
-            a.warnings().last().unwrap(),
-            "the 15A-1 pin draws 9 A but is not in the load file: it is in no phase"
+            a.warnings(),
+            [
+                "no current for Com radio: not measured, and no amps in the load file, so \
+                 every phase they are on in counts them as 0 A (its total is at least what \
+                 it says); type their amps in the file",
+                "the 15A-1 pin draws 9 A but is not in the load file: it is in no phase"
+            ]
         );
+    }
+
+    /// A phase whose figures warn is listed with them alone; the circuits with no
+    /// current, whichever phases they are on in, are one line, in pin order.
+    #[test]
+    fn phases_warn_by_their_figures_and_missing_circuits_are_said_once() {
+        let file = LoadFile {
+            alternator_amps: 20.0,
+            battery_amp_hours: 17.0,
+            battery_usable: 0.8,
+            // In pin order, as the file keeps them.
+            circuits: vec![
+                c(FLAPS, "Flaps", None, [0., 0., 0., 0., 0., 1., 0.]),
+                c(EFIS, "EFIS", Some(2.0), [1.0; 7]),
+                c(COM, "Com radio", None, [1.0; 7]),
+                // 15 A in landing only: (20 − 2 − 15)·100/20 = 15 %.
+                c(
+                    LANDING,
+                    "Landing Lt",
+                    Some(15.0),
+                    [0., 0., 0., 0., 0., 1., 0.],
+                ),
+            ],
+        };
+        let a = analyse(&file, &[]);
+        assert_eq!(
+            a.verdict(Phase::Landing),
+            "margin 15 % of 20 A: under 20 %; at least: no current for Flaps, Com radio"
+        );
+        assert_eq!(
+            a.phase_warnings(),
+            ["landing: margin 15 % of 20 A: under 20 %"]
+        );
+        let w = a.file_warnings();
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].starts_with("no current for Flaps, Com radio: "),
+            "{w:?}"
+        );
+        assert_eq!(a.warnings().len(), 2);
     }
 
     #[test]

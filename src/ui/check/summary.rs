@@ -15,7 +15,6 @@ use ratatui::text::{Line, Span};
 use super::list::{self, Row};
 use super::state::{CheckView, LoadsView, Mark, Step};
 use super::{circuits, fit, head_w, mark_span, motors, section, switches, words, words_style};
-use crate::loads::Level;
 use crate::model::Model;
 use crate::protocol::message::SwitchId;
 use crate::ui::title_bar::middle_ellipsis;
@@ -82,18 +81,11 @@ fn load_rows(view: &CheckView) -> Vec<(Mark, Row)> {
                     )
                 })
                 .collect();
-            // The warnings list the phases that are not OK first, then the circuits
-            // measured but missing from the file.
-            let phase_warnings = analysis
-                .phases
-                .iter()
-                .filter(|p| p.level != Level::Ok)
-                .count();
+            // The phases are above; then what the file leaves out.
             out.extend(
                 analysis
-                    .warnings()
+                    .file_warnings()
                     .into_iter()
-                    .skip(phase_warnings)
                     .map(|w| row(Mark::Warn, "load file", w)),
             );
             out
