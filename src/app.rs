@@ -330,7 +330,7 @@ impl App {
                 self.controller.with(|c| c.on_focus_gained(now));
             }
             TermEvent::FocusLost => {
-                self.controller.stop(now, StopReason::FocusLost);
+                self.controller.act(|c| c.on_focus_lost(now));
                 let n = self.controller.take_notice();
                 self.set_notice(now, n);
                 self.view.motor_run = self.controller.running();
@@ -345,13 +345,11 @@ impl App {
     /// see may keep moving. The selection stays where it was.
     fn set_page_size(&mut self, width: u16, height: u16, now: Instant) {
         let hidden = width < ui::MIN_WIDTH || height < ui::MIN_HEIGHT;
-        if hidden && !self.hidden {
-            self.controller.stop(now, StopReason::PageHidden);
+        if hidden != self.hidden {
+            self.controller.act(|c| c.set_page_hidden(now, hidden));
             let n = self.controller.take_notice();
             self.set_notice(now, n);
             self.view.motor_run = self.controller.running();
-        }
-        if hidden != self.hidden {
             self.dirty = true;
         }
         self.hidden = hidden;

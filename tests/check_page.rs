@@ -1,7 +1,9 @@
-//! The page writes the check's report when the page itself ends mid-check, as the
-//! headless check does: Ctrl-C on the check screen, and a signal reaching the page's
-//! own loop (`App::run`). The real `App` on the slave of a real pseudo-terminal, the
-//! virtual VP-X (`install` scenario) on its master; the report read back from disk.
+//! The installation check on the page itself. The page writes the check's report
+//! when the page ends mid-check, as the headless check does: Ctrl-C on the check
+//! screen, and a signal reaching the page's own loop (`App::run`). A page the person
+//! cannot see (too small, unfocused) switches nothing on. The real `App` on the slave
+//! of a real pseudo-terminal, the virtual VP-X (`install` scenario) on its master;
+//! the report read back from disk.
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
 #![cfg(unix)]
 
@@ -113,6 +115,75 @@ impl Rig {
             .name
             .clone()
     }
+}
+
+/// How many DEVICE_POWER the page has written.
+fn powers_sent(app: &App) -> u64 {
+    app.model()
+        .link
+        .tx
+        .get("DEVICE_POWER")
+        .map_or(0, |s| s.count)
+}
+
+fn prompt(app: &App) -> String {
+    app.check_view()
+        .prompt
+        .as_ref()
+        .map_or(String::new(), |p| p.todo.clone())
+}
+
+/// The terminal made too small mid-circuit: the circuit on is put back, and the next
+/// is not switched on, through the page hidden and then unfocused, until the page is
+/// seen again and the person says to go on (r).
+#[test]
+fn a_page_that_cannot_be_seen_switches_no_further_circuit_on() {
+    let mut r = Rig::mid_circuit();
+    let first = r.app.check_view().current.unwrap();
+    r.app
+        .handle_term_event(Event::Resize(30, 8), Instant::now());
+    r.until("the next circuit to wait", Duration::from_secs(20), |app| {
+        prompt(app).starts_with("Paused before switching")
+    });
+    let v = r.app.check_view();
+    let waiting = v.current.unwrap();
+    assert_eq!(waiting, first + 1, "{:?}", v.prompt);
+    let id = usize::from(v.circuits[waiting].id);
+    let sent = powers_sent(&r.app);
+    let quiet = |r: &mut Rig, what: &str| {
+        let end = Instant::now() + Duration::from_millis(2500);
+        r.until(what, Duration::from_secs(5), |_| Instant::now() >= end);
+        assert_eq!(powers_sent(&r.app), sent, "{what}: a DEVICE_POWER went out");
+        let on = r.app.model().live_devices(Instant::now()).unwrap().on;
+        assert!(!on[id], "{what}: device {id} on");
+    };
+    quiet(&mut r, "hidden");
+    // Seen again, but unfocused: an r (the terminal would not send it; here it does)
+    // does not go on either.
+    r.app
+        .handle_term_event(Event::Resize(120, 40), Instant::now());
+    r.app.handle_term_event(Event::FocusLost, Instant::now());
+    r.key(KeyCode::Char('r'), KeyModifiers::NONE);
+    quiet(&mut r, "unfocused");
+    assert!(
+        prompt(&r.app).contains("the terminal lost focus"),
+        "{}",
+        prompt(&r.app)
+    );
+    r.app.handle_term_event(Event::FocusGained, Instant::now());
+    quiet(&mut r, "focused, not asked yet");
+    r.key(KeyCode::Char('r'), KeyModifiers::NONE);
+    r.until("the circuit switched on", Duration::from_secs(5), |app| {
+        app.model()
+            .live_devices(Instant::now())
+            .is_some_and(|d| d.on[id])
+    });
+    assert_eq!(powers_sent(&r.app), sent + 1);
+    r.key(KeyCode::Esc, KeyModifiers::NONE);
+    r.until("the check to end", Duration::from_secs(20), |app| {
+        app.check_finished()
+    });
+    r.sim.stop();
 }
 
 /// The Markdown report in `dir`, the only one there, with its CSV beside it.

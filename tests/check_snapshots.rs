@@ -759,6 +759,23 @@ fn page(palette: Palette) -> ViewState {
 const SW6: u16 = 0b10_0010;
 
 /// Every state a person can reach, with its model and the page's view.
+/// The next circuit waits, not switched on: the terminal lost focus (the flow's
+/// words, `check::circuits`).
+fn circuits_paused_unseen() -> CheckView {
+    CheckView {
+        prompt: Some(Prompt {
+            todo: "Paused before switching Landing Lt on: the terminal lost focus; nothing \
+                   is switched on while the page cannot be seen. r: go on; s: skip it."
+                .into(),
+            watching: "Landing Lt's state (DEVICE_STATUS)".into(),
+            time_left: None,
+            keys: vec![("r", "go on"), ("s", "skip"), ("Esc", "stop")],
+        }),
+        message: None,
+        ..circuits()
+    }
+}
+
 fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
     let p = page(Palette::Terminal);
     let on6 = [EFIS_ON, (0x11, 61), (0x12, 38)];
@@ -812,6 +829,13 @@ fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
         (
             "done_load_analysis",
             done_load_analysis(),
+            idle.clone(),
+            p.clone(),
+            ti,
+        ),
+        (
+            "circuits_paused_unseen",
+            circuits_paused_unseen(),
             idle.clone(),
             p.clone(),
             ti,

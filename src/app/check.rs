@@ -638,27 +638,41 @@ pub fn run_headless(h: HeadlessCheck) -> anyhow::Result<CheckEnd> {
 }
 
 fn print_plan(view: &CheckView, out: &mut dyn std::io::Write) -> std::io::Result<()> {
-    writeln!(
-        out,
-        "Before power, the check will switch on, one at a time:"
-    )?;
-    for p in &view.plan {
+    // A step skipped from the start (`--skip`) touches nothing: the plan says so
+    // rather than list what it would have switched on or run.
+    let skipped = |s| view.skipped_steps.contains(&s);
+    if skipped(Step::Circuits) {
         writeln!(
             out,
-            "  {} ({}), breaker {}, for up to {} s",
-            p.name,
-            p.pin,
-            p.breaker.map_or("?".into(), |b| format!("{b} A")),
-            p.on_for.as_secs()
+            "Before power: the circuits step is skipped, so the check switches no circuit on."
         )?;
+    } else {
+        writeln!(
+            out,
+            "Before power, the check will switch on, one at a time:"
+        )?;
+        for p in &view.plan {
+            writeln!(
+                out,
+                "  {} ({}), breaker {}, for up to {} s",
+                p.name,
+                p.pin,
+                p.breaker.map_or("?".into(), |b| format!("{b} A")),
+                p.on_for.as_secs()
+            )?;
+        }
     }
-    for (m, d) in &view.planned_motors {
-        writeln!(
-            out,
-            "  {}: run briefly each way and back, about {} s",
-            m.name(),
-            d.as_secs()
-        )?;
+    if skipped(Step::Motors) && !view.planned_motors.is_empty() {
+        writeln!(out, "The motors step is skipped: the check runs no motor.")?;
+    } else {
+        for (m, d) in &view.planned_motors {
+            writeln!(
+                out,
+                "  {}: run briefly each way and back, about {} s",
+                m.name(),
+                d.as_secs()
+            )?;
+        }
     }
     if !view.excluded.is_empty() {
         writeln!(out, "It leaves alone:")?;
@@ -771,5 +785,48 @@ mod tests {
         };
         print_plan(&skipped, &mut out).unwrap();
         assert!(!String::from_utf8(out).unwrap().contains("flip"));
+    }
+
+    /// `--skip circuits,motors`: the plan does not list circuits it will not switch
+    /// on or motors it will not run, and says why.
+    #[test]
+    fn the_headless_plan_says_what_a_skipped_step_will_not_touch() {
+        use crate::model::Motor;
+        use crate::ui::check::state::Planned;
+        let planned = CheckView {
+            plan: vec![Planned {
+                id: 4,
+                name: "Nav Lt".into(),
+                pin: "5A-1",
+                breaker: Some(3),
+                switch: None,
+                on_for: Duration::from_secs(5),
+            }],
+            planned_motors: vec![(Motor::Flaps, Duration::from_secs(3))],
+            ..CheckView::default()
+        };
+        let plan = |v: &CheckView| {
+            let mut out = Vec::new();
+            print_plan(v, &mut out).unwrap();
+            String::from_utf8(out).unwrap()
+        };
+        let all = plan(&planned);
+        assert!(
+            all.starts_with(
+                "Before power, the check will switch on, one at a time:\n  \
+             Nav Lt (5A-1), breaker 3 A, for up to 5 s\n  \
+             flaps: run briefly each way and back, about 3 s\n"
+            ),
+            "{all}"
+        );
+        let text = plan(&CheckView {
+            skipped_steps: vec![Step::Circuits, Step::Motors],
+            ..planned
+        });
+        assert_eq!(
+            text,
+            "Before power: the circuits step is skipped, so the check switches no circuit on.\n\
+             The motors step is skipped: the check runs no motor.\n"
+        );
     }
 }

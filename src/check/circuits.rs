@@ -90,6 +90,12 @@ enum Stage {
     },
     /// DEVICE_POWER off sent, waiting to see it off.
     PutBack { request: Try },
+    /// The page could not be seen (the terminal too small, or not focused) when the
+    /// circuit was to be switched on: nothing was sent, and nothing is until the
+    /// person is back and says to go on (r), or skips it. Decision: no circuit is
+    /// powered unseen, as no motor runs unseen; a person who cannot see the page
+    /// cannot see what the check is doing to the aircraft.
+    Waiting,
 }
 
 /// The circuit under test.
@@ -110,6 +116,7 @@ impl CircuitItem {
             } => t.deadline().min(self.started + self.on_for),
             Stage::Measure { request: None, .. } => self.started + self.on_for,
             Stage::PutBack { request } => request.deadline(),
+            Stage::Waiting => return None,
         })
     }
 
@@ -124,7 +131,7 @@ impl CircuitItem {
                 io.power_off(self.id)?;
                 Ok(Some(Powered { id: self.id }))
             }
-            Stage::Measure { request: None, .. } => Ok(None),
+            Stage::Measure { request: None, .. } | Stage::Waiting => Ok(None),
         }
     }
 }
@@ -179,6 +186,9 @@ impl CheckFlow {
             return self.circuit_next(idx + 1, view, io);
         }
         let was_on = st == CircuitState::On;
+        if !was_on && let Some(unseen) = io.ctl.unseen() {
+            return self.circuit_wait(idx, &unseen.describe(), view, io);
+        }
         if !was_on && let Err(why) = io.power_on(id) {
             // Refused by the page's own rule: nothing sent, and the words say why.
             return self.not_switched(idx, why, view, io);
@@ -267,6 +277,7 @@ impl CheckFlow {
                     self.circuit_next(idx + 1, view, io);
                 }
             }
+            Stage::Waiting => {}
             Stage::PutBack { request } => {
                 let off = matches!(st, CircuitState::Off | CircuitState::Fault(_));
                 match request.judge(off, now) {
@@ -321,6 +332,9 @@ impl CheckFlow {
             return;
         };
         let idx = item.idx;
+        if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
+            return self.circuit_start(idx, view, io);
+        }
         if cmd != Command::SkipItem {
             return;
         }
@@ -341,11 +355,43 @@ impl CheckFlow {
             }
             // Already going back off: the skip takes effect once it is.
             Stage::PutBack { .. } => {}
+            Stage::Waiting => {
+                view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
+                io.out
+                    .news
+                    .push(format!("– {}: skipped", view.circuits[idx].name));
+                self.circuit_next(idx + 1, view, io);
+            }
         }
     }
 }
 
 impl CheckFlow {
+    /// Circuit `idx` waits, not switched on, because the page cannot be seen (`why`):
+    /// see [`Stage::Waiting`]. Asked again (r) while still unseen, it waits again.
+    fn circuit_wait(&mut self, idx: usize, why: &str, view: &mut CheckView, io: &mut Io) {
+        let row = &view.circuits[idx];
+        let (id, name) = (row.id, row.name.clone());
+        let todo = format!(
+            "Paused before switching {name} on: {why}; nothing is switched on while the \
+             page cannot be seen. r: go on; s: skip it."
+        );
+        io.out.news.push(format!("  {todo}"));
+        view.prompt = Some(Prompt {
+            todo,
+            watching: format!("{name}'s state (DEVICE_STATUS)"),
+            time_left: None,
+            keys: vec![("r", "go on"), ("s", "skip"), ("Esc", "stop")],
+        });
+        self.phase = Phase::Circuits(CircuitItem {
+            idx,
+            id,
+            started: io.now,
+            stage: Stage::Waiting,
+            on_for: self.opts.timing.on_for,
+        });
+    }
+
     /// The page's rule refused to switch the circuit on: that is its line, in
     /// control's words, and the next circuit.
     fn not_switched(&mut self, idx: usize, why: Refusal, view: &mut CheckView, io: &mut Io) {

@@ -284,7 +284,11 @@ impl CheckFlow {
 
     fn replan(&self, view: &mut CheckView, model: &Model, now: Instant) {
         let t = &self.opts.timing;
-        let p = plan::build(model, now, &self.opts.choices, t.on_for, t.motor_for());
+        let lengths = plan::Lengths {
+            on_for: t.on_for,
+            motor_for: t.motor_for(),
+        };
+        let p = plan::build(model, now, &self.opts.choices, &self.opts.skip, lengths);
         view.plan = p.circuits;
         view.planned_motors = p.motors;
         view.excluded = p.excluded;

@@ -529,6 +529,17 @@ impl CheckFlow {
             }
             Err(why) => {
                 let idx = item.idx;
+                if let Some(unseen) = io.ctl.unseen() {
+                    // Nobody can see the page: nothing moves until the person is back
+                    // and asks (r), as after a run the same cause cut short.
+                    let why = format!(
+                        "the {} did not start: {}; nothing moves while the page cannot be \
+                         seen",
+                        item.motor.name(),
+                        unseen.describe()
+                    );
+                    return self.motor_pause(&why, view, io);
+                }
                 match motor_check(io.model, item.motor, d, now) {
                     Err(StopReason::MotorFault(code)) => {
                         self.known_faults.insert(item.motor.device_id());

@@ -15,13 +15,15 @@
 //! switch inputs of SYSTEM_STATUS byte 8 (ICD Table 24) drive only their own motor:
 //! Appendix B gives flaps the switch "Flaps, not assignable", and DEVICE_SPEC's
 //! switch id (Table 13) names only inputs 1–10, so no circuit can follow a flap or
-//! trim input. They are not asked exactly when their motor is excluded.
+//! trim input. They are not asked when their motor is excluded, nor when the motors
+//! step is skipped (`--skip motors`): flipping one runs its motor from the cockpit,
+//! and a person who skipped the motors did not mean any to move.
 
 use std::time::{Duration, Instant};
 
 use crate::model::{Circuit, CircuitKind, Model, Motor, TrimKind};
 use crate::protocol::message::SwitchId;
-use crate::ui::check::state::{Excluded, Input, Planned, Unasked};
+use crate::ui::check::state::{Excluded, Input, Planned, Step, Unasked};
 
 /// Words in a circuit's name that make the check suggest leaving it alone.
 pub const SUGGEST_EXCLUDING: [&str; 3] = ["pitot", "heat", "starter"];
@@ -67,15 +69,23 @@ pub fn unmatched(model: &Model, now: Instant, exclude: &[String]) -> Vec<String>
         .collect()
 }
 
-/// The plan for the unit the model describes now. `on_for` is the longest a circuit
-/// stays on; `motor_for` how long a motor's test takes.
+/// How long the plan's items take: the longest a circuit stays on, a motor's test.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lengths {
+    pub on_for: Duration,
+    pub motor_for: Duration,
+}
+
+/// The plan for the unit the model describes now, with the check's steps `skip`ped
+/// from the start.
 pub fn build(
     model: &Model,
     now: Instant,
     choices: &Choices,
-    on_for: Duration,
-    motor_for: Duration,
+    skip: &[Step],
+    lengths: Lengths,
 ) -> Plan {
+    let Lengths { on_for, motor_for } = lengths;
     let mut plan = Plan::default();
     let circuits = model.circuits(now);
     for c in circuits.iter().cloned() {
@@ -129,7 +139,7 @@ pub fn build(
         Motor::Trim(TrimKind::Pitch) => 1,
         Motor::Trim(TrimKind::Roll) => 2,
     });
-    plan.unasked = unasked(&circuits, &plan);
+    plan.unasked = unasked(&circuits, &plan, skip.contains(&Step::Motors));
     plan
 }
 
@@ -156,8 +166,9 @@ fn left_alone(c: &Circuit) -> String {
 
 /// The inputs the person is not asked to flip, in the order the switch step runs:
 /// an input 1–10 carrying any circuit the plan leaves alone, and the flap and trim
-/// inputs of an excluded motor (see the module docs).
-fn unasked(circuits: &[Circuit], plan: &Plan) -> Vec<Unasked> {
+/// inputs of an excluded motor, or of every motor when `motors_skipped` (see the
+/// module docs).
+fn unasked(circuits: &[Circuit], plan: &Plan, motors_skipped: bool) -> Vec<Unasked> {
     let planned = |id: u8| plan.circuits.iter().any(|p| p.id == id);
     let mut out = Vec::new();
     for n in 1..=10u8 {
@@ -188,13 +199,17 @@ fn unasked(circuits: &[Circuit], plan: &Plan) -> Vec<Unasked> {
             CircuitKind::Trim(TrimKind::Roll) => [Input::RollTrimUp, Input::RollTrimDown],
             _ => continue,
         };
-        if !plan.excluded.iter().any(|e| e.id == c.id) {
+        let why = if plan.excluded.iter().any(|e| e.id == c.id) {
+            "excluded"
+        } else if motors_skipped {
+            "the motors step is skipped"
+        } else {
             continue;
-        }
+        };
         out.extend(inputs.map(|input| Unasked {
             input,
             circuits: Vec::new(),
-            why: format!("{} drives {} (excluded): not asked", input.label(), c.name),
+            why: format!("{} drives {} ({why}): not asked", input.label(), c.name),
         }));
     }
     out

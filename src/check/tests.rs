@@ -308,6 +308,15 @@ impl Rig {
         }
     }
 
+    /// The switch step with the motors step after it, so the flap and trim inputs
+    /// are asked (with the motors skipped they are not: `plan::unasked`).
+    fn switches_then_motors() -> Options {
+        Options {
+            skip: vec![Step::Circuits, Step::Loads],
+            ..Options::default()
+        }
+    }
+
     fn circuits_only() -> Options {
         Options {
             skip: vec![Step::Switches, Step::Motors, Step::Loads],
@@ -487,7 +496,7 @@ fn a_switch_that_works_passes_once_its_circuits_followed() {
 
 #[test]
 fn a_switch_never_flipped_times_out_and_can_be_retried() {
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::switches_then_motors());
     r.start();
     r.run(30_100);
     assert_eq!(
@@ -880,6 +889,8 @@ fn a_retry_after_a_pause_returns_the_motor_to_where_the_check_found_it() {
             .todo
             .contains("r: run the test again")
     );
+    // Back at the page, the person asks for it again.
+    r.ctl.on_focus_gained(r.now);
     r.cmd(Command::Retry);
     r.run_until(20_000, |r| r.view.step == Step::Done);
     assert_eq!(
@@ -1671,7 +1682,7 @@ fn skip_words(r: &Rig, input: Input) -> String {
 
 #[test]
 fn an_input_that_also_powers_something_left_alone_is_never_asked() {
-    let mut r = Rig::with(&shared_switches(), Rig::switches_only());
+    let mut r = Rig::with(&shared_switches(), Rig::switches_then_motors());
     // Before power, the plan says which inputs it will not ask for, and why.
     let unasked: Vec<(Input, &str)> = r
         .view
@@ -1765,7 +1776,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
             exclude: vec!["Nav Lt".into(), "Flaps".into()],
             include: vec![],
         },
-        ..Rig::switches_only()
+        ..Rig::switches_then_motors()
     });
     r.start();
     assert_eq!(
@@ -1995,4 +2006,184 @@ fn the_steps_after_the_switches_run_once_when_skipped() {
     assert_eq!(count("– Circuits: skipped"), 1, "{:?}", r.news);
     assert_eq!(count("– Motors: skipped"), 1, "{:?}", r.news);
     assert_eq!(count("– Load analysis: skipped"), 1, "{:?}", r.news);
+}
+
+// ----- the page unseen -----
+
+impl Rig {
+    /// The DEVICE_POWER on and the motor moves sent after `from`.
+    fn acts_since(&self, from: Duration) -> Vec<Message> {
+        self.sent
+            .iter()
+            .filter(|(at, _)| *at > from)
+            .map(|(_, p)| p.message)
+            .filter(|m| match m {
+                Message::DevicePower(d) => d.on,
+                Message::FlapMove(f) => f.on,
+                Message::TrimMove(t) => t.on,
+                _ => false,
+            })
+            .collect()
+    }
+
+    fn prompt(&self) -> String {
+        self.view
+            .prompt
+            .as_ref()
+            .map_or(String::new(), |p| p.todo.clone())
+    }
+}
+
+/// The terminal loses focus while a circuit is on: that one is still measured and put
+/// back, but the next is not switched on until the person is back and says to go on
+/// (focus alone coming back is not enough); then the step ends as it would have.
+#[test]
+fn no_circuit_is_switched_on_while_the_terminal_has_lost_focus() {
+    let mut r = Rig::new(Rig::circuits_only());
+    r.start();
+    // Nav Lt (4) is the first circuit the check switches on.
+    r.run_until(3000, |r| r.powers(4) == vec![true]);
+    let p = r.ctl.on_focus_lost(r.now);
+    r.send(p);
+    let lost = r.now - r.t0;
+    r.run(15_000);
+    assert_eq!(r.powers(4), vec![true, false], "Nav Lt put back");
+    assert!(!r.on(4));
+    assert!(r.acts_since(lost).is_empty(), "{:?}", r.acts_since(lost));
+    assert!(
+        r.prompt()
+            .starts_with("Paused before switching Strobe on: the terminal lost focus"),
+        "{}",
+        r.prompt()
+    );
+    assert_eq!(r.circuit(5), &Outcome::NotRun);
+    r.ctl.on_focus_gained(r.now);
+    r.run(3000);
+    assert!(r.acts_since(lost).is_empty(), "went on without being asked");
+    r.cmd(Command::Retry);
+    assert_eq!(r.powers(5), vec![true]);
+    r.run_until(40_000, |r| r.view.step == Step::Done);
+    assert_eq!(r.circuit(5), &Outcome::Found(CircuitFinding::NoCurrent));
+    for id in [4, 5, 17, 18] {
+        assert!(!r.on(id), "device {id} left on");
+    }
+}
+
+/// Asked to go on while the page is still too small, a waiting circuit waits again;
+/// skipped, it is skipped with nothing sent.
+#[test]
+fn a_circuit_waiting_for_the_page_waits_again_or_is_skipped() {
+    let mut r = Rig::new(Rig::circuits_only());
+    let p = r.ctl.set_page_hidden(r.now, true);
+    r.send(p);
+    r.start();
+    r.run(2000);
+    assert!(r.powers(4).is_empty());
+    assert!(
+        r.prompt()
+            .contains("the terminal is too small to show the page"),
+        "{}",
+        r.prompt()
+    );
+    r.cmd(Command::Retry);
+    r.run(1000);
+    assert!(r.powers(4).is_empty(), "switched on unseen");
+    r.cmd(Command::SkipItem);
+    assert_eq!(r.circuit(4), &Outcome::Skipped("you skipped it".into()));
+    assert!(r.powers(5).is_empty(), "the next one waits too");
+    assert!(r.prompt().starts_with("Paused before switching Strobe on"));
+    let p = r.ctl.set_page_hidden(r.now, false);
+    r.send(p);
+    r.cmd(Command::Retry);
+    assert_eq!(r.powers(5), vec![true]);
+}
+
+/// The page hidden between two runs of a motor (the first ended by itself, the next
+/// not started): the next run is not started, nor the run back, until the page is
+/// seen and the person asks; then the motor ends where the check found it.
+#[test]
+fn no_motor_run_starts_while_the_page_is_hidden() {
+    let mut r = Rig::new(Rig::motors_only());
+    r.start();
+    r.past_probes();
+    // Until the first test run has ended by itself (its stop is on the wire).
+    r.run_until(3000, |r| {
+        r.ctl.running().is_none()
+            && r.ctl
+                .last_stop()
+                .is_some_and(|s| s.reason == StopReason::RunDone)
+    });
+    let p = r.ctl.set_page_hidden(r.now, true);
+    r.send(p);
+    let hidden = r.now - r.t0;
+    let out_at = flaps_at(&r);
+    r.run(5000);
+    assert!(
+        r.acts_since(hidden).is_empty(),
+        "{:?}",
+        r.acts_since(hidden)
+    );
+    assert!(r.ctl.running().is_none());
+    assert!(
+        r.prompt()
+            .contains("did not start: the terminal is too small"),
+        "{}",
+        r.prompt()
+    );
+    assert!(r.prompt().contains("r: run the test again"));
+    // Asked while still hidden: still nothing.
+    r.cmd(Command::Retry);
+    r.run(1000);
+    assert!(r.acts_since(hidden).is_empty());
+    assert!((i32::from(flaps_at(&r)) - i32::from(out_at)).abs() <= 1);
+    let p = r.ctl.set_page_hidden(r.now, false);
+    r.send(p);
+    r.cmd(Command::Retry);
+    assert!(!r.acts_since(hidden).is_empty(), "went on once asked");
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    assert_eq!(
+        r.view.motors[0].outcome,
+        Outcome::Found(MotorFinding::Moves)
+    );
+    let back = flaps_at(&r);
+    assert!(
+        (i32::from(back) - 20).abs() <= super::motors::BACK_WITHIN,
+        "left at {back}, found at 20"
+    );
+}
+
+/// With the motors step skipped, the flap and trim switches are not asked for either:
+/// flipping one runs its motor from the cockpit. The plan says so, in its words.
+#[test]
+fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
+    let mut r = Rig::new(Options {
+        skip: vec![Step::Circuits, Step::Motors, Step::Loads],
+        ..Options::default()
+    });
+    for input in [
+        Input::FlapUp,
+        Input::FlapDown,
+        Input::PitchTrimUp,
+        Input::PitchTrimDown,
+    ] {
+        let u = r.view.unasked.iter().find(|u| u.input == input);
+        assert!(u.is_some(), "{input:?} asked");
+    }
+    r.start();
+    assert_eq!(
+        skip_words(&r, Input::FlapUp),
+        "flap switch UP drives Flaps (the motors step is skipped): not asked"
+    );
+    assert_eq!(
+        skip_words(&r, Input::PitchTrimDown),
+        "pitch trim switch DOWN drives Trim_P (the motors step is skipped): not asked"
+    );
+    // Not skipped, they are asked.
+    let r = Rig::new(Rig::switches_then_motors());
+    assert!(
+        !r.view
+            .unasked
+            .iter()
+            .any(|u| matches!(u.input, Input::FlapUp | Input::PitchTrimUp))
+    );
 }

@@ -63,6 +63,10 @@ pub struct Controller {
     /// The running motor's watch over its endpoints ([`endpoints`]); `None` for a run
     /// that may pass them (the setup screens') or no run.
     watch: Option<endpoints::Watch>,
+    /// The terminal is too small to show the page ([`Controller::set_page_hidden`]).
+    hidden: bool,
+    /// The terminal lost focus and has not said it has it back.
+    unfocused: bool,
 }
 
 impl Controller {
@@ -72,6 +76,35 @@ impl Controller {
             pending_notice: None,
             motors_refused: None,
             watch: None,
+            hidden: false,
+            unfocused: false,
+        }
+    }
+
+    /// Why the person cannot see the page now, if they cannot: the terminal too small
+    /// for it, or not focused. A run stops the moment it happens; and while it lasts,
+    /// a run with no key behind it ([`Controller::run_for`], the installation check's)
+    /// is refused, since nobody is watching what it would move. A key's run needs a
+    /// key, which an unseen page ignores ([`Controller::handle_key_hidden`]) or an
+    /// unfocused terminal does not send.
+    pub fn unseen(&self) -> Option<StopReason> {
+        if self.hidden {
+            Some(StopReason::PageHidden)
+        } else if self.unfocused {
+            Some(StopReason::FocusLost)
+        } else {
+            None
+        }
+    }
+
+    /// The page fits the terminal (`false`) or not (`true`): hidden, a running motor
+    /// stops, with its stop message.
+    pub fn set_page_hidden(&mut self, now: Instant, hidden: bool) -> Vec<Packet> {
+        self.hidden = hidden;
+        if hidden {
+            self.stop(now, StopReason::PageHidden)
+        } else {
+            Vec::new()
         }
     }
 
@@ -336,6 +369,9 @@ impl Controller {
         if let Some(why) = &self.motors_refused {
             return Err(Refusal(why.clone()));
         }
+        if let Some(unseen) = self.unseen() {
+            return Err(Refusal(format!("not started: {}", unseen.describe())));
+        }
         motor_permit(model, motor, direction, now)?;
         endpoints::permit_moving(model, motor, direction, way, now).map_err(Refusal)?;
         let out = self.streamer.run_for(now, motor, direction, length);
@@ -353,11 +389,13 @@ impl Controller {
     }
 
     pub fn on_focus_lost(&mut self, now: Instant) -> Vec<Packet> {
+        self.unfocused = true;
         self.stop(now, StopReason::FocusLost)
     }
 
     /// The terminal has focus again: see [`MotorStreamer::focus_gained`].
     pub fn on_focus_gained(&mut self, now: Instant) {
+        self.unfocused = false;
         self.streamer.focus_gained(now);
     }
 
