@@ -838,6 +838,23 @@ fn flaps_at(r: &Rig) -> u8 {
     r.model.live_flap_trim(r.now).unwrap().flap_position
 }
 
+impl Rig {
+    /// The check goes on to its end: the flaps move the commanded way and are run
+    /// back to 20, where the check found them (`what` happened on the way).
+    fn flaps_pass_and_are_back_at_20(&mut self, what: &str) {
+        self.run_until(20_000, |r| r.view.step == Step::Done);
+        assert_eq!(
+            self.view.motors[0].outcome,
+            Outcome::Found(MotorFinding::Moves)
+        );
+        let back = flaps_at(self);
+        assert!(
+            (i32::from(back) - 20).abs() <= super::motors::BACK_WITHIN,
+            "left at {back}, the check found it at 20, {what}"
+        );
+    }
+}
+
 /// Skipped in the middle of its first run, the flaps are still run back to where the
 /// check found them (20, their up endpoint), and the result says it was skipped.
 #[test]
@@ -892,16 +909,7 @@ fn a_retry_after_a_pause_returns_the_motor_to_where_the_check_found_it() {
     // Back at the page, the person asks for it again.
     r.ctl.on_focus_gained(r.now);
     r.cmd(Command::Retry);
-    r.run_until(20_000, |r| r.view.step == Step::Done);
-    assert_eq!(
-        r.view.motors[0].outcome,
-        Outcome::Found(MotorFinding::Moves)
-    );
-    let back = flaps_at(&r);
-    assert!(
-        (i32::from(back) - 20).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}, the check found it at 20, paused at {paused_at}"
-    );
+    r.flaps_pass_and_are_back_at_20(&format!("paused at {paused_at}"));
     assert_eq!(r.view.motors[0].positions[0], 20);
 }
 
@@ -2140,16 +2148,7 @@ fn no_motor_run_starts_while_the_page_is_hidden() {
     r.send(p);
     r.cmd(Command::Retry);
     assert!(!r.acts_since(hidden).is_empty(), "went on once asked");
-    r.run_until(20_000, |r| r.view.step == Step::Done);
-    assert_eq!(
-        r.view.motors[0].outcome,
-        Outcome::Found(MotorFinding::Moves)
-    );
-    let back = flaps_at(&r);
-    assert!(
-        (i32::from(back) - 20).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}, found at 20"
-    );
+    r.flaps_pass_and_are_back_at_20("hidden between runs");
 }
 
 /// With the motors step skipped, the flap and trim switches are not asked for either:
