@@ -123,8 +123,6 @@ pub struct App {
     /// The motor controller, shared with the motor-stream thread.
     controller: Arc<MotorPath>,
     motor_thread: Option<std::thread::JoinHandle<()>>,
-    /// The terminal is too small to show the page: keys do nothing but quit and help.
-    hidden: bool,
     link: Option<Link>,
     handle: LinkHandle,
     /// Every packet the page sends goes through here; `None` in replay.
@@ -206,7 +204,6 @@ impl App {
             view,
             controller,
             motor_thread,
-            hidden: false,
             link: Some(link),
             handle,
             gate,
@@ -284,7 +281,7 @@ impl App {
             self.set_page_size(w, h, now);
         }
         if let TermEvent::Key(key) = event
-            && self.hidden
+            && self.page_hidden()
         {
             self.xfsp_local_key(now);
             return self.hidden_key(key, now);
@@ -345,14 +342,19 @@ impl App {
     /// see may keep moving. The selection stays where it was.
     fn set_page_size(&mut self, width: u16, height: u16, now: Instant) {
         let hidden = width < ui::MIN_WIDTH || height < ui::MIN_HEIGHT;
-        if hidden != self.hidden {
+        if hidden != self.page_hidden() {
             self.controller.act(|c| c.set_page_hidden(now, hidden));
             let n = self.controller.take_notice();
             self.set_notice(now, n);
             self.view.motor_run = self.controller.running();
             self.dirty = true;
         }
-        self.hidden = hidden;
+    }
+
+    /// The terminal is too small to show the page: keys do nothing but quit and help.
+    /// The controller's, which refuses the check's runs meanwhile: one place knows.
+    fn page_hidden(&self) -> bool {
+        self.controller.with(|c| c.page_hidden())
     }
 
     /// A key while the page is too small to be seen: only quit and help act (on the

@@ -33,30 +33,35 @@ struct Rig {
     dir: tempfile::TempDir,
 }
 
+/// The virtual VP-X (`install` scenario) on the master of a new pseudo-terminal: the
+/// slave's path, the slave (kept open for as long as the page uses it), and the sim.
+fn install_unit() -> (String, serialport::TTYPort, SimHandle) {
+    let pty = link::open_pty_pair().expect("pty");
+    let reader = pty.master.try_clone_native().expect("clone master");
+    let sim = sim::spawn(
+        SimOptions::new(sim::load_scenario("install").unwrap()),
+        Box::new(reader),
+        Box::new(pty.master),
+    );
+    (pty.path, pty.slave, sim)
+}
+
 impl Rig {
     /// A page on the install scenario with a check running: switches skipped,
     /// confirmed, and the first circuit switched on under test.
     fn mid_circuit() -> Rig {
         let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-        let pty = link::open_pty_pair().expect("pty");
-        let reader = pty.master.try_clone_native().expect("clone master");
-        let sim = sim::spawn(
-            SimOptions::new(sim::load_scenario("install").unwrap()),
-            Box::new(reader),
-            Box::new(pty.master),
-        );
+        let (path, slave, sim) = install_unit();
         let app = App::new(
-            Source::Serial {
-                path: pty.path.clone(),
-            },
-            link::serial_connector(PathBuf::from(&pty.path), 57_600),
+            Source::Serial { path: path.clone() },
+            link::serial_connector(PathBuf::from(&path), 57_600),
             AppOptions::default(),
         );
         let mut r = Rig {
             _turn: turn,
             app,
             sim,
-            _slave: pty.slave,
+            _slave: slave,
             dir: tempfile::tempdir().unwrap(),
         };
         r.until("the unit's settings", Duration::from_secs(20), |app| {
@@ -343,18 +348,12 @@ fn a_report_that_cannot_be_written_is_said_and_written_again_with_w() {
 #[test]
 fn headless_a_report_that_cannot_be_written_is_an_error_naming_the_folder() {
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let pty = link::open_pty_pair().expect("pty");
-    let reader = pty.master.try_clone_native().expect("clone master");
-    let sim = sim::spawn(
-        SimOptions::new(sim::load_scenario("install").unwrap()),
-        Box::new(reader),
-        Box::new(pty.master),
-    );
+    let (path, slave, sim) = install_unit();
     let dir = tempfile::tempdir().unwrap();
     let blocked = dir.path().join("usb");
     std::fs::write(&blocked, "a file where the folder must go").unwrap();
     let h = vpx_efis::app::HeadlessCheck {
-        port: Some(pty.path.parse().unwrap()),
+        port: Some(path.parse().unwrap()),
         baud: 57_600,
         scenario: "install".into(),
         options: Options {
@@ -384,6 +383,6 @@ fn headless_a_report_that_cannot_be_written_is_an_error_naming_the_folder() {
         "{text}"
     );
     assert!(text.contains("Summary: "), "{text}");
-    drop(pty.slave);
+    drop(slave);
     sim.stop();
 }

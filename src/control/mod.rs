@@ -97,6 +97,11 @@ impl Controller {
         }
     }
 
+    /// Whether the terminal is too small to show the page.
+    pub fn page_hidden(&self) -> bool {
+        self.hidden
+    }
+
     /// The page fits the terminal (`false`) or not (`true`): hidden, a running motor
     /// stops, with its stop message.
     pub fn set_page_hidden(&mut self, now: Instant, hidden: bool) -> Vec<Packet> {
