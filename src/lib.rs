@@ -21,7 +21,6 @@ pub mod link;
 pub mod loads;
 pub mod model;
 pub mod platform;
-pub mod protocol;
 pub mod settings;
 pub mod setup;
 pub mod sim;
@@ -30,3 +29,7 @@ pub mod traffic;
 pub mod ui;
 pub mod utc;
 pub mod xfsp;
+
+/// The VP-X wire format: the `vpx-protocol` crate (`crates/vpx-protocol`), named
+/// `protocol` here as the rest of the program has always called it.
+pub use vpx_protocol as protocol;

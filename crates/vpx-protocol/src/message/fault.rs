@@ -1,0 +1,23 @@
+//! Fault messages, ICD §6.5 (major 0x14).
+
+use super::{Payload, Writer};
+use crate::error::{LenRule, Result};
+use crate::frame::MessageId;
+
+/// DEVICE_CLEAR — ICD Table 33. Device 255 clears the system fault.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DeviceClear {
+    pub device_id: u8,
+}
+
+impl Payload for DeviceClear {
+    const ID: MessageId = MessageId::new(0x14, 0x00);
+    const NAME: &'static str = "DEVICE_CLEAR";
+    const LEN: LenRule = LenRule::Exact(1);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        Ok(DeviceClear { device_id: p[0] })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u8(self.device_id);
+    }
+}

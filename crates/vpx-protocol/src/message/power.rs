@@ -1,0 +1,99 @@
+//! Power messages, ICD §6.4 (major 0x13).
+
+use super::types::{FlapDirection, TrimDirection, TrimType, WigWagModeSetting};
+use super::{Payload, Writer, flag};
+use crate::error::{LenRule, Result};
+use crate::frame::MessageId;
+
+/// DEVICE_POWER — ICD Table 29. Overrides the device's switch until it is cycled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DevicePower {
+    pub device_id: u8,
+    pub on: bool,
+}
+
+impl Payload for DevicePower {
+    const ID: MessageId = MessageId::new(0x13, 0x00);
+    const NAME: &'static str = "DEVICE_POWER";
+    const LEN: LenRule = LenRule::Exact(2);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        Ok(DevicePower {
+            device_id: p[0],
+            on: flag(Self::NAME, "Power State", p[1])?,
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u8(self.device_id);
+        w.u8(self.on as u8);
+    }
+}
+
+/// TRIM_MOVE — ICD Table 30. Must be repeated at 4 Hz or more while the motor runs
+/// (reading note 19); `on = false` stops it at once.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TrimMove {
+    pub trim_type: TrimType,
+    pub on: bool,
+    pub direction: TrimDirection,
+}
+
+impl Payload for TrimMove {
+    const ID: MessageId = MessageId::new(0x13, 0x01);
+    const NAME: &'static str = "TRIM_MOVE";
+    const LEN: LenRule = LenRule::Exact(3);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        Ok(TrimMove {
+            trim_type: TrimType::from_byte(p[0]),
+            on: flag(Self::NAME, "Power State", p[1])?,
+            direction: TrimDirection::from_byte(p[2]),
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u8(self.trim_type.to_byte());
+        w.u8(self.on as u8);
+        w.u8(self.direction.to_byte());
+    }
+}
+
+/// FLAP_MOVE — ICD Table 31. Same 4 Hz rule as TRIM_MOVE.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FlapMove {
+    pub on: bool,
+    pub direction: FlapDirection,
+}
+
+impl Payload for FlapMove {
+    const ID: MessageId = MessageId::new(0x13, 0x02);
+    const NAME: &'static str = "FLAP_MOVE";
+    const LEN: LenRule = LenRule::Exact(2);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        Ok(FlapMove {
+            on: flag(Self::NAME, "Power State", p[0])?,
+            direction: FlapDirection::from_byte(p[1]),
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u8(self.on as u8);
+        w.u8(self.direction.to_byte());
+    }
+}
+
+/// WIG_WAG_MODE — ICD Table 32.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct WigWagMode {
+    pub mode: WigWagModeSetting,
+}
+
+impl Payload for WigWagMode {
+    const ID: MessageId = MessageId::new(0x13, 0x03);
+    const NAME: &'static str = "WIG_WAG_MODE";
+    const LEN: LenRule = LenRule::Exact(1);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        Ok(WigWagMode {
+            mode: WigWagModeSetting::from_byte(p[0]),
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u8(self.mode.to_byte());
+    }
+}

@@ -1,0 +1,413 @@
+//! Status messages, ICD §6.3 (major 0x12). Broadcast by the unit.
+
+use super::types::{DataIntegrityCode, SignedTenths, Tenths, WigWagModeSetting};
+use super::{IGNORED_PAYLOAD_MAX, Payload, Reader, Writer, bit};
+use crate::device::DEVICE_COUNT;
+use crate::error::{LenRule, Result};
+use crate::fault::FaultCode;
+use crate::frame::MessageId;
+
+/// SYSTEM_STATUS byte 8–9: the external switch inputs, live (ICD Table 24; reading note 8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SwitchInputs {
+    pub roll_trim_down: bool,
+    pub roll_trim_up: bool,
+    pub pitch_trim_down: bool,
+    pub pitch_trim_up: bool,
+    pub flap_down: bool,
+    pub flap_up: bool,
+    /// `switch[0]` is switch 1, … `switch[9]` is switch 10.
+    pub switch: [bool; 10],
+}
+
+impl SwitchInputs {
+    pub fn from_word(w: u16) -> Self {
+        let mut switch = [false; 10];
+        for (i, s) in switch.iter_mut().enumerate() {
+            *s = w & (1 << i) != 0;
+        }
+        SwitchInputs {
+            roll_trim_down: w & 0x8000 != 0,
+            roll_trim_up: w & 0x4000 != 0,
+            pitch_trim_down: w & 0x2000 != 0,
+            pitch_trim_up: w & 0x1000 != 0,
+            flap_down: w & 0x0800 != 0,
+            flap_up: w & 0x0400 != 0,
+            switch,
+        }
+    }
+
+    pub fn to_word(&self) -> u16 {
+        let mut w = 0u16;
+        for (i, &s) in self.switch.iter().enumerate() {
+            if s {
+                w |= 1 << i;
+            }
+        }
+        for (on, b) in [
+            (self.roll_trim_down, 0x8000),
+            (self.roll_trim_up, 0x4000),
+            (self.pitch_trim_down, 0x2000),
+            (self.pitch_trim_up, 0x1000),
+            (self.flap_down, 0x0800),
+            (self.flap_up, 0x0400),
+        ] {
+            if on {
+                w |= b;
+            }
+        }
+        w
+    }
+}
+
+/// SYSTEM_STATUS misc flags byte (ICD Table 24), MSB first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MiscFlags {
+    pub starter_annunciator: bool,
+    pub wig_wag_mode: WigWagModeSetting,
+    pub software_update: bool,
+    pub wig_wag_active: bool,
+}
+
+/// SYSTEM_STATUS system fault flags byte (ICD Table 24), MSB first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SystemFaultFlags {
+    pub current_over_48a: bool,
+    pub current_over_60a: bool,
+    pub warm_reset: bool,
+    pub data_integrity_failure: bool,
+    pub external_data_missing: bool,
+}
+
+/// SYSTEM_STATUS — ICD Table 24 with reading note 8: 12 bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SystemStatus {
+    /// Total system current, amps in tenths.
+    pub system_current: Tenths,
+    /// Main bus volts in tenths (signed).
+    pub main_bus_volts: SignedTenths,
+    /// Aux battery volts in tenths.
+    pub aux_battery_volts: Tenths,
+    /// Whole degrees Celsius.
+    pub internal_temp: u8,
+    pub switches: SwitchInputs,
+    pub misc: MiscFlags,
+    pub faults: SystemFaultFlags,
+    /// 0 is "no error" and decodes as `None` (ICD Table 25).
+    pub data_integrity_code: Option<DataIntegrityCode>,
+}
+
+impl Payload for SystemStatus {
+    const ID: MessageId = MessageId::new(0x12, 0x00);
+    const NAME: &'static str = "SYSTEM_STATUS";
+    const LEN: LenRule = LenRule::Exact(12);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        let mut r = Reader::new(p);
+        let system_current = Tenths(r.u16());
+        let main_bus_volts = SignedTenths(r.u16() as i16);
+        let aux_battery_volts = Tenths(r.u16());
+        let internal_temp = r.u8();
+        let switches = SwitchInputs::from_word(r.u16());
+        let m = r.u8();
+        let f = r.u8();
+        let code = r.u8();
+        Ok(SystemStatus {
+            system_current,
+            main_bus_volts,
+            aux_battery_volts,
+            internal_temp,
+            switches,
+            misc: MiscFlags {
+                starter_annunciator: bit(m, 7),
+                wig_wag_mode: if bit(m, 6) {
+                    WigWagModeSetting::Steady
+                } else {
+                    WigWagModeSetting::Auto
+                },
+                software_update: bit(m, 5),
+                wig_wag_active: bit(m, 4),
+            },
+            faults: SystemFaultFlags {
+                current_over_48a: bit(f, 7),
+                current_over_60a: bit(f, 6),
+                warm_reset: bit(f, 4),
+                data_integrity_failure: bit(f, 3),
+                external_data_missing: bit(f, 0),
+            },
+            data_integrity_code: if code == 0 {
+                None
+            } else {
+                Some(DataIntegrityCode::from_byte(code))
+            },
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.u16(self.system_current.0);
+        w.u16(self.main_bus_volts.0 as u16);
+        w.u16(self.aux_battery_volts.0);
+        w.u8(self.internal_temp);
+        w.u16(self.switches.to_word());
+        let m = &self.misc;
+        w.u8(bits(&[
+            (7, m.starter_annunciator),
+            (6, m.wig_wag_mode != WigWagModeSetting::Auto),
+            (5, m.software_update),
+            (4, m.wig_wag_active),
+        ]));
+        let f = &self.faults;
+        w.u8(bits(&[
+            (7, f.current_over_48a),
+            (6, f.current_over_60a),
+            (4, f.warm_reset),
+            (3, f.data_integrity_failure),
+            (0, f.external_data_missing),
+        ]));
+        w.u8(self
+            .data_integrity_code
+            .map_or(0, DataIntegrityCode::to_byte));
+    }
+}
+
+/// DEVICE_STATUS — ICD Table 26. Bit i of byte k is device 8k+i (reading note 7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DeviceStatus {
+    /// Indexed by device id.
+    pub on: [bool; DEVICE_COUNT],
+    /// Current per device, amps in tenths, indexed by device id.
+    pub current: [Tenths; DEVICE_COUNT],
+}
+
+impl Payload for DeviceStatus {
+    const ID: MessageId = MessageId::new(0x12, 0x01);
+    const NAME: &'static str = "DEVICE_STATUS";
+    const LEN: LenRule = LenRule::Exact(66);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        let on = unpack_bits(&p[..4]);
+        let mut current = [Tenths(0); DEVICE_COUNT];
+        let mut r = Reader::new(&p[4..]);
+        for c in current.iter_mut() {
+            *c = Tenths(r.u16());
+        }
+        Ok(DeviceStatus { on, current })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.bytes(&pack_bits(&self.on, false));
+        for c in &self.current {
+            w.u16(c.0);
+        }
+    }
+}
+
+/// Flap flags byte of FLAP_TRIM_STATUS (ICD Table 27), MSB first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FlapFlags {
+    pub enabled: bool,
+    pub motor_running: bool,
+    pub fault: bool,
+    pub overspeed_alarm: bool,
+    pub down_switch_inhibited: bool,
+}
+
+/// One trim axis's flags in FLAP_TRIM_STATUS (ICD Table 27).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TrimFlags {
+    pub enabled: bool,
+    pub motor_running: bool,
+    pub fault: bool,
+}
+
+/// FLAP_TRIM_STATUS — ICD Table 27, 18 bytes, broadcast at 10 Hz.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FlapTrimStatus {
+    pub flap: FlapFlags,
+    pub pitch_trim: TrimFlags,
+    pub roll_trim: TrimFlags,
+    pub flap_position: u8,
+    pub pitch_trim_position: u8,
+    pub roll_trim_position: u8,
+    pub flap_fault: FaultCode,
+    pub pitch_trim_fault: FaultCode,
+    pub roll_trim_fault: FaultCode,
+    pub flap_up: u8,
+    pub flap_down: u8,
+    pub flap_midpoint_1: u8,
+    pub flap_midpoint_2: u8,
+    pub pitch_trim_up: u8,
+    pub pitch_trim_down: u8,
+    pub pitch_trim_neutral: u8,
+    pub roll_trim_up: u8,
+    pub roll_trim_down: u8,
+    pub roll_trim_neutral: u8,
+}
+
+impl Payload for FlapTrimStatus {
+    const ID: MessageId = MessageId::new(0x12, 0x02);
+    const NAME: &'static str = "FLAP_TRIM_STATUS";
+    const LEN: LenRule = LenRule::Exact(18);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        let mut r = Reader::new(p);
+        let ff = r.u8();
+        let tf = r.u8();
+        Ok(FlapTrimStatus {
+            flap: FlapFlags {
+                enabled: bit(ff, 7),
+                motor_running: bit(ff, 6),
+                fault: bit(ff, 5),
+                overspeed_alarm: bit(ff, 4),
+                down_switch_inhibited: bit(ff, 3),
+            },
+            pitch_trim: TrimFlags {
+                enabled: bit(tf, 7),
+                motor_running: bit(tf, 6),
+                fault: bit(tf, 5),
+            },
+            roll_trim: TrimFlags {
+                enabled: bit(tf, 4),
+                motor_running: bit(tf, 3),
+                fault: bit(tf, 2),
+            },
+            flap_position: r.u8(),
+            pitch_trim_position: r.u8(),
+            roll_trim_position: r.u8(),
+            flap_fault: FaultCode::from_byte(r.u8()),
+            pitch_trim_fault: FaultCode::from_byte(r.u8()),
+            roll_trim_fault: FaultCode::from_byte(r.u8()),
+            flap_up: r.u8(),
+            flap_down: r.u8(),
+            flap_midpoint_1: r.u8(),
+            flap_midpoint_2: r.u8(),
+            pitch_trim_up: r.u8(),
+            pitch_trim_down: r.u8(),
+            pitch_trim_neutral: r.u8(),
+            roll_trim_up: r.u8(),
+            roll_trim_down: r.u8(),
+            roll_trim_neutral: r.u8(),
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        let f = &self.flap;
+        w.u8(bits(&[
+            (7, f.enabled),
+            (6, f.motor_running),
+            (5, f.fault),
+            (4, f.overspeed_alarm),
+            (3, f.down_switch_inhibited),
+        ]));
+        let (p, r) = (&self.pitch_trim, &self.roll_trim);
+        w.u8(bits(&[
+            (7, p.enabled),
+            (6, p.motor_running),
+            (5, p.fault),
+            (4, r.enabled),
+            (3, r.motor_running),
+            (2, r.fault),
+        ]));
+        for b in [
+            self.flap_position,
+            self.pitch_trim_position,
+            self.roll_trim_position,
+            self.flap_fault.to_byte(),
+            self.pitch_trim_fault.to_byte(),
+            self.roll_trim_fault.to_byte(),
+            self.flap_up,
+            self.flap_down,
+            self.flap_midpoint_1,
+            self.flap_midpoint_2,
+            self.pitch_trim_up,
+            self.pitch_trim_down,
+            self.pitch_trim_neutral,
+            self.roll_trim_up,
+            self.roll_trim_down,
+            self.roll_trim_neutral,
+        ] {
+            w.u8(b);
+        }
+    }
+}
+
+/// FAULT_STATUS — ICD Table 28. Bit i of byte k is device 8k+i; the MSB of byte 4 is
+/// the system fault (reading note 7). Reading note 9: 35 bytes, but a shorter payload
+/// (at least the 4 bit bytes) is accepted and the codes it lacks are `None`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FaultStatus {
+    pub faulted: [bool; DEVICE_COUNT],
+    pub system_fault: bool,
+    /// Per device id; `None` where the payload stopped before that device's code.
+    pub codes: [Option<FaultCode>; DEVICE_COUNT],
+}
+
+impl FaultStatus {
+    /// The number of codes carried: up to and including the last `Some`.
+    fn codes_len(&self) -> usize {
+        self.codes
+            .iter()
+            .rposition(Option::is_some)
+            .map_or(0, |i| i + 1)
+    }
+}
+
+impl Payload for FaultStatus {
+    const ID: MessageId = MessageId::new(0x12, 0x03);
+    const NAME: &'static str = "FAULT_STATUS";
+    const LEN: LenRule = LenRule::Between(4, 35);
+    fn parse_payload(p: &[u8]) -> Result<Self> {
+        let faulted = unpack_bits(&p[..4]);
+        let mut codes = [None; DEVICE_COUNT];
+        for (c, &b) in codes.iter_mut().zip(&p[4..]) {
+            *c = Some(FaultCode::from_byte(b));
+        }
+        Ok(FaultStatus {
+            faulted,
+            system_fault: bit(p[3], 7),
+            codes,
+        })
+    }
+    fn emit_payload(&self, w: &mut Writer) {
+        w.bytes(&pack_bits(&self.faulted, self.system_fault));
+        for c in &self.codes[..self.codes_len()] {
+            w.u8(c.map_or(0, FaultCode::to_byte));
+        }
+    }
+}
+
+/// DEVICE_STATUS_QUERY — Appendix D only (0x12/0x04); reading note 6: no payload, asks
+/// for an immediate DEVICE_STATUS. No table describes a payload, so whatever one comes
+/// (up to [`IGNORED_PAYLOAD_MAX`] bytes) is ignored; we send none.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DeviceStatusQuery;
+
+impl Payload for DeviceStatusQuery {
+    const ID: MessageId = MessageId::new(0x12, 0x04);
+    const NAME: &'static str = "DEVICE_STATUS_QUERY";
+    const LEN: LenRule = LenRule::Between(0, IGNORED_PAYLOAD_MAX);
+    fn parse_payload(_: &[u8]) -> Result<Self> {
+        Ok(DeviceStatusQuery)
+    }
+    fn emit_payload(&self, _: &mut Writer) {}
+}
+
+fn bits(set: &[(u8, bool)]) -> u8 {
+    set.iter()
+        .fold(0, |acc, &(b, on)| if on { acc | (1 << b) } else { acc })
+}
+
+fn unpack_bits(p: &[u8]) -> [bool; DEVICE_COUNT] {
+    let mut out = [false; DEVICE_COUNT];
+    for (id, o) in out.iter_mut().enumerate() {
+        *o = p[id / 8] & (1 << (id % 8)) != 0;
+    }
+    out
+}
+
+fn pack_bits(devices: &[bool; DEVICE_COUNT], top_bit: bool) -> [u8; 4] {
+    let mut out = [0u8; 4];
+    for (id, &on) in devices.iter().enumerate() {
+        if on {
+            out[id / 8] |= 1 << (id % 8);
+        }
+    }
+    if top_bit {
+        out[3] |= 0x80;
+    }
+    out
+}
