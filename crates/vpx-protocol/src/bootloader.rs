@@ -40,7 +40,11 @@ pub const HEADER_LEN: usize = 5;
 pub const SIGNATURE: [u8; 3] = [0x01, 0x98, 0x1E];
 /// ATmega2560 flash page: 128 words (note 17).
 pub const PAGE_SIZE: usize = 256;
+/// Program flash of the ATmega2560 the SIGNATURE reply names: 256 KiB (ICD §7.5.6, reading
+/// note 17).
 pub const FLASH_SIZE: usize = 256 * 1024;
+/// Number of [`PAGE_SIZE`] pages in the flash: 1024, so a page number fits FLASH_PROG's
+/// 16-bit address (ICD Table 38).
 pub const PAGE_COUNT: usize = FLASH_SIZE / PAGE_SIZE;
 /// SERIAL_CONF security code (ICD Table 37).
 pub const SECURITY: [u8; 4] = [0x75, 0xDB, 0x9C, 0x97];
@@ -50,9 +54,14 @@ pub const PRIMARY_PORT: u8 = 3;
 pub const SECONDARY_PORT: u8 = 0;
 /// Replies of ICD §7.5.
 pub const SERIAL_CONF_REPLY: &[u8] = b"!!!";
+/// FLASH_ERASE reply: `'e'` when the erase is complete (ICD §7.5.2).
 pub const FLASH_ERASE_REPLY: &[u8] = b"e";
+/// FLASH_PROG reply: upper-case `'P'` when the page is written (ICD §7.5.3, reading note
+/// 17).
 pub const FLASH_PROG_REPLY: &[u8] = b"P";
+/// QUERY_PORT reply: `"VP_AVRBOOT"` (ICD §7.5.4).
 pub const QUERY_PORT_REPLY: &[u8] = b"VP_AVRBOOT";
+/// EXIT reply: `'x'`, then the unit reboots (ICD §7.5.8).
 pub const EXIT_REPLY: &[u8] = b"x";
 /// Largest payload `num` can describe: 255 words.
 pub const MAX_PAYLOAD: usize = 255 * 2;
@@ -70,21 +79,37 @@ pub fn page_address(byte_address: u32) -> Option<u16> {
     u16::try_from(byte_address as usize / PAGE_SIZE).ok()
 }
 
+/// What a bootloader command or reply got wrong (ICD §7).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum BootError {
+    /// FLASH_PROG data longer than one 256-byte flash page (ICD Table 38, reading note 17).
     #[error("flash page data is {len} bytes; a page is {PAGE_SIZE}")]
-    PageTooLong { len: usize },
+    PageTooLong {
+        /// Bytes of data given.
+        len: usize,
+    },
+    /// A page number past the end of the 256 KiB flash (ICD Tables 38 and 39, reading note
+    /// 24).
     #[error("page {page} is outside the {PAGE_COUNT}-page flash")]
-    PageOutsideFlash { page: u16 },
+    PageOutsideFlash {
+        /// The page number asked for.
+        page: u16,
+    },
+    /// SIGNATURE answered with other bytes than 0x01 0x98 0x1E (ICD §7.5.6): the bytes
+    /// received.
     #[error(
         "signature {:02X} {:02X} {:02X} is not the VP-X's 01 98 1E; do not erase or program this chip",
         .0[0], .0[1], .0[2]
     )]
     WrongSignature([u8; 3]),
+    /// A reply that is not the one ICD §7.5 gives for the command.
     #[error("{command}: expected {expected}, got {got:02X?}")]
     UnexpectedReply {
+        /// The command's ICD Table 36 name.
         command: &'static str,
+        /// The reply §7.5 gives, in words.
         expected: String,
+        /// The bytes that came instead.
         got: Vec<u8>,
     },
 }
@@ -94,18 +119,31 @@ pub enum BootError {
 pub enum BootCommand {
     /// `'!'`, ICD Table 37. Use [`BootCommand::serial_conf`] for the VP-X's values.
     SerialConf {
+        /// Table 37 byte 5, Primary Port #: always 3 for the VP-X.
         primary_port: u8,
+        /// Table 37 byte 6, Secondary Port #: always 0 for the VP-X.
         secondary_port: u8,
+        /// Table 37 bytes 7–10, the security code 0x75 0xDB 0x9C 0x97.
         security: [u8; 4],
     },
     /// `'E'`, §7.5.2.
     FlashErase,
     /// `'p'`, ICD Table 38: `address` is a page number (module doc); `data` one page.
-    FlashProg { address: u16, data: Vec<u8> },
+    FlashProg {
+        /// Table 38 bytes 5–6, "Flash Page Address", low byte first: a page number.
+        address: u16,
+        /// The page's bytes, at most [`PAGE_SIZE`].
+        data: Vec<u8>,
+    },
     /// `'Q'`, §7.5.4.
     QueryPort,
     /// `'R'`, ICD Table 39: `address` a page number, `size` in bytes.
-    FlashRead { address: u16, size: u16 },
+    FlashRead {
+        /// Table 39 bytes 5–6, "Read Address", low byte first: a page number.
+        address: u16,
+        /// Table 39 bytes 7–8, "Page Size", low byte first: bytes to read (§7.5.5).
+        size: u16,
+    },
     /// `'S'`, §7.5.6.
     Signature,
     /// `'V'`, §7.5.7.
@@ -259,7 +297,10 @@ impl fmt::Display for BootCommand {
 /// The shape of a reply: fixed text, or a number of binary bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ExpectedReply {
+    /// A fixed reply string: `"!!!"`, `'e'`, `'P'`, `"VP_AVRBOOT"` or `'x'` (ICD §7.5).
     Text(&'static [u8]),
+    /// This many raw bytes: FLASH_READ's data, SIGNATURE's 3, VERSION's 2 (ICD
+    /// §7.5.5–7.5.7).
     Bytes(usize),
 }
 
@@ -351,6 +392,7 @@ pub struct BootResponseReader {
 }
 
 impl BootResponseReader {
+    /// A reader for the reply to `command` (ICD §7.5).
     pub fn new(command: &BootCommand) -> Self {
         BootResponseReader {
             command: command.clone(),
@@ -402,6 +444,7 @@ impl BootResponseReader {
         self.skipped
     }
 
+    /// Whether the reply has been read; after it the reader takes no more bytes.
     pub fn is_done(&self) -> bool {
         self.done
     }
@@ -410,6 +453,7 @@ impl BootResponseReader {
 /// Counters of a [`BootCommandDecoder`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct BootDecoderStats {
+    /// Frames taken as one of ICD Table 36's commands.
     pub commands: u64,
     /// Frames with a command character that is not one of ours (Table 35 note 1).
     pub ignored_frames: u64,
@@ -450,10 +494,12 @@ fn num_fits(code: u8, num: u8) -> Option<bool> {
 }
 
 impl BootCommandDecoder {
+    /// An empty decoder.
     pub fn new() -> Self {
         Self::default()
     }
 
+    /// The counters so far.
     pub fn stats(&self) -> BootDecoderStats {
         self.stats
     }

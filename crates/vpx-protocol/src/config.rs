@@ -8,15 +8,21 @@ use super::message::{
     WigWagSpec,
 };
 
+/// Everything the §6.2 configuration messages set on one unit (ICD Tables 13–17, 21, 23).
 #[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct UnitConfig {
     /// DEVICE_SPEC per device id. Ids 0 (flaps), 29 and 30 (trims) are configured by
     /// FLAP_SPEC and TRIM_SPEC; their entries here only hold their fixed breaker.
     pub devices: [DeviceSpec; DEVICE_COUNT],
+    /// SYSTEM_SPEC (ICD Table 14).
     pub system: SystemSpec,
+    /// FLAP_SPEC (ICD Table 16), the settings of device 0.
     pub flap: FlapSpec,
+    /// TRIM_SPEC for pitch (ICD Table 15, trim type 0), the settings of device 30.
     pub pitch_trim: TrimSpec,
+    /// TRIM_SPEC for roll (ICD Table 15, trim type 1), the settings of device 29.
     pub roll_trim: TrimSpec,
+    /// WIG_WAG_SPEC (ICD Table 17).
     pub wig_wag: WigWagSpec,
     /// DEVICE_NAME per device id, raw 16 bytes (all zero when never named).
     pub names: [[u8; 16]; DEVICE_COUNT],
@@ -43,6 +49,7 @@ impl Default for UnitConfig {
 }
 
 impl UnitConfig {
+    /// The TRIM_SPEC of trim type `t` (ICD Table 15); an unknown type reads as pitch.
     pub fn trim(&self, t: TrimType) -> &TrimSpec {
         match t {
             TrimType::Roll => &self.roll_trim,

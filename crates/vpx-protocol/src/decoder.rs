@@ -78,13 +78,18 @@ pub enum Event<'a> {
 /// Running counts of what the decoder accepted and dropped.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct DecoderStats {
+    /// Frames decoded whole with a good checksum (ICD §4.1).
     pub frames: u64,
+    /// Bytes given to the decoder.
     pub bytes_in: u64,
     /// Bytes discarded outside of any frame (including the first byte of each bad
     /// candidate).
     pub skipped_bytes: u64,
+    /// Frames whose checksum byte did not match (ICD §4.1.3).
     pub bad_checksum: u64,
+    /// Intact frames whose payload length does not fit their message (ICD §6).
     pub bad_length: u64,
+    /// Intact frames with a major/minor that ICD Table 42 does not define.
     pub unknown_message: u64,
     /// Bytes of a frame the input ended in ([`Event::Truncated`]).
     pub truncated_bytes: u64,
@@ -132,6 +137,7 @@ enum Input {
 }
 
 impl Decoder {
+    /// An empty decoder.
     pub fn new() -> Self {
         Decoder {
             buf: [0; MAX_FRAME],
@@ -140,6 +146,7 @@ impl Decoder {
         }
     }
 
+    /// The counters so far.
     pub fn stats(&self) -> DecoderStats {
         self.stats
     }

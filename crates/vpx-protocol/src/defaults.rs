@@ -38,6 +38,8 @@ pub fn device_specs() -> [DeviceSpec; DEVICE_COUNT] {
     std::array::from_fn(|i| device_spec(i as u8))
 }
 
+/// SYSTEM_SPEC after EEPROM_ERASE (ICD Table 44): 16 V overvoltage limit, no secondary
+/// alternator.
 pub fn system_spec() -> SystemSpec {
     SystemSpec {
         overvoltage_limit: OvervoltageLimit::V16,
@@ -45,6 +47,8 @@ pub fn system_spec() -> SystemSpec {
     }
 }
 
+/// FLAP_SPEC after EEPROM_ERASE (ICD Table 44): disabled, momentary, standard polarity, 7 A
+/// breaker (Table 40), every position 0.
 pub fn flap_spec() -> FlapSpec {
     FlapSpec {
         mode: FlapMode::Momentary,
@@ -75,6 +79,7 @@ pub fn trim_spec(trim_type: TrimType) -> TrimSpec {
     }
 }
 
+/// WIG_WAG_SPEC after EEPROM_ERASE (ICD Table 44).
 pub fn wig_wag_spec() -> WigWagSpec {
     WigWagSpec {
         device_one: None,

@@ -9,25 +9,34 @@ pub enum SwitchRule {
     StarterAlwaysOn,
     /// Any of off, 1–10 and always on.
     Any,
+    /// Trim_R: driven by the roll trim switches, not assignable.
     RollTrim,
+    /// Trim_P: driven by the pitch trim switches, not assignable.
     PitchTrim,
 }
 
 /// One row of ICD Table 40.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceInfo {
+    /// Table 40 "Device ID", 0x00–0x1E.
     pub id: u8,
+    /// Table 40 "System Name", e.g. `5A-2` or `Trim_P`.
     pub system_name: &'static str,
+    /// Table 40 "Amps": lowest breaker setting, whole amps.
     pub amps_min: u8,
+    /// Table 40 "Amps": highest breaker setting, whole amps.
     pub amps_max: u8,
     /// Table 40's default breaker. For the EFIS this says 2 A while Appendix F says 5 A
     /// (reading note 21); see `defaults` for the value the virtual unit resets to.
     pub default_breaker: u8,
+    /// Table 40 "Current Fault Support": whether DEVICE_SPEC's current fault flag applies.
     pub current_fault_support: bool,
+    /// Table 40 "Switch": which switch the device follows.
     pub switch: SwitchRule,
 }
 
 impl DeviceInfo {
+    /// Whether DEVICE_SPEC may set the device's switch (Table 40 "Switch" = Any).
     pub fn switch_assignable(&self) -> bool {
         self.switch == SwitchRule::Any
     }
@@ -38,11 +47,18 @@ impl DeviceInfo {
     }
 }
 
+/// Device 0x00, Flaps (ICD Table 40).
 pub const FLAPS: u8 = 0x00;
+/// Device 0x01, Starter (ICD Table 40): cannot be switched from the EFIS, only reset
+/// (reading note 18).
 pub const STARTER: u8 = 0x01;
+/// Device 0x02, EFIS (ICD Table 40): its switch must not be 0 (Table 13 note 4).
 pub const EFIS: u8 = 0x02;
+/// Device 0x03, Field_Pri, the primary alternator field (ICD Table 40).
 pub const FIELD_PRI: u8 = 0x03;
+/// Device 0x1D, Trim_R, the roll trim motor (ICD Table 40).
 pub const TRIM_R: u8 = 0x1D;
+/// Device 0x1E, Trim_P, the pitch trim motor (ICD Table 40).
 pub const TRIM_P: u8 = 0x1E;
 /// Number of device ids, 0 through 30.
 pub const DEVICE_COUNT: usize = 31;

@@ -3,16 +3,29 @@
 /// A device or motor fault code (ICD Table 43). Reserved and unlisted codes are kept.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum FaultCode {
+    /// 0x00 NO FAULT (ICD Table 43).
     NoFault,
+    /// 0x06 OVER_VOLTAGE: device over voltage (ICD Table 43).
     OverVoltage,
+    /// 0x07 SHORT_CIRCUIT: device short circuit (ICD Table 43).
     ShortCircuit,
+    /// 0x08 OVER_CURRENT: device over-current (ICD Table 43).
     OverCurrent,
+    /// 0x09 CURRENT_FAULT: device current fault (ICD Table 43).
     CurrentFault,
+    /// 0x0A FLAP_RUNAWAY: runaway condition on the flaps (ICD Table 43).
     FlapRunaway,
+    /// 0x0B FLAP_ACTIVE: the fault could not be cleared because a flap switch is active
+    /// (ICD Table 43).
     FlapActive,
+    /// 0x0C FLAP_DISABLED: both flap switches active at system start (ICD Table 43).
     FlapDisabled,
+    /// 0x0E TRIM_RUNAWAY: runaway condition on the pitch or roll trim (ICD Table 43).
     TrimRunaway,
+    /// 0x0F TRIM_DISABLED: both switches of a trim active at system start (ICD Table 43).
     TrimDisabled,
+    /// 0x10 TRIM_ACTIVE: the fault could not be cleared because a trim switch is active
+    /// (ICD Table 43).
     TrimActive,
     /// 0x01–0x05 and 0x0D are RESERVED in Table 43; anything else is not listed at all.
     Unknown(u8),
@@ -21,10 +34,15 @@ pub enum FaultCode {
 /// One row of ICD Table 43.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FaultInfo {
+    /// Table 43 "Fault Code".
     pub code: u8,
+    /// Table 43 "Name", e.g. `SHORT_CIRCUIT`.
     pub name: &'static str,
+    /// Table 43 "Description".
     pub description: &'static str,
+    /// Table 43 "Action": what the VP-X does.
     pub action: &'static str,
+    /// Table 43 "Clears": how the fault ends.
     pub clears: &'static str,
 }
 
@@ -155,6 +173,7 @@ pub const FAULT_TABLE: [FaultInfo; 17] = [
 ];
 
 impl FaultCode {
+    /// The code of a Table 43 byte; unlisted bytes are kept in [`FaultCode::Unknown`].
     pub fn from_byte(b: u8) -> Self {
         match b {
             0x00 => FaultCode::NoFault,
@@ -172,6 +191,7 @@ impl FaultCode {
         }
     }
 
+    /// The Table 43 byte.
     pub fn to_byte(self) -> u8 {
         match self {
             FaultCode::NoFault => 0x00,
@@ -189,6 +209,7 @@ impl FaultCode {
         }
     }
 
+    /// Whether this is a fault, i.e. not 0x00 NO FAULT (ICD Table 43).
     pub fn is_fault(self) -> bool {
         self != FaultCode::NoFault
     }

@@ -6,9 +6,13 @@
 
 use super::error::{Error, Result};
 
+/// Header byte #1, always 0xE7 (ICD Table 1, byte 1).
 pub const SYNC1: u8 = 0xE7;
+/// Header byte #2, always 0x7E (ICD Table 1, byte 2).
 pub const SYNC2: u8 = 0x7E;
+/// The header's size: sync, major, minor, cnt, src, dst and len (ICD Table 2).
 pub const HEADER_LEN: usize = 8;
+/// The largest payload ICD Table 1's one-byte `<len>` allows.
 pub const MAX_PAYLOAD: usize = 255;
 /// The largest frame the one-byte length field allows; the decoder never buffers more.
 pub const MAX_FRAME: usize = HEADER_LEN + MAX_PAYLOAD + 1;
@@ -16,11 +20,15 @@ pub const MAX_FRAME: usize = HEADER_LEN + MAX_PAYLOAD + 1;
 /// Major/minor command id pair (Table 2 bytes 3 and 4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct MessageId {
+    /// Major command id (Table 2 byte 3): the message group, 0x10–0x15 (ICD Table 3,
+    /// reading note 5).
     pub major: u8,
+    /// Minor command id (Table 2 byte 4): the message within its group (ICD Tables 4–9).
     pub minor: u8,
 }
 
 impl MessageId {
+    /// The id `major`/`minor` (ICD Table 42).
     pub const fn new(major: u8, minor: u8) -> Self {
         MessageId { major, minor }
     }
@@ -35,14 +43,21 @@ impl std::fmt::Display for MessageId {
 /// Source and destination addresses (Table 1 bytes 6 and 7). Unlisted values are kept.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Node {
+    /// 0x00, the VP-X (ICD Table 1).
     Vpx,
+    /// 0x01, the external system, e.g. the EFIS (ICD Table 1).
     External,
+    /// 0xFE, unknown (ICD Table 1).
     Unknown,
+    /// 0xFF, broadcast (ICD Table 1; accepted as the destination of status messages,
+    /// reading note 22).
     Broadcast,
+    /// Any other byte, kept as it was.
     Other(u8),
 }
 
 impl Node {
+    /// The node of a Table 1 src/dst byte.
     pub fn from_byte(b: u8) -> Self {
         match b {
             0x00 => Node::Vpx,
@@ -53,6 +68,7 @@ impl Node {
         }
     }
 
+    /// The Table 1 src/dst byte.
     pub fn to_byte(self) -> u8 {
         match self {
             Node::Vpx => 0x00,
@@ -63,6 +79,7 @@ impl Node {
         }
     }
 
+    /// A short name for people: `VP-X`, `EFIS`, `unknown`, `broadcast` or `other`.
     pub fn name(self) -> &'static str {
         match self {
             Node::Vpx => "VP-X",
@@ -83,11 +100,14 @@ pub fn checksum(bytes: &[u8]) -> u8 {
 /// The header fields a caller chooses; the sync bytes and length are implied.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FrameHeader {
+    /// Major and minor command id (Table 2 bytes 3 and 4).
     pub id: MessageId,
     /// Command number: chosen by the EFIS per request and echoed in the reply;
     /// the VP-X's own running count on broadcasts (reading note 14).
     pub cnt: u8,
+    /// Source (Table 2 byte 6).
     pub src: Node,
+    /// Destination (Table 2 byte 7).
     pub dst: Node,
 }
 
@@ -130,6 +150,7 @@ impl<'a> FrameRef<'a> {
         FrameRef { bytes }
     }
 
+    /// The header fields (ICD Table 2, bytes 3–7).
     pub fn header(&self) -> FrameHeader {
         FrameHeader {
             id: self.id(),
@@ -139,10 +160,13 @@ impl<'a> FrameRef<'a> {
         }
     }
 
+    /// Major and minor command id (ICD Table 2, bytes 3 and 4).
     pub fn id(&self) -> MessageId {
         MessageId::new(self.bytes[2], self.bytes[3])
     }
 
+    /// The payload: the `<len>` bytes after the header, without the checksum (ICD Table 1,
+    /// bytes 9+).
     pub fn payload(&self) -> &'a [u8] {
         &self.bytes[HEADER_LEN..self.bytes.len() - 1]
     }

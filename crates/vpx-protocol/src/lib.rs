@@ -7,6 +7,8 @@
 //!
 //! Where the ICD contradicts itself we follow `READING-NOTES.md`; each place says so.
 
+#![warn(missing_docs)]
+
 pub mod bootloader;
 pub mod config;
 pub mod decoder;
@@ -14,6 +16,7 @@ pub mod defaults;
 pub mod describe;
 pub mod device;
 pub mod direction;
+/// Errors of frames and payloads.
 pub mod error;
 pub mod fault;
 pub mod frame;

@@ -1,5 +1,6 @@
 //! Pre-defined pin names, ICD Appendix C (Table 41), read down each column.
 
+/// ICD Table 41, the pre-defined pin names an EFIS may offer, read down each column.
 pub const PIN_NAMES: &[&str] = &[
     "EFIS 1",
     "EFIS 2",

@@ -52,8 +52,11 @@ use super::message::*;
 /// (as named in our message types), and a sentence for a person.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Refusal {
+    /// The SPEC_ACK code the unit sends (ICD Table 20).
     pub error: SpecAckError,
+    /// The payload field at fault, as named in our message types.
     pub field: &'static str,
+    /// Why, in a sentence for a person.
     pub reason: String,
 }
 
@@ -76,8 +79,11 @@ fn refuse(error: SpecAckError, field: &'static str, reason: String) -> Refusal {
 /// `Display` gives `"<field>: <message>"`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ConfigProblem {
+    /// Path of the field into [`UnitConfig`], e.g. `devices[23].circuit_breaker`.
     pub field: String,
+    /// The SPEC_ACK code a unit would send for it (ICD Table 20).
     pub error: SpecAckError,
+    /// Why, without repeating the path.
     pub message: String,
 }
 
@@ -346,7 +352,10 @@ pub fn check_system_spec(cfg: &UnitConfig, spec: &SystemSpec) -> Result<(), Refu
 /// Trim power is 40–90 % (ICD Table 15); 100 is the factory value (Table 44, reading
 /// note 16) and accepted too.
 pub const TRIM_POWER_RANGE: std::ops::RangeInclusive<u8> = 40..=90;
+/// What a unit fresh from EEPROM_ERASE reports for trim power (ICD Table 44, reading note
+/// 16).
 pub const TRIM_POWER_FACTORY: u8 = 100;
+/// Highest TRIM_SPEC speed (ICD Table 15, bytes 6–7: 0–300).
 pub const TRIM_SPEED_MAX: u16 = 300;
 
 /// TRIM_SPEC, ICD Table 15. In order:
@@ -396,7 +405,9 @@ pub fn check_trim_spec(_cfg: &UnitConfig, spec: &TrimSpec) -> Result<(), Refusal
 
 // ---------------------------------------------------------------- FLAP_SPEC
 
+/// FLAP_SPEC circuit breaker range, whole amps (ICD Table 16, byte 6).
 pub const FLAP_BREAKER_RANGE: std::ops::RangeInclusive<u8> = 1..=10;
+/// Highest FLAP_SPEC max speed (ICD Table 16, bytes 8–9: 0–500).
 pub const FLAP_MAX_SPEED_MAX: u16 = 500;
 /// Tenths of a second (reading note 23).
 pub const FLAP_ENDPOINT_DURATION_MAX: u16 = 300;
@@ -466,7 +477,9 @@ pub fn check_flap_spec(_cfg: &UnitConfig, spec: &FlapSpec) -> Result<(), Refusal
 
 // ---------------------------------------------------------------- WIG_WAG_SPEC
 
+/// WIG_WAG_SPEC warm-up period, seconds (ICD Table 17, byte 3).
 pub const WIG_WAG_WARM_UP_RANGE: std::ops::RangeInclusive<u8> = 5..=60;
+/// Highest WIG_WAG_SPEC speed (ICD Table 17, byte 4: 0–200).
 pub const WIG_WAG_SPEED_MAX: u8 = 200;
 
 /// WIG_WAG_SPEC, ICD Table 17. In order:

@@ -7,10 +7,15 @@ use crate::frame::MessageId;
 /// EXTERNAL_DATA validity flags (ICD Table 34 byte 13), MSB first.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ExternalValidity {
+    /// Table 34 byte 13, bit 7 (MSB): indicated airspeed valid.
     pub indicated_airspeed: bool,
+    /// Table 34 byte 13, bit 6: ground speed valid.
     pub ground_speed: bool,
+    /// Table 34 byte 13, bit 5: baro altitude valid.
     pub baro_altitude: bool,
+    /// Table 34 byte 13, bit 4: fuel pressure valid.
     pub fuel_pressure: bool,
+    /// Table 34 byte 13, bit 3: RPM valid.
     pub rpm: bool,
 }
 
@@ -18,13 +23,18 @@ pub struct ExternalValidity {
 /// in the EFIS's own unit, the same one used in FLAP_SPEC/TRIM_SPEC/WIG_WAG_SPEC.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ExternalData {
+    /// Table 34 bytes 1–2: indicated airspeed, 0–500, in the EFIS's unit (note 1).
     pub indicated_airspeed: u16,
+    /// Table 34 bytes 3–4: ground speed, 0–500, in the EFIS's unit (note 1).
     pub ground_speed: u16,
     /// Feet.
     pub baro_altitude: i32,
     /// PSI.
     pub fuel_pressure: i16,
+    /// Table 34 bytes 11–12: engine RPM (the starter is turned off above 500, reading note
+    /// 18).
     pub rpm: u16,
+    /// Table 34 byte 13: which of the fields above are valid.
     pub valid: ExternalValidity,
 }
 

@@ -10,10 +10,14 @@ use crate::frame::MessageId;
 /// DEVICE_SPEC — ICD Table 13.
 #[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub struct DeviceSpec {
+    /// Table 13 byte 1: device id, 0–30 (Appendix B).
     pub device_id: u8,
     /// Electronic circuit breaker, whole amps (range per device, Appendix B).
     pub circuit_breaker: u8,
+    /// Table 13 byte 3: the external switch, 0 off, 1–10, 11 or 255 always on (reading note
+    /// 10).
     pub switch_id: SwitchId,
+    /// Table 13 byte 4: current fault checking enabled.
     pub current_fault: bool,
     /// The switch byte as it was on the wire, for a spec decoded from a frame; `None`
     /// for one built here. Reading note 10 folds 255 into 11 (always on), and a person
@@ -66,6 +70,7 @@ impl Payload for DeviceSpec {
 /// SYSTEM_SPEC — ICD Table 14.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct SystemSpec {
+    /// Table 14 byte 1: overvoltage limit, 0 = 16 V, 1 = 32 V.
     pub overvoltage_limit: OvervoltageLimit,
     /// Device id of the secondary alternator; `None` is sent as 255 (disabled).
     pub secondary_alternator: Option<u8>,
@@ -90,11 +95,17 @@ impl Payload for SystemSpec {
 /// TRIM_SPEC — ICD Table 15. Flag bits MSB first: type, enable, polarity (reading note 15).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct TrimSpec {
+    /// Table 15 byte 1, bit 7: trim type, 0 pitch, 1 roll.
     pub trim_type: TrimType,
+    /// Table 15 byte 1, bit 6: trim enabled.
     pub enabled: bool,
+    /// Table 15 byte 1, bit 5: polarity, 0 standard, 1 inverted.
     pub polarity: Polarity,
+    /// Table 15 byte 2: up endpoint, position sensor 0–255.
     pub up: u8,
+    /// Table 15 byte 3: down endpoint, position sensor 0–255.
     pub down: u8,
+    /// Table 15 byte 4: neutral point, position sensor 0–255.
     pub neutral: u8,
     /// Percent power above `speed` (pitch only). 40–90; a fresh unit reports 100
     /// (Appendix F, reading note 16).
@@ -143,15 +154,24 @@ impl Payload for TrimSpec {
 /// FLAP_SPEC — ICD Table 16. Flag bits MSB first: mode, enable, polarity (reading note 15).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct FlapSpec {
+    /// Table 16 byte 1, bit 7: 0 momentary, 1 position-based.
     pub mode: FlapMode,
+    /// Table 16 byte 1, bit 6: flaps enabled.
     pub enabled: bool,
+    /// Table 16 byte 1, bit 5: polarity, 0 standard, 1 inverted.
     pub polarity: Polarity,
+    /// Table 16 byte 2: up position, 0–255.
     pub up: u8,
+    /// Table 16 byte 3: down position, 0–255.
     pub down: u8,
+    /// Table 16 byte 4: midpoint #1, 0–255.
     pub midpoint_1: u8,
+    /// Table 16 byte 5: midpoint #2, 0–255.
     pub midpoint_2: u8,
     /// Whole amps, 1–10.
     pub circuit_breaker: u8,
+    /// Table 16 byte 7: the flap position below which the overspeed alarm is triggered
+    /// (note 5).
     pub overspeed_position: u8,
     /// Speed above which flap-down is inhibited and the overspeed alarm sounds (EFIS unit).
     pub max_speed: u16,
@@ -204,7 +224,9 @@ impl Payload for FlapSpec {
 /// WIG_WAG_SPEC — ICD Table 17. `None` is sent as 255 (disabled).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct WigWagSpec {
+    /// Table 17 byte 1: wig-wag device #1, 4–28 (255 = disabled).
     pub device_one: Option<u8>,
+    /// Table 17 byte 2: wig-wag device #2, 4–28 (255 = disabled).
     pub device_two: Option<u8>,
     /// Seconds, 5–60.
     pub warm_up_period: u8,
@@ -236,6 +258,7 @@ impl Payload for WigWagSpec {
 /// SYSTEM_SPEC, 254 → WIG_WAG_SPEC, others → DEVICE_SPEC (reading note 13).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceSpecQuery {
+    /// Table 18 byte 1: 0–30, 253 (system) or 254 (wig-wag).
     pub device_id: u8,
 }
 
@@ -254,7 +277,10 @@ impl Payload for DeviceSpecQuery {
 /// SPEC_ACK — ICD Tables 19 and 20; 0x11/0x06 (reading note 4). `error: None` is code 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SpecAck {
+    /// Table 19 byte 1: the device id of the spec being answered; 253 for SYSTEM_SPEC, 254
+    /// for WIG_WAG_SPEC.
     pub device_id: u8,
+    /// Table 19 byte 2: the Table 20 error code; `None` for 0, success.
     pub error: Option<SpecAckError>,
 }
 
@@ -281,7 +307,9 @@ impl Payload for SpecAck {
 /// NUL-terminated when shorter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceName {
+    /// Table 21 byte 1: device id, 0–30.
     pub device_id: u8,
+    /// Table 21 bytes 2–17: the name, ASCII, NUL-terminated when shorter than 16.
     pub name: [u8; 16],
 }
 
@@ -338,6 +366,7 @@ impl Payload for DeviceName {
 /// DEVICE_NAME_QUERY — ICD Table 22; answered with DEVICE_NAME.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceNameQuery {
+    /// Table 22 byte 1: device id, 0–30.
     pub device_id: u8,
 }
 
@@ -356,7 +385,10 @@ impl Payload for DeviceNameQuery {
 /// DEVICE_ENABLE — ICD Table 23. Flag 2 asks; the unit answers with 0 or 1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceEnable {
+    /// Table 23 byte 1: device id, 4–28 (Starter, EFIS and Field_Pri are always enabled,
+    /// note 1).
     pub device_id: u8,
+    /// Table 23 byte 2: 0 disabled, 1 enabled, 2 query.
     pub flag: EnableFlag,
 }
 

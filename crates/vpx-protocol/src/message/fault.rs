@@ -7,6 +7,7 @@ use crate::frame::MessageId;
 /// DEVICE_CLEAR — ICD Table 33. Device 255 clears the system fault.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceClear {
+    /// Table 33 byte 1: the faulted device, 0–30, or 255 for the system fault.
     pub device_id: u8,
 }
 

@@ -33,13 +33,16 @@ use super::frame::{
 
 /// One message type of the ICD: its id, name, payload length rule, and codec.
 pub trait Payload: Sized {
+    /// Major and minor id (ICD Table 42).
     const ID: MessageId;
     /// The ICD's name, e.g. `DEVICE_STATUS`.
     const NAME: &'static str;
+    /// The payload length the message's ICD table allows.
     const LEN: LenRule;
 
     /// Decodes a payload whose length `LEN` allows. Called through [`Payload::parse`].
     fn parse_payload(payload: &[u8]) -> Result<Self>;
+    /// Writes the payload, big-endian (ICD §3.2.1).
     fn emit_payload(&self, w: &mut Writer);
 
     /// Checks the length, then decodes. Never panics.
@@ -70,6 +73,7 @@ pub struct PayloadBuf {
 }
 
 impl PayloadBuf {
+    /// The payload bytes.
     pub fn as_slice(&self) -> &[u8] {
         &self.buf[..self.len]
     }
@@ -103,18 +107,22 @@ impl Writer {
             len: 0,
         }
     }
+    /// Appends one byte.
     pub fn u8(&mut self, v: u8) {
         if let Some(b) = self.buf.get_mut(self.len) {
             *b = v;
             self.len += 1;
         }
     }
+    /// Appends a 16-bit word, most significant byte first (ICD §3.2.1).
     pub fn u16(&mut self, v: u16) {
         self.bytes(&v.to_be_bytes());
     }
+    /// Appends a 32-bit word, most significant byte first (ICD §3.2.1).
     pub fn u32(&mut self, v: u32) {
         self.bytes(&v.to_be_bytes());
     }
+    /// Appends bytes as they are.
     pub fn bytes(&mut self, v: &[u8]) {
         for &b in v {
             self.u8(b);
@@ -136,17 +144,21 @@ pub struct Reader<'a> {
 }
 
 impl<'a> Reader<'a> {
+    /// A reader at the start of payload `p`.
     pub fn new(p: &'a [u8]) -> Self {
         Reader { p, at: 0 }
     }
+    /// The next byte; 0 past the end.
     pub fn u8(&mut self) -> u8 {
         let v = self.p.get(self.at).copied().unwrap_or(0);
         self.at += 1;
         v
     }
+    /// The next 16-bit word, most significant byte first (ICD §3.2.1); 0 past the end.
     pub fn u16(&mut self) -> u16 {
         u16::from_be_bytes([self.u8(), self.u8()])
     }
+    /// The next 32-bit word, most significant byte first (ICD §3.2.1); 0 past the end.
     pub fn u32(&mut self) -> u32 {
         u32::from_be_bytes([self.u8(), self.u8(), self.u8(), self.u8()])
     }
@@ -182,7 +194,7 @@ macro_rules! messages {
         /// Any message of ICD Appendix D.
         #[derive(Debug, Clone, Copy, PartialEq, Eq)]
         pub enum Message {
-            $($v($v),)+
+            $(#[doc = concat!("A [`", stringify!($v), "`] message.")] $v($v),)+
         }
 
         impl Message {
@@ -194,6 +206,7 @@ macro_rules! messages {
                 Err(Error::UnknownMessage(id))
             }
 
+            /// Major and minor id of the message (ICD Table 42).
             pub fn id(&self) -> MessageId {
                 match self {
                     $(Message::$v(_) => $v::ID,)+
@@ -207,6 +220,7 @@ macro_rules! messages {
                 }
             }
 
+            /// The payload bytes of the message (its ICD table).
             pub fn emit(&self) -> PayloadBuf {
                 match self {
                     $(Message::$v(m) => m.emit(),)+
@@ -281,9 +295,14 @@ messages!(
 /// A message with its frame header: what travels on the wire.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Packet {
+    /// Command number (ICD Table 2 byte 5): the EFIS's choice on a request, echoed in the
+    /// reply; the unit's own count on broadcasts (reading note 14).
     pub cnt: u8,
+    /// Source (ICD Table 2 byte 6).
     pub src: Node,
+    /// Destination (ICD Table 2 byte 7).
     pub dst: Node,
+    /// The typed payload.
     pub message: Message,
 }
 
@@ -324,6 +343,7 @@ impl Packet {
         Packet::parse(&FrameRef::parse(bytes)?)
     }
 
+    /// The header of the frame that carries this packet (ICD Table 2).
     pub fn header(&self) -> FrameHeader {
         FrameHeader {
             id: self.message.id(),

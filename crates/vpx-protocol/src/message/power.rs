@@ -8,7 +8,9 @@ use crate::frame::MessageId;
 /// DEVICE_POWER — ICD Table 29. Overrides the device's switch until it is cycled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DevicePower {
+    /// Table 29 byte 1: device id, 0–30.
     pub device_id: u8,
+    /// Table 29 byte 2: power state, 0 off, 1 on.
     pub on: bool,
 }
 
@@ -32,8 +34,11 @@ impl Payload for DevicePower {
 /// (reading note 19); `on = false` stops it at once.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TrimMove {
+    /// Table 30 byte 1: 0 pitch, 1 roll.
     pub trim_type: TrimType,
+    /// Table 30 byte 2: power state, 0 off, 1 on (on while repeated at 4 Hz, note 1).
     pub on: bool,
+    /// Table 30 byte 3: pitch down / roll right = 0, pitch up / roll left = 1 (note 2).
     pub direction: TrimDirection,
 }
 
@@ -58,7 +63,9 @@ impl Payload for TrimMove {
 /// FLAP_MOVE — ICD Table 31. Same 4 Hz rule as TRIM_MOVE.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FlapMove {
+    /// Table 31 byte 1: power state, 0 off, 1 on (on while repeated at 4 Hz, note 1).
     pub on: bool,
+    /// Table 31 byte 2: 0 up, 1 down.
     pub direction: FlapDirection,
 }
 
@@ -81,6 +88,7 @@ impl Payload for FlapMove {
 /// WIG_WAG_MODE — ICD Table 32.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct WigWagMode {
+    /// Table 32 byte 1: 0 auto, 1 steady.
     pub mode: WigWagModeSetting,
 }
 

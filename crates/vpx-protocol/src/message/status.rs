@@ -10,17 +10,24 @@ use crate::frame::MessageId;
 /// SYSTEM_STATUS byte 8–9: the external switch inputs, live (ICD Table 24; reading note 8).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SwitchInputs {
+    /// Table 24 byte 8, bit 7 (MSB): roll trim down switch.
     pub roll_trim_down: bool,
+    /// Table 24 byte 8, bit 6: roll trim up switch.
     pub roll_trim_up: bool,
+    /// Table 24 byte 8, bit 5: pitch trim down switch.
     pub pitch_trim_down: bool,
+    /// Table 24 byte 8, bit 4: pitch trim up switch.
     pub pitch_trim_up: bool,
+    /// Table 24 byte 8, bit 3: flap down switch.
     pub flap_down: bool,
+    /// Table 24 byte 8, bit 2: flap up switch.
     pub flap_up: bool,
     /// `switch[0]` is switch 1, … `switch[9]` is switch 10.
     pub switch: [bool; 10],
 }
 
 impl SwitchInputs {
+    /// The inputs of Table 24's two switch bytes, read as one big-endian word.
     pub fn from_word(w: u16) -> Self {
         let mut switch = [false; 10];
         for (i, s) in switch.iter_mut().enumerate() {
@@ -37,6 +44,7 @@ impl SwitchInputs {
         }
     }
 
+    /// The two switch bytes of Table 24 as one big-endian word.
     pub fn to_word(&self) -> u16 {
         let mut w = 0u16;
         for (i, &s) in self.switch.iter().enumerate() {
@@ -63,19 +71,31 @@ impl SwitchInputs {
 /// SYSTEM_STATUS misc flags byte (ICD Table 24), MSB first.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MiscFlags {
+    /// Table 24 misc flags, bit 7 (MSB): starter annunciator active.
     pub starter_annunciator: bool,
+    /// Table 24 misc flags, bit 6: wig-wag mode, 0 auto, 1 steady.
     pub wig_wag_mode: WigWagModeSetting,
+    /// Table 24 misc flags, bit 5: software was updated during the last power cycle (note
+    /// 1).
     pub software_update: bool,
+    /// Table 24 misc flags, bit 4: wig-wag active.
     pub wig_wag_active: bool,
 }
 
 /// SYSTEM_STATUS system fault flags byte (ICD Table 24), MSB first.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SystemFaultFlags {
+    /// Table 24 system fault flags, bit 7 (MSB): total current over 48 A (note 2).
     pub current_over_48a: bool,
+    /// Table 24 system fault flags, bit 6: total current over 60 A (note 3).
     pub current_over_60a: bool,
+    /// Table 24 system fault flags, bit 4: CU warm reset at start-up (note 4).
     pub warm_reset: bool,
+    /// Table 24 system fault flags, bit 3: an EEPROM area failed its integrity check (note
+    /// 5).
     pub data_integrity_failure: bool,
+    /// Table 24 system fault flags, bit 0 (LSB): no EXTERNAL_DATA for over two seconds
+    /// (note 6).
     pub external_data_missing: bool,
 }
 
@@ -90,8 +110,11 @@ pub struct SystemStatus {
     pub aux_battery_volts: Tenths,
     /// Whole degrees Celsius.
     pub internal_temp: u8,
+    /// Table 24 bytes 8–9 (reading note 8): the external switch inputs.
     pub switches: SwitchInputs,
+    /// Table 24 byte 10 (reading note 8): misc flags.
     pub misc: MiscFlags,
+    /// Table 24 byte 11 (reading note 8): system fault flags.
     pub faults: SystemFaultFlags,
     /// 0 is "no error" and decodes as `None` (ICD Table 25).
     pub data_integrity_code: Option<DataIntegrityCode>,
@@ -201,42 +224,69 @@ impl Payload for DeviceStatus {
 /// Flap flags byte of FLAP_TRIM_STATUS (ICD Table 27), MSB first.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct FlapFlags {
+    /// Table 27 byte 1, bit 7 (MSB): flaps enabled.
     pub enabled: bool,
+    /// Table 27 byte 1, bit 6: flap motor running.
     pub motor_running: bool,
+    /// Table 27 byte 1, bit 5: flap fault.
     pub fault: bool,
+    /// Table 27 byte 1, bit 4: flap overspeed alarm.
     pub overspeed_alarm: bool,
+    /// Table 27 byte 1, bit 3: flap down switch inhibited.
     pub down_switch_inhibited: bool,
 }
 
 /// One trim axis's flags in FLAP_TRIM_STATUS (ICD Table 27).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct TrimFlags {
+    /// Table 27 byte 2: the axis is enabled (pitch bit 7, roll bit 4).
     pub enabled: bool,
+    /// Table 27 byte 2: the axis's motor is running (pitch bit 6, roll bit 3).
     pub motor_running: bool,
+    /// Table 27 byte 2: the axis has a fault (pitch bit 5, roll bit 2).
     pub fault: bool,
 }
 
 /// FLAP_TRIM_STATUS — ICD Table 27, 18 bytes, broadcast at 10 Hz.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FlapTrimStatus {
+    /// Table 27 byte 1: flap flags.
     pub flap: FlapFlags,
+    /// Table 27 byte 2, bits 7–5: pitch trim flags.
     pub pitch_trim: TrimFlags,
+    /// Table 27 byte 2, bits 4–2: roll trim flags.
     pub roll_trim: TrimFlags,
+    /// Table 27 byte 3: current flap position, 0–255.
     pub flap_position: u8,
+    /// Table 27 byte 4: current pitch trim position, 0–255.
     pub pitch_trim_position: u8,
+    /// Table 27 byte 5: current roll trim position, 0–255.
     pub roll_trim_position: u8,
+    /// Table 27 byte 6: flap fault code (Table 43).
     pub flap_fault: FaultCode,
+    /// Table 27 byte 7: pitch trim fault code (Table 43).
     pub pitch_trim_fault: FaultCode,
+    /// Table 27 byte 8: roll trim fault code (Table 43).
     pub roll_trim_fault: FaultCode,
+    /// Table 27 byte 9: flap up position, as in FLAP_SPEC.
     pub flap_up: u8,
+    /// Table 27 byte 10: flap down position, as in FLAP_SPEC.
     pub flap_down: u8,
+    /// Table 27 byte 11: flap midpoint #1, as in FLAP_SPEC.
     pub flap_midpoint_1: u8,
+    /// Table 27 byte 12: flap midpoint #2, as in FLAP_SPEC.
     pub flap_midpoint_2: u8,
+    /// Table 27 byte 13: pitch trim up position (0 when pitch trim is not enabled).
     pub pitch_trim_up: u8,
+    /// Table 27 byte 14: pitch trim down position (0 when pitch trim is not enabled).
     pub pitch_trim_down: u8,
+    /// Table 27 byte 15: pitch trim neutral position (0 when pitch trim is not enabled).
     pub pitch_trim_neutral: u8,
+    /// Table 27 byte 16: roll trim up position (0 when roll trim is not enabled).
     pub roll_trim_up: u8,
+    /// Table 27 byte 17: roll trim down position (0 when roll trim is not enabled).
     pub roll_trim_down: u8,
+    /// Table 27 byte 18: roll trim neutral position (0 when roll trim is not enabled).
     pub roll_trim_neutral: u8,
 }
 
@@ -330,7 +380,10 @@ impl Payload for FlapTrimStatus {
 /// (at least the 4 bit bytes) is accepted and the codes it lacks are `None`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FaultStatus {
+    /// Table 28 bytes 1–4: whether device `i` is faulted (bit i mod 8 of byte i / 8,
+    /// reading note 7).
     pub faulted: [bool; DEVICE_COUNT],
+    /// Table 28 byte 4, MSB: the system fault flag (reading note 7).
     pub system_fault: bool,
     /// Per device id; `None` where the payload stopped before that device's code.
     pub codes: [Option<FaultCode>; DEVICE_COUNT],

@@ -8,6 +8,7 @@ use crate::frame::MessageId;
 /// PING — ICD Table 10. The EFIS sends `ack = false`; the VP-X answers `ack = true`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Ping {
+    /// Table 10 byte 1: 0 on a request, 1 on the VP-X's response.
     pub ack: bool,
 }
 
@@ -36,12 +37,16 @@ impl Payload for Ping {
 /// one is a [`Error::BadLength`] (no version is made up).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Version {
+    /// Table 11 byte 1: hardware version (note 1).
     pub hardware_version: HardwareVersion,
+    /// Table 11 byte 2: software major version.
     pub software_major: u8,
+    /// Table 11 byte 3: software minor version.
     pub software_minor: u8,
 }
 
 impl Version {
+    /// The request the EFIS sends: three zero bytes, which the VP-X ignores (§6.1.2).
     pub const REQUEST: Version = Version {
         hardware_version: HardwareVersion::Unknown(0),
         software_major: 0,
@@ -99,6 +104,7 @@ impl Payload for SoftwareUpdate {
 /// and the virtual VP-X answers an empty *request* all the same. We send 1 byte.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EepromErase {
+    /// Table 12 byte 1: 0 success, anything else failure.
     pub response_code: u8,
 }
 
