@@ -18,7 +18,7 @@ macro_rules! open_enum {
         $(#[$meta])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
         $vis enum $name {
-            $( $(#[$vmeta])* $var, )+
+            $( $(#[$vmeta])* #[doc = concat!("`", $spec, "`, ", stringify!($val), " on the wire (the table named above).")] $var, )+
             /// A value this draft does not define, kept as received.
             Unknown($repr),
         }
@@ -164,13 +164,18 @@ open_enum! {
 pub struct FmsWaypoint(pub u8);
 
 impl FmsWaypoint {
+    /// Table 10: `GS`, a glideslope component (0x80).
     pub const GS: u8 = 0x80;
+    /// Table 10: `DME`, a DME component (0x40).
     pub const DME: u8 = 0x40;
+    /// Table 10: `TACAN`, a TACAN component (0x20).
     pub const TACAN: u8 = 0x20;
 
+    /// The waypoint type of Table 10 in the low five bits.
     pub fn kind(self) -> FmsWaypointKind {
         FmsWaypointKind::from(self.0 & 0x1F)
     }
+    /// Whether component bit `bit` (one of the constants above) is set.
     pub fn has(self, bit: u8) -> bool {
         self.0 & bit != 0
     }
@@ -230,17 +235,26 @@ open_enum! {
 pub struct FmsFlags(pub u16);
 
 impl FmsFlags {
+    /// Table 12 `FLYOVER` (%x01.00): if not present, fly by.
     pub const FLYOVER: u16 = 0x0100;
+    /// Table 12 `DISC` (%x02.00): a discontinuity before the current waypoint.
     pub const DISC: u16 = 0x0200;
+    /// Table 12 `ACTIVE` (%x04.00): this is the active waypoint.
     pub const ACTIVE: u16 = 0x0400;
+    /// Table 12 `OBS` (%x08.00): the waypoint allows OBS to be set.
     pub const OBS: u16 = 0x0800;
+    /// Table 12 `FAF` (%x10.00): the waypoint is the final approach fix or after.
     pub const FAF: u16 = 0x1000;
+    /// Table 12 `SUSPEND` (%x20.00): FMS sequencing is suspended at this waypoint.
     pub const SUSPEND: u16 = 0x2000;
+    /// Table 12 `LAST` (%x40.00): the last waypoint in the flight plan.
     pub const LAST: u16 = 0x4000;
 
+    /// The Table 12 leg type (`LEGTYPE-*`) in the low byte.
     pub fn leg_type(self) -> LegType {
         LegType::from((self.0 & 0xFF) as u8)
     }
+    /// Whether flag bit `bit` (one of the constants above) is set.
     pub fn has(self, bit: u16) -> bool {
         self.0 & bit != 0
     }
@@ -269,6 +283,7 @@ open_enum! {
 pub struct CasFlags(pub u16);
 
 impl CasFlags {
+    /// Table 16 `AUTO` (%x01): the item is automatically checked/unchecked.
     pub const AUTO: u16 = 0x01;
 }
 
@@ -318,6 +333,7 @@ impl EcbFlags {
     /// The `involts` field carries a valid reading.
     pub const INPUTVOLTS: u8 = 0x01;
 
+    /// Whether flag bit `bit` (one of the constants above) is set.
     pub fn has(self, bit: u8) -> bool {
         self.0 & bit != 0
     }
@@ -400,9 +416,12 @@ open_enum! {
 pub struct UpdateFlags(pub u32);
 
 impl UpdateFlags {
+    /// Table 28 `SUCCESS` (%x01): the update is complete and successful.
     pub const SUCCESS: u32 = 0x01;
+    /// Table 28 `ERROR` (%x02): error during the update.
     pub const ERROR: u32 = 0x02;
 
+    /// Whether flag bit `bit` (one of the constants above) is set.
     pub fn has(self, bit: u32) -> bool {
         self.0 & bit != 0
     }
@@ -414,13 +433,20 @@ impl UpdateFlags {
 pub struct ServoMode(pub u32);
 
 impl ServoMode {
+    /// Table 30 `ENGAGE` (%x80.00.00.00): in a request, together with `ENGAGED`, sets the
+    /// engagement.
     pub const ENGAGE: u32 = 0x8000_0000;
+    /// Table 30 `ENGAGED` (%d1): in a request, keep the current engagement; in a status,
+    /// engaged.
     pub const ENGAGED: u32 = 1;
+    /// Table 30 `DISENGAGED` (%d0): in a request, disengage; in a status, disengaged.
     pub const DISENGAGED: u32 = 0;
 
+    /// Whether the `ENGAGE` bit is set (Table 30).
     pub fn engage_requested(self) -> bool {
         self.0 & Self::ENGAGE != 0
     }
+    /// Whether the `ENGAGED` bit is set (Table 30).
     pub fn engaged(self) -> bool {
         self.0 & Self::ENGAGED != 0
     }

@@ -79,20 +79,33 @@ impl FormatId {
 /// A parameter's data, typed by its format.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Value {
+    /// BOOL, format 1 (§3.3.1, Table 6): a Table 7 boolean in 32 bits.
     Bool(Boolean),
+    /// UINT, format 2 (§3.3.2, Table 8): an unsigned 32-bit integer.
     Uint(u32),
+    /// WAYPOINT, format 3 (§3.3.3, Table 9): a flight-plan waypoint, 80 bytes.
     Waypoint(Box<Waypoint>),
     /// ISO-8859-1 octets, exactly as sent (a trailing NUL, if any, included).
     String(Vec<u8>),
+    /// CASMSG, format 5 (§3.3.5, Table 14): a crew alerting message or checklist item.
     CasMsg(CasMsg),
+    /// SINT, format 9 (§3.3.6, Table 17): a signed 32-bit integer.
     Sint(i32),
+    /// BUS, format 10 (§3.3.7, Table 18): a bus or electronic circuit breaker.
     Bus(Bus),
+    /// RANGE, format 11 (§3.3.8, Table 21): a display range description.
     Range(Range),
+    /// GPIO, format 12 (§3.3.9, Table 23): a GPIO summary.
     Gpio(Gpio),
+    /// APP, format 13 (§3.3.10, Table 24): application status.
     App(Box<App>),
+    /// WBRANGE, format 14 (§3.3.11, Table 26): a weight-and-balance envelope.
     WbRange(WbRange),
+    /// UPDATE, format 15 (§3.3.12, Table 27): software update progress.
     Update(Box<Update>),
+    /// SERVO, format 16 (§3.3.13, Table 29): a servo position with engagement flags.
     Servo(Servo),
+    /// DBASE, format 17 (§3.3.14, Table 31): database information, 92 bytes.
     DBase(Box<DBase>),
 }
 

@@ -20,12 +20,18 @@ pub const HEADER_LEN: usize = 12;
 /// The message header as it is on the wire, `len` included as received.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Header {
+    /// §3.1 `src id`: the sender's locally configured source id, unique on the network.
     pub src_id: u16,
+    /// §3.1 `message number`: monotonically increasing per source (compared as in reading
+    /// note 7).
     pub msg_num: u16,
+    /// §3.1 `msg class` (Table 1).
     pub class: MsgClass,
+    /// §3.1 `message ID` (Table 2, msg-op).
     pub op: MsgOp,
     /// Table 3 (msg-flag-cert) applies to the whole 16-bit field; see [`Header::cert`].
     pub flags: u16,
+    /// §3.1 `tcid`: transcoder id (Table 4).
     pub tcid: Tcid,
     /// Bytes after the header (reading note 3). A parsed header keeps what the sender
     /// wrote; whether it fits the datagram is checked by the message parser.

@@ -30,14 +30,17 @@ impl std::fmt::Display for Ident {
 /// One row of the §3.4 table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct IdentInfo {
+    /// §3.4 "Parameter ID", 20 bits.
     pub ident: Ident,
     /// The draft's name, e.g. `"P-ALT"`.
     pub name: &'static str,
+    /// The draft's short description.
     pub description: &'static str,
     /// "Unit Usage" as the draft words it.
     pub unit: &'static str,
     /// "SubUnit Usage" as the draft words it.
     pub subunit: &'static str,
+    /// §3.4 "Format": the attribute format (§3.3).
     pub format: FormatId,
 }
 

@@ -38,6 +38,7 @@
         clippy::panic
     )
 )]
+#![warn(missing_docs)]
 
 mod cursor;
 pub mod dict;

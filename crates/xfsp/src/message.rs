@@ -43,6 +43,7 @@ impl<'a> MessageView<'a> {
         Ok(view)
     }
 
+    /// The message header (§3.1), `len` as received.
     pub fn header(&self) -> &Header {
         &self.header
     }
@@ -95,19 +96,28 @@ fn carries_params(class: MsgClass) -> bool {
 /// What follows the header.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Body {
+    /// Parameters (§3.2), for the MAINT and OP classes.
     Params(Vec<Parameter>),
+    /// Raw octets (§2: 1553, CANbus, samples or serial data), for the other classes.
     Raw(Vec<u8>),
 }
 
 /// A whole message, owned and typed. `len` is not stored: it is computed on emit.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Message {
+    /// §3.1 `src id`: the sender's source id, unique on the network.
     pub src_id: u16,
+    /// §3.1 `message number`: monotonically increasing per source.
     pub msg_num: u16,
+    /// §3.1 `msg class` (Table 1).
     pub class: MsgClass,
+    /// §3.1 `message ID` (Table 2, msg-op).
     pub op: MsgOp,
+    /// §3.1 `flags`; the bottom three bits are the certification level (Table 3).
     pub flags: u16,
+    /// §3.1 `tcid`: transcoder id (Table 4).
     pub tcid: Tcid,
+    /// The parameters or raw data after the header.
     pub body: Body,
 }
 

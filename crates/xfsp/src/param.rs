@@ -34,14 +34,19 @@ pub const fn padded_len(len: usize) -> usize {
 /// A parameter header as on the wire.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ParamHeader {
+    /// §3.2 `Unit`: which unit the parameter applies to, if appropriate (e.g. engine #1).
     pub unit: u16,
+    /// §3.2 `SubUnit`: which subunit, if appropriate (e.g. cylinder #3).
     pub subunit: u16,
     /// Unpadded data length, 0..=4095.
     pub data_len: u16,
     /// 20-bit ident.
     pub ident: Ident,
+    /// §3.2 `Format`: the attribute format (§3.3).
     pub format: FormatId,
+    /// §3.2 `Confidence` (Table 5).
     pub confidence: Confidence,
+    /// §3.2 `Expire`: time to live (§3.2.2).
     pub expire: Expire,
     /// Reserved flags; the bottom three bits are the certification level.
     pub pflags: u8,
@@ -111,7 +116,9 @@ impl ParamHeader {
 /// A parameter read in place: its header and its unpadded data.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ParamView<'a> {
+    /// The parameter header (§3.2).
     pub header: ParamHeader,
+    /// The data, without its padding (§3.2 Parameter Data Len bytes).
     pub data: &'a [u8],
 }
 
@@ -201,13 +208,19 @@ impl<'a> Iterator for Params<'a> {
 /// its typed value (the format octet follows from the value).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Parameter {
+    /// §3.2 `Unit`: which unit the parameter applies to, if appropriate.
     pub unit: u16,
+    /// §3.2 `SubUnit`: which subunit, if appropriate.
     pub subunit: u16,
+    /// §3.2 `Ident`: the §3.4 parameter id, 20 bits.
     pub ident: Ident,
+    /// §3.2 `Confidence` (Table 5).
     pub confidence: Confidence,
+    /// §3.2 `Expire`: time to live (§3.2.2).
     pub expire: Expire,
     /// Reserved flags; the bottom three bits are the certification level.
     pub pflags: u8,
+    /// The data, typed by its §3.3 format.
     pub value: Value,
 }
 
@@ -225,21 +238,25 @@ impl Parameter {
         }
     }
 
+    /// With §3.2 `Unit` set to `unit`.
     pub fn unit(mut self, unit: u16) -> Self {
         self.unit = unit;
         self
     }
 
+    /// With §3.2 `SubUnit` set to `subunit`.
     pub fn subunit(mut self, subunit: u16) -> Self {
         self.subunit = subunit;
         self
     }
 
+    /// With §3.2 `Confidence` set to `c` (Table 5).
     pub fn confidence(mut self, c: Confidence) -> Self {
         self.confidence = c;
         self
     }
 
+    /// With §3.2 `Expire` set to `e` (§3.2.2).
     pub fn expire(mut self, e: Expire) -> Self {
         self.expire = e;
         self

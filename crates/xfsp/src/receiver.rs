@@ -46,18 +46,29 @@ pub enum Verdict {
 /// The result of offering a datagram to the receiver.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Received<'a> {
+    /// Newer than every message processed from its source (§2, §4.4, reading note 7):
+    /// process it.
     Fresh(MessageView<'a>),
+    /// A message number already processed from this source (§2: "MUST ignore all duplicate
+    /// messages").
     Duplicate(Header),
+    /// Older than one already processed from this source (§2: out of order "MUST be
+    /// ignored").
     OutOfOrder(Header),
+    /// Not a well-formed XFSp datagram.
     Malformed(Error),
 }
 
 /// Running totals, for the gateway's status line and logs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct RxStats {
+    /// Datagrams taken as [`Received::Fresh`].
     pub fresh: u64,
+    /// Datagrams dropped as [`Received::Duplicate`].
     pub duplicate: u64,
+    /// Datagrams dropped as [`Received::OutOfOrder`].
     pub out_of_order: u64,
+    /// Datagrams dropped as [`Received::Malformed`].
     pub malformed: u64,
     /// Sources dropped from the table to make room for new ones.
     pub evicted: u64,
@@ -193,6 +204,7 @@ impl Receiver {
         self.sources.len()
     }
 
+    /// The totals so far.
     pub fn stats(&self) -> RxStats {
         self.stats
     }

@@ -19,9 +19,13 @@ pub const MAX_PARAM_BYTES_V6: usize = 1440;
 /// The header fields shared by every datagram of one batch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MsgKind {
+    /// §3.1 `msg class` (Table 1).
     pub class: MsgClass,
+    /// §3.1 `message ID` (Table 2, msg-op).
     pub op: MsgOp,
+    /// §3.1 `flags`; the bottom three bits are the certification level (Table 3).
     pub flags: u16,
+    /// §3.1 `tcid`: transcoder id (Table 4).
     pub tcid: Tcid,
 }
 
@@ -61,6 +65,7 @@ impl Sender {
         self
     }
 
+    /// The §3.1 `src id` this sender writes.
     pub fn src_id(&self) -> u16 {
         self.src_id
     }

@@ -22,21 +22,31 @@ pub const BUS_SCALE: f32 = 10.0;
 /// A BUS value. Volts and amps fields are in tenths (see [`BUS_SCALE`]).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Bus {
+    /// Table 18 `state`: the bus's state in terms of an ECB (Table 19).
     pub state: EcbState,
+    /// Table 18 `ecbflags`: which fields are valid (Table 20).
     pub flags: EcbFlags,
     /// Input volts ×10; meaningful only with [`EcbFlags::INPUTVOLTS`].
     pub in_volts: i16,
     /// Current draw, amps ×10.
     pub draw_amps: i16,
+    /// Table 18 `maxamps`: max amps on the bus, ×10.
     pub max_amps: i16,
+    /// Table 18 `champs`: caution high amps, ×10.
     pub caution_high_amps: i16,
+    /// Table 18 `clamps`: caution low amps, ×10.
     pub caution_low_amps: i16,
     /// "Could be -": a bus may show charge current as negative draw.
     pub min_amps: i16,
+    /// Table 18 `outvolts`: output volts on the bus, ×10.
     pub out_volts: i16,
+    /// Table 18 `maxvolts`: max volts, ×10.
     pub max_volts: i16,
+    /// Table 18 `chvolts`: caution high voltage, ×10.
     pub caution_high_volts: i16,
+    /// Table 18 `clvolts`: caution low voltage, ×10.
     pub caution_low_volts: i16,
+    /// Table 18 `minvolts`: minimum low voltage, ×10.
     pub min_volts: i16,
     /// "System/Item" label, ISO-8859-1, as sent.
     pub label: Vec<u8>,

@@ -13,9 +13,11 @@ pub(crate) const FIXED_LEN: usize = 4;
 /// A CASMSG value.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CasMsg {
+    /// Table 14 `level`: the CAS level or checklist item kind (Table 15).
     pub level: CasLevel,
     /// "Reserved, set to 0"; kept so that a nonzero value survives relaying.
     pub rsvd: u8,
+    /// Table 14 `flags`: CAS related flags (Table 16), 16 bits.
     pub flags: CasFlags,
     /// ISO-8859-1 text as sent.
     pub label: Vec<u8>,

@@ -27,12 +27,19 @@ fn puti32(out: &mut Vec<u8>, v: i32) {
 /// RANGE (format 11): display range description, e.g. for AOAR.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Range {
+    /// Table 21 `numticks`: how many valid ticks are in the parameter data.
     pub numticks: u16,
+    /// Table 21 `units`: the display unit (Table 22).
     pub units: Units,
+    /// Table 21 `divisor`: for display, the logical divisions.
     pub divisor: i32,
+    /// Table 21 `minval`: minimum valid value.
     pub minval: i32,
+    /// Table 21 `maxval`: maximum valid value.
     pub maxval: i32,
+    /// Table 21 `mindisp`: where the display starts; lower values are clipped.
     pub mindisp: i32,
+    /// Table 21 `maxdisp`: where the display stops; higher values are clipped.
     pub maxdisp: i32,
     /// `starray` tick data; the draft never defines `starray`, so these are the raw
     /// bytes after the 24-byte fixed part.
@@ -78,6 +85,7 @@ pub struct Gpio {
     pub outmodes: u32,
     /// Eight 2-bit input modes.
     pub inmodes: u16,
+    /// Table 23 `flags`: reserved for future use.
     pub flags: u16,
 }
 
@@ -102,20 +110,35 @@ impl Gpio {
 /// APP (format 13): application status, for APPSTAT.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct App {
+    /// Table 24 `state`: the application's state (Table 25, scb-state).
     pub state: ScbState,
+    /// Table 24 `rsvd`: reserved bits, kept as received.
     pub rsvd: u8,
+    /// Table 24 `appflags`: flags regarding the app.
     pub appflags: u16,
+    /// Table 24 `period`: baseline runtime period.
     pub period: u16,
+    /// Table 24 `avgcpu`: average OS CPU time, units per period over the last second.
     pub avgcpu: u16,
+    /// Table 24 `hwcpu`: high-water OS CPU time, units per period.
     pub hwcpu: u16,
+    /// Table 24 `cpulim`: limit on OS CPU time, units per period.
     pub cpulim: u16,
+    /// Table 24 `runtime`: max allocated runtime per period.
     pub runtime: u16,
+    /// Table 24 `deadline`: deadline for completion per period.
     pub deadline: u16,
+    /// Table 24 `avgruntime`: average runtime over the last second.
     pub avgruntime: u16,
+    /// Table 24 `hwruntime`: high-water runtime.
     pub hwruntime: u16,
+    /// Table 24 `ivcsw`: involuntary context switches.
     pub ivcsw: u32,
+    /// Table 24 `aircraftid`: aircraft identifier, 16 octets.
     pub aircraftid: [u8; 16],
+    /// Table 24 `swrev`: software version identifier, 16 octets.
     pub swrev: [u8; 16],
+    /// Table 24 `label`: the application's name, ISO-8859-1 as sent.
     pub label: Vec<u8>,
 }
 
@@ -166,10 +189,15 @@ impl App {
 /// WBRANGE (format 14): weight-and-balance envelope.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct WbRange {
+    /// Table 26 `flags`: flags, if any.
     pub flags: u16,
+    /// Table 26 `numslices`: number of slices specified.
     pub numslices: u16,
+    /// Table 26 `maxtakeoff`: max takeoff weight.
     pub maxtakeoff: u32,
+    /// Table 26 `maxlanding`: max landing weight.
     pub maxlanding: u32,
+    /// Table 26 `maxzerofuel`: max zero fuel weight.
     pub maxzerofuel: u32,
     /// `starray` slice data, kept as raw bytes (the draft never defines `starray`).
     pub slices: Vec<u8>,
@@ -200,10 +228,15 @@ impl WbRange {
 /// UPDATE (format 15): software update progress.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Update {
+    /// Table 27 `aircraftid`: aircraft identifier, 16 octets.
     pub aircraftid: [u8; 16],
+    /// Table 27 `progress`: progress.
     pub progress: u32,
+    /// Table 27 `progflags`: progress flags (Table 28).
     pub progflags: UpdateFlags,
+    /// Table 27 `activity`: description of the current activity, 32 octets.
     pub activity: [u8; 32],
+    /// Table 27 `label`: name of the CPU being updated, as sent.
     pub label: Vec<u8>,
 }
 
@@ -230,7 +263,9 @@ impl Update {
 /// SERVO (format 16): a servo position with engagement flags.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Servo {
+    /// Table 29 `servopos`: the servo position (the draft leaves it undefined).
     pub servopos: i32,
+    /// Table 29 `servomode`: engagement flags (Table 30).
     pub servomode: ServoMode,
 }
 
@@ -251,13 +286,19 @@ impl Servo {
 /// DBASE (format 17): active database information.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct DBase {
+    /// Table 31 `crc`: a 32-bit CRC (the draft leaves it undefined).
     pub crc: u32,
+    /// Table 31 `name`: name of the database (e.g. com), 16 octets.
     pub name: [u8; 16],
+    /// Table 31 `supplier`: who supplied the database, 16 octets.
     pub supplier: [u8; 16],
+    /// Table 31 `region`: the region the data is valid for, 16 octets.
     pub region: [u8; 16],
+    /// Table 31 `cycle`: the cycle, 16 octets.
     pub cycle: [u8; 16],
     /// "YYYY-MM-DD", NUL padded.
     pub valid: [u8; 12],
+    /// Table 31 `expires`: the date after which the data expires, "YYYY-MM-DD", NUL padded.
     pub expires: [u8; 12],
 }
 

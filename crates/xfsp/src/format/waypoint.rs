@@ -20,17 +20,25 @@ pub struct Waypoint {
     pub lonlen: i32,
     /// 0.1 ft.
     pub alt: i32,
+    /// Table 9 `minalt`: logical minimum altitude for fix crossing, 0.1 ft.
     pub minalt: i32,
+    /// Table 9 `maxalt`: logical maximum altitude for fix crossing, 0.1 ft.
     pub maxalt: i32,
+    /// Table 9 `speed`: target indicated airspeed.
     pub speed: i32,
     /// 0.01 degrees.
     pub magadj: u32,
     /// 0.01 degrees.
     pub inbound: u16,
+    /// Table 9 `outbound`: outbound course, 0.01 degrees.
     pub outbound: u16,
+    /// Table 9 `freqkhz`: frequency in kHz if this is a NAVAID.
     pub freqkhz: u32,
+    /// Table 9 `wtype`: type of waypoint (Table 10).
     pub wtype: FmsWaypoint,
+    /// Table 9 `ctype`: type of container (Table 11).
     pub ctype: FmsContainer,
+    /// Table 9 `flags`: flags for the waypoint and leg (Table 12).
     pub flags: FmsFlags,
     /// 0.01 s.
     pub cumete: u32,
