@@ -63,7 +63,7 @@ pub const FLASH_PROG_REPLY: &[u8] = b"P";
 pub const QUERY_PORT_REPLY: &[u8] = b"VP_AVRBOOT";
 /// EXIT reply: `'x'`, then the unit reboots (ICD §7.5.8).
 pub const EXIT_REPLY: &[u8] = b"x";
-/// Largest payload `num` can describe: 255 words.
+/// Largest payload `num` can describe: 255 words (ICD Table 35 note 2).
 pub const MAX_PAYLOAD: usize = 255 * 2;
 
 /// The byte address of page `page` (our address unit; see the module doc).
@@ -294,7 +294,7 @@ impl fmt::Display for BootCommand {
     }
 }
 
-/// The shape of a reply: fixed text, or a number of binary bytes.
+/// The shape of a reply: fixed text, or a number of binary bytes (ICD §7.5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ExpectedReply {
     /// A fixed reply string: `"!!!"`, `'e'`, `'P'`, `"VP_AVRBOOT"` or `'x'` (ICD §7.5).
@@ -450,7 +450,7 @@ impl BootResponseReader {
     }
 }
 
-/// Counters of a [`BootCommandDecoder`].
+/// Counters of a [`BootCommandDecoder`] (frames of ICD Table 35).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct BootDecoderStats {
     /// Frames taken as one of ICD Table 36's commands.

@@ -54,7 +54,7 @@ use super::message::{self, MAX_MESSAGE_LEN, MIN_FRAME};
 const MAX_CANDIDATE: usize = HEADER_LEN + MAX_MESSAGE_LEN + 1;
 const _: () = assert!(MAX_CANDIDATE <= MAX_FRAME);
 
-/// What the decoder found.
+/// What the decoder found: a frame of ICD Table 1, or what was wrong.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Event<'a> {
     /// An intact frame of a message the ICD defines.
@@ -75,7 +75,7 @@ pub enum Event<'a> {
     Truncated(&'a [u8]),
 }
 
-/// Running counts of what the decoder accepted and dropped.
+/// Running counts of what the decoder accepted and dropped (frames of ICD Table 1).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct DecoderStats {
     /// Frames decoded whole with a good checksum (ICD §4.1).
@@ -102,7 +102,7 @@ impl DecoderStats {
     }
 }
 
-/// Streaming decoder; see the module documentation.
+/// Streaming decoder of ICD Table 1 frames; see the module documentation.
 pub struct Decoder {
     buf: [u8; MAX_FRAME],
     len: usize,

@@ -60,7 +60,7 @@ pub const FIELD_PRI: u8 = 0x03;
 pub const TRIM_R: u8 = 0x1D;
 /// Device 0x1E, Trim_P, the pitch trim motor (ICD Table 40).
 pub const TRIM_P: u8 = 0x1E;
-/// Number of device ids, 0 through 30.
+/// Number of device ids, 0 through 30 (ICD Table 40).
 pub const DEVICE_COUNT: usize = 31;
 /// DEVICE_SPEC_QUERY / SPEC_ACK id for the system spec (ICD Tables 18, 19).
 pub const SYSTEM_SPEC_ID: u8 = 253;

@@ -1,6 +1,6 @@
 use super::frame::MessageId;
 
-/// How many payload bytes a message may carry.
+/// How many payload bytes a message may carry (the "Payload Size" of each message, ICD §6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LenRule {
     /// Exactly this many bytes (the "Payload Size" line of the message's ICD section).
@@ -28,7 +28,8 @@ impl std::fmt::Display for LenRule {
     }
 }
 
-/// Everything that can be wrong with bytes that claim to be a VP-X frame or message.
+/// Everything that can be wrong with bytes that claim to be a VP-X frame (ICD §4) or
+/// message (ICD §6).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum Error {
     /// Fewer bytes than the frame needs: 8 header bytes, `len` payload bytes and the

@@ -14,7 +14,8 @@ pub const SYNC2: u8 = 0x7E;
 pub const HEADER_LEN: usize = 8;
 /// The largest payload ICD Table 1's one-byte `<len>` allows.
 pub const MAX_PAYLOAD: usize = 255;
-/// The largest frame the one-byte length field allows; the decoder never buffers more.
+/// The largest frame the one-byte length field allows (ICD Table 1); the decoder never
+/// buffers more.
 pub const MAX_FRAME: usize = HEADER_LEN + MAX_PAYLOAD + 1;
 
 /// Major/minor command id pair (Table 2 bytes 3 and 4).
@@ -97,7 +98,7 @@ pub fn checksum(bytes: &[u8]) -> u8 {
     !bytes.iter().fold(0u8, |acc, b| acc ^ b)
 }
 
-/// The header fields a caller chooses; the sync bytes and length are implied.
+/// The header fields a caller chooses (ICD Table 2); the sync bytes and length are implied.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FrameHeader {
     /// Major and minor command id (Table 2 bytes 3 and 4).
@@ -111,7 +112,8 @@ pub struct FrameHeader {
     pub dst: Node,
 }
 
-/// A checked frame borrowed from a buffer: sync bytes, length and checksum are known good.
+/// A checked frame borrowed from a buffer: sync bytes, length and checksum are known good
+/// (ICD Table 1, §4.1.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FrameRef<'a> {
     bytes: &'a [u8],

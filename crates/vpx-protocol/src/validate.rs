@@ -48,7 +48,8 @@ use super::device::{
 };
 use super::message::*;
 
-/// Why a spec is refused: the SPEC_ACK code the unit sends, the payload field at fault
+/// Why a spec is refused: the SPEC_ACK code the unit sends (ICD Table 20), the payload
+/// field at fault
 /// (as named in our message types), and a sentence for a person.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Refusal {

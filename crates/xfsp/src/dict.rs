@@ -330,7 +330,7 @@ impl EcbState {
 pub struct EcbFlags(pub u8);
 
 impl EcbFlags {
-    /// The `involts` field carries a valid reading.
+    /// Table 20 `INPUTVOLTS` (%x01): the `involts` field carries a valid reading.
     pub const INPUTVOLTS: u8 = 0x01;
 
     /// Whether flag bit `bit` (one of the constants above) is set.

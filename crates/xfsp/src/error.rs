@@ -5,7 +5,8 @@
 
 use super::format::FormatId;
 
-/// An XFSp codec error. Parsing and emitting never panic; they return one of these.
+/// An XFSp codec error (§3 message and parameter formats). Parsing and emitting never
+/// panic; they return one of these.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 pub enum Error {
     /// Fewer than 12 bytes: not even a message header.
@@ -93,7 +94,7 @@ pub enum Error {
     },
 }
 
-/// How long a format's data must be.
+/// How long a format's data must be (the "Length:" line of each §3.3 format).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LengthRule {
     /// Exactly this many bytes.

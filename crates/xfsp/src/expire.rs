@@ -3,7 +3,7 @@
 
 use std::time::Duration;
 
-/// A parameter's time to live, as its wire octet.
+/// A parameter's time to live, as its wire octet (§3.2.2, reading note 4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Expire(pub u8);
 
@@ -15,10 +15,11 @@ impl Default for Expire {
 }
 
 impl Expire {
-    /// "The parameter does not expire."
+    /// %xFF: "the parameter does not expire" (§3.2.2).
     pub const NEVER: Expire = Expire(0xFF);
 
-    /// The lifetime in milliseconds, or `None` for [`Expire::NEVER`].
+    /// The lifetime in milliseconds, 3·(M+1)·10^(E+1) (§3.2.2), or `None` for
+    /// [`Expire::NEVER`].
     pub const fn millis(self) -> Option<u64> {
         if self.0 == 0xFF {
             return None;

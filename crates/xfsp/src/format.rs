@@ -76,7 +76,7 @@ impl FormatId {
     }
 }
 
-/// A parameter's data, typed by its format.
+/// A parameter's data, typed by its format (§3.3).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Value {
     /// BOOL, format 1 (§3.3.1, Table 6): a Table 7 boolean in 32 bits.

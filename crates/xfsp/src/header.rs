@@ -14,10 +14,10 @@
 pub use super::dict::{CertLevel, MsgClass, MsgOp, Tcid};
 use super::{cursor::Reader, error::Error};
 
-/// Size of the message header in bytes.
+/// Size of the message header in bytes (§3.1, reading note 1).
 pub const HEADER_LEN: usize = 12;
 
-/// The message header as it is on the wire, `len` included as received.
+/// The message header as it is on the wire (§3.1, Figure 1), `len` included as received.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Header {
     /// §3.1 `src id`: the sender's locally configured source id, unique on the network.

@@ -14,7 +14,7 @@
 
 use super::format::FormatId;
 
-/// A 20-bit parameter identifier.
+/// A 20-bit parameter identifier (§3.2 `Ident`, values in §3.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Ident(pub u32);
 

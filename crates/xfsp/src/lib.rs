@@ -9,7 +9,7 @@
 //! - [`message`]: a datagram = 12-byte [`header`] + parameters (or raw bytes);
 //!   [`MessageView`] reads in place, [`Message`] is the owned form.
 //! - [`param`]: 12-byte parameter header + data padded with zeros to 4 bytes.
-//! - [`format`]: the §3.3 attribute formats as [`Value`]; [`dict`]: the dictionaries.
+//! - [`format`](mod@format): the §3.3 attribute formats as [`Value`]; [`dict`]: the dictionaries.
 //! - [`idents`]: the §3.4 parameter table; [`expire`]: the Expire octet.
 //! - [`receiver`] (§4.4 ordering/duplicates) and [`sender`] (§4.1 numbering and
 //!   coalescing) hold the little state the protocol needs.
@@ -25,7 +25,7 @@
 //! - BUS: state, ecbflags, eleven i16, label (note 6); volts and amps in **tenths**.
 //! - Message numbers compare in RFC 1982 serial arithmetic (note 7).
 //! - Field sizes the tables leave implicit come from each format's stated length (see
-//!   [`format`]); `starray` (RANGE ticks, WBRANGE slices) is undefined and kept opaque.
+//!   [`format`](mod@format)); `starray` (RANGE ticks, WBRANGE slices) is undefined and kept opaque.
 //! - Certification level: the low three bits of both the header `flags` and `pflags`.
 //! - Classes other than MAINT and OP are carried as raw bytes.
 

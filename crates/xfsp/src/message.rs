@@ -14,7 +14,7 @@ use super::error::Error;
 use super::header::{HEADER_LEN, Header};
 use super::param::{ParamView, Parameter, Params};
 
-/// A datagram checked for framing and read in place (no allocation).
+/// A datagram checked for framing (§3.1, §3.2) and read in place (no allocation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MessageView<'a> {
     header: Header,
@@ -93,7 +93,7 @@ fn carries_params(class: MsgClass) -> bool {
     matches!(class, MsgClass::Maint | MsgClass::Op)
 }
 
-/// What follows the header.
+/// What follows the header (§3.1 `data`).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Body {
     /// Parameters (§3.2), for the MAINT and OP classes.
@@ -102,7 +102,7 @@ pub enum Body {
     Raw(Vec<u8>),
 }
 
-/// A whole message, owned and typed. `len` is not stored: it is computed on emit.
+/// A whole message (§3.1), owned and typed. `len` is not stored: it is computed on emit.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Message {
     /// §3.1 `src id`: the sender's source id, unique on the network.

@@ -19,19 +19,19 @@ use super::expire::Expire;
 use super::format::{FormatId, Value};
 use super::idents::Ident;
 
-/// Size of a parameter header.
+/// Size of a parameter header (§3.2, reading note 2).
 pub const PARAM_HEADER_LEN: usize = 12;
-/// Largest data length the 12-bit field can carry.
+/// Largest data length the 12-bit field can carry (§3.2 Parameter Data Len).
 pub const MAX_DATA_LEN: usize = 0xFFF;
-/// Largest ident the 20-bit field can carry.
+/// Largest ident the 20-bit field can carry (§3.2 Ident).
 pub const MAX_IDENT: u32 = 0xF_FFFF;
 
-/// `len` rounded up to a multiple of four.
+/// `len` rounded up to a multiple of four (§3.2: data is padded to 4 bytes).
 pub const fn padded_len(len: usize) -> usize {
     len.div_ceil(4) * 4
 }
 
-/// A parameter header as on the wire.
+/// A parameter header as on the wire (§3.2, Figure 2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ParamHeader {
     /// §3.2 `Unit`: which unit the parameter applies to, if appropriate (e.g. engine #1).
@@ -113,7 +113,7 @@ impl ParamHeader {
     }
 }
 
-/// A parameter read in place: its header and its unpadded data.
+/// A parameter read in place (§3.2): its header and its unpadded data.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ParamView<'a> {
     /// The parameter header (§3.2).

@@ -27,12 +27,13 @@ use super::message::MessageView;
 /// enough that a flood of forged source ids costs a few kilobytes.
 pub const DEFAULT_MAX_SOURCES: usize = 256;
 
-/// Whether `n` comes after `last` in 16-bit serial-number arithmetic.
+/// Whether `n` comes after `last` in 16-bit serial-number arithmetic (RFC 1982, reading
+/// note 7).
 pub fn serial_newer(n: u16, last: u16) -> bool {
     (1..=32767).contains(&n.wrapping_sub(last))
 }
 
-/// What to do with a message number from a known or unknown source.
+/// What to do with a message number from a known or unknown source (§2, §4.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Verdict {
     /// Process it.
@@ -43,7 +44,7 @@ pub enum Verdict {
     OutOfOrder,
 }
 
-/// The result of offering a datagram to the receiver.
+/// The result of offering a datagram to the receiver (§4.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Received<'a> {
     /// Newer than every message processed from its source (§2, §4.4, reading note 7):
@@ -83,7 +84,7 @@ struct Source {
     touched: u64,
 }
 
-/// Per-source ordering and duplicate suppression.
+/// Per-source ordering and duplicate suppression (§2, §4.4).
 #[derive(Debug, Clone)]
 pub struct Receiver {
     sources: HashMap<u16, Source>,

@@ -16,7 +16,7 @@ pub const MAX_PARAM_BYTES_V4: usize = 1460;
 /// The same on IPv6 (40-byte IP header).
 pub const MAX_PARAM_BYTES_V6: usize = 1440;
 
-/// The header fields shared by every datagram of one batch.
+/// The §3.1 header fields shared by every datagram of one batch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MsgKind {
     /// §3.1 `msg class` (Table 1).
@@ -41,7 +41,7 @@ impl MsgKind {
     }
 }
 
-/// Numbers and packs outgoing messages for one source id.
+/// Numbers and packs outgoing messages for one source id (§4.1).
 #[derive(Debug, Clone)]
 pub struct Sender {
     src_id: u16,

@@ -65,7 +65,7 @@ pub trait Payload: Sized {
     }
 }
 
-/// A payload on the stack: no message is longer than 255 bytes.
+/// A payload on the stack: no message is longer than 255 bytes (ICD Table 1, `<len>`).
 #[derive(Clone, Copy)]
 pub struct PayloadBuf {
     buf: [u8; MAX_PAYLOAD],
@@ -292,7 +292,7 @@ messages!(
     ExternalData,
 );
 
-/// A message with its frame header: what travels on the wire.
+/// A message with its frame header: what travels on the wire (ICD Table 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Packet {
     /// Command number (ICD Table 2 byte 5): the EFIS's choice on a request, echoed in the
@@ -368,5 +368,5 @@ impl Packet {
     }
 }
 
-/// Smallest possible frame: header and checksum with no payload.
+/// Smallest possible frame: header and checksum with no payload (ICD Table 1).
 pub const MIN_FRAME: usize = HEADER_LEN + 1;

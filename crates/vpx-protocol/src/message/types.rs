@@ -241,7 +241,8 @@ impl SwitchId {
     }
 }
 
-/// A quantity the ICD sends in tenths (amps, volts, seconds), unsigned.
+/// A quantity the ICD sends in tenths (amps, volts, seconds), unsigned: e.g. ICD Table 24
+/// bytes 1–2, Table 26 currents, Table 16 endpoint duration.
 #[derive(
     Debug,
     Clone,
@@ -264,7 +265,7 @@ impl Tenths {
     }
 }
 
-/// A quantity the ICD sends in tenths, signed (main bus volts).
+/// A quantity the ICD sends in tenths, signed (main bus volts, ICD Table 24 bytes 3–4).
 #[derive(
     Debug,
     Clone,

@@ -13,13 +13,15 @@
 use crate::cursor::Reader;
 use crate::dict::{EcbFlags, EcbState};
 
-/// Bytes before the label.
+/// Bytes before the label (§3.3.7: "length(data) + 24", reading note 6).
 pub const BUS_FIXED_LEN: usize = 24;
 
-/// Wire units per volt and per amp: every BUS volts/amps field is in tenths.
+/// Wire units per volt and per amp: every BUS volts/amps field is in tenths (the draft
+/// names no scale; reading note 6 asks us to choose one).
 pub const BUS_SCALE: f32 = 10.0;
 
-/// A BUS value. Volts and amps fields are in tenths (see [`BUS_SCALE`]).
+/// A BUS value (§3.3.7, Table 18). Volts and amps fields are in tenths (see
+/// [`BUS_SCALE`]).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Bus {
     /// Table 18 `state`: the bus's state in terms of an ECB (Table 19).

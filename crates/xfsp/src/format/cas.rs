@@ -10,7 +10,7 @@ use crate::format::latin1_bytes;
 
 pub(crate) const FIXED_LEN: usize = 4;
 
-/// A CASMSG value.
+/// A CASMSG value (§3.3.5, Table 14).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CasMsg {
     /// Table 14 `level`: the CAS level or checklist item kind (Table 15).

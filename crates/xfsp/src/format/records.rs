@@ -24,7 +24,7 @@ fn puti32(out: &mut Vec<u8>, v: i32) {
     out.extend_from_slice(&v.to_be_bytes());
 }
 
-/// RANGE (format 11): display range description, e.g. for AOAR.
+/// RANGE (format 11, §3.3.8, Table 21): display range description, e.g. for AOAR.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Range {
     /// Table 21 `numticks`: how many valid ticks are in the parameter data.
@@ -76,7 +76,7 @@ impl Range {
     }
 }
 
-/// GPIO (format 12): I/O module summary.
+/// GPIO (format 12, §3.3.9, Table 23): I/O module summary.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Gpio {
     /// Eight 4-bit feature codes.
@@ -107,7 +107,7 @@ impl Gpio {
     }
 }
 
-/// APP (format 13): application status, for APPSTAT.
+/// APP (format 13, §3.3.10, Table 24): application status, for APPSTAT.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct App {
     /// Table 24 `state`: the application's state (Table 25, scb-state).
@@ -186,7 +186,7 @@ impl App {
     }
 }
 
-/// WBRANGE (format 14): weight-and-balance envelope.
+/// WBRANGE (format 14, §3.3.11, Table 26): weight-and-balance envelope.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct WbRange {
     /// Table 26 `flags`: flags, if any.
@@ -225,7 +225,7 @@ impl WbRange {
     }
 }
 
-/// UPDATE (format 15): software update progress.
+/// UPDATE (format 15, §3.3.12, Table 27): software update progress.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Update {
     /// Table 27 `aircraftid`: aircraft identifier, 16 octets.
@@ -260,7 +260,7 @@ impl Update {
     }
 }
 
-/// SERVO (format 16): a servo position with engagement flags.
+/// SERVO (format 16, §3.3.13, Table 29): a servo position with engagement flags.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Servo {
     /// Table 29 `servopos`: the servo position (the draft leaves it undefined).
@@ -283,7 +283,7 @@ impl Servo {
     }
 }
 
-/// DBASE (format 17): active database information.
+/// DBASE (format 17, §3.3.14, Table 31): active database information.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct DBase {
     /// Table 31 `crc`: a 32-bit CRC (the draft leaves it undefined).

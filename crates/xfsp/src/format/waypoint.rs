@@ -7,7 +7,7 @@ use crate::dict::{FmsContainer, FmsFlags, FmsWaypoint};
 
 pub(crate) const LEN: usize = 80;
 
-/// A WAYPOINT value.
+/// A WAYPOINT value (§3.3.3, Table 9).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Waypoint {
     /// Name, NUL padded.
