@@ -1,12 +1,4 @@
-//! The VP-X wire format (ICD v2.1) and nothing else: frames, checksum, the streaming
-//! decoder, typed messages, the device table, fault codes, defaults and the §6.2
-//! configuration rules. Pure and free of I/O, so everything else can trust it.
-//!
-//! Modelled on smoltcp's `wire` module: one typed representation per message with a
-//! `parse` that never panics and an [`Error`] that says what was wrong.
-//!
-//! Where the ICD contradicts itself we follow `READING-NOTES.md`; each place says so.
-
+#![doc = include_str!("../README.md")]
 #![warn(missing_docs)]
 
 pub mod bootloader;
