@@ -30,7 +30,8 @@
 //! * **Jump byte other than 0** ("always 0 for the VP-X") is taken as "not a frame"
 //!   and the decoder resyncs past it.
 
-use std::fmt;
+use alloc::{format, string::String, vec, vec::Vec};
+use core::fmt;
 
 /// Bootloader frame start (ICD Table 35).
 pub const HEADER: [u8; 2] = [0x69, 0x96];
@@ -235,7 +236,7 @@ impl BootCommand {
                 p.extend(
                     data.iter()
                         .copied()
-                        .chain(std::iter::repeat(0xFF))
+                        .chain(core::iter::repeat(0xFF))
                         .take(PAGE_SIZE),
                 );
                 p

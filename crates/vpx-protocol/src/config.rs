@@ -43,7 +43,7 @@ impl Default for UnitConfig {
             roll_trim: defaults::trim_spec(TrimType::Roll),
             wig_wag: defaults::wig_wag_spec(),
             names: [[0; 16]; DEVICE_COUNT],
-            enabled: std::array::from_fn(|i| enable_flag_allowed(i as u8)),
+            enabled: core::array::from_fn(|i| enable_flag_allowed(i as u8)),
         }
     }
 }

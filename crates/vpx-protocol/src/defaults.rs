@@ -35,7 +35,7 @@ pub fn device_spec(device_id: u8) -> DeviceSpec {
 
 /// Table 44 defaults for every device id, indexed by id.
 pub fn device_specs() -> [DeviceSpec; DEVICE_COUNT] {
-    std::array::from_fn(|i| device_spec(i as u8))
+    core::array::from_fn(|i| device_spec(i as u8))
 }
 
 /// SYSTEM_SPEC after EEPROM_ERASE (ICD Table 44): 16 V overvoltage limit, no secondary

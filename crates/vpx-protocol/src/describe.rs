@@ -6,6 +6,12 @@
 //! JSON numbers in real units are computed from the integer on the wire as `f64`
 //! (`138 / 10.0`), never through `f32`, so `13.8` prints as `13.8`.
 
+use alloc::{
+    format,
+    string::{String, ToString},
+    vec::Vec,
+};
+
 use serde_json::{Value, json};
 
 use super::device::{DEVICE_COUNT, SYSTEM_FAULT_ID, SYSTEM_SPEC_ID, WIG_WAG_SPEC_ID, device};

@@ -19,8 +19,8 @@ impl LenRule {
     }
 }
 
-impl std::fmt::Display for LenRule {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl core::fmt::Display for LenRule {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             LenRule::Exact(n) => write!(f, "{n}"),
             LenRule::Between(lo, hi) => write!(f, "{lo} to {hi}"),
@@ -82,4 +82,4 @@ pub enum Error {
 }
 
 /// A result with this crate's [`Error`].
-pub type Result<T> = std::result::Result<T, Error>;
+pub type Result<T> = core::result::Result<T, Error>;

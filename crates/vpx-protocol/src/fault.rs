@@ -1,5 +1,10 @@
 //! System fault codes, ICD Appendix E (Table 43).
 
+use alloc::{
+    format,
+    string::{String, ToString},
+};
+
 /// A device or motor fault code (ICD Table 43). Reserved and unlisted codes are kept.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum FaultCode {

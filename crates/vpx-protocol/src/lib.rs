@@ -1,5 +1,9 @@
 #![doc = include_str!("../README.md")]
+#![cfg_attr(not(any(feature = "std", test)), no_std)]
 #![warn(missing_docs)]
+
+// The crate uses only `core` and `alloc` (strings, vectors), with or without `std`.
+extern crate alloc;
 
 pub mod bootloader;
 pub mod config;

@@ -39,7 +39,9 @@
 //! * **DEVICE_NAME** bytes are "0–255" (Table 21), so any byte is accepted; only the
 //!   device id (0–30) is judged.
 
-use std::fmt;
+use alloc::{format, string::String, vec::Vec};
+
+use core::fmt;
 
 use super::config::UnitConfig;
 use super::device::{
@@ -352,7 +354,7 @@ pub fn check_system_spec(cfg: &UnitConfig, spec: &SystemSpec) -> Result<(), Refu
 
 /// Trim power is 40–90 % (ICD Table 15); 100 is the factory value (Table 44, reading
 /// note 16) and accepted too.
-pub const TRIM_POWER_RANGE: std::ops::RangeInclusive<u8> = 40..=90;
+pub const TRIM_POWER_RANGE: core::ops::RangeInclusive<u8> = 40..=90;
 /// What a unit fresh from EEPROM_ERASE reports for trim power (ICD Table 44, reading note
 /// 16).
 pub const TRIM_POWER_FACTORY: u8 = 100;
@@ -407,7 +409,7 @@ pub fn check_trim_spec(_cfg: &UnitConfig, spec: &TrimSpec) -> Result<(), Refusal
 // ---------------------------------------------------------------- FLAP_SPEC
 
 /// FLAP_SPEC circuit breaker range, whole amps (ICD Table 16, byte 6).
-pub const FLAP_BREAKER_RANGE: std::ops::RangeInclusive<u8> = 1..=10;
+pub const FLAP_BREAKER_RANGE: core::ops::RangeInclusive<u8> = 1..=10;
 /// Highest FLAP_SPEC max speed (ICD Table 16, bytes 8–9: 0–500).
 pub const FLAP_MAX_SPEED_MAX: u16 = 500;
 /// Tenths of a second (reading note 23).
@@ -479,7 +481,7 @@ pub fn check_flap_spec(_cfg: &UnitConfig, spec: &FlapSpec) -> Result<(), Refusal
 // ---------------------------------------------------------------- WIG_WAG_SPEC
 
 /// WIG_WAG_SPEC warm-up period, seconds (ICD Table 17, byte 3).
-pub const WIG_WAG_WARM_UP_RANGE: std::ops::RangeInclusive<u8> = 5..=60;
+pub const WIG_WAG_WARM_UP_RANGE: core::ops::RangeInclusive<u8> = 5..=60;
 /// Highest WIG_WAG_SPEC speed (ICD Table 17, byte 4: 0–200).
 pub const WIG_WAG_SPEED_MAX: u8 = 200;
 

@@ -1,5 +1,7 @@
 //! Device (configuration) messages, ICD §6.2 (major 0x11).
 
+use alloc::string::String;
+
 use super::types::{
     EnableFlag, FlapMode, OvervoltageLimit, Polarity, SpecAckError, SwitchId, Tenths, TrimType,
 };

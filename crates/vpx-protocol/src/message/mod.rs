@@ -26,6 +26,8 @@ pub use status::{
 pub use system::{EepromErase, Ping, SoftwareUpdate, Version};
 pub use types::*;
 
+use alloc::vec::Vec;
+
 use super::error::{Error, LenRule, Result};
 use super::frame::{
     FrameHeader, FrameRef, HEADER_LEN, MAX_FRAME, MAX_PAYLOAD, MessageId, Node, emit_frame,
@@ -79,15 +81,15 @@ impl PayloadBuf {
     }
 }
 
-impl std::ops::Deref for PayloadBuf {
+impl core::ops::Deref for PayloadBuf {
     type Target = [u8];
     fn deref(&self) -> &[u8] {
         self.as_slice()
     }
 }
 
-impl std::fmt::Debug for PayloadBuf {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl core::fmt::Debug for PayloadBuf {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         write!(f, "{:02X?}", self.as_slice())
     }
 }

@@ -1,6 +1,8 @@
 //! Enumerations shared by several messages. Each keeps a value it does not know in
 //! `Unknown(u8)`, so nothing a unit sends is lost or misread.
 
+use alloc::{format, string::String};
+
 macro_rules! byte_enum {
     ($(#[$m:meta])* $name:ident { $($(#[$vm:meta])* $v:ident = $n:expr),+ $(,)? }) => {
         $(#[$m])*
