@@ -817,10 +817,7 @@ fn max_run(secs: f64) -> anyhow::Result<Duration> {
     Ok(Duration::from_secs_f64(secs))
 }
 
-/// The range `--repeat-delay` accepts, in milliseconds. Below 300 ms no desktop
-/// repeats (and a real first repeat would be taken for a fresh press); above 1.5 s a
-/// tap would run a motor for longer than anyone means to nudge it.
-pub const REPEAT_DELAY_MS: (u64, u64) = (300, 1500);
+use crate::settings::values::REPEAT_DELAY_MS;
 
 /// `--repeat-delay`: refused in words outside [`REPEAT_DELAY_MS`].
 fn repeat_delay(ms: u64) -> anyhow::Result<Duration> {

@@ -9,6 +9,7 @@ use clap::parser::ValueSource;
 use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 
 use crate::link::PortAddr;
+use crate::program::{UsageError, VERSION, exit};
 use crate::settings::{self, BAUD_ENV, Origin, PORT_ENV, Setting, values};
 use crate::ui::palette::Requested;
 
@@ -25,9 +26,6 @@ pub struct Cli {
     #[command(flatten)]
     pub page: PageArgs,
 }
-
-/// `--version`: ours, and the git commit when built from a checkout (see build.rs).
-pub const VERSION: &str = env!("VPX_EFIS_VERSION");
 
 #[derive(Debug, Clone, Args)]
 pub struct PortArgs {
@@ -352,21 +350,6 @@ pub struct CompletionsArgs {
 }
 
 /// A refusal of the command line or the config file: nothing was opened. Exit code 2.
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct UsageError(pub String);
-
-/// Exit codes (also in the README).
-pub mod exit {
-    /// Done.
-    pub const OK: u8 = 0;
-    /// It went wrong at run time: the port, the unit, a file, the network.
-    pub const FAILURE: u8 = 1;
-    /// The command line or the config file was refused; nothing was opened (clap also
-    /// exits 2 for a usage error).
-    pub const USAGE: u8 = 2;
-}
-
 /// One effective setting for `vpx-efis config`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Effective {

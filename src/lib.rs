@@ -1,12 +1,26 @@
 //! vpx-efis: a terminal EFIS electrical page for the Vertical Power VP-X.
 //!
-//! The data flows one way through the modules:
-//! `protocol` (wire format, pure) → `link` (bytes in and out) → `model` (what we know,
-//! with timestamps) → `ui` (pure rendering), `control` (keys become commands), and the flows beside
-//! it: `setup` (the setup screens' writes and re-reads) on `exchange` (request,
-//! answer, retry and re-read on the caller's clock).
-//! `sim` is a second, independent implementation of the device side; `xfsp` bridges
-//! the model onto the XFSp avionics network; `app` wires everything together.
+//! The data flows one way through the modules, lowest layer first; a module imports
+//! its own layer and those below, never one above (`tests/layers.rs` holds this):
+//!
+//! 1. The codecs, crates of their own: [`protocol`] (`crates/vpx-protocol`, the VP-X
+//!    ICD) and the XFSp wire format (`crates/xfsp`, re-exported in [`xfsp`]); beside
+//!    them the small pure helpers [`program`] (version, usage error, exit codes),
+//!    [`utc`], [`files`] (every file the program writes), [`toml_lines`] and
+//!    [`platform`].
+//! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files) and
+//!    [`traffic`] (every frame, for the traffic view).
+//! 3. What we know: [`model`] (every fact with its time; staleness decided here), and
+//!    [`sim`], the virtual VP-X (sans-IO: bytes in, bytes out, the caller's clock).
+//! 4. Intent into commands: [`control`] (keys and runs under the safety rules, the
+//!    motor streamer) and [`exchange`] (request, answer, retry on the caller's clock).
+//! 5. Flows and maintenance: [`check`] (the installation check), [`setup`] (the setup
+//!    screens' writes), [`loads`] (the load analysis), [`backup`], [`flash`],
+//!    [`xfsp`] (the gateway onto the XFSp network) and [`settings`] (flags, environment
+//!    and config file).
+//! 6. [`ui`]: drawing, a pure function of the model, the controller and the flows.
+//! 7. [`app`]: wires the page together; [`cmd`]: one file per subcommand; [`cli`]: the
+//!    command line, on top.
 
 pub mod app;
 pub mod backup;
@@ -21,6 +35,7 @@ pub mod link;
 pub mod loads;
 pub mod model;
 pub mod platform;
+pub mod program;
 pub mod settings;
 pub mod setup;
 pub mod sim;

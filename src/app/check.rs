@@ -187,7 +187,7 @@ impl App {
                 .unwrap_or_else(std::time::SystemTime::now),
             port,
             unit,
-            ours: crate::cli::VERSION.to_string(),
+            ours: crate::program::VERSION.to_string(),
             travel,
         };
         let written = crate::check::report::write(&dir, &self.check.view, &about);
@@ -534,7 +534,7 @@ fn headless_loop(
             .iter()
             .map(|c| format!("{} ({})", c.name, c.pin))
             .collect();
-        return Err(crate::cli::UsageError(format!(
+        return Err(crate::program::UsageError(format!(
             "--exclude {}: no circuit has that name or pin; the unit's circuits are: {}",
             unmatched.join(", "),
             names.join(", ")

@@ -34,7 +34,7 @@ impl Made {
             at: crate::utc::utc_text(SystemTime::now()),
             from: from.to_string(),
             simulated,
-            by: format!("vpx-efis {}", crate::cli::VERSION),
+            by: format!("vpx-efis {}", crate::program::VERSION),
         }
     }
 }

@@ -5,7 +5,8 @@
 
 use crate::app::{CheckEnd, HeadlessCheck, run_headless};
 use crate::check::{Choices, Options};
-use crate::cli::{CheckArgs, UsageError};
+use crate::cli::CheckArgs;
+use crate::program::UsageError;
 use crate::ui::check::state::Step;
 
 /// How the check ended, carried to `main` for the exit status; its text is the

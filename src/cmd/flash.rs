@@ -33,7 +33,7 @@ use crate::protocol::bootloader::PAGE_SIZE;
 
 pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     let Some(port_path) = args.port.port.clone() else {
-        return Err(crate::cli::UsageError(
+        return Err(crate::program::UsageError(
             "flash needs the unit's port: --port PATH or tcp://HOST:PORT, VPX_EFIS_PORT, or `port` in \
              the config file (`vpx-efis ports` lists serial ports). To try it on the virtual VP-X, run \
              `vpx-efis sim --pty` (or `vpx-efis sim --tcp 127.0.0.1:0`) and pass what it prints as --port"

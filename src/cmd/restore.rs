@@ -21,10 +21,11 @@ use std::io::{BufRead, IsTerminal, Write};
 use anyhow::{Context, bail};
 
 use crate::backup::{self, Step, normalized};
-use crate::cli::{RestoreArgs, UsageError};
+use crate::cli::RestoreArgs;
 use crate::cmd::backup::{connect, progress_bar, read_with_progress};
 use crate::link::request::{DEFAULT_TIMEOUT, DEFAULT_TRIES};
 use crate::link::{SpecError, UnitClient};
+use crate::program::UsageError;
 use crate::protocol::config::UnitConfig;
 use crate::protocol::message::Message;
 use crate::protocol::validate;

@@ -12,8 +12,9 @@ use std::net::TcpListener;
 
 use anyhow::Context;
 
-use crate::cli::{SimArgs, UsageError};
+use crate::cli::SimArgs;
 use crate::link::{PortAddr, open_pty_unit, serve_line};
+use crate::program::UsageError;
 use crate::sim::console::{self, ConsoleLine};
 use crate::sim::{self, SimOptions};
 

@@ -22,15 +22,16 @@ pub mod commands;
 pub mod endpoints;
 pub mod keymap;
 pub mod release;
+pub mod run_state;
 pub mod streamer;
 
 use std::time::{Duration, Instant};
 
 use crossterm::event::KeyEvent;
 
+use self::run_state::{MotorRun, ReleaseMode, RepeatTiming};
 use crate::model::{Model, Motor};
 use crate::protocol::message::Packet;
-use crate::ui::state::{MotorRun, ReleaseMode, RepeatTiming};
 
 pub use commands::{Refusal, command, device_power, motor_check, motor_permit, put_back_off};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};

@@ -1,8 +1,8 @@
 //! How the page learns that a motor key was let go: the one place that decides it
 //! from the operating system and the terminal.
 
+use super::run_state::ReleaseMode;
 use crate::platform::Os;
-use crate::ui::state::ReleaseMode;
 
 /// Key-release mode where key releases are reported, auto-repeat mode elsewhere.
 ///

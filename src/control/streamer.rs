@@ -24,10 +24,10 @@
 
 use std::time::{Duration, Instant};
 
+use super::run_state::{MotorRun, ReleaseMode, RepeatTiming};
 use crate::model::{Motor, TrimKind};
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{FlapDirection, FlapMove, Packet, TrimDirection, TrimMove};
-use crate::ui::state::{MotorRun, ReleaseMode, RepeatTiming};
 
 /// Reading note 19: the longest gap the unit tolerates between move messages.
 pub const MAX_WIRE_INTERVAL: Duration = Duration::from_millis(250);

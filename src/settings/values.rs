@@ -67,8 +67,20 @@ pub fn xfsp_target(text: &str) -> Result<String, String> {
     Ok(text.trim().to_string())
 }
 
-/// The page's colours, as `--theme` takes them (see [`crate::ui::palette`]).
-pub use crate::ui::palette::Requested as Theme;
+/// The page's colours, as `--theme` asks for them; [`crate::ui::palette`] decides the
+/// palette from this and the terminal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Theme {
+    /// Light or dark, from the terminal's background (mono under NO_COLOR).
+    #[default]
+    Auto,
+    Dark,
+    Light,
+    /// No colour: meaning in words and marks alone.
+    Mono,
+    /// The terminal's own sixteen colours.
+    Terminal,
+}
 
 /// Each theme and its word, as `--theme` spells it.
 pub const THEMES: [(&str, Theme); 5] = [
@@ -99,8 +111,10 @@ pub fn theme(text: &str) -> Result<Theme, String> {
         })
 }
 
-/// The range of a key repeat delay, in milliseconds: the page's `--repeat-delay`'s.
-pub use crate::app::REPEAT_DELAY_MS;
+/// The range `--repeat-delay` accepts, in milliseconds. Below 300 ms no desktop
+/// repeats (and a real first repeat would be taken for a fresh press); above 1.5 s a
+/// tap would run a motor for longer than anyone means to nudge it.
+pub const REPEAT_DELAY_MS: (u64, u64) = (300, 1500);
 
 /// A key repeat delay in milliseconds.
 pub fn repeat_delay_ms(text: &str) -> Result<u64, String> {

@@ -190,16 +190,8 @@ pub struct ThemeChoice {
     pub why: Why,
 }
 
-/// What `--theme` asked for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Requested {
-    #[default]
-    Auto,
-    Dark,
-    Light,
-    Mono,
-    Terminal,
-}
+/// What `--theme` asked for: a setting, so it is the settings' own type.
+pub use crate::settings::values::Theme as Requested;
 
 impl ThemeChoice {
     /// Decides the palette. `background` is asked only when the terminal's colour

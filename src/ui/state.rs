@@ -1,10 +1,6 @@
 //! What the person is looking at: selection, sort order, overlays. Owned by the app,
 //! changed by the app in answer to control's actions, read by the widgets.
 
-use std::time::Duration;
-
-use crate::model::Motor;
-
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SortOrder {
     /// By pin (device id), flaps and trims grouped apart.
@@ -35,38 +31,8 @@ pub enum Overlay {
     Help,
 }
 
-/// How the page knows a motor key was let go (shown on screen).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum ReleaseMode {
-    /// The terminal reports key release (keyboard enhancement).
-    KeyRelease,
-    /// The terminal only repeats presses; a run ends when repeats stop.
-    #[default]
-    AutoRepeat,
-}
-
-/// How the page judges a held motor key in auto-repeat mode, for the screen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct RepeatTiming {
-    /// How long after a fresh press the first repeat may take (a tap runs this long
-    /// at most).
-    pub first_window: Duration,
-    /// Measured from this terminal's own repeats, once a hold has shown them.
-    pub delay: Option<Duration>,
-    pub interval: Option<Duration>,
-    /// How long after the last repeat a run ends.
-    pub end_gap: Duration,
-    /// `first_window` was set by hand (`--repeat-delay`).
-    pub set_by_hand: bool,
-}
-
-/// The motor stream the page is sending right now, for display.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct MotorRun {
-    pub motor: Motor,
-    /// "up", "down", "left", "right".
-    pub direction: &'static str,
-}
+/// The controller's own state, drawn from here.
+pub use crate::control::run_state::{MotorRun, ReleaseMode, RepeatTiming};
 
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct ViewState {

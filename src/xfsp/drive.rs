@@ -33,12 +33,12 @@
 use std::time::{Duration, Instant};
 
 use crate::control::endpoints::{self, Watch};
+use crate::control::run_state::ReleaseMode;
 use crate::control::{
     Direction, MotorStreamer, StopReason, StreamerConfig, motor_check, motor_permit,
 };
 use crate::model::{LogLevel, Model, Motor, TrimKind};
 use crate::protocol::message::Packet;
-use crate::ui::state::ReleaseMode;
 
 use super::scale::Axis;
 

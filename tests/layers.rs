@@ -1,0 +1,341 @@
+//! The layers of DEVELOPERS' guide, held by a test: the program's top-level modules
+//! import only downward, and no two of them import each other, directly or round a
+//! circle. It reads `src/` as text (every `crate::x` path, `use crate::{a, b}` groups
+//! included, comments left out) and names the file and line of each import it refuses.
+//!
+//! Imports that break the rule today are listed in [`DEBT`], each once, so that the
+//! list can only shrink: a new one fails the test with its file and line, and one that
+//! has been mended fails it too until its line in the list goes (issue 23, item 6).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// The layers, lowest first. A module may import its own layer's modules and those
+/// below it; never one above. The two codecs are crates of their own
+/// (`crates/vpx-protocol`, `crates/xfsp`), below everything here.
+const LAYERS: &[(&str, &[&str])] = &[
+    (
+        "leaves: the codecs' re-exports and the small pure helpers",
+        &["protocol", "program", "utc", "files", "toml_lines", "platform"],
+    ),
+    ("bytes in and out", &["link", "traffic"]),
+    ("what we know, and the virtual unit", &["model", "sim"]),
+    (
+        "intent into commands under the safety rules",
+        &["control", "exchange"],
+    ),
+    (
+        "flows and maintenance",
+        &[
+            "check", "setup", "loads", "backup", "flash", "xfsp", "settings",
+        ],
+    ),
+    ("drawing", &["ui"]),
+    ("wiring", &["app"]),
+    ("one file per subcommand", &["cmd"]),
+    ("the command line", &["cli"]),
+];
+
+/// Imports that break the layering today, as `from -> to`. Mend one, then remove
+/// its line here.
+const DEBT: &[&str] = &[
+    // The flows draw their own view-models (ui::check::state, ui::setup::state).
+    "check -> ui",
+    "setup -> ui",
+    // Each subcommand takes its clap Args from cli, instead of owning them.
+    "cmd -> cli",
+    // control::keymap reads the view (ViewState, Overlay) and the help's key list.
+    "control -> ui",
+    // Closed by control -> ui: xfsp -> control -> ui -> settings -> xfsp.
+    "settings -> xfsp",
+    // traffic's expected rates use the model's staleness; the model holds the log.
+    "traffic -> model",
+];
+
+/// One import of another top-level module: where it is, and what it names.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+struct Import {
+    from: String,
+    to: String,
+    file: String,
+    line: usize,
+}
+
+fn layer_of(module: &str) -> Option<usize> {
+    LAYERS
+        .iter()
+        .position(|(_, modules)| modules.contains(&module))
+}
+
+/// The top-level module a file under `src/` belongs to (`app.rs` and `app/…` are `app`).
+fn top_module(rel: &Path) -> Option<String> {
+    let first = rel.components().next()?.as_os_str().to_str()?;
+    let name = first.strip_suffix(".rs").unwrap_or(first);
+    (name != "lib" && name != "main").then(|| name.to_owned())
+}
+
+/// Source text with comments blanked (kept the same length, so offsets give lines).
+fn without_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut chars = text.chars().peekable();
+    let (mut in_line, mut in_block, mut in_str) = (false, 0usize, false);
+    while let Some(c) = chars.next() {
+        if in_line {
+            if c == '\n' {
+                in_line = false;
+                out.push('\n');
+            } else {
+                out.push(' ');
+            }
+        } else if in_block > 0 {
+            if c == '*' && chars.peek() == Some(&'/') {
+                chars.next();
+                in_block -= 1;
+                out.push_str("  ");
+            } else {
+                out.push(if c == '\n' { '\n' } else { ' ' });
+            }
+        } else if in_str {
+            if c == '\\' {
+                out.push(' ');
+                if let Some(n) = chars.next() {
+                    out.push(if n == '\n' { '\n' } else { ' ' });
+                }
+            } else {
+                if c == '"' {
+                    in_str = false;
+                }
+                out.push(if c == '\n' { '\n' } else { ' ' });
+            }
+        } else if c == '/' && chars.peek() == Some(&'/') {
+            in_line = true;
+            out.push(' ');
+        } else if c == '/' && chars.peek() == Some(&'*') {
+            chars.next();
+            in_block += 1;
+            out.push_str("  ");
+        } else if c == '"' {
+            in_str = true;
+            out.push(' ');
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// The top-level modules a text names through `crate::`, with the byte offset of each.
+fn crate_paths(code: &str) -> Vec<(usize, String)> {
+    let mut found = Vec::new();
+    let bytes = code.as_bytes();
+    let mut at = 0;
+    while let Some(i) = code[at..].find("crate::") {
+        let start = at + i;
+        at = start + "crate::".len();
+        // `$crate::` and `foo_crate::` are not ours.
+        if start > 0 {
+            let before = bytes[start - 1];
+            if before == b'$' || before.is_ascii_alphanumeric() || before == b'_' {
+                continue;
+            }
+        }
+        if bytes.get(at) == Some(&b'{') {
+            // A group: the first name of each of its items (`a::b`, `c`, `d::{e, f}`).
+            let mut depth = 0usize;
+            let mut item_start = at + 1;
+            for (j, &b) in bytes.iter().enumerate().skip(at) {
+                match b {
+                    b'{' => depth += 1,
+                    b'}' | b',' if depth == 1 => {
+                        let item = &code[item_start..j];
+                        let lead = item.len() - item.trim_start().len();
+                        let name: String = item
+                            .trim_start()
+                            .chars()
+                            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                            .collect();
+                        if !name.is_empty() {
+                            found.push((item_start + lead, name));
+                        }
+                        item_start = j + 1;
+                        if b == b'}' {
+                            break;
+                        }
+                    }
+                    b'}' => depth -= 1,
+                    _ => {}
+                }
+            }
+        } else {
+            let name: String = code[at..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            found.push((start, name));
+        }
+    }
+    found
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let mut entries: Vec<_> = fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.expect("directory entry").path())
+        .collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// Every import of one top-level module by another, under `src`.
+fn imports(src: &Path) -> Vec<Import> {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let mut out = Vec::new();
+    for path in files {
+        let rel = path.strip_prefix(src).expect("under src");
+        let Some(from) = top_module(rel) else {
+            continue;
+        };
+        let text = fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let code = without_comments(&text);
+        for (offset, to) in crate_paths(&code) {
+            if to == from || layer_of(&to).is_none() {
+                continue;
+            }
+            let line = code[..offset].matches('\n').count() + 1;
+            out.push(Import {
+                from: from.clone(),
+                to,
+                file: format!("src/{}", rel.display()),
+                line,
+            });
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// The imports that break the rule: upward, or round a circle between modules of one layer.
+fn breaches(imports: &[Import]) -> BTreeMap<String, Vec<Import>> {
+    let mut graph: BTreeMap<&str, BTreeSet<&str>> = BTreeMap::new();
+    for i in imports {
+        graph.entry(&i.from).or_default().insert(&i.to);
+    }
+    let reaches = |a: &str, b: &str| -> bool {
+        let mut seen = BTreeSet::new();
+        let mut todo = vec![a];
+        while let Some(m) = todo.pop() {
+            if m == b {
+                return true;
+            }
+            if seen.insert(m) {
+                todo.extend(graph.get(m).into_iter().flatten().copied());
+            }
+        }
+        false
+    };
+    let mut out: BTreeMap<String, Vec<Import>> = BTreeMap::new();
+    for i in imports {
+        let (Some(lf), Some(lt)) = (layer_of(&i.from), layer_of(&i.to)) else {
+            continue;
+        };
+        // A circle through another layer has an upward import in it, named as such.
+        if lt > lf || (lt == lf && reaches(&i.to, &i.from)) {
+            out.entry(format!("{} -> {}", i.from, i.to))
+                .or_default()
+                .push(i.clone());
+        }
+    }
+    out
+}
+
+fn report(found: &BTreeMap<String, Vec<Import>>, keys: &[&String]) -> String {
+    let mut s = String::new();
+    for k in keys {
+        for i in &found[*k] {
+            let why = if layer_of(&i.to) > layer_of(&i.from) {
+                "imports a higher layer"
+            } else {
+                "closes a circle"
+            };
+            s.push_str(&format!("  {}:{}: {} ({why})\n", i.file, i.line, k));
+        }
+    }
+    s
+}
+
+#[test]
+fn every_top_level_module_has_a_layer() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut missing = Vec::new();
+    for e in fs::read_dir(&src).expect("src") {
+        let p = e.expect("entry").path();
+        if let Some(m) = top_module(p.strip_prefix(&src).expect("under src"))
+            && layer_of(&m).is_none()
+        {
+            missing.push(m);
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "give these modules a layer in LAYERS: {missing:?}"
+    );
+}
+
+#[test]
+fn the_layers_hold() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let found = breaches(&imports(&src));
+    let debt: BTreeSet<&str> = DEBT.iter().copied().collect();
+    let new: Vec<&String> = found
+        .keys()
+        .filter(|k| !debt.contains(k.as_str()))
+        .collect();
+    let mended: Vec<&&str> = debt.iter().filter(|d| !found.contains_key(**d)).collect();
+    assert!(
+        new.is_empty(),
+        "imports against the layers (see LAYERS in tests/layers.rs):\n{}",
+        report(&found, &new)
+    );
+    assert!(mended.is_empty(), "mended, so remove from DEBT: {mended:?}");
+}
+
+#[test]
+fn a_planted_upward_import_and_a_circle_are_named_with_file_and_line() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let src = dir.path().join("src");
+    fs::create_dir_all(src.join("model")).expect("mkdir");
+    fs::write(
+        src.join("model/hold.rs"),
+        "//! crate::ui in a comment is no import\nuse std::fmt;\nuse crate::{\n    protocol::Message,\n    ui::palette::Palette,\n};\n",
+    )
+    .expect("write");
+    fs::write(src.join("link.rs"), "use crate::traffic::Log;\n").expect("write");
+    fs::write(src.join("traffic.rs"), "fn f() { crate::link::open(); }\n").expect("write");
+    fs::write(
+        src.join("ui.rs"),
+        "use crate::model::Model;\nconst S: &str = \"crate::app\";\n",
+    )
+    .expect("write");
+    let found = breaches(&imports(&src));
+    let keys: Vec<&str> = found.keys().map(String::as_str).collect();
+    assert_eq!(keys, ["link -> traffic", "model -> ui", "traffic -> link"]);
+    assert_eq!(
+        found["model -> ui"],
+        [Import {
+            from: "model".into(),
+            to: "ui".into(),
+            file: "src/model/hold.rs".into(),
+            line: 5
+        }]
+    );
+    assert_eq!(found["traffic -> link"][0].line, 1);
+}
