@@ -1,5 +1,5 @@
 //! Asking the unit something on the caller's clock, for the page's flows (the setup
-//! screens today, an installation check tomorrow): send, wait for the answer, send
+//! screens and the installation check): send, wait for the answer, send
 //! again on a timeout, give up after a few tries; and for a setting left unknown by
 //! an unanswered write, keep asking, paced, until the unit says what it holds.
 //!

@@ -129,10 +129,9 @@ pub const ROLL_KEYS: &str = "roll trim runs left/right: Shift+←/→ or ,/.";
 pub const PITCH_KEYS: &str = "this motor runs up/down: Shift+↑/↓ or u/d";
 pub const NOTHING_SELECTED: &str = "select a device first (↑/↓ or j/k)";
 
-/// Every key, in words, for the help overlay: kept beside the bindings so the two
+/// Every key, in words, for the help overlay. The table lives with the widget that
+/// shows it; the keymap tests check every binding in it against [`map`], so the two
 /// cannot drift apart.
-/// The help overlay's key table lives with the widget that shows it; the keymap
-/// tests check every binding there against [`map`].
 pub const HELP: &[(&str, &str)] = crate::ui::help::KEYS;
 
 /// The action for a key, or `None` for a key that is not bound.

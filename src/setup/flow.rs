@@ -2,9 +2,11 @@
 //! app must do out (requests to send, a whole re-read, leave, quit). It holds the write
 //! queue, the timed requests and a checked backup waiting for its confirmation.
 //!
-//! Pure but for the backup file itself, which `backup` reads and writes: no clock, no
-//! link, no terminal. The app hands it the model it has locked and `now`, and takes the
-//! motor keys to its controller before anything comes here.
+//! No link and no monotonic clock: the app hands it the model it has locked and `now`,
+//! and takes the motor keys to its controller before anything comes here. Not yet the
+//! pure flow the guide asks for (issue 23): it takes crossterm's `KeyEvent`, saves the
+//! checked backup itself through `backup`, and stamps it with the wall clock
+//! (`Made::now`).
 
 use std::path::Path;
 use std::time::Instant;
