@@ -597,8 +597,10 @@ impl App {
         (last + MIN_FRAME_GAP).max(settled.unwrap_or(last))
     }
 
-    /// Runs the link and timers (no input) until `until`: for tests and for replay.
+    /// Runs the link, the XFSp network and timers (no input) until `until`: for tests
+    /// and for replay.
     pub fn pump_until(&mut self, until: Instant) {
+        let xfsp = self.xfsp_incoming();
         loop {
             let now = Instant::now();
             if now >= until {
@@ -607,6 +609,7 @@ impl App {
             let deadline = self.next_deadline(now).min(until);
             select! {
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
+                recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
                 default(deadline.saturating_duration_since(now)) => {}
             }
             self.tick(Instant::now());
@@ -839,6 +842,8 @@ fn repeat_delay(ms: u64) -> anyhow::Result<Duration> {
 pub fn run(args: PageOptions) -> anyhow::Result<()> {
     let max_run = max_run(args.max_run)?;
     let repeat_delay = args.repeat_delay.map(repeat_delay).transpose()?;
+    // Refused (a list of sources without --xfsp-control) before anything is opened.
+    let xfsp = xfsp_setup(&args.xfsp)?;
     if let Some(file) = &args.replay {
         return replay::run(file, &args);
     }
@@ -875,7 +880,6 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
         release_mode: crate::control::release_mode_here(guard.key_release),
         repeat_delay,
     };
-    let xfsp = xfsp_setup(&args.xfsp)?;
     let mut app = match recorder {
         Some(r) => App::recording(source, connector, options, r),
         None => App::new(source, connector, options),

@@ -128,3 +128,84 @@ fn the_page_with_xfsp_sleeps_between_deadlines_when_most_pins_are_disabled() {
     app.shutdown();
     sim.stop();
 }
+
+/// Issue 25.5 in the page: `--xfsp` without `--xfsp-control` publishes, but an
+/// ECBSTAT OFF from a peer leaves the demo's EFIS on and the refusal is in the page's
+/// event log, with the count; with `--xfsp-control` the same request switches it.
+#[test]
+fn the_page_takes_network_commands_only_with_xfsp_control() {
+    use vpx_efis::xfsp::gateway::Control;
+    use vpx_efis::xfsp::{Bus, CertLevel, Confidence, MsgKind, Parameter, Sender};
+
+    for control in [Control::Off, Control::Any] {
+        let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
+        peer.set_read_timeout(Some(Duration::from_millis(20)))
+            .unwrap();
+        let target = Target::parse(&peer.local_addr().unwrap().to_string()).unwrap();
+        let (source, connector, sim) = builtin_sim("demo").unwrap();
+        let mut app = App::new(source, connector, AppOptions::default());
+        let cfg = GatewayConfig {
+            control: control.clone(),
+            ..GatewayConfig::default()
+        };
+        app.enable_xfsp(&target, "127.0.0.1".parse().unwrap(), cfg)
+            .unwrap();
+        // Wait for the EFIS to be published, and learn the page's address from it.
+        let end = Instant::now() + Duration::from_secs(8);
+        let mut buf = [0u8; 2048];
+        let page = loop {
+            assert!(Instant::now() < end, "nothing published");
+            app.pump_until(Instant::now() + Duration::from_millis(50));
+            if let Ok((n, from)) = peer.recv_from(&mut buf)
+                && let Ok(m) = Message::parse(&buf[..n])
+                && let Body::Params(ps) = m.body
+                && ps.iter().any(|p| p.ident == idents::ECBSTAT && p.unit == 2)
+            {
+                break from;
+            }
+        };
+        let off = Parameter::new(
+            idents::ECBSTAT,
+            Value::Bus(Bus {
+                state: EcbState::Off,
+                ..Bus::default()
+            }),
+        )
+        .unit(2)
+        .confidence(Confidence::UserSel);
+        let d = Sender::new(0x0777, 1)
+            .pack(MsgKind::flight_data(CertLevel::Experimental), &[off])
+            .unwrap()
+            .remove(0);
+        peer.send_to(&d, page).unwrap();
+        let end = Instant::now() + Duration::from_secs(3);
+        while Instant::now() < end && sim.stats().powered[2] {
+            app.pump_until(Instant::now() + Duration::from_millis(50));
+        }
+        let events: Vec<String> = app.model().events.iter().map(|e| e.text.clone()).collect();
+        match control {
+            Control::Off => {
+                assert!(
+                    sim.stats().powered[2],
+                    "a network command switched the EFIS"
+                );
+                assert!(
+                    events
+                        .iter()
+                        .any(|e| e.contains("XFSp on unicast 127.0.0.1")
+                            && e.contains("network commands off")),
+                    "{events:#?}"
+                );
+                assert!(
+                    events.iter().any(|e| e.contains(
+                        "XFSp 0x0777 (USERSEL): ECBSTAT refused: commands from the network are off"
+                    ) && e.contains("1 network command refused so far")),
+                    "{events:#?}"
+                );
+            }
+            _ => assert!(!sim.stats().powered[2], "not switched: {events:#?}"),
+        }
+        app.shutdown();
+        sim.stop();
+    }
+}

@@ -10,7 +10,7 @@ use crossbeam_channel::Receiver;
 use super::XfspOptions;
 use super::{App, lock};
 use crate::xfsp::dict::CertLevel;
-use crate::xfsp::gateway::{Gateway, GatewayConfig};
+use crate::xfsp::gateway::{Control, Gateway, GatewayConfig, source_list};
 use crate::xfsp::net::{Datagram, Target, XfspNet};
 
 /// A running gateway and its sockets.
@@ -20,16 +20,32 @@ pub(super) struct PageGateway {
     net_error_said: bool,
 }
 
-/// Reads `--xfsp`, `--xfsp-iface`, `--xfsp-source-id` and `--xfsp-cert`.
+/// Reads `--xfsp`, `--xfsp-iface`, `--xfsp-source-id`, `--xfsp-cert`,
+/// `--xfsp-control` and `--xfsp-control-from`. A list without `--xfsp-control` is
+/// refused rather than guessed at: naming who may command does not turn commands on.
 pub fn xfsp_setup(args: &XfspOptions) -> anyhow::Result<Option<(Target, Ipv4Addr, GatewayConfig)>> {
     let Some(target) = &args.xfsp else {
         return Ok(None);
     };
     let target = Target::parse(target).map_err(anyhow::Error::msg)?;
     let iface = args.xfsp_iface;
+    let control = match (args.xfsp_control, &args.xfsp_control_from) {
+        (false, None) => Control::Off,
+        (true, None) => Control::Any,
+        (true, Some(ids)) => Control::From(ids.clone()),
+        (false, Some(ids)) => {
+            return Err(crate::cli::UsageError(format!(
+                "--xfsp-control-from ({}) says who may command, but network commands are off: \
+                 add --xfsp-control (or xfsp_control = true in the config file)",
+                source_list(ids)
+            ))
+            .into());
+        }
+    };
     let config = GatewayConfig {
         source_id: args.xfsp_source_id,
         cert: CertLevel::from(args.xfsp_cert),
+        control,
         ..GatewayConfig::default()
     };
     Ok(Some((target, iface, config)))
@@ -45,7 +61,16 @@ impl App {
     ) -> anyhow::Result<()> {
         let net = XfspNet::open(target, iface)
             .map_err(|e| anyhow::anyhow!("cannot open XFSp {target} on {iface}: {e}"))?;
-        let gateway = Gateway::new(config, Instant::now());
+        let now = Instant::now();
+        lock(&self.model).log(
+            now,
+            crate::model::LogLevel::Info,
+            format!(
+                "XFSp on {target}: publishing; {}",
+                config.control.describe()
+            ),
+        );
+        let gateway = Gateway::new(config, now);
         self.gateway = Some(PageGateway {
             gateway,
             net,

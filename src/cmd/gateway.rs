@@ -113,12 +113,13 @@ pub fn run_bridge(
     let net = XfspNet::open(&opts.target, opts.iface)
         .with_context(|| format!("cannot open XFSp {} on {}", opts.target, opts.iface))?;
     say(&format!(
-        "XFSp {} from {}, source id {:#06x}, {:?}{}",
+        "XFSp {} from {}, source id {:#06x}, {:?}, {}{}",
         opts.target,
         net.local_addr()
             .map_or_else(|_| "?".to_string(), |a| a.to_string()),
         opts.gateway.source_id,
         opts.gateway.cert,
+        opts.gateway.control.describe(),
         match &source {
             Source::Simulated { scenario } => format!(", SIMULATED VP-X ({scenario})"),
             Source::Serial { path } => format!(", VP-X on {path}"),
@@ -207,14 +208,16 @@ pub fn run_bridge(
     print_new_events(&model, &mut printed, &mut say);
     let s = gw.stats();
     say(&format!(
-        "stopped: {} datagrams sent, received {} fresh, {} duplicate, {} out of order, {} malformed; {} commands taken, {} refused",
+        "stopped: {} datagrams sent, received {} fresh, {} duplicate, {} out of order, {} malformed; {} commands taken, {} refused, {} refused as not allowed ({})",
         s.datagrams_built,
         s.rx.fresh,
         s.rx.duplicate,
         s.rx.out_of_order,
         s.rx.malformed,
         s.commands_taken,
-        s.commands_refused
+        s.commands_refused,
+        s.commands_not_allowed,
+        opts.gateway.control.describe()
     ));
     // Writes whatever is queued (the stop messages) before the threads end.
     link.shutdown();
