@@ -9,6 +9,7 @@
 //! the model onto the XFSp avionics network; `app` wires everything together.
 
 pub mod app;
+pub mod audit;
 pub mod backup;
 pub mod check;
 pub mod cli;

@@ -100,7 +100,7 @@ impl App {
         let shared = self.model.clone();
         let out = {
             let model = lock(&shared);
-            self.controller.act_with(|c| {
+            self.controller.act_with(crate::audit::Origin::Check, |c| {
                 let mut out = f(flow, view, &model, c);
                 (std::mem::take(&mut out.packets), out)
             })
@@ -237,9 +237,7 @@ impl App {
         }
         self.open_check(page_options(), now);
         // The report goes beside the config file, with the load file.
-        let dir =
-            crate::loads::disk::default_path().and_then(|p| p.parent().map(|d| d.join("reports")));
-        self.set_check_report_dir(dir);
+        self.set_check_report_dir(crate::check::report::default_dir());
     }
 
     /// Scrolls the results (or the load analysis) of an ended check by `by` lines,
@@ -441,7 +439,12 @@ pub fn run_headless_with(
             (source, connector)
         }
     };
-    let mut app = App::new(source, connector, AppOptions::default());
+    let options = AppOptions {
+        // The audit log goes with the report.
+        audit: h.report.clone().or_else(crate::check::report::default_dir),
+        ..AppOptions::default()
+    };
+    let mut app = App::new(source, connector, options);
     let handle = app.link_handle();
     super::terminal::install_panic_hook();
     super::terminal::set_emergency_stop(move || {

@@ -9,6 +9,7 @@ use crossbeam_channel::Receiver;
 
 use super::XfspOptions;
 use super::{App, lock};
+use crate::audit::Origin;
 use crate::xfsp::dict::CertLevel;
 use crate::xfsp::gateway::{Control, Gateway, GatewayConfig, source_list};
 use crate::xfsp::net::{Datagram, Target, XfspNet};
@@ -96,7 +97,7 @@ impl App {
             .gateway
             .set_local_motor(&mut lock(&self.model), d.at, local);
         packets.extend(g.gateway.receive(&d.bytes, &mut lock(&self.model), d.at));
-        self.send(packets);
+        self.send(Origin::Xfsp, packets);
         // No redraw of its own: what the network changes on screen (a command in the
         // event log, what is forwarded) goes through the model, whose revision `tick`
         // watches. Marking every datagram dirty redrew the page for each of our own,
@@ -125,7 +126,7 @@ impl App {
             Ok(()) if !step.datagrams.is_empty() => g.net_error_said = false,
             _ => {}
         }
-        self.send(to_unit);
+        self.send(Origin::Xfsp, to_unit);
     }
 
     /// Any key at the page ends a network-driven motor run.
@@ -134,7 +135,7 @@ impl App {
             return;
         };
         let packets = g.gateway.local_key(&mut lock(&self.model), now);
-        self.send(packets);
+        self.send(Origin::Xfsp, packets);
     }
 
     pub(super) fn xfsp_deadline(&self) -> Option<Instant> {
@@ -146,7 +147,7 @@ impl App {
             return;
         };
         let packets = g.gateway.on_link_error(&mut lock(&self.model), now);
-        self.send(packets);
+        self.send(Origin::Xfsp, packets);
     }
 
     pub(super) fn xfsp_shutdown(&mut self, now: Instant) {
@@ -154,6 +155,6 @@ impl App {
             return;
         };
         let packets = g.gateway.shutdown(&mut lock(&self.model), now);
-        self.send(packets);
+        self.send(Origin::Xfsp, packets);
     }
 }

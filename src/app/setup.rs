@@ -91,7 +91,7 @@ impl App {
     fn apply_setup(&mut self, out: Out, now: Instant) -> Flow {
         for m in out.send {
             let cnt = self.controller.next_cnt();
-            self.send(vec![Packet::request(cnt, m)]);
+            self.send(crate::audit::Origin::Setup, vec![Packet::request(cnt, m)]);
         }
         if out.reread_all {
             self.pacer.start(now);

@@ -19,6 +19,7 @@ use crossbeam_channel::{select, unbounded};
 
 use crate::app::queries::QueryPacer;
 use crate::app::{StopGate, Terminated};
+use crate::audit::Origin;
 use crate::cli::GatewayArgs;
 use crate::control::MotorStreamer;
 use crate::exchange::Rereader;
@@ -43,6 +44,8 @@ pub struct BridgeOptions {
     pub iface: Ipv4Addr,
     pub gateway: GatewayConfig,
     pub record: Option<PathBuf>,
+    /// The audit log's folder ([`crate::audit`]): every command sent to the unit.
+    pub audit: Option<PathBuf>,
 }
 
 impl BridgeOptions {
@@ -61,6 +64,7 @@ impl BridgeOptions {
             iface,
             gateway,
             record: args.record.clone(),
+            audit: crate::check::report::default_dir(),
         })
     }
 }
@@ -136,7 +140,15 @@ pub fn run_bridge(
     // out of this function sends them again before the link closes.
     // Everything the loop sends goes through the gate, which the hook's stop closes
     // to moves, so a resend decided before a panic cannot follow its stop.
-    let gate = Arc::new(StopGate::new(unit.clone()));
+    let audit = match &opts.audit {
+        Some(dir) => Some(
+            crate::audit::Audit::start(dir.clone())
+                .context("cannot start the audit log's thread")?
+                .0,
+        ),
+        None => None,
+    };
+    let gate = Arc::new(StopGate::with_audit(unit.clone(), audit.clone()));
     let hook_gate = gate.clone();
     crate::app::set_emergency_stop(move || {
         hook_gate.emergency_stop();
@@ -173,8 +185,9 @@ pub fn run_bridge(
         for e in events {
             match &e {
                 LinkEvent::Connected { .. } => {
-                    // A run cut off by a pulled cable is told to stop first.
-                    to_unit.extend(MotorStreamer::emergency_stop_packets());
+                    // A run cut off by a pulled cable is told to stop first (ahead of
+                    // everything this pass queues).
+                    gate.send(Origin::Page, MotorStreamer::emergency_stop_packets());
                     asking.connected(Instant::now());
                 }
                 LinkEvent::Disconnected { .. } | LinkEvent::OpenFailed { .. } => asking.link_down(),
@@ -191,7 +204,7 @@ pub fn run_bridge(
         }
         let step = gw.tick(&mut model, Instant::now());
         to_unit.extend(step.to_unit);
-        gate.send(to_unit);
+        gate.send(Origin::Xfsp, to_unit);
         match net.send_all(&step.datagrams) {
             Err(e) if !net_error_said => {
                 say(&format!("cannot send on XFSp: {e}"));
@@ -200,11 +213,14 @@ pub fn run_bridge(
             Ok(()) if !step.datagrams.is_empty() => net_error_said = false,
             _ => {}
         }
+        if let Some(why) = audit.as_ref().and_then(crate::audit::Audit::take_problem) {
+            say(&why);
+        }
         print_new_events(&model, &mut printed, &mut say);
     }
 
     let now = Instant::now();
-    gate.send(gw.shutdown(&mut model, now));
+    gate.send(Origin::Xfsp, gw.shutdown(&mut model, now));
     print_new_events(&model, &mut printed, &mut say);
     let s = gw.stats();
     say(&format!(
