@@ -336,6 +336,26 @@ impl App {
                     }
                     outcome
                 };
+                // The person's own commands go in the event log, sent or refused.
+                if let Some(a) = outcome.action.as_ref().filter(|a| a.is_command()) {
+                    let mut model = lock(&self.model);
+                    let (level, line) = match (&outcome.sent, &outcome.notice) {
+                        (Some(m), _) => (
+                            crate::model::LogLevel::Info,
+                            crate::control::commands::said("key", a, &model, Ok(m)),
+                        ),
+                        (None, why) => (
+                            crate::model::LogLevel::Warning,
+                            crate::control::commands::said(
+                                "key",
+                                a,
+                                &model,
+                                Err(why.as_deref().unwrap_or("nothing sent")),
+                            ),
+                        ),
+                    };
+                    model.log(now, level, line);
+                }
                 self.set_notice(now, outcome.notice);
                 self.view.motor_run = self.controller.running();
                 if outcome.action == Some(Action::Quit) {

@@ -241,6 +241,25 @@ fn every_command_from_every_origin_leaves_its_line() {
             .any(|l| l["command"].as_str().is_some_and(|c| c.contains("QUERY"))),
         "queries are no commands: {all}"
     );
+    // Issue 27.8: the same actions, in the page's event log with their origin.
+    let events: Vec<String> = rig
+        .app
+        .model()
+        .events
+        .iter()
+        .map(|e| e.text.clone())
+        .collect();
+    for words in [
+        "key: Nav Lt off (DEVICE_POWER sent)",
+        "key: GPS 1 reset (DEVICE_CLEAR sent)",
+        "check: the installation check started",
+        "XFSp 0x0777 (USERSEL): Nav Lt ON -> DEVICE_POWER",
+    ] {
+        assert!(
+            events.iter().any(|e| e.contains(words)),
+            "{words:?} not in the event log: {events:#?}"
+        );
+    }
     let Rig { app, sim, .. } = rig;
     app.shutdown();
     sim.stop();

@@ -59,6 +59,12 @@ impl App {
         let wall = std::time::SystemTime::now();
         options.clock = Some(wall);
         self.check.flow = Some(CheckFlow::new(options, &mut self.check.view, &model, now));
+        drop(model);
+        lock(&shared).log(
+            now,
+            crate::model::LogLevel::Info,
+            "check: the installation check started".into(),
+        );
         self.check.news.clear();
         self.check.started = Some(wall);
         self.check.reported = false;
@@ -95,6 +101,7 @@ impl App {
         let Some(flow) = self.check.flow.as_mut() else {
             return;
         };
+        let was_finished = flow.finished();
         let view = &mut self.check.view;
         let before = view.clone();
         let shared = self.model.clone();
@@ -106,6 +113,18 @@ impl App {
             })
         };
         self.check.news.extend(out.news);
+        if !was_finished && flow.finished() {
+            let how = match CheckEnd::of(view) {
+                CheckEnd::Passed => "everything passed",
+                CheckEnd::Failed => "something failed (see its results)",
+                CheckEnd::Interrupted => "interrupted",
+            };
+            lock(&shared).log(
+                Instant::now(),
+                crate::model::LogLevel::Info,
+                format!("check: the installation check ended: {how}"),
+            );
+        }
         if *view != before {
             self.dirty = true;
         }

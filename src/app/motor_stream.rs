@@ -33,7 +33,7 @@ use super::{Wake, terminal};
 use crate::audit::Origin;
 use crate::control::{Action, Controller, KeyContext, StopReason};
 use crate::model::Model;
-use crate::protocol::message::Packet;
+use crate::protocol::message::{Message, Packet};
 use crate::ui::state::{MotorRun, RepeatTiming};
 
 /// What a key did, its packets already queued on the link.
@@ -41,6 +41,8 @@ use crate::ui::state::{MotorRun, RepeatTiming};
 pub struct Handled {
     pub action: Option<Action>,
     pub notice: Option<String>,
+    /// The command a command action sent (DEVICE_POWER, DEVICE_CLEAR, WIG_WAG_MODE).
+    pub sent: Option<Message>,
 }
 
 /// What the page's loop needs of the controller after its tick, read under the same
@@ -167,11 +169,17 @@ impl MotorPath {
     ) -> Handled {
         self.act_with(Origin::Key, |c| {
             let o = c.handle_key(key, ctx, model, now);
+            let sent = o
+                .action
+                .as_ref()
+                .filter(|a| a.is_command())
+                .and_then(|_| o.packets.first().map(|p| p.message));
             (
                 o.packets,
                 Handled {
                     action: o.action,
                     notice: o.notice,
+                    sent,
                 },
             )
         })
@@ -186,6 +194,7 @@ impl MotorPath {
                 Handled {
                     action: o.action,
                     notice: o.notice,
+                    sent: None,
                 },
             )
         })
