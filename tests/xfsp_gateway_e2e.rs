@@ -591,3 +591,52 @@ fn stop(mut bridge: Bridge) -> Vec<String> {
     }
     bridge.lines()
 }
+
+/// Issue 26.8 over real UDP: one source's IAS, then 300 other sources (past the 256
+/// the receiver once held, which then evicted the first), then the first source's
+/// message again, replayed with another IAS. It must still be a duplicate: the
+/// bridge's closing counts say 301 fresh and 1 duplicate (with a count-bound table
+/// the replay was taken as fresh: 302 fresh, 0 duplicate).
+#[test]
+fn three_hundred_sources_do_not_make_an_old_message_fresh_again() {
+    let mut peer = Peer::new();
+    let bridge = Bridge::start(BridgeOptions {
+        port: None,
+        baud: 57_600,
+        scenario: "demo".into(),
+        target: Target::Unicast(peer.addr()),
+        iface: Ipv4Addr::LOCALHOST,
+        gateway: GatewayConfig::default(),
+        record: None,
+        audit: None,
+    });
+    assert!(
+        peer.wait_for(secs(8), |_| true),
+        "nothing published: {:#?}",
+        bridge.lines()
+    );
+    let ias = |v: i32| vec![Parameter::new(idents::IAS, Value::Sint(v)).unit(1)];
+    let first = peer.datagram(10, ias(92));
+    peer.send(&first);
+    for id in 1..=300u16 {
+        let d = Sender::new(0x1000 + id, 1)
+            .pack(MsgKind::flight_data(CertLevel::Experimental), &ias(80))
+            .unwrap()
+            .remove(0);
+        peer.send(&d);
+        if id % 25 == 0 {
+            // Loopback drops nothing, but a burst should not outrun the bridge's
+            // socket buffer on a loaded machine.
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+    let replay = peer.datagram(10, ias(50));
+    peer.send(&replay);
+    std::thread::sleep(Duration::from_millis(500));
+    let lines = stop(bridge);
+    let last = lines.last().cloned().unwrap_or_default();
+    assert!(
+        last.contains("received 301 fresh, 1 duplicate, 0 out of order"),
+        "{lines:#?}"
+    );
+}

@@ -80,6 +80,8 @@
 //! its number. A node that restarts numbers "with an arbitrary initial value" (§4.1);
 //! without this it would be ignored until its numbers passed the old ones (up to
 //! 32767 messages). An old message replayed after 10 s of silence is taken once.
+//! The receiver's table of sources is bounded by that silence, not by a count a busy
+//! network passes (see [`super::receiver`] for the bound against forged ids).
 //!
 //! # Master Caution and Master Warning
 //!
@@ -120,8 +122,9 @@ pub const RECENT_MAX: usize = 1024;
 /// A source silent this long is forgotten, so a node that restarted (and numbers its
 /// messages from scratch) is heard again at once instead of after 32767 messages.
 /// A deliberate exception to the draft's §4.4 "MUST be discarded": see the module's
-/// notes on order.
-pub const FORGET_SOURCE_AFTER: Duration = Duration::from_secs(10);
+/// notes on order. The receiver keeps the rule ([`super::receiver::FORGET_AFTER`]),
+/// and bounds its table by it, not by a count.
+pub const FORGET_SOURCE_AFTER: Duration = super::receiver::FORGET_AFTER;
 /// A source refused for want of `--xfsp-control` gets one line in the event log this
 /// often (with the running count), not one per datagram: a display repeating its
 /// request at 4 Hz must not bury the log.
@@ -237,7 +240,6 @@ pub struct Gateway {
     cfg: GatewayConfig,
     sender: Sender,
     receiver: Receiver,
-    heard: HashMap<u16, Instant>,
     publisher: Publisher,
     air: AirData,
     drive: MotorDrive,
@@ -255,7 +257,6 @@ impl Gateway {
         Gateway {
             sender: Sender::new(cfg.source_id, cfg.first_msg_num),
             receiver: Receiver::default(),
-            heard: HashMap::new(),
             publisher: Publisher::new(cfg.cert, cfg.source_id, now),
             air: AirData::default(),
             drive: MotorDrive::new(cfg.streamer),
@@ -276,19 +277,12 @@ impl Gateway {
     /// Malformed, duplicate, out-of-order and our own datagrams are counted and dropped.
     pub fn receive(&mut self, datagram: &[u8], model: &mut Model, now: Instant) -> Vec<Packet> {
         let mut out = Vec::new();
-        let src = match Header::parse(datagram) {
-            Ok(h) if h.src_id == self.cfg.source_id => {
-                self.stats.own += 1;
-                return out;
-            }
-            Ok(h) => Some(h.src_id),
-            Err(_) => None,
-        };
-        if let Some(src) = src {
-            self.note_heard(src, now);
+        if Header::parse(datagram).is_ok_and(|h| h.src_id == self.cfg.source_id) {
+            self.stats.own += 1;
+            return out;
         }
         let params: Vec<(u16, Result<Parameter, super::Error>)> =
-            match self.receiver.receive(datagram) {
+            match self.receiver.receive(datagram, now) {
                 Received::Fresh(view) => {
                     let src = view.header().src_id;
                     view.params().map(|p| (src, p.to_parameter())).collect()
@@ -408,23 +402,6 @@ impl Gateway {
     /// Whether a master annunciator is TRUE on the network now.
     pub fn master_active(&self, master: Master) -> bool {
         self.publisher.master_active(master)
-    }
-
-    fn note_heard(&mut self, src: u16, now: Instant) {
-        if self
-            .heard
-            .get(&src)
-            .is_some_and(|&t| now.saturating_duration_since(t) > FORGET_SOURCE_AFTER)
-        {
-            self.receiver.forget(src);
-        }
-        self.heard.insert(src, now);
-        if self.heard.len() > 1024 {
-            // Memory stays bounded under forged source ids; losing a timestamp only
-            // means that source's restart is noticed a little later.
-            self.heard
-                .retain(|_, t| now.saturating_duration_since(*t) <= FORGET_SOURCE_AFTER);
-        }
     }
 
     fn take(
