@@ -5,10 +5,10 @@
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
 #![cfg(unix)]
 
+mod common;
 mod page_rig;
 use page_rig::*;
 
-use std::net::UdpSocket;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -20,12 +20,8 @@ use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::sim::SimCommand;
 use vpx_efis::ui::check::state::Step;
 use vpx_efis::ui::state::ReleaseMode;
+use vpx_efis::xfsp::EcbState;
 use vpx_efis::xfsp::gateway::{Control, GatewayConfig};
-use vpx_efis::xfsp::net::Target;
-use vpx_efis::xfsp::{
-    Body, Bus, CertLevel, Confidence, EcbState, Message, MsgKind, Parameter, Sender, Value as XV,
-    idents,
-};
 
 /// Every line of every audit file in `dir`, each parsed (a line that is not JSON
 /// fails the test).
@@ -70,10 +66,8 @@ fn every_command_from_every_origin_leaves_its_line() {
         audit: Some(audit.clone()),
         ..AppOptions::default()
     });
-    let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
-    peer.set_read_timeout(Some(Duration::from_millis(20)))
-        .unwrap();
-    let target = Target::parse(&peer.local_addr().unwrap().to_string()).unwrap();
+    let mut peer = common::xfsp_peer::PagePeer::new();
+    let target = peer.target();
     rig.app
         .enable_xfsp(
             &target,
@@ -122,33 +116,15 @@ fn every_command_from_every_origin_leaves_its_line() {
         .pump_until(Instant::now() + Duration::from_millis(300));
 
     // An XFSp command: ECBSTAT ON for Nav Lt from a node on the network.
-    let mut buf = [0u8; 2048];
-    let end = Instant::now() + Duration::from_secs(5);
-    let page = loop {
-        assert!(Instant::now() < end, "nothing published");
-        rig.app
-            .pump_until(Instant::now() + Duration::from_millis(30));
-        if let Ok((n, from)) = peer.recv_from(&mut buf)
-            && let Ok(m) = Message::parse(&buf[..n])
-            && matches!(m.body, Body::Params(_))
-        {
-            break from;
-        }
-    };
-    let on = Parameter::new(
-        idents::ECBSTAT,
-        XV::Bus(Bus {
-            state: EcbState::On,
-            ..Bus::default()
-        }),
-    )
-    .unit(4)
-    .confidence(Confidence::UserSel);
-    let d = Sender::new(0x0777, 1)
-        .pack(MsgKind::flight_data(CertLevel::Experimental), &[on])
-        .unwrap()
-        .remove(0);
-    peer.send_to(&d, page).unwrap();
+    peer.wait_for_page(
+        Duration::from_secs(5),
+        || {
+            rig.app
+                .pump_until(Instant::now() + Duration::from_millis(30))
+        },
+        |_| true,
+    );
+    peer.ecbstat(0x0777, 4, EcbState::On);
     let end = Instant::now() + Duration::from_secs(5);
     while !rig.sim.stats().powered[4] && Instant::now() < end {
         rig.app

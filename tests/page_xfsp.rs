@@ -2,6 +2,8 @@
 //! virtual VP-X publishes its circuits to a UDP peer on 127.0.0.1.
 
 use std::net::UdpSocket;
+
+mod common;
 use std::time::{Duration, Instant};
 
 use vpx_efis::app::{App, AppOptions, builtin_sim};
@@ -135,49 +137,24 @@ fn the_page_with_xfsp_sleeps_between_deadlines_when_most_pins_are_disabled() {
 #[test]
 fn the_page_takes_network_commands_only_with_xfsp_control() {
     use vpx_efis::xfsp::gateway::Control;
-    use vpx_efis::xfsp::{Bus, CertLevel, Confidence, MsgKind, Parameter, Sender};
 
     for control in [Control::Off, Control::Any] {
-        let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
-        peer.set_read_timeout(Some(Duration::from_millis(20)))
-            .unwrap();
-        let target = Target::parse(&peer.local_addr().unwrap().to_string()).unwrap();
+        let mut peer = common::xfsp_peer::PagePeer::new();
         let (source, connector, sim) = builtin_sim("demo").unwrap();
         let mut app = App::new(source, connector, AppOptions::default());
         let cfg = GatewayConfig {
             control: control.clone(),
             ..GatewayConfig::default()
         };
-        app.enable_xfsp(&target, "127.0.0.1".parse().unwrap(), cfg)
+        app.enable_xfsp(&peer.target(), "127.0.0.1".parse().unwrap(), cfg)
             .unwrap();
-        // Wait for the EFIS to be published, and learn the page's address from it.
-        let end = Instant::now() + Duration::from_secs(8);
-        let mut buf = [0u8; 2048];
-        let page = loop {
-            assert!(Instant::now() < end, "nothing published");
-            app.pump_until(Instant::now() + Duration::from_millis(50));
-            if let Ok((n, from)) = peer.recv_from(&mut buf)
-                && let Ok(m) = Message::parse(&buf[..n])
-                && let Body::Params(ps) = m.body
-                && ps.iter().any(|p| p.ident == idents::ECBSTAT && p.unit == 2)
-            {
-                break from;
-            }
-        };
-        let off = Parameter::new(
-            idents::ECBSTAT,
-            Value::Bus(Bus {
-                state: EcbState::Off,
-                ..Bus::default()
-            }),
-        )
-        .unit(2)
-        .confidence(Confidence::UserSel);
-        let d = Sender::new(0x0777, 1)
-            .pack(MsgKind::flight_data(CertLevel::Experimental), &[off])
-            .unwrap()
-            .remove(0);
-        peer.send_to(&d, page).unwrap();
+        // The EFIS published; the page's address learned from it.
+        peer.wait_for_page(
+            Duration::from_secs(8),
+            || app.pump_until(Instant::now() + Duration::from_millis(50)),
+            |p| p.ident == idents::ECBSTAT && p.unit == 2,
+        );
+        peer.ecbstat(0x0777, 2, EcbState::Off);
         let end = Instant::now() + Duration::from_secs(3);
         while Instant::now() < end && sim.stats().powered[2] {
             app.pump_until(Instant::now() + Duration::from_millis(50));
