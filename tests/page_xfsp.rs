@@ -167,10 +167,9 @@ fn the_page_takes_network_commands_only_with_xfsp_control() {
                     "a network command switched the EFIS"
                 );
                 assert!(
-                    events
-                        .iter()
-                        .any(|e| e.contains("XFSp on unicast 127.0.0.1")
-                            && e.contains("network commands off")),
+                    events.iter().any(|e| e.starts_with(
+                        "XFSp: network commands off; publishing on unicast 127.0.0.1"
+                    )),
                     "{events:#?}"
                 );
                 assert!(

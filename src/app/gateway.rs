@@ -66,8 +66,9 @@ impl App {
         lock(&self.model).log(
             now,
             crate::model::LogLevel::Info,
+            // Who may command comes first: the panel cuts a long line at its edge.
             format!(
-                "XFSp on {target}: publishing; {}",
+                "XFSp: {}; publishing on {target}",
                 config.control.describe()
             ),
         );
