@@ -136,7 +136,7 @@ impl App {
             return;
         };
         let packets = g.gateway.local_key(&mut lock(&self.model), now);
-        self.send(Origin::Xfsp, packets);
+        self.send(Origin::Key, packets);
     }
 
     pub(super) fn xfsp_deadline(&self) -> Option<Instant> {
@@ -148,7 +148,7 @@ impl App {
             return;
         };
         let packets = g.gateway.on_link_error(&mut lock(&self.model), now);
-        self.send(Origin::Xfsp, packets);
+        self.send(Origin::Page, packets);
     }
 
     pub(super) fn xfsp_shutdown(&mut self, now: Instant) {
@@ -156,6 +156,6 @@ impl App {
             return;
         };
         let packets = g.gateway.shutdown(&mut lock(&self.model), now);
-        self.send(Origin::Xfsp, packets);
+        self.send(Origin::Page, packets);
     }
 }

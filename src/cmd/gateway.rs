@@ -220,7 +220,8 @@ pub fn run_bridge(
     }
 
     let now = Instant::now();
-    gate.send(Origin::Xfsp, gw.shutdown(&mut model, now));
+    // Its own stops on the way out, whoever ran the motor.
+    gate.send(Origin::Page, gw.shutdown(&mut model, now));
     print_new_events(&model, &mut printed, &mut say);
     let s = gw.stats();
     say(&format!(
