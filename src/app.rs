@@ -33,6 +33,7 @@ use crossterm::event::Event as TermEvent;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
+use crate::audit::{Audit, Origin};
 use crate::control::{
     Action, Controller, KeyContext, MotorStreamer, RESEND_PERIOD, StopReason, StreamerConfig,
 };
@@ -102,6 +103,9 @@ pub struct AppOptions {
     /// `--repeat-delay`: how long the first hold waits for the first key repeat, set
     /// by hand instead of learned.
     pub repeat_delay: Option<Duration>,
+    /// The folder of the audit log ([`crate::audit`]): every command sent, with its
+    /// origin. `None` records nothing (tests that do not look at it).
+    pub audit: Option<std::path::PathBuf>,
 }
 
 impl Default for AppOptions {
@@ -111,6 +115,7 @@ impl Default for AppOptions {
             release_mode: ReleaseMode::AutoRepeat,
             theme: ThemeChoice::default(),
             repeat_delay: None,
+            audit: None,
         }
     }
 }
@@ -127,6 +132,8 @@ pub struct App {
     handle: LinkHandle,
     /// Every packet the page sends goes through here; `None` in replay.
     gate: Option<Arc<StopGate>>,
+    /// The audit log's way in, to hear of a file it cannot write.
+    audit: Option<Audit>,
     wake_rx: Receiver<Wake>,
     pacer: QueryPacer,
     notice_until: Option<Instant>,
@@ -190,9 +197,22 @@ impl App {
             ..Default::default()
         };
         // A replay is read-only: no link for motors, and no thread to send on it.
+        let (audit, audit_failed) = match options.audit.clone().filter(|_| replay.is_none()) {
+            Some(dir) => match Audit::start(dir) {
+                Ok((a, _thread)) => (Some(a), None),
+                Err(e) => (
+                    None,
+                    Some(format!("audit log: its thread could not start ({e})")),
+                ),
+            },
+            None => (None, None),
+        };
+        if let Some(why) = audit_failed {
+            lock(&model).log(Instant::now(), crate::model::LogLevel::Warning, why);
+        }
         let gate = replay
             .is_none()
-            .then(|| Arc::new(StopGate::new(handle.clone())));
+            .then(|| Arc::new(StopGate::with_audit(handle.clone(), audit.clone())));
         let controller = MotorPath::new(controller, gate.clone());
         let motor_thread = if replay.is_none() {
             controller.spawn(wake_tx)
@@ -207,6 +227,7 @@ impl App {
             link: Some(link),
             handle,
             gate,
+            audit,
             wake_rx,
             pacer: QueryPacer::default(),
             notice_until: None,
@@ -241,10 +262,11 @@ impl App {
         &self.wake_rx
     }
 
-    fn send(&self, packets: Vec<Packet>) {
+    /// Queues `packets` for `origin` (the audit log records the commands among them).
+    fn send(&self, origin: Origin, packets: Vec<Packet>) {
         // A replay (no gate) is read-only: it never puts anything on a wire.
         if let Some(gate) = &self.gate {
-            gate.send(packets);
+            gate.send(origin, packets);
         }
     }
 
@@ -314,6 +336,26 @@ impl App {
                     }
                     outcome
                 };
+                // The person's own commands go in the event log, sent or refused.
+                if let Some(a) = outcome.action.as_ref().filter(|a| a.is_command()) {
+                    let mut model = lock(&self.model);
+                    let (level, line) = match (&outcome.sent, &outcome.notice) {
+                        (Some(m), _) => (
+                            crate::model::LogLevel::Info,
+                            crate::control::commands::said("key", a, &model, Ok(m)),
+                        ),
+                        (None, why) => (
+                            crate::model::LogLevel::Warning,
+                            crate::control::commands::said(
+                                "key",
+                                a,
+                                &model,
+                                Err(why.as_deref().unwrap_or("nothing sent")),
+                            ),
+                        ),
+                    };
+                    model.log(now, level, line);
+                }
                 self.set_notice(now, outcome.notice);
                 self.view.motor_run = self.controller.running();
                 if outcome.action == Some(Action::Quit) {
@@ -327,7 +369,7 @@ impl App {
                 self.controller.with(|c| c.on_focus_gained(now));
             }
             TermEvent::FocusLost => {
-                self.controller.act(|c| c.on_focus_lost(now));
+                self.controller.act_on_run(|c| c.on_focus_lost(now));
                 let n = self.controller.take_notice();
                 self.set_notice(now, n);
                 self.view.motor_run = self.controller.running();
@@ -343,7 +385,8 @@ impl App {
     fn set_page_size(&mut self, width: u16, height: u16, now: Instant) {
         let hidden = width < ui::MIN_WIDTH || height < ui::MIN_HEIGHT;
         if hidden != self.page_hidden() {
-            self.controller.act(|c| c.set_page_hidden(now, hidden));
+            self.controller
+                .act_on_run(|c| c.set_page_hidden(now, hidden));
             let n = self.controller.take_notice();
             self.set_notice(now, n);
             self.view.motor_run = self.controller.running();
@@ -429,7 +472,10 @@ impl App {
             Wake::Connected => {
                 // Whatever ran before the port came back (a pulled cable mid-run) is
                 // told to stop on the new connection before anything else.
-                self.send(MotorStreamer::emergency_stop_packets().to_vec());
+                self.send(
+                    Origin::Page,
+                    MotorStreamer::emergency_stop_packets().to_vec(),
+                );
                 self.pacer.start(now);
                 self.rereader.connected(now);
             }
@@ -474,7 +520,10 @@ impl App {
                 self.pacer.due(now, &model, || controller.next_cnt()),
             )
         };
-        self.send(queries);
+        self.send(Origin::Page, queries);
+        if let Some(why) = self.audit.as_ref().and_then(Audit::take_problem) {
+            lock(&self.model).log(now, crate::model::LogLevel::Warning, why);
+        }
         self.set_notice(now, ticked.notice);
         // The flows below that start or stop a run (the check) set `motor_run`
         // themselves.
@@ -511,7 +560,7 @@ impl App {
         let queries = self.rereader.due(&lock(&self.model), now);
         for q in queries {
             let cnt = self.controller.next_cnt();
-            self.send(vec![Packet::request(cnt, q)]);
+            self.send(Origin::Page, vec![Packet::request(cnt, q)]);
         }
     }
 
@@ -597,8 +646,10 @@ impl App {
         (last + MIN_FRAME_GAP).max(settled.unwrap_or(last))
     }
 
-    /// Runs the link and timers (no input) until `until`: for tests and for replay.
+    /// Runs the link, the XFSp network and timers (no input) until `until`: for tests
+    /// and for replay.
     pub fn pump_until(&mut self, until: Instant) {
+        let xfsp = self.xfsp_incoming();
         loop {
             let now = Instant::now();
             if now >= until {
@@ -607,6 +658,7 @@ impl App {
             let deadline = self.next_deadline(now).min(until);
             select! {
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
+                recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
                 default(deadline.saturating_duration_since(now)) => {}
             }
             self.tick(Instant::now());
@@ -836,6 +888,8 @@ fn repeat_delay(ms: u64) -> anyhow::Result<Duration> {
 pub fn run(args: PageOptions) -> anyhow::Result<()> {
     let max_run = max_run(args.max_run)?;
     let repeat_delay = args.repeat_delay.map(repeat_delay).transpose()?;
+    // Refused (a list of sources without --xfsp-control) before anything is opened.
+    let xfsp = xfsp_setup(&args.xfsp)?;
     if let Some(file) = &args.replay {
         return replay::run(file, &args);
     }
@@ -871,8 +925,8 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
         theme,
         release_mode: crate::control::release_mode_here(guard.key_release),
         repeat_delay,
+        audit: crate::check::report::default_dir(),
     };
-    let xfsp = xfsp_setup(&args.xfsp)?;
     let mut app = match recorder {
         Some(r) => App::recording(source, connector, options, r),
         None => App::new(source, connector, options),

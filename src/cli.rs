@@ -10,7 +10,9 @@ use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand,
 
 use crate::link::PortAddr;
 use crate::program::{UsageError, VERSION, exit};
-use crate::settings::{self, BAUD_ENV, Origin, PORT_ENV, Setting, values};
+use crate::settings::{
+    self, BAUD_ENV, Origin, PORT_ENV, Setting, XFSP_CONTROL_ENV, XFSP_CONTROL_FROM_ENV, values,
+};
 use crate::ui::palette::Requested;
 
 /// A terminal EFIS electrical page for the Vertical Power VP-X.
@@ -69,6 +71,18 @@ pub struct XfspArgs {
     /// Certification level published in our XFSp parameters.
     #[arg(long, value_name = "LEVEL", default_value_t = 0)]
     pub xfsp_cert: u8,
+
+    /// Take commands from the XFSp network: ECBSTAT requests (switch and reset
+    /// circuits), FLAPREQ/PTRIMREQ/RTRIMREQ (run motors), master resets. XFSp has no
+    /// authentication, so without this they are refused, logged and counted;
+    /// publishing and air data work either way.
+    #[arg(long, env = XFSP_CONTROL_ENV, value_parser = values::yes_no, num_args = 0, default_missing_value = "true", default_value = "false")]
+    pub xfsp_control: bool,
+
+    /// With --xfsp-control: only from these XFSp source ids, comma-separated
+    /// (0x1234,0x5678).
+    #[arg(long, value_name = "ID,…", env = XFSP_CONTROL_FROM_ENV, value_parser = values::source_ids)]
+    pub xfsp_control_from: Option<values::SourceIds>,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -307,6 +321,8 @@ impl From<XfspArgs> for crate::app::XfspOptions {
             xfsp_iface: a.xfsp_iface,
             xfsp_source_id: a.xfsp_source_id,
             xfsp_cert: a.xfsp_cert,
+            xfsp_control: a.xfsp_control,
+            xfsp_control_from: a.xfsp_control_from.map(|l| l.0),
         }
     }
 }
@@ -493,6 +509,33 @@ impl Resolver<'_> {
             &mut x.xfsp_cert,
             &self.file.xfsp_cert.clone(),
             u8::to_string,
+        );
+        self.pick(
+            "xfsp_control",
+            "xfsp_control",
+            Some(XFSP_CONTROL_ENV),
+            &mut x.xfsp_control,
+            &self.file.xfsp_control.clone(),
+            |on| {
+                if *on {
+                    "on: takes commands from the network"
+                } else {
+                    "off"
+                }
+                .to_string()
+            },
+        );
+        let from = optional(&self.file.xfsp_control_from);
+        self.pick(
+            "xfsp_control_from",
+            "xfsp_control_from",
+            Some(XFSP_CONTROL_FROM_ENV),
+            &mut x.xfsp_control_from,
+            &from,
+            |l| {
+                l.as_ref()
+                    .map_or_else(|| "any source".into(), |l| l.to_string())
+            },
         );
     }
 

@@ -8,8 +8,9 @@
 //!    them the small pure helpers [`program`] (version, usage error, exit codes),
 //!    [`utc`], [`files`] (every file the program writes), [`toml_lines`] and
 //!    [`platform`].
-//! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files) and
-//!    [`traffic`] (every frame, for the traffic view).
+//! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files),
+//!    [`traffic`] (every frame, for the traffic view) and [`audit`] (every command
+//!    sent to the unit, with its origin, in a file of JSON lines).
 //! 3. What we know: [`model`] (every fact with its time; staleness decided here), and
 //!    [`sim`], the virtual VP-X (sans-IO: bytes in, bytes out, the caller's clock).
 //! 4. Intent into commands: [`control`] (keys and runs under the safety rules, the
@@ -23,6 +24,7 @@
 //!    command line, on top.
 
 pub mod app;
+pub mod audit;
 pub mod backup;
 pub mod check;
 pub mod cli;

@@ -64,7 +64,7 @@ fn only_standard_baud_rates_are_taken_from_flags_and_the_environment() {
     let o = vpx(&["config"], &[("VPX_EFIS_BAUD", "115200")], &c);
     assert!(o.status.success(), "{}", err(&o));
     assert!(
-        out(&o).contains("baud            115200")
+        out(&o).contains("baud               115200")
             && out(&o).contains("environment (VPX_EFIS_BAUD)"),
         "{}",
         out(&o)
@@ -102,9 +102,9 @@ fn the_source_id_is_read_in_hex_and_its_default_shown_in_hex() {
     assert!(help.contains("[default: 0x5650]"), "{help}");
     let o = vpx(&["config", "--xfsp-source-id", "0x5651"], &[], &c);
     assert!(o.status.success(), "{}", err(&o));
-    assert!(out(&o).contains("xfsp_source_id  0x5651"), "{}", out(&o));
+    assert!(out(&o).contains("xfsp_source_id     0x5651"), "{}", out(&o));
     let o = vpx(&["config", "--xfsp-source-id", "22097"], &[], &c);
-    assert!(out(&o).contains("xfsp_source_id  0x5651"), "{}", out(&o));
+    assert!(out(&o).contains("xfsp_source_id     0x5651"), "{}", out(&o));
 }
 
 #[test]
@@ -207,13 +207,13 @@ fn config_shows_each_value_and_where_it_came_from() {
     let text = out(&o);
     for line in [
         format!(
-            "config file     {}  [named by VPX_EFIS_CONFIG]",
+            "config file        {}  [named by VPX_EFIS_CONFIG]",
             cfg.display()
         ),
-        "port            tcp://192.168.4.1:8880".into(),
-        "baud            115200".into(),
-        "xfsp_iface      0.0.0.0".into(),
-        "theme           light".into(),
+        "port               tcp://192.168.4.1:8880".into(),
+        "baud               115200".into(),
+        "xfsp_iface         0.0.0.0".into(),
+        "theme              light".into(),
     ] {
         assert!(text.contains(&line), "{line:?} missing:\n{text}");
     }
@@ -236,7 +236,7 @@ fn config_shows_each_value_and_where_it_came_from() {
     let o = vpx(&["config"], &[("VPX_EFIS_PORT", "/dev/ttyUSB3")], &cfg);
     let text = out(&o);
     assert!(
-        text.contains("port            /dev/ttyUSB3")
+        text.contains("port               /dev/ttyUSB3")
             && text.contains("environment (VPX_EFIS_PORT)"),
         "{text}"
     );
@@ -323,4 +323,76 @@ fn completions_man_and_version() {
                     .all(|c| c.is_ascii_hexdigit())),
         "{v}"
     );
+}
+
+/// Issue 25.5: commands from the network are off by default; the flag, the
+/// environment and the file turn them on and `config` says which; a malformed list
+/// and a list without `--xfsp-control` are refused before anything is opened.
+#[test]
+fn xfsp_control_is_off_unless_asked_for_and_a_bad_list_is_refused() {
+    let c = no_config();
+    let line = |o: &std::process::Output, key: &str| -> String {
+        out(o)
+            .lines()
+            .find(|l| l.starts_with(&format!("{key} ")))
+            .unwrap_or_else(|| panic!("no {key} line:\n{}", out(o)))
+            .to_string()
+    };
+    let o = vpx(&["config"], &[], &c);
+    assert!(line(&o, "xfsp_control").contains("off"), "{}", out(&o));
+    assert!(line(&o, "xfsp_control").ends_with("default"), "{}", out(&o));
+    let o = vpx(
+        &["config"],
+        &[
+            ("VPX_EFIS_XFSP_CONTROL", "1"),
+            ("VPX_EFIS_XFSP_CONTROL_FROM", "0x1234,22136"),
+        ],
+        &c,
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(
+        line(&o, "xfsp_control").contains("on: takes commands")
+            && line(&o, "xfsp_control").ends_with("environment (VPX_EFIS_XFSP_CONTROL)"),
+        "{}",
+        out(&o)
+    );
+    assert!(
+        line(&o, "xfsp_control_from").contains("0x1234, 0x5678"),
+        "{}",
+        out(&o)
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = dir.path().join("config.toml");
+    std::fs::write(
+        &cfg,
+        "xfsp_control = true\nxfsp_control_from = \"0x0999\"\n",
+    )
+    .unwrap();
+    let o = vpx(&["config"], &[], &cfg);
+    assert!(
+        line(&o, "xfsp_control_from").ends_with("config file, line 2"),
+        "{}",
+        out(&o)
+    );
+    refused(
+        &vpx(&["--xfsp", "--xfsp-control-from", "0x1234,zz"], &[], &c),
+        "\"zz\" is not a 16-bit source id",
+    );
+    refused(
+        &vpx(&["gateway", "--xfsp-control-from", ""], &[], &c),
+        "empty list",
+    );
+    refused(
+        &vpx(&["config"], &[("VPX_EFIS_XFSP_CONTROL", "maybe")], &c),
+        "neither true nor false",
+    );
+    // Naming who may command does not turn commands on: refused, for both.
+    for args in [
+        &["--xfsp", "--xfsp-control-from", "0x1234"][..],
+        &["gateway", "--xfsp-control-from", "0x1234"][..],
+    ] {
+        let o = vpx(args, &[], &c);
+        refused(&o, "network commands are off: add --xfsp-control");
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+    }
 }

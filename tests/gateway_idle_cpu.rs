@@ -75,7 +75,12 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
     let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
     peer.set_read_timeout(Some(Duration::from_millis(50)))
         .unwrap();
+    // Its configuration folder (and so its audit log) in a folder of the test's own,
+    // not the home of whoever runs the tests.
+    let home = tempfile::tempdir().unwrap();
     let mut gateway = Command::new(exe)
+        .env("XDG_CONFIG_HOME", home.path())
+        .env("VPX_EFIS_CONFIG", home.path().join("none.toml"))
         .args([
             "gateway",
             "--port",
@@ -160,5 +165,16 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
             .iter()
             .any(|l| l.contains("stopped:") && l.contains("0 refused")),
         "{lines:?}"
+    );
+    // Its audit log has the stops it sent at connect and at SIGINT, said as its own.
+    let day = std::fs::read_dir(home.path().join("vpx-efis").join("reports"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.to_string_lossy().ends_with(".jsonl"))
+        .expect("an audit log");
+    let text = std::fs::read_to_string(day).unwrap();
+    assert!(
+        text.lines().count() >= 3 && text.lines().all(|l| l.contains(r#""origin":"page""#)),
+        "{text}"
     );
 }

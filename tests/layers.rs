@@ -17,9 +17,19 @@ use std::path::{Path, PathBuf};
 const LAYERS: &[(&str, &[&str])] = &[
     (
         "leaves: the codecs' re-exports and the small pure helpers",
-        &["protocol", "program", "utc", "files", "toml_lines", "platform"],
+        &[
+            "protocol",
+            "program",
+            "utc",
+            "files",
+            "toml_lines",
+            "platform",
+        ],
     ),
-    ("bytes in and out", &["link", "traffic"]),
+    (
+        "bytes in and out, and the record of them",
+        &["link", "traffic", "audit"],
+    ),
     ("what we know, and the virtual unit", &["model", "sim"]),
     (
         "intent into commands under the safety rules",

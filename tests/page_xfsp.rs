@@ -2,6 +2,8 @@
 //! virtual VP-X publishes its circuits to a UDP peer on 127.0.0.1.
 
 use std::net::UdpSocket;
+
+mod common;
 use std::time::{Duration, Instant};
 
 use vpx_efis::app::{App, AppOptions, builtin_sim};
@@ -127,4 +129,59 @@ fn the_page_with_xfsp_sleeps_between_deadlines_when_most_pins_are_disabled() {
     assert!(peer.recv(&mut buf).is_ok(), "no datagram reached the peer");
     app.shutdown();
     sim.stop();
+}
+
+/// Issue 25.5 in the page: `--xfsp` without `--xfsp-control` publishes, but an
+/// ECBSTAT OFF from a peer leaves the demo's EFIS on and the refusal is in the page's
+/// event log, with the count; with `--xfsp-control` the same request switches it.
+#[test]
+fn the_page_takes_network_commands_only_with_xfsp_control() {
+    use vpx_efis::xfsp::gateway::Control;
+
+    for control in [Control::Off, Control::Any] {
+        let mut peer = common::xfsp_peer::PagePeer::new();
+        let (source, connector, sim) = builtin_sim("demo").unwrap();
+        let mut app = App::new(source, connector, AppOptions::default());
+        let cfg = GatewayConfig {
+            control: control.clone(),
+            ..GatewayConfig::default()
+        };
+        app.enable_xfsp(&peer.target(), "127.0.0.1".parse().unwrap(), cfg)
+            .unwrap();
+        // The EFIS published; the page's address learned from it.
+        peer.wait_for_page(
+            Duration::from_secs(8),
+            || app.pump_until(Instant::now() + Duration::from_millis(50)),
+            |p| p.ident == idents::ECBSTAT && p.unit == 2,
+        );
+        peer.ecbstat(0x0777, 2, EcbState::Off);
+        let end = Instant::now() + Duration::from_secs(3);
+        while Instant::now() < end && sim.stats().powered[2] {
+            app.pump_until(Instant::now() + Duration::from_millis(50));
+        }
+        let events: Vec<String> = app.model().events.iter().map(|e| e.text.clone()).collect();
+        match control {
+            Control::Off => {
+                assert!(
+                    sim.stats().powered[2],
+                    "a network command switched the EFIS"
+                );
+                assert!(
+                    events.iter().any(|e| e.starts_with(
+                        "XFSp: network commands off; publishing on unicast 127.0.0.1"
+                    )),
+                    "{events:#?}"
+                );
+                assert!(
+                    events.iter().any(|e| e.contains(
+                        "XFSp 0x0777 (USERSEL): ECBSTAT refused: commands from the network are off"
+                    ) && e.contains("1 network command refused so far")),
+                    "{events:#?}"
+                );
+            }
+            _ => assert!(!sim.stats().powered[2], "not switched: {events:#?}"),
+        }
+        app.shutdown();
+        sim.stop();
+    }
 }

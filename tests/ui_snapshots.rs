@@ -1294,3 +1294,49 @@ fn the_limit_line_is_dashed_so_no_colour_still_tells_it_from_the_trace() {
         .collect();
     assert!(trace.contains("⢄⣄⢄⣀"), "{trace}");
 }
+
+/// Issue 27.8: the Events panel says what the person did, each line with its origin
+/// ("key:", "check:", "setup:", and the network's own "XFSp 0x…"), in the words the
+/// page writes (`control::commands::said`), a refusal among them.
+#[test]
+fn events_panel_lists_the_persons_own_actions_with_their_origin() {
+    use vpx_efis::control::Action;
+    use vpx_efis::control::commands::said;
+    use vpx_efis::model::LogLevel;
+    use vpx_efis::protocol::message::{DeviceClear, DevicePower, Message};
+
+    let (mut m, now) = fixtures::normal();
+    let at = now - Duration::from_secs(40);
+    let off = Message::from(DevicePower {
+        device_id: 4,
+        on: false,
+    });
+    let line = said("key", &Action::PowerOff(4), &m, Ok(&off));
+    m.log(at, LogLevel::Info, line);
+    let line = said(
+        "key",
+        &Action::Reset(EFIS),
+        &m,
+        Err("EFIS is not faulted: a reset is for a tripped circuit"),
+    );
+    m.log(at + Duration::from_secs(5), LogLevel::Warning, line);
+    let clear = Message::from(DeviceClear { device_id: 9 });
+    let line = said("check", &Action::Reset(9), &m, Ok(&clear));
+    m.log(at + Duration::from_secs(10), LogLevel::Info, line);
+    m.log(
+        at + Duration::from_secs(20),
+        LogLevel::Info,
+        "check: the installation check started".into(),
+    );
+    let t = text(&draw(&m, &view_selecting(EFIS), now, 120, 40));
+    let name = |id: u8| m.display_name(id).trim().to_string();
+    for words in [
+        format!("key: {} off (DEVICE_POWER sent)", name(4)),
+        format!("key: {} reset refused: EFIS is not", name(EFIS)),
+        format!("check: {} reset (DEVICE_CLEAR sent)", name(9)),
+        "check: the installation check started".to_string(),
+    ] {
+        assert!(t.contains(&words), "{words:?} not on the page:\n{t}");
+    }
+    insta::assert_snapshot!(t);
+}

@@ -11,7 +11,7 @@ use vpx_efis::protocol::message::{
     DeviceStatus, FaultStatus, FlapFlags, FlapTrimStatus, Message, MiscFlags, Packet, SignedTenths,
     SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
 };
-use vpx_efis::xfsp::gateway::{Gateway, GatewayConfig, Step};
+use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig, Step};
 use vpx_efis::xfsp::publish::{CAS_UNIT_COMM_LOST, LIFETIME};
 use vpx_efis::xfsp::{
     Body, Boolean, Bus, CasLevel, CertLevel, Confidence, EcbState, Expire, Message as XMessage,
@@ -20,6 +20,15 @@ use vpx_efis::xfsp::{
 
 const ME: u16 = 0x5650;
 const PEER: u16 = 0x0042;
+
+/// A gateway that takes commands from any source (`--xfsp-control`): what most of
+/// these tests exercise. Without it commands are refused (see the tests near the end).
+fn commanded() -> GatewayConfig {
+    GatewayConfig {
+        control: Control::Any,
+        ..GatewayConfig::default()
+    }
+}
 
 fn ms(n: u64) -> Duration {
     Duration::from_millis(n)
@@ -184,7 +193,7 @@ fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[2]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let ps = params(&gw.tick(&mut m, t0));
     let efis = find(&ps, idents::ECBSTAT, 2).expect("EFIS published");
     let b = bus(efis);
@@ -213,7 +222,7 @@ fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
 fn every_item_is_refreshed_at_least_once_a_second_and_not_resent_unchanged_sooner() {
     let t0 = Instant::now();
     let mut m = model();
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut seen: Vec<(Instant, Parameter)> = Vec::new();
     let mut now = t0;
     while now < t0 + ms(3000) {
@@ -245,7 +254,7 @@ fn a_short_circuit_raises_cas_and_master_warning_then_clear_three_times() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     gw.tick(&mut m, t0);
     // Later than the 100 ms minimum interval, so ECBSTAT goes out with the CAS.
     fault(&mut m, t0 + ms(200), 5, FaultCode::ShortCircuit);
@@ -317,7 +326,7 @@ fn lost_communication_publishes_unknown_and_says_so_once_past_the_start_grace() 
     let mut m = model();
     status(&mut m, t0, &[2]);
     flaps(&mut m, t0, 120);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let ps = params(&gw.tick(&mut m, t0));
     assert_eq!(
         find(&ps, idents::FLAPPOS, 0).map(|p| p.value.clone()),
@@ -354,7 +363,7 @@ fn lost_communication_publishes_unknown_and_says_so_once_past_the_start_grace() 
 fn a_gateway_that_never_heard_the_unit_waits_before_crying_comm_lost() {
     let t0 = Instant::now();
     let mut m = model();
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     assert!(cas(&params(&gw.tick(&mut m, t0 + ms(1000)))).is_empty());
     let ps = params(&gw.tick(&mut m, t0 + ms(2600)));
     assert_eq!(cas(&ps).len(), 1);
@@ -365,7 +374,7 @@ fn forwarded_air_data_is_valid_only_while_fresh() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     assert!(
         gw.tick(&mut m, t0).to_unit.is_empty(),
         "no air data heard, none sent"
@@ -407,7 +416,7 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[2]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut peer = Sender::new(PEER, 100);
     let on5 = request(
         &mut peer,
@@ -516,7 +525,7 @@ fn a_flap_request_streams_toward_the_target_and_stops_there() {
     let mut m = model();
     status(&mut m, t0, &[]);
     flaps(&mut m, t0, 40);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut peer = Sender::new(PEER, 1);
     let req = |peer: &mut Sender, target| {
         request(
@@ -574,7 +583,7 @@ fn a_flap_request_that_is_not_repeated_stops_at_its_expiry() {
     let mut m = model();
     status(&mut m, t0, &[]);
     flaps(&mut m, t0, 40);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut peer = Sender::new(PEER, 1);
     let d = request(
         &mut peer,
@@ -614,7 +623,7 @@ fn motor_requests_need_live_status_and_log_their_refusal() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut peer = Sender::new(PEER, 1);
     let d = request(
         &mut peer,
@@ -635,7 +644,7 @@ proptest! {
         let t0 = Instant::now();
         let mut m = model();
         status(&mut m, t0, &[2]);
-        let mut gw = Gateway::new(GatewayConfig::default(), t0);
+        let mut gw = Gateway::new(commanded(), t0);
         for (i, mut d) in datagrams.into_iter().enumerate() {
             if ecb && d.len() >= 24 {
                 // Steer some inputs into a valid-looking header and an ECBSTAT ident.
@@ -664,7 +673,7 @@ fn the_pages_keys_come_before_network_motor_requests() {
     let mut m = model();
     status(&mut m, t0, &[]);
     flaps(&mut m, t0, 40);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut peer = Sender::new(PEER, 1);
     let req = |peer: &mut Sender, target| {
         request(
@@ -741,7 +750,7 @@ fn circuit_requests_match_by_label_by_unit_or_both_and_a_mismatch_is_refused() {
     named(&mut m, t0, 6, "TAXI LT");
     named(&mut m, t0, 7, "SPARE");
     named(&mut m, t0, 8, "Spare");
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut peer = Sender::new(PEER, 1);
     let mut at = t0;
     let mut send = |gw: &mut Gateway, m: &mut Model, p: Parameter| {
@@ -845,7 +854,7 @@ fn master_caution_reset_by_usersel_false_stays_false_until_a_new_caution() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let oc = [(5, FaultCode::OverCurrent)];
     let (now, seen) = run_masters(&mut gw, &mut m, t0, 1, &oc, idents::MSTRCAUTN);
     assert_eq!(seen.last(), Some(&true));
@@ -911,7 +920,7 @@ fn master_warning_rises_on_a_short_and_resets_the_same_way() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let short = [(5, FaultCode::ShortCircuit)];
     let (now, seen) = run_masters(&mut gw, &mut m, t0, 1, &short, idents::MSTRWARN);
     assert_eq!(seen.last(), Some(&true));
@@ -945,7 +954,7 @@ fn refused_and_expired_motor_requests_are_counted() {
     let mut m = model();
     status(&mut m, t0, &[]);
     flaps(&mut m, t0, 40); // roll trim not configured: no scale
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut peer = Sender::new(PEER, 1);
     let roll = request(
         &mut peer,
@@ -1008,7 +1017,7 @@ fn after_every_tick_the_gateway_deadline_is_in_the_future() {
     let mut m = model();
     status(&mut m, t0, &[2]);
     flaps(&mut m, t0, 40);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     gw.tick(&mut m, t0);
     for id in 4..=28u8 {
         let e = DeviceEnable {
@@ -1070,7 +1079,7 @@ fn system_item_labels_name_our_circuits_and_other_systems_are_refused() {
     named(&mut m, t0, 5, "LANDING LT");
     named(&mut m, t0, 6, "TAXI LT");
     named(&mut m, t0, 7, "NAV/STROBE");
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let mut peer = Sender::new(PEER, 1);
     let mut at = t0;
     let mut send = |gw: &mut Gateway, m: &mut Model, p: Parameter| {
@@ -1124,7 +1133,7 @@ fn a_request_sent_as_devstatus_is_taken() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[2]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let kind = MsgKind {
         op: MsgOp::DevStatus,
         ..MsgKind::flight_data(CertLevel::Experimental)
@@ -1147,7 +1156,7 @@ fn an_older_number_is_discarded_until_its_source_was_silent_for_10_s() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[2]);
-    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut gw = Gateway::new(commanded(), t0);
     let before = Sender::new(PEER, 100)
         .pack(
             MsgKind::flight_data(CertLevel::Experimental),
@@ -1209,7 +1218,7 @@ impl TrimRun {
         let mut m = model();
         status(&mut m, t0, &[]);
         pitch(&mut m, t0, start);
-        let mut gw = Gateway::new(GatewayConfig::default(), t0);
+        let mut gw = Gateway::new(commanded(), t0);
         let mut peer = Sender::new(PEER, 1);
         let mut pos = f32::from(start);
         let mut on = false;
@@ -1380,4 +1389,98 @@ fn a_network_run_stops_on_a_position_older_than_0_4_s() {
         run.events
     );
     assert!(run.said("its position is not fresh"), "{:#?}", run.events);
+}
+
+/// Issue 25.5: without `--xfsp-control` every kind of command (ECBSTAT, a motor
+/// request, a master reset) is refused: nothing for the unit, the reason in the event
+/// log once (not once a datagram), and each counted. Air data is still forwarded.
+#[test]
+fn without_control_commands_are_refused_logged_once_and_counted() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    pitch(&mut m, t0, 125);
+    let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    assert_eq!(gw.config().control, Control::Off, "off by default");
+    let mut peer = Sender::new(PEER, 100);
+    let commands = vec![
+        ecb_request(2, EcbState::Off, Confidence::UserSel),
+        Parameter::new(idents::PTRIMREQ, Value::Sint(-50_000)).confidence(Confidence::UserSel),
+        Parameter::new(idents::MSTRCAUTN, Value::Bool(Boolean::False))
+            .confidence(Confidence::SysSel),
+        Parameter::new(idents::IAS, Value::Sint(88)),
+    ];
+    let mut to_unit = Vec::new();
+    for i in 0..8u64 {
+        let d = request(&mut peer, commands.clone());
+        let at = t0 + ms(250 * i);
+        to_unit.extend(gw.receive(&d, &mut m, at));
+        to_unit.extend(gw.tick(&mut m, at).to_unit);
+    }
+    assert!(
+        to_unit
+            .iter()
+            .all(|p| matches!(p.message, Message::ExternalData(_))),
+        "only air data may reach the unit: {to_unit:?}"
+    );
+    assert!(
+        to_unit
+            .iter()
+            .any(|p| matches!(p.message, Message::ExternalData(_))),
+        "air data is still forwarded"
+    );
+    assert_eq!(gw.running_motor(), None);
+    let s = gw.stats();
+    assert_eq!(s.commands_not_allowed, 24, "3 commands x 8 datagrams");
+    assert_eq!((s.commands_taken, s.commands_refused), (0, 0));
+    let said: Vec<&str> = m
+        .events
+        .iter()
+        .map(|e| e.text.as_str())
+        .filter(|t| t.contains("refused: commands from the network are off"))
+        .collect();
+    assert_eq!(said.len(), 1, "one line per source per 10 s: {said:?}");
+    assert!(
+        said[0].starts_with("XFSp 0x0042 (USERSEL): ECBSTAT refused"),
+        "{said:?}"
+    );
+    assert!(said[0].contains("--xfsp-control"), "{said:?}");
+    // Ten seconds on, the same source is said again, with the count so far.
+    let d = request(&mut peer, commands[..1].to_vec());
+    assert!(gw.receive(&d, &mut m, t0 + ms(12_000)).is_empty());
+    let last = &m.events.back().unwrap().text;
+    assert!(
+        last.contains("25 network commands refused so far"),
+        "{last}"
+    );
+}
+
+/// `--xfsp-control-from`: a listed source commands, any other is refused with its id
+/// and the list in the words.
+#[test]
+fn only_listed_sources_may_command() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    let cfg = GatewayConfig {
+        control: Control::From(vec![0x1234]),
+        ..GatewayConfig::default()
+    };
+    let mut gw = Gateway::new(cfg, t0);
+    let mut stranger = Sender::new(PEER, 100);
+    let off = |s: &mut Sender| request(s, vec![ecb_request(2, EcbState::Off, Confidence::UserSel)]);
+    assert!(gw.receive(&off(&mut stranger), &mut m, t0).is_empty());
+    let last = &m.events.back().unwrap().text;
+    assert!(
+        last.contains("0x0042 is not in --xfsp-control-from (0x1234)"),
+        "{last}"
+    );
+    let mut listed = Sender::new(0x1234, 7);
+    let out = gw.receive(&off(&mut listed), &mut m, t0 + ms(10));
+    assert!(
+        matches!(out.as_slice(), [Packet { message: Message::DevicePower(p), .. }] if p.device_id == 2 && !p.on),
+        "{out:?}"
+    );
+    let s = gw.stats();
+    assert_eq!((s.commands_not_allowed, s.commands_taken), (1, 1));
 }

@@ -14,7 +14,7 @@ use vpx_efis::cmd::gateway::{BridgeOptions, run_bridge};
 use vpx_efis::link::open_pty_pair;
 use vpx_efis::sim::{self, SimCommand, SimHandle, SimOptions};
 use vpx_efis::xfsp::format::latin1;
-use vpx_efis::xfsp::gateway::GatewayConfig;
+use vpx_efis::xfsp::gateway::{Control, GatewayConfig};
 use vpx_efis::xfsp::net::{Target, XfspNet};
 use vpx_efis::xfsp::{
     Body, Bus, CasLevel, CertLevel, Confidence, EcbState, Message, MsgKind, Parameter, Sender,
@@ -70,17 +70,23 @@ struct Peer {
     sock: UdpSocket,
     gateway: Option<SocketAddr>,
     sender: Sender,
+    id: u16,
 }
 
 impl Peer {
     fn new() -> Peer {
+        Peer::with_id(PEER)
+    }
+
+    fn with_id(id: u16) -> Peer {
         let sock = UdpSocket::bind("127.0.0.1:0").unwrap();
         sock.set_read_timeout(Some(Duration::from_millis(100)))
             .unwrap();
         Peer {
             sock,
             gateway: None,
-            sender: Sender::new(PEER, 1000),
+            sender: Sender::new(id, 1000),
+            id,
         }
     }
 
@@ -117,7 +123,7 @@ impl Peer {
 
     /// Builds one datagram numbered `num`.
     fn datagram(&mut self, num: u16, params: Vec<Parameter>) -> Vec<u8> {
-        self.sender = Sender::new(PEER, num);
+        self.sender = Sender::new(self.id, num);
         self.sender
             .pack(MsgKind::flight_data(CertLevel::Experimental), &params)
             .unwrap()
@@ -159,6 +165,14 @@ fn wait_sim(sim: &SimHandle, limit: Duration, mut ok: impl FnMut(&sim::SimStats)
     false
 }
 
+/// `--xfsp-control`: commands from any source.
+fn commanded() -> GatewayConfig {
+    GatewayConfig {
+        control: Control::Any,
+        ..GatewayConfig::default()
+    }
+}
+
 fn secs(n: u64) -> Duration {
     Duration::from_secs(n)
 }
@@ -179,8 +193,9 @@ fn the_vpx_on_the_network_over_a_pty_and_udp() {
         scenario: "hangar".into(),
         target: Target::Unicast(peer.addr()),
         iface: Ipv4Addr::LOCALHOST,
-        gateway: GatewayConfig::default(),
+        gateway: commanded(),
         record: None,
+        audit: None,
     });
 
     // Hangar: the EFIS is on switch 1, which is open.
@@ -276,6 +291,7 @@ fn multicast_pinned_to_loopback_reaches_a_listener_on_the_same_host() {
         iface: Ipv4Addr::LOCALHOST,
         gateway: GatewayConfig::default(),
         record: None,
+        audit: None,
     });
     let end = Instant::now() + secs(8);
     let mut seen = false;
@@ -358,8 +374,9 @@ fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_w
         scenario: "install".into(),
         target: Target::Unicast(peer.addr()),
         iface: Ipv4Addr::LOCALHOST,
-        gateway: GatewayConfig::default(),
+        gateway: commanded(),
         record: None,
+        audit: None,
     });
     assert!(
         peer.wait_for(secs(8), |p| p.ident == idents::PTRIMPOS),
@@ -440,4 +457,186 @@ fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_w
     drop(bridge);
     sim.stop();
     drop(pty.slave);
+}
+
+/// Issue 25.5 over real parts: the bridge started without `--xfsp-control` publishes
+/// (the peer hears ECBSTAT) but a peer's ECBSTAT OFF and PTRIMREQ change nothing on the
+/// unit; its standard error gives the reason once, and its closing line the count.
+/// With `--xfsp-control-from` naming another source, the peer is still refused and
+/// the listed source's command goes through.
+#[test]
+fn network_commands_reach_the_unit_only_when_allowed_and_only_from_listed_sources() {
+    let pty = open_pty_pair().unwrap();
+    let reader = pty.master.try_clone_native().unwrap();
+    let mut scenario = sim::load_scenario("install").unwrap();
+    scenario.flap.as_mut().unwrap().position = Some(200);
+    let sim = sim::spawn(
+        SimOptions::new(scenario),
+        Box::new(reader),
+        Box::new(pty.master),
+    );
+    let mut peer = Peer::new();
+    let opts = |control: Control, to: SocketAddrV4| BridgeOptions {
+        port: Some(pty.path.clone().into()),
+        baud: 57_600,
+        scenario: "install".into(),
+        target: Target::Unicast(to),
+        iface: Ipv4Addr::LOCALHOST,
+        gateway: GatewayConfig {
+            control,
+            ..GatewayConfig::default()
+        },
+        record: None,
+        audit: None,
+    };
+    let bridge = Bridge::start(opts(Control::Off, peer.addr()));
+    assert!(
+        peer.wait_for(secs(8), |p| p.ident == idents::PTRIMPOS),
+        "nothing published; bridge said {:#?}",
+        bridge.lines()
+    );
+    assert!(peer.wait_for(secs(5), |p| ecb_is(p, EFIS, EcbState::On)));
+    let trim = sim.stats().pitch_trim_position;
+    let mut num = 3000;
+    for _ in 0..8 {
+        let d = peer.datagram(
+            num,
+            vec![
+                ecb_request(EFIS, EcbState::Off),
+                Parameter::new(idents::PTRIMREQ, Value::Sint(-80_000))
+                    .confidence(Confidence::UserSel),
+            ],
+        );
+        num += 1;
+        peer.send(&d);
+        std::thread::sleep(Duration::from_millis(250));
+    }
+    let s = sim.stats();
+    assert!(s.powered[EFIS as usize], "the EFIS was switched off");
+    assert!(
+        !s.pitch_trim_running && s.pitch_trim_position == trim,
+        "the trim moved"
+    );
+    let lines = stop(bridge);
+    assert!(
+        lines[0].contains("network commands off"),
+        "the start says so: {lines:#?}"
+    );
+    let said = lines
+        .iter()
+        .filter(|l| l.contains("refused: commands from the network are off"))
+        .count();
+    assert_eq!(said, 1, "once per source per 10 s: {lines:#?}");
+    assert!(
+        lines
+            .last()
+            .unwrap()
+            .contains("16 refused as not allowed (network commands off)"),
+        "{lines:#?}"
+    );
+
+    // A fresh socket, so nothing the first bridge sent is taken for the second's.
+    let mut peer = Peer::new();
+    let bridge = Bridge::start(opts(Control::From(vec![0x0999]), peer.addr()));
+    assert!(peer.wait_for(secs(8), |p| ecb_is(p, EFIS, EcbState::On)));
+    for _ in 0..4 {
+        let d = peer.datagram(num, vec![ecb_request(EFIS, EcbState::Off)]);
+        num += 1;
+        peer.send(&d);
+        std::thread::sleep(Duration::from_millis(250));
+    }
+    assert!(
+        sim.stats().powered[EFIS as usize],
+        "a stranger switched the EFIS off"
+    );
+    let lines = stop(bridge);
+    assert_eq!(
+        lines
+            .iter()
+            .filter(|l| l.contains("0x0777 is not in --xfsp-control-from (0x0999)"))
+            .count(),
+        1,
+        "{lines:#?}"
+    );
+    assert!(
+        lines
+            .last()
+            .unwrap()
+            .contains("4 refused as not allowed (network commands only from 0x0999)"),
+        "{lines:#?}"
+    );
+
+    let mut listed = Peer::with_id(0x0999);
+    let bridge = Bridge::start(opts(Control::From(vec![0x0999]), listed.addr()));
+    assert!(listed.wait_for(secs(8), |p| ecb_is(p, EFIS, EcbState::On)));
+    let d = listed.datagram(10, vec![ecb_request(EFIS, EcbState::Off)]);
+    listed.send(&d);
+    assert!(
+        wait_sim(&sim, secs(5), |s| !s.powered[EFIS as usize]),
+        "the listed source's command did not go through: {:#?}",
+        bridge.lines()
+    );
+    drop(bridge);
+    sim.stop();
+    drop(pty.slave);
+}
+
+/// Stops the bridge and returns everything it said, its closing counts included.
+fn stop(mut bridge: Bridge) -> Vec<String> {
+    bridge.stop.store(true, Ordering::SeqCst);
+    if let Some(t) = bridge.thread.take() {
+        t.join()
+            .expect("bridge thread panicked")
+            .expect("bridge failed");
+    }
+    bridge.lines()
+}
+
+/// Issue 26.8 over real UDP: one source's IAS, then 300 other sources (past the 256
+/// the receiver once held, which then evicted the first), then the first source's
+/// message again, replayed with another IAS. It must still be a duplicate: the
+/// bridge's closing counts say 301 fresh and 1 duplicate (with a count-bound table
+/// the replay was taken as fresh: 302 fresh, 0 duplicate).
+#[test]
+fn three_hundred_sources_do_not_make_an_old_message_fresh_again() {
+    let mut peer = Peer::new();
+    let bridge = Bridge::start(BridgeOptions {
+        port: None,
+        baud: 57_600,
+        scenario: "demo".into(),
+        target: Target::Unicast(peer.addr()),
+        iface: Ipv4Addr::LOCALHOST,
+        gateway: GatewayConfig::default(),
+        record: None,
+        audit: None,
+    });
+    assert!(
+        peer.wait_for(secs(8), |_| true),
+        "nothing published: {:#?}",
+        bridge.lines()
+    );
+    let ias = |v: i32| vec![Parameter::new(idents::IAS, Value::Sint(v)).unit(1)];
+    let first = peer.datagram(10, ias(92));
+    peer.send(&first);
+    for id in 1..=300u16 {
+        let d = Sender::new(0x1000 + id, 1)
+            .pack(MsgKind::flight_data(CertLevel::Experimental), &ias(80))
+            .unwrap()
+            .remove(0);
+        peer.send(&d);
+        if id % 25 == 0 {
+            // Loopback drops nothing, but a burst should not outrun the bridge's
+            // socket buffer on a loaded machine.
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+    let replay = peer.datagram(10, ias(50));
+    peer.send(&replay);
+    std::thread::sleep(Duration::from_millis(500));
+    let lines = stop(bridge);
+    let last = lines.last().cloned().unwrap_or_default();
+    assert!(
+        last.contains("received 301 fresh, 1 duplicate, 0 out of order"),
+        "{lines:#?}"
+    );
 }

@@ -59,6 +59,12 @@ impl App {
         let wall = std::time::SystemTime::now();
         options.clock = Some(wall);
         self.check.flow = Some(CheckFlow::new(options, &mut self.check.view, &model, now));
+        drop(model);
+        lock(&shared).log(
+            now,
+            crate::model::LogLevel::Info,
+            "check: the installation check started".into(),
+        );
         self.check.news.clear();
         self.check.started = Some(wall);
         self.check.reported = false;
@@ -95,17 +101,30 @@ impl App {
         let Some(flow) = self.check.flow.as_mut() else {
             return;
         };
+        let was_finished = flow.finished();
         let view = &mut self.check.view;
         let before = view.clone();
         let shared = self.model.clone();
         let out = {
             let model = lock(&shared);
-            self.controller.act_with(|c| {
+            self.controller.act_with(crate::audit::Origin::Check, |c| {
                 let mut out = f(flow, view, &model, c);
                 (std::mem::take(&mut out.packets), out)
             })
         };
         self.check.news.extend(out.news);
+        if !was_finished && flow.finished() {
+            let how = match CheckEnd::of(view) {
+                CheckEnd::Passed => "everything passed",
+                CheckEnd::Failed => "something failed (see its results)",
+                CheckEnd::Interrupted => "interrupted",
+            };
+            lock(&shared).log(
+                Instant::now(),
+                crate::model::LogLevel::Info,
+                format!("check: the installation check ended: {how}"),
+            );
+        }
         if *view != before {
             self.dirty = true;
         }
@@ -237,9 +256,7 @@ impl App {
         }
         self.open_check(page_options(), now);
         // The report goes beside the config file, with the load file.
-        let dir =
-            crate::loads::disk::default_path().and_then(|p| p.parent().map(|d| d.join("reports")));
-        self.set_check_report_dir(dir);
+        self.set_check_report_dir(crate::check::report::default_dir());
     }
 
     /// Scrolls the results (or the load analysis) of an ended check by `by` lines,
@@ -441,7 +458,12 @@ pub fn run_headless_with(
             (source, connector)
         }
     };
-    let mut app = App::new(source, connector, AppOptions::default());
+    let options = AppOptions {
+        // The audit log goes with the report.
+        audit: h.report.clone().or_else(crate::check::report::default_dir),
+        ..AppOptions::default()
+    };
+    let mut app = App::new(source, connector, options);
     let handle = app.link_handle();
     super::terminal::install_panic_hook();
     super::terminal::set_emergency_stop(move || {

@@ -9,8 +9,9 @@ use crossbeam_channel::Receiver;
 
 use super::XfspOptions;
 use super::{App, lock};
+use crate::audit::Origin;
 use crate::xfsp::dict::CertLevel;
-use crate::xfsp::gateway::{Gateway, GatewayConfig};
+use crate::xfsp::gateway::{Control, Gateway, GatewayConfig, source_list};
 use crate::xfsp::net::{Datagram, Target, XfspNet};
 
 /// A running gateway and its sockets.
@@ -20,16 +21,32 @@ pub(super) struct PageGateway {
     net_error_said: bool,
 }
 
-/// Reads `--xfsp`, `--xfsp-iface`, `--xfsp-source-id` and `--xfsp-cert`.
+/// Reads `--xfsp`, `--xfsp-iface`, `--xfsp-source-id`, `--xfsp-cert`,
+/// `--xfsp-control` and `--xfsp-control-from`. A list without `--xfsp-control` is
+/// refused rather than guessed at: naming who may command does not turn commands on.
 pub fn xfsp_setup(args: &XfspOptions) -> anyhow::Result<Option<(Target, Ipv4Addr, GatewayConfig)>> {
     let Some(target) = &args.xfsp else {
         return Ok(None);
     };
     let target = Target::parse(target).map_err(anyhow::Error::msg)?;
     let iface = args.xfsp_iface;
+    let control = match (args.xfsp_control, &args.xfsp_control_from) {
+        (false, None) => Control::Off,
+        (true, None) => Control::Any,
+        (true, Some(ids)) => Control::From(ids.clone()),
+        (false, Some(ids)) => {
+            return Err(crate::program::UsageError(format!(
+                "--xfsp-control-from ({}) says who may command, but network commands are off: \
+                 add --xfsp-control (or xfsp_control = true in the config file)",
+                source_list(ids)
+            ))
+            .into());
+        }
+    };
     let config = GatewayConfig {
         source_id: args.xfsp_source_id,
         cert: CertLevel::from(args.xfsp_cert),
+        control,
         ..GatewayConfig::default()
     };
     Ok(Some((target, iface, config)))
@@ -45,7 +62,17 @@ impl App {
     ) -> anyhow::Result<()> {
         let net = XfspNet::open(target, iface)
             .map_err(|e| anyhow::anyhow!("cannot open XFSp {target} on {iface}: {e}"))?;
-        let gateway = Gateway::new(config, Instant::now());
+        let now = Instant::now();
+        lock(&self.model).log(
+            now,
+            crate::model::LogLevel::Info,
+            // Who may command comes first: the panel cuts a long line at its edge.
+            format!(
+                "XFSp: {}; publishing on {target}",
+                config.control.describe()
+            ),
+        );
+        let gateway = Gateway::new(config, now);
         self.gateway = Some(PageGateway {
             gateway,
             net,
@@ -71,7 +98,7 @@ impl App {
             .gateway
             .set_local_motor(&mut lock(&self.model), d.at, local);
         packets.extend(g.gateway.receive(&d.bytes, &mut lock(&self.model), d.at));
-        self.send(packets);
+        self.send(Origin::Xfsp, packets);
         // No redraw of its own: what the network changes on screen (a command in the
         // event log, what is forwarded) goes through the model, whose revision `tick`
         // watches. Marking every datagram dirty redrew the page for each of our own,
@@ -100,7 +127,7 @@ impl App {
             Ok(()) if !step.datagrams.is_empty() => g.net_error_said = false,
             _ => {}
         }
-        self.send(to_unit);
+        self.send(Origin::Xfsp, to_unit);
     }
 
     /// Any key at the page ends a network-driven motor run.
@@ -109,7 +136,7 @@ impl App {
             return;
         };
         let packets = g.gateway.local_key(&mut lock(&self.model), now);
-        self.send(packets);
+        self.send(Origin::Key, packets);
     }
 
     pub(super) fn xfsp_deadline(&self) -> Option<Instant> {
@@ -121,7 +148,7 @@ impl App {
             return;
         };
         let packets = g.gateway.on_link_error(&mut lock(&self.model), now);
-        self.send(packets);
+        self.send(Origin::Page, packets);
     }
 
     pub(super) fn xfsp_shutdown(&mut self, now: Instant) {
@@ -129,6 +156,6 @@ impl App {
             return;
         };
         let packets = g.gateway.shutdown(&mut lock(&self.model), now);
-        self.send(packets);
+        self.send(Origin::Page, packets);
     }
 }

@@ -30,9 +30,10 @@ use crossterm::event::KeyEvent;
 
 use super::stop_gate::StopGate;
 use super::{Wake, terminal};
+use crate::audit::Origin;
 use crate::control::{Action, Controller, KeyContext, StopReason};
 use crate::model::Model;
-use crate::protocol::message::Packet;
+use crate::protocol::message::{Message, Packet};
 use crate::ui::state::{MotorRun, RepeatTiming};
 
 /// What a key did, its packets already queued on the link.
@@ -40,6 +41,8 @@ use crate::ui::state::{MotorRun, RepeatTiming};
 pub struct Handled {
     pub action: Option<Action>,
     pub notice: Option<String>,
+    /// The command a command action sent (DEVICE_POWER, DEVICE_CLEAR, WIG_WAG_MODE).
+    pub sent: Option<Message>,
 }
 
 /// What the page's loop needs of the controller after its tick, read under the same
@@ -71,6 +74,9 @@ struct Shared {
     poke: Option<Sender<()>>,
     /// The deadline the thread last read and sleeps until (`None`: until poked).
     sleeping_until: Option<Instant>,
+    /// Who last acted (a key, the check): the origin the audit log gives the run's
+    /// resends and its stop.
+    origin: Origin,
 }
 
 impl Shared {
@@ -104,6 +110,7 @@ impl MotorPath {
                 heartbeat: None,
                 poke: None,
                 sleeping_until: None,
+                origin: Origin::Page,
             }),
             link,
         })
@@ -121,17 +128,32 @@ impl MotorPath {
         f(&mut self.lock().controller)
     }
 
-    /// Runs `f` and queues the packets it returns before letting go of the
-    /// controller.
-    pub fn act(&self, f: impl FnOnce(&mut Controller) -> Vec<Packet>) {
-        self.act_with(|c| (f(c), ()))
+    /// Runs `f` for `origin` and queues the packets it returns before letting go of
+    /// the controller; returns what else `f` gives.
+    pub fn act_with<R>(
+        &self,
+        origin: Origin,
+        f: impl FnOnce(&mut Controller) -> (Vec<Packet>, R),
+    ) -> R {
+        let mut s = self.lock();
+        s.origin = origin;
+        self.act_locked(s, f)
     }
 
-    /// As [`MotorPath::act`], also returning what else `f` gives.
-    pub fn act_with<R>(&self, f: impl FnOnce(&mut Controller) -> (Vec<Packet>, R)) -> R {
-        let mut s = self.lock();
+    /// As [`MotorPath::act_with`] for whatever started the run in progress (the page losing
+    /// focus, or its being hidden, stops that run).
+    pub fn act_on_run(&self, f: impl FnOnce(&mut Controller) -> Vec<Packet>) {
+        let s = self.lock();
+        self.act_locked(s, |c| (f(c), ()))
+    }
+
+    fn act_locked<R>(
+        &self,
+        mut s: MutexGuard<'_, Shared>,
+        f: impl FnOnce(&mut Controller) -> (Vec<Packet>, R),
+    ) -> R {
         let (packets, r) = f(&mut s.controller);
-        self.queue(packets);
+        self.queue(s.origin, packets);
         s.poke_if_earlier();
         r
     }
@@ -145,13 +167,19 @@ impl MotorPath {
         model: &Model,
         now: Instant,
     ) -> Handled {
-        self.act_with(|c| {
+        self.act_with(Origin::Key, |c| {
             let o = c.handle_key(key, ctx, model, now);
+            let sent = o
+                .action
+                .as_ref()
+                .filter(|a| a.is_command())
+                .and_then(|_| o.packets.first().map(|p| p.message));
             (
                 o.packets,
                 Handled {
                     action: o.action,
                     notice: o.notice,
+                    sent,
                 },
             )
         })
@@ -159,21 +187,23 @@ impl MotorPath {
 
     /// A key while the page cannot be seen: see [`Controller::handle_key_hidden`].
     pub fn handle_key_hidden(&self, key: KeyEvent, ctx: &KeyContext, now: Instant) -> Handled {
-        self.act_with(|c| {
+        self.act_with(Origin::Key, |c| {
             let o = c.handle_key_hidden(key, ctx, now);
             (
                 o.packets,
                 Handled {
                     action: o.action,
                     notice: o.notice,
+                    sent: None,
                 },
             )
         })
     }
 
-    /// Ends a running motor for `reason`, its stop queued.
+    /// Ends a running motor for `reason`, its stop queued (recorded with the run's
+    /// origin; the audit log's stop line names the run's).
     pub fn stop(&self, now: Instant, reason: StopReason) {
-        self.act(|c| c.stop(now, reason));
+        self.act_on_run(|c| c.stop(now, reason));
     }
 
     /// The model's verdict and the stream's clocks, after packets arrived; what the
@@ -182,7 +212,7 @@ impl MotorPath {
         let mut s = self.lock();
         s.heartbeat = Some(Instant::now());
         let packets = s.controller.tick(model, now);
-        self.queue(packets);
+        self.queue(s.origin, packets);
         s.poke_if_earlier();
         let c = &mut s.controller;
         Ticked {
@@ -204,9 +234,9 @@ impl MotorPath {
         self.with(|c| c.next_cnt())
     }
 
-    fn queue(&self, packets: Vec<Packet>) {
+    fn queue(&self, origin: Origin, packets: Vec<Packet>) {
         if let Some(link) = &self.link {
-            link.send(packets);
+            link.send(origin, packets);
         }
     }
 
@@ -273,6 +303,7 @@ impl MotorPath {
                 let stalled = s
                     .heartbeat
                     .is_some_and(|b| now.saturating_duration_since(b) > LOOP_STALL);
+                let origin = s.origin;
                 let c = &mut s.controller;
                 let was_running = c.running().is_some();
                 let packets = if self.halted() {
@@ -283,7 +314,7 @@ impl MotorPath {
                 } else {
                     c.tick_stream(now)
                 };
-                self.queue(packets);
+                self.queue(origin, packets);
                 let ended = was_running && c.running().is_none();
                 deadline = c.next_deadline();
                 s.sleeping_until = deadline;

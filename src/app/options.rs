@@ -39,4 +39,8 @@ pub struct XfspOptions {
     pub xfsp_iface: Ipv4Addr,
     pub xfsp_source_id: u16,
     pub xfsp_cert: u8,
+    /// `--xfsp-control`: take commands from the network (off by default).
+    pub xfsp_control: bool,
+    /// `--xfsp-control-from`: only from these source ids (needs `xfsp_control`).
+    pub xfsp_control_from: Option<Vec<u16>>,
 }

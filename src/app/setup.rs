@@ -90,8 +90,17 @@ impl App {
     /// Does what the setup flow asked for.
     fn apply_setup(&mut self, out: Out, now: Instant) -> Flow {
         for m in out.send {
+            lock(&self.model).log(
+                now,
+                crate::model::LogLevel::Info,
+                format!(
+                    "setup: {} sent ({})",
+                    m.name(),
+                    crate::protocol::describe::describe(&m)
+                ),
+            );
             let cnt = self.controller.next_cnt();
-            self.send(vec![Packet::request(cnt, m)]);
+            self.send(crate::audit::Origin::Setup, vec![Packet::request(cnt, m)]);
         }
         if out.reread_all {
             self.pacer.start(now);

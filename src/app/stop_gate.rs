@@ -8,11 +8,15 @@
 //! take the same lock, and the hook marks the gate halted *before* taking it: a send
 //! that got the lock first is queued before the stop; any send after it sees the mark
 //! and queues no move (stops and queries still go).
+//!
+//! Being the one way, it is also where every command is recorded in the audit log
+//! ([`crate::audit`]), with the origin each caller names and whether it went.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, TryLockError};
 use std::time::{Duration, Instant};
 
+use crate::audit::{Audit, Origin};
 use crate::control::MotorStreamer;
 use crate::link::LinkHandle;
 use crate::protocol::message::{Message, Packet};
@@ -27,6 +31,7 @@ pub struct StopGate {
     link: LinkHandle,
     halted: AtomicBool,
     order: Mutex<()>,
+    audit: Option<Audit>,
 }
 
 impl StopGate {
@@ -35,19 +40,42 @@ impl StopGate {
             link,
             halted: AtomicBool::new(false),
             order: Mutex::new(()),
+            audit: None,
+        }
+    }
+
+    /// As [`StopGate::new`], recording every command in `audit`.
+    pub fn with_audit(link: LinkHandle, audit: Option<Audit>) -> StopGate {
+        StopGate {
+            audit,
+            ..StopGate::new(link)
+        }
+    }
+
+    /// Queues one packet and records it (if it is a command) with how it went.
+    fn put(&self, origin: Origin, p: Packet, refused: Option<&str>) {
+        let result = match refused {
+            Some(why) => Err(why),
+            None => self
+                .link
+                .send(p)
+                .map_err(|_| "the link to the unit is closed"),
+        };
+        if let Some(a) = &self.audit {
+            a.record(origin, &p, result);
         }
     }
 
     /// Queues `packets` in order, or, once halted, all of them but the moves that
     /// would start or keep a motor running. A closed link has already been reported.
-    pub fn send(&self, packets: impl IntoIterator<Item = Packet>) {
+    /// `origin` is who asked, for the audit log.
+    pub fn send(&self, origin: Origin, packets: impl IntoIterator<Item = Packet>) {
         let _turn = self.order.lock().unwrap_or_else(|p| p.into_inner());
         let halted = self.halted();
         for p in packets {
-            if halted && runs_a_motor(&p) {
-                continue;
-            }
-            let _ = self.link.send(p);
+            let refused = (halted && runs_a_motor(&p))
+                .then_some("the emergency stop has gone out: no motor moves after it");
+            self.put(origin, p, refused);
         }
     }
 
@@ -67,7 +95,7 @@ impl StopGate {
             }
         };
         for p in MotorStreamer::emergency_stop_packets() {
-            let _ = self.link.send(p);
+            self.put(Origin::Page, p, None);
         }
     }
 
@@ -140,12 +168,12 @@ mod tests {
     fn nothing_sent_after_the_emergency_stop_moves_a_motor() {
         let (link, sent, _unit) = link();
         let gate = StopGate::new(link.handle());
-        gate.send([pitch_up(true)]);
+        gate.send(Origin::Key, [pitch_up(true)]);
         let resend = pitch_up(true);
         gate.emergency_stop();
         assert!(gate.halted());
         let query = Packet::request(8, DeviceSpecQuery { device_id: 9 });
-        gate.send([resend, pitch_up(false), query]);
+        gate.send(Origin::Key, [resend, pitch_up(false), query]);
         let wire = wait_for(&sent, 6);
         link.shutdown();
         let mut want = vec![pitch_up(true)];

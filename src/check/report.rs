@@ -105,6 +105,12 @@ pub fn write(dir: &Path, view: &CheckView, about: &About) -> std::io::Result<Wri
     )))
 }
 
+/// The reports folder: `reports` beside the config file, with the load file. The
+/// audit log ([`crate::audit`]) is kept there too.
+pub fn default_dir() -> Option<std::path::PathBuf> {
+    crate::loads::disk::default_path().and_then(|p| p.parent().map(|d| d.join("reports")))
+}
+
 /// Makes the report folder if it is missing; an error names the folder.
 pub fn prepare(dir: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| {

@@ -19,6 +19,7 @@ use crossbeam_channel::{select, unbounded};
 
 use crate::app::queries::QueryPacer;
 use crate::app::{StopGate, Terminated};
+use crate::audit::Origin;
 use crate::cli::GatewayArgs;
 use crate::control::MotorStreamer;
 use crate::exchange::Rereader;
@@ -43,6 +44,8 @@ pub struct BridgeOptions {
     pub iface: Ipv4Addr,
     pub gateway: GatewayConfig,
     pub record: Option<PathBuf>,
+    /// The audit log's folder ([`crate::audit`]): every command sent to the unit.
+    pub audit: Option<PathBuf>,
 }
 
 impl BridgeOptions {
@@ -61,6 +64,7 @@ impl BridgeOptions {
             iface,
             gateway,
             record: args.record.clone(),
+            audit: crate::check::report::default_dir(),
         })
     }
 }
@@ -113,12 +117,13 @@ pub fn run_bridge(
     let net = XfspNet::open(&opts.target, opts.iface)
         .with_context(|| format!("cannot open XFSp {} on {}", opts.target, opts.iface))?;
     say(&format!(
-        "XFSp {} from {}, source id {:#06x}, {:?}{}",
+        "XFSp {} from {}, source id {:#06x}, {:?}, {}{}",
         opts.target,
         net.local_addr()
             .map_or_else(|_| "?".to_string(), |a| a.to_string()),
         opts.gateway.source_id,
         opts.gateway.cert,
+        opts.gateway.control.describe(),
         match &source {
             Source::Simulated { scenario } => format!(", SIMULATED VP-X ({scenario})"),
             Source::Serial { path } => format!(", VP-X on {path}"),
@@ -135,7 +140,15 @@ pub fn run_bridge(
     // out of this function sends them again before the link closes.
     // Everything the loop sends goes through the gate, which the hook's stop closes
     // to moves, so a resend decided before a panic cannot follow its stop.
-    let gate = Arc::new(StopGate::new(unit.clone()));
+    let audit = match &opts.audit {
+        Some(dir) => Some(
+            crate::audit::Audit::start(dir.clone())
+                .context("cannot start the audit log's thread")?
+                .0,
+        ),
+        None => None,
+    };
+    let gate = Arc::new(StopGate::with_audit(unit.clone(), audit.clone()));
     let hook_gate = gate.clone();
     crate::app::set_emergency_stop(move || {
         hook_gate.emergency_stop();
@@ -172,8 +185,9 @@ pub fn run_bridge(
         for e in events {
             match &e {
                 LinkEvent::Connected { .. } => {
-                    // A run cut off by a pulled cable is told to stop first.
-                    to_unit.extend(MotorStreamer::emergency_stop_packets());
+                    // A run cut off by a pulled cable is told to stop first (ahead of
+                    // everything this pass queues).
+                    gate.send(Origin::Page, MotorStreamer::emergency_stop_packets());
                     asking.connected(Instant::now());
                 }
                 LinkEvent::Disconnected { .. } | LinkEvent::OpenFailed { .. } => asking.link_down(),
@@ -190,7 +204,7 @@ pub fn run_bridge(
         }
         let step = gw.tick(&mut model, Instant::now());
         to_unit.extend(step.to_unit);
-        gate.send(to_unit);
+        gate.send(Origin::Xfsp, to_unit);
         match net.send_all(&step.datagrams) {
             Err(e) if !net_error_said => {
                 say(&format!("cannot send on XFSp: {e}"));
@@ -199,22 +213,28 @@ pub fn run_bridge(
             Ok(()) if !step.datagrams.is_empty() => net_error_said = false,
             _ => {}
         }
+        if let Some(why) = audit.as_ref().and_then(crate::audit::Audit::take_problem) {
+            say(&why);
+        }
         print_new_events(&model, &mut printed, &mut say);
     }
 
     let now = Instant::now();
-    gate.send(gw.shutdown(&mut model, now));
+    // Its own stops on the way out, whoever ran the motor.
+    gate.send(Origin::Page, gw.shutdown(&mut model, now));
     print_new_events(&model, &mut printed, &mut say);
     let s = gw.stats();
     say(&format!(
-        "stopped: {} datagrams sent, received {} fresh, {} duplicate, {} out of order, {} malformed; {} commands taken, {} refused",
+        "stopped: {} datagrams sent, received {} fresh, {} duplicate, {} out of order, {} malformed; {} commands taken, {} refused, {} refused as not allowed ({})",
         s.datagrams_built,
         s.rx.fresh,
         s.rx.duplicate,
         s.rx.out_of_order,
         s.rx.malformed,
         s.commands_taken,
-        s.commands_refused
+        s.commands_refused,
+        s.commands_not_allowed,
+        opts.gateway.control.describe()
     ));
     // Writes whatever is queued (the stop messages) before the threads end.
     link.shutdown();

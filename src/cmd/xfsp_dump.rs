@@ -55,7 +55,7 @@ pub fn run(args: XfspDumpArgs) -> anyhow::Result<()> {
     let stdout = std::io::stdout();
     for d in net.incoming() {
         let mut out = stdout.lock();
-        for line in dump(&mut receiver, d.from, &d.bytes, args.json) {
+        for line in dump(&mut receiver, d.from, &d.bytes, d.at, args.json) {
             if writeln!(out, "{line}").is_err() {
                 // Standard output closed (e.g. piped into `head`): done.
                 return Ok(());
@@ -67,7 +67,13 @@ pub fn run(args: XfspDumpArgs) -> anyhow::Result<()> {
 }
 
 /// The lines for one datagram.
-pub fn dump(receiver: &mut Receiver, from: SocketAddr, bytes: &[u8], json: bool) -> Vec<String> {
+pub fn dump(
+    receiver: &mut Receiver,
+    from: SocketAddr,
+    bytes: &[u8],
+    at: std::time::Instant,
+    json: bool,
+) -> Vec<String> {
     let verdict = |what: &str, h: Option<&Header>, detail: String| {
         if json {
             json!({
@@ -89,7 +95,7 @@ pub fn dump(receiver: &mut Receiver, from: SocketAddr, bytes: &[u8], json: bool)
             )
         }
     };
-    match receiver.receive(bytes) {
+    match receiver.receive(bytes, at) {
         Received::Malformed(e) => vec![verdict("malformed", None, format!(": {e}"))],
         Received::Duplicate(h) => vec![verdict("duplicate", Some(&h), String::new())],
         Received::OutOfOrder(h) => vec![verdict("out-of-order", Some(&h), String::new())],
@@ -282,7 +288,7 @@ mod tests {
             )
             .unwrap();
         let mut r = Receiver::default();
-        let lines = dump(&mut r, from(), &d[0], false);
+        let lines = dump(&mut r, from(), &d[0], std::time::Instant::now(), false);
         assert_eq!(lines.len(), 2);
         assert!(
             lines[0].starts_with("src 0x1234 #7 IAS unit 2/0 SINT 95 HIGH expire never"),
@@ -294,8 +300,14 @@ mod tests {
             "{}",
             lines[1]
         );
-        assert!(dump(&mut r, from(), &d[0], false)[0].starts_with("duplicate"));
-        let j: Json = serde_json::from_str(&dump(&mut r, from(), &d[0][..5], true)[0]).unwrap();
+        assert!(
+            dump(&mut r, from(), &d[0], std::time::Instant::now(), false)[0]
+                .starts_with("duplicate")
+        );
+        let j: Json = serde_json::from_str(
+            &dump(&mut r, from(), &d[0][..5], std::time::Instant::now(), true)[0],
+        )
+        .unwrap();
         assert_eq!(j["event"], "malformed");
         let mut s2 = Sender::new(0x1234, 8);
         let d2 = s2
@@ -304,7 +316,9 @@ mod tests {
                 &[Parameter::new(idents::IAS, Value::Sint(96)).unit(2)],
             )
             .unwrap();
-        let j: Json = serde_json::from_str(&dump(&mut r, from(), &d2[0], true)[0]).unwrap();
+        let j: Json =
+            serde_json::from_str(&dump(&mut r, from(), &d2[0], std::time::Instant::now(), true)[0])
+                .unwrap();
         assert_eq!(
             (j["ident"].as_str(), j["value"].as_i64()),
             (Some("IAS"), Some(96))

@@ -65,6 +65,30 @@ pub fn command(action: &Action, model: &Model, now: Instant) -> Result<Message, 
     }
 }
 
+/// The event log's line for a command action someone gave, with its origin first
+/// ("key", "check", "xfsp", "remote", as the audit log names them): "key: Nav Lt
+/// off (DEVICE_POWER sent)", or "key: Landing Lt reset refused: it is not faulted".
+/// The person's own actions belong in the log beside the unit's faults.
+pub fn said(
+    origin: &str,
+    action: &Action,
+    model: &Model,
+    result: Result<&Message, &str>,
+) -> String {
+    let what = match *action {
+        Action::PowerOn(id) => format!("{} on", model.display_name(id).trim()),
+        Action::PowerOff(id) => format!("{} off", model.display_name(id).trim()),
+        Action::Reset(id) => format!("{} reset", model.display_name(id).trim()),
+        Action::ResetSystemFault => "system fault reset".into(),
+        Action::ToggleWigWag => "wig-wag mode changed".into(),
+        _ => format!("{action:?}"),
+    };
+    match result {
+        Ok(m) => format!("{origin}: {what} ({} sent)", m.name()),
+        Err(why) => format!("{origin}: {what} refused: {why}"),
+    }
+}
+
 fn circuit_state(model: &Model, now: Instant, id: u8) -> Option<(CircuitKind, CircuitState)> {
     model
         .circuits(now)

@@ -9,6 +9,8 @@
 //! xfsp_iface = "192.168.1.20"
 //! xfsp_source_id = 0x5651        # hex or decimal
 //! xfsp_cert = 0
+//! xfsp_control = false           # true: take commands from the network
+//! xfsp_control_from = "0x1234,0x5678"  # only from these sources (needs xfsp_control)
 //! ```
 //!
 //! Every problem is reported with its line, so a person can go straight to it. Values
@@ -40,10 +42,12 @@ pub struct SettingsFile {
     pub xfsp_iface: Option<Setting<Ipv4Addr>>,
     pub xfsp_source_id: Option<Setting<u16>>,
     pub xfsp_cert: Option<Setting<u8>>,
+    pub xfsp_control: Option<Setting<bool>>,
+    pub xfsp_control_from: Option<Setting<values::SourceIds>>,
 }
 
 /// The keys the file may hold, for the message that refuses any other.
-pub const KEYS: [&str; 8] = [
+pub const KEYS: [&str; 10] = [
     "port",
     "baud",
     "theme",
@@ -52,6 +56,8 @@ pub const KEYS: [&str; 8] = [
     "xfsp_iface",
     "xfsp_source_id",
     "xfsp_cert",
+    "xfsp_control",
+    "xfsp_control_from",
 ];
 
 /// A problem in the file: the line it is on (when known) and what is wrong.
@@ -72,6 +78,8 @@ struct Raw {
     xfsp_iface: Option<Value>,
     xfsp_source_id: Option<Value>,
     xfsp_cert: Option<Value>,
+    xfsp_control: Option<Value>,
+    xfsp_control_from: Option<Value>,
 }
 
 /// Reads the file's text. The first problem stops the reading: one wrong line is
@@ -90,6 +98,7 @@ pub fn parse(text: &str) -> Result<SettingsFile, FileProblem> {
         match v.into_inner() {
             toml::Value::String(s) => Ok(Some((s, line))),
             toml::Value::Integer(i) => Ok(Some((i.to_string(), line))),
+            toml::Value::Boolean(b) => Ok(Some((b.to_string(), line))),
             other => Err(FileProblem {
                 line: Some(line),
                 message: format!(
@@ -97,7 +106,6 @@ pub fn parse(text: &str) -> Result<SettingsFile, FileProblem> {
                     match other.type_str() {
                         "array" => "a list",
                         "table" => "a section",
-                        "boolean" => "true/false",
                         "float" => "a decimal number",
                         _ => "a date",
                     }
@@ -144,6 +152,16 @@ pub fn parse(text: &str) -> Result<SettingsFile, FileProblem> {
             t.parse::<u8>()
                 .map_err(|_| format!("{t:?} is not a certification level (0–255)"))
         })?,
+        xfsp_control: check(
+            "xfsp_control",
+            read("xfsp_control", raw.xfsp_control)?,
+            values::yes_no,
+        )?,
+        xfsp_control_from: check(
+            "xfsp_control_from",
+            read("xfsp_control_from", raw.xfsp_control_from)?,
+            values::source_ids,
+        )?,
     })
 }
 
@@ -185,6 +203,19 @@ mod tests {
     }
 
     #[test]
+    fn network_control_is_read_as_yes_no_and_a_list() {
+        let f = parse("xfsp_control = true\nxfsp_control_from = \"0x1234, 0x5678\"\n").unwrap();
+        assert_eq!(f.xfsp_control.map(|s| (s.value, s.line)), Some((true, 1)));
+        assert_eq!(
+            f.xfsp_control_from.map(|s| s.value.0),
+            Some(vec![0x1234, 0x5678])
+        );
+        let f = parse("xfsp_control = false\nxfsp_control_from = 4660\n").unwrap();
+        assert_eq!(f.xfsp_control.map(|s| s.value), Some(false));
+        assert_eq!(f.xfsp_control_from.map(|s| s.value.0), Some(vec![0x1234]));
+    }
+
+    #[test]
     fn an_empty_file_sets_nothing_and_a_hex_string_id_is_read_too() {
         assert_eq!(parse(""), Ok(SettingsFile::default()));
         let f = parse("xfsp_source_id = \"0x5651\"").unwrap();
@@ -205,6 +236,13 @@ mod tests {
             ("baud = 57600\nbaud = 9600\n", 2, "duplicate key"),
             ("port = [1, 2]\n", 1, "port: a list where text"),
             ("xfsp_iface = \"eth0\"\n", 1, "not an IPv4 address"),
+            (
+                "xfsp_control = true\nxfsp_control_from = \"0x1234,zz\"\n",
+                2,
+                "xfsp_control_from: in \"0x1234,zz\": \"zz\" is not a 16-bit source id",
+            ),
+            ("xfsp_control_from = \"\"\n", 1, "empty list"),
+            ("xfsp_control = \"maybe\"\n", 1, "neither true nor false"),
             ("\nport = \"/dev/ttyUSB0\n", 2, ""),
         ] {
             let p = parse(text).unwrap_err();

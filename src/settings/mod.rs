@@ -18,6 +18,8 @@ pub use file::{FileProblem, KEYS, Setting, SettingsFile, parse};
 pub const CONFIG_ENV: &str = "VPX_EFIS_CONFIG";
 pub const PORT_ENV: &str = "VPX_EFIS_PORT";
 pub const BAUD_ENV: &str = "VPX_EFIS_BAUD";
+pub const XFSP_CONTROL_ENV: &str = "VPX_EFIS_XFSP_CONTROL";
+pub const XFSP_CONTROL_FROM_ENV: &str = "VPX_EFIS_XFSP_CONTROL_FROM";
 
 /// Where an effective value came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

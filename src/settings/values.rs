@@ -51,6 +51,48 @@ pub fn source_id(text: &str) -> Result<u16, String> {
     })
 }
 
+/// A list of XFSp source ids, comma-separated ("0x1234,0x5678" or "4660"), for
+/// `--xfsp-control-from`. An empty list or an empty item is refused: a list that
+/// allows nobody is a typo, not a setting.
+pub fn source_ids(text: &str) -> Result<SourceIds, String> {
+    if text.trim().is_empty() {
+        return Err("an empty list of source ids: name at least one (0x1234,0x5678)".into());
+    }
+    let mut ids = Vec::new();
+    for (i, item) in text.split(',').enumerate() {
+        if item.trim().is_empty() {
+            return Err(format!(
+                "{text:?}: item {} is empty; write source ids separated by commas (0x1234,0x5678)",
+                i + 1
+            ));
+        }
+        let id = source_id(item).map_err(|why| format!("in {text:?}: {why}"))?;
+        if !ids.contains(&id) {
+            ids.push(id);
+        }
+    }
+    Ok(SourceIds(ids))
+}
+
+/// Source ids as `--xfsp-control-from` takes them.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SourceIds(pub Vec<u16>);
+
+impl std::fmt::Display for SourceIds {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&crate::xfsp::gateway::source_list(&self.0))
+    }
+}
+
+/// Yes or no, as the config file and the environment write it.
+pub fn yes_no(text: &str) -> Result<bool, String> {
+    match text.trim().to_ascii_lowercase().as_str() {
+        "true" | "yes" | "on" | "1" => Ok(true),
+        "false" | "no" | "off" | "0" => Ok(false),
+        _ => Err(format!("{text:?} is neither true nor false")),
+    }
+}
+
 /// The interface address to join the XFSp group on.
 pub fn iface(text: &str) -> Result<Ipv4Addr, String> {
     text.trim().parse().map_err(|_| {
@@ -156,6 +198,49 @@ mod tests {
         assert!(source_id("65536").is_err());
         assert!(source_id("0x").is_err());
         assert!(source_id("5651h").is_err());
+    }
+
+    #[test]
+    fn source_id_lists_are_read_whole_or_refused_in_words() {
+        assert_eq!(source_ids("0x1234"), Ok(SourceIds(vec![0x1234])));
+        assert_eq!(
+            source_ids(" 0x1234, 22096 ,0x1234"),
+            Ok(SourceIds(vec![0x1234, 22096])),
+            "spaces are trimmed and a repeat is kept once"
+        );
+        assert_eq!(SourceIds(vec![0x1234, 7]).to_string(), "0x1234, 0x0007");
+        assert!(source_ids("").unwrap_err().contains("empty list"));
+        assert!(source_ids("  ").unwrap_err().contains("empty list"));
+        let gap = source_ids("0x1234,,0x5678").unwrap_err();
+        assert!(gap.contains("item 2 is empty"), "{gap}");
+        assert!(
+            source_ids("0x1234,")
+                .unwrap_err()
+                .contains("item 2 is empty")
+        );
+        let bad = source_ids("0x1234,zz").unwrap_err();
+        assert!(bad.contains("\"zz\" is not a 16-bit source id"), "{bad}");
+        assert!(
+            source_ids("0x1234;0x5678").is_err(),
+            "semicolons are no separator"
+        );
+        assert!(source_ids("0x10000").unwrap_err().contains("16-bit"));
+    }
+
+    #[test]
+    fn yes_and_no() {
+        for t in ["true", "TRUE", "yes", "on", "1"] {
+            assert_eq!(yes_no(t), Ok(true), "{t}");
+        }
+        for t in ["false", "no", "off", "0"] {
+            assert_eq!(yes_no(t), Ok(false), "{t}");
+        }
+        assert!(
+            yes_no("maybe")
+                .unwrap_err()
+                .contains("neither true nor false")
+        );
+        assert!(yes_no("").is_err());
     }
 
     #[test]

@@ -43,6 +43,12 @@
 //! log (`model.log`), prefixed "XFSp" and the sender's source id, and is counted in
 //! [`GatewayStats`]: nothing with SYSSEL/USERSEL confidence is dropped in silence.
 //!
+//! Commands are taken only when [`GatewayConfig::control`] allows their source
+//! (`--xfsp-control`, `--xfsp-control-from`); by default every one is refused before
+//! it is read further, counted in [`GatewayStats::commands_not_allowed`], and said in
+//! the log once per source every [`NOT_ALLOWED_SAID_EVERY`]. Air data and publishing
+//! do not depend on it.
+//!
 //! # How an ECBSTAT request names its circuit
 //!
 //! The draft gives ECBSTAT "Unit Usage: None" and a label, so the label alone must do;
@@ -74,6 +80,8 @@
 //! its number. A node that restarts numbers "with an arbitrary initial value" (§4.1);
 //! without this it would be ignored until its numbers passed the old ones (up to
 //! 32767 messages). An old message replayed after 10 s of silence is taken once.
+//! The receiver's table of sources is bounded by that silence, not by a count a busy
+//! network passes (see [`super::receiver`] for the bound against forged ids).
 //!
 //! # Master Caution and Master Warning
 //!
@@ -114,8 +122,62 @@ pub const RECENT_MAX: usize = 1024;
 /// A source silent this long is forgotten, so a node that restarted (and numbers its
 /// messages from scratch) is heard again at once instead of after 32767 messages.
 /// A deliberate exception to the draft's §4.4 "MUST be discarded": see the module's
-/// notes on order.
-pub const FORGET_SOURCE_AFTER: Duration = Duration::from_secs(10);
+/// notes on order. The receiver keeps the rule ([`super::receiver::FORGET_AFTER`]),
+/// and bounds its table by it, not by a count.
+pub const FORGET_SOURCE_AFTER: Duration = super::receiver::FORGET_AFTER;
+/// A source refused for want of `--xfsp-control` gets one line in the event log this
+/// often (with the running count), not one per datagram: a display repeating its
+/// request at 4 Hz must not bury the log.
+pub const NOT_ALLOWED_SAID_EVERY: Duration = Duration::from_secs(10);
+
+/// Who may command the unit over the network (issue 25.5). XFSp -00 has no
+/// authentication, so nobody may unless the person asked: `--xfsp-control` for any
+/// source, `--xfsp-control-from` for listed ones. Publishing and taking air data do
+/// not depend on it.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub enum Control {
+    /// Commands are refused (the default).
+    #[default]
+    Off,
+    /// Commands from any source are taken (under control's rules).
+    Any,
+    /// Commands only from these source ids.
+    From(Vec<u16>),
+}
+
+impl Control {
+    /// `None` when `src` may command; otherwise why not, in words.
+    pub fn refusal(&self, src: u16) -> Option<String> {
+        match self {
+            Control::Any => None,
+            Control::From(ids) if ids.contains(&src) => None,
+            Control::Off => Some(
+                "commands from the network are off (start with --xfsp-control to take them)".into(),
+            ),
+            Control::From(ids) => Some(format!(
+                "{src:#06x} is not in --xfsp-control-from ({})",
+                source_list(ids)
+            )),
+        }
+    }
+
+    /// For the status line: "off", "from any source", "only from 0x1234, 0x5678".
+    pub fn describe(&self) -> String {
+        match self {
+            Control::Off => "network commands off".into(),
+            Control::Any => "network commands from any source".into(),
+            Control::From(ids) => format!("network commands only from {}", source_list(ids)),
+        }
+    }
+}
+
+/// Source ids as hex, comma-separated.
+pub fn source_list(ids: &[u16]) -> String {
+    ids.iter()
+        .map(|id| format!("{id:#06x}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
 
 #[derive(Debug, Clone)]
 pub struct GatewayConfig {
@@ -126,6 +188,8 @@ pub struct GatewayConfig {
     pub first_msg_num: u16,
     /// The motor stream's settings (resend period, maximum run).
     pub streamer: StreamerConfig,
+    /// Who may command the unit (off unless asked for).
+    pub control: Control,
 }
 
 impl Default for GatewayConfig {
@@ -136,6 +200,7 @@ impl Default for GatewayConfig {
             cert: CertLevel::Experimental,
             first_msg_num: 0,
             streamer: StreamerConfig::default(),
+            control: Control::Off,
         }
     }
 }
@@ -163,6 +228,10 @@ pub struct GatewayStats {
     pub commands_taken: u64,
     /// Requests refused or expired unserved, each with a line in the event log.
     pub commands_refused: u64,
+    /// Commands refused because this source may not command (see [`Control`]):
+    /// counted apart from [`Self::commands_refused`], and said in the event log once
+    /// per source every [`NOT_ALLOWED_SAID_EVERY`].
+    pub commands_not_allowed: u64,
     pub datagrams_built: u64,
     pub build_errors: u64,
 }
@@ -171,13 +240,14 @@ pub struct Gateway {
     cfg: GatewayConfig,
     sender: Sender,
     receiver: Receiver,
-    heard: HashMap<u16, Instant>,
     publisher: Publisher,
     air: AirData,
     drive: MotorDrive,
     /// Requests taken (or refused for naming no circuit) lately, by (ident, unit or
     /// device id, state): a repeat within [`COMMAND_REPEAT_WINDOW`] is the same request.
     recent: HashMap<(Ident, u16, u8, Vec<u8>), Instant>,
+    /// When each source last had a line for a command it may not give.
+    not_allowed_said: HashMap<u16, Instant>,
     last_tick: Instant,
     stats: GatewayStats,
 }
@@ -187,11 +257,11 @@ impl Gateway {
         Gateway {
             sender: Sender::new(cfg.source_id, cfg.first_msg_num),
             receiver: Receiver::default(),
-            heard: HashMap::new(),
             publisher: Publisher::new(cfg.cert, cfg.source_id, now),
             air: AirData::default(),
             drive: MotorDrive::new(cfg.streamer),
             recent: HashMap::new(),
+            not_allowed_said: HashMap::new(),
             last_tick: now,
             stats: GatewayStats::default(),
             cfg,
@@ -207,19 +277,12 @@ impl Gateway {
     /// Malformed, duplicate, out-of-order and our own datagrams are counted and dropped.
     pub fn receive(&mut self, datagram: &[u8], model: &mut Model, now: Instant) -> Vec<Packet> {
         let mut out = Vec::new();
-        let src = match Header::parse(datagram) {
-            Ok(h) if h.src_id == self.cfg.source_id => {
-                self.stats.own += 1;
-                return out;
-            }
-            Ok(h) => Some(h.src_id),
-            Err(_) => None,
-        };
-        if let Some(src) = src {
-            self.note_heard(src, now);
+        if Header::parse(datagram).is_ok_and(|h| h.src_id == self.cfg.source_id) {
+            self.stats.own += 1;
+            return out;
         }
         let params: Vec<(u16, Result<Parameter, super::Error>)> =
-            match self.receiver.receive(datagram) {
+            match self.receiver.receive(datagram, now) {
                 Received::Fresh(view) => {
                     let src = view.header().src_id;
                     view.params().map(|p| (src, p.to_parameter())).collect()
@@ -341,23 +404,6 @@ impl Gateway {
         self.publisher.master_active(master)
     }
 
-    fn note_heard(&mut self, src: u16, now: Instant) {
-        if self
-            .heard
-            .get(&src)
-            .is_some_and(|&t| now.saturating_duration_since(t) > FORGET_SOURCE_AFTER)
-        {
-            self.receiver.forget(src);
-        }
-        self.heard.insert(src, now);
-        if self.heard.len() > 1024 {
-            // Memory stays bounded under forged source ids; losing a timestamp only
-            // means that source's restart is noticed a little later.
-            self.heard
-                .retain(|_, t| now.saturating_duration_since(*t) <= FORGET_SOURCE_AFTER);
-        }
-    }
-
     fn take(
         &mut self,
         src: u16,
@@ -375,6 +421,20 @@ impl Gateway {
             return;
         }
         let who = format!("XFSp {src:#06x} ({})", confidence_name(p.confidence));
+        let is_command = Master::from_ident(p.ident).is_some()
+            || [
+                idents::ECBSTAT,
+                idents::FLAPREQ,
+                idents::PTRIMREQ,
+                idents::RTRIMREQ,
+            ]
+            .contains(&p.ident);
+        if !is_command {
+            return;
+        }
+        if let Some(why) = self.cfg.control.refusal(src) {
+            return self.not_allowed(&who, src, p.ident, &why, model, now);
+        }
         if let Some(master) = Master::from_ident(p.ident) {
             return self.master_reset(&who, master, p, model, now);
         }
@@ -403,6 +463,43 @@ impl Gateway {
         }
         self.drive
             .request(motor, target, src, p.expire.duration(), now);
+    }
+
+    /// A command from a source that may not command: counted always, said once per
+    /// source every [`NOT_ALLOWED_SAID_EVERY`], with the count so far.
+    fn not_allowed(
+        &mut self,
+        who: &str,
+        src: u16,
+        ident: Ident,
+        why: &str,
+        model: &mut Model,
+        now: Instant,
+    ) {
+        self.stats.commands_not_allowed += 1;
+        if self
+            .not_allowed_said
+            .get(&src)
+            .is_some_and(|&t| now.saturating_duration_since(t) < NOT_ALLOWED_SAID_EVERY)
+        {
+            return;
+        }
+        // Keyed by a 16-bit id, so bounded; pruned so it holds only recent talkers.
+        if self.not_allowed_said.len() >= 64 {
+            self.not_allowed_said
+                .retain(|_, t| now.saturating_duration_since(*t) < NOT_ALLOWED_SAID_EVERY);
+        }
+        self.not_allowed_said.insert(src, now);
+        let name = idents::name(ident).map_or_else(|| ident.to_string(), str::to_string);
+        let n = self.stats.commands_not_allowed;
+        model.log(
+            now,
+            LogLevel::Warning,
+            format!(
+                "{who}: {name} refused: {why}; {n} network command{} refused so far",
+                if n == 1 { "" } else { "s" }
+            ),
+        );
     }
 
     fn refuse(&mut self, model: &mut Model, now: Instant, text: String) {

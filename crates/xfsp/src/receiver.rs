@@ -9,23 +9,37 @@
 //! mean different things on the network: a looping switch versus reordering), each
 //! source keeps a 64-message bitmap of numbers already seen, as IPsec anti-replay does.
 //!
-//! Memory is bounded: at most `max_sources` sources are tracked, and a new source
-//! beyond that evicts the one heard from least recently. An evicted source that comes
-//! back is treated as new, so its next message is accepted.
+//! A source silent for [`FORGET_AFTER`] (10 s) is forgotten: its next message is
+//! taken whatever its number. A node that restarts numbers "with an arbitrary initial
+//! value" (§4.1), and would otherwise be ignored until its numbers passed the old
+//! ones (up to 32767 messages); a source silent that long is gone from the network
+//! anyway (draft §4.4's lifetimes, our 10 s rule). An old message replayed after 10 s
+//! of silence is taken once.
 //!
-//! A node that restarts with a lower message number is ignored until its numbers pass
-//! the last one seen (up to 32767 messages) or it is forgotten; the gateway, which has
-//! a clock, can call [`Receiver::forget`] for sources silent for a while.
+//! Decision, memory (issue 26.8): the table is bounded by time, never by a count.
+//! A count (we had 256) is passed by a busy network or a flood of forged source ids,
+//! and evicting a source that is still talking makes its next duplicate or late
+//! message look fresh: an old IAS taken as new. So a source is dropped only once it
+//! has been silent for [`FORGET_AFTER`] (swept at most once a second, by the
+//! caller's clock). The bound in memory is the id space itself: source ids are 16
+//! bits, so a flood that forges every one of them within 10 s holds at most 65,536
+//! entries of a few dozen bytes (about 4.5 MB with the map's spare room, checked in
+//! the tests), and 10 s after
+//! it stops the table is swept back to the real nodes. Refusing new sources
+//! when full was the other choice; it would let such a flood lock out a real node
+//! that restarts.
 
 use std::collections::HashMap;
+use std::time::{Duration, Instant};
 
 use super::error::Error;
 use super::header::Header;
 use super::message::MessageView;
 
-/// Sources tracked by default: far more nodes than any aircraft network has, small
-/// enough that a flood of forged source ids costs a few kilobytes.
-pub const DEFAULT_MAX_SOURCES: usize = 256;
+/// A source silent this long is forgotten (see the module's notes).
+pub const FORGET_AFTER: Duration = Duration::from_secs(10);
+/// Silent sources are swept from the table at most this often.
+pub const SWEEP_EVERY: Duration = Duration::from_secs(1);
 
 /// Whether `n` comes after `last` in 16-bit serial-number arithmetic (RFC 1982, reading
 /// note 7).
@@ -71,8 +85,8 @@ pub struct RxStats {
     pub out_of_order: u64,
     /// Datagrams dropped as [`Received::Malformed`].
     pub malformed: u64,
-    /// Sources dropped from the table to make room for new ones.
-    pub evicted: u64,
+    /// Sources forgotten after [`FORGET_AFTER`] of silence.
+    pub forgotten: u64,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -80,40 +94,39 @@ struct Source {
     last: u16,
     /// Bit `k` set: message `last - k` has been seen (bit 0 is `last` itself).
     seen: u64,
-    /// When this source last had a fresh message, in receiver ticks.
-    touched: u64,
+    /// When this source was last heard (any well-formed message).
+    heard: Instant,
 }
 
 /// Per-source ordering and duplicate suppression (§2, §4.4).
 #[derive(Debug, Clone)]
 pub struct Receiver {
     sources: HashMap<u16, Source>,
-    max_sources: usize,
-    tick: u64,
+    forget_after: Duration,
+    next_sweep: Option<Instant>,
     stats: RxStats,
 }
 
 impl Default for Receiver {
     fn default() -> Self {
-        Receiver::new(DEFAULT_MAX_SOURCES)
+        Receiver::new(FORGET_AFTER)
     }
 }
 
 impl Receiver {
-    /// Tracks at most `max_sources` sources (at least one).
-    pub fn new(max_sources: usize) -> Receiver {
-        let max_sources = max_sources.max(1);
+    /// Forgets a source after `forget_after` of silence.
+    pub fn new(forget_after: Duration) -> Receiver {
         Receiver {
-            sources: HashMap::with_capacity(max_sources.min(1024)),
-            max_sources,
-            tick: 0,
+            sources: HashMap::new(),
+            forget_after,
+            next_sweep: None,
             stats: RxStats::default(),
         }
     }
 
     /// Frames the datagram, then applies the ordering rules to its source and number.
     /// Only a well-formed datagram affects the source table.
-    pub fn receive<'a>(&mut self, datagram: &'a [u8]) -> Received<'a> {
+    pub fn receive<'a>(&mut self, datagram: &'a [u8], now: Instant) -> Received<'a> {
         match MessageView::parse(datagram) {
             Err(e) => {
                 self.stats.malformed += 1;
@@ -121,7 +134,7 @@ impl Receiver {
             }
             Ok(view) => {
                 let h = *view.header();
-                match self.check(h.src_id, h.msg_num) {
+                match self.check(h.src_id, h.msg_num, now) {
                     Verdict::Fresh => Received::Fresh(view),
                     Verdict::Duplicate => Received::Duplicate(h),
                     Verdict::OutOfOrder => Received::OutOfOrder(h),
@@ -130,29 +143,37 @@ impl Receiver {
         }
     }
 
-    /// Applies the ordering rules to a message number, recording it, and counts it.
-    pub fn check(&mut self, src: u16, num: u16) -> Verdict {
-        self.tick += 1;
-        let tick = self.tick;
+    /// Applies the ordering rules to a message number heard at `now`, recording it,
+    /// and counts it.
+    pub fn check(&mut self, src: u16, num: u16, now: Instant) -> Verdict {
+        self.sweep(now);
+        let forget_after = self.forget_after;
+        if self
+            .sources
+            .get(&src)
+            .is_some_and(|s| now.saturating_duration_since(s.heard) > forget_after)
+        {
+            self.sources.remove(&src);
+            self.stats.forgotten += 1;
+        }
         let verdict = match self.sources.get_mut(&src) {
             None => {
-                self.make_room();
                 self.sources.insert(
                     src,
                     Source {
                         last: num,
                         seen: 1,
-                        touched: tick,
+                        heard: now,
                     },
                 );
                 Verdict::Fresh
             }
             Some(s) => {
+                s.heard = now;
                 let ahead = num.wrapping_sub(s.last);
                 if serial_newer(num, s.last) {
                     s.seen = s.seen.checked_shl(u32::from(ahead)).unwrap_or(0) | 1;
                     s.last = num;
-                    s.touched = tick;
                     Verdict::Fresh
                 } else {
                     let behind = s.last.wrapping_sub(num);
@@ -174,19 +195,18 @@ impl Receiver {
         verdict
     }
 
-    fn make_room(&mut self) {
-        while self.sources.len() >= self.max_sources {
-            let Some(oldest) = self
-                .sources
-                .iter()
-                .min_by_key(|(_, s)| s.touched)
-                .map(|(&id, _)| id)
-            else {
-                return;
-            };
-            self.sources.remove(&oldest);
-            self.stats.evicted += 1;
+    /// Drops the sources silent past `forget_after`, at most once per
+    /// [`SWEEP_EVERY`]: the table holds only the sources of the last seconds.
+    fn sweep(&mut self, now: Instant) {
+        if self.next_sweep.is_some_and(|t| now < t) {
+            return;
         }
+        self.next_sweep = Some(now + SWEEP_EVERY);
+        let before = self.sources.len();
+        let forget_after = self.forget_after;
+        self.sources
+            .retain(|_, s| now.saturating_duration_since(s.heard) <= forget_after);
+        self.stats.forgotten += (before - self.sources.len()) as u64;
     }
 
     /// Forgets a source, so its next message is accepted whatever its number (for a
@@ -221,6 +241,9 @@ mod tests {
     use crate::param::Parameter;
     use proptest::prelude::*;
 
+    /// One instant for the tests that are not about time.
+    static T0: std::sync::LazyLock<Instant> = std::sync::LazyLock::new(Instant::now);
+
     #[test]
     fn serial_arithmetic_wraps() {
         assert!(serial_newer(1, 0));
@@ -236,23 +259,27 @@ mod tests {
     #[test]
     fn in_order_fresh_duplicates_and_late_ones() {
         let mut r = Receiver::default();
-        assert_eq!(r.check(1, 65534), Verdict::Fresh);
-        assert_eq!(r.check(1, 65535), Verdict::Fresh);
+        assert_eq!(r.check(1, 65534, *T0), Verdict::Fresh);
+        assert_eq!(r.check(1, 65535, *T0), Verdict::Fresh);
         assert_eq!(
-            r.check(1, 2),
+            r.check(1, 2, *T0),
             Verdict::Fresh,
             "skipping 0 and 1 across the wrap"
         );
-        assert_eq!(r.check(1, 2), Verdict::Duplicate);
+        assert_eq!(r.check(1, 2, *T0), Verdict::Duplicate);
         assert_eq!(
-            r.check(1, 65535),
+            r.check(1, 65535, *T0),
             Verdict::Duplicate,
             "seen before the wrap"
         );
-        assert_eq!(r.check(1, 0), Verdict::OutOfOrder, "skipped, now late");
-        assert_eq!(r.check(1, 0), Verdict::Duplicate, "the late one again");
-        assert_eq!(r.check(2, 0), Verdict::Fresh, "sources are independent");
-        assert_eq!(r.check(1, 3), Verdict::Fresh);
+        assert_eq!(r.check(1, 0, *T0), Verdict::OutOfOrder, "skipped, now late");
+        assert_eq!(r.check(1, 0, *T0), Verdict::Duplicate, "the late one again");
+        assert_eq!(
+            r.check(2, 0, *T0),
+            Verdict::Fresh,
+            "sources are independent"
+        );
+        assert_eq!(r.check(1, 3, *T0), Verdict::Fresh);
         assert_eq!(
             r.stats(),
             RxStats {
@@ -260,7 +287,7 @@ mod tests {
                 duplicate: 3,
                 out_of_order: 1,
                 malformed: 0,
-                evicted: 0
+                forgotten: 0
             }
         );
         assert_eq!(r.last_number(1), Some(3));
@@ -269,12 +296,16 @@ mod tests {
     #[test]
     fn a_jump_beyond_the_window_clears_it() {
         let mut r = Receiver::default();
-        r.check(9, 100);
-        assert_eq!(r.check(9, 1000), Verdict::Fresh);
-        assert_eq!(r.check(9, 100), Verdict::OutOfOrder, "out of the 64 window");
-        assert_eq!(r.check(9, 30_000), Verdict::Fresh);
+        r.check(9, 100, *T0);
+        assert_eq!(r.check(9, 1000, *T0), Verdict::Fresh);
         assert_eq!(
-            r.check(9, 62_768),
+            r.check(9, 100, *T0),
+            Verdict::OutOfOrder,
+            "out of the 64 window"
+        );
+        assert_eq!(r.check(9, 30_000, *T0), Verdict::Fresh);
+        assert_eq!(
+            r.check(9, 62_768, *T0),
             Verdict::OutOfOrder,
             "32768 ahead is not newer"
         );
@@ -290,16 +321,16 @@ mod tests {
         );
         let b = m.emit().unwrap();
         let mut r = Receiver::default();
-        assert!(matches!(r.receive(&b), Received::Fresh(v) if v.header().src_id == 7));
-        assert!(matches!(r.receive(&b), Received::Duplicate(h) if h.msg_num == 40));
+        assert!(matches!(r.receive(&b, *T0), Received::Fresh(v) if v.header().src_id == 7));
+        assert!(matches!(r.receive(&b, *T0), Received::Duplicate(h) if h.msg_num == 40));
         assert_eq!(
-            r.receive(&b[..7]),
+            r.receive(&b[..7], *T0),
             Received::Malformed(Error::ShortHeader { len: 7 })
         );
         let mut older = m.clone();
         older.msg_num = 39;
         assert!(matches!(
-            r.receive(&older.emit().unwrap()),
+            r.receive(&older.emit().unwrap(), *T0),
             Received::OutOfOrder(_)
         ));
         let s = r.stats();
@@ -309,41 +340,65 @@ mod tests {
         );
     }
 
+    /// Issue 26.8: 300 sources (more than the 256 the table once held) all talking
+    /// within 10 s: none is forgotten, so a duplicate from the first is still a
+    /// duplicate. After 10 s of silence a source is forgotten and its next message
+    /// taken; a second later the table holds only the sources still talking.
     #[test]
-    fn a_flood_of_sources_stays_bounded_and_evicts_the_oldest() {
-        let mut r = Receiver::new(4);
-        for src in 0..4 {
-            r.check(src, 0);
+    fn sources_are_forgotten_by_silence_never_by_count() {
+        let t0 = *T0;
+        let mut r = Receiver::default();
+        for src in 0..300u16 {
+            assert_eq!(r.check(src, 100, t0), Verdict::Fresh);
         }
-        r.check(0, 1); // source 0 is now the most recent, 1 the oldest
-        for src in 100..1100 {
-            r.check(src, 0);
-            assert!(r.tracked_sources() <= 4);
+        let t1 = t0 + Duration::from_secs(9);
+        for src in 0..300u16 {
+            assert_eq!(
+                r.check(src, 100, t1),
+                Verdict::Duplicate,
+                "source {src} was forgotten while it talked"
+            );
         }
-        assert_eq!(r.stats().evicted, 1000);
-        assert_eq!(r.last_number(1099), Some(0));
-        let mut r = Receiver::new(4);
-        for src in 0..4 {
-            r.check(src, 0);
-        }
-        r.check(0, 1);
-        r.check(50, 0);
-        assert_eq!(r.last_number(1), None, "oldest went first");
-        assert_eq!(r.last_number(0), Some(1), "recently heard from stays");
+        assert_eq!(r.tracked_sources(), 300);
+        assert_eq!(r.stats().forgotten, 0);
+        // Only source 7 talks on; the rest fall silent.
+        assert_eq!(r.check(7, 101, t1 + Duration::from_secs(5)), Verdict::Fresh);
+        let t2 = t1 + Duration::from_millis(10_500);
+        assert_eq!(r.check(7, 101, t2), Verdict::Duplicate, "7 is remembered");
+        assert_eq!(r.tracked_sources(), 1, "the silent ones are swept");
+        assert_eq!(r.stats().forgotten, 299);
         assert_eq!(
-            r.check(1, 0),
+            r.check(8, 100, t2),
             Verdict::Fresh,
-            "an evicted source starts over"
+            "silent 10 s: forgotten, its next message taken"
         );
+    }
+
+    /// Every one of the 65,536 source ids forged within a second: the table holds
+    /// them all (the id space is its bound) and nothing panics; 10 s after the flood
+    /// stops it is back to the one real source.
+    #[test]
+    fn a_flood_of_every_source_id_is_bounded_by_the_id_space_and_swept() {
+        let t0 = *T0;
+        let mut r = Receiver::default();
+        for src in 0..=u16::MAX {
+            r.check(src, 1, t0 + Duration::from_micros(u64::from(src) * 10));
+        }
+        assert_eq!(r.tracked_sources(), 65_536);
+        let size = r.sources.capacity() * (std::mem::size_of::<(u16, Source)>() + 1);
+        assert!(size < 5 << 20, "{size} bytes");
+        let later = t0 + Duration::from_secs(12);
+        assert_eq!(r.check(0x1234, 2, later), Verdict::Fresh);
+        assert_eq!(r.tracked_sources(), 1);
     }
 
     #[test]
     fn forget_lets_a_restarted_node_back_in() {
         let mut r = Receiver::default();
-        r.check(3, 5000);
-        assert_eq!(r.check(3, 0), Verdict::OutOfOrder);
+        r.check(3, 5000, *T0);
+        assert_eq!(r.check(3, 0, *T0), Verdict::OutOfOrder);
         r.forget(3);
-        assert_eq!(r.check(3, 0), Verdict::Fresh);
+        assert_eq!(r.check(3, 0, *T0), Verdict::Fresh);
     }
 
     proptest! {
@@ -360,7 +415,7 @@ mod tests {
             let mut n = start;
             for step in steps {
                 n = n.wrapping_add(step as u16);
-                let v = r.check(1, n);
+                let v = r.check(1, n, *T0);
                 let expect_fresh = last.is_none_or(|l| serial_newer(n, l));
                 prop_assert_eq!(v == Verdict::Fresh, expect_fresh);
                 if v == Verdict::Fresh {

@@ -199,7 +199,10 @@ mod tests {
                 .pack(MsgKind::flight_data(CertLevel::LevelC), &[sint(0)])
                 .unwrap();
             let h = crate::header::Header::parse(&d[0]).unwrap();
-            assert_eq!(r.check(h.src_id, h.msg_num), Verdict::Fresh);
+            assert_eq!(
+                r.check(h.src_id, h.msg_num, std::time::Instant::now()),
+                Verdict::Fresh
+            );
         }
         assert_eq!(s.next_num(), 2);
     }
