@@ -45,7 +45,8 @@ impl App {
     ) -> anyhow::Result<()> {
         let net = XfspNet::open(target, iface)
             .map_err(|e| anyhow::anyhow!("cannot open XFSp {target} on {iface}: {e}"))?;
-        let gateway = Gateway::new(config, Instant::now());
+        let mut gateway = Gateway::new(config, Instant::now());
+        gateway.share_against(self.controller.with(|c| c.against()));
         self.gateway = Some(PageGateway {
             gateway,
             net,

@@ -4,6 +4,8 @@
 
 use std::time::{Duration, Instant};
 
+mod against;
+
 use super::flow::{Cause, CheckFlow, Command, Options};
 use super::plan::Choices;
 use crate::control::{Controller, StopReason};
@@ -1454,8 +1456,8 @@ fn the_first_direction_is_toward_the_side_with_more_room() {
 }
 
 /// A reversed pitch trim 5 (or 8) counts below its up endpoint: the first run is
-/// "down" (more room), but the motor goes up, toward 30. It is stopped there, never
-/// past, found reversed, and put back: the run back is "up", which on this motor
+/// "down" (more room), but the motor goes up, toward 30. It is stopped as moving
+/// against its command, never past 30, found reversed, and put back: the run back is "up", which on this motor
 /// moves away from 30, so the endpoint it keeps off is the down one.
 #[test]
 fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
@@ -1474,9 +1476,10 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
         let m = &r.view.motors[1];
         assert_eq!(m.outcome, Outcome::Found(MotorFinding::Reversed), "{m:?}");
         assert!(
-            r.news
-                .iter()
-                .any(|n| n.contains("stopped at its endpoint (30)")),
+            r.news.iter().any(|n| n.contains(
+                "pitch trim moved up when asked down: its leads or its \
+                                     sensor may be swapped; stopped"
+            )),
             "{:?}",
             r.news
         );
