@@ -877,7 +877,8 @@ fn notice_is_shown() {
 const MOVED_AGAINST: &str =
     "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped";
 const MOVED_AGAINST_REFUSED: &str = "pitch trim moved down when asked up: its leads or its \
-     sensor may be swapped; press u again within 3 s to run it up anyway, watching the motor";
+     sensor may be swapped; let go, then press u again within 3 s to run it up anyway, watching \
+     the motor";
 
 /// A notice too long for the key row (a motor stopped for moving against its
 /// command, and the refusal that says how to confirm a run) is word-wrapped on rows

@@ -13,8 +13,9 @@
 //!   recorded here.
 //! - From then on, a run of that motor, in either direction (swapped leads or a
 //!   swapped sensor turn both round), is refused for every origin until the person
-//!   confirms it. The decision: the confirmation is the same motor key pressed again
-//!   within [`CONFIRM_WITHIN`] of the refusal, at the page, watching the motor
+//!   confirms it. The decision: the confirmation is the same motor key let go and
+//!   pressed again (a fresh press, never a held key's repeat) within
+//!   [`CONFIRM_WITHIN`] of the refusal, at the page, watching the motor
 //!   ([`super::Controller`]). It holds for that one run. The installation check and
 //!   the network cannot confirm: they are refused and say so.
 //! - A confirmed run goes knowing the way the motor really moves: it is refused at
@@ -111,7 +112,7 @@ pub fn stopped(motor: Motor, asked: Direction) -> String {
 /// The refusal of a key's run, naming the key that confirms it.
 pub fn confirm_words(motor: Motor, seen: Direction, direction: Direction) -> String {
     format!(
-        "{}; press {} again within {} s to run it {} anyway, watching the motor",
+        "{}; let go, then press {} again within {} s to run it {} anyway, watching the motor",
         words(motor, seen),
         key_name(direction),
         CONFIRM_WITHIN.as_secs(),

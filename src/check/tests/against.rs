@@ -117,8 +117,8 @@ fn a_key_run_moving_against_its_command_stops_and_then_needs_a_confirmation() {
     let refused = r.key('u', KeyEventKind::Press, false).notice.unwrap();
     assert_eq!(
         refused,
-        "pitch trim moved down when asked up: its leads or its sensor may be swapped; press \
-         u again within 3 s to run it up anyway, watching the motor"
+        "pitch trim moved down when asked up: its leads or its sensor may be swapped; let go, \
+         then press u again within 3 s to run it up anyway, watching the motor"
     );
     r.key('u', KeyEventKind::Release, false);
     r.run(3100);
@@ -337,5 +337,33 @@ fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
             .any(|e| e.text.contains("0x0043") && e.text.contains("not run: confirm")),
         "{:?}",
         r.model.events
+    );
+}
+
+/// A terminal with no key release: a key held through the refusal never confirms it
+/// (its repeats are not presses); let go, a press after the repeat gap does.
+#[test]
+fn a_held_key_never_confirms_only_a_fresh_press_does() {
+    let mut r = Rig::with(&pitch_at(128, true), Rig::motors_only());
+    r.ctl.against().record(PITCH, Direction::Up);
+    let from = r.sent.len();
+    let out = r.key('u', KeyEventKind::Press, false);
+    assert!(out.notice.unwrap().contains("let go, then press u again"));
+    // Held: the terminal sends the same press every 40 ms after its first delay.
+    r.run(500);
+    for _ in 0..30 {
+        let out = r.key('u', KeyEventKind::Press, false);
+        assert!(out.packets.is_empty(), "a held key ran it: {out:?}");
+        r.run(40);
+    }
+    assert!(r.trim_moves_since(from).is_empty());
+    // Let go (no more repeats), then a fresh press, 2.3 s after the refusal: it runs.
+    r.run(600);
+    let out = r.key('u', KeyEventKind::Press, false);
+    assert!(
+        out.packets
+            .iter()
+            .any(|p| matches!(p.message, Message::TrimMove(t) if t.on)),
+        "{out:?}"
     );
 }
