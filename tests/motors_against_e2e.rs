@@ -8,9 +8,7 @@
 // Needs a pseudo-terminal, which only Unix has.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
-use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
@@ -25,18 +23,12 @@ use vpx_efis::protocol::{Direction as Dir, Packet};
 use vpx_efis::traffic::What;
 use vpx_efis::ui::state::ReleaseMode;
 
+mod common;
+use common::sim_process::{Kill, sim_pty};
+
 /// One rig at a time: two pages and two sims at the real line rate on a loaded
 /// machine can starve a status broadcast into COMMUNICATION LOST.
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-struct Kill(Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
 
 struct Rig {
     app: App,
@@ -49,19 +41,7 @@ impl Rig {
     /// `vpx-efis sim --pty --scenario <scenario>`, its device list up.
     fn new(scenario: &str) -> Rig {
         let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-        let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-            .args(["sim", "--pty", "--scenario", scenario])
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("run vpx-efis sim");
-        let stdout = child.stdout.take().unwrap();
-        let sim = Kill(child);
-        let mut path = String::new();
-        BufReader::new(stdout).read_line(&mut path).unwrap();
-        let path = path.trim().to_string();
-        assert!(!path.is_empty(), "the sim did not start on {scenario}");
+        let (sim, path) = sim_pty(scenario);
         let app = App::new(
             Source::Serial { path: path.clone() },
             link::serial_connector(PathBuf::from(&path), 57_600),

@@ -1384,13 +1384,28 @@ fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     );
 }
 
+/// The keys' context with the pitch trim's row selected: on the device list, or on
+/// the setup screens (`setup`), where motor keys run past the endpoints.
+fn pitch_ctx(setup: bool) -> crate::control::KeyContext {
+    use crate::control::Selected;
+    use crate::model::{CircuitKind, CircuitState};
+    crate::control::KeyContext {
+        selected: Some(Selected {
+            id: PITCH.device_id(),
+            kind: CircuitKind::Trim(TrimKind::Pitch),
+            state: CircuitState::Off,
+        }),
+        overlay_open: false,
+        past_endpoints: setup,
+    }
+}
+
 /// The same rule for the page's own motor key on the device list: held up from 5
 /// counts below the endpoint, the trim stops there (the key still held). On the setup
 /// screens, where endpoints are found by running past them, the same hold goes on.
 #[test]
 fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_screens() {
-    use crate::control::{KeyContext, Selected, StreamerConfig};
-    use crate::model::{CircuitKind, CircuitState};
+    use crate::control::StreamerConfig;
     use crate::ui::state::ReleaseMode;
     use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
     for setup in [false, true] {
@@ -1399,15 +1414,7 @@ fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_scr
             release_mode: ReleaseMode::KeyRelease,
             ..StreamerConfig::default()
         });
-        let ctx = KeyContext {
-            selected: Some(Selected {
-                id: PITCH.device_id(),
-                kind: CircuitKind::Trim(TrimKind::Pitch),
-                state: CircuitState::Off,
-            }),
-            overlay_open: false,
-            past_endpoints: setup,
-        };
+        let ctx = pitch_ctx(setup);
         let mut lowest = 255;
         for i in 0..60 {
             let kind = if i == 0 {

@@ -8,11 +8,8 @@ use std::time::Duration;
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-use super::{PITCH, Rig, pitch_at};
-use crate::control::{
-    Controller, Direction, KeyContext, Outcome, Selected, StopReason, StreamerConfig,
-};
-use crate::model::{CircuitKind, CircuitState, TrimKind};
+use super::{PITCH, Rig, pitch_at, pitch_ctx};
+use crate::control::{Controller, Direction, Outcome, StopReason, StreamerConfig};
 use crate::protocol::message::Message;
 use crate::ui::check::state::{MotorFinding, Outcome as Found, Step};
 use crate::ui::state::ReleaseMode;
@@ -30,18 +27,6 @@ fn rig(at: u8) -> Rig {
     r
 }
 
-fn ctx(setup: bool) -> KeyContext {
-    KeyContext {
-        selected: Some(Selected {
-            id: PITCH.device_id(),
-            kind: CircuitKind::Trim(TrimKind::Pitch),
-            state: CircuitState::Off,
-        }),
-        overlay_open: false,
-        past_endpoints: setup,
-    }
-}
-
 impl Rig {
     fn pitch_pos(&self) -> u8 {
         self.unit.snapshot(self.now).pitch_trim_position
@@ -49,7 +34,9 @@ impl Rig {
 
     fn key(&mut self, c: char, kind: KeyEventKind, setup: bool) -> Outcome {
         let key = KeyEvent::new_with_kind(KeyCode::Char(c), KeyModifiers::NONE, kind);
-        let out = self.ctl.handle_key(key, &ctx(setup), &self.model, self.now);
+        let out = self
+            .ctl
+            .handle_key(key, &pitch_ctx(setup), &self.model, self.now);
         self.send(out.packets.clone());
         out
     }
