@@ -63,6 +63,11 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The exchange log written beside the hex file `name`.
+fn log_beside(rig: &Rig, name: &str) -> String {
+    std::fs::read_to_string(rig.dir.path().join(format!("{name}.log"))).unwrap()
+}
+
 /// Nothing reached the bootloader and the flash is as it was.
 fn untouched(rig: &Rig) {
     let st = rig.sim.stats();
@@ -95,7 +100,7 @@ fn a_full_update_from_the_command_line_writes_the_image_and_a_log_beside_it() {
     assert_eq!(&flash[0x400..0x400 + data.len()], &data[..]);
     assert!(flash[..0x400].iter().all(|&b| b == 0xFF));
 
-    let log = std::fs::read_to_string(rig.dir.path().join("cu_2.hex.log")).unwrap();
+    let log = log_beside(&rig, "cu_2.hex");
     // Every frame in hex with a timestamp, every address.
     assert!(
         log.contains(
@@ -138,7 +143,7 @@ fn a_file_for_other_hardware_is_refused_before_anything_reaches_the_bootloader()
         "{err}"
     );
     untouched(&rig);
-    let log = std::fs::read_to_string(rig.dir.path().join("cu_3.hex.log")).unwrap();
+    let log = log_beside(&rig, "cu_3.hex");
     assert!(
         log.contains("refused before anything was sent to the bootloader"),
         "{log}"
@@ -335,7 +340,7 @@ fn force_image_flashes_an_image_that_cannot_be_whole_with_a_warning() {
     let flash = rig.sim.flash();
     assert_eq!(&flash[..4], &[0x0C, 0x94, 0x72, 0x00]);
     assert!(flash[4..].iter().all(|&b| b == 0xFF));
-    let log = std::fs::read_to_string(rig.dir.path().join("cu_2.hex.log")).unwrap();
+    let log = log_beside(&rig, "cu_2.hex");
     assert!(
         log.contains("flashed with --force-image although it holds 4 bytes"),
         "{log}"

@@ -1323,6 +1323,17 @@ impl Rig {
         seen
     }
 
+    /// Starts the check and runs it to its end (at most `limit` × 10 ms), keeping
+    /// the unit's own position of `motor` every 10 ms.
+    fn check_watching(&mut self, motor: Motor, limit: usize) -> Vec<u8> {
+        self.start();
+        let mut seen = Vec::new();
+        while self.view.step != Step::Done && seen.len() < limit {
+            seen.extend(self.run_watching(10, motor));
+        }
+        seen
+    }
+
     /// The move messages sent, as (ms since start, on).
     fn moves(&self) -> Vec<(u128, bool)> {
         self.sent
@@ -1470,11 +1481,7 @@ fn the_first_direction_is_toward_the_side_with_more_room() {
 fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
     for at in [35, 38] {
         let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
-        r.start();
-        let mut seen = Vec::new();
-        while r.view.step != Step::Done && seen.len() < 2000 {
-            seen.extend(r.run_watching(10, PITCH));
-        }
+        let seen = r.check_watching(PITCH, 2000);
         let lowest = *seen.iter().min().unwrap();
         assert!(
             lowest >= 30,
@@ -1510,11 +1517,7 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
 fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
     for (at, floor) in [(30u8, 29u8), (31, 30)] {
         let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
-        r.start();
-        let mut seen = Vec::new();
-        while r.view.step != Step::Done && seen.len() < 3000 {
-            seen.extend(r.run_watching(10, PITCH));
-        }
+        let seen = r.check_watching(PITCH, 3000);
         let lowest = *seen.iter().min().unwrap();
         assert!(lowest >= floor, "from {at}: down to {lowest}; {:?}", r.news);
         let m = &r.view.motors[1];
@@ -1543,11 +1546,7 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
 #[test]
 fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
     let mut r = Rig::with(&pitch_at(30, false), Rig::motors_only());
-    r.start();
-    let mut seen = Vec::new();
-    while r.view.step != Step::Done && seen.len() < 3000 {
-        seen.extend(r.run_watching(10, PITCH));
-    }
+    let seen = r.check_watching(PITCH, 3000);
     assert!(*seen.iter().min().unwrap() >= 30, "passed its up endpoint");
     let m = &r.view.motors[1];
     assert_eq!(

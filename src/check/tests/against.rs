@@ -218,11 +218,7 @@ fn the_setup_capture_stops_a_motor_moving_against_its_command() {
 #[test]
 fn the_check_stops_its_run_and_the_keys_then_refuse_it() {
     let mut r = rig(128);
-    r.start();
-    let mut seen = Vec::new();
-    while r.view.step != Step::Done && seen.len() < 3000 {
-        seen.extend(r.run_watching(10, PITCH));
-    }
+    let seen = r.check_watching(PITCH, 3000);
     let lo = *seen.iter().min().unwrap();
     let hi = *seen.iter().max().unwrap();
     assert!(lo >= 123 && hi <= 133, "{lo}..{hi}: {:?}", r.news);
