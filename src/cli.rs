@@ -279,7 +279,12 @@ pub struct FlashArgs {
     /// Accept this hardware version even if the file name's suffix disagrees.
     #[arg(long, value_name = "N")]
     pub force_hardware: Option<u8>,
-    /// Don't ask for confirmation.
+    /// Flash an image that cannot be a whole program (under 8 KiB of data, no reset
+    /// vector, or data outside the program range 0x00000-0x3DFFF), at your own risk:
+    /// the unit is erased first and may not start again.
+    #[arg(long)]
+    pub force_image: bool,
+    /// Don't ask for confirmation (the precautions are printed all the same).
     #[arg(long)]
     pub yes: bool,
     /// Where to write the exchange log (default: next to the hex file).

@@ -63,6 +63,11 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The exchange log written beside the hex file `name`.
+fn log_beside(rig: &Rig, name: &str) -> String {
+    std::fs::read_to_string(rig.dir.path().join(format!("{name}.log"))).unwrap()
+}
+
 /// Nothing reached the bootloader and the flash is as it was.
 fn untouched(rig: &Rig) {
     let st = rig.sim.stats();
@@ -76,7 +81,14 @@ fn a_full_update_from_the_command_line_writes_the_image_and_a_log_beside_it() {
     let rig = start();
     let data = bytes();
     let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0x400, &data));
-    let o = flash(&["--port", &rig.path, "--yes", file.to_str().unwrap()]);
+    // Five pages and a bit at 0x400, no reset vector: not a whole program.
+    let o = flash(&[
+        "--port",
+        &rig.path,
+        "--yes",
+        "--force-image",
+        file.to_str().unwrap(),
+    ]);
     let err = stderr(&o);
     assert!(o.status.success(), "{err}");
     assert!(
@@ -88,7 +100,7 @@ fn a_full_update_from_the_command_line_writes_the_image_and_a_log_beside_it() {
     assert_eq!(&flash[0x400..0x400 + data.len()], &data[..]);
     assert!(flash[..0x400].iter().all(|&b| b == 0xFF));
 
-    let log = std::fs::read_to_string(rig.dir.path().join("cu_2.hex.log")).unwrap();
+    let log = log_beside(&rig, "cu_2.hex");
     // Every frame in hex with a timestamp, every address.
     assert!(
         log.contains(
@@ -117,7 +129,13 @@ fn a_full_update_from_the_command_line_writes_the_image_and_a_log_beside_it() {
 fn a_file_for_other_hardware_is_refused_before_anything_reaches_the_bootloader() {
     let rig = start();
     let file = write_hex(rig.dir.path(), "cu_3.hex", &to_hex_text(0, &bytes()));
-    let o = flash(&["--port", &rig.path, "--yes", file.to_str().unwrap()]);
+    let o = flash(&[
+        "--port",
+        &rig.path,
+        "--yes",
+        "--force-image",
+        file.to_str().unwrap(),
+    ]);
     let err = stderr(&o);
     assert!(!o.status.success());
     assert!(
@@ -125,7 +143,7 @@ fn a_file_for_other_hardware_is_refused_before_anything_reaches_the_bootloader()
         "{err}"
     );
     untouched(&rig);
-    let log = std::fs::read_to_string(rig.dir.path().join("cu_3.hex.log")).unwrap();
+    let log = log_beside(&rig, "cu_3.hex");
     assert!(
         log.contains("refused before anything was sent to the bootloader"),
         "{log}"
@@ -137,12 +155,13 @@ fn force_hardware_lets_an_unsuffixed_file_through_only_for_the_units_hardware() 
     let rig = start();
     let file = write_hex(rig.dir.path(), "cu.hex", &to_hex_text(0, &bytes()));
     let f = file.to_str().unwrap();
-    let o = flash(&["--port", &rig.path, "--yes", f]);
+    let risk = ["--port", &rig.path, "--yes", "--force-image"];
+    let o = flash(&[&risk[..], &[f]].concat());
     assert!(stderr(&o).contains("--force-hardware"), "{}", stderr(&o));
-    let o = flash(&["--port", &rig.path, "--yes", "--force-hardware", "3", f]);
+    let o = flash(&[&risk[..], &["--force-hardware", "3", f]].concat());
     assert!(!o.status.success());
     untouched(&rig);
-    let o = flash(&["--port", &rig.path, "--yes", "--force-hardware", "2", f]);
+    let o = flash(&[&risk[..], &["--force-hardware", "2", f]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
 }
 
@@ -150,7 +169,7 @@ fn force_hardware_lets_an_unsuffixed_file_through_only_for_the_units_hardware() 
 fn without_a_terminal_or_yes_nothing_is_sent_to_the_bootloader() {
     let rig = start();
     let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0, &bytes()));
-    let o = flash(&["--port", &rig.path, file.to_str().unwrap()]);
+    let o = flash(&["--port", &rig.path, "--force-image", file.to_str().unwrap()]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("--yes"), "{}", stderr(&o));
     untouched(&rig);
@@ -194,7 +213,13 @@ fn a_signal_mid_update_stops_at_a_safe_point_and_exits_128_plus_n() {
     let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0x400, &data));
     let child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
         .arg("flash")
-        .args(["--port", &rig.path, "--yes", file.to_str().unwrap()])
+        .args([
+            "--port",
+            &rig.path,
+            "--yes",
+            "--force-image",
+            file.to_str().unwrap(),
+        ])
         .stdin(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -211,4 +236,133 @@ fn a_signal_mid_update_stops_at_a_safe_point_and_exits_128_plus_n() {
     assert_eq!(o.status.code(), Some(143), "{err}");
     assert!(err.contains("SIGTERM"), "{err}");
     assert!(rig.sim.stats().in_bootloader, "left in its bootloader");
+}
+
+/// A whole program as far as `flash` can tell: a reset vector at 0 (a JMP, written by
+/// hand) and 9 KiB of code after it, in 16-byte records.
+fn whole_program() -> String {
+    let code: Vec<u8> = (0..9 * 1024).map(|i| (i * 31 + 7) as u8).collect();
+    let body = to_hex_text(0x100, &code);
+    // Page 0: the reset vector, JMP 0x0100 (0C 94 80 00), by hand.
+    format!(":040000000C948000DC\n{body}")
+}
+
+/// Issue 27.2: three images written by hand that cannot be a whole program, each
+/// refused with its reason and numbers before the port is even opened: the unit
+/// never hears a byte (no SOFTWARE_UPDATE, no bootloader command), its flash is as
+/// it was, and it still runs its software.
+#[test]
+fn an_image_that_cannot_be_a_whole_program_is_refused_before_anything_is_sent() {
+    let rig = start();
+    let whole = whole_program();
+    let (body, eof) = whole.rsplit_once(":00000001FF").unwrap();
+    assert!(eof.trim().is_empty());
+    for (name, text, why) in [
+        (
+            "four bytes",
+            ":040000000C947200EA\n:00000001FF\n".to_string(),
+            "it holds 4 bytes of data: far smaller than a whole program (at least 8192 bytes; \
+             the unit's program memory is 253952 bytes, 0x00000–0x3dfff)",
+        ),
+        (
+            "vector page missing",
+            to_hex_text(0x100, &[0x5A; 9 * 1024]),
+            "its reset/vector page (page 0, 0x00000–0x000ff) leaves the reset vector empty: the \
+             unit would not start",
+        ),
+        (
+            "a record outside the range",
+            // The whole program, then 4 bytes at 0x3E000 (extended linear address 0x0003,
+            // offset 0xE000): the bootloader's section.
+            format!("{body}:020000040003F7\n:04E000000C9400007C\n:00000001FF\n"),
+            "it has data outside the program range (0x00000–0x3dfff): 1 page up to 0x3e003, in \
+             the bootloader's section",
+        ),
+    ] {
+        let file = write_hex(rig.dir.path(), "cu_2.hex", &text);
+        let o = flash(&["--port", &rig.path, "--yes", file.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{name}: {err}");
+        assert!(err.contains(why), "{name}: {err}");
+        assert!(
+            err.contains("Nothing was sent to the unit"),
+            "{name}: {err}"
+        );
+        assert!(err.contains("--force-image"), "{name}: {err}");
+        assert!(
+            !err.contains("PRECAUTIONS"),
+            "{name}: never got that far: {err}"
+        );
+        untouched(&rig);
+        assert_eq!(rig.sim.stats().boot.commands, 0);
+    }
+    // The whole program itself is taken.
+    let file = write_hex(rig.dir.path(), "cu_2.hex", &whole);
+    let o = flash(&["--port", &rig.path, "--yes", file.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains(
+            "covers: 9220 bytes of data, 37 of 992 program pages (3.7 %), reset vector given"
+        ),
+        "{err}"
+    );
+    assert_eq!(&rig.sim.flash()[..4], &[0x0C, 0x94, 0x80, 0x00]);
+}
+
+/// `--force-image` takes the risk: the four bytes go to the unit, with a warning
+/// that names why it could not be whole, and the coverage beside the precautions.
+#[test]
+fn force_image_flashes_an_image_that_cannot_be_whole_with_a_warning() {
+    let rig = start();
+    let file = write_hex(
+        rig.dir.path(),
+        "cu_2.hex",
+        ":040000000C947200EA\n:00000001FF\n",
+    );
+    let o = flash(&[
+        "--port",
+        &rig.path,
+        "--yes",
+        "--force-image",
+        file.to_str().unwrap(),
+    ]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("WARNING (--force-image)") && err.contains("it holds 4 bytes of data"),
+        "{err}"
+    );
+    assert!(
+        err.contains("covers: 4 bytes of data, 1 of 992 program pages (0.1 %), reset vector given"),
+        "{err}"
+    );
+    let flash = rig.sim.flash();
+    assert_eq!(&flash[..4], &[0x0C, 0x94, 0x72, 0x00]);
+    assert!(flash[4..].iter().all(|&b| b == 0xFF));
+    let log = log_beside(&rig, "cu_2.hex");
+    assert!(
+        log.contains("flashed with --force-image although it holds 4 bytes"),
+        "{log}"
+    );
+}
+
+/// Issue 26.3: `--yes` skips only the question. The §7.3 precautions are printed on
+/// every update, before the erase.
+#[test]
+fn flash_yes_still_states_the_precautions_before_the_erase() {
+    let rig = start();
+    let file = write_hex(rig.dir.path(), "cu_2.hex", &whole_program());
+    let o = flash(&["--port", &rig.path, "--yes", file.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let at = |what: &str| {
+        err.find(what)
+            .unwrap_or_else(|| panic!("no {what:?} in: {err}"))
+    };
+    let precautions = at("PRECAUTIONS (ICD §7.3). Until this command says it is done:");
+    assert!(precautions < at("  - NEVER switch off or cycle power to the VP-X;"));
+    assert!(precautions < at("  - NEVER unplug the serial cable."));
+    assert!(at("  - NEVER unplug the serial cable.") < at("FLASH_ERASE answered 'e'"));
+    assert!(!err.contains("Type \"yes\""), "--yes asks nothing: {err}");
 }

@@ -11,14 +11,13 @@
 // Needs pseudo-terminals, which only Unix has.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
 mod page_rig;
 
 use common::cpu::process_cpu_time;
+use common::sim_process::{Kill, sim_pty};
 use page_rig::terminal::{Term, find, page};
 
 /// A unit with nothing fitted that could change: every switchable pin 4–28 disabled,
@@ -40,35 +39,6 @@ fn nothing_fitted() -> String {
     s
 }
 
-struct Kill(Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-/// `vpx-efis sim --pty --scenario …` and the path of its pty.
-fn sim(scenario: &str) -> (Kill, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["sim", "--pty", "--scenario", scenario])
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis sim");
-    let stdout = child.stdout.take().unwrap();
-    let child = Kill(child);
-    let mut path = String::new();
-    BufReader::new(stdout).read_line(&mut path).unwrap();
-    assert!(
-        !path.trim().is_empty(),
-        "the sim did not start on {scenario}"
-    );
-    (child, path.trim().to_string())
-}
-
 /// What one idle run measured.
 struct Idle {
     /// The page's share of one core.
@@ -83,7 +53,7 @@ struct Idle {
 /// the screen) and its connect requests are answered; `None` (with the reason
 /// printed) where this OS cannot say a process's CPU time.
 fn idle(scenario: &str, shown: &[u8], secs: u64) -> Option<Idle> {
-    let (_sim, port) = sim(scenario);
+    let (_sim, port) = sim_pty(scenario);
     let (mut term, slave) = Term::open();
     let mut child = page(&["--port", &port], slave);
     let pid = child.id();

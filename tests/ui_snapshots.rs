@@ -873,6 +873,53 @@ fn notice_is_shown() {
     assert!(t.contains("reset refused: EFIS is not faulted"), "{t}");
 }
 
+/// Issue 27.1's words (`control::against`), as the controller gives them.
+const MOVED_AGAINST: &str =
+    "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped";
+const MOVED_AGAINST_REFUSED: &str = "pitch trim moved down when asked up: its leads or its \
+     sensor may be swapped; let go, then press u again within 3 s to run it up anyway, watching \
+     the motor";
+
+/// A notice too long for the key row (a motor stopped for moving against its
+/// command, and the refusal that says how to confirm a run) is word-wrapped on rows
+/// of its own above the keys, read whole at 80 and 120 columns, never cut.
+#[test]
+fn a_motor_moving_against_its_command_is_said_whole_above_the_keys() {
+    let (m, now) = fixtures::normal();
+    for (name, notice, w, h) in [
+        ("moved_against_80x24", MOVED_AGAINST, 80, 24),
+        ("moved_against_refused_80x24", MOVED_AGAINST_REFUSED, 80, 24),
+        (
+            "moved_against_refused_120x40",
+            MOVED_AGAINST_REFUSED,
+            120,
+            40,
+        ),
+    ] {
+        let view = ViewState {
+            notice: Some(notice.into()),
+            ..view_selecting(TRIM_P)
+        };
+        let t = text(&draw(&m, &view, now, w, h));
+        let rows: Vec<&str> = t.lines().collect();
+        let last = rows.len() - 1;
+        assert!(
+            rows[last].contains("select") && rows[last].contains("quit"),
+            "{t}"
+        );
+        let said = rows[..last]
+            .iter()
+            .rev()
+            .take(3)
+            .rev()
+            .map(|r| r.trim())
+            .collect::<Vec<_>>()
+            .join(" ");
+        assert!(said.contains(notice), "{name}: not whole: {said}");
+        insta::assert_snapshot!(name, t);
+    }
+}
+
 #[test]
 fn connection_state_kept_on_the_model() {
     // Guard for the fixtures themselves: the states above are the ones they claim.
@@ -1066,6 +1113,26 @@ fn every_state() -> Vec<(&'static str, Model, ViewState, Instant, u16, u16)> {
         ViewState {
             notice: Some("reset refused: EFIS is not faulted".into()),
             ..view_selecting(EFIS)
+        },
+        120,
+        40,
+    );
+    add(
+        "moved_against_80x24",
+        fixtures::normal(),
+        ViewState {
+            notice: Some(MOVED_AGAINST.into()),
+            ..view_selecting(TRIM_P)
+        },
+        80,
+        24,
+    );
+    add(
+        "moved_against_refused_120x40",
+        fixtures::normal(),
+        ViewState {
+            notice: Some(MOVED_AGAINST_REFUSED.into()),
+            ..view_selecting(TRIM_P)
         },
         120,
         40,

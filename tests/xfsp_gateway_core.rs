@@ -1310,7 +1310,12 @@ fn a_network_run_going_away_from_its_target_stops_within_a_few_counts() {
             "phase {phase}: went {away} counts the wrong way"
         );
         assert!(stop <= ms(400), "phase {phase}: stopped after {stop:?}");
-        assert!(run.said("moved away from its target"), "{:#?}", run.events);
+        // As every origin's run: moving against its command (`control::against`).
+        assert!(
+            run.said("it moved up when asked down: its leads or its sensor may be swapped"),
+            "{:#?}",
+            run.events
+        );
         // One run, one stop: the same target is latched.
         let ons = run.moves.iter().filter(|m| m.1).count();
         assert_eq!(ons, run.moves.iter().position(|m| !m.1).unwrap());
@@ -1342,7 +1347,8 @@ fn a_network_run_to_the_endpoint_stops_before_passing_it() {
 }
 
 /// A run with swapped leads started two counts off the endpoint behind it is stopped
-/// by position as it reaches that endpoint, before it has gone [`AWAY`] counts.
+/// by position as it reaches that endpoint, before it has gone [`AWAY`] counts: as
+/// moving against its command.
 /// (It can still pass by up to one 10 Hz position's travel: 2.5 counts at 25 a
 /// second; the installation check probes there, the gateway does not yet.)
 #[test]
@@ -1353,7 +1359,7 @@ fn a_reversed_network_run_near_the_endpoint_behind_stops_there() {
         let (lo, _) = run.range();
         assert!(lo >= 27.0, "phase {phase}: passed the endpoint to {lo}");
         assert!(
-            run.said("at its endpoint (position 30)") || run.said("moved away from its target"),
+            run.said("it moved up when asked down: its leads or its sensor may be swapped"),
             "{:#?}",
             run.events
         );

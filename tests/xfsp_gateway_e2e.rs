@@ -351,7 +351,7 @@ fn drive(
 
 /// Review item 4 over real parts: the `install` scenario's pitch trim has its leads
 /// swapped. Sent nose-down from neutral (PTRIMREQ −80000, raw 201 from 125), it runs
-/// nose-up, away from its target: the gateway stops it within a few counts (it ran to
+/// nose-up, against its command: the gateway stops it within a few counts (it ran to
 /// the unit's run cap before, some 250 counts, far past the endpoint at 30), with the
 /// stop on the wire (no starved stream, no move late) and the reason on its standard
 /// error. The flaps, wired right and parked at 200, sent to their down endpoint 220
@@ -407,10 +407,10 @@ fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_w
         bridge.lines()
     );
     assert!(
-        bridge
-            .lines()
-            .iter()
-            .any(|l| l.contains("pitch trim stopped: it moved away from its target")),
+        bridge.lines().iter().any(|l| l.contains(
+            "pitch trim stopped: it moved up when asked down: its leads or its sensor may \
+                 be swapped"
+        )),
         "{:#?}",
         bridge.lines()
     );

@@ -72,7 +72,8 @@ impl App {
                 config.control.describe()
             ),
         );
-        let gateway = Gateway::new(config, now);
+        let mut gateway = Gateway::new(config, now);
+        gateway.share_against(self.controller.with(|c| c.against()));
         self.gateway = Some(PageGateway {
             gateway,
             net,

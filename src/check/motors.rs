@@ -337,6 +337,24 @@ impl CheckFlow {
                             until: now + item.settle,
                         };
                     }
+                    // Moved against its command: stopped by the controller, the
+                    // run over where it went (the other direction's endpoint is
+                    // where it was really heading), which the finding will say.
+                    Some(StopReason::MovedAgainst(asked)) => {
+                        if item.leg < 2 {
+                            item.ended_at[item.leg] = heads_for(item.motor, opposite(asked), &ft);
+                            item.ran[item.leg] =
+                                item.probed + stopped_at.saturating_duration_since(since);
+                            item.rest = None;
+                        }
+                        io.out.news.push(format!(
+                            "  {}, position {pos}",
+                            crate::control::against::stopped(item.motor, asked)
+                        ));
+                        item.stage = Stage::Settle {
+                            until: now + item.settle,
+                        };
+                    }
                     Some(StopReason::MotorFault(code)) => {
                         let code = if code.is_fault() {
                             code
@@ -490,6 +508,30 @@ impl CheckFlow {
         };
         let now = io.now;
         let mut length = length;
+        // Seen moving against its command (by this check's first run, or before it):
+        // no test run is made until the person confirms one at the page's keys; the
+        // finding is that, and the run back goes the way it was seen to go.
+        if item.leg < 2
+            && way.is_none()
+            && let Some(asked) = io.ctl.against().seen(item.motor)
+            && let Some(pos) = io
+                .model
+                .live_flap_trim(now)
+                .map(|ft| position(item.motor, ft))
+        {
+            let idx = item.idx;
+            if view.motors[idx].outcome == Outcome::NotRun {
+                if item.leg == 0 {
+                    io.out.news.push(format!(
+                        "  {}: not run",
+                        crate::control::against::words(item.motor, asked)
+                    ));
+                }
+                record(view, idx, MotorFinding::Reversed, io);
+            }
+            item.leg = 2;
+            return self.motor_return(pos, view, io);
+        }
         if let Some(ft) = io.model.live_flap_trim(now)
             && item.leg < 2
             && way.is_none()

@@ -4,6 +4,8 @@
 
 use std::time::{Duration, Instant};
 
+mod against;
+
 use super::flow::{Cause, CheckFlow, Command, Options};
 use super::plan::Choices;
 use crate::control::{Controller, StopReason};
@@ -1321,6 +1323,17 @@ impl Rig {
         seen
     }
 
+    /// Starts the check and runs it to its end (at most `limit` × 10 ms), keeping
+    /// the unit's own position of `motor` every 10 ms.
+    fn check_watching(&mut self, motor: Motor, limit: usize) -> Vec<u8> {
+        self.start();
+        let mut seen = Vec::new();
+        while self.view.step != Step::Done && seen.len() < limit {
+            seen.extend(self.run_watching(10, motor));
+        }
+        seen
+    }
+
     /// The move messages sent, as (ms since start, on).
     fn moves(&self) -> Vec<(u128, bool)> {
         self.sent
@@ -1382,13 +1395,28 @@ fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     );
 }
 
+/// The keys' context with the pitch trim's row selected: on the device list, or on
+/// the setup screens (`setup`), where motor keys run past the endpoints.
+fn pitch_ctx(setup: bool) -> crate::control::KeyContext {
+    use crate::control::Selected;
+    use crate::model::{CircuitKind, CircuitState};
+    crate::control::KeyContext {
+        selected: Some(Selected {
+            id: PITCH.device_id(),
+            kind: CircuitKind::Trim(TrimKind::Pitch),
+            state: CircuitState::Off,
+        }),
+        overlay_open: false,
+        past_endpoints: setup,
+    }
+}
+
 /// The same rule for the page's own motor key on the device list: held up from 5
 /// counts below the endpoint, the trim stops there (the key still held). On the setup
 /// screens, where endpoints are found by running past them, the same hold goes on.
 #[test]
 fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_screens() {
-    use crate::control::{KeyContext, Selected, StreamerConfig};
-    use crate::model::{CircuitKind, CircuitState};
+    use crate::control::StreamerConfig;
     use crate::ui::state::ReleaseMode;
     use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
     for setup in [false, true] {
@@ -1397,15 +1425,7 @@ fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_scr
             release_mode: ReleaseMode::KeyRelease,
             ..StreamerConfig::default()
         });
-        let ctx = KeyContext {
-            selected: Some(Selected {
-                id: PITCH.device_id(),
-                kind: CircuitKind::Trim(TrimKind::Pitch),
-                state: CircuitState::Off,
-            }),
-            overlay_open: false,
-            past_endpoints: setup,
-        };
+        let ctx = pitch_ctx(setup);
         let mut lowest = 255;
         for i in 0..60 {
             let kind = if i == 0 {
@@ -1454,18 +1474,14 @@ fn the_first_direction_is_toward_the_side_with_more_room() {
 }
 
 /// A reversed pitch trim 5 (or 8) counts below its up endpoint: the first run is
-/// "down" (more room), but the motor goes up, toward 30. It is stopped there, never
-/// past, found reversed, and put back: the run back is "up", which on this motor
+/// "down" (more room), but the motor goes up, toward 30. It is stopped as moving
+/// against its command, never past 30, found reversed, and put back: the run back is "up", which on this motor
 /// moves away from 30, so the endpoint it keeps off is the down one.
 #[test]
 fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
     for at in [35, 38] {
         let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
-        r.start();
-        let mut seen = Vec::new();
-        while r.view.step != Step::Done && seen.len() < 2000 {
-            seen.extend(r.run_watching(10, PITCH));
-        }
+        let seen = r.check_watching(PITCH, 2000);
         let lowest = *seen.iter().min().unwrap();
         assert!(
             lowest >= 30,
@@ -1474,9 +1490,10 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
         let m = &r.view.motors[1];
         assert_eq!(m.outcome, Outcome::Found(MotorFinding::Reversed), "{m:?}");
         assert!(
-            r.news
-                .iter()
-                .any(|n| n.contains("stopped at its endpoint (30)")),
+            r.news.iter().any(|n| n.contains(
+                "pitch trim moved up when asked down: its leads or its \
+                                     sensor may be swapped; stopped"
+            )),
             "{:?}",
             r.news
         );
@@ -1500,11 +1517,7 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
 fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
     for (at, floor) in [(30u8, 29u8), (31, 30)] {
         let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
-        r.start();
-        let mut seen = Vec::new();
-        while r.view.step != Step::Done && seen.len() < 3000 {
-            seen.extend(r.run_watching(10, PITCH));
-        }
+        let seen = r.check_watching(PITCH, 3000);
         let lowest = *seen.iter().min().unwrap();
         assert!(lowest >= floor, "from {at}: down to {lowest}; {:?}", r.news);
         let m = &r.view.motors[1];
@@ -1533,11 +1546,7 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
 #[test]
 fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
     let mut r = Rig::with(&pitch_at(30, false), Rig::motors_only());
-    r.start();
-    let mut seen = Vec::new();
-    while r.view.step != Step::Done && seen.len() < 3000 {
-        seen.extend(r.run_watching(10, PITCH));
-    }
+    let seen = r.check_watching(PITCH, 3000);
     assert!(*seen.iter().min().unwrap() >= 30, "passed its up endpoint");
     let m = &r.view.motors[1];
     assert_eq!(

@@ -2,13 +2,16 @@
 //!
 //! Order, so that nothing reaches the unit that a person has not agreed to:
 //! 0. a port is named (a flag, `VPX_EFIS_PORT` or the config file), or we refuse;
-//! 1. the whole file is read and checked (refused files never open the port);
+//! 1. the whole file is read and checked, and must be able to be a whole program
+//!    (`flash::whole`; `--force-image` takes the risk): refused files never open the
+//!    port;
 //! 2. the file's hardware (name suffix or `--force-hardware`) is known, or refused;
 //! 3. the support log is opened (a log that cannot be written stops us here);
 //! 4. the port is opened and the unit probed with VERSION (QUERY_PORT only if VERSION
 //!    gets no answer); a hardware mismatch is refused here, before any bootloader frame;
-//! 5. the person confirms, with the §7.3 precautions in front of them (`--yes` skips
-//!    this; without a terminal and without `--yes` we refuse);
+//! 5. the §7.3 precautions are printed, with the image's size and coverage, always;
+//!    then the person confirms (`--yes` skips only the question; without a terminal
+//!    and without `--yes` we refuse);
 //! 6. the update runs with a progress bar; every byte goes to the log.
 //!
 //! Without `--port` we refuse: flashing the built-in virtual unit would only show the
@@ -44,6 +47,24 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     let image = flash::load_hex(&args.file)
         .with_context(|| format!("refusing {}: it is not a usable image", args.file.display()))?;
     eprintln!("{}: {}", args.file.display(), image.summary());
+    let coverage = flash::Coverage::of(&image);
+    let problems = coverage.problems();
+    if !problems.is_empty() {
+        let why: String = problems.iter().map(|p| format!("\n  - {p}")).collect();
+        if !args.force_image {
+            bail!(
+                "refusing {}: it cannot be a whole VP-X program, and the update erases the \
+                 unit's program memory before it writes anything:{why}\nNothing was sent to the \
+                 unit. If you are sure this image is right, --force-image flashes it at your \
+                 own risk.",
+                args.file.display()
+            );
+        }
+        eprintln!(
+            "WARNING (--force-image): {} cannot be a whole program; flashing it anyway:{why}",
+            args.file.display()
+        );
+    }
     let file_hw = flash::file_hardware(&args.file, args.force_hardware)?;
 
     let log_path = args
@@ -59,6 +80,10 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
         args.port.baud
     ));
     log.line(&format!("-- image: {}", image.summary()));
+    log.line(&format!("-- covers: {coverage}"));
+    for p in &problems {
+        log.line(&format!("-- flashed with --force-image although {p}"));
+    }
     log.line(&format!(
         "-- file is for hardware {file_hw}{}",
         if args.force_hardware.is_some() {
@@ -99,7 +124,8 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     };
     eprintln!("unit on {port_path}: {unit_line}");
 
-    if !args.yes && !confirm(&args.file, &image, file_hw, &unit_line, args.port.baud)? {
+    precautions(&args.file, &image, file_hw, &unit_line, args.port.baud);
+    if !args.yes && !confirm()? {
         log.line("-- not confirmed: nothing sent to the bootloader");
         match found {
             Found::Running(_) => bail!("not confirmed; nothing was changed on the unit"),
@@ -245,12 +271,9 @@ fn estimate(pages: usize, baud: u32) -> Duration {
     Duration::from_secs_f64(bytes as f64 * 10.0 / baud.max(1) as f64 + 5.0)
 }
 
-fn confirm(file: &Path, image: &Image, file_hw: u8, unit: &str, baud: u32) -> anyhow::Result<bool> {
-    if !std::io::stdin().is_terminal() {
-        bail!(
-            "not asking for confirmation: standard input is not a terminal. Pass --yes to update without asking"
-        );
-    }
+/// What is about to happen and the §7.3 precautions: printed before every update,
+/// `--yes` or not.
+fn precautions(file: &Path, image: &Image, file_hw: u8, unit: &str, baud: u32) {
     let secs = estimate(image.page_count(), baud).as_secs();
     eprintln!();
     eprintln!("About to replace the VP-X software.");
@@ -261,6 +284,7 @@ fn confirm(file: &Path, image: &Image, file_hw: u8, unit: &str, baud: u32) -> an
         hw_name(file_hw),
         image.summary()
     );
+    eprintln!("  covers: {}", flash::Coverage::of(image));
     eprintln!("  time: about {} min {} s", secs / 60, secs % 60);
     eprintln!();
     eprintln!("PRECAUTIONS (ICD §7.3). Until this command says it is done:");
@@ -273,6 +297,15 @@ fn confirm(file: &Path, image: &Image, file_hw: u8, unit: &str, baud: u32) -> an
         "  The aircraft's electrical system is not controlled by the VP-X while the update runs."
     );
     eprintln!();
+}
+
+/// The question, on a terminal only.
+fn confirm() -> anyhow::Result<bool> {
+    if !std::io::stdin().is_terminal() {
+        bail!(
+            "not asking for confirmation: standard input is not a terminal. Pass --yes to update without asking"
+        );
+    }
     eprint!("Type \"yes\" to update: ");
     std::io::stderr().flush().ok();
     let mut answer = String::new();

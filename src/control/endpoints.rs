@@ -13,7 +13,9 @@
 //! toward an endpoint.
 //!
 //! The setup screens' motor keys do not keep to them: they are how a person runs the
-//! motor to where the new endpoint should be, to capture it.
+//! motor to where the new endpoint should be, to capture it. They are still watched
+//! ([`Watch::capture`]): a motor moving against its command is stopped whoever runs
+//! it ([`super::against`]).
 //!
 //! Which way is which: a direction heads for its endpoint, "down" (pitch down, roll
 //! right, flaps down) for the down endpoint. Endpoints not configured (both the same,
@@ -134,6 +136,8 @@ pub struct Watch {
     /// shows its own: the direction's ([`expected_sign`]), or what the caller saw
     /// this motor do (a reversed motor run back by the installation check).
     way: Option<i32>,
+    /// Whether the run keeps to the endpoints: all but the setup screens' capture.
+    keep_ends: bool,
     /// The latest positions with when the page heard them, oldest first.
     samples: Vec<(Instant, u8)>,
     /// The run's first position.
@@ -146,8 +150,21 @@ impl Watch {
             motor,
             direction,
             way: None,
+            keep_ends: true,
             samples: Vec::new(),
             first: None,
+        }
+    }
+
+    /// The setup screens' endpoint capture: it may run past the endpoints (it is how
+    /// new ones are found), but not against its command ([`super::against`]), nor on
+    /// a stale position. `way`: the way a motor known to move against its command
+    /// moves (a confirmed run), which is then not stopped for it.
+    pub fn capture(motor: Motor, direction: Direction, way: Option<i32>) -> Watch {
+        Watch {
+            way: way.map(i32::signum),
+            keep_ends: false,
+            ..Watch::new(motor, direction)
         }
     }
 
@@ -173,14 +190,19 @@ impl Watch {
 
     /// Whether the run may go on: takes the model's latest position, and says why not.
     ///
-    /// The way it really moves is the expected one (the direction's, or the caller's)
-    /// until the position has gone [`MOVED`] counts the other way since the run's
-    /// first sample: one count of sensor noise does not turn it round. Then the run
-    /// ends by position against both endpoints: at or past the one it is moving
-    /// toward (or about to pass it, at a rate that agrees with that way), and at or
-    /// past the one behind it once it has moved toward that one, beyond one count of
-    /// noise ([`NOISE`]) when it started at it. So a motor that runs the wrong way is
-    /// stopped at the endpoint behind it without waiting to be sure of its way.
+    /// A run expected to go its direction's own way ([`Watch::new`],
+    /// [`Watch::capture`] with no way) ends as soon as the position has gone
+    /// [`MOVED`] counts the other way since the run's first sample
+    /// ([`StopReason::MovedAgainst`]); one count of sensor noise does not end it. A
+    /// run whose way the caller gave ([`Watch::moving`]) takes that way as the real
+    /// one until the position has gone [`MOVED`] counts the other way, and then the
+    /// other. Either ends by position against both endpoints (unless it is a
+    /// capture): at or past the one it is moving toward (or about to pass it, at a
+    /// rate that agrees with that way), and at or past the one behind it once it has
+    /// moved toward that one, beyond one count of noise ([`NOISE`]) when it started at
+    /// it. So a motor that runs the wrong way is stopped at the endpoint behind it
+    /// without waiting for [`MOVED`] counts; for a run expected to go its own way
+    /// that is moving against its command too.
     pub fn check(&mut self, model: &Model, now: Instant) -> Result<(), StopReason> {
         let Some(st) = model.flap_trim.as_ref() else {
             return Err(StopReason::MotorStatusLost);
@@ -198,14 +220,18 @@ impl Watch {
                 self.samples.remove(0);
             }
         }
-        let Some(e) = ends(self.motor, ft) else {
-            return Ok(());
-        };
-        let (lo, hi) = (i32::from(e.down.min(e.up)), i32::from(e.down.max(e.up)));
         let expected = self
             .way
             .unwrap_or_else(|| expected_sign(self.motor, self.direction, ft));
         let (pos, first) = (i32::from(pos), i32::from(first));
+        let against = Err(StopReason::MovedAgainst(self.direction));
+        if self.way.is_none() && (pos - first) * -expected >= MOVED {
+            return against;
+        }
+        let Some(e) = ends(self.motor, ft).filter(|_| self.keep_ends) else {
+            return Ok(());
+        };
+        let (lo, hi) = (i32::from(e.down.min(e.up)), i32::from(e.down.max(e.up)));
         let way = if (pos - first) * -expected >= MOVED {
             -expected
         } else {
@@ -231,7 +257,10 @@ impl Watch {
             0
         };
         if (pos - behind) * way <= 0 && toward > noise {
-            return Err(StopReason::AtEndpoint(behind as u8));
+            return match self.way {
+                None => against,
+                Some(_) => Err(StopReason::AtEndpoint(behind as u8)),
+            };
         }
         Ok(())
     }
@@ -342,11 +371,14 @@ mod tests {
 
     /// What the watch says at each of `positions`, heard 100 ms apart (10 Hz).
     fn watch(motor: Motor, direction: Direction, positions: &[u8]) -> Vec<Result<(), StopReason>> {
-        let t0 = Instant::now();
+        watch_with(Watch::new(motor, direction), positions)
+    }
+
+    fn watch_with(mut w: Watch, positions: &[u8]) -> Vec<Result<(), StopReason>> {
+        let (motor, t0) = (w.motor, Instant::now());
         let mut model = Model::new(Source::Simulated {
             scenario: "t".into(),
         });
-        let mut w = Watch::new(motor, direction);
         positions
             .iter()
             .enumerate()
@@ -376,17 +408,81 @@ mod tests {
     }
 
     /// Review item 1: a run down whose motor really goes up (leads swapped) is stopped
-    /// the moment its position reaches the up endpoint, without waiting to be sure of
-    /// its way: from 31, at 30.
+    /// the moment its position reaches the up endpoint, without waiting for the
+    /// counts that would show its way anywhere else: from 31, at 30. That is moving
+    /// against its command; a run whose way the caller gave stops there as at an
+    /// endpoint.
     #[test]
     fn a_wrong_way_run_stops_at_the_endpoint_behind_by_position() {
+        let against = Err(StopReason::MovedAgainst(Direction::Down));
         let seen = watch(PITCH, Direction::Down, &[31, 30]);
-        assert_eq!(seen, vec![Ok(()), Err(StopReason::AtEndpoint(30))]);
+        assert_eq!(seen, vec![Ok(()), against]);
         let seen = watch(PITCH, Direction::Down, &[33, 32, 30]);
-        assert_eq!(seen[2], Err(StopReason::AtEndpoint(30)));
+        assert_eq!(seen[2], against);
         // Started at it: one count past is the sensor's noise, two is not.
         let seen = watch(PITCH, Direction::Down, &[30, 29, 28]);
-        assert_eq!(seen, vec![Ok(()), Ok(()), Err(StopReason::AtEndpoint(30))]);
+        assert_eq!(seen, vec![Ok(()), Ok(()), against]);
+        // A run the check sends down expecting it to shrink (it saw it so), that then
+        // goes back up to 30 and past: an endpoint.
+        let seen = watch_with(Watch::moving(PITCH, Direction::Down, 1), &[32, 31, 30]);
+        assert_eq!(seen[2], Err(StopReason::AtEndpoint(30)));
+    }
+
+    /// Issue 27.1: asked up from neutral, a pitch trim with swapped leads goes down
+    /// (the position grows): stopped once it has gone MOVED (3) counts, not at the
+    /// down endpoint 220; one count of noise the wrong way does not stop it.
+    #[test]
+    fn a_run_moving_against_its_command_stops_within_a_few_counts() {
+        let seen = watch(PITCH, Direction::Up, &[128, 129, 128, 130, 131, 133]);
+        assert_eq!(
+            seen,
+            vec![
+                Ok(()),
+                Ok(()),
+                Ok(()),
+                Ok(()),
+                Err(StopReason::MovedAgainst(Direction::Up)),
+                Err(StopReason::MovedAgainst(Direction::Up)),
+            ]
+        );
+        // Flaps asked down going up, and so for the roll trim's left and right.
+        let seen = watch(Motor::Flaps, Direction::Down, &[120, 118, 117]);
+        assert_eq!(seen[2], Err(StopReason::MovedAgainst(Direction::Down)));
+        // Its own way, no stop for it.
+        let seen = watch(PITCH, Direction::Up, &[128, 126, 123, 120]);
+        assert!(seen.iter().all(Result::is_ok), "{seen:?}");
+    }
+
+    /// Issue 27.1, the reproduced bug: at the down endpoint 220, `u` on a motor that
+    /// goes down was taken as moving away from it. Now a run that in fact goes further
+    /// past the endpoint is stopped beyond the one count of noise.
+    #[test]
+    fn at_an_endpoint_a_run_going_further_past_it_is_stopped_within_the_noise() {
+        let seen = watch(PITCH, Direction::Up, &[220, 221, 222]);
+        assert_eq!(
+            seen,
+            vec![Ok(()), Ok(()), Err(StopReason::MovedAgainst(Direction::Up))]
+        );
+        let seen = watch(PITCH, Direction::Up, &[223, 224, 225]);
+        assert_eq!(seen[2], Err(StopReason::MovedAgainst(Direction::Up)));
+    }
+
+    /// The setup screens' capture runs past the endpoints, but not against its
+    /// command; once confirmed knowing its way, not that either.
+    #[test]
+    fn a_capture_passes_the_endpoints_but_not_against_its_command() {
+        let seen = watch_with(
+            Watch::capture(PITCH, Direction::Up, None),
+            &[34, 31, 28, 25, 22],
+        );
+        assert!(seen.iter().all(Result::is_ok), "past 30: {seen:?}");
+        let seen = watch_with(Watch::capture(PITCH, Direction::Up, None), &[34, 36, 38]);
+        assert_eq!(seen[2], Err(StopReason::MovedAgainst(Direction::Up)));
+        let seen = watch_with(
+            Watch::capture(PITCH, Direction::Up, Some(1)),
+            &[34, 36, 38, 40],
+        );
+        assert!(seen.iter().all(Result::is_ok), "confirmed: {seen:?}");
     }
 
     /// Going its own way it still ends at the endpoint ahead, by position or just

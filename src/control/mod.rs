@@ -18,6 +18,7 @@
 //! - install a panic hook and a drop guard that write
 //!   [`MotorStreamer::emergency_stop_packets`].
 
+pub mod against;
 pub mod commands;
 pub mod endpoints;
 pub mod keymap;
@@ -33,6 +34,7 @@ use self::run_state::{MotorRun, ReleaseMode, RepeatTiming};
 use crate::model::{Model, Motor};
 use crate::protocol::message::Packet;
 
+pub use against::Against;
 pub use commands::{Refusal, command, device_power, motor_check, motor_permit, put_back_off};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};
 pub use release::{release_mode, release_mode_here};
@@ -61,9 +63,18 @@ pub struct Controller {
     pending_notice: Option<String>,
     /// Why no motor may run at all (the page cannot stream one safely), in words.
     motors_refused: Option<String>,
-    /// The running motor's watch over its endpoints ([`endpoints`]); `None` for a run
-    /// that may pass them (the setup screens') or no run.
+    /// The running motor's watch over its endpoints and its way ([`endpoints`],
+    /// [`against`]); `None` with no run.
     watch: Option<endpoints::Watch>,
+    /// The motors seen moving against their command, shared with every other origin
+    /// of runs ([`Controller::against`]).
+    against: Against,
+    /// A key's run refused for a motor seen moving against its command: the same key
+    /// pressed again before [`against::CONFIRM_WITHIN`] runs it.
+    confirm: Option<(Motor, Direction, Instant)>,
+    /// The way the run a key is starting is known to move (a confirmed run), for its
+    /// watch.
+    starting_way: Option<i32>,
     /// The terminal is too small to show the page ([`Controller::set_page_hidden`]).
     hidden: bool,
     /// The terminal lost focus and has not said it has it back.
@@ -77,9 +88,18 @@ impl Controller {
             pending_notice: None,
             motors_refused: None,
             watch: None,
+            against: Against::default(),
+            confirm: None,
+            starting_way: None,
             hidden: false,
             unfocused: false,
         }
+    }
+
+    /// The record of motors seen moving against their command: hand it to every
+    /// other origin of runs (the XFSp gateway), so each refuses what one saw.
+    pub fn against(&self) -> Against {
+        self.against.clone()
     }
 
     /// Why the person cannot see the page now, if they cannot: the terminal too small
@@ -167,13 +187,20 @@ impl Controller {
         };
         out.notice = self.take_notice();
         let before = self.streamer.running_key();
+        self.starting_way = None;
         self.handle_mapped(keymap::map(&key, ctx), ctx, model, now, &mut out);
         // A run this key started keeps to the endpoints unless the screen runs motors
-        // past them on purpose (the setup screens).
+        // past them on purpose (the setup screens); either is watched for moving
+        // against its command, unless it was confirmed knowing it does.
         if before.is_none()
             && let Some((motor, direction)) = self.streamer.running_key()
         {
-            self.watch = (!ctx.past_endpoints).then(|| endpoints::Watch::new(motor, direction));
+            let way = self.starting_way;
+            self.watch = Some(match (ctx.past_endpoints, way) {
+                (true, _) => endpoints::Watch::capture(motor, direction, way),
+                (false, Some(w)) => endpoints::Watch::moving(motor, direction, w),
+                (false, None) => endpoints::Watch::new(motor, direction),
+            });
         }
         out
     }
@@ -231,13 +258,8 @@ impl Controller {
                     KeyPhase::Press if self.streamer.would_start(now, motor, direction) => {
                         let permit = match &self.motors_refused {
                             Some(why) => Err(Refusal(why.clone())),
-                            None => motor_permit(model, motor, direction, now).and_then(|()| {
-                                if ctx.past_endpoints {
-                                    Ok(())
-                                } else {
-                                    endpoints::permit(model, motor, direction, now).map_err(Refusal)
-                                }
-                            }),
+                            None => motor_permit(model, motor, direction, now)
+                                .and_then(|()| self.key_permit(model, motor, direction, ctx, now)),
                         };
                         match permit {
                             Ok(()) => self.streamer.press(now, motor, direction),
@@ -271,6 +293,41 @@ impl Controller {
             }
             other => out.action = other,
         }
+    }
+
+    /// A key's run past the model's checks: kept off the endpoint it heads for
+    /// (unless the screen runs past them), and for a motor seen moving against its
+    /// command, refused until the same key comes again within
+    /// [`against::CONFIRM_WITHIN`] ([`against`]); then it runs knowing its way.
+    fn key_permit(
+        &mut self,
+        model: &Model,
+        motor: Motor,
+        direction: Direction,
+        ctx: &KeyContext,
+        now: Instant,
+    ) -> Result<(), Refusal> {
+        let known = model
+            .flap_trim
+            .as_ref()
+            .and_then(|st| self.against.known_way(motor, direction, &st.value));
+        if !ctx.past_endpoints {
+            endpoints::permit_moving(model, motor, direction, known, now).map_err(Refusal)?;
+        }
+        let Some(seen) = self.against.seen(motor) else {
+            return Ok(());
+        };
+        let confirmed = self.confirm.take().is_some_and(|(m, d, at)| {
+            m == motor
+                && d == direction
+                && now.saturating_duration_since(at) <= against::CONFIRM_WITHIN
+        });
+        if confirmed {
+            self.starting_way = known;
+            return Ok(());
+        }
+        self.confirm = Some((motor, direction, now));
+        Err(Refusal(against::confirm_words(motor, seen, direction)))
     }
 
     /// Ends a run the model says must end (lost communication, a motor fault, lost
@@ -331,7 +388,12 @@ impl Controller {
             _ => Ok(()),
         };
         match motor_check(model, motor, direction, now).and(endpoint) {
-            Err(reason) => self.stop(now, reason),
+            Err(reason) => {
+                if let Some(asked) = against::asked(reason) {
+                    self.against.record(motor, asked);
+                }
+                self.stop(now, reason)
+            }
             Ok(()) => Vec::new(),
         }
     }
@@ -379,6 +441,14 @@ impl Controller {
             return Err(Refusal(format!("not started: {}", unseen.describe())));
         }
         motor_permit(model, motor, direction, now)?;
+        // A motor seen moving against its command runs only for a caller that says
+        // the way it saw it go (the check running back what it moved); nobody here
+        // can confirm a run of it.
+        if way.is_none()
+            && let Some(why) = self.against.refusal(motor)
+        {
+            return Err(Refusal(why));
+        }
         endpoints::permit_moving(model, motor, direction, way, now).map_err(Refusal)?;
         let out = self.streamer.run_for(now, motor, direction, length);
         if self.streamer.running_key() == Some((motor, direction)) {
@@ -438,6 +508,9 @@ impl Controller {
     /// Words for the last stop, unless the person simply let go.
     fn stopped_notice(&self) -> Option<String> {
         let s = self.streamer.last_stop()?;
+        if let Some(asked) = against::asked(s.reason) {
+            return Some(against::stopped(s.motor, asked));
+        }
         (!s.reason.is_normal())
             .then(|| format!("{} stopped: {}", s.motor.name(), s.reason.describe()))
     }

@@ -141,10 +141,10 @@ pub enum StopReason {
     /// The position was no longer fresh enough to keep the run off its endpoint
     /// (`control::endpoints::POSITION_FRESH`).
     PositionStale,
-    /// A run sent toward a target moved away from it instead (the XFSp gateway's
-    /// requests, `xfsp::drive::AWAY`): the motor runs the other way from the one
-    /// it was driven, its leads or polarity swapped.
-    WrongWay,
+    /// The position went the other way from the one the run's direction (here, the
+    /// one asked) should move it (`control::against`): its leads or its sensor may be
+    /// swapped.
+    MovedAgainst(Direction),
 }
 
 impl StopReason {
@@ -174,10 +174,11 @@ impl StopReason {
                  cannot be kept off its endpoint",
                 super::endpoints::POSITION_FRESH.as_secs_f32()
             ),
-            StopReason::WrongWay => "it moved away from its target: the motor may run the \
-                                     other way from the one it is driven (leads or polarity \
-                                     swapped)"
-                .into(),
+            StopReason::MovedAgainst(asked) => format!(
+                "it moved {} when asked {}: its leads or its sensor may be swapped",
+                super::endpoints::opposite(asked).name(),
+                asked.name()
+            ),
         }
     }
 

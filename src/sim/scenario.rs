@@ -113,6 +113,10 @@ pub const BUILT_IN: &[(&str, &str)] = &[
         "install",
         include_str!("../../assets/scenarios/install.toml"),
     ),
+    (
+        "reversed-flaps",
+        include_str!("../../assets/scenarios/reversed-flaps.toml"),
+    ),
 ];
 
 /// A whole scenario; see the module documentation for the file format.

@@ -8,16 +8,46 @@ use ratatui::text::{Line, Span};
 use super::state::{SortOrder, ViewState};
 use super::theme;
 
-pub fn render(frame: &mut Frame, area: Rect, view: &ViewState) {
-    let mut spans = Vec::new();
-    if let Some(n) = &view.notice {
-        spans.push(Span::styled(format!("{n} "), theme::caution()));
-        spans.push(Span::styled("│ ", theme::border()));
+/// The most rows a notice takes: a long one (a motor stopped for moving against its
+/// command, with what to do) is read whole rather than cut at the terminal's edge.
+const NOTICE_ROWS: u16 = 3;
+
+/// Rows the bottom line needs at `width`: the notice and the keys on one row when
+/// they fit; else the notice word-wrapped on rows of its own above the keys.
+pub fn height(view: &ViewState, width: u16) -> u16 {
+    1 + notice_rows(view, width)
+}
+
+/// Rows the notice takes above the keys: none when it fits beside them.
+fn notice_rows(view: &ViewState, width: u16) -> u16 {
+    let Some(n) = &view.notice else { return 0 };
+    let w = usize::from(width.max(1));
+    let notice = n.chars().count() + 3;
+    if notice + keys(view).width() <= w {
+        return 0;
     }
+    // Word-wrapped rows, counted as `fast::wrapped` fills them.
+    let mut rows = 1usize;
+    let mut used = 0usize;
+    for word in n.split(' ') {
+        let len = word.chars().count();
+        let need = if used == 0 { len } else { used + 1 + len };
+        if need <= w {
+            used = need;
+        } else {
+            rows += 1;
+            used = len.min(w);
+        }
+    }
+    (rows as u16).min(NOTICE_ROWS)
+}
+
+fn keys(view: &ViewState) -> Line<'static> {
     let sort = match view.sort {
         SortOrder::Pin => "A-Z",
         SortOrder::Alphabetical => "by pin",
     };
+    let mut spans = Vec::new();
     for (k, what) in [
         ("↑↓", "select"),
         ("R", "reset system"),
@@ -29,5 +59,35 @@ pub fn render(frame: &mut Frame, area: Rect, view: &ViewState) {
         spans.push(Span::styled(format!(" {k} "), theme::key()));
         spans.push(Span::raw(format!(" {what}  ")));
     }
-    super::fast::lines(frame.buffer_mut(), area, &[Line::from(spans)]);
+    Line::from(spans)
+}
+
+pub fn render(frame: &mut Frame, area: Rect, view: &ViewState) {
+    let above = notice_rows(view, area.width).min(area.height.saturating_sub(1));
+    let keys = keys(view);
+    match &view.notice {
+        Some(n) if above > 0 => {
+            let notice = Rect {
+                height: above,
+                ..area
+            };
+            let line = Line::from(Span::styled(n.clone(), theme::caution()));
+            super::fast::wrapped(frame.buffer_mut(), notice, &[line]);
+            let row = Rect {
+                y: area.y + above,
+                height: area.height - above,
+                ..area
+            };
+            super::fast::lines(frame.buffer_mut(), row, &[keys]);
+        }
+        Some(n) => {
+            let mut spans = vec![
+                Span::styled(format!("{n} "), theme::caution()),
+                Span::styled("│ ", theme::border()),
+            ];
+            spans.extend(keys.spans);
+            super::fast::lines(frame.buffer_mut(), area, &[Line::from(spans)]);
+        }
+        None => super::fast::lines(frame.buffer_mut(), area, &[keys]),
+    }
 }

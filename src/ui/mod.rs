@@ -83,7 +83,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
         Constraint::Length(comm_banner::height(banner.as_ref(), area.height)),
         Constraint::Fill(1),
         Constraint::Length(u16::from(!link_panel)),
-        Constraint::Length(1),
+        Constraint::Length(key_bar::height(view, area.width)),
     ])
     .areas(area);
     title_bar::render(frame, title, model, now);

@@ -13,10 +13,16 @@
 //! runs ([`endpoints::Watch`]): it is refused within [`endpoints::START_ROOM`] of the
 //! endpoint it heads for, and ends at the endpoint ahead (or just before it would pass
 //! it at the rate it is moving), at the endpoint behind once it moves toward it, and on
-//! a position older than [`endpoints::POSITION_FRESH`]. And since a run here has a
-//! target, it also ends once the position has gone [`AWAY`] counts away from it (from
-//! the nearest it came): a motor with swapped leads or polarity runs away from where it
-//! was sent, and is stopped there rather than at the far endpoint.
+//! a position older than [`endpoints::POSITION_FRESH`].
+//!
+//! Like every run, it also ends as soon as it moves [`endpoints::MOVED`] counts against
+//! the direction it was driven, from where it started or (a run here has a target)
+//! [`AWAY`] counts away from the nearest it came to its target
+//! ([`StopReason::MovedAgainst`]): a motor with swapped leads or polarity runs away
+//! from where it was sent, and is stopped there rather than at the far endpoint. A
+//! motor seen doing so, here or by any other origin sharing the record
+//! ([`MotorDrive::share_against`]), is refused from then on: the network cannot
+//! confirm such a run ([`crate::control::against`]).
 //!
 //! After a run ends for any reason the target is *latched*: the same target does not
 //! start the motor again, so a position that settles a count away from the target, or a
@@ -35,7 +41,7 @@ use std::time::{Duration, Instant};
 use crate::control::endpoints::{self, Watch};
 use crate::control::run_state::ReleaseMode;
 use crate::control::{
-    Direction, MotorStreamer, StopReason, StreamerConfig, motor_check, motor_permit,
+    Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check, motor_permit,
 };
 use crate::model::{LogLevel, Model, Motor, TrimKind};
 use crate::protocol::message::Packet;
@@ -48,7 +54,7 @@ pub const REQUEST_HOLD: Duration = Duration::from_millis(1200);
 /// reports lag the motor, so stopping a count early lands on the target, not past it.
 pub const STOP_MARGIN: i32 = 1;
 /// Counts a run's position may go away from its target (from the nearest it came)
-/// before the run ends as going the wrong way ([`StopReason::WrongWay`]): the
+/// before the run ends as moving against its command ([`StopReason::MovedAgainst`]): the
 /// installation check's "moved" ([`endpoints::MOVED`]), so one count of sensor noise,
 /// or two, never ends a good run.
 pub const AWAY: i32 = endpoints::MOVED;
@@ -107,6 +113,8 @@ pub struct MotorDrive {
     /// (perhaps in opposite directions) never share the link.
     local_busy: bool,
     counts: DriveCounts,
+    /// Motors seen moving against their command, shared with the page's keys.
+    against: Against,
 }
 
 impl MotorDrive {
@@ -125,7 +133,14 @@ impl MotorDrive {
             active: None,
             local_busy: false,
             counts: DriveCounts::default(),
+            against: Against::default(),
         }
+    }
+
+    /// Shares the record of motors seen moving against their command with the other
+    /// origins of runs (the page's controller): what one saw, every one refuses.
+    pub fn share_against(&mut self, against: Against) {
+        self.against = against;
     }
 
     pub fn counts(&self) -> DriveCounts {
@@ -281,6 +296,9 @@ impl MotorDrive {
             };
             match stop {
                 Some((reason, why, done)) => {
+                    if let Some(asked) = crate::control::against::asked(reason) {
+                        self.against.record(a.motor, asked);
+                    }
                     out.extend(self.streamer.stop(now, reason));
                     log_stop(model, now, a.motor, &why);
                     if done {
@@ -357,6 +375,7 @@ impl MotorDrive {
             // a position too old to keep it off it.
             let permit = motor_permit(model, motor, direction, now)
                 .map_err(|r| r.0)
+                .and_then(|()| self.against.refusal(motor).map_or(Ok(()), Err))
                 .and_then(|()| endpoints::permit(model, motor, direction, now));
             if let Err(why) = permit {
                 self.counts.refused += 1;
@@ -438,7 +457,7 @@ impl Active {
         }
         self.closest = self.closest.min(remaining);
         (remaining - self.closest >= AWAY).then(|| {
-            let reason = StopReason::WrongWay;
+            let reason = StopReason::MovedAgainst(self.direction);
             let why = format!(
                 "{} (raw {pos}, {} counts from target {} after {})",
                 reason.describe(),

@@ -355,6 +355,13 @@ impl Gateway {
         self.drive.set_local_busy(model, now, busy)
     }
 
+    /// Shares the page's record of motors seen moving against their command
+    /// ([`crate::control::against`]): the network refuses what the keys saw, and the
+    /// keys what the network saw.
+    pub fn share_against(&mut self, against: crate::control::Against) {
+        self.drive.share_against(against);
+    }
+
     /// A key was pressed at the page: a network-driven run stops, as for any key.
     pub fn local_key(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
         self.drive.local_key(model, now)

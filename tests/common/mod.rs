@@ -3,4 +3,5 @@
 #![allow(dead_code)]
 
 pub mod cpu;
+pub mod sim_process;
 pub mod xfsp_peer;

@@ -1,0 +1,352 @@
+//! Issue 27.1: a motor that moves against its command is stopped within a few counts,
+//! whoever runs it (the device list's keys, the setup screens' capture, the
+//! installation check, the XFSp gateway), and then refused to every origin until the
+//! person confirms a run at the keys (`control::against`). On the fake clock, against
+//! the virtual VP-X's pitch trim with its leads swapped (up 30, down 220).
+
+use std::time::Duration;
+
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+
+use super::{PITCH, Rig, pitch_at, pitch_ctx};
+use crate::control::{Controller, Direction, Outcome, StopReason, StreamerConfig};
+use crate::protocol::message::Message;
+use crate::ui::check::state::{MotorFinding, Outcome as Found, Step};
+use crate::ui::state::ReleaseMode;
+use crate::xfsp::drive::MotorDrive;
+
+const STOPPED: &str =
+    "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped";
+
+fn rig(at: u8) -> Rig {
+    let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+    r.ctl = Controller::new(StreamerConfig {
+        release_mode: ReleaseMode::KeyRelease,
+        ..StreamerConfig::default()
+    });
+    r
+}
+
+impl Rig {
+    fn pitch_pos(&self) -> u8 {
+        self.unit.snapshot(self.now).pitch_trim_position
+    }
+
+    fn key(&mut self, c: char, kind: KeyEventKind, setup: bool) -> Outcome {
+        let key = KeyEvent::new_with_kind(KeyCode::Char(c), KeyModifiers::NONE, kind);
+        let out = self
+            .ctl
+            .handle_key(key, &pitch_ctx(setup), &self.model, self.now);
+        self.send(out.packets.clone());
+        out
+    }
+
+    /// Holds `c` for `ms` (a terminal that reports repeats every 40 ms and the
+    /// release), the unit's own positions every 10 ms, and every notice shown.
+    fn hold(&mut self, c: char, ms: u64, setup: bool) -> (Vec<u8>, Vec<String>) {
+        let mut seen = vec![self.pitch_pos()];
+        let mut notices: Vec<String> = self
+            .key(c, KeyEventKind::Press, setup)
+            .notice
+            .into_iter()
+            .collect();
+        for _ in 0..ms / 40 {
+            seen.extend(self.run_watching(40, PITCH));
+            notices.extend(self.key(c, KeyEventKind::Repeat, setup).notice);
+            notices.extend(self.ctl.take_notice());
+        }
+        notices.extend(self.key(c, KeyEventKind::Release, setup).notice);
+        seen.extend(self.run_watching(300, PITCH));
+        notices.extend(self.ctl.take_notice());
+        (seen, notices)
+    }
+
+    fn trim_moves_since(&self, from: usize) -> Vec<bool> {
+        self.sent[from..]
+            .iter()
+            .filter_map(|(_, p)| match p.message {
+                Message::TrimMove(t) => Some(t.on),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+/// The keys: `u` held from 128 runs the trim down; stopped within a few counts with
+/// the words and its stop on the wire. Then `u` and `d` are refused with nothing
+/// sent; `u` again within 3 s runs it, knowing its way, to the down endpoint 220 and
+/// not past it; `u` there is refused; `d` confirmed runs it back up.
+#[test]
+fn a_key_run_moving_against_its_command_stops_and_then_needs_a_confirmation() {
+    let mut r = rig(128);
+    let from = r.sent.len();
+    let (seen, notices) = r.hold('u', 2000, false);
+    let most = *seen.iter().max().unwrap();
+    assert!((131..=134).contains(&most), "went down to {most}: {seen:?}");
+    assert!(*seen.iter().min().unwrap() >= 127, "{seen:?}");
+    assert_eq!(
+        r.ctl.last_stop().unwrap().reason,
+        StopReason::MovedAgainst(Direction::Up)
+    );
+    assert!(notices.iter().any(|n| n == STOPPED), "{notices:?}");
+    let moves = r.trim_moves_since(from);
+    assert!(moves[0] && !moves.last().unwrap(), "{moves:?}");
+    assert_eq!(
+        moves.iter().filter(|on| !**on).count(),
+        1,
+        "one run, one stop"
+    );
+
+    // Refused both ways, nothing on the wire.
+    r.run(4000); // past any confirmation window
+    let from = r.sent.len();
+    let at = r.pitch_pos();
+    let refused = r.key('u', KeyEventKind::Press, false).notice.unwrap();
+    assert_eq!(
+        refused,
+        "pitch trim moved down when asked up: its leads or its sensor may be swapped; let go, \
+         then press u again within 3 s to run it up anyway, watching the motor"
+    );
+    r.key('u', KeyEventKind::Release, false);
+    r.run(3100);
+    let late = r.key('u', KeyEventKind::Press, false).notice.unwrap();
+    assert!(
+        late.starts_with("pitch trim moved down"),
+        "3.1 s is too late: {late}"
+    );
+    r.key('u', KeyEventKind::Release, false);
+    r.run(100);
+    let d = r.key('d', KeyEventKind::Press, false).notice.unwrap();
+    assert!(d.contains("press d again"), "{d}");
+    r.key('d', KeyEventKind::Release, false);
+    r.run(300);
+    assert!(
+        r.trim_moves_since(from).is_empty(),
+        "a refused key sent nothing"
+    );
+    assert_eq!(r.pitch_pos(), at);
+
+    // Confirmed: u, then u again within 3 s, held: down to 220, never past.
+    r.key('u', KeyEventKind::Press, false);
+    r.key('u', KeyEventKind::Release, false);
+    r.run(500);
+    let (seen, _) = r.hold('u', 8000, false);
+    let most = *seen.iter().max().unwrap();
+    assert!((216..=220).contains(&most), "confirmed run to {most}");
+    assert_eq!(
+        r.ctl.last_stop().unwrap().reason,
+        StopReason::AtEndpoint(220)
+    );
+    // Confirmed again and again, held each time: never past 220, and at it, u is
+    // refused by the endpoint the way it really moves, confirmed or not.
+    for _ in 0..3 {
+        r.run(400);
+        r.key('u', KeyEventKind::Press, false);
+        r.key('u', KeyEventKind::Release, false);
+        r.run(200);
+        let (seen, _) = r.hold('u', 1500, false);
+        assert!(seen.iter().all(|&p| p <= 220), "{seen:?}");
+    }
+    r.run(400);
+    for _ in 0..2 {
+        let out = r.key('u', KeyEventKind::Press, false);
+        assert!(
+            out.notice
+                .as_deref()
+                .unwrap_or("")
+                .contains("down endpoint"),
+            "{out:?}"
+        );
+        assert!(out.packets.is_empty());
+        r.key('u', KeyEventKind::Release, false);
+        r.run(200);
+    }
+    // d, confirmed, runs it up, away from 220.
+    r.key('d', KeyEventKind::Press, false);
+    r.key('d', KeyEventKind::Release, false);
+    r.run(200);
+    let (seen, _) = r.hold('d', 1000, false);
+    assert!(*seen.iter().min().unwrap() < most - 10, "{seen:?}");
+    assert!(seen.iter().all(|&p| p <= 220), "{seen:?}");
+}
+
+/// The bug as reproduced, at the down endpoint with nothing known yet: each hold of
+/// `u` went on past 220 (to 223). Now the first such hold stops on the first
+/// position beyond the noise allowance, and the next is refused.
+#[test]
+fn at_the_endpoint_a_hold_that_goes_further_past_it_is_stopped_there() {
+    let mut r = rig(220);
+    let (seen, notices) = r.hold('u', 1500, false);
+    // Stopped on the first position past 220 beyond the one count of noise: the
+    // most it can pass by is that count and one 10 Hz position's travel (2.5 counts
+    // at the virtual trim's 25 a second), rounded up.
+    let most = *seen.iter().max().unwrap();
+    assert!(most <= 224, "past 220 to {most}: {seen:?}");
+    assert!(notices.iter().any(|n| n == STOPPED), "{notices:?}");
+    let (seen, notices) = r.hold('u', 1500, false);
+    assert!(*seen.iter().max().unwrap() <= most, "{seen:?}");
+    // Known to go down, it is at the endpoint that way: refused before any
+    // confirmation is even offered.
+    assert!(
+        notices[0].contains("at its down endpoint (position 2"),
+        "{notices:?}"
+    );
+}
+
+/// The setup screens' capture runs past the endpoints, but not against its command:
+/// the same words, the same stop, the same refusal after.
+#[test]
+fn the_setup_capture_stops_a_motor_moving_against_its_command() {
+    let mut r = rig(128);
+    let (seen, notices) = r.hold('u', 2000, true);
+    let most = *seen.iter().max().unwrap();
+    assert!((131..=134).contains(&most), "went down to {most}");
+    assert!(notices.iter().any(|n| n == STOPPED), "{notices:?}");
+    r.run(500);
+    let out = r.key('u', KeyEventKind::Press, true);
+    assert!(out.packets.is_empty());
+    assert!(out.notice.unwrap().contains("press u again"));
+    // Confirmed, the capture goes on past the endpoint (it finds new ones).
+    r.key('u', KeyEventKind::Release, true);
+    let (seen, _) = r.hold('u', 5000, true);
+    assert!(*seen.iter().max().unwrap() > 220, "{seen:?}");
+}
+
+/// The installation check: its first run (up, toward more room from 128) is
+/// stopped within a few counts; the second is not made; it is found reversed, put
+/// back, and the keys then refuse it until confirmed.
+#[test]
+fn the_check_stops_its_run_and_the_keys_then_refuse_it() {
+    let mut r = rig(128);
+    let seen = r.check_watching(PITCH, 3000);
+    let lo = *seen.iter().min().unwrap();
+    let hi = *seen.iter().max().unwrap();
+    assert!(lo >= 123 && hi <= 133, "{lo}..{hi}: {:?}", r.news);
+    let m = &r.view.motors[1];
+    assert_eq!(
+        m.outcome,
+        Found::Found(MotorFinding::Reversed),
+        "{:?}",
+        r.news
+    );
+    assert!(
+        r.news.iter().any(|n| n.contains(
+            "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped"
+        )),
+        "{:?}",
+        r.news
+    );
+    r.run(500);
+    let out = r.key('d', KeyEventKind::Press, false);
+    assert!(out.packets.is_empty());
+    assert!(out.notice.unwrap().contains("press d again"));
+    assert!(r.ctl.running().is_none());
+}
+
+/// The check after the keys saw it: no test run is made, nothing moves, and the
+/// finding is "reversed".
+#[test]
+fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
+    let mut r = rig(128);
+    r.hold('u', 1000, false);
+    r.run(500);
+    let from = r.sent.len();
+    let at = r.pitch_pos();
+    r.start();
+    r.run_until(20_000, |r| r.view.step == Step::Done);
+    assert!(r.trim_moves_since(from).is_empty(), "{:?}", r.news);
+    assert_eq!(r.pitch_pos(), at);
+    let m = &r.view.motors[1];
+    assert_eq!(m.outcome, Found::Found(MotorFinding::Reversed));
+    let refused = r.ctl.run_for(
+        &r.model,
+        PITCH,
+        Direction::Up,
+        Duration::from_secs(1),
+        r.now,
+    );
+    assert!(
+        refused
+            .unwrap_err()
+            .0
+            .contains("not run: confirm a run at the page")
+    );
+}
+
+/// The XFSp gateway's drive, sharing the page's record: a network run nose-up is
+/// stopped within a few counts as moving against its command (the words in the
+/// event log), and the page's keys then refuse it; the network is refused what the
+/// keys saw.
+#[test]
+fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
+    let mut r = rig(128);
+    let mut drive = MotorDrive::new(StreamerConfig::default());
+    drive.share_against(r.ctl.against());
+    let mut seen = Vec::new();
+    for i in 0..200 {
+        if i % 25 == 0 {
+            // PTRIMREQ +50000: nose up, toward 30 (raw ~78), repeated at 4 Hz.
+            drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
+        }
+        let p = drive.tick(&mut r.model, r.now);
+        r.send(p);
+        seen.extend(r.run_watching(10, PITCH));
+    }
+    let hi = *seen.iter().max().unwrap();
+    assert!((131..=134).contains(&hi), "went down to {hi}");
+    assert!(drive.running().is_none());
+    assert!(
+        r.model.events.iter().any(|e| e
+            .text
+            .contains("it moved down when asked up: its leads or its sensor")),
+        "{:?}",
+        r.model.events
+    );
+    let out = r.key('u', KeyEventKind::Press, false);
+    assert!(out.packets.is_empty());
+    assert!(out.notice.unwrap().contains("press u again"));
+
+    // The other way round: the keys saw the flaps' record... here the pitch trim's,
+    // so a fresh drive sharing it refuses a request for it, nothing sent.
+    let mut other = MotorDrive::new(StreamerConfig::default());
+    other.share_against(r.ctl.against());
+    other.request(PITCH, -50_000, 0x43, None, r.now);
+    let p = other.tick(&mut r.model, r.now);
+    assert!(p.is_empty(), "{p:?}");
+    assert!(
+        r.model
+            .events
+            .iter()
+            .any(|e| e.text.contains("0x0043") && e.text.contains("not run: confirm")),
+        "{:?}",
+        r.model.events
+    );
+}
+
+/// A terminal with no key release: a key held through the refusal never confirms it
+/// (its repeats are not presses); let go, a press after the repeat gap does.
+#[test]
+fn a_held_key_never_confirms_only_a_fresh_press_does() {
+    let mut r = Rig::with(&pitch_at(128, true), Rig::motors_only());
+    r.ctl.against().record(PITCH, Direction::Up);
+    let from = r.sent.len();
+    let out = r.key('u', KeyEventKind::Press, false);
+    assert!(out.notice.unwrap().contains("let go, then press u again"));
+    // Held: the terminal sends the same press every 40 ms after its first delay.
+    r.run(500);
+    for _ in 0..30 {
+        let out = r.key('u', KeyEventKind::Press, false);
+        assert!(out.packets.is_empty(), "a held key ran it: {out:?}");
+        r.run(40);
+    }
+    assert!(r.trim_moves_since(from).is_empty());
+    // Let go (no more repeats), then a fresh press, 2.3 s after the refusal: it runs.
+    r.run(600);
+    let out = r.key('u', KeyEventKind::Press, false);
+    assert!(
+        out.packets
+            .iter()
+            .any(|p| matches!(p.message, Message::TrimMove(t) if t.on)),
+        "{out:?}"
+    );
+}

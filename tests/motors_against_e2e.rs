@@ -1,0 +1,289 @@
+//! Issue 27.1 end to end: a motor that moves against its command, run from the
+//! device list's keys, is stopped within a few counts with the words, refused until
+//! the person confirms, and never taken past its endpoint. The real page (`App`) on
+//! the slave of a real pseudo-terminal opened by `vpx-efis sim --pty --scenario …`
+//! running as its own process: `install` (the pitch trim's leads swapped) and
+//! `reversed-flaps` (the flap motor's). What the page sent is read back from its own
+//! traffic log; positions from the FLAP_TRIM_STATUS it heard.
+// Needs a pseudo-terminal, which only Unix has.
+#![cfg(unix)]
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use vpx_efis::app::{App, AppOptions};
+use vpx_efis::link;
+use vpx_efis::model::{Motor, Source, TrimKind};
+use vpx_efis::protocol::device::{FLAPS, TRIM_P};
+use vpx_efis::protocol::message::Message;
+use vpx_efis::protocol::{Direction as Dir, Packet};
+use vpx_efis::traffic::What;
+use vpx_efis::ui::state::ReleaseMode;
+
+mod common;
+use common::sim_process::{Kill, sim_pty};
+
+/// One rig at a time: two pages and two sims at the real line rate on a loaded
+/// machine can starve a status broadcast into COMMUNICATION LOST.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+struct Rig {
+    app: App,
+    _sim: Kill,
+    _turn: std::sync::MutexGuard<'static, ()>,
+}
+
+impl Rig {
+    /// The page, reporting key releases (as a kitty-protocol terminal does), against
+    /// `vpx-efis sim --pty --scenario <scenario>`, its device list up.
+    fn new(scenario: &str) -> Rig {
+        let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+        let (sim, path) = sim_pty(scenario);
+        let app = App::new(
+            Source::Serial { path: path.clone() },
+            link::serial_connector(PathBuf::from(&path), 57_600),
+            AppOptions {
+                release_mode: ReleaseMode::KeyRelease,
+                ..AppOptions::default()
+            },
+        );
+        let mut r = Rig {
+            app,
+            _sim: sim,
+            _turn: turn,
+        };
+        r.until("the device list and motor positions", 20_000, |app| {
+            let m = app.model();
+            let now = Instant::now();
+            m.live_devices(now).is_some()
+                && m.live_flap_trim(now).is_some()
+                && m.names.iter().all(Option::is_some)
+        });
+        r
+    }
+
+    fn until(&mut self, what: &str, limit_ms: u64, f: impl Fn(&App) -> bool) {
+        let end = Instant::now() + Duration::from_millis(limit_ms);
+        while !f(&self.app) {
+            assert!(Instant::now() < end, "timed out waiting for {what}");
+            self.app
+                .pump_until(Instant::now() + Duration::from_millis(20));
+        }
+    }
+
+    fn wait(&mut self, ms: u64) {
+        self.app
+            .pump_until(Instant::now() + Duration::from_millis(ms));
+    }
+
+    fn key(&mut self, c: char, kind: KeyEventKind) {
+        let k = KeyEvent::new_with_kind(KeyCode::Char(c), KeyModifiers::NONE, kind);
+        self.app.handle_term_event(Event::Key(k), Instant::now());
+    }
+
+    fn select(&mut self, id: u8) {
+        for _ in 0..40 {
+            if self.app.view().selected == Some(id) {
+                return;
+            }
+            let k = KeyEvent::new_with_kind(KeyCode::Down, KeyModifiers::NONE, KeyEventKind::Press);
+            self.app.handle_term_event(Event::Key(k), Instant::now());
+            self.wait(20);
+        }
+        panic!("could not select device {id}");
+    }
+
+    fn pos(&self, motor: Motor) -> u8 {
+        let m = self.app.model();
+        let ft = m.live_flap_trim(Instant::now()).expect("live positions");
+        match motor {
+            Motor::Flaps => ft.flap_position,
+            Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
+            Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
+        }
+    }
+
+    /// Holds `c` for `ms` (a repeat every 40 ms, then the release), and 600 ms more:
+    /// every position heard meanwhile.
+    fn hold(&mut self, c: char, ms: u64, motor: Motor) -> Vec<u8> {
+        let mut seen = vec![self.pos(motor)];
+        self.key(c, KeyEventKind::Press);
+        let end = Instant::now() + Duration::from_millis(ms);
+        while Instant::now() < end {
+            self.wait(40);
+            seen.push(self.pos(motor));
+            self.key(c, KeyEventKind::Repeat);
+        }
+        self.key(c, KeyEventKind::Release);
+        for _ in 0..15 {
+            self.wait(40);
+            seen.push(self.pos(motor));
+        }
+        seen
+    }
+
+    /// A press and release of `c`: for a refusal, or the first of a confirmation.
+    fn tap(&mut self, c: char) {
+        self.key(c, KeyEventKind::Press);
+        self.key(c, KeyEventKind::Release);
+        self.wait(100);
+    }
+
+    /// The traffic log's length: a mark for [`Rig::moves_since`].
+    fn mark(&self) -> u64 {
+        self.app.model().traffic.total()
+    }
+
+    /// The move messages the page sent since `mark`, as on/off.
+    fn moves_since(&self, mark: u64) -> Vec<bool> {
+        let m = self.app.model();
+        m.traffic
+            .entries()
+            .filter(|e| e.seq >= mark && e.dir == Dir::Tx)
+            .filter_map(|e| match &e.what {
+                What::Packet(Packet {
+                    message: Message::TrimMove(t),
+                    ..
+                }) => Some(t.on),
+                What::Packet(Packet {
+                    message: Message::FlapMove(f),
+                    ..
+                }) => Some(f.on),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The page as drawn at 120×40, its rows trimmed and joined by spaces (a long
+    /// notice wraps over rows).
+    fn screen(&mut self) -> String {
+        let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
+        self.app.draw(&mut term, Instant::now()).unwrap();
+        let buf = term.backend().buffer().clone();
+        (0..buf.area.height)
+            .map(|y| {
+                (0..buf.area.width)
+                    .map(|x| buf[(x, y)].symbol().to_string())
+                    .collect::<String>()
+                    .trim()
+                    .to_string()
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+}
+
+const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
+
+/// `install`: select Trim_P, hold `u` from neutral. The trim goes down, and is
+/// stopped within a few counts with the words and its stop on the wire, not run on
+/// to the down endpoint 220. `u` and `d` are then refused, nothing sent; `u` twice
+/// runs it anyway, to 220 and never past, however often it is held there.
+#[test]
+fn install_a_reversed_pitch_trim_held_up_is_stopped_refused_and_kept_off_its_endpoint() {
+    let mut r = Rig::new("install");
+    r.select(TRIM_P);
+    let p0 = r.pos(PITCH);
+    let mark = r.mark();
+    let seen = r.hold('u', 2000, PITCH);
+    let most = *seen.iter().max().unwrap();
+    eprintln!("install: u from {p0}: down to {most}");
+    assert!(
+        most > p0 && most <= p0 + 6,
+        "from {p0} down to {most}: {seen:?}"
+    );
+    assert!(
+        *seen.last().unwrap() == most || *seen.last().unwrap() + 1 >= most,
+        "{seen:?}"
+    );
+    let moves = r.moves_since(mark);
+    assert!(
+        moves.first() == Some(&true) && moves.last() == Some(&false),
+        "{moves:?}"
+    );
+    let screen = r.screen();
+    assert!(
+        screen.contains(
+            "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped"
+        ),
+        "{screen}"
+    );
+
+    // Refused both ways until confirmed: nothing on the wire.
+    r.wait(3200);
+    let mark = r.mark();
+    let at = r.pos(PITCH);
+    r.tap('d');
+    let screen = r.screen();
+    assert!(
+        screen.contains("press d again within 3 s to run it down anyway, watching the motor"),
+        "{screen}"
+    );
+    r.wait(3200);
+    r.tap('u');
+    assert!(r.screen().contains("press u again within 3 s"));
+    r.wait(3200);
+    assert!(r.moves_since(mark).is_empty(), "a refused key sent a move");
+    assert!(r.pos(PITCH).abs_diff(at) <= 1);
+
+    // Confirmed (u, then u held within 3 s): down to the endpoint, never past it, and
+    // so for every further confirmed hold there.
+    let mut most = 0;
+    for _ in 0..4 {
+        r.tap('u');
+        let seen = r.hold('u', 6000, PITCH);
+        most = most.max(*seen.iter().max().unwrap());
+        assert!(
+            most <= 220,
+            "past the down endpoint 220 to {most}: {seen:?}"
+        );
+        r.wait(300);
+    }
+    eprintln!("install: confirmed holds of u: down to {most}");
+    assert!(most >= 214, "the confirmed runs went down: {most}");
+    r.tap('u');
+    r.tap('u');
+    let screen = r.screen();
+    assert!(
+        screen.contains("at its down endpoint"),
+        "at 220 u is refused by the endpoint: {screen}"
+    );
+}
+
+/// `reversed-flaps`: hold `d` on the Flaps row from 120; they go up, and are stopped
+/// within a few counts with the words, the stop on the wire; then refused.
+#[test]
+fn reversed_flaps_held_down_are_stopped_and_refused() {
+    let mut r = Rig::new("reversed-flaps");
+    r.select(FLAPS);
+    let p0 = r.pos(Motor::Flaps);
+    let mark = r.mark();
+    let seen = r.hold('d', 2000, Motor::Flaps);
+    let least = *seen.iter().min().unwrap();
+    eprintln!("reversed-flaps: d from {p0}: up to {least}");
+    assert!(
+        least < p0 && least + 6 >= p0,
+        "from {p0} up to {least}: {seen:?}"
+    );
+    let moves = r.moves_since(mark);
+    assert!(
+        moves.first() == Some(&true) && moves.last() == Some(&false),
+        "{moves:?}"
+    );
+    assert!(
+        r.screen().contains(
+            "flaps moved up when asked down: its leads or its sensor may be swapped; stopped"
+        ),
+        "{}",
+        r.screen()
+    );
+    r.wait(3200);
+    let mark = r.mark();
+    r.tap('d');
+    r.wait(500);
+    assert!(r.moves_since(mark).is_empty());
+    assert!(r.screen().contains("press d again within 3 s"));
+}
