@@ -39,7 +39,9 @@ pub struct SetupFlow {
     /// The page a batch came from; `None` for a backup being applied.
     batch_page: Option<Option<Page>>,
     probes: Probes,
-    pending_load: Vec<Message>,
+    /// Checked writes waiting for their dialog's `y`: a backup's, or a page's that
+    /// disarm a protection.
+    pending: Vec<Message>,
     on_screen: bool,
 }
 
@@ -159,6 +161,13 @@ impl SetupFlow {
                 say(sv, Tone::Bad, "refused before sending: nothing was sent");
             }
             Ok(()) => {
+                let consequences = form::disarms(&messages, model, now);
+                if !consequences.is_empty() {
+                    // Nothing goes out until the person has read what it turns off.
+                    self.pending = messages;
+                    sv.dialog = Dialog::Disarm { consequences };
+                    return;
+                }
                 self.queue.start(messages);
                 self.batch_page = Some(Some(page));
                 sv.message = None;
@@ -274,7 +283,7 @@ impl SetupFlow {
         let notes = backup::software_note(&b.version, &unit_version)
             .into_iter()
             .collect();
-        self.pending_load = steps.iter().map(|s| s.message()).collect();
+        self.pending = steps.iter().map(|s| s.message()).collect();
         sv.dialog = Dialog::Load {
             file,
             changes,
@@ -294,7 +303,7 @@ impl SetupFlow {
         match (sv.dialog.clone(), key.code) {
             (_, KeyCode::Esc | KeyCode::Char('n')) => {
                 sv.dialog = Dialog::None;
-                self.pending_load.clear();
+                self.pending.clear();
                 say(sv, Tone::Info, "cancelled: nothing was sent");
             }
             (Dialog::Erase { .. }, KeyCode::Char('b')) => {
@@ -321,9 +330,17 @@ impl SetupFlow {
                 out.send.push(self.probes.erase(sv, now));
                 say(sv, Tone::Info, "EEPROM_ERASE sent");
             }
+            (Dialog::Disarm { .. }, KeyCode::Char('y')) => {
+                sv.dialog = Dialog::None;
+                let msgs = std::mem::take(&mut self.pending);
+                self.queue.start(msgs);
+                self.batch_page = Some(Some(sv.page));
+                sv.message = None;
+                self.tick_into(sv, model, now, out);
+            }
             (Dialog::Load { .. }, KeyCode::Char('y') | KeyCode::Enter) => {
                 sv.dialog = Dialog::None;
-                let msgs = std::mem::take(&mut self.pending_load);
+                let msgs = std::mem::take(&mut self.pending);
                 self.queue.start(msgs);
                 self.batch_page = Some(None);
                 say(
@@ -349,7 +366,10 @@ impl SetupFlow {
         now: Instant,
     ) -> Out {
         if on_screen && !self.on_screen {
-            // Arriving from the device list: configure the pin that was selected there.
+            // Arriving from the device list: always the Device page, never where the
+            // screens were left, so keys typed from memory land where they are meant.
+            goto_page(sv, Page::Device);
+            // And it configures the pin that was selected there.
             let id = selected
                 .filter(|id| (STARTER..TRIM_R).contains(id))
                 .unwrap_or(sv.forms.device.device_id);
@@ -600,7 +620,8 @@ mod tests {
     use crate::model::{Setting, Source};
     use crate::protocol::Packet;
     use crate::protocol::message::{
-        DeviceEnable, DeviceName, DeviceSpec, DeviceSpecQuery, EnableFlag, SpecAck, SwitchId,
+        DeviceEnable, DeviceName, DeviceSpec, DeviceSpecQuery, EnableFlag, OvervoltageLimit,
+        SpecAck, SwitchId,
     };
     use crate::ui::setup::state::WriteStatus;
 
@@ -813,5 +834,247 @@ mod tests {
                 .send
                 .is_empty()
         );
+    }
+
+    /// A unit that reported every setting: overvoltage `limit`, flaps and both trims
+    /// fitted, 5A-1 with current-fault checking on; and a live bus at `bus` volts.
+    fn armed_unit(t0: Instant, limit: OvervoltageLimit, bus: Option<f32>) -> Model {
+        use crate::protocol::Payload;
+        use crate::protocol::defaults;
+        use crate::protocol::message::{SignedTenths, SystemSpec, SystemStatus, TrimType};
+        let mut m = Model::new(Source::Simulated {
+            scenario: "t".into(),
+        });
+        for id in 1..=28u8 {
+            let mut spec = defaults::device_spec(id);
+            if id == 4 {
+                spec.current_fault = true;
+            }
+            m.apply_packet(t0, &Packet::from_vpx(1, spec));
+            m.apply_packet(t0, &Packet::from_vpx(1, DeviceName::new(id, "").unwrap()));
+            let shown = DeviceEnable {
+                device_id: id,
+                flag: EnableFlag::Enabled,
+            };
+            m.apply_packet(t0, &Packet::from_vpx(1, shown));
+        }
+        let system = SystemSpec {
+            overvoltage_limit: limit,
+            secondary_alternator: None,
+        };
+        m.apply_packet(t0, &Packet::from_vpx(1, system));
+        let mut flap = defaults::flap_spec();
+        flap.enabled = true;
+        m.apply_packet(t0, &Packet::from_vpx(1, flap));
+        for t in [TrimType::Pitch, TrimType::Roll] {
+            let mut trim = defaults::trim_spec(t);
+            trim.enabled = true;
+            trim.power = 60;
+            m.apply_packet(t0, &Packet::from_vpx(1, trim));
+        }
+        if let Some(v) = bus {
+            let mut st = SystemStatus::parse(&[0u8; 12]).unwrap();
+            st.main_bus_volts = SignedTenths((v * 10.0).round() as i16);
+            m.apply_packet(t0, &Packet::from_vpx(1, st));
+        }
+        m
+    }
+
+    /// On `page`, `field` changed by → and Enter pressed: what went out, and the flow
+    /// and view to go on with.
+    fn change_and_send(
+        m: &mut Model,
+        t0: Instant,
+        page: Page,
+        field: Field,
+        pin: u8,
+    ) -> (SetupFlow, SetupView, Vec<Message>) {
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        flow.tick(&mut sv, true, Some(pin), m, t0);
+        sv.page = page;
+        sv.field = page.fields().iter().position(|&f| f == field).unwrap();
+        let mut sent = flow.key(press(KeyCode::Right), &mut sv, m, t0).send;
+        assert!(sv.is_edited(page), "{field:?} changed");
+        sent.extend(flow.key(press(KeyCode::Enter), &mut sv, m, t0).send);
+        (flow, sv, sent)
+    }
+
+    /// Every setting that disarms a protection: Enter sends nothing and asks, naming
+    /// the consequence; Esc sends nothing and keeps the edit; Enter again asks again
+    /// and a second Enter does not confirm; only `y` sends it.
+    #[test]
+    fn a_setting_that_disarms_a_protection_is_sent_only_once_confirmed() {
+        use OvervoltageLimit::{V16, V32};
+        type Case = (
+            &'static str,
+            OvervoltageLimit,
+            Option<f32>,
+            Page,
+            Field,
+            &'static str,
+        );
+        let cases: [Case; 7] = [
+            (
+                "32 V on a 14 V bus",
+                V16,
+                Some(14.2),
+                Page::System,
+                Field::Overvoltage,
+                "overvoltage 32 V while the bus reads 14.2 V: 32 V is for a 28 V system; on this 14 V system the overvoltage protection would never trip",
+            ),
+            (
+                "16 V on a 28 V bus",
+                V32,
+                Some(27.9),
+                Page::System,
+                Field::Overvoltage,
+                "overvoltage 16 V while the bus reads 27.9 V: 16 V is for a 14 V system; on this 28 V system the unit would flag overvoltage at once",
+            ),
+            (
+                "32 V with no live bus",
+                V16,
+                None,
+                Page::System,
+                Field::Overvoltage,
+                "overvoltage 32 V with no live bus voltage to check it against",
+            ),
+            (
+                "flaps disabled",
+                V16,
+                Some(14.2),
+                Page::Flaps,
+                Field::FlapEnabled,
+                "flaps disabled: the unit holds them as fitted",
+            ),
+            (
+                "pitch trim disabled",
+                V16,
+                Some(14.2),
+                Page::PitchTrim,
+                Field::TrimEnabled,
+                "pitch trim disabled: the unit holds it as fitted; disabled, it takes it as not installed and the pitch trim switches no longer run it",
+            ),
+            (
+                "roll trim disabled",
+                V16,
+                Some(14.2),
+                Page::RollTrim,
+                Field::TrimEnabled,
+                "roll trim disabled",
+            ),
+            (
+                "current fault off",
+                V16,
+                Some(14.2),
+                Page::Device,
+                Field::CurrentFault,
+                "current fault check off on 5A-1 (device 4): it will no longer be switched off when it draws more than its 2 A breaker",
+            ),
+        ];
+        for (name, limit, bus, page, field, words) in cases {
+            let t0 = Instant::now();
+            let mut m = armed_unit(t0, limit, bus);
+            let (mut flow, mut sv, sent) = change_and_send(&mut m, t0, page, field, 4);
+            assert!(
+                sent.is_empty(),
+                "{name}: nothing sent before confirming: {sent:?}"
+            );
+            let Dialog::Disarm { consequences } = sv.dialog.clone() else {
+                panic!("{name}: no confirmation: {:?}", sv.message);
+            };
+            assert_eq!(consequences.len(), 1, "{name}: {consequences:?}");
+            assert!(
+                consequences[0].starts_with(words),
+                "{name}: {consequences:?}"
+            );
+            for t in [100, 2000] {
+                let out = flow.tick(&mut sv, true, Some(4), &mut m, ms(t0, t));
+                assert!(out.send.is_empty(), "{name}: a tick sends nothing");
+            }
+            let out = flow.key(press(KeyCode::Esc), &mut sv, &mut m, t0);
+            assert!(out.send.is_empty(), "{name}: cancelled");
+            assert_eq!(sv.dialog, Dialog::None);
+            assert!(sv.is_edited(page), "{name}: the edit stays after Esc");
+            let mut sent = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0).send;
+            sent.extend(flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0).send);
+            assert!(sent.is_empty(), "{name}: Enter never confirms: {sent:?}");
+            assert!(matches!(sv.dialog, Dialog::Disarm { .. }), "{name}");
+            let out = flow.key(press(KeyCode::Char('y')), &mut sv, &mut m, t0);
+            assert_eq!(sv.dialog, Dialog::None);
+            let expected: Message = match page {
+                Page::System => sv.forms.system.into(),
+                Page::Flaps => sv.forms.flap.into(),
+                Page::PitchTrim => sv.forms.pitch.into(),
+                Page::RollTrim => sv.forms.roll.into(),
+                _ => sv.forms.device.into(),
+            };
+            assert_eq!(out.send, vec![expected], "{name}: sent once confirmed");
+        }
+    }
+
+    /// The limit that suits the bus, and enabling what was disabled, go out at once.
+    #[test]
+    fn a_setting_that_arms_a_protection_is_sent_without_asking() {
+        let t0 = Instant::now();
+        let mut m = armed_unit(t0, OvervoltageLimit::V32, Some(14.2));
+        let (_, sv, sent) = change_and_send(&mut m, t0, Page::System, Field::Overvoltage, 4);
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(sent.len(), 1, "16 V on a 14.2 V bus: {sent:?}");
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(28.4));
+        let (_, sv, sent) = change_and_send(&mut m, t0, Page::System, Field::Overvoltage, 4);
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(sent.len(), 1, "32 V on a 28.4 V bus: {sent:?}");
+        // 5A-1's check off → on is arming it.
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        let (_, sv, sent) = change_and_send(&mut m, t0, Page::Device, Field::CurrentFault, 5);
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(sent.len(), 1, "5A-2's check switched on: {sent:?}");
+    }
+
+    /// A breaker above the pin's rating never reaches a confirmation: Appendix B's
+    /// range ends at the rating, so it is refused before anything is sent.
+    #[test]
+    fn a_breaker_above_the_pins_rating_is_refused_not_confirmed() {
+        let t0 = Instant::now();
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        flow.tick(&mut sv, true, Some(4), &mut m, t0);
+        sv.field = 1;
+        assert_eq!(sv.field(), Field::Breaker);
+        flow.key(press(KeyCode::Char('6')), &mut sv, &mut m, t0);
+        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert!(out.send.is_empty());
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(
+            sv.writes[0].status,
+            WriteStatus::Refused {
+                why: "Invalid circuit breaker value: 6 A is outside 1–5 A for 5A-1 (ICD Table 40)"
+                    .into(),
+                by_unit: false,
+            }
+        );
+    }
+
+    /// Left on the System page, the setup screens open again on the Device page.
+    #[test]
+    fn the_setup_screens_open_on_the_device_page_every_time() {
+        let t0 = Instant::now();
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        flow.tick(&mut sv, true, Some(4), &mut m, t0);
+        flow.key(press(KeyCode::Tab), &mut sv, &mut m, t0);
+        flow.key(press(KeyCode::Down), &mut sv, &mut m, t0);
+        assert_eq!(
+            (sv.page, sv.field()),
+            (Page::System, Field::SecondaryAlternator)
+        );
+        assert!(flow.key(press(KeyCode::Esc), &mut sv, &mut m, t0).leave);
+        flow.tick(&mut sv, false, Some(4), &mut m, ms(t0, 100));
+        flow.tick(&mut sv, true, Some(7), &mut m, ms(t0, 200));
+        assert_eq!((sv.page, sv.field()), (Page::Device, Field::DeviceId));
+        assert_eq!(sv.forms.device.device_id, 7);
     }
 }

@@ -683,6 +683,9 @@ pub enum Dialog {
         /// Set once a backup was written from this dialog.
         backed_up: Option<String>,
     },
+    /// A page's writes that turn a protection off: each consequence in words. Only
+    /// `y` sends them; Enter does not, so a habit of keys cannot.
+    Disarm { consequences: Vec<String> },
     /// A backup file read and checked: what applying it changes.
     Load {
         file: String,
