@@ -110,6 +110,8 @@ struct Rig {
     /// Every packet that went to the unit, with when.
     sent: Vec<(Duration, Packet)>,
     news: Vec<String>,
+    /// How many times the flow said the check ended (the app writes a report each).
+    ended: u32,
     /// Drop DEVICE_POWER on the way (a unit that does not act on it).
     deaf_to_power: bool,
     /// The link is cut: nothing goes in or out.
@@ -147,6 +149,7 @@ impl Rig {
             now: t0,
             sent: Vec::new(),
             news: Vec::new(),
+            ended: 0,
             deaf_to_power: false,
             cut: false,
         };
@@ -214,6 +217,7 @@ impl Rig {
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
             self.news.extend(out.news);
+            self.ended += u32::from(out.ended);
             self.send(out.packets);
         }
     }
@@ -238,6 +242,7 @@ impl Rig {
             .flow
             .command(c, &mut self.view, &self.model, &mut self.ctl, self.now);
         self.news.extend(out.news);
+        self.ended += u32::from(out.ended);
         self.send(out.packets);
     }
 
@@ -251,6 +256,7 @@ impl Rig {
             self.now,
         );
         self.news.extend(out.news);
+        self.ended += u32::from(out.ended);
         self.send(out.packets);
     }
 
@@ -1258,6 +1264,7 @@ impl Rig {
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
             self.news.extend(out.news);
+            self.ended += u32::from(out.ended);
             self.send(out.packets);
         }
     }
@@ -2185,4 +2192,130 @@ fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
             .iter()
             .any(|u| matches!(u.input, Input::FlapUp | Input::PitchTrimUp))
     );
+}
+
+// ----- the report, whenever the check ends -----
+
+/// The person stops the check (Esc or q: `Command::Stop`) at every stage of every
+/// step, and the flow says the check ended exactly once each time (the app writes the
+/// report on that, marked INCOMPLETE), with what it left. Before power is a stage
+/// too: the flow ends there as well (the page's Esc there goes back to the list
+/// before anything was touched, Ctrl-C writes the report).
+#[test]
+fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
+    type Reach = fn(&mut Rig);
+    let short_switch = || Options {
+        timing: super::flow::Timing {
+            switch_timeout: Duration::from_secs(2),
+            ..Default::default()
+        },
+        ..Rig::switches_only()
+    };
+    let flip_current = |r: &mut Rig| {
+        let v = &r.view;
+        let Input::Switch(n) = v.switches[v.current.unwrap()].input else {
+            panic!("a numbered switch first");
+        };
+        r.flip(n, true);
+    };
+    let hide = |r: &mut Rig| {
+        let p = r.ctl.set_page_hidden(r.now, true);
+        r.send(p);
+    };
+    let start: Reach = |r| r.start();
+    let on_already: Reach = |r| {
+        // Nav Lt and Strobe's switch on: they are measured as they are.
+        r.flip(2, true);
+        r.run(1500);
+        r.start();
+    };
+    let cases: Vec<(&str, Options, Reach)> = vec![
+        ("before power", Rig::switches_only(), |_| {}),
+        (
+            "switches: waiting for the flip",
+            Rig::switches_only(),
+            start,
+        ),
+        ("switches: input changed", Rig::switches_only(), start),
+        ("switches: timed out", short_switch(), start),
+        (
+            "circuits: measure, switched on",
+            Rig::circuits_only(),
+            start,
+        ),
+        (
+            "circuits: measure, as it is",
+            Rig::circuits_only(),
+            on_already,
+        ),
+        ("circuits: put back", Rig::circuits_only(), start),
+        ("circuits: waiting to be seen", Rig::circuits_only(), start),
+        ("stopping", Rig::circuits_only(), start),
+        ("motors: start", Rig::motors_only(), start),
+        ("motors: running", Rig::motors_only(), start),
+        ("motors: settle", Rig::motors_only(), start),
+        ("motors: paused", Rig::motors_only(), start),
+    ];
+    for (stage, opts, begin) in cases {
+        let mut r = Rig::new(opts);
+        if stage == "motors: start" {
+            // No live position yet: the motor waits at its start.
+            r.run_dropping(1500, "FLAP_TRIM_STATUS");
+            r.cmd(Command::Enter);
+            r.run_dropping(100, "FLAP_TRIM_STATUS");
+        } else {
+            if stage == "circuits: waiting to be seen" {
+                hide(&mut r);
+            }
+            begin(&mut r);
+        }
+        match stage {
+            "switches: input changed" => {
+                r.run(200);
+                flip_current(&mut r);
+            }
+            "stopping" => {
+                r.run_until(30_000, |r| {
+                    r.flow.stage() == "circuits: measure, switched on"
+                });
+                // The first stop waits to see the circuit off; the second ends it.
+                r.cmd(Command::Stop);
+                assert_eq!(r.flow.stage(), "stopping");
+                assert_eq!(r.ended, 0, "not ended while waiting");
+            }
+            "motors: paused" => {
+                r.run_until(30_000, |r| r.flow.stage() == "motors: running");
+                r.run(200);
+                hide(&mut r);
+            }
+            _ => {}
+        }
+        if stage != "motors: start" {
+            r.run_until(60_000, |r| r.flow.stage() == stage);
+        }
+        assert_eq!(r.flow.stage(), stage);
+        assert_eq!(r.ended, 0, "{stage}: not ended before the stop");
+        r.cmd(Command::Stop);
+        r.run_until(6000, |r| r.flow.finished());
+        assert_eq!(r.ended, 1, "{stage}: ended once");
+        let i = r.view.interrupted.clone().expect("interrupted");
+        assert_eq!(i.cause, "stopped by you", "{stage}");
+        // Nothing more ends it.
+        r.cmd(Command::Stop);
+        r.run(500);
+        assert_eq!(r.ended, 1, "{stage}: ended once only");
+    }
+}
+
+/// A check that runs to its end ends once.
+#[test]
+fn a_check_that_finishes_ends_once() {
+    let mut r = Rig::new(Rig::circuits_only());
+    r.start();
+    r.run_until(60_000, |r| r.flow.finished());
+    assert_eq!(r.ended, 1);
+    assert!(r.view.interrupted.is_none());
+    r.cmd(Command::Stop);
+    r.run(500);
+    assert_eq!(r.ended, 1);
 }

@@ -483,7 +483,7 @@ pub fn render_interrupted(
             theme::label(),
         ),
         (None, None) => Line::styled(
-            "No report written: the check is incomplete.",
+            "No report written: there is no folder to write it to.",
             theme::label(),
         ),
     });
