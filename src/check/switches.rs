@@ -405,7 +405,9 @@ fn follow_finding(
             (id, why)
         })
         .collect();
-    if missing.is_empty() {
+    if missing.is_empty() && item.circuits.is_empty() {
+        SwitchFinding::Changed
+    } else if missing.is_empty() {
         SwitchFinding::Passed
     } else {
         SwitchFinding::CircuitsDidNotFollow(missing)

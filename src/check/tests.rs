@@ -531,6 +531,63 @@ fn a_switch_never_flipped_times_out_and_can_be_retried() {
         r.view.switches[r.view.current.unwrap()].input,
         Input::FlapUp
     );
+    // The flap switch has no circuit: its result says only what was seen.
+    assert_eq!(
+        r.prompt(),
+        "Move the flap switch UP on, then back off.",
+        "no circuits to wait for"
+    );
+    r.unit.apply(
+        SimCommand::PressMotorSwitch {
+            motor: crate::sim::MotorId::Flap,
+            direction: crate::sim::MotorDirection::Up,
+            hold: Duration::from_millis(1500),
+        },
+        r.now,
+    );
+    r.run_until(6000, |r| r.switch(Input::FlapUp) != &Outcome::NotRun);
+    assert_eq!(
+        r.switch(Input::FlapUp),
+        &Outcome::Found(SwitchFinding::Changed)
+    );
+    let words =
+        crate::ui::check::words::switch(&r.view.switches[r.view.current.unwrap() - 1], |id| {
+            r.view.name_of(id)
+        });
+    assert_eq!(words, "the input changed (no circuit is assigned to it)");
+}
+
+/// The roll trim switch is asked for by its directions, left and right, as the live
+/// row draws them (`roll ←`, `→`; ICD Table 30 note 2), never UP and DOWN.
+#[test]
+fn the_roll_trim_switch_is_asked_left_and_right() {
+    assert_eq!(Input::RollTrimUp.label(), "roll trim switch LEFT");
+    assert_eq!(Input::RollTrimDown.label(), "roll trim switch RIGHT");
+    let toml = scenario().replace(
+        "[roll_trim]\nenabled = false\nup = 0\ndown = 0\nneutral = 0",
+        "[roll_trim]\nenabled = true\nup = 30\ndown = 220\nneutral = 125\nposition = 125",
+    );
+    let mut r = Rig::with(&toml, Rig::switches_then_motors());
+    r.start();
+    r.run(100);
+    // Skipped, input by input, to the roll trim switch.
+    let roll = |r: &Rig| {
+        r.view
+            .current
+            .is_some_and(|i| r.view.switches[i].input == Input::RollTrimUp)
+    };
+    for _ in 0..20 {
+        if roll(&r) {
+            break;
+        }
+        r.cmd(Command::SkipItem);
+        r.run(10);
+    }
+    assert!(roll(&r), "{:?}", r.view.prompt);
+    assert_eq!(
+        r.prompt(),
+        "Move the roll trim switch LEFT on, then back off."
+    );
 }
 
 #[test]

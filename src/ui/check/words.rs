@@ -107,6 +107,7 @@ impl SwitchFinding {
     pub fn words(&self, name_of: &dyn Fn(u8) -> String) -> String {
         match self {
             SwitchFinding::Passed => "the input changed, and its circuits followed".into(),
+            SwitchFinding::Changed => "the input changed (no circuit is assigned to it)".into(),
             SwitchFinding::NeverChanged => {
                 "input never changed: a broken wire, a bad switch, or the wrong pin".into()
             }
