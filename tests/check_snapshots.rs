@@ -558,6 +558,9 @@ fn to_cycle() -> Vec<(u8, String, SwitchId)> {
         (4, "Nav Lt".into(), SwitchId::Input(2)),
         (0x11, "Landing Lt".into(), SwitchId::Input(6)),
         (0x12, "Taxi Lt".into(), SwitchId::Input(6)),
+        // Switch 7 the check found dead (`finished_switches`): flipping it is no
+        // release, and the words say so.
+        (0x17, "Boost Pump".into(), SwitchId::Input(7)),
     ]
 }
 
