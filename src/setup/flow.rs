@@ -18,6 +18,7 @@ use crate::model::{Model, Source};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{STARTER, TRIM_R};
 use crate::protocol::message::{Message, Version};
+use crate::protocol::names::PIN_NAMES;
 use crate::ui::setup::state::{Dialog, Field, Page, SetupView, Tone};
 
 /// What the app must do after the flow moved.
@@ -466,7 +467,23 @@ fn adjust(sv: &mut SetupView, model: &Model, step: i32) {
     if refuse_unread(sv) {
         return;
     }
+    let name_before = sv.forms.name.clone();
     match form::adjust(&mut sv.forms, page, field, step, model) {
+        Ok(false) if field == Field::Name => {
+            sv.edited[page.index()] = true;
+            // Decision: ←/→ replaces a name not from Appendix C, and says so.
+            if !name_before.is_empty() && !PIN_NAMES.contains(&name_before.as_str()) {
+                let now = sv.forms.name.clone();
+                say(
+                    sv,
+                    Tone::Info,
+                    format!(
+                        "←/→ picks from ICD Appendix C: \"{name_before}\" replaced by \
+                         \"{now}\" (Esc discards the edit)"
+                    ),
+                );
+            }
+        }
         Ok(true) => {
             let discarded = sv.edited[page.index()];
             sv.edited[page.index()] = false;
@@ -485,16 +502,32 @@ fn adjust(sv: &mut SetupView, model: &Model, step: i32) {
 
 fn type_digit(sv: &mut SetupView, c: char) {
     let field = sv.field();
-    if !form::takes_digits(field) || (c == '.' && field != Field::FlapEndpointDuration) {
-        return;
+    if field.is_action() {
+        return say(sv, Tone::Bad, "digits do nothing here: Enter does this one");
+    }
+    if !field.takes_digits() {
+        // Decision: a field of choices is not typed into; the digit is refused in
+        // words rather than dropped.
+        return say(
+            sv,
+            Tone::Bad,
+            format!(
+                "{} is not typed: ←/→ chooses it (the line above says from what)",
+                field.label().to_lowercase()
+            ),
+        );
+    }
+    if c == '.' && field != Field::FlapEndpointDuration {
+        return say(sv, Tone::Bad, "whole numbers only here: '.' not taken");
     }
     if refuse_unread(sv) {
         return;
     }
     let t = sv.typing.get_or_insert_with(String::new);
-    if t.len() < 6 {
-        t.push(c);
+    if t.len() >= 6 {
+        return say(sv, Tone::Bad, "at most 6 digits: the digit was not taken");
     }
+    t.push(c);
     let text = t.clone();
     form::set_typed(&mut sv.forms, sv.page, field, &text);
     sv.edited[sv.page.index()] = true;
@@ -507,13 +540,17 @@ fn type_text(sv: &mut SetupView, c: char) {
                 return;
             }
             if !c.is_ascii() || c.is_ascii_control() {
-                return say(sv, Tone::Bad, "names are ASCII only (ICD Table 21)");
+                return say(
+                    sv,
+                    Tone::Bad,
+                    format!("'{c}' not taken: names are ASCII only (ICD Table 21)"),
+                );
             }
             if sv.forms.name.len() >= 16 {
                 return say(
                     sv,
                     Tone::Bad,
-                    "names are at most 16 characters (ICD Table 21)",
+                    format!("'{c}' not taken: names are at most 16 characters (ICD Table 21)"),
                 );
             }
             sv.forms.name.push(c);
@@ -1076,5 +1113,119 @@ mod tests {
         flow.tick(&mut sv, true, Some(7), &mut m, ms(t0, 200));
         assert_eq!((sv.page, sv.field()), (Page::Device, Field::DeviceId));
         assert_eq!(sv.forms.device.device_id, 7);
+    }
+
+    fn typed(flow: &mut SetupFlow, sv: &mut SetupView, m: &mut Model, t: Instant, text: &str) {
+        for c in text.chars() {
+            flow.key(press(KeyCode::Char(c)), sv, m, t);
+        }
+    }
+
+    fn said(sv: &SetupView) -> (Tone, String) {
+        sv.message.clone().expect("a word on screen")
+    }
+
+    /// Typing never fails in silence: a digit on a field of choices, a character
+    /// that is not ASCII, a 17th character, ←/→ over a typed name, an empty name:
+    /// each is refused or done in words, and the footer offers typing only where
+    /// digits are taken.
+    #[test]
+    fn typing_in_setup_is_refused_or_done_in_words() {
+        let t0 = Instant::now();
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(1, DeviceName::new(4, "Nav Lt").unwrap()),
+        );
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        flow.tick(&mut sv, true, Some(4), &mut m, t0);
+        for (page, field) in [
+            (Page::Device, Field::Switch),
+            (Page::System, Field::Overvoltage),
+            (Page::System, Field::SecondaryAlternator),
+        ] {
+            sv.page = page;
+            sv.field = page.fields().iter().position(|&f| f == field).unwrap();
+            let before = sv.forms.clone();
+            sv.message = None;
+            flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, t0);
+            assert_eq!(sv.forms, before, "{field:?}: nothing typed");
+            let (tone, words) = said(&sv);
+            assert_eq!(tone, Tone::Bad);
+            assert!(
+                words.starts_with(&format!(
+                    "{} is not typed: ←/→ chooses it",
+                    field.label().to_lowercase()
+                )),
+                "{words}"
+            );
+            let keys = crate::ui::setup::keys(&sv);
+            assert!(
+                !keys.iter().any(|(k, _)| *k == "0-9"),
+                "{field:?}: {keys:?}"
+            );
+        }
+        sv.page = Page::Device;
+        sv.field = 1;
+        assert!(
+            crate::ui::setup::keys(&sv).contains(&("0-9", "type")),
+            "the breaker"
+        );
+        // The name: é, then 19 characters.
+        sv.field = Page::Device
+            .fields()
+            .iter()
+            .position(|&f| f == Field::Name)
+            .unwrap();
+        typed(&mut flow, &mut sv, &mut m, t0, "é");
+        assert_eq!(sv.forms.name, "Nav Lt");
+        assert_eq!(
+            said(&sv),
+            (
+                Tone::Bad,
+                "'é' not taken: names are ASCII only (ICD Table 21)".into()
+            )
+        );
+        for _ in 0..6 {
+            flow.key(press(KeyCode::Backspace), &mut sv, &mut m, t0);
+        }
+        typed(&mut flow, &mut sv, &mut m, t0, "Landing Light Left");
+        assert_eq!(sv.forms.name, "Landing Light Le");
+        assert_eq!(
+            said(&sv),
+            (
+                Tone::Bad,
+                "'t' not taken: names are at most 16 characters (ICD Table 21)".into()
+            )
+        );
+        // ←/→ over a typed name replaces it, and says so.
+        flow.key(press(KeyCode::Right), &mut sv, &mut m, t0);
+        let (tone, words) = said(&sv);
+        assert_eq!(tone, Tone::Info);
+        assert_eq!(
+            words,
+            format!(
+                "←/→ picks from ICD Appendix C: \"Landing Light Le\" replaced by \"{}\" \
+                 (Esc discards the edit)",
+                sv.forms.name
+            )
+        );
+        // An empty name is refused, nothing sent.
+        for _ in 0..16 {
+            flow.key(press(KeyCode::Backspace), &mut sv, &mut m, t0);
+        }
+        assert_eq!(sv.forms.name, "");
+        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert!(out.send.is_empty(), "{:?}", out.send);
+        assert_eq!(
+            said(&sv),
+            (
+                Tone::Bad,
+                "nothing sent: an empty name is refused (the unit keeps \"Nav Lt\"); type a \
+                 name, or pick one with ←/→"
+                    .into()
+            )
+        );
     }
 }

@@ -260,30 +260,6 @@ fn flip(p: Polarity) -> Polarity {
     }
 }
 
-/// Whether digits can be typed into `field` (and '.' for the run-on seconds).
-pub fn takes_digits(field: Field) -> bool {
-    use Field::*;
-    matches!(
-        field,
-        Breaker
-            | FlapUp
-            | FlapDown
-            | FlapMid1
-            | FlapMid2
-            | FlapOverspeedPosition
-            | FlapBreaker
-            | FlapMaxSpeed
-            | FlapEndpointDuration
-            | TrimUp
-            | TrimDown
-            | TrimNeutral
-            | TrimPower
-            | TrimSpeed
-            | WigWagWarmUp
-            | WigWagSpeed
-    )
-}
-
 /// Sets `field` from typed text. Not clamped: a value outside the range is kept so
 /// the §6.2 check can say why it is refused.
 pub fn set_typed(forms: &mut Forms, page: Page, field: Field, text: &str) {
@@ -377,6 +353,15 @@ pub fn messages(forms: &Forms, page: Page, model: &Model) -> Result<Vec<Message>
                 out.push(forms.device.into());
             }
             if held.name.as_deref() != Some(forms.name.as_str()) {
+                // Decision: an empty name is refused, not sent; a name is cleared only
+                // by EEPROM_ERASE (Appendix F), never by a field left empty.
+                if forms.name.is_empty() {
+                    return Err(format!(
+                        "nothing sent: an empty name is refused (the unit keeps \"{}\"); \
+                         type a name, or pick one with ←/→",
+                        held.name.as_deref().unwrap_or_default()
+                    ));
+                }
                 let name = DeviceName::new(id, &forms.name)
                     .ok_or("a name is at most 16 ASCII characters (ICD Table 21)")?;
                 out.push(name.into());

@@ -329,7 +329,9 @@ pub fn keys(sv: &SetupView) -> Vec<(&'static str, &'static str)> {
                 k.push(("←→", "Appendix C"));
             } else {
                 k.push(("←→", "change"));
-                k.push(("0-9", "type"));
+                if sv.field().takes_digits() {
+                    k.push(("0-9", "type"));
+                }
             }
             k.push(("Enter", "send"));
             match page {
