@@ -464,6 +464,7 @@ fn headless_check_prints_results_and_exits_by_what_it_found() {
             choices: vpx_efis::check::Choices {
                 exclude: vec!["Landing Lt".into(), "5A-2".into()],
                 include: vec![],
+                excluded_here: vec![],
             },
             ..r.options()
         },
@@ -581,6 +582,7 @@ fn headless_check_refuses_an_exclude_that_names_no_circuit() {
             choices: vpx_efis::check::Choices {
                 exclude: vec!["Pitot Heeat".into()],
                 include: vec![],
+                excluded_here: vec![],
             },
             ..r.options()
         },

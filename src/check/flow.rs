@@ -391,10 +391,19 @@ impl CheckFlow {
             Command::Toggle => {
                 let Some(c) = view.current else { return };
                 if let Some(p) = view.plan.get(c) {
-                    self.opts.choices.exclude.push(p.name.clone());
+                    self.opts.choices.excluded_here.push(p.id);
                     view.message = Some(format!("{} excluded", p.name));
                 } else if let Some(e) = view.excluded.get(c - view.plan.len()) {
-                    if e.may_include {
+                    let here = self
+                        .opts
+                        .choices
+                        .excluded_here
+                        .iter()
+                        .position(|&i| i == e.id);
+                    if let Some(i) = here {
+                        self.opts.choices.excluded_here.remove(i);
+                        view.message = Some(format!("{} included", e.name));
+                    } else if e.may_include {
                         self.opts.choices.include.push(e.id);
                         view.message = Some(format!("{} included", e.name));
                     } else if let Some(i) = self

@@ -392,6 +392,7 @@ fn exclusions_by_name_or_pin_and_a_suggestion_taken_back_on_the_screen() {
         choices: Choices {
             exclude: vec!["landing lt".into(), "5A-1".into()],
             include: vec![],
+            excluded_here: vec![],
         },
         ..Options::default()
     });
@@ -402,6 +403,20 @@ fn exclusions_by_name_or_pin_and_a_suggestion_taken_back_on_the_screen() {
     for _ in 0..at {
         r.cmd(Command::Down);
     }
+    r.cmd(Command::Toggle);
+    assert!(
+        r.view.plan.iter().any(|p| p.id == 7),
+        "{:?}",
+        r.view.message
+    );
+    // Excluded here with x: said as excluded on this screen, not by --exclude; and
+    // taken back with x again.
+    r.view.current = Some(r.view.plan.iter().position(|p| p.id == 7).unwrap());
+    r.cmd(Command::Toggle);
+    let e = r.view.excluded.iter().find(|e| e.id == 7).unwrap();
+    assert_eq!(e.why, "excluded by you (x on this screen)");
+    r.view.current =
+        Some(r.view.plan.len() + r.view.excluded.iter().position(|e| e.id == 7).unwrap());
     r.cmd(Command::Toggle);
     assert!(
         r.view.plan.iter().any(|p| p.id == 7),
@@ -1847,6 +1862,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
         choices: Choices {
             exclude: vec!["Nav Lt".into(), "Flaps".into()],
             include: vec![],
+            excluded_here: vec![],
         },
         ..Rig::switches_then_motors()
     });
@@ -1879,6 +1895,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
         choices: Choices {
             exclude: vec!["Nav Lt".into()],
             include: vec![],
+            excluded_here: vec![],
         },
         ..Rig::switches_only()
     });
