@@ -917,6 +917,16 @@ mod tests {
         m
     }
 
+    /// The setup screens opened on pin `pin` of [`armed_unit`] (16 V on a 14.2 V bus).
+    fn opened_on(pin: u8) -> (Instant, Model, SetupView, SetupFlow) {
+        let t0 = Instant::now();
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        flow.tick(&mut sv, true, Some(pin), &mut m, t0);
+        (t0, m, sv, flow)
+    }
+
     /// On `page`, `field` changed by → and Enter pressed: what went out, and the flow
     /// and view to go on with.
     fn change_and_send(
@@ -1073,11 +1083,7 @@ mod tests {
     /// range ends at the rating, so it is refused before anything is sent.
     #[test]
     fn a_breaker_above_the_pins_rating_is_refused_not_confirmed() {
-        let t0 = Instant::now();
-        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
-        let mut sv = SetupView::default();
-        let mut flow = SetupFlow::default();
-        flow.tick(&mut sv, true, Some(4), &mut m, t0);
+        let (t0, mut m, mut sv, mut flow) = opened_on(4);
         sv.field = 1;
         assert_eq!(sv.field(), Field::Breaker);
         flow.key(press(KeyCode::Char('6')), &mut sv, &mut m, t0);
@@ -1097,11 +1103,7 @@ mod tests {
     /// Left on the System page, the setup screens open again on the Device page.
     #[test]
     fn the_setup_screens_open_on_the_device_page_every_time() {
-        let t0 = Instant::now();
-        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
-        let mut sv = SetupView::default();
-        let mut flow = SetupFlow::default();
-        flow.tick(&mut sv, true, Some(4), &mut m, t0);
+        let (t0, mut m, mut sv, mut flow) = opened_on(4);
         flow.key(press(KeyCode::Tab), &mut sv, &mut m, t0);
         flow.key(press(KeyCode::Down), &mut sv, &mut m, t0);
         assert_eq!(
@@ -1131,14 +1133,11 @@ mod tests {
     /// digits are taken.
     #[test]
     fn typing_in_setup_is_refused_or_done_in_words() {
-        let t0 = Instant::now();
-        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        let (t0, mut m, mut sv, mut flow) = opened_on(4);
         m.apply_packet(
             t0,
             &Packet::from_vpx(1, DeviceName::new(4, "Nav Lt").unwrap()),
         );
-        let mut sv = SetupView::default();
-        let mut flow = SetupFlow::default();
         flow.tick(&mut sv, true, Some(4), &mut m, t0);
         for (page, field) in [
             (Page::Device, Field::Switch),

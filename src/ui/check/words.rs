@@ -102,6 +102,15 @@ impl NotFollowed {
     }
 }
 
+/// "switch 4, switch 6": inputs by their labels.
+fn labels(inputs: &[super::state::Input]) -> String {
+    inputs
+        .iter()
+        .map(|i| i.label())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 impl SwitchFinding {
     /// The finding in words; `name_of` names a circuit by id.
     pub fn words(&self, name_of: &dyn Fn(u8) -> String) -> String {
@@ -111,14 +120,9 @@ impl SwitchFinding {
             SwitchFinding::NeverChanged => {
                 "input never changed: a broken wire, a bad switch, or the wrong pin".into()
             }
-            SwitchFinding::OtherChanged(inputs) => format!(
-                "{} changed instead: switches crossed",
-                inputs
-                    .iter()
-                    .map(|i| i.label())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
+            SwitchFinding::OtherChanged(inputs) => {
+                format!("{} changed instead: switches crossed", labels(inputs))
+            }
             SwitchFinding::CircuitsDidNotFollow(list) => format!(
                 "circuits did not follow: {}",
                 list.iter()
@@ -249,14 +253,9 @@ impl CheckView {
         });
         let broken = match found {
             Some(SwitchFinding::NeverChanged) => format!("switch {n} never changed in the check"),
-            Some(SwitchFinding::OtherChanged(others)) => format!(
-                "switch {n} is crossed with {}",
-                others
-                    .iter()
-                    .map(|i| i.label())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
+            Some(SwitchFinding::OtherChanged(others)) => {
+                format!("switch {n} is crossed with {}", labels(others))
+            }
             _ => return cycle(sw),
         };
         format!(
