@@ -211,7 +211,7 @@ impl SetupFlow {
                     Err(why) => say(sv, Tone::Bad, why),
                 }
             }
-            Field::LoadBackup => self.load_backup(sv, model),
+            Field::LoadBackup => self.load_backup(sv, model, now),
             Field::Reread => reread(sv, out),
             Field::Erase => {
                 sv.dialog = Dialog::Erase {
@@ -223,7 +223,7 @@ impl SetupFlow {
         }
     }
 
-    fn load_backup(&mut self, sv: &mut SetupView, model: &Model) {
+    fn load_backup(&mut self, sv: &mut SetupView, model: &Model, now: Instant) {
         if self.queue.busy() {
             return say(sv, Tone::Bad, BUSY);
         }
@@ -281,10 +281,17 @@ impl SetupFlow {
             .iter()
             .map(|c| c.to_string())
             .collect();
+        self.pending = steps.iter().map(|s| s.message()).collect();
+        // A backup that turns a protection off names it, as a page's write does, and
+        // only `y` applies it then.
         let notes = backup::software_note(&b.version, &unit_version)
             .into_iter()
+            .chain(
+                form::disarms(&self.pending, model, now)
+                    .into_iter()
+                    .map(|c| format!("turns a protection off: {c}")),
+            )
             .collect();
-        self.pending = steps.iter().map(|s| s.message()).collect();
         sv.dialog = Dialog::Load {
             file,
             changes,
@@ -338,6 +345,15 @@ impl SetupFlow {
                 self.batch_page = Some(Some(sv.page));
                 sv.message = None;
                 self.tick_into(sv, model, now, out);
+            }
+            (Dialog::Load { .. }, KeyCode::Enter)
+                if !form::disarms(&self.pending, model, now).is_empty() =>
+            {
+                say(
+                    sv,
+                    Tone::Bad,
+                    "this backup turns a protection off: y applies it, Esc cancels",
+                );
             }
             (Dialog::Load { .. }, KeyCode::Char('y') | KeyCode::Enter) => {
                 sv.dialog = Dialog::None;
@@ -895,6 +911,10 @@ mod tests {
             };
             m.apply_packet(t0, &Packet::from_vpx(1, shown));
         }
+        for id in [0, 29, 30] {
+            m.apply_packet(t0, &Packet::from_vpx(1, DeviceName::new(id, "").unwrap()));
+        }
+        m.apply_packet(t0, &Packet::from_vpx(1, defaults::wig_wag_spec()));
         let system = SystemSpec {
             overvoltage_limit: limit,
             secondary_alternator: None,
@@ -1226,5 +1246,68 @@ mod tests {
                     .into()
             )
         );
+    }
+
+    /// A backup that sets 32 V on a 14.2 V bus names that in its confirmation, and
+    /// Enter does not apply it; `y` does.
+    #[test]
+    fn a_backup_that_disarms_a_protection_says_so_and_needs_y() {
+        use crate::protocol::message::{HardwareVersion, Version};
+        let (t0, mut m, mut sv, mut flow) = opened_on(4);
+        let version = Version {
+            hardware_version: HardwareVersion::VpxPro,
+            software_major: 2,
+            software_minor: 1,
+        };
+        m.apply_packet(t0, &Packet::from_vpx(1, version));
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("unit.toml");
+        sv.file = file.display().to_string();
+        sv.page = Page::Backup;
+        sv.field = Page::Backup
+            .fields()
+            .iter()
+            .position(|&f| f == Field::SaveBackup)
+            .unwrap();
+        flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert_eq!(said_tone(&sv), Tone::Good, "{:?}", sv.message);
+        let text = std::fs::read_to_string(&file).unwrap();
+        let text = text.replace(
+            "overvoltage_limit_volts = 16",
+            "overvoltage_limit_volts = 32",
+        );
+        std::fs::write(&file, text).unwrap();
+        sv.field = Page::Backup
+            .fields()
+            .iter()
+            .position(|&f| f == Field::LoadBackup)
+            .unwrap();
+        flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        let Dialog::Load { notes, .. } = sv.dialog.clone() else {
+            panic!("{:?}", sv.message);
+        };
+        assert!(
+            notes.iter().any(|n| n.starts_with(
+                "turns a protection off: overvoltage 32 V while the bus reads 14.2 V"
+            )),
+            "{notes:?}"
+        );
+        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert!(
+            out.send.is_empty(),
+            "Enter does not apply it: {:?}",
+            out.send
+        );
+        assert!(matches!(sv.dialog, Dialog::Load { .. }));
+        let out = flow.key(press(KeyCode::Char('y')), &mut sv, &mut m, t0);
+        assert!(
+            matches!(out.send.as_slice(), [Message::SystemSpec(s)] if s.overvoltage_limit == OvervoltageLimit::V32),
+            "{:?}",
+            out.send
+        );
+    }
+
+    fn said_tone(sv: &SetupView) -> Tone {
+        sv.message.as_ref().map_or(Tone::Info, |m| m.0)
     }
 }
