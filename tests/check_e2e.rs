@@ -242,7 +242,8 @@ fn the_install_scenario_finds_each_injected_fault_and_puts_everything_back() {
         .iter()
         .filter(|s| !matches!(s.input, Input::Switch(_)))
     {
-        assert_eq!(s.outcome, Outcome::Found(SwitchFinding::Passed), "{s:?}");
+        // A flap or trim switch has no circuit: all the check sees is the input.
+        assert_eq!(s.outcome, Outcome::Found(SwitchFinding::Changed), "{s:?}");
     }
     for c in &v.circuits {
         match c.id {
