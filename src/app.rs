@@ -394,14 +394,17 @@ impl App {
         }
     }
 
-    /// The terminal is too small to show the page: keys do nothing but quit and help.
+    /// The terminal is too small to show the page: keys do nothing but quit.
     /// The controller's, which refuses the check's runs meanwhile: one place knows.
     fn page_hidden(&self) -> bool {
         self.controller.with(|c| c.page_hidden())
     }
 
-    /// A key while the page is too small to be seen: only quit and help act (on the
-    /// device list; elsewhere only Ctrl-C quits, since `q` may be text there).
+    /// A key while the page is too small to be seen: only quit acts (on the device
+    /// list; elsewhere only Ctrl-C quits, since `q` may be text there). Decision: `?`
+    /// does nothing, as help opened unseen would be there, unasked, once the page
+    /// fits; the too-small screen says which keys act. Esc still closes a help left
+    /// open.
     fn hidden_key(&mut self, key: crossterm::event::KeyEvent, now: Instant) -> Flow {
         let on_devices = self.view.screen == Screen::Devices;
         let shared = self.model.clone();
@@ -423,7 +426,7 @@ impl App {
             && matches!(key.code, crossterm::event::KeyCode::Char('c' | 'C'));
         match handled.action {
             Some(Action::Quit) if on_devices || ctrl_c => Flow::Quit,
-            Some(a @ (Action::ToggleHelp | Action::CloseOverlay)) if on_devices => {
+            Some(a @ Action::CloseOverlay) if on_devices => {
                 self.apply_view_action(&a, &rows);
                 Flow::Continue
             }

@@ -70,6 +70,17 @@ impl PartialEq for SearchCache {
     }
 }
 
+/// "positions flap 20, pitch 128, roll 120 · " before a FLAP_TRIM_STATUS's fields.
+fn positions_first(m: &crate::protocol::message::Message) -> String {
+    match m {
+        crate::protocol::message::Message::FlapTrimStatus(f) => format!(
+            "positions flap {}, pitch {}, roll {} · ",
+            f.flap_position, f.pitch_trim_position, f.roll_trim_position
+        ),
+        _ => String::new(),
+    }
+}
+
 impl Entry {
     /// The message name, or what the decoder made of the bytes, in capitals.
     pub fn name(&self) -> &'static str {
@@ -89,13 +100,16 @@ impl Entry {
     }
 
     /// The decoded fields (via `protocol::describe`), or why the bytes were dropped.
+    /// FLAP_TRIM_STATUS's three positions come first: its whole text is longer than
+    /// the fields column of a 200-column terminal, which would hide pitch and roll.
     pub fn text(&self) -> String {
         match &self.what {
             What::Packet(p) => format!(
-                "cnt {} {}→{}: {}",
+                "cnt {} {}→{}: {}{}",
                 p.cnt,
                 node_label(p.src),
                 node_label(p.dst),
+                positions_first(&p.message),
                 describe(&p.message)
             ),
             What::Malformed(e) => e.clone(),

@@ -50,6 +50,12 @@ impl Rig {
     /// A page on the install scenario with a check running: switches skipped,
     /// confirmed, and the first circuit switched on under test.
     fn mid_circuit() -> Rig {
+        Rig::at_circuit(false)
+    }
+
+    /// As [`Rig::mid_circuit`], on a circuit that was `on_already` (its switch on,
+    /// measured as it is, nothing sent) or one the check itself switched on.
+    fn at_circuit(on_already: bool) -> Rig {
         let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
         let (path, slave, sim) = install_unit();
         let app = App::new(
@@ -80,7 +86,7 @@ impl Rig {
         r.app.open_check(options, Instant::now());
         r.key(KeyCode::Enter, KeyModifiers::NONE);
         r.until(
-            "a circuit switched on by the check",
+            "a circuit switched on by the check, or one on already",
             Duration::from_secs(30),
             move |app| {
                 let v = app.check_view();
@@ -88,7 +94,7 @@ impl Rig {
                 v.step == Step::Circuits
                     && v.current.and_then(|i| v.circuits.get(i)).is_some_and(|c| {
                         let id = usize::from(c.id);
-                        !on_before[id] && on.is_some_and(|on| on[id])
+                        on_before[id] == on_already && on.is_some_and(|on| on[id])
                     })
             },
         );
@@ -250,6 +256,26 @@ fn ctrl_c_on_the_check_screen_writes_an_incomplete_report_before_the_page_quits(
     says_incomplete_and_what_was_left(&md, "stopped by you", &circuit);
     // The step bar stays where it stopped.
     assert_eq!(r.app.check_view().step, Step::Circuits);
+    r.sim.stop();
+}
+
+/// Esc while the page is "measuring it as it is" (a circuit on already, nothing
+/// sent): the check ends at once, and its report is written, marked INCOMPLETE.
+#[test]
+fn esc_while_a_circuit_is_measured_as_it_is_writes_an_incomplete_report() {
+    let mut r = Rig::at_circuit(true);
+    let circuit = r.under_test();
+    assert!(!r.reports().exists(), "no report before the check ends");
+    r.key(KeyCode::Esc, KeyModifiers::NONE);
+    assert!(r.app.check_finished(), "nothing to put back: ended at once");
+    let md = the_report(&r.reports());
+    assert!(
+        md.contains("**Result: INCOMPLETE.** The check was interrupted (stopped by you)"),
+        "{md}"
+    );
+    assert!(md.contains(&format!("| {circuit} |")), "{md}");
+    let v = r.app.check_view();
+    assert!(v.report.is_some() && v.report_error.is_none());
     r.sim.stop();
 }
 

@@ -480,8 +480,9 @@ fn finished_switches() -> Vec<SwitchResult> {
         },
     )]));
     s[4].outcome = Outcome::Found(SwitchFinding::NeverChanged);
-    s[5].outcome = Outcome::Found(SwitchFinding::Passed);
-    s[6].outcome = Outcome::Found(SwitchFinding::Passed);
+    // The flap switch inputs have no circuit: all the check sees is the input.
+    s[5].outcome = Outcome::Found(SwitchFinding::Changed);
+    s[6].outcome = Outcome::Found(SwitchFinding::Changed);
     s
 }
 
@@ -557,6 +558,9 @@ fn to_cycle() -> Vec<(u8, String, SwitchId)> {
         (4, "Nav Lt".into(), SwitchId::Input(2)),
         (0x11, "Landing Lt".into(), SwitchId::Input(6)),
         (0x12, "Taxi Lt".into(), SwitchId::Input(6)),
+        // Switch 7 the check found dead (`finished_switches`): flipping it is no
+        // release, and the words say so.
+        (0x17, "Boost Pump".into(), SwitchId::Input(7)),
     ]
 }
 

@@ -574,3 +574,51 @@ fn a_pin_never_heard_since_connect_shows_nothing_as_the_units() {
     assert_eq!(fg(&buf, "? not yet read from the unit"), Color::DarkGray);
     assert_eq!(fg(&buf, "DEVICE_SPEC for 5A-6 not yet read"), Color::Red);
 }
+
+/// A write that turns a protection off asks first, naming what it turns off: the
+/// System page's 32 V on a 14.2 V bus, and the Flaps page's "fitted: no".
+#[test]
+fn disarm_confirmations_name_the_consequence() {
+    use vpx_efis::protocol::message::{SignedTenths, SystemStatus};
+    use vpx_efis::setup::form;
+    let t0 = Instant::now();
+    let mut m = unit(t0);
+    let mut st = SystemStatus::parse(&[0u8; 12]).unwrap();
+    st.main_bus_volts = SignedTenths(142);
+    apply(&mut m, t0, st);
+    let mut v = view(&m, Page::System, 4);
+    v.setup.forms.system.overvoltage_limit = OvervoltageLimit::V32;
+    v.setup.edited[Page::System.index()] = true;
+    let consequences = form::disarms(&[v.setup.forms.system.into()], &m, t0);
+    v.setup.dialog = Dialog::Disarm { consequences };
+    insta::assert_snapshot!("overvoltage_100x30", text(&render(&m, &v, t0, 100, 30)));
+    insta::assert_snapshot!("overvoltage_80x24", text(&render(&m, &v, t0, 80, 24)));
+    let mut v = view(&m, Page::Flaps, 4);
+    v.setup.forms.flap.enabled = false;
+    v.setup.edited[Page::Flaps.index()] = true;
+    let consequences = form::disarms(&[v.setup.forms.flap.into()], &m, t0);
+    v.setup.dialog = Dialog::Disarm { consequences };
+    insta::assert_snapshot!("flaps_80x24", text(&render(&m, &v, t0, 80, 24)));
+}
+
+/// A digit on the Switch field is refused in words, and the footer offers no typing
+/// there; a typed name that is too long says which character was not taken.
+#[test]
+fn typing_refused_in_words() {
+    use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+    use vpx_efis::setup::flow::SetupFlow;
+    let press = |c| KeyEvent::new_with_kind(c, KeyModifiers::NONE, KeyEventKind::Press);
+    let t0 = Instant::now();
+    let mut m = unit(t0);
+    let mut v = view(&m, Page::Device, 4);
+    let mut flow = SetupFlow::default();
+    flow.tick(&mut v.setup, true, Some(4), &mut m, t0);
+    select(&mut v, Field::Switch);
+    flow.key(press(KeyCode::Char('3')), &mut v.setup, &mut m, t0);
+    insta::assert_snapshot!("switch_digit", text(&render(&m, &v, t0, 80, 24)));
+    select(&mut v, Field::Name);
+    for c in " and Strobe!".chars() {
+        flow.key(press(KeyCode::Char(c)), &mut v.setup, &mut m, t0);
+    }
+    insta::assert_snapshot!("name_too_long", text(&render(&m, &v, t0, 80, 24)));
+}

@@ -129,6 +129,10 @@ impl App {
             self.dirty = true;
         }
         self.view.motor_run = self.controller.running();
+        if out.ended {
+            // However it ended (a key, a tick, an interruption), at whatever stage.
+            self.write_check_report();
+        }
     }
 
     /// Something the person did, as the flow's command.
@@ -140,7 +144,8 @@ impl App {
     /// caller goes on ticking, so a circuit switched off now is seen off. Once the
     /// check has ended, its report is written (marked INCOMPLETE, with what it left in
     /// which state), as the headless check writes it: the page may be on its way
-    /// out, and a report written later would never be.
+    /// out, and a report written later would never be. (`with_check` writes the
+    /// report of every check that ends, on the flow's `ended`.)
     pub fn check_interrupt(&mut self, cause: Cause, may_wait: bool, now: Instant) {
         if self.check_finished() {
             return;
@@ -148,9 +153,6 @@ impl App {
         self.with_check(|flow, view, model, c| {
             flow.interrupt_for(cause, may_wait, view, model, c, now)
         });
-        if self.check_finished() {
-            self.write_check_report();
-        }
     }
 
     /// The flow's clocks, after the controller's tick saw the model.
@@ -159,9 +161,6 @@ impl App {
             return;
         }
         self.with_check(|flow, view, model, c| flow.tick(view, model, c, now));
-        if self.check_finished() {
-            self.write_check_report();
-        }
     }
 
     /// Sets where the report of the check goes (`--report DIR`; the page's folder).

@@ -13,7 +13,6 @@ use crate::control::{Action, KeyContext, Selected, StopReason, keymap};
 use crate::model::{CircuitKind, CircuitState, Model, Motor};
 use crate::protocol::message::{Message, Packet};
 use crate::setup::flow::Out;
-use crate::setup::form;
 use crate::ui::setup::state::{Dialog, Tone};
 use crate::ui::state::Screen;
 
@@ -48,7 +47,7 @@ impl App {
         let field = sv.field();
         if let Some(motor) = sv.page.motor()
             && sv.dialog == Dialog::None
-            && !(form::takes_digits(field) && key.code == KeyCode::Char('.'))
+            && !(field.takes_digits() && key.code == KeyCode::Char('.'))
         {
             let shared = self.model.clone();
             let model = lock(&shared);

@@ -109,6 +109,18 @@ pub(super) struct CircuitItem {
 }
 
 impl CircuitItem {
+    #[cfg(test)]
+    pub(super) fn stage(&self) -> &'static str {
+        match &self.stage {
+            Stage::Measure {
+                request: Some(_), ..
+            } => "measure, switched on",
+            Stage::Measure { request: None, .. } => "measure, as it is",
+            Stage::PutBack { .. } => "put back",
+            Stage::Waiting => "waiting to be seen",
+        }
+    }
+
     pub fn deadline(&self) -> Option<Instant> {
         Some(match &self.stage {
             Stage::Measure {

@@ -112,6 +112,10 @@ pub struct Out {
     pub packets: Vec<Packet>,
     /// Each result as it came, in words, for a headless run to print.
     pub news: Vec<String>,
+    /// The check ended in this call, finished or interrupted, at whatever stage: the
+    /// app writes its report now (marked INCOMPLETE when interrupted). Set once per
+    /// check, by [`CheckFlow::finish`], the one way every end goes.
+    pub ended: bool,
 }
 
 /// What ended the check from outside.
@@ -266,6 +270,20 @@ impl CheckFlow {
         &self.opts.timing
     }
 
+    /// Where the check is, for the tests that stop it at every stage: the step, then
+    /// the item's own stage ("circuits: measure, as it is").
+    #[cfg(test)]
+    pub(super) fn stage(&self) -> String {
+        match &self.phase {
+            Phase::Confirm => "before power".into(),
+            Phase::Switches(i) => format!("switches: {}", i.stage()),
+            Phase::Circuits(i) => format!("circuits: {}", i.stage()),
+            Phase::Motors(i) => format!("motors: {}", i.stage()),
+            Phase::Stopping { .. } => "stopping".into(),
+            Phase::Done => "done".into(),
+        }
+    }
+
     /// Whether the check has ended (finished or interrupted, all put back that could be).
     pub fn finished(&self) -> bool {
         matches!(self.phase, Phase::Done)
@@ -373,10 +391,19 @@ impl CheckFlow {
             Command::Toggle => {
                 let Some(c) = view.current else { return };
                 if let Some(p) = view.plan.get(c) {
-                    self.opts.choices.exclude.push(p.name.clone());
+                    self.opts.choices.excluded_here.push(p.id);
                     view.message = Some(format!("{} excluded", p.name));
                 } else if let Some(e) = view.excluded.get(c - view.plan.len()) {
-                    if e.may_include {
+                    let here = self
+                        .opts
+                        .choices
+                        .excluded_here
+                        .iter()
+                        .position(|&i| i == e.id);
+                    if let Some(i) = here {
+                        self.opts.choices.excluded_here.remove(i);
+                        view.message = Some(format!("{} included", e.name));
+                    } else if e.may_include {
                         self.opts.choices.include.push(e.id);
                         view.message = Some(format!("{} included", e.name));
                     } else if let Some(i) = self
@@ -527,6 +554,7 @@ impl CheckFlow {
 
     fn finish(&mut self, view: &mut CheckView, io: &mut Io) {
         self.phase = Phase::Done;
+        io.out.ended = true;
         // An interrupted check stays on the step where it stopped: the step bar must
         // not show the report as reached.
         if view.interrupted.is_none() {

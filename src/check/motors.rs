@@ -177,6 +177,17 @@ pub(super) struct MotorItem {
 }
 
 impl MotorItem {
+    #[cfg(test)]
+    pub(super) fn stage(&self) -> &'static str {
+        match &self.stage {
+            Stage::Start => "start",
+            Stage::Running { .. } if self.leg == 2 => "running back",
+            Stage::Running { .. } => "running",
+            Stage::Settle { .. } => "settle",
+            Stage::Paused { .. } => "paused",
+        }
+    }
+
     pub fn deadline(&self) -> Option<Instant> {
         match self.stage {
             Stage::Running { since, length } => Some(since + length + Duration::from_millis(50)),

@@ -35,6 +35,9 @@ pub struct Choices {
     pub exclude: Vec<String>,
     /// Suggested exclusions the person took back (device ids).
     pub include: Vec<u8>,
+    /// Circuits the person excluded with `x` on the check screen (device ids): said
+    /// so, not as `--exclude`.
+    pub excluded_here: Vec<u8>,
 }
 
 /// The plan: circuits to power, motors to run, circuits left alone, and the switch
@@ -90,6 +93,7 @@ pub fn build(
     let circuits = model.circuits(now);
     for c in circuits.iter().cloned() {
         let by_name = choices.exclude.iter().any(|e| names(e, &c.name, c.pin));
+        let here = choices.excluded_here.contains(&c.id);
         let never = match c.kind {
             CircuitKind::Starter => Some("never touched: the starter"),
             CircuitKind::Alternator { .. } => Some("never touched: an alternator field"),
@@ -102,6 +106,8 @@ pub fn build(
         };
         let why = if let Some(w) = never {
             Some((w.to_string(), false))
+        } else if here {
+            Some(("excluded by you (x on this screen)".to_string(), false))
         } else if by_name {
             Some(("excluded by you (--exclude)".to_string(), false))
         } else {

@@ -302,11 +302,11 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
             "The check put these circuits back as it found them, by DEVICE_POWER. The unit \
              now holds each so, whatever its switch says, until that switch is cycled \
              ({}). Flip each switch to the other position and back, so it ends where it \
-             was:\n",
+             was (a switch the check found dead or crossed must be fixed first):\n",
             words::HOLD_RULE
         );
         for (_, name, switch) in &view.to_cycle {
-            let _ = writeln!(o, "- {name}: {}", words::cycle(*switch));
+            let _ = writeln!(o, "- {name}: {}", view.release(*switch));
         }
         o.push('\n');
     }

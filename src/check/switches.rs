@@ -123,6 +123,15 @@ pub(super) struct SwitchItem {
 }
 
 impl SwitchItem {
+    #[cfg(test)]
+    pub(super) fn stage(&self) -> &'static str {
+        match (self.timed_out, self.changed_at.is_some()) {
+            (true, _) => "timed out",
+            (false, true) => "input changed",
+            (false, false) => "waiting for the flip",
+        }
+    }
+
     pub fn circuits(&self) -> &[u8] {
         &self.circuits
     }
@@ -396,7 +405,9 @@ fn follow_finding(
             (id, why)
         })
         .collect();
-    if missing.is_empty() {
+    if missing.is_empty() && item.circuits.is_empty() {
+        SwitchFinding::Changed
+    } else if missing.is_empty() {
         SwitchFinding::Passed
     } else {
         SwitchFinding::CircuitsDidNotFollow(missing)

@@ -112,6 +112,8 @@ struct Rig {
     /// Every packet that went to the unit, with when.
     sent: Vec<(Duration, Packet)>,
     news: Vec<String>,
+    /// How many times the flow said the check ended (the app writes a report each).
+    ended: u32,
     /// Drop DEVICE_POWER on the way (a unit that does not act on it).
     deaf_to_power: bool,
     /// The link is cut: nothing goes in or out.
@@ -149,6 +151,7 @@ impl Rig {
             now: t0,
             sent: Vec::new(),
             news: Vec::new(),
+            ended: 0,
             deaf_to_power: false,
             cut: false,
         };
@@ -216,6 +219,7 @@ impl Rig {
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
             self.news.extend(out.news);
+            self.ended += u32::from(out.ended);
             self.send(out.packets);
         }
     }
@@ -240,6 +244,7 @@ impl Rig {
             .flow
             .command(c, &mut self.view, &self.model, &mut self.ctl, self.now);
         self.news.extend(out.news);
+        self.ended += u32::from(out.ended);
         self.send(out.packets);
     }
 
@@ -253,6 +258,7 @@ impl Rig {
             self.now,
         );
         self.news.extend(out.news);
+        self.ended += u32::from(out.ended);
         self.send(out.packets);
     }
 
@@ -388,6 +394,7 @@ fn exclusions_by_name_or_pin_and_a_suggestion_taken_back_on_the_screen() {
         choices: Choices {
             exclude: vec!["landing lt".into(), "5A-1".into()],
             include: vec![],
+            excluded_here: vec![],
         },
         ..Options::default()
     });
@@ -398,6 +405,20 @@ fn exclusions_by_name_or_pin_and_a_suggestion_taken_back_on_the_screen() {
     for _ in 0..at {
         r.cmd(Command::Down);
     }
+    r.cmd(Command::Toggle);
+    assert!(
+        r.view.plan.iter().any(|p| p.id == 7),
+        "{:?}",
+        r.view.message
+    );
+    // Excluded here with x: said as excluded on this screen, not by --exclude; and
+    // taken back with x again.
+    r.view.current = Some(r.view.plan.iter().position(|p| p.id == 7).unwrap());
+    r.cmd(Command::Toggle);
+    let e = r.view.excluded.iter().find(|e| e.id == 7).unwrap();
+    assert_eq!(e.why, "excluded by you (x on this screen)");
+    r.view.current =
+        Some(r.view.plan.len() + r.view.excluded.iter().position(|e| e.id == 7).unwrap());
     r.cmd(Command::Toggle);
     assert!(
         r.view.plan.iter().any(|p| p.id == 7),
@@ -526,6 +547,63 @@ fn a_switch_never_flipped_times_out_and_can_be_retried() {
     assert_eq!(
         r.view.switches[r.view.current.unwrap()].input,
         Input::FlapUp
+    );
+    // The flap switch has no circuit: its result says only what was seen.
+    assert_eq!(
+        r.prompt(),
+        "Move the flap switch UP on, then back off.",
+        "no circuits to wait for"
+    );
+    r.unit.apply(
+        SimCommand::PressMotorSwitch {
+            motor: crate::sim::MotorId::Flap,
+            direction: crate::sim::MotorDirection::Up,
+            hold: Duration::from_millis(1500),
+        },
+        r.now,
+    );
+    r.run_until(6000, |r| r.switch(Input::FlapUp) != &Outcome::NotRun);
+    assert_eq!(
+        r.switch(Input::FlapUp),
+        &Outcome::Found(SwitchFinding::Changed)
+    );
+    let words =
+        crate::ui::check::words::switch(&r.view.switches[r.view.current.unwrap() - 1], |id| {
+            r.view.name_of(id)
+        });
+    assert_eq!(words, "the input changed (no circuit is assigned to it)");
+}
+
+/// The roll trim switch is asked for by its directions, left and right, as the live
+/// row draws them (`roll ←`, `→`; ICD Table 30 note 2), never UP and DOWN.
+#[test]
+fn the_roll_trim_switch_is_asked_left_and_right() {
+    assert_eq!(Input::RollTrimUp.label(), "roll trim switch LEFT");
+    assert_eq!(Input::RollTrimDown.label(), "roll trim switch RIGHT");
+    let toml = scenario().replace(
+        "[roll_trim]\nenabled = false\nup = 0\ndown = 0\nneutral = 0",
+        "[roll_trim]\nenabled = true\nup = 30\ndown = 220\nneutral = 125\nposition = 125",
+    );
+    let mut r = Rig::with(&toml, Rig::switches_then_motors());
+    r.start();
+    r.run(100);
+    // Skipped, input by input, to the roll trim switch.
+    let roll = |r: &Rig| {
+        r.view
+            .current
+            .is_some_and(|i| r.view.switches[i].input == Input::RollTrimUp)
+    };
+    for _ in 0..20 {
+        if roll(&r) {
+            break;
+        }
+        r.cmd(Command::SkipItem);
+        r.run(10);
+    }
+    assert!(roll(&r), "{:?}", r.view.prompt);
+    assert_eq!(
+        r.prompt(),
+        "Move the roll trim switch LEFT on, then back off."
     );
 }
 
@@ -1260,6 +1338,7 @@ impl Rig {
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
             self.news.extend(out.news);
+            self.ended += u32::from(out.ended);
             self.send(out.packets);
         }
     }
@@ -1792,6 +1871,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
         choices: Choices {
             exclude: vec!["Nav Lt".into(), "Flaps".into()],
             include: vec![],
+            excluded_here: vec![],
         },
         ..Rig::switches_then_motors()
     });
@@ -1824,6 +1904,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
         choices: Choices {
             exclude: vec!["Nav Lt".into()],
             include: vec![],
+            excluded_here: vec![],
         },
         ..Rig::switches_only()
     });
@@ -2194,4 +2275,130 @@ fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
             .iter()
             .any(|u| matches!(u.input, Input::FlapUp | Input::PitchTrimUp))
     );
+}
+
+// ----- the report, whenever the check ends -----
+
+/// The person stops the check (Esc or q: `Command::Stop`) at every stage of every
+/// step, and the flow says the check ended exactly once each time (the app writes the
+/// report on that, marked INCOMPLETE), with what it left. Before power is a stage
+/// too: the flow ends there as well (the page's Esc there goes back to the list
+/// before anything was touched, Ctrl-C writes the report).
+#[test]
+fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
+    type Reach = fn(&mut Rig);
+    let short_switch = || Options {
+        timing: super::flow::Timing {
+            switch_timeout: Duration::from_secs(2),
+            ..Default::default()
+        },
+        ..Rig::switches_only()
+    };
+    let flip_current = |r: &mut Rig| {
+        let v = &r.view;
+        let Input::Switch(n) = v.switches[v.current.unwrap()].input else {
+            panic!("a numbered switch first");
+        };
+        r.flip(n, true);
+    };
+    let hide = |r: &mut Rig| {
+        let p = r.ctl.set_page_hidden(r.now, true);
+        r.send(p);
+    };
+    let start: Reach = |r| r.start();
+    let on_already: Reach = |r| {
+        // Nav Lt and Strobe's switch on: they are measured as they are.
+        r.flip(2, true);
+        r.run(1500);
+        r.start();
+    };
+    let cases: Vec<(&str, Options, Reach)> = vec![
+        ("before power", Rig::switches_only(), |_| {}),
+        (
+            "switches: waiting for the flip",
+            Rig::switches_only(),
+            start,
+        ),
+        ("switches: input changed", Rig::switches_only(), start),
+        ("switches: timed out", short_switch(), start),
+        (
+            "circuits: measure, switched on",
+            Rig::circuits_only(),
+            start,
+        ),
+        (
+            "circuits: measure, as it is",
+            Rig::circuits_only(),
+            on_already,
+        ),
+        ("circuits: put back", Rig::circuits_only(), start),
+        ("circuits: waiting to be seen", Rig::circuits_only(), start),
+        ("stopping", Rig::circuits_only(), start),
+        ("motors: start", Rig::motors_only(), start),
+        ("motors: running", Rig::motors_only(), start),
+        ("motors: settle", Rig::motors_only(), start),
+        ("motors: paused", Rig::motors_only(), start),
+    ];
+    for (stage, opts, begin) in cases {
+        let mut r = Rig::new(opts);
+        if stage == "motors: start" {
+            // No live position yet: the motor waits at its start.
+            r.run_dropping(1500, "FLAP_TRIM_STATUS");
+            r.cmd(Command::Enter);
+            r.run_dropping(100, "FLAP_TRIM_STATUS");
+        } else {
+            if stage == "circuits: waiting to be seen" {
+                hide(&mut r);
+            }
+            begin(&mut r);
+        }
+        match stage {
+            "switches: input changed" => {
+                r.run(200);
+                flip_current(&mut r);
+            }
+            "stopping" => {
+                r.run_until(30_000, |r| {
+                    r.flow.stage() == "circuits: measure, switched on"
+                });
+                // The first stop waits to see the circuit off; the second ends it.
+                r.cmd(Command::Stop);
+                assert_eq!(r.flow.stage(), "stopping");
+                assert_eq!(r.ended, 0, "not ended while waiting");
+            }
+            "motors: paused" => {
+                r.run_until(30_000, |r| r.flow.stage() == "motors: running");
+                r.run(200);
+                hide(&mut r);
+            }
+            _ => {}
+        }
+        if stage != "motors: start" {
+            r.run_until(60_000, |r| r.flow.stage() == stage);
+        }
+        assert_eq!(r.flow.stage(), stage);
+        assert_eq!(r.ended, 0, "{stage}: not ended before the stop");
+        r.cmd(Command::Stop);
+        r.run_until(6000, |r| r.flow.finished());
+        assert_eq!(r.ended, 1, "{stage}: ended once");
+        let i = r.view.interrupted.clone().expect("interrupted");
+        assert_eq!(i.cause, "stopped by you", "{stage}");
+        // Nothing more ends it.
+        r.cmd(Command::Stop);
+        r.run(500);
+        assert_eq!(r.ended, 1, "{stage}: ended once only");
+    }
+}
+
+/// A check that runs to its end ends once.
+#[test]
+fn a_check_that_finishes_ends_once() {
+    let mut r = Rig::new(Rig::circuits_only());
+    r.start();
+    r.run_until(60_000, |r| r.flow.finished());
+    assert_eq!(r.ended, 1);
+    assert!(r.view.interrupted.is_none());
+    r.cmd(Command::Stop);
+    r.run(500);
+    assert_eq!(r.ended, 1);
 }

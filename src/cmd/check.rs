@@ -64,6 +64,7 @@ pub fn headless(args: CheckArgs) -> Result<HeadlessCheck, UsageError> {
             choices: Choices {
                 exclude: args.exclude,
                 include: Vec::new(),
+                excluded_here: Vec::new(),
             },
             yes: args.yes,
             loads_file: args.loads.or_else(crate::loads::disk::default_path),

@@ -13,13 +13,14 @@
 //! xfsp_control_from = "0x1234,0x5678"  # only from these sources (needs xfsp_control)
 //! ```
 //!
-//! Every problem is reported with its line, so a person can go straight to it. Values
+//! Every problem is reported, each with its line, so a person can go straight to them. Values
 //! are read by the same functions as the flags ([`super::values`]).
 
 use std::net::Ipv4Addr;
 
+use std::collections::BTreeMap;
+
 use crate::toml_lines::{self, Value};
-use serde::Deserialize;
 
 use super::values::{self, Theme};
 use crate::link::PortAddr;
@@ -67,36 +68,32 @@ pub struct FileProblem {
     pub message: String,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Raw {
-    port: Option<Value>,
-    baud: Option<Value>,
-    theme: Option<Value>,
-    repeat_delay: Option<Value>,
-    xfsp: Option<Value>,
-    xfsp_iface: Option<Value>,
-    xfsp_source_id: Option<Value>,
-    xfsp_cert: Option<Value>,
-    xfsp_control: Option<Value>,
-    xfsp_control_from: Option<Value>,
-}
-
-/// Reads the file's text. The first problem stops the reading: one wrong line is
-/// enough to refuse the file, and it is named.
-pub fn parse(text: &str) -> Result<SettingsFile, FileProblem> {
-    let raw: Raw = toml_lines::parse(text).map_err(|r| FileProblem {
-        line: r.line,
-        message: match r.unknown_key {
-            Some(key) => format!("unknown key {key:?}; the keys are {}", KEYS.join(", ")),
-            None => r.message,
-        },
+/// Reads the file's text and lists every problem, each with its line, as `restore`
+/// does a backup file: a person fixes them all in one go, not one per run. Only a
+/// file that is not TOML at all stops at its first mistake (the parser cannot go on).
+pub fn parse(text: &str) -> Result<SettingsFile, Vec<FileProblem>> {
+    let raw: BTreeMap<String, Value> = toml_lines::parse(text).map_err(|r| {
+        vec![FileProblem {
+            line: r.line,
+            message: r.message,
+        }]
     })?;
-    let read = |key: &str, v: Option<Value>| -> Result<Option<(String, usize)>, FileProblem> {
-        let Some(v) = v else { return Ok(None) };
-        let line = toml_lines::line(text, &v);
-        match v.into_inner() {
-            toml::Value::String(s) => Ok(Some((s, line))),
+    let mut problems = Vec::new();
+    for (key, v) in &raw {
+        if !KEYS.contains(&key.as_str()) {
+            problems.push(FileProblem {
+                line: Some(toml_lines::line(text, v)),
+                message: format!("unknown key {key:?}; the keys are {}", KEYS.join(", ")),
+            });
+        }
+    }
+    let read = |key: &str| -> Result<Option<(String, usize)>, FileProblem> {
+        let Some(v) = raw.get(key) else {
+            return Ok(None);
+        };
+        let line = toml_lines::line(text, v);
+        match v.get_ref() {
+            toml::Value::String(s) => Ok(Some((s.clone(), line))),
             toml::Value::Integer(i) => Ok(Some((i.to_string(), line))),
             toml::Value::Boolean(b) => Ok(Some((b.to_string(), line))),
             other => Err(FileProblem {
@@ -114,55 +111,67 @@ pub fn parse(text: &str) -> Result<SettingsFile, FileProblem> {
         }
     };
     fn check<T>(
+        problems: &mut Vec<FileProblem>,
         key: &str,
-        got: Option<(String, usize)>,
+        got: Result<Option<(String, usize)>, FileProblem>,
         f: impl Fn(&str) -> Result<T, String>,
-    ) -> Result<Option<Setting<T>>, FileProblem> {
-        got.map(|(text, line)| {
-            f(&text)
-                .map(|value| Setting { value, line })
-                .map_err(|why| FileProblem {
+    ) -> Option<Setting<T>> {
+        let got = match got {
+            Ok(g) => g?,
+            Err(p) => {
+                problems.push(p);
+                return None;
+            }
+        };
+        let (text, line) = got;
+        match f(&text) {
+            Ok(value) => Some(Setting { value, line }),
+            Err(why) => {
+                problems.push(FileProblem {
                     line: Some(line),
                     message: format!("{key}: {why}"),
-                })
-        })
-        .transpose()
+                });
+                None
+            }
+        }
     }
-    Ok(SettingsFile {
-        port: check("port", read("port", raw.port)?, values::port)?,
-        baud: check("baud", read("baud", raw.baud)?, values::baud)?,
-        theme: check("theme", read("theme", raw.theme)?, values::theme)?,
+    let p = &mut problems;
+    let file = SettingsFile {
+        port: check(p, "port", read("port"), values::port),
+        baud: check(p, "baud", read("baud"), values::baud),
+        theme: check(p, "theme", read("theme"), values::theme),
         repeat_delay_ms: check(
+            p,
             "repeat_delay",
-            read("repeat_delay", raw.repeat_delay)?,
+            read("repeat_delay"),
             values::repeat_delay_ms,
-        )?,
-        xfsp: check("xfsp", read("xfsp", raw.xfsp)?, values::xfsp_target)?,
-        xfsp_iface: check(
-            "xfsp_iface",
-            read("xfsp_iface", raw.xfsp_iface)?,
-            values::iface,
-        )?,
+        ),
+        xfsp: check(p, "xfsp", read("xfsp"), values::xfsp_target),
+        xfsp_iface: check(p, "xfsp_iface", read("xfsp_iface"), values::iface),
         xfsp_source_id: check(
+            p,
             "xfsp_source_id",
-            read("xfsp_source_id", raw.xfsp_source_id)?,
+            read("xfsp_source_id"),
             values::source_id,
-        )?,
-        xfsp_cert: check("xfsp_cert", read("xfsp_cert", raw.xfsp_cert)?, |t| {
+        ),
+        xfsp_cert: check(p, "xfsp_cert", read("xfsp_cert"), |t| {
             t.parse::<u8>()
                 .map_err(|_| format!("{t:?} is not a certification level (0–255)"))
-        })?,
-        xfsp_control: check(
-            "xfsp_control",
-            read("xfsp_control", raw.xfsp_control)?,
-            values::yes_no,
-        )?,
+        }),
+        xfsp_control: check(p, "xfsp_control", read("xfsp_control"), values::yes_no),
         xfsp_control_from: check(
+            p,
             "xfsp_control_from",
-            read("xfsp_control_from", raw.xfsp_control_from)?,
+            read("xfsp_control_from"),
             values::source_ids,
-        )?,
-    })
+        ),
+    };
+    if problems.is_empty() {
+        Ok(file)
+    } else {
+        problems.sort_by_key(|p| p.line);
+        Err(problems)
+    }
 }
 
 #[cfg(test)]
@@ -246,8 +255,28 @@ mod tests {
             ("\nport = \"/dev/ttyUSB0\n", 2, ""),
         ] {
             let p = parse(text).unwrap_err();
+            assert_eq!(p.len(), 1, "{text:?}: {p:?}");
+            let p = &p[0];
             assert_eq!(p.line, Some(line), "{text:?}: {p:?}");
             assert!(p.message.contains(words), "{text:?}: {p:?}");
         }
+    }
+
+    /// Several mistakes are all listed, in line order, in one run.
+    #[test]
+    fn every_mistake_is_listed_at_once() {
+        let p =
+            parse("baud = 0\ntheme = \"blue\"\nspeed = 3\nxfsp_iface = \"eth0\"\n").unwrap_err();
+        let got: Vec<(Option<usize>, &str)> =
+            p.iter().map(|p| (p.line, &p.message[..12])).collect();
+        assert_eq!(
+            got,
+            vec![
+                (Some(1), "baud: 0 is n"),
+                (Some(2), "theme: \"blue"),
+                (Some(3), "unknown key "),
+                (Some(4), "xfsp_iface: "),
+            ]
+        );
     }
 }

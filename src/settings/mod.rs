@@ -50,14 +50,32 @@ pub struct Loaded {
     pub file: SettingsFile,
 }
 
-/// A config file that cannot be used, named with its path and line.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("config file {path}{}: {message}", line.map(|l| format!(", line {l}")).unwrap_or_default())]
+/// A config file that cannot be used, named with its path and line: the first
+/// problem, and every other one after it (`more`), one a line.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ConfigError {
     pub path: String,
     pub line: Option<usize>,
     pub message: String,
+    pub more: Vec<FileProblem>,
 }
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let one = |f: &mut fmt::Formatter<'_>, line: Option<usize>, message: &str| {
+            let at = line.map(|l| format!(", line {l}")).unwrap_or_default();
+            write!(f, "config file {}{at}: {message}", self.path)
+        };
+        one(f, self.line, &self.message)?;
+        for p in &self.more {
+            writeln!(f)?;
+            one(f, p.line, &p.message)?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for ConfigError {}
 
 /// Where the file lives: `$VPX_EFIS_CONFIG`, else `config.toml` in the OS's
 /// configuration folder (`~/.config/vpx-efis` on Linux, `~/Library/Application
@@ -94,13 +112,18 @@ pub fn load_from(path: &Path) -> Result<Loaded, ConfigError> {
                 path: shown,
                 line: None,
                 message: format!("cannot read it: {e}"),
+                more: Vec::new(),
             });
         }
     };
-    let file = parse(&text).map_err(|p| ConfigError {
-        path: shown,
-        line: p.line,
-        message: p.message,
+    let file = parse(&text).map_err(|mut p| {
+        let first = p.remove(0);
+        ConfigError {
+            path: shown,
+            line: first.line,
+            message: first.message,
+            more: p,
+        }
     })?;
     Ok(Loaded {
         path: Some(path.to_path_buf()),

@@ -20,6 +20,7 @@ use crate::model::{Model, Source};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{STARTER, TRIM_R};
 use crate::protocol::message::{Message, Version};
+use crate::protocol::names::PIN_NAMES;
 use crate::ui::setup::state::{Dialog, Field, Page, SetupView, Tone};
 
 /// What the app must do after the flow moved.
@@ -41,7 +42,9 @@ pub struct SetupFlow {
     /// The page a batch came from; `None` for a backup being applied.
     batch_page: Option<Option<Page>>,
     probes: Probes,
-    pending_load: Vec<Message>,
+    /// Checked writes waiting for their dialog's `y`: a backup's, or a page's that
+    /// disarm a protection.
+    pending: Vec<Message>,
     on_screen: bool,
 }
 
@@ -161,6 +164,13 @@ impl SetupFlow {
                 say(sv, Tone::Bad, "refused before sending: nothing was sent");
             }
             Ok(()) => {
+                let consequences = form::disarms(&messages, model, now);
+                if !consequences.is_empty() {
+                    // Nothing goes out until the person has read what it turns off.
+                    self.pending = messages;
+                    sv.dialog = Dialog::Disarm { consequences };
+                    return;
+                }
                 self.queue.start(messages);
                 self.batch_page = Some(Some(page));
                 sv.message = None;
@@ -203,7 +213,7 @@ impl SetupFlow {
                     Err(why) => say(sv, Tone::Bad, why),
                 }
             }
-            Field::LoadBackup => self.load_backup(sv, model),
+            Field::LoadBackup => self.load_backup(sv, model, now),
             Field::Reread => reread(sv, out),
             Field::Erase => {
                 sv.dialog = Dialog::Erase {
@@ -215,7 +225,7 @@ impl SetupFlow {
         }
     }
 
-    fn load_backup(&mut self, sv: &mut SetupView, model: &Model) {
+    fn load_backup(&mut self, sv: &mut SetupView, model: &Model, now: Instant) {
         if self.queue.busy() {
             return say(sv, Tone::Bad, BUSY);
         }
@@ -273,10 +283,17 @@ impl SetupFlow {
             .iter()
             .map(|c| c.to_string())
             .collect();
+        self.pending = steps.iter().map(|s| s.message()).collect();
+        // A backup that turns a protection off names it, as a page's write does, and
+        // only `y` applies it then.
         let notes = backup::software_note(&b.version, &unit_version)
             .into_iter()
+            .chain(
+                form::disarms(&self.pending, model, now)
+                    .into_iter()
+                    .map(|c| format!("turns a protection off: {c}")),
+            )
             .collect();
-        self.pending_load = steps.iter().map(|s| s.message()).collect();
         sv.dialog = Dialog::Load {
             file,
             changes,
@@ -296,7 +313,7 @@ impl SetupFlow {
         match (sv.dialog.clone(), key.code) {
             (_, KeyCode::Esc | KeyCode::Char('n')) => {
                 sv.dialog = Dialog::None;
-                self.pending_load.clear();
+                self.pending.clear();
                 say(sv, Tone::Info, "cancelled: nothing was sent");
             }
             (Dialog::Erase { .. }, KeyCode::Char('b')) => {
@@ -323,9 +340,26 @@ impl SetupFlow {
                 out.send.push(self.probes.erase(sv, now));
                 say(sv, Tone::Info, "EEPROM_ERASE sent");
             }
+            (Dialog::Disarm { .. }, KeyCode::Char('y')) => {
+                sv.dialog = Dialog::None;
+                let msgs = std::mem::take(&mut self.pending);
+                self.queue.start(msgs);
+                self.batch_page = Some(Some(sv.page));
+                sv.message = None;
+                self.tick_into(sv, model, now, out);
+            }
+            (Dialog::Load { .. }, KeyCode::Enter)
+                if !form::disarms(&self.pending, model, now).is_empty() =>
+            {
+                say(
+                    sv,
+                    Tone::Bad,
+                    "this backup turns a protection off: y applies it, Esc cancels",
+                );
+            }
             (Dialog::Load { .. }, KeyCode::Char('y') | KeyCode::Enter) => {
                 sv.dialog = Dialog::None;
-                let msgs = std::mem::take(&mut self.pending_load);
+                let msgs = std::mem::take(&mut self.pending);
                 self.queue.start(msgs);
                 self.batch_page = Some(None);
                 say(
@@ -351,7 +385,10 @@ impl SetupFlow {
         now: Instant,
     ) -> Out {
         if on_screen && !self.on_screen {
-            // Arriving from the device list: configure the pin that was selected there.
+            // Arriving from the device list: always the Device page, never where the
+            // screens were left, so keys typed from memory land where they are meant.
+            goto_page(sv, Page::Device);
+            // And it configures the pin that was selected there.
             let id = selected
                 .filter(|id| (STARTER..TRIM_R).contains(id))
                 .unwrap_or(sv.forms.device.device_id);
@@ -448,7 +485,23 @@ fn adjust(sv: &mut SetupView, model: &Model, step: i32) {
     if refuse_unread(sv) {
         return;
     }
+    let name_before = sv.forms.name.clone();
     match form::adjust(&mut sv.forms, page, field, step, model) {
+        Ok(false) if field == Field::Name => {
+            sv.edited[page.index()] = true;
+            // Decision: ←/→ replaces a name not from Appendix C, and says so.
+            if !name_before.is_empty() && !PIN_NAMES.contains(&name_before.as_str()) {
+                let now = sv.forms.name.clone();
+                say(
+                    sv,
+                    Tone::Info,
+                    format!(
+                        "←/→ picks from ICD Appendix C: \"{name_before}\" replaced by \
+                         \"{now}\" (Esc discards the edit)"
+                    ),
+                );
+            }
+        }
         Ok(true) => {
             let discarded = sv.edited[page.index()];
             sv.edited[page.index()] = false;
@@ -467,16 +520,32 @@ fn adjust(sv: &mut SetupView, model: &Model, step: i32) {
 
 fn type_digit(sv: &mut SetupView, c: char) {
     let field = sv.field();
-    if !form::takes_digits(field) || (c == '.' && field != Field::FlapEndpointDuration) {
-        return;
+    if field.is_action() {
+        return say(sv, Tone::Bad, "digits do nothing here: Enter does this one");
+    }
+    if !field.takes_digits() {
+        // Decision: a field of choices is not typed into; the digit is refused in
+        // words rather than dropped.
+        return say(
+            sv,
+            Tone::Bad,
+            format!(
+                "{} is not typed: ←/→ chooses it (the line above says from what)",
+                field.label().to_lowercase()
+            ),
+        );
+    }
+    if c == '.' && field != Field::FlapEndpointDuration {
+        return say(sv, Tone::Bad, "whole numbers only here: '.' not taken");
     }
     if refuse_unread(sv) {
         return;
     }
     let t = sv.typing.get_or_insert_with(String::new);
-    if t.len() < 6 {
-        t.push(c);
+    if t.len() >= 6 {
+        return say(sv, Tone::Bad, "at most 6 digits: the digit was not taken");
     }
+    t.push(c);
     let text = t.clone();
     form::set_typed(&mut sv.forms, sv.page, field, &text);
     sv.edited[sv.page.index()] = true;
@@ -489,13 +558,17 @@ fn type_text(sv: &mut SetupView, c: char) {
                 return;
             }
             if !c.is_ascii() || c.is_ascii_control() {
-                return say(sv, Tone::Bad, "names are ASCII only (ICD Table 21)");
+                return say(
+                    sv,
+                    Tone::Bad,
+                    format!("'{c}' not taken: names are ASCII only (ICD Table 21)"),
+                );
             }
             if sv.forms.name.len() >= 16 {
                 return say(
                     sv,
                     Tone::Bad,
-                    "names are at most 16 characters (ICD Table 21)",
+                    format!("'{c}' not taken: names are at most 16 characters (ICD Table 21)"),
                 );
             }
             sv.forms.name.push(c);
@@ -602,7 +675,8 @@ mod tests {
     use crate::model::{Setting, Source};
     use crate::protocol::Packet;
     use crate::protocol::message::{
-        DeviceEnable, DeviceName, DeviceSpec, DeviceSpecQuery, EnableFlag, SpecAck, SwitchId,
+        DeviceEnable, DeviceName, DeviceSpec, DeviceSpecQuery, EnableFlag, OvervoltageLimit,
+        SpecAck, SwitchId,
     };
     use crate::ui::setup::state::WriteStatus;
 
@@ -815,5 +889,427 @@ mod tests {
                 .send
                 .is_empty()
         );
+    }
+
+    /// A unit that reported every setting: overvoltage `limit`, flaps and both trims
+    /// fitted, 5A-1 with current-fault checking on; and a live bus at `bus` volts.
+    fn armed_unit(t0: Instant, limit: OvervoltageLimit, bus: Option<f32>) -> Model {
+        use crate::protocol::Payload;
+        use crate::protocol::defaults;
+        use crate::protocol::message::{SignedTenths, SystemSpec, SystemStatus, TrimType};
+        let mut m = Model::new(Source::Simulated {
+            scenario: "t".into(),
+        });
+        for id in 1..=28u8 {
+            let mut spec = defaults::device_spec(id);
+            if id == 4 {
+                spec.current_fault = true;
+            }
+            m.apply_packet(t0, &Packet::from_vpx(1, spec));
+            m.apply_packet(t0, &Packet::from_vpx(1, DeviceName::new(id, "").unwrap()));
+            let shown = DeviceEnable {
+                device_id: id,
+                flag: EnableFlag::Enabled,
+            };
+            m.apply_packet(t0, &Packet::from_vpx(1, shown));
+        }
+        for id in [0, 29, 30] {
+            m.apply_packet(t0, &Packet::from_vpx(1, DeviceName::new(id, "").unwrap()));
+        }
+        m.apply_packet(t0, &Packet::from_vpx(1, defaults::wig_wag_spec()));
+        let system = SystemSpec {
+            overvoltage_limit: limit,
+            secondary_alternator: None,
+        };
+        m.apply_packet(t0, &Packet::from_vpx(1, system));
+        let mut flap = defaults::flap_spec();
+        flap.enabled = true;
+        m.apply_packet(t0, &Packet::from_vpx(1, flap));
+        for t in [TrimType::Pitch, TrimType::Roll] {
+            let mut trim = defaults::trim_spec(t);
+            trim.enabled = true;
+            trim.power = 60;
+            m.apply_packet(t0, &Packet::from_vpx(1, trim));
+        }
+        if let Some(v) = bus {
+            let mut st = SystemStatus::parse(&[0u8; 12]).unwrap();
+            st.main_bus_volts = SignedTenths((v * 10.0).round() as i16);
+            m.apply_packet(t0, &Packet::from_vpx(1, st));
+        }
+        m
+    }
+
+    /// The setup screens opened on pin `pin` of [`armed_unit`] (16 V on a 14.2 V bus).
+    fn opened_on(pin: u8) -> (Instant, Model, SetupView, SetupFlow) {
+        let t0 = Instant::now();
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        flow.tick(&mut sv, true, Some(pin), &mut m, t0);
+        (t0, m, sv, flow)
+    }
+
+    /// On `page`, `field` changed by → and Enter pressed: what went out, and the flow
+    /// and view to go on with.
+    fn change_and_send(
+        m: &mut Model,
+        t0: Instant,
+        page: Page,
+        field: Field,
+        pin: u8,
+    ) -> (SetupFlow, SetupView, Vec<Message>) {
+        let mut sv = SetupView::default();
+        let mut flow = SetupFlow::default();
+        flow.tick(&mut sv, true, Some(pin), m, t0);
+        sv.page = page;
+        sv.field = page.fields().iter().position(|&f| f == field).unwrap();
+        let mut sent = flow.key(press(KeyCode::Right), &mut sv, m, t0).send;
+        assert!(sv.is_edited(page), "{field:?} changed");
+        sent.extend(flow.key(press(KeyCode::Enter), &mut sv, m, t0).send);
+        (flow, sv, sent)
+    }
+
+    /// Every setting that disarms a protection: Enter sends nothing and asks, naming
+    /// the consequence; Esc sends nothing and keeps the edit; Enter again asks again
+    /// and a second Enter does not confirm; only `y` sends it.
+    #[test]
+    fn a_setting_that_disarms_a_protection_is_sent_only_once_confirmed() {
+        use OvervoltageLimit::{V16, V32};
+        type Case = (
+            &'static str,
+            OvervoltageLimit,
+            Option<f32>,
+            Page,
+            Field,
+            &'static str,
+        );
+        let cases: [Case; 7] = [
+            (
+                "32 V on a 14 V bus",
+                V16,
+                Some(14.2),
+                Page::System,
+                Field::Overvoltage,
+                "overvoltage 32 V while the bus reads 14.2 V: 32 V is for a 28 V system; on this 14 V system the overvoltage protection would never trip",
+            ),
+            (
+                "16 V on a 28 V bus",
+                V32,
+                Some(27.9),
+                Page::System,
+                Field::Overvoltage,
+                "overvoltage 16 V while the bus reads 27.9 V: 16 V is for a 14 V system; on this 28 V system the unit would flag overvoltage at once",
+            ),
+            (
+                "32 V with no live bus",
+                V16,
+                None,
+                Page::System,
+                Field::Overvoltage,
+                "overvoltage 32 V with no live bus voltage to check it against",
+            ),
+            (
+                "flaps disabled",
+                V16,
+                Some(14.2),
+                Page::Flaps,
+                Field::FlapEnabled,
+                "flaps disabled: the unit holds them as fitted",
+            ),
+            (
+                "pitch trim disabled",
+                V16,
+                Some(14.2),
+                Page::PitchTrim,
+                Field::TrimEnabled,
+                "pitch trim disabled: the unit holds it as fitted; disabled, it takes it as not installed and the pitch trim switches no longer run it",
+            ),
+            (
+                "roll trim disabled",
+                V16,
+                Some(14.2),
+                Page::RollTrim,
+                Field::TrimEnabled,
+                "roll trim disabled",
+            ),
+            (
+                "current fault off",
+                V16,
+                Some(14.2),
+                Page::Device,
+                Field::CurrentFault,
+                "current fault check off on 5A-1 (device 4): it will no longer be switched off when it draws more than its 2 A breaker",
+            ),
+        ];
+        for (name, limit, bus, page, field, words) in cases {
+            let t0 = Instant::now();
+            let mut m = armed_unit(t0, limit, bus);
+            let (mut flow, mut sv, sent) = change_and_send(&mut m, t0, page, field, 4);
+            assert!(
+                sent.is_empty(),
+                "{name}: nothing sent before confirming: {sent:?}"
+            );
+            let Dialog::Disarm { consequences } = sv.dialog.clone() else {
+                panic!("{name}: no confirmation: {:?}", sv.message);
+            };
+            assert_eq!(consequences.len(), 1, "{name}: {consequences:?}");
+            assert!(
+                consequences[0].starts_with(words),
+                "{name}: {consequences:?}"
+            );
+            for t in [100, 2000] {
+                let out = flow.tick(&mut sv, true, Some(4), &mut m, ms(t0, t));
+                assert!(out.send.is_empty(), "{name}: a tick sends nothing");
+            }
+            let out = flow.key(press(KeyCode::Esc), &mut sv, &mut m, t0);
+            assert!(out.send.is_empty(), "{name}: cancelled");
+            assert_eq!(sv.dialog, Dialog::None);
+            assert!(sv.is_edited(page), "{name}: the edit stays after Esc");
+            let mut sent = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0).send;
+            sent.extend(flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0).send);
+            assert!(sent.is_empty(), "{name}: Enter never confirms: {sent:?}");
+            assert!(matches!(sv.dialog, Dialog::Disarm { .. }), "{name}");
+            let out = flow.key(press(KeyCode::Char('y')), &mut sv, &mut m, t0);
+            assert_eq!(sv.dialog, Dialog::None);
+            let expected: Message = match page {
+                Page::System => sv.forms.system.into(),
+                Page::Flaps => sv.forms.flap.into(),
+                Page::PitchTrim => sv.forms.pitch.into(),
+                Page::RollTrim => sv.forms.roll.into(),
+                _ => sv.forms.device.into(),
+            };
+            assert_eq!(out.send, vec![expected], "{name}: sent once confirmed");
+        }
+    }
+
+    /// The limit that suits the bus, and enabling what was disabled, go out at once.
+    #[test]
+    fn a_setting_that_arms_a_protection_is_sent_without_asking() {
+        let t0 = Instant::now();
+        let mut m = armed_unit(t0, OvervoltageLimit::V32, Some(14.2));
+        let (_, sv, sent) = change_and_send(&mut m, t0, Page::System, Field::Overvoltage, 4);
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(sent.len(), 1, "16 V on a 14.2 V bus: {sent:?}");
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(28.4));
+        let (_, sv, sent) = change_and_send(&mut m, t0, Page::System, Field::Overvoltage, 4);
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(sent.len(), 1, "32 V on a 28.4 V bus: {sent:?}");
+        // 5A-1's check off → on is arming it.
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        let (_, sv, sent) = change_and_send(&mut m, t0, Page::Device, Field::CurrentFault, 5);
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(sent.len(), 1, "5A-2's check switched on: {sent:?}");
+    }
+
+    /// A breaker above the pin's rating never reaches a confirmation: Appendix B's
+    /// range ends at the rating, so it is refused before anything is sent.
+    #[test]
+    fn a_breaker_above_the_pins_rating_is_refused_not_confirmed() {
+        let (t0, mut m, mut sv, mut flow) = opened_on(4);
+        sv.field = 1;
+        assert_eq!(sv.field(), Field::Breaker);
+        flow.key(press(KeyCode::Char('6')), &mut sv, &mut m, t0);
+        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert!(out.send.is_empty());
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(
+            sv.writes[0].status,
+            WriteStatus::Refused {
+                why: "Invalid circuit breaker value: 6 A is outside 1–5 A for 5A-1 (ICD Table 40)"
+                    .into(),
+                by_unit: false,
+            }
+        );
+    }
+
+    /// Left on the System page, the setup screens open again on the Device page.
+    #[test]
+    fn the_setup_screens_open_on_the_device_page_every_time() {
+        let (t0, mut m, mut sv, mut flow) = opened_on(4);
+        flow.key(press(KeyCode::Tab), &mut sv, &mut m, t0);
+        flow.key(press(KeyCode::Down), &mut sv, &mut m, t0);
+        assert_eq!(
+            (sv.page, sv.field()),
+            (Page::System, Field::SecondaryAlternator)
+        );
+        assert!(flow.key(press(KeyCode::Esc), &mut sv, &mut m, t0).leave);
+        flow.tick(&mut sv, false, Some(4), &mut m, ms(t0, 100));
+        flow.tick(&mut sv, true, Some(7), &mut m, ms(t0, 200));
+        assert_eq!((sv.page, sv.field()), (Page::Device, Field::DeviceId));
+        assert_eq!(sv.forms.device.device_id, 7);
+    }
+
+    fn typed(flow: &mut SetupFlow, sv: &mut SetupView, m: &mut Model, t: Instant, text: &str) {
+        for c in text.chars() {
+            flow.key(press(KeyCode::Char(c)), sv, m, t);
+        }
+    }
+
+    fn said(sv: &SetupView) -> (Tone, String) {
+        sv.message.clone().expect("a word on screen")
+    }
+
+    /// Typing never fails in silence: a digit on a field of choices, a character
+    /// that is not ASCII, a 17th character, ←/→ over a typed name, an empty name:
+    /// each is refused or done in words, and the footer offers typing only where
+    /// digits are taken.
+    #[test]
+    fn typing_in_setup_is_refused_or_done_in_words() {
+        let (t0, mut m, mut sv, mut flow) = opened_on(4);
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(1, DeviceName::new(4, "Nav Lt").unwrap()),
+        );
+        flow.tick(&mut sv, true, Some(4), &mut m, t0);
+        for (page, field) in [
+            (Page::Device, Field::Switch),
+            (Page::System, Field::Overvoltage),
+            (Page::System, Field::SecondaryAlternator),
+        ] {
+            sv.page = page;
+            sv.field = page.fields().iter().position(|&f| f == field).unwrap();
+            let before = sv.forms.clone();
+            sv.message = None;
+            flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, t0);
+            assert_eq!(sv.forms, before, "{field:?}: nothing typed");
+            let (tone, words) = said(&sv);
+            assert_eq!(tone, Tone::Bad);
+            assert!(
+                words.starts_with(&format!(
+                    "{} is not typed: ←/→ chooses it",
+                    field.label().to_lowercase()
+                )),
+                "{words}"
+            );
+            let keys = crate::ui::setup::keys(&sv);
+            assert!(
+                !keys.iter().any(|(k, _)| *k == "0-9"),
+                "{field:?}: {keys:?}"
+            );
+        }
+        sv.page = Page::Device;
+        sv.field = 1;
+        assert!(
+            crate::ui::setup::keys(&sv).contains(&("0-9", "type")),
+            "the breaker"
+        );
+        // The name: é, then 19 characters.
+        sv.field = Page::Device
+            .fields()
+            .iter()
+            .position(|&f| f == Field::Name)
+            .unwrap();
+        typed(&mut flow, &mut sv, &mut m, t0, "é");
+        assert_eq!(sv.forms.name, "Nav Lt");
+        assert_eq!(
+            said(&sv),
+            (
+                Tone::Bad,
+                "'é' not taken: names are ASCII only (ICD Table 21)".into()
+            )
+        );
+        for _ in 0..6 {
+            flow.key(press(KeyCode::Backspace), &mut sv, &mut m, t0);
+        }
+        typed(&mut flow, &mut sv, &mut m, t0, "Landing Light Left");
+        assert_eq!(sv.forms.name, "Landing Light Le");
+        assert_eq!(
+            said(&sv),
+            (
+                Tone::Bad,
+                "'t' not taken: names are at most 16 characters (ICD Table 21)".into()
+            )
+        );
+        // ←/→ over a typed name replaces it, and says so.
+        flow.key(press(KeyCode::Right), &mut sv, &mut m, t0);
+        let (tone, words) = said(&sv);
+        assert_eq!(tone, Tone::Info);
+        assert_eq!(
+            words,
+            format!(
+                "←/→ picks from ICD Appendix C: \"Landing Light Le\" replaced by \"{}\" \
+                 (Esc discards the edit)",
+                sv.forms.name
+            )
+        );
+        // An empty name is refused, nothing sent.
+        for _ in 0..16 {
+            flow.key(press(KeyCode::Backspace), &mut sv, &mut m, t0);
+        }
+        assert_eq!(sv.forms.name, "");
+        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert!(out.send.is_empty(), "{:?}", out.send);
+        assert_eq!(
+            said(&sv),
+            (
+                Tone::Bad,
+                "nothing sent: an empty name is refused (the unit keeps \"Nav Lt\"); type a \
+                 name, or pick one with ←/→"
+                    .into()
+            )
+        );
+    }
+
+    /// A backup that sets 32 V on a 14.2 V bus names that in its confirmation, and
+    /// Enter does not apply it; `y` does.
+    #[test]
+    fn a_backup_that_disarms_a_protection_says_so_and_needs_y() {
+        use crate::protocol::message::{HardwareVersion, Version};
+        let (t0, mut m, mut sv, mut flow) = opened_on(4);
+        let version = Version {
+            hardware_version: HardwareVersion::VpxPro,
+            software_major: 2,
+            software_minor: 1,
+        };
+        m.apply_packet(t0, &Packet::from_vpx(1, version));
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("unit.toml");
+        sv.file = file.display().to_string();
+        sv.page = Page::Backup;
+        sv.field = Page::Backup
+            .fields()
+            .iter()
+            .position(|&f| f == Field::SaveBackup)
+            .unwrap();
+        flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert_eq!(said_tone(&sv), Tone::Good, "{:?}", sv.message);
+        let text = std::fs::read_to_string(&file).unwrap();
+        let text = text.replace(
+            "overvoltage_limit_volts = 16",
+            "overvoltage_limit_volts = 32",
+        );
+        std::fs::write(&file, text).unwrap();
+        sv.field = Page::Backup
+            .fields()
+            .iter()
+            .position(|&f| f == Field::LoadBackup)
+            .unwrap();
+        flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        let Dialog::Load { notes, .. } = sv.dialog.clone() else {
+            panic!("{:?}", sv.message);
+        };
+        assert!(
+            notes.iter().any(|n| n.starts_with(
+                "turns a protection off: overvoltage 32 V while the bus reads 14.2 V"
+            )),
+            "{notes:?}"
+        );
+        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        assert!(
+            out.send.is_empty(),
+            "Enter does not apply it: {:?}",
+            out.send
+        );
+        assert!(matches!(sv.dialog, Dialog::Load { .. }));
+        let out = flow.key(press(KeyCode::Char('y')), &mut sv, &mut m, t0);
+        assert!(
+            matches!(out.send.as_slice(), [Message::SystemSpec(s)] if s.overvoltage_limit == OvervoltageLimit::V32),
+            "{:?}",
+            out.send
+        );
+    }
+
+    fn said_tone(sv: &SetupView) -> Tone {
+        sv.message.as_ref().map_or(Tone::Info, |m| m.0)
     }
 }

@@ -9,7 +9,7 @@ use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{self, enable_flag_allowed};
 use crate::protocol::message::{
     DeviceEnable, DeviceName, EnableFlag, FlapMode as Mode, Message, OvervoltageLimit, Polarity,
-    SwitchId, Tenths, TrimSpec,
+    SwitchId, Tenths, TrimSpec, TrimType,
 };
 use crate::protocol::names::PIN_NAMES;
 use crate::protocol::validate;
@@ -260,30 +260,6 @@ fn flip(p: Polarity) -> Polarity {
     }
 }
 
-/// Whether digits can be typed into `field` (and '.' for the run-on seconds).
-pub fn takes_digits(field: Field) -> bool {
-    use Field::*;
-    matches!(
-        field,
-        Breaker
-            | FlapUp
-            | FlapDown
-            | FlapMid1
-            | FlapMid2
-            | FlapOverspeedPosition
-            | FlapBreaker
-            | FlapMaxSpeed
-            | FlapEndpointDuration
-            | TrimUp
-            | TrimDown
-            | TrimNeutral
-            | TrimPower
-            | TrimSpeed
-            | WigWagWarmUp
-            | WigWagSpeed
-    )
-}
-
 /// Sets `field` from typed text. Not clamped: a value outside the range is kept so
 /// the §6.2 check can say why it is refused.
 pub fn set_typed(forms: &mut Forms, page: Page, field: Field, text: &str) {
@@ -377,6 +353,15 @@ pub fn messages(forms: &Forms, page: Page, model: &Model) -> Result<Vec<Message>
                 out.push(forms.device.into());
             }
             if held.name.as_deref() != Some(forms.name.as_str()) {
+                // Decision: an empty name is refused, not sent; a name is cleared only
+                // by EEPROM_ERASE (Appendix F), never by a field left empty.
+                if forms.name.is_empty() {
+                    return Err(format!(
+                        "nothing sent: an empty name is refused (the unit keeps \"{}\"); \
+                         type a name, or pick one with ←/→",
+                        held.name.as_deref().unwrap_or_default()
+                    ));
+                }
                 let name = DeviceName::new(id, &forms.name)
                     .ok_or("a name is at most 16 ASCII characters (ICD Table 21)")?;
                 out.push(name.into());
@@ -403,6 +388,114 @@ pub fn messages(forms: &Forms, page: Page, model: &Model) -> Result<Vec<Message>
         _ => {}
     }
     Ok(out)
+}
+
+/// The bus voltage from which a system counts as a 28 V one: a 14 V system's bus
+/// runs 12–15 V, a 28 V system's 24–29 V, and the unit's two overvoltage limits,
+/// 16 V and 32 V, are one for each (ICD Table 14 notes 1 and 2).
+pub const SYSTEM_28V_FROM: f32 = 20.0;
+
+/// What each of `messages` would disarm, in words naming the consequence, for a
+/// confirmation before anything is sent. Empty when nothing is disarmed.
+///
+/// The rules, decided here:
+/// - the overvoltage limit of the other system's voltage: 32 V while the live bus
+///   reads below 20 V (a 14 V system: the protection would never trip), 16 V while it
+///   reads 20 V or more (a 28 V system: it would trip at once and turn the alternator
+///   off); with no live bus voltage any change of the limit is confirmed;
+/// - flaps or a trim the unit holds enabled (fitted), disabled;
+/// - current-fault checking switched off on a pin that has it: the breaker no longer
+///   trips.
+///
+/// A breaker above the pin's rating is not here: Appendix B's range of every pin ends
+/// at its rating (5A-1 at 5 A, 15A-1 at 15 A), so the §6.2 check refuses it before a
+/// confirmation could be asked (`check`).
+pub fn disarms(messages: &[Message], model: &Model, now: Instant) -> Vec<String> {
+    let mut out = Vec::new();
+    for m in messages {
+        match m {
+            Message::SystemSpec(s) => {
+                let held = model.system_spec.map(|h| h.value.overvoltage_limit);
+                if held == Some(s.overvoltage_limit) {
+                    continue;
+                }
+                let bus = model.live_system(now).map(|st| st.main_bus_volts.value());
+                if let Some(w) = overvoltage_words(s.overvoltage_limit, bus) {
+                    out.push(w);
+                }
+            }
+            Message::FlapSpec(f)
+                if model.flap_spec.is_some_and(|h| h.value.enabled) && !f.enabled =>
+            {
+                out.push(
+                    "flaps disabled: the unit holds them as fitted; disabled, it takes \
+                     them as not installed and the flap switches no longer run them"
+                        .into(),
+                );
+            }
+            Message::TrimSpec(t) => {
+                let (held, axis) = match t.trim_type {
+                    TrimType::Roll => (model.roll_trim_spec, "roll"),
+                    _ => (model.pitch_trim_spec, "pitch"),
+                };
+                if held.is_some_and(|h| h.value.enabled) && !t.enabled {
+                    out.push(format!(
+                        "{axis} trim disabled: the unit holds it as fitted; disabled, it takes \
+                         it as not installed and the {axis} trim switches no longer run it"
+                    ));
+                }
+            }
+            Message::DeviceSpec(d) => {
+                let held = model
+                    .device_specs
+                    .get(d.device_id as usize)
+                    .copied()
+                    .flatten();
+                let supported =
+                    device::device(d.device_id).is_some_and(|p| p.current_fault_support);
+                if supported && held.is_some_and(|h| h.value.current_fault) && !d.current_fault {
+                    out.push(format!(
+                        "current fault check off on {}: it will no longer be switched off \
+                         when it draws more than its {} A breaker (a short is not cut)",
+                        crate::ui::setup::state::pin_text(d.device_id),
+                        d.circuit_breaker
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The consequence of overvoltage limit `limit` on a bus reading `bus` volts (`None`:
+/// not live), or `None` when the limit suits the system.
+fn overvoltage_words(limit: OvervoltageLimit, bus: Option<f32>) -> Option<String> {
+    let system_28 = bus.map(|v| v >= SYSTEM_28V_FROM);
+    match (limit, system_28, bus) {
+        (OvervoltageLimit::V32, Some(false), Some(v)) => Some(format!(
+            "overvoltage 32 V while the bus reads {v:.1} V: 32 V is for a 28 V system; on \
+             this 14 V system the overvoltage protection would never trip, and a runaway \
+             alternator would not be turned off"
+        )),
+        (OvervoltageLimit::V16, Some(true), Some(v)) => Some(format!(
+            "overvoltage 16 V while the bus reads {v:.1} V: 16 V is for a 14 V system; on \
+             this 28 V system the unit would flag overvoltage at once and turn the \
+             alternator off"
+        )),
+        (OvervoltageLimit::V32, None, _) => Some(
+            "overvoltage 32 V with no live bus voltage to check it against: 32 V is for a \
+             28 V system; on a 14 V system the overvoltage protection would never trip"
+                .into(),
+        ),
+        (OvervoltageLimit::V16, None, _) => Some(
+            "overvoltage 16 V with no live bus voltage to check it against: 16 V is for a \
+             14 V system; on a 28 V system the unit would flag overvoltage at once and \
+             turn the alternator off"
+                .into(),
+        ),
+        _ => None,
+    }
 }
 
 /// The §6.2 check of each message against the unit's configuration with the ones

@@ -115,7 +115,9 @@ fn spec_line(model: &Model, c: &Circuit) -> Line<'static> {
                 ));
                 spans.extend(field("up/down", format!("{}/{}", s.up, s.down)));
                 spans.extend(field("mid", format!("{}/{}", s.midpoint_1, s.midpoint_2)));
-                spans.extend(field("max speed", s.max_speed.to_string()));
+                // Speeds are knots, as the setup screens and backups say them (the
+                // EFIS's own unit, READING-NOTES 20).
+                spans.extend(field("max speed", format!("{} kt", s.max_speed)));
             }
             None => spans.extend(field("spec", "not received".into())),
         },
@@ -130,7 +132,10 @@ fn spec_line(model: &Model, c: &Circuit) -> Line<'static> {
                     spans.extend(field("up/down", format!("{}/{}", s.up, s.down)));
                     spans.extend(field("neutral", s.neutral.to_string()));
                     if kind == TrimKind::Pitch {
-                        spans.extend(field("power", format!("{}% above {}", s.power, s.speed)));
+                        spans.extend(field(
+                            "power",
+                            format!("{} % above {} kt", s.power, s.speed),
+                        ));
                     }
                 }
                 None => spans.extend(field("spec", "not received".into())),

@@ -80,7 +80,11 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     let link_panel = area.height >= 36;
     let [title, banner_area, body, link_line, footer] = Layout::vertical([
         Constraint::Length(1),
-        Constraint::Length(comm_banner::height(banner.as_ref(), area.height)),
+        Constraint::Length(comm_banner::height(
+            banner.as_ref(),
+            area.height,
+            area.width,
+        )),
         Constraint::Fill(1),
         Constraint::Length(u16::from(!link_panel)),
         Constraint::Length(key_bar::height(view, area.width)),

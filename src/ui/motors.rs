@@ -168,7 +168,8 @@ fn gauge_line(m: Motor, ft: Option<&FlapTrimStatus>, width: u16) -> Line<'static
         Span::styled(" RUN", theme::on_off(true))
     } else {
         Span::styled(
-            format!("{:>4}", format!("{}%", percent(&g))),
+            // One space after the end's label always: "DN 97%", "DN 100%".
+            format!("{:<5}", format!(" {}%", percent(&g))),
             theme::label(),
         )
     };

@@ -18,9 +18,10 @@ pub fn render(frame: &mut Frame, min_width: u16, min_height: u16) {
             area.width, area.height
         )),
         Line::raw("Enlarge the window or use a smaller font."),
+        Line::styled("Until then keys do nothing; Ctrl-C quits.", theme::label()),
     ])
     .centered();
-    let [mid] = Layout::vertical([Constraint::Length(4)])
+    let [mid] = Layout::vertical([Constraint::Length(5)])
         .flex(Flex::Center)
         .areas(area);
     frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), mid);

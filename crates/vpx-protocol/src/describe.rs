@@ -2,6 +2,8 @@
 //!
 //! Field names follow the ICD tables (lower-cased); values carry their real units
 //! ("main bus 13.8 V"), devices are shown by id and Table 40 name. Pure: no I/O.
+//! Speeds are knots: the ICD leaves their unit to the EFIS (READING-NOTES 20), and
+//! this one's is knots, as its setup screens and backups say.
 //!
 //! JSON numbers in real units are computed from the integer on the wire as `f64`
 //! (`138 / 10.0`), never through `f32`, so `13.8` prints as `13.8`.
@@ -219,7 +221,7 @@ pub fn describe(msg: &Message) -> String {
             opt_device(m.secondary_alternator)
         ),
         Message::TrimSpec(m) => format!(
-            "trim type {}, {}, polarity {}, up {}, down {}, neutral {}, power {} %, speed {}",
+            "trim type {}, {}, polarity {}, up {}, down {}, neutral {}, power {} %, speed {} kt",
             trim_type(m.trim_type),
             if m.enabled { "enabled" } else { "disabled" },
             polarity(m.polarity),
@@ -231,7 +233,7 @@ pub fn describe(msg: &Message) -> String {
         ),
         Message::FlapSpec(m) => format!(
             "mode {}, {}, polarity {}, up {}, down {}, midpoint 1 {}, midpoint 2 {}, \
-             circuit breaker {} A, overspeed position {}, max speed {}, endpoint duration {:.1} s",
+             circuit breaker {} A, overspeed position {}, max speed {} kt, endpoint duration {:.1} s",
             match m.mode {
                 FlapMode::Momentary => "momentary",
                 FlapMode::PositionBased => "position-based",
@@ -248,7 +250,7 @@ pub fn describe(msg: &Message) -> String {
             tenths(m.endpoint_duration.0)
         ),
         Message::WigWagSpec(m) => format!(
-            "device one {}, device two {}, warm up period {} s, speed {}",
+            "device one {}, device two {}, warm up period {} s, speed {} kt",
             opt_device(m.device_one),
             opt_device(m.device_two),
             m.warm_up_period,
@@ -412,7 +414,7 @@ pub fn describe(msg: &Message) -> String {
         Message::ExternalData(m) => {
             let v = |b: bool| if b { "" } else { " (invalid)" };
             format!(
-                "indicated airspeed {}{}, ground speed {}{}, baro altitude {} ft{}, \
+                "indicated airspeed {} kt{}, ground speed {} kt{}, baro altitude {} ft{}, \
                  fuel pressure {} psi{}, rpm {}{}",
                 m.indicated_airspeed,
                 v(m.valid.indicated_airspeed),

@@ -136,7 +136,11 @@ fn layout(view: &CheckView, model: &Model, area: Rect, now: Instant) -> [Rect; 7
     Layout::vertical([
         Constraint::Length(1),
         Constraint::Length(1),
-        Constraint::Length(comm_banner::height(banner.as_ref(), area.height)),
+        Constraint::Length(comm_banner::height(
+            banner.as_ref(),
+            area.height,
+            area.width,
+        )),
         Constraint::Length(prompt_h),
         Constraint::Fill(1),
         Constraint::Length(1),
@@ -456,6 +460,7 @@ fn too_small(buf: &mut Buffer, area: Rect) {
             area.width, area.height
         )),
         Line::raw("Enlarge the window or use a smaller font."),
+        Line::styled("Until then keys do nothing; Ctrl-C quits.", theme::label()),
     ];
     let top = area.y + area.height.saturating_sub(lines.len() as u16) / 2;
     for (i, line) in lines.iter().enumerate() {

@@ -171,7 +171,9 @@ fn report_line(view: &CheckView, width: u16) -> Line<'static> {
 
 /// "Flip switch 6 to the other position and back: Landing Lt, Taxi Lt": the circuits
 /// to release, by switch.
-fn cycle_lines(view: &CheckView) -> Vec<Line<'static>> {
+/// A line wider than `width` wraps at words: a release that needs a switch fixed first
+/// is a sentence, and a cut one would lose what to do.
+fn cycle_lines(view: &CheckView, width: u16) -> Vec<Line<'static>> {
     let mut groups: Vec<(SwitchId, Vec<String>)> = Vec::new();
     for (_, name, sw) in &view.to_cycle {
         match groups.iter_mut().find(|(s, _)| s == sw) {
@@ -181,17 +183,26 @@ fn cycle_lines(view: &CheckView) -> Vec<Line<'static>> {
     }
     groups
         .into_iter()
-        .map(|(sw, names)| {
-            let what = words::cycle(sw);
+        .flat_map(|(sw, names)| {
+            let what = view.release(sw);
             let mut c = what.chars();
             let what: String = c
                 .next()
                 .map(|f| f.to_uppercase().collect::<String>() + c.as_str())
                 .unwrap_or_default();
-            Line::from(vec![
-                Span::styled(format!("{what}: "), theme::caution()),
-                Span::raw(names.join(", ")),
-            ])
+            let names = names.join(", ");
+            let whole = format!("{what}: {names}");
+            if whole.chars().count() <= usize::from(width) {
+                vec![Line::from(vec![
+                    Span::styled(format!("{what}: "), theme::caution()),
+                    Span::raw(names),
+                ])]
+            } else {
+                list::wrap(&whole, usize::from(width))
+                    .into_iter()
+                    .map(|l| Line::styled(l, theme::caution()))
+                    .collect()
+            }
         })
         .collect()
 }
@@ -206,14 +217,14 @@ fn render_cycle(frame: &mut Frame, area: Rect, view: &CheckView) {
             words::HOLD_RULE
         ),
     );
-    fast::lines(frame.buffer_mut(), inner, &cycle_lines(view));
+    fast::lines(frame.buffer_mut(), inner, &cycle_lines(view, inner.width));
 }
 
-fn cycle_height(view: &CheckView) -> u16 {
+fn cycle_height(view: &CheckView, width: u16) -> u16 {
     if view.to_cycle.is_empty() {
         0
     } else {
-        cycle_lines(view).len() as u16 + 1
+        cycle_lines(view, width).len() as u16 + 1
     }
 }
 
@@ -287,7 +298,7 @@ fn under_title(area: Rect) -> Rect {
 fn done_areas(view: &CheckView, area: Rect) -> [Rect; 3] {
     Layout::vertical([
         Constraint::Length(3),
-        Constraint::Length(cycle_height(view)),
+        Constraint::Length(cycle_height(view, area.width)),
         Constraint::Fill(1),
     ])
     .areas(area)
@@ -439,7 +450,7 @@ fn interrupted_areas(view: &CheckView, area: Rect) -> (Rect, Rect, Rect, Rect) {
     let [head, left, cycle, results] = Layout::vertical([
         Constraint::Length(2),
         Constraint::Length(left_h),
-        Constraint::Length(cycle_height(view)),
+        Constraint::Length(cycle_height(view, area.width)),
         Constraint::Fill(1),
     ])
     .areas(area);
@@ -483,7 +494,7 @@ pub fn render_interrupted(
             theme::label(),
         ),
         (None, None) => Line::styled(
-            "No report written: the check is incomplete.",
+            "No report written: there is no folder to write it to.",
             theme::label(),
         ),
     });

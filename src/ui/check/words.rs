@@ -102,22 +102,27 @@ impl NotFollowed {
     }
 }
 
+/// "switch 4, switch 6": inputs by their labels.
+fn labels(inputs: &[super::state::Input]) -> String {
+    inputs
+        .iter()
+        .map(|i| i.label())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 impl SwitchFinding {
     /// The finding in words; `name_of` names a circuit by id.
     pub fn words(&self, name_of: &dyn Fn(u8) -> String) -> String {
         match self {
             SwitchFinding::Passed => "the input changed, and its circuits followed".into(),
+            SwitchFinding::Changed => "the input changed (no circuit is assigned to it)".into(),
             SwitchFinding::NeverChanged => {
                 "input never changed: a broken wire, a bad switch, or the wrong pin".into()
             }
-            SwitchFinding::OtherChanged(inputs) => format!(
-                "{} changed instead: switches crossed",
-                inputs
-                    .iter()
-                    .map(|i| i.label())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
+            SwitchFinding::OtherChanged(inputs) => {
+                format!("{} changed instead: switches crossed", labels(inputs))
+            }
             SwitchFinding::CircuitsDidNotFollow(list) => format!(
                 "circuits did not follow: {}",
                 list.iter()
@@ -234,6 +239,31 @@ impl CheckView {
         out
     }
 
+    /// What releases a hold on a circuit of switch `sw`: flipping it, unless the check
+    /// found that switch dead or crossed. Then flipping it cannot reach its input, so
+    /// the words say to fix it first, and that meanwhile only a display switches the
+    /// circuit (ICD Appendix A: a soft key overrides the switch until it is cycled).
+    pub fn release(&self, sw: SwitchId) -> String {
+        let SwitchId::Input(n) = sw else {
+            return cycle(sw);
+        };
+        let found = self.switches.iter().find_map(|s| match &s.outcome {
+            Outcome::Found(f) if s.input == super::state::Input::Switch(n) => Some(f),
+            _ => None,
+        });
+        let broken = match found {
+            Some(SwitchFinding::NeverChanged) => format!("switch {n} never changed in the check"),
+            Some(SwitchFinding::OtherChanged(others)) => {
+                format!("switch {n} is crossed with {}", labels(others))
+            }
+            _ => return cycle(sw),
+        };
+        format!(
+            "{broken}: fix it, then flip it to the other position and back; until then \
+             only a display switches it (o and f on the page)"
+        )
+    }
+
     /// Everything left to fix, one line each, the same in the headless summary and
     /// the report: [`CheckView::to_fix`], then the load analysis' warnings (or its
     /// missing or refused file), each switch to flip for a circuit the check left
@@ -257,7 +287,7 @@ impl CheckView {
         for (_, name, switch) in &self.to_cycle {
             out.push(format!(
                 "{name}: {} (the check left it held by DEVICE_POWER)",
-                cycle(*switch)
+                self.release(*switch)
             ));
         }
         if let Some(i) = &self.interrupted {
@@ -383,6 +413,45 @@ pub fn count(n: usize, one: &str, many: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A circuit held on a switch the check found dead, or crossed, is not to be
+    /// released by flipping that switch: the words say what will release it. A
+    /// switch that worked keeps the plain words.
+    #[test]
+    fn a_dead_or_crossed_switch_is_not_offered_to_release_a_hold() {
+        use super::super::state::{Input, SwitchResult};
+        let found = |n: u8, f: SwitchFinding| SwitchResult {
+            input: Input::Switch(n),
+            circuits: vec![],
+            outcome: Outcome::Found(f),
+        };
+        let view = CheckView {
+            switches: vec![
+                found(2, SwitchFinding::Passed),
+                found(5, SwitchFinding::OtherChanged(vec![Input::Switch(6)])),
+                found(7, SwitchFinding::NeverChanged),
+            ],
+            to_cycle: vec![
+                (4, "Nav Lt".into(), SwitchId::Input(2)),
+                (17, "Landing Lt".into(), SwitchId::Input(5)),
+                (23, "Standby Alt".into(), SwitchId::Input(7)),
+            ],
+            ..CheckView::default()
+        };
+        assert_eq!(
+            view.left_to_fix()[2..],
+            [
+                "Nav Lt: flip switch 2 to the other position and back (the check left it held \
+                 by DEVICE_POWER)",
+                "Landing Lt: switch 5 is crossed with switch 6: fix it, then flip it to the \
+                 other position and back; until then only a display switches it (o and f on the page) \
+                 (the check left it held by DEVICE_POWER)",
+                "Standby Alt: switch 7 never changed in the check: fix it, then flip it to \
+                 the other position and back; until then only a display switches it (o and f on the page) \
+                 (the check left it held by DEVICE_POWER)",
+            ]
+        );
+    }
 
     #[test]
     fn every_mark_has_its_symbol_and_its_word() {

@@ -1,5 +1,6 @@
-//! The confirmations: EEPROM_ERASE (what is lost, a backup first) and applying a
-//! loaded backup (what changes).
+//! The confirmations: EEPROM_ERASE (what is lost, a backup first), applying a
+//! loaded backup (what changes), and a page's writes that disarm a protection (what
+//! it turns off).
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Flex, Layout, Rect};
@@ -41,6 +42,7 @@ pub fn render(frame: &mut Frame, model: &Model, sv: &SetupView, dialog: &Dialog)
             notes,
             writes,
         } => ("Apply this backup?", load(file, changes, notes, *writes)),
+        Dialog::Disarm { consequences } => ("Turn a protection off?", disarm(consequences)),
     };
     // Rows once wrapped inside the border, so the last key is never cut off.
     let inner = frame
@@ -160,6 +162,20 @@ fn load(file: &str, changes: &[String], notes: &[String], writes: usize) -> Vec<
         "apply, one write at a time, each waiting for the unit's acknowledgement".into(),
     ));
     lines.push(key("Esc", "cancel: nothing is sent".into()));
+    lines
+}
+
+fn disarm(consequences: &[String]) -> Vec<Line<'static>> {
+    let mut lines = vec![Line::styled(
+        "Nothing is sent yet. This write turns a protection off:",
+        theme::panel_title(),
+    )];
+    for c in consequences {
+        lines.push(Line::raw(format!("• {c}")));
+    }
+    lines.push(Line::raw(""));
+    lines.push(key("y", "send it anyway: I mean this".into()));
+    lines.push(key("Esc", "cancel: nothing is sent, the edit stays".into()));
     lines
 }
 

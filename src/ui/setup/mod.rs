@@ -312,7 +312,7 @@ fn render_message(frame: &mut Frame, area: Rect, view: &ViewState) {
 
 /// The keys that work on this page now.
 pub fn keys(sv: &SetupView) -> Vec<(&'static str, &'static str)> {
-    if let Dialog::Load { .. } | Dialog::Erase { .. } = sv.dialog {
+    if let Dialog::Load { .. } | Dialog::Erase { .. } | Dialog::Disarm { .. } = sv.dialog {
         return vec![("y", "confirm"), ("Esc", "cancel")];
     }
     let mut k = vec![("Tab", "page"), ("↑↓", "field")];
@@ -329,7 +329,9 @@ pub fn keys(sv: &SetupView) -> Vec<(&'static str, &'static str)> {
                 k.push(("←→", "Appendix C"));
             } else {
                 k.push(("←→", "change"));
-                k.push(("0-9", "type"));
+                if sv.field().takes_digits() {
+                    k.push(("0-9", "type"));
+                }
             }
             k.push(("Enter", "send"));
             match page {

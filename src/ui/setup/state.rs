@@ -217,6 +217,31 @@ impl Field {
         matches!(self, Field::Name | Field::File)
     }
 
+    /// Whether digits can be typed into the field (and '.' for the run-on seconds).
+    /// The others are chosen with ←/→, and a digit there is refused in words.
+    pub fn takes_digits(self) -> bool {
+        use Field::*;
+        matches!(
+            self,
+            Breaker
+                | FlapUp
+                | FlapDown
+                | FlapMid1
+                | FlapMid2
+                | FlapOverspeedPosition
+                | FlapBreaker
+                | FlapMaxSpeed
+                | FlapEndpointDuration
+                | TrimUp
+                | TrimDown
+                | TrimNeutral
+                | TrimPower
+                | TrimSpeed
+                | WigWagWarmUp
+                | WigWagSpeed
+        )
+    }
+
     /// Enter does something here instead of sending the page.
     pub fn is_action(self) -> bool {
         use Field::*;
@@ -683,6 +708,9 @@ pub enum Dialog {
         /// Set once a backup was written from this dialog.
         backed_up: Option<String>,
     },
+    /// A page's writes that turn a protection off: each consequence in words. Only
+    /// `y` sends them; Enter does not, so a habit of keys cannot.
+    Disarm { consequences: Vec<String> },
     /// A backup file read and checked: what applying it changes.
     Load {
         file: String,
