@@ -23,8 +23,10 @@ use crate::protocol::message::{
 };
 
 mod hold;
+mod reread;
 mod setting;
 pub use hold::{Hold, Holds};
+pub use reread::{REREAD_GIVE_UP, Reread};
 pub use setting::Setting;
 
 /// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
@@ -257,6 +259,9 @@ pub struct Model {
     /// Settings nobody knows the unit's value of (a write to them went unanswered),
     /// and since when. Their slots above are empty until the unit answers a re-read.
     pub unknown: BTreeMap<Setting, Instant>,
+    /// The settings being read again since the data came back after a loss
+    /// (`reread`): until then none is held.
+    pub reread: Option<Reread>,
     pub last_spec_ack: Option<Stamped<SpecAck>>,
     pub last_ping_reply: Option<Instant>,
     /// The unit's answer to EEPROM_ERASE: a response code other than zero means the
@@ -296,6 +301,7 @@ impl Model {
             roll_trim_spec: None,
             wig_wag_spec: None,
             unknown: BTreeMap::new(),
+            reread: None,
             last_spec_ack: None,
             last_ping_reply: None,
             eeprom_erase: None,
@@ -337,6 +343,15 @@ impl Model {
                 );
             }
         }
+        // The first status after a loss: the unit may have changed meanwhile.
+        if matches!(
+            packet.message,
+            Message::SystemStatus(_) | Message::DeviceStatus(_)
+        ) && self.ever_heard()
+            && self.comm_lost(at)
+        {
+            self.begin_reread(at);
+        }
         match packet.message {
             Message::SystemStatus(s) => {
                 let before = self
@@ -361,7 +376,10 @@ impl Model {
                 self.fault_status = Some(Stamped::new(s, at));
                 self.log_new_faults(at, before);
             }
-            Message::Version(v) => self.version = Some(Stamped::new(v, at)),
+            Message::Version(v) => {
+                self.reread_version(at, &v);
+                self.version = Some(Stamped::new(v, at));
+            }
             Message::DeviceSpec(s) => {
                 if let Some(slot) = self.device_specs.get_mut(s.device_id as usize) {
                     *slot = Some(Stamped::new(s, at));
@@ -375,6 +393,7 @@ impl Model {
             },
             Message::WigWagSpec(s) => self.wig_wag_spec = Some(Stamped::new(s, at)),
             Message::DeviceName(n) => {
+                self.reread_name(at, &n);
                 if let Some(slot) = self.names.get_mut(n.device_id as usize) {
                     *slot = Some(Stamped::new(n, at));
                 }
@@ -407,6 +426,7 @@ impl Model {
             Message::EepromErase(e) => self.eeprom_erase = Some(Stamped::new(e, at)),
             _ => {}
         }
+        self.settle_reread(at);
     }
 
     /// Records a packet we sent.
@@ -604,7 +624,7 @@ impl Model {
             .get(id as usize)
             .and_then(|n| n.as_ref())
             .map(|n| n.value.text());
-        if self.is_unknown(Setting::Name(id)) {
+        if self.is_unknown(Setting::Name(id)) || self.rereading_setting(Setting::Name(id)) {
             return "? (name re-reading…)".into();
         }
         match named {
@@ -697,7 +717,8 @@ impl Model {
                     CircuitKind::Trim(_) => None,
                     _ => Some(Setting::DeviceSpec(id)),
                 };
-                let spec_unknown = setting.is_some_and(|s| self.is_unknown(s));
+                let spec_unknown =
+                    setting.is_some_and(|s| self.is_unknown(s) || self.rereading_setting(s));
 
                 let breaker = match kind {
                     CircuitKind::Flaps => self.flap_spec.map(|s| s.value.circuit_breaker),

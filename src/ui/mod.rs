@@ -104,7 +104,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     let detail_h = if body.height >= 30 { 12 } else { 7 };
     let [list, detail_area] =
         Layout::vertical([Constraint::Fill(1), Constraint::Length(detail_h)]).areas(left);
-    device_list::render(frame, list, &rows, view);
+    device_list::render(frame, list, &rows, view, model.rereading().is_some());
     detail::render(frame, detail_area, model, selected);
 
     let [system, switches_area, motors_area, plot_area, link] = Layout::vertical([

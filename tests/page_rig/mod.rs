@@ -143,10 +143,16 @@ impl Rig {
     }
 
     pub fn with_options(options: AppOptions) -> Rig {
-        let (sim_side, page_side) = link::duplex_pipe(Duration::from_millis(20));
         let scenario = Scenario::from_toml(SCENARIO).expect("scenario");
+        Rig::with_sim(options, SimOptions::new(scenario))
+    }
+
+    /// The page with `options` against a sim run with `sim_options` (a line paced at
+    /// the real rate, another scenario).
+    pub fn with_sim(options: AppOptions, sim_options: SimOptions) -> Rig {
+        let (sim_side, page_side) = link::duplex_pipe(Duration::from_millis(20));
         let sim = sim::spawn(
-            SimOptions::new(scenario),
+            sim_options,
             Box::new(sim_side.reader),
             Box::new(sim_side.writer),
         );
