@@ -24,9 +24,11 @@ use crate::protocol::message::{
 
 mod hold;
 mod reread;
+mod resets;
 mod setting;
 pub use hold::{Hold, Holds};
 pub use reread::{REREAD_GIVE_UP, Reread};
+pub use resets::{RESET_SETTLE, ResetsSent};
 pub use setting::Setting;
 
 /// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
@@ -182,6 +184,16 @@ pub enum Motor {
 }
 
 impl Motor {
+    /// The motor whose row has device id `id` (Appendix B), if it is one.
+    pub fn of_device(id: u8) -> Option<Motor> {
+        match id {
+            FLAPS => Some(Motor::Flaps),
+            TRIM_P => Some(Motor::Trim(TrimKind::Pitch)),
+            TRIM_R => Some(Motor::Trim(TrimKind::Roll)),
+            _ => None,
+        }
+    }
+
     /// The device id the motor's row has (Appendix B).
     pub fn device_id(self) -> u8 {
         match self {
@@ -236,6 +248,9 @@ pub struct Circuit {
     /// The spec behind `breaker` and `switch` is unknown since a write to it went
     /// unanswered; it is being asked again.
     pub spec_unknown: bool,
+    /// Faulted again after a reset the page sent this session (`resets`): the reset
+    /// key refuses it unless confirmed.
+    pub faulted_again: bool,
 }
 
 /// Everything we know about the unit.
@@ -262,6 +277,8 @@ pub struct Model {
     /// The settings being read again since the data came back after a loss
     /// (`reread`): until then none is held.
     pub reread: Option<Reread>,
+    /// The fault resets sent this session, per device (`resets`).
+    resets: [Option<ResetsSent>; DEVICE_COUNT],
     pub last_spec_ack: Option<Stamped<SpecAck>>,
     pub last_ping_reply: Option<Instant>,
     /// The unit's answer to EEPROM_ERASE: a response code other than zero means the
@@ -302,6 +319,7 @@ impl Model {
             wig_wag_spec: None,
             unknown: BTreeMap::new(),
             reread: None,
+            resets: [None; DEVICE_COUNT],
             last_spec_ack: None,
             last_ping_reply: None,
             eeprom_erase: None,
@@ -433,8 +451,10 @@ impl Model {
     pub fn note_sent(&mut self, at: Instant, packet: &Packet) {
         self.link.tx_frames += 1;
         bump(&mut self.link.tx, packet.message.name(), at);
-        if let Message::ExternalData(d) = packet.message {
-            self.external_data_sent = Some(Stamped::new(d, at));
+        match packet.message {
+            Message::ExternalData(d) => self.external_data_sent = Some(Stamped::new(d, at)),
+            Message::DeviceClear(c) => self.note_reset_sent(at, c.device_id),
+            _ => {}
         }
         let specs = self.specs();
         self.holds.sent(at, &packet.message, &specs);
@@ -740,6 +760,8 @@ impl Model {
                         _ => None,
                     },
                     spec_unknown,
+                    faulted_again: matches!(state, CircuitState::Fault(_))
+                        && self.fault_heard_after_reset(id),
                 }
             })
             .collect()

@@ -82,6 +82,7 @@ mod tests {
             breaker: None,
             switch: None,
             spec_unknown: false,
+            faulted_again: false,
         }]
     }
 

@@ -501,6 +501,7 @@ mod tests {
             breaker: None,
             switch: None,
             spec_unknown: false,
+            faulted_again: false,
         }
     }
 
