@@ -6,7 +6,8 @@
 //! - [`analysis`]: the arithmetic (total per phase, margin against the alternator,
 //!   emergency endurance on the battery), pure;
 //! - [`disk`]: reading the file, and writing the template on the first run without
-//!   ever writing over a file that is there.
+//!   ever writing over a file that is there;
+//! - [`guess`]: the template's phases for each circuit, guessed from its name.
 //!
 //! It stands on `protocol` (the pins of Appendix B) and `model` (the circuits the unit
 //! has) only; the installation check (`crate::check`), its screen (`ui::check::loads`)
@@ -15,6 +16,7 @@
 pub mod analysis;
 pub mod disk;
 pub mod file;
+pub mod guess;
 
 pub use analysis::{Analysis, Figure, Level, PhaseTotal, Row, analyse};
 pub use file::{LoadCircuit, LoadFile, Problem};
