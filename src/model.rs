@@ -30,6 +30,8 @@ pub use hold::{Hold, Holds};
 pub use reread::{REREAD_GIVE_UP, Reread};
 pub use resets::{RESET_SETTLE, ResetsSent};
 pub use setting::Setting;
+#[cfg(test)]
+pub(crate) use setting::factory_answer;
 
 /// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
 /// (issue: "more than 2.5 s"; both are 1 Hz broadcasts, so two missed in a row).

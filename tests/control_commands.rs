@@ -45,18 +45,23 @@ fn model(at: Instant, faults: &[(u8, FaultCode)], system_fault: bool) -> Model {
     m.apply_packet(at, &s);
     m.apply_packet(at, &d);
     if !faults.is_empty() || system_fault {
-        let mut f = FaultStatus {
-            faulted: [false; DEVICE_COUNT],
-            system_fault,
-            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-        };
-        for &(id, code) in faults {
-            f.faulted[id as usize] = true;
-            f.codes[id as usize] = Some(code);
-        }
-        m.apply_packet(at, &Packet::from_vpx(0, f));
+        m.apply_packet(at, &fault_status(faults, system_fault));
     }
     m
+}
+
+/// FAULT_STATUS with `faults` and the system fault flag.
+fn fault_status(faults: &[(u8, FaultCode)], system_fault: bool) -> Packet {
+    let mut f = FaultStatus {
+        faulted: [false; DEVICE_COUNT],
+        system_fault,
+        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+    };
+    for &(id, code) in faults {
+        f.faulted[id as usize] = true;
+        f.codes[id as usize] = Some(code);
+    }
+    Packet::from_vpx(0, f)
 }
 
 fn refused(action: Action, m: &Model, now: Instant) -> String {
@@ -241,18 +246,6 @@ fn the_controller_sends_commands_and_shows_refusals() {
     assert_eq!(o.action, Some(Action::SelectNext));
 }
 
-/// FAULT_STATUS with `id` faulted by `code`.
-fn fault_status(id: u8, code: FaultCode) -> Packet {
-    let mut f = FaultStatus {
-        faulted: [false; DEVICE_COUNT],
-        system_fault: false,
-        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-    };
-    f.faulted[id as usize] = true;
-    f.codes[id as usize] = Some(code);
-    Packet::from_vpx(0, f)
-}
-
 /// AC 43.13-1B's breaker practice on a fake clock: the first fault is reset with `r`;
 /// when the circuit faults again after it, the second `r` sends nothing and says why,
 /// and only `Y` right after sends the reset. The log holds both resets.
@@ -292,7 +285,10 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
         let (st, d) = status(WigWagModeSetting::Auto);
         m.apply_packet(at, &st);
         m.apply_packet(at, &d);
-        m.apply_packet(at, &fault_status(LANDING, FaultCode::ShortCircuit));
+        m.apply_packet(
+            at,
+            &fault_status(&[(LANDING, FaultCode::ShortCircuit)], false),
+        );
     };
 
     // The first fault: `r` resets it.

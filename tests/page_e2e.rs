@@ -27,6 +27,18 @@ fn line_of(buf: &Buffer, needle: &str) -> Option<(u16, String)> {
     })
 }
 
+/// The whole buffer as text, a line per row, for a failure's message.
+fn screen_text(buf: &Buffer) -> String {
+    (0..buf.area.height)
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect()
+}
+
 fn fg_of(buf: &Buffer, y: u16, line: &str, word: &str) -> Color {
     let col = line.find(word).expect("word on line");
     // Columns are characters; the row is ASCII up to the state column.
@@ -207,14 +219,7 @@ fn a_silent_unit_brings_communication_lost_within_two_and_a_half_seconds() {
     );
     let buf = rig.render();
     assert!(line_of(&buf, "COMMUNICATION LOST").is_some());
-    let screen: String = (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect();
+    let screen = screen_text(&buf);
     let (_, nav) =
         line_of(&buf, "Nav Lt").unwrap_or_else(|| panic!("rows stay, values go:\n{screen}"));
     assert!(
@@ -332,14 +337,7 @@ fn a_second_r_after_the_circuit_faulted_again_sends_nothing_until_y() {
         |app, now| app.model().faulted_again_after_reset(NAV, now),
     );
     let buf = rig.render();
-    let screen: String = (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect();
+    let screen = screen_text(&buf);
     // The detail panel's keys are glued with non-breaking spaces.
     let (_, keys) = line_of(&buf, "Y\u{a0}").expect(&screen);
     assert!(

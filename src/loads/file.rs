@@ -506,23 +506,9 @@ fn write_circuit(out: &mut String, c: &LoadCircuit, guess: Option<&str>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{CircuitKind, CircuitState};
+    use crate::loads::test_circuit as circuit;
+    use crate::model::CircuitKind;
     use crate::protocol::device::{EFIS, FIELD_PRI, FLAPS, STARTER, TRIM_P};
-
-    fn circuit(id: u8, name: &str, kind: CircuitKind) -> Circuit {
-        Circuit {
-            id,
-            name: name.into(),
-            pin: device::device(id).unwrap().system_name,
-            kind,
-            state: CircuitState::Unknown,
-            amps: None,
-            breaker: None,
-            switch: None,
-            spec_unknown: false,
-            faulted_again: false,
-        }
-    }
 
     fn unit() -> Vec<Circuit> {
         vec![

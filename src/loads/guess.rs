@@ -100,8 +100,8 @@ fn role(c: &Circuit) -> Role {
     }
 }
 
-/// On (1) in the phases named, off in the others.
-fn on_in(phases: &[Phase], share: f64) -> [f64; 7] {
+/// `share` in the phases named, off in the others.
+fn on_in<'a>(phases: impl IntoIterator<Item = &'a Phase>, share: f64) -> [f64; 7] {
     let mut duty = [0.0; 7];
     for p in phases {
         duty[p.index()] = share;
@@ -109,14 +109,8 @@ fn on_in(phases: &[Phase], share: f64) -> [f64; 7] {
     duty
 }
 
-const ON_THE_ALTERNATOR: [Phase; 6] = [
-    Phase::Ground,
-    Phase::Taxi,
-    Phase::TakeOff,
-    Phase::CruiseDay,
-    Phase::CruiseNight,
-    Phase::Landing,
-];
+/// Every phase on the alternator: all but the emergency, which is last.
+const ON_THE_ALTERNATOR: &[Phase] = Phase::ALL.split_at(6).0;
 
 /// Every circuit's guess, in the order given.
 pub fn guesses(circuits: &[Circuit]) -> Vec<Guess> {
@@ -131,7 +125,7 @@ pub fn guesses(circuits: &[Circuit]) -> Vec<Guess> {
         .map(|(i, &r)| {
             let (mut duty, why) = match r {
                 Role::Starter => (on_in(&[], 1.0), None),
-                Role::Field => (on_in(&ON_THE_ALTERNATOR, 1.0), None),
+                Role::Field => (on_in(ON_THE_ALTERNATOR, 1.0), None),
                 Role::Flaps => (
                     on_in(&[Phase::Taxi, Phase::TakeOff, Phase::Landing], INTERMITTENT),
                     Some("flaps: a short intermittent load, set for take-off and landing"),
@@ -161,7 +155,7 @@ pub fn guesses(circuits: &[Circuit]) -> Vec<Guess> {
                     Some("avionics: on throughout, and on the battery"),
                 ),
                 Role::Unknown => (
-                    on_in(&ON_THE_ALTERNATOR, 1.0),
+                    on_in(ON_THE_ALTERNATOR, 1.0),
                     Some("not known from its name: on throughout, off on the battery"),
                 ),
             };
@@ -178,23 +172,9 @@ pub fn guesses(circuits: &[Circuit]) -> Vec<Guess> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{CircuitState, TrimKind};
+    use crate::loads::test_circuit as circuit;
+    use crate::model::TrimKind;
     use crate::protocol::device::{EFIS, FIELD_PRI, FLAPS, STARTER, TRIM_P};
-
-    fn circuit(id: u8, name: &str, kind: CircuitKind) -> Circuit {
-        Circuit {
-            id,
-            name: name.into(),
-            pin: "?",
-            kind,
-            state: CircuitState::Off,
-            amps: None,
-            breaker: None,
-            switch: None,
-            spec_unknown: false,
-            faulted_again: false,
-        }
-    }
 
     /// The phases a duty is on in, by key, with its share where not whole.
     fn phases(duty: &[f64; 7]) -> String {

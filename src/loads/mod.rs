@@ -86,6 +86,27 @@ impl Phase {
     }
 }
 
+/// For tests: a circuit as the model lists it, with no live values.
+#[cfg(test)]
+pub(crate) fn test_circuit(
+    id: u8,
+    name: &str,
+    kind: crate::model::CircuitKind,
+) -> crate::model::Circuit {
+    crate::model::Circuit {
+        id,
+        name: name.into(),
+        pin: crate::protocol::device::device(id).map_or("?", |d| d.system_name),
+        kind,
+        state: crate::model::CircuitState::Unknown,
+        amps: None,
+        breaker: None,
+        switch: None,
+        spec_unknown: false,
+        faulted_again: false,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

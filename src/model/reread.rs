@@ -182,10 +182,7 @@ mod tests {
     use super::*;
     use crate::model::Source;
     use crate::protocol::Packet;
-    use crate::protocol::defaults;
-    use crate::protocol::message::{
-        DeviceEnable, DeviceStatus, EnableFlag, HardwareVersion, Message, Tenths, TrimType,
-    };
+    use crate::protocol::message::{DeviceStatus, HardwareVersion, Message, Tenths};
 
     fn model() -> Model {
         Model::new(Source::Simulated {
@@ -212,23 +209,11 @@ mod tests {
         .into()
     }
 
-    /// The unit's answer to `s`'s query, with `name` for device 9.
+    /// The unit's answer to `s`'s query, factory-fresh but for device 9's name.
     fn answer(s: Setting, name9: &str) -> Message {
-        use crate::model::TrimKind;
         match s {
-            Setting::DeviceSpec(id) => defaults::device_spec(id).into(),
             Setting::Name(9) => DeviceName::new(9, name9).unwrap().into(),
-            Setting::Name(id) => DeviceName::new(id, "").unwrap().into(),
-            Setting::Enable(id) => DeviceEnable {
-                device_id: id,
-                flag: EnableFlag::Enabled,
-            }
-            .into(),
-            Setting::System => defaults::system_spec().into(),
-            Setting::Flaps => defaults::flap_spec().into(),
-            Setting::Trim(TrimKind::Pitch) => defaults::trim_spec(TrimType::Pitch).into(),
-            Setting::Trim(TrimKind::Roll) => defaults::trim_spec(TrimType::Roll).into(),
-            Setting::WigWag => defaults::wig_wag_spec().into(),
+            s => crate::model::factory_answer(s),
         }
     }
 
