@@ -27,18 +27,6 @@ fn line_of(buf: &Buffer, needle: &str) -> Option<(u16, String)> {
     })
 }
 
-/// The whole buffer as text, a line per row, for a failure's message.
-fn screen_text(buf: &Buffer) -> String {
-    (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
-}
-
 fn fg_of(buf: &Buffer, y: u16, line: &str, word: &str) -> Color {
     let col = line.find(word).expect("word on line");
     // Columns are characters; the row is ASCII up to the state column.
