@@ -276,7 +276,7 @@ fn bench_widgets(c: &mut Criterion<ThreadCpu>) {
     g.bench_function("device list", |b| {
         b.iter(|| {
             terminal
-                .draw(|f| ui::device_list::render(f, left, black_box(&rows), &view))
+                .draw(|f| ui::device_list::render(f, left, black_box(&rows), &view, false))
                 .unwrap();
         })
     });

@@ -154,6 +154,8 @@ pub struct App {
     setup: crate::setup::flow::SetupFlow,
     /// Asks again for any setting a write left unknown, until the unit answers.
     rereader: Rereader,
+    /// The re-read after a loss the app last started asking for (`model::reread`).
+    reread_asked: Option<Instant>,
     /// The installation check (`i`), its view and its results in words.
     check: check::CheckState,
 }
@@ -241,6 +243,7 @@ impl App {
             traffic_drawn: 0,
             setup: Default::default(),
             rereader: Rereader::default(),
+            reread_asked: None,
             check: Default::default(),
         }
     }
@@ -517,6 +520,14 @@ impl App {
                 self.news_at = Some(now);
             }
             let ticked = self.controller.tick(&model, now);
+            // Data back after a loss: the whole connect set at once, answer-paced,
+            // not at the next minute's refresh; what it misses is asked again.
+            let reread = model.rereading();
+            if reread.is_some() && reread != self.reread_asked {
+                self.pacer.start(now);
+                self.rereader.connected(now);
+            }
+            self.reread_asked = reread;
             let controller = &self.controller;
             (
                 ticked,

@@ -250,23 +250,7 @@ mod tests {
 
     /// The unit's answer to `s`'s query, as a factory-fresh unit gives it.
     fn answer(s: Setting) -> Message {
-        use crate::model::TrimKind;
-        use crate::protocol::defaults;
-        use crate::protocol::message::{DeviceEnable, DeviceName, EnableFlag, TrimType};
-        match s {
-            Setting::DeviceSpec(id) => defaults::device_spec(id).into(),
-            Setting::Name(id) => DeviceName::new(id, "").unwrap().into(),
-            Setting::Enable(id) => DeviceEnable {
-                device_id: id,
-                flag: EnableFlag::Enabled,
-            }
-            .into(),
-            Setting::System => defaults::system_spec().into(),
-            Setting::Flaps => defaults::flap_spec().into(),
-            Setting::Trim(TrimKind::Pitch) => defaults::trim_spec(TrimType::Pitch).into(),
-            Setting::Trim(TrimKind::Roll) => defaults::trim_spec(TrimType::Roll).into(),
-            Setting::WigWag => defaults::wig_wag_spec().into(),
-        }
+        crate::model::factory_answer(s)
     }
 
     /// The unit answers every setting's query but `except`'s.

@@ -23,9 +23,15 @@ use crate::protocol::message::{
 };
 
 mod hold;
+mod reread;
+mod resets;
 mod setting;
 pub use hold::{Hold, Holds};
+pub use reread::{REREAD_GIVE_UP, Reread};
+pub use resets::{RESET_SETTLE, ResetsSent};
 pub use setting::Setting;
+#[cfg(test)]
+pub(crate) use setting::factory_answer;
 
 /// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
 /// (issue: "more than 2.5 s"; both are 1 Hz broadcasts, so two missed in a row).
@@ -180,6 +186,16 @@ pub enum Motor {
 }
 
 impl Motor {
+    /// The motor whose row has device id `id` (Appendix B), if it is one.
+    pub fn of_device(id: u8) -> Option<Motor> {
+        match id {
+            FLAPS => Some(Motor::Flaps),
+            TRIM_P => Some(Motor::Trim(TrimKind::Pitch)),
+            TRIM_R => Some(Motor::Trim(TrimKind::Roll)),
+            _ => None,
+        }
+    }
+
     /// The device id the motor's row has (Appendix B).
     pub fn device_id(self) -> u8 {
         match self {
@@ -234,6 +250,9 @@ pub struct Circuit {
     /// The spec behind `breaker` and `switch` is unknown since a write to it went
     /// unanswered; it is being asked again.
     pub spec_unknown: bool,
+    /// Faulted again after a reset the page sent this session (`resets`): the reset
+    /// key refuses it unless confirmed.
+    pub faulted_again: bool,
 }
 
 /// Everything we know about the unit.
@@ -257,6 +276,11 @@ pub struct Model {
     /// Settings nobody knows the unit's value of (a write to them went unanswered),
     /// and since when. Their slots above are empty until the unit answers a re-read.
     pub unknown: BTreeMap<Setting, Instant>,
+    /// The settings being read again since the data came back after a loss
+    /// (`reread`): until then none is held.
+    pub reread: Option<Reread>,
+    /// The fault resets sent this session, per device (`resets`).
+    resets: [Option<ResetsSent>; DEVICE_COUNT],
     pub last_spec_ack: Option<Stamped<SpecAck>>,
     pub last_ping_reply: Option<Instant>,
     /// The unit's answer to EEPROM_ERASE: a response code other than zero means the
@@ -296,6 +320,8 @@ impl Model {
             roll_trim_spec: None,
             wig_wag_spec: None,
             unknown: BTreeMap::new(),
+            reread: None,
+            resets: [None; DEVICE_COUNT],
             last_spec_ack: None,
             last_ping_reply: None,
             eeprom_erase: None,
@@ -337,6 +363,15 @@ impl Model {
                 );
             }
         }
+        // The first status after a loss: the unit may have changed meanwhile.
+        if matches!(
+            packet.message,
+            Message::SystemStatus(_) | Message::DeviceStatus(_)
+        ) && self.ever_heard()
+            && self.comm_lost(at)
+        {
+            self.begin_reread(at);
+        }
         match packet.message {
             Message::SystemStatus(s) => {
                 let before = self
@@ -361,7 +396,10 @@ impl Model {
                 self.fault_status = Some(Stamped::new(s, at));
                 self.log_new_faults(at, before);
             }
-            Message::Version(v) => self.version = Some(Stamped::new(v, at)),
+            Message::Version(v) => {
+                self.reread_version(at, &v);
+                self.version = Some(Stamped::new(v, at));
+            }
             Message::DeviceSpec(s) => {
                 if let Some(slot) = self.device_specs.get_mut(s.device_id as usize) {
                     *slot = Some(Stamped::new(s, at));
@@ -375,6 +413,7 @@ impl Model {
             },
             Message::WigWagSpec(s) => self.wig_wag_spec = Some(Stamped::new(s, at)),
             Message::DeviceName(n) => {
+                self.reread_name(at, &n);
                 if let Some(slot) = self.names.get_mut(n.device_id as usize) {
                     *slot = Some(Stamped::new(n, at));
                 }
@@ -407,14 +446,17 @@ impl Model {
             Message::EepromErase(e) => self.eeprom_erase = Some(Stamped::new(e, at)),
             _ => {}
         }
+        self.settle_reread(at);
     }
 
     /// Records a packet we sent.
     pub fn note_sent(&mut self, at: Instant, packet: &Packet) {
         self.link.tx_frames += 1;
         bump(&mut self.link.tx, packet.message.name(), at);
-        if let Message::ExternalData(d) = packet.message {
-            self.external_data_sent = Some(Stamped::new(d, at));
+        match packet.message {
+            Message::ExternalData(d) => self.external_data_sent = Some(Stamped::new(d, at)),
+            Message::DeviceClear(c) => self.note_reset_sent(at, c.device_id),
+            _ => {}
         }
         let specs = self.specs();
         self.holds.sent(at, &packet.message, &specs);
@@ -604,7 +646,7 @@ impl Model {
             .get(id as usize)
             .and_then(|n| n.as_ref())
             .map(|n| n.value.text());
-        if self.is_unknown(Setting::Name(id)) {
+        if self.is_unknown(Setting::Name(id)) || self.rereading_setting(Setting::Name(id)) {
             return "? (name re-reading…)".into();
         }
         match named {
@@ -697,7 +739,8 @@ impl Model {
                     CircuitKind::Trim(_) => None,
                     _ => Some(Setting::DeviceSpec(id)),
                 };
-                let spec_unknown = setting.is_some_and(|s| self.is_unknown(s));
+                let spec_unknown =
+                    setting.is_some_and(|s| self.is_unknown(s) || self.rereading_setting(s));
 
                 let breaker = match kind {
                     CircuitKind::Flaps => self.flap_spec.map(|s| s.value.circuit_breaker),
@@ -719,6 +762,8 @@ impl Model {
                         _ => None,
                     },
                     spec_unknown,
+                    faulted_again: matches!(state, CircuitState::Fault(_))
+                        && self.fault_heard_after_reset(id),
                 }
             })
             .collect()

@@ -306,6 +306,23 @@ const DEVICE_SPEC_255: &[u8] = &[
     0xE7, 0x7E, 0x11, 0x00, 0x01, 0x00, 0x01, 0x04, 0x04, 0x05, 0xFF, 0x00, 0x8D,
 ];
 
+/// The same with switch 11: ...^0B = 0x86, inverted 0x79.
+const DEVICE_SPEC_11: &[u8] = &[
+    0xE7, 0x7E, 0x11, 0x00, 0x01, 0x00, 0x01, 0x04, 0x04, 0x05, 0x0B, 0x00, 0x79,
+];
+/// With switch 3: ...^03 = 0x8E, inverted 0x71.
+const DEVICE_SPEC_3: &[u8] = &[
+    0xE7, 0x7E, 0x11, 0x00, 0x01, 0x00, 0x01, 0x04, 0x04, 0x05, 0x03, 0x00, 0x71,
+];
+/// With switch 0: ...^00 = 0x8D, inverted 0x72.
+const DEVICE_SPEC_0: &[u8] = &[
+    0xE7, 0x7E, 0x11, 0x00, 0x01, 0x00, 0x01, 0x04, 0x04, 0x05, 0x00, 0x00, 0x72,
+];
+/// With switch 12, no switch id (ICD Table 13: 0–11): ...^0C = 0x81, inverted 0x7E.
+const DEVICE_SPEC_12: &[u8] = &[
+    0xE7, 0x7E, 0x11, 0x00, 0x01, 0x00, 0x01, 0x04, 0x04, 0x05, 0x0C, 0x00, 0x7E,
+];
+
 #[test]
 fn a_false_header_hides_no_frame_in_a_capture() {
     // The capture of issue 16: a PING, an unknown id claiming 250 bytes, then three
@@ -355,15 +372,27 @@ fn a_false_header_hides_no_frame_in_a_capture() {
     );
 }
 
+/// Issue 26 item 6: the switch said once, plainly, by the byte that was sent, and
+/// what the page reads it as only where that differs (reading note 10).
 #[test]
 fn a_switch_read_as_always_on_shows_the_byte_that_was_sent() {
-    let (ok, out, err) = run(&[], DEVICE_SPEC_255);
-    assert!(ok, "{err}");
-    assert_eq!(
-        out.lines().next().unwrap(),
-        "DEVICE_SPEC cnt 1 VP-X→EFIS: device 4 5A-1, circuit breaker 5 A, \
-         switch id 11 (always on (255)), current fault disabled"
-    );
+    for (frame, switch) in [
+        (DEVICE_SPEC_255, "switch 255 (always on; read as 11)"),
+        (DEVICE_SPEC_11, "switch 11 (always on)"),
+        (DEVICE_SPEC_3, "switch 3 (input 3)"),
+        (DEVICE_SPEC_0, "switch 0 (always off)"),
+        (DEVICE_SPEC_12, "switch 12 (not a switch id: 0-11)"),
+    ] {
+        let (ok, out, err) = run(&[], frame);
+        assert!(ok, "{err}");
+        assert_eq!(
+            out.lines().next().unwrap(),
+            format!(
+                "DEVICE_SPEC cnt 1 VP-X→EFIS: device 4 5A-1, circuit breaker 5 A, \
+                 {switch}, current fault disabled"
+            )
+        );
+    }
     let (ok, out, _) = run(&["--json"], DEVICE_SPEC_255);
     assert!(ok);
     let spec: Value = serde_json::from_str(out.lines().next().unwrap()).unwrap();

@@ -45,18 +45,23 @@ fn model(at: Instant, faults: &[(u8, FaultCode)], system_fault: bool) -> Model {
     m.apply_packet(at, &s);
     m.apply_packet(at, &d);
     if !faults.is_empty() || system_fault {
-        let mut f = FaultStatus {
-            faulted: [false; DEVICE_COUNT],
-            system_fault,
-            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-        };
-        for &(id, code) in faults {
-            f.faulted[id as usize] = true;
-            f.codes[id as usize] = Some(code);
-        }
-        m.apply_packet(at, &Packet::from_vpx(0, f));
+        m.apply_packet(at, &fault_status(faults, system_fault));
     }
     m
+}
+
+/// FAULT_STATUS with `faults` and the system fault flag.
+fn fault_status(faults: &[(u8, FaultCode)], system_fault: bool) -> Packet {
+    let mut f = FaultStatus {
+        faulted: [false; DEVICE_COUNT],
+        system_fault,
+        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+    };
+    for &(id, code) in faults {
+        f.faulted[id as usize] = true;
+        f.codes[id as usize] = Some(code);
+    }
+    Packet::from_vpx(0, f)
 }
 
 fn refused(action: Action, m: &Model, now: Instant) -> String {
@@ -239,4 +244,131 @@ fn the_controller_sends_commands_and_shows_refusals() {
     );
     assert!(o.packets.is_empty());
     assert_eq!(o.action, Some(Action::SelectNext));
+}
+
+/// AC 43.13-1B's breaker practice on a fake clock: the first fault is reset with `r`;
+/// when the circuit faults again after it, the second `r` sends nothing and says why,
+/// and only `Y` right after sends the reset. The log holds both resets.
+#[test]
+fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
+    const LANDING: u8 = 17;
+    let t0 = Instant::now();
+    let s = |n: u64| t0 + Duration::from_millis(n);
+    let mut m = model(t0, &[], false);
+    m.apply_packet(
+        t0,
+        &Packet::from_vpx(
+            0,
+            vpx_efis::protocol::message::DeviceName::new(LANDING, "Landing Lt").unwrap(),
+        ),
+    );
+    let mut ctl = Controller::default();
+    let ctx = KeyContext {
+        selected: Some(Selected {
+            id: LANDING,
+            kind: CircuitKind::Device,
+            state: CircuitState::Fault(FaultCode::ShortCircuit),
+        }),
+        overlay_open: false,
+        past_endpoints: false,
+    };
+    let key = |c| KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE);
+    let shift_y = KeyEvent::new(KeyCode::Char('Y'), KeyModifiers::SHIFT);
+    let clear = |o: &vpx_efis::control::Outcome| {
+        o.packets
+            .iter()
+            .filter(|p| p.message == Message::DeviceClear(DeviceClear { device_id: LANDING }))
+            .count()
+    };
+    // A status every second, the fault with it.
+    let heard = |m: &mut Model, at: Instant| {
+        let (st, d) = status(WigWagModeSetting::Auto);
+        m.apply_packet(at, &st);
+        m.apply_packet(at, &d);
+        m.apply_packet(
+            at,
+            &fault_status(&[(LANDING, FaultCode::ShortCircuit)], false),
+        );
+    };
+
+    // The first fault: `r` resets it.
+    heard(&mut m, s(1000));
+    let o = ctl.handle_key(key('r'), &ctx, &m, s(1100));
+    assert_eq!(clear(&o), 1, "the first reset goes out");
+    for p in &o.packets {
+        m.note_sent(s(1100), p);
+    }
+    // A FAULT_STATUS already on its way when the reset went out is not a second fault.
+    heard(&mut m, s(1150));
+    assert!(!m.faulted_again_after_reset(LANDING, s(1150)));
+    // The next one shows it faulted again.
+    heard(&mut m, s(2000));
+    assert!(m.faulted_again_after_reset(LANDING, s(2000)));
+
+    // The second `r` sends nothing and says why, naming the key that confirms.
+    let o = ctl.handle_key(key('r'), &ctx, &m, s(2100));
+    assert_eq!(o.packets, vec![]);
+    assert_eq!(
+        o.notice.as_deref(),
+        Some(
+            "Landing Lt faulted again after a reset: find the cause before resetting it \
+             again (Y: reset it anyway)"
+        )
+    );
+    // Another key in between: `Y` no longer confirms.
+    let o = ctl.handle_key(key('w'), &ctx, &m, s(2200));
+    assert_eq!(clear(&o), 0);
+    let o = ctl.handle_key(shift_y, &ctx, &m, s(2300));
+    assert_eq!(clear(&o), 0);
+    assert_eq!(
+        o.notice.as_deref(),
+        Some(vpx_efis::control::NOTHING_TO_CONFIRM)
+    );
+    // Nor does a `Y` after the confirmation window.
+    ctl.handle_key(key('r'), &ctx, &m, s(2400));
+    let late = s(2400) + vpx_efis::control::CONFIRM_RESET_WITHIN + Duration::from_millis(1);
+    // The unit talks all along (a silence would forget its names: a re-read).
+    let mut at = s(3000);
+    while at < late {
+        heard(&mut m, at);
+        at += Duration::from_secs(1);
+    }
+    assert_eq!(clear(&ctl.handle_key(shift_y, &ctx, &m, late)), 0);
+    // `r` then `Y`: the deliberate second reset goes out.
+    let t = late + Duration::from_millis(100);
+    heard(&mut m, t);
+    assert_eq!(clear(&ctl.handle_key(key('r'), &ctx, &m, t)), 0);
+    let o = ctl.handle_key(shift_y, &ctx, &m, t + Duration::from_millis(500));
+    assert_eq!(clear(&o), 1, "Y right after r sends the reset");
+    for p in &o.packets {
+        m.note_sent(t + Duration::from_millis(500), p);
+    }
+    // Both resets are in the event log.
+    let resets: Vec<&str> = m
+        .events
+        .iter()
+        .map(|e| e.text.as_str())
+        .filter(|t| t.contains("reset sent"))
+        .collect();
+    assert_eq!(
+        resets,
+        [
+            "Landing Lt: reset sent (DEVICE_CLEAR), the 1st this session",
+            "Landing Lt: reset sent after it faulted again (DEVICE_CLEAR), the 2nd this session"
+        ]
+    );
+    // The same rule for anything else that resets (a remote) and for switching the
+    // circuit on (the installation check): the words, never "reset it with r first".
+    let t = t + Duration::from_secs(1);
+    heard(&mut m, t);
+    let why = refused(Action::Reset(LANDING), &m, t);
+    assert_eq!(
+        why,
+        "Landing Lt faulted again after a reset: find the cause before resetting it again"
+    );
+    assert_eq!(refused(Action::PowerOn(LANDING), &m, t), why);
+    assert_eq!(
+        vpx_efis::control::device_power(&m, t, LANDING, true),
+        Err(vpx_efis::control::Refusal(why))
+    );
 }

@@ -207,14 +207,7 @@ fn a_silent_unit_brings_communication_lost_within_two_and_a_half_seconds() {
     );
     let buf = rig.render();
     assert!(line_of(&buf, "COMMUNICATION LOST").is_some());
-    let screen: String = (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect();
+    let screen = screen_text(&buf);
     let (_, nav) =
         line_of(&buf, "Nav Lt").unwrap_or_else(|| panic!("rows stay, values go:\n{screen}"));
     assert!(
@@ -282,4 +275,93 @@ fn a_pulled_cable_is_shown_and_the_same_path_reconnects_when_it_returns() {
         rig.app
             .pump_until(Instant::now() + Duration::from_millis(50));
     }
+}
+
+/// AC 43.13-1B's breaker practice through the real page and the sim: Nav Lt shorts
+/// (`short 4 on` on the sim's console); the first `r` resets it, it trips again, the
+/// second `r` sends nothing and says why, and `Y` (named on the detail panel and in
+/// the notice) sends the reset. The event log holds both.
+#[test]
+fn a_second_r_after_the_circuit_faulted_again_sends_nothing_until_y() {
+    const NAV: u8 = 4;
+    let mut rig = Rig::new(ReleaseMode::AutoRepeat);
+    rig.select(NAV);
+    rig.sim.inject(SimCommand::Short {
+        device: NAV,
+        on: true,
+    });
+    let clears = |rig: &Rig, from: usize| {
+        rig.sent(from)
+            .into_iter()
+            .filter(|(_, p)| {
+                p.message
+                    == Message::DeviceClear(vpx_efis::protocol::message::DeviceClear {
+                        device_id: NAV,
+                    })
+            })
+            .count()
+    };
+    // Pumps the page until the wire holds `n` resets of Nav Lt since `from`.
+    let wait_clears = |rig: &mut Rig, from: usize, n: usize, what: &str| {
+        let end = Instant::now() + Duration::from_secs(2);
+        while clears(rig, from) < n {
+            assert!(Instant::now() < end, "no {what} on the wire");
+            rig.app
+                .pump_until(Instant::now() + Duration::from_millis(10));
+        }
+    };
+    rig.until("Nav Lt faulted", Duration::from_secs(4), |app, now| {
+        app.model()
+            .circuits(now)
+            .iter()
+            .any(|c| c.id == NAV && matches!(c.state, vpx_efis::model::CircuitState::Fault(_)))
+    });
+    let from = rig.wire_len();
+    rig.key(KeyCode::Char('r'), KeyEventKind::Press);
+    wait_clears(&mut rig, from, 1, "first reset");
+    rig.until(
+        "Nav Lt faulted again after the reset",
+        Duration::from_secs(4),
+        |app, now| app.model().faulted_again_after_reset(NAV, now),
+    );
+    let buf = rig.render();
+    let screen = screen_text(&buf);
+    // The detail panel's keys are glued with non-breaking spaces.
+    let (_, keys) = line_of(&buf, "Y\u{a0}").expect(&screen);
+    assert!(
+        keys.replace('\u{a0}', " ").contains(" Y  reset again"),
+        "{keys}"
+    );
+
+    // The second `r`: nothing on the wire, and the words.
+    let from = rig.wire_len();
+    rig.key(KeyCode::Char('r'), KeyEventKind::Press);
+    rig.app
+        .pump_until(Instant::now() + Duration::from_millis(300));
+    assert_eq!(clears(&rig, from), 0, "the second r sent a reset");
+    assert_eq!(
+        rig.app.view().notice.as_deref(),
+        Some(
+            "Nav Lt faulted again after a reset: find the cause before resetting it again \
+             (Y: reset it anyway)"
+        )
+    );
+    // `Y` confirms: the reset goes out.
+    rig.key(KeyCode::Char('Y'), KeyEventKind::Press);
+    wait_clears(&mut rig, from, 1, "confirmed second reset");
+    let log: Vec<String> = rig
+        .app
+        .model()
+        .events
+        .iter()
+        .map(|e| e.text.clone())
+        .filter(|t| t.contains("reset sent"))
+        .collect();
+    assert_eq!(
+        log,
+        [
+            "Nav Lt: reset sent (DEVICE_CLEAR), the 1st this session",
+            "Nav Lt: reset sent after it faulted again (DEVICE_CLEAR), the 2nd this session"
+        ]
+    );
 }

@@ -29,17 +29,6 @@ fn line_of(buf: &Buffer, needle: &str) -> Option<(u16, String)> {
     })
 }
 
-fn screen_text(buf: &Buffer) -> String {
-    (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
-}
-
 fn trim_moves(rig: &Rig, from: usize) -> Vec<(Instant, TrimMove)> {
     rig.sent(from)
         .into_iter()

@@ -1355,11 +1355,107 @@ fn the_limit_line_is_dashed_so_no_colour_still_tells_it_from_the_trace() {
     let axis = row.iter().position(|s| *s == "│").expect("y axis") + 1;
     let line: String = row[axis..axis + 8].concat();
     assert_eq!(line, "⠉ ⠉ ⠉ ⠉ ", "{}", text(&buf));
-    // The trace itself stays solid.
-    let trace: String = (bx..80)
-        .map(|x| buf[(x, by + 2)].symbol().to_string())
+    // The trace itself stays solid: four dots side by side on a row below the limit
+    // (its row depends on the chart's height).
+    let (amps_x, _) = find(&buf, "bus V", "amps");
+    let solid = |y: u16| {
+        let cells: Vec<&str> = (bx..amps_x).map(|x| buf[(x, y)].symbol()).collect();
+        cells.windows(4).any(|w| {
+            w.iter()
+                .all(|c| c.chars().all(|ch| ('\u{2801}'..='\u{28ff}').contains(&ch)))
+        })
+    };
+    assert!(
+        (by + 2..buf.area.height).any(solid),
+        "no solid trace:\n{}",
+        text(&buf)
+    );
+}
+
+/// The normal page with a link that has seen errors: decoder drops of every kind, many
+/// frames sent and failed writes, so the link's words are at their longest.
+fn link_with_errors() -> (Model, Instant) {
+    let (mut m, now) = fixtures::normal();
+    m.note_decoder(vpx_efis::protocol::decoder::DecoderStats {
+        frames: 90_000,
+        bytes_in: 2_000_000,
+        skipped_bytes: 1234,
+        bad_checksum: 123,
+        bad_length: 45,
+        unknown_message: 6,
+        truncated_bytes: 0,
+    });
+    for _ in 0..12_345 {
+        m.note_malformed();
+    }
+    for _ in 0..3 {
+        m.note_write_error(now, "Input/output error (os error 5)".into());
+    }
+    m.link.tx_frames = 123_456;
+    (m, now)
+}
+
+#[test]
+fn normal_100x30() {
+    let (m, now) = fixtures::normal();
+    insta::assert_snapshot!(text(&draw(&m, &view_selecting(EFIS), now, 100, 30)));
+}
+
+#[test]
+fn link_errors_80x24_wrap_inside_the_left_column() {
+    let (m, now) = link_with_errors();
+    insta::assert_snapshot!(text(&draw(&m, &view_selecting(EFIS), now, 80, 24)));
+}
+
+/// Issue 26 item 4: every row of the left column (the list, the detail and, on short
+/// terminals, the link's lines) ends at the column's edge, whatever the size and the
+/// state: walking the drawn buffer, the cell on the edge is a border on every row from
+/// the list's top line to the row above the keys.
+#[test]
+fn no_row_of_the_left_column_crosses_its_edge() {
+    let mut states: Vec<(&str, Model, ViewState, Instant)> = every_state()
+        .into_iter()
+        .filter(|(_, _, v, _, _, _)| v.overlay == Overlay::None)
+        .map(|(name, m, v, now, _, _)| (name, m, v, now))
         .collect();
-    assert!(trace.contains("⢄⣄⢄⣀"), "{trace}");
+    let (m, now) = link_with_errors();
+    states.push(("link_with_errors", m, view_selecting(EFIS), now));
+    let sizes = [
+        (80, 24),
+        (100, 30),
+        (81, 25),
+        (90, 28),
+        (120, 35),
+        (120, 40),
+        (160, 24),
+        (200, 60),
+    ];
+    let mut walked = 0;
+    for (name, m, view, now) in &states {
+        for (w, h) in sizes {
+            let buf = draw(m, view, *now, w, h);
+            let rows: Vec<String> = (0..h)
+                .map(|y| (0..w).map(|x| buf[(x, y)].symbol()).collect())
+                .collect();
+            let top = rows
+                .iter()
+                .position(|r| r.starts_with(" Devices"))
+                .unwrap_or_else(|| panic!("{name} {w}x{h}: no device list\n{}", text(&buf)));
+            let edge = ui::left_column_width(w) - 1;
+            // The key bar below the columns is one row, or more with a long notice.
+            for y in top as u16..h - ui::key_bar::height(view, w) {
+                let cell = buf[(edge, y)].symbol();
+                assert!(
+                    matches!(cell, "│" | "┐" | "┤" | "┘"),
+                    "{name} {w}x{h}: row {y} crosses the left column's edge at x={edge} \
+                     ({cell:?}):\n{}",
+                    text(&buf)
+                );
+                walked += 1;
+            }
+        }
+    }
+    assert!(walked > 1000, "{walked} rows walked");
 }
 
 /// Issue 27.8: the Events panel says what the person did, each line with its origin

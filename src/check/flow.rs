@@ -18,6 +18,7 @@ use crate::model::{Connection, Model, Motor};
 use crate::protocol::device::DEVICE_COUNT;
 use crate::protocol::message::{Message, Packet, SwitchId};
 use crate::ui::check::state::{CheckView, Interruption, Prompt, Step};
+use crate::ui::check::words;
 
 use super::circuits::CircuitItem;
 use super::motors::MotorItem;
@@ -169,6 +170,33 @@ pub(super) enum Phase {
         left: Vec<(u8, String, String)>,
     },
     Done,
+}
+
+/// The line that starts the check: what it will power and run, counting only the
+/// steps that run (a step skipped from the start, `--skip`, touches nothing, as the
+/// plan above it says).
+pub fn confirmed_line(view: &CheckView) -> String {
+    let skipped = |s| view.skipped_steps.contains(&s);
+    let circuits = if skipped(Step::Circuits) {
+        "no circuit to power (circuits step skipped)".to_string()
+    } else {
+        format!(
+            "{} to power",
+            words::count(view.plan.len(), "circuit", "circuits")
+        )
+    };
+    let motors = if skipped(Step::Motors) {
+        "no motor to run (motors step skipped)".to_string()
+    } else {
+        format!(
+            "{} to run",
+            words::count(view.planned_motors.len(), "motor", "motors")
+        )
+    };
+    format!(
+        "Confirmed: {circuits}, {motors}, {} left alone",
+        view.excluded.len()
+    )
 }
 
 /// What the calls share: the model, the controller and where the packets go.
@@ -441,12 +469,7 @@ impl CheckFlow {
             return;
         }
         view.message = None;
-        out.news.push(format!(
-            "Confirmed: {} circuits to power, {} motors to run, {} left alone",
-            view.plan.len(),
-            view.planned_motors.len(),
-            view.excluded.len()
-        ));
+        out.news.push(confirmed_line(view));
         // Every item gets its line now, so an interruption leaves the ones never
         // reached listed as not run.
         view.switches = super::switches::rows(view, model, now);

@@ -634,7 +634,9 @@ fn analysed(o: &mut String, path: &Path, a: &Analysis) {
     o.push('\n');
     o.push_str(
         "Total of a phase = Σ current × share of the phase the circuit is on. Margin = \
-         (alternator rating − total) × 100 / rating; under 20 % is a warning. Endurance \
+         (alternator rating − total) × 100 / rating; under 20 % is a warning (a load over \
+         80 % of the alternator's rating: FAA AC 43.13-1B par. 11-35a, which calls it a \
+         rule of thumb, not a load analysis). Endurance \
          (emergency, battery only) = capacity × usable share × 60 / total, in minutes; \
          under 30 min is a warning.\n\n",
     );

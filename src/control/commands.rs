@@ -43,7 +43,7 @@ pub fn command(action: &Action, model: &Model, now: Instant) -> Result<Message, 
     match *action {
         Action::PowerOn(id) => device_power(model, now, id, true),
         Action::PowerOff(id) => device_power(model, now, id, false),
-        Action::Reset(id) => reset(model, now, id),
+        Action::Reset(id) => reset(model, now, id, false),
         Action::ResetSystemFault => match model.live_faults(now) {
             Some((_, true)) => Ok(DeviceClear {
                 device_id: SYSTEM_FAULT_ID,
@@ -144,6 +144,10 @@ fn power(model: &Model, now: Instant, id: u8, on: bool) -> Result<Message, Refus
             "{name} is a motor: it is run with the motor keys, not switched on or off"
         )),
         _ => match state {
+            // Not "reset it with r first" to a circuit that is past its one reset.
+            CircuitState::Fault(_) if on && model.faulted_again_after_reset(id, now) => {
+                refuse(faulted_again(&name))
+            }
             // Appendix E: a faulted pin stays off until the fault is cleared.
             CircuitState::Fault(code) if on => refuse(format!(
                 "{name} is faulted ({}): reset it with r first",
@@ -155,10 +159,30 @@ fn power(model: &Model, now: Instant, id: u8, on: bool) -> Result<Message, Refus
     }
 }
 
-fn reset(model: &Model, now: Instant, id: u8) -> Result<Message, Refusal> {
+/// Why a circuit that faulted again after a reset is not reset again.
+pub fn faulted_again(name: &str) -> String {
+    format!("{name} faulted again after a reset: find the cause before resetting it again")
+}
+
+/// DEVICE_CLEAR for circuit `id`, or why not: the rule for the page's `r`, a remote's
+/// RESET and anything else that resets a circuit.
+///
+/// FAA AC 43.13-1B (the breaker-reset practice): a tripped breaker is reset once; one
+/// that trips again has a cause to find first, as resetting it into a short again
+/// heats the wiring each time. So a circuit that faulted again after a reset sent this
+/// session ([`Model::faulted_again_after_reset`]) is refused with those words unless
+/// the reset is `confirmed`: a deliberate second step by a person who has looked (the
+/// page's `Y` right after the refusal). A remote has no such step.
+pub fn reset(model: &Model, now: Instant, id: u8, confirmed: bool) -> Result<Message, Refusal> {
     let name = model.display_name(id);
     if device::device(id).is_none() {
         return refuse(format!("device {id} does not exist"));
+    }
+    if model.comm_lost(now) {
+        return refuse(COMM_LOST);
+    }
+    if !confirmed && model.faulted_again_after_reset(id, now) {
+        return refuse(faulted_again(&name));
     }
     match circuit_state(model, now, id) {
         Some((_, CircuitState::Fault(code))) => match code {

@@ -94,6 +94,9 @@ pub enum Action {
     PowerOff(u8),
     /// DEVICE_CLEAR for a device id.
     Reset(u8),
+    /// DEVICE_CLEAR for a device id that faulted again after a reset, confirmed: only
+    /// right after `r` was refused for it (`Controller`, `commands::reset`).
+    ResetAgain(u8),
     /// DEVICE_CLEAR 255.
     ResetSystemFault,
     /// WIG_WAG_MODE, the opposite of the live mode.
@@ -190,6 +193,7 @@ pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {
         KeyCode::Char('f') => selected(Action::PowerOff),
         KeyCode::Char('r') => selected(Action::Reset),
         KeyCode::Char('R') => Some(Action::ResetSystemFault),
+        KeyCode::Char('Y') => selected(Action::ResetAgain),
         KeyCode::Char('w') => Some(Action::ToggleWigWag),
         KeyCode::Char('s') => Some(Action::ToggleSort),
         KeyCode::Char('?') => Some(Action::ToggleHelp),

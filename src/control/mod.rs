@@ -35,7 +35,9 @@ use crate::model::{Model, Motor};
 use crate::protocol::message::Packet;
 
 pub use against::Against;
-pub use commands::{Refusal, command, device_power, motor_check, motor_permit, put_back_off};
+pub use commands::{
+    Refusal, command, device_power, motor_check, motor_permit, put_back_off, reset,
+};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};
 pub use release::{release_mode, release_mode_here};
 pub use streamer::{
@@ -79,7 +81,19 @@ pub struct Controller {
     hidden: bool,
     /// The terminal lost focus and has not said it has it back.
     unfocused: bool,
+    /// `r` was refused for this circuit at this moment because it faulted again after
+    /// a reset: `Y` as the next key, within [`CONFIRM_RESET_WITHIN`], sends the reset
+    /// all the same.
+    reset_asked: Option<(u8, Instant)>,
 }
+
+/// How long after `r` was refused a second reset may be confirmed with `Y`: long
+/// enough to read the notice, short enough that a `Y` much later is not taken for it.
+pub const CONFIRM_RESET_WITHIN: Duration = Duration::from_secs(10);
+
+/// The notice for a `Y` with nothing to confirm.
+pub const NOTHING_TO_CONFIRM: &str =
+    "Y confirms a second reset only right after r refused it for the selected device";
 
 impl Controller {
     pub fn new(config: StreamerConfig) -> Self {
@@ -93,6 +107,7 @@ impl Controller {
             starting_way: None,
             hidden: false,
             unfocused: false,
+            reset_asked: None,
         }
     }
 
@@ -213,6 +228,12 @@ impl Controller {
         now: Instant,
         out: &mut Outcome,
     ) {
+        // A second reset is confirmed by the very next key, or not at all (a key's
+        // release report is not a key).
+        let reset_asked = match action {
+            Some(Action::KeyReleased) => self.reset_asked,
+            _ => self.reset_asked.take(),
+        };
         if self.streamer.running_key().is_some() {
             match action {
                 Some(Action::Motor {
@@ -281,11 +302,34 @@ impl Controller {
                 out.notice = Some(why.to_string());
                 out.action = action;
             }
+            Some(Action::ResetAgain(id)) => {
+                match reset_asked {
+                    Some((asked, at)) if asked == id && now <= at + CONFIRM_RESET_WITHIN => {
+                        match reset(model, now, id, true) {
+                            Ok(message) => {
+                                let cnt = self.streamer.next_cnt();
+                                out.packets.push(Packet::request(cnt, message));
+                            }
+                            Err(why) => out.notice = Some(why.0),
+                        }
+                    }
+                    _ => out.notice = Some(NOTHING_TO_CONFIRM.into()),
+                }
+                out.action = action;
+            }
             Some(a) if a.is_command() => {
+                if let Action::Reset(id) = a
+                    && model.faulted_again_after_reset(id, now)
+                {
+                    self.reset_asked = Some((id, now));
+                }
                 match command(&a, model, now) {
                     Ok(message) => {
                         let cnt = self.streamer.next_cnt();
                         out.packets.push(Packet::request(cnt, message));
+                    }
+                    Err(why) if self.reset_asked.is_some() => {
+                        out.notice = Some(format!("{why} (Y: reset it anyway)"));
                     }
                     Err(why) => out.notice = Some(why.0),
                 }

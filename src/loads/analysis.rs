@@ -8,8 +8,10 @@
 //! - Total of a phase: `Σ current × duty`, over every circuit, where `duty` is the
 //!   fraction of the time the circuit is on in that phase (1 on, 0 off).
 //! - Margin of a phase on the alternator: `(rating − total) × 100 / rating` percent;
-//!   under [`MARGIN_WARNING_PERCENT`] (20 %, the usual rule: keep a fifth of the
-//!   alternator spare) is a warning, below zero the alternator cannot carry it.
+//!   under [`MARGIN_WARNING_PERCENT`] (20 %: FAA AC 43.13-1B par. 11-35a asks for a
+//!   smaller load or a bigger alternator where the continuous load can pass 80 % of
+//!   its rating, and calls that "strictly a rule of thumb", not a load analysis) is a
+//!   warning, below zero the alternator cannot carry it.
 //! - Endurance of the emergency phase, in minutes: `capacity (Ah) × usable × 60 /
 //!   total (A)`. `usable` derates the rated capacity (0.8 unless the file says,
 //!   the capacity a battery still passes its capacity test with). It does not model

@@ -68,21 +68,15 @@ pub fn open_or_create(path: &Path, circuits: &[Circuit]) -> Result<Opened, LoadE
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{CircuitKind, CircuitState};
+    use crate::model::CircuitKind;
     use crate::protocol::device::EFIS;
 
     fn efis() -> Vec<Circuit> {
-        vec![Circuit {
-            id: EFIS,
-            name: "EFIS 1".into(),
-            pin: "EFIS",
-            kind: CircuitKind::Device,
-            state: CircuitState::Unknown,
-            amps: None,
-            breaker: None,
-            switch: None,
-            spec_unknown: false,
-        }]
+        vec![crate::loads::test_circuit(
+            EFIS,
+            "EFIS 1",
+            CircuitKind::Device,
+        )]
     }
 
     fn entries(dir: &Path) -> Vec<String> {

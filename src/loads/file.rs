@@ -29,8 +29,8 @@ use toml::Spanned;
 
 use crate::toml_lines::{self, Value};
 
-use super::Phase;
-use crate::model::{Circuit, CircuitKind};
+use super::{Phase, guess};
+use crate::model::Circuit;
 use crate::protocol::device;
 
 /// Without a figure in the file, the share of the battery's rated capacity counted
@@ -370,10 +370,13 @@ const HEADER: &str = "\
 /// What the template adds: where it starts from.
 const TEMPLATE_NOTE: &str = "\
 #
-# This is a template: every circuit starts ON in every phase, the worst case, except
-# the starter (cranking only) and the alternator field in the emergency phase. Turn
-# off what is off, type a current for each circuit the check cannot measure, and
-# write the alternator's rating and the battery's capacity below (without the #).
+# This is a template. Each circuit's phases are guessed from its name (a landing light
+# on to taxi, take off and land; nav lights at night; strobes and beacons from taxi
+# on; pitot heat off; flaps and trims a tenth of the time; on the battery, the
+# avionics and one light) and every guessed line says \"# guess: check\". The starter
+# draws only while cranking, an alternator field not on the battery. Correct each
+# guess, type a current for each circuit the check cannot measure, and write the
+# alternator's rating and the battery's capacity below (without the #).
 ";
 
 /// A number as TOML reads it back, exactly: Rust's shortest form ("40", "2.25"),
@@ -420,9 +423,10 @@ pub fn to_toml(file: &LoadFile) -> String {
     out
 }
 
-/// The template written on the first run: every circuit of the unit, the worst case
-/// in each phase, and the two ratings left for the builder to write (so that an
-/// unedited template is refused, not analysed with made-up ratings).
+/// The template written on the first run: every circuit of the unit, its phases
+/// guessed from its name and marked as guesses (`guess`), and the two ratings left
+/// for the builder to write (so that an unedited template is refused, not analysed
+/// with made-up ratings).
 pub fn template(circuits: &[Circuit]) -> String {
     let mut out = String::from(HEADER);
     out.push_str(TEMPLATE_NOTE);
@@ -430,79 +434,81 @@ pub fn template(circuits: &[Circuit]) -> String {
     out.push_str("# alternator_amps = 40\n");
     out.push_str("# battery_amp_hours = 17\n");
     let _ = writeln!(out, "battery_usable = {DEFAULT_BATTERY_USABLE}");
-    write_circuits(&mut out, &template_circuits(circuits));
+    let mut sorted: Vec<&Circuit> = circuits.iter().collect();
+    sorted.sort_by_key(|c| c.id);
+    let owned: Vec<Circuit> = sorted.into_iter().cloned().collect();
+    let guesses = guess::guesses(&owned);
+    let loads = template_circuits(&owned);
+    for (c, g) in loads.iter().zip(&guesses) {
+        write_circuit(&mut out, c, g.why.as_deref());
+    }
     out
 }
 
-/// The template's circuits: each on in every phase, but the starter (its pin only
-/// drives the contactor while cranking) and an alternator field in the emergency
-/// phase (the alternator has failed).
+/// The template's circuits, in pin order: each with the phases its name suggests
+/// ([`guess`]).
 pub fn template_circuits(circuits: &[Circuit]) -> Vec<LoadCircuit> {
-    let mut out: Vec<LoadCircuit> = circuits
+    let mut sorted: Vec<&Circuit> = circuits.iter().collect();
+    sorted.sort_by_key(|c| c.id);
+    let owned: Vec<Circuit> = sorted.into_iter().cloned().collect();
+    owned
         .iter()
-        .map(|c| {
-            let mut duty = [1.0; 7];
-            match c.kind {
-                CircuitKind::Starter => duty = [0.0; 7],
-                CircuitKind::Alternator { .. } => duty[Phase::Emergency.index()] = 0.0,
-                _ => {}
-            }
-            LoadCircuit {
-                id: c.id,
-                name: c.name.clone(),
-                amps: None,
-                duty,
-            }
+        .zip(guess::guesses(&owned))
+        .map(|(c, g)| LoadCircuit {
+            id: c.id,
+            name: c.name.clone(),
+            amps: None,
+            duty: g.duty,
         })
-        .collect();
-    out.sort_by_key(|c| c.id);
-    out
+        .collect()
 }
 
 fn write_circuits(out: &mut String, circuits: &[LoadCircuit]) {
     let mut sorted: Vec<&LoadCircuit> = circuits.iter().collect();
     sorted.sort_by_key(|c| c.id);
     for c in sorted {
-        let _ = writeln!(out, "\n[circuit.{}]", c.pin());
-        let _ = writeln!(out, "name = {}", toml::Value::String(c.name.clone()));
-        match c.amps {
-            Some(a) => {
-                let _ = writeln!(out, "amps = {}", number_text(a));
-            }
-            None => out.push_str("# amps = 0.0\n"),
+        write_circuit(out, c, None);
+    }
+}
+
+/// One `[circuit.PIN]` section; `guess`: what its phases were guessed from, said
+/// above them and marked beside each.
+fn write_circuit(out: &mut String, c: &LoadCircuit, guess: Option<&str>) {
+    let _ = writeln!(out, "\n[circuit.{}]", c.pin());
+    let _ = writeln!(out, "name = {}", toml::Value::String(c.name.clone()));
+    match c.amps {
+        Some(a) => {
+            let _ = writeln!(out, "amps = {}", number_text(a));
         }
-        for p in Phase::ALL {
-            let d = c.duty(p);
-            let _ = if d == 1.0 {
-                writeln!(out, "{} = true", p.key())
-            } else if d == 0.0 {
-                writeln!(out, "{} = false", p.key())
-            } else {
-                writeln!(out, "{} = {}", p.key(), number_text(d))
-            };
-        }
+        None => out.push_str("# amps = 0.0\n"),
+    }
+    if let Some(why) = guess {
+        let _ = writeln!(out, "# guessed from the name: {why}");
+    }
+    for p in Phase::ALL {
+        let d = c.duty(p);
+        let value = if d == 1.0 {
+            "true".to_string()
+        } else if d == 0.0 {
+            "false".to_string()
+        } else {
+            number_text(d)
+        };
+        let line = format!("{} = {value}", p.key());
+        let _ = if guess.is_some() {
+            writeln!(out, "{line:<21}# guess: check")
+        } else {
+            writeln!(out, "{line}")
+        };
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::CircuitState;
+    use crate::loads::test_circuit as circuit;
+    use crate::model::CircuitKind;
     use crate::protocol::device::{EFIS, FIELD_PRI, FLAPS, STARTER, TRIM_P};
-
-    fn circuit(id: u8, name: &str, kind: CircuitKind) -> Circuit {
-        Circuit {
-            id,
-            name: name.into(),
-            pin: device::device(id).unwrap().system_name,
-            kind,
-            state: CircuitState::Unknown,
-            amps: None,
-            breaker: None,
-            switch: None,
-            spec_unknown: false,
-        }
-    }
 
     fn unit() -> Vec<Circuit> {
         vec![

@@ -6,7 +6,8 @@
 //! - [`analysis`]: the arithmetic (total per phase, margin against the alternator,
 //!   emergency endurance on the battery), pure;
 //! - [`disk`]: reading the file, and writing the template on the first run without
-//!   ever writing over a file that is there.
+//!   ever writing over a file that is there;
+//! - [`guess`]: the template's phases for each circuit, guessed from its name.
 //!
 //! It stands on `protocol` (the pins of Appendix B) and `model` (the circuits the unit
 //! has) only; the installation check (`crate::check`), its screen (`ui::check::loads`)
@@ -15,6 +16,7 @@
 pub mod analysis;
 pub mod disk;
 pub mod file;
+pub mod guess;
 
 pub use analysis::{Analysis, Figure, Level, PhaseTotal, Row, analyse};
 pub use file::{LoadCircuit, LoadFile, Problem};
@@ -81,6 +83,27 @@ impl Phase {
 
     pub fn from_key(key: &str) -> Option<Phase> {
         Phase::ALL.into_iter().find(|p| p.key() == key)
+    }
+}
+
+/// For tests: a circuit as the model lists it, with no live values.
+#[cfg(test)]
+pub(crate) fn test_circuit(
+    id: u8,
+    name: &str,
+    kind: crate::model::CircuitKind,
+) -> crate::model::Circuit {
+    crate::model::Circuit {
+        id,
+        name: name.into(),
+        pin: crate::protocol::device::device(id).map_or("?", |d| d.system_name),
+        kind,
+        state: crate::model::CircuitState::Unknown,
+        amps: None,
+        breaker: None,
+        switch: None,
+        spec_unknown: false,
+        faulted_again: false,
     }
 }
 

@@ -104,6 +104,28 @@ impl Setting {
     }
 }
 
+/// For tests: a factory-fresh unit's answer to `setting`'s query (ICD Appendix F's
+/// defaults, every name blank, every pin enabled).
+#[cfg(test)]
+pub(crate) fn factory_answer(setting: Setting) -> Message {
+    use crate::protocol::defaults;
+    use crate::protocol::message::DeviceName;
+    match setting {
+        Setting::DeviceSpec(id) => defaults::device_spec(id).into(),
+        Setting::Name(id) => DeviceName::new(id, "").unwrap().into(),
+        Setting::Enable(id) => DeviceEnable {
+            device_id: id,
+            flag: EnableFlag::Enabled,
+        }
+        .into(),
+        Setting::System => defaults::system_spec().into(),
+        Setting::Flaps => defaults::flap_spec().into(),
+        Setting::Trim(TrimKind::Pitch) => defaults::trim_spec(TrimType::Pitch).into(),
+        Setting::Trim(TrimKind::Roll) => defaults::trim_spec(TrimType::Roll).into(),
+        Setting::WigWag => defaults::wig_wag_spec().into(),
+    }
+}
+
 /// TRIM_SPEC's type byte: anything but roll is taken as pitch, as the model stores it.
 fn trim_kind(t: TrimType) -> TrimKind {
     match t {

@@ -7,6 +7,7 @@ use std::time::Duration;
 use super::scenario::{MotorDirection, MotorId};
 use super::unit::SimCommand;
 use crate::protocol::FaultCode;
+use crate::protocol::message::DeviceName;
 
 /// How long `flip N` holds the switch in its other position when no time is given:
 /// long enough for two of the unit's 1 Hz SYSTEM_STATUS broadcasts to show it.
@@ -28,6 +29,10 @@ commands (one per line):
   short DEVICE on|off     a short appears on the pin, or goes away
   power DEVICE on|off     another display sends DEVICE_POWER (held until the switch changes)
   fault DEVICE CODE       the device faults now (Appendix E code number)
+  name DEVICE TEXT        the unit's name for the device changes (up to 16 characters),
+                          as if set from another display: nothing on the wire says so
+  silent SECONDS          nothing leaves the unit for SECONDS (a cable out): the page
+                          shows COMMUNICATION LOST after 2.5 s
   help                    this list";
 
 /// One line of the console, understood.
@@ -42,6 +47,12 @@ pub enum ConsoleLine {
 /// Reads one console line. The error says what was wrong, in words.
 pub fn parse_line(line: &str) -> Result<ConsoleLine, String> {
     let line = line.split('#').next().unwrap_or("");
+    // A name keeps its letters' case and its spaces.
+    if let Some((first, rest)) = line.trim().split_once(char::is_whitespace)
+        && first.eq_ignore_ascii_case("name")
+    {
+        return rename(rest.trim()).map(ConsoleLine::Command);
+    }
     let words: Vec<String> = line.split_whitespace().map(str::to_lowercase).collect();
     let w: Vec<&str> = words.iter().map(String::as_str).collect();
     let cmd = match w.as_slice() {
@@ -92,6 +103,7 @@ pub fn parse_line(line: &str) -> Result<ConsoleLine, String> {
             device: device(d)?,
             on: on_off(state)?,
         },
+        ["silent", secs] => SimCommand::Silent(seconds(secs)?),
         ["fault", d, code] => {
             let code: u8 = code
                 .parse()
@@ -109,6 +121,17 @@ pub fn parse_line(line: &str) -> Result<ConsoleLine, String> {
         }
     };
     Ok(ConsoleLine::Command(cmd))
+}
+
+/// `name DEVICE TEXT`: the text is the rest of the line, as DEVICE_NAME holds it.
+fn rename(rest: &str) -> Result<SimCommand, String> {
+    let (d, text) = rest
+        .split_once(char::is_whitespace)
+        .ok_or_else(|| "name: give a device and its new name".to_string())?;
+    let text = text.trim();
+    DeviceName::new(device(d)?, text)
+        .map(SimCommand::Rename)
+        .ok_or_else(|| format!("name {text:?}: up to 16 plain (ASCII) characters"))
 }
 
 fn press(motor: &str, dir: &str, hold: Duration) -> Result<SimCommand, String> {
@@ -261,6 +284,31 @@ mod tests {
                 code: FaultCode::from_byte(3)
             }
         );
+    }
+
+    #[test]
+    fn name_keeps_its_case_and_spaces_and_silent_takes_seconds() {
+        assert_eq!(
+            cmd("name 9 Taxi Lt Left"),
+            SimCommand::Rename(DeviceName::new(9, "Taxi Lt Left").unwrap())
+        );
+        assert_eq!(
+            cmd("  NAME  4   Nav  # comment"),
+            SimCommand::Rename(DeviceName::new(4, "Nav").unwrap())
+        );
+        assert_eq!(
+            cmd("silent 4.5"),
+            SimCommand::Silent(Duration::from_millis(4500))
+        );
+        for (line, words) in [
+            ("name 9", "device and its new name"),
+            ("name 31 Foo", "0 to 30"),
+            ("name 9 seventeen chars xx", "16"),
+            ("silent forever", "seconds"),
+        ] {
+            let err = parse_line(line).expect_err(line);
+            assert!(err.contains(words), "{line}: {err}");
+        }
     }
 
     #[test]

@@ -80,6 +80,9 @@ pub enum SimCommand {
     Load { device: u8, amps: f32 },
     /// Nothing leaves the unit for this long; requests are still taken in.
     Silent(Duration),
+    /// The unit's name for a device changes, as if set from another display (stored
+    /// in its EEPROM, and nothing on the wire says so).
+    Rename(DeviceName),
     /// These bytes go out on the wire as they are.
     Garbage(Vec<u8>),
     /// This many pseudo-random bytes go out on the wire.
@@ -983,6 +986,17 @@ impl Unit {
             SimCommand::Silent(d) => {
                 self.log(format!("going silent for {:.1} s", d.as_secs_f64()));
                 self.silent_until = Some(now + d);
+            }
+            SimCommand::Rename(name) => {
+                let mut cfg = self.config.clone();
+                cfg.apply_device_name(&name);
+                if self.commit(cfg) {
+                    self.log(format!(
+                        "device {} renamed {:?}",
+                        name.device_id,
+                        name.text()
+                    ));
+                }
             }
             SimCommand::DropSpecAcks(on) => {
                 self.log(format!(

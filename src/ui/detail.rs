@@ -34,8 +34,12 @@ fn act(key: &'static str, action: impl Into<String>, enabled: bool) -> KeyAction
 pub fn key_actions(c: &Circuit) -> Vec<KeyAction> {
     let faulted = matches!(c.state, CircuitState::Fault(_));
     let live = c.state != CircuitState::Unknown;
-    let reset = act("r", "reset fault", faulted);
-    match c.kind {
+    let reset = act("r", "reset fault", faulted && !c.faulted_again);
+    // AC 43.13-1B: reset once, then find the cause; a second reset is asked for.
+    let again = c
+        .faulted_again
+        .then(|| act("Y", "reset again: it faulted again after a reset", true));
+    let mut keys = match c.kind {
         CircuitKind::Starter => vec![
             act("o/f", "starter is switched by the VP-X only", false),
             reset,
@@ -68,7 +72,9 @@ pub fn key_actions(c: &Circuit) -> Vec<KeyAction> {
             ),
             reset,
         ],
-    }
+    };
+    keys.extend(again);
+    keys
 }
 
 /// Non-breaking space: a wrapped line never splits a key from what it does.

@@ -118,7 +118,9 @@ fn write_line(buf: &mut Buffer, inner: Rect, y: u16, cells: &[(&str, Style)]) {
     }
 }
 
-pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState) {
+/// `rereading`: the unit's names and settings are being read again after a loss
+/// (`model::reread`), which the title says.
+pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState, rereading: bool) {
     // `None` is the flaps & trim group header.
     let mut lines: Vec<Option<&Circuit>> = Vec::with_capacity(rows.len() + 1);
     let mut selected_index = None;
@@ -153,10 +155,13 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState)
     }
     let more =
         (!more.is_empty()).then(|| Line::styled(format!(" {} ", more.join(" ")), theme::caution()));
-    let titles = [
+    let mut titles = vec![
         Line::styled(" Devices ", theme::panel_title()),
         Line::styled(format!("{sort} "), theme::label()),
     ];
+    if rereading {
+        titles.push(Line::styled("re-reading settings… ", theme::caution()));
+    }
     let inner = Panel {
         right_side: true,
         border: theme::border(),

@@ -19,7 +19,8 @@ pub const KEYS: &[(&str, &str)] = &[
     ("any key", "stops a running motor (and does nothing else)"),
     ("o  Enter", "switch the selected device on (DEVICE_POWER)"),
     ("f", "switch the selected device off (DEVICE_POWER)"),
-    ("r", "reset the selected device's fault (DEVICE_CLEAR)"),
+    // One line for both, so the list still fits 80×24.
+    ("r  Y", "reset the fault (DEVICE_CLEAR); Y: confirm a 2nd"),
     ("R", "reset the system fault (DEVICE_CLEAR 255)"),
     ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
     ("s", "sort by pin / by name"),

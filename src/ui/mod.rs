@@ -41,6 +41,15 @@ pub const MIN_HEIGHT: u16 = 24;
 /// 21 wide, room for DEVICE_NAME's 16 characters (ICD Table 21).
 pub const LIST_MAX_WIDTH: u16 = 66;
 
+/// The width of the left column (the device list, the detail, and on short terminals
+/// the link lines) on a terminal `width` columns wide. The list needs ~56 columns for
+/// its seven columns, and past [`LIST_MAX_WIDTH`] its name column would only stretch
+/// blank space between a name and its pin: a wide terminal's extra width goes to the
+/// right-hand panels (gauges, plot, events) instead.
+pub fn left_column_width(width: u16) -> u16 {
+    (width * 55 / 100).clamp(56, LIST_MAX_WIDTH)
+}
+
 /// The rows of the device list in display order (flaps and trims grouped apart from
 /// the rest; by pin or alphabetical per `view.sort`) — the app uses it to move the
 /// selection.
@@ -75,10 +84,9 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
         .selected
         .and_then(|id| rows.iter().find(|c| c.id == id));
     let banner = comm_banner::banner(model, now);
-    // Short terminals get the link as one line above the keys, leaving the right
-    // column room for the plot.
+    // Tall terminals get the link as a panel in the right column.
     let link_panel = area.height >= 36;
-    let [title, banner_area, body, link_line, footer] = Layout::vertical([
+    let [title, banner_area, body, footer] = Layout::vertical([
         Constraint::Length(1),
         Constraint::Length(comm_banner::height(
             banner.as_ref(),
@@ -86,7 +94,6 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
             area.width,
         )),
         Constraint::Fill(1),
-        Constraint::Length(u16::from(!link_panel)),
         Constraint::Length(key_bar::height(view, area.width)),
     ])
     .areas(area);
@@ -95,21 +102,29 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
         comm_banner::render(frame, banner_area, b);
     }
     key_bar::render(frame, footer, view);
-    if !link_panel {
-        link_health::render_line(frame, link_line, model, now);
-    }
 
-    // The list needs ~56 columns for its seven columns, and past 66 its name column
-    // would only stretch blank space between a name and its pin: a wide terminal's
-    // extra width goes to the right-hand panels (gauges, plot, events) instead.
-    let left_w = (area.width * 55 / 100).clamp(56, LIST_MAX_WIDTH);
+    let left_w = left_column_width(area.width);
     let [left, right] =
         Layout::horizontal([Constraint::Length(left_w), Constraint::Fill(1)]).areas(body);
     let detail_h = if body.height >= 30 { 12 } else { 7 };
-    let [list, detail_area] =
-        Layout::vertical([Constraint::Fill(1), Constraint::Length(detail_h)]).areas(left);
-    device_list::render(frame, list, &rows, view);
+    // Short terminals get the link as lines at the foot of the left column (every row
+    // of the column ends at its edge), leaving the right column room for the plot.
+    let link_rows = if link_panel {
+        0
+    } else {
+        link_health::line_rows(model, now, left_w)
+    };
+    let [list, detail_area, link_line] = Layout::vertical([
+        Constraint::Fill(1),
+        Constraint::Length(detail_h),
+        Constraint::Length(link_rows),
+    ])
+    .areas(left);
+    device_list::render(frame, list, &rows, view, model.rereading().is_some());
     detail::render(frame, detail_area, model, selected);
+    if !link_panel {
+        link_health::render_line(frame, link_line, model, now);
+    }
 
     let [system, switches_area, motors_area, plot_area, link] = Layout::vertical([
         Constraint::Length(system_panel::height(model, now, right.width)),

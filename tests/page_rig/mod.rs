@@ -59,6 +59,18 @@ neutral = 125
 position = 120
 "#;
 
+/// The whole buffer as text, a line per row, for a failure's message.
+pub fn screen_text(buf: &Buffer) -> String {
+    (0..buf.area.height)
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect()
+}
+
 pub type Wire = Arc<Mutex<Vec<(Instant, Vec<u8>)>>>;
 
 /// Joins a pty's master to the sim's pipe end and records what the page sends.
@@ -143,10 +155,16 @@ impl Rig {
     }
 
     pub fn with_options(options: AppOptions) -> Rig {
-        let (sim_side, page_side) = link::duplex_pipe(Duration::from_millis(20));
         let scenario = Scenario::from_toml(SCENARIO).expect("scenario");
+        Rig::with_sim(options, SimOptions::new(scenario))
+    }
+
+    /// The page with `options` against a sim run with `sim_options` (a line paced at
+    /// the real rate, another scenario).
+    pub fn with_sim(options: AppOptions, sim_options: SimOptions) -> Rig {
+        let (sim_side, page_side) = link::duplex_pipe(Duration::from_millis(20));
         let sim = sim::spawn(
-            SimOptions::new(scenario),
+            sim_options,
             Box::new(sim_side.reader),
             Box::new(sim_side.writer),
         );

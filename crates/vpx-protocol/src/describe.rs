@@ -168,13 +168,33 @@ fn switches_on(s: &SwitchInputs) -> String {
     }
 }
 
-/// The switch of a DEVICE_SPEC in words, with the byte that was on the wire where
-/// reading note 10 reads two bytes alike: "always on (255)" for 255, which the page
-/// takes as 11. A mechanic can then see which of the two a real unit uses.
+/// The switch of a DEVICE_SPEC for JSON's `switch`, with the byte that was on the wire
+/// where reading note 10 reads two bytes alike: "always on (255)" for 255, which the
+/// page takes as 11. A mechanic can then see which of the two a real unit uses.
 fn switch_label(m: &DeviceSpec) -> String {
     match m.switch_raw {
         Some(raw) if raw != m.switch_id.to_byte() => format!("{} ({raw})", m.switch_id.label()),
         _ => m.switch_id.label(),
+    }
+}
+
+/// The switch of a DEVICE_SPEC said once, by the byte that was sent, then what it
+/// means: "switch 3 (input 3)", "switch 11 (always on)". Where reading note 10 reads a
+/// byte as another (255 is always on, as 11), the reading says so: "switch 255 (always
+/// on; read as 11)".
+fn switch_text(m: &DeviceSpec) -> String {
+    let read = m.switch_id.to_byte();
+    let sent = m.switch_raw.unwrap_or(read);
+    let meaning = match m.switch_id {
+        SwitchId::Off => "always off".to_string(),
+        SwitchId::Input(n) => format!("input {n}"),
+        SwitchId::AlwaysOn => "always on".to_string(),
+        SwitchId::Unknown(_) => "not a switch id: 0-11".to_string(),
+    };
+    if sent == read {
+        format!("switch {sent} ({meaning})")
+    } else {
+        format!("switch {sent} ({meaning}; read as {read})")
     }
 }
 
@@ -204,11 +224,10 @@ pub fn describe(msg: &Message) -> String {
             }
         ),
         Message::DeviceSpec(m) => format!(
-            "device {}, circuit breaker {} A, switch id {} ({}), current fault {}",
+            "device {}, circuit breaker {} A, {}, current fault {}",
             device_label(m.device_id),
             m.circuit_breaker,
-            m.switch_id.to_byte(),
-            switch_label(m),
+            switch_text(m),
             if m.current_fault {
                 "enabled"
             } else {
@@ -676,7 +695,10 @@ mod tests {
         assert_eq!(spec.switch_id, SwitchId::AlwaysOn);
         assert_eq!(spec.switch_raw, Some(255));
         let text = describe(&p.message);
-        assert!(text.contains("switch id 11 (always on (255))"), "{text}");
+        assert!(
+            text.contains(", switch 255 (always on; read as 11),"),
+            "{text}"
+        );
         let j = to_json(&p.message);
         assert_eq!(
             (&j["switch_id"], &j["switch_raw"], &j["switch"]),
@@ -688,7 +710,7 @@ mod tests {
         // Sent as 11: nothing to add.
         let p = Packet::parse_bytes(&SPEC_SW_11).unwrap();
         let text = describe(&p.message);
-        assert!(text.contains("switch id 11 (always on),"), "{text}");
+        assert!(text.contains(", switch 11 (always on),"), "{text}");
         let j = to_json(&p.message);
         assert_eq!(
             (&j["switch_id"], &j["switch_raw"], &j["switch"]),
