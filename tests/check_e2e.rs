@@ -501,9 +501,11 @@ fn headless_check_prints_results_and_exits_by_what_it_found() {
         "{text}"
     );
     assert!(!sim.stats().powered[6], "Beacon back off");
+    // The check's own files; the audit log of what was sent lives beside them.
     let reports: Vec<_> = std::fs::read_dir(dir.path().join("reports"))
         .unwrap()
         .map(|e| e.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("vpx-check-"))
         .collect();
     assert_eq!(reports.len(), 2, "Markdown and CSV: {reports:?}");
     let md = reports
