@@ -9,39 +9,14 @@
 //! measures longer and prints the figure.
 
 use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 mod common;
-
-struct Kill(Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
+use common::process::{Kill, sim_tcp};
 
 const EXE: &str = env!("CARGO_BIN_EXE_vpx-efis");
-
-/// `vpx-efis sim --tcp 127.0.0.1:0 --scenario install` and its `tcp://` address.
-fn sim() -> (Kill, String) {
-    let mut sim = Command::new(EXE)
-        .args(["sim", "--tcp", "127.0.0.1:0", "--scenario", "install"])
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis sim");
-    let mut addr = String::new();
-    BufReader::new(sim.stdout.take().unwrap())
-        .read_line(&mut addr)
-        .unwrap();
-    assert!(addr.starts_with("tcp://"), "{addr:?}");
-    (Kill(sim), addr.trim().to_string())
-}
 
 /// `vpx-efis check --port ADDR ARGS…` with `stdin`, its config folder in `home`, and
 /// its stdout lines on a channel.
@@ -114,7 +89,7 @@ const NOBODY: &str = "Standard input is at its end (no terminal, /dev/null, a cl
 /// ends at once (exit 2), instead of waiting a day on a closed pipe.
 #[test]
 fn without_yes_and_nobody_to_answer_nothing_is_switched_on() {
-    let (_sim, addr) = sim();
+    let (_sim, addr) = sim_tcp("install");
     let home = tempfile::tempdir().unwrap();
     let reports = home.path().join("reports");
     let (mut child, rx) = check(
@@ -158,7 +133,7 @@ fn a_headless_check_with_stdin_at_its_end_is_idle_and_skips_the_switches() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(3);
-    let (_sim, addr) = sim();
+    let (_sim, addr) = sim_tcp("install");
     let home = tempfile::tempdir().unwrap();
     let reports = home.path().join("reports");
     let (child, rx) = check(
