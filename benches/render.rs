@@ -15,7 +15,9 @@ use criterion::measurement::{Measurement, ValueFormatter};
 use criterion::{Criterion, criterion_group, criterion_main};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
+#[cfg(unix)]
 use ratatui::buffer::Buffer;
+#[cfg(unix)]
 use ratatui::layout::Rect;
 use vpx_efis::model::{Model, Source};
 use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS};
@@ -25,6 +27,7 @@ use vpx_efis::protocol::message::{
     SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
 };
 use vpx_efis::protocol::{FaultCode, Message, Packet};
+#[cfg(unix)]
 use vpx_efis::ui;
 use vpx_efis::ui::palette::{Palette, ThemeChoice, Why};
 use vpx_efis::ui::state::ViewState;

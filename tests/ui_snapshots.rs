@@ -1503,3 +1503,44 @@ fn events_panel_lists_the_persons_own_actions_with_their_origin() {
     }
     insta::assert_snapshot!(t);
 }
+
+/// Issue 24: a full frame of the page as the bytes crossterm's own writer sends a VT
+/// console, the same on every OS: the snapshot is written on Linux and CI checks it
+/// for x86_64-pc-windows-gnu under Wine too. The same escape sequences mean the same
+/// screen on any VT console, which Windows 10 and later have. Each escape starts a
+/// line; `\e` is ESC and `\\` a backslash, so the snapshot is the bytes, readable.
+#[test]
+fn normal_80x24_bytes_through_crossterm_are_the_same_on_every_os() {
+    use ratatui::backend::CrosstermBackend;
+    use ratatui::layout::Rect;
+    use ratatui::{TerminalOptions, Viewport};
+    // On Windows crossterm decides once per process whether the console takes VT
+    // sequences (a Windows 10 console does, once crossterm turns its VT mode on), else
+    // it calls the console API and writes nothing. Here the output is a Vec, not a
+    // console: say it is a VT terminal, as a Windows 10 console is, before any
+    // crossterm command runs in this process (only this test writes through it).
+    #[cfg(windows)]
+    // SAFETY: Windows' environment block is locked by the OS; no other test of this
+    // binary reads TERM.
+    unsafe {
+        std::env::set_var("TERM", "xterm-256color");
+    }
+    let (m, now) = fixtures::normal();
+    let mut bytes = Vec::new();
+    {
+        let mut terminal = Terminal::with_options(
+            CrosstermBackend::new(&mut bytes),
+            TerminalOptions {
+                viewport: Viewport::Fixed(Rect::new(0, 0, 80, 24)),
+            },
+        )
+        .unwrap();
+        terminal
+            .draw(|f| ui::render(f, &m, &view_selecting(EFIS), now))
+            .unwrap();
+    }
+    let text = String::from_utf8(bytes).expect("crossterm writes UTF-8");
+    assert!(text.contains("EFIS"), "the frame was written: {text:?}");
+    let escaped = text.replace('\\', "\\\\").replace('\u{1b}', "\n\\e");
+    insta::assert_snapshot!(escaped);
+}

@@ -480,16 +480,42 @@ pub fn run_headless_with(
     result
 }
 
+/// Standard input as the headless check reads it: the typed lines, and whether it has
+/// ended (`/dev/null`, a closed pipe, cron, CI). An ended channel is no longer
+/// selected on: it is always ready, and selecting on it spun a core at 100 %.
+struct Typed<'a> {
+    lines: &'a Receiver<String>,
+    ended: bool,
+}
+
+/// Why [`pump`] returned.
+enum Pumped {
+    /// `done` became true, or `until` came.
+    Done,
+    Signal(signals::Termination),
+    /// Standard input ended just now: nobody can answer any more.
+    InputEnded,
+}
+
+/// What the headless check says when standard input ends.
+const NOBODY_TO_ANSWER: &str = "Standard input is at its end (no terminal, /dev/null, a closed \
+     pipe): nobody can answer here.";
+
+/// Why the switch step is skipped when standard input has ended.
+const SWITCHES_NEED_A_PERSON: &str = "The switch step, which needs a person to flip each \
+     switch and say when it is done, is skipped.";
+
 /// Waits for wake-ups, typed lines or a signal until `until` or `done`.
 fn pump(
     app: &mut App,
-    lines: &Receiver<String>,
+    input: &mut Typed,
     terminations: &Receiver<signals::Termination>,
     until: Instant,
     mut on_line: impl FnMut(&mut App, String),
     done: impl Fn(&App) -> bool,
     mut after_tick: impl FnMut(&mut App),
-) -> Option<signals::Termination> {
+) -> Pumped {
+    let never = crossbeam_channel::never();
     loop {
         let now = Instant::now();
         app.tick(now);
@@ -498,13 +524,20 @@ fn pump(
         app.last_draw = Some(now);
         after_tick(app);
         if done(app) || now >= until {
-            return None;
+            return Pumped::Done;
         }
         let deadline = app.next_deadline(now).min(until);
+        let lines = if input.ended { &never } else { input.lines };
         select! {
             recv(app.wake_rx) -> w => if let Ok(w) = w { app.on_wake(w, Instant::now()) },
-            recv(lines) -> l => if let Ok(l) = l { on_line(app, l) },
-            recv(terminations) -> t => if let Ok(t) = t { return Some(t) },
+            recv(lines) -> l => match l {
+                Ok(l) => on_line(app, l),
+                Err(_) => {
+                    input.ended = true;
+                    return Pumped::InputEnded;
+                }
+            },
+            recv(terminations) -> t => if let Ok(t) = t { return Pumped::Signal(t) },
             default(deadline.saturating_duration_since(Instant::now())) => {}
         }
         while let Ok(w) = app.wake_rx.try_recv() {
@@ -529,17 +562,28 @@ fn headless_loop(
         "Installation check on {port}: waiting for the unit's settings…"
     )?;
     let ready = |app: &App| plan::ready(&app.model(), Instant::now()).is_ok();
-    if let Some(t) = pump(
-        app,
+    let mut input = Typed {
         lines,
-        terminations,
-        Instant::now() + READY_WITHIN,
-        |_, _| {},
-        ready,
-        |_| {},
-    ) {
-        writeln!(out, "Stopped by {} before anything was touched.", t.name())?;
-        return Ok(CheckEnd::Interrupted);
+        ended: false,
+    };
+    let ready_by = Instant::now() + READY_WITHIN;
+    loop {
+        match pump(
+            app,
+            &mut input,
+            terminations,
+            ready_by,
+            |_, _| {},
+            ready,
+            |_| {},
+        ) {
+            Pumped::InputEnded => continue,
+            Pumped::Signal(t) => {
+                writeln!(out, "Stopped by {} before anything was touched.", t.name())?;
+                return Ok(CheckEnd::Interrupted);
+            }
+            Pumped::Done => break,
+        }
     }
     if let Err(why) = plan::ready(&app.model(), Instant::now()) {
         anyhow::bail!(
@@ -563,9 +607,19 @@ fn headless_loop(
         .into());
     }
     let yes = h.options.yes;
+    let mut options = h.options;
+    // Nobody to flip the switches: that step is skipped before the plan is made, so
+    // the plan, the report and the summary all say so.
+    let skips_switches = input.ended && yes && !options.skip.contains(&Step::Switches);
+    if skips_switches {
+        options.skip.push(Step::Switches);
+    }
     app.set_check_report_dir(h.report.clone());
-    app.open_check(h.options, Instant::now());
+    app.open_check(options, Instant::now());
     print_plan(app.check_view(), out)?;
+    if skips_switches {
+        writeln!(out, "{NOBODY_TO_ANSWER} {SWITCHES_NEED_A_PERSON}")?;
+    }
     if !yes {
         writeln!(
             out,
@@ -573,69 +627,101 @@ fn headless_loop(
              Type yes and Enter to start; anything else stops here."
         )?;
         out.flush()?;
-        let signal = pump(
-            app,
-            lines,
-            terminations,
-            Instant::now() + Duration::from_secs(24 * 3600),
-            |app, l| {
-                let cmd = if matches!(l.to_ascii_lowercase().as_str(), "y" | "yes") {
-                    Command::Enter
-                } else {
-                    Command::Stop
-                };
-                app.check_command(cmd, Instant::now());
-            },
-            |app| app.check_view().step != Step::Confirm || app.check_finished(),
-            |_| {},
-        );
-        if let Some(t) = signal {
-            app.check_interrupt(Cause::Signal(t.name().into()), false, Instant::now());
+        let confirmed = |app: &App| app.check_view().step != Step::Confirm || app.check_finished();
+        let mut pumped = Pumped::InputEnded;
+        if !input.ended {
+            pumped = pump(
+                app,
+                &mut input,
+                terminations,
+                Instant::now() + Duration::from_secs(24 * 3600),
+                |app, l| {
+                    let cmd = if matches!(l.to_ascii_lowercase().as_str(), "y" | "yes") {
+                        Command::Enter
+                    } else {
+                        Command::Stop
+                    };
+                    app.check_command(cmd, Instant::now());
+                },
+                confirmed,
+                |_| {},
+            );
+        }
+        match pumped {
+            Pumped::Signal(t) => {
+                app.check_interrupt(Cause::Signal(t.name().into()), false, Instant::now());
+            }
+            // Only a person at the keyboard or `--yes` allows power.
+            Pumped::InputEnded if !confirmed(app) => {
+                writeln!(
+                    out,
+                    "{NOBODY_TO_ANSWER} Nobody typed yes, so nothing is switched on. To run \
+                     the check with nobody at the keyboard, give --yes."
+                )?;
+                app.check_command(Command::Stop, Instant::now());
+            }
+            _ => {}
         }
     }
-    writeln!(
-        out,
-        "Where you must act, the check asks. Type Enter to go on, s to skip an item, S to \
+    if !app.check_finished() {
+        writeln!(
+            out,
+            "Where you must act, the check asks. Type Enter to go on, s to skip an item, S to \
          skip the rest of a step, r to retry, q to stop (it puts back what it changed)."
-    )?;
-    let mut news = |app: &mut App| {
-        for line in app.take_check_news() {
-            let _ = writeln!(out, "{line}");
-        }
-        let _ = out.flush();
-    };
+        )?;
+    }
     let far = Instant::now() + Duration::from_secs(24 * 3600);
     let on_line = |app: &mut App, l: String| {
         if let Some(cmd) = typed(&l) {
             app.check_command(cmd, Instant::now());
         }
     };
-    if let Some(t) = pump(
-        app,
-        lines,
-        terminations,
-        far,
-        on_line,
-        App::check_finished,
-        &mut news,
-    ) {
-        // Ctrl-C or SIGTERM: stop the motor, switch the circuit back off, and wait
-        // (a few seconds at most) to see it off before saying what is left.
-        app.check_interrupt(Cause::Signal(t.name().into()), true, Instant::now());
-        let soon = Instant::now() + Duration::from_secs(5);
-        pump(
+    loop {
+        let news = |app: &mut App| print_news(app, out);
+        match pump(
             app,
-            lines,
+            &mut input,
             terminations,
-            soon,
-            |_, _| {},
+            far,
+            on_line,
             App::check_finished,
-            &mut news,
-        );
-        app.check_interrupt(Cause::Signal(t.name().into()), false, Instant::now());
+            news,
+        ) {
+            Pumped::InputEnded => {
+                // Standard input ended part way: the switch step, if it is under way,
+                // is skipped (what it found stands); the rest needs nobody.
+                let switching = app.check_view().step == Step::Switches;
+                if switching {
+                    writeln!(out, "{NOBODY_TO_ANSWER} {SWITCHES_NEED_A_PERSON}")?;
+                } else {
+                    writeln!(out, "{NOBODY_TO_ANSWER}")?;
+                }
+                if switching {
+                    app.check_command(Command::SkipStep, Instant::now());
+                }
+            }
+            Pumped::Signal(t) => {
+                // Ctrl-C or SIGTERM: stop the motor, switch the circuit back off, and
+                // wait (a few seconds at most) to see it off before saying what is left.
+                app.check_interrupt(Cause::Signal(t.name().into()), true, Instant::now());
+                let soon = Instant::now() + Duration::from_secs(5);
+                while let Pumped::InputEnded = pump(
+                    app,
+                    &mut input,
+                    terminations,
+                    soon,
+                    |_, _| {},
+                    App::check_finished,
+                    |app: &mut App| print_news(app, out),
+                ) {}
+                app.check_interrupt(Cause::Signal(t.name().into()), false, Instant::now());
+                break;
+            }
+            Pumped::Done => break,
+        }
     }
     app.write_check_report();
-    news(app);
+    print_news(app, out);
     let view = app.check_view().clone();
     print_summary(&view, out)?;
     let end = CheckEnd::of(&view);
@@ -648,6 +734,14 @@ fn headless_loop(
         }
         _ => Ok(end),
     }
+}
+
+/// Prints the check's results that came since the last call, as they came.
+fn print_news(app: &mut App, out: &mut dyn std::io::Write) {
+    for line in app.take_check_news() {
+        let _ = writeln!(out, "{line}");
+    }
+    let _ = out.flush();
 }
 
 /// `vpx-efis check` on this process's terminal.

@@ -3,5 +3,6 @@
 #![allow(dead_code)]
 
 pub mod cpu;
+pub mod process;
 pub mod sim_process;
 pub mod xfsp_peer;
