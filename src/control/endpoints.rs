@@ -287,6 +287,10 @@ pub fn probe(motor: Motor, direction: Direction, pos: u8, ft: &FlapTrimStatus) -
     })
 }
 
+/// After a probe's stop, how long before its way is judged: two FLAP_TRIM_STATUS
+/// (10 Hz), the later one heard after the motor stopped.
+pub const PROBE_SETTLE: Duration = Duration::from_millis(200);
+
 /// Whether a run that keeps to the endpoints may start `direction` now, in words.
 pub fn permit(
     model: &Model,
