@@ -79,7 +79,7 @@ pub struct Controller {
     starting_way: Option<i32>,
     /// A key's run going as probes until its motor shows its way
     /// ([`Controller::probe_step`]).
-    probe: Option<Probing>,
+    probe: Option<endpoints::Probing>,
     /// The terminal is too small to show the page ([`Controller::set_page_hidden`]).
     hidden: bool,
     /// The terminal lost focus and has not said it has it back.
@@ -88,16 +88,6 @@ pub struct Controller {
     /// a reset: `Y` as the next key, within [`CONFIRM_RESET_WITHIN`], sends the reset
     /// all the same.
     reset_asked: Option<(u8, Instant)>,
-}
-
-/// A key's run started near the endpoint behind it with its motor's way not known:
-/// it goes as short probes ([`endpoints::probe`]) until the position shows the way.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Probing {
-    motor: Motor,
-    direction: Direction,
-    /// The position when the run started: the way is judged from it.
-    start: u8,
 }
 
 /// How long after `r` was refused a second reset may be confirmed with `Y`: long
@@ -244,7 +234,7 @@ impl Controller {
     /// A key's run that keeps to the endpoints, its motor's way not known, started
     /// within [`endpoints::NEAR`] of the endpoint behind it: a motor wired the wrong
     /// way would pass that endpoint between two positions, so the run goes as a probe
-    /// first ([`endpoints::probe`]), as the installation check's runs do. Returns the
+    /// first ([`endpoints::Probing`]), as the installation check's runs do. Returns the
     /// notice.
     fn start_probe(
         &mut self,
@@ -254,34 +244,17 @@ impl Controller {
         now: Instant,
         out: &mut Outcome,
     ) -> Option<String> {
-        let st = model
-            .flap_trim
-            .as_ref()
-            .filter(|st| st.age(now) <= endpoints::POSITION_FRESH)?;
-        let start = endpoints::position(motor, &st.value);
-        let length = endpoints::probe(motor, direction, start, &st.value)?;
+        let (probing, length) = endpoints::Probing::start(model, motor, direction, now)?;
         out.packets.extend(self.streamer.probe(now, length));
-        self.probe = Some(Probing {
-            motor,
-            direction,
-            start,
-        });
-        Some(format!(
-            "{} near its {} endpoint: trying a short run first",
-            motor.name(),
-            endpoints::opposite(direction).name()
-        ))
+        self.probe = Some(probing);
+        Some(probing.words())
     }
 
     /// A probing run, once its probe stopped and a position came after the stop
-    /// ([`endpoints::PROBE_SETTLE`]): gone the commanded way, it streams on as any
+    /// ([`endpoints::Probing::next`]): gone the commanded way, it streams on as any
     /// run; gone the other way, it is stopped as moving against its command (with
-    /// the words of [`against`] and its record); not moved, another probe from where
-    /// it is. The decision for a motor that never shows its way: it is probed again
-    /// for as long as its key is held (each probe sized so the fastest motor cannot
-    /// pass the endpoint behind it beyond [`endpoints::NOISE`]); a slow motor creeps
-    /// off in probes, a stuck one moves nothing, and the run's every other end (the
-    /// key let go, the run cap) still ends it.
+    /// the words of [`against`] and its record); not moved, another probe, for as
+    /// long as its key is held.
     fn probe_step(&mut self, model: &Model, now: Instant) -> Vec<Packet> {
         let Some(p) = self.probe else {
             return Vec::new();
@@ -290,27 +263,17 @@ impl Controller {
             self.probe = None;
             return Vec::new();
         }
-        let (Some(paused), Some(st)) = (self.streamer.paused_since(), model.flap_trim.as_ref())
-        else {
-            return Vec::new();
-        };
-        if now < paused + endpoints::PROBE_SETTLE || st.at < paused + endpoints::PROBE_SETTLE / 2 {
-            return Vec::new();
-        }
-        let ft = &st.value;
-        let pos = endpoints::position(p.motor, ft);
-        let went = (i32::from(pos) - i32::from(p.start))
-            * endpoints::expected_sign(p.motor, p.direction, ft);
-        if went < 0 {
-            self.probe = None;
-            self.against.record(p.motor, p.direction);
-            return self.stop(now, StopReason::MovedAgainst(p.direction));
-        }
-        match endpoints::probe(p.motor, p.direction, pos, ft).filter(|_| went == 0) {
-            Some(length) => self.streamer.probe(now, length),
-            None => {
+        match p.next(model, self.streamer.paused_since(), now) {
+            endpoints::ProbeNext::Wait => Vec::new(),
+            endpoints::ProbeNext::Again(length) => self.streamer.probe(now, length),
+            endpoints::ProbeNext::Go => {
                 self.probe = None;
                 self.streamer.resume(now)
+            }
+            endpoints::ProbeNext::Against => {
+                self.probe = None;
+                self.against.record(p.motor, p.direction);
+                self.stop(now, StopReason::MovedAgainst(p.direction))
             }
         }
     }

@@ -502,3 +502,42 @@ fn a_motor_that_never_shows_its_way_is_only_probed_while_held() {
     assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Released);
     assert_eq!(r.unit.snapshot(r.now).roll_trim_position, 205);
 }
+
+/// The XFSp gateway's drive, the same reversed trim parked at 220: a network run
+/// nose-up starts as probes and never takes it past 220 beyond the one count of
+/// noise; stopped as moving against its command, said in the event log.
+#[test]
+fn the_gateway_probes_a_network_run_near_the_endpoint_behind_it() {
+    let mut r = rig(220);
+    let mut drive = MotorDrive::new(StreamerConfig::default());
+    drive.share_against(r.ctl.against());
+    let from = r.sent.len();
+    let mut seen = vec![r.pitch_pos()];
+    for i in 0..150 {
+        if i % 25 == 0 {
+            drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
+        }
+        let p = drive.tick(&mut r.model, r.now);
+        r.send(p);
+        seen.extend(r.run_watching(10, PITCH));
+    }
+    let most = *seen.iter().max().unwrap();
+    assert!(most <= 221, "past 220 to {most}: {seen:?}");
+    assert!(drive.running().is_none());
+    let events: Vec<&str> = r.model.events.iter().map(|e| e.text.as_str()).collect();
+    assert!(
+        events
+            .iter()
+            .any(|e| e.contains("pitch trim near its down endpoint: trying a short run first")),
+        "{events:?}"
+    );
+    assert!(
+        events
+            .iter()
+            .any(|e| e.contains("it moved down when asked up: its leads or its sensor")),
+        "{events:?}"
+    );
+    let moves = r.trim_moves_since(from);
+    assert!(moves[0] && !moves.last().unwrap(), "{moves:?}");
+    assert_eq!(r.ctl.against().seen(PITCH), Some(Direction::Up));
+}
