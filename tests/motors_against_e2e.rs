@@ -157,6 +157,24 @@ impl Rig {
             .collect()
     }
 
+    /// The runs since `mark` started and ended with a stop on the wire, and the page
+    /// says the pitch trim was stopped moving against its command.
+    fn stopped_moving_down_when_asked_up(&mut self, mark: u64) {
+        let moves = self.moves_since(mark);
+        assert!(
+            moves.first() == Some(&true) && moves.last() == Some(&false),
+            "{moves:?}"
+        );
+        let screen = self.screen();
+        assert!(
+            screen.contains(
+                "pitch trim moved down when asked up: its leads or its sensor may be swapped; \
+                 stopped"
+            ),
+            "{screen}"
+        );
+    }
+
     /// The page as drawn at 120×40, its rows trimmed and joined by spaces (a long
     /// notice wraps over rows).
     fn screen(&mut self) -> String {
@@ -199,18 +217,7 @@ fn install_a_reversed_pitch_trim_held_up_is_stopped_refused_and_kept_off_its_end
         *seen.last().unwrap() == most || *seen.last().unwrap() + 1 >= most,
         "{seen:?}"
     );
-    let moves = r.moves_since(mark);
-    assert!(
-        moves.first() == Some(&true) && moves.last() == Some(&false),
-        "{moves:?}"
-    );
-    let screen = r.screen();
-    assert!(
-        screen.contains(
-            "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped"
-        ),
-        "{screen}"
-    );
+    r.stopped_moving_down_when_asked_up(mark);
 
     // Refused both ways until confirmed: nothing on the wire.
     r.wait(3200);
@@ -319,18 +326,7 @@ fn install_a_reversed_pitch_trim_parked_at_its_endpoint_is_probed_not_driven_pas
     let most = *seen.iter().max().unwrap();
     eprintln!("install parked at 220: u: down to {most}");
     assert!(most <= 221, "past 220 to {most}: {seen:?}");
-    let moves = r.moves_since(mark);
-    assert!(
-        moves.first() == Some(&true) && moves.last() == Some(&false),
-        "{moves:?}"
-    );
-    let screen = r.screen();
-    assert!(
-        screen.contains(
-            "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped"
-        ),
-        "{screen}"
-    );
+    r.stopped_moving_down_when_asked_up(mark);
 }
 
 /// The same trim wired right, parked at 220: `u` probes, sees it go up, and runs on
