@@ -42,8 +42,6 @@ pub use crate::control::endpoints::MOVED;
 pub const AT_LIMIT: i32 = 3;
 /// Probes in a row that showed no way before a test run is taken as not moving.
 const MAX_PROBES: u8 = 4;
-/// After a probe's stop, long enough for two FLAP_TRIM_STATUS (10 Hz).
-const PROBE_SETTLE: Duration = Duration::from_millis(200);
 /// Put back when it ends within this many counts of where it was.
 pub const BACK_WITHIN: i32 = 3;
 
@@ -324,7 +322,7 @@ impl CheckFlow {
                     Some(StopReason::RunDone) | None => {
                         // A probe only needs the next position after its stop.
                         let settle = match item.rest {
-                            Some(_) => PROBE_SETTLE.min(item.settle),
+                            Some(_) => endpoints::PROBE_SETTLE.min(item.settle),
                             None => item.settle,
                         };
                         item.stage = Stage::Settle {

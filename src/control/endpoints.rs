@@ -287,6 +287,97 @@ pub fn probe(motor: Motor, direction: Direction, pos: u8, ft: &FlapTrimStatus) -
     })
 }
 
+/// After a probe's stop, how long before its way is judged: two FLAP_TRIM_STATUS
+/// (10 Hz), the later one heard after the motor stopped.
+pub const PROBE_SETTLE: Duration = Duration::from_millis(200);
+
+/// A run going as probes ([`probe`]) until its position shows its way: a key's run
+/// at the page ([`super::Controller`]) or a network run (`xfsp::drive`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Probing {
+    pub motor: Motor,
+    pub direction: Direction,
+    /// The position when the run started: the way is judged from it.
+    pub start: u8,
+}
+
+/// What a probing run does next ([`Probing::next`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProbeNext {
+    /// Still moving, or waiting for a position heard after its stop.
+    Wait,
+    /// It went the commanded way: it streams on as any run.
+    Go,
+    /// It went the other way: stopped as moving against its command.
+    Against,
+    /// It did not move: another probe this long, from where it is.
+    Again(Duration),
+}
+
+impl Probing {
+    /// The probe a run of `motor` `direction` starts as, with its length, if the
+    /// run's way is not known and it starts within [`NEAR`] of the endpoint behind
+    /// it on a fresh position; `None` for a run that starts as any run.
+    pub fn start(
+        model: &Model,
+        motor: Motor,
+        direction: Direction,
+        now: Instant,
+    ) -> Option<(Probing, Duration)> {
+        let st = model
+            .flap_trim
+            .as_ref()
+            .filter(|st| st.age(now) <= POSITION_FRESH)?;
+        let start = position(motor, &st.value);
+        let length = probe(motor, direction, start, &st.value)?;
+        Some((
+            Probing {
+                motor,
+                direction,
+                start,
+            },
+            length,
+        ))
+    }
+
+    /// After the probe's stop (`paused`, when it went out) and [`PROBE_SETTLE`], with
+    /// a position heard at least half of that after the stop: which way it went
+    /// from its start. The decision for a motor that never shows its way: another
+    /// probe, for as long as the run lasts (each sized so the fastest motor cannot
+    /// pass the endpoint behind it beyond [`NOISE`]); a slow motor creeps off in
+    /// probes, a stuck one moves nothing, and the run's every other end (its key let
+    /// go, its requests stopping, the run cap) still ends it.
+    pub fn next(&self, model: &Model, paused: Option<Instant>, now: Instant) -> ProbeNext {
+        let (Some(paused), Some(st)) = (paused, model.flap_trim.as_ref()) else {
+            return ProbeNext::Wait;
+        };
+        if now < paused + PROBE_SETTLE || st.at < paused + PROBE_SETTLE / 2 {
+            return ProbeNext::Wait;
+        }
+        let ft = &st.value;
+        let pos = position(self.motor, ft);
+        let went = (i32::from(pos) - i32::from(self.start))
+            * expected_sign(self.motor, self.direction, ft);
+        if went < 0 {
+            return ProbeNext::Against;
+        }
+        match probe(self.motor, self.direction, pos, ft).filter(|_| went == 0) {
+            Some(length) => ProbeNext::Again(length),
+            None => ProbeNext::Go,
+        }
+    }
+
+    /// The notice while it probes: "pitch trim near its down endpoint: trying a short
+    /// run first".
+    pub fn words(&self) -> String {
+        format!(
+            "{} near its {} endpoint: trying a short run first",
+            self.motor.name(),
+            opposite(self.direction).name()
+        )
+    }
+}
+
 /// Whether a run that keeps to the endpoints may start `direction` now, in words.
 pub fn permit(
     model: &Model,

@@ -77,6 +77,9 @@ pub struct Controller {
     /// The way the run a key is starting is known to move (a confirmed run), for its
     /// watch.
     starting_way: Option<i32>,
+    /// A key's run going as probes until its motor shows its way
+    /// ([`Controller::probe_step`]).
+    probe: Option<endpoints::Probing>,
     /// The terminal is too small to show the page ([`Controller::set_page_hidden`]).
     hidden: bool,
     /// The terminal lost focus and has not said it has it back.
@@ -105,6 +108,7 @@ impl Controller {
             against: Against::default(),
             confirm: None,
             starting_way: None,
+            probe: None,
             hidden: false,
             unfocused: false,
             reset_asked: None,
@@ -216,8 +220,62 @@ impl Controller {
                 (false, Some(w)) => endpoints::Watch::moving(motor, direction, w),
                 (false, None) => endpoints::Watch::new(motor, direction),
             });
+            self.probe = None;
+            if !ctx.past_endpoints
+                && way.is_none()
+                && let Some(words) = self.start_probe(model, motor, direction, now, &mut out)
+            {
+                out.notice.get_or_insert(words);
+            }
         }
         out
+    }
+
+    /// A key's run that keeps to the endpoints, its motor's way not known, started
+    /// within [`endpoints::NEAR`] of the endpoint behind it: a motor wired the wrong
+    /// way would pass that endpoint between two positions, so the run goes as a probe
+    /// first ([`endpoints::Probing`]), as the installation check's runs do. Returns the
+    /// notice.
+    fn start_probe(
+        &mut self,
+        model: &Model,
+        motor: Motor,
+        direction: Direction,
+        now: Instant,
+        out: &mut Outcome,
+    ) -> Option<String> {
+        let (probing, length) = endpoints::Probing::start(model, motor, direction, now)?;
+        out.packets.extend(self.streamer.probe(now, length));
+        self.probe = Some(probing);
+        Some(probing.words())
+    }
+
+    /// A probing run, once its probe stopped and a position came after the stop
+    /// ([`endpoints::Probing::next`]): gone the commanded way, it streams on as any
+    /// run; gone the other way, it is stopped as moving against its command (with
+    /// the words of [`against`] and its record); not moved, another probe, for as
+    /// long as its key is held.
+    fn probe_step(&mut self, model: &Model, now: Instant) -> Vec<Packet> {
+        let Some(p) = self.probe else {
+            return Vec::new();
+        };
+        if self.streamer.running_key() != Some((p.motor, p.direction)) {
+            self.probe = None;
+            return Vec::new();
+        }
+        match p.next(model, self.streamer.paused_since(), now) {
+            endpoints::ProbeNext::Wait => Vec::new(),
+            endpoints::ProbeNext::Again(length) => self.streamer.probe(now, length),
+            endpoints::ProbeNext::Go => {
+                self.probe = None;
+                self.streamer.resume(now)
+            }
+            endpoints::ProbeNext::Against => {
+                self.probe = None;
+                self.against.record(p.motor, p.direction);
+                self.stop(now, StopReason::MovedAgainst(p.direction))
+            }
+        }
     }
 
     fn handle_mapped(
@@ -379,6 +437,7 @@ impl Controller {
     pub fn tick(&mut self, model: &Model, now: Instant) -> Vec<Packet> {
         let mut out = self.check_model(model, now);
         out.extend(self.streamer.tick(now));
+        out.extend(self.probe_step(model, now));
         if !out.is_empty() && self.streamer.running_key().is_none() {
             // Keep an untaken notice rather than overwrite it with nothing.
             self.pending_notice = self.stopped_notice().or(self.pending_notice.take());

@@ -337,6 +337,12 @@ struct Run {
     /// A timed run ([`MotorStreamer::run_for`]): it ends here, and no key keeps it
     /// alive or ends it early but as any key does (another key, release).
     until: Option<Instant>,
+    /// A probe ([`MotorStreamer::probe`]): the motor is stopped on the wire here,
+    /// the run (and its key) going on.
+    probe_until: Option<Instant>,
+    /// When a probe's stop went out: the run is on, its motor stopped, nothing is
+    /// resent until [`MotorStreamer::resume`].
+    paused: Option<Instant>,
 }
 
 /// Turns motor key events into the move stream. See the module docs.
@@ -480,9 +486,49 @@ impl MotorStreamer {
             started: now,
             last_sent: now,
             until: Some(now + length.min(self.config.max_run)),
+            probe_until: None,
+            paused: None,
         });
         out.push(self.move_packet(key, true));
         out
+    }
+
+    /// Makes the run going on a probe: its motor runs only until `now + length`,
+    /// when [`tick`](Self::tick) sends its stop and the run waits, its key still
+    /// held and every one of its ends still in force, for [`resume`](Self::resume)
+    /// or another probe. A paused run is resumed by this at once.
+    pub fn probe(&mut self, now: Instant, length: Duration) -> Vec<Packet> {
+        let mut out = self.expire(now);
+        if self.run.is_some() {
+            out.extend(self.resume(now));
+        }
+        if let Some(run) = self.run.as_mut() {
+            run.probe_until = Some(now + length);
+        }
+        out
+    }
+
+    /// A run paused after its probe streams again, from now.
+    pub fn resume(&mut self, now: Instant) -> Vec<Packet> {
+        let mut out = self.expire(now);
+        if let Some(run) = self.run.as_mut()
+            && run.paused.take().is_some()
+        {
+            run.last_sent = now;
+            let key = run.key;
+            out.push(self.move_packet(key, true));
+        }
+        out
+    }
+
+    /// When the running motor's probe stopped it, while it waits.
+    pub fn paused_since(&self) -> Option<Instant> {
+        self.run.and_then(|r| r.paused)
+    }
+
+    /// Whether the run is a probe still moving.
+    pub fn probing(&self) -> bool {
+        self.run.is_some_and(|r| r.probe_until.is_some())
     }
 
     /// A key release (key release mode). Any release ends the run: with the key up
@@ -534,7 +580,18 @@ impl MotorStreamer {
     /// [`next_deadline`](Self::next_deadline) (and whenever else is convenient).
     pub fn tick(&mut self, now: Instant) -> Vec<Packet> {
         let mut out = self.expire(now);
+        if let Some(run) = self.run.as_mut()
+            && run.probe_until.is_some_and(|u| now >= u)
+        {
+            // The probe's end: its stop on the wire, the run kept for its key.
+            run.probe_until = None;
+            run.paused = Some(now);
+            run.last_sent = now;
+            let key = run.key;
+            out.push(self.move_packet(key, false));
+        }
         if let Some(run) = self.run
+            && run.paused.is_none()
             && now >= run.last_sent + self.config.resend_period
         {
             out.push(self.move_packet(run.key, true));
@@ -548,8 +605,13 @@ impl MotorStreamer {
     /// When `tick` must next be called; `None` while no motor runs.
     pub fn next_deadline(&self) -> Option<Instant> {
         let run = self.run?;
-        let mut at =
-            (run.last_sent + self.config.resend_period).min(run.started + self.config.max_run);
+        let mut at = run.started + self.config.max_run;
+        if run.paused.is_none() {
+            at = at.min(run.last_sent + self.config.resend_period);
+        }
+        if let Some(p) = run.probe_until {
+            at = at.min(p);
+        }
         if let Some(d) = self.dead_man_deadline() {
             at = at.min(d);
         }
@@ -636,6 +698,8 @@ impl MotorStreamer {
                     started: now,
                     last_sent: now,
                     until: None,
+                    probe_until: None,
+                    paused: None,
                 });
                 out.push(self.move_packet(key, true));
             }
@@ -713,17 +777,19 @@ impl MotorStreamer {
         let Some(run) = self.run else {
             return Vec::new();
         };
-        let reason = if now.saturating_duration_since(run.last_sent) > MAX_WIRE_INTERVAL {
-            Some(StopReason::Starved)
-        } else if now >= run.started + self.config.max_run {
-            Some(StopReason::MaxRunTime)
-        } else if run.until.is_some_and(|u| now >= u) {
-            Some(StopReason::RunDone)
-        } else if self.dead_man_deadline().is_some_and(|d| now >= d) {
-            Some(StopReason::RepeatsStopped)
-        } else {
-            None
-        };
+        let streaming = run.paused.is_none();
+        let reason =
+            if streaming && now.saturating_duration_since(run.last_sent) > MAX_WIRE_INTERVAL {
+                Some(StopReason::Starved)
+            } else if now >= run.started + self.config.max_run {
+                Some(StopReason::MaxRunTime)
+            } else if run.until.is_some_and(|u| now >= u) {
+                Some(StopReason::RunDone)
+            } else if self.dead_man_deadline().is_some_and(|d| now >= d) {
+                Some(StopReason::RepeatsStopped)
+            } else {
+                None
+            };
         reason.map_or_else(Vec::new, |r| self.end(now, r))
     }
 
@@ -857,6 +923,50 @@ mod tests {
         // A direction the motor lacks starts nothing.
         assert_eq!(s.run_for(at(300), PITCH, Direction::Left, ms(500)).len(), 0);
         assert!(s.running().is_none());
+    }
+
+    /// A probe: the run's motor stops on the wire at the probe's end, nothing is
+    /// resent while it waits (no stream, so no gap to keep and no starvation), its
+    /// key's ends still hold; resumed, it streams again at once and every period.
+    #[test]
+    fn a_probe_stops_the_motor_and_keeps_the_run_until_it_resumes() {
+        let t0 = Instant::now();
+        let at = |n| t0 + ms(n);
+        let on = |p: &[Packet]| -> Vec<bool> {
+            p.iter()
+                .map(|p| matches!(p.message, Message::TrimMove(TrimMove { on: true, .. })))
+                .collect()
+        };
+        let mut s = MotorStreamer::new(StreamerConfig {
+            release_mode: ReleaseMode::KeyRelease,
+            ..Default::default()
+        });
+        assert_eq!(on(&s.press(t0, PITCH, Direction::Up)), [true]);
+        assert!(s.probe(t0, ms(20)).is_empty());
+        assert!(s.probing());
+        assert_eq!(s.next_deadline(), Some(at(20)));
+        assert_eq!(on(&s.tick(at(20))), [false], "the probe's stop");
+        assert_eq!(s.paused_since(), Some(at(20)));
+        assert!(s.running().is_some(), "the run goes on");
+        // Waiting: no resend, no starvation, the key's repeats change nothing.
+        for n in [100, 200, 300, 400] {
+            assert!(s.repeat(at(n), PITCH, Direction::Up).is_empty());
+            assert!(s.tick(at(n)).is_empty(), "at {n}");
+        }
+        assert!(s.running().is_some());
+        assert_eq!(on(&s.resume(at(420))), [true]);
+        assert_eq!(s.next_deadline(), Some(at(420) + RESEND_PERIOD));
+        assert_eq!(on(&s.tick(at(545))), [true]);
+        // Another probe from a paused run starts it at once; a release while it
+        // waits ends the run with its stop, as any release does.
+        assert_eq!(on(&s.tick(at(550))), Vec::<bool>::new());
+        assert!(s.probe(at(560), ms(20)).is_empty());
+        assert_eq!(on(&s.tick(at(580))), [false]);
+        assert_eq!(on(&s.probe(at(700), ms(20))), [true]);
+        assert_eq!(on(&s.tick(at(720))), [false]);
+        assert_eq!(on(&s.release(at(800))), [false]);
+        assert!(s.running().is_none());
+        assert_eq!(s.last_stop().unwrap().reason, StopReason::Released);
     }
 
     #[test]

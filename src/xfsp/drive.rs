@@ -13,7 +13,10 @@
 //! runs ([`endpoints::Watch`]): it is refused within [`endpoints::START_ROOM`] of the
 //! endpoint it heads for, and ends at the endpoint ahead (or just before it would pass
 //! it at the rate it is moving), at the endpoint behind once it moves toward it, and on
-//! a position older than [`endpoints::POSITION_FRESH`].
+//! a position older than [`endpoints::POSITION_FRESH`]. Started within
+//! [`endpoints::NEAR`] of the endpoint behind it, it goes as probes until the motor
+//! shows its way ([`endpoints::Probing`]), as the page's keys do, so a motor wired
+//! the wrong way is not driven past that endpoint beyond [`endpoints::NOISE`].
 //!
 //! Like every run, it also ends as soon as it moves [`endpoints::MOVED`] counts against
 //! the direction it was driven, from where it started or (a run here has a target)
@@ -38,7 +41,7 @@
 
 use std::time::{Duration, Instant};
 
-use crate::control::endpoints::{self, Watch};
+use crate::control::endpoints::{self, ProbeNext, Probing, Watch};
 use crate::control::run_state::ReleaseMode;
 use crate::control::{
     Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check, motor_permit,
@@ -93,6 +96,8 @@ struct Active {
     watch: Watch,
     /// The fewest counts it has been short of the target (see [`AWAY`]).
     closest: i32,
+    /// Going as probes until the motor shows its way ([`endpoints::Probing`]).
+    probe: Option<Probing>,
 }
 
 /// How the requests this drive served ended, for the gateway's counters.
@@ -309,6 +314,7 @@ impl MotorDrive {
             }
         }
         out.extend(self.streamer.tick(now));
+        out.extend(self.probe_step(model, now));
         if let Some(a) = self
             .active
             .take_if(|_| self.streamer.running_key().is_none())
@@ -396,6 +402,10 @@ impl MotorDrive {
             if self.streamer.running_key() == Some((motor, direction)) {
                 self.counts.taken += 1;
                 self.slot(motor).latched = None;
+                let probe = Probing::start(model, motor, direction, now).map(|(p, length)| {
+                    out.extend(self.streamer.probe(now, length));
+                    p
+                });
                 self.active = Some(Active {
                     motor,
                     direction,
@@ -403,6 +413,7 @@ impl MotorDrive {
                     raw_target,
                     watch: Watch::new(motor, direction),
                     closest: axis.remaining(motor, direction, pos, raw_target),
+                    probe,
                 });
                 model.log(
                     now,
@@ -415,6 +426,9 @@ impl MotorDrive {
                         req.target
                     ),
                 );
+                if let Some(p) = probe {
+                    model.log(now, LogLevel::Info, format!("XFSp: {}", p.words()));
+                }
             } else {
                 self.counts.refused += 1;
                 model.log(
@@ -430,6 +444,33 @@ impl MotorDrive {
             return out;
         }
         Vec::new()
+    }
+}
+
+impl MotorDrive {
+    /// A probing run ([`endpoints::Probing::next`]), as the page's keys': on the
+    /// commanded way it streams on; the other way it is stopped as moving against
+    /// its command, recorded for every origin; not moved, another probe.
+    fn probe_step(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+        let Some(a) = self.active.as_mut() else {
+            return Vec::new();
+        };
+        let Some(p) = a.probe else {
+            return Vec::new();
+        };
+        match p.next(model, self.streamer.paused_since(), now) {
+            ProbeNext::Wait => Vec::new(),
+            ProbeNext::Again(length) => self.streamer.probe(now, length),
+            ProbeNext::Go => {
+                a.probe = None;
+                self.streamer.resume(now)
+            }
+            ProbeNext::Against => {
+                let reason = StopReason::MovedAgainst(p.direction);
+                self.against.record(p.motor, p.direction);
+                self.stop(model, now, reason)
+            }
+        }
     }
 }
 
