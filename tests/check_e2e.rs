@@ -505,7 +505,12 @@ fn headless_check_prints_results_and_exits_by_what_it_found() {
     let reports: Vec<_> = std::fs::read_dir(dir.path().join("reports"))
         .unwrap()
         .map(|e| e.unwrap().path())
-        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("vpx-check-"))
+        .filter(|p| {
+            p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("vpx-check-")
+        })
         .collect();
     assert_eq!(reports.len(), 2, "Markdown and CSV: {reports:?}");
     let md = reports
