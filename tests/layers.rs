@@ -223,7 +223,11 @@ fn imports(src: &Path) -> Vec<Import> {
             out.push(Import {
                 from: from.clone(),
                 to,
-                file: format!("src/{}", rel.display()),
+                // `/` on every OS, so a report reads the same on Windows.
+                file: std::iter::once("src".to_owned())
+                    .chain(rel.iter().map(|c| c.to_string_lossy().into_owned()))
+                    .collect::<Vec<_>>()
+                    .join("/"),
                 line,
             });
         }

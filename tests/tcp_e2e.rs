@@ -199,7 +199,16 @@ fn flash_over_tcp_programs_and_verifies_the_image() {
     let file = dir.path().join("cu_2.hex");
     std::fs::write(&file, to_hex_text(0x200, &data)).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["flash", "--port", &addr, "--yes", file.to_str().unwrap()])
+        // A small image, not a whole program: --force-image takes that risk (the refusal
+        // itself is tested in flash_cli), so the test stays about the TCP path.
+        .args([
+            "flash",
+            "--port",
+            &addr,
+            "--yes",
+            "--force-image",
+            file.to_str().unwrap(),
+        ])
         .env("VPX_EFIS_CONFIG", "/nonexistent/vpx-efis-test-config.toml")
         .stdin(Stdio::null())
         .output()
