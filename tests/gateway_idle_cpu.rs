@@ -75,8 +75,8 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
     let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
     peer.set_read_timeout(Some(Duration::from_millis(50)))
         .unwrap();
-    // Its configuration folder (and so its audit log) in a folder of the test's own,
-    // not the home of whoever runs the tests.
+    // Its config file (and so its audit log, in reports/ beside it) in a folder of the
+    // test's own, not the home of whoever runs the tests.
     let home = tempfile::tempdir().unwrap();
     let mut gateway = Command::new(exe)
         .env("XDG_CONFIG_HOME", home.path())
@@ -167,7 +167,7 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
         "{lines:?}"
     );
     // Its audit log has the stops it sent at connect and at SIGINT, said as its own.
-    let day = std::fs::read_dir(home.path().join("vpx-efis").join("reports"))
+    let day = std::fs::read_dir(home.path().join("reports"))
         .unwrap()
         .map(|e| e.unwrap().path())
         .find(|p| p.to_string_lossy().ends_with(".jsonl"))

@@ -10,7 +10,9 @@ use crate::model::Circuit;
 /// (`~/.config/vpx-efis` on Linux, `~/Library/Application Support/vpx-efis` on
 /// macOS, `%APPDATA%\vpx-efis\config` on Windows).
 pub fn default_path() -> Option<PathBuf> {
-    directories::ProjectDirs::from("", "", "vpx-efis").map(|d| d.config_dir().join("loads.toml"))
+    // Beside the config file, wherever `VPX_EFIS_CONFIG` puts it, as the README says:
+    // the check's reports and the audit log go beside it too.
+    crate::settings::config_path().and_then(|c| c.parent().map(|d| d.join("loads.toml")))
 }
 
 /// A load file that cannot be used, named with its path (and line).
