@@ -5,7 +5,8 @@
 //!
 //! 1. The codecs, crates of their own: [`protocol`] (`crates/vpx-protocol`, the VP-X
 //!    ICD) and the XFSp wire format (`crates/xfsp`, re-exported in [`xfsp`]); beside
-//!    them the small pure helpers [`program`] (version, usage error, exit codes),
+//!    them the small helpers [`program`] (version, usage error, exit codes),
+//!    [`places`] (where the config file and the files beside it live),
 //!    [`utc`], [`files`] (every file the program writes), [`toml_lines`] and
 //!    [`platform`].
 //! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files),
@@ -36,6 +37,7 @@ pub mod flash;
 pub mod link;
 pub mod loads;
 pub mod model;
+pub mod places;
 pub mod platform;
 pub mod program;
 pub mod settings;

@@ -20,6 +20,7 @@ const LAYERS: &[(&str, &[&str])] = &[
         &[
             "protocol",
             "program",
+            "places",
             "utc",
             "files",
             "toml_lines",

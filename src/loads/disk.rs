@@ -12,7 +12,7 @@ use crate::model::Circuit;
 pub fn default_path() -> Option<PathBuf> {
     // Beside the config file, wherever `VPX_EFIS_CONFIG` puts it, as the README says:
     // the check's reports and the audit log go beside it too.
-    crate::settings::config_path().and_then(|c| c.parent().map(|d| d.join("loads.toml")))
+    crate::places::config_path().and_then(|c| c.parent().map(|d| d.join("loads.toml")))
 }
 
 /// A load file that cannot be used, named with its path (and line).

@@ -14,8 +14,7 @@ use std::path::{Path, PathBuf};
 
 pub use file::{FileProblem, KEYS, Setting, SettingsFile, parse};
 
-/// Overrides the config file's path (tests; several set-ups on one machine).
-pub const CONFIG_ENV: &str = "VPX_EFIS_CONFIG";
+pub use crate::places::{CONFIG_ENV, config_path};
 pub const PORT_ENV: &str = "VPX_EFIS_PORT";
 pub const BAUD_ENV: &str = "VPX_EFIS_BAUD";
 pub const XFSP_CONTROL_ENV: &str = "VPX_EFIS_XFSP_CONTROL";
@@ -76,17 +75,6 @@ impl fmt::Display for ConfigError {
 }
 
 impl std::error::Error for ConfigError {}
-
-/// Where the file lives: `$VPX_EFIS_CONFIG`, else `config.toml` in the OS's
-/// configuration folder (`~/.config/vpx-efis` on Linux, `~/Library/Application
-/// Support/vpx-efis` on macOS, `%APPDATA%\vpx-efis\config` on Windows).
-pub fn config_path() -> Option<PathBuf> {
-    match std::env::var_os(CONFIG_ENV) {
-        Some(p) if !p.is_empty() => Some(PathBuf::from(p)),
-        _ => directories::ProjectDirs::from("", "", "vpx-efis")
-            .map(|d| d.config_dir().join("config.toml")),
-    }
-}
 
 /// Reads the config file; a missing one sets nothing and is no error.
 pub fn load() -> Result<Loaded, ConfigError> {
