@@ -8,9 +8,11 @@
 //! identified by ident *and* format together ([`lookup`]): 0x77 with SINT is AOA,
 //! 0x77 with RANGE is AOAR.
 //!
-//! The table was transcribed from the draft mechanically; the test at the bottom
-//! re-reads the copy of the draft the repository carries, `spec/xfsp-draft-00.txt` (in this crate),
-//! and checks it entry by entry.
+//! The table was transcribed from the draft mechanically, one row per ident: the
+//! `idents!` macro makes both the ident's `pub const` and its [`PARAMS`] row from
+//! it. The test at the bottom re-reads the copy of the draft the repository
+//! carries, `spec/xfsp-draft-00.txt` (in this crate), and checks every row against
+//! it: ident, name, description, unit, subunit, format and order.
 
 use super::format::FormatId;
 
@@ -67,2380 +69,268 @@ pub fn name(ident: Ident) -> Option<&'static str> {
     lookup_ident(ident).map(|p| p.name)
 }
 
-/// GOAROUND: Go around requested
-pub const GOAROUND: Ident = Ident(0x00);
-/// P-ALT: Pressure Altitude
-pub const P_ALT: Ident = Ident(0x01);
-/// T-ALT: True Altitude
-pub const T_ALT: Ident = Ident(0x02);
-/// IAS: Indicated Airspeed
-pub const IAS: Ident = Ident(0x03);
-/// CAS: Calibrated Airspeed
-pub const CAS: Ident = Ident(0x04);
-/// CASMSG: Crew Alerting System Message
-pub const CASMSG: Ident = Ident(0x05);
-/// THROTPOS: Throttle position
-pub const THROTPOS: Ident = Ident(0x06);
-/// INAIR: Are we in the air (vs. on the ground)
-pub const INAIR: Ident = Ident(0x07);
-/// BARO: Current barometric setting
-pub const BARO: Ident = Ident(0x08);
-/// CLTPOS: Collective Position
-pub const CLTPOS: Ident = Ident(0x09);
-/// CLTPOSREQ: A/P Requested Collective Position
-pub const CLTPOSREQ: Ident = Ident(0x0a);
-/// MAGHDG: Magnetic Heading
-pub const MAGHDG: Ident = Ident(0x0b);
-/// MAGCRS: Magnetic Course (via RNAV)
-pub const MAGCRS: Ident = Ident(0x0c);
-/// TRUECRS: True Course (via RNAV)
-pub const TRUECRS: Ident = Ident(0x0d);
-/// MAGDTK: Desired Course (via RNAV)
-pub const MAGDTK: Ident = Ident(0x0e);
-/// TRUEDTK: Desired course (via RNAV)
-pub const TRUEDTK: Ident = Ident(0x0f);
-/// LAT: Current position latitude
-pub const LAT: Ident = Ident(0x10);
-/// LON: Current position longitude
-pub const LON: Ident = Ident(0x11);
-/// RNAVALT: Altitude measured by RNAV
-pub const RNAVALT: Ident = Ident(0x12);
-/// ROLL: Current degrees of roll, -18000 being being upside down towards left, 18000 being upside down to the right
-pub const ROLL: Ident = Ident(0x13);
-/// PITCH: Current degrees of pitch, 9000 being straight up, -9000 being straight down
-pub const PITCH: Ident = Ident(0x14);
-/// YAW: Yaw/Inclination as measured in G force
-pub const YAW: Ident = Ident(0x15);
-/// FUELTOT: Computed remaining fuel (divisor may be overridden by fuel type in FUELLEVLR)
-pub const FUELTOT: Ident = Ident(0x16);
-/// RNAVHFOM: Horizontal Figure of Merit
-pub const RNAVHFOM: Ident = Ident(0x17);
-/// RNAVVFOM: Vertical Figure of Merit
-pub const RNAVVFOM: Ident = Ident(0x18);
-/// RNAVHPL: Horizontal Protection Level
-pub const RNAVHPL: Ident = Ident(0x19);
-/// RNAVVPL: Vertical Protection Level
-pub const RNAVVPL: Ident = Ident(0x1a);
-/// IASRT: Indicated Airspeed Rate of Change
-pub const IASRT: Ident = Ident(0x1b);
-/// KBDSEL: Activate the named on-screen keyboard or none if empty
-pub const KBDSEL: Ident = Ident(0x1c);
-/// KEYPRESS: Send the FMS encoded key press to the given display
-pub const KEYPRESS: Ident = Ident(0x1d);
-/// SURFPOS: Position of arbitrary control surface
-pub const SURFPOS: Ident = Ident(0x1e);
-/// SURFREQ: Requested control surface position
-pub const SURFREQ: Ident = Ident(0x1f);
-/// SURFTORQUE: Aerodynamic torque applied to a control surface relative to movement
-pub const SURFTORQUE: Ident = Ident(0x20);
-/// SURFFORCE: Aerodynamic force applied to a control surface relative to movement
-pub const SURFFORCE: Ident = Ident(0x21);
-/// WINDSPD: Wind Speed
-pub const WINDSPD: Ident = Ident(0x22);
-/// WINDBRG: True Bearing from which wind blows
-pub const WINDBRG: Ident = Ident(0x23);
-/// COMFREQKHZ: Communication Frequency
-pub const COMFREQKHZ: Ident = Ident(0x24);
-/// NAVFREQKHZ: Navigation Frequency
-pub const NAVFREQKHZ: Ident = Ident(0x25);
-/// COMVOL: Communication Volume (0-100)
-pub const COMVOL: Ident = Ident(0x26);
-/// NAVVOL: Communication Volume (0-100)
-pub const NAVVOL: Ident = Ident(0x27);
-/// COMSQL: Communication Squelch (0-100)
-pub const COMSQL: Ident = Ident(0x28);
-/// MUX: Selected multiplexer input or output
-pub const MUX: Ident = Ident(0x29);
-/// ICSVOL: Intercom Volume (0-100)
-pub const ICSVOL: Ident = Ident(0x2a);
-/// COMSTATE: COM radio state
-pub const COMSTATE: Ident = Ident(0x2b);
-/// ICSRXCOMS: Which COM Radios to Monitor (mask)
-pub const ICSRXCOMS: Ident = Ident(0x2c);
-/// ICSRXNAVS: Which NAV Radios to Monitor (mask)
-pub const ICSRXNAVS: Ident = Ident(0x2d);
-/// ICSMODE: Intercom Mode
-pub const ICSMODE: Ident = Ident(0x2e);
-/// ICSTXCOMS: Which COM Radios to Transmit (mask)
-pub const ICSTXCOMS: Ident = Ident(0x2f);
-/// DATE: Date in YYYY-MM-DD format
-pub const DATE: Ident = Ident(0x30);
-/// GLOAD: Current Normal to Aircraft Loading
-pub const GLOAD: Ident = Ident(0x31);
-/// RATEOFTURN: Turn Coordinator Rate Per Second
-pub const RATEOFTURN: Ident = Ident(0x32);
-/// GROUNDSPEED: Groundspeed
-pub const GROUNDSPEED: Ident = Ident(0x33);
-/// VSPEED: Vertical speed
-pub const VSPEED: Ident = Ident(0x34);
-/// XPDRIDENT: XPDR Ident request (USERSELECT only). Non-standby transponders must IDENT regardless of UNIT. Used only to request IDENT, but IDENT state reported in XPDRMODE
-pub const XPDRIDENT: Ident = Ident(0x35);
-/// XPDRRPS: XPDR Replies per second (normalized)
-pub const XPDRRPS: Ident = Ident(0x36);
-/// XPDRSQUAWK: XPDR Squawk as decimal integer (e.g., 1200). All transponders must change SQUAWK regardless of UNIT
-pub const XPDRSQUAWK: Ident = Ident(0x37);
-/// XPDRMODE: XPDR Mode. Note that IDENT flag is ignored in USERSELECT condition.
-pub const XPDRMODE: Ident = Ident(0x38);
-/// NAVOBS: NAV OBS Value
-pub const NAVOBS: Ident = Ident(0x39);
-/// NAVBRG: Bearing to nav aid
-pub const NAVBRG: Ident = Ident(0x3a);
-/// NAVCDI: Course Deviation (-1000 to 1000)
-pub const NAVCDI: Ident = Ident(0x3b);
-/// NAVGSI: Glide Slope (-1000 to 1000)
-pub const NAVGSI: Ident = Ident(0x3c);
-/// NAVFLAGS: Navigation Flags (see XFS_NAV_FLAG_*
-pub const NAVFLAGS: Ident = Ident(0x3d);
-/// FLAPREQ: Requested Flap Position 0 = up, 100000 = fully down, -100000 is fully negative
-pub const FLAPREQ: Ident = Ident(0x3e);
-/// FLAPPOS: Flap actuator position, 0 = up, 100000 = fully down, -100000 is fully negative
-pub const FLAPPOS: Ident = Ident(0x3f);
-/// ECBSTAT: ECB Status change or request, see xfs_ecb.h
-pub const ECBSTAT: Ident = Ident(0x40);
-/// PTRIMREQ: Requested Pitch Trim Position (negative nose down, 0 neutral, positive nose up)
-pub const PTRIMREQ: Ident = Ident(0x41);
-/// PTRIMPOS: Pitch Trim Position (negative nose down, 0 neutral, positive nose up)
-pub const PTRIMPOS: Ident = Ident(0x42);
-/// RTRIMREQ: Requested Roll Trim Position (negative left bank, 0 neutral, positive right bank)
-pub const RTRIMREQ: Ident = Ident(0x43);
-/// RTRIMPOS: Roll Trim Position (negative left bank, 0 neutral, positive right bank)
-pub const RTRIMPOS: Ident = Ident(0x44);
-/// BUSSTAT: Status of Bus
-pub const BUSSTAT: Ident = Ident(0x45);
-/// TEMP: Arbitrary Temperature in a location
-pub const TEMP: Ident = Ident(0x46);
-/// TAS: True Airspeed
-pub const TAS: Ident = Ident(0x47);
-/// TAT: Total Air Temperature
-pub const TAT: Ident = Ident(0x48);
-/// OAT: Outside Air Temperature accounting for compressibility
-pub const OAT: Ident = Ident(0x49);
-/// D-ALT: Density Altitude
-pub const D_ALT: Ident = Ident(0x4a);
-/// OILPRES: Oil Pressure
-pub const OILPRES: Ident = Ident(0x4b);
-/// OILTEMP: Oil Temp
-pub const OILTEMP: Ident = Ident(0x4c);
-/// XFDFPS: XFD Display Frames Per Second (FPS)
-pub const XFDFPS: Ident = Ident(0x4d);
-/// TIREPRES: Tire Pressure
-pub const TIREPRES: Ident = Ident(0x4e);
-/// CHT: Cylinder Head Temperature
-pub const CHT: Ident = Ident(0x4f);
-/// EGT: Exhaust Gas Temperature
-pub const EGT: Ident = Ident(0x50);
-/// COOLTEMP: Coolant Temperature
-pub const COOLTEMP: Ident = Ident(0x51);
-/// FUELFLOW: Fuel Flow
-pub const FUELFLOW: Ident = Ident(0x52);
-/// FUELPRES: Fuel Pressure
-pub const FUELPRES: Ident = Ident(0x53);
-/// FUELLEVL: Fuel Level (divisor may be overridden by fuel type)
-pub const FUELLEVL: Ident = Ident(0x54);
-/// MANPRES: Manifold pressure
-pub const MANPRES: Ident = Ident(0x55);
-/// ENGRPM: Engine RPM
-pub const ENGRPM: Ident = Ident(0x56);
-/// PROPRPM: Propeller RPM
-pub const PROPRPM: Ident = Ident(0x57);
-/// MACH: Mach
-pub const MACH: Ident = Ident(0x58);
-/// IASBUG: Target indicated airspeed
-pub const IASBUG: Ident = Ident(0x59);
-/// HDGBUG: Bugged Magnetic Heading
-pub const HDGBUG: Ident = Ident(0x5a);
-/// ALTBUG: Bugged Altitude
-pub const ALTBUG: Ident = Ident(0x5b);
-/// WAYPOINT: A way point in a flight plan, subunit is position in flightplan, beginning with 1 for first waypoint. Subunit 0 is only used to indicate an empty flight plan.
-pub const WAYPOINT: Ident = Ident(0x5c);
-/// INSERT: Insert A way point in a flight plan, subunit is position in flightplan which it should become (SYSSEL/USERSEL ONLY)
-pub const INSERT: Ident = Ident(0x5d);
-/// DELETE: Delete A way point in a flight plan, subunit is position in flightplan starting at 1 (SYSSEL/USERSEL ONLY). Label must match
-pub const DELETE: Ident = Ident(0x5e);
-/// NOTE: Notation of something important within the quick access log or bus
-pub const NOTE: Ident = Ident(0x5f);
-/// NAVGPS: GPS Mode
-pub const NAVGPS: Ident = Ident(0x60);
-/// NAVDIS: Distance to next or last waypoint or DME for VOR/ILS/etc
-pub const NAVDIS: Ident = Ident(0x61);
-/// NAVXTK: Cross track error (negative is left)
-pub const NAVXTK: Ident = Ident(0x62);
-/// NAVETE: Time to next or last waypoint
-pub const NAVETE: Ident = Ident(0x63);
-/// BRIGHTNESS: Universal display brightness (0-1000 for night time mode, 1000-2000 for daytime modes
-pub const BRIGHTNESS: Ident = Ident(0x64);
-/// MANTEMP: Manifold temperature
-pub const MANTEMP: Ident = Ident(0x65);
-/// DIRECT: Go direct to a way point in a flight plan, subunit is position in flightplan starting at 1 (SYSSEL/USERSEL ONLY). Label must match
-pub const DIRECT: Ident = Ident(0x66);
-/// ACTIVATE: Activate leg terminating at way point in a flight plan, subunit is position in flightplan (SYSSEL/USERSEL ONLY). Label must match
-pub const ACTIVATE: Ident = Ident(0x67);
-/// MMPARAM: Moving Map parameters. Subunit is one of XFS_MM_PARAM_*
-pub const MMPARAM: Ident = Ident(0x68);
-/// SERVOREQ: Requested servo position and state
-pub const SERVOREQ: Ident = Ident(0x69);
-/// SERVOPOS: Current servo actuator position
-pub const SERVOPOS: Ident = Ident(0x6a);
-/// SONICHAT: Ultrasonic rangefinder height above terrain
-pub const SONICHAT: Ident = Ident(0x6b);
-/// LIDARHAT: LIDAR rangefinder height above terrain
-pub const LIDARHAT: Ident = Ident(0x6c);
-/// RADARHAT: Radar rangefinder height above terrain
-pub const RADARHAT: Ident = Ident(0x6d);
-/// HAT: Computed height above terrain
-pub const HAT: Ident = Ident(0x6e);
-/// COMSTANDBY: Standby COM Frequency (same rules and range as COMFREQKHZ)
-pub const COMSTANDBY: Ident = Ident(0x6f);
-/// NAVSTANDBY: Standby NAV Frequency (same rules and range as NAVFREQKHZ)
-pub const NAVSTANDBY: Ident = Ident(0x70);
-/// STALLSPEED: Estimated real-time Stall speed
-pub const STALLSPEED: Ident = Ident(0x71);
-/// TIMEMS: Time in milliseconds from midnight zulu time
-pub const TIMEMS: Ident = Ident(0x72);
-/// YTRIMREQ: Requested Yaw Trim Position (negative left, 0 neutral, positive right)
-pub const YTRIMREQ: Ident = Ident(0x73);
-/// YTRIMPOS: Yaw Trim Position (negative left, 0 neutral, positive right)
-pub const YTRIMPOS: Ident = Ident(0x74);
-/// VSPEEDBUG: Vertical speed bug in fpm
-pub const VSPEEDBUG: Ident = Ident(0x75);
-/// MUSICSRC: Music Source (0 = none)
-pub const MUSICSRC: Ident = Ident(0x76);
-/// AOA: Angle of attack as an actual angle
-pub const AOA: Ident = Ident(0x77);
-/// AOAR: Angle of attack range -- should contain green (beginning of approach range), white (reference angle), yellow (approaching stall) and a red (imminent stall)
-pub const AOAR: Ident = Ident(0x77);
-/// GPIO: GPIO Input/Output
-pub const GPIO: Ident = Ident(0x78);
-/// ANALOG: Raw Analog value 0-4095
-pub const ANALOG: Ident = Ident(0x79);
-/// PWM: PWM value 0-4095 -- subunit is port number, 1-8
-pub const PWM: Ident = Ident(0x7a);
-/// XPDRACID: ICAO 24-bit Aircraft Identifier
-pub const XPDRACID: Ident = Ident(0x7b);
-/// XPDRFLID: Up to 8-character, NULL terminated flight ID
-pub const XPDRFLID: Ident = Ident(0x7c);
-/// THROTREQ: Requested throttle position
-pub const THROTREQ: Ident = Ident(0x7d);
-/// RPMREQ: Prop governor requested RPM
-pub const RPMREQ: Ident = Ident(0x7e);
-/// TACHTIME: Tachometer time, unit is engine
-pub const TACHTIME: Ident = Ident(0x7f);
-/// TOTTIME: Total aircraft time
-pub const TOTTIME: Ident = Ident(0x80);
-/// APPSTAT: Application Status / Requests
-pub const APPSTAT: Ident = Ident(0x81);
-/// CDINAVSRC: Select index (> 0) of CDI NAV Source or 0 for none
-pub const CDINAVSRC: Ident = Ident(0x82);
-/// BRGNAVSRC: Select index (> 0) CDI BRG Source or 0 for none
-pub const BRGNAVSRC: Ident = Ident(0x83);
-/// COMSEL: Select COM Radio for Tuning
-pub const COMSEL: Ident = Ident(0x84);
-/// NAVSEL: Select NAV Radio for Tuning
-pub const NAVSEL: Ident = Ident(0x85);
-/// MSTRCAUTN: Master Caution Active when true. Resets by SYSSEL/ USERSEL with value of FALSE
-pub const MSTRCAUTN: Ident = Ident(0x86);
-/// MSTRWARN: Master Warning Active when true. Resets by SYSSEL/ USERSEL with value of FALSE
-pub const MSTRWARN: Ident = Ident(0x87);
-/// ROLLRT: Rate of change of about A/C longitudinal axis (P)
-pub const ROLLRT: Ident = Ident(0x88);
-/// PITCHRT: Rate of change about A/C transverse axis (Q)
-pub const PITCHRT: Ident = Ident(0x89);
-/// YAWRT: Rate of change about A/C vertical axis (R)
-pub const YAWRT: Ident = Ident(0x8a);
-/// STKPITCH: Stick Pitch Position (negative nose down, 0 neutral, positive nose up)
-pub const STKPITCH: Ident = Ident(0x8b);
-/// STKROLL: Stick Roll Position (negative left bank, 0 neutral, positive right bank)
-pub const STKROLL: Ident = Ident(0x8c);
-/// STKYAW: Pedal Yaw Position (negative left, 0 neutral, positive right)
-pub const STKYAW: Ident = Ident(0x8d);
-/// BATTTEMP: Battery Temp
-pub const BATTTEMP: Ident = Ident(0x8e);
-/// MOTORTEMP: Motor Temp
-pub const MOTORTEMP: Ident = Ident(0x8f);
-/// POWERTEMP: Temp of a device supplying/converting power to a propulsion system
-pub const POWERTEMP: Ident = Ident(0x90);
-/// TORQUE: Torque
-pub const TORQUE: Ident = Ident(0x91);
-/// TAILNUM: Up to 8-character, NULL terminated tail number
-pub const TAILNUM: Ident = Ident(0x92);
-/// ROLLREQ: F/D requested degrees of roll in 100 * degrees with 0 being right side up, -18000 being being upside down towards left, 18000 being upside down to the right
-pub const ROLLREQ: Ident = Ident(0x93);
-/// PITCHREQ: F/D requested degrees of pitch in 100 * degrees with 0 being straight ahead, 9000 being straight up, -9000 being straight down
-pub const PITCHREQ: Ident = Ident(0x94);
-/// YAWREQ: F/D requested G force of inclination with 0 being no yaw
-pub const YAWREQ: Ident = Ident(0x95);
-/// STKPITCHREQ: A/P Requested Stick Pitch Position (negative nose down, 0 neutral, positive nose up)
-pub const STKPITCHREQ: Ident = Ident(0x96);
-/// STKROLLREQ: A/P Requested Stick Roll Position (negative left bank, 0 neutral, positive right bank)
-pub const STKROLLREQ: Ident = Ident(0x97);
-/// STKYAWREQ: A/P Requested Pedal Yaw Position (negative left, 0 neutral, positive right)
-pub const STKYAWREQ: Ident = Ident(0x98);
-/// FDMODEACT: Active Flight Director Modes
-pub const FDMODEACT: Ident = Ident(0x99);
-/// FDMODEARM: Armed Flight Director Modes (XFS_AFCS_FD_MODE_*
-pub const FDMODEARM: Ident = Ident(0x9a);
-/// ALTHOLDBUG: Altitude used by FD for altitude hold
-pub const ALTHOLDBUG: Ident = Ident(0x9b);
-/// APMODE: Autopilot Modes
-pub const APMODE: Ident = Ident(0x9c);
-/// ICSSQL: Intercom Squelch (0-100)
-pub const ICSSQL: Ident = Ident(0x9d);
-/// PITCHBUG: Target pitch
-pub const PITCHBUG: Ident = Ident(0x9e);
-/// PTSPEED: Power Turbine Speed (commonly N1)
-pub const PTSPEED: Ident = Ident(0x9f);
-/// GTSPEED: Gas Turbine Speed (commonly N2 or Ng)
-pub const GTSPEED: Ident = Ident(0xa0);
-/// TIT: Turbine Inlet Temperature
-pub const TIT: Ident = Ident(0xa1);
-/// ITT: Inter-Turbine Temperature
-pub const ITT: Ident = Ident(0xa2);
-/// POWER: Power under current engine and environmental conditions relative to engine design maximum
-pub const POWER: Ident = Ident(0xa3);
-/// ENGSTATUS: Engine specific set of flags or values
-pub const ENGSTATUS: Ident = Ident(0xa4);
-/// CABINALT: Cabin Equivalent Altitude
-pub const CABINALT: Ident = Ident(0xa5);
-/// CABINALTREQ: Cabin Equivalent Altitude
-pub const CABINALTREQ: Ident = Ident(0xa6);
-/// DIFFPRES: Differential Pressure
-pub const DIFFPRES: Ident = Ident(0xa7);
-/// DIFFPRESREQ: Requested Differential Pressure
-pub const DIFFPRESREQ: Ident = Ident(0xa8);
-/// FUELTEMP: Arbitrary Temperature in a location
-pub const FUELTEMP: Ident = Ident(0xa9);
-/// ENGSTATE: Engine operating state
-pub const ENGSTATE: Ident = Ident(0xaa);
-/// ENGSTATEREQ: Requested Engine operating state
-pub const ENGSTATEREQ: Ident = Ident(0xab);
-/// BLEEDAIR: Bleed Air Level (Percent of Max)
-pub const BLEEDAIR: Ident = Ident(0xac);
-/// BLEEDAIRREQ: Requested Bleed Air Level
-pub const BLEEDAIRREQ: Ident = Ident(0xad);
-/// LIGHTING: Lighting Color/Level
-pub const LIGHTING: Ident = Ident(0xae);
-/// LIGHTINGREQ: Requested Lighting Color/Level
-pub const LIGHTINGREQ: Ident = Ident(0xaf);
-/// ICING: Deicing State
-pub const ICING: Ident = Ident(0xb0);
-/// ICINGREQ: Requested Deicing State
-pub const ICINGREQ: Ident = Ident(0xb1);
-/// LDGGEAR: Landing Gear State
-pub const LDGGEAR: Ident = Ident(0xb2);
-/// LDGGEARREQ: Landing Gear State
-pub const LDGGEARREQ: Ident = Ident(0xb3);
-/// CABINTEMP: Cabin Temperature in a zone
-pub const CABINTEMP: Ident = Ident(0xb4);
-/// CABINTEMPREQ: Requested Cabin Temperature in a zone
-pub const CABINTEMPREQ: Ident = Ident(0xb5);
-/// CHKLIST: Checklist Item
-pub const CHKLIST: Ident = Ident(0xb6);
-/// WBRANGE: Weight and envelope per configuration
-pub const WBRANGE: Ident = Ident(0xb7);
-/// WBSTARM: Arm for given station
-pub const WBSTARM: Ident = Ident(0xb8);
-/// WBSTMAXWEIGHT: Maximum weight at given station
-pub const WBSTMAXWEIGHT: Ident = Ident(0xb9);
-/// WBSTFLAGS: Flags about given station
-pub const WBSTFLAGS: Ident = Ident(0xba);
-/// WBSTWEIGHT: Actual weight at given station
-pub const WBSTWEIGHT: Ident = Ident(0xbb);
-/// TASEFF: Fuel Economy Relative to True Airspeed
-pub const TASEFF: Ident = Ident(0xbc);
-/// GSEFF: Fuel Economy Relative to Groundspeed
-pub const GSEFF: Ident = Ident(0xbd);
-/// TIMETOEMPTY: Time to Empty
-pub const TIMETOEMPTY: Ident = Ident(0xbe);
-/// DISTTOEMPTY: Distance to Empty
-pub const DISTTOEMPTY: Ident = Ident(0xbf);
-/// FLIGHTSTATE: State of Flight
-pub const FLIGHTSTATE: Ident = Ident(0xc0);
-/// UPDATESTATE: Status of any update
-pub const UPDATESTATE: Ident = Ident(0xc1);
-/// TORQUEREQ: Requested Torque
-pub const TORQUEREQ: Ident = Ident(0xc2);
-/// STKPITCHFRCE: Stick Pitch Force applied by the pilot, positive value - push, negative value - pull
-pub const STKPITCHFRCE: Ident = Ident(0xc3);
-/// STKROLLFRCE: Stick Roll Force applied by the pilot, positive value - roll right, negative value - roll left
-pub const STKROLLFRCE: Ident = Ident(0xc4);
-/// STKYAWFRCE: Pedal Yaw Force applied by the pilot, positive value - right rudder, negative value - left rudder
-pub const STKYAWFRCE: Ident = Ident(0xc5);
-/// APPITCHFRCE: Auto Pilot Pitch Force exerted on control surfaces, positive value - push, negative value - pull
-pub const APPITCHFRCE: Ident = Ident(0xc6);
-/// APROLLFRCE: Auto Pilot Roll Force exerted on control surfaces, positive value - roll right, negative value - roll left
-pub const APROLLFRCE: Ident = Ident(0xc7);
-/// APYAWFRCE: Auto Pilot Yaw Force exerted on control surfaces, positive value - right rudder, negative value - left rudder
-pub const APYAWFRCE: Ident = Ident(0xc8);
-/// EFBPARAM: Up to 64-character, NULL terminated parameter value
-pub const EFBPARAM: Ident = Ident(0xc9);
-/// OILPRESCOMP: Compensated Oil Pressure
-pub const OILPRESCOMP: Ident = Ident(0xca);
-/// MACHBUG: Target Mach
-pub const MACHBUG: Ident = Ident(0xcb);
-/// AOART: Angle of attack rate of change
-pub const AOART: Ident = Ident(0xcc);
-/// TASBUG: Target true airspeed
-pub const TASBUG: Ident = Ident(0xcd);
-/// GSBUG: Target groundspeed
-pub const GSBUG: Ident = Ident(0xce);
-/// AOABUG: Bugged AOA
-pub const AOABUG: Ident = Ident(0xcf);
-/// ECUTIME: ECU Hours
-pub const ECUTIME: Ident = Ident(0xd1);
-/// DBASE: Active database information
-pub const DBASE: Ident = Ident(0xd2);
-/// EAS: Equivalent Airspeed
-pub const EAS: Ident = Ident(0xd3);
-/// EASRT: Equivalent Airspeed Rate of Change
-pub const EASRT: Ident = Ident(0xd4);
-/// EASBUG: Target equivalent airspeed
-pub const EASBUG: Ident = Ident(0xd5);
-/// POWERREQ: Requested power as percent of engine design maximum
-pub const POWERREQ: Ident = Ident(0xd6);
-/// BRAKE: Wheel brake status
-pub const BRAKE: Ident = Ident(0xd7);
-/// BRAKEREQ: Amount of brake requested
-pub const BRAKEREQ: Ident = Ident(0xd8);
-/// NAVSQL: Communication Squelch (0-100)
-pub const NAVSQL: Ident = Ident(0xd9);
-/// STATIONID: VOR Station ID decoded from Morse code
-pub const STATIONID: Ident = Ident(0xda);
-/// SVPARAM: Synthetic Vision parameters. Subunit is one of XFS_SV_PARAM_*
-pub const SVPARAM: Ident = Ident(0xdb);
-/// FDCDISEL: Global selection of which CDI the flight director should track
-pub const FDCDISEL: Ident = Ident(0xdc);
-/// BLOODOXY: Blood oxygen level of given seat occupant
-pub const BLOODOXY: Ident = Ident(0xdd);
-/// PULSE: Pulse rate of given seat occupant
-pub const PULSE: Ident = Ident(0xde);
-/// BREATHS: Breathing rate of given seat occupant
-pub const BREATHS: Ident = Ident(0xdf);
-/// CARBMONOX: Carbon Monoxide levels detected by sensor
-pub const CARBMONOX: Ident = Ident(0xe0);
-/// FLOWRATE: Oxygen flow rate
-pub const FLOWRATE: Ident = Ident(0xe1);
-/// TANKPRES: Oxygen tank pressure
-pub const TANKPRES: Ident = Ident(0xe2);
-/// RNAVVS: Vertical speed computed from RNAV
-pub const RNAVVS: Ident = Ident(0xe3);
-/// COMPRESET: Selected COM Radio Preset (0=Non-preset frequency)
-pub const COMPRESET: Ident = Ident(0xe4);
-/// COMNAME: Name of COM Radio or Preset Frequency
-pub const COMNAME: Ident = Ident(0xe5);
-/// NAVPRESET: Selected NAV Radio Preset (0=Non-preset frequency)
-pub const NAVPRESET: Ident = Ident(0xe6);
-/// NAVNAME: Name of NAV Radio or Preset Frequency
-pub const NAVNAME: Ident = Ident(0xe7);
-/// VNORTH: North component of velocity in true world coordinates
-pub const VNORTH: Ident = Ident(0xe8);
-/// VEAST: East component of velocity in true world coordinates
-pub const VEAST: Ident = Ident(0xe9);
-/// ENGPOWER: Current Engine Power
-pub const ENGPOWER: Ident = Ident(0xea);
-/// CHARGE: Measured remaining battery charge
-pub const CHARGE: Ident = Ident(0xeb);
-/// CHARGETOT: Computed remaining charge
-pub const CHARGETOT: Ident = Ident(0xec);
+/// Writes each ident once: one row makes its `pub const` (documented as
+/// `NAME: description`) and its entry in [`PARAMS`], in the row's order.
+macro_rules! idents {
+    ($($konst:ident = $id:literal, $format:ident, $name:literal, $unit:literal, $subunit:literal, $description:literal;)*) => {
+        $(
+            #[doc = concat!($name, ": ", $description)]
+            pub const $konst: Ident = Ident($id);
+        )*
 
-/// Every parameter of §3.4, in the draft's order.
-pub static PARAMS: &[IdentInfo] = &[
-    IdentInfo {
-        ident: Ident(0x00),
-        name: "GOAROUND",
-        description: "Go around requested",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Bool,
-    },
-    IdentInfo {
-        ident: Ident(0x01),
-        name: "P-ALT",
-        description: "Pressure Altitude",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x02),
-        name: "T-ALT",
-        description: "True Altitude",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x03),
-        name: "IAS",
-        description: "Indicated Airspeed",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x04),
-        name: "CAS",
-        description: "Calibrated Airspeed",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x05),
-        name: "CASMSG",
-        description: "Crew Alerting System Message",
-        unit: "CAS System ID",
-        subunit: "None",
-        format: FormatId::CasMsg,
-    },
-    IdentInfo {
-        ident: Ident(0x06),
-        name: "THROTPOS",
-        description: "Throttle position",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x07),
-        name: "INAIR",
-        description: "Are we in the air (vs. on the ground)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Bool,
-    },
-    IdentInfo {
-        ident: Ident(0x08),
-        name: "BARO",
-        description: "Current barometric setting",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x09),
-        name: "CLTPOS",
-        description: "Collective Position",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x0a),
-        name: "CLTPOSREQ",
-        description: "A/P Requested Collective Position",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Servo,
-    },
-    IdentInfo {
-        ident: Ident(0x0b),
-        name: "MAGHDG",
-        description: "Magnetic Heading",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x0c),
-        name: "MAGCRS",
-        description: "Magnetic Course (via RNAV)",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x0d),
-        name: "TRUECRS",
-        description: "True Course (via RNAV)",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x0e),
-        name: "MAGDTK",
-        description: "Desired Course (via RNAV)",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x0f),
-        name: "TRUEDTK",
-        description: "Desired course (via RNAV)",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x10),
-        name: "LAT",
-        description: "Current position latitude",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x11),
-        name: "LON",
-        description: "Current position longitude",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x12),
-        name: "RNAVALT",
-        description: "Altitude measured by RNAV",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x13),
-        name: "ROLL",
-        description: "Current degrees of roll, -18000 being being upside down towards left, 18000 being upside down to the right",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x14),
-        name: "PITCH",
-        description: "Current degrees of pitch, 9000 being straight up, -9000 being straight down",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x15),
-        name: "YAW",
-        description: "Yaw/Inclination as measured in G force",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x16),
-        name: "FUELTOT",
-        description: "Computed remaining fuel (divisor may be overridden by fuel type in FUELLEVLR)",
-        unit: "Fuel System ID/0=Sum of all",
-        subunit: "0 = current total, 1 = total at end of flight",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x17),
-        name: "RNAVHFOM",
-        description: "Horizontal Figure of Merit",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x18),
-        name: "RNAVVFOM",
-        description: "Vertical Figure of Merit",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x19),
-        name: "RNAVHPL",
-        description: "Horizontal Protection Level",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x1a),
-        name: "RNAVVPL",
-        description: "Vertical Protection Level",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x1b),
-        name: "IASRT",
-        description: "Indicated Airspeed Rate of Change",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x1c),
-        name: "KBDSEL",
-        description: "Activate the named on-screen keyboard or none if empty",
-        unit: "Display",
-        subunit: "None",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0x1d),
-        name: "KEYPRESS",
-        description: "Send the FMS encoded key press to the given display",
-        unit: "Display",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x1e),
-        name: "SURFPOS",
-        description: "Position of arbitrary control surface",
-        unit: "Surface Type",
-        subunit: "Surface Type Subassembly",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x1f),
-        name: "SURFREQ",
-        description: "Requested control surface position",
-        unit: "Surface Type",
-        subunit: "Surface Type Subassembly",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x20),
-        name: "SURFTORQUE",
-        description: "Aerodynamic torque applied to a control surface relative to movement",
-        unit: "Surface Type",
-        subunit: "Surface Type Subassembly",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x21),
-        name: "SURFFORCE",
-        description: "Aerodynamic force applied to a control surface relative to movement",
-        unit: "Surface Type",
-        subunit: "Surface Type Subassembly",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x22),
-        name: "WINDSPD",
-        description: "Wind Speed",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x23),
-        name: "WINDBRG",
-        description: "True Bearing from which wind blows",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x24),
-        name: "COMFREQKHZ",
-        description: "Communication Frequency",
-        unit: "Radio ID",
-        subunit: "0=Radio /1+=Presets",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x25),
-        name: "NAVFREQKHZ",
-        description: "Navigation Frequency",
-        unit: "Radio ID",
-        subunit: "0=Radio /1+=Presets",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x26),
-        name: "COMVOL",
-        description: "Communication Volume (0-100)",
-        unit: "Radio ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x27),
-        name: "NAVVOL",
-        description: "Communication Volume (0-100)",
-        unit: "Radio ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x28),
-        name: "COMSQL",
-        description: "Communication Squelch (0-100)",
-        unit: "Radio ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x29),
-        name: "MUX",
-        description: "Selected multiplexer input or output",
-        unit: "MUX ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x2a),
-        name: "ICSVOL",
-        description: "Intercom Volume (0-100)",
-        unit: "Audio Panel Unit",
-        subunit: "0=System, 1=Pilot, 2=Copilot, rest are pax",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x2b),
-        name: "COMSTATE",
-        description: "COM radio state",
-        unit: "Radio ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x2c),
-        name: "ICSRXCOMS",
-        description: "Which COM Radios to Monitor (mask)",
-        unit: "Audio Panel Unit",
-        subunit: "0=System, 1=Pilot, 2=Copilot, rest are pax",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x2d),
-        name: "ICSRXNAVS",
-        description: "Which NAV Radios to Monitor (mask)",
-        unit: "Audio Panel Unit",
-        subunit: "0=System, 1=Pilot, 2=Copilot, rest are pax",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x2e),
-        name: "ICSMODE",
-        description: "Intercom Mode",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x2f),
-        name: "ICSTXCOMS",
-        description: "Which COM Radios to Transmit (mask)",
-        unit: "Audio Panel Unit",
-        subunit: "0=System, 1=Pilot, 2=Copilot, rest are pax",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x30),
-        name: "DATE",
-        description: "Date in YYYY-MM-DD format",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0x31),
-        name: "GLOAD",
-        description: "Current Normal to Aircraft Loading",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x32),
-        name: "RATEOFTURN",
-        description: "Turn Coordinator Rate Per Second",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x33),
-        name: "GROUNDSPEED",
-        description: "Groundspeed",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x34),
-        name: "VSPEED",
-        description: "Vertical speed",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x35),
-        name: "XPDRIDENT",
-        description: "XPDR Ident request (USERSELECT only). Non-standby transponders must IDENT regardless of UNIT. Used only to request IDENT, but IDENT state reported in XPDRMODE",
-        unit: "Always zero",
-        subunit: "None",
-        format: FormatId::Bool,
-    },
-    IdentInfo {
-        ident: Ident(0x36),
-        name: "XPDRRPS",
-        description: "XPDR Replies per second (normalized)",
-        unit: "XPDR ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x37),
-        name: "XPDRSQUAWK",
-        description: "XPDR Squawk as decimal integer (e.g., 1200). All transponders must change SQUAWK regardless of UNIT",
-        unit: "XPDR ID (Rx Only) Zero for USERSELECT",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x38),
-        name: "XPDRMODE",
-        description: "XPDR Mode. Note that IDENT flag is ignored in USERSELECT condition.",
-        unit: "XPDR ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x39),
-        name: "NAVOBS",
-        description: "NAV OBS Value",
-        unit: "Radio/FMS ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x3a),
-        name: "NAVBRG",
-        description: "Bearing to nav aid",
-        unit: "Radio/FMS ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x3b),
-        name: "NAVCDI",
-        description: "Course Deviation (-1000 to 1000)",
-        unit: "Radio/FMS ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x3c),
-        name: "NAVGSI",
-        description: "Glide Slope (-1000 to 1000)",
-        unit: "Radio/FMS ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x3d),
-        name: "NAVFLAGS",
-        description: "Navigation Flags (see XFS_NAV_FLAG_*",
-        unit: "Radio/FMS ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x3e),
-        name: "FLAPREQ",
-        description: "Requested Flap Position 0 = up, 100000 = fully down, -100000 is fully negative",
-        unit: "Actuator/0=Aircraft",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x3f),
-        name: "FLAPPOS",
-        description: "Flap actuator position, 0 = up, 100000 = fully down, -100000 is fully negative",
-        unit: "Actuator/0=Aircraft",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x40),
-        name: "ECBSTAT",
-        description: "ECB Status change or request, see xfs_ecb.h",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Bus,
-    },
-    IdentInfo {
-        ident: Ident(0x41),
-        name: "PTRIMREQ",
-        description: "Requested Pitch Trim Position (negative nose down, 0 neutral, positive nose up)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x42),
-        name: "PTRIMPOS",
-        description: "Pitch Trim Position (negative nose down, 0 neutral, positive nose up)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x43),
-        name: "RTRIMREQ",
-        description: "Requested Roll Trim Position (negative left bank, 0 neutral, positive right bank)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x44),
-        name: "RTRIMPOS",
-        description: "Roll Trim Position (negative left bank, 0 neutral, positive right bank)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x45),
-        name: "BUSSTAT",
-        description: "Status of Bus",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Bus,
-    },
-    IdentInfo {
-        ident: Ident(0x46),
-        name: "TEMP",
-        description: "Arbitrary Temperature in a location",
-        unit: "Location",
-        subunit: "Sensor Number/0=Average",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x47),
-        name: "TAS",
-        description: "True Airspeed",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x48),
-        name: "TAT",
-        description: "Total Air Temperature",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x49),
-        name: "OAT",
-        description: "Outside Air Temperature accounting for compressibility",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x4a),
-        name: "D-ALT",
-        description: "Density Altitude",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x4b),
-        name: "OILPRES",
-        description: "Oil Pressure",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x4c),
-        name: "OILTEMP",
-        description: "Oil Temp",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x4d),
-        name: "XFDFPS",
-        description: "XFD Display Frames Per Second (FPS)",
-        unit: "Display",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x4e),
-        name: "TIREPRES",
-        description: "Tire Pressure",
-        unit: "Bogey",
-        subunit: "Tire",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x4f),
-        name: "CHT",
-        description: "Cylinder Head Temperature",
-        unit: "Engine",
-        subunit: "Cylinder/0=Max",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x50),
-        name: "EGT",
-        description: "Exhaust Gas Temperature",
-        unit: "Engine",
-        subunit: "Cylinder/0=Max",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x51),
-        name: "COOLTEMP",
-        description: "Coolant Temperature",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x52),
-        name: "FUELFLOW",
-        description: "Fuel Flow",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x53),
-        name: "FUELPRES",
-        description: "Fuel Pressure",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x54),
-        name: "FUELLEVL",
-        description: "Fuel Level (divisor may be overridden by fuel type)",
-        unit: "Fuel Tank ID/0=Sum of all",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x55),
-        name: "MANPRES",
-        description: "Manifold pressure",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x56),
-        name: "ENGRPM",
-        description: "Engine RPM",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x57),
-        name: "PROPRPM",
-        description: "Propeller RPM",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x58),
-        name: "MACH",
-        description: "Mach",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x59),
-        name: "IASBUG",
-        description: "Target indicated airspeed",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x5a),
-        name: "HDGBUG",
-        description: "Bugged Magnetic Heading",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x5b),
-        name: "ALTBUG",
-        description: "Bugged Altitude",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x5c),
-        name: "WAYPOINT",
-        description: "A way point in a flight plan, subunit is position in flightplan, beginning with 1 for first waypoint. Subunit 0 is only used to indicate an empty flight plan.",
-        unit: "FMS ID",
-        subunit: "None",
-        format: FormatId::Waypoint,
-    },
-    IdentInfo {
-        ident: Ident(0x5d),
-        name: "INSERT",
-        description: "Insert A way point in a flight plan, subunit is position in flightplan which it should become (SYSSEL/USERSEL ONLY)",
-        unit: "FMS ID",
-        subunit: "None",
-        format: FormatId::Waypoint,
-    },
-    IdentInfo {
-        ident: Ident(0x5e),
-        name: "DELETE",
-        description: "Delete A way point in a flight plan, subunit is position in flightplan starting at 1 (SYSSEL/USERSEL ONLY). Label must match",
-        unit: "FMS ID",
-        subunit: "None",
-        format: FormatId::Waypoint,
-    },
-    IdentInfo {
-        ident: Ident(0x5f),
-        name: "NOTE",
-        description: "Notation of something important within the quick access log or bus",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0x60),
-        name: "NAVGPS",
-        description: "GPS Mode",
-        unit: "NAV radio unit or FMS Unit Number",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x61),
-        name: "NAVDIS",
-        description: "Distance to next or last waypoint or DME for VOR/ILS/etc",
-        unit: "FMS Unit Number",
-        subunit: "0 = next waypoint, 1 = last waypoint",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x62),
-        name: "NAVXTK",
-        description: "Cross track error (negative is left)",
-        unit: "FMS Unit Number",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x63),
-        name: "NAVETE",
-        description: "Time to next or last waypoint",
-        unit: "FMS Unit Number",
-        subunit: "0 = next waypoint, 1 = last waypoint",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x64),
-        name: "BRIGHTNESS",
-        description: "Universal display brightness (0-1000 for night time mode, 1000-2000 for daytime modes",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x65),
-        name: "MANTEMP",
-        description: "Manifold temperature",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x66),
-        name: "DIRECT",
-        description: "Go direct to a way point in a flight plan, subunit is position in flightplan starting at 1 (SYSSEL/USERSEL ONLY). Label must match",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Waypoint,
-    },
-    IdentInfo {
-        ident: Ident(0x67),
-        name: "ACTIVATE",
-        description: "Activate leg terminating at way point in a flight plan, subunit is position in flightplan (SYSSEL/USERSEL ONLY). Label must match",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Waypoint,
-    },
-    IdentInfo {
-        ident: Ident(0x68),
-        name: "MMPARAM",
-        description: "Moving Map parameters. Subunit is one of XFS_MM_PARAM_*",
-        unit: "MOVMAP ID",
-        subunit: "XFS_MM_PARAM_*",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x69),
-        name: "SERVOREQ",
-        description: "Requested servo position and state",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Servo,
-    },
-    IdentInfo {
-        ident: Ident(0x6a),
-        name: "SERVOPOS",
-        description: "Current servo actuator position",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x6b),
-        name: "SONICHAT",
-        description: "Ultrasonic rangefinder height above terrain",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x6c),
-        name: "LIDARHAT",
-        description: "LIDAR rangefinder height above terrain",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x6d),
-        name: "RADARHAT",
-        description: "Radar rangefinder height above terrain",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x6e),
-        name: "HAT",
-        description: "Computed height above terrain",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x6f),
-        name: "COMSTANDBY",
-        description: "Standby COM Frequency (same rules and range as COMFREQKHZ)",
-        unit: "Radio ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x70),
-        name: "NAVSTANDBY",
-        description: "Standby NAV Frequency (same rules and range as NAVFREQKHZ)",
-        unit: "Radio ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x71),
-        name: "STALLSPEED",
-        description: "Estimated real-time Stall speed",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x72),
-        name: "TIMEMS",
-        description: "Time in milliseconds from midnight zulu time",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x73),
-        name: "YTRIMREQ",
-        description: "Requested Yaw Trim Position (negative left, 0 neutral, positive right)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x74),
-        name: "YTRIMPOS",
-        description: "Yaw Trim Position (negative left, 0 neutral, positive right)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x75),
-        name: "VSPEEDBUG",
-        description: "Vertical speed bug in fpm",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x76),
-        name: "MUSICSRC",
-        description: "Music Source (0 = none)",
-        unit: "Audio Panel Unit",
-        subunit: "0=System, 1=Pilot, 2=Copilot, rest are pax",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x77),
-        name: "AOA",
-        description: "Angle of attack as an actual angle",
-        unit: "Source",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x77),
-        name: "AOAR",
-        description: "Angle of attack range -- should contain green (beginning of approach range), white (reference angle), yellow (approaching stall) and a red (imminent stall)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Range,
-    },
-    IdentInfo {
-        ident: Ident(0x78),
-        name: "GPIO",
-        description: "GPIO Input/Output",
-        unit: "I/O Module",
-        subunit: "Module Port (0 or 1-8)",
-        format: FormatId::Gpio,
-    },
-    IdentInfo {
-        ident: Ident(0x79),
-        name: "ANALOG",
-        description: "Raw Analog value 0-4095",
-        unit: "I/O Module",
-        subunit: "Module Port (1-8)",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x7a),
-        name: "PWM",
-        description: "PWM value 0-4095 -- subunit is port number, 1-8",
-        unit: "I/O Module",
-        subunit: "Module Port (1-8)",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x7b),
-        name: "XPDRACID",
-        description: "ICAO 24-bit Aircraft Identifier",
-        unit: "XPDR ID (Rx Only) Zero for USERSELECT",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x7c),
-        name: "XPDRFLID",
-        description: "Up to 8-character, NULL terminated flight ID",
-        unit: "XPDR ID (Rx Only) Zero for USERSELECT",
-        subunit: "None",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0x7d),
-        name: "THROTREQ",
-        description: "Requested throttle position",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Servo,
-    },
-    IdentInfo {
-        ident: Ident(0x7e),
-        name: "RPMREQ",
-        description: "Prop governor requested RPM",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x7f),
-        name: "TACHTIME",
-        description: "Tachometer time, unit is engine",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x80),
-        name: "TOTTIME",
-        description: "Total aircraft time",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x81),
-        name: "APPSTAT",
-        description: "Application Status / Requests",
-        unit: "CPU ID",
-        subunit: "Process ID",
-        format: FormatId::App,
-    },
-    IdentInfo {
-        ident: Ident(0x82),
-        name: "CDINAVSRC",
-        description: "Select index (> 0) of CDI NAV Source or 0 for none",
-        unit: "Display",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x83),
-        name: "BRGNAVSRC",
-        description: "Select index (> 0) CDI BRG Source or 0 for none",
-        unit: "Display",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x84),
-        name: "COMSEL",
-        description: "Select COM Radio for Tuning",
-        unit: "Display",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x85),
-        name: "NAVSEL",
-        description: "Select NAV Radio for Tuning",
-        unit: "Display",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x86),
-        name: "MSTRCAUTN",
-        description: "Master Caution Active when true. Resets by SYSSEL/ USERSEL with value of FALSE",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Bool,
-    },
-    IdentInfo {
-        ident: Ident(0x87),
-        name: "MSTRWARN",
-        description: "Master Warning Active when true. Resets by SYSSEL/ USERSEL with value of FALSE",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Bool,
-    },
-    IdentInfo {
-        ident: Ident(0x88),
-        name: "ROLLRT",
-        description: "Rate of change of about A/C longitudinal axis (P)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x89),
-        name: "PITCHRT",
-        description: "Rate of change about A/C transverse axis (Q)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x8a),
-        name: "YAWRT",
-        description: "Rate of change about A/C vertical axis (R)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x8b),
-        name: "STKPITCH",
-        description: "Stick Pitch Position (negative nose down, 0 neutral, positive nose up)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x8c),
-        name: "STKROLL",
-        description: "Stick Roll Position (negative left bank, 0 neutral, positive right bank)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x8d),
-        name: "STKYAW",
-        description: "Pedal Yaw Position (negative left, 0 neutral, positive right)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x8e),
-        name: "BATTTEMP",
-        description: "Battery Temp",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x8f),
-        name: "MOTORTEMP",
-        description: "Motor Temp",
-        unit: "Motor",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x90),
-        name: "POWERTEMP",
-        description: "Temp of a device supplying/converting power to a propulsion system",
-        unit: "Propulsion System",
-        subunit: "Power converter/0=Max",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x91),
-        name: "TORQUE",
-        description: "Torque",
-        unit: "Motor/Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x92),
-        name: "TAILNUM",
-        description: "Up to 8-character, NULL terminated tail number",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0x93),
-        name: "ROLLREQ",
-        description: "F/D requested degrees of roll in 100 * degrees with 0 being right side up, -18000 being being upside down towards left, 18000 being upside down to the right",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x94),
-        name: "PITCHREQ",
-        description: "F/D requested degrees of pitch in 100 * degrees with 0 being straight ahead, 9000 being straight up, -9000 being straight down",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x95),
-        name: "YAWREQ",
-        description: "F/D requested G force of inclination with 0 being no yaw",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x96),
-        name: "STKPITCHREQ",
-        description: "A/P Requested Stick Pitch Position (negative nose down, 0 neutral, positive nose up)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Servo,
-    },
-    IdentInfo {
-        ident: Ident(0x97),
-        name: "STKROLLREQ",
-        description: "A/P Requested Stick Roll Position (negative left bank, 0 neutral, positive right bank)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Servo,
-    },
-    IdentInfo {
-        ident: Ident(0x98),
-        name: "STKYAWREQ",
-        description: "A/P Requested Pedal Yaw Position (negative left, 0 neutral, positive right)",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Servo,
-    },
-    IdentInfo {
-        ident: Ident(0x99),
-        name: "FDMODEACT",
-        description: "Active Flight Director Modes",
-        unit: "FD Number (0 for setting values)",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x9a),
-        name: "FDMODEARM",
-        description: "Armed Flight Director Modes (XFS_AFCS_FD_MODE_*",
-        unit: "FD Number (0 for setting values)",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x9b),
-        name: "ALTHOLDBUG",
-        description: "Altitude used by FD for altitude hold",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x9c),
-        name: "APMODE",
-        description: "Autopilot Modes",
-        unit: "AP Number (0 for setting value)",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x9d),
-        name: "ICSSQL",
-        description: "Intercom Squelch (0-100)",
-        unit: "Audio Panel Unit",
-        subunit: "0=System, 1=Pilot, 2=Copilot, rest are pax",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0x9e),
-        name: "PITCHBUG",
-        description: "Target pitch",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0x9f),
-        name: "PTSPEED",
-        description: "Power Turbine Speed (commonly N1)",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa0),
-        name: "GTSPEED",
-        description: "Gas Turbine Speed (commonly N2 or Ng)",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa1),
-        name: "TIT",
-        description: "Turbine Inlet Temperature",
-        unit: "Engine",
-        subunit: "Turbo/0=Max",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa2),
-        name: "ITT",
-        description: "Inter-Turbine Temperature",
-        unit: "Engine",
-        subunit: "Sensor /0=Average",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa3),
-        name: "POWER",
-        description: "Power under current engine and environmental conditions relative to engine design maximum",
-        unit: "Motor/Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa4),
-        name: "ENGSTATUS",
-        description: "Engine specific set of flags or values",
-        unit: "Motor/Engine",
-        subunit: "Engine Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xa5),
-        name: "CABINALT",
-        description: "Cabin Equivalent Altitude",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa6),
-        name: "CABINALTREQ",
-        description: "Cabin Equivalent Altitude",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa7),
-        name: "DIFFPRES",
-        description: "Differential Pressure",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa8),
-        name: "DIFFPRESREQ",
-        description: "Requested Differential Pressure",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xa9),
-        name: "FUELTEMP",
-        description: "Arbitrary Temperature in a location",
-        unit: "Engine/Fuel Tank",
-        subunit: "SubLocation /0=Average, 1=Sump",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xaa),
-        name: "ENGSTATE",
-        description: "Engine operating state",
-        unit: "Motor/Engine",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xab),
-        name: "ENGSTATEREQ",
-        description: "Requested Engine operating state",
-        unit: "Motor/Engine",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xac),
-        name: "BLEEDAIR",
-        description: "Bleed Air Level (Percent of Max)",
-        unit: "Motor/Engine",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xad),
-        name: "BLEEDAIRREQ",
-        description: "Requested Bleed Air Level",
-        unit: "Motor/Engine",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xae),
-        name: "LIGHTING",
-        description: "Lighting Color/Level",
-        unit: "System",
-        subunit: "Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xaf),
-        name: "LIGHTINGREQ",
-        description: "Requested Lighting Color/Level",
-        unit: "System",
-        subunit: "Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xb0),
-        name: "ICING",
-        description: "Deicing State",
-        unit: "System/0=Aircraft",
-        subunit: "Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xb1),
-        name: "ICINGREQ",
-        description: "Requested Deicing State",
-        unit: "System/0=Aircraft",
-        subunit: "Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xb2),
-        name: "LDGGEAR",
-        description: "Landing Gear State",
-        unit: "Wheel/0=Aircraft",
-        subunit: "Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xb3),
-        name: "LDGGEARREQ",
-        description: "Landing Gear State",
-        unit: "Wheel/0=Aircraft",
-        subunit: "Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xb4),
-        name: "CABINTEMP",
-        description: "Cabin Temperature in a zone",
-        unit: "Zone",
-        subunit: "Sensor Number /0=Average",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xb5),
-        name: "CABINTEMPREQ",
-        description: "Requested Cabin Temperature in a zone",
-        unit: "Zone",
-        subunit: "Sensor Number /0=Average",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xb6),
-        name: "CHKLIST",
-        description: "Checklist Item",
-        unit: "Checklist Number",
-        subunit: "Item Number /0=Title",
-        format: FormatId::CasMsg,
-    },
-    IdentInfo {
-        ident: Ident(0xb7),
-        name: "WBRANGE",
-        description: "Weight and envelope per configuration",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::WbRange,
-    },
-    IdentInfo {
-        ident: Ident(0xb8),
-        name: "WBSTARM",
-        description: "Arm for given station",
-        unit: "Configuration",
-        subunit: "Station /0=total /1=total no fuel",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xb9),
-        name: "WBSTMAXWEIGHT",
-        description: "Maximum weight at given station",
-        unit: "Configuration",
-        subunit: "Station /0=total /1=total no fuel",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xba),
-        name: "WBSTFLAGS",
-        description: "Flags about given station",
-        unit: "Configuration",
-        subunit: "Station /0=total /1=total no fuel",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xbb),
-        name: "WBSTWEIGHT",
-        description: "Actual weight at given station",
-        unit: "Configuration",
-        subunit: "Station /0=total /1=total no fuel",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xbc),
-        name: "TASEFF",
-        description: "Fuel Economy Relative to True Airspeed",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xbd),
-        name: "GSEFF",
-        description: "Fuel Economy Relative to Groundspeed",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xbe),
-        name: "TIMETOEMPTY",
-        description: "Time to Empty",
-        unit: "Engine /0=Aircraft",
-        subunit: "0 - smoothed, without reserve, 1 - smoothed, with reserve, 2 - without reserve, 3 - with reserve",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xbf),
-        name: "DISTTOEMPTY",
-        description: "Distance to Empty",
-        unit: "Engine /0=Aircraft",
-        subunit: "0 - smoothed, without reserve, 1 - smoothed, with reserve, 2 - without reserve, 3 - with reserve",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xc0),
-        name: "FLIGHTSTATE",
-        description: "State of Flight",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xc1),
-        name: "UPDATESTATE",
-        description: "Status of any update",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Update,
-    },
-    IdentInfo {
-        ident: Ident(0xc2),
-        name: "TORQUEREQ",
-        description: "Requested Torque",
-        unit: "Motor/Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xc3),
-        name: "STKPITCHFRCE",
-        description: "Stick Pitch Force applied by the pilot, positive value - push, negative value - pull",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xc4),
-        name: "STKROLLFRCE",
-        description: "Stick Roll Force applied by the pilot, positive value - roll right, negative value - roll left",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xc5),
-        name: "STKYAWFRCE",
-        description: "Pedal Yaw Force applied by the pilot, positive value - right rudder, negative value - left rudder",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xc6),
-        name: "APPITCHFRCE",
-        description: "Auto Pilot Pitch Force exerted on control surfaces, positive value - push, negative value - pull",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xc7),
-        name: "APROLLFRCE",
-        description: "Auto Pilot Roll Force exerted on control surfaces, positive value - roll right, negative value - roll left",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xc8),
-        name: "APYAWFRCE",
-        description: "Auto Pilot Yaw Force exerted on control surfaces, positive value - right rudder, negative value - left rudder",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xc9),
-        name: "EFBPARAM",
-        description: "Up to 64-character, NULL terminated parameter value",
-        unit: "EFB ID",
-        subunit: "XFS_EFB_PARAM_*",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0xca),
-        name: "OILPRESCOMP",
-        description: "Compensated Oil Pressure",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xcb),
-        name: "MACHBUG",
-        description: "Target Mach",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xcc),
-        name: "AOART",
-        description: "Angle of attack rate of change",
-        unit: "Source",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xcd),
-        name: "TASBUG",
-        description: "Target true airspeed",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xce),
-        name: "GSBUG",
-        description: "Target groundspeed",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xcf),
-        name: "AOABUG",
-        description: "Bugged AOA",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xd1),
-        name: "ECUTIME",
-        description: "ECU Hours",
-        unit: "Engine",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xd2),
-        name: "DBASE",
-        description: "Active database information",
-        unit: "CPU ID",
-        subunit: "Process ID",
-        format: FormatId::DBase,
-    },
-    IdentInfo {
-        ident: Ident(0xd3),
-        name: "EAS",
-        description: "Equivalent Airspeed",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xd4),
-        name: "EASRT",
-        description: "Equivalent Airspeed Rate of Change",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xd5),
-        name: "EASBUG",
-        description: "Target equivalent airspeed",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xd6),
-        name: "POWERREQ",
-        description: "Requested power as percent of engine design maximum",
-        unit: "Motor/Engine",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xd7),
-        name: "BRAKE",
-        description: "Wheel brake status",
-        unit: "Left=1,Right=2,No direction=0",
-        subunit: "Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xd8),
-        name: "BRAKEREQ",
-        description: "Amount of brake requested",
-        unit: "Left=1,Right=2,No direction=0",
-        subunit: "Specific",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xd9),
-        name: "NAVSQL",
-        description: "Communication Squelch (0-100)",
-        unit: "Radio ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xda),
-        name: "STATIONID",
-        description: "VOR Station ID decoded from Morse code",
-        unit: "Radio ID",
-        subunit: "None",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0xdb),
-        name: "SVPARAM",
-        description: "Synthetic Vision parameters. Subunit is one of XFS_SV_PARAM_*",
-        unit: "SYNVIS ID",
-        subunit: "XFS_SV_PARAM_*",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xdc),
-        name: "FDCDISEL",
-        description: "Global selection of which CDI the flight director should track",
-        unit: "None",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xdd),
-        name: "BLOODOXY",
-        description: "Blood oxygen level of given seat occupant",
-        unit: "Seat position, 0=Lowest of all seats, 1=Pilot, 2=Copilot, etc",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xde),
-        name: "PULSE",
-        description: "Pulse rate of given seat occupant",
-        unit: "Seat position, 0=Worst of all seats (too low or high), 1=Pilot, 2=Copilot, etc",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xdf),
-        name: "BREATHS",
-        description: "Breathing rate of given seat occupant",
-        unit: "Seat position, 0=Worst of all seats (too low or high), 1=Pilot, 2=Copilot, etc",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xe0),
-        name: "CARBMONOX",
-        description: "Carbon Monoxide levels detected by sensor",
-        unit: "Carbon Monoxide Sensor ID",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xe1),
-        name: "FLOWRATE",
-        description: "Oxygen flow rate",
-        unit: "Seat position, 0=Worst of all seats (too low or high), 1=Pilot, 2=Copilot, etc",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xe2),
-        name: "TANKPRES",
-        description: "Oxygen tank pressure",
-        unit: "Tank number, 0=Worst of all tanks (too low or high), 1=Tank 1, 2=Tank 2, etc",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xe3),
-        name: "RNAVVS",
-        description: "Vertical speed computed from RNAV",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xe4),
-        name: "COMPRESET",
-        description: "Selected COM Radio Preset (0=Non-preset frequency)",
-        unit: "Radio",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xe5),
-        name: "COMNAME",
-        description: "Name of COM Radio or Preset Frequency",
-        unit: "Radio",
-        subunit: "0=Radio /1+=Presets",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0xe6),
-        name: "NAVPRESET",
-        description: "Selected NAV Radio Preset (0=Non-preset frequency)",
-        unit: "Radio",
-        subunit: "None",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xe7),
-        name: "NAVNAME",
-        description: "Name of NAV Radio or Preset Frequency",
-        unit: "Radio",
-        subunit: "0=Radio /1+=Presets",
-        format: FormatId::String,
-    },
-    IdentInfo {
-        ident: Ident(0xe8),
-        name: "VNORTH",
-        description: "North component of velocity in true world coordinates",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xe9),
-        name: "VEAST",
-        description: "East component of velocity in true world coordinates",
-        unit: "Source ID",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xea),
-        name: "ENGPOWER",
-        description: "Current Engine Power",
-        unit: "Engine",
-        subunit: "0=Shaft Power/1=Input Power Consumption/ 2+(even)= Component Shaft Power, 3+(odd)= Component Power Consumption",
-        format: FormatId::Uint,
-    },
-    IdentInfo {
-        ident: Ident(0xeb),
-        name: "CHARGE",
-        description: "Measured remaining battery charge",
-        unit: "Battery ID/0=Sum of all",
-        subunit: "None",
-        format: FormatId::Sint,
-    },
-    IdentInfo {
-        ident: Ident(0xec),
-        name: "CHARGETOT",
-        description: "Computed remaining charge",
-        unit: "Power System ID/0=Sum of all",
-        subunit: "0 = current total, 1 = total at end of flight",
-        format: FormatId::Sint,
-    },
-];
+        /// Every parameter of §3.4, in the draft's order.
+        pub static PARAMS: &[IdentInfo] = &[$(IdentInfo {
+            ident: $konst,
+            name: $name,
+            description: $description,
+            unit: $unit,
+            subunit: $subunit,
+            format: FormatId::$format,
+        }),*];
+    };
+}
+
+// One row per §3.4 entry, in the draft's order:
+// CONST = ident, format, "name", "unit usage", "subunit usage", "description";
+idents! {
+    GOAROUND      = 0x00, Bool,     "GOAROUND",      "None", "None", "Go around requested";
+    P_ALT         = 0x01, Sint,     "P-ALT",         "Source ID", "None", "Pressure Altitude";
+    T_ALT         = 0x02, Sint,     "T-ALT",         "Source ID", "None", "True Altitude";
+    IAS           = 0x03, Sint,     "IAS",           "Source ID", "None", "Indicated Airspeed";
+    CAS           = 0x04, Sint,     "CAS",           "Source ID", "None", "Calibrated Airspeed";
+    CASMSG        = 0x05, CasMsg,   "CASMSG",        "CAS System ID", "None", "Crew Alerting System Message";
+    THROTPOS      = 0x06, Sint,     "THROTPOS",      "None", "None", "Throttle position";
+    INAIR         = 0x07, Bool,     "INAIR",         "None", "None", "Are we in the air (vs. on the ground)";
+    BARO          = 0x08, Uint,     "BARO",          "None", "None", "Current barometric setting";
+    CLTPOS        = 0x09, Sint,     "CLTPOS",        "None", "None", "Collective Position";
+    CLTPOSREQ     = 0x0a, Servo,    "CLTPOSREQ",     "None", "None", "A/P Requested Collective Position";
+    MAGHDG        = 0x0b, Uint,     "MAGHDG",        "Source ID", "None", "Magnetic Heading";
+    MAGCRS        = 0x0c, Uint,     "MAGCRS",        "Source ID", "None", "Magnetic Course (via RNAV)";
+    TRUECRS       = 0x0d, Uint,     "TRUECRS",       "Source ID", "None", "True Course (via RNAV)";
+    MAGDTK        = 0x0e, Uint,     "MAGDTK",        "Source ID", "None", "Desired Course (via RNAV)";
+    TRUEDTK       = 0x0f, Uint,     "TRUEDTK",       "Source ID", "None", "Desired course (via RNAV)";
+    LAT           = 0x10, Sint,     "LAT",           "Source ID", "None", "Current position latitude";
+    LON           = 0x11, Sint,     "LON",           "Source ID", "None", "Current position longitude";
+    RNAVALT       = 0x12, Sint,     "RNAVALT",       "Source ID", "None", "Altitude measured by RNAV";
+    ROLL          = 0x13, Sint,     "ROLL",          "Source ID", "None", "Current degrees of roll, -18000 being being upside down towards left, 18000 being upside down to the right";
+    PITCH         = 0x14, Sint,     "PITCH",         "Source ID", "None", "Current degrees of pitch, 9000 being straight up, -9000 being straight down";
+    YAW           = 0x15, Sint,     "YAW",           "Source ID", "None", "Yaw/Inclination as measured in G force";
+    FUELTOT       = 0x16, Sint,     "FUELTOT",       "Fuel System ID/0=Sum of all", "0 = current total, 1 = total at end of flight", "Computed remaining fuel (divisor may be overridden by fuel type in FUELLEVLR)";
+    RNAVHFOM      = 0x17, Uint,     "RNAVHFOM",      "Source ID", "None", "Horizontal Figure of Merit";
+    RNAVVFOM      = 0x18, Uint,     "RNAVVFOM",      "Source ID", "None", "Vertical Figure of Merit";
+    RNAVHPL       = 0x19, Uint,     "RNAVHPL",       "Source ID", "None", "Horizontal Protection Level";
+    RNAVVPL       = 0x1a, Uint,     "RNAVVPL",       "Source ID", "None", "Vertical Protection Level";
+    IASRT         = 0x1b, Sint,     "IASRT",         "Source ID", "None", "Indicated Airspeed Rate of Change";
+    KBDSEL        = 0x1c, String,   "KBDSEL",        "Display", "None", "Activate the named on-screen keyboard or none if empty";
+    KEYPRESS      = 0x1d, Uint,     "KEYPRESS",      "Display", "None", "Send the FMS encoded key press to the given display";
+    SURFPOS       = 0x1e, Sint,     "SURFPOS",       "Surface Type", "Surface Type Subassembly", "Position of arbitrary control surface";
+    SURFREQ       = 0x1f, Sint,     "SURFREQ",       "Surface Type", "Surface Type Subassembly", "Requested control surface position";
+    SURFTORQUE    = 0x20, Sint,     "SURFTORQUE",    "Surface Type", "Surface Type Subassembly", "Aerodynamic torque applied to a control surface relative to movement";
+    SURFFORCE     = 0x21, Sint,     "SURFFORCE",     "Surface Type", "Surface Type Subassembly", "Aerodynamic force applied to a control surface relative to movement";
+    WINDSPD       = 0x22, Uint,     "WINDSPD",       "Source ID", "None", "Wind Speed";
+    WINDBRG       = 0x23, Uint,     "WINDBRG",       "Source ID", "None", "True Bearing from which wind blows";
+    COMFREQKHZ    = 0x24, Uint,     "COMFREQKHZ",    "Radio ID", "0=Radio /1+=Presets", "Communication Frequency";
+    NAVFREQKHZ    = 0x25, Uint,     "NAVFREQKHZ",    "Radio ID", "0=Radio /1+=Presets", "Navigation Frequency";
+    COMVOL        = 0x26, Uint,     "COMVOL",        "Radio ID", "None", "Communication Volume (0-100)";
+    NAVVOL        = 0x27, Uint,     "NAVVOL",        "Radio ID", "None", "Communication Volume (0-100)";
+    COMSQL        = 0x28, Uint,     "COMSQL",        "Radio ID", "None", "Communication Squelch (0-100)";
+    MUX           = 0x29, Uint,     "MUX",           "MUX ID", "None", "Selected multiplexer input or output";
+    ICSVOL        = 0x2a, Uint,     "ICSVOL",        "Audio Panel Unit", "0=System, 1=Pilot, 2=Copilot, rest are pax", "Intercom Volume (0-100)";
+    COMSTATE      = 0x2b, Uint,     "COMSTATE",      "Radio ID", "None", "COM radio state";
+    ICSRXCOMS     = 0x2c, Uint,     "ICSRXCOMS",     "Audio Panel Unit", "0=System, 1=Pilot, 2=Copilot, rest are pax", "Which COM Radios to Monitor (mask)";
+    ICSRXNAVS     = 0x2d, Uint,     "ICSRXNAVS",     "Audio Panel Unit", "0=System, 1=Pilot, 2=Copilot, rest are pax", "Which NAV Radios to Monitor (mask)";
+    ICSMODE       = 0x2e, Uint,     "ICSMODE",       "None", "None", "Intercom Mode";
+    ICSTXCOMS     = 0x2f, Uint,     "ICSTXCOMS",     "Audio Panel Unit", "0=System, 1=Pilot, 2=Copilot, rest are pax", "Which COM Radios to Transmit (mask)";
+    DATE          = 0x30, String,   "DATE",          "None", "None", "Date in YYYY-MM-DD format";
+    GLOAD         = 0x31, Sint,     "GLOAD",         "Source ID", "None", "Current Normal to Aircraft Loading";
+    RATEOFTURN    = 0x32, Sint,     "RATEOFTURN",    "Source ID", "None", "Turn Coordinator Rate Per Second";
+    GROUNDSPEED   = 0x33, Uint,     "GROUNDSPEED",   "Source ID", "None", "Groundspeed";
+    VSPEED        = 0x34, Sint,     "VSPEED",        "Source ID", "None", "Vertical speed";
+    XPDRIDENT     = 0x35, Bool,     "XPDRIDENT",     "Always zero", "None", "XPDR Ident request (USERSELECT only). Non-standby transponders must IDENT regardless of UNIT. Used only to request IDENT, but IDENT state reported in XPDRMODE";
+    XPDRRPS       = 0x36, Uint,     "XPDRRPS",       "XPDR ID", "None", "XPDR Replies per second (normalized)";
+    XPDRSQUAWK    = 0x37, Uint,     "XPDRSQUAWK",    "XPDR ID (Rx Only) Zero for USERSELECT", "None", "XPDR Squawk as decimal integer (e.g., 1200). All transponders must change SQUAWK regardless of UNIT";
+    XPDRMODE      = 0x38, Uint,     "XPDRMODE",      "XPDR ID", "None", "XPDR Mode. Note that IDENT flag is ignored in USERSELECT condition.";
+    NAVOBS        = 0x39, Uint,     "NAVOBS",        "Radio/FMS ID", "None", "NAV OBS Value";
+    NAVBRG        = 0x3a, Uint,     "NAVBRG",        "Radio/FMS ID", "None", "Bearing to nav aid";
+    NAVCDI        = 0x3b, Sint,     "NAVCDI",        "Radio/FMS ID", "None", "Course Deviation (-1000 to 1000)";
+    NAVGSI        = 0x3c, Sint,     "NAVGSI",        "Radio/FMS ID", "None", "Glide Slope (-1000 to 1000)";
+    NAVFLAGS      = 0x3d, Uint,     "NAVFLAGS",      "Radio/FMS ID", "None", "Navigation Flags (see XFS_NAV_FLAG_*";
+    FLAPREQ       = 0x3e, Sint,     "FLAPREQ",       "Actuator/0=Aircraft", "None", "Requested Flap Position 0 = up, 100000 = fully down, -100000 is fully negative";
+    FLAPPOS       = 0x3f, Sint,     "FLAPPOS",       "Actuator/0=Aircraft", "None", "Flap actuator position, 0 = up, 100000 = fully down, -100000 is fully negative";
+    ECBSTAT       = 0x40, Bus,      "ECBSTAT",       "None", "None", "ECB Status change or request, see xfs_ecb.h";
+    PTRIMREQ      = 0x41, Sint,     "PTRIMREQ",      "None", "None", "Requested Pitch Trim Position (negative nose down, 0 neutral, positive nose up)";
+    PTRIMPOS      = 0x42, Sint,     "PTRIMPOS",      "None", "None", "Pitch Trim Position (negative nose down, 0 neutral, positive nose up)";
+    RTRIMREQ      = 0x43, Sint,     "RTRIMREQ",      "None", "None", "Requested Roll Trim Position (negative left bank, 0 neutral, positive right bank)";
+    RTRIMPOS      = 0x44, Sint,     "RTRIMPOS",      "None", "None", "Roll Trim Position (negative left bank, 0 neutral, positive right bank)";
+    BUSSTAT       = 0x45, Bus,      "BUSSTAT",       "None", "None", "Status of Bus";
+    TEMP          = 0x46, Sint,     "TEMP",          "Location", "Sensor Number/0=Average", "Arbitrary Temperature in a location";
+    TAS           = 0x47, Sint,     "TAS",           "Source ID", "None", "True Airspeed";
+    TAT           = 0x48, Sint,     "TAT",           "Source ID", "None", "Total Air Temperature";
+    OAT           = 0x49, Sint,     "OAT",           "Source ID", "None", "Outside Air Temperature accounting for compressibility";
+    D_ALT         = 0x4a, Sint,     "D-ALT",         "Source ID", "None", "Density Altitude";
+    OILPRES       = 0x4b, Sint,     "OILPRES",       "Engine", "None", "Oil Pressure";
+    OILTEMP       = 0x4c, Sint,     "OILTEMP",       "Engine", "None", "Oil Temp";
+    XFDFPS        = 0x4d, Uint,     "XFDFPS",        "Display", "None", "XFD Display Frames Per Second (FPS)";
+    TIREPRES      = 0x4e, Sint,     "TIREPRES",      "Bogey", "Tire", "Tire Pressure";
+    CHT           = 0x4f, Sint,     "CHT",           "Engine", "Cylinder/0=Max", "Cylinder Head Temperature";
+    EGT           = 0x50, Sint,     "EGT",           "Engine", "Cylinder/0=Max", "Exhaust Gas Temperature";
+    COOLTEMP      = 0x51, Sint,     "COOLTEMP",      "Engine", "None", "Coolant Temperature";
+    FUELFLOW      = 0x52, Sint,     "FUELFLOW",      "Engine", "None", "Fuel Flow";
+    FUELPRES      = 0x53, Sint,     "FUELPRES",      "Engine", "None", "Fuel Pressure";
+    FUELLEVL      = 0x54, Sint,     "FUELLEVL",      "Fuel Tank ID/0=Sum of all", "None", "Fuel Level (divisor may be overridden by fuel type)";
+    MANPRES       = 0x55, Sint,     "MANPRES",       "Engine", "None", "Manifold pressure";
+    ENGRPM        = 0x56, Uint,     "ENGRPM",        "Engine", "None", "Engine RPM";
+    PROPRPM       = 0x57, Uint,     "PROPRPM",       "Engine", "None", "Propeller RPM";
+    MACH          = 0x58, Sint,     "MACH",          "Source ID", "None", "Mach";
+    IASBUG        = 0x59, Sint,     "IASBUG",        "None", "None", "Target indicated airspeed";
+    HDGBUG        = 0x5a, Uint,     "HDGBUG",        "None", "None", "Bugged Magnetic Heading";
+    ALTBUG        = 0x5b, Sint,     "ALTBUG",        "None", "None", "Bugged Altitude";
+    WAYPOINT      = 0x5c, Waypoint, "WAYPOINT",      "FMS ID", "None", "A way point in a flight plan, subunit is position in flightplan, beginning with 1 for first waypoint. Subunit 0 is only used to indicate an empty flight plan.";
+    INSERT        = 0x5d, Waypoint, "INSERT",        "FMS ID", "None", "Insert A way point in a flight plan, subunit is position in flightplan which it should become (SYSSEL/USERSEL ONLY)";
+    DELETE        = 0x5e, Waypoint, "DELETE",        "FMS ID", "None", "Delete A way point in a flight plan, subunit is position in flightplan starting at 1 (SYSSEL/USERSEL ONLY). Label must match";
+    NOTE          = 0x5f, String,   "NOTE",          "None", "None", "Notation of something important within the quick access log or bus";
+    NAVGPS        = 0x60, Uint,     "NAVGPS",        "NAV radio unit or FMS Unit Number", "None", "GPS Mode";
+    NAVDIS        = 0x61, Uint,     "NAVDIS",        "FMS Unit Number", "0 = next waypoint, 1 = last waypoint", "Distance to next or last waypoint or DME for VOR/ILS/etc";
+    NAVXTK        = 0x62, Sint,     "NAVXTK",        "FMS Unit Number", "None", "Cross track error (negative is left)";
+    NAVETE        = 0x63, Uint,     "NAVETE",        "FMS Unit Number", "0 = next waypoint, 1 = last waypoint", "Time to next or last waypoint";
+    BRIGHTNESS    = 0x64, Uint,     "BRIGHTNESS",    "None", "None", "Universal display brightness (0-1000 for night time mode, 1000-2000 for daytime modes";
+    MANTEMP       = 0x65, Sint,     "MANTEMP",       "Engine", "None", "Manifold temperature";
+    DIRECT        = 0x66, Waypoint, "DIRECT",        "None", "None", "Go direct to a way point in a flight plan, subunit is position in flightplan starting at 1 (SYSSEL/USERSEL ONLY). Label must match";
+    ACTIVATE      = 0x67, Waypoint, "ACTIVATE",      "None", "None", "Activate leg terminating at way point in a flight plan, subunit is position in flightplan (SYSSEL/USERSEL ONLY). Label must match";
+    MMPARAM       = 0x68, Sint,     "MMPARAM",       "MOVMAP ID", "XFS_MM_PARAM_*", "Moving Map parameters. Subunit is one of XFS_MM_PARAM_*";
+    SERVOREQ      = 0x69, Servo,    "SERVOREQ",      "None", "None", "Requested servo position and state";
+    SERVOPOS      = 0x6a, Sint,     "SERVOPOS",      "None", "None", "Current servo actuator position";
+    SONICHAT      = 0x6b, Sint,     "SONICHAT",      "None", "None", "Ultrasonic rangefinder height above terrain";
+    LIDARHAT      = 0x6c, Sint,     "LIDARHAT",      "Source ID", "None", "LIDAR rangefinder height above terrain";
+    RADARHAT      = 0x6d, Sint,     "RADARHAT",      "Source ID", "None", "Radar rangefinder height above terrain";
+    HAT           = 0x6e, Sint,     "HAT",           "Source ID", "None", "Computed height above terrain";
+    COMSTANDBY    = 0x6f, Uint,     "COMSTANDBY",    "Radio ID", "None", "Standby COM Frequency (same rules and range as COMFREQKHZ)";
+    NAVSTANDBY    = 0x70, Uint,     "NAVSTANDBY",    "Radio ID", "None", "Standby NAV Frequency (same rules and range as NAVFREQKHZ)";
+    STALLSPEED    = 0x71, Sint,     "STALLSPEED",    "None", "None", "Estimated real-time Stall speed";
+    TIMEMS        = 0x72, Uint,     "TIMEMS",        "None", "None", "Time in milliseconds from midnight zulu time";
+    YTRIMREQ      = 0x73, Sint,     "YTRIMREQ",      "None", "None", "Requested Yaw Trim Position (negative left, 0 neutral, positive right)";
+    YTRIMPOS      = 0x74, Sint,     "YTRIMPOS",      "None", "None", "Yaw Trim Position (negative left, 0 neutral, positive right)";
+    VSPEEDBUG     = 0x75, Sint,     "VSPEEDBUG",     "None", "None", "Vertical speed bug in fpm";
+    MUSICSRC      = 0x76, Uint,     "MUSICSRC",      "Audio Panel Unit", "0=System, 1=Pilot, 2=Copilot, rest are pax", "Music Source (0 = none)";
+    AOA           = 0x77, Sint,     "AOA",           "Source", "None", "Angle of attack as an actual angle";
+    AOAR          = 0x77, Range,    "AOAR",          "None", "None", "Angle of attack range -- should contain green (beginning of approach range), white (reference angle), yellow (approaching stall) and a red (imminent stall)";
+    GPIO          = 0x78, Gpio,     "GPIO",          "I/O Module", "Module Port (0 or 1-8)", "GPIO Input/Output";
+    ANALOG        = 0x79, Uint,     "ANALOG",        "I/O Module", "Module Port (1-8)", "Raw Analog value 0-4095";
+    PWM           = 0x7a, Uint,     "PWM",           "I/O Module", "Module Port (1-8)", "PWM value 0-4095 -- subunit is port number, 1-8";
+    XPDRACID      = 0x7b, Uint,     "XPDRACID",      "XPDR ID (Rx Only) Zero for USERSELECT", "None", "ICAO 24-bit Aircraft Identifier";
+    XPDRFLID      = 0x7c, String,   "XPDRFLID",      "XPDR ID (Rx Only) Zero for USERSELECT", "None", "Up to 8-character, NULL terminated flight ID";
+    THROTREQ      = 0x7d, Servo,    "THROTREQ",      "None", "None", "Requested throttle position";
+    RPMREQ        = 0x7e, Uint,     "RPMREQ",        "None", "None", "Prop governor requested RPM";
+    TACHTIME      = 0x7f, Uint,     "TACHTIME",      "None", "None", "Tachometer time, unit is engine";
+    TOTTIME       = 0x80, Uint,     "TOTTIME",       "None", "None", "Total aircraft time";
+    APPSTAT       = 0x81, App,      "APPSTAT",       "CPU ID", "Process ID", "Application Status / Requests";
+    CDINAVSRC     = 0x82, Uint,     "CDINAVSRC",     "Display", "None", "Select index (> 0) of CDI NAV Source or 0 for none";
+    BRGNAVSRC     = 0x83, Uint,     "BRGNAVSRC",     "Display", "None", "Select index (> 0) CDI BRG Source or 0 for none";
+    COMSEL        = 0x84, Uint,     "COMSEL",        "Display", "None", "Select COM Radio for Tuning";
+    NAVSEL        = 0x85, Uint,     "NAVSEL",        "Display", "None", "Select NAV Radio for Tuning";
+    MSTRCAUTN     = 0x86, Bool,     "MSTRCAUTN",     "None", "None", "Master Caution Active when true. Resets by SYSSEL/ USERSEL with value of FALSE";
+    MSTRWARN      = 0x87, Bool,     "MSTRWARN",      "None", "None", "Master Warning Active when true. Resets by SYSSEL/ USERSEL with value of FALSE";
+    ROLLRT        = 0x88, Sint,     "ROLLRT",        "None", "None", "Rate of change of about A/C longitudinal axis (P)";
+    PITCHRT       = 0x89, Sint,     "PITCHRT",       "None", "None", "Rate of change about A/C transverse axis (Q)";
+    YAWRT         = 0x8a, Sint,     "YAWRT",         "None", "None", "Rate of change about A/C vertical axis (R)";
+    STKPITCH      = 0x8b, Sint,     "STKPITCH",      "None", "None", "Stick Pitch Position (negative nose down, 0 neutral, positive nose up)";
+    STKROLL       = 0x8c, Sint,     "STKROLL",       "None", "None", "Stick Roll Position (negative left bank, 0 neutral, positive right bank)";
+    STKYAW        = 0x8d, Sint,     "STKYAW",        "None", "None", "Pedal Yaw Position (negative left, 0 neutral, positive right)";
+    BATTTEMP      = 0x8e, Sint,     "BATTTEMP",      "None", "None", "Battery Temp";
+    MOTORTEMP     = 0x8f, Sint,     "MOTORTEMP",     "Motor", "None", "Motor Temp";
+    POWERTEMP     = 0x90, Sint,     "POWERTEMP",     "Propulsion System", "Power converter/0=Max", "Temp of a device supplying/converting power to a propulsion system";
+    TORQUE        = 0x91, Sint,     "TORQUE",        "Motor/Engine", "None", "Torque";
+    TAILNUM       = 0x92, String,   "TAILNUM",       "None", "None", "Up to 8-character, NULL terminated tail number";
+    ROLLREQ       = 0x93, Sint,     "ROLLREQ",       "None", "None", "F/D requested degrees of roll in 100 * degrees with 0 being right side up, -18000 being being upside down towards left, 18000 being upside down to the right";
+    PITCHREQ      = 0x94, Sint,     "PITCHREQ",      "None", "None", "F/D requested degrees of pitch in 100 * degrees with 0 being straight ahead, 9000 being straight up, -9000 being straight down";
+    YAWREQ        = 0x95, Sint,     "YAWREQ",        "None", "None", "F/D requested G force of inclination with 0 being no yaw";
+    STKPITCHREQ   = 0x96, Servo,    "STKPITCHREQ",   "None", "None", "A/P Requested Stick Pitch Position (negative nose down, 0 neutral, positive nose up)";
+    STKROLLREQ    = 0x97, Servo,    "STKROLLREQ",    "None", "None", "A/P Requested Stick Roll Position (negative left bank, 0 neutral, positive right bank)";
+    STKYAWREQ     = 0x98, Servo,    "STKYAWREQ",     "None", "None", "A/P Requested Pedal Yaw Position (negative left, 0 neutral, positive right)";
+    FDMODEACT     = 0x99, Uint,     "FDMODEACT",     "FD Number (0 for setting values)", "None", "Active Flight Director Modes";
+    FDMODEARM     = 0x9a, Uint,     "FDMODEARM",     "FD Number (0 for setting values)", "None", "Armed Flight Director Modes (XFS_AFCS_FD_MODE_*";
+    ALTHOLDBUG    = 0x9b, Sint,     "ALTHOLDBUG",    "None", "None", "Altitude used by FD for altitude hold";
+    APMODE        = 0x9c, Uint,     "APMODE",        "AP Number (0 for setting value)", "None", "Autopilot Modes";
+    ICSSQL        = 0x9d, Uint,     "ICSSQL",        "Audio Panel Unit", "0=System, 1=Pilot, 2=Copilot, rest are pax", "Intercom Squelch (0-100)";
+    PITCHBUG      = 0x9e, Sint,     "PITCHBUG",      "None", "None", "Target pitch";
+    PTSPEED       = 0x9f, Sint,     "PTSPEED",       "Engine", "None", "Power Turbine Speed (commonly N1)";
+    GTSPEED       = 0xa0, Sint,     "GTSPEED",       "Engine", "None", "Gas Turbine Speed (commonly N2 or Ng)";
+    TIT           = 0xa1, Sint,     "TIT",           "Engine", "Turbo/0=Max", "Turbine Inlet Temperature";
+    ITT           = 0xa2, Sint,     "ITT",           "Engine", "Sensor /0=Average", "Inter-Turbine Temperature";
+    POWER         = 0xa3, Sint,     "POWER",         "Motor/Engine", "None", "Power under current engine and environmental conditions relative to engine design maximum";
+    ENGSTATUS     = 0xa4, Uint,     "ENGSTATUS",     "Motor/Engine", "Engine Specific", "Engine specific set of flags or values";
+    CABINALT      = 0xa5, Sint,     "CABINALT",      "None", "None", "Cabin Equivalent Altitude";
+    CABINALTREQ   = 0xa6, Sint,     "CABINALTREQ",   "None", "None", "Cabin Equivalent Altitude";
+    DIFFPRES      = 0xa7, Sint,     "DIFFPRES",      "None", "None", "Differential Pressure";
+    DIFFPRESREQ   = 0xa8, Sint,     "DIFFPRESREQ",   "None", "None", "Requested Differential Pressure";
+    FUELTEMP      = 0xa9, Sint,     "FUELTEMP",      "Engine/Fuel Tank", "SubLocation /0=Average, 1=Sump", "Arbitrary Temperature in a location";
+    ENGSTATE      = 0xaa, Uint,     "ENGSTATE",      "Motor/Engine", "None", "Engine operating state";
+    ENGSTATEREQ   = 0xab, Uint,     "ENGSTATEREQ",   "Motor/Engine", "None", "Requested Engine operating state";
+    BLEEDAIR      = 0xac, Uint,     "BLEEDAIR",      "Motor/Engine", "None", "Bleed Air Level (Percent of Max)";
+    BLEEDAIRREQ   = 0xad, Uint,     "BLEEDAIRREQ",   "Motor/Engine", "None", "Requested Bleed Air Level";
+    LIGHTING      = 0xae, Uint,     "LIGHTING",      "System", "Specific", "Lighting Color/Level";
+    LIGHTINGREQ   = 0xaf, Uint,     "LIGHTINGREQ",   "System", "Specific", "Requested Lighting Color/Level";
+    ICING         = 0xb0, Uint,     "ICING",         "System/0=Aircraft", "Specific", "Deicing State";
+    ICINGREQ      = 0xb1, Uint,     "ICINGREQ",      "System/0=Aircraft", "Specific", "Requested Deicing State";
+    LDGGEAR       = 0xb2, Uint,     "LDGGEAR",       "Wheel/0=Aircraft", "Specific", "Landing Gear State";
+    LDGGEARREQ    = 0xb3, Uint,     "LDGGEARREQ",    "Wheel/0=Aircraft", "Specific", "Landing Gear State";
+    CABINTEMP     = 0xb4, Sint,     "CABINTEMP",     "Zone", "Sensor Number /0=Average", "Cabin Temperature in a zone";
+    CABINTEMPREQ  = 0xb5, Sint,     "CABINTEMPREQ",  "Zone", "Sensor Number /0=Average", "Requested Cabin Temperature in a zone";
+    CHKLIST       = 0xb6, CasMsg,   "CHKLIST",       "Checklist Number", "Item Number /0=Title", "Checklist Item";
+    WBRANGE       = 0xb7, WbRange,  "WBRANGE",       "None", "None", "Weight and envelope per configuration";
+    WBSTARM       = 0xb8, Sint,     "WBSTARM",       "Configuration", "Station /0=total /1=total no fuel", "Arm for given station";
+    WBSTMAXWEIGHT = 0xb9, Sint,     "WBSTMAXWEIGHT", "Configuration", "Station /0=total /1=total no fuel", "Maximum weight at given station";
+    WBSTFLAGS     = 0xba, Uint,     "WBSTFLAGS",     "Configuration", "Station /0=total /1=total no fuel", "Flags about given station";
+    WBSTWEIGHT    = 0xbb, Sint,     "WBSTWEIGHT",    "Configuration", "Station /0=total /1=total no fuel", "Actual weight at given station";
+    TASEFF        = 0xbc, Sint,     "TASEFF",        "None", "None", "Fuel Economy Relative to True Airspeed";
+    GSEFF         = 0xbd, Sint,     "GSEFF",         "None", "None", "Fuel Economy Relative to Groundspeed";
+    TIMETOEMPTY   = 0xbe, Sint,     "TIMETOEMPTY",   "Engine /0=Aircraft", "0 - smoothed, without reserve, 1 - smoothed, with reserve, 2 - without reserve, 3 - with reserve", "Time to Empty";
+    DISTTOEMPTY   = 0xbf, Sint,     "DISTTOEMPTY",   "Engine /0=Aircraft", "0 - smoothed, without reserve, 1 - smoothed, with reserve, 2 - without reserve, 3 - with reserve", "Distance to Empty";
+    FLIGHTSTATE   = 0xc0, Uint,     "FLIGHTSTATE",   "None", "None", "State of Flight";
+    UPDATESTATE   = 0xc1, Update,   "UPDATESTATE",   "None", "None", "Status of any update";
+    TORQUEREQ     = 0xc2, Sint,     "TORQUEREQ",     "Motor/Engine", "None", "Requested Torque";
+    STKPITCHFRCE  = 0xc3, Sint,     "STKPITCHFRCE",  "None", "None", "Stick Pitch Force applied by the pilot, positive value - push, negative value - pull";
+    STKROLLFRCE   = 0xc4, Sint,     "STKROLLFRCE",   "None", "None", "Stick Roll Force applied by the pilot, positive value - roll right, negative value - roll left";
+    STKYAWFRCE    = 0xc5, Sint,     "STKYAWFRCE",    "None", "None", "Pedal Yaw Force applied by the pilot, positive value - right rudder, negative value - left rudder";
+    APPITCHFRCE   = 0xc6, Sint,     "APPITCHFRCE",   "None", "None", "Auto Pilot Pitch Force exerted on control surfaces, positive value - push, negative value - pull";
+    APROLLFRCE    = 0xc7, Sint,     "APROLLFRCE",    "None", "None", "Auto Pilot Roll Force exerted on control surfaces, positive value - roll right, negative value - roll left";
+    APYAWFRCE     = 0xc8, Sint,     "APYAWFRCE",     "None", "None", "Auto Pilot Yaw Force exerted on control surfaces, positive value - right rudder, negative value - left rudder";
+    EFBPARAM      = 0xc9, String,   "EFBPARAM",      "EFB ID", "XFS_EFB_PARAM_*", "Up to 64-character, NULL terminated parameter value";
+    OILPRESCOMP   = 0xca, Sint,     "OILPRESCOMP",   "Engine", "None", "Compensated Oil Pressure";
+    MACHBUG       = 0xcb, Sint,     "MACHBUG",       "None", "None", "Target Mach";
+    AOART         = 0xcc, Sint,     "AOART",         "Source", "None", "Angle of attack rate of change";
+    TASBUG        = 0xcd, Sint,     "TASBUG",        "None", "None", "Target true airspeed";
+    GSBUG         = 0xce, Sint,     "GSBUG",         "None", "None", "Target groundspeed";
+    AOABUG        = 0xcf, Sint,     "AOABUG",        "None", "None", "Bugged AOA";
+    ECUTIME       = 0xd1, Uint,     "ECUTIME",       "Engine", "None", "ECU Hours";
+    DBASE         = 0xd2, DBase,    "DBASE",         "CPU ID", "Process ID", "Active database information";
+    EAS           = 0xd3, Sint,     "EAS",           "Source ID", "None", "Equivalent Airspeed";
+    EASRT         = 0xd4, Sint,     "EASRT",         "Source ID", "None", "Equivalent Airspeed Rate of Change";
+    EASBUG        = 0xd5, Sint,     "EASBUG",        "None", "None", "Target equivalent airspeed";
+    POWERREQ      = 0xd6, Sint,     "POWERREQ",      "Motor/Engine", "None", "Requested power as percent of engine design maximum";
+    BRAKE         = 0xd7, Uint,     "BRAKE",         "Left=1,Right=2,No direction=0", "Specific", "Wheel brake status";
+    BRAKEREQ      = 0xd8, Uint,     "BRAKEREQ",      "Left=1,Right=2,No direction=0", "Specific", "Amount of brake requested";
+    NAVSQL        = 0xd9, Uint,     "NAVSQL",        "Radio ID", "None", "Communication Squelch (0-100)";
+    STATIONID     = 0xda, String,   "STATIONID",     "Radio ID", "None", "VOR Station ID decoded from Morse code";
+    SVPARAM       = 0xdb, Sint,     "SVPARAM",       "SYNVIS ID", "XFS_SV_PARAM_*", "Synthetic Vision parameters. Subunit is one of XFS_SV_PARAM_*";
+    FDCDISEL      = 0xdc, Uint,     "FDCDISEL",      "None", "None", "Global selection of which CDI the flight director should track";
+    BLOODOXY      = 0xdd, Uint,     "BLOODOXY",      "Seat position, 0=Lowest of all seats, 1=Pilot, 2=Copilot, etc", "None", "Blood oxygen level of given seat occupant";
+    PULSE         = 0xde, Uint,     "PULSE",         "Seat position, 0=Worst of all seats (too low or high), 1=Pilot, 2=Copilot, etc", "None", "Pulse rate of given seat occupant";
+    BREATHS       = 0xdf, Uint,     "BREATHS",       "Seat position, 0=Worst of all seats (too low or high), 1=Pilot, 2=Copilot, etc", "None", "Breathing rate of given seat occupant";
+    CARBMONOX     = 0xe0, Uint,     "CARBMONOX",     "Carbon Monoxide Sensor ID", "None", "Carbon Monoxide levels detected by sensor";
+    FLOWRATE      = 0xe1, Uint,     "FLOWRATE",      "Seat position, 0=Worst of all seats (too low or high), 1=Pilot, 2=Copilot, etc", "None", "Oxygen flow rate";
+    TANKPRES      = 0xe2, Uint,     "TANKPRES",      "Tank number, 0=Worst of all tanks (too low or high), 1=Tank 1, 2=Tank 2, etc", "None", "Oxygen tank pressure";
+    RNAVVS        = 0xe3, Sint,     "RNAVVS",        "Source ID", "None", "Vertical speed computed from RNAV";
+    COMPRESET     = 0xe4, Uint,     "COMPRESET",     "Radio", "None", "Selected COM Radio Preset (0=Non-preset frequency)";
+    COMNAME       = 0xe5, String,   "COMNAME",       "Radio", "0=Radio /1+=Presets", "Name of COM Radio or Preset Frequency";
+    NAVPRESET     = 0xe6, Uint,     "NAVPRESET",     "Radio", "None", "Selected NAV Radio Preset (0=Non-preset frequency)";
+    NAVNAME       = 0xe7, String,   "NAVNAME",       "Radio", "0=Radio /1+=Presets", "Name of NAV Radio or Preset Frequency";
+    VNORTH        = 0xe8, Sint,     "VNORTH",        "Source ID", "None", "North component of velocity in true world coordinates";
+    VEAST         = 0xe9, Sint,     "VEAST",         "Source ID", "None", "East component of velocity in true world coordinates";
+    ENGPOWER      = 0xea, Uint,     "ENGPOWER",      "Engine", "0=Shaft Power/1=Input Power Consumption/ 2+(even)= Component Shaft Power, 3+(odd)= Component Power Consumption", "Current Engine Power";
+    CHARGE        = 0xeb, Sint,     "CHARGE",        "Battery ID/0=Sum of all", "None", "Measured remaining battery charge";
+    CHARGETOT     = 0xec, Sint,     "CHARGETOT",     "Power System ID/0=Sum of all", "0 = current total, 1 = total at end of flight", "Computed remaining charge";
+}
 
 #[cfg(test)]
 mod tests {
@@ -2467,8 +357,31 @@ mod tests {
         u32::from_str_radix(&hex, 16).unwrap_or_else(|e| panic!("ident {token}: {e}"))
     }
 
-    /// (name, ident token, format name) for every entry of §3.4.
-    fn spec_entries(text: &str) -> Vec<(String, String, String)> {
+    /// One entry of §3.4 as the draft writes it:
+    /// `NAME - description Parameter ID: %x.. Unit Usage: .. SubUnit Usage: .. Format: F (See Table n.)`.
+    struct SpecEntry {
+        name: String,
+        description: String,
+        token: String,
+        unit: String,
+        subunit: String,
+        format: String,
+    }
+
+    /// The text of `s` between `open` and the next `close`, and what follows `close`.
+    fn between<'a>(s: &'a str, open: &str, close: &str) -> (&'a str, &'a str) {
+        let a = s
+            .find(open)
+            .unwrap_or_else(|| panic!("{open:?} in {s:.80}"))
+            + open.len();
+        let b = a + s[a..]
+            .find(close)
+            .unwrap_or_else(|| panic!("{close:?} in {s:.80}"));
+        (&s[a..b], &s[b + close.len()..])
+    }
+
+    /// Every entry of §3.4, in the draft's order.
+    fn spec_entries(text: &str) -> Vec<SpecEntry> {
         let text = strip_page_furniture(text.to_owned());
         let start = text
             .find("3.4. Parameter Types This section")
@@ -2478,25 +391,29 @@ mod tests {
                 .find("4. Message Transport 4.1.")
                 .expect("§4 heading");
         let sec = &text[start..end];
-        let mut cursor = sec.find("attribute type.").expect("§3.4 intro") + "attribute type.".len();
+        let mut rest =
+            &sec[sec.find("attribute type.").expect("§3.4 intro") + "attribute type.".len()..];
         let mut out = Vec::new();
-        while let Some(p) = sec[cursor..].find("Parameter ID: ") {
-            let at = cursor + p;
-            let pre = sec[cursor..at].trim();
-            let mut words = pre.split(' ');
-            let name = words.next().expect("a name").to_owned();
-            assert_eq!(words.next(), Some("-"), "entry {name:?} is `NAME - text`");
-            let after = &sec[at + "Parameter ID: ".len()..];
-            let token = after.split(' ').next().expect("an ident").to_owned();
-            let f = after.find("Format: ").expect("a format") + "Format: ".len();
-            let format = after[f..]
-                .split(' ')
-                .next()
-                .expect("format name")
-                .to_owned();
-            let close = f + after[f..].find(".)").expect("(See Table n.)") + 2;
-            out.push((name, token, format));
-            cursor = at + "Parameter ID: ".len() + close;
+        while rest.contains("Parameter ID: ") {
+            let (pre, after) = between(rest, "", " Parameter ID: ");
+            let (name, description) = pre
+                .trim()
+                .split_once(" - ")
+                .unwrap_or_else(|| panic!("entry {pre:?} is `NAME - text`"));
+            let (token, after) = between(after, "", " Unit Usage: ");
+            let (unit, after) = between(after, "", " SubUnit Usage: ");
+            let (subunit, after) = between(after, "", " Format: ");
+            let (format, after) = between(after, "", " (See Table ");
+            let (_, after) = between(after, "", ".)");
+            out.push(SpecEntry {
+                name: name.to_owned(),
+                description: description.to_owned(),
+                token: token.to_owned(),
+                unit: unit.to_owned(),
+                subunit: subunit.to_owned(),
+                format: format.to_owned(),
+            });
+            rest = after;
         }
         out
     }
@@ -2508,18 +425,26 @@ mod tests {
         let entries = spec_entries(&text);
         assert_eq!(entries.len(), 237, "§3.4 has 237 entries");
         assert_eq!(PARAMS.len(), entries.len(), "and so does our table");
-        for (name, token, format) in &entries {
+        for e in &entries {
+            let (name, token) = (&e.name, &e.token);
             let ident = Ident(spec_ident(token));
             assert!(ident.0 <= 0xF_FFFF, "{name} fits 20 bits");
             let f = FormatId::ALL
                 .iter()
                 .copied()
-                .find(|f| f.spec_name() == Some(format.as_str()))
-                .unwrap_or_else(|| panic!("{name}: unknown format {format}"));
+                .find(|f| f.spec_name() == Some(e.format.as_str()))
+                .unwrap_or_else(|| panic!("{name}: unknown format {}", e.format));
             let row = lookup(ident, f)
-                .unwrap_or_else(|| panic!("{name} {token} {format} missing from PARAMS"));
-            assert_eq!(row.name, name, "{token} {format}");
+                .unwrap_or_else(|| panic!("{name} {token} {} missing from PARAMS", e.format));
+            assert_eq!(row.name, name, "{token} {}", e.format);
+            assert_eq!(row.description, e.description, "{name}: description");
+            assert_eq!(row.unit, e.unit, "{name}: Unit Usage");
+            assert_eq!(row.subunit, e.subunit, "{name}: SubUnit Usage");
         }
+        // The table is in the draft's order, so a reader can check it row by row.
+        let ours: Vec<_> = PARAMS.iter().map(|p| p.name).collect();
+        let theirs: Vec<_> = entries.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(ours, theirs);
         // Our rows are unique by (ident, format), so lookup is unambiguous.
         for (i, a) in PARAMS.iter().enumerate() {
             for b in &PARAMS[i + 1..] {
