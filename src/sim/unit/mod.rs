@@ -21,9 +21,6 @@ mod power;
 mod stats;
 mod wire;
 
-#[cfg(test)]
-mod tests;
-
 pub use broadcasts::is_broadcast;
 pub use commands::SimCommand;
 pub use stats::{SimStats, WireStats};
@@ -486,3 +483,6 @@ impl Unit {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;
