@@ -393,11 +393,22 @@ const TOO_LONG: &[&str] = &[];
 /// No file holds more than this many lines of code before its tests (issue 23, item 5).
 const MAX_CODE_LINES: usize = 1000;
 
-/// Lines of a file before its `#[cfg(test)]` module, blank lines and comments left out.
+/// Lines of a file before its inline `#[cfg(test)] mod … {` block, blank lines and
+/// comments left out. A `#[cfg(test)] mod tests;` that names a file of its own is one
+/// line like any other, so that declaring it early hides no code.
 fn code_lines(text: &str) -> usize {
-    text.lines()
-        .take_while(|l| l.trim() != "#[cfg(test)]")
-        .map(str::trim)
+    let lines: Vec<&str> = text.lines().map(str::trim).collect();
+    let end = (0..lines.len())
+        .find(|&i| {
+            lines[i] == "#[cfg(test)]"
+                && lines[i + 1..]
+                    .iter()
+                    .find(|l| !l.is_empty())
+                    .is_some_and(|l| l.starts_with("mod ") && l.ends_with('{'))
+        })
+        .unwrap_or(lines.len());
+    lines[..end]
+        .iter()
         .filter(|l| !l.is_empty() && !l.starts_with("//"))
         .count()
 }
@@ -439,6 +450,9 @@ fn no_file_is_over_a_thousand_lines_of_code() {
 
 #[test]
 fn code_lines_skip_comments_blanks_and_tests() {
-    let text = "// a\nfn a() {}\n\n/// doc\nfn b() {}\n#[cfg(test)]\nmod tests { fn c() {} }\n";
+    let text = "// a\nfn a() {}\n\n/// doc\nfn b() {}\n#[cfg(test)]\nmod tests {\n fn c() {}\n}\n";
     assert_eq!(code_lines(text), 2);
+    // A test module in a file of its own, declared first, hides nothing after it.
+    let early = "#[cfg(test)]\nmod tests;\nfn a() {}\nfn b() {}\n";
+    assert_eq!(code_lines(early), 4);
 }
