@@ -20,10 +20,10 @@ use vpx_efis::protocol::message::{
 };
 mod themes;
 
-use vpx_efis::ui;
-use vpx_efis::ui::setup::state::{
+use vpx_efis::setup::view::{
     Dialog, Field, Forms, FromUnit, Held, Page, Probe, SetupView, Tone, WriteLine, WriteStatus,
 };
+use vpx_efis::ui;
 use vpx_efis::ui::state::{Screen, ViewState};
 
 fn apply(m: &mut Model, at: Instant, msg: impl Into<Message>) {

@@ -13,7 +13,7 @@ use crate::control::{Action, KeyContext, Selected, StopReason, keymap};
 use crate::model::{CircuitKind, CircuitState, Model, Motor};
 use crate::protocol::message::{Message, Packet};
 use crate::setup::flow::Out;
-use crate::ui::setup::state::{Dialog, Tone};
+use crate::setup::view::{Dialog, Tone};
 use crate::ui::state::Screen;
 
 /// The key context that makes the controller run `motor`, as if its row were selected

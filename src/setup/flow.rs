@@ -14,6 +14,7 @@ use std::time::Instant;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use super::probe::{EraseEnd, Probes};
+use super::view::{Dialog, Field, Page, SetupView, Tone, missing_summary};
 use super::{form, write};
 use crate::backup::{self, Backup, Made};
 use crate::model::{Model, Source};
@@ -21,7 +22,6 @@ use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{STARTER, TRIM_R};
 use crate::protocol::message::{Message, Version};
 use crate::protocol::names::PIN_NAMES;
-use crate::ui::setup::state::{Dialog, Field, Page, SetupView, Tone};
 
 /// What the app must do after the flow moved.
 #[derive(Debug, Default, Clone, PartialEq)]
@@ -647,7 +647,7 @@ fn save_backup(file: &str, model: &Model) -> Result<String, String> {
         return Err(format!(
             "not saved: the page has not heard {} yet; choose \"Re-read the unit\" and \
              save again",
-            crate::ui::setup::dialog::missing_summary(&missing)
+            missing_summary(&missing)
         ));
     };
     // The file says where it came from, as `vpx-efis backup` writes it.
@@ -671,6 +671,7 @@ mod tests {
 
     use crossterm::event::KeyEventKind;
 
+    use crate::setup::view::WriteStatus;
     use crate::exchange::Rereader;
     use crate::model::{Setting, Source};
     use crate::protocol::Packet;
@@ -678,7 +679,6 @@ mod tests {
         DeviceEnable, DeviceName, DeviceSpec, DeviceSpecQuery, EnableFlag, OvervoltageLimit,
         SpecAck, SwitchId,
     };
-    use crate::ui::setup::state::WriteStatus;
 
     fn press(code: KeyCode) -> KeyEvent {
         KeyEvent::new_with_kind(code, KeyModifiers::NONE, KeyEventKind::Press)
@@ -1181,7 +1181,7 @@ mod tests {
                 )),
                 "{words}"
             );
-            let keys = crate::ui::setup::keys(&sv);
+            let keys = crate::setup::view::keys(&sv);
             assert!(
                 !keys.iter().any(|(k, _)| *k == "0-9"),
                 "{field:?}: {keys:?}"
@@ -1190,7 +1190,7 @@ mod tests {
         sv.page = Page::Device;
         sv.field = 1;
         assert!(
-            crate::ui::setup::keys(&sv).contains(&("0-9", "type")),
+            crate::setup::view::keys(&sv).contains(&("0-9", "type")),
             "the breaker"
         );
         // The name: é, then 19 characters.

@@ -10,6 +10,7 @@
 pub mod flow;
 pub mod form;
 pub mod probe;
+pub mod view;
 pub mod write;
 
 pub use write::{ANSWER_TIMEOUT, TRIES, WriteQueue, unit_config};

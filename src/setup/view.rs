@@ -1,6 +1,6 @@
 //! What the setup screens show: the page and field the person is on, the values being
 //! edited, and where each write to the unit stands. Pure data plus the words for it;
-//! the app changes it, the widgets read it.
+//! the setup flow owns and changes it, the screens in `ui::setup` only read it.
 //!
 //! The forms hold the ICD's own spec structs, so what is edited is exactly what is
 //! sent; the words here turn their raw numbers into real units (amps, seconds, knots,
@@ -788,4 +788,69 @@ pub fn wig_wag_choices() -> Vec<Option<u8>> {
 /// Pins the device page configures (DEVICE_SPEC takes 1–28).
 pub fn device_choices() -> Vec<u8> {
     (STARTER..=28).collect()
+}
+
+/// The keys that work on this page now.
+pub fn keys(sv: &SetupView) -> Vec<(&'static str, &'static str)> {
+    if let Dialog::Load { .. } | Dialog::Erase { .. } | Dialog::Disarm { .. } = sv.dialog {
+        return vec![("y", "confirm"), ("Esc", "cancel")];
+    }
+    let mut k = vec![("Tab", "page"), ("↑↓", "field")];
+    match sv.page {
+        Page::Diagnostics | Page::Backup => {
+            k.push(("Enter", "do"));
+            if sv.field().is_text() {
+                k.push(("type", "file name"));
+            }
+        }
+        page => {
+            if sv.field().is_text() {
+                k.push(("type", "name"));
+                k.push(("←→", "Appendix C"));
+            } else {
+                k.push(("←→", "change"));
+                if sv.field().takes_digits() {
+                    k.push(("0-9", "type"));
+                }
+            }
+            k.push(("Enter", "send"));
+            match page {
+                Page::Flaps | Page::PitchTrim => {
+                    k.push(("u/d", "run"));
+                    k.push(("p", "capture"));
+                }
+                Page::RollTrim => {
+                    k.push((",/.", "run"));
+                    k.push(("p", "capture"));
+                }
+                _ => {}
+            }
+        }
+    }
+    k.push((
+        "Esc",
+        if sv.is_edited(sv.page) {
+            "discard"
+        } else {
+            "back"
+        },
+    ));
+    k
+}
+
+/// "3 settings (DEVICE_SPEC 5A-3, …)": what the page has not heard, for the words
+/// that refuse or warn about an incomplete backup.
+pub fn missing_summary(missing: &[String]) -> String {
+    format!(
+        "{} setting{} ({}{})",
+        missing.len(),
+        if missing.len() == 1 { "" } else { "s" },
+        missing
+            .iter()
+            .take(3)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", "),
+        if missing.len() > 3 { ", …" } else { "" }
+    )
 }
