@@ -28,10 +28,10 @@ pub struct Made {
 }
 
 impl Made {
-    /// Made now, by this program, from `from`.
-    pub fn now(from: &str, simulated: bool) -> Made {
+    /// Made at `wall` (the caller's clock), by this program, from `from`.
+    pub fn at(from: &str, simulated: bool, wall: SystemTime) -> Made {
         Made {
-            at: crate::utc::utc_text(SystemTime::now()),
+            at: crate::utc::utc_text(wall),
             from: from.to_string(),
             simulated,
             by: format!("vpx-efis {}", crate::program::VERSION),

@@ -50,7 +50,20 @@ pub fn load(path: &Path) -> Result<Backup, LoadError> {
 
 /// [`load`], and where the backup came from if the file says.
 pub fn load_made(path: &Path) -> Result<(Backup, Option<Made>), LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|e| LoadError {
+    read_made(path, std::fs::read_to_string(path))
+}
+
+/// [`load`] of a file someone else read: its text, or why it could not be read.
+pub fn read(path: &Path, text: std::io::Result<String>) -> Result<Backup, LoadError> {
+    read_made(path, text).map(|(b, _)| b)
+}
+
+/// [`load_made`] of a file someone else read.
+pub fn read_made(
+    path: &Path,
+    text: std::io::Result<String>,
+) -> Result<(Backup, Option<Made>), LoadError> {
+    let text = text.map_err(|e| LoadError {
         file: path.to_path_buf(),
         problems: vec![Problem {
             field: "(file)".into(),

@@ -20,7 +20,7 @@ pub fn run(args: BackupArgs) -> anyhow::Result<()> {
     let (version, config) = read_with_progress(&mut unit.client, "reading")
         .context("reading the unit's configuration; no file was written")?;
     let b = Backup { version, config };
-    let made = Made::now(&unit.from, unit.simulated);
+    let made = Made::at(&unit.from, unit.simulated, std::time::SystemTime::now());
     backup::save_made(&args.file, &b, &made)
         .with_context(|| format!("cannot write {}", args.file.display()))?;
     eprintln!(
