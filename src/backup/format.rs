@@ -70,6 +70,14 @@ use std::fmt;
 use serde::Serialize;
 use serde::ser::SerializeMap;
 
+use super::schema::{
+    self, DEVICE_BREAKER, DEVICE_CURRENT_FAULT, DEVICE_NAME, DEVICE_SHOWN, DEVICE_SWITCH,
+    FLAP_BREAKER, FLAP_DOWN, FLAP_ENABLED, FLAP_ENDPOINT_DURATION, FLAP_MAX_SPEED, FLAP_MIDPOINT_1,
+    FLAP_MIDPOINT_2, FLAP_MODE, FLAP_NAME, FLAP_OVERSPEED_POSITION, FLAP_POLARITY, FLAP_UP, Item,
+    OVERVOLTAGE, SECONDARY_ALTERNATOR, TRIM_DOWN, TRIM_ENABLED, TRIM_NAME, TRIM_NEUTRAL,
+    TRIM_POLARITY, TRIM_POWER, TRIM_SPEED, TRIM_UP, WIG_WAG_ONE, WIG_WAG_SPEED, WIG_WAG_TWO,
+    WIG_WAG_WARM_UP,
+};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{self, DEVICES, FLAPS, TRIM_P, TRIM_R, enable_flag_allowed};
 use crate::protocol::message::{
@@ -422,62 +430,34 @@ pub fn from_toml_made(text: &str) -> Result<(Backup, Option<super::made::Made>),
 }
 
 /// A `validate::whole_config` path (`devices[23].circuit_breaker`) as the path of the
-/// same value in the file (`devices.15A-1.breaker_amps`).
+/// same value in the file (`devices.15A-1.breaker_amps`), by the [`schema`] table.
 pub fn file_path(config_path: &str) -> String {
     let (head, field) = config_path.split_once('.').unwrap_or((config_path, ""));
-    let (section, renames): (String, &[(&str, &str)]) = if let Some(i) = head
+    let (section, items): (String, &[Item]) = if let Some(i) = head
         .strip_prefix("devices[")
         .and_then(|r| r.strip_suffix(']'))
         .and_then(|n| n.parse::<u8>().ok())
     {
-        let section = match i {
-            FLAPS => "flaps".to_string(),
-            TRIM_R => "roll_trim".to_string(),
-            TRIM_P => "pitch_trim".to_string(),
-            i => format!("devices.{}", pin_name(i)),
-        };
-        (
-            section,
-            &[
-                ("circuit_breaker", "breaker_amps"),
-                ("switch_id", "switch"),
-                ("device_id", ""),
-            ],
-        )
+        match i {
+            FLAPS => ("flaps".into(), schema::FLAPS),
+            TRIM_R => ("roll_trim".into(), schema::TRIM),
+            TRIM_P => ("pitch_trim".into(), schema::TRIM),
+            i => (format!("devices.{}", pin_name(i)), schema::DEVICE),
+        }
     } else {
         match head {
-            "system" => (
-                "system".into(),
-                &[("overvoltage_limit", "overvoltage_limit_volts")],
-            ),
-            "flap" => (
-                "flaps".into(),
-                &[
-                    ("circuit_breaker", "breaker_amps"),
-                    ("max_speed", "max_speed_kt"),
-                    ("endpoint_duration", "endpoint_duration_s"),
-                    ("mode", "mode"),
-                ],
-            ),
-            "pitch_trim" | "roll_trim" => (
-                head.to_string(),
-                &[
-                    ("power", "reduced_power_percent"),
-                    ("speed", "reduce_above_kt"),
-                    ("trim_type", ""),
-                ],
-            ),
-            "wig_wag" => (
-                "wig_wag".into(),
-                &[("warm_up_period", "warm_up_s"), ("speed", "speed_kt")],
-            ),
+            "system" => ("system".into(), schema::SYSTEM),
+            "flap" => ("flaps".into(), schema::FLAPS),
+            "pitch_trim" | "roll_trim" => (head.to_string(), schema::TRIM),
+            "wig_wag" => ("wig_wag".into(), schema::WIG_WAG),
             other => (other.to_string(), &[]),
         }
     };
-    let field = renames
-        .iter()
-        .find(|(from, _)| *from == field)
-        .map_or(field, |(_, to)| *to);
+    let field = match items.iter().find(|i| !i.spec.is_empty() && i.spec == field) {
+        Some(i) => i.key,
+        None if schema::NOT_IN_FILE.contains(&field) => "",
+        None => field,
+    };
     if field.is_empty() {
         section
     } else {
@@ -819,17 +799,14 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
 
     {
         let mut s = Section::new(t, "system", "system".into(), problems);
-        if let Some(v) = s.value("overvoltage_limit_volts") {
+        if let Some(v) = s.value(OVERVOLTAGE.key) {
             match v {
                 toml::Value::Integer(16) => cfg.system.overvoltage_limit = OvervoltageLimit::V16,
                 toml::Value::Integer(32) => cfg.system.overvoltage_limit = OvervoltageLimit::V32,
-                _ => s.problem(
-                    "overvoltage_limit_volts",
-                    "must be 16 or 32 (ICD Table 14)".into(),
-                ),
+                _ => s.problem(OVERVOLTAGE.key, "must be 16 or 32 (ICD Table 14)".into()),
             }
         }
-        if let Some(p) = s.pin("secondary_alternator") {
+        if let Some(p) = s.pin(SECONDARY_ALTERNATOR.key) {
             cfg.system.secondary_alternator = p;
         }
         s.finish();
@@ -838,14 +815,14 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
     {
         let mut s = Section::new(t, "flaps", "flaps".into(), problems);
         let f = &mut cfg.flap;
-        if let Some(n) = s.name("name") {
+        if let Some(n) = s.name(FLAP_NAME.key) {
             cfg.names[FLAPS as usize] = n;
         }
-        if let Some(v) = s.bool("enabled") {
+        if let Some(v) = s.bool(FLAP_ENABLED.key) {
             f.enabled = v;
         }
         if let Some(v) = s.choice(
-            "mode",
+            FLAP_MODE.key,
             &[
                 ("momentary", FlapMode::Momentary),
                 ("position-based", FlapMode::PositionBased),
@@ -853,27 +830,27 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
         ) {
             f.mode = v;
         }
-        if let Some(v) = s.choice("polarity", POLARITIES) {
+        if let Some(v) = s.choice(FLAP_POLARITY.key, POLARITIES) {
             f.polarity = v;
         }
-        for (key, slot) in [
-            ("up", &mut f.up),
-            ("midpoint_1", &mut f.midpoint_1),
-            ("midpoint_2", &mut f.midpoint_2),
-            ("down", &mut f.down),
-            ("overspeed_position", &mut f.overspeed_position),
+        for (item, slot) in [
+            (FLAP_UP, &mut f.up),
+            (FLAP_MIDPOINT_1, &mut f.midpoint_1),
+            (FLAP_MIDPOINT_2, &mut f.midpoint_2),
+            (FLAP_DOWN, &mut f.down),
+            (FLAP_OVERSPEED_POSITION, &mut f.overspeed_position),
         ] {
-            if let Some(v) = s.u8(key, "a flap position sensor reading") {
+            if let Some(v) = s.u8(item.key, item.what) {
                 *slot = v;
             }
         }
-        if let Some(v) = s.u8("breaker_amps", "a breaker") {
+        if let Some(v) = s.u8(FLAP_BREAKER.key, FLAP_BREAKER.what) {
             f.circuit_breaker = v;
         }
-        if let Some(v) = s.u16("max_speed_kt", "a speed") {
+        if let Some(v) = s.u16(FLAP_MAX_SPEED.key, FLAP_MAX_SPEED.what) {
             f.max_speed = v;
         }
-        if let Some(v) = s.tenths("endpoint_duration_s") {
+        if let Some(v) = s.tenths(FLAP_ENDPOINT_DURATION.key) {
             f.endpoint_duration = v;
         }
         s.finish();
@@ -888,28 +865,28 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
     ] {
         let mut s = Section::new(t, key, key.into(), problems);
         let mut spec = *cfg.trim(trim_type);
-        if let Some(n) = s.name("name") {
+        if let Some(n) = s.name(TRIM_NAME.key) {
             cfg.names[id as usize] = n;
         }
-        if let Some(v) = s.bool("enabled") {
+        if let Some(v) = s.bool(TRIM_ENABLED.key) {
             spec.enabled = v;
         }
-        if let Some(v) = s.choice("polarity", POLARITIES) {
+        if let Some(v) = s.choice(TRIM_POLARITY.key, POLARITIES) {
             spec.polarity = v;
         }
-        for (k, slot) in [
-            ("up", &mut spec.up),
-            ("down", &mut spec.down),
-            ("neutral", &mut spec.neutral),
+        for (item, slot) in [
+            (TRIM_UP, &mut spec.up),
+            (TRIM_DOWN, &mut spec.down),
+            (TRIM_NEUTRAL, &mut spec.neutral),
         ] {
-            if let Some(v) = s.u8(k, "a trim position sensor reading") {
+            if let Some(v) = s.u8(item.key, item.what) {
                 *slot = v;
             }
         }
-        if let Some(v) = s.u8("reduced_power_percent", "a percentage") {
+        if let Some(v) = s.u8(TRIM_POWER.key, TRIM_POWER.what) {
             spec.power = v;
         }
-        if let Some(v) = s.u16("reduce_above_kt", "a speed") {
+        if let Some(v) = s.u16(TRIM_SPEED.key, TRIM_SPEED.what) {
             spec.speed = v;
         }
         s.finish();
@@ -919,16 +896,16 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
     {
         let mut s = Section::new(t, "wig_wag", "wig_wag".into(), problems);
         let w = &mut cfg.wig_wag;
-        if let Some(v) = s.pin("device_one") {
+        if let Some(v) = s.pin(WIG_WAG_ONE.key) {
             w.device_one = v;
         }
-        if let Some(v) = s.pin("device_two") {
+        if let Some(v) = s.pin(WIG_WAG_TWO.key) {
             w.device_two = v;
         }
-        if let Some(v) = s.u8("warm_up_s", "a warm-up time") {
+        if let Some(v) = s.u8(WIG_WAG_WARM_UP.key, WIG_WAG_WARM_UP.what) {
             w.warm_up_period = v;
         }
-        if let Some(v) = s.u8("speed_kt", "a speed") {
+        if let Some(v) = s.u8(WIG_WAG_SPEED.key, WIG_WAG_SPEED.what) {
             w.speed = v;
         }
         s.finish();
@@ -984,29 +961,29 @@ fn read_devices(t: &toml::Table, cfg: &mut UnitConfig, problems: &mut Vec<Proble
         let path = format!("devices.{name}");
         let mut s = Section::new(devices, name, path, problems);
         let mut spec: DeviceSpec = cfg.devices[id as usize];
-        if let Some(n) = s.name("name") {
+        if let Some(n) = s.name(DEVICE_NAME.key) {
             cfg.names[id as usize] = n;
         }
         if enable_flag_allowed(id) {
-            if let Some(v) = s.bool("show_on_page") {
+            if let Some(v) = s.bool(DEVICE_SHOWN.key) {
                 cfg.enabled[id as usize] = v;
             }
-        } else if s.table.is_some_and(|t| t.contains_key("show_on_page")) {
+        } else if s.table.is_some_and(|t| t.contains_key(DEVICE_SHOWN.key)) {
             // Accepted only as the truth, so a hand-written `true` does no harm.
-            if s.bool("show_on_page") == Some(false) {
+            if s.bool(DEVICE_SHOWN.key) == Some(false) {
                 s.problem(
-                    "show_on_page",
+                    DEVICE_SHOWN.key,
                     format!("{name} is always shown and cannot be hidden (ICD Table 23 note 1)"),
                 );
             }
         }
-        if let Some(v) = s.u8("breaker_amps", "a breaker") {
+        if let Some(v) = s.u8(DEVICE_BREAKER.key, DEVICE_BREAKER.what) {
             spec.circuit_breaker = v;
         }
-        if let Some(v) = s.switch("switch") {
+        if let Some(v) = s.switch(DEVICE_SWITCH.key) {
             spec.switch_id = v;
         }
-        if let Some(v) = s.bool("current_fault") {
+        if let Some(v) = s.bool(DEVICE_CURRENT_FAULT.key) {
             spec.current_fault = v;
         }
         s.finish();

@@ -7,6 +7,7 @@ pub mod diff;
 pub mod format;
 pub mod made;
 pub mod plan;
+pub mod schema;
 
 use std::fmt;
 use std::path::{Path, PathBuf};

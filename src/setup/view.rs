@@ -8,6 +8,7 @@
 
 use std::time::Duration;
 
+use crate::backup::schema::{self, Item, Part};
 use crate::model::{Model, Setting, TrimKind};
 use crate::protocol::defaults;
 use crate::protocol::device::{self, EFIS, STARTER, enable_flag_allowed};
@@ -210,6 +211,46 @@ impl Field {
             Reread => "Re-read the unit",
             Erase => "Erase the EEPROM",
         }
+    }
+
+    /// The configuration setting the field edits ([`schema`]), or `None` for the pin
+    /// number and the actions.
+    pub fn item(self) -> Option<&'static Item> {
+        use Field::*;
+        Some(match self {
+            Breaker => &schema::DEVICE_BREAKER,
+            Switch => &schema::DEVICE_SWITCH,
+            CurrentFault => &schema::DEVICE_CURRENT_FAULT,
+            Name => &schema::DEVICE_NAME,
+            Shown => &schema::DEVICE_SHOWN,
+            Overvoltage => &schema::OVERVOLTAGE,
+            SecondaryAlternator => &schema::SECONDARY_ALTERNATOR,
+            FlapEnabled => &schema::FLAP_ENABLED,
+            FlapMode => &schema::FLAP_MODE,
+            FlapPolarity => &schema::FLAP_POLARITY,
+            FlapUp => &schema::FLAP_UP,
+            FlapDown => &schema::FLAP_DOWN,
+            FlapMid1 => &schema::FLAP_MIDPOINT_1,
+            FlapMid2 => &schema::FLAP_MIDPOINT_2,
+            FlapBreaker => &schema::FLAP_BREAKER,
+            FlapOverspeedPosition => &schema::FLAP_OVERSPEED_POSITION,
+            FlapMaxSpeed => &schema::FLAP_MAX_SPEED,
+            FlapEndpointDuration => &schema::FLAP_ENDPOINT_DURATION,
+            TrimEnabled => &schema::TRIM_ENABLED,
+            TrimPolarity => &schema::TRIM_POLARITY,
+            TrimUp => &schema::TRIM_UP,
+            TrimDown => &schema::TRIM_DOWN,
+            TrimNeutral => &schema::TRIM_NEUTRAL,
+            TrimPower => &schema::TRIM_POWER,
+            TrimSpeed => &schema::TRIM_SPEED,
+            WigWagOne => &schema::WIG_WAG_ONE,
+            WigWagTwo => &schema::WIG_WAG_TWO,
+            WigWagWarmUp => &schema::WIG_WAG_WARM_UP,
+            WigWagSpeed => &schema::WIG_WAG_SPEED,
+            DeviceId | Ping | Version | File | SaveBackup | LoadBackup | Reread | Erase => {
+                return None;
+            }
+        })
     }
 
     /// Typed text (not digits) goes into this field.
@@ -465,26 +506,13 @@ impl Held {
     /// The unit's value of `field` in the same words as the form's, or `None`.
     pub fn text(&self, field: Field, page: Page) -> Option<String> {
         let mut f = Forms::default();
-        use Field::*;
-        let known = match field {
-            DeviceId => return None,
-            Breaker | Switch | CurrentFault => self.device.map(|d| f.device = d).is_some(),
-            Name => self.name.clone().map(|n| f.name = n).is_some(),
-            Shown => self.shown.map(|s| f.shown = s).is_some(),
-            Overvoltage | SecondaryAlternator => self.system.map(|s| f.system = s).is_some(),
-            FlapEnabled
-            | FlapMode
-            | FlapPolarity
-            | FlapUp
-            | FlapDown
-            | FlapMid1
-            | FlapMid2
-            | FlapBreaker
-            | FlapOverspeedPosition
-            | FlapMaxSpeed
-            | FlapEndpointDuration => self.flap.map(|s| f.flap = s).is_some(),
-            TrimEnabled | TrimPolarity | TrimUp | TrimDown | TrimNeutral | TrimPower
-            | TrimSpeed => {
+        let known = match field.item()?.part {
+            Part::Device => self.device.map(|d| f.device = d).is_some(),
+            Part::Name => self.name.clone().map(|n| f.name = n).is_some(),
+            Part::Enable => self.shown.map(|s| f.shown = s).is_some(),
+            Part::System => self.system.map(|s| f.system = s).is_some(),
+            Part::Flap => self.flap.map(|s| f.flap = s).is_some(),
+            Part::Trim => {
                 let t = if page == Page::RollTrim {
                     self.roll
                 } else {
@@ -496,10 +524,7 @@ impl Held {
                 })
                 .is_some()
             }
-            WigWagOne | WigWagTwo | WigWagWarmUp | WigWagSpeed => {
-                self.wig_wag.map(|w| f.wig_wag = w).is_some()
-            }
-            _ => return None,
+            Part::WigWag => self.wig_wag.map(|w| f.wig_wag = w).is_some(),
         };
         known.then(|| value_text(field, page, &f))
     }
@@ -508,46 +533,27 @@ impl Held {
 /// The unit's setting a field shows, so a setting left unknown by an unanswered
 /// write can be marked so on every field it covers.
 pub fn field_setting(field: Field, page: Page, device_id: u8) -> Option<Setting> {
-    use Field::*;
-    Some(match field {
-        Breaker | Switch | CurrentFault => Setting::DeviceSpec(device_id),
-        Name => Setting::Name(device_id),
-        Shown => Setting::Enable(device_id),
-        Overvoltage | SecondaryAlternator => Setting::System,
-        FlapEnabled
-        | FlapMode
-        | FlapPolarity
-        | FlapUp
-        | FlapDown
-        | FlapMid1
-        | FlapMid2
-        | FlapBreaker
-        | FlapOverspeedPosition
-        | FlapMaxSpeed
-        | FlapEndpointDuration => Setting::Flaps,
-        TrimEnabled | TrimPolarity | TrimUp | TrimDown | TrimNeutral | TrimPower | TrimSpeed => {
-            Setting::Trim(if page == Page::RollTrim {
-                TrimKind::Roll
-            } else {
-                TrimKind::Pitch
-            })
-        }
-        WigWagOne | WigWagTwo | WigWagWarmUp | WigWagSpeed => Setting::WigWag,
-        _ => return None,
+    Some(match field.item()?.part {
+        Part::Device => Setting::DeviceSpec(device_id),
+        Part::Name => Setting::Name(device_id),
+        Part::Enable => Setting::Enable(device_id),
+        Part::System => Setting::System,
+        Part::Flap => Setting::Flaps,
+        Part::Trim => Setting::Trim(if page == Page::RollTrim {
+            TrimKind::Roll
+        } else {
+            TrimKind::Pitch
+        }),
+        Part::WigWag => Setting::WigWag,
     })
 }
 
 /// What an unknown value being re-read looks like: its unit with a question mark.
 pub fn unknown_text(field: Field) -> String {
-    use Field::*;
-    let unit = match field {
-        Breaker | FlapBreaker => " A",
-        FlapMaxSpeed | TrimSpeed | WigWagSpeed => " kt",
-        FlapEndpointDuration | WigWagWarmUp => " s",
-        TrimPower => " %",
-        _ => "",
-    };
-    format!("?{unit} re-reading…")
+    match field.item().map_or("", |i| i.unit) {
+        "" => "? re-reading…".into(),
+        unit => format!("? {unit} re-reading…"),
+    }
 }
 
 /// A pin in words: "5A-3 (device 6)".
@@ -853,4 +859,34 @@ pub fn missing_summary(missing: &[String]) -> String {
             .join(", "),
         if missing.len() > 3 { ", …" } else { "" }
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every field that edits a setting names its row of the schema, and the row's
+    /// message is the setting the field is marked unknown by; the unit beside a "?"
+    /// is the schema's (the overvoltage limit's "V" included).
+    #[test]
+    fn fields_read_their_setting_and_unit_from_the_schema() {
+        for page in Page::ALL {
+            for &f in page.fields() {
+                let setting = field_setting(f, page, 6);
+                assert_eq!(f.item().is_some(), setting.is_some(), "{f:?}");
+            }
+        }
+        assert_eq!(
+            field_setting(Field::TrimPower, Page::RollTrim, 6),
+            Some(Setting::Trim(TrimKind::Roll))
+        );
+        assert_eq!(
+            field_setting(Field::Shown, Page::Device, 6),
+            Some(Setting::Enable(6))
+        );
+        assert_eq!(unknown_text(Field::Breaker), "? A re-reading…");
+        assert_eq!(unknown_text(Field::FlapEndpointDuration), "? s re-reading…");
+        assert_eq!(unknown_text(Field::Overvoltage), "? V re-reading…");
+        assert_eq!(unknown_text(Field::Switch), "? re-reading…");
+    }
 }
