@@ -1,12 +1,13 @@
 //! What a restore would change, in words: "5A-3 (Strobe Lt) breaker: 2 A → 5 A".
 //!
-//! Compared in the file's own terms (see [`format`](super::format)), so a change reads
+//! Compared in the file's own terms (see [`writer`](super::writer)), so a change reads
 //! the way the person would write it in the backup file and names the same path.
 
 use std::fmt;
 
-use super::format::{Backup, BackupFile};
+use super::Backup;
 use super::schema::{self, Item, Part};
+use super::writer::BackupFile;
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{DEVICES, TRIM_R};
 use crate::protocol::message::{HardwareVersion, Version};

@@ -16,7 +16,7 @@ use std::time::SystemTime;
 
 use serde::Serialize;
 
-use super::format::Problem;
+use super::Problem;
 use crate::protocol::message::Version;
 
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]

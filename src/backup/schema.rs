@@ -49,7 +49,7 @@ pub struct Item {
     /// for a name or an enable flag, which are not spec fields.
     pub spec: &'static str,
     pub part: Part,
-    /// In words: whole for [system], [flaps] and [wig_wag]; after the trim's or the
+    /// In words: whole for `[system]`, `[flaps]` and `[wig_wag]`; after the trim's or the
     /// pin's name for the others ("breaker" → "5A-3 (Strobe Lt) breaker").
     pub words: &'static str,
     /// "A", "kt", "s", "%", "V", or "".

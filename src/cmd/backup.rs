@@ -1,5 +1,5 @@
 //! `vpx-efis backup [--port PATH|tcp://HOST:PORT] FILE`: reads the unit's whole
-//! configuration into a TOML file (format in [`crate::backup::format`]), written
+//! configuration into a TOML file (format in [`crate::backup`]), written
 //! atomically so that an interrupted backup leaves no half file. The file records when
 //! it was made, from what, and by which vpx-efis ([`crate::backup::made`]).
 
