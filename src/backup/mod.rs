@@ -68,9 +68,9 @@
 //! read it.
 
 pub mod diff;
-pub mod made;
 pub mod path;
 pub mod plan;
+pub mod provenance;
 pub mod reader;
 pub mod schema;
 pub mod writer;
@@ -79,8 +79,8 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub use diff::{Change, diff};
-pub use made::Made;
 pub use plan::{PlanError, Step, plan};
+pub use provenance::Provenance;
 pub use reader::{from_toml, from_toml_made};
 pub use writer::{normalized, to_toml, to_toml_made};
 
@@ -142,7 +142,7 @@ pub fn load(path: &Path) -> Result<Backup, LoadError> {
 }
 
 /// [`load`], and where the backup came from if the file says.
-pub fn load_made(path: &Path) -> Result<(Backup, Option<Made>), LoadError> {
+pub fn load_made(path: &Path) -> Result<(Backup, Option<Provenance>), LoadError> {
     read_made(path, std::fs::read_to_string(path))
 }
 
@@ -155,7 +155,7 @@ pub fn read(path: &Path, text: std::io::Result<String>) -> Result<Backup, LoadEr
 pub fn read_made(
     path: &Path,
     text: std::io::Result<String>,
-) -> Result<(Backup, Option<Made>), LoadError> {
+) -> Result<(Backup, Option<Provenance>), LoadError> {
     let text = text.map_err(|e| LoadError {
         file: path.to_path_buf(),
         problems: vec![Problem {
@@ -207,7 +207,7 @@ pub fn save(path: &Path, backup: &Backup) -> std::io::Result<()> {
 }
 
 /// [`save`] with the `[made]` section: when, from what, by which program.
-pub fn save_made(path: &Path, backup: &Backup, made: &Made) -> std::io::Result<()> {
+pub fn save_made(path: &Path, backup: &Backup, made: &Provenance) -> std::io::Result<()> {
     crate::files::write_atomically(path, to_toml_made(backup, made).as_bytes())
 }
 

@@ -6,8 +6,8 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::made::{self, Made};
 use super::path::file_path;
+use super::provenance::{self, Provenance};
 use super::schema::{
     DEVICE_BREAKER, DEVICE_CURRENT_FAULT, DEVICE_NAME, DEVICE_SHOWN, DEVICE_SWITCH, FLAP_BREAKER,
     FLAP_DOWN, FLAP_ENABLED, FLAP_ENDPOINT_DURATION, FLAP_MAX_SPEED, FLAP_MIDPOINT_1,
@@ -33,7 +33,7 @@ pub fn from_toml(text: &str) -> Result<Backup, Vec<Problem>> {
 }
 
 /// [`from_toml`], and the `[made]` section if the file has one.
-pub fn from_toml_made(text: &str) -> Result<(Backup, Option<Made>), Vec<Problem>> {
+pub fn from_toml_made(text: &str) -> Result<(Backup, Option<Provenance>), Vec<Problem>> {
     let table: toml::Table = match text.parse() {
         Ok(t) => t,
         Err(e) => {
@@ -45,7 +45,7 @@ pub fn from_toml_made(text: &str) -> Result<(Backup, Option<Made>), Vec<Problem>
         }
     };
     let mut problems = Vec::new();
-    let made = made::read(&table, &mut problems);
+    let made = provenance::read(&table, &mut problems);
     let backup = read_file(&table, &mut problems);
     // A field that could not be read holds the factory value instead; judging the rest
     // by the §6.2 rules still finds every other problem, and nothing is reported twice.

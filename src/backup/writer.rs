@@ -5,7 +5,7 @@
 use serde::Serialize;
 use serde::ser::SerializeMap;
 
-use super::made::Made;
+use super::provenance::Provenance;
 use super::{Backup, FORMAT};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{self, FLAPS, TRIM_P, TRIM_R, enable_flag_allowed};
@@ -14,9 +14,9 @@ use crate::protocol::message::{FlapMode, OvervoltageLimit, Polarity, SwitchId, T
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BackupFile {
     pub format: u32,
-    /// When, from what and by what the backup was made; optional (see [`super::made`]).
+    /// When, from what and by what the backup was made; optional (see [`super::provenance`]).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub made: Option<Made>,
+    pub made: Option<Provenance>,
     pub unit: UnitSection,
     pub system: SystemSection,
     pub flaps: FlapSection,
@@ -282,7 +282,7 @@ pub fn to_toml(b: &Backup) -> String {
 }
 
 /// The TOML text of a backup with its `[made]` section.
-pub fn to_toml_made(b: &Backup, made: &Made) -> String {
+pub fn to_toml_made(b: &Backup, made: &Provenance) -> String {
     let mut f = BackupFile::from_backup(b);
     f.made = Some(made.clone());
     f.to_toml()

@@ -16,7 +16,7 @@ use std::time::{Instant, SystemTime};
 use super::probe::{EraseEnd, Probes};
 use super::view::{Dialog, Field, Page, SetupView, Tone, missing_summary};
 use super::{form, write};
-use crate::backup::{self, Backup, Made};
+use crate::backup::{self, Backup, Provenance};
 use crate::model::{Model, Source};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{STARTER, TRIM_R};
@@ -735,13 +735,13 @@ fn backup_file(file: &str, model: &Model, wall: SystemTime) -> Result<BackupFile
     };
     // The file says where it came from, as `vpx-efis backup` writes it.
     let made = match &model.source {
-        Source::Serial { path } => Made::at(path, false, wall),
-        Source::Simulated { scenario } => Made::at(
+        Source::Serial { path } => Provenance::at(path, false, wall),
+        Source::Simulated { scenario } => Provenance::at(
             &format!("the built-in virtual VP-X (scenario {scenario})"),
             true,
             wall,
         ),
-        Source::Replay { file } => Made::at(&format!("a replay of {file}"), false, wall),
+        Source::Replay { file } => Provenance::at(&format!("a replay of {file}"), false, wall),
     };
     Ok(BackupFile {
         path: PathBuf::from(file.trim()),
