@@ -1332,21 +1332,28 @@ mod tests {
         );
     }
 
-    /// A backup that sets 32 V on a 14.2 V bus names that in its confirmation, and
-    /// Enter does not apply it; `y` does.
-    #[test]
-    fn a_backup_that_disarms_a_protection_says_so_and_needs_y() {
+    /// Pin 4 opened, the unit's VERSION heard (so a backup can be whole), and the
+    /// Backup page showing with `unit.toml` in its file field.
+    fn on_backup_page() -> (Instant, Model, SetupView, SetupFlow) {
         use crate::protocol::message::{HardwareVersion, Version};
-        let (t0, mut m, mut sv, mut flow) = opened_on(4);
+        let (t0, mut m, mut sv, flow) = opened_on(4);
         let version = Version {
             hardware_version: HardwareVersion::VpxPro,
             software_major: 2,
             software_minor: 1,
         };
         m.apply_packet(t0, &Packet::from_vpx(1, version));
-        // The flow writes and reads no file: it asks, and is told what came of it.
         sv.file = "unit.toml".into();
         sv.page = Page::Backup;
+        (t0, m, sv, flow)
+    }
+
+    /// A backup that sets 32 V on a 14.2 V bus names that in its confirmation, and
+    /// Enter does not apply it; `y` does.
+    #[test]
+    fn a_backup_that_disarms_a_protection_says_so_and_needs_y() {
+        let (t0, mut m, mut sv, mut flow) = on_backup_page();
+        // The flow writes and reads no file: it asks, and is told what came of it.
         sv.field = Page::Backup
             .fields()
             .iter()
@@ -1406,16 +1413,7 @@ mod tests {
     /// that could not be read says why and applies nothing.
     #[test]
     fn a_backup_is_said_written_or_read_only_as_the_app_reports() {
-        use crate::protocol::message::{HardwareVersion, Version};
-        let (t0, mut m, mut sv, mut flow) = opened_on(4);
-        let version = Version {
-            hardware_version: HardwareVersion::VpxPro,
-            software_major: 2,
-            software_minor: 1,
-        };
-        m.apply_packet(t0, &Packet::from_vpx(1, version));
-        sv.file = "unit.toml".into();
-        sv.page = Page::Backup;
+        let (t0, mut m, mut sv, mut flow) = on_backup_page();
         let at = |f| Page::Backup.fields().iter().position(|&x| x == f).unwrap();
         sv.field = at(Field::SaveBackup);
         let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
