@@ -594,6 +594,14 @@ pub fn switch_text(s: SwitchId) -> String {
     }
 }
 
+/// A number with its field's unit from the [`schema`]: "5 A", "0.5 s".
+fn in_unit(field: Field, n: impl std::fmt::Display) -> String {
+    match field.item().map_or("", |i| i.unit) {
+        "" => n.to_string(),
+        unit => format!("{n} {unit}"),
+    }
+}
+
 /// The form's value of `field`, in real units.
 pub fn value_text(field: Field, page: Page, f: &Forms) -> String {
     use Field::*;
@@ -604,7 +612,7 @@ pub fn value_text(field: Field, page: Page, f: &Forms) -> String {
     };
     match field {
         DeviceId => pin_text(f.device.device_id),
-        Breaker => format!("{} A", f.device.circuit_breaker),
+        Breaker => in_unit(field, f.device.circuit_breaker),
         Switch => switch_text(f.device.switch_id),
         CurrentFault => yes_no(f.device.current_fault),
         Name => {
@@ -631,21 +639,21 @@ pub fn value_text(field: Field, page: Page, f: &Forms) -> String {
         FlapDown => position(f.flap.down),
         FlapMid1 => midpoint(f.flap.midpoint_1),
         FlapMid2 => midpoint(f.flap.midpoint_2),
-        FlapBreaker => format!("{} A", f.flap.circuit_breaker),
+        FlapBreaker => in_unit(field, f.flap.circuit_breaker),
         FlapOverspeedPosition => position(f.flap.overspeed_position),
-        FlapMaxSpeed => format!("{} kt", f.flap.max_speed),
-        FlapEndpointDuration => format!("{:.1} s", f.flap.endpoint_duration.value()),
+        FlapMaxSpeed => in_unit(field, f.flap.max_speed),
+        FlapEndpointDuration => in_unit(field, format!("{:.1}", f.flap.endpoint_duration.value())),
         TrimEnabled => yes_no(trim.enabled),
         TrimPolarity => polarity(trim.polarity),
         TrimUp => position(trim.up),
         TrimDown => position(trim.down),
         TrimNeutral => position(trim.neutral),
-        TrimPower => format!("{} %", trim.power),
-        TrimSpeed => format!("{} kt", trim.speed),
+        TrimPower => in_unit(field, trim.power),
+        TrimSpeed => in_unit(field, trim.speed),
         WigWagOne => opt_pin(f.wig_wag.device_one),
         WigWagTwo => opt_pin(f.wig_wag.device_two),
-        WigWagWarmUp => format!("{} s", f.wig_wag.warm_up_period),
-        WigWagSpeed => format!("{} kt", f.wig_wag.speed),
+        WigWagWarmUp => in_unit(field, f.wig_wag.warm_up_period),
+        WigWagSpeed => in_unit(field, f.wig_wag.speed),
         Ping | Version | File | SaveBackup | LoadBackup | Reread | Erase => String::new(),
     }
 }
