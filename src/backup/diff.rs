@@ -5,12 +5,9 @@
 
 use std::fmt;
 
-use super::Backup;
 use super::schema::{self, Item, Part};
-use super::writer::BackupFile;
+use super::writer::{Rows, sections};
 use crate::protocol::config::UnitConfig;
-use crate::protocol::device::{DEVICES, TRIM_R};
-use crate::protocol::message::{HardwareVersion, Version};
 
 /// One setting that differs.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -29,31 +26,30 @@ impl fmt::Display for Change {
     }
 }
 
-/// The changes found so far.
-struct Changes(Vec<Change>);
-
-impl Changes {
-    /// Each setting of `items` in the two sections that differs, its words given by
-    /// `label` from the item's.
-    fn section(
-        &mut self,
-        path: &str,
-        items: &[Item],
-        a: Option<&toml::Value>,
-        b: Option<&toml::Value>,
-        label: impl Fn(&Item) -> String,
-    ) {
-        for item in items {
-            let (Some(x), Some(y)) = (
-                a.and_then(|a| a.get(item.key)),
-                b.and_then(|b| b.get(item.key)),
-            ) else {
-                // Not in the file for this pin (show_on_page of pins 1–3).
-                continue;
-            };
+/// Every setting that differs between `current` (what the unit holds) and `target`
+/// (what a restore would write), in the order of the backup file. Names are compared by
+/// what they show (up to the first NUL).
+pub fn diff(current: &UnitConfig, target: &UnitConfig) -> Vec<Change> {
+    let mut out = Vec::new();
+    for ((path, a), (_, b)) in sections(current).iter().zip(&sections(target)) {
+        let label = |item: &Item| match path.strip_prefix("devices.") {
+            // The pin is named as the person will know it after the restore.
+            Some(pin) if item.part != Part::Name => match Some(name_of(b))
+                .filter(|n| !n.is_empty())
+                .unwrap_or_else(|| name_of(a))
+            {
+                n if n.is_empty() => format!("{pin} {}", item.words),
+                n => format!("{pin} ({n}) {}", item.words),
+            },
+            Some(pin) => format!("{pin} {}", item.words),
+            None if path == "pitch_trim" => format!("pitch trim {}", item.words),
+            None if path == "roll_trim" => format!("roll trim {}", item.words),
+            None => item.words.to_string(),
+        };
+        for ((item, x), (_, y)) in a.iter().zip(b) {
             let (from, to) = (schema::words(item, x), schema::words(item, y));
             if from != to {
-                self.0.push(Change {
+                out.push(Change {
                     path: format!("{path}.{}", item.key),
                     setting: label(item),
                     from,
@@ -62,85 +58,16 @@ impl Changes {
             }
         }
     }
+    out
 }
 
-/// A configuration in the file's own terms, as TOML values.
-fn file_values(config: &UnitConfig) -> toml::Value {
-    let version = Version {
-        hardware_version: HardwareVersion::Unknown(0),
-        software_major: 0,
-        software_minor: 0,
-    };
-    let file = BackupFile::from_backup(&Backup {
-        version,
-        config: config.clone(),
-    });
-    // Plain strings, integers, floats and tables only: always a TOML value.
-    toml::Value::try_from(&file).unwrap_or(toml::Value::Table(Default::default()))
-}
-
-/// Every setting that differs between `current` (what the unit holds) and `target`
-/// (what a restore would write), in the order of the backup file. Names are compared by
-/// what they show (up to the first NUL).
-pub fn diff(current: &UnitConfig, target: &UnitConfig) -> Vec<Change> {
-    let (a, b) = (file_values(current), file_values(target));
-    let mut out = Changes(Vec::new());
-    let whole = |i: &Item| i.words.to_string();
-    for (section, items) in [("system", schema::SYSTEM), ("flaps", schema::FLAPS)] {
-        out.section(section, items, a.get(section), b.get(section), whole);
-    }
-    for (section, words) in [("pitch_trim", "pitch trim"), ("roll_trim", "roll trim")] {
-        out.section(
-            section,
-            schema::TRIM,
-            a.get(section),
-            b.get(section),
-            |i: &Item| format!("{words} {}", i.words),
-        );
-    }
-    out.section(
-        "wig_wag",
-        schema::WIG_WAG,
-        a.get("wig_wag"),
-        b.get("wig_wag"),
-        whole,
-    );
-    for id in 1..TRIM_R {
-        let pin = DEVICES[id as usize].system_name;
-        let (d, e) = (
-            a.get("devices").and_then(|d| d.get(pin)),
-            b.get("devices").and_then(|d| d.get(pin)),
-        );
-        // The pin is named as the person will know it after the restore.
-        let name = |v: Option<&toml::Value>| {
-            v.and_then(|v| v.get(schema::DEVICE_NAME.key))
-                .and_then(|n| n.as_str())
-                .unwrap_or("")
-                .to_string()
-        };
-        let shown = Some(name(e))
-            .filter(|n| !n.is_empty())
-            .unwrap_or_else(|| name(d));
-        let label = if shown.is_empty() {
-            pin.to_string()
-        } else {
-            format!("{pin} ({shown})")
-        };
-        out.section(
-            &format!("devices.{pin}"),
-            schema::DEVICE,
-            d,
-            e,
-            |i: &Item| {
-                if i.part == Part::Name {
-                    format!("{pin} {}", i.words)
-                } else {
-                    format!("{label} {}", i.words)
-                }
-            },
-        );
-    }
-    out.0
+/// The name a section's rows hold, or "".
+fn name_of(rows: &Rows) -> String {
+    rows.iter()
+        .find(|(i, _)| i.part == Part::Name)
+        .and_then(|(_, v)| v.as_str())
+        .unwrap_or("")
+        .to_string()
 }
 
 #[cfg(test)]

@@ -14,13 +14,11 @@
 
 use std::time::SystemTime;
 
-use serde::Serialize;
-
 use super::Problem;
 use crate::protocol::message::Version;
 
 /// The file's `[made]` section: when, from what and by which vpx-efis it was made.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Provenance {
     pub at: String,
     pub from: String,

@@ -1,123 +1,195 @@
-//! Writing the backup file: the file's sections as `serde` structs, each value in the
-//! file's words and units (the keys and their order are [`schema`](super::schema)'s,
-//! held by its test), and the header that says what the file is.
+//! Writing the backup file: each section's settings as the [`schema`] lists them,
+//! each value in the file's words and units, after a header that says what the file
+//! is. The file is written by hand rather than by `serde`, so that its sections and
+//! keys keep the table's order (a map would sort `10A-1` before `2A-1`).
 
-use serde::Serialize;
-use serde::ser::SerializeMap;
+use toml::Value;
 
 use super::provenance::Provenance;
+use super::schema::{self, Item, Part};
 use super::{Backup, FORMAT};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{self, FLAPS, TRIM_P, TRIM_R, enable_flag_allowed};
 use crate::protocol::message::{FlapMode, OvervoltageLimit, Polarity, SwitchId, TrimSpec};
 
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct BackupFile {
-    pub format: u32,
-    /// When, from what and by what the backup was made; optional (see [`super::provenance`]).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub made: Option<Provenance>,
-    pub unit: UnitSection,
-    pub system: SystemSection,
-    pub flaps: FlapSection,
-    pub pitch_trim: TrimSection,
-    pub roll_trim: TrimSection,
-    pub wig_wag: WigWagSection,
-    pub devices: Devices,
+/// One section's settings, each schema row with its value.
+pub type Rows = Vec<(&'static Item, Value)>;
+
+/// The rows of `items`, given their values in the same order (the array lengths must
+/// agree, so a setting cannot be left out or given another's value by position).
+fn rows<const N: usize>(items: &'static [Item; N], values: [Value; N]) -> Rows {
+    items.iter().zip(values).collect()
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct UnitSection {
-    pub hardware_version: u8,
-    pub hardware: String,
-    pub software: String,
+fn int(n: impl Into<i64>) -> Value {
+    Value::Integer(n.into())
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SystemSection {
-    pub overvoltage_limit_volts: u8,
-    pub secondary_alternator: String,
+fn text(s: impl Into<String>) -> Value {
+    Value::String(s.into())
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FlapSection {
-    pub name: String,
-    pub enabled: bool,
-    pub mode: String,
-    pub polarity: String,
-    pub up: u8,
-    pub midpoint_1: u8,
-    pub midpoint_2: u8,
-    pub down: u8,
-    pub breaker_amps: u8,
-    pub overspeed_position: u8,
-    pub max_speed_kt: u16,
-    pub endpoint_duration_s: f64,
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct TrimSection {
-    pub name: String,
-    pub enabled: bool,
-    pub polarity: String,
-    pub up: u8,
-    pub down: u8,
-    pub neutral: u8,
-    pub reduced_power_percent: u8,
-    pub reduce_above_kt: u16,
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct WigWagSection {
-    pub device_one: String,
-    pub device_two: String,
-    pub warm_up_s: u8,
-    pub speed_kt: u8,
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct DeviceSection {
-    pub name: String,
-    /// Absent for the starter, EFIS and primary field, which are always shown.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub show_on_page: Option<bool>,
-    pub breaker_amps: u8,
-    pub switch: Switch,
-    pub current_fault: bool,
-}
-
-/// `"off"`, `1`–`10` or `"always-on"`. `Input` also carries a number outside 1–10
-/// that a unit reported, so that it is written as it is (and refused on loading).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Switch {
-    Off,
-    Input(u8),
-    AlwaysOn,
-}
-
-impl Serialize for Switch {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        match self {
-            Switch::Off => s.serialize_str("off"),
-            Switch::Input(n) => s.serialize_u8(*n),
-            Switch::AlwaysOn => s.serialize_str("always-on"),
+/// The settings' sections of a configuration in the file's order, each by its path
+/// (`flaps`, `devices.5A-3`). A value the unit reports outside the ICD's encodings (a
+/// switch id 12, an overvoltage code 7) is written as its raw number, so nothing the
+/// unit holds is lost; [`from_toml`](super::from_toml) then refuses it by its path.
+pub fn sections(cfg: &UnitConfig) -> Vec<(String, Rows)> {
+    let name = |id: u8| text(name_text(&cfg.names[id as usize]));
+    let volts = match cfg.system.overvoltage_limit {
+        OvervoltageLimit::V16 => 16,
+        OvervoltageLimit::V32 => 32,
+        OvervoltageLimit::Unknown(n) => n,
+    };
+    let f = &cfg.flap;
+    let trim = |t: &TrimSpec, name_id: u8| {
+        rows(
+            schema::TRIM,
+            [
+                name(name_id),
+                Value::Boolean(t.enabled),
+                text(polarity_word(t.polarity)),
+                int(t.up),
+                int(t.down),
+                int(t.neutral),
+                int(t.power),
+                int(t.speed),
+            ],
+        )
+    };
+    let w = &cfg.wig_wag;
+    let mut out = vec![
+        (
+            "system".to_string(),
+            rows(
+                schema::SYSTEM,
+                [int(volts), text(opt_pin(cfg.system.secondary_alternator))],
+            ),
+        ),
+        (
+            "flaps".into(),
+            rows(
+                schema::FLAPS,
+                [
+                    name(FLAPS),
+                    Value::Boolean(f.enabled),
+                    text(mode_word(f.mode)),
+                    text(polarity_word(f.polarity)),
+                    int(f.up),
+                    int(f.midpoint_1),
+                    int(f.midpoint_2),
+                    int(f.down),
+                    int(f.circuit_breaker),
+                    int(f.overspeed_position),
+                    int(f.max_speed),
+                    Value::Float(f.endpoint_duration.0 as f64 / 10.0),
+                ],
+            ),
+        ),
+        ("pitch_trim".into(), trim(&cfg.pitch_trim, TRIM_P)),
+        ("roll_trim".into(), trim(&cfg.roll_trim, TRIM_R)),
+        (
+            "wig_wag".into(),
+            rows(
+                schema::WIG_WAG,
+                [
+                    text(opt_pin(w.device_one)),
+                    text(opt_pin(w.device_two)),
+                    int(w.warm_up_period),
+                    int(w.speed),
+                ],
+            ),
+        ),
+    ];
+    for id in 1..TRIM_R {
+        let d = &cfg.devices[id as usize];
+        let mut r = rows(
+            schema::DEVICE,
+            [
+                name(id),
+                Value::Boolean(cfg.enabled[id as usize]),
+                int(d.circuit_breaker),
+                switch_value(d.switch_id),
+                Value::Boolean(d.current_fault),
+            ],
+        );
+        // The starter, EFIS and primary field are always shown: no flag to write.
+        if !enable_flag_allowed(id) {
+            r.retain(|(i, _)| i.part != Part::Enable);
         }
+        out.push((format!("devices.{}", pin_name(id)), r));
+    }
+    out
+}
+
+/// `"off"`, `1`–`10` or `"always-on"`; a number outside 1–10 that a unit reported is
+/// written as it is (and refused on loading).
+fn switch_value(s: SwitchId) -> Value {
+    match s {
+        SwitchId::Off => text("off"),
+        SwitchId::Input(n) | SwitchId::Unknown(n) => int(n),
+        SwitchId::AlwaysOn => text("always-on"),
     }
 }
 
-/// Pins 1–28 by Table 40 name, written in device-id order so the file reads like the
-/// table (a map would sort `10A-1` before `2A-1`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Devices(pub Vec<(String, DeviceSection)>);
-
-impl Serialize for Devices {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(Some(self.0.len()))?;
-        for (k, v) in &self.0 {
-            m.serialize_entry(k, v)?;
-        }
-        m.end()
+/// `[path]` and its `key = value` lines.
+fn section<'a>(out: &mut String, path: &str, rows: impl IntoIterator<Item = (&'a str, Value)>) {
+    out.push_str(&format!("\n[{path}]\n"));
+    for (key, value) in rows {
+        out.push_str(&format!("{key} = {value}\n"));
     }
+}
+
+/// The file's text: header, format, `[made]` if given, `[unit]`, then the settings.
+fn file_text(b: &Backup, made: Option<&Provenance>) -> String {
+    let mut out = format!("{HEADER}\nformat = {FORMAT}\n");
+    if let Some(m) = made {
+        section(
+            &mut out,
+            "made",
+            [
+                ("at", text(m.at.as_str())),
+                ("from", text(m.from.as_str())),
+                ("simulated", Value::Boolean(m.simulated)),
+                ("by", text(m.by.as_str())),
+            ],
+        );
+    }
+    let v = &b.version;
+    section(
+        &mut out,
+        "unit",
+        [
+            ("hardware_version", int(v.hardware_version.to_byte())),
+            ("hardware", text(v.hardware_version.name())),
+            (
+                "software",
+                text(format!("{}.{}", v.software_major, v.software_minor)),
+            ),
+        ],
+    );
+    for (path, rows) in sections(&b.config) {
+        section(&mut out, &path, rows.into_iter().map(|(i, v)| (i.key, v)));
+    }
+    out
+}
+
+const HEADER: &str = "\
+# VP-X configuration backup written by vpx-efis.
+# Restore it with `vpx-efis restore --port PATH FILE`; the file is checked as a whole
+# and every problem is listed before anything is sent to the unit.
+# Units: breaker_amps in amps, *_s in seconds (to 0.1 s), *_kt in knots (the airspeed
+# unit this EFIS sends the VP-X), *_percent in percent. Pins are named as in ICD
+# Table 40. switch is \"off\", 1-10 or \"always-on\". Names are up to 16 characters.
+";
+
+/// The TOML text of a backup.
+pub fn to_toml(b: &Backup) -> String {
+    file_text(b, None)
+}
+
+/// The TOML text of a backup with its `[made]` section.
+pub fn to_toml_made(b: &Backup, made: &Provenance) -> String {
+    file_text(b, Some(made))
 }
 
 // ------------------------------------------------------------------ words ↔ values
@@ -174,116 +246,4 @@ pub fn normalized(cfg: &UnitConfig) -> UnitConfig {
         *n = normalize_name(n);
     }
     c
-}
-
-fn switch_of(s: SwitchId) -> Switch {
-    match s {
-        SwitchId::Off => Switch::Off,
-        SwitchId::Input(n) | SwitchId::Unknown(n) => Switch::Input(n),
-        SwitchId::AlwaysOn => Switch::AlwaysOn,
-    }
-}
-
-impl BackupFile {
-    /// The file form of a backup. A value the unit reports outside the ICD's encodings
-    /// (a switch id 12, an overvoltage code 7) is written as its raw number, so nothing
-    /// the unit holds is lost; [`from_toml`](super::from_toml) then refuses it by its path.
-    pub fn from_backup(b: &Backup) -> BackupFile {
-        let cfg = &b.config;
-        let overvoltage_limit_volts = match cfg.system.overvoltage_limit {
-            OvervoltageLimit::V16 => 16,
-            OvervoltageLimit::V32 => 32,
-            OvervoltageLimit::Unknown(n) => n,
-        };
-        let trim = |t: &TrimSpec, name_id: u8| TrimSection {
-            name: name_text(&cfg.names[name_id as usize]),
-            enabled: t.enabled,
-            polarity: polarity_word(t.polarity).into(),
-            up: t.up,
-            down: t.down,
-            neutral: t.neutral,
-            reduced_power_percent: t.power,
-            reduce_above_kt: t.speed,
-        };
-        let devices = (1..TRIM_R)
-            .map(|id| {
-                let d = &cfg.devices[id as usize];
-                let section = DeviceSection {
-                    name: name_text(&cfg.names[id as usize]),
-                    show_on_page: enable_flag_allowed(id).then_some(cfg.enabled[id as usize]),
-                    breaker_amps: d.circuit_breaker,
-                    switch: switch_of(d.switch_id),
-                    current_fault: d.current_fault,
-                };
-                (pin_name(id), section)
-            })
-            .collect();
-        BackupFile {
-            format: FORMAT,
-            made: None,
-            unit: UnitSection {
-                hardware_version: b.version.hardware_version.to_byte(),
-                hardware: b.version.hardware_version.name(),
-                software: format!("{}.{}", b.version.software_major, b.version.software_minor),
-            },
-            system: SystemSection {
-                overvoltage_limit_volts,
-                secondary_alternator: opt_pin(cfg.system.secondary_alternator),
-            },
-            flaps: FlapSection {
-                name: name_text(&cfg.names[FLAPS as usize]),
-                enabled: cfg.flap.enabled,
-                mode: mode_word(cfg.flap.mode).into(),
-                polarity: polarity_word(cfg.flap.polarity).into(),
-                up: cfg.flap.up,
-                midpoint_1: cfg.flap.midpoint_1,
-                midpoint_2: cfg.flap.midpoint_2,
-                down: cfg.flap.down,
-                breaker_amps: cfg.flap.circuit_breaker,
-                overspeed_position: cfg.flap.overspeed_position,
-                max_speed_kt: cfg.flap.max_speed,
-                endpoint_duration_s: cfg.flap.endpoint_duration.0 as f64 / 10.0,
-            },
-            pitch_trim: trim(&cfg.pitch_trim, TRIM_P),
-            roll_trim: trim(&cfg.roll_trim, TRIM_R),
-            wig_wag: WigWagSection {
-                device_one: opt_pin(cfg.wig_wag.device_one),
-                device_two: opt_pin(cfg.wig_wag.device_two),
-                warm_up_s: cfg.wig_wag.warm_up_period,
-                speed_kt: cfg.wig_wag.speed,
-            },
-            devices: Devices(devices),
-        }
-    }
-
-    /// The TOML text, with a header that says what the file is and how to use it.
-    pub fn to_toml(&self) -> String {
-        let body = toml::to_string(self).unwrap_or_else(|e| {
-            // Only plain strings, integers, floats and tables are serialized, all of
-            // which TOML can express; a failure here is a bug, said in the file itself.
-            format!("# could not write this backup: {e}\n")
-        });
-        format!("{HEADER}\n{body}")
-    }
-}
-
-const HEADER: &str = "\
-# VP-X configuration backup written by vpx-efis.
-# Restore it with `vpx-efis restore --port PATH FILE`; the file is checked as a whole
-# and every problem is listed before anything is sent to the unit.
-# Units: breaker_amps in amps, *_s in seconds (to 0.1 s), *_kt in knots (the airspeed
-# unit this EFIS sends the VP-X), *_percent in percent. Pins are named as in ICD
-# Table 40. switch is \"off\", 1-10 or \"always-on\". Names are up to 16 characters.
-";
-
-/// The TOML text of a backup.
-pub fn to_toml(b: &Backup) -> String {
-    BackupFile::from_backup(b).to_toml()
-}
-
-/// The TOML text of a backup with its `[made]` section.
-pub fn to_toml_made(b: &Backup, made: &Provenance) -> String {
-    let mut f = BackupFile::from_backup(b);
-    f.made = Some(made.clone());
-    f.to_toml()
 }
