@@ -15,8 +15,8 @@ use vpx_efis::app::{App, AppOptions};
 use vpx_efis::link;
 use vpx_efis::model::Source;
 use vpx_efis::protocol::message::{DeviceSpec, SwitchId};
+use vpx_efis::setup::view::{Page, WriteStatus};
 use vpx_efis::sim::{self, Scenario, SimCommand, SimHandle, SimOptions};
-use vpx_efis::ui::setup::state::{Page, WriteStatus};
 use vpx_efis::ui::state::{ReleaseMode, Screen};
 
 const SCENARIO: &str = r#"
@@ -459,7 +459,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
     rig.key(KeyCode::Down);
     rig.key(KeyCode::Enter); // Load a backup
     match &rig.app.view().setup.dialog {
-        vpx_efis::ui::setup::state::Dialog::Load {
+        vpx_efis::setup::view::Dialog::Load {
             changes, writes, ..
         } => {
             assert_eq!(*writes, 1);
@@ -479,7 +479,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
     rig.key(KeyCode::Enter);
     assert!(matches!(
         rig.app.view().setup.dialog,
-        vpx_efis::ui::setup::state::Dialog::Erase { .. }
+        vpx_efis::setup::view::Dialog::Erase { .. }
     ));
     let buf = rig.render();
     assert!(
@@ -497,7 +497,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
     rig.until("the erase answered", Duration::from_secs(4), |app| {
         matches!(
             app.view().setup.erase,
-            vpx_efis::ui::setup::state::Probe::Answered { .. }
+            vpx_efis::setup::view::Probe::Answered { .. }
         )
     });
     assert_eq!(
@@ -530,13 +530,13 @@ fn a_failed_erase_is_said_plainly_and_not_shown_as_factory_settings() {
     rig.key(KeyCode::Enter);
     assert!(matches!(
         rig.app.view().setup.dialog,
-        vpx_efis::ui::setup::state::Dialog::Erase { .. }
+        vpx_efis::setup::view::Dialog::Erase { .. }
     ));
     rig.keys("y");
     rig.until("the erase answered", Duration::from_secs(4), |app| {
         matches!(
             app.view().setup.erase,
-            vpx_efis::ui::setup::state::Probe::Answered { .. }
+            vpx_efis::setup::view::Probe::Answered { .. }
         )
     });
     let (_, text) = rig.app.view().setup.message.clone().expect("a message");

@@ -20,10 +20,10 @@ use vpx_efis::protocol::message::{
 };
 mod themes;
 
-use vpx_efis::ui;
-use vpx_efis::ui::setup::state::{
+use vpx_efis::setup::view::{
     Dialog, Field, Forms, FromUnit, Held, Page, Probe, SetupView, Tone, WriteLine, WriteStatus,
 };
+use vpx_efis::ui;
 use vpx_efis::ui::state::{Screen, ViewState};
 
 fn apply(m: &mut Model, at: Instant, msg: impl Into<Message>) {
@@ -605,20 +605,20 @@ fn disarm_confirmations_name_the_consequence() {
 /// there; a typed name that is too long says which character was not taken.
 #[test]
 fn typing_refused_in_words() {
-    use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
-    use vpx_efis::setup::flow::SetupFlow;
-    let press = |c| KeyEvent::new_with_kind(c, KeyModifiers::NONE, KeyEventKind::Press);
+    use std::time::SystemTime;
+    use vpx_efis::setup::flow::{SetupFlow, SetupKey};
+    let wall = SystemTime::UNIX_EPOCH;
     let t0 = Instant::now();
     let mut m = unit(t0);
     let mut v = view(&m, Page::Device, 4);
     let mut flow = SetupFlow::default();
     flow.tick(&mut v.setup, true, Some(4), &mut m, t0);
     select(&mut v, Field::Switch);
-    flow.key(press(KeyCode::Char('3')), &mut v.setup, &mut m, t0);
+    flow.key(SetupKey::Char('3'), &mut v.setup, &mut m, t0, wall);
     insta::assert_snapshot!("switch_digit", text(&render(&m, &v, t0, 80, 24)));
     select(&mut v, Field::Name);
     for c in " and Strobe!".chars() {
-        flow.key(press(KeyCode::Char(c)), &mut v.setup, &mut m, t0);
+        flow.key(SetupKey::Char(c), &mut v.setup, &mut m, t0, wall);
     }
     insta::assert_snapshot!("name_too_long", text(&render(&m, &v, t0, 80, 24)));
 }

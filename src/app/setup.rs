@@ -4,7 +4,7 @@
 //! on the link. Nothing here waits: the flow's timeouts are deadlines of the page's
 //! loop.
 
-use std::time::Instant;
+use std::time::{Instant, SystemTime};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
@@ -12,8 +12,8 @@ use super::{App, Flow, lock};
 use crate::control::{Action, KeyContext, Selected, StopReason, keymap};
 use crate::model::{CircuitKind, CircuitState, Model, Motor};
 use crate::protocol::message::{Message, Packet};
-use crate::setup::flow::Out;
-use crate::ui::setup::state::{Dialog, Tone};
+use crate::setup::flow::{Effects, SetupKey};
+use crate::setup::view::{Dialog, Tone};
 use crate::ui::state::Screen;
 
 /// The key context that makes the controller run `motor`, as if its row were selected
@@ -35,6 +35,26 @@ fn motor_ctx(motor: Motor, model: &Model, now: Instant) -> KeyContext {
         overlay_open: false,
         past_endpoints: true,
     }
+}
+
+/// The terminal's key as the setup flow reads it; `None` for one it has no use for.
+fn setup_key_of(key: &KeyEvent) -> Option<SetupKey> {
+    let shift = key.modifiers.contains(KeyModifiers::SHIFT);
+    Some(match key.code {
+        KeyCode::Tab => SetupKey::Tab,
+        KeyCode::BackTab => SetupKey::BackTab,
+        KeyCode::Esc => SetupKey::Esc,
+        KeyCode::Up => SetupKey::Up,
+        KeyCode::Down => SetupKey::Down,
+        KeyCode::Left if shift => SetupKey::ShiftLeft,
+        KeyCode::Right if shift => SetupKey::ShiftRight,
+        KeyCode::Left => SetupKey::Left,
+        KeyCode::Right => SetupKey::Right,
+        KeyCode::Enter => SetupKey::Enter,
+        KeyCode::Backspace => SetupKey::Backspace,
+        KeyCode::Char(c) => SetupKey::Char(c),
+        _ => return None,
+    })
 }
 
 impl App {
@@ -79,15 +99,32 @@ impl App {
         self.view.motor_run = self.controller.running();
 
         let shared = self.model.clone();
-        let out = {
-            let mut model = lock(&shared);
-            self.setup.key(key, &mut self.view.setup, &mut model, now)
+        let out = match setup_key_of(&key) {
+            Some(key) => {
+                let mut model = lock(&shared);
+                let wall = SystemTime::now();
+                self.setup
+                    .key(key, &mut self.view.setup, &mut model, now, wall)
+            }
+            None => Effects::default(),
         };
         self.apply_setup(out, now)
     }
 
-    /// Does what the setup flow asked for.
-    fn apply_setup(&mut self, out: Out, now: Instant) -> Flow {
+    /// Does what the setup flow asked for, and hands back what came of the files.
+    fn apply_setup(&mut self, out: Effects, now: Instant) -> Flow {
+        if let Some(file) = &out.write_backup {
+            let result = crate::files::write_atomically(&file.path, file.content.as_bytes());
+            let shared = self.model.clone();
+            self.setup
+                .backup_written(result, &mut self.view.setup, &lock(&shared));
+        }
+        if let Some(path) = &out.read_backup {
+            let text = std::fs::read_to_string(path);
+            let shared = self.model.clone();
+            self.setup
+                .backup_read(text, &mut self.view.setup, &lock(&shared), now);
+        }
         for m in out.send {
             lock(&self.model).log(
                 now,

@@ -1,13 +1,13 @@
 //! What a restore would change, in words: "5A-3 (Strobe Lt) breaker: 2 A → 5 A".
 //!
-//! Compared in the file's own terms (see [`format`](super::format)), so a change reads
+//! Compared in the file's own terms (see [`writer`](super::writer)), so a change reads
 //! the way the person would write it in the backup file and names the same path.
 
 use std::fmt;
 
-use super::format::{Backup, BackupFile, DeviceSection, Switch, TrimSection};
+use super::schema::{self, Item, Part};
+use super::writer::{Rows, sections};
 use crate::protocol::config::UnitConfig;
-use crate::protocol::message::{HardwareVersion, Version};
 
 /// One setting that differs.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -26,265 +26,48 @@ impl fmt::Display for Change {
     }
 }
 
-struct Out(Vec<Change>);
-
-impl Out {
-    fn ch(&mut self, path: String, setting: String, from: String, to: String) {
-        if from != to {
-            self.0.push(Change {
-                path,
-                setting,
-                from,
-                to,
-            });
-        }
-    }
-}
-
-fn quoted(s: &str) -> String {
-    if s.is_empty() {
-        "(no name)".into()
-    } else {
-        format!("\"{}\"", s.escape_default())
-    }
-}
-
-fn yes_no(b: bool) -> String {
-    if b { "yes" } else { "no" }.into()
-}
-
-fn on_off(b: bool) -> String {
-    if b { "on" } else { "off" }.into()
-}
-
-fn switch(s: Switch) -> String {
-    match s {
-        Switch::Off => "always off".into(),
-        Switch::Input(n) => format!("switch {n}"),
-        Switch::AlwaysOn => "always on".into(),
-    }
-}
-
 /// Every setting that differs between `current` (what the unit holds) and `target`
 /// (what a restore would write), in the order of the backup file. Names are compared by
 /// what they show (up to the first NUL).
 pub fn diff(current: &UnitConfig, target: &UnitConfig) -> Vec<Change> {
-    let version = Version {
-        hardware_version: HardwareVersion::Unknown(0),
-        software_major: 0,
-        software_minor: 0,
-    };
-    let a = BackupFile::from_backup(&Backup {
-        version,
-        config: current.clone(),
-    });
-    let b = BackupFile::from_backup(&Backup {
-        version,
-        config: target.clone(),
-    });
-    let mut out = Out(Vec::new());
-
-    out.ch(
-        "system.overvoltage_limit_volts".into(),
-        "overvoltage limit".into(),
-        format!("{} V", a.system.overvoltage_limit_volts),
-        format!("{} V", b.system.overvoltage_limit_volts),
-    );
-    out.ch(
-        "system.secondary_alternator".into(),
-        "secondary alternator".into(),
-        a.system.secondary_alternator.clone(),
-        b.system.secondary_alternator.clone(),
-    );
-
-    let (f, g) = (&a.flaps, &b.flaps);
-    let p = |k: &str| format!("flaps.{k}");
-    out.ch(
-        p("name"),
-        "flaps name".into(),
-        quoted(&f.name),
-        quoted(&g.name),
-    );
-    out.ch(
-        p("enabled"),
-        "flaps fitted".into(),
-        yes_no(f.enabled),
-        yes_no(g.enabled),
-    );
-    out.ch(
-        p("mode"),
-        "flap mode".into(),
-        f.mode.clone(),
-        g.mode.clone(),
-    );
-    out.ch(
-        p("polarity"),
-        "flap motor polarity".into(),
-        f.polarity.clone(),
-        g.polarity.clone(),
-    );
-    for (k, words, x, y) in [
-        ("up", "flap up position", f.up, g.up),
-        ("midpoint_1", "flap midpoint 1", f.midpoint_1, g.midpoint_1),
-        ("midpoint_2", "flap midpoint 2", f.midpoint_2, g.midpoint_2),
-        ("down", "flap down position", f.down, g.down),
-        (
-            "overspeed_position",
-            "flap overspeed position",
-            f.overspeed_position,
-            g.overspeed_position,
-        ),
-    ] {
-        out.ch(p(k), words.into(), x.to_string(), y.to_string());
+    let mut out = Vec::new();
+    for ((path, a), (_, b)) in sections(current).iter().zip(&sections(target)) {
+        let label = |item: &Item| match path.strip_prefix("devices.") {
+            // The pin is named as the person will know it after the restore.
+            Some(pin) if item.part != Part::Name => match Some(name_of(b))
+                .filter(|n| !n.is_empty())
+                .unwrap_or_else(|| name_of(a))
+            {
+                n if n.is_empty() => format!("{pin} {}", item.words),
+                n => format!("{pin} ({n}) {}", item.words),
+            },
+            Some(pin) => format!("{pin} {}", item.words),
+            None if path == "pitch_trim" => format!("pitch trim {}", item.words),
+            None if path == "roll_trim" => format!("roll trim {}", item.words),
+            None => item.words.to_string(),
+        };
+        for ((item, x), (_, y)) in a.iter().zip(b) {
+            let (from, to) = (schema::words(item, x), schema::words(item, y));
+            if from != to {
+                out.push(Change {
+                    path: format!("{path}.{}", item.key),
+                    setting: label(item),
+                    from,
+                    to,
+                });
+            }
+        }
     }
-    out.ch(
-        p("breaker_amps"),
-        "flap breaker".into(),
-        format!("{} A", f.breaker_amps),
-        format!("{} A", g.breaker_amps),
-    );
-    out.ch(
-        p("max_speed_kt"),
-        "flap max speed".into(),
-        format!("{} kt", f.max_speed_kt),
-        format!("{} kt", g.max_speed_kt),
-    );
-    out.ch(
-        p("endpoint_duration_s"),
-        "flap endpoint duration".into(),
-        format!("{:.1} s", f.endpoint_duration_s),
-        format!("{:.1} s", g.endpoint_duration_s),
-    );
-
-    trim(
-        &mut out,
-        "pitch_trim",
-        "pitch trim",
-        &a.pitch_trim,
-        &b.pitch_trim,
-    );
-    trim(
-        &mut out,
-        "roll_trim",
-        "roll trim",
-        &a.roll_trim,
-        &b.roll_trim,
-    );
-
-    let (w, x) = (&a.wig_wag, &b.wig_wag);
-    out.ch(
-        "wig_wag.device_one".into(),
-        "wig-wag device one".into(),
-        w.device_one.clone(),
-        x.device_one.clone(),
-    );
-    out.ch(
-        "wig_wag.device_two".into(),
-        "wig-wag device two".into(),
-        w.device_two.clone(),
-        x.device_two.clone(),
-    );
-    out.ch(
-        "wig_wag.warm_up_s".into(),
-        "wig-wag warm-up".into(),
-        format!("{} s", w.warm_up_s),
-        format!("{} s", x.warm_up_s),
-    );
-    out.ch(
-        "wig_wag.speed_kt".into(),
-        "wig-wag speed".into(),
-        format!("{} kt", w.speed_kt),
-        format!("{} kt", x.speed_kt),
-    );
-
-    for ((pin, d), (_, e)) in a.devices.0.iter().zip(&b.devices.0) {
-        device(&mut out, pin, d, e);
-    }
-    out.0
+    out
 }
 
-fn trim(out: &mut Out, key: &str, words: &str, t: &TrimSection, u: &TrimSection) {
-    let p = |k: &str| format!("{key}.{k}");
-    out.ch(
-        p("name"),
-        format!("{words} name"),
-        quoted(&t.name),
-        quoted(&u.name),
-    );
-    out.ch(
-        p("enabled"),
-        format!("{words} fitted"),
-        yes_no(t.enabled),
-        yes_no(u.enabled),
-    );
-    out.ch(
-        p("polarity"),
-        format!("{words} motor polarity"),
-        t.polarity.clone(),
-        u.polarity.clone(),
-    );
-    for (k, w, x, y) in [
-        ("up", "up position", t.up, u.up),
-        ("down", "down position", t.down, u.down),
-        ("neutral", "neutral position", t.neutral, u.neutral),
-    ] {
-        out.ch(p(k), format!("{words} {w}"), x.to_string(), y.to_string());
-    }
-    out.ch(
-        p("reduced_power_percent"),
-        format!("{words} reduced power"),
-        format!("{} %", t.reduced_power_percent),
-        format!("{} %", u.reduced_power_percent),
-    );
-    out.ch(
-        p("reduce_above_kt"),
-        format!("{words} reduce power above"),
-        format!("{} kt", t.reduce_above_kt),
-        format!("{} kt", u.reduce_above_kt),
-    );
-}
-
-fn device(out: &mut Out, pin: &str, d: &DeviceSection, e: &DeviceSection) {
-    // The pin is named as the person will know it after the restore.
-    let shown = if e.name.is_empty() { &d.name } else { &e.name };
-    let label = if shown.is_empty() {
-        pin.to_string()
-    } else {
-        format!("{pin} ({shown})")
-    };
-    let p = |k: &str| format!("devices.{pin}.{k}");
-    out.ch(
-        p("name"),
-        format!("{pin} name"),
-        quoted(&d.name),
-        quoted(&e.name),
-    );
-    if let (Some(x), Some(y)) = (d.show_on_page, e.show_on_page) {
-        out.ch(
-            p("show_on_page"),
-            format!("{label} shown on the page"),
-            yes_no(x),
-            yes_no(y),
-        );
-    }
-    out.ch(
-        p("breaker_amps"),
-        format!("{label} breaker"),
-        format!("{} A", d.breaker_amps),
-        format!("{} A", e.breaker_amps),
-    );
-    out.ch(
-        p("switch"),
-        format!("{label} switch"),
-        switch(d.switch),
-        switch(e.switch),
-    );
-    out.ch(
-        p("current_fault"),
-        format!("{label} current fault checking"),
-        on_off(d.current_fault),
-        on_off(e.current_fault),
-    );
+/// The name a section's rows hold, or "".
+fn name_of(rows: &Rows) -> String {
+    rows.iter()
+        .find(|(i, _)| i.part == Part::Name)
+        .and_then(|(_, v)| v.as_str())
+        .unwrap_or("")
+        .to_string()
 }
 
 #[cfg(test)]
@@ -324,6 +107,87 @@ mod tests {
         assert!(paths.contains(&"devices.5A-3.breaker_amps".to_string()));
         assert!(paths.contains(&"flaps.endpoint_duration_s".to_string()));
     }
+
+    /// Every setting of every section changed at once: each is found, in the file's
+    /// order, with its path, words and units.
+    #[test]
+    fn every_setting_of_every_section_is_compared() {
+        use crate::protocol::message::{FlapMode, OvervoltageLimit, Polarity};
+        let a = UnitConfig::default();
+        let mut b = a.clone();
+        b.system.overvoltage_limit = OvervoltageLimit::V32;
+        b.system.secondary_alternator = Some(10);
+        b.names[0] = *b"Flaps\0\0\0\0\0\0\0\0\0\0\0";
+        let f = &mut b.flap;
+        f.enabled = !f.enabled;
+        f.mode = match f.mode {
+            FlapMode::Momentary => FlapMode::PositionBased,
+            FlapMode::PositionBased => FlapMode::Momentary,
+        };
+        f.polarity = Polarity::Inverted;
+        f.up += 1;
+        f.midpoint_1 += 1;
+        f.midpoint_2 += 1;
+        f.down += 1;
+        f.circuit_breaker += 1;
+        f.overspeed_position += 1;
+        f.max_speed += 1;
+        f.endpoint_duration = Tenths(f.endpoint_duration.0 + 1);
+        b.names[30] = *b"Pitch\0\0\0\0\0\0\0\0\0\0\0";
+        let t = &mut b.pitch_trim;
+        t.enabled = !t.enabled;
+        t.polarity = Polarity::Inverted;
+        t.up += 1;
+        t.down += 1;
+        t.neutral += 1;
+        t.power -= 1;
+        t.speed += 1;
+        b.roll_trim.speed += 1;
+        let w = &mut b.wig_wag;
+        w.device_one = Some(10);
+        w.device_two = Some(11);
+        w.warm_up_period += 1;
+        w.speed += 1;
+        b.devices[1].current_fault = !b.devices[1].current_fault;
+        b.enabled[6] = false;
+        let changes: Vec<String> = diff(&a, &b)
+            .iter()
+            .map(|c| format!("{} = {c}", c.path))
+            .collect();
+        assert_eq!(changes, EVERY);
+    }
+
+    const EVERY: &[&str] = &[
+        "system.overvoltage_limit_volts = overvoltage limit: 16 V → 32 V",
+        "system.secondary_alternator = secondary alternator: none → 5A-7",
+        "flaps.name = flaps name: (no name) → \"Flaps\"",
+        "flaps.enabled = flaps fitted: no → yes",
+        "flaps.mode = flap mode: momentary → position-based",
+        "flaps.polarity = flap motor polarity: standard → inverted",
+        "flaps.up = flap up position: 0 → 1",
+        "flaps.midpoint_1 = flap midpoint 1: 0 → 1",
+        "flaps.midpoint_2 = flap midpoint 2: 0 → 1",
+        "flaps.down = flap down position: 0 → 1",
+        "flaps.breaker_amps = flap breaker: 7 A → 8 A",
+        "flaps.overspeed_position = flap overspeed position: 0 → 1",
+        "flaps.max_speed_kt = flap max speed: 0 kt → 1 kt",
+        "flaps.endpoint_duration_s = flap endpoint duration: 0.0 s → 0.1 s",
+        "pitch_trim.name = pitch trim name: (no name) → \"Pitch\"",
+        "pitch_trim.enabled = pitch trim fitted: no → yes",
+        "pitch_trim.polarity = pitch trim motor polarity: standard → inverted",
+        "pitch_trim.up = pitch trim up position: 0 → 1",
+        "pitch_trim.down = pitch trim down position: 0 → 1",
+        "pitch_trim.neutral = pitch trim neutral position: 0 → 1",
+        "pitch_trim.reduced_power_percent = pitch trim reduced power: 100 % → 99 %",
+        "pitch_trim.reduce_above_kt = pitch trim reduce power above: 0 kt → 1 kt",
+        "roll_trim.reduce_above_kt = roll trim reduce power above: 0 kt → 1 kt",
+        "wig_wag.device_one = wig-wag device one: none → 5A-7",
+        "wig_wag.device_two = wig-wag device two: none → 5A-8",
+        "wig_wag.warm_up_s = wig-wag warm-up: 5 s → 6 s",
+        "wig_wag.speed_kt = wig-wag speed: 70 kt → 71 kt",
+        "devices.Starter.current_fault = Starter current fault checking: off → on",
+        "devices.5A-3.show_on_page = 5A-3 shown on the page: yes → no",
+    ];
 
     #[test]
     fn bytes_after_a_names_nul_are_not_a_difference() {

@@ -1,22 +1,115 @@
-//! Backups of a VP-X's whole configuration: the TOML file format ([`format`]), what a
+//! Backups of a VP-X's whole configuration: the TOML file format (below), what a
 //! restore would change ([`diff`]), the order a restore writes in ([`plan`]), and
 //! reading and writing the file (here). No I/O with the unit: the `backup` and
 //! `restore` commands and the setup screens bring a [`UnitClient`](crate::link::UnitClient).
+//!
+//! The backup file is a VP-X's whole configuration as TOML a person can read and edit.
+//!
+//! ```toml
+//! format = 1
+//!
+//! [unit]                            # the unit the backup was taken from (ICD Table 11)
+//! hardware_version = 2              # 1 VP-X (Gen 1), 2 VP-X Pro, 3 VP-X Sport
+//! hardware = "VP-X Pro"             # for people; ignored when loading
+//! software = "3.7"                  # major.minor
+//!
+//! [system]                          # SYSTEM_SPEC, ICD Table 14
+//! overvoltage_limit_volts = 16      # 16 or 32
+//! secondary_alternator = "none"     # "none" or a pin as named in Table 40, e.g. "10A-2"
+//!
+//! [flaps]                           # FLAP_SPEC, Table 16; name is DEVICE_NAME 0
+//! name = "Flaps"
+//! enabled = true                    # false when the aircraft has no VP-X flaps
+//! mode = "position-based"           # or "momentary"
+//! polarity = "standard"             # or "inverted"
+//! up = 10                           # position sensor readings, 0–255
+//! midpoint_1 = 60
+//! midpoint_2 = 120
+//! down = 200
+//! breaker_amps = 7
+//! overspeed_position = 20
+//! max_speed_kt = 100
+//! endpoint_duration_s = 0.5         # in tenths of a second on the wire (reading note 23)
+//!
+//! [pitch_trim]                      # TRIM_SPEC, Table 15; name is DEVICE_NAME 30
+//! name = ""
+//! enabled = true
+//! polarity = "standard"
+//! up = 200
+//! down = 20
+//! neutral = 110
+//! reduced_power_percent = 60        # motor power above reduce_above_kt (40–90; 100 = factory)
+//! reduce_above_kt = 120
+//!
+//! [roll_trim]                       # the same fields; name is DEVICE_NAME 29
+//! # ...
+//!
+//! [wig_wag]                         # WIG_WAG_SPEC, Table 17
+//! device_one = "5A-7"               # "none" or a pin name
+//! device_two = "5A-8"
+//! warm_up_s = 5
+//! speed_kt = 70
+//!
+//! [devices.5A-3]                    # one table per pin 1–28, named as in Table 40
+//! name = "Strobe Lt"                # DEVICE_NAME: up to 16 bytes; "" = never named
+//! show_on_page = true               # DEVICE_ENABLE (pins 4–28 only)
+//! breaker_amps = 5                  # DEVICE_SPEC: within the pin's Appendix B range
+//! switch = 3                        # "off", 1–10 or "always-on"
+//! current_fault = true
+//! ```
+//!
+//! Speeds are in knots: the unit compares them with the airspeed this EFIS sends it in
+//! EXTERNAL_DATA, and this EFIS sends knots (reading note 20). Names are single bytes:
+//! each character U+0000–U+00FF is one byte (Latin-1), so a name the unit holds comes
+//! back byte for byte, while anything above U+00FF is refused.
+//!
+//! Each setting is written once, in [`schema`]: the [`writer`], the [`reader`], the
+//! [`path`] map from the §6.2 rules' names to the file's, and the [`diff`](mod@diff)
+//! read it.
 
 pub mod diff;
-pub mod format;
-pub mod made;
+pub mod path;
 pub mod plan;
+pub mod provenance;
+pub mod reader;
+pub mod schema;
+pub mod writer;
 
 use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub use diff::{Change, diff};
-pub use format::{Backup, Problem, from_toml, from_toml_made, normalized, to_toml, to_toml_made};
-pub use made::Made;
 pub use plan::{PlanError, Step, plan};
+pub use provenance::Provenance;
+pub use reader::{from_toml, from_toml_made};
+pub use writer::{normalized, to_toml, to_toml_made};
 
+use crate::protocol::config::UnitConfig;
 use crate::protocol::message::Version;
+
+/// The `format` number this program writes and reads.
+pub const FORMAT: u32 = 1;
+
+/// A unit's configuration together with the version of the unit it came from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Backup {
+    pub version: Version,
+    pub config: UnitConfig,
+}
+
+/// One thing wrong with a backup file: where (a path in the file) and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    /// `devices.5A-3.breaker_amps`, `wig_wag`, or `(file)` for TOML syntax.
+    pub field: String,
+    pub message: String,
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.field, self.message)
+    }
+}
 
 /// Why a backup file cannot be used; every problem, each by its path in the file.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -43,14 +136,27 @@ impl fmt::Display for LoadError {
 
 impl std::error::Error for LoadError {}
 
-/// Reads and checks a backup file as a whole (see [`format::from_toml`]).
+/// Reads and checks a backup file as a whole (see [`from_toml`]).
 pub fn load(path: &Path) -> Result<Backup, LoadError> {
     load_made(path).map(|(b, _)| b)
 }
 
 /// [`load`], and where the backup came from if the file says.
-pub fn load_made(path: &Path) -> Result<(Backup, Option<Made>), LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|e| LoadError {
+pub fn load_made(path: &Path) -> Result<(Backup, Option<Provenance>), LoadError> {
+    read_made(path, std::fs::read_to_string(path))
+}
+
+/// [`load`] of a file someone else read: its text, or why it could not be read.
+pub fn read(path: &Path, text: std::io::Result<String>) -> Result<Backup, LoadError> {
+    read_made(path, text).map(|(b, _)| b)
+}
+
+/// [`load_made`] of a file someone else read.
+pub fn read_made(
+    path: &Path,
+    text: std::io::Result<String>,
+) -> Result<(Backup, Option<Provenance>), LoadError> {
+    let text = text.map_err(|e| LoadError {
         file: path.to_path_buf(),
         problems: vec![Problem {
             field: "(file)".into(),
@@ -101,7 +207,7 @@ pub fn save(path: &Path, backup: &Backup) -> std::io::Result<()> {
 }
 
 /// [`save`] with the `[made]` section: when, from what, by which program.
-pub fn save_made(path: &Path, backup: &Backup, made: &Made) -> std::io::Result<()> {
+pub fn save_made(path: &Path, backup: &Backup, made: &Provenance) -> std::io::Result<()> {
     crate::files::write_atomically(path, to_toml_made(backup, made).as_bytes())
 }
 

@@ -39,7 +39,7 @@ use crate::protocol::message::{
 };
 use crate::protocol::validate;
 
-use super::format::normalize_name;
+use super::writer::normalize_name;
 
 /// One write of a restore.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

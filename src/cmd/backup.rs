@@ -1,14 +1,14 @@
 //! `vpx-efis backup [--port PATH|tcp://HOST:PORT] FILE`: reads the unit's whole
-//! configuration into a TOML file (format in [`crate::backup::format`]), written
+//! configuration into a TOML file (format in [`crate::backup`]), written
 //! atomically so that an interrupted backup leaves no half file. The file records when
-//! it was made, from what, and by which vpx-efis ([`crate::backup::made`]).
+//! it was made, from what, and by which vpx-efis ([`crate::backup::provenance`]).
 
 use std::io::IsTerminal;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::backup::{self, Backup, Made};
+use crate::backup::{self, Backup, Provenance};
 use crate::cli::{BackupArgs, PortArgs};
 use crate::link::{RequestError, UnitClient, port_connector};
 use crate::protocol::config::UnitConfig;
@@ -20,7 +20,7 @@ pub fn run(args: BackupArgs) -> anyhow::Result<()> {
     let (version, config) = read_with_progress(&mut unit.client, "reading")
         .context("reading the unit's configuration; no file was written")?;
     let b = Backup { version, config };
-    let made = Made::now(&unit.from, unit.simulated);
+    let made = Provenance::at(&unit.from, unit.simulated, std::time::SystemTime::now());
     backup::save_made(&args.file, &b, &made)
         .with_context(|| format!("cannot write {}", args.file.display()))?;
     eprintln!(

@@ -41,7 +41,10 @@ pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
         .into());
     }
     let (target, made) = backup::load_made(&args.file)?;
-    eprintln!("{}", backup::made::describe(made.as_ref(), &target.version));
+    eprintln!(
+        "{}",
+        backup::provenance::describe(made.as_ref(), &target.version)
+    );
     let mut unit = connect(&args.port)?;
     eprintln!(
         "Restoring to {}{}.",

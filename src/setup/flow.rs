@@ -1,31 +1,49 @@
 //! The setup screens' flow: a key or a tick in, the view's state changed and what the
-//! app must do out (requests to send, a whole re-read, leave, quit). It holds the write
-//! queue, the timed requests and a checked backup waiting for its confirmation.
+//! app must do out (requests to send, a whole re-read, a backup file to write or read,
+//! leave, quit). It holds the write queue, the timed requests and a checked backup
+//! waiting for its confirmation.
 //!
-//! No link and no monotonic clock: the app hands it the model it has locked and `now`,
-//! and takes the motor keys to its controller before anything comes here. Not yet the
-//! pure flow the guide asks for (issue 23): it takes crossterm's `KeyEvent`, saves the
-//! checked backup itself through `backup`, and stamps it with the wall clock
-//! (`Made::now`).
+//! No I/O: the app maps the terminal's keys to [`SetupKey`], hands in the model it
+//! has locked, `now`, and the wall-clock time a backup is stamped with; it carries out
+//! the [`Effects`] and hands back what came of them ([`SetupFlow::backup_written`],
+//! [`SetupFlow::backup_read`]). Motor keys go to its controller before anything
+//! comes here.
 
-use std::path::Path;
-use std::time::Instant;
-
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use std::io;
+use std::path::{Path, PathBuf};
+use std::time::{Instant, SystemTime};
 
 use super::probe::{EraseEnd, Probes};
+use super::view::{Dialog, Field, Page, SetupView, Tone, missing_summary};
 use super::{form, write};
-use crate::backup::{self, Backup, Made};
+use crate::backup::{self, Backup, Provenance};
 use crate::model::{Model, Source};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{STARTER, TRIM_R};
 use crate::protocol::message::{Message, Version};
 use crate::protocol::names::PIN_NAMES;
-use crate::ui::setup::state::{Dialog, Field, Page, SetupView, Tone};
 
-/// What the app must do after the flow moved.
+/// A key on the setup screens, as the flow reads it; the app maps the terminal's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SetupKey {
+    Tab,
+    BackTab,
+    Esc,
+    Up,
+    Down,
+    Left,
+    Right,
+    /// Shift+←/→: ten steps at once.
+    ShiftLeft,
+    ShiftRight,
+    Enter,
+    Backspace,
+    Char(char),
+}
+
+/// What the app must do after the flow moved; the flow does none of it itself.
 #[derive(Debug, Default, Clone, PartialEq)]
-pub struct Out {
+pub struct Effects {
     /// Requests to put on the wire, in this order, each with its own command number.
     pub send: Vec<Message>,
     /// Ask the unit for every spec, name and enable flag again (the connect queries).
@@ -33,6 +51,17 @@ pub struct Out {
     /// Back to the device list.
     pub leave: bool,
     pub quit: bool,
+    /// Write this backup file, then hand the result to [`SetupFlow::backup_written`].
+    pub write_backup: Option<BackupFile>,
+    /// Read this backup file, then hand its text to [`SetupFlow::backup_read`].
+    pub read_backup: Option<PathBuf>,
+}
+
+/// A backup file to write: where, and its whole text (stamped with the caller's time).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BackupFile {
+    pub path: PathBuf,
+    pub content: String,
 }
 
 /// The setup screens' state that the view does not need.
@@ -42,6 +71,9 @@ pub struct SetupFlow {
     /// The page a batch came from; `None` for a backup being applied.
     batch_page: Option<Option<Page>>,
     probes: Probes,
+    /// The backup file the app is writing, or reading, for this flow.
+    writing: Option<String>,
+    reading: Option<String>,
     /// Checked writes waiting for their dialog's `y`: a backup's, or a page's that
     /// disarm a protection.
     pending: Vec<Message>,
@@ -67,22 +99,23 @@ impl SetupFlow {
     /// A key pressed on the setup screens that is not a motor key.
     pub fn key(
         &mut self,
-        key: KeyEvent,
+        key: SetupKey,
         sv: &mut SetupView,
         model: &mut Model,
         now: Instant,
-    ) -> Out {
-        let mut out = Out::default();
+        wall: SystemTime,
+    ) -> Effects {
+        let mut out = Effects::default();
         if sv.dialog != Dialog::None {
-            self.dialog_key(key, sv, model, now, &mut out);
+            self.dialog_key(key, sv, model, now, wall, &mut out);
             return out;
         }
         let page = sv.page;
         let field = sv.field();
-        match key.code {
-            KeyCode::Tab => goto_page(sv, page.next()),
-            KeyCode::BackTab => goto_page(sv, page.prev()),
-            KeyCode::Esc => {
+        match key {
+            SetupKey::Tab => goto_page(sv, page.next()),
+            SetupKey::BackTab => goto_page(sv, page.prev()),
+            SetupKey::Esc => {
                 if sv.typing.take().is_some() {
                 } else if page.is_form() && sv.is_edited(page) {
                     sv.edited[page.index()] = false;
@@ -96,51 +129,52 @@ impl SetupFlow {
                     out.leave = true;
                 }
             }
-            KeyCode::Up | KeyCode::Down => {
+            SetupKey::Up | SetupKey::Down => {
                 let n = sv.page.fields().len();
-                sv.field = if key.code == KeyCode::Up {
+                sv.field = if key == SetupKey::Up {
                     sv.field.saturating_sub(1)
                 } else {
                     (sv.field + 1).min(n - 1)
                 };
                 sv.typing = None;
             }
-            KeyCode::Left | KeyCode::Right => {
-                let step = if key.code == KeyCode::Left { -1 } else { 1 };
-                let step = if key.modifiers.contains(KeyModifiers::SHIFT) {
-                    step * 10
-                } else {
-                    step
-                };
-                adjust(sv, model, step);
-            }
-            KeyCode::Char('-') if !field.is_text() => adjust(sv, model, -1),
-            KeyCode::Char('+') if !field.is_text() => adjust(sv, model, 1),
-            KeyCode::Enter => {
+            SetupKey::Left => adjust(sv, model, -1),
+            SetupKey::Right => adjust(sv, model, 1),
+            SetupKey::ShiftLeft => adjust(sv, model, -10),
+            SetupKey::ShiftRight => adjust(sv, model, 10),
+            SetupKey::Char('-') if !field.is_text() => adjust(sv, model, -1),
+            SetupKey::Char('+') if !field.is_text() => adjust(sv, model, 1),
+            SetupKey::Enter => {
                 if field.is_action() {
-                    self.action(field, sv, model, now, &mut out);
+                    self.action(field, sv, model, now, wall, &mut out);
                 } else if page.is_form() {
                     self.send_page(sv, model, now, &mut out);
                 }
             }
-            KeyCode::Backspace => backspace(sv),
-            KeyCode::Char(c) if field.is_text() => type_text(sv, c),
-            KeyCode::Char(c) if c.is_ascii_digit() || c == '.' => type_digit(sv, c),
-            KeyCode::Char('p') => match form::capture(&mut sv.forms, page, field, model, now) {
+            SetupKey::Backspace => backspace(sv),
+            SetupKey::Char(c) if field.is_text() => type_text(sv, c),
+            SetupKey::Char(c) if c.is_ascii_digit() || c == '.' => type_digit(sv, c),
+            SetupKey::Char('p') => match form::capture(&mut sv.forms, page, field, model, now) {
                 Ok(words) => {
                     sv.edited[page.index()] = true;
                     say(sv, Tone::Good, words);
                 }
                 Err(why) => say(sv, Tone::Bad, why),
             },
-            KeyCode::Char('q') => out.quit = true,
+            SetupKey::Char('q') => out.quit = true,
             _ => {}
         }
         out
     }
 
     /// Enter on a form page: check what changed against the §6.2 rules, then queue it.
-    fn send_page(&mut self, sv: &mut SetupView, model: &mut Model, now: Instant, out: &mut Out) {
+    fn send_page(
+        &mut self,
+        sv: &mut SetupView,
+        model: &mut Model,
+        now: Instant,
+        out: &mut Effects,
+    ) {
         if self.queue.busy() {
             return say(sv, Tone::Bad, BUSY);
         }
@@ -187,10 +221,10 @@ impl SetupFlow {
         sv: &mut SetupView,
         model: &mut Model,
         now: Instant,
-    ) -> Out {
+    ) -> Effects {
         self.queue.start(messages);
         self.batch_page = Some(None);
-        let mut out = Out::default();
+        let mut out = Effects::default();
         self.tick_into(sv, model, now, &mut out);
         out
     }
@@ -201,19 +235,14 @@ impl SetupFlow {
         sv: &mut SetupView,
         model: &Model,
         now: Instant,
-        out: &mut Out,
+        wall: SystemTime,
+        out: &mut Effects,
     ) {
         match field {
             Field::Ping => out.send.push(self.probes.ping(sv, now)),
             Field::Version => out.send.push(self.probes.version(sv, now)),
-            Field::SaveBackup => {
-                let file = sv.file.clone();
-                match save_backup(&file, model) {
-                    Ok(words) => say(sv, Tone::Good, words),
-                    Err(why) => say(sv, Tone::Bad, why),
-                }
-            }
-            Field::LoadBackup => self.load_backup(sv, model, now),
+            Field::SaveBackup => self.save_backup(sv, model, wall, out),
+            Field::LoadBackup => self.load_backup(sv, out),
             Field::Reread => reread(sv, out),
             Field::Erase => {
                 sv.dialog = Dialog::Erase {
@@ -225,7 +254,8 @@ impl SetupFlow {
         }
     }
 
-    fn load_backup(&mut self, sv: &mut SetupView, model: &Model, now: Instant) {
+    /// Asks the app for the backup file's text; [`Self::backup_read`] checks it.
+    fn load_backup(&mut self, sv: &mut SetupView, out: &mut Effects) {
         if self.queue.busy() {
             return say(sv, Tone::Bad, BUSY);
         }
@@ -233,7 +263,24 @@ impl SetupFlow {
         if file.is_empty() {
             return say(sv, Tone::Bad, NO_FILE);
         }
-        let b = match backup::load(Path::new(&file)) {
+        out.read_backup = Some(PathBuf::from(&file));
+        self.reading = Some(file);
+    }
+
+    /// The text of the backup file [`Effects::read_backup`] asked for, or why it could
+    /// not be read: checked against the unit, and what applying it changes put in a
+    /// dialog for the person to confirm.
+    pub fn backup_read(
+        &mut self,
+        text: io::Result<String>,
+        sv: &mut SetupView,
+        model: &Model,
+        now: Instant,
+    ) {
+        let Some(file) = self.reading.take() else {
+            return;
+        };
+        let b = match backup::read(Path::new(&file), text) {
             Ok(b) => b,
             Err(e) => {
                 let n = e.problems.len();
@@ -302,45 +349,74 @@ impl SetupFlow {
         };
     }
 
+    /// Asks the app to write what the model knows of the unit to the backup file, on
+    /// the Backup page or from the erase dialog; [`Self::backup_written`] says how it went.
+    fn save_backup(
+        &mut self,
+        sv: &mut SetupView,
+        model: &Model,
+        wall: SystemTime,
+        out: &mut Effects,
+    ) {
+        match backup_file(&sv.file, model, wall) {
+            Ok(file) => {
+                self.writing = Some(file.path.display().to_string());
+                out.write_backup = Some(file);
+            }
+            Err(why) => say(sv, Tone::Bad, why),
+        }
+    }
+
+    /// How writing the file of [`Effects::write_backup`] went.
+    pub fn backup_written(&mut self, result: io::Result<()>, sv: &mut SetupView, model: &Model) {
+        let Some(file) = self.writing.take() else {
+            return;
+        };
+        match result {
+            Err(e) => say(sv, Tone::Bad, format!("could not write {file}: {e}")),
+            Ok(()) => {
+                let words = format!("backup written to {file}");
+                if let Dialog::Erase { .. } = sv.dialog {
+                    sv.dialog = Dialog::Erase {
+                        missing: known_for_backup(model).1,
+                        backed_up: Some(words),
+                    };
+                } else {
+                    say(sv, Tone::Good, words);
+                }
+            }
+        }
+    }
+
     fn dialog_key(
         &mut self,
-        key: KeyEvent,
+        key: SetupKey,
         sv: &mut SetupView,
         model: &mut Model,
         now: Instant,
-        out: &mut Out,
+        wall: SystemTime,
+        out: &mut Effects,
     ) {
-        match (sv.dialog.clone(), key.code) {
-            (_, KeyCode::Esc | KeyCode::Char('n')) => {
+        match (sv.dialog.clone(), key) {
+            (_, SetupKey::Esc | SetupKey::Char('n')) => {
                 sv.dialog = Dialog::None;
                 self.pending.clear();
                 say(sv, Tone::Info, "cancelled: nothing was sent");
             }
-            (Dialog::Erase { .. }, KeyCode::Char('b')) => {
-                let file = sv.file.clone();
-                match save_backup(&file, model) {
-                    Ok(words) => {
-                        sv.dialog = Dialog::Erase {
-                            missing: known_for_backup(model).1,
-                            backed_up: Some(words),
-                        }
-                    }
-                    Err(why) => say(sv, Tone::Bad, why),
-                }
-            }
-            (Dialog::Erase { backed_up, .. }, KeyCode::Char('r')) => {
+            (Dialog::Erase { .. }, SetupKey::Char('b')) => self.save_backup(sv, model, wall, out),
+            (Dialog::Erase { backed_up, .. }, SetupKey::Char('r')) => {
                 reread(sv, out);
                 sv.dialog = Dialog::Erase {
                     missing: known_for_backup(model).1,
                     backed_up,
                 };
             }
-            (Dialog::Erase { .. }, KeyCode::Char('y')) => {
+            (Dialog::Erase { .. }, SetupKey::Char('y')) => {
                 sv.dialog = Dialog::None;
                 out.send.push(self.probes.erase(sv, now));
                 say(sv, Tone::Info, "EEPROM_ERASE sent");
             }
-            (Dialog::Disarm { .. }, KeyCode::Char('y')) => {
+            (Dialog::Disarm { .. }, SetupKey::Char('y')) => {
                 sv.dialog = Dialog::None;
                 let msgs = std::mem::take(&mut self.pending);
                 self.queue.start(msgs);
@@ -348,7 +424,7 @@ impl SetupFlow {
                 sv.message = None;
                 self.tick_into(sv, model, now, out);
             }
-            (Dialog::Load { .. }, KeyCode::Enter)
+            (Dialog::Load { .. }, SetupKey::Enter)
                 if !form::disarms(&self.pending, model, now).is_empty() =>
             {
                 say(
@@ -357,7 +433,7 @@ impl SetupFlow {
                     "this backup turns a protection off: y applies it, Esc cancels",
                 );
             }
-            (Dialog::Load { .. }, KeyCode::Char('y') | KeyCode::Enter) => {
+            (Dialog::Load { .. }, SetupKey::Char('y') | SetupKey::Enter) => {
                 sv.dialog = Dialog::None;
                 let msgs = std::mem::take(&mut self.pending);
                 self.queue.start(msgs);
@@ -383,7 +459,7 @@ impl SetupFlow {
         selected: Option<u8>,
         model: &mut Model,
         now: Instant,
-    ) -> Out {
+    ) -> Effects {
         if on_screen && !self.on_screen {
             // Arriving from the device list: always the Device page, never where the
             // screens were left, so keys typed from memory land where they are meant.
@@ -397,7 +473,7 @@ impl SetupFlow {
             }
         }
         self.on_screen = on_screen;
-        let mut out = Out::default();
+        let mut out = Effects::default();
         self.tick_into(sv, model, now, &mut out);
         self.probe_tick(sv, model, now, &mut out);
         if on_screen {
@@ -406,7 +482,13 @@ impl SetupFlow {
         out
     }
 
-    fn tick_into(&mut self, sv: &mut SetupView, model: &mut Model, now: Instant, out: &mut Out) {
+    fn tick_into(
+        &mut self,
+        sv: &mut SetupView,
+        model: &mut Model,
+        now: Instant,
+        out: &mut Effects,
+    ) {
         out.send.extend(self.queue.tick(model, now));
         if self.queue.settled()
             && let Some(page) = self.batch_page.take()
@@ -421,7 +503,7 @@ impl SetupFlow {
         sv.writes = self.queue.lines();
     }
 
-    fn probe_tick(&mut self, sv: &mut SetupView, model: &Model, now: Instant, out: &mut Out) {
+    fn probe_tick(&mut self, sv: &mut SetupView, model: &Model, now: Instant, out: &mut Effects) {
         let (again, erase_end) = self.probes.tick(model, sv, now);
         out.send.extend(again);
         match erase_end {
@@ -467,7 +549,7 @@ fn goto_page(sv: &mut SetupView, page: Page) {
     sv.message = None;
 }
 
-fn reread(sv: &mut SetupView, out: &mut Out) {
+fn reread(sv: &mut SetupView, out: &mut Effects) {
     out.reread_all = true;
     say(
         sv,
@@ -636,9 +718,10 @@ fn known_for_backup(model: &Model) -> (UnitConfig, Vec<String>, Option<Version>)
     (config, missing, model.version.map(|v| v.value))
 }
 
-/// Writes what the model knows of the unit to `file`; refuses when it does not know
-/// everything, since a partial backup would restore defaults over real settings.
-fn save_backup(file: &str, model: &Model) -> Result<String, String> {
+/// What the model knows of the unit as a backup file's text for `file`, stamped with
+/// `wall`; refused when it does not know everything, since a partial backup would
+/// restore defaults over real settings.
+fn backup_file(file: &str, model: &Model, wall: SystemTime) -> Result<BackupFile, String> {
     if file.trim().is_empty() {
         return Err(NO_FILE.into());
     }
@@ -647,29 +730,29 @@ fn save_backup(file: &str, model: &Model) -> Result<String, String> {
         return Err(format!(
             "not saved: the page has not heard {} yet; choose \"Re-read the unit\" and \
              save again",
-            crate::ui::setup::dialog::missing_summary(&missing)
+            missing_summary(&missing)
         ));
     };
     // The file says where it came from, as `vpx-efis backup` writes it.
     let made = match &model.source {
-        Source::Serial { path } => Made::now(path, false),
-        Source::Simulated { scenario } => Made::now(
+        Source::Serial { path } => Provenance::at(path, false, wall),
+        Source::Simulated { scenario } => Provenance::at(
             &format!("the built-in virtual VP-X (scenario {scenario})"),
             true,
+            wall,
         ),
-        Source::Replay { file } => Made::now(&format!("a replay of {file}"), false),
+        Source::Replay { file } => Provenance::at(&format!("a replay of {file}"), false, wall),
     };
-    backup::save_made(Path::new(file.trim()), &Backup { version, config }, &made)
-        .map_err(|e| format!("could not write {}: {e}", file.trim()))?;
-    Ok(format!("backup written to {}", file.trim()))
+    Ok(BackupFile {
+        path: PathBuf::from(file.trim()),
+        content: backup::to_toml_made(&Backup { version, config }, &made),
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use std::time::Duration;
-
-    use crossterm::event::KeyEventKind;
 
     use crate::exchange::Rereader;
     use crate::model::{Setting, Source};
@@ -678,11 +761,10 @@ mod tests {
         DeviceEnable, DeviceName, DeviceSpec, DeviceSpecQuery, EnableFlag, OvervoltageLimit,
         SpecAck, SwitchId,
     };
-    use crate::ui::setup::state::WriteStatus;
+    use crate::setup::view::WriteStatus;
 
-    fn press(code: KeyCode) -> KeyEvent {
-        KeyEvent::new_with_kind(code, KeyModifiers::NONE, KeyEventKind::Press)
-    }
+    /// The wall-clock time backups are stamped with in these tests.
+    const WALL: SystemTime = SystemTime::UNIX_EPOCH;
 
     fn ms(t0: Instant, n: u64) -> Instant {
         t0 + Duration::from_millis(n)
@@ -720,11 +802,11 @@ mod tests {
         );
         let mut sent = Vec::new();
         sent.extend(
-            flow.key(press(KeyCode::Down), &mut sv, &mut m, ms(t0, 600))
+            flow.key(SetupKey::Down, &mut sv, &mut m, ms(t0, 600), WALL)
                 .send,
         );
         sent.extend(
-            flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, ms(t0, 600))
+            flow.key(SetupKey::Char('3'), &mut sv, &mut m, ms(t0, 600), WALL)
                 .send,
         );
         assert!(
@@ -740,7 +822,7 @@ mod tests {
             "{refusal:?}"
         );
         sent.extend(
-            flow.key(press(KeyCode::Enter), &mut sv, &mut m, ms(t0, 700))
+            flow.key(SetupKey::Enter, &mut sv, &mut m, ms(t0, 700), WALL)
                 .send,
         );
         assert!(sv.message.as_ref().unwrap().1.starts_with("nothing sent: "));
@@ -784,8 +866,8 @@ mod tests {
         flow.tick(&mut sv, true, Some(9), &mut m, ms(t0, 3600));
         assert_eq!(sv.forms.device, unit, "the form shows what the unit holds");
         assert_eq!(sv.forms.name, "Strobe");
-        flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, ms(t0, 3700));
-        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, ms(t0, 3700));
+        flow.key(SetupKey::Char('3'), &mut sv, &mut m, ms(t0, 3700), WALL);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, ms(t0, 3700), WALL);
         assert_eq!(
             out.send,
             vec![Message::DeviceSpec(DeviceSpec {
@@ -829,9 +911,9 @@ mod tests {
             held(4),
             "the form shows what the unit holds"
         );
-        flow.key(press(KeyCode::Down), &mut sv, &mut m, t0);
-        flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, t0);
-        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        flow.key(SetupKey::Down, &mut sv, &mut m, t0, WALL);
+        flow.key(SetupKey::Char('3'), &mut sv, &mut m, t0, WALL);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
         assert_eq!(out.send, vec![Message::DeviceSpec(held(3))]);
         let mut sent = 1;
         let mut queries = 0;
@@ -963,9 +1045,9 @@ mod tests {
         flow.tick(&mut sv, true, Some(pin), m, t0);
         sv.page = page;
         sv.field = page.fields().iter().position(|&f| f == field).unwrap();
-        let mut sent = flow.key(press(KeyCode::Right), &mut sv, m, t0).send;
+        let mut sent = flow.key(SetupKey::Right, &mut sv, m, t0, WALL).send;
         assert!(sv.is_edited(page), "{field:?} changed");
-        sent.extend(flow.key(press(KeyCode::Enter), &mut sv, m, t0).send);
+        sent.extend(flow.key(SetupKey::Enter, &mut sv, m, t0, WALL).send);
         (flow, sv, sent)
     }
 
@@ -1061,15 +1143,15 @@ mod tests {
                 let out = flow.tick(&mut sv, true, Some(4), &mut m, ms(t0, t));
                 assert!(out.send.is_empty(), "{name}: a tick sends nothing");
             }
-            let out = flow.key(press(KeyCode::Esc), &mut sv, &mut m, t0);
+            let out = flow.key(SetupKey::Esc, &mut sv, &mut m, t0, WALL);
             assert!(out.send.is_empty(), "{name}: cancelled");
             assert_eq!(sv.dialog, Dialog::None);
             assert!(sv.is_edited(page), "{name}: the edit stays after Esc");
-            let mut sent = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0).send;
-            sent.extend(flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0).send);
+            let mut sent = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL).send;
+            sent.extend(flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL).send);
             assert!(sent.is_empty(), "{name}: Enter never confirms: {sent:?}");
             assert!(matches!(sv.dialog, Dialog::Disarm { .. }), "{name}");
-            let out = flow.key(press(KeyCode::Char('y')), &mut sv, &mut m, t0);
+            let out = flow.key(SetupKey::Char('y'), &mut sv, &mut m, t0, WALL);
             assert_eq!(sv.dialog, Dialog::None);
             let expected: Message = match page {
                 Page::System => sv.forms.system.into(),
@@ -1108,8 +1190,8 @@ mod tests {
         let (t0, mut m, mut sv, mut flow) = opened_on(4);
         sv.field = 1;
         assert_eq!(sv.field(), Field::Breaker);
-        flow.key(press(KeyCode::Char('6')), &mut sv, &mut m, t0);
-        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        flow.key(SetupKey::Char('6'), &mut sv, &mut m, t0, WALL);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
         assert!(out.send.is_empty());
         assert_eq!(sv.dialog, Dialog::None);
         assert_eq!(
@@ -1126,13 +1208,13 @@ mod tests {
     #[test]
     fn the_setup_screens_open_on_the_device_page_every_time() {
         let (t0, mut m, mut sv, mut flow) = opened_on(4);
-        flow.key(press(KeyCode::Tab), &mut sv, &mut m, t0);
-        flow.key(press(KeyCode::Down), &mut sv, &mut m, t0);
+        flow.key(SetupKey::Tab, &mut sv, &mut m, t0, WALL);
+        flow.key(SetupKey::Down, &mut sv, &mut m, t0, WALL);
         assert_eq!(
             (sv.page, sv.field()),
             (Page::System, Field::SecondaryAlternator)
         );
-        assert!(flow.key(press(KeyCode::Esc), &mut sv, &mut m, t0).leave);
+        assert!(flow.key(SetupKey::Esc, &mut sv, &mut m, t0, WALL).leave);
         flow.tick(&mut sv, false, Some(4), &mut m, ms(t0, 100));
         flow.tick(&mut sv, true, Some(7), &mut m, ms(t0, 200));
         assert_eq!((sv.page, sv.field()), (Page::Device, Field::DeviceId));
@@ -1141,7 +1223,7 @@ mod tests {
 
     fn typed(flow: &mut SetupFlow, sv: &mut SetupView, m: &mut Model, t: Instant, text: &str) {
         for c in text.chars() {
-            flow.key(press(KeyCode::Char(c)), sv, m, t);
+            flow.key(SetupKey::Char(c), sv, m, t, WALL);
         }
     }
 
@@ -1170,7 +1252,7 @@ mod tests {
             sv.field = page.fields().iter().position(|&f| f == field).unwrap();
             let before = sv.forms.clone();
             sv.message = None;
-            flow.key(press(KeyCode::Char('3')), &mut sv, &mut m, t0);
+            flow.key(SetupKey::Char('3'), &mut sv, &mut m, t0, WALL);
             assert_eq!(sv.forms, before, "{field:?}: nothing typed");
             let (tone, words) = said(&sv);
             assert_eq!(tone, Tone::Bad);
@@ -1181,7 +1263,7 @@ mod tests {
                 )),
                 "{words}"
             );
-            let keys = crate::ui::setup::keys(&sv);
+            let keys = crate::setup::view::keys(&sv);
             assert!(
                 !keys.iter().any(|(k, _)| *k == "0-9"),
                 "{field:?}: {keys:?}"
@@ -1190,7 +1272,7 @@ mod tests {
         sv.page = Page::Device;
         sv.field = 1;
         assert!(
-            crate::ui::setup::keys(&sv).contains(&("0-9", "type")),
+            crate::setup::view::keys(&sv).contains(&("0-9", "type")),
             "the breaker"
         );
         // The name: é, then 19 characters.
@@ -1209,7 +1291,7 @@ mod tests {
             )
         );
         for _ in 0..6 {
-            flow.key(press(KeyCode::Backspace), &mut sv, &mut m, t0);
+            flow.key(SetupKey::Backspace, &mut sv, &mut m, t0, WALL);
         }
         typed(&mut flow, &mut sv, &mut m, t0, "Landing Light Left");
         assert_eq!(sv.forms.name, "Landing Light Le");
@@ -1221,7 +1303,7 @@ mod tests {
             )
         );
         // ←/→ over a typed name replaces it, and says so.
-        flow.key(press(KeyCode::Right), &mut sv, &mut m, t0);
+        flow.key(SetupKey::Right, &mut sv, &mut m, t0, WALL);
         let (tone, words) = said(&sv);
         assert_eq!(tone, Tone::Info);
         assert_eq!(
@@ -1234,10 +1316,10 @@ mod tests {
         );
         // An empty name is refused, nothing sent.
         for _ in 0..16 {
-            flow.key(press(KeyCode::Backspace), &mut sv, &mut m, t0);
+            flow.key(SetupKey::Backspace, &mut sv, &mut m, t0, WALL);
         }
         assert_eq!(sv.forms.name, "");
-        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
         assert!(out.send.is_empty(), "{:?}", out.send);
         assert_eq!(
             said(&sv),
@@ -1250,41 +1332,58 @@ mod tests {
         );
     }
 
-    /// A backup that sets 32 V on a 14.2 V bus names that in its confirmation, and
-    /// Enter does not apply it; `y` does.
-    #[test]
-    fn a_backup_that_disarms_a_protection_says_so_and_needs_y() {
+    /// Pin 4 opened, the unit's VERSION heard (so a backup can be whole), and the
+    /// Backup page showing with `unit.toml` in its file field.
+    fn on_backup_page() -> (Instant, Model, SetupView, SetupFlow) {
         use crate::protocol::message::{HardwareVersion, Version};
-        let (t0, mut m, mut sv, mut flow) = opened_on(4);
+        let (t0, mut m, mut sv, flow) = opened_on(4);
         let version = Version {
             hardware_version: HardwareVersion::VpxPro,
             software_major: 2,
             software_minor: 1,
         };
         m.apply_packet(t0, &Packet::from_vpx(1, version));
-        let dir = tempfile::tempdir().unwrap();
-        let file = dir.path().join("unit.toml");
-        sv.file = file.display().to_string();
+        sv.file = "unit.toml".into();
         sv.page = Page::Backup;
+        (t0, m, sv, flow)
+    }
+
+    /// A backup that sets 32 V on a 14.2 V bus names that in its confirmation, and
+    /// Enter does not apply it; `y` does.
+    #[test]
+    fn a_backup_that_disarms_a_protection_says_so_and_needs_y() {
+        let (t0, mut m, mut sv, mut flow) = on_backup_page();
+        // The flow writes and reads no file: it asks, and is told what came of it.
         sv.field = Page::Backup
             .fields()
             .iter()
             .position(|&f| f == Field::SaveBackup)
             .unwrap();
-        flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
+        let written = out.write_backup.expect("a backup to write");
+        assert_eq!(written.path, PathBuf::from("unit.toml"));
+        assert!(
+            written
+                .content
+                .contains("at = \"1970-01-01T00:00:00.000Z\""),
+            "stamped with the caller's time: {}",
+            written.content
+        );
+        assert_eq!(sv.message, None, "not said written before it is");
+        flow.backup_written(Ok(()), &mut sv, &m);
         assert_eq!(said_tone(&sv), Tone::Good, "{:?}", sv.message);
-        let text = std::fs::read_to_string(&file).unwrap();
-        let text = text.replace(
+        let text = written.content.replace(
             "overvoltage_limit_volts = 16",
             "overvoltage_limit_volts = 32",
         );
-        std::fs::write(&file, text).unwrap();
         sv.field = Page::Backup
             .fields()
             .iter()
             .position(|&f| f == Field::LoadBackup)
             .unwrap();
-        flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
+        assert_eq!(out.read_backup, Some(PathBuf::from("unit.toml")));
+        flow.backup_read(Ok(text), &mut sv, &m, t0);
         let Dialog::Load { notes, .. } = sv.dialog.clone() else {
             panic!("{:?}", sv.message);
         };
@@ -1294,19 +1393,77 @@ mod tests {
             )),
             "{notes:?}"
         );
-        let out = flow.key(press(KeyCode::Enter), &mut sv, &mut m, t0);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
         assert!(
             out.send.is_empty(),
             "Enter does not apply it: {:?}",
             out.send
         );
         assert!(matches!(sv.dialog, Dialog::Load { .. }));
-        let out = flow.key(press(KeyCode::Char('y')), &mut sv, &mut m, t0);
+        let out = flow.key(SetupKey::Char('y'), &mut sv, &mut m, t0, WALL);
         assert!(
             matches!(out.send.as_slice(), [Message::SystemSpec(s)] if s.overvoltage_limit == OvervoltageLimit::V32),
             "{:?}",
             out.send
         );
+    }
+
+    /// What the app hands back decides what the page says: a write that failed is
+    /// never shown as a backup taken, in the erase dialog or on the page, and a file
+    /// that could not be read says why and applies nothing.
+    #[test]
+    fn a_backup_is_said_written_or_read_only_as_the_app_reports() {
+        let (t0, mut m, mut sv, mut flow) = on_backup_page();
+        let at = |f| Page::Backup.fields().iter().position(|&x| x == f).unwrap();
+        sv.field = at(Field::SaveBackup);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
+        assert!(out.write_backup.is_some());
+        let denied = io::Error::new(io::ErrorKind::PermissionDenied, "denied");
+        flow.backup_written(Err(denied), &mut sv, &m);
+        assert_eq!(
+            sv.message,
+            Some((Tone::Bad, "could not write unit.toml: denied".into()))
+        );
+
+        sv.field = at(Field::Erase);
+        flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
+        let out = flow.key(SetupKey::Char('b'), &mut sv, &mut m, t0, WALL);
+        assert!(out.write_backup.is_some());
+        assert!(
+            matches!(
+                &sv.dialog,
+                Dialog::Erase {
+                    backed_up: None,
+                    ..
+                }
+            ),
+            "{:?}",
+            sv.dialog
+        );
+        flow.backup_written(Ok(()), &mut sv, &m);
+        assert!(
+            matches!(&sv.dialog, Dialog::Erase { backed_up: Some(w), .. } if w == "backup written to unit.toml"),
+            "{:?}",
+            sv.dialog
+        );
+        flow.key(SetupKey::Esc, &mut sv, &mut m, t0, WALL);
+
+        sv.field = at(Field::LoadBackup);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
+        assert_eq!(out.read_backup, Some(PathBuf::from("unit.toml")));
+        let gone = io::Error::new(io::ErrorKind::NotFound, "no such file");
+        flow.backup_read(Err(gone), &mut sv, &m, t0);
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(
+            sv.message,
+            Some((
+                Tone::Bad,
+                "unit.toml: 1 problem, nothing sent: (file): cannot read it: no such file".into()
+            ))
+        );
+        // An answer nobody asked for changes nothing.
+        flow.backup_written(Ok(()), &mut sv, &m);
+        assert_eq!(said_tone(&sv), Tone::Bad);
     }
 
     fn said_tone(sv: &SetupView) -> Tone {

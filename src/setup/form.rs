@@ -4,6 +4,9 @@
 
 use std::time::Instant;
 
+use super::view::{
+    Field, Forms, Held, Page, device_choices, secondary_alternator_choices, wig_wag_choices,
+};
 use crate::model::Model;
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{self, enable_flag_allowed};
@@ -13,9 +16,6 @@ use crate::protocol::message::{
 };
 use crate::protocol::names::PIN_NAMES;
 use crate::protocol::validate;
-use crate::ui::setup::state::{
-    Field, Forms, Held, Page, device_choices, secondary_alternator_choices, wig_wag_choices,
-};
 
 /// Copies what the unit holds into the page's form. On a page without edits every
 /// part follows the unit, and a part it has not reported (or that a lost write left
@@ -63,7 +63,7 @@ pub fn not_read(forms: &Forms, page: Page, field: Field) -> Option<String> {
     if forms.from_unit.has(field, page) {
         return None;
     }
-    let setting = crate::ui::setup::state::field_setting(field, page, forms.device.device_id)?;
+    let setting = super::view::field_setting(field, page, forms.device.device_id)?;
     Some(format!(
         "{} not yet read from the unit — re-reading; try again when it answers",
         setting.name()
@@ -457,7 +457,7 @@ pub fn disarms(messages: &[Message], model: &Model, now: Instant) -> Vec<String>
                     out.push(format!(
                         "current fault check off on {}: it will no longer be switched off \
                          when it draws more than its {} A breaker (a short is not cut)",
-                        crate::ui::setup::state::pin_text(d.device_id),
+                        super::view::pin_text(d.device_id),
                         d.circuit_breaker
                     ));
                 }

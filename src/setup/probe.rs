@@ -5,10 +5,10 @@
 
 use std::time::{Duration, Instant};
 
+use super::view::{Probe, SetupView};
 use crate::exchange::{ANSWER_TIMEOUT, TRIES, Try, Verdict};
 use crate::model::Model;
 use crate::protocol::message::{EepromErase, Message, Ping, Version};
-use crate::ui::setup::state::{Probe, SetupView};
 
 /// PING is answered at once or not at all.
 pub const PING_TIMEOUT: Duration = Duration::from_secs(1);

@@ -23,6 +23,7 @@
 
 use std::time::Instant;
 
+use super::view::{WriteLine, WriteStatus, switch_text};
 use crate::exchange::{Try, Verdict};
 use crate::link::request::{setting_name, spec_ack_id};
 use crate::model::{Model, Setting};
@@ -30,7 +31,6 @@ use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{FLAPS, TRIM_P, TRIM_R};
 use crate::protocol::message::{EnableFlag, Message, TrimType};
 use crate::protocol::validate;
-use crate::ui::setup::state::{WriteLine, WriteStatus, switch_text};
 
 pub use crate::exchange::{ANSWER_TIMEOUT, TRIES};
 
@@ -365,7 +365,7 @@ fn held_after(model: &Model, m: &Message, since: Instant) -> Option<(String, boo
 
 /// A spec in a few words, in real units.
 pub fn describe(m: &Message) -> String {
-    let pin = |id| crate::ui::setup::state::pin_text(id);
+    let pin = |id| super::view::pin_text(id);
     match m {
         Message::DeviceSpec(s) => format!(
             "{} A, {}, current fault {}",

@@ -48,7 +48,7 @@ pub struct ViewState {
     /// A short message for the person (a refused key, a sent command).
     pub notice: Option<String>,
     /// The setup screens (`c`): page, field, forms and where each write stands.
-    pub setup: super::setup::state::SetupView,
+    pub setup: crate::setup::view::SetupView,
     /// The palette the page paints in, and why (the help overlay says it).
     pub theme: super::palette::ThemeChoice,
 }

@@ -6,7 +6,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Row, Table};
 
-use super::state::{Field, Probe, SetupView};
+use crate::setup::view::{Field, Probe, SetupView};
 use crate::ui::theme;
 
 pub fn render(frame: &mut Frame, area: Rect, sv: &SetupView) {

@@ -6,9 +6,9 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
-use super::state::{Field, SetupView};
 use crate::model::Model;
 use crate::protocol::names::PIN_NAMES;
+use crate::setup::view::{Field, SetupView};
 use crate::ui::theme;
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView, now: Instant) {

@@ -7,8 +7,8 @@ use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Row, Table};
 
-use super::state::{Field, Probe, SetupView};
 use crate::model::Model;
+use crate::setup::view::{Field, Probe, SetupView};
 use crate::ui::theme;
 
 fn probe(p: &Probe, answered: impl FnOnce(std::time::Duration) -> String) -> Span<'static> {

@@ -7,8 +7,8 @@ use ratatui::layout::{Constraint, Flex, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Wrap};
 
-use super::state::{Dialog, SetupView};
 use crate::model::Model;
+use crate::setup::view::{Dialog, SetupView, missing_summary};
 use crate::ui::theme;
 
 fn popup(frame: &mut Frame, height: u16) -> Rect {
@@ -177,21 +177,4 @@ fn disarm(consequences: &[String]) -> Vec<Line<'static>> {
     lines.push(key("y", "send it anyway: I mean this".into()));
     lines.push(key("Esc", "cancel: nothing is sent, the edit stays".into()));
     lines
-}
-
-/// "3 settings (DEVICE_SPEC 5A-3, …)": what the page has not heard, for the words
-/// that refuse or warn about an incomplete backup.
-pub fn missing_summary(missing: &[String]) -> String {
-    format!(
-        "{} setting{} ({}{})",
-        missing.len(),
-        if missing.len() == 1 { "" } else { "s" },
-        missing
-            .iter()
-            .take(3)
-            .cloned()
-            .collect::<Vec<_>>()
-            .join(", "),
-        if missing.len() > 3 { ", …" } else { "" }
-    )
 }

@@ -8,7 +8,6 @@ pub mod device;
 pub mod diagnostics;
 pub mod dialog;
 pub mod flaps;
-pub mod state;
 pub mod system;
 pub mod trim;
 pub mod wig_wag;
@@ -24,7 +23,9 @@ use ratatui::widgets::{Paragraph, Row, Table, Wrap};
 use super::state::ViewState;
 use super::{MIN_HEIGHT, MIN_WIDTH, theme, title_bar, too_small};
 use crate::model::Model;
-use state::{Dialog, Held, Page, SetupView, Tone, WriteLine, WriteStatus, value_text};
+use crate::setup::view::{
+    self, Dialog, Field, Held, Page, SetupView, Tone, WriteLine, WriteStatus, value_text,
+};
 
 /// Draws the setup screen for `view.setup.page`.
 pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
@@ -127,14 +128,14 @@ pub fn render_form(
             // never shown as if they were the unit's.
             let read = sv.forms.from_unit.has(f, page);
             let value = match (&sv.typing, f == selected) {
-                _ if !read => state::NOT_READ.to_string(),
+                _ if !read => view::NOT_READ.to_string(),
                 (Some(t), true) => format!("{t}▏ → {}", value_text(f, page, &sv.forms)),
                 _ if f == selected && f.is_text() => {
                     format!("{}▏", value_text(f, page, &sv.forms))
                 }
                 _ => value_text(f, page, &sv.forms),
             };
-            let setting = state::field_setting(f, page, sv.forms.device.device_id);
+            let setting = view::field_setting(f, page, sv.forms.device.device_id);
             // A value the unit reported long ago carries its age: it is what the unit
             // said then, not necessarily what it holds now.
             let old = setting.and_then(|s| model.setting_old(s, now));
@@ -150,7 +151,7 @@ pub fn render_form(
                 Style::new()
             };
             let holds_cell = match holds {
-                Some(h) if f == state::Field::DeviceId => Span::styled(h, theme::label()),
+                Some(h) if f == Field::DeviceId => Span::styled(h, theme::label()),
                 Some(h) => match old {
                     Some(age) => Span::styled(
                         format!("{h} (heard {} ago)", super::values::secs(age)),
@@ -158,13 +159,13 @@ pub fn render_form(
                     ),
                     None => Span::styled(h, theme::info()),
                 },
-                None if f == state::Field::DeviceId => {
+                None if f == Field::DeviceId => {
                     Span::styled(model.display_name(sv.forms.device.device_id), theme::info())
                 }
                 None if setting.is_some_and(|s| model.is_unknown(s)) => {
-                    Span::styled(state::unknown_text(f), theme::caution())
+                    Span::styled(view::unknown_text(f), theme::caution())
                 }
-                None if setting.is_some() => Span::styled(state::NOT_READ_HOLDS, theme::unknown()),
+                None if setting.is_some() => Span::styled(view::NOT_READ_HOLDS, theme::unknown()),
                 None => Span::styled("?", theme::unknown()),
             };
             let row = Row::new(vec![
@@ -310,57 +311,9 @@ fn render_message(frame: &mut Frame, area: Rect, view: &ViewState) {
     frame.render_widget(Paragraph::new(line), area);
 }
 
-/// The keys that work on this page now.
-pub fn keys(sv: &SetupView) -> Vec<(&'static str, &'static str)> {
-    if let Dialog::Load { .. } | Dialog::Erase { .. } | Dialog::Disarm { .. } = sv.dialog {
-        return vec![("y", "confirm"), ("Esc", "cancel")];
-    }
-    let mut k = vec![("Tab", "page"), ("↑↓", "field")];
-    match sv.page {
-        Page::Diagnostics | Page::Backup => {
-            k.push(("Enter", "do"));
-            if sv.field().is_text() {
-                k.push(("type", "file name"));
-            }
-        }
-        page => {
-            if sv.field().is_text() {
-                k.push(("type", "name"));
-                k.push(("←→", "Appendix C"));
-            } else {
-                k.push(("←→", "change"));
-                if sv.field().takes_digits() {
-                    k.push(("0-9", "type"));
-                }
-            }
-            k.push(("Enter", "send"));
-            match page {
-                Page::Flaps | Page::PitchTrim => {
-                    k.push(("u/d", "run"));
-                    k.push(("p", "capture"));
-                }
-                Page::RollTrim => {
-                    k.push((",/.", "run"));
-                    k.push(("p", "capture"));
-                }
-                _ => {}
-            }
-        }
-    }
-    k.push((
-        "Esc",
-        if sv.is_edited(sv.page) {
-            "discard"
-        } else {
-            "back"
-        },
-    ));
-    k
-}
-
 fn render_keys(frame: &mut Frame, area: Rect, sv: &SetupView) {
     let mut spans = Vec::new();
-    for (k, what) in keys(sv) {
+    for (k, what) in view::keys(sv) {
         spans.push(Span::styled(format!(" {k} "), theme::key()));
         spans.push(Span::raw(format!(" {what} ")));
     }

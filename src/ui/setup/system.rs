@@ -6,9 +6,9 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
 
-use super::state::{SetupView, switch_text};
 use crate::model::Model;
 use crate::protocol::device::FIELD_PRI;
+use crate::setup::view::{SetupView, switch_text};
 use crate::ui::theme;
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView, now: Instant) {

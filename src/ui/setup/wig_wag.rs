@@ -6,8 +6,8 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
 
-use super::state::{SetupView, switch_text};
 use crate::model::Model;
+use crate::setup::view::{SetupView, switch_text};
 use crate::ui::theme;
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView, now: Instant) {

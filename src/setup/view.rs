@@ -1,6 +1,6 @@
 //! What the setup screens show: the page and field the person is on, the values being
 //! edited, and where each write to the unit stands. Pure data plus the words for it;
-//! the app changes it, the widgets read it.
+//! the setup flow owns and changes it, the screens in `ui::setup` only read it.
 //!
 //! The forms hold the ICD's own spec structs, so what is edited is exactly what is
 //! sent; the words here turn their raw numbers into real units (amps, seconds, knots,
@@ -8,6 +8,7 @@
 
 use std::time::Duration;
 
+use crate::backup::schema::{self, Item, Part};
 use crate::model::{Model, Setting, TrimKind};
 use crate::protocol::defaults;
 use crate::protocol::device::{self, EFIS, STARTER, enable_flag_allowed};
@@ -210,6 +211,46 @@ impl Field {
             Reread => "Re-read the unit",
             Erase => "Erase the EEPROM",
         }
+    }
+
+    /// The configuration setting the field edits ([`schema`]), or `None` for the pin
+    /// number and the actions.
+    pub fn item(self) -> Option<&'static Item> {
+        use Field::*;
+        Some(match self {
+            Breaker => &schema::DEVICE_BREAKER,
+            Switch => &schema::DEVICE_SWITCH,
+            CurrentFault => &schema::DEVICE_CURRENT_FAULT,
+            Name => &schema::DEVICE_NAME,
+            Shown => &schema::DEVICE_SHOWN,
+            Overvoltage => &schema::OVERVOLTAGE,
+            SecondaryAlternator => &schema::SECONDARY_ALTERNATOR,
+            FlapEnabled => &schema::FLAP_ENABLED,
+            FlapMode => &schema::FLAP_MODE,
+            FlapPolarity => &schema::FLAP_POLARITY,
+            FlapUp => &schema::FLAP_UP,
+            FlapDown => &schema::FLAP_DOWN,
+            FlapMid1 => &schema::FLAP_MIDPOINT_1,
+            FlapMid2 => &schema::FLAP_MIDPOINT_2,
+            FlapBreaker => &schema::FLAP_BREAKER,
+            FlapOverspeedPosition => &schema::FLAP_OVERSPEED_POSITION,
+            FlapMaxSpeed => &schema::FLAP_MAX_SPEED,
+            FlapEndpointDuration => &schema::FLAP_ENDPOINT_DURATION,
+            TrimEnabled => &schema::TRIM_ENABLED,
+            TrimPolarity => &schema::TRIM_POLARITY,
+            TrimUp => &schema::TRIM_UP,
+            TrimDown => &schema::TRIM_DOWN,
+            TrimNeutral => &schema::TRIM_NEUTRAL,
+            TrimPower => &schema::TRIM_POWER,
+            TrimSpeed => &schema::TRIM_SPEED,
+            WigWagOne => &schema::WIG_WAG_ONE,
+            WigWagTwo => &schema::WIG_WAG_TWO,
+            WigWagWarmUp => &schema::WIG_WAG_WARM_UP,
+            WigWagSpeed => &schema::WIG_WAG_SPEED,
+            DeviceId | Ping | Version | File | SaveBackup | LoadBackup | Reread | Erase => {
+                return None;
+            }
+        })
     }
 
     /// Typed text (not digits) goes into this field.
@@ -465,26 +506,13 @@ impl Held {
     /// The unit's value of `field` in the same words as the form's, or `None`.
     pub fn text(&self, field: Field, page: Page) -> Option<String> {
         let mut f = Forms::default();
-        use Field::*;
-        let known = match field {
-            DeviceId => return None,
-            Breaker | Switch | CurrentFault => self.device.map(|d| f.device = d).is_some(),
-            Name => self.name.clone().map(|n| f.name = n).is_some(),
-            Shown => self.shown.map(|s| f.shown = s).is_some(),
-            Overvoltage | SecondaryAlternator => self.system.map(|s| f.system = s).is_some(),
-            FlapEnabled
-            | FlapMode
-            | FlapPolarity
-            | FlapUp
-            | FlapDown
-            | FlapMid1
-            | FlapMid2
-            | FlapBreaker
-            | FlapOverspeedPosition
-            | FlapMaxSpeed
-            | FlapEndpointDuration => self.flap.map(|s| f.flap = s).is_some(),
-            TrimEnabled | TrimPolarity | TrimUp | TrimDown | TrimNeutral | TrimPower
-            | TrimSpeed => {
+        let known = match field.item()?.part {
+            Part::Device => self.device.map(|d| f.device = d).is_some(),
+            Part::Name => self.name.clone().map(|n| f.name = n).is_some(),
+            Part::Enable => self.shown.map(|s| f.shown = s).is_some(),
+            Part::System => self.system.map(|s| f.system = s).is_some(),
+            Part::Flap => self.flap.map(|s| f.flap = s).is_some(),
+            Part::Trim => {
                 let t = if page == Page::RollTrim {
                     self.roll
                 } else {
@@ -496,10 +524,7 @@ impl Held {
                 })
                 .is_some()
             }
-            WigWagOne | WigWagTwo | WigWagWarmUp | WigWagSpeed => {
-                self.wig_wag.map(|w| f.wig_wag = w).is_some()
-            }
-            _ => return None,
+            Part::WigWag => self.wig_wag.map(|w| f.wig_wag = w).is_some(),
         };
         known.then(|| value_text(field, page, &f))
     }
@@ -508,46 +533,27 @@ impl Held {
 /// The unit's setting a field shows, so a setting left unknown by an unanswered
 /// write can be marked so on every field it covers.
 pub fn field_setting(field: Field, page: Page, device_id: u8) -> Option<Setting> {
-    use Field::*;
-    Some(match field {
-        Breaker | Switch | CurrentFault => Setting::DeviceSpec(device_id),
-        Name => Setting::Name(device_id),
-        Shown => Setting::Enable(device_id),
-        Overvoltage | SecondaryAlternator => Setting::System,
-        FlapEnabled
-        | FlapMode
-        | FlapPolarity
-        | FlapUp
-        | FlapDown
-        | FlapMid1
-        | FlapMid2
-        | FlapBreaker
-        | FlapOverspeedPosition
-        | FlapMaxSpeed
-        | FlapEndpointDuration => Setting::Flaps,
-        TrimEnabled | TrimPolarity | TrimUp | TrimDown | TrimNeutral | TrimPower | TrimSpeed => {
-            Setting::Trim(if page == Page::RollTrim {
-                TrimKind::Roll
-            } else {
-                TrimKind::Pitch
-            })
-        }
-        WigWagOne | WigWagTwo | WigWagWarmUp | WigWagSpeed => Setting::WigWag,
-        _ => return None,
+    Some(match field.item()?.part {
+        Part::Device => Setting::DeviceSpec(device_id),
+        Part::Name => Setting::Name(device_id),
+        Part::Enable => Setting::Enable(device_id),
+        Part::System => Setting::System,
+        Part::Flap => Setting::Flaps,
+        Part::Trim => Setting::Trim(if page == Page::RollTrim {
+            TrimKind::Roll
+        } else {
+            TrimKind::Pitch
+        }),
+        Part::WigWag => Setting::WigWag,
     })
 }
 
 /// What an unknown value being re-read looks like: its unit with a question mark.
 pub fn unknown_text(field: Field) -> String {
-    use Field::*;
-    let unit = match field {
-        Breaker | FlapBreaker => " A",
-        FlapMaxSpeed | TrimSpeed | WigWagSpeed => " kt",
-        FlapEndpointDuration | WigWagWarmUp => " s",
-        TrimPower => " %",
-        _ => "",
-    };
-    format!("?{unit} re-reading…")
+    match field.item().map_or("", |i| i.unit) {
+        "" => "? re-reading…".into(),
+        unit => format!("? {unit} re-reading…"),
+    }
 }
 
 /// A pin in words: "5A-3 (device 6)".
@@ -588,6 +594,14 @@ pub fn switch_text(s: SwitchId) -> String {
     }
 }
 
+/// A number with its field's unit from the [`schema`]: "5 A", "0.5 s".
+fn in_unit(field: Field, n: impl std::fmt::Display) -> String {
+    match field.item().map_or("", |i| i.unit) {
+        "" => n.to_string(),
+        unit => format!("{n} {unit}"),
+    }
+}
+
 /// The form's value of `field`, in real units.
 pub fn value_text(field: Field, page: Page, f: &Forms) -> String {
     use Field::*;
@@ -598,7 +612,7 @@ pub fn value_text(field: Field, page: Page, f: &Forms) -> String {
     };
     match field {
         DeviceId => pin_text(f.device.device_id),
-        Breaker => format!("{} A", f.device.circuit_breaker),
+        Breaker => in_unit(field, f.device.circuit_breaker),
         Switch => switch_text(f.device.switch_id),
         CurrentFault => yes_no(f.device.current_fault),
         Name => {
@@ -625,21 +639,21 @@ pub fn value_text(field: Field, page: Page, f: &Forms) -> String {
         FlapDown => position(f.flap.down),
         FlapMid1 => midpoint(f.flap.midpoint_1),
         FlapMid2 => midpoint(f.flap.midpoint_2),
-        FlapBreaker => format!("{} A", f.flap.circuit_breaker),
+        FlapBreaker => in_unit(field, f.flap.circuit_breaker),
         FlapOverspeedPosition => position(f.flap.overspeed_position),
-        FlapMaxSpeed => format!("{} kt", f.flap.max_speed),
-        FlapEndpointDuration => format!("{:.1} s", f.flap.endpoint_duration.value()),
+        FlapMaxSpeed => in_unit(field, f.flap.max_speed),
+        FlapEndpointDuration => in_unit(field, format!("{:.1}", f.flap.endpoint_duration.value())),
         TrimEnabled => yes_no(trim.enabled),
         TrimPolarity => polarity(trim.polarity),
         TrimUp => position(trim.up),
         TrimDown => position(trim.down),
         TrimNeutral => position(trim.neutral),
-        TrimPower => format!("{} %", trim.power),
-        TrimSpeed => format!("{} kt", trim.speed),
+        TrimPower => in_unit(field, trim.power),
+        TrimSpeed => in_unit(field, trim.speed),
         WigWagOne => opt_pin(f.wig_wag.device_one),
         WigWagTwo => opt_pin(f.wig_wag.device_two),
-        WigWagWarmUp => format!("{} s", f.wig_wag.warm_up_period),
-        WigWagSpeed => format!("{} kt", f.wig_wag.speed),
+        WigWagWarmUp => in_unit(field, f.wig_wag.warm_up_period),
+        WigWagSpeed => in_unit(field, f.wig_wag.speed),
         Ping | Version | File | SaveBackup | LoadBackup | Reread | Erase => String::new(),
     }
 }
@@ -788,4 +802,99 @@ pub fn wig_wag_choices() -> Vec<Option<u8>> {
 /// Pins the device page configures (DEVICE_SPEC takes 1–28).
 pub fn device_choices() -> Vec<u8> {
     (STARTER..=28).collect()
+}
+
+/// The keys that work on this page now.
+pub fn keys(sv: &SetupView) -> Vec<(&'static str, &'static str)> {
+    if let Dialog::Load { .. } | Dialog::Erase { .. } | Dialog::Disarm { .. } = sv.dialog {
+        return vec![("y", "confirm"), ("Esc", "cancel")];
+    }
+    let mut k = vec![("Tab", "page"), ("↑↓", "field")];
+    match sv.page {
+        Page::Diagnostics | Page::Backup => {
+            k.push(("Enter", "do"));
+            if sv.field().is_text() {
+                k.push(("type", "file name"));
+            }
+        }
+        page => {
+            if sv.field().is_text() {
+                k.push(("type", "name"));
+                k.push(("←→", "Appendix C"));
+            } else {
+                k.push(("←→", "change"));
+                if sv.field().takes_digits() {
+                    k.push(("0-9", "type"));
+                }
+            }
+            k.push(("Enter", "send"));
+            match page {
+                Page::Flaps | Page::PitchTrim => {
+                    k.push(("u/d", "run"));
+                    k.push(("p", "capture"));
+                }
+                Page::RollTrim => {
+                    k.push((",/.", "run"));
+                    k.push(("p", "capture"));
+                }
+                _ => {}
+            }
+        }
+    }
+    k.push((
+        "Esc",
+        if sv.is_edited(sv.page) {
+            "discard"
+        } else {
+            "back"
+        },
+    ));
+    k
+}
+
+/// "3 settings (DEVICE_SPEC 5A-3, …)": what the page has not heard, for the words
+/// that refuse or warn about an incomplete backup.
+pub fn missing_summary(missing: &[String]) -> String {
+    format!(
+        "{} setting{} ({}{})",
+        missing.len(),
+        if missing.len() == 1 { "" } else { "s" },
+        missing
+            .iter()
+            .take(3)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", "),
+        if missing.len() > 3 { ", …" } else { "" }
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every field that edits a setting names its row of the schema, and the row's
+    /// message is the setting the field is marked unknown by; the unit beside a "?"
+    /// is the schema's (the overvoltage limit's "V" included).
+    #[test]
+    fn fields_read_their_setting_and_unit_from_the_schema() {
+        for page in Page::ALL {
+            for &f in page.fields() {
+                let setting = field_setting(f, page, 6);
+                assert_eq!(f.item().is_some(), setting.is_some(), "{f:?}");
+            }
+        }
+        assert_eq!(
+            field_setting(Field::TrimPower, Page::RollTrim, 6),
+            Some(Setting::Trim(TrimKind::Roll))
+        );
+        assert_eq!(
+            field_setting(Field::Shown, Page::Device, 6),
+            Some(Setting::Enable(6))
+        );
+        assert_eq!(unknown_text(Field::Breaker), "? A re-reading…");
+        assert_eq!(unknown_text(Field::FlapEndpointDuration), "? s re-reading…");
+        assert_eq!(unknown_text(Field::Overvoltage), "? V re-reading…");
+        assert_eq!(unknown_text(Field::Switch), "? re-reading…");
+    }
 }

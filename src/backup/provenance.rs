@@ -14,24 +14,23 @@
 
 use std::time::SystemTime;
 
-use serde::Serialize;
-
-use super::format::Problem;
+use super::Problem;
 use crate::protocol::message::Version;
 
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
-pub struct Made {
+/// The file's `[made]` section: when, from what and by which vpx-efis it was made.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Provenance {
     pub at: String,
     pub from: String,
     pub simulated: bool,
     pub by: String,
 }
 
-impl Made {
-    /// Made now, by this program, from `from`.
-    pub fn now(from: &str, simulated: bool) -> Made {
-        Made {
-            at: crate::utc::utc_text(SystemTime::now()),
+impl Provenance {
+    /// Made at `wall` (the caller's clock), by this program, from `from`.
+    pub fn at(from: &str, simulated: bool, wall: SystemTime) -> Provenance {
+        Provenance {
+            at: crate::utc::utc_text(wall),
             from: from.to_string(),
             simulated,
             by: format!("vpx-efis {}", crate::program::VERSION),
@@ -41,7 +40,7 @@ impl Made {
 
 /// Reads `[made]` if the file has one; any key missing or of the wrong kind is a problem
 /// by its path, like every other field.
-pub fn read(t: &toml::Table, problems: &mut Vec<Problem>) -> Option<Made> {
+pub fn read(t: &toml::Table, problems: &mut Vec<Problem>) -> Option<Provenance> {
     let section = match t.get("made")? {
         toml::Value::Table(s) => s,
         _ => {
@@ -75,7 +74,7 @@ pub fn read(t: &toml::Table, problems: &mut Vec<Problem>) -> Option<Made> {
         }
         None => false,
     };
-    Some(Made {
+    Some(Provenance {
         at,
         from,
         simulated,
@@ -84,7 +83,7 @@ pub fn read(t: &toml::Table, problems: &mut Vec<Problem>) -> Option<Made> {
 }
 
 /// What `restore` shows before it asks: when, from what, which unit, which program.
-pub fn describe(made: Option<&Made>, version: &Version) -> String {
+pub fn describe(made: Option<&Provenance>, version: &Version) -> String {
     let unit = format!(
         "{} software {}.{}",
         version.hardware_version.name(),
@@ -135,8 +134,8 @@ mod tests {
         }
     }
 
-    fn made() -> Made {
-        Made {
+    fn made() -> Provenance {
+        Provenance {
             at: "2026-12-01T15:37:16.000Z".into(),
             from: "tcp://192.168.4.1:8880".into(),
             simulated: false,
