@@ -54,8 +54,6 @@ const DEBT: &[&str] = &[
     // The flows draw their own view-models (ui::check::state, ui::setup::state).
     "check -> ui",
     "setup -> ui",
-    // Each subcommand takes its clap Args from cli, instead of owning them.
-    "cmd -> cli",
     // control::keymap reads the view (ViewState, Overlay) and the help's key list.
     "control -> ui",
     // Closed by control -> ui: xfsp -> control -> ui -> settings -> xfsp.
