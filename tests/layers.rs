@@ -54,10 +54,6 @@ const DEBT: &[&str] = &[
     // The flows draw their own view-models (ui::check::state, ui::setup::state).
     "check -> ui",
     "setup -> ui",
-    // control::keymap reads the view (ViewState, Overlay) and the help's key list.
-    "control -> ui",
-    // Closed by control -> ui: xfsp -> control -> ui -> settings -> xfsp.
-    "settings -> xfsp",
     // traffic's expected rates use the model's staleness; the model holds the log.
     "traffic -> model",
 ];

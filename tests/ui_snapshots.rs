@@ -716,7 +716,7 @@ fn help_overlay_lists_every_key() {
     let buf = draw(&m, &view, now, 100, 30);
     insta::assert_snapshot!(text(&buf));
     let t = text(&buf);
-    for (key, _) in ui::help::KEYS {
+    for (key, _) in vpx_efis::control::keymap::HELP {
         assert!(t.contains(key), "help lacks {key:?}:\n{t}");
     }
     assert!(

@@ -332,7 +332,7 @@ impl App {
                 let outcome = {
                     let model = lock(&shared);
                     let rows = ui::ordered_circuits(&model, &self.view, now);
-                    let ctx = KeyContext::from_view(&self.view, &rows);
+                    let ctx = self.view.key_context(&rows);
                     let outcome = self.controller.handle_key(key, &ctx, &model, now);
                     if let Some(action) = &outcome.action {
                         self.apply_view_action(action, &rows);
@@ -415,7 +415,7 @@ impl App {
             let model = lock(&shared);
             let rows = ui::ordered_circuits(&model, &self.view, now);
             let ctx = if on_devices {
-                KeyContext::from_view(&self.view, &rows)
+                self.view.key_context(&rows)
             } else {
                 KeyContext::default()
             };

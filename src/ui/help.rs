@@ -7,29 +7,7 @@ use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Wrap};
 
 use super::state::{ReleaseMode, ViewState};
 use super::theme;
-
-/// The key list, agreed with the control module; one place so the overlay and any
-/// test of the key map read the same words.
-pub const KEYS: &[(&str, &str)] = &[
-    ("↑/↓  j/k", "move the selection (never runs a motor)"),
-    ("Shift+↑  u", "flaps / pitch trim row: run up while held"),
-    ("Shift+↓  d", "flaps / pitch trim row: run down while held"),
-    ("Shift+←  ,", "roll trim row: run left while held"),
-    ("Shift+→  .", "roll trim row: run right while held"),
-    ("any key", "stops a running motor (and does nothing else)"),
-    ("o  Enter", "switch the selected device on (DEVICE_POWER)"),
-    ("f", "switch the selected device off (DEVICE_POWER)"),
-    // One line for both, so the list still fits 80×24.
-    ("r  Y", "reset the fault (DEVICE_CLEAR); Y: confirm a 2nd"),
-    ("R", "reset the system fault (DEVICE_CLEAR 255)"),
-    ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
-    ("s", "sort by pin / by name"),
-    ("t", "traffic view"),
-    ("c", "setup screens"),
-    ("i", "installation check"),
-    ("?  Esc", "this help"),
-    ("q  Ctrl-C", "quit"),
-];
+use crate::control::keymap::HELP;
 
 /// Extra keys while the page replays a capture (handled by the app's replay, not the
 /// keymap: nothing in replay reaches a unit).
@@ -64,7 +42,7 @@ pub fn release_lines(view: &ViewState) -> Vec<String> {
 }
 
 pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
-    let keys: Vec<&(&str, &str)> = KEYS
+    let keys: Vec<&(&str, &str)> = HELP
         .iter()
         .chain(if replay { REPLAY_KEYS } else { &[] })
         .collect();

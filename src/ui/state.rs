@@ -1,6 +1,9 @@
 //! What the person is looking at: selection, sort order, overlays. Owned by the app,
 //! changed by the app in answer to control's actions, read by the widgets.
 
+use crate::control::KeyContext;
+use crate::model::Circuit;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SortOrder {
     /// By pin (device id), flaps and trims grouped apart.
@@ -51,4 +54,12 @@ pub struct ViewState {
     pub setup: super::setup::state::SetupView,
     /// The palette the page paints in, and why (the help overlay says it).
     pub theme: super::palette::ThemeChoice,
+}
+
+impl ViewState {
+    /// What the keymap needs of this view: the selected row among `circuits` (the
+    /// rows on screen) and whether an overlay covers them.
+    pub fn key_context(&self, circuits: &[Circuit]) -> KeyContext {
+        KeyContext::for_selection(self.selected, self.overlay != Overlay::None, circuits)
+    }
 }
