@@ -251,7 +251,7 @@ fn bench_cpu(c: &mut Criterion<ThreadCpu>) {
         b.iter(|| {
             terminal.clear().unwrap();
             terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, None, now))
                 .unwrap();
         })
     });
@@ -312,7 +312,9 @@ fn bench_widgets(c: &mut Criterion<ThreadCpu>) {
     g.bench_function("flaps and trim", |b| {
         b.iter(|| {
             terminal
-                .draw(|f| ui::motors::render(f, Rect { height: 5, ..right }, &model, &view, now))
+                .draw(|f| {
+                    ui::motors::render(f, Rect { height: 5, ..right }, &model, &view, None, now)
+                })
                 .unwrap();
         })
     });
@@ -369,7 +371,7 @@ fn bench(c: &mut Criterion) {
             // an empty diff.
             terminal.clear().unwrap();
             terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, None, now))
                 .unwrap();
         })
     });
@@ -377,7 +379,7 @@ fn bench(c: &mut Criterion) {
     c.bench_function("render 120x40 unchanged frame", |b| {
         b.iter(|| {
             terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, None, now))
                 .unwrap();
         })
     });

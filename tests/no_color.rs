@@ -110,7 +110,7 @@ fn bytes_for(palette: Palette) -> Vec<u8> {
             },
         )
         .unwrap();
-        term.draw(|f| ui::draw(f, &m, &view, now)).unwrap();
+        term.draw(|f| ui::draw(f, &m, &view, None, now)).unwrap();
     }
     bytes
 }

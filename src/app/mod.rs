@@ -34,6 +34,7 @@ use ratatui::Terminal;
 use ratatui::backend::Backend;
 
 use crate::audit::{Audit, Origin};
+use crate::control::run_state::MotorRun;
 use crate::control::{
     Action, Controller, KeyContext, MotorStreamer, RESEND_PERIOD, StopReason, StreamerConfig,
 };
@@ -143,6 +144,8 @@ pub struct App {
     news_at: Option<Instant>,
     last_draw: Option<Instant>,
     drawn_revision: u64,
+    /// The motor run the last frame showed (the controller's, read when drawing).
+    drawn_run: Option<MotorRun>,
     gateway: Option<gateway::PageGateway>,
     /// `--record`: the link sink writes every byte here (the app keeps it to flush).
     recorder: Option<Recorder>,
@@ -237,6 +240,7 @@ impl App {
             news_at: None,
             last_draw: None,
             drawn_revision: 0,
+            drawn_run: None,
             gateway: None,
             recorder,
             replay,
@@ -254,6 +258,11 @@ impl App {
 
     pub fn view(&self) -> &ViewState {
         &self.view
+    }
+
+    /// The motor run the controller is streaming now, as the screen draws it.
+    pub fn motor_run(&self) -> Option<MotorRun> {
+        self.controller.running()
     }
 
     pub fn link_handle(&self) -> LinkHandle {
@@ -360,7 +369,6 @@ impl App {
                     model.log(now, level, line);
                 }
                 self.set_notice(now, outcome.notice);
-                self.view.motor_run = self.controller.running();
                 if outcome.action == Some(Action::Quit) {
                     return Flow::Quit;
                 }
@@ -375,7 +383,6 @@ impl App {
                 self.controller.act_on_run(|c| c.on_focus_lost(now));
                 let n = self.controller.take_notice();
                 self.set_notice(now, n);
-                self.view.motor_run = self.controller.running();
             }
             _ => {}
         }
@@ -392,7 +399,6 @@ impl App {
                 .act_on_run(|c| c.set_page_hidden(now, hidden));
             let n = self.controller.take_notice();
             self.set_notice(now, n);
-            self.view.motor_run = self.controller.running();
             self.dirty = true;
         }
     }
@@ -422,7 +428,6 @@ impl App {
             (self.controller.handle_key_hidden(key, &ctx, now), rows)
         };
         self.set_notice(now, handled.notice);
-        self.view.motor_run = self.controller.running();
         let ctrl_c = key
             .modifiers
             .contains(crossterm::event::KeyModifiers::CONTROL)
@@ -539,10 +544,8 @@ impl App {
             lock(&self.model).log(now, crate::model::LogLevel::Warning, why);
         }
         self.set_notice(now, ticked.notice);
-        // The flows below that start or stop a run (the check) set `motor_run`
-        // themselves.
-        if ticked.running != self.view.motor_run {
-            self.view.motor_run = ticked.running;
+        // A run started or ended since the last frame (whoever started or ended it).
+        if ticked.running != self.drawn_run {
             self.dirty = true;
         }
         let repeat = self.replay.is_none().then_some(ticked.repeat);
@@ -589,7 +592,7 @@ impl App {
         // (Wake::Motor) when a run ends; but while a run is on, this loop still ticks
         // every resend period, so COMMUNICATION LOST or a motor fault stops it on time
         // and the thread sees the loop alive.
-        let motor = self.view.motor_run.map(|_| now + RESEND_PERIOD);
+        let motor = self.controller.running().map(|_| now + RESEND_PERIOD);
         [
             motor,
             self.pacer.next_deadline(),
@@ -636,14 +639,17 @@ impl App {
                     .first()
                     .map(|c| c.id);
             }
+            let running = self.controller.running();
             if self.view.screen == Screen::Check {
                 let mut frame = terminal.get_frame();
                 let area = frame.area();
-                ui::check::draw(&mut frame, area, self.check_view(), &model, &self.view, now);
+                let check = self.check_view();
+                ui::check::draw(&mut frame, area, check, &model, &self.view, running, now);
             } else {
-                ui::draw(&mut terminal.get_frame(), &model, &self.view, now);
+                ui::draw(&mut terminal.get_frame(), &model, &self.view, running, now);
             }
             self.drawn_revision = model.revision();
+            self.drawn_run = running;
         }
         // The terminal write happens without the model lock: a slow terminal must not
         // hold up the link's reader and writer, which take the lock for every frame.
@@ -683,6 +689,7 @@ impl App {
                 self.dirty = false;
                 self.news_at = None;
                 self.drawn_revision = lock(&self.model).revision();
+                self.drawn_run = self.controller.running();
             }
         }
     }

@@ -10,7 +10,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 
 use super::panel;
-use super::state::{ReleaseMode, RepeatTiming, ViewState};
+use super::state::{MotorRun, ReleaseMode, RepeatTiming, ViewState};
 use super::{theme, values};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
@@ -201,7 +201,14 @@ fn flags(model: &Model, now: Instant) -> Vec<(String, Style)> {
     out
 }
 
-pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, now: Instant) {
+pub fn render(
+    frame: &mut Frame,
+    area: Rect,
+    model: &Model,
+    view: &ViewState,
+    running: Option<MotorRun>,
+    now: Instant,
+) {
     let ft = model.live_flap_trim(now);
     let motors = shown(model, now);
     let mut lines: Vec<Line> = motors
@@ -218,9 +225,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
         }
         flag_spans.push(Span::styled(t, s));
     }
-    let run = view
-        .motor_run
-        .map(|run| format!("▶ {} {}", run.motor.name(), run.direction));
+    let run = running.map(|run| format!("▶ {} {}", run.motor.name(), run.direction));
     let run_width = run.as_ref().map_or(0, |r| r.chars().count() + 2);
     let mut mode = match view.release_mode {
         ReleaseMode::KeyRelease => "keys: release seen".to_string(),

@@ -47,7 +47,6 @@ pub struct ViewState {
     pub release_mode: ReleaseMode,
     /// Auto-repeat timing in use; `None` where no streamer feeds the view.
     pub repeat: Option<RepeatTiming>,
-    pub motor_run: Option<MotorRun>,
     /// A short message for the person (a refused key, a sent command).
     pub notice: Option<String>,
     /// The setup screens (`c`): page, field, forms and where each write stands.
