@@ -7,8 +7,8 @@
 //!    ICD) and the XFSp wire format (`crates/xfsp`, re-exported in [`xfsp`]); beside
 //!    them the small helpers [`program`] (version, usage error, exit codes),
 //!    [`places`] (where the config file and the files beside it live),
-//!    [`utc`], [`files`] (every file the program writes), [`toml_lines`] and
-//!    [`platform`].
+//!    [`utc`], [`files`] (every file the program writes), [`toml_lines`],
+//!    [`platform`] and [`transient`] (which I/O errors a reader retries).
 //! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files),
 //!    [`traffic`] (every frame, for the traffic view) and [`audit`] (every command
 //!    sent to the unit, with its origin, in a file of JSON lines).
@@ -45,6 +45,7 @@ pub mod setup;
 pub mod sim;
 pub mod toml_lines;
 pub mod traffic;
+pub mod transient;
 pub mod ui;
 pub mod utc;
 pub mod xfsp;

@@ -25,6 +25,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "files",
             "toml_lines",
             "platform",
+            "transient",
         ],
     ),
     (
