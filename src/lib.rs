@@ -8,7 +8,8 @@
 //!    them the small helpers [`program`] (version, usage error, exit codes),
 //!    [`places`] (where the config file and the files beside it live),
 //!    [`utc`], [`files`] (every file the program writes), [`toml_lines`],
-//!    [`platform`] and [`transient`] (which I/O errors a reader retries).
+//!    [`platform`], [`transient`] (which I/O errors a reader retries) and
+//!    [`staleness`] (how long each broadcast stays current).
 //! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files),
 //!    [`traffic`] (every frame, for the traffic view) and [`audit`] (every command
 //!    sent to the unit, with its origin, in a file of JSON lines).
@@ -43,6 +44,7 @@ pub mod program;
 pub mod settings;
 pub mod setup;
 pub mod sim;
+pub mod staleness;
 pub mod toml_lines;
 pub mod traffic;
 pub mod transient;
