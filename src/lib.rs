@@ -13,8 +13,9 @@
 //! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files),
 //!    [`traffic`] (every frame, for the traffic view) and [`audit`] (every command
 //!    sent to the unit, with its origin, in a file of JSON lines).
-//! 3. What we know: [`model`] (every fact with its time; staleness decided here), and
-//!    [`sim`], the virtual VP-X (sans-IO: bytes in, bytes out, the caller's clock).
+//! 3. What we know: [`model`] (every fact with its time, and the traffic log;
+//!    staleness decided here), and [`sim`], the virtual VP-X (sans-IO: bytes in,
+//!    bytes out, the caller's clock).
 //! 4. Intent into commands: [`control`] (keys and runs under the safety rules, the
 //!    motor streamer) and [`exchange`] (request, answer, retry on the caller's clock).
 //! 5. Flows and maintenance: [`check`] (the installation check), [`setup`] (the setup
@@ -22,8 +23,9 @@
 //!    [`xfsp`] (the gateway onto the XFSp network) and [`settings`] (flags, environment
 //!    and config file).
 //! 6. [`ui`]: drawing, a pure function of the model, the controller and the flows.
-//! 7. [`app`]: wires the page together; [`cmd`]: one file per subcommand; [`cli`]: the
-//!    command line, on top.
+//! 7. [`app`]: wires the page together; [`cmd`]: one file per subcommand, each owning
+//!    its clap arguments; [`cli`]: the command line, on top, composing them, filling
+//!    them from the config file and dispatching.
 
 pub mod app;
 pub mod audit;

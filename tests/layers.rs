@@ -299,6 +299,35 @@ fn every_top_level_module_has_a_layer() {
     );
 }
 
+/// `lib.rs`'s data-flow sketch names every module the crate has (issue 23, item 6),
+/// so a new module cannot be added without saying where it stands.
+#[test]
+fn the_sketch_in_lib_rs_names_every_module() {
+    let lib = fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("src/lib.rs"))
+        .expect("src/lib.rs");
+    let sketch: String = lib
+        .lines()
+        .filter_map(|l| l.strip_prefix("//!"))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let modules: Vec<&str> = lib
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("pub mod ")?.strip_suffix(';'))
+        .collect();
+    assert!(
+        modules.len() > 10,
+        "read the modules of lib.rs: {modules:?}"
+    );
+    let unnamed: Vec<_> = modules
+        .iter()
+        .filter(|m| !sketch.contains(&format!("[`{m}`]")))
+        .collect();
+    assert!(
+        unnamed.is_empty(),
+        "lib.rs's sketch does not name these modules: {unnamed:?}"
+    );
+}
+
 #[test]
 fn the_layers_hold() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
