@@ -68,7 +68,11 @@ fn hold_x_default(rig: &mut Rig) -> Hold {
     let from = rig.wire_len();
     // How long the page waits for the next key before it takes the key as let go.
     let waits = |rig: &Rig, first: bool| {
-        let t = rig.app.view().repeat.expect("a live page judges repeats");
+        let t = rig
+            .app
+            .control_state()
+            .repeat
+            .expect("a live page judges repeats");
         if first { t.first_window } else { t.end_gap }
     };
     let mut wait = waits(rig, true);

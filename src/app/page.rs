@@ -12,7 +12,7 @@ use ratatui::Terminal;
 use ratatui::backend::Backend;
 
 use crate::audit::{Audit, Origin};
-use crate::control::run_state::MotorRun;
+use crate::control::run_state::{ControlState, MotorRun};
 use crate::control::{
     Action, Controller, KeyContext, MotorStreamer, RESEND_PERIOD, StopReason, StreamerConfig,
 };
@@ -112,8 +112,8 @@ pub struct App {
     pub(super) news_at: Option<Instant>,
     pub(super) last_draw: Option<Instant>,
     pub(super) drawn_revision: u64,
-    /// The motor run the last frame showed (the controller's, read when drawing).
-    pub(super) drawn_run: Option<MotorRun>,
+    /// The controller's state the last frame showed (read from it when drawing).
+    pub(super) drawn_control: ControlState,
     pub(super) gateway: Option<gateway::PageGateway>,
     /// `--record`: the link sink writes every byte here (the app keeps it to flush).
     pub(super) recorder: Option<Recorder>,
@@ -163,10 +163,7 @@ impl App {
         }
         let controller = Controller::new(config);
         let view = ViewState {
-            release_mode: options.release_mode,
             theme: options.theme,
-            // A replay runs no motors: nothing to say about key repeats.
-            repeat: replay.is_none().then(|| controller.repeat_timing()),
             ..Default::default()
         };
         // A replay is read-only: no link for motors, and no thread to send on it.
@@ -208,7 +205,7 @@ impl App {
             news_at: None,
             last_draw: None,
             drawn_revision: 0,
-            drawn_run: None,
+            drawn_control: ControlState::default(),
             gateway: None,
             recorder,
             replay,
@@ -231,6 +228,16 @@ impl App {
     /// The motor run the controller is streaming now, as the screen draws it.
     pub fn motor_run(&self) -> Option<MotorRun> {
         self.controller.running()
+    }
+
+    /// The controller's state as the screens draw it, read from it now.
+    pub fn control_state(&self) -> ControlState {
+        self.controller.with(|c| ControlState {
+            run: c.running(),
+            release_mode: c.release_mode(),
+            // A replay runs no motors: nothing to say about key repeats.
+            repeat: self.replay.is_none().then(|| c.repeat_timing()),
+        })
     }
 
     pub fn link_handle(&self) -> LinkHandle {
@@ -512,13 +519,14 @@ impl App {
             lock(&self.model).log(now, crate::model::LogLevel::Warning, why);
         }
         self.set_notice(now, ticked.notice);
-        // A run started or ended since the last frame (whoever started or ended it).
-        if ticked.running != self.drawn_run {
-            self.dirty = true;
-        }
-        let repeat = self.replay.is_none().then_some(ticked.repeat);
-        if repeat != self.view.repeat {
-            self.view.repeat = repeat;
+        // A run started or ended since the last frame (whoever started or ended it),
+        // or the repeat timing was learned.
+        let control = ControlState {
+            run: ticked.running,
+            release_mode: ticked.release_mode,
+            repeat: self.replay.is_none().then_some(ticked.repeat),
+        };
+        if control != self.drawn_control {
             self.dirty = true;
         }
         self.setup_tick(now);
@@ -607,17 +615,25 @@ impl App {
                     .first()
                     .map(|c| c.id);
             }
-            let running = self.controller.running();
+            let control = self.control_state();
             if self.view.screen == Screen::Check {
                 let mut frame = terminal.get_frame();
                 let area = frame.area();
                 let check = self.check_view();
-                ui::check::draw(&mut frame, area, check, &model, &self.view, running, now);
+                ui::check::draw(
+                    &mut frame,
+                    area,
+                    check,
+                    &model,
+                    &self.view,
+                    control.run,
+                    now,
+                );
             } else {
-                ui::draw(&mut terminal.get_frame(), &model, &self.view, running, now);
+                ui::draw(&mut terminal.get_frame(), &model, &self.view, &control, now);
             }
             self.drawn_revision = model.revision();
-            self.drawn_run = running;
+            self.drawn_control = control;
         }
         // The terminal write happens without the model lock: a slow terminal must not
         // hold up the link's reader and writer, which take the lock for every frame.
@@ -657,7 +673,7 @@ impl App {
                 self.dirty = false;
                 self.news_at = None;
                 self.drawn_revision = lock(&self.model).revision();
-                self.drawn_run = self.controller.running();
+                self.drawn_control = self.control_state();
             }
         }
     }

@@ -5,7 +5,7 @@ use ratatui::layout::{Constraint, Flex, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Wrap};
 
-use super::state::{ReleaseMode, ViewState};
+use super::state::{ControlState, ReleaseMode, ViewState};
 use super::theme;
 use crate::control::keymap::HELP;
 
@@ -19,8 +19,8 @@ pub const REPLAY_KEYS: &[(&str, &str)] = &[
 
 /// How a held motor key is judged here, in words: what ends a run, and how far a tap
 /// moves a motor.
-pub fn release_lines(view: &ViewState) -> Vec<String> {
-    match (view.release_mode, view.repeat) {
+pub fn release_lines(control: &ControlState) -> Vec<String> {
+    match (control.release_mode, control.repeat) {
         (ReleaseMode::KeyRelease, _) => {
             vec!["key release seen: a run ends when you let go (or if repeats stop)".into()]
         }
@@ -41,7 +41,7 @@ pub fn release_lines(view: &ViewState) -> Vec<String> {
     }
 }
 
-pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
+pub fn render(frame: &mut Frame, view: &ViewState, control: &ControlState, replay: bool) {
     let keys: Vec<&(&str, &str)> = HELP
         .iter()
         .chain(if replay { REPLAY_KEYS } else { &[] })
@@ -54,7 +54,7 @@ pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
         .unwrap_or(40) as u16
         + 6)
     .min(area.width.saturating_sub(2));
-    let release = release_lines(view);
+    let release = release_lines(control);
     let height = (keys.len() as u16 + 6 + release.len() as u16 + u16::from(replay))
         .min(area.height.saturating_sub(2));
     let [row] = Layout::vertical([Constraint::Length(height)])

@@ -31,7 +31,7 @@ use std::time::Instant;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout};
 
-use crate::control::run_state::MotorRun;
+use crate::control::run_state::ControlState;
 use crate::model::{Circuit, Model};
 use state::{Overlay, ViewState};
 
@@ -59,16 +59,17 @@ pub fn ordered_circuits(model: &Model, view: &ViewState, now: Instant) -> Vec<Ci
 }
 
 /// Draws the page as the person sees it: [`render`], then repainted in the palette
-/// `view.theme` chose (dark, light or no colour). `running` is the motor run the
-/// controller is streaming now, read from it for this frame.
+/// `view.theme` chose (dark, light or no colour). `control` is the controller's state
+/// (the motor run it streams, its key release mode and repeat timing), read from it
+/// for this frame.
 pub fn draw(
     frame: &mut Frame,
     model: &Model,
     view: &ViewState,
-    running: Option<MotorRun>,
+    control: &ControlState,
     now: Instant,
 ) {
-    render(frame, model, view, running, now);
+    render(frame, model, view, control, now);
     view.theme.palette.paint(frame.buffer_mut());
 }
 
@@ -79,14 +80,14 @@ pub fn render(
     frame: &mut Frame,
     model: &Model,
     view: &ViewState,
-    running: Option<MotorRun>,
+    control: &ControlState,
     now: Instant,
 ) {
     if view.screen == state::Screen::Traffic {
         return traffic::render(frame, model, view, now);
     }
     if view.screen == state::Screen::Setup {
-        return setup::render(frame, model, view, running, now);
+        return setup::render(frame, model, view, control.run, now);
     }
     let area = frame.area();
     if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
@@ -154,7 +155,7 @@ pub fn render(
     .areas(right);
     system_panel::render(frame, system, model, now);
     switches::render(frame, switches_area, model, now);
-    motors::render(frame, motors_area, model, view, running, now);
+    motors::render(frame, motors_area, model, control, now);
     // Tall terminals share the plot's space with the event log.
     if plot_area.height >= 12 {
         let [plot_part, events_part] = Layout::vertical([
@@ -173,6 +174,6 @@ pub fn render(
 
     if view.overlay == Overlay::Help {
         let replay = matches!(model.source, crate::model::Source::Replay { .. });
-        help::render(frame, view, replay);
+        help::render(frame, view, control, replay);
     }
 }

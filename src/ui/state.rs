@@ -34,8 +34,9 @@ pub enum Overlay {
     Help,
 }
 
-/// The controller's own state, drawn from here.
-pub use crate::control::run_state::{MotorRun, ReleaseMode, RepeatTiming};
+/// The controller's own types (they live in `control::run_state`): the screens draw
+/// a [`ControlState`] read from the controller for each frame; the view copies none.
+pub use crate::control::run_state::{ControlState, MotorRun, ReleaseMode, RepeatTiming};
 
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct ViewState {
@@ -44,9 +45,6 @@ pub struct ViewState {
     pub selected: Option<u8>,
     pub sort: SortOrder,
     pub overlay: Overlay,
-    pub release_mode: ReleaseMode,
-    /// Auto-repeat timing in use; `None` where no streamer feeds the view.
-    pub repeat: Option<RepeatTiming>,
     /// A short message for the person (a refused key, a sent command).
     pub notice: Option<String>,
     /// The setup screens (`c`): page, field, forms and where each write stands.
