@@ -246,12 +246,13 @@ fn view() -> ViewState {
 fn bench_cpu(c: &mut Criterion<ThreadCpu>) {
     let (model, now) = configured();
     let view = view();
+    let control = vpx_efis::ui::state::ControlState::default();
     let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
     c.bench_function("cpu time: render 120x40 full frame", |b| {
         b.iter(|| {
             terminal.clear().unwrap();
             terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, &control, now))
                 .unwrap();
         })
     });
@@ -263,6 +264,7 @@ fn bench_cpu(c: &mut Criterion<ThreadCpu>) {
 fn bench_widgets(c: &mut Criterion<ThreadCpu>) {
     let (model, now) = configured();
     let view = view();
+    let control = vpx_efis::ui::state::ControlState::default();
     let rows = ui::ordered_circuits(&model, &view, now);
     let selected = rows.iter().find(|c| Some(c.id) == view.selected).cloned();
     let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
@@ -312,7 +314,7 @@ fn bench_widgets(c: &mut Criterion<ThreadCpu>) {
     g.bench_function("flaps and trim", |b| {
         b.iter(|| {
             terminal
-                .draw(|f| ui::motors::render(f, Rect { height: 5, ..right }, &model, &view, now))
+                .draw(|f| ui::motors::render(f, Rect { height: 5, ..right }, &model, &control, now))
                 .unwrap();
         })
     });
@@ -362,6 +364,7 @@ fn bench_widgets(c: &mut Criterion<ThreadCpu>) {
 fn bench(c: &mut Criterion) {
     let (model, now) = configured();
     let view = view();
+    let control = vpx_efis::ui::state::ControlState::default();
     let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
     c.bench_function("render 120x40 full frame", |b| {
         b.iter(|| {
@@ -369,7 +372,7 @@ fn bench(c: &mut Criterion) {
             // an empty diff.
             terminal.clear().unwrap();
             terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, &control, now))
                 .unwrap();
         })
     });
@@ -377,7 +380,7 @@ fn bench(c: &mut Criterion) {
     c.bench_function("render 120x40 unchanged frame", |b| {
         b.iter(|| {
             terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, now))
+                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, &control, now))
                 .unwrap();
         })
     });

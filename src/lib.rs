@@ -7,13 +7,15 @@
 //!    ICD) and the XFSp wire format (`crates/xfsp`, re-exported in [`xfsp`]); beside
 //!    them the small helpers [`program`] (version, usage error, exit codes),
 //!    [`places`] (where the config file and the files beside it live),
-//!    [`utc`], [`files`] (every file the program writes), [`toml_lines`] and
-//!    [`platform`].
+//!    [`utc`], [`files`] (every file the program writes), [`toml_lines`],
+//!    [`platform`], [`transient`] (which I/O errors a reader retries) and
+//!    [`staleness`] (how long each broadcast stays current).
 //! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files),
 //!    [`traffic`] (every frame, for the traffic view) and [`audit`] (every command
 //!    sent to the unit, with its origin, in a file of JSON lines).
-//! 3. What we know: [`model`] (every fact with its time; staleness decided here), and
-//!    [`sim`], the virtual VP-X (sans-IO: bytes in, bytes out, the caller's clock).
+//! 3. What we know: [`model`] (every fact with its time, and the traffic log;
+//!    staleness decided here), and [`sim`], the virtual VP-X (sans-IO: bytes in,
+//!    bytes out, the caller's clock).
 //! 4. Intent into commands: [`control`] (keys and runs under the safety rules, the
 //!    motor streamer) and [`exchange`] (request, answer, retry on the caller's clock).
 //! 5. Flows and maintenance: [`check`] (the installation check), [`setup`] (the setup
@@ -21,8 +23,9 @@
 //!    [`xfsp`] (the gateway onto the XFSp network) and [`settings`] (flags, environment
 //!    and config file).
 //! 6. [`ui`]: drawing, a pure function of the model, the controller and the flows.
-//! 7. [`app`]: wires the page together; [`cmd`]: one file per subcommand; [`cli`]: the
-//!    command line, on top.
+//! 7. [`app`]: wires the page together; [`cmd`]: one file per subcommand, each owning
+//!    its clap arguments; [`cli`]: the command line, on top, composing them, filling
+//!    them from the config file and dispatching.
 
 pub mod app;
 pub mod audit;
@@ -43,8 +46,10 @@ pub mod program;
 pub mod settings;
 pub mod setup;
 pub mod sim;
+pub mod staleness;
 pub mod toml_lines;
 pub mod traffic;
+pub mod transient;
 pub mod ui;
 pub mod utc;
 pub mod xfsp;

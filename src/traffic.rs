@@ -14,13 +14,13 @@ use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 use crate::link::RxItem;
-use crate::model::{COMM_LOST_AFTER, FAULT_STATUS_QUIET_AFTER, FLAP_TRIM_STALE_AFTER};
 use crate::protocol::Direction;
 use crate::protocol::Packet;
 use crate::protocol::describe::{describe, node_label};
 use crate::protocol::message::{
     DeviceStatus, ExternalData, FaultStatus, FlapTrimStatus, Payload, SystemStatus,
 };
+use crate::staleness::{COMM_LOST_AFTER, FAULT_STATUS_QUIET_AFTER, FLAP_TRIM_STALE_AFTER};
 
 /// How many entries the ring keeps (about three minutes of normal traffic).
 pub const TRAFFIC_LEN: usize = 2000;

@@ -424,7 +424,7 @@ fn quit_mid_motor_run_puts_the_stop_on_the_wire() {
     r.app.open_check(opts, Instant::now());
     r.key(KeyCode::Enter);
     r.until("the flaps running", Duration::from_secs(5), |app| {
-        app.view().motor_run.is_some()
+        app.motor_run().is_some()
     });
     // Until they have clearly moved from 20 (the up endpoint), down.
     while r.sim.stats().flap_position < 26 {

@@ -780,7 +780,16 @@ fn circuits_paused_unseen() -> CheckView {
     }
 }
 
-fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
+/// Each state, with the motor run the page is streaming while it is drawn.
+#[allow(clippy::type_complexity)]
+fn every_state() -> Vec<(
+    &'static str,
+    CheckView,
+    Model,
+    ViewState,
+    Instant,
+    Option<MotorRun>,
+)> {
     let p = page(Palette::Terminal);
     let on6 = [EFIS_ON, (0x11, 61), (0x12, 38)];
     let (live6, t6) = aircraft::live(SW6, &on6, (20, 128, 120));
@@ -789,11 +798,10 @@ fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
     let (lc, tc) = aircraft::live(0, &landing, (20, 128, 120));
     let (lm, tm) = aircraft::live(0, &[EFIS_ON], (20, 117, 133));
     let (idle, ti) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
-    let mut running = p.clone();
-    running.motor_run = Some(MotorRun {
+    let roll_right = MotorRun {
         motor: Motor::Trim(TrimKind::Roll),
         direction: "right",
-    });
+    };
     vec![
         ("confirm", confirm(), idle.clone(), p.clone(), ti),
         ("switches", switches(), live6, p.clone(), t6),
@@ -812,7 +820,7 @@ fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
             p.clone(),
             ts,
         ),
-        ("motors", motors(), lm, running, tm),
+        ("motors", motors(), lm, p.clone(), tm),
         ("motors_link_stale", motors(), stale6.clone(), p.clone(), ts),
         ("loads", loads(), idle.clone(), p.clone(), ti),
         ("done", done(), idle.clone(), p.clone(), ti),
@@ -868,11 +876,27 @@ fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
         ),
         ("interrupted_quit_clean", quit_clean(), idle, p, ti),
     ]
+    .into_iter()
+    // The motors step is drawn while the page streams roll trim right.
+    .map(|(name, v, m, p, now)| (name, v, m, p, now, (name == "motors").then_some(roll_right)))
+    .collect()
 }
 
 fn render(view: &CheckView, m: &Model, page: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
+    render_running(view, m, page, None, now, w, h)
+}
+
+fn render_running(
+    view: &CheckView,
+    m: &Model,
+    page: &ViewState,
+    running: Option<MotorRun>,
+    now: Instant,
+    w: u16,
+    h: u16,
+) -> Buffer {
     let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    term.draw(|f| check::render(f, f.area(), view, m, page, now))
+    term.draw(|f| check::render(f, f.area(), view, m, page, running, now))
         .unwrap();
     term.backend().buffer().clone()
 }
@@ -908,16 +932,16 @@ fn find(buf: &Buffer, on_line: &str, needle: &str) -> (u16, u16) {
 
 #[test]
 fn every_step_at_80x24() {
-    for (name, v, m, p, now) in every_state() {
-        let buf = render(&v, &m, &p, now, 80, 24);
+    for (name, v, m, p, now, run) in every_state() {
+        let buf = render_running(&v, &m, &p, run, now, 80, 24);
         insta::assert_snapshot!(format!("{name}_80x24"), text(&buf));
     }
 }
 
 #[test]
 fn every_step_at_160x50() {
-    for (name, v, m, p, now) in every_state() {
-        let buf = render(&v, &m, &p, now, 160, 50);
+    for (name, v, m, p, now, run) in every_state() {
+        let buf = render_running(&v, &m, &p, run, now, 160, 50);
         insta::assert_snapshot!(format!("{name}_160x50"), text(&buf));
     }
 }
@@ -926,8 +950,8 @@ fn every_step_at_160x50() {
 /// snapshots above and the palette changes none of it).
 #[test]
 fn every_step_in_every_theme() {
-    for (name, v, m, p, now) in every_state() {
-        let buf = render(&v, &m, &p, now, 80, 24);
+    for (name, v, m, p, now, run) in every_state() {
+        let buf = render_running(&v, &m, &p, run, now, 80, 24);
         for palette in themes::PALETTES {
             let painted = themes::painted(&buf, palette);
             assert_eq!(text(&painted), text(&buf), "painting changes no text");
@@ -942,9 +966,9 @@ fn every_step_in_every_theme() {
 #[test]
 fn every_step_meets_wcag_contrast_in_both_themes() {
     let mut failures = Vec::new();
-    for (name, v, m, p, now) in every_state() {
+    for (name, v, m, p, now, run) in every_state() {
         for (w, h) in [(80, 24), (120, 40), (160, 50)] {
-            let buf = render(&v, &m, &p, now, w, h);
+            let buf = render_running(&v, &m, &p, run, now, w, h);
             for palette in [Palette::Dark, Palette::Light] {
                 failures.extend(themes::contrast_failures(
                     &format!("{name} {w}x{h}"),
@@ -1113,7 +1137,7 @@ fn draw_paints_in_the_pages_theme_inside_its_area_only() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
     let mut term = Terminal::new(TestBackend::new(100, 30)).unwrap();
     let area = Rect::new(10, 3, 80, 24);
-    term.draw(|f| check::draw(f, area, &done(), &m, &page(Palette::Dark), now))
+    term.draw(|f| check::draw(f, area, &done(), &m, &page(Palette::Dark), None, now))
         .unwrap();
     let buf = term.backend().buffer();
     assert_eq!(buf[(0, 0)].bg, Color::Reset, "outside the area");

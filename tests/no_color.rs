@@ -110,7 +110,16 @@ fn bytes_for(palette: Palette) -> Vec<u8> {
             },
         )
         .unwrap();
-        term.draw(|f| ui::draw(f, &m, &view, now)).unwrap();
+        term.draw(|f| {
+            ui::draw(
+                f,
+                &m,
+                &view,
+                &vpx_efis::ui::state::ControlState::default(),
+                now,
+            )
+        })
+        .unwrap();
     }
     bytes
 }

@@ -68,7 +68,11 @@ fn hold_x_default(rig: &mut Rig) -> Hold {
     let from = rig.wire_len();
     // How long the page waits for the next key before it takes the key as let go.
     let waits = |rig: &Rig, first: bool| {
-        let t = rig.app.view().repeat.expect("a live page judges repeats");
+        let t = rig
+            .app
+            .control_state()
+            .repeat
+            .expect("a live page judges repeats");
         if first { t.first_window } else { t.end_gap }
     };
     let mut wait = waits(rig, true);
@@ -297,10 +301,7 @@ fn a_page_too_small_to_see_ignores_keys_and_a_shrink_stops_the_run() {
             .pump_until(Instant::now() + Duration::from_millis(33));
         rig.key(KeyCode::Char('u'), KeyEventKind::Repeat);
     }
-    assert!(
-        rig.app.view().motor_run.is_some(),
-        "running before the shrink"
-    );
+    assert!(rig.app.motor_run().is_some(), "running before the shrink");
     let shrunk = Instant::now();
     resize(&mut rig, 70, 30);
     // The key is still held: its repeats keep coming, and start nothing.
@@ -323,7 +324,7 @@ fn a_page_too_small_to_see_ignores_keys_and_a_shrink_stops_the_run() {
         moves.last().is_some_and(|(_, m)| !m.on),
         "nothing after the stop: {moves:?}"
     );
-    assert!(rig.app.view().motor_run.is_none());
+    assert!(rig.app.motor_run().is_none());
     assert!(!rig.sim.stats().pitch_trim_running);
     assert_eq!(rig.app.view().selected, Some(30), "the selection stays");
 }
@@ -341,7 +342,7 @@ fn a_stalled_page_loop_stops_the_motor_stream() {
     rig.key(KeyCode::Char('u'), KeyEventKind::Press);
     rig.app
         .pump_until(Instant::now() + Duration::from_millis(200));
-    assert!(rig.app.view().motor_run.is_some(), "running");
+    assert!(rig.app.motor_run().is_some(), "running");
     // The loop stalls while the key is still held (no release ever comes).
     let stalled = Instant::now();
     std::thread::sleep(Duration::from_millis(1500));

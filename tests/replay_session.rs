@@ -87,7 +87,16 @@ fn a_recorded_session_replays_to_the_same_frames_at_the_same_instants() {
             .first()
             .map(|c| c.id);
         let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
-        term.draw(|f| ui::draw(f, &model, &view, now)).unwrap();
+        term.draw(|f| {
+            ui::draw(
+                f,
+                &model,
+                &view,
+                &vpx_efis::ui::state::ControlState::default(),
+                now,
+            )
+        })
+        .unwrap();
         frames.push((now - start, term.backend().buffer().clone()));
     }
     live.shutdown();

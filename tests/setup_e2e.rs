@@ -369,10 +369,7 @@ fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_car
     // Hold flaps down about 1.5 s as a terminal without key release reports it.
     let start = Instant::now();
     rig.key(KeyCode::Char('d'));
-    assert!(
-        rig.app.view().motor_run.is_some(),
-        "the motor runs from here"
-    );
+    assert!(rig.app.motor_run().is_some(), "the motor runs from here");
     rig.app.pump_until(start + Duration::from_millis(500));
     while start.elapsed() < Duration::from_millis(1500) {
         rig.key(KeyCode::Char('d'));

@@ -180,7 +180,8 @@ fn view(m: &Model, page: Page, device: u8) -> ViewState {
 
 fn render(m: &Model, v: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
     let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    term.draw(|f| ui::render(f, m, v, now)).unwrap();
+    term.draw(|f| ui::render(f, m, v, &vpx_efis::ui::state::ControlState::default(), now))
+        .unwrap();
     let buf = term.backend().buffer().clone();
     themes::check_themes("setup_snapshots", &buf);
     buf

@@ -174,8 +174,16 @@ fn traffic_view() -> ViewState {
 
 fn draw(model: &Model, now: Instant, w: u16, h: u16) -> Buffer {
     let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    term.draw(|f| ui::render(f, model, &traffic_view(), now))
-        .unwrap();
+    term.draw(|f| {
+        ui::render(
+            f,
+            model,
+            &traffic_view(),
+            &vpx_efis::ui::state::ControlState::default(),
+            now,
+        )
+    })
+    .unwrap();
     let buf = term.backend().buffer().clone();
     themes::check_themes("traffic_view", &buf);
     buf

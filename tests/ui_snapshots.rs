@@ -14,7 +14,7 @@ use vpx_efis::model::{Connection, Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::FaultCode;
 use vpx_efis::protocol::device::{EFIS, FIELD_PRI, FLAPS, STARTER, TRIM_P, TRIM_R};
 use vpx_efis::ui::palette::Palette;
-use vpx_efis::ui::state::{MotorRun, Overlay, ReleaseMode, SortOrder, ViewState};
+use vpx_efis::ui::state::{ControlState, MotorRun, Overlay, ReleaseMode, SortOrder, ViewState};
 use vpx_efis::ui::{self, MIN_HEIGHT, MIN_WIDTH};
 
 mod themes;
@@ -444,8 +444,22 @@ mod fixtures {
 }
 
 fn draw(model: &Model, view: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
+    draw_with(model, view, &ControlState::default(), now, w, h)
+}
+
+/// [`draw`] with the controller in the state `control`.
+fn draw_with(
+    model: &Model,
+    view: &ViewState,
+    control: &ControlState,
+    now: Instant,
+    w: u16,
+    h: u16,
+) -> Buffer {
     let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
-    terminal.draw(|f| ui::render(f, model, view, now)).unwrap();
+    terminal
+        .draw(|f| ui::render(f, model, view, control, now))
+        .unwrap();
     terminal.backend().buffer().clone()
 }
 
@@ -615,14 +629,9 @@ fn trim_running_shows_the_run_and_the_release_mode() {
     let (m, now) = fixtures::trim_running();
     let view = ViewState {
         selected: Some(TRIM_P),
-        release_mode: ReleaseMode::KeyRelease,
-        motor_run: Some(MotorRun {
-            motor: Motor::Trim(TrimKind::Pitch),
-            direction: "up",
-        }),
         ..Default::default()
     };
-    let buf = draw(&m, &view, now, 120, 40);
+    let buf = draw_with(&m, &view, &control_of("trim_running"), now, 120, 40);
     insta::assert_snapshot!(text(&buf));
     let t = text(&buf);
     assert!(t.contains("▶ pitch trim up"), "{t}");
@@ -716,7 +725,7 @@ fn help_overlay_lists_every_key() {
     let buf = draw(&m, &view, now, 100, 30);
     insta::assert_snapshot!(text(&buf));
     let t = text(&buf);
-    for (key, _) in ui::help::KEYS {
+    for (key, _) in vpx_efis::control::keymap::HELP {
         assert!(t.contains(key), "help lacks {key:?}:\n{t}");
     }
     assert!(
@@ -951,6 +960,22 @@ fn short_terminal_scrolls_the_list_to_the_selection_and_says_what_is_hidden() {
     assert!(!t.contains("▼"), "{t}");
 }
 
+/// The controller's state in the state `name` of [`every_state`]: streaming pitch trim
+/// up on a terminal that reports key release in `trim_running`, idle elsewhere.
+fn control_of(name: &str) -> ControlState {
+    if name != "trim_running" {
+        return ControlState::default();
+    }
+    ControlState {
+        run: Some(MotorRun {
+            motor: Motor::Trim(TrimKind::Pitch),
+            direction: "up",
+        }),
+        release_mode: ReleaseMode::KeyRelease,
+        repeat: None,
+    }
+}
+
 /// Every state above, as (name, model, view, now, width, height): what the themes and
 /// the contrast check go over.
 fn every_state() -> Vec<(&'static str, Model, ViewState, Instant, u16, u16)> {
@@ -1016,11 +1041,6 @@ fn every_state() -> Vec<(&'static str, Model, ViewState, Instant, u16, u16)> {
         fixtures::trim_running(),
         ViewState {
             selected: Some(TRIM_P),
-            release_mode: ReleaseMode::KeyRelease,
-            motor_run: Some(MotorRun {
-                motor: Motor::Trim(TrimKind::Pitch),
-                direction: "up",
-            }),
             ..Default::default()
         },
         120,
@@ -1164,7 +1184,7 @@ fn in_theme(view: &ViewState, palette: Palette) -> ViewState {
 fn every_state_in_every_theme() {
     for (name, m, view, now, w, h) in every_state() {
         for palette in themes::PALETTES {
-            let buf = draw(&m, &in_theme(&view, palette), now, w, h);
+            let buf = draw_with(&m, &in_theme(&view, palette), &control_of(name), now, w, h);
             let painted = themes::painted(&buf, palette);
             assert_eq!(text(&painted), text(&buf), "painting changes no text");
             insta::assert_snapshot!(
@@ -1180,7 +1200,7 @@ fn every_state_meets_wcag_contrast_in_both_themes() {
     let mut failures = Vec::new();
     for (name, m, view, now, w, h) in every_state() {
         for palette in [Palette::Dark, Palette::Light] {
-            let buf = draw(&m, &in_theme(&view, palette), now, w, h);
+            let buf = draw_with(&m, &in_theme(&view, palette), &control_of(name), now, w, h);
             failures.extend(themes::contrast_failures(
                 name,
                 &themes::painted(&buf, palette),
@@ -1303,7 +1323,14 @@ fn wide_terminal_gives_its_width_to_the_right_hand_panels() {
 #[test]
 fn terminal_theme_uses_only_the_terminals_own_colours_and_underlines_the_selection() {
     for (name, m, view, now, w, h) in every_state() {
-        let buf = draw(&m, &in_theme(&view, Palette::Terminal), now, w, h);
+        let buf = draw_with(
+            &m,
+            &in_theme(&view, Palette::Terminal),
+            &control_of(name),
+            now,
+            w,
+            h,
+        );
         let painted = themes::painted(&buf, Palette::Terminal);
         for (i, cell) in painted.content.iter().enumerate() {
             for c in [cell.fg, cell.bg] {
@@ -1433,7 +1460,7 @@ fn no_row_of_the_left_column_crosses_its_edge() {
     let mut walked = 0;
     for (name, m, view, now) in &states {
         for (w, h) in sizes {
-            let buf = draw(m, view, *now, w, h);
+            let buf = draw_with(m, view, &control_of(name), *now, w, h);
             let rows: Vec<String> = (0..h)
                 .map(|y| (0..w).map(|x| buf[(x, y)].symbol()).collect())
                 .collect();
@@ -1536,7 +1563,7 @@ fn normal_80x24_bytes_through_crossterm_are_the_same_on_every_os() {
         )
         .unwrap();
         terminal
-            .draw(|f| ui::render(f, &m, &view_selecting(EFIS), now))
+            .draw(|f| ui::render(f, &m, &view_selecting(EFIS), &ControlState::default(), now))
             .unwrap();
     }
     let text = String::from_utf8(bytes).expect("crossterm writes UTF-8");

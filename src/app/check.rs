@@ -128,7 +128,6 @@ impl App {
         if *view != before {
             self.dirty = true;
         }
-        self.view.motor_run = self.controller.running();
         if out.ended {
             // However it ended (a key, a tick, an interruption), at whatever stage.
             self.write_check_report();
@@ -294,7 +293,6 @@ impl App {
         self.controller.stop(now, StopReason::OtherKey);
         let n = self.controller.take_notice();
         self.set_notice(now, n);
-        self.view.motor_run = self.controller.running();
         let leave = matches!(key.code, KeyCode::Esc | KeyCode::Char('q'));
         if self.check_finished() && self.check.flow.is_some() {
             match key.code {

@@ -31,10 +31,10 @@ use crossterm::event::KeyEvent;
 use super::stop_gate::StopGate;
 use super::{Wake, terminal};
 use crate::audit::Origin;
+use crate::control::run_state::{MotorRun, ReleaseMode, RepeatTiming};
 use crate::control::{Action, Controller, KeyContext, StopReason};
 use crate::model::Model;
 use crate::protocol::message::{Message, Packet};
-use crate::ui::state::{MotorRun, RepeatTiming};
 
 /// What a key did, its packets already queued on the link.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
@@ -51,6 +51,7 @@ pub struct Handled {
 pub struct Ticked {
     pub notice: Option<String>,
     pub running: Option<MotorRun>,
+    pub release_mode: ReleaseMode,
     pub repeat: RepeatTiming,
 }
 
@@ -218,6 +219,7 @@ impl MotorPath {
         Ticked {
             notice: c.take_notice(),
             running: c.running(),
+            release_mode: c.release_mode(),
             repeat: c.repeat_timing(),
         }
     }

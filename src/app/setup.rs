@@ -77,7 +77,6 @@ impl App {
                     let out = self.controller.handle_key(key, &ctx, &model, now);
                     drop(model);
                     self.set_notice(now, out.notice);
-                    self.view.motor_run = self.controller.running();
                     return Flow::Continue;
                 }
                 Some(Action::Unavailable(why)) => {
@@ -96,7 +95,6 @@ impl App {
         self.controller.stop(now, StopReason::OtherKey);
         let n = self.controller.take_notice();
         self.set_notice(now, n);
-        self.view.motor_run = self.controller.running();
 
         let shared = self.model.clone();
         let out = match setup_key_of(&key) {

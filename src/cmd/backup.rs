@@ -4,16 +4,26 @@
 //! it was made, from what, and by which vpx-efis ([`crate::backup::provenance`]).
 
 use std::io::IsTerminal;
+use std::path::PathBuf;
 
 use anyhow::Context;
+use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::backup::{self, Backup, Provenance};
-use crate::cli::{BackupArgs, PortArgs};
+use crate::cmd::common::PortArgs;
 use crate::link::{RequestError, UnitClient, port_connector};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::message::Version;
 use crate::sim::SimHandle;
+
+#[derive(Debug, Args)]
+pub struct BackupArgs {
+    #[command(flatten)]
+    pub port: PortArgs,
+    /// The TOML file to write.
+    pub file: PathBuf,
+}
 
 pub fn run(args: BackupArgs) -> anyhow::Result<()> {
     let mut unit = connect(&args.port)?;

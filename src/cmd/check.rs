@@ -3,9 +3,13 @@
 //! 0 when everything passed, 1 when anything failed, 2 when it was interrupted (or
 //! the command line was refused).
 
+use std::path::PathBuf;
+
+use clap::Args;
+
 use crate::app::{CheckEnd, HeadlessCheck, run_headless};
 use crate::check::{Choices, Options};
-use crate::cli::CheckArgs;
+use crate::cmd::common::PortArgs;
 use crate::program::UsageError;
 use crate::ui::check::state::Step;
 
@@ -72,6 +76,29 @@ pub fn headless(args: CheckArgs) -> Result<HeadlessCheck, UsageError> {
         },
         report: args.report,
     })
+}
+
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    #[command(flatten)]
+    pub port: PortArgs,
+    /// Answer the safety confirmation: the aircraft is safe to power the circuits the
+    /// check lists and to move its flaps and trims.
+    #[arg(long)]
+    pub yes: bool,
+    /// Steps not to run: switches, circuits, motors, loads (comma-separated or repeated).
+    #[arg(long, value_delimiter = ',', value_name = "STEP,...")]
+    pub skip: Vec<String>,
+    /// A circuit never to power, by its name or its pin (5A-3); repeat for more.
+    #[arg(long, value_name = "NAME")]
+    pub exclude: Vec<String>,
+    /// Where to write the report (Markdown and CSV, named with the date).
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
+    /// The load analysis file (default: loads.toml beside the config file; its
+    /// template is written there on the first run).
+    #[arg(long, value_name = "FILE")]
+    pub loads: Option<PathBuf>,
 }
 
 pub fn run(args: CheckArgs) -> anyhow::Result<()> {

@@ -4,7 +4,14 @@
 use std::io::Write;
 
 use anyhow::Context;
+use clap::Args;
 use clap_complete::Shell;
+
+#[derive(Debug, Args)]
+pub struct CompletionsArgs {
+    /// The shell.
+    pub shell: clap_complete::Shell,
+}
 
 pub fn run(shell: Shell, mut cmd: clap::Command) -> anyhow::Result<()> {
     let mut out = Vec::new();

@@ -5,9 +5,34 @@
 use std::io::Write;
 
 use anyhow::Context;
+use clap::Args;
 
-use crate::cli::Effective;
+use crate::cmd::common::{PortArgs, XfspArgs};
 use crate::settings::{BAUD_ENV, CONFIG_ENV, KEYS, Origin, PORT_ENV};
+use crate::ui::palette::Requested;
+
+#[derive(Debug, Args)]
+pub struct ConfigArgs {
+    /// The same options the commands take, to see how they combine with the file.
+    #[command(flatten)]
+    pub port: PortArgs,
+    #[command(flatten)]
+    pub xfsp: XfspArgs,
+    /// Colours, as the page's --theme.
+    #[arg(long, value_enum, default_value_t = Requested::Auto)]
+    pub theme: Requested,
+    /// The first key auto-repeat, as the page's --repeat-delay.
+    #[arg(long, value_name = "MS")]
+    pub repeat_delay: Option<u64>,
+}
+
+/// One effective setting for `vpx-efis config`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Effective {
+    pub key: &'static str,
+    pub value: String,
+    pub origin: Origin,
+}
 
 pub fn run(report: &[Effective]) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();

@@ -13,9 +13,9 @@ use std::fmt::Write as _;
 use std::io::{self, BufWriter, Read, Write};
 use std::time::Duration;
 
+use clap::Args;
 use serde_json::{Map, Value, json};
 
-use crate::cli::DecodeArgs;
 use crate::protocol::Direction;
 use crate::protocol::describe::{describe, node_label, to_json};
 use crate::protocol::frame::{FrameRef, HEADER_LEN, MessageId, checksum};
@@ -367,6 +367,16 @@ fn line<'a>(e: Event<'a>, undecodable: &mut u64) -> Line<'a> {
         Event::UnknownMessage(b) => Line::Unknown(b),
         Event::Truncated(b) => Line::Incomplete(b),
     }
+}
+
+#[derive(Debug, Args)]
+pub struct DecodeArgs {
+    /// Capture file, or `-` (the default) for standard input.
+    #[arg(default_value = "-")]
+    pub file: String,
+    /// One JSON object per line.
+    #[arg(long)]
+    pub json: bool,
 }
 
 pub fn run(args: DecodeArgs) -> anyhow::Result<()> {

@@ -25,14 +25,53 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant, SystemTime};
 
 use anyhow::{Context, bail};
+use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::app::{StopFlag, Terminated};
-use crate::cli::FlashArgs;
 use crate::flash::hardware::hw_name;
 use crate::flash::{self, Event, Found, Image, Options};
+use crate::link::PortAddr;
 use crate::link::open_raw;
 use crate::protocol::bootloader::PAGE_SIZE;
+use crate::settings::{BAUD_ENV, PORT_ENV, values};
+
+/// `flash` talks to a real port only: flashing the built-in unit would show nothing
+/// but the sim's memory changing inside this process.
+#[derive(Debug, Clone, Args)]
+pub struct FlashPortArgs {
+    /// The VP-X's serial port (or tcp://HOST:PORT for a network bridge; the path or
+    /// address printed by `vpx-efis sim --pty` or `--tcp` for the virtual VP-X). Also
+    /// read from VPX_EFIS_PORT or the config file.
+    #[arg(long, value_name = "PATH|tcp://HOST:PORT", env = PORT_ENV, value_parser = values::port)]
+    pub port: Option<PortAddr>,
+
+    /// Baud rate of a serial port. The VP-X talks 57600 8N1 (ICD §3.2.1).
+    #[arg(long, default_value_t = values::VPX_BAUD, env = BAUD_ENV, value_parser = values::baud)]
+    pub baud: u32,
+}
+
+#[derive(Debug, Args)]
+pub struct FlashArgs {
+    #[command(flatten)]
+    pub port: FlashPortArgs,
+    /// Intel HEX image, named like `cu_2.hex` for hardware version 2.
+    pub file: PathBuf,
+    /// Accept this hardware version even if the file name's suffix disagrees.
+    #[arg(long, value_name = "N")]
+    pub force_hardware: Option<u8>,
+    /// Flash an image that cannot be a whole program (under 8 KiB of data, no reset
+    /// vector, or data outside the program range 0x00000-0x3DFFF), at your own risk:
+    /// the unit is erased first and may not start again.
+    #[arg(long)]
+    pub force_image: bool,
+    /// Don't ask for confirmation (the precautions are printed all the same).
+    #[arg(long)]
+    pub yes: bool,
+    /// Where to write the exchange log (default: next to the hex file).
+    #[arg(long, value_name = "FILE")]
+    pub log: Option<PathBuf>,
+}
 
 pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     let Some(port_path) = args.port.port.clone() else {

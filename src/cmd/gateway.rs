@@ -15,12 +15,13 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
+use clap::Args;
 use crossbeam_channel::{select, unbounded};
 
 use crate::app::queries::QueryPacer;
 use crate::app::{StopGate, Terminated};
 use crate::audit::Origin;
-use crate::cli::GatewayArgs;
+use crate::cmd::common::{PortArgs, XfspArgs};
 use crate::control::MotorStreamer;
 use crate::exchange::Rereader;
 use crate::link::{Connector, Link, LinkEvent, PortAddr, RxItem, port_connector};
@@ -67,6 +68,17 @@ impl BridgeOptions {
             audit: crate::check::report::default_dir(),
         })
     }
+}
+
+#[derive(Debug, Args)]
+pub struct GatewayArgs {
+    #[command(flatten)]
+    pub port: PortArgs,
+    #[command(flatten)]
+    pub xfsp: XfspArgs,
+    /// Record every serial byte to a capture file.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
 }
 
 pub fn run(args: GatewayArgs) -> anyhow::Result<()> {

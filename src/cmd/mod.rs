@@ -1,12 +1,15 @@
-//! One file per subcommand. Each takes its parsed arguments and does the work.
+//! One file per subcommand. Each owns its clap arguments (`cli` composes them), takes
+//! them parsed and does the work; [`common`] holds the options several share.
 
 pub mod backup;
 pub mod check;
+pub mod common;
 pub mod completions;
 pub mod config;
 pub mod decode;
 pub mod flash;
 pub mod gateway;
+pub mod page;
 pub mod ports;
 pub mod restore;
 pub mod sim;

@@ -17,18 +17,36 @@
 //! 6. Everything is read back and compared with the file.
 
 use std::io::{BufRead, IsTerminal, Write};
+use std::path::PathBuf;
 
 use anyhow::{Context, bail};
+use clap::Args;
 
 use crate::backup::{self, Step, normalized};
-use crate::cli::RestoreArgs;
 use crate::cmd::backup::{connect, progress_bar, read_with_progress};
+use crate::cmd::common::PortArgs;
 use crate::link::request::{DEFAULT_TIMEOUT, DEFAULT_TRIES};
 use crate::link::{SpecError, UnitClient};
 use crate::program::UsageError;
 use crate::protocol::config::UnitConfig;
 use crate::protocol::message::Message;
 use crate::protocol::validate;
+
+#[derive(Debug, Args)]
+pub struct RestoreArgs {
+    /// Restore needs a port (a flag, VPX_EFIS_PORT or the config file), or `--sim` to
+    /// try it on the built-in virtual VP-X: never a simulator by accident.
+    #[command(flatten)]
+    pub port: PortArgs,
+    /// The TOML backup to restore.
+    pub file: PathBuf,
+    /// Don't ask for confirmation.
+    #[arg(long)]
+    pub yes: bool,
+    /// Erase the EEPROM first (ICD §6.1.4), then import.
+    #[arg(long)]
+    pub erase_first: bool,
+}
 
 pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
     if args.port.port.is_none() && !args.port.sim {

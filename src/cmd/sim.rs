@@ -9,14 +9,36 @@
 
 use std::io::{BufRead, Read, Write};
 use std::net::TcpListener;
+use std::path::PathBuf;
 
 use anyhow::Context;
+use clap::Args;
 
-use crate::cli::SimArgs;
 use crate::link::{PortAddr, open_pty_unit, serve_line};
 use crate::program::UsageError;
 use crate::sim::console::{self, ConsoleLine};
 use crate::sim::{self, SimOptions};
+
+#[derive(Debug, Args)]
+pub struct SimArgs {
+    /// Create a pseudo-terminal and print its path as the first line on stdout (Unix).
+    #[arg(long, conflicts_with = "tcp")]
+    pub pty: bool,
+    /// Serve the unit on TCP, one client at a time (e.g. 127.0.0.1:5760; port 0 picks a
+    /// free one); the bound address is the first line on stdout, as tcp://HOST:PORT.
+    #[arg(long, value_name = "ADDR:PORT")]
+    pub tcp: Option<std::net::SocketAddr>,
+    /// Persist settings to this file (written atomically), like the unit's EEPROM.
+    #[arg(long, value_name = "FILE")]
+    pub eeprom: Option<PathBuf>,
+    /// Scenario: a name under assets/scenarios or a TOML file.
+    #[arg(long, default_value = "demo", value_name = "NAME|FILE")]
+    pub scenario: String,
+    /// Send and take bytes as fast as the pty or socket goes, instead of at the real
+    /// line's 5760 bytes a second (57600 baud, 8N1) each way.
+    #[arg(long)]
+    pub no_pace: bool,
+}
 
 pub fn run(args: SimArgs) -> anyhow::Result<()> {
     if !args.pty && args.tcp.is_none() {

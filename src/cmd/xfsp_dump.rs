@@ -8,12 +8,13 @@
 //! listen on.
 
 use std::io::Write;
-use std::net::SocketAddr;
+use std::net::{Ipv4Addr, SocketAddr};
 
 use anyhow::Context;
+use clap::Args;
 use serde_json::{Value as Json, json};
 
-use crate::cli::XfspDumpArgs;
+use crate::settings::values;
 use crate::xfsp::format::{Bus, CasMsg, Value, latin1};
 use crate::xfsp::net::{Target, XfspNet};
 use crate::xfsp::{Expire, Header, ParamView, Received, Receiver, idents};
@@ -44,6 +45,20 @@ numbers (SINT or UINT), in the units the VP-X expects; nothing is converted:
   P-ALT             feet
   FUELPRES          pounds per square inch
   ENGRPM            revolutions per minute";
+
+#[derive(Debug, Args)]
+#[command(after_help = SCALES_HELP)]
+pub struct XfspDumpArgs {
+    /// Multicast GROUP:PORT to listen on.
+    #[arg(long, default_value = "224.0.2.69:20234", value_name = "GROUP:PORT", value_parser = values::xfsp_target)]
+    pub xfsp: String,
+    /// Local interface address to join the group on.
+    #[arg(long, default_value = "0.0.0.0", value_name = "ADDR", value_parser = values::iface)]
+    pub xfsp_iface: Ipv4Addr,
+    /// JSON lines instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
 
 pub fn run(args: XfspDumpArgs) -> anyhow::Result<()> {
     let target = Target::parse(&args.xfsp).map_err(anyhow::Error::msg)?;
@@ -249,11 +264,7 @@ mod tests {
 
     #[test]
     fn help_states_the_scale_of_every_published_number_and_the_air_data_units() {
-        use clap::CommandFactory;
-        let mut cli = crate::cli::Cli::command();
-        let help = cli
-            .find_subcommand_mut("xfsp-dump")
-            .expect("xfsp-dump")
+        let help = XfspDumpArgs::augment_args(clap::Command::new("xfsp-dump"))
             .render_long_help()
             .to_string();
         for words in [

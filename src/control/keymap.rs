@@ -16,7 +16,6 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use crate::model::{Circuit, CircuitKind, CircuitState, Motor, TrimKind};
-use crate::ui::state::{Overlay, ViewState};
 
 use super::streamer::Direction;
 
@@ -50,17 +49,18 @@ pub struct KeyContext {
 }
 
 impl KeyContext {
-    /// The context for the view's selection among `circuits` (the rows on screen).
-    pub fn from_view(view: &ViewState, circuits: &[Circuit]) -> Self {
+    /// The context for the selected device id among `circuits` (the rows on screen),
+    /// with or without an overlay over them.
+    pub fn for_selection(selected: Option<u8>, overlay_open: bool, circuits: &[Circuit]) -> Self {
         KeyContext {
-            selected: view.selected.and_then(|id| {
+            selected: selected.and_then(|id| {
                 circuits.iter().find(|c| c.id == id).map(|c| Selected {
                     id: c.id,
                     kind: c.kind,
                     state: c.state,
                 })
             }),
-            overlay_open: view.overlay != Overlay::None,
+            overlay_open,
             past_endpoints: false,
         }
     }
@@ -132,10 +132,29 @@ pub const ROLL_KEYS: &str = "roll trim runs left/right: Shift+←/→ or ,/.";
 pub const PITCH_KEYS: &str = "this motor runs up/down: Shift+↑/↓ or u/d";
 pub const NOTHING_SELECTED: &str = "select a device first (↑/↓ or j/k)";
 
-/// Every key, in words, for the help overlay. The table lives with the widget that
-/// shows it; the keymap tests check every binding in it against [`map`], so the two
-/// cannot drift apart.
-pub const HELP: &[(&str, &str)] = crate::ui::help::KEYS;
+/// Every key, in words: the help overlay (`ui::help`) draws this table. It lives
+/// here, beside [`map`], and the keymap tests type every binding it names and check
+/// what [`map`] does with it, so the words and the keys cannot drift apart.
+pub const HELP: &[(&str, &str)] = &[
+    ("↑/↓  j/k", "move the selection (never runs a motor)"),
+    ("Shift+↑  u", "flaps / pitch trim row: run up while held"),
+    ("Shift+↓  d", "flaps / pitch trim row: run down while held"),
+    ("Shift+←  ,", "roll trim row: run left while held"),
+    ("Shift+→  .", "roll trim row: run right while held"),
+    ("any key", "stops a running motor (and does nothing else)"),
+    ("o  Enter", "switch the selected device on (DEVICE_POWER)"),
+    ("f", "switch the selected device off (DEVICE_POWER)"),
+    // One line for both, so the list still fits 80×24.
+    ("r  Y", "reset the fault (DEVICE_CLEAR); Y: confirm a 2nd"),
+    ("R", "reset the system fault (DEVICE_CLEAR 255)"),
+    ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
+    ("s", "sort by pin / by name"),
+    ("t", "traffic view"),
+    ("c", "setup screens"),
+    ("i", "installation check"),
+    ("?  Esc", "this help"),
+    ("q  Ctrl-C", "quit"),
+];
 
 /// The action for a key, or `None` for a key that is not bound.
 pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {

@@ -31,6 +31,16 @@ pub struct RepeatTiming {
     pub set_by_hand: bool,
 }
 
+/// What the screens draw of the controller, read from it for each frame: the run on
+/// the wire, how a release is known, and the repeat timing in force (`None` where no
+/// streamer feeds the page, as in a replay).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ControlState {
+    pub run: Option<MotorRun>,
+    pub release_mode: ReleaseMode,
+    pub repeat: Option<RepeatTiming>,
+}
+
 /// The motor stream the page is sending right now, for display.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MotorRun {

@@ -61,6 +61,7 @@ use crate::protocol::bootloader::{
 };
 use crate::protocol::message::{Message, SoftwareUpdate, Version};
 use crate::protocol::{Decoder, Event as WireEvent, Node, Packet};
+use crate::transient::is_transient;
 
 use super::hex::Image;
 
@@ -497,13 +498,7 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
                     (self.on)(Event::Received(&buf[..n]));
                     return Ok(Some(buf[..n].to_vec()));
                 }
-                Err(e)
-                    if matches!(
-                        e.kind(),
-                        io::ErrorKind::TimedOut
-                            | io::ErrorKind::WouldBlock
-                            | io::ErrorKind::Interrupted
-                    ) => {}
+                Err(e) if is_transient(&e) => {}
                 Err(e) => return Err(Fail::Link(format!("cannot read from the port: {e}"))),
             }
         }
@@ -529,14 +524,7 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
                 Ok(n) => {
                     (self.on)(Event::Discarded(&buf[..n]));
                 }
-                Err(e)
-                    if matches!(
-                        e.kind(),
-                        io::ErrorKind::TimedOut
-                            | io::ErrorKind::WouldBlock
-                            | io::ErrorKind::Interrupted
-                    ) =>
-                {
+                Err(e) if is_transient(&e) => {
                     return Ok(());
                 }
                 Err(e) => return Err(Fail::Link(format!("cannot read from the port: {e}"))),

@@ -12,6 +12,7 @@ use crossbeam_channel::{Receiver, Sender, unbounded};
 use crate::protocol::decoder::{Decoder, DecoderStats, Event};
 use crate::protocol::frame::MAX_FRAME;
 use crate::protocol::{Error, Packet};
+use crate::transient::is_transient;
 
 /// Opens (or reopens) the byte stream: a read half, a write half, and a name to show.
 pub type Connector =
@@ -304,13 +305,7 @@ fn read_until_failure(
             }
             // A replay's last record: the port stays, the byte stream is over.
             Err(e) if super::pipe::is_stream_end(&e) => decode_end(decoder, Instant::now(), sink),
-            Err(e)
-                if matches!(
-                    e.kind(),
-                    io::ErrorKind::TimedOut
-                        | io::ErrorKind::WouldBlock
-                        | io::ErrorKind::Interrupted
-                ) => {}
+            Err(e) if is_transient(&e) => {}
             Err(e) => return Some(e.to_string()),
         }
     }

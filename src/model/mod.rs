@@ -33,16 +33,10 @@ pub use setting::Setting;
 #[cfg(test)]
 pub(crate) use setting::factory_answer;
 
-/// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
-/// (issue: "more than 2.5 s"; both are 1 Hz broadcasts, so two missed in a row).
-pub const COMM_LOST_AFTER: Duration = Duration::from_millis(2500);
-/// A 1 Hz broadcast older than this is no longer shown.
-pub const STATUS_STALE_AFTER: Duration = COMM_LOST_AFTER;
-/// FLAP_TRIM_STATUS is 10 Hz; a second without it means positions are no longer live.
-pub const FLAP_TRIM_STALE_AFTER: Duration = Duration::from_millis(1000);
-/// Reading note 9: FAULT_STATUS is sent only while a fault exists, so status arriving
-/// without it for this long means "no faults", not lost communication.
-pub const FAULT_STATUS_QUIET_AFTER: Duration = Duration::from_millis(2500);
+/// How long each broadcast stays current (a leaf, shared with the traffic log).
+pub use crate::staleness::{
+    COMM_LOST_AFTER, FAULT_STATUS_QUIET_AFTER, FLAP_TRIM_STALE_AFTER, STATUS_STALE_AFTER,
+};
 /// The page asks for every spec, name and enable flag again every minute
 /// (`app::queries::REFRESH_EVERY`); a setting last heard longer ago than this missed
 /// a refresh, so screens show its age beside it.

@@ -320,11 +320,7 @@ fn read_loop(
                     }
                 }
             }
-            Err(e)
-                if matches!(
-                    e.kind(),
-                    ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted
-                ) => {}
+            Err(e) if crate::transient::is_transient(&e) => {}
             Err(_) => std::thread::sleep(Duration::from_millis(50)),
         }
     }

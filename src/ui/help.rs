@@ -5,31 +5,9 @@ use ratatui::layout::{Constraint, Flex, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Wrap};
 
-use super::state::{ReleaseMode, ViewState};
+use super::state::{ControlState, ReleaseMode, ViewState};
 use super::theme;
-
-/// The key list, agreed with the control module; one place so the overlay and any
-/// test of the key map read the same words.
-pub const KEYS: &[(&str, &str)] = &[
-    ("↑/↓  j/k", "move the selection (never runs a motor)"),
-    ("Shift+↑  u", "flaps / pitch trim row: run up while held"),
-    ("Shift+↓  d", "flaps / pitch trim row: run down while held"),
-    ("Shift+←  ,", "roll trim row: run left while held"),
-    ("Shift+→  .", "roll trim row: run right while held"),
-    ("any key", "stops a running motor (and does nothing else)"),
-    ("o  Enter", "switch the selected device on (DEVICE_POWER)"),
-    ("f", "switch the selected device off (DEVICE_POWER)"),
-    // One line for both, so the list still fits 80×24.
-    ("r  Y", "reset the fault (DEVICE_CLEAR); Y: confirm a 2nd"),
-    ("R", "reset the system fault (DEVICE_CLEAR 255)"),
-    ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
-    ("s", "sort by pin / by name"),
-    ("t", "traffic view"),
-    ("c", "setup screens"),
-    ("i", "installation check"),
-    ("?  Esc", "this help"),
-    ("q  Ctrl-C", "quit"),
-];
+use crate::control::keymap::HELP;
 
 /// Extra keys while the page replays a capture (handled by the app's replay, not the
 /// keymap: nothing in replay reaches a unit).
@@ -41,8 +19,8 @@ pub const REPLAY_KEYS: &[(&str, &str)] = &[
 
 /// How a held motor key is judged here, in words: what ends a run, and how far a tap
 /// moves a motor.
-pub fn release_lines(view: &ViewState) -> Vec<String> {
-    match (view.release_mode, view.repeat) {
+pub fn release_lines(control: &ControlState) -> Vec<String> {
+    match (control.release_mode, control.repeat) {
         (ReleaseMode::KeyRelease, _) => {
             vec!["key release seen: a run ends when you let go (or if repeats stop)".into()]
         }
@@ -63,8 +41,8 @@ pub fn release_lines(view: &ViewState) -> Vec<String> {
     }
 }
 
-pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
-    let keys: Vec<&(&str, &str)> = KEYS
+pub fn render(frame: &mut Frame, view: &ViewState, control: &ControlState, replay: bool) {
+    let keys: Vec<&(&str, &str)> = HELP
         .iter()
         .chain(if replay { REPLAY_KEYS } else { &[] })
         .collect();
@@ -76,7 +54,7 @@ pub fn render(frame: &mut Frame, view: &ViewState, replay: bool) {
         .unwrap_or(40) as u16
         + 6)
     .min(area.width.saturating_sub(2));
-    let release = release_lines(view);
+    let release = release_lines(control);
     let height = (keys.len() as u16 + 6 + release.len() as u16 + u16::from(replay))
         .min(area.height.saturating_sub(2));
     let [row] = Layout::vertical([Constraint::Length(height)])

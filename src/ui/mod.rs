@@ -31,6 +31,7 @@ use std::time::Instant;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout};
 
+use crate::control::run_state::ControlState;
 use crate::model::{Circuit, Model};
 use state::{Overlay, ViewState};
 
@@ -58,21 +59,35 @@ pub fn ordered_circuits(model: &Model, view: &ViewState, now: Instant) -> Vec<Ci
 }
 
 /// Draws the page as the person sees it: [`render`], then repainted in the palette
-/// `view.theme` chose (dark, light or no colour).
-pub fn draw(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
-    render(frame, model, view, now);
+/// `view.theme` chose (dark, light or no colour). `control` is the controller's state
+/// (the motor run it streams, its key release mode and repeat timing), read from it
+/// for this frame.
+pub fn draw(
+    frame: &mut Frame,
+    model: &Model,
+    view: &ViewState,
+    control: &ControlState,
+    now: Instant,
+) {
+    render(frame, model, view, control, now);
     view.theme.palette.paint(frame.buffer_mut());
 }
 
 /// Draws the whole page for `model` as it stands at `now`, in the page's colour words
 /// (Appendix A's green=on, white=off, red=faulted); see [`palette`] for what they
 /// become on the terminal.
-pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
+pub fn render(
+    frame: &mut Frame,
+    model: &Model,
+    view: &ViewState,
+    control: &ControlState,
+    now: Instant,
+) {
     if view.screen == state::Screen::Traffic {
         return traffic::render(frame, model, view, now);
     }
     if view.screen == state::Screen::Setup {
-        return setup::render(frame, model, view, now);
+        return setup::render(frame, model, view, control.run, now);
     }
     let area = frame.area();
     if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
@@ -140,7 +155,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     .areas(right);
     system_panel::render(frame, system, model, now);
     switches::render(frame, switches_area, model, now);
-    motors::render(frame, motors_area, model, view, now);
+    motors::render(frame, motors_area, model, control, now);
     // Tall terminals share the plot's space with the event log.
     if plot_area.height >= 12 {
         let [plot_part, events_part] = Layout::vertical([
@@ -159,6 +174,6 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
 
     if view.overlay == Overlay::Help {
         let replay = matches!(model.source, crate::model::Source::Replay { .. });
-        help::render(frame, view, replay);
+        help::render(frame, view, control, replay);
     }
 }

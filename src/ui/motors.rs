@@ -10,7 +10,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 
 use super::panel;
-use super::state::{ReleaseMode, RepeatTiming, ViewState};
+use super::state::{ControlState, ReleaseMode, RepeatTiming};
 use super::{theme, values};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
@@ -201,7 +201,7 @@ fn flags(model: &Model, now: Instant) -> Vec<(String, Style)> {
     out
 }
 
-pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, now: Instant) {
+pub fn render(frame: &mut Frame, area: Rect, model: &Model, control: &ControlState, now: Instant) {
     let ft = model.live_flap_trim(now);
     let motors = shown(model, now);
     let mut lines: Vec<Line> = motors
@@ -218,16 +218,16 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, no
         }
         flag_spans.push(Span::styled(t, s));
     }
-    let run = view
-        .motor_run
+    let run = control
+        .run
         .map(|run| format!("▶ {} {}", run.motor.name(), run.direction));
     let run_width = run.as_ref().map_or(0, |r| r.chars().count() + 2);
-    let mut mode = match view.release_mode {
+    let mut mode = match control.release_mode {
         ReleaseMode::KeyRelease => "keys: release seen".to_string(),
         ReleaseMode::AutoRepeat => "keys: auto-repeat".to_string(),
     };
     // The timing the page judges repeats by, where the panel has room for it.
-    if let (ReleaseMode::AutoRepeat, Some(t)) = (view.release_mode, view.repeat) {
+    if let (ReleaseMode::AutoRepeat, Some(t)) = (control.release_mode, control.repeat) {
         let full = format!("{mode} · {}", repeat_timing(&t));
         if full.chars().count() + run_width <= usize::from(area.width) {
             mode = full;

@@ -1,6 +1,9 @@
 //! What the person is looking at: selection, sort order, overlays. Owned by the app,
 //! changed by the app in answer to control's actions, read by the widgets.
 
+use crate::control::KeyContext;
+use crate::model::Circuit;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SortOrder {
     /// By pin (device id), flaps and trims grouped apart.
@@ -31,8 +34,9 @@ pub enum Overlay {
     Help,
 }
 
-/// The controller's own state, drawn from here.
-pub use crate::control::run_state::{MotorRun, ReleaseMode, RepeatTiming};
+/// The controller's own types (they live in `control::run_state`): the screens draw
+/// a [`ControlState`] read from the controller for each frame; the view copies none.
+pub use crate::control::run_state::{ControlState, MotorRun, ReleaseMode, RepeatTiming};
 
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct ViewState {
@@ -41,14 +45,18 @@ pub struct ViewState {
     pub selected: Option<u8>,
     pub sort: SortOrder,
     pub overlay: Overlay,
-    pub release_mode: ReleaseMode,
-    /// Auto-repeat timing in use; `None` where no streamer feeds the view.
-    pub repeat: Option<RepeatTiming>,
-    pub motor_run: Option<MotorRun>,
     /// A short message for the person (a refused key, a sent command).
     pub notice: Option<String>,
     /// The setup screens (`c`): page, field, forms and where each write stands.
     pub setup: crate::setup::view::SetupView,
     /// The palette the page paints in, and why (the help overlay says it).
     pub theme: super::palette::ThemeChoice,
+}
+
+impl ViewState {
+    /// What the keymap needs of this view: the selected row among `circuits` (the
+    /// rows on screen) and whether an overlay covers them.
+    pub fn key_context(&self, circuits: &[Circuit]) -> KeyContext {
+        KeyContext::for_selection(self.selected, self.overlay != Overlay::None, circuits)
+    }
 }

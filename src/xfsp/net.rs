@@ -28,6 +28,7 @@ use crossbeam_channel::{Receiver, TrySendError, bounded};
 use socket2::{Domain, Protocol, Socket, Type};
 
 use crate::platform::Os;
+use crate::transient::is_transient;
 
 /// The draft's default group and port (reading note 9).
 pub const DEFAULT_TARGET: &str = "224.0.2.69:20234";
@@ -151,13 +152,7 @@ impl XfspNet {
                                     Err(TrySendError::Disconnected(_)) => return,
                                 }
                             }
-                            Err(e)
-                                if matches!(
-                                    e.kind(),
-                                    io::ErrorKind::WouldBlock
-                                        | io::ErrorKind::TimedOut
-                                        | io::ErrorKind::Interrupted
-                                ) => {}
+                            Err(e) if is_transient(&e) => {}
                             // An ICMP error from an earlier unicast send, or a transient
                             // failure: keep listening, gently.
                             Err(_) => std::thread::sleep(Duration::from_millis(10)),

@@ -27,23 +27,25 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders};
 
-use super::state::ViewState;
+use super::state::{MotorRun, ViewState};
 use super::{MIN_HEIGHT, MIN_WIDTH, comm_banner, fast, palette::Palette, theme, title_bar};
 use crate::model::Model;
 use state::{CheckView, Mark, Prompt, Step};
 
 /// Draws the check as the person sees it: [`render`], then repainted in the palette
 /// the page chose (`page.theme`: dark, light or no colour). `page` is the page's own
-/// view state: its theme, the motor run the page is streaming now, and its notice.
+/// view state: its theme and its notice; `running` is the motor run the page is
+/// streaming now, read from the controller for this frame.
 pub fn draw(
     frame: &mut Frame,
     area: Rect,
     view: &CheckView,
     model: &Model,
     page: &ViewState,
+    running: Option<MotorRun>,
     now: Instant,
 ) {
-    render(frame, area, view, model, page, now);
+    render(frame, area, view, model, page, running, now);
     paint(frame.buffer_mut(), area, page.theme.palette);
 }
 
@@ -74,6 +76,7 @@ pub fn render(
     view: &CheckView,
     model: &Model,
     page: &ViewState,
+    running: Option<MotorRun>,
     now: Instant,
 ) {
     if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
@@ -107,7 +110,7 @@ pub fn render(
             Step::Confirm => confirm::render(frame, body, view),
             Step::Switches => switches::render(frame, body, view, model, now),
             Step::Circuits => circuits::render(frame, body, view, model, now),
-            Step::Motors => motors::render(frame, body, view, model, page, now),
+            Step::Motors => motors::render(frame, body, view, model, running, now),
             // The load analysis's own widget (issue-14-loads), its circuits scrolled
             // from the selection.
             Step::Loads => loads::render(

@@ -1,7 +1,7 @@
 //! Step 4, motors: flaps and each enabled trim run briefly each way on the page's safe
 //! stream, the position compared in FLAP_TRIM_STATUS, then put back. Shown: each
 //! motor's live position on its travel, which way the page is running it now (what
-//! the page streams, from its own view), the positions the check recorded, and the
+//! the page streams, read from its controller), the positions the check recorded, and the
 //! results. Without a live FLAP_TRIM_STATUS a position is "--".
 
 use std::time::Instant;
@@ -16,7 +16,7 @@ use super::state::{CheckView, Mark};
 use super::{fit, head_w, progress_span, progress_words, section, words, words_style};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
-use crate::ui::state::ViewState;
+use crate::ui::state::MotorRun;
 use crate::ui::{fast, theme, values};
 
 /// A motor's travel: its ends' words, the sensor at each end, and where it is now.
@@ -70,7 +70,12 @@ fn positions(m: Motor, raw: &[u8], model: &Model, now: Instant) -> String {
     words::positions(raw, ends(m, model, now))
 }
 
-fn gauge(m: Motor, ft: Option<&FlapTrimStatus>, page: &ViewState, width: u16) -> Line<'static> {
+fn gauge(
+    m: Motor,
+    ft: Option<&FlapTrimStatus>,
+    streaming: Option<MotorRun>,
+    width: u16,
+) -> Line<'static> {
     let name = Span::raw(fit(m.name(), 11));
     let track_w = usize::from(width)
         .saturating_sub(11 + 4 + 2 + 7 + 18)
@@ -99,7 +104,7 @@ fn gauge(m: Motor, ft: Option<&FlapTrimStatus>, page: &ViewState, width: u16) ->
         Span::styled(right, theme::label()),
         Span::raw(format!("{:>5} %", p)),
     ];
-    match page.motor_run.filter(|r| r.motor == m) {
+    match streaming.filter(|r| r.motor == m) {
         Some(run) => spans.push(Span::styled(
             format!("  ▶ running {}", run.direction),
             theme::on_off(true).add_modifier(Modifier::BOLD),
@@ -150,7 +155,7 @@ pub fn render(
     area: Rect,
     view: &CheckView,
     model: &Model,
-    page: &ViewState,
+    running: Option<MotorRun>,
     now: Instant,
 ) {
     let mut motors: Vec<Motor> = view.planned_motors.iter().map(|(m, _)| *m).collect();
@@ -168,7 +173,7 @@ pub fn render(
     let ft = model.live_flap_trim(now);
     let mut lines: Vec<Line> = motors
         .iter()
-        .map(|&m| gauge(m, ft, page, inner.width))
+        .map(|&m| gauge(m, ft, running, inner.width))
         .collect();
     if lines.is_empty() {
         lines.push(Line::styled("No flaps or trim enabled.", theme::label()));

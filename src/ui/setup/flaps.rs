@@ -8,13 +8,13 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
 use crate::model::{Model, Motor};
-use crate::ui::state::ViewState;
+use crate::ui::state::{MotorRun, ViewState};
 use crate::ui::theme;
 
 /// The live position line and the motor's run, shared with the trim pages.
 pub fn live_lines(
     model: &Model,
-    view: &ViewState,
+    running: Option<MotorRun>,
     motor: Motor,
     now: Instant,
 ) -> Vec<Line<'static>> {
@@ -52,7 +52,7 @@ pub fn live_lines(
             theme::unknown(),
         )),
     }
-    if let Some(run) = view.motor_run.filter(|r| r.motor == motor) {
+    if let Some(run) = running.filter(|r| r.motor == motor) {
         spans.push(Span::styled(
             format!("  ◀ running {} while held", run.direction),
             theme::caution(),
@@ -62,7 +62,14 @@ pub fn live_lines(
     out
 }
 
-pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, now: Instant) {
-    let extra = live_lines(model, view, Motor::Flaps, now);
+pub fn render(
+    frame: &mut Frame,
+    area: Rect,
+    model: &Model,
+    view: &ViewState,
+    running: Option<MotorRun>,
+    now: Instant,
+) {
+    let extra = live_lines(model, running, Motor::Flaps, now);
     super::render_form(frame, area, model, &view.setup, now, extra);
 }

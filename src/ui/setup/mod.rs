@@ -20,7 +20,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Row, Table, Wrap};
 
-use super::state::ViewState;
+use super::state::{MotorRun, ViewState};
 use super::{MIN_HEIGHT, MIN_WIDTH, theme, title_bar, too_small};
 use crate::model::Model;
 use crate::setup::view::{
@@ -28,7 +28,13 @@ use crate::setup::view::{
 };
 
 /// Draws the setup screen for `view.setup.page`.
-pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) {
+pub fn render(
+    frame: &mut Frame,
+    model: &Model,
+    view: &ViewState,
+    running: Option<MotorRun>,
+    now: Instant,
+) {
     let area = frame.area();
     if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
         too_small::render(frame, MIN_WIDTH, MIN_HEIGHT);
@@ -50,8 +56,8 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     match sv.page {
         Page::Device => device::render(frame, body, model, sv, now),
         Page::System => system::render(frame, body, model, sv, now),
-        Page::Flaps => flaps::render(frame, body, model, view, now),
-        Page::PitchTrim | Page::RollTrim => trim::render(frame, body, model, view, now),
+        Page::Flaps => flaps::render(frame, body, model, view, running, now),
+        Page::PitchTrim | Page::RollTrim => trim::render(frame, body, model, view, running, now),
         Page::WigWag => wig_wag::render(frame, body, model, sv, now),
         Page::Diagnostics => diagnostics::render(frame, body, model, sv, now),
         Page::Backup => backup::render(frame, body, sv),

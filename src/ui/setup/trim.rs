@@ -7,10 +7,17 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 
 use crate::model::Model;
-use crate::ui::state::ViewState;
+use crate::ui::state::{MotorRun, ViewState};
 
-pub fn render(frame: &mut Frame, area: Rect, model: &Model, view: &ViewState, now: Instant) {
+pub fn render(
+    frame: &mut Frame,
+    area: Rect,
+    model: &Model,
+    view: &ViewState,
+    running: Option<MotorRun>,
+    now: Instant,
+) {
     let motor = view.setup.page.motor().expect("a trim page");
-    let extra = super::flaps::live_lines(model, view, motor, now);
+    let extra = super::flaps::live_lines(model, running, motor, now);
     super::render_form(frame, area, model, &view.setup, now, extra);
 }

@@ -1,0 +1,70 @@
+//! `vpx-efis` with no subcommand: the electrical page ([`crate::app::run`]).
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use crate::app::PageOptions;
+use crate::cmd::common::{PortArgs, XfspArgs};
+use crate::ui::palette::Requested;
+
+#[derive(Debug, Clone, Args)]
+pub struct PageArgs {
+    #[command(flatten)]
+    pub port: PortArgs,
+
+    #[command(flatten)]
+    pub xfsp: XfspArgs,
+
+    /// Record every byte in both directions to a capture file.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
+
+    /// Drive the page from a capture file instead of a unit (read-only). A port set in
+    /// the environment or the config file is ignored; one given as a flag is refused.
+    #[arg(long, value_name = "FILE")]
+    pub replay: Option<PathBuf>,
+
+    /// Replay speed factor.
+    #[arg(long, default_value_t = 1.0)]
+    pub speed: f64,
+
+    /// Longest continuous trim/flap run, in seconds, before the key must be pressed again.
+    #[arg(long, default_value_t = 10.0, value_name = "SECONDS")]
+    pub max_run: f64,
+
+    /// Colours: `dark` paints its own black background (the EFIS look), `light` is for
+    /// light terminals, `mono` uses no colour; `auto` asks the terminal for its
+    /// background (OSC 11) and picks dark or light, dark if it does not answer, and
+    /// mono when NO_COLOR is set; `terminal` keeps the terminal's own 16 colours.
+    #[arg(long, value_enum, default_value_t = Requested::Auto)]
+    pub theme: Requested,
+
+    /// Without key-release reports, how long a held motor key may take to repeat for
+    /// the first time, in milliseconds (300-1500). By default the page waits 700 ms
+    /// and then learns the terminal's own delay; set this for a terminal that repeats
+    /// later. A tap runs the motor at most this long.
+    #[arg(long, value_name = "MS")]
+    pub repeat_delay: Option<u64>,
+}
+
+impl From<PageArgs> for PageOptions {
+    fn from(a: PageArgs) -> Self {
+        PageOptions {
+            port: a.port.port,
+            baud: a.port.baud,
+            scenario: a.port.scenario,
+            xfsp: a.xfsp.into(),
+            record: a.record,
+            replay: a.replay,
+            speed: a.speed,
+            max_run: a.max_run,
+            repeat_delay: a.repeat_delay,
+            theme: a.theme,
+        }
+    }
+}
+
+pub fn run(args: PageArgs) -> anyhow::Result<()> {
+    crate::app::run(args.into())
+}
