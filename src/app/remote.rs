@@ -34,6 +34,8 @@ pub(super) struct RemoteSide {
     loopback_only: bool,
     /// The model's revision the event streams were last told of.
     seen_revision: u64,
+    /// The remote's run at the last look, to log its start and its end.
+    run: Option<(crate::model::Motor, crate::control::Direction)>,
 }
 
 impl App {
@@ -134,11 +136,36 @@ impl App {
     }
 
     /// Keeps the overlay, the title and the server's view of the page up to date.
-    pub(super) fn remote_tick(&mut self) {
+    pub(super) fn remote_tick(&mut self, now: Instant) {
         let Some(server) = &self.remote.server else {
             return;
         };
-        let running = self.controller.with(|c| c.streamer().running_key());
+        let (running, remote_run, stop) = self.controller.with(|c| {
+            (
+                c.streamer().running_key(),
+                c.remote_running(),
+                c.last_stop().copied(),
+            )
+        });
+        if remote_run != self.remote.run {
+            let mut model = lock(&self.model);
+            if let Some((m, d)) = self.remote.run {
+                let why = stop.map_or("stopped".into(), |s| s.reason.describe());
+                model.log(
+                    now,
+                    LogLevel::Info,
+                    format!("remote: {} {} stopped: {why}", m.name(), d.name()),
+                );
+            }
+            if let Some((m, d)) = remote_run {
+                model.log(
+                    now,
+                    LogLevel::Info,
+                    format!("remote: {} {} running", m.name(), d.name()),
+                );
+            }
+            self.remote.run = remote_run;
+        }
         server.set_page(PageSide {
             running,
             check: self.check_prompt(),
@@ -220,6 +247,7 @@ impl App {
             }
         };
         self.view.motor_run = self.controller.running();
+        self.remote_tick(now);
         req.answer(reply);
     }
 
