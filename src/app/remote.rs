@@ -179,11 +179,27 @@ impl App {
     }
 
     fn remote_view(&mut self) {
-        let view = self.remote.server.as_ref().map(|s| RemoteView {
-            url: s.pairing_url(),
-            code: s.code(),
-            paired: s.paired(),
-            loopback_only: self.remote.loopback_only,
+        let old = self.view.remote.as_ref();
+        if let (Some(s), Some(v)) = (&self.remote.server, old)
+            && v.paired == s.paired()
+            && v.code == s.code()
+        {
+            return;
+        }
+        let view = self.remote.server.as_ref().map(|s| {
+            let url = s.pairing_url();
+            // The QR code is made again only for a new code.
+            let qr = match old {
+                Some(v) if v.url == url => v.qr.clone(),
+                _ => [4, 2].map(|zone| crate::ui::remote::qr_rows(&url, zone)),
+            };
+            RemoteView {
+                url,
+                code: s.code(),
+                paired: s.paired(),
+                loopback_only: self.remote.loopback_only,
+                qr,
+            }
         });
         if view != self.view.remote {
             self.view.remote = view;
