@@ -623,3 +623,70 @@ fn an_explicit_stop_is_on_the_wire_within_150_ms_and_renewals_keep_the_run() {
     let gaps = moves.windows(2).map(|w| w[1].0 - w[0].0).max().unwrap();
     assert!(gaps <= ms(250), "a gap of {gaps:?} between moves");
 }
+
+#[test]
+fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut rig, base) = rig_with_remote(None);
+    let phone = Ask {
+        session: Some(pair(&mut rig, &base)),
+        origin: None,
+    };
+    let state_url = format!("{base}/api/state");
+    let answer_url = format!("{base}/api/check/answer");
+    let answer = |rig: &mut Rig, a: &str| {
+        let (p, u, body) = (phone.clone(), answer_url.clone(), json!({ "answer": a }));
+        during(rig, move || p.post(&u, Some(body)))
+    };
+    assert_eq!(phone.get(&state_url).body["check"], Value::Null);
+    rig.app.set_check_report_dir(Some(dir.path().to_path_buf()));
+    let options = vpx_efis::check::Options {
+        skip: vec![vpx_efis::ui::check::state::Step::Motors],
+        loads_file: Some(dir.path().join("loads.toml")),
+        ..vpx_efis::check::Options::default()
+    };
+    rig.app.open_check(options, Instant::now());
+    rig.app.pump_until(Instant::now() + ms(100));
+    // Before power: confirmed at the laptop, not from the phone.
+    assert_eq!(phone.get(&state_url).body["check"], Value::Null);
+    let a = answer(&mut rig, "go_on");
+    assert_eq!(
+        (a.status, a.body),
+        (409, json!({"refused": "go_on is not offered now"}))
+    );
+    rig.key(
+        crossterm::event::KeyCode::Enter,
+        crossterm::event::KeyEventKind::Press,
+    );
+    // The first DO NOW with a skip on offer.
+    let end = Instant::now() + Duration::from_secs(10);
+    let check = loop {
+        rig.app.pump_until(Instant::now() + ms(50));
+        let c = phone.get(&state_url).body["check"].clone();
+        if c["answers"]
+            .as_array()
+            .is_some_and(|a| a.iter().any(|x| x["id"] == "skip"))
+        {
+            break c;
+        }
+        assert!(Instant::now() < end, "no prompt with skip: {c}");
+    };
+    assert!(
+        check["prompt"].as_str().is_some_and(|p| !p.is_empty()),
+        "{check}"
+    );
+    assert!(check["step"].is_string(), "{check}");
+    assert_eq!(check["lit_question"], Value::Null);
+    let a = answer(&mut rig, "lit_yes");
+    assert_eq!(a.status, 409, "{a:?}");
+    let a = answer(&mut rig, "skip");
+    assert_eq!((a.status, a.body), (200, json!({"answered": true})));
+    rig.app.pump_until(Instant::now() + ms(200));
+    let after = phone.get(&state_url).body["check"].clone();
+    assert_ne!(after, check, "the skip did not move the check on");
+    assert!(
+        log_lines(&rig).iter().any(|l| l == "remote: check: skip"),
+        "{:?}",
+        log_lines(&rig)
+    );
+}

@@ -22,6 +22,7 @@ use crate::model::LogLevel;
 use crate::remote::{
     self, Answer, CheckPrompt, Command, DEFAULT_PORT, PageSide, Remote, Reply, Request,
 };
+use crate::ui::check::state::Step;
 use crate::ui::state::{Overlay, RemoteView, Screen};
 
 /// The remote as the page holds it.
@@ -308,18 +309,23 @@ impl App {
     /// and the answers its keys offer now.
     ///
     /// An adapter to what the check takes today (keys): the answers are the prompt's
-    /// keys Enter (go on), `s` (skip) and `r` (retry); `lit_question` stays `None`
-    /// until the check asks "Is it lit?" itself.
+    /// keys whose words are "go on", "skip" and "retry" ([`answer_of_key`]);
+    /// `lit_question` stays `None` until the check asks "Is it lit?" itself.
+    /// Decision: the confirmation before power is not offered on the phone: what will
+    /// be powered is listed on the laptop, and confirmed there.
     fn check_prompt(&self) -> Option<CheckPrompt> {
         if self.view.screen != Screen::Check || self.check_finished() {
             return None;
         }
         let v = self.check_view();
+        if v.step == Step::Confirm {
+            return None;
+        }
         let p = v.prompt.as_ref()?;
         let answers = p
             .keys
             .iter()
-            .filter_map(|(key, _)| answer_of_key(key))
+            .filter_map(|&(key, words)| answer_of_key(key, words).map(|(a, _)| a))
             .collect();
         Some(CheckPrompt {
             step: v.step.title().to_string(),
@@ -331,39 +337,40 @@ impl App {
 
     /// An answer from the phone, as the key the check takes for it, if offered now.
     fn remote_check_answer(&mut self, answer: &str, now: Instant) -> Reply {
-        let offered = self
+        let key = self
             .check_prompt()
-            .is_some_and(|p| p.answers.iter().any(|a| a.id == answer));
-        let key = match answer {
-            "go_on" => KeyCode::Enter,
-            "skip" => KeyCode::Char('s'),
-            "retry" => KeyCode::Char('r'),
-            _ => return Reply::Refused(format!("{answer} is not offered now")),
-        };
-        if !offered {
+            .is_some()
+            .then(|| self.check_view().prompt.as_ref())
+            .flatten()
+            .and_then(|p| {
+                p.keys.iter().find_map(|&(key, words)| {
+                    answer_of_key(key, words).filter(|(a, _)| a.id == answer)
+                })
+            })
+            .map(|(_, code)| code);
+        let Some(key) = key else {
             return Reply::Refused(format!("{answer} is not offered now"));
-        }
+        };
         lock(&self.model).log(now, LogLevel::Info, format!("remote: check: {answer}"));
         self.check_key(KeyEvent::new(key, KeyModifiers::NONE), now);
         Reply::Answered
     }
 }
 
-/// The phone's answer for a check key.
-fn answer_of_key(key: &str) -> Option<Answer> {
-    match key {
-        "Enter" => Some(Answer {
-            id: "go_on",
-            label: "Go on",
-        }),
-        "s" => Some(Answer {
-            id: "skip",
-            label: "Skip",
-        }),
-        "r" => Some(Answer {
-            id: "retry",
-            label: "Retry",
-        }),
-        _ => None,
-    }
+/// The phone's answer for a key the check's prompt offers, by the prompt's words
+/// (the same key means "go on" in one prompt and "retry" in another), with the key
+/// to give the check for it.
+fn answer_of_key(key: &str, words: &str) -> Option<(Answer, KeyCode)> {
+    let code = match key {
+        "Enter" => KeyCode::Enter,
+        k if k.chars().count() == 1 => KeyCode::Char(k.chars().next()?),
+        _ => return None,
+    };
+    let (id, label) = match words {
+        "go on" | "confirm" => ("go_on", "Go on"),
+        "skip" => ("skip", "Skip"),
+        "retry" => ("retry", "Retry"),
+        _ => return None,
+    };
+    Some((Answer { id, label }, code))
 }
