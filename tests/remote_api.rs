@@ -690,3 +690,39 @@ fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
         log_lines(&rig)
     );
 }
+
+#[test]
+fn stopping_the_remote_closes_its_socket_and_ends_every_session() {
+    let (mut rig, base) = rig_with_remote(None);
+    let token = pair(&mut rig, &base);
+    let phone = Ask {
+        session: Some(token),
+        origin: None,
+    };
+    assert_eq!(phone.get(&format!("{base}/api/state")).status, 200);
+    let addr = base.trim_start_matches("http://").to_string();
+    // The overlay is shown: p stops the remote.
+    assert_eq!(rig.app.view().overlay, vpx_efis::ui::state::Overlay::Remote);
+    rig.key(
+        crossterm::event::KeyCode::Char('p'),
+        crossterm::event::KeyEventKind::Press,
+    );
+    assert!(rig.app.remote_url().is_none());
+    assert!(rig.app.view().remote.is_none());
+    assert!(
+        std::net::TcpStream::connect(&addr).is_err(),
+        "still listening on {addr}"
+    );
+    // On again (a new port, as asked for port 0): the old session is gone.
+    rig.key(
+        crossterm::event::KeyCode::Char('p'),
+        crossterm::event::KeyEventKind::Press,
+    );
+    let url = rig.app.remote_url().expect("on again");
+    let base2 = url.split("/?pair=").next().unwrap().to_string();
+    assert_eq!(phone.get(&format!("{base2}/api/state")).status, 401);
+    // The page quits: the socket closes with it.
+    let addr2 = base2.trim_start_matches("http://").to_string();
+    drop(rig);
+    assert!(std::net::TcpStream::connect(&addr2).is_err());
+}
