@@ -35,6 +35,9 @@ pub(super) struct RemoteSide {
     loopback_only: bool,
     /// The model's revision the event streams were last told of.
     seen_revision: u64,
+    /// The last motor refusal logged: a held button renews ten times a second, and
+    /// one line says it.
+    refused: Option<String>,
     /// The remote's run at the last look, to log its start and its end.
     run: Option<(crate::model::Motor, crate::control::Direction)>,
 }
@@ -213,6 +216,7 @@ impl App {
         self.dirty = true;
         let reply = match &req.command {
             Command::MotorStop => {
+                self.remote.refused = None;
                 self.controller.act_with(Origin::Remote, |c| {
                     (c.lease_stop(now, StopReason::RemoteStop), ())
                 });
@@ -227,18 +231,21 @@ impl App {
                         .act_with(Origin::Remote, |c| c.lease(&model, motor, direction, now))
                 };
                 match result {
-                    Ok(()) => Reply::Leased(LEASE.as_millis() as u64),
+                    Ok(()) => {
+                        self.remote.refused = None;
+                        Reply::Leased(LEASE.as_millis() as u64)
+                    }
                     Err(why) => {
-                        lock(&self.model).log(
-                            now,
-                            LogLevel::Warning,
-                            format!(
-                                "remote: {} {} refused: {}",
-                                motor.name(),
-                                direction.name(),
-                                why.0
-                            ),
+                        let line = format!(
+                            "remote: {} {} refused: {}",
+                            motor.name(),
+                            direction.name(),
+                            why.0
                         );
+                        if self.remote.refused.as_ref() != Some(&line) {
+                            lock(&self.model).log(now, LogLevel::Warning, line.clone());
+                            self.remote.refused = Some(line);
+                        }
                         Reply::Refused(why.0)
                     }
                 }
