@@ -726,3 +726,31 @@ fn stopping_the_remote_closes_its_socket_and_ends_every_session() {
     drop(rig);
     assert!(std::net::TcpStream::connect(&addr2).is_err());
 }
+
+#[test]
+fn any_other_command_from_the_remote_stops_its_run_first() {
+    let (mut rig, base) = rig_with_remote(None);
+    let phone = Ask {
+        session: Some(pair(&mut rig, &base)),
+        origin: None,
+    };
+    let from = rig.wire_len();
+    let (p, u) = (phone.clone(), format!("{base}/api/motor/pitch"));
+    let a = during(&mut rig, move || p.post(&u, Some(json!({"direction": "up"}))));
+    assert_eq!(a.status, 200);
+    let (p, u) = (phone.clone(), format!("{base}/api/device/9/power"));
+    let a = during(&mut rig, move || p.post(&u, Some(json!({"on": false}))));
+    assert_eq!(a.status, 200, "{a:?}");
+    rig.app.pump_until(Instant::now() + ms(200));
+    let sent = commands_sent(&rig, from);
+    let stop = sent
+        .iter()
+        .position(|(_, p)| matches!(p.message, Message::TrimMove(m) if !m.on))
+        .expect("the run's stop");
+    let power = sent
+        .iter()
+        .position(|(_, p)| matches!(p.message, Message::DevicePower(_)))
+        .expect("the power command");
+    assert!(stop < power, "the stop went out after the command: {sent:?}");
+    assert!(rig.app.view().motor_run.is_none());
+}
