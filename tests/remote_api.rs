@@ -736,7 +736,9 @@ fn any_other_command_from_the_remote_stops_its_run_first() {
     };
     let from = rig.wire_len();
     let (p, u) = (phone.clone(), format!("{base}/api/motor/pitch"));
-    let a = during(&mut rig, move || p.post(&u, Some(json!({"direction": "up"}))));
+    let a = during(&mut rig, move || {
+        p.post(&u, Some(json!({"direction": "up"})))
+    });
     assert_eq!(a.status, 200);
     let (p, u) = (phone.clone(), format!("{base}/api/device/9/power"));
     let a = during(&mut rig, move || p.post(&u, Some(json!({"on": false}))));
@@ -751,6 +753,9 @@ fn any_other_command_from_the_remote_stops_its_run_first() {
         .iter()
         .position(|(_, p)| matches!(p.message, Message::DevicePower(_)))
         .expect("the power command");
-    assert!(stop < power, "the stop went out after the command: {sent:?}");
+    assert!(
+        stop < power,
+        "the stop went out after the command: {sent:?}"
+    );
     assert!(rig.app.view().motor_run.is_none());
 }
