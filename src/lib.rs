@@ -22,8 +22,10 @@
 //!    screens' writes), [`loads`] (the load analysis), [`backup`], [`flash`],
 //!    [`xfsp`] (the gateway onto the XFSp network) and [`settings`] (flags, environment
 //!    and config file).
-//! 6. [`ui`]: drawing, a pure function of the model, the controller and the flows.
-//! 7. [`app`]: wires the page together; [`cmd`]: one file per subcommand, each owning
+//! 6. [`remote`]: the walk-around remote, an HTTP server for a paired phone; what
+//!    it is asked goes to the page as requests, and through [`control`] from there.
+//! 7. [`ui`]: drawing, a pure function of the model, the controller and the flows.
+//! 8. [`app`]: wires the page together; [`cmd`]: one file per subcommand, each owning
 //!    its clap arguments; [`cli`]: the command line, on top, composing them, filling
 //!    them from the config file and dispatching.
 
@@ -43,6 +45,7 @@ pub mod model;
 pub mod places;
 pub mod platform;
 pub mod program;
+pub mod remote;
 pub mod settings;
 pub mod setup;
 pub mod sim;

@@ -26,6 +26,7 @@ mod options;
 mod page;
 pub mod queries;
 mod record;
+mod remote;
 mod replay;
 mod runner;
 mod setup;

@@ -129,6 +129,8 @@ pub struct App {
     pub(super) reread_asked: Option<Instant>,
     /// The installation check (`i`), its view and its results in words.
     pub(super) check: check::CheckState,
+    /// The walk-around remote, while it is on.
+    pub(super) remote: super::remote::RemoteSide,
 }
 
 impl App {
@@ -214,6 +216,7 @@ impl App {
             rereader: Rereader::default(),
             reread_asked: None,
             check: Default::default(),
+            remote: Default::default(),
         }
     }
 
@@ -350,6 +353,7 @@ impl App {
                 if outcome.action == Some(Action::InstallCheck) {
                     self.open_check_from_list(now);
                 }
+                self.remote_key(outcome.action.as_ref(), now);
             }
             TermEvent::FocusGained => {
                 self.controller.with(|c| c.on_focus_gained(now));
@@ -534,6 +538,7 @@ impl App {
         self.reread_tick(now);
         self.traffic_tick();
         self.xfsp_tick(now);
+        self.remote_tick(now);
         if self.notice_until.is_some_and(|t| now >= t) {
             self.view.notice = None;
             self.notice_until = None;
@@ -660,9 +665,11 @@ impl App {
                 return;
             }
             let deadline = self.next_deadline(now).min(until);
+            let phones = self.remote_requests();
             select! {
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
                 recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
+                recv(phones) -> r => if let Ok(r) = r { self.remote_request(r, Instant::now()) },
                 default(deadline.saturating_duration_since(now)) => {}
             }
             self.tick(Instant::now());
@@ -693,6 +700,7 @@ impl App {
             let _ = t.join();
         }
         self.xfsp_shutdown(now);
+        self.stop_remote(now);
         if let Some(link) = self.link.take() {
             // Queued packets (the stop above) are written before the link closes.
             link.shutdown();
@@ -717,6 +725,7 @@ impl App {
             }
             self.draw_if_needed(terminal, now)?;
             let deadline = self.next_deadline(Instant::now());
+            let phones = self.remote_requests();
             select! {
                 recv(input) -> ev => match ev {
                     Ok(ev) => {
@@ -741,6 +750,7 @@ impl App {
                 },
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
                 recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
+                recv(phones) -> r => if let Ok(r) = r { self.remote_request(r, Instant::now()) },
                 default(deadline.saturating_duration_since(Instant::now())) => {}
             }
             // Drain what else is waiting so a burst is one redraw.

@@ -109,6 +109,10 @@ pub enum Action {
     Setup,
     /// The installation check (`i`).
     InstallCheck,
+    /// `p`: the walk-around remote on, its overlay shown, or off.
+    Remote,
+    /// `P`: every phone paired with the remote unpaired.
+    RevokePhones,
     /// A bound key that does nothing here; the words say where it works.
     Unavailable(&'static str),
 }
@@ -149,9 +153,10 @@ pub const HELP: &[(&str, &str)] = &[
     ("R", "reset the system fault (DEVICE_CLEAR 255)"),
     ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
     ("s", "sort by pin / by name"),
-    ("t", "traffic view"),
-    ("c", "setup screens"),
+    // t and c share a line so the phone remote's fits 80×24 too.
+    ("t  c", "traffic view; c: setup screens"),
     ("i", "installation check"),
+    ("p  P", "phone remote: on / show / off; P: unpair phones"),
     ("?  Esc", "this help"),
     ("q  Ctrl-C", "quit"),
 ];
@@ -177,6 +182,8 @@ pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {
     if ctx.overlay_open {
         return match code {
             KeyCode::Char('q') => Some(Action::Quit),
+            KeyCode::Char('p') if phase == KeyPhase::Press => Some(Action::Remote),
+            KeyCode::Char('P') if phase == KeyPhase::Press => Some(Action::RevokePhones),
             KeyCode::Char('?') | KeyCode::Esc => {
                 (phase == KeyPhase::Press).then_some(Action::CloseOverlay)
             }
@@ -220,6 +227,8 @@ pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {
         KeyCode::Char('t') => Some(Action::TrafficView),
         KeyCode::Char('c') => Some(Action::Setup),
         KeyCode::Char('i') => Some(Action::InstallCheck),
+        KeyCode::Char('p') => Some(Action::Remote),
+        KeyCode::Char('P') => Some(Action::RevokePhones),
         _ => None,
     }
 }

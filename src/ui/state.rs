@@ -32,6 +32,24 @@ pub enum Overlay {
     #[default]
     None,
     Help,
+    /// The walk-around remote: its URL, QR code and pairing code.
+    Remote,
+}
+
+/// The walk-around remote while it is on, for the overlay and the title.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct RemoteView {
+    /// `http://ADDR:PORT/?pair=CODE`.
+    pub url: String,
+    pub code: String,
+    /// Phones paired now.
+    pub paired: usize,
+    /// No LAN address was found: only this laptop can reach it.
+    pub loopback_only: bool,
+    /// The URL's QR code in half blocks, with a quiet zone of 4 modules and of 2
+    /// (for a short terminal): made once per code, not at every frame
+    /// (`ui::remote::qr_rows`).
+    pub qr: [Vec<String>; 2],
 }
 
 /// The controller's own types (they live in `control::run_state`): the screens draw
@@ -51,6 +69,8 @@ pub struct ViewState {
     pub setup: crate::setup::view::SetupView,
     /// The palette the page paints in, and why (the help overlay says it).
     pub theme: super::palette::ThemeChoice,
+    /// The walk-around remote, while it is on.
+    pub remote: Option<RemoteView>,
 }
 
 impl ViewState {
