@@ -123,6 +123,12 @@ pub struct PageArgs {
     /// later. A tap runs the motor at most this long.
     #[arg(long, value_name = "MS")]
     pub repeat_delay: Option<u64>,
+
+    /// Serve the walk-around remote, the page on a phone (pair it with the code the
+    /// page shows), on ADDR:PORT; without a value, on this laptop's LAN address, port
+    /// 8750. Off by default; `p` on the page starts and stops it.
+    #[arg(long, value_name = "ADDR:PORT", num_args = 0..=1)]
+    pub remote: Option<Option<std::net::SocketAddr>>,
 }
 
 /// `--theme` takes the words the config file takes ([`values::THEMES`]); see
@@ -343,6 +349,7 @@ impl From<PageArgs> for crate::app::PageOptions {
             replay: a.replay,
             speed: a.speed,
             max_run: a.max_run,
+            remote: a.remote,
             repeat_delay: a.repeat_delay,
             theme: a.theme,
         }

@@ -40,6 +40,7 @@ pub mod model;
 pub mod places;
 pub mod platform;
 pub mod program;
+pub mod remote;
 pub mod settings;
 pub mod setup;
 pub mod sim;

@@ -42,6 +42,10 @@ const LAYERS: &[(&str, &[&str])] = &[
             "check", "setup", "loads", "backup", "flash", "xfsp", "settings",
         ],
     ),
+    (
+        "the walk-around remote's server: the model's state out, commands to the page",
+        &["remote"],
+    ),
     ("drawing", &["ui"]),
     ("wiring", &["app"]),
     ("one file per subcommand", &["cmd"]),

@@ -18,6 +18,7 @@ pub use motor_stream::LOOP_STALL;
 mod options;
 pub mod queries;
 mod record;
+mod remote;
 mod replay;
 mod setup;
 mod signals;
@@ -158,6 +159,8 @@ pub struct App {
     reread_asked: Option<Instant>,
     /// The installation check (`i`), its view and its results in words.
     check: check::CheckState,
+    /// The walk-around remote, while it is on.
+    remote: remote::RemoteSide,
 }
 
 impl App {
@@ -245,6 +248,7 @@ impl App {
             rereader: Rereader::default(),
             reread_asked: None,
             check: Default::default(),
+            remote: Default::default(),
         }
     }
 
@@ -367,6 +371,7 @@ impl App {
                 if outcome.action == Some(Action::InstallCheck) {
                     self.open_check_from_list(now);
                 }
+                self.remote_key(outcome.action.as_ref(), now);
             }
             TermEvent::FocusGained => {
                 self.controller.with(|c| c.on_focus_gained(now));
@@ -555,6 +560,7 @@ impl App {
         self.reread_tick(now);
         self.traffic_tick();
         self.xfsp_tick(now);
+        self.remote_tick();
         if self.notice_until.is_some_and(|t| now >= t) {
             self.view.notice = None;
             self.notice_until = None;
@@ -670,9 +676,11 @@ impl App {
                 return;
             }
             let deadline = self.next_deadline(now).min(until);
+            let phones = self.remote_requests();
             select! {
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
                 recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
+                recv(phones) -> r => if let Ok(r) = r { self.remote_request(r, Instant::now()) },
                 default(deadline.saturating_duration_since(now)) => {}
             }
             self.tick(Instant::now());
@@ -702,6 +710,7 @@ impl App {
             let _ = t.join();
         }
         self.xfsp_shutdown(now);
+        self.stop_remote(now);
         if let Some(link) = self.link.take() {
             // Queued packets (the stop above) are written before the link closes.
             link.shutdown();
@@ -726,6 +735,7 @@ impl App {
             }
             self.draw_if_needed(terminal, now)?;
             let deadline = self.next_deadline(Instant::now());
+            let phones = self.remote_requests();
             select! {
                 recv(input) -> ev => match ev {
                     Ok(ev) => {
@@ -750,6 +760,7 @@ impl App {
                 },
                 recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
                 recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
+                recv(phones) -> r => if let Ok(r) = r { self.remote_request(r, Instant::now()) },
                 default(deadline.saturating_duration_since(Instant::now())) => {}
             }
             // Drain what else is waiting so a burst is one redraw.
@@ -947,6 +958,9 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
     };
     if let Some((target, iface, config)) = xfsp {
         app.enable_xfsp(&target, iface, config)?;
+    }
+    if let Some(addr) = args.remote {
+        app.start_remote(addr, Instant::now())?;
     }
     app.arm_emergency_stop();
     let input = spawn_input_thread();

@@ -28,6 +28,9 @@ pub struct PageOptions {
     pub repeat_delay: Option<u64>,
     /// `--theme`: a palette, or `Auto` to ask the terminal.
     pub theme: crate::ui::palette::Requested,
+    /// `--remote [ADDR:PORT]`: serve the walk-around remote from the start (`None`
+    /// inside: the LAN address, port 8750).
+    pub remote: Option<Option<std::net::SocketAddr>>,
 }
 
 /// The XFSp bridge's settings, as typed (checked by [`super::xfsp_setup`]).

@@ -109,6 +109,10 @@ pub enum Action {
     Setup,
     /// The installation check (`i`).
     InstallCheck,
+    /// `p`: the walk-around remote on, its overlay shown, or off.
+    Remote,
+    /// `P`: every phone paired with the remote unpaired.
+    RevokePhones,
     /// A bound key that does nothing here; the words say where it works.
     Unavailable(&'static str),
 }
@@ -158,6 +162,8 @@ pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {
     if ctx.overlay_open {
         return match code {
             KeyCode::Char('q') => Some(Action::Quit),
+            KeyCode::Char('p') if phase == KeyPhase::Press => Some(Action::Remote),
+            KeyCode::Char('P') if phase == KeyPhase::Press => Some(Action::RevokePhones),
             KeyCode::Char('?') | KeyCode::Esc => {
                 (phase == KeyPhase::Press).then_some(Action::CloseOverlay)
             }
@@ -201,6 +207,8 @@ pub fn map(key: &KeyEvent, ctx: &KeyContext) -> Option<Action> {
         KeyCode::Char('t') => Some(Action::TrafficView),
         KeyCode::Char('c') => Some(Action::Setup),
         KeyCode::Char('i') => Some(Action::InstallCheck),
+        KeyCode::Char('p') => Some(Action::Remote),
+        KeyCode::Char('P') => Some(Action::RevokePhones),
         _ => None,
     }
 }

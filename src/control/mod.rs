@@ -88,7 +88,15 @@ pub struct Controller {
     /// a reset: `Y` as the next key, within [`CONFIRM_RESET_WITHIN`], sends the reset
     /// all the same.
     reset_asked: Option<(u8, Instant)>,
+    /// The remote's leased run ([`Controller::lease`]) as it was started, and one
+    /// that ended without the remote's stop: its renewals are refused until the
+    /// remote lets go.
+    remote_run: Option<(Motor, Direction)>,
+    lease_ended: Option<(Motor, Direction, StopReason)>,
 }
+
+/// The walk-around remote's lease: a run lives this long past its last renewal.
+pub const LEASE: Duration = Duration::from_millis(300);
 
 /// How long after `r` was refused a second reset may be confirmed with `Y`: long
 /// enough to read the notice, short enough that a `Y` much later is not taken for it.
@@ -112,6 +120,8 @@ impl Controller {
             hidden: false,
             unfocused: false,
             reset_asked: None,
+            remote_run: None,
+            lease_ended: None,
         }
     }
 
@@ -561,6 +571,95 @@ impl Controller {
             });
         }
         Ok(out)
+    }
+
+    /// The walk-around remote's hold-to-run: starts `motor` `direction` with a
+    /// [`LEASE`], or renews the lease of the run it started
+    /// ([`MotorStreamer::lease`]). A new run is permitted as the installation
+    /// check's are (the model's checks, the endpoints, a motor seen moving against
+    /// its command), but not refused for a page nobody sees: the person is at the
+    /// wingtip watching the motor itself. A run that ended for any reason but the
+    /// remote's own stop is not restarted by renewals: they are refused, with the
+    /// reason, until the remote lets go ([`Controller::lease_stop`]) or asks for
+    /// another motor or direction. Returns what to send, and the refusal if any.
+    pub fn lease(
+        &mut self,
+        model: &Model,
+        motor: Motor,
+        direction: Direction,
+        now: Instant,
+    ) -> (Vec<Packet>, Result<(), Refusal>) {
+        let key = (motor, direction);
+        let mut out = self.check_model(model, now);
+        out.extend(self.streamer.tick(now));
+        if let Some(k) = self.remote_run
+            && !(self.streamer.leased() && self.streamer.running_key() == Some(k))
+        {
+            self.remote_run = None;
+            let reason = self
+                .streamer
+                .last_stop()
+                .map_or(StopReason::LeaseExpired, |s| s.reason);
+            self.lease_ended = Some((k.0, k.1, reason));
+        }
+        if let Some((m, d, reason)) = self.lease_ended {
+            if (m, d) == key {
+                return (
+                    out,
+                    Err(Refusal(format!(
+                        "{} stopped: {}; let go and press again",
+                        motor.name(),
+                        reason.describe()
+                    ))),
+                );
+            }
+            self.lease_ended = None;
+        }
+        if self.remote_run == Some(key) {
+            out.extend(self.streamer.lease(now, motor, direction, LEASE));
+            return (out, Ok(()));
+        }
+        let permit = match &self.motors_refused {
+            Some(why) => Err(Refusal(why.clone())),
+            None => motor_permit(model, motor, direction, now),
+        }
+        .and_then(|()| match self.against.refusal(motor) {
+            Some(why) => Err(Refusal(why)),
+            None => Ok(()),
+        })
+        .and_then(|()| {
+            endpoints::permit_moving(model, motor, direction, None, now).map_err(Refusal)
+        });
+        if let Err(why) = permit {
+            return (out, Err(why));
+        }
+        out.extend(self.streamer.lease(now, motor, direction, LEASE));
+        if self.streamer.running_key() == Some(key) {
+            self.watch = Some(endpoints::Watch::new(motor, direction));
+            self.probe = None;
+            self.remote_run = Some(key);
+            (out, Ok(()))
+        } else {
+            (out, Err(Refusal(format!("{} did not start", motor.name()))))
+        }
+    }
+
+    /// The remote let go (or sent another command): its leased run, if one is
+    /// going, ends with its stop; its renewals may start a run again.
+    pub fn lease_stop(&mut self, now: Instant, reason: StopReason) -> Vec<Packet> {
+        self.lease_ended = None;
+        match self.remote_run.take() {
+            Some(k) if self.streamer.leased() && self.streamer.running_key() == Some(k) => {
+                self.stop(now, reason)
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    /// The remote's leased run going on, if one is.
+    pub fn remote_running(&self) -> Option<(Motor, Direction)> {
+        self.remote_run
+            .filter(|k| self.streamer.leased() && self.streamer.running_key() == Some(*k))
     }
 
     pub fn on_link_error(&mut self, now: Instant) -> Vec<Packet> {

@@ -132,6 +132,11 @@ pub enum StopReason {
     Panic,
     /// A timed run ([`MotorStreamer::run_for`]) reached its end.
     RunDone,
+    /// A leased run ([`MotorStreamer::lease`], the walk-around remote's hold-to-run)
+    /// was not renewed in time: the finger left the button, or the phone went quiet.
+    LeaseExpired,
+    /// The remote asked for its run to stop (`{"stop":true}`: the finger let go).
+    RemoteStop,
     /// A fault elsewhere on the unit (another circuit, or FAULT_STATUS's system
     /// fault) ended the installation check the run was part of.
     UnitFault,
@@ -167,6 +172,8 @@ impl StopReason {
             StopReason::PageStalled => "the page stopped responding".into(),
             StopReason::Panic => "the program failed".into(),
             StopReason::RunDone => "the timed run ended".into(),
+            StopReason::LeaseExpired => "the remote stopped renewing its run".into(),
+            StopReason::RemoteStop => "released on the remote".into(),
             StopReason::UnitFault => "a fault elsewhere on the unit".into(),
             StopReason::AtEndpoint(end) => format!("at its endpoint (position {end})"),
             StopReason::PositionStale => format!(
@@ -186,7 +193,10 @@ impl StopReason {
     pub fn is_normal(self) -> bool {
         matches!(
             self,
-            StopReason::Released | StopReason::RepeatsStopped | StopReason::RunDone
+            StopReason::Released
+                | StopReason::RepeatsStopped
+                | StopReason::RunDone
+                | StopReason::RemoteStop
         )
     }
 }
@@ -337,6 +347,9 @@ struct Run {
     /// A timed run ([`MotorStreamer::run_for`]): it ends here, and no key keeps it
     /// alive or ends it early but as any key does (another key, release).
     until: Option<Instant>,
+    /// A leased run ([`MotorStreamer::lease`]): `until` is its lease, renewed by
+    /// each call, and its end is [`StopReason::LeaseExpired`].
+    leased: bool,
     /// A probe ([`MotorStreamer::probe`]): the motor is stopped on the wire here,
     /// the run (and its key) going on.
     probe_until: Option<Instant>,
@@ -486,11 +499,48 @@ impl MotorStreamer {
             started: now,
             last_sent: now,
             until: Some(now + length.min(self.config.max_run)),
+            leased: false,
             probe_until: None,
             paused: None,
         });
         out.push(self.move_packet(key, true));
         out
+    }
+
+    /// Hold-to-run by lease, the walk-around remote's release mode: the first call
+    /// starts `motor` `direction` with a lease of `lease`; each later call for the
+    /// same motor and direction while it runs renews the lease from `now` (never
+    /// past the run cap). A lease not renewed in time ends the run with its stop
+    /// ([`StopReason::LeaseExpired`]), on this caller's clock like every other end;
+    /// every other end of a run (another key, quit, a fault, an endpoint…) ends it
+    /// too. A call for another motor or direction stops the run going on first.
+    /// Returns what to send; a renewal sends nothing (the resend is on its clock).
+    pub fn lease(
+        &mut self,
+        now: Instant,
+        motor: Motor,
+        direction: Direction,
+        lease: Duration,
+    ) -> Vec<Packet> {
+        let out = self.expire(now);
+        if let Some(run) = self.run.as_mut()
+            && run.leased
+            && run.key == (motor, direction)
+        {
+            run.until = Some((now + lease).min(run.started + self.config.max_run));
+            return out;
+        }
+        let mut out = out;
+        out.extend(self.run_for(now, motor, direction, lease));
+        if let Some(run) = self.run.as_mut() {
+            run.leased = true;
+        }
+        out
+    }
+
+    /// Whether the run going on is a leased one ([`MotorStreamer::lease`]).
+    pub fn leased(&self) -> bool {
+        self.run.is_some_and(|r| r.leased)
     }
 
     /// Makes the run going on a probe: its motor runs only until `now + length`,
@@ -698,6 +748,7 @@ impl MotorStreamer {
                     started: now,
                     last_sent: now,
                     until: None,
+                    leased: false,
                     probe_until: None,
                     paused: None,
                 });
@@ -784,7 +835,11 @@ impl MotorStreamer {
             } else if now >= run.started + self.config.max_run {
                 Some(StopReason::MaxRunTime)
             } else if run.until.is_some_and(|u| now >= u) {
-                Some(StopReason::RunDone)
+                Some(if run.leased {
+                    StopReason::LeaseExpired
+                } else {
+                    StopReason::RunDone
+                })
             } else if self.dead_man_deadline().is_some_and(|d| now >= d) {
                 Some(StopReason::RepeatsStopped)
             } else {

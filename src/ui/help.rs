@@ -24,9 +24,10 @@ pub const KEYS: &[(&str, &str)] = &[
     ("R", "reset the system fault (DEVICE_CLEAR 255)"),
     ("w", "wig-wag steady / auto (WIG_WAG_MODE)"),
     ("s", "sort by pin / by name"),
-    ("t", "traffic view"),
-    ("c", "setup screens"),
+    // t and c share a line so the phone remote's fits 80×24 too.
+    ("t  c", "traffic view; c: setup screens"),
     ("i", "installation check"),
+    ("p  P", "phone remote: on / show / off; P: unpair phones"),
     ("?  Esc", "this help"),
     ("q  Ctrl-C", "quit"),
 ];

@@ -16,6 +16,7 @@ pub mod osc11;
 pub mod palette;
 pub mod panel;
 pub mod plot;
+pub mod remote;
 pub mod setup;
 pub mod state;
 pub mod switches;
@@ -98,6 +99,9 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     ])
     .areas(area);
     title_bar::render(frame, title, model, now);
+    if let Some(r) = &view.remote {
+        remote::render_title(frame, title, r);
+    }
     if let Some(b) = &banner {
         comm_banner::render(frame, banner_area, b);
     }
@@ -160,5 +164,10 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
     if view.overlay == Overlay::Help {
         let replay = matches!(model.source, crate::model::Source::Replay { .. });
         help::render(frame, view, replay);
+    }
+    if view.overlay == Overlay::Remote
+        && let Some(r) = &view.remote
+    {
+        remote::render(frame, r);
     }
 }

@@ -29,6 +29,20 @@ pub enum Overlay {
     #[default]
     None,
     Help,
+    /// The walk-around remote: its URL, QR code and pairing code.
+    Remote,
+}
+
+/// The walk-around remote while it is on, for the overlay and the title.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct RemoteView {
+    /// `http://ADDR:PORT/?pair=CODE`.
+    pub url: String,
+    pub code: String,
+    /// Phones paired now.
+    pub paired: usize,
+    /// No LAN address was found: only this laptop can reach it.
+    pub loopback_only: bool,
 }
 
 /// The controller's own state, drawn from here.
@@ -51,4 +65,6 @@ pub struct ViewState {
     pub setup: super::setup::state::SetupView,
     /// The palette the page paints in, and why (the help overlay says it).
     pub theme: super::palette::ThemeChoice,
+    /// The walk-around remote, while it is on.
+    pub remote: Option<RemoteView>,
 }

@@ -1,0 +1,381 @@
+//! The HTTP side: axum routes on a current-thread tokio runtime, on a thread of its
+//! own. It reads the model for the state and hands every command to the page as a
+//! [`Request`], whose answer it waits for: the page carries it out through `control`
+//! (nothing here sends anything to the unit).
+//!
+//! Before any route: a foreign `Origin` gets 403, then every `/api/*` route but
+//! `/api/pair` without a valid session gets 401, so nothing reaches a handler, let
+//! alone the page, without a paired phone.
+
+use std::convert::Infallible;
+use std::net::SocketAddr;
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::{Duration, Instant};
+
+use axum::Json;
+use axum::Router;
+use axum::extract::{Path, Request as HttpRequest, State as Ctx};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
+use axum::middleware::{self, Next};
+use axum::response::sse::{Event, Sse};
+use axum::response::{Html, IntoResponse, Response};
+use axum::routing::{get, post};
+use crossbeam_channel::Sender;
+use serde::Deserialize;
+use serde_json::json;
+use tokio::sync::{Notify, oneshot};
+
+use super::pairing::{PairResult, Pairing};
+use super::state::{self, PageSide};
+use super::{Command, Reply, Request};
+use crate::control::Direction;
+use crate::model::{Model, Motor, TrimKind};
+
+/// The phone page, compiled in.
+const INDEX: &str = include_str!("../../assets/remote/index.html");
+/// The session cookie's name.
+pub const COOKIE: &str = "vpx_session";
+/// The longest the events stream goes without sending the state: the phone's sign
+/// that the page is alive.
+pub const HEARTBEAT: Duration = Duration::from_millis(1000);
+/// How long a command waits for the page to answer before the phone hears 503.
+const PAGE_ANSWER: Duration = Duration::from_secs(2);
+
+/// What the server and the page share.
+pub struct Shared {
+    pub(super) pairing: Mutex<Pairing>,
+    pub(super) page: Mutex<PageSide>,
+    /// The state last served and its number: `seq` counts changes.
+    published: Mutex<(u64, Option<String>)>,
+    /// Poked by the page when the model or its side changed.
+    pub(super) changed: Notify,
+}
+
+impl Shared {
+    pub(super) fn new(pairing: Pairing) -> Shared {
+        Shared {
+            pairing: Mutex::new(pairing),
+            page: Mutex::new(PageSide::default()),
+            published: Mutex::new((0, None)),
+            changed: Notify::new(),
+        }
+    }
+
+    pub(super) fn pairing(&self) -> MutexGuard<'_, Pairing> {
+        self.pairing.lock().unwrap_or_else(|p| p.into_inner())
+    }
+}
+
+#[derive(Clone)]
+struct Server {
+    shared: Arc<Shared>,
+    model: Arc<Mutex<Model>>,
+    requests: Sender<Request>,
+    /// `http://ADDR:PORT`, the only Origin taken.
+    origin: String,
+}
+
+pub(super) fn router(
+    shared: Arc<Shared>,
+    model: Arc<Mutex<Model>>,
+    requests: Sender<Request>,
+    bound: SocketAddr,
+) -> Router {
+    let server = Server {
+        shared,
+        model,
+        requests,
+        origin: format!("http://{bound}"),
+    };
+    Router::new()
+        .route("/", get(index))
+        .route("/api/pair", post(pair))
+        .route("/api/state", get(state_now))
+        .route("/api/events", get(events))
+        .route("/api/device/{id}/power", post(power))
+        .route("/api/device/{id}/clear", post(clear))
+        .route("/api/motor/{motor}", post(motor))
+        .route("/api/check/answer", post(check_answer))
+        .route("/api/logout", post(logout))
+        .fallback(not_found)
+        .layer(middleware::from_fn_with_state(server.clone(), gate))
+        .with_state(server)
+}
+
+fn error(status: StatusCode, words: &str) -> Response {
+    (status, Json(json!({ "error": words }))).into_response()
+}
+
+fn refused(words: String) -> Response {
+    (StatusCode::CONFLICT, Json(json!({ "refused": words }))).into_response()
+}
+
+/// The session token in the request's cookie, if any.
+fn session_of(headers: &HeaderMap) -> Option<String> {
+    headers
+        .get_all(header::COOKIE)
+        .iter()
+        .filter_map(|v| v.to_str().ok())
+        .flat_map(|v| v.split(';'))
+        .filter_map(|kv| kv.trim().split_once('='))
+        .find(|(k, _)| *k == COOKIE)
+        .map(|(_, v)| v.to_string())
+}
+
+/// Origin first (403), then the session (401) for every `/api/*` but the pairing.
+async fn gate(Ctx(s): Ctx<Server>, req: HttpRequest, next: Next) -> Response {
+    if let Some(origin) = req.headers().get(header::ORIGIN)
+        && origin.as_bytes() != s.origin.as_bytes()
+    {
+        return error(StatusCode::FORBIDDEN, "origin");
+    }
+    let path = req.uri().path();
+    if path.starts_with("/api/") && path != "/api/pair" {
+        let paired = session_of(req.headers()).is_some_and(|t| s.shared.pairing().is_session(&t));
+        if !paired {
+            return error(StatusCode::UNAUTHORIZED, "not paired");
+        }
+    }
+    let mut resp = next.run(req).await;
+    // Nothing here may be cached: a state is only true when it is fetched.
+    resp.headers_mut()
+        .insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
+    resp
+}
+
+async fn not_found() -> Response {
+    error(StatusCode::NOT_FOUND, "no such route")
+}
+
+async fn index() -> Html<&'static str> {
+    Html(INDEX)
+}
+
+#[derive(Deserialize)]
+struct PairBody {
+    code: String,
+}
+
+async fn pair(Ctx(s): Ctx<Server>, body: Option<Json<PairBody>>) -> Response {
+    let Some(Json(body)) = body else {
+        return error(StatusCode::BAD_REQUEST, "send {\"code\":\"123456\"}");
+    };
+    let result = s.shared.pairing().pair(&body.code, Instant::now());
+    // The title's count and the overlay's code changed.
+    s.shared.changed.notify_waiters();
+    match result {
+        PairResult::Paired(token) => {
+            let cookie = format!("{COOKIE}={token}; HttpOnly; SameSite=Strict; Path=/");
+            let mut resp = Json(json!({ "paired": true })).into_response();
+            if let Ok(v) = HeaderValue::from_str(&cookie) {
+                resp.headers_mut().insert(header::SET_COOKIE, v);
+            }
+            resp
+        }
+        PairResult::Wrong => error(StatusCode::UNAUTHORIZED, "wrong code"),
+        PairResult::Locked(secs) => (
+            StatusCode::TOO_MANY_REQUESTS,
+            [(header::RETRY_AFTER, secs.to_string())],
+            Json(json!({ "error": "locked", "retry_after_s": secs })),
+        )
+            .into_response(),
+    }
+}
+
+impl Server {
+    /// The state now, as JSON, numbered: `seq` moves on when anything else changed.
+    fn state_json(&self) -> String {
+        let page = self
+            .shared
+            .page
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .clone();
+        let mut st = {
+            let model = self.model.lock().unwrap_or_else(|p| p.into_inner());
+            state::build(&model, &page, Instant::now())
+        };
+        let body = serde_json::to_string(&st).unwrap_or_default();
+        let mut published = self
+            .shared
+            .published
+            .lock()
+            .unwrap_or_else(|p| p.into_inner());
+        if published.1.as_deref() != Some(body.as_str()) {
+            published.0 += 1;
+            published.1 = Some(body);
+        }
+        st.seq = published.0;
+        serde_json::to_string(&st).unwrap_or_default()
+    }
+
+    /// Hands `command` to the page and waits for its answer.
+    async fn ask(&self, command: Command) -> Result<Reply, Response> {
+        let (tx, rx) = oneshot::channel();
+        if self.requests.send(Request { command, reply: tx }).is_err() {
+            return Err(error(
+                StatusCode::SERVICE_UNAVAILABLE,
+                "the page is closing",
+            ));
+        }
+        match tokio::time::timeout(PAGE_ANSWER, rx).await {
+            Ok(Ok(r)) => Ok(r),
+            _ => Err(error(
+                StatusCode::SERVICE_UNAVAILABLE,
+                "the page did not answer",
+            )),
+        }
+    }
+
+    async fn command(&self, command: Command) -> Response {
+        match self.ask(command).await {
+            Ok(reply) => reply.into_response(),
+            Err(resp) => resp,
+        }
+    }
+}
+
+impl IntoResponse for Reply {
+    fn into_response(self) -> Response {
+        match self {
+            Reply::Sent(words) => Json(json!({ "sent": words })).into_response(),
+            Reply::Refused(words) => refused(words),
+            Reply::NoDevice(id) => error(StatusCode::NOT_FOUND, &format!("no device {id}")),
+            Reply::Leased(ms) => Json(json!({ "lease_ms": ms })).into_response(),
+            Reply::Stopped => Json(json!({ "stopped": true })).into_response(),
+            Reply::Answered => Json(json!({ "answered": true })).into_response(),
+        }
+    }
+}
+
+async fn state_now(Ctx(s): Ctx<Server>) -> Response {
+    ([(header::CONTENT_TYPE, "application/json")], s.state_json()).into_response()
+}
+
+/// The state at once, then on every change and at least every [`HEARTBEAT`]; ends
+/// when the session does (logout, revoke).
+async fn events(Ctx(s): Ctx<Server>, headers: HeaderMap) -> Response {
+    let token = session_of(&headers).unwrap_or_default();
+    let stream = futures_util::stream::unfold(
+        (s, token, None::<String>, None::<tokio::time::Instant>),
+        |(s, token, last, sent_at)| async move {
+            loop {
+                if !s.shared.pairing().is_session(&token) {
+                    return None;
+                }
+                if let Some(at) = sent_at {
+                    let changed = s.shared.changed.notified();
+                    // Woken by a change, or the heartbeat falls due.
+                    let _ = tokio::time::timeout_at(at + HEARTBEAT, changed).await;
+                }
+                let json = s.state_json();
+                let due = sent_at.is_none_or(|at| at.elapsed() >= HEARTBEAT);
+                if due || last.as_deref() != Some(json.as_str()) {
+                    let event: Result<Event, Infallible> =
+                        Ok(Event::default().event("state").data(json.clone()));
+                    return Some((
+                        event,
+                        (s, token, Some(json), Some(tokio::time::Instant::now())),
+                    ));
+                }
+            }
+        },
+    );
+    Sse::new(stream).into_response()
+}
+
+#[derive(Deserialize)]
+struct PowerBody {
+    on: bool,
+}
+
+async fn power(
+    Ctx(s): Ctx<Server>,
+    Path(id): Path<String>,
+    body: Option<Json<PowerBody>>,
+) -> Response {
+    let Ok(id) = id.parse::<u8>() else {
+        return error(StatusCode::NOT_FOUND, &format!("no device {id}"));
+    };
+    let Some(Json(body)) = body else {
+        return error(
+            StatusCode::BAD_REQUEST,
+            "send {\"on\":true} or {\"on\":false}",
+        );
+    };
+    s.command(Command::Power { id, on: body.on }).await
+}
+
+async fn clear(Ctx(s): Ctx<Server>, Path(id): Path<String>) -> Response {
+    let Ok(id) = id.parse::<u8>() else {
+        return error(StatusCode::NOT_FOUND, &format!("no device {id}"));
+    };
+    s.command(Command::Clear { id }).await
+}
+
+#[derive(Deserialize)]
+struct MotorBody {
+    direction: Option<String>,
+    #[serde(default)]
+    stop: bool,
+}
+
+async fn motor(
+    Ctx(s): Ctx<Server>,
+    Path(name): Path<String>,
+    body: Option<Json<MotorBody>>,
+) -> Response {
+    let motor = match name.as_str() {
+        "flaps" => Motor::Flaps,
+        "pitch" => Motor::Trim(TrimKind::Pitch),
+        "roll" => Motor::Trim(TrimKind::Roll),
+        _ => return error(StatusCode::NOT_FOUND, &format!("no motor {name}")),
+    };
+    let Some(Json(body)) = body else {
+        return error(
+            StatusCode::BAD_REQUEST,
+            "send {\"direction\":\"up\"} (down, left, right) or {\"stop\":true}",
+        );
+    };
+    if body.stop {
+        return s.command(Command::MotorStop).await;
+    }
+    let direction = match body.direction.as_deref() {
+        Some("up") => Direction::Up,
+        Some("down") => Direction::Down,
+        Some("left") => Direction::Left,
+        Some("right") => Direction::Right,
+        _ => {
+            return error(
+                StatusCode::BAD_REQUEST,
+                "direction is one of up, down, left, right",
+            );
+        }
+    };
+    s.command(Command::Motor { motor, direction }).await
+}
+
+#[derive(Deserialize)]
+struct AnswerBody {
+    answer: String,
+}
+
+async fn check_answer(Ctx(s): Ctx<Server>, body: Option<Json<AnswerBody>>) -> Response {
+    let Some(Json(body)) = body else {
+        return error(StatusCode::BAD_REQUEST, "send {\"answer\":\"go_on\"}");
+    };
+    s.command(Command::CheckAnswer(body.answer)).await
+}
+
+async fn logout(Ctx(s): Ctx<Server>, headers: HeaderMap) -> Response {
+    if let Some(t) = session_of(&headers) {
+        s.shared.pairing().end(&t);
+    }
+    s.shared.changed.notify_waiters();
+    let mut resp = Json(json!({ "paired": false })).into_response();
+    let gone = format!("{COOKIE}=; HttpOnly; SameSite=Strict; Path=/; Max-Age=0");
+    if let Ok(v) = HeaderValue::from_str(&gone) {
+        resp.headers_mut().insert(header::SET_COOKIE, v);
+    }
+    resp
+}
