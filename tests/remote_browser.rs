@@ -1,0 +1,643 @@
+//! The walk-around remote's phone page in a real browser (issue 25): headless Chromium
+//! at a phone's 390×844, driven through WebDriver (`webdriver`), against the real page
+//! binary (`vpx-efis --port … --remote 127.0.0.1:PORT` in a real terminal) wired to the
+//! virtual VP-X as its own process (`vpx-efis sim --pty`), through a tap that records
+//! every byte the page puts on the wire.
+//!
+//! Without chromedriver these skip with a message; with `CI` set they fail instead.
+//! They measure real time, so they take turns (a lock) rather than compete for a
+//! loaded machine's cores. The page in a terminal needs a pseudo-terminal: Unix only.
+#![cfg(unix)]
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::process::{ChildStdin, Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+use serde_json::json;
+use serialport::SerialPort;
+use vpx_efis::protocol::message::{DevicePower, Message, TrimMove};
+use vpx_efis::protocol::{Decoder, Event as DecEvent, Packet};
+
+mod common;
+use common::sim_process::Kill;
+
+mod webdriver;
+use webdriver::{Browser, free_port};
+
+// The page in a real terminal, as the keys' end-to-end tests run it.
+#[path = "page_rig/terminal.rs"]
+#[allow(dead_code)]
+mod terminal;
+use terminal::Term;
+
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
+/// A small aircraft, quiet (nothing on its timeline), with lights to switch and a
+/// pitch trim wired right.
+const SCENARIO: &str = r#"
+description = "remote_browser: lights, a pump, flaps and pitch trim, nothing scheduled"
+[electrical]
+battery_volts = 12.6
+temperature_c = 20
+[[device]]
+id = 2
+name = "EFIS"
+breaker = 5
+switch = 11
+load = 2.8
+[[device]]
+id = 4
+name = "Nav Lt"
+breaker = 3
+switch = 2
+load = 1.4
+[[device]]
+id = 5
+name = "Strobe Lt"
+breaker = 5
+switch = 2
+load = 2.1
+[[device]]
+id = 17
+name = "Landing Lt"
+breaker = 10
+switch = 5
+load = 6.5
+[[device]]
+id = 19
+name = "Boost Pump"
+breaker = 7
+switch = 7
+load = 4.2
+[flap]
+mode = "momentary"
+up = 20
+down = 220
+midpoint_1 = 90
+midpoint_2 = 160
+breaker = 7
+position = 120
+[pitch_trim]
+up = 30
+down = 220
+neutral = 125
+position = 125
+"#;
+
+/// Wall-clock milliseconds, the clock the browser's `Date.now()` reads.
+fn wall_ms(t: SystemTime) -> f64 {
+    t.duration_since(UNIX_EPOCH).unwrap().as_secs_f64() * 1000.0
+}
+
+type Wire = Arc<Mutex<Vec<(SystemTime, Vec<u8>)>>>;
+
+/// The sim's pty on one side, a fresh pty whose slave the page opens on the other, and
+/// a record of what the page sends.
+struct Tap {
+    stop: Arc<AtomicBool>,
+    wire: Wire,
+    slave_path: String,
+    threads: Vec<std::thread::JoinHandle<()>>,
+}
+
+impl Tap {
+    fn start(sim_path: &str) -> Tap {
+        let mut sim_in = serialport::new(sim_path, 57_600)
+            .timeout(Duration::from_millis(20))
+            .open_native()
+            .expect("open the sim's pty");
+        let mut sim_out = sim_in.try_clone_native().expect("clone the sim's pty");
+        let pty = vpx_efis::link::open_pty_pair().expect("a pty for the page");
+        let mut page_in = pty.master.try_clone_native().expect("clone master");
+        let mut page_out = pty.master;
+        page_in.set_timeout(Duration::from_millis(20)).unwrap();
+        let stop = Arc::new(AtomicBool::new(false));
+        let wire: Wire = Arc::default();
+        let (s, w) = (stop.clone(), wire.clone());
+        let slave = pty.slave;
+        let up = std::thread::spawn(move || {
+            let _keep_slave_open = slave;
+            let mut buf = [0u8; 512];
+            while !s.load(Ordering::SeqCst) {
+                if let Ok(n) = page_in.read(&mut buf)
+                    && n > 0
+                {
+                    w.lock()
+                        .unwrap()
+                        .push((SystemTime::now(), buf[..n].to_vec()));
+                    let _ = sim_out.write_all(&buf[..n]);
+                }
+            }
+        });
+        let s = stop.clone();
+        let down = std::thread::spawn(move || {
+            let mut buf = [0u8; 512];
+            while !s.load(Ordering::SeqCst) {
+                if let Ok(n) = sim_in.read(&mut buf)
+                    && n > 0
+                {
+                    let _ = page_out.write_all(&buf[..n]);
+                }
+            }
+        });
+        Tap {
+            stop,
+            wire,
+            slave_path: pty.path,
+            threads: vec![up, down],
+        }
+    }
+
+    /// Every message the page sent, with when it reached the wire.
+    fn sent(&self) -> Vec<(SystemTime, Message)> {
+        let wire = self.wire.lock().unwrap();
+        let mut dec = Decoder::new();
+        let mut out = Vec::new();
+        for (at, bytes) in wire.iter() {
+            dec.push(bytes, |e| {
+                if let DecEvent::Frame(f) = e
+                    && let Ok(p) = Packet::parse(&f)
+                {
+                    out.push((*at, p.message));
+                }
+            });
+        }
+        out
+    }
+
+    fn trim_moves(&self) -> Vec<(SystemTime, TrimMove)> {
+        (self.sent().into_iter())
+            .filter_map(|(at, m)| match m {
+                Message::TrimMove(t) => Some((at, t)),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+impl Drop for Tap {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::SeqCst);
+        for t in self.threads.drain(..) {
+            let _ = t.join();
+        }
+    }
+}
+
+/// The virtual VP-X, the tap, the page with the remote on, and the browser.
+struct Hangar {
+    browser: Browser,
+    tap: Tap,
+    term: Term,
+    sim_console: ChildStdin,
+    base: String,
+    // Dropped last: the page before the sim, as a mechanic quits.
+    _page: Kill,
+    _sim: Kill,
+    _dir: tempfile::TempDir,
+}
+
+impl Hangar {
+    /// `None` (skipped, with a message) when there is no chromedriver and CI is unset.
+    fn open() -> Option<Hangar> {
+        let browser = Browser::start()?;
+        let dir = tempfile::tempdir().unwrap();
+        let scenario = dir.path().join("remote.toml");
+        std::fs::write(&scenario, SCENARIO).unwrap();
+        let mut sim = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+            .args(["sim", "--pty", "--scenario"])
+            .arg(&scenario)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("run vpx-efis sim");
+        let sim_console = sim.stdin.take().unwrap();
+        let mut out = BufReader::new(sim.stdout.take().unwrap());
+        let sim = Kill(sim);
+        let mut path = String::new();
+        out.read_line(&mut path).unwrap();
+        // Keep reading what the sim says, so that it never blocks on a full pipe.
+        std::thread::spawn(move || for _ in out.lines() {});
+        let tap = Tap::start(path.trim());
+        let link = dir.path().join("vpx-serial");
+        std::os::unix::fs::symlink(&tap.slave_path, &link).unwrap();
+        let port = free_port();
+        let remote = format!("127.0.0.1:{port}");
+        let (term, slave) = Term::open();
+        let page = Kill(terminal::page(
+            &["--port", link.to_str().unwrap(), "--remote", &remote],
+            slave,
+        ));
+        Some(Hangar {
+            browser,
+            tap,
+            term,
+            sim_console,
+            base: format!("http://{remote}"),
+            _page: page,
+            _sim: sim,
+            _dir: dir,
+        })
+    }
+
+    /// The pairing URL the page shows now, read from the terminal.
+    fn pairing_url(&self) -> String {
+        let start = Instant::now();
+        let needle = format!("{}/?pair=", self.base);
+        loop {
+            let screen = String::from_utf8_lossy(&self.term.output()).into_owned();
+            if let Some(at) = screen.rfind(&needle) {
+                let code: String = screen[at + needle.len()..]
+                    .chars()
+                    .take_while(char::is_ascii_digit)
+                    .collect();
+                if code.len() == 6 {
+                    return format!("{needle}{code}");
+                }
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(10),
+                "the page showed no pairing URL {needle}NNNNNN"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    fn console(&mut self, line: &str) {
+        writeln!(self.sim_console, "{line}").unwrap();
+        self.sim_console.flush().unwrap();
+    }
+
+    /// Opens the pairing URL as a phone that scanned the QR code does, and waits until
+    /// the list is live.
+    fn pair(&self) {
+        let url = self.pairing_url();
+        self.browser.goto(&url);
+        self.wait_live();
+    }
+
+    fn wait_live(&self) {
+        self.browser.wait_for(
+            "the device list, live",
+            "return document.getElementById('conn').textContent === 'live' \
+             && document.querySelectorAll('#devices .device').length > 0",
+            Duration::from_secs(15),
+        );
+    }
+
+    /// The state word a device's row shows (ON, OFF, FAULT: …, UNKNOWN, —).
+    fn row_state(&self, name: &str) -> String {
+        self.browser
+            .exec(
+                "for (const r of document.querySelectorAll('#devices .device')) \
+                 if (r.querySelector('.name').textContent === arguments[0]) \
+                 return r.querySelector('.state').textContent; return null;",
+                json!([name]),
+            )
+            .as_str()
+            .unwrap_or("<no such row>")
+            .to_string()
+    }
+
+    fn wait_row_state(&self, name: &str, want: &str, limit: Duration) -> Instant {
+        let start = Instant::now();
+        loop {
+            let got = self.row_state(name);
+            if got == want {
+                return Instant::now();
+            }
+            assert!(
+                start.elapsed() < limit,
+                "{name} shows {got:?}, not {want:?}, after {limit:?}; the phone shows:\n{}",
+                self.browser.text("body")
+            );
+            std::thread::sleep(Duration::from_millis(25));
+        }
+    }
+
+    /// Records, in the page, when the next pointer events happen (`Date.now()`).
+    fn watch_pointer(&self) {
+        self.browser.exec(
+            "window.__seen = []; for (const t of ['pointerdown', 'pointerup', \
+             'visibilitychange', 'blur']) { (t === 'blur' ? window : document)\
+             .addEventListener(t, () => window.__seen.push([t, Date.now(), \
+             document.visibilityState]), true); }",
+            json!([]),
+        );
+    }
+
+    fn seen(&self, what: &str) -> Option<f64> {
+        let v = self.browser.exec(
+            "const e = (window.__seen || []).find((e) => e[0] === arguments[0]); \
+             return e ? e[1] : null;",
+            json!([what]),
+        );
+        v.as_f64()
+    }
+}
+
+fn trim_on(moves: &[(SystemTime, TrimMove)]) -> Vec<SystemTime> {
+    moves
+        .iter()
+        .filter(|(_, m)| m.on)
+        .map(|(t, _)| *t)
+        .collect()
+}
+
+/// The stops after the run began (the page also sends one when it connects).
+fn trim_off(moves: &[(SystemTime, TrimMove)]) -> Vec<SystemTime> {
+    let Some(began) = trim_on(moves).first().copied() else {
+        return Vec::new();
+    };
+    (moves.iter())
+        .filter(|(t, m)| !m.on && *t > began)
+        .map(|(t, _)| *t)
+        .collect()
+}
+
+/// Opening the URL (as a phone does from the QR code) pairs, takes the code out of the
+/// address bar, and shows the list; a switch worked in the cockpit (the sim's console)
+/// shows on the phone within a second or two.
+#[test]
+fn opening_the_url_pairs_and_the_list_is_live() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    let url = h.browser.url();
+    assert!(
+        !url.contains("pair="),
+        "the code left in the address bar: {url}"
+    );
+    h.wait_row_state("Nav Lt", "OFF", Duration::from_secs(5));
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(1));
+    let volts = h.browser.text("#bus-volts");
+    assert!(
+        volts.ends_with(" V") && volts != "— V",
+        "bus volts {volts:?}"
+    );
+    h.console("switch 2 on");
+    h.wait_row_state("Nav Lt", "ON", Duration::from_secs(4));
+    h.wait_row_state("Strobe Lt", "ON", Duration::from_secs(1));
+    h.console("switch 2 off");
+    h.wait_row_state("Nav Lt", "OFF", Duration::from_secs(4));
+}
+
+/// Without a code in the URL the phone asks for it: a wrong one is refused in words,
+/// the right one (typed as the page shows it, "482 913") pairs.
+#[test]
+fn typing_the_code_pairs() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    let url = h.pairing_url();
+    let code = &url[url.len() - 6..];
+    h.browser.goto(&h.base);
+    h.browser.wait_for(
+        "the pairing form",
+        "return !document.getElementById('pairing').classList.contains('hidden')",
+        Duration::from_secs(5),
+    );
+    let wrong = if code == "000000" { "111111" } else { "000000" };
+    h.browser.type_into("#pair-code", wrong);
+    h.browser.click("#pair-button");
+    h.browser.wait_for(
+        "the refusal",
+        "return document.getElementById('pair-msg').textContent.startsWith('Wrong code')",
+        Duration::from_secs(5),
+    );
+    assert!(
+        !h.browser.text("#pairing").is_empty(),
+        "still asks for a code"
+    );
+    h.browser
+        .exec("document.getElementById('pair-code').value = ''", json!([]));
+    h.browser
+        .type_into("#pair-code", &format!("{} {}", &code[..3], &code[3..]));
+    h.browser.click("#pair-button");
+    h.wait_live();
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+}
+
+/// A tap on "Turn ON" puts DEVICE_POWER on the wire and the phone shows the circuit on.
+#[test]
+fn a_tap_switches_a_circuit() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.wait_row_state("Landing Lt", "OFF", Duration::from_secs(5));
+    h.browser.click("#devices .device[data-id='17'] button.act");
+    h.wait_row_state("Landing Lt", "ON", Duration::from_secs(4));
+    let powers: Vec<DevicePower> = (h.tap.sent().into_iter())
+        .filter_map(|(_, m)| match m {
+            Message::DevicePower(p) => Some(p),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        powers,
+        [DevicePower {
+            device_id: 17,
+            on: true
+        }],
+        "one DEVICE_POWER, for the Landing Lt, on"
+    );
+    h.browser.click("#devices .device[data-id='17'] button.act");
+    h.wait_row_state("Landing Lt", "OFF", Duration::from_secs(4));
+}
+
+/// A finger held on NOSE UP for 800 ms, then lifted: the trim runs while it is held,
+/// and its stop is on the wire within 150 ms of `pointerup` (the page's own clock of
+/// the event against the tap's clock of the byte: the same wall clock).
+#[test]
+fn a_held_trim_button_stops_within_150_ms_of_pointerup() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.watch_pointer();
+    h.browser
+        .touch_hold("#motor-pitch-up", Duration::from_millis(800));
+    std::thread::sleep(Duration::from_millis(700));
+    let up = h.seen("pointerup").expect("the page saw pointerup");
+    let down = h.seen("pointerdown").expect("the page saw pointerdown");
+    let moves = h.tap.trim_moves();
+    let on = trim_on(&moves);
+    let off = trim_off(&moves);
+    assert!(!on.is_empty(), "the trim never ran: {moves:?}");
+    assert!(
+        wall_ms(on[0]) - down < 400.0,
+        "the run began {:.0} ms after the touch",
+        wall_ms(on[0]) - down
+    );
+    let stop = *off
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    let after = wall_ms(stop) - up;
+    assert!(
+        (0.0..=150.0).contains(&after),
+        "the stop reached the wire {after:.0} ms after pointerup; TRIM_MOVEs (ms after \
+         pointerdown, on): {:?}",
+        moves
+            .iter()
+            .map(|(t, m)| ((wall_ms(*t) - down).round(), m.on))
+            .collect::<Vec<_>>()
+    );
+    assert!(
+        on.iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    eprintln!("stop on the wire {after:.0} ms after pointerup");
+}
+
+/// A finger on NOSE DOWN, not lifted; then the phone shows another tab (the first is
+/// hidden for real: a visibility change, not a synthetic event). The run stops at
+/// once, by the page's stop, well before the server's 300 ms lease would end it.
+#[test]
+fn hiding_the_tab_mid_run_stops_the_run() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.watch_pointer();
+    h.browser.touch_down("#motor-pitch-down");
+    let start = Instant::now();
+    while trim_on(&h.tap.trim_moves()).len() < 3 {
+        assert!(
+            start.elapsed() < Duration::from_secs(3),
+            "the trim never ran: {:?}",
+            h.tap.trim_moves()
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let hidden_from = SystemTime::now();
+    let first = h.browser.open_other_tab();
+    let hidden_by = SystemTime::now();
+    std::thread::sleep(Duration::from_millis(800));
+    let moves = h.tap.trim_moves();
+    let stop = *trim_off(&moves)
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    assert!(stop >= hidden_from, "stopped before the tab was hidden");
+    h.browser.switch_to(&first);
+    let visibility = h.seen("visibilitychange");
+    let why = h
+        .browser
+        .exec("return document.body.dataset.lastStop || null", json!([]));
+    assert!(
+        trim_on(&moves).iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    // The tab lost focus, then was hidden: the page stops at the first of the two.
+    // Within 150 ms of it, so the page sent the stop (the server's lease would have
+    // taken 300 ms and more).
+    let blur = h.seen("blur");
+    let hide = [blur, visibility]
+        .into_iter()
+        .flatten()
+        .fold(f64::MAX, f64::min);
+    assert!(visibility.is_some(), "the tab was never hidden");
+    assert!(
+        hide <= wall_ms(hidden_by),
+        "the hide came after the new tab opened"
+    );
+    let after = wall_ms(stop) - hide;
+    assert!(
+        (0.0..=150.0).contains(&after) && (why == "page hidden" || why == "focus lost"),
+        "stop {after:.0} ms after the hide (blur {blur:?}, visibilitychange \
+         {visibility:?}; the page's reason: {why})"
+    );
+    eprintln!("stop on the wire {after:.0} ms after the tab was hidden ({why})");
+    let _ = h.browser.cmd("DELETE", "/actions", None);
+}
+
+/// The laptop's page frozen (SIGSTOP: its connection stays open but says nothing):
+/// after 2.5 s without an event the phone blanks every value and says so, and never
+/// shows the last numbers as current.
+#[test]
+fn a_silent_laptop_blanks_the_phone_after_2_5_s() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+    let pid = h._page.0.id() as libc::pid_t;
+    // SAFETY: signals our own child.
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGSTOP) }, 0);
+    let frozen = Instant::now();
+    let blank = h.browser.wait_for(
+        "the values blanked",
+        "return !document.getElementById('stale').classList.contains('hidden') \
+         && document.getElementById('bus-volts').textContent === '—' \
+         && [...document.querySelectorAll('#devices .state')].every((s) => s.textContent === '—') \
+         && [...document.querySelectorAll('#motors .pos')].every((p) => p.textContent === '—')",
+        Duration::from_secs(6),
+    );
+    let took = frozen.elapsed();
+    // SAFETY: as above.
+    unsafe { libc::kill(pid, libc::SIGCONT) };
+    assert_eq!(blank, json!(true));
+    assert!(
+        h.browser.text("#stale").contains("NO DATA FROM THE LAPTOP"),
+        "{}",
+        h.browser.text("#stale")
+    );
+    // The heartbeat comes at least every second, so the last event was at most 1 s
+    // before the freeze: blanked 1.5–3.0 s after it (plus the 200 ms watch).
+    assert!(
+        took >= Duration::from_millis(1400) && took <= Duration::from_millis(3400),
+        "blanked {took:?} after the page froze"
+    );
+    // Heard again: live again.
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+}
+
+/// The unit goes quiet (the sim's `silent`: a cable out): the phone says
+/// COMMUNICATION LOST and blanks the values, then shows them again when it is back.
+#[test]
+fn a_quiet_unit_shows_communication_lost() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+    h.console("silent 6");
+    h.browser.wait_for(
+        "COMMUNICATION LOST",
+        "return !document.getElementById('commlost').classList.contains('hidden') \
+         && document.getElementById('bus-volts').textContent === '—' \
+         && [...document.querySelectorAll('#devices .state')].every((s) => s.textContent === '—')",
+        Duration::from_secs(6),
+    );
+    assert!(h.browser.text("#commlost").contains("COMMUNICATION LOST"));
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(10));
+    assert!(h.browser.text("#commlost").is_empty(), "still says lost");
+}
+
+/// The README's screenshots of the phone page, light and dark, at 390×844: run by
+/// hand (`cargo test --test remote_browser -- --ignored readme_screenshots`) when the
+/// page's look changes, then commit `docs/remote-*.png`.
+#[test]
+#[ignore = "writes the README's screenshots; run by hand"]
+fn readme_screenshots() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    // The lights on, one of them faulted: the three states a row can show.
+    h.console("switch 2 on");
+    h.console("switch 7 on");
+    h.console("fault 5 1");
+    h.wait_row_state("Nav Lt", "ON", Duration::from_secs(4));
+    h.browser.wait_for(
+        "the strobe's fault",
+        "return [...document.querySelectorAll('#devices .state')].some((s) => \
+         s.textContent.startsWith('FAULT'))",
+        Duration::from_secs(4),
+    );
+    let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    std::fs::create_dir_all(&docs).unwrap();
+    for scheme in ["light", "dark"] {
+        h.browser.color_scheme(scheme);
+        std::thread::sleep(Duration::from_millis(300));
+        let png = h.browser.screenshot();
+        assert_eq!(&png[1..4], b"PNG");
+        std::fs::write(docs.join(format!("remote-{scheme}.png")), png).unwrap();
+    }
+}
