@@ -2,12 +2,13 @@
 //! `chromium-driver`), spoken as JSON over HTTP with ureq: only the few commands the
 //! browser tests need. Shared by the tests that include it (`mod webdriver;`).
 //!
-//! When chromedriver or chromium is missing, [`Browser::start`] prints why and returns
-//! `None` so that a developer's `cargo test` skips; with `CI` set it panics instead, so
-//! CI (whose `.ci/run` installs both) never passes by skipping.
+//! When chromedriver (`CHROMEDRIVER`, or on the PATH) or chromium is missing,
+//! [`Browser::start`] prints why and returns `None` so that a developer's `cargo test`
+//! skips; with `CI` set it panics instead, so CI (whose `.ci/run` installs both) never
+//! passes by skipping.
 #![allow(dead_code)]
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Write};
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -53,7 +54,8 @@ fn missing(what: &str) -> Option<Browser> {
     if std::env::var_os("CI").is_some() {
         panic!("{msg}; CI is set, so this is a failure, not a skip");
     }
-    eprintln!("SKIPPED: {msg}");
+    // Straight to stderr, past the test harness's capture: a skip is seen.
+    let _ = writeln!(std::io::stderr(), "SKIPPED: {msg}");
     None
 }
 
@@ -68,7 +70,12 @@ impl Browser {
     /// chromedriver on a free port and a fresh headless Chromium at 390×844 with a
     /// profile of its own; `dark` asks for `prefers-color-scheme: dark`.
     pub fn start() -> Option<Browser> {
-        let Some(driver_path) = find_program(&["chromedriver"]) else {
+        // CHROMEDRIVER names another driver (or none: a path that is not there).
+        let driver_path = match std::env::var_os("CHROMEDRIVER") {
+            Some(p) => Some(PathBuf::from(p)).filter(|p| p.is_file()),
+            None => find_program(&["chromedriver"]),
+        };
+        let Some(driver_path) = driver_path else {
             return missing("chromedriver");
         };
         let Some(chromium) = find_program(&["chromium", "chromium-browser"]) else {
