@@ -607,6 +607,18 @@ fn a_quiet_unit_shows_communication_lost() {
         Duration::from_secs(6),
     );
     assert!(h.browser.text("#commlost").contains("COMMUNICATION LOST"));
+    // The motors fitted stay on screen, blank and disabled: a lost unit is not a
+    // unit without flaps.
+    let motors = h.browser.exec(
+        "return [...document.querySelectorAll('#motors .motor:not(.hidden)')].map((m) => \
+         [m.querySelector('.pos').textContent, m.querySelector('button').disabled])",
+        json!([]),
+    );
+    assert_eq!(
+        motors,
+        json!([["—", true], ["—", true]]),
+        "flaps and pitch trim"
+    );
     h.wait_row_state("EFIS", "ON", Duration::from_secs(10));
     assert!(h.browser.text("#commlost").is_empty(), "still says lost");
 }
@@ -623,7 +635,7 @@ fn readme_screenshots() {
     // The lights on, one of them faulted: the three states a row can show.
     h.console("switch 2 on");
     h.console("switch 7 on");
-    h.console("fault 5 1");
+    h.console("fault 5 8");
     h.wait_row_state("Nav Lt", "ON", Duration::from_secs(4));
     h.browser.wait_for(
         "the strobe's fault",
@@ -633,7 +645,14 @@ fn readme_screenshots() {
     );
     let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
     std::fs::create_dir_all(&docs).unwrap();
+    // Light at the top (totals, motors), dark at the lights.
     for scheme in ["light", "dark"] {
+        if scheme == "dark" {
+            h.browser.exec(
+                "document.querySelector('#devices .device[data-id=\"2\"]').scrollIntoView()",
+                json!([]),
+            );
+        }
         h.browser.color_scheme(scheme);
         std::thread::sleep(Duration::from_millis(300));
         let png = h.browser.screenshot();
