@@ -560,7 +560,7 @@ impl App {
         self.reread_tick(now);
         self.traffic_tick();
         self.xfsp_tick(now);
-        self.remote_tick();
+        self.remote_tick(now);
         if self.notice_until.is_some_and(|t| now >= t) {
             self.view.notice = None;
             self.notice_until = None;

@@ -22,6 +22,7 @@ use crate::model::LogLevel;
 use crate::remote::{
     self, Answer, CheckPrompt, Command, DEFAULT_PORT, PageSide, Remote, Reply, Request,
 };
+use crate::ui::check::state::Step;
 use crate::ui::state::{Overlay, RemoteView, Screen};
 
 /// The remote as the page holds it.
@@ -34,6 +35,11 @@ pub(super) struct RemoteSide {
     loopback_only: bool,
     /// The model's revision the event streams were last told of.
     seen_revision: u64,
+    /// The last motor refusal logged: a held button renews ten times a second, and
+    /// one line says it.
+    refused: Option<String>,
+    /// The remote's run at the last look, to log its start and its end.
+    run: Option<(crate::model::Motor, crate::control::Direction)>,
 }
 
 impl App {
@@ -134,11 +140,36 @@ impl App {
     }
 
     /// Keeps the overlay, the title and the server's view of the page up to date.
-    pub(super) fn remote_tick(&mut self) {
+    pub(super) fn remote_tick(&mut self, now: Instant) {
         let Some(server) = &self.remote.server else {
             return;
         };
-        let running = self.controller.with(|c| c.streamer().running_key());
+        let (running, remote_run, stop) = self.controller.with(|c| {
+            (
+                c.streamer().running_key(),
+                c.remote_running(),
+                c.last_stop().copied(),
+            )
+        });
+        if remote_run != self.remote.run {
+            let mut model = lock(&self.model);
+            if let Some((m, d)) = self.remote.run {
+                let why = stop.map_or("stopped".into(), |s| s.reason.describe());
+                model.log(
+                    now,
+                    LogLevel::Info,
+                    format!("remote: {} {} stopped: {why}", m.name(), d.name()),
+                );
+            }
+            if let Some((m, d)) = remote_run {
+                model.log(
+                    now,
+                    LogLevel::Info,
+                    format!("remote: {} {} running", m.name(), d.name()),
+                );
+            }
+            self.remote.run = remote_run;
+        }
         server.set_page(PageSide {
             running,
             check: self.check_prompt(),
@@ -152,11 +183,27 @@ impl App {
     }
 
     fn remote_view(&mut self) {
-        let view = self.remote.server.as_ref().map(|s| RemoteView {
-            url: s.pairing_url(),
-            code: s.code(),
-            paired: s.paired(),
-            loopback_only: self.remote.loopback_only,
+        let old = self.view.remote.as_ref();
+        if let (Some(s), Some(v)) = (&self.remote.server, old)
+            && v.paired == s.paired()
+            && v.code == s.code()
+        {
+            return;
+        }
+        let view = self.remote.server.as_ref().map(|s| {
+            let url = s.pairing_url();
+            // The QR code is made again only for a new code.
+            let qr = match old {
+                Some(v) if v.url == url => v.qr.clone(),
+                _ => [4, 2].map(|zone| crate::ui::remote::qr_rows(&url, zone)),
+            };
+            RemoteView {
+                url,
+                code: s.code(),
+                paired: s.paired(),
+                loopback_only: self.remote.loopback_only,
+                qr,
+            }
         });
         if view != self.view.remote {
             self.view.remote = view;
@@ -169,6 +216,7 @@ impl App {
         self.dirty = true;
         let reply = match &req.command {
             Command::MotorStop => {
+                self.remote.refused = None;
                 self.controller.act_with(Origin::Remote, |c| {
                     (c.lease_stop(now, StopReason::RemoteStop), ())
                 });
@@ -183,18 +231,21 @@ impl App {
                         .act_with(Origin::Remote, |c| c.lease(&model, motor, direction, now))
                 };
                 match result {
-                    Ok(()) => Reply::Leased(LEASE.as_millis() as u64),
+                    Ok(()) => {
+                        self.remote.refused = None;
+                        Reply::Leased(LEASE.as_millis() as u64)
+                    }
                     Err(why) => {
-                        lock(&self.model).log(
-                            now,
-                            LogLevel::Warning,
-                            format!(
-                                "remote: {} {} refused: {}",
-                                motor.name(),
-                                direction.name(),
-                                why.0
-                            ),
+                        let line = format!(
+                            "remote: {} {} refused: {}",
+                            motor.name(),
+                            direction.name(),
+                            why.0
                         );
+                        if self.remote.refused.as_ref() != Some(&line) {
+                            lock(&self.model).log(now, LogLevel::Warning, line.clone());
+                            self.remote.refused = Some(line);
+                        }
                         Reply::Refused(why.0)
                     }
                 }
@@ -220,6 +271,7 @@ impl App {
             }
         };
         self.view.motor_run = self.controller.running();
+        self.remote_tick(now);
         req.answer(reply);
     }
 
@@ -264,18 +316,23 @@ impl App {
     /// and the answers its keys offer now.
     ///
     /// An adapter to what the check takes today (keys): the answers are the prompt's
-    /// keys Enter (go on), `s` (skip) and `r` (retry); `lit_question` stays `None`
-    /// until the check asks "Is it lit?" itself.
+    /// keys whose words are "go on", "skip" and "retry" ([`answer_of_key`]);
+    /// `lit_question` stays `None` until the check asks "Is it lit?" itself.
+    /// Decision: the confirmation before power is not offered on the phone: what will
+    /// be powered is listed on the laptop, and confirmed there.
     fn check_prompt(&self) -> Option<CheckPrompt> {
         if self.view.screen != Screen::Check || self.check_finished() {
             return None;
         }
         let v = self.check_view();
+        if v.step == Step::Confirm {
+            return None;
+        }
         let p = v.prompt.as_ref()?;
         let answers = p
             .keys
             .iter()
-            .filter_map(|(key, _)| answer_of_key(key))
+            .filter_map(|&(key, words)| answer_of_key(key, words).map(|(a, _)| a))
             .collect();
         Some(CheckPrompt {
             step: v.step.title().to_string(),
@@ -287,39 +344,40 @@ impl App {
 
     /// An answer from the phone, as the key the check takes for it, if offered now.
     fn remote_check_answer(&mut self, answer: &str, now: Instant) -> Reply {
-        let offered = self
+        let key = self
             .check_prompt()
-            .is_some_and(|p| p.answers.iter().any(|a| a.id == answer));
-        let key = match answer {
-            "go_on" => KeyCode::Enter,
-            "skip" => KeyCode::Char('s'),
-            "retry" => KeyCode::Char('r'),
-            _ => return Reply::Refused(format!("{answer} is not offered now")),
-        };
-        if !offered {
+            .is_some()
+            .then(|| self.check_view().prompt.as_ref())
+            .flatten()
+            .and_then(|p| {
+                p.keys.iter().find_map(|&(key, words)| {
+                    answer_of_key(key, words).filter(|(a, _)| a.id == answer)
+                })
+            })
+            .map(|(_, code)| code);
+        let Some(key) = key else {
             return Reply::Refused(format!("{answer} is not offered now"));
-        }
+        };
         lock(&self.model).log(now, LogLevel::Info, format!("remote: check: {answer}"));
         self.check_key(KeyEvent::new(key, KeyModifiers::NONE), now);
         Reply::Answered
     }
 }
 
-/// The phone's answer for a check key.
-fn answer_of_key(key: &str) -> Option<Answer> {
-    match key {
-        "Enter" => Some(Answer {
-            id: "go_on",
-            label: "Go on",
-        }),
-        "s" => Some(Answer {
-            id: "skip",
-            label: "Skip",
-        }),
-        "r" => Some(Answer {
-            id: "retry",
-            label: "Retry",
-        }),
-        _ => None,
-    }
+/// The phone's answer for a key the check's prompt offers, by the prompt's words
+/// (the same key means "go on" in one prompt and "retry" in another), with the key
+/// to give the check for it.
+fn answer_of_key(key: &str, words: &str) -> Option<(Answer, KeyCode)> {
+    let code = match key {
+        "Enter" => KeyCode::Enter,
+        k if k.chars().count() == 1 => KeyCode::Char(k.chars().next()?),
+        _ => return None,
+    };
+    let (id, label) = match words {
+        "go on" | "confirm" => ("go_on", "Go on"),
+        "skip" => ("skip", "Skip"),
+        "retry" => ("retry", "Retry"),
+        _ => return None,
+    };
+    Some((Answer { id, label }, code))
 }

@@ -21,11 +21,14 @@ use super::theme;
 const QR_DARK: Color = Color::Indexed(16);
 const QR_LIGHT: Color = Color::Indexed(231);
 
-/// The QR code of `url` as lines of half blocks with a quiet zone of `zone` modules;
-/// `None` if the URL is too long for a code (it is not: a URL is under 60 bytes).
-pub fn qr_lines(url: &str, zone: usize) -> Option<Vec<Line<'static>>> {
-    let code =
-        qrcode::QrCode::with_error_correction_level(url.as_bytes(), qrcode::EcLevel::L).ok()?;
+/// The QR code of `url` as rows of half blocks (a dark module a glyph) with a quiet
+/// zone of `zone` modules; empty if the URL is too long for a code (it is not: a URL
+/// is under 60 bytes).
+pub fn qr_rows(url: &str, zone: usize) -> Vec<String> {
+    let Ok(code) = qrcode::QrCode::with_error_correction_level(url.as_bytes(), qrcode::EcLevel::L)
+    else {
+        return Vec::new();
+    };
     let w = code.width();
     let colors = code.to_colors();
     let dark = |x: isize, y: isize| {
@@ -37,7 +40,6 @@ pub fn qr_lines(url: &str, zone: usize) -> Option<Vec<Line<'static>>> {
     };
     let z = zone as isize;
     let side = w as isize + 2 * z;
-    let style = Style::new().fg(QR_DARK).bg(QR_LIGHT);
     let mut lines = Vec::new();
     let mut y = -z;
     while y < side - z {
@@ -49,10 +51,18 @@ pub fn qr_lines(url: &str, zone: usize) -> Option<Vec<Line<'static>>> {
                 (false, false) => ' ',
             })
             .collect();
-        lines.push(Line::from(Span::styled(row, style)));
+        lines.push(row);
         y += 2;
     }
-    Some(lines)
+    lines
+}
+
+/// Rows of [`qr_rows`] as lines in xterm black on xterm white.
+fn qr_lines(rows: &[String]) -> Vec<Line<'static>> {
+    let style = Style::new().fg(QR_DARK).bg(QR_LIGHT);
+    rows.iter()
+        .map(|r| Line::from(Span::styled(r.clone(), style)))
+        .collect()
 }
 
 /// "482 913": the code in two groups, as the page says it.
@@ -91,11 +101,11 @@ pub fn render(frame: &mut Frame, remote: &RemoteView) {
     // A full quiet zone where the terminal has room; two modules on a small one (a
     // phone still finds the code; the light cells around it are the zone's rest).
     let text_rows = 5 + u16::from(remote.loopback_only);
-    let big = qr_lines(&remote.url, 4).unwrap_or_default();
+    let [big, small] = &remote.qr;
     let qr = if big.len() as u16 + text_rows + 2 <= area.height {
-        big
+        qr_lines(big)
     } else {
-        qr_lines(&remote.url, 2).unwrap_or_default()
+        qr_lines(small)
     };
     let qr_w = qr.first().map_or(0, |l| l.width() as u16);
     let mut lines: Vec<Line> = Vec::new();

@@ -43,6 +43,10 @@ pub struct RemoteView {
     pub paired: usize,
     /// No LAN address was found: only this laptop can reach it.
     pub loopback_only: bool,
+    /// The URL's QR code in half blocks, with a quiet zone of 4 modules and of 2
+    /// (for a short terminal): made once per code, not at every frame
+    /// (`ui::remote::qr_rows`).
+    pub qr: [Vec<String>; 2],
 }
 
 /// The controller's own state, drawn from here.

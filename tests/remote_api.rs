@@ -1,0 +1,728 @@
+//! The walk-around remote's API with a real HTTP client (ureq) against the page
+//! wired to the virtual VP-X through a real pseudo-terminal (`page_rig`), the tap
+//! recording every byte on the wire: pairing, 401 on every route without a session
+//! (and nothing changed), 403, 429; the state and an event after a change; power and
+//! clear through control's refusals; a lease left to expire and an explicit stop,
+//! timed on the wire.
+// Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
+#![cfg(unix)]
+
+mod common;
+mod page_rig;
+use page_rig::*;
+
+use std::io::{BufRead, BufReader};
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+use vpx_efis::app::AppOptions;
+use vpx_efis::model::LogLevel;
+use vpx_efis::protocol::message::{Message, Packet, TrimType};
+
+fn ms(n: u64) -> Duration {
+    Duration::from_millis(n)
+}
+
+/// The page against the sim with the remote on 127.0.0.1 (a free port); its base URL.
+fn rig_with_remote(audit: Option<std::path::PathBuf>) -> (Rig, String) {
+    let mut rig = Rig::with_options(AppOptions {
+        audit,
+        ..AppOptions::default()
+    });
+    rig.app
+        .start_remote(Some("127.0.0.1:0".parse().unwrap()), Instant::now())
+        .expect("the remote starts");
+    rig.ready();
+    let url = rig.app.remote_url().unwrap();
+    let base = url.split("/?pair=").next().unwrap().to_string();
+    (rig, base)
+}
+
+fn code_of(rig: &Rig) -> String {
+    rig.app
+        .remote_url()
+        .unwrap()
+        .rsplit("pair=")
+        .next()
+        .unwrap()
+        .to_string()
+}
+
+fn agent() -> ureq::Agent {
+    ureq::Agent::config_builder()
+        .http_status_as_error(false)
+        .timeout_global(Some(Duration::from_secs(5)))
+        .build()
+        .into()
+}
+
+/// An HTTP answer: status, the headers we look at, the body as JSON (or Null).
+#[derive(Debug)]
+struct Answer {
+    status: u16,
+    cookie: Option<String>,
+    retry_after: Option<String>,
+    body: Value,
+}
+
+fn answer(r: Result<ureq::http::Response<ureq::Body>, ureq::Error>) -> Answer {
+    let mut r = r.expect("an HTTP answer");
+    let header = |n: &str| {
+        r.headers()
+            .get(n)
+            .and_then(|v| v.to_str().ok())
+            .map(str::to_string)
+    };
+    let (cookie, retry_after) = (header("set-cookie"), header("retry-after"));
+    let status = r.status().as_u16();
+    let text = r.body_mut().read_to_string().unwrap_or_default();
+    Answer {
+        status,
+        cookie,
+        retry_after,
+        body: serde_json::from_str(&text).unwrap_or(Value::Null),
+    }
+}
+
+/// A request as a phone or a script makes it: `session` as the cookie, `origin` as
+/// the Origin header.
+#[derive(Clone, Default)]
+struct Ask {
+    session: Option<String>,
+    origin: Option<String>,
+}
+
+impl Ask {
+    fn post(&self, url: &str, body: Option<Value>) -> Answer {
+        let mut req = agent().post(url);
+        if let Some(s) = &self.session {
+            req = req.header("Cookie", &format!("vpx_session={s}"));
+        }
+        if let Some(o) = &self.origin {
+            req = req.header("Origin", o);
+        }
+        answer(match body {
+            Some(b) => req.send_json(b),
+            None => req.send_empty(),
+        })
+    }
+
+    fn get(&self, url: &str) -> Answer {
+        let mut req = agent().get(url);
+        if let Some(s) = &self.session {
+            req = req.header("Cookie", &format!("vpx_session={s}"));
+        }
+        if let Some(o) = &self.origin {
+            req = req.header("Origin", o);
+        }
+        answer(req.call())
+    }
+}
+
+/// Runs `f` (an HTTP call) on a thread of its own while the page's loop runs here, as
+/// it would in its own process; the page answers commands from that loop.
+fn during<T: Send + 'static>(rig: &mut Rig, f: impl FnOnce() -> T + Send + 'static) -> T {
+    let h = std::thread::spawn(f);
+    let end = Instant::now() + Duration::from_secs(10);
+    while !h.is_finished() {
+        assert!(Instant::now() < end, "the call never ended");
+        rig.app.pump_until(Instant::now() + ms(2));
+    }
+    h.join().expect("the call's thread")
+}
+
+/// Pairs a phone: its session token.
+fn pair(rig: &mut Rig, base: &str) -> String {
+    let code = code_of(rig);
+    let a = Ask::default().post(&format!("{base}/api/pair"), Some(json!({ "code": code })));
+    assert_eq!(a.status, 200, "{a:?}");
+    let cookie = a.cookie.expect("a session cookie");
+    cookie
+        .strip_prefix("vpx_session=")
+        .unwrap()
+        .split(';')
+        .next()
+        .unwrap()
+        .to_string()
+}
+
+fn commands_sent(rig: &Rig, from: usize) -> Vec<(Instant, Packet)> {
+    rig.sent(from)
+        .into_iter()
+        .filter(|(_, p)| {
+            matches!(
+                p.message,
+                Message::DevicePower(_)
+                    | Message::DeviceClear(_)
+                    | Message::TrimMove(_)
+                    | Message::FlapMove(_)
+            )
+        })
+        .collect()
+}
+
+fn log_lines(rig: &Rig) -> Vec<String> {
+    rig.app
+        .model()
+        .events
+        .iter()
+        .map(|e| e.text.clone())
+        .collect()
+}
+
+#[test]
+fn pairing_gives_an_httponly_strict_session_once_and_locks_after_five_wrong() {
+    let (mut rig, base) = rig_with_remote(None);
+    let pair_url = format!("{base}/api/pair");
+    let first = code_of(&rig);
+    let wrong = format!("{:06}", (first.parse::<u32>().unwrap() + 1) % 1_000_000);
+    let a = Ask::default().post(&pair_url, Some(json!({ "code": wrong })));
+    assert_eq!(
+        (a.status, a.body.clone()),
+        (401, json!({"error": "wrong code"}))
+    );
+
+    let a = Ask::default().post(&pair_url, Some(json!({ "code": first })));
+    assert_eq!((a.status, a.body.clone()), (200, json!({"paired": true})));
+    let cookie = a.cookie.unwrap();
+    let token = cookie
+        .strip_prefix("vpx_session=")
+        .unwrap()
+        .split(';')
+        .next()
+        .unwrap();
+    assert_eq!(token.len(), 64, "32 random bytes in hex: {cookie}");
+    assert!(token.bytes().all(|b| b.is_ascii_hexdigit()));
+    for attr in ["HttpOnly", "SameSite=Strict", "Path=/"] {
+        assert!(cookie.contains(attr), "{attr} missing: {cookie}");
+    }
+    rig.app.pump_until(Instant::now() + ms(50));
+    assert_ne!(code_of(&rig), first, "the page shows a fresh code");
+    assert_eq!(rig.app.view().remote.as_ref().unwrap().paired, 1);
+    let again = Ask::default().post(&pair_url, Some(json!({ "code": first })));
+    assert_eq!(again.status, 401, "a code works once");
+
+    // The session works; a foreign Origin is refused before anything else.
+    let phone = Ask {
+        session: Some(token.to_string()),
+        origin: None,
+    };
+    assert_eq!(phone.get(&format!("{base}/api/state")).status, 200);
+    let own = Ask {
+        origin: Some(base.clone()),
+        ..phone.clone()
+    };
+    assert_eq!(own.get(&format!("{base}/api/state")).status, 200);
+    let foreign = Ask {
+        origin: Some("http://evil.example".into()),
+        ..phone.clone()
+    };
+    let a = foreign.get(&format!("{base}/api/state"));
+    assert_eq!((a.status, a.body), (403, json!({"error": "origin"})));
+    let a = foreign.post(&pair_url, Some(json!({ "code": code_of(&rig) })));
+    assert_eq!(a.status, 403, "pairing from a foreign page is refused too");
+
+    // The right code reset the count; the reused code was the first wrong one, and
+    // four more make five in a row.
+    for _ in 0..4 {
+        let a = Ask::default().post(&pair_url, Some(json!({ "code": "000000x" })));
+        assert_eq!(a.status, 401);
+    }
+    let right = code_of(&rig);
+    let a = Ask::default().post(&pair_url, Some(json!({ "code": right })));
+    assert_eq!(a.status, 429, "locked, even for the right code: {a:?}");
+    assert_eq!(a.body["error"], "locked");
+    let left = a.body["retry_after_s"].as_u64().unwrap();
+    assert!((59..=60).contains(&left), "{left}");
+    assert_eq!(a.retry_after.as_deref(), Some(left.to_string().as_str()));
+    assert_eq!(rig.app.view().remote.as_ref().unwrap().paired, 1);
+
+    // P unpairs every phone.
+    rig.key(
+        crossterm::event::KeyCode::Char('P'),
+        crossterm::event::KeyEventKind::Press,
+    );
+    assert_eq!(phone.get(&format!("{base}/api/state")).status, 401);
+    assert_eq!(rig.app.view().remote.as_ref().unwrap().paired, 0);
+}
+
+#[test]
+fn every_route_without_a_session_is_401_and_changes_nothing() {
+    let (mut rig, base) = rig_with_remote(None);
+    // A real session exists, so a wrong one is wrong, not merely absent.
+    let _ = pair(&mut rig, &base);
+    let from = rig.wire_len();
+    let log_before = log_lines(&rig).len();
+    let state_before = rig.app.model().circuits(Instant::now());
+    let routes: Vec<(&str, String, Option<Value>)> = vec![
+        ("GET", "/api/state".into(), None),
+        ("GET", "/api/events".into(), None),
+        (
+            "POST",
+            "/api/device/4/power".into(),
+            Some(json!({"on": false})),
+        ),
+        (
+            "POST",
+            "/api/device/2/power".into(),
+            Some(json!({"on": false})),
+        ),
+        ("POST", "/api/device/9/clear".into(), None),
+        (
+            "POST",
+            "/api/motor/pitch".into(),
+            Some(json!({"direction": "up"})),
+        ),
+        (
+            "POST",
+            "/api/motor/pitch".into(),
+            Some(json!({"stop": true})),
+        ),
+        (
+            "POST",
+            "/api/motor/flaps".into(),
+            Some(json!({"direction": "down"})),
+        ),
+        (
+            "POST",
+            "/api/check/answer".into(),
+            Some(json!({"answer": "go_on"})),
+        ),
+        ("POST", "/api/logout".into(), None),
+        ("GET", "/api/nothing-here".into(), None),
+    ];
+    for session in [None, Some("00".repeat(32)), Some(String::new())] {
+        let ask = Ask {
+            session,
+            origin: None,
+        };
+        for (method, path, body) in &routes {
+            let url = format!("{base}{path}");
+            let (ask, body, method) = (ask.clone(), body.clone(), *method);
+            let a = during(&mut rig, move || match method {
+                "GET" => ask.get(&url),
+                _ => ask.post(&url, body),
+            });
+            assert_eq!(
+                (a.status, a.body),
+                (401, json!({"error": "not paired"})),
+                "{method} {path}"
+            );
+        }
+    }
+    rig.app.pump_until(Instant::now() + ms(600));
+    assert_eq!(
+        commands_sent(&rig, from),
+        vec![],
+        "a command reached the wire"
+    );
+    assert!(
+        !log_lines(&rig)[log_before..]
+            .iter()
+            .any(|l| l.starts_with("remote:")),
+        "{:?}",
+        &log_lines(&rig)[log_before..]
+    );
+    let after = rig.app.model().circuits(Instant::now());
+    let states =
+        |c: &[vpx_efis::model::Circuit]| c.iter().map(|c| (c.id, c.state)).collect::<Vec<_>>();
+    assert_eq!(states(&state_before), states(&after));
+    assert!(rig.app.view().motor_run.is_none());
+    // The page itself is served without a session, and holds no data.
+    let page = Ask::default().get(&format!("{base}/"));
+    assert_eq!(page.status, 200);
+}
+
+#[test]
+fn the_state_is_live_and_an_event_follows_a_change() {
+    let (mut rig, base) = rig_with_remote(None);
+    let phone = Ask {
+        session: Some(pair(&mut rig, &base)),
+        origin: None,
+    };
+    let st = phone.get(&format!("{base}/api/state")).body;
+    assert_eq!(st["comm_lost"], false);
+    let volts = st["bus_volts"].as_f64().expect("bus volts, a number");
+    assert!((10.0..=16.0).contains(&volts), "{volts}");
+    let nav = st["devices"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|d| d["id"] == 4)
+        .cloned()
+        .expect("Nav Lt");
+    assert_eq!(nav["name"], "Nav Lt");
+    assert_eq!(nav["state"], "ON");
+    assert!(nav["amps"].as_f64().is_some_and(|a| a > 1.0), "{nav}");
+    assert_eq!(st["motors"]["pitch"]["fitted"], true);
+    assert!(st["motors"]["pitch"]["position_percent"].is_u64());
+    assert!(st["seq"].is_u64());
+
+    // The events stream: the state at once, then Nav Lt off after the command.
+    let (tx, rx) = std::sync::mpsc::channel::<(Instant, Value)>();
+    let events_url = format!("{base}/api/events");
+    let session = phone.session.clone().unwrap();
+    std::thread::spawn(move || {
+        let r = agent()
+            .get(&events_url)
+            .header("Cookie", &format!("vpx_session={session}"))
+            .call()
+            .unwrap();
+        assert_eq!(
+            r.headers().get("content-type").unwrap(),
+            "text/event-stream"
+        );
+        let mut lines = BufReader::new(r.into_body().into_reader()).lines();
+        while let Some(Ok(line)) = lines.next() {
+            if let Some(data) = line.strip_prefix("data: ")
+                && tx
+                    .send((Instant::now(), serde_json::from_str(data).unwrap()))
+                    .is_err()
+            {
+                return;
+            }
+        }
+    });
+    let first = rx
+        .recv_timeout(Duration::from_secs(2))
+        .expect("an event at once");
+    assert_eq!(first.1["comm_lost"], false);
+    let url = format!("{base}/api/device/4/power");
+    let p = phone.clone();
+    let a = during(&mut rig, move || p.post(&url, Some(json!({"on": false}))));
+    assert_eq!(a.status, 200, "{a:?}");
+    assert!(
+        a.body["sent"].as_str().unwrap().contains("Nav Lt off"),
+        "{a:?}"
+    );
+    let end = Instant::now() + Duration::from_secs(4);
+    let mut off = None;
+    let mut heartbeats = vec![first.0];
+    while off.is_none() {
+        assert!(Instant::now() < end, "no event with Nav Lt OFF");
+        rig.app.pump_until(Instant::now() + ms(20));
+        while let Ok((at, st)) = rx.try_recv() {
+            heartbeats.push(at);
+            let nav = st["devices"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|d| d["id"] == 4)
+                .cloned()
+                .unwrap();
+            if nav["state"] == "OFF" {
+                off = Some(st);
+            }
+        }
+    }
+    // And nothing stays quiet longer than the heartbeat (plus scheduling slack).
+    let until = Instant::now() + Duration::from_millis(2500);
+    while Instant::now() < until {
+        rig.app.pump_until(Instant::now() + ms(20));
+        while let Ok((at, _)) = rx.try_recv() {
+            heartbeats.push(at);
+        }
+    }
+    let worst = heartbeats.windows(2).map(|w| w[1] - w[0]).max().unwrap();
+    assert!(worst <= ms(1300), "an events gap of {worst:?}");
+    assert!(
+        log_lines(&rig)
+            .iter()
+            .any(|l| l.starts_with("remote: Nav Lt off")),
+        "{:?}",
+        log_lines(&rig)
+    );
+}
+
+#[test]
+fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut rig, base) = rig_with_remote(Some(dir.path().to_path_buf()));
+    let phone = Ask {
+        session: Some(pair(&mut rig, &base)),
+        origin: None,
+    };
+    let from = rig.wire_len();
+    let call = |rig: &mut Rig, path: &str, body: Option<Value>| {
+        let url = format!("{base}{path}");
+        let p = phone.clone();
+        during(rig, move || p.post(&url, body))
+    };
+    // The starter is only reset: control's words, as the key gets them.
+    let now = Instant::now();
+    let starter = vpx_efis::control::device_power(&rig.app.model(), now, 1, true)
+        .expect_err("control refuses the starter")
+        .0;
+    let a = call(&mut rig, "/api/device/1/power", Some(json!({"on": true})));
+    assert_eq!((a.status, a.body), (409, json!({ "refused": starter })));
+    // A reset is refused unless faulted.
+    let not_faulted = vpx_efis::control::reset(&rig.app.model(), Instant::now(), 9, false)
+        .expect_err("control refuses a reset with no fault")
+        .0;
+    let a = call(&mut rig, "/api/device/9/clear", None);
+    assert_eq!((a.status, a.body), (409, json!({ "refused": not_faulted })));
+    let a = call(&mut rig, "/api/device/99/power", Some(json!({"on": true})));
+    assert_eq!((a.status, a.body), (404, json!({"error": "no device 99"})));
+    rig.app.pump_until(Instant::now() + ms(300));
+    assert_eq!(
+        commands_sent(&rig, from),
+        vec![],
+        "a refusal sent something"
+    );
+    // A command control takes goes out, logged and audited as the remote's.
+    let a = call(&mut rig, "/api/device/9/power", Some(json!({"on": false})));
+    assert_eq!(a.status, 200, "{a:?}");
+    rig.app.pump_until(Instant::now() + ms(500));
+    let sent = commands_sent(&rig, from);
+    assert_eq!(sent.len(), 1, "{sent:?}");
+    assert!(matches!(sent[0].1.message, Message::DevicePower(p) if p.device_id == 9 && !p.on));
+    let log = log_lines(&rig);
+    assert!(
+        log.iter()
+            .any(|l| l.starts_with("remote: Starter on refused: ")),
+        "{log:?}"
+    );
+    assert!(
+        log.iter()
+            .any(|l| l.starts_with("remote: GPS 1 off (DEVICE_POWER sent)")),
+        "{log:?}"
+    );
+    let entries = rig.app.model().events.clone();
+    assert!(
+        entries
+            .iter()
+            .any(|e| e.level == LogLevel::Warning
+                && e.text.starts_with("remote: GPS 1 reset refused"))
+    );
+    drop(rig);
+    let audit: Vec<Value> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            p.file_name()?
+                .to_str()?
+                .starts_with("vpx-audit-")
+                .then_some(p)
+        })
+        .flat_map(|p| {
+            std::fs::read_to_string(p)
+                .unwrap()
+                .lines()
+                .map(|l| serde_json::from_str::<Value>(l).unwrap())
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(
+        audit.iter().any(|l| l["origin"] == "remote"
+            && l["command"]
+                .as_str()
+                .is_some_and(|c| c.starts_with("DEVICE_POWER"))
+            && l["result"] == "sent"),
+        "{audit:?}"
+    );
+}
+
+/// The pitch moves on the wire since `from`: (time, on).
+fn pitch_moves(rig: &Rig, from: usize) -> Vec<(Instant, bool)> {
+    rig.sent(from)
+        .into_iter()
+        .filter_map(|(at, p)| match p.message {
+            Message::TrimMove(m) if m.trim_type == TrimType::Pitch => Some((at, m.on)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_lease_left_to_expire_is_stopped_on_the_wire_within_300_ms_and_a_tick() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut rig, base) = rig_with_remote(Some(dir.path().to_path_buf()));
+    let phone = Ask {
+        session: Some(pair(&mut rig, &base)),
+        origin: None,
+    };
+    let from = rig.wire_len();
+    let url = format!("{base}/api/motor/pitch");
+    let p = phone.clone();
+    let a = during(&mut rig, move || {
+        p.post(&url, Some(json!({"direction": "up"})))
+    });
+    assert_eq!((a.status, a.body), (200, json!({"lease_ms": 300})));
+    let stop = wait_for_stop(&mut rig, from);
+    let moves = pitch_moves(&rig, from);
+    let started = moves.first().expect("the run started").0;
+    let took = stop - started;
+    println!("lease left to expire: stop on the wire {took:?} after the first move");
+    assert!(
+        took <= ms(300) + vpx_efis::control::RESEND_PERIOD,
+        "the stop came {took:?} after the start"
+    );
+    assert!(
+        took >= ms(290),
+        "it stopped before the lease ran out: {took:?}"
+    );
+    let log = log_lines(&rig);
+    assert!(
+        log.iter()
+            .any(|l| l.contains("the remote stopped renewing its run")),
+        "{log:?}"
+    );
+}
+
+/// Pumps the page until a pitch stop is on the wire since `from`; its time.
+fn wait_for_stop(rig: &mut Rig, from: usize) -> Instant {
+    let end = Instant::now() + Duration::from_secs(3);
+    loop {
+        if let Some((at, _)) = pitch_moves(rig, from).into_iter().find(|(_, on)| !on) {
+            return at;
+        }
+        assert!(Instant::now() < end, "no stop on the wire");
+        rig.app.pump_until(Instant::now() + ms(5));
+    }
+}
+
+#[test]
+fn an_explicit_stop_is_on_the_wire_within_150_ms_and_renewals_keep_the_run() {
+    let (mut rig, base) = rig_with_remote(None);
+    let phone = Ask {
+        session: Some(pair(&mut rig, &base)),
+        origin: None,
+    };
+    let from = rig.wire_len();
+    let url = format!("{base}/api/motor/pitch");
+    // Held for a second: a renewal every 100 ms, as the phone page sends them.
+    let (p, u) = (phone.clone(), url.clone());
+    let renewals = during(&mut rig, move || {
+        let t0 = Instant::now();
+        let mut answers = Vec::new();
+        let mut i = 0u32;
+        while t0.elapsed() < ms(1000) {
+            answers.push(p.post(&u, Some(json!({"direction": "up"}))).status);
+            i += 1;
+            let next = t0 + ms(100) * i;
+            std::thread::sleep(next.saturating_duration_since(Instant::now()));
+        }
+        answers
+    });
+    assert!(renewals.iter().all(|s| *s == 200), "{renewals:?}");
+    let moves = pitch_moves(&rig, from);
+    assert!(
+        moves.iter().all(|(_, on)| *on),
+        "stopped while held: {moves:?}"
+    );
+    assert!(moves.len() >= 6, "{moves:?}");
+    assert!(rig.app.view().motor_run.is_some());
+    let p = phone.clone();
+    let asked = Instant::now();
+    let a = during(&mut rig, move || p.post(&url, Some(json!({"stop": true}))));
+    assert_eq!((a.status, a.body), (200, json!({"stopped": true})));
+    let stop = wait_for_stop(&mut rig, from);
+    let took = stop.saturating_duration_since(asked);
+    println!("explicit stop: on the wire {took:?} after the request");
+    assert!(took <= ms(150), "the stop came {took:?} after the request");
+    let gaps = moves.windows(2).map(|w| w[1].0 - w[0].0).max().unwrap();
+    assert!(gaps <= ms(250), "a gap of {gaps:?} between moves");
+}
+
+#[test]
+fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut rig, base) = rig_with_remote(None);
+    let phone = Ask {
+        session: Some(pair(&mut rig, &base)),
+        origin: None,
+    };
+    let state_url = format!("{base}/api/state");
+    let answer_url = format!("{base}/api/check/answer");
+    let answer = |rig: &mut Rig, a: &str| {
+        let (p, u, body) = (phone.clone(), answer_url.clone(), json!({ "answer": a }));
+        during(rig, move || p.post(&u, Some(body)))
+    };
+    assert_eq!(phone.get(&state_url).body["check"], Value::Null);
+    rig.app.set_check_report_dir(Some(dir.path().to_path_buf()));
+    let options = vpx_efis::check::Options {
+        skip: vec![vpx_efis::ui::check::state::Step::Motors],
+        loads_file: Some(dir.path().join("loads.toml")),
+        ..vpx_efis::check::Options::default()
+    };
+    rig.app.open_check(options, Instant::now());
+    rig.app.pump_until(Instant::now() + ms(100));
+    // Before power: confirmed at the laptop, not from the phone.
+    assert_eq!(phone.get(&state_url).body["check"], Value::Null);
+    let a = answer(&mut rig, "go_on");
+    assert_eq!(
+        (a.status, a.body),
+        (409, json!({"refused": "go_on is not offered now"}))
+    );
+    rig.key(
+        crossterm::event::KeyCode::Enter,
+        crossterm::event::KeyEventKind::Press,
+    );
+    // The first DO NOW with a skip on offer.
+    let end = Instant::now() + Duration::from_secs(10);
+    let check = loop {
+        rig.app.pump_until(Instant::now() + ms(50));
+        let c = phone.get(&state_url).body["check"].clone();
+        if c["answers"]
+            .as_array()
+            .is_some_and(|a| a.iter().any(|x| x["id"] == "skip"))
+        {
+            break c;
+        }
+        assert!(Instant::now() < end, "no prompt with skip: {c}");
+    };
+    assert!(
+        check["prompt"].as_str().is_some_and(|p| !p.is_empty()),
+        "{check}"
+    );
+    assert!(check["step"].is_string(), "{check}");
+    assert_eq!(check["lit_question"], Value::Null);
+    let a = answer(&mut rig, "lit_yes");
+    assert_eq!(a.status, 409, "{a:?}");
+    let a = answer(&mut rig, "skip");
+    assert_eq!((a.status, a.body), (200, json!({"answered": true})));
+    rig.app.pump_until(Instant::now() + ms(200));
+    let after = phone.get(&state_url).body["check"].clone();
+    assert_ne!(after, check, "the skip did not move the check on");
+    assert!(
+        log_lines(&rig).iter().any(|l| l == "remote: check: skip"),
+        "{:?}",
+        log_lines(&rig)
+    );
+}
+
+#[test]
+fn stopping_the_remote_closes_its_socket_and_ends_every_session() {
+    let (mut rig, base) = rig_with_remote(None);
+    let token = pair(&mut rig, &base);
+    let phone = Ask {
+        session: Some(token),
+        origin: None,
+    };
+    assert_eq!(phone.get(&format!("{base}/api/state")).status, 200);
+    let addr = base.trim_start_matches("http://").to_string();
+    // The overlay is shown: p stops the remote.
+    assert_eq!(rig.app.view().overlay, vpx_efis::ui::state::Overlay::Remote);
+    rig.key(
+        crossterm::event::KeyCode::Char('p'),
+        crossterm::event::KeyEventKind::Press,
+    );
+    assert!(rig.app.remote_url().is_none());
+    assert!(rig.app.view().remote.is_none());
+    assert!(
+        std::net::TcpStream::connect(&addr).is_err(),
+        "still listening on {addr}"
+    );
+    // On again (a new port, as asked for port 0): the old session is gone.
+    rig.key(
+        crossterm::event::KeyCode::Char('p'),
+        crossterm::event::KeyEventKind::Press,
+    );
+    let url = rig.app.remote_url().expect("on again");
+    let base2 = url.split("/?pair=").next().unwrap().to_string();
+    assert_eq!(phone.get(&format!("{base2}/api/state")).status, 401);
+    // The page quits: the socket closes with it.
+    let addr2 = base2.trim_start_matches("http://").to_string();
+    drop(rig);
+    assert!(std::net::TcpStream::connect(&addr2).is_err());
+}

@@ -1,0 +1,150 @@
+//! Idle means idle with a phone connected: the real page (`vpx-efis --port …
+//! --remote 127.0.0.1:PORT`) in a pseudo-terminal of its own, against `vpx-efis sim
+//! --pty` in another process, with a paired phone holding `/api/events` open and
+//! nothing changing, uses at most 1 % of a core (its own CPU time, as
+//! `page_idle_cpu` measures it). The phone keeps hearing the state at least every
+//! second meanwhile.
+//!
+//! `IDLE_CPU_SECS=30 cargo test --release --test remote_idle_cpu -- --nocapture`
+//! measures longer.
+// Needs pseudo-terminals, which only Unix has.
+#![cfg(unix)]
+
+use std::io::{BufRead, BufReader};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+mod common;
+mod page_rig;
+
+use common::cpu::process_cpu_time;
+use common::sim_process::{Kill, sim_pty};
+use page_rig::terminal::{Term, find, page};
+
+fn secs() -> u64 {
+    std::env::var("IDLE_CPU_SECS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10)
+}
+
+/// A port nobody listens on now.
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port()
+}
+
+/// The pairing code in the page's output (the overlay's URL).
+fn code_in(out: &[u8]) -> Option<String> {
+    let at = find(out, b"?pair=")? + 6;
+    let digits: String = out[at..].iter().take(6).map(|&b| b as char).collect();
+    (digits.len() == 6 && digits.bytes().all(|b| b.is_ascii_digit())).then_some(digits)
+}
+
+#[test]
+fn the_page_is_idle_with_a_phone_listening_to_its_events() {
+    let (_sim, port) = sim_pty("hangar");
+    let listen = format!("127.0.0.1:{}", free_port());
+    let base = format!("http://{listen}");
+    let (mut term, slave) = Term::open();
+    let mut child = page(&["--port", &port, "--remote", &listen], slave);
+    let pid = child.id();
+    if let Err(why) = process_cpu_time(pid) {
+        let _ = child.kill();
+        let _ = child.wait();
+        eprintln!("remote_idle_cpu: skipped, not measurable here: {why}");
+        return;
+    }
+    let child = Kill(child);
+    let start = Instant::now();
+    let code = loop {
+        if let Some(c) = code_in(&term.output()) {
+            break c;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(10),
+            "the page never showed its pairing URL: {}",
+            String::from_utf8_lossy(&term.output())
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let agent: ureq::Agent = ureq::Agent::config_builder()
+        .http_status_as_error(false)
+        .build()
+        .into();
+    let r = agent
+        .post(&format!("{base}/api/pair"))
+        .send_json(serde_json::json!({ "code": code }))
+        .expect("pairing");
+    assert_eq!(r.status(), 200);
+    let cookie = r
+        .headers()
+        .get("set-cookie")
+        .unwrap()
+        .to_str()
+        .unwrap()
+        .split(';')
+        .next()
+        .unwrap()
+        .to_string();
+    // The phone: the events stream, counting the states it hears.
+    let heard = Arc::new(AtomicUsize::new(0));
+    let h = heard.clone();
+    let events = agent
+        .get(&format!("{base}/api/events"))
+        .header("Cookie", &cookie)
+        .call()
+        .expect("the events stream");
+    std::thread::spawn(move || {
+        let mut lines = BufReader::new(events.into_body().into_reader()).lines();
+        while let Some(Ok(line)) = lines.next() {
+            if line.starts_with("data: ") {
+                h.fetch_add(1, Ordering::SeqCst);
+            }
+        }
+    });
+    // Paired: the person hides the overlay (Esc) and goes to the wingtip.
+    if std::env::var("REMOTE_IDLE_OVERLAY").is_err() {
+        term.typed(b"\x1b");
+    }
+    // Past the connect requests and the first redraws.
+    std::thread::sleep(Duration::from_millis(2500));
+    let cpu0 = process_cpu_time(pid).unwrap();
+    let heard0 = heard.load(Ordering::SeqCst);
+    let wall0 = Instant::now();
+    let secs = secs();
+    std::thread::sleep(Duration::from_secs(secs));
+    let cpu = process_cpu_time(pid).unwrap() - cpu0;
+    let wall = wall0.elapsed();
+    let states = heard.load(Ordering::SeqCst) - heard0;
+    let mut child = child;
+    assert!(
+        child.0.try_wait().unwrap().is_none(),
+        "the page ended while idle"
+    );
+    term.typed(b"q");
+    let end = Instant::now() + Duration::from_secs(5);
+    while child.0.try_wait().unwrap().is_none() {
+        assert!(Instant::now() < end, "the page did not quit on q");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let share = cpu.as_secs_f64() / wall.as_secs_f64();
+    eprintln!(
+        "page with a phone on /api/events: {cpu:?} CPU in {wall:.1?} = {:.2} % of a core, \
+         {states} states sent",
+        share * 100.0
+    );
+    assert!(
+        states as u64 >= secs - 1,
+        "the phone heard {states} states in {secs} s: the heartbeat is missing"
+    );
+    assert!(
+        share <= 0.01,
+        "the page used {:.2} % of a core",
+        share * 100.0
+    );
+}
