@@ -445,6 +445,69 @@ fn a_tap_switches_a_circuit() {
     );
     h.browser.click("#devices .device[data-id='17'] button.act");
     h.wait_row_state("Landing Lt", "OFF", Duration::from_secs(4));
+    // The starter is only reset: control's refusal, in its words, and nothing sent.
+    let sent_before = h.tap.sent().len();
+    h.browser.click("#devices .device[data-id='1'] button.act");
+    let notice = h.browser.wait_for(
+        "the refusal",
+        "const n = document.getElementById('notice'); \
+         return n.classList.contains('refused') && n.textContent",
+        Duration::from_secs(4),
+    );
+    assert!(
+        notice.as_str().unwrap().starts_with("Refused: the starter"),
+        "{notice}"
+    );
+    let starter: Vec<_> = (h.tap.sent().into_iter().skip(sent_before))
+        .filter(|(_, m)| matches!(m, Message::DevicePower(p) if p.device_id == 1))
+        .collect();
+    assert!(starter.is_empty(), "sent for the starter: {starter:?}");
+}
+
+/// The installation check started at the laptop: the phone shows its DO NOW prompt
+/// and the answers it offers, and an answer from the phone moves the check on.
+#[test]
+fn the_check_prompts_on_the_phone_and_takes_its_answers() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    assert!(h.browser.text("#check").is_empty(), "no check yet");
+    // At the laptop: hide the remote's overlay, open the check, and confirm that
+    // the aircraft is safe to power (given where the list of circuits is shown).
+    h.term.typed(b"\x1b");
+    std::thread::sleep(Duration::from_millis(300));
+    h.term.typed(b"i");
+    std::thread::sleep(Duration::from_millis(500));
+    h.term.typed(b"\r");
+    let first = h.browser.wait_for(
+        "the check's prompt",
+        "const c = document.getElementById('check'); \
+         return !c.classList.contains('hidden') && c.innerText",
+        Duration::from_secs(6),
+    );
+    let first = first.as_str().unwrap().to_string();
+    assert!(first.contains("DO NOW"), "{first}");
+    assert!(first.contains("Flip switch 2 on"), "{first}");
+    let answers = h.browser.exec(
+        "return [...document.querySelectorAll('#check-answers button')].map((b) => \
+         b.dataset.answer)",
+        json!([]),
+    );
+    assert!(
+        answers.as_array().unwrap().contains(&json!("skip")),
+        "{answers}"
+    );
+    h.browser.click("#check-answers button[data-answer='skip']");
+    let next = h.browser.wait_for(
+        "the next prompt",
+        "const p = document.getElementById('check-prompt').textContent; \
+         return p.startsWith('Flip switch 2') ? null : p",
+        Duration::from_secs(4),
+    );
+    assert!(
+        next.as_str().unwrap().contains("switch 5"),
+        "after skipping switch 2: {next}"
+    );
 }
 
 /// A finger held on NOSE UP for 800 ms, then lifted: the trim runs while it is held,
