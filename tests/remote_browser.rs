@@ -553,6 +553,76 @@ fn a_held_trim_button_stops_within_150_ms_of_pointerup() {
     eprintln!("stop on the wire {after:.0} ms after pointerup");
 }
 
+/// A finger held on NOSE UP, and a second finger put down anywhere else on the page:
+/// the run stops at once (the keys' "another key"), before either finger lifts.
+#[test]
+fn another_touch_stops_a_run() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.watch_pointer();
+    let hold = h.browser.origin("#motor-pitch-up");
+    let other = h.browser.origin("#bus-volts");
+    // Two fingers, tick by tick: the first down and held; after 500 ms the second
+    // comes down; both stay down another 500 ms, then lift.
+    let finger = |id: &str, actions: Vec<serde_json::Value>| {
+        json!({"type": "pointer", "id": id, "parameters": {"pointerType": "touch"},
+               "actions": actions})
+    };
+    h.browser.cmd(
+        "POST",
+        "/actions",
+        Some(json!({"actions": [
+            finger("first", vec![
+                json!({"type": "pointerMove", "duration": 0, "origin": hold, "x": 0, "y": 0}),
+                json!({"type": "pointerDown", "button": 0}),
+                json!({"type": "pause", "duration": 500}),
+                json!({"type": "pause", "duration": 0}),
+                json!({"type": "pause", "duration": 500}),
+                json!({"type": "pointerUp", "button": 0}),
+            ]),
+            finger("second", vec![
+                json!({"type": "pause", "duration": 0}),
+                json!({"type": "pause", "duration": 0}),
+                json!({"type": "pause", "duration": 500}),
+                json!({"type": "pointerMove", "duration": 0, "origin": other, "x": 0, "y": 0}),
+                json!({"type": "pointerDown", "button": 0}),
+                json!({"type": "pointerUp", "button": 0}),
+            ]),
+        ]})),
+    );
+    h.browser.cmd("DELETE", "/actions", None);
+    std::thread::sleep(Duration::from_millis(500));
+    let downs = h.browser.exec(
+        "return (window.__seen || []).filter((e) => e[0] === 'pointerdown').map((e) => e[1])",
+        json!([]),
+    );
+    let downs: Vec<f64> = (downs.as_array().unwrap().iter())
+        .filter_map(|v| v.as_f64())
+        .collect();
+    assert_eq!(downs.len(), 2, "two fingers down: {downs:?}");
+    let up = h.seen("pointerup").expect("a finger lifted");
+    let moves = h.tap.trim_moves();
+    let stop = *trim_off(&moves)
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    let why = h
+        .browser
+        .exec("return document.body.dataset.lastStop || null", json!([]));
+    let after = wall_ms(stop) - downs[1];
+    assert!(
+        (0.0..=150.0).contains(&after) && wall_ms(stop) <= up && why == "another touch",
+        "stop {after:.0} ms after the second finger, {:.0} ms before the first lift \
+         (the page's reason: {why})",
+        up - wall_ms(stop)
+    );
+    assert!(
+        trim_on(&moves).iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    eprintln!("stop on the wire {after:.0} ms after the second finger");
+}
+
 /// A finger on NOSE DOWN, not lifted; then the phone shows another tab (the first is
 /// hidden for real: a visibility change, not a synthetic event). The run stops at
 /// once, by the page's stop, well before the server's 300 ms lease would end it.

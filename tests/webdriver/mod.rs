@@ -290,6 +290,11 @@ impl Browser {
         self.touch(css, &[]);
     }
 
+    /// The element `css` finds, as an Actions origin.
+    pub fn origin(&self, css: &str) -> Value {
+        json!({ ELEMENT: self.find(css) })
+    }
+
     /// A finger onto the element, down, then `then`.
     fn touch(&self, css: &str, then: &[Value]) {
         let e = self.find(css);
