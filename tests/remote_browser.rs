@@ -623,6 +623,59 @@ fn another_touch_stops_a_run() {
     eprintln!("stop on the wire {after:.0} ms after the second finger");
 }
 
+/// A finger on NOSE UP, not lifted, and the page left (the phone opens another
+/// address): the page's own stop (on the hidden page, then `pagehide`, kept alive
+/// past the page's end) is on the wire within 150 ms, well before the lease would
+/// end the run (219 ms after pagehide with the page's stops taken out).
+#[test]
+fn leaving_the_page_mid_run_stops_it() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.browser.touch_down("#motor-pitch-up");
+    let start = Instant::now();
+    while trim_on(&h.tap.trim_moves()).len() < 3 {
+        assert!(
+            start.elapsed() < Duration::from_secs(3),
+            "the trim never ran: {:?}",
+            h.tap.trim_moves()
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    h.browser.exec(
+        "window.addEventListener('pagehide', () => \
+         localStorage.setItem('pagehide', String(Date.now())))",
+        json!([]),
+    );
+    let left = SystemTime::now();
+    h.browser.goto("about:blank");
+    std::thread::sleep(Duration::from_millis(800));
+    let moves = h.tap.trim_moves();
+    let stop = *trim_off(&moves)
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    // Back on the page's origin to read when it saw pagehide.
+    h.browser.goto(&h.base);
+    let hidden = h
+        .browser
+        .exec("return Number(localStorage.getItem('pagehide'))", json!([]))
+        .as_f64()
+        .filter(|t| *t > 0.0)
+        .expect("the page saw pagehide");
+    assert!(stop >= left, "stopped before the page was left: {moves:?}");
+    let after = wall_ms(stop) - hidden;
+    assert!(
+        (0.0..=150.0).contains(&after),
+        "stop {after:.0} ms after pagehide"
+    );
+    assert!(
+        trim_on(&moves).iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    eprintln!("stop on the wire {after:.0} ms after pagehide");
+    let _ = h.browser.cmd("DELETE", "/actions", None);
+}
+
 /// A finger on NOSE DOWN, not lifted; then the phone shows another tab (the first is
 /// hidden for real: a visibility change, not a synthetic event). The run stops at
 /// once, by the page's stop, well before the server's 300 ms lease would end it.
