@@ -420,6 +420,55 @@ fn typing_the_code_pairs() {
     h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
 }
 
+/// Five wrong codes in a row lock pairing: the right code after them is refused, and
+/// the phone says so, with the seconds left.
+#[test]
+fn five_wrong_codes_lock_pairing_in_words() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    let url = h.pairing_url();
+    let code = url[url.len() - 6..].to_string();
+    let wrong = if code == "000000" { "111111" } else { "000000" };
+    h.browser.goto(&h.base);
+    h.browser.wait_for(
+        "the pairing form",
+        "return !document.getElementById('pairing').classList.contains('hidden')",
+        Duration::from_secs(5),
+    );
+    let mut said = Vec::new();
+    for attempt in [wrong, wrong, wrong, wrong, wrong, code.as_str()] {
+        h.browser.exec(
+            "document.getElementById('pair-msg').textContent = ''",
+            json!([]),
+        );
+        h.browser
+            .exec("document.getElementById('pair-code').value = ''", json!([]));
+        h.browser.type_into("#pair-code", attempt);
+        h.browser.click("#pair-button");
+        let msg = h.browser.wait_for(
+            "an answer",
+            "return document.getElementById('pair-msg').textContent",
+            Duration::from_secs(5),
+        );
+        said.push(msg.as_str().unwrap().to_string());
+    }
+    assert!(
+        said[..5].iter().all(|m| m.starts_with("Wrong code")),
+        "{said:#?}"
+    );
+    let locked = |m: &str| {
+        m.starts_with("Too many wrong codes: pairing is locked for ") && m.ends_with(" s more.")
+    };
+    assert!(
+        locked(&said[5]),
+        "the right code, after five wrong: {said:#?}"
+    );
+    assert!(
+        h.browser.text("#live").is_empty(),
+        "paired while locked: {said:#?}"
+    );
+}
+
 /// A tap on "Turn ON" puts DEVICE_POWER on the wire and the phone shows the circuit on.
 #[test]
 fn a_tap_switches_a_circuit() {
