@@ -148,3 +148,84 @@ fn the_page_is_idle_with_a_phone_listening_to_its_events() {
         share * 100.0
     );
 }
+
+/// The page's threads, by name (Linux's /proc).
+#[cfg(target_os = "linux")]
+fn threads(pid: u32) -> Vec<String> {
+    std::fs::read_dir(format!("/proc/{pid}/task"))
+        .map(|d| {
+            d.filter_map(|t| {
+                std::fs::read_to_string(t.ok()?.path().join("comm"))
+                    .ok()
+                    .map(|s| s.trim().to_string())
+            })
+            .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// How many listening TCP sockets the page holds (its fds' socket inodes among the
+/// LISTEN rows of /proc/net/tcp and tcp6).
+#[cfg(target_os = "linux")]
+fn listening(pid: u32) -> usize {
+    let inodes: Vec<String> = std::fs::read_dir(format!("/proc/{pid}/fd"))
+        .map(|d| {
+            d.filter_map(|f| {
+                let link = std::fs::read_link(f.ok()?.path()).ok()?;
+                let l = link.to_string_lossy().to_string();
+                Some(l.strip_prefix("socket:[")?.strip_suffix(']')?.to_string())
+            })
+            .collect()
+        })
+        .unwrap_or_default();
+    ["/proc/net/tcp", "/proc/net/tcp6"]
+        .iter()
+        .flat_map(|f| {
+            std::fs::read_to_string(f)
+                .unwrap_or_default()
+                .lines()
+                .skip(1)
+                .filter_map(|l| {
+                    let cols: Vec<&str> = l.split_whitespace().collect();
+                    (cols.get(3) == Some(&"0A")).then(|| cols.get(9).map(|s| s.to_string()))?
+                })
+                .collect::<Vec<_>>()
+        })
+        .filter(|inode| inodes.contains(inode))
+        .count()
+}
+
+/// Off costs nothing: without `--remote` the page has no remote thread and no
+/// listening socket; `p` starts both, `p` again (the code shown) ends both.
+#[cfg(target_os = "linux")]
+#[test]
+fn off_the_remote_has_no_thread_and_no_socket() {
+    let (_sim, port) = sim_pty("hangar");
+    let (mut term, slave) = Term::open();
+    let child = Kill(page(&["--port", &port], slave));
+    let pid = child.0.id();
+    let wait = |what: &str, f: &dyn Fn() -> bool| {
+        let end = Instant::now() + Duration::from_secs(10);
+        while !f() {
+            assert!(Instant::now() < end, "{what}");
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    };
+    let remote_thread = || threads(pid).iter().any(|t| t == "remote");
+    wait("no device list", &|| {
+        find(&term.output(), b"EFIS").is_some()
+    });
+    std::thread::sleep(Duration::from_millis(500));
+    assert!(!remote_thread(), "{:?}", threads(pid));
+    assert_eq!(listening(pid), 0, "the page listens with the remote off");
+    term.typed(b"p");
+    wait("no remote thread after p", &remote_thread);
+    wait("the pairing URL", &|| {
+        find(&term.output(), b"?pair=").is_some()
+    });
+    assert_eq!(listening(pid), 1, "the remote listens on one socket");
+    term.typed(b"p");
+    wait("the remote thread stayed after p", &|| !remote_thread());
+    assert_eq!(listening(pid), 0, "the socket stayed open after p");
+    drop(child);
+}

@@ -54,7 +54,7 @@ fn device_status() -> Packet {
 }
 
 /// Flaps and both trims fitted, mid-travel (so no endpoint or probe is in play).
-fn flap_trim(pitch_fault: FaultCode) -> FlapTrimStatus {
+fn flap_trim(pitch_fault: FaultCode, pitch_position: u8) -> FlapTrimStatus {
     let trim = TrimFlags {
         enabled: true,
         motor_running: false,
@@ -71,7 +71,7 @@ fn flap_trim(pitch_fault: FaultCode) -> FlapTrimStatus {
             ..trim
         },
         flap_position: 50,
-        pitch_trim_position: 50,
+        pitch_trim_position: pitch_position,
         roll_trim_position: 50,
         flap_fault: FaultCode::NoFault,
         pitch_trim_fault: pitch_fault,
@@ -106,6 +106,8 @@ struct Rig {
     wire: Vec<(Instant, Packet)>,
     unit: Unit,
     fed: Instant,
+    /// Where the pitch trim stands (it never moves here).
+    pitch_position: u8,
 }
 
 impl Rig {
@@ -120,6 +122,7 @@ impl Rig {
             wire: Vec::new(),
             unit: Unit::Healthy,
             fed: now,
+            pitch_position: 50,
         };
         r.feed();
         r
@@ -134,8 +137,10 @@ impl Rig {
             Unit::PitchFault => FaultCode::TrimRunaway,
             _ => FaultCode::NoFault,
         };
-        self.model
-            .apply_packet(self.now, &Packet::from_vpx(0, flap_trim(fault)));
+        self.model.apply_packet(
+            self.now,
+            &Packet::from_vpx(0, flap_trim(fault, self.pitch_position)),
+        );
         self.fed = self.now;
     }
 
@@ -343,4 +348,33 @@ fn a_lease_is_refused_in_controls_words_while_communication_is_lost() {
         .expect_err("started without the unit");
     assert!(why.contains("COMMUNICATION LOST"), "{why}");
     assert!(r.moves().is_empty());
+}
+
+#[test]
+fn near_the_endpoint_behind_it_a_leased_run_goes_as_probes() {
+    let mut r = Rig::new(StreamerConfig::default());
+    // Three counts from the up endpoint (0), driven down: a motor wired the wrong
+    // way would pass that endpoint, so the run probes until the position moves.
+    r.pitch_position = 3;
+    r.feed();
+    let t0 = r.now;
+    for i in 0..10 {
+        r.run_to(t0 + ms(100 * i));
+        assert_eq!(r.lease(Direction::Down), Ok(()), "renewal {i}");
+    }
+    r.run_to(t0 + ms(1000));
+    let moves = r.moves();
+    let first_stop = moves
+        .iter()
+        .find(|(_, p)| !is_on(p))
+        .expect("a probe's stop while the button is held");
+    assert!(
+        first_stop.0 - t0 < ms(200),
+        "the probe ran {:?}",
+        first_stop.0 - t0
+    );
+    assert!(r.ctl.remote_running().is_some(), "the run goes on, paused");
+    // Each probe ends with its stop while the button is still held.
+    let stops = moves.iter().filter(|(_, p)| !is_on(p)).count();
+    assert!(stops >= 2, "streamed as if its way were known: {moves:?}");
 }

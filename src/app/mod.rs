@@ -915,6 +915,9 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
     let repeat_delay = args.repeat_delay.map(repeat_delay).transpose()?;
     // Refused (a list of sources without --xfsp-control) before anything is opened.
     let xfsp = xfsp_setup(&args.xfsp)?;
+    if args.replay.is_some() && args.remote.is_some() {
+        anyhow::bail!("--remote: a replay is read-only, so it serves no remote");
+    }
     if let Some(file) = &args.replay {
         return replay::run(file, &args);
     }

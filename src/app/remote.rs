@@ -250,29 +250,35 @@ impl App {
                     }
                 }
             }
-            other => {
-                // Any other command ends a leased run first, as any other key does.
-                self.controller.act_with(Origin::Remote, |c| {
-                    (c.lease_stop(now, StopReason::OtherKey), ())
-                });
-                match other {
-                    Command::Power { id, on } => {
-                        let action = if *on {
-                            Action::PowerOn(*id)
-                        } else {
-                            Action::PowerOff(*id)
-                        };
-                        self.remote_command(*id, action, now)
-                    }
-                    Command::Clear { id } => self.remote_command(*id, Action::Reset(*id), now),
-                    Command::CheckAnswer(answer) => self.remote_check_answer(answer, now),
-                    Command::Motor { .. } | Command::MotorStop => unreachable!(),
-                }
+            Command::Power { id, on } => {
+                self.end_lease(now);
+                let action = if *on {
+                    Action::PowerOn(*id)
+                } else {
+                    Action::PowerOff(*id)
+                };
+                self.remote_command(*id, action, now)
+            }
+            Command::Clear { id } => {
+                self.end_lease(now);
+                self.remote_command(*id, Action::Reset(*id), now)
+            }
+            Command::CheckAnswer(answer) => {
+                self.end_lease(now);
+                self.remote_check_answer(answer, now)
             }
         };
         self.view.motor_run = self.controller.running();
         self.remote_tick(now);
         req.answer(reply);
+    }
+
+    /// Any command from the remote but its motor's ends its leased run first, as any
+    /// other key does.
+    fn end_lease(&mut self, now: Instant) {
+        self.controller.act_with(Origin::Remote, |c| {
+            (c.lease_stop(now, StopReason::OtherKey), ())
+        });
     }
 
     /// A power or reset command: control's rule, sent through the gate, logged.

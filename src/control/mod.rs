@@ -578,7 +578,9 @@ impl Controller {
     /// ([`MotorStreamer::lease`]). A new run is permitted as the installation
     /// check's are (the model's checks, the endpoints, a motor seen moving against
     /// its command), but not refused for a page nobody sees: the person is at the
-    /// wingtip watching the motor itself. A run that ended for any reason but the
+    /// wingtip watching the motor itself. Started near the endpoint behind it, it goes
+    /// as probes until the motor shows its way ([`endpoints::Probing`]), as a key's
+    /// run does. A run that ended for any reason but the
     /// remote's own stop is not restarted by renewals: they are refused, with the
     /// reason, until the remote lets go ([`Controller::lease_stop`]) or asks for
     /// another motor or direction. Returns what to send, and the refusal if any.
@@ -638,6 +640,11 @@ impl Controller {
             self.watch = Some(endpoints::Watch::new(motor, direction));
             self.probe = None;
             self.remote_run = Some(key);
+            // Near the endpoint behind it, as probes until the motor shows its way,
+            // as a key's run goes.
+            let mut probed = Outcome::default();
+            self.start_probe(model, motor, direction, now, &mut probed);
+            out.extend(probed.packets);
             (out, Ok(()))
         } else {
             (out, Err(Refusal(format!("{} did not start", motor.name()))))

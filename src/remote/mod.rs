@@ -101,6 +101,9 @@ pub fn lan_address() -> (IpAddr, bool) {
 /// The running remote: the server's thread and what the page shares with it.
 pub struct Remote {
     addr: SocketAddr,
+    /// The address the page shows: the bound one, or for every address
+    /// (`0.0.0.0`) the LAN address, on the bound port.
+    shown: SocketAddr,
     shared: Arc<server::Shared>,
     requests: Receiver<Request>,
     stop: Option<oneshot::Sender<()>>,
@@ -139,8 +142,14 @@ impl Remote {
                     }
                 });
             })?;
+        let shown = if bound.ip().is_unspecified() {
+            SocketAddr::new(lan_address().0, bound.port())
+        } else {
+            bound
+        };
         Ok(Remote {
             addr: bound,
+            shown,
             shared,
             requests,
             stop: Some(stop),
@@ -155,7 +164,7 @@ impl Remote {
     /// The URL with the pairing code in it, as the page shows it and its QR code
     /// holds it.
     pub fn pairing_url(&self) -> String {
-        format!("http://{}/?pair={}", self.addr, self.code())
+        format!("http://{}/?pair={}", self.shown, self.code())
     }
 
     /// The pairing code now.

@@ -79,6 +79,24 @@ struct Server {
     requests: Sender<Request>,
     /// `http://ADDR:PORT`, the only Origin taken.
     origin: String,
+    /// Bound to every address (`--remote 0.0.0.0:PORT`): the page's own origin is
+    /// the address the phone used, `http://` + its Host header, taken only as an IP
+    /// address (a name could be a rebinding attacker's).
+    any_address: bool,
+}
+
+impl Server {
+    fn origin_ok(&self, origin: &[u8], host: Option<&[u8]>) -> bool {
+        if origin == self.origin.as_bytes() {
+            return true;
+        }
+        let Some(host) = host.and_then(|h| std::str::from_utf8(h).ok()) else {
+            return false;
+        };
+        self.any_address
+            && host.parse::<SocketAddr>().is_ok()
+            && origin.strip_prefix(b"http://") == Some(host.as_bytes())
+    }
 }
 
 pub(super) fn router(
@@ -92,6 +110,7 @@ pub(super) fn router(
         model,
         requests,
         origin: format!("http://{bound}"),
+        any_address: bound.ip().is_unspecified(),
     };
     Router::new()
         .route("/", get(index))
@@ -130,8 +149,9 @@ fn session_of(headers: &HeaderMap) -> Option<String> {
 
 /// Origin first (403), then the session (401) for every `/api/*` but the pairing.
 async fn gate(Ctx(s): Ctx<Server>, req: HttpRequest, next: Next) -> Response {
+    let host = req.headers().get(header::HOST).map(HeaderValue::as_bytes);
     if let Some(origin) = req.headers().get(header::ORIGIN)
-        && origin.as_bytes() != s.origin.as_bytes()
+        && !s.origin_ok(origin.as_bytes(), host)
     {
         return error(StatusCode::FORBIDDEN, "origin");
     }
