@@ -880,6 +880,69 @@ fn a_quiet_unit_shows_communication_lost() {
     assert!(h.browser.text("#commlost").is_empty(), "still says lost");
 }
 
+/// Every text the page draws meets WCAG's 4.5:1 against what is behind it, in the
+/// phone's light and dark settings alike (sunlight at the wingtip): the state words
+/// ON, OFF and FAULT, the values, the buttons, the banners, the notice.
+#[test]
+fn every_text_meets_wcag_contrast_light_and_dark() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    h.console("switch 2 on");
+    h.console("fault 5 8");
+    h.browser.wait_for(
+        "ON, OFF and FAULT on the list",
+        "const s = [...document.querySelectorAll('#devices .state')].map((e) => e.className); \
+         return ['on', 'off', 'fault'].every((c) => s.includes('state ' + c))",
+        Duration::from_secs(5),
+    );
+    // The banners and the notice as they show when they do.
+    h.browser.exec(
+        "for (const id of ['stale', 'commlost', 'notice']) \
+         document.getElementById(id).classList.remove('hidden'); \
+         document.getElementById('notice').classList.add('refused');",
+        json!([]),
+    );
+    const RATIOS: &str = "
+        const lin = (c) => { c /= 255; return c <= 0.03928 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4; };
+        const rgb = (s) => s.match(/[\\d.]+/g).map(Number);
+        const lum = ([r, g, b]) => 0.2126 * lin(r) + 0.7152 * lin(g) + 0.0722 * lin(b);
+        const bg = (e) => { for (; e; e = e.parentElement) { const c = rgb(getComputedStyle(e).backgroundColor);
+            if (c.length < 4 || c[3] > 0) return c.slice(0, 3); } return [255, 255, 255]; };
+        const out = [];
+        for (const e of document.querySelectorAll('#live *, #notice, header *')) {
+            if (![...e.childNodes].some((n) => n.nodeType === 3 && n.textContent.trim())) continue;
+            if (e.closest('.hidden') && !e.closest('#stale, #commlost, #notice')) continue;
+            const a = lum(rgb(getComputedStyle(e).color)), b = lum(bg(e));
+            const ratio = (Math.max(a, b) + 0.05) / (Math.min(a, b) + 0.05);
+            out.push([e.tagName + '.' + e.className + ' ' + e.textContent.trim().slice(0, 24), ratio]);
+        }
+        return [getComputedStyle(document.body).backgroundColor, out];";
+    let mut backgrounds = Vec::new();
+    for scheme in ["light", "dark"] {
+        h.browser.color_scheme(scheme);
+        std::thread::sleep(Duration::from_millis(200));
+        let v = h.browser.exec(RATIOS, json!([]));
+        backgrounds.push(v[0].clone());
+        let all = v[1].as_array().unwrap();
+        assert!(all.len() > 20, "{scheme}: only {} texts", all.len());
+        let poor: Vec<_> = all
+            .iter()
+            .filter(|r| r[1].as_f64().unwrap() < 4.5)
+            .collect();
+        assert!(poor.is_empty(), "{scheme}: under 4.5:1: {poor:?}");
+        let least = (all.iter())
+            .min_by(|a, b| a[1].as_f64().unwrap().total_cmp(&b[1].as_f64().unwrap()))
+            .unwrap();
+        eprintln!("{scheme}: {} texts, the least contrast {least}", all.len());
+    }
+    assert_eq!(
+        backgrounds,
+        [json!("rgb(255, 255, 255)"), json!("rgb(0, 0, 0)")],
+        "the phone's setting picks the page's colours"
+    );
+}
+
 /// The README's screenshots of the phone page, light and dark, at 390×844: run by
 /// hand (`cargo test --test remote_browser -- --ignored readme_screenshots`) when the
 /// page's look changes, then commit `docs/remote-*.png`.
