@@ -1,0 +1,982 @@
+//! The walk-around remote's phone page in a real browser (issue 25): headless Chromium
+//! at a phone's 390×844, driven through WebDriver (`webdriver`), against the real page
+//! binary (`vpx-efis --port … --remote 127.0.0.1:PORT` in a real terminal) wired to the
+//! virtual VP-X as its own process (`vpx-efis sim --pty`), through a tap that records
+//! every byte the page puts on the wire.
+//!
+//! Without chromedriver these skip with a message; with `CI` set they fail instead.
+//! They measure real time, so they take turns (a lock) rather than compete for a
+//! loaded machine's cores. The page in a terminal needs a pseudo-terminal: Unix only.
+#![cfg(unix)]
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::process::{ChildStdin, Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+use serde_json::json;
+use serialport::SerialPort;
+use vpx_efis::protocol::message::{DevicePower, Message, TrimMove};
+use vpx_efis::protocol::{Decoder, Event as DecEvent, Packet};
+
+mod common;
+use common::sim_process::Kill;
+
+mod webdriver;
+use webdriver::{Browser, free_port};
+
+// The page in a real terminal, as the keys' end-to-end tests run it.
+#[path = "page_rig/terminal.rs"]
+#[allow(dead_code)]
+mod terminal;
+use terminal::Term;
+
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
+/// A small aircraft, quiet (nothing on its timeline), with lights to switch and a
+/// pitch trim wired right.
+const SCENARIO: &str = r#"
+description = "remote_browser: lights, a pump, flaps and pitch trim, nothing scheduled"
+[electrical]
+battery_volts = 12.6
+temperature_c = 20
+[[device]]
+id = 2
+name = "EFIS"
+breaker = 5
+switch = 11
+load = 2.8
+[[device]]
+id = 4
+name = "Nav Lt"
+breaker = 3
+switch = 2
+load = 1.4
+[[device]]
+id = 5
+name = "Strobe Lt"
+breaker = 5
+switch = 2
+load = 2.1
+[[device]]
+id = 17
+name = "Landing Lt"
+breaker = 10
+switch = 5
+load = 6.5
+[[device]]
+id = 19
+name = "Boost Pump"
+breaker = 7
+switch = 7
+load = 4.2
+[flap]
+mode = "momentary"
+up = 20
+down = 220
+midpoint_1 = 90
+midpoint_2 = 160
+breaker = 7
+position = 120
+[pitch_trim]
+up = 30
+down = 220
+neutral = 125
+position = 125
+"#;
+
+/// Wall-clock milliseconds, the clock the browser's `Date.now()` reads.
+fn wall_ms(t: SystemTime) -> f64 {
+    t.duration_since(UNIX_EPOCH).unwrap().as_secs_f64() * 1000.0
+}
+
+type Wire = Arc<Mutex<Vec<(SystemTime, Vec<u8>)>>>;
+
+/// The sim's pty on one side, a fresh pty whose slave the page opens on the other, and
+/// a record of what the page sends.
+struct Tap {
+    stop: Arc<AtomicBool>,
+    wire: Wire,
+    slave_path: String,
+    threads: Vec<std::thread::JoinHandle<()>>,
+}
+
+impl Tap {
+    fn start(sim_path: &str) -> Tap {
+        let mut sim_in = serialport::new(sim_path, 57_600)
+            .timeout(Duration::from_millis(20))
+            .open_native()
+            .expect("open the sim's pty");
+        let mut sim_out = sim_in.try_clone_native().expect("clone the sim's pty");
+        let pty = vpx_efis::link::open_pty_pair().expect("a pty for the page");
+        let mut page_in = pty.master.try_clone_native().expect("clone master");
+        let mut page_out = pty.master;
+        page_in.set_timeout(Duration::from_millis(20)).unwrap();
+        let stop = Arc::new(AtomicBool::new(false));
+        let wire: Wire = Arc::default();
+        let (s, w) = (stop.clone(), wire.clone());
+        let slave = pty.slave;
+        let up = std::thread::spawn(move || {
+            let _keep_slave_open = slave;
+            let mut buf = [0u8; 512];
+            while !s.load(Ordering::SeqCst) {
+                if let Ok(n) = page_in.read(&mut buf)
+                    && n > 0
+                {
+                    w.lock()
+                        .unwrap()
+                        .push((SystemTime::now(), buf[..n].to_vec()));
+                    let _ = sim_out.write_all(&buf[..n]);
+                }
+            }
+        });
+        let s = stop.clone();
+        let down = std::thread::spawn(move || {
+            let mut buf = [0u8; 512];
+            while !s.load(Ordering::SeqCst) {
+                if let Ok(n) = sim_in.read(&mut buf)
+                    && n > 0
+                {
+                    let _ = page_out.write_all(&buf[..n]);
+                }
+            }
+        });
+        Tap {
+            stop,
+            wire,
+            slave_path: pty.path,
+            threads: vec![up, down],
+        }
+    }
+
+    /// Every message the page sent, with when it reached the wire.
+    fn sent(&self) -> Vec<(SystemTime, Message)> {
+        let wire = self.wire.lock().unwrap();
+        let mut dec = Decoder::new();
+        let mut out = Vec::new();
+        for (at, bytes) in wire.iter() {
+            dec.push(bytes, |e| {
+                if let DecEvent::Frame(f) = e
+                    && let Ok(p) = Packet::parse(&f)
+                {
+                    out.push((*at, p.message));
+                }
+            });
+        }
+        out
+    }
+
+    fn trim_moves(&self) -> Vec<(SystemTime, TrimMove)> {
+        (self.sent().into_iter())
+            .filter_map(|(at, m)| match m {
+                Message::TrimMove(t) => Some((at, t)),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+impl Drop for Tap {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::SeqCst);
+        for t in self.threads.drain(..) {
+            let _ = t.join();
+        }
+    }
+}
+
+/// The virtual VP-X, the tap, the page with the remote on, and the browser.
+struct Hangar {
+    browser: Browser,
+    tap: Tap,
+    term: Term,
+    sim_console: ChildStdin,
+    base: String,
+    // Dropped last: the page before the sim, as a mechanic quits.
+    _page: Kill,
+    _sim: Kill,
+    _dir: tempfile::TempDir,
+}
+
+impl Hangar {
+    /// `None` (skipped, with a message) when there is no chromedriver and CI is unset.
+    fn open() -> Option<Hangar> {
+        let browser = Browser::start()?;
+        let dir = tempfile::tempdir().unwrap();
+        let scenario = dir.path().join("remote.toml");
+        std::fs::write(&scenario, SCENARIO).unwrap();
+        let mut sim = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+            .args(["sim", "--pty", "--scenario"])
+            .arg(&scenario)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("run vpx-efis sim");
+        let sim_console = sim.stdin.take().unwrap();
+        let mut out = BufReader::new(sim.stdout.take().unwrap());
+        let sim = Kill(sim);
+        let mut path = String::new();
+        out.read_line(&mut path).unwrap();
+        // Keep reading what the sim says, so that it never blocks on a full pipe.
+        std::thread::spawn(move || for _ in out.lines() {});
+        let tap = Tap::start(path.trim());
+        let link = dir.path().join("vpx-serial");
+        std::os::unix::fs::symlink(&tap.slave_path, &link).unwrap();
+        let port = free_port();
+        let remote = format!("127.0.0.1:{port}");
+        let (term, slave) = Term::open();
+        let page = Kill(terminal::page(
+            &["--port", link.to_str().unwrap(), "--remote", &remote],
+            slave,
+        ));
+        Some(Hangar {
+            browser,
+            tap,
+            term,
+            sim_console,
+            base: format!("http://{remote}"),
+            _page: page,
+            _sim: sim,
+            _dir: dir,
+        })
+    }
+
+    /// The pairing URL the page shows now, read from the terminal.
+    fn pairing_url(&self) -> String {
+        let start = Instant::now();
+        let needle = format!("{}/?pair=", self.base);
+        loop {
+            let screen = String::from_utf8_lossy(&self.term.output()).into_owned();
+            if let Some(at) = screen.rfind(&needle) {
+                let code: String = screen[at + needle.len()..]
+                    .chars()
+                    .take_while(char::is_ascii_digit)
+                    .collect();
+                if code.len() == 6 {
+                    return format!("{needle}{code}");
+                }
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(10),
+                "the page showed no pairing URL {needle}NNNNNN"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    fn console(&mut self, line: &str) {
+        writeln!(self.sim_console, "{line}").unwrap();
+        self.sim_console.flush().unwrap();
+    }
+
+    /// Opens the pairing URL as a phone that scanned the QR code does, and waits until
+    /// the list is live.
+    fn pair(&self) {
+        let url = self.pairing_url();
+        self.browser.goto(&url);
+        self.wait_live();
+    }
+
+    fn wait_live(&self) {
+        self.browser.wait_for(
+            "the device list, live",
+            "return document.getElementById('conn').textContent === 'live' \
+             && document.querySelectorAll('#devices .device').length > 0",
+            Duration::from_secs(15),
+        );
+    }
+
+    /// The state word a device's row shows (ON, OFF, FAULT: …, UNKNOWN, —).
+    fn row_state(&self, name: &str) -> String {
+        self.browser
+            .exec(
+                "for (const r of document.querySelectorAll('#devices .device')) \
+                 if (r.querySelector('.name').textContent === arguments[0]) \
+                 return r.querySelector('.state').textContent; return null;",
+                json!([name]),
+            )
+            .as_str()
+            .unwrap_or("<no such row>")
+            .to_string()
+    }
+
+    fn wait_row_state(&self, name: &str, want: &str, limit: Duration) -> Instant {
+        let start = Instant::now();
+        loop {
+            let got = self.row_state(name);
+            if got == want {
+                return Instant::now();
+            }
+            assert!(
+                start.elapsed() < limit,
+                "{name} shows {got:?}, not {want:?}, after {limit:?}; the phone shows:\n{}",
+                self.browser.text("body")
+            );
+            std::thread::sleep(Duration::from_millis(25));
+        }
+    }
+
+    /// Records, in the page, when the next pointer events happen (`Date.now()`).
+    fn watch_pointer(&self) {
+        self.browser.exec(
+            "window.__seen = []; for (const t of ['pointerdown', 'pointerup', \
+             'visibilitychange', 'blur']) { (t === 'blur' ? window : document)\
+             .addEventListener(t, () => window.__seen.push([t, Date.now(), \
+             document.visibilityState]), true); }",
+            json!([]),
+        );
+    }
+
+    fn seen(&self, what: &str) -> Option<f64> {
+        let v = self.browser.exec(
+            "const e = (window.__seen || []).find((e) => e[0] === arguments[0]); \
+             return e ? e[1] : null;",
+            json!([what]),
+        );
+        v.as_f64()
+    }
+}
+
+fn trim_on(moves: &[(SystemTime, TrimMove)]) -> Vec<SystemTime> {
+    moves
+        .iter()
+        .filter(|(_, m)| m.on)
+        .map(|(t, _)| *t)
+        .collect()
+}
+
+/// The stops after the run began (the page also sends one when it connects).
+fn trim_off(moves: &[(SystemTime, TrimMove)]) -> Vec<SystemTime> {
+    let Some(began) = trim_on(moves).first().copied() else {
+        return Vec::new();
+    };
+    (moves.iter())
+        .filter(|(t, m)| !m.on && *t > began)
+        .map(|(t, _)| *t)
+        .collect()
+}
+
+/// Opening the URL (as a phone does from the QR code) pairs, takes the code out of the
+/// address bar, and shows the list; a switch worked in the cockpit (the sim's console)
+/// shows on the phone within a second or two.
+#[test]
+fn opening_the_url_pairs_and_the_list_is_live() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    let url = h.browser.url();
+    assert!(
+        !url.contains("pair="),
+        "the code left in the address bar: {url}"
+    );
+    h.wait_row_state("Nav Lt", "OFF", Duration::from_secs(5));
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(1));
+    let volts = h.browser.text("#bus-volts");
+    assert!(
+        volts.ends_with(" V") && volts != "— V",
+        "bus volts {volts:?}"
+    );
+    h.console("switch 2 on");
+    h.wait_row_state("Nav Lt", "ON", Duration::from_secs(4));
+    h.wait_row_state("Strobe Lt", "ON", Duration::from_secs(1));
+    h.console("switch 2 off");
+    h.wait_row_state("Nav Lt", "OFF", Duration::from_secs(4));
+}
+
+/// Without a code in the URL the phone asks for it: a wrong one is refused in words,
+/// the right one (typed as the page shows it, "482 913") pairs.
+#[test]
+fn typing_the_code_pairs() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    let url = h.pairing_url();
+    let code = &url[url.len() - 6..];
+    h.browser.goto(&h.base);
+    h.browser.wait_for(
+        "the pairing form",
+        "return !document.getElementById('pairing').classList.contains('hidden')",
+        Duration::from_secs(5),
+    );
+    let wrong = if code == "000000" { "111111" } else { "000000" };
+    h.browser.type_into("#pair-code", wrong);
+    h.browser.click("#pair-button");
+    h.browser.wait_for(
+        "the refusal",
+        "return document.getElementById('pair-msg').textContent.startsWith('Wrong code')",
+        Duration::from_secs(5),
+    );
+    assert!(
+        !h.browser.text("#pairing").is_empty(),
+        "still asks for a code"
+    );
+    h.browser
+        .exec("document.getElementById('pair-code').value = ''", json!([]));
+    h.browser
+        .type_into("#pair-code", &format!("{} {}", &code[..3], &code[3..]));
+    h.browser.click("#pair-button");
+    h.wait_live();
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+}
+
+/// Five wrong codes in a row lock pairing: the right code after them is refused, and
+/// the phone says so, with the seconds left.
+#[test]
+fn five_wrong_codes_lock_pairing_in_words() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    let url = h.pairing_url();
+    let code = url[url.len() - 6..].to_string();
+    let wrong = if code == "000000" { "111111" } else { "000000" };
+    h.browser.goto(&h.base);
+    h.browser.wait_for(
+        "the pairing form",
+        "return !document.getElementById('pairing').classList.contains('hidden')",
+        Duration::from_secs(5),
+    );
+    let mut said = Vec::new();
+    for attempt in [wrong, wrong, wrong, wrong, wrong, code.as_str()] {
+        h.browser.exec(
+            "document.getElementById('pair-msg').textContent = ''",
+            json!([]),
+        );
+        h.browser
+            .exec("document.getElementById('pair-code').value = ''", json!([]));
+        h.browser.type_into("#pair-code", attempt);
+        h.browser.click("#pair-button");
+        let msg = h.browser.wait_for(
+            "an answer",
+            "return document.getElementById('pair-msg').textContent",
+            Duration::from_secs(5),
+        );
+        said.push(msg.as_str().unwrap().to_string());
+    }
+    assert!(
+        said[..5].iter().all(|m| m.starts_with("Wrong code")),
+        "{said:#?}"
+    );
+    let locked = |m: &str| {
+        m.starts_with("Too many wrong codes: pairing is locked for ") && m.ends_with(" s more.")
+    };
+    assert!(
+        locked(&said[5]),
+        "the right code, after five wrong: {said:#?}"
+    );
+    assert!(
+        h.browser.text("#live").is_empty(),
+        "paired while locked: {said:#?}"
+    );
+}
+
+/// A tap on "Turn ON" puts DEVICE_POWER on the wire and the phone shows the circuit on.
+#[test]
+fn a_tap_switches_a_circuit() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.wait_row_state("Landing Lt", "OFF", Duration::from_secs(5));
+    h.browser.click("#devices .device[data-id='17'] button.act");
+    h.wait_row_state("Landing Lt", "ON", Duration::from_secs(4));
+    let powers: Vec<DevicePower> = (h.tap.sent().into_iter())
+        .filter_map(|(_, m)| match m {
+            Message::DevicePower(p) => Some(p),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        powers,
+        [DevicePower {
+            device_id: 17,
+            on: true
+        }],
+        "one DEVICE_POWER, for the Landing Lt, on"
+    );
+    h.browser.click("#devices .device[data-id='17'] button.act");
+    h.wait_row_state("Landing Lt", "OFF", Duration::from_secs(4));
+    // The starter is only reset: control's refusal, in its words, and nothing sent.
+    let sent_before = h.tap.sent().len();
+    h.browser.click("#devices .device[data-id='1'] button.act");
+    let notice = h.browser.wait_for(
+        "the refusal",
+        "const n = document.getElementById('notice'); \
+         return n.classList.contains('refused') && n.textContent",
+        Duration::from_secs(4),
+    );
+    assert!(
+        notice.as_str().unwrap().starts_with("Refused: the starter"),
+        "{notice}"
+    );
+    let starter: Vec<_> = (h.tap.sent().into_iter().skip(sent_before))
+        .filter(|(_, m)| matches!(m, Message::DevicePower(p) if p.device_id == 1))
+        .collect();
+    assert!(starter.is_empty(), "sent for the starter: {starter:?}");
+}
+
+/// The installation check started at the laptop: the phone shows its DO NOW prompt
+/// and the answers it offers, and an answer from the phone moves the check on.
+#[test]
+fn the_check_prompts_on_the_phone_and_takes_its_answers() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    assert!(h.browser.text("#check").is_empty(), "no check yet");
+    // At the laptop: hide the remote's overlay, open the check, and confirm that
+    // the aircraft is safe to power (given where the list of circuits is shown).
+    h.term.typed(b"\x1b");
+    std::thread::sleep(Duration::from_millis(300));
+    h.term.typed(b"i");
+    std::thread::sleep(Duration::from_millis(500));
+    h.term.typed(b"\r");
+    let first = h.browser.wait_for(
+        "the check's prompt",
+        "const c = document.getElementById('check'); \
+         return !c.classList.contains('hidden') && c.innerText",
+        Duration::from_secs(6),
+    );
+    let first = first.as_str().unwrap().to_string();
+    assert!(first.contains("DO NOW"), "{first}");
+    assert!(first.contains("Flip switch 2 on"), "{first}");
+    let answers = h.browser.exec(
+        "return [...document.querySelectorAll('#check-answers button')].map((b) => \
+         b.dataset.answer)",
+        json!([]),
+    );
+    assert!(
+        answers.as_array().unwrap().contains(&json!("skip")),
+        "{answers}"
+    );
+    h.browser.click("#check-answers button[data-answer='skip']");
+    let next = h.browser.wait_for(
+        "the next prompt",
+        "const p = document.getElementById('check-prompt').textContent; \
+         return p.startsWith('Flip switch 2') ? null : p",
+        Duration::from_secs(4),
+    );
+    assert!(
+        next.as_str().unwrap().contains("switch 5"),
+        "after skipping switch 2: {next}"
+    );
+}
+
+/// A finger held on NOSE UP for 800 ms, then lifted: the trim runs while it is held,
+/// and its stop is on the wire within 150 ms of `pointerup` (the page's own clock of
+/// the event against the tap's clock of the byte: the same wall clock).
+#[test]
+fn a_held_trim_button_stops_within_150_ms_of_pointerup() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.watch_pointer();
+    h.browser
+        .touch_hold("#motor-pitch-up", Duration::from_millis(800));
+    std::thread::sleep(Duration::from_millis(700));
+    let up = h.seen("pointerup").expect("the page saw pointerup");
+    let down = h.seen("pointerdown").expect("the page saw pointerdown");
+    let moves = h.tap.trim_moves();
+    let on = trim_on(&moves);
+    let off = trim_off(&moves);
+    assert!(!on.is_empty(), "the trim never ran: {moves:?}");
+    assert!(
+        wall_ms(on[0]) - down < 400.0,
+        "the run began {:.0} ms after the touch",
+        wall_ms(on[0]) - down
+    );
+    let stop = *off
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    let after = wall_ms(stop) - up;
+    assert!(
+        (0.0..=150.0).contains(&after),
+        "the stop reached the wire {after:.0} ms after pointerup; TRIM_MOVEs (ms after \
+         pointerdown, on): {:?}",
+        moves
+            .iter()
+            .map(|(t, m)| ((wall_ms(*t) - down).round(), m.on))
+            .collect::<Vec<_>>()
+    );
+    assert!(
+        on.iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    eprintln!("stop on the wire {after:.0} ms after pointerup");
+}
+
+/// A finger held on NOSE UP, and a second finger put down anywhere else on the page:
+/// the run stops at once (the keys' "another key"), before either finger lifts.
+#[test]
+fn another_touch_stops_a_run() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.watch_pointer();
+    let hold = h.browser.origin("#motor-pitch-up");
+    let other = h.browser.origin("#bus-volts");
+    // Two fingers, tick by tick: the first down and held; after 500 ms the second
+    // comes down; both stay down another 500 ms, then lift.
+    let finger = |id: &str, actions: Vec<serde_json::Value>| {
+        json!({"type": "pointer", "id": id, "parameters": {"pointerType": "touch"},
+               "actions": actions})
+    };
+    h.browser.cmd(
+        "POST",
+        "/actions",
+        Some(json!({"actions": [
+            finger("first", vec![
+                json!({"type": "pointerMove", "duration": 0, "origin": hold, "x": 0, "y": 0}),
+                json!({"type": "pointerDown", "button": 0}),
+                json!({"type": "pause", "duration": 500}),
+                json!({"type": "pause", "duration": 0}),
+                json!({"type": "pause", "duration": 500}),
+                json!({"type": "pointerUp", "button": 0}),
+            ]),
+            finger("second", vec![
+                json!({"type": "pause", "duration": 0}),
+                json!({"type": "pause", "duration": 0}),
+                json!({"type": "pause", "duration": 500}),
+                json!({"type": "pointerMove", "duration": 0, "origin": other, "x": 0, "y": 0}),
+                json!({"type": "pointerDown", "button": 0}),
+                json!({"type": "pointerUp", "button": 0}),
+            ]),
+        ]})),
+    );
+    h.browser.cmd("DELETE", "/actions", None);
+    std::thread::sleep(Duration::from_millis(500));
+    let downs = h.browser.exec(
+        "return (window.__seen || []).filter((e) => e[0] === 'pointerdown').map((e) => e[1])",
+        json!([]),
+    );
+    let downs: Vec<f64> = (downs.as_array().unwrap().iter())
+        .filter_map(|v| v.as_f64())
+        .collect();
+    assert_eq!(downs.len(), 2, "two fingers down: {downs:?}");
+    let up = h.seen("pointerup").expect("a finger lifted");
+    let moves = h.tap.trim_moves();
+    let stop = *trim_off(&moves)
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    let why = h
+        .browser
+        .exec("return document.body.dataset.lastStop || null", json!([]));
+    let after = wall_ms(stop) - downs[1];
+    assert!(
+        (0.0..=150.0).contains(&after) && wall_ms(stop) <= up && why == "another touch",
+        "stop {after:.0} ms after the second finger, {:.0} ms before the first lift \
+         (the page's reason: {why})",
+        up - wall_ms(stop)
+    );
+    assert!(
+        trim_on(&moves).iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    eprintln!("stop on the wire {after:.0} ms after the second finger");
+}
+
+/// A finger on NOSE UP, not lifted, and the page left (the phone opens another
+/// address): the page's own stop (on the hidden page, then `pagehide`, kept alive
+/// past the page's end) is on the wire within 150 ms, well before the lease would
+/// end the run (219 ms after pagehide with the page's stops taken out).
+#[test]
+fn leaving_the_page_mid_run_stops_it() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.browser.touch_down("#motor-pitch-up");
+    let start = Instant::now();
+    while trim_on(&h.tap.trim_moves()).len() < 3 {
+        assert!(
+            start.elapsed() < Duration::from_secs(3),
+            "the trim never ran: {:?}",
+            h.tap.trim_moves()
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    h.browser.exec(
+        "window.addEventListener('pagehide', () => \
+         localStorage.setItem('pagehide', String(Date.now())))",
+        json!([]),
+    );
+    let left = SystemTime::now();
+    h.browser.goto("about:blank");
+    std::thread::sleep(Duration::from_millis(800));
+    let moves = h.tap.trim_moves();
+    let stop = *trim_off(&moves)
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    // Back on the page's origin to read when it saw pagehide.
+    h.browser.goto(&h.base);
+    let hidden = h
+        .browser
+        .exec("return Number(localStorage.getItem('pagehide'))", json!([]))
+        .as_f64()
+        .filter(|t| *t > 0.0)
+        .expect("the page saw pagehide");
+    assert!(stop >= left, "stopped before the page was left: {moves:?}");
+    let after = wall_ms(stop) - hidden;
+    assert!(
+        (0.0..=150.0).contains(&after),
+        "stop {after:.0} ms after pagehide"
+    );
+    assert!(
+        trim_on(&moves).iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    eprintln!("stop on the wire {after:.0} ms after pagehide");
+    let _ = h.browser.cmd("DELETE", "/actions", None);
+}
+
+/// A finger on NOSE DOWN, not lifted; then the phone shows another tab (the first is
+/// hidden for real: a visibility change, not a synthetic event). The run stops at
+/// once, by the page's stop, well before the server's 300 ms lease would end it.
+#[test]
+fn hiding_the_tab_mid_run_stops_the_run() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.watch_pointer();
+    h.browser.touch_down("#motor-pitch-down");
+    let start = Instant::now();
+    while trim_on(&h.tap.trim_moves()).len() < 3 {
+        assert!(
+            start.elapsed() < Duration::from_secs(3),
+            "the trim never ran: {:?}",
+            h.tap.trim_moves()
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let hidden_from = SystemTime::now();
+    let first = h.browser.open_other_tab();
+    let hidden_by = SystemTime::now();
+    std::thread::sleep(Duration::from_millis(800));
+    let moves = h.tap.trim_moves();
+    let stop = *trim_off(&moves)
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    assert!(
+        stop >= hidden_from,
+        "stopped {:.0} ms before the tab was hidden (the page's reason: {}); TRIM_MOVEs \
+         (ms after the hide, on): {:?}",
+        wall_ms(hidden_from) - wall_ms(stop),
+        h.browser
+            .exec("return document.body.dataset.lastStop || null", json!([])),
+        moves
+            .iter()
+            .map(|(t, m)| ((wall_ms(*t) - wall_ms(hidden_from)).round(), m.on))
+            .collect::<Vec<_>>()
+    );
+    h.browser.switch_to(&first);
+    h.browser.wait_for(
+        "the first tab, visible again",
+        "return document.visibilityState === 'visible' && !!window.__seen",
+        Duration::from_secs(3),
+    );
+    let visibility = h.seen("visibilitychange");
+    let why = h
+        .browser
+        .exec("return document.body.dataset.lastStop || null", json!([]));
+    assert!(
+        trim_on(&moves).iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    // The tab lost focus, then was hidden: the page stops at the first of the two.
+    // Within 150 ms of it, so the page sent the stop (the server's lease would have
+    // taken 300 ms and more).
+    let blur = h.seen("blur");
+    let hide = [blur, visibility]
+        .into_iter()
+        .flatten()
+        .fold(f64::MAX, f64::min);
+    assert!(
+        visibility.is_some(),
+        "the tab was never hidden; the page saw {}",
+        h.browser.exec("return window.__seen", json!([]))
+    );
+    // The renderer hears of it a little after WebDriver answers, but not much.
+    assert!(
+        hide >= wall_ms(hidden_from) && hide <= wall_ms(hidden_by) + 500.0,
+        "the hide came {:.0} ms after the new tab opened",
+        hide - wall_ms(hidden_by)
+    );
+    let after = wall_ms(stop) - hide;
+    assert!(
+        (0.0..=150.0).contains(&after) && (why == "page hidden" || why == "focus lost"),
+        "stop {after:.0} ms after the hide (blur {blur:?}, visibilitychange \
+         {visibility:?}; the page's reason: {why})"
+    );
+    eprintln!(
+        "stop on the wire {after:.0} ms after the tab was hidden ({why}); the page saw {}",
+        h.browser.exec("return window.__seen", json!([]))
+    );
+    let _ = h.browser.cmd("DELETE", "/actions", None);
+}
+
+/// The laptop's page frozen (SIGSTOP: its connection stays open but says nothing):
+/// after 2.5 s without an event the phone blanks every value and says so, and never
+/// shows the last numbers as current.
+#[test]
+fn a_silent_laptop_blanks_the_phone_after_2_5_s() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.pair();
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+    let pid = h._page.0.id() as libc::pid_t;
+    // SAFETY: signals our own child.
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGSTOP) }, 0);
+    let frozen = Instant::now();
+    let blank = h.browser.wait_for(
+        "the values blanked",
+        "return !document.getElementById('stale').classList.contains('hidden') \
+         && document.getElementById('bus-volts').textContent === '—' \
+         && [...document.querySelectorAll('#devices .state')].every((s) => s.textContent === '—') \
+         && [...document.querySelectorAll('#motors .pos')].every((p) => p.textContent === '—')",
+        Duration::from_secs(6),
+    );
+    let took = frozen.elapsed();
+    let said = h.browser.text("#stale");
+    // SAFETY: as above. (After reading the banner: heard again, the phone hides it.)
+    unsafe { libc::kill(pid, libc::SIGCONT) };
+    assert_eq!(blank, json!(true));
+    assert!(said.contains("NO DATA FROM THE LAPTOP"), "{said:?}");
+    // The heartbeat comes at least every second, so the last event was at most 1 s
+    // before the freeze: blanked 1.5–3.0 s after it (plus the 200 ms watch).
+    assert!(
+        took >= Duration::from_millis(1400) && took <= Duration::from_millis(3400),
+        "blanked {took:?} after the page froze"
+    );
+    // Heard again: live again.
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+}
+
+/// The unit goes quiet (the sim's `silent`: a cable out): the phone says
+/// COMMUNICATION LOST and blanks the values, then shows them again when it is back.
+#[test]
+fn a_quiet_unit_shows_communication_lost() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+    h.console("silent 6");
+    h.browser.wait_for(
+        "COMMUNICATION LOST",
+        "return !document.getElementById('commlost').classList.contains('hidden') \
+         && document.getElementById('bus-volts').textContent === '—' \
+         && [...document.querySelectorAll('#devices .state')].every((s) => s.textContent === '—')",
+        Duration::from_secs(6),
+    );
+    assert!(h.browser.text("#commlost").contains("COMMUNICATION LOST"));
+    // The motors fitted stay on screen, blank and disabled: a lost unit is not a
+    // unit without flaps.
+    let motors = h.browser.exec(
+        "return [...document.querySelectorAll('#motors .motor:not(.hidden)')].map((m) => \
+         [m.querySelector('.pos').textContent, m.querySelector('button').disabled])",
+        json!([]),
+    );
+    assert_eq!(
+        motors,
+        json!([["—", true], ["—", true]]),
+        "flaps and pitch trim"
+    );
+    h.wait_row_state("EFIS", "ON", Duration::from_secs(10));
+    assert!(h.browser.text("#commlost").is_empty(), "still says lost");
+}
+
+/// Every text the page draws meets WCAG's 4.5:1 against what is behind it, in the
+/// phone's light and dark settings alike (sunlight at the wingtip): the state words
+/// ON, OFF and FAULT, the values, the buttons, the banners, the notice.
+#[test]
+fn every_text_meets_wcag_contrast_light_and_dark() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    h.console("switch 2 on");
+    h.console("fault 5 8");
+    h.browser.wait_for(
+        "ON, OFF and FAULT on the list",
+        "const s = [...document.querySelectorAll('#devices .state')].map((e) => e.className); \
+         return ['on', 'off', 'fault'].every((c) => s.includes('state ' + c))",
+        Duration::from_secs(5),
+    );
+    // The banners and the notice as they show when they do.
+    h.browser.exec(
+        "for (const id of ['stale', 'commlost', 'notice']) \
+         document.getElementById(id).classList.remove('hidden'); \
+         document.getElementById('notice').classList.add('refused');",
+        json!([]),
+    );
+    const RATIOS: &str = "
+        const lin = (c) => { c /= 255; return c <= 0.03928 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4; };
+        const rgb = (s) => s.match(/[\\d.]+/g).map(Number);
+        const lum = ([r, g, b]) => 0.2126 * lin(r) + 0.7152 * lin(g) + 0.0722 * lin(b);
+        const bg = (e) => { for (; e; e = e.parentElement) { const c = rgb(getComputedStyle(e).backgroundColor);
+            if (c.length < 4 || c[3] > 0) return c.slice(0, 3); } return [255, 255, 255]; };
+        const out = [];
+        for (const e of document.querySelectorAll('#live *, #notice, header *')) {
+            if (![...e.childNodes].some((n) => n.nodeType === 3 && n.textContent.trim())) continue;
+            if (e.closest('.hidden') && !e.closest('#stale, #commlost, #notice')) continue;
+            const a = lum(rgb(getComputedStyle(e).color)), b = lum(bg(e));
+            const ratio = (Math.max(a, b) + 0.05) / (Math.min(a, b) + 0.05);
+            out.push([e.tagName + '.' + e.className + ' ' + e.textContent.trim().slice(0, 24), ratio]);
+        }
+        return [getComputedStyle(document.body).backgroundColor, out];";
+    let mut backgrounds = Vec::new();
+    for scheme in ["light", "dark"] {
+        h.browser.color_scheme(scheme);
+        std::thread::sleep(Duration::from_millis(200));
+        let v = h.browser.exec(RATIOS, json!([]));
+        backgrounds.push(v[0].clone());
+        let all = v[1].as_array().unwrap();
+        assert!(all.len() > 20, "{scheme}: only {} texts", all.len());
+        let poor: Vec<_> = all
+            .iter()
+            .filter(|r| r[1].as_f64().unwrap() < 4.5)
+            .collect();
+        assert!(poor.is_empty(), "{scheme}: under 4.5:1: {poor:?}");
+        let least = (all.iter())
+            .min_by(|a, b| a[1].as_f64().unwrap().total_cmp(&b[1].as_f64().unwrap()))
+            .unwrap();
+        eprintln!("{scheme}: {} texts, the least contrast {least}", all.len());
+    }
+    assert_eq!(
+        backgrounds,
+        [json!("rgb(255, 255, 255)"), json!("rgb(0, 0, 0)")],
+        "the phone's setting picks the page's colours"
+    );
+}
+
+/// The README's screenshots of the phone page, light and dark, at 390×844: run by
+/// hand (`cargo test --test remote_browser -- --ignored readme_screenshots`) when the
+/// page's look changes, then commit `docs/remote-*.png`.
+#[test]
+#[ignore = "writes the README's screenshots; run by hand"]
+fn readme_screenshots() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(mut h) = Hangar::open() else { return };
+    h.pair();
+    // The lights on, one of them faulted: the three states a row can show.
+    h.console("switch 2 on");
+    h.console("switch 7 on");
+    h.console("fault 5 8");
+    h.wait_row_state("Nav Lt", "ON", Duration::from_secs(4));
+    h.browser.wait_for(
+        "the strobe's fault",
+        "return [...document.querySelectorAll('#devices .state')].some((s) => \
+         s.textContent.startsWith('FAULT'))",
+        Duration::from_secs(4),
+    );
+    let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    std::fs::create_dir_all(&docs).unwrap();
+    // Light at the top (totals, motors), dark at the lights.
+    for scheme in ["light", "dark"] {
+        if scheme == "dark" {
+            h.browser.exec(
+                "document.querySelector('#devices .device[data-id=\"2\"]').scrollIntoView()",
+                json!([]),
+            );
+        }
+        h.browser.color_scheme(scheme);
+        std::thread::sleep(Duration::from_millis(300));
+        let png = h.browser.screenshot();
+        assert_eq!(&png[1..4], b"PNG");
+        std::fs::write(docs.join(format!("remote-{scheme}.png")), png).unwrap();
+    }
+}
