@@ -10,13 +10,11 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::unbounded;
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use vpx_efis::app::{App, AppOptions, CheckEnd, HeadlessCheck, run_headless_with};
+use vpx_efis::check::state::{CircuitFinding, Input, MotorFinding, Outcome, Step, SwitchFinding};
 use vpx_efis::check::{Options, Timing};
 use vpx_efis::link;
 use vpx_efis::model::{Motor, Source, TrimKind};
 use vpx_efis::sim::{self, MotorDirection, MotorId, SimCommand, SimHandle, SimOptions};
-use vpx_efis::ui::check::state::{
-    CircuitFinding, Input, MotorFinding, Outcome, Step, SwitchFinding,
-};
 use vpx_efis::ui::state::Screen;
 
 /// One rig at a time: each is a sim, a page and a pty, and a loaded machine that

@@ -7,14 +7,14 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use vpx_efis::check::report::{self, About};
+use vpx_efis::check::state::{
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
+    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Step, SwitchFinding, SwitchResult,
+};
 use vpx_efis::loads;
 use vpx_efis::model::{Motor, TrimKind};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{HardwareVersion, SwitchId, Version};
-use vpx_efis::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
-    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Step, SwitchFinding, SwitchResult,
-};
 
 /// 2026-12-01T18:30:12Z.
 fn when() -> SystemTime {

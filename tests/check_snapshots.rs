@@ -13,16 +13,16 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier};
 
+use vpx_efis::check::state::{
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
+    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding,
+    SwitchResult, Unasked,
+};
 use vpx_efis::loads;
 use vpx_efis::model::{Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::FaultCode;
 use vpx_efis::protocol::message::SwitchId;
 use vpx_efis::ui::check;
-use vpx_efis::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
-    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding,
-    SwitchResult, Unasked,
-};
 use vpx_efis::ui::palette::{Palette, ThemeChoice, Why};
 use vpx_efis::ui::state::{MotorRun, ViewState};
 
@@ -1342,7 +1342,7 @@ fn the_summary_counts_as_the_report_does() {
         };
         let md = vpx_efis::check::report::markdown(&v, &about);
         let n = |m| v.marks().filter(|x| *x == m).count();
-        use vpx_efis::ui::check::state::Mark;
+        use vpx_efis::check::state::Mark;
         let skipped = n(Mark::Skipped);
         if skipped > 0 {
             assert!(

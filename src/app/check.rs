@@ -17,12 +17,12 @@ use crossbeam_channel::{Receiver, select, unbounded};
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::{App, AppOptions, Flow, builtin_sim, lock, signals};
+use crate::check::state::{CheckView, Mark, Step};
+use crate::check::words;
 use crate::check::{Cause, CheckFlow, Command, Options, plan};
 use crate::control::{MotorStreamer, StopReason};
 use crate::link::{self, PortAddr};
 use crate::model::Source;
-use crate::ui::check::state::{CheckView, Mark, Step};
-use crate::ui::check::words;
 use crate::ui::state::Screen;
 
 /// The check as the app holds it.
@@ -847,7 +847,7 @@ fn print_summary(view: &CheckView, out: &mut dyn std::io::Write) -> std::io::Res
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ui::check::state::{Excluded, Input, Unasked};
+    use crate::check::state::{Excluded, Input, Unasked};
 
     fn view() -> CheckView {
         CheckView {
@@ -906,8 +906,8 @@ mod tests {
     /// on or motors it will not run, and says why.
     #[test]
     fn the_headless_plan_says_what_a_skipped_step_will_not_touch() {
+        use crate::check::state::Planned;
         use crate::model::Motor;
-        use crate::ui::check::state::Planned;
         let planned = CheckView {
             plan: vec![Planned {
                 id: 4,

@@ -15,14 +15,12 @@
 use std::time::Instant;
 
 use super::flow::{CheckFlow, Command, Io, Phase, Powered, next_step};
+use super::state::{BreakerLoad, CheckView, CircuitFinding, CircuitResult, Outcome, Prompt, Step};
 use super::switches::news;
 use crate::control::Refusal;
 use crate::exchange::{Try, Verdict};
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::Tenths;
-use crate::ui::check::state::{
-    BreakerLoad, CheckView, CircuitFinding, CircuitResult, Outcome, Prompt, Step,
-};
 
 /// One line per circuit, in pin order: the planned ones to run, the ones left alone
 /// with why (motors have their own step).

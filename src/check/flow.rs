@@ -13,12 +13,12 @@ use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
 
 use super::plan::{self, Choices};
+use super::state::{CheckView, Interruption, Prompt, Step};
+use super::words;
 use crate::control::{Controller, Refusal, StopReason, device_power, put_back_off};
 use crate::model::{Connection, Model, Motor};
 use crate::protocol::device::DEVICE_COUNT;
 use crate::protocol::message::{Message, Packet, SwitchId};
-use crate::ui::check::state::{CheckView, Interruption, Prompt, Step};
-use crate::ui::check::words;
 
 use super::circuits::CircuitItem;
 use super::motors::MotorItem;
@@ -532,8 +532,8 @@ impl CheckFlow {
     /// template written for next time. The one step that touches a file, as the
     /// setup flow's backup does.
     fn loads(&mut self, view: &mut CheckView, io: &mut Io) {
+        use super::state::LoadsView;
         use crate::loads::disk::{Opened, open_or_create};
-        use crate::ui::check::state::LoadsView;
         let Some(path) = self.opts.loads_file.clone() else {
             view.loads = Some(LoadsView::Refused(
                 "no place for the load file (no config folder on this system)".into(),
@@ -584,9 +584,7 @@ impl CheckFlow {
             view.step = Step::Done;
         }
         view.current = None;
-        let fails = view
-            .marks()
-            .filter(|m| *m == crate::ui::check::state::Mark::Fail);
+        let fails = view.marks().filter(|m| *m == super::state::Mark::Fail);
         let n = fails.count();
         view.prompt = Some(Prompt {
             todo: if view.interrupted.is_some() {

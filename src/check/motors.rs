@@ -26,13 +26,13 @@
 use std::time::{Duration, Instant};
 
 use super::flow::{CheckFlow, Command, Io, Phase, motor_name, next_step};
+use super::state::{CheckView, MotorFinding, MotorResult, Outcome, Prompt, Step};
 use super::switches::news;
 pub use crate::control::endpoints::expected_sign;
 use crate::control::endpoints::{self, ends, heads_for, opposite, position, room};
 use crate::control::{Direction, StopReason, motor_check};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
-use crate::ui::check::state::{CheckView, MotorFinding, MotorResult, Outcome, Prompt, Step};
 
 /// A run moved the motor if its position changed at least this many counts (the
 /// same count the controller's watch needs before it takes a run to go the other way).

@@ -8,16 +8,16 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
+use super::state::{
+    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, Outcome, Step, SwitchResult,
+};
+use super::words::{self, badge, switch_id as switch_text};
 use crate::files;
 use crate::loads::analysis::amps_text;
 use crate::loads::{Analysis, Figure, Phase};
 use crate::model::Motor;
 use crate::protocol::device;
 use crate::protocol::message::{SwitchId, Version};
-use crate::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, Outcome, Step, SwitchResult,
-};
-use crate::ui::check::words::{self, badge, switch_id as switch_text};
 
 /// Where and when the check ran, beside what it found.
 #[derive(Debug, Clone, PartialEq)]

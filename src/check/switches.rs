@@ -17,11 +17,11 @@ use std::time::Instant;
 
 use super::flow::{CheckFlow, Command, Io, Phase, circuit_on, next_step};
 use super::plan;
-use crate::model::{CircuitState, Hold, Model, Motor, TrimKind};
-use crate::protocol::message::{SwitchId, SwitchInputs};
-use crate::ui::check::state::{
+use super::state::{
     CheckView, Input, Mark, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult,
 };
+use crate::model::{CircuitState, Hold, Model, Motor, TrimKind};
+use crate::protocol::message::{SwitchId, SwitchInputs};
 
 /// Every input SYSTEM_STATUS reports, for spotting one that changed instead.
 const ALL_INPUTS: [Input; 16] = [
@@ -167,11 +167,7 @@ impl CheckFlow {
 
     /// Starts the first item from `from` not done yet, or the next step.
     fn switch_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
-        if self
-            .opts
-            .skip
-            .contains(&crate::ui::check::state::Step::Switches)
-        {
+        if self.opts.skip.contains(&super::state::Step::Switches) {
             for r in view
                 .switches
                 .iter_mut()
@@ -184,7 +180,7 @@ impl CheckFlow {
             (from..view.switches.len()).find(|&i| view.switches[i].outcome == Outcome::NotRun)
         else {
             self.phase = Phase::Done;
-            return self.enter_step(next_step(crate::ui::check::state::Step::Switches), view, io);
+            return self.enter_step(next_step(super::state::Step::Switches), view, io);
         };
         self.switch_start(idx, view, io);
     }

@@ -4,10 +4,10 @@
 //! the command line was refused).
 
 use crate::app::{CheckEnd, HeadlessCheck, run_headless};
+use crate::check::state::Step;
 use crate::check::{Choices, Options};
 use crate::cli::CheckArgs;
 use crate::program::UsageError;
-use crate::ui::check::state::Step;
 
 /// How the check ended, carried to `main` for the exit status; its text is the
 /// one-line verdict printed last.

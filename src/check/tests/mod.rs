@@ -8,15 +8,15 @@ mod against;
 
 use super::flow::{Cause, CheckFlow, Command, Options};
 use super::plan::Choices;
+use crate::check::state::{
+    CheckView, CircuitFinding, Input, Mark, MotorFinding, NotFollowed, Outcome, Step, SwitchFinding,
+};
 use crate::control::{Controller, StopReason};
 use crate::model::{Model, Motor, Setting, Source, TrimKind};
 use crate::protocol::FaultCode;
 use crate::protocol::decoder::{Decoder, Event};
 use crate::protocol::message::{Message, Packet, SwitchId};
 use crate::sim::{Scenario, SimCommand, Unit, UnitOptions};
-use crate::ui::check::state::{
-    CheckView, CircuitFinding, Input, Mark, MotorFinding, NotFollowed, Outcome, Step, SwitchFinding,
-};
 
 /// A small aircraft: one circuit of each kind the findings need.
 fn scenario() -> String {
@@ -567,10 +567,9 @@ fn a_switch_never_flipped_times_out_and_can_be_retried() {
         r.switch(Input::FlapUp),
         &Outcome::Found(SwitchFinding::Changed)
     );
-    let words =
-        crate::ui::check::words::switch(&r.view.switches[r.view.current.unwrap() - 1], |id| {
-            r.view.name_of(id)
-        });
+    let words = crate::check::words::switch(&r.view.switches[r.view.current.unwrap() - 1], |id| {
+        r.view.name_of(id)
+    });
     assert_eq!(words, "the input changed (no circuit is assigned to it)");
 }
 
@@ -1496,7 +1495,7 @@ fn pitch_ctx(setup: bool) -> crate::control::KeyContext {
 #[test]
 fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_screens() {
     use crate::control::StreamerConfig;
-    use crate::ui::state::ReleaseMode;
+    use crate::control::run_state::ReleaseMode;
     use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
     for setup in [false, true] {
         let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());

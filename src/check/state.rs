@@ -1,10 +1,8 @@
 //! What the installation check shows, and what its report records: the step it is on,
 //! what the person must do and what the page is watching, and every result so far.
 //! Pure data and the verdicts (marks); the words for it are in [`super::words`]. The
-//! flow (`crate::check`) changes it; the screen (`ui::check`) and the report
-//! (`check::report`) read it. It lives under `ui` for
-//! the same reason as the setup screens' `SetupView`: the flow stands on the view,
-//! never the other way round.
+//! flow owns it and changes it; the screen (`ui::check`) and the report
+//! ([`super::report`]) only read it.
 
 use std::time::Duration;
 
@@ -365,7 +363,7 @@ pub struct CheckView {
     /// results are still here, and `w` writes them again.
     pub report_error: Option<String>,
     /// Once the check has ended: the results scrolled this many lines down (the app
-    /// keeps it within the list, [`super::results_scroll_max`]).
+    /// keeps it within the list, `ui::check::results_scroll_max`).
     pub scroll: usize,
     /// Once the check has ended: the load analysis (table, bar chart, circuits)
     /// shown instead of the results (`l`).

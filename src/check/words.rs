@@ -323,36 +323,6 @@ pub fn report_written(markdown: &std::path::Path, csv: &std::path::Path) -> Stri
     }
 }
 
-/// `path` in at most `width` characters: the file name kept whole (it is what a
-/// person looks for), the folder shortened in its middle ("/home/…/reports/").
-/// Only a file name wider than `width` itself is cut, at its start.
-pub fn path_fit(path: &std::path::Path, width: usize) -> String {
-    let full = path.display().to_string();
-    if full.chars().count() <= width {
-        return full;
-    }
-    let name = path
-        .file_name()
-        .map_or_else(|| full.clone(), |n| n.to_string_lossy().into_owned());
-    let name_w = name.chars().count();
-    let sep = std::path::MAIN_SEPARATOR;
-    // "…/" and the name at least.
-    if name_w + 2 > width {
-        let keep = width.saturating_sub(1);
-        let tail: String = name.chars().skip(name_w.saturating_sub(keep)).collect();
-        return format!("…{tail}").chars().take(width).collect();
-    }
-    let dir = path
-        .parent()
-        .map(|d| format!("{}{sep}", d.display()))
-        .unwrap_or_default();
-    let room = width - name_w;
-    format!(
-        "{}{name}",
-        crate::ui::title_bar::middle_ellipsis(&dir, room)
-    )
-}
-
 /// Where a motor was, as percent of its travel from the up (left) end (`ends`: the
 /// up and down ends in sensor counts), clamped: a sensor can read past an end.
 pub fn percent_of_travel(ends: (u8, u8), v: u8) -> u8 {
@@ -486,22 +456,8 @@ mod tests {
     }
 
     #[test]
-    fn a_path_too_long_keeps_its_file_name_whole() {
+    fn a_report_written_says_the_names_whole_then_the_folder() {
         use std::path::Path;
-        let p = Path::new("/home/builder/.config/vpx-efis/reports/vpx-check-2026-12-02T0028Z.md");
-        assert_eq!(path_fit(p, 200), p.display().to_string());
-        let short = path_fit(p, 50);
-        assert_eq!(short.chars().count(), 50, "{short}");
-        // The name is joined with the OS's separator (a `\` on Windows).
-        let sep = std::path::MAIN_SEPARATOR;
-        assert!(
-            short.ends_with(&format!("{sep}vpx-check-2026-12-02T0028Z.md")),
-            "{short}"
-        );
-        assert!(short.starts_with("/home/"), "{short}");
-        assert!(short.contains('…'), "{short}");
-        // Narrower than the name: the end of the name, which tells the reports apart.
-        assert_eq!(path_fit(p, 10), "…T0028Z.md");
         assert_eq!(
             report_written(
                 Path::new("/r/vpx-check-2026-12-02T0028Z.md"),
