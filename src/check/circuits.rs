@@ -14,10 +14,12 @@
 
 use std::time::Instant;
 
-use super::flow::{CheckFlow, Command, Io, Phase, Powered, next_step};
+use super::calls::Command;
 use super::state::{BreakerLoad, CheckView, CircuitFinding, CircuitResult, Outcome, Prompt, Step};
-use super::switches::news;
-use crate::control::Refusal;
+use super::step::{
+    Io, Next, Powered, Shared, StepRun, Stopped, news, put_back, view_or_model_name,
+};
+use crate::control::{Refusal, StopReason};
 use crate::exchange::{Try, Verdict};
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::Tenths;
@@ -154,36 +156,14 @@ fn state(model: &Model, now: Instant, id: u8) -> CircuitState {
         .map_or(CircuitState::Unknown, |c| c.state)
 }
 
-impl CheckFlow {
-    pub(super) fn circuits_begin(&mut self, view: &mut CheckView, io: &mut Io, _skipped: bool) {
-        self.circuit_next(0, view, io);
-    }
-
-    fn circuit_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
-        if self.opts.skip.contains(&Step::Circuits) {
-            let mut any = false;
-            for r in view
-                .circuits
-                .iter_mut()
-                .filter(|r| r.outcome == Outcome::NotRun)
-            {
-                r.outcome = Outcome::Skipped("step skipped".into());
-                any = true;
-            }
-            if any || from == 0 {
-                io.out.news.push("– Circuits: skipped".into());
-            }
-        }
-        let Some(idx) =
-            (from..view.circuits.len()).find(|&i| view.circuits[i].outcome == Outcome::NotRun)
-        else {
-            self.phase = Phase::Done;
-            return self.enter_step(next_step(Step::Circuits), view, io);
-        };
-        self.circuit_start(idx, view, io);
-    }
-
-    fn circuit_start(&mut self, idx: usize, view: &mut CheckView, io: &mut Io) {
+impl Circuits {
+    fn start_item(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
         let id = view.circuits[idx].id;
         let name = view.circuits[idx].name.clone();
         view.current = Some(idx);
@@ -191,25 +171,20 @@ impl CheckFlow {
         let st = state(io.model, now, id);
         if let CircuitState::Fault(code) = st {
             // Faulted before the check touched it: that is its finding.
-            self.known_faults.insert(id);
+            shared.known_faults.insert(id);
             record(view, idx, CircuitFinding::Faulted(code), io);
-            return self.circuit_next(idx + 1, view, io);
+            return Next::From(idx + 1);
         }
         let was_on = st == CircuitState::On;
         if !was_on && let Some(unseen) = io.ctl.unseen() {
-            return self.circuit_wait(idx, &unseen.describe(), view, io);
+            return self.wait(idx, &unseen.describe(), view, io, shared);
         }
         if !was_on && let Err(why) = io.power_on(id) {
             // Refused by the page's own rule: nothing sent, and the words say why.
             return self.not_switched(idx, why, view, io);
         }
-        let request = (!was_on).then(|| {
-            Try::with(
-                now,
-                self.opts.timing.power_timeout,
-                self.opts.timing.power_tries,
-            )
-        });
+        let request = (!was_on)
+            .then(|| Try::with(now, shared.timing.power_timeout, shared.timing.power_tries));
         view.prompt = Some(Prompt {
             todo: if was_on {
                 format!("{name} is on already: measuring it as it is.")
@@ -217,10 +192,10 @@ impl CheckFlow {
                 format!("Switching {name} on to measure it, then back off.")
             },
             watching: format!("{name}'s state and current (DEVICE_STATUS, once a second)"),
-            time_left: Some(self.opts.timing.on_for),
+            time_left: Some(shared.timing.on_for),
             keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
         });
-        self.phase = Phase::Circuits(CircuitItem {
+        self.item = Some(CircuitItem {
             idx,
             id,
             started: now,
@@ -228,13 +203,14 @@ impl CheckFlow {
                 statuses_at_send: io.statuses(),
                 request,
             },
-            on_for: self.opts.timing.on_for,
+            on_for: shared.timing.on_for,
         });
+        Next::Stay
     }
 
-    pub(super) fn circuits_tick(&mut self, view: &mut CheckView, io: &mut Io) {
-        let Phase::Circuits(item) = &mut self.phase else {
-            return;
+    fn tick_item(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         let (idx, id, now) = (item.idx, item.id, io.now);
         let st = state(io.model, now, id);
@@ -247,7 +223,7 @@ impl CheckFlow {
                 request,
             } => {
                 let finding = if let CircuitState::Fault(code) = st {
-                    self.known_faults.insert(id);
+                    shared.known_faults.insert(id);
                     Some(CircuitFinding::Faulted(code))
                 } else if io.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
                     let current = io
@@ -271,20 +247,22 @@ impl CheckFlow {
                                 io.out
                                     .news
                                     .push(format!("– {}: {why}", view.circuits[idx].name));
-                                return self.circuit_put_back(view, io);
+                                return self.put_back_item(view, io, shared);
                             }
                         },
                         Some(Verdict::NoAnswer) => Some(CircuitFinding::DidNotSwitch),
                         _ => None,
                     }
                 };
-                let Some(f) = finding else { return };
+                let Some(f) = finding else {
+                    return Next::Stay;
+                };
                 let sent = request.is_some();
                 record(view, idx, f, io);
                 if sent {
-                    self.circuit_put_back(view, io);
+                    return self.put_back_item(view, io, shared);
                 } else {
-                    self.circuit_next(idx + 1, view, io);
+                    return Next::From(idx + 1);
                 }
             }
             Stage::Waiting => {}
@@ -292,19 +270,19 @@ impl CheckFlow {
                 let off = matches!(st, CircuitState::Off | CircuitState::Fault(_));
                 match request.judge(off, now) {
                     Verdict::Answered => {
-                        self.put_back(id, view, io.model, now);
-                        self.circuit_next(idx + 1, view, io);
+                        put_back(id, view, io.model, now);
+                        return Next::From(idx + 1);
                     }
                     Verdict::Resend => {
                         if let Err(why) = io.power_off(id) {
-                            self.trouble_ahead = Some(format!(
+                            shared.trouble_ahead = Some(format!(
                                 "{} could not be switched back off: {why}",
                                 view.circuits[idx].name
                             ));
                         }
                     }
                     Verdict::NoAnswer => {
-                        self.trouble_ahead = Some(format!(
+                        shared.trouble_ahead = Some(format!(
                             "{} did not switch back off",
                             view.circuits[idx].name
                         ));
@@ -313,14 +291,15 @@ impl CheckFlow {
                 }
             }
         }
+        Next::Stay
     }
 
-    fn circuit_put_back(&mut self, view: &mut CheckView, io: &mut Io) {
-        let Phase::Circuits(item) = &mut self.phase else {
-            return;
+    fn put_back_item(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         if let Err(why) = io.power_off(item.id) {
-            self.trouble_ahead = Some(format!(
+            shared.trouble_ahead = Some(format!(
                 "{} could not be switched back off: {why}",
                 view.circuits[item.idx].name
             ));
@@ -328,25 +307,32 @@ impl CheckFlow {
         item.stage = Stage::PutBack {
             request: Try::with(
                 io.now,
-                self.opts.timing.power_timeout,
-                self.opts.timing.power_tries,
+                shared.timing.power_timeout,
+                shared.timing.power_tries,
             ),
         };
         if let Some(p) = view.prompt.as_mut() {
             p.todo = format!("Switching {} back off.", view.circuits[item.idx].name);
         }
+        Next::Stay
     }
 
-    pub(super) fn circuits_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
-        let Phase::Circuits(item) = &self.phase else {
-            return;
+    fn command_item(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &self.item else {
+            return Next::Stay;
         };
         let idx = item.idx;
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
-            return self.circuit_start(idx, view, io);
+            return self.start_item(idx, view, io, shared);
         }
         if cmd != Command::SkipItem {
-            return;
+            return Next::Stay;
         }
         match &item.stage {
             Stage::Measure { request, .. } => {
@@ -358,9 +344,9 @@ impl CheckFlow {
                         .push(format!("– {}: skipped", view.circuits[idx].name));
                 }
                 if sent {
-                    self.circuit_put_back(view, io);
+                    return self.put_back_item(view, io, shared);
                 } else {
-                    self.circuit_next(idx + 1, view, io);
+                    return Next::From(idx + 1);
                 }
             }
             // Already going back off: the skip takes effect once it is.
@@ -370,16 +356,24 @@ impl CheckFlow {
                 io.out
                     .news
                     .push(format!("– {}: skipped", view.circuits[idx].name));
-                self.circuit_next(idx + 1, view, io);
+                return Next::From(idx + 1);
             }
         }
+        Next::Stay
     }
 }
 
-impl CheckFlow {
+impl Circuits {
     /// Circuit `idx` waits, not switched on, because the page cannot be seen (`why`):
     /// see [`Stage::Waiting`]. Asked again (r) while still unseen, it waits again.
-    fn circuit_wait(&mut self, idx: usize, why: &str, view: &mut CheckView, io: &mut Io) {
+    fn wait(
+        &mut self,
+        idx: usize,
+        why: &str,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
         let row = &view.circuits[idx];
         let (id, name) = (row.id, row.name.clone());
         let todo = format!(
@@ -393,18 +387,25 @@ impl CheckFlow {
             time_left: None,
             keys: vec![("r", "go on"), ("s", "skip"), ("Esc", "stop")],
         });
-        self.phase = Phase::Circuits(CircuitItem {
+        self.item = Some(CircuitItem {
             idx,
             id,
             started: io.now,
             stage: Stage::Waiting,
-            on_for: self.opts.timing.on_for,
+            on_for: shared.timing.on_for,
         });
+        Next::Stay
     }
 
     /// The page's rule refused to switch the circuit on: that is its line, in
     /// control's words, and the next circuit.
-    fn not_switched(&mut self, idx: usize, why: Refusal, view: &mut CheckView, io: &mut Io) {
+    fn not_switched(
+        &mut self,
+        idx: usize,
+        why: Refusal,
+        view: &mut CheckView,
+        io: &mut Io,
+    ) -> Next {
         let why = format!("not switched: {why}");
         let row = &mut view.circuits[idx];
         io.out
@@ -412,7 +413,7 @@ impl CheckFlow {
             .push(format!("– {} ({}): {why}", row.name, row.pin));
         view.message = Some(format!("{}: {why}", row.name));
         row.outcome = Outcome::Skipped(why);
-        self.circuit_next(idx + 1, view, io);
+        Next::From(idx + 1)
     }
 }
 
@@ -422,4 +423,77 @@ fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, io: &mut Io) {
     io.out.news.push(news(f.mark(), &what, &f.words()));
     view.message = Some(format!("{}: {}", row.name, f.words()));
     row.outcome = Outcome::Found(f);
+}
+
+/// Step 3: the circuits, one at a time.
+#[derive(Debug, Default)]
+pub(super) struct Circuits {
+    item: Option<CircuitItem>,
+}
+
+impl StepRun for Circuits {
+    fn step(&self) -> Step {
+        Step::Circuits
+    }
+
+    fn skipped_line(&self) -> &'static str {
+        "– Circuits: skipped"
+    }
+
+    fn start(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
+        self.start_item(idx, view, io, shared)
+    }
+
+    fn tick(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+        self.tick_item(view, io, shared)
+    }
+
+    fn command(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
+        self.command_item(cmd, view, io, shared)
+    }
+
+    fn deadline(&self) -> Option<Instant> {
+        self.item.as_ref().and_then(CircuitItem::deadline)
+    }
+
+    fn under_test(&self) -> Vec<u8> {
+        self.item.iter().map(|i| i.id).collect()
+    }
+
+    fn stop(&mut self, _reason: StopReason, view: &CheckView, io: &mut Io) -> Stopped {
+        let Some(item) = &self.item else {
+            return Stopped::default();
+        };
+        match item.stop(io) {
+            Ok(powered) => Stopped {
+                powered,
+                left: None,
+            },
+            Err(why) => Stopped {
+                powered: None,
+                left: Some((
+                    item.id,
+                    view_or_model_name(view, io.model, item.id),
+                    format!("ON when the check stopped: DEVICE_POWER off not sent: {why}"),
+                )),
+            },
+        }
+    }
+
+    #[cfg(test)]
+    fn stage(&self) -> String {
+        self.item.as_ref().map_or("", CircuitItem::stage).into()
+    }
 }

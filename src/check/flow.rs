@@ -9,66 +9,18 @@
 //! still held. The flow itself notices COMMUNICATION LOST, a link that cannot send,
 //! and a fault that appears mid-step, from the model.
 
-use std::collections::BTreeSet;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
+use super::calls::{Command, Out};
 use super::plan::{self, Choices};
 use super::state::{CheckView, Interruption, Prompt, Step};
+use super::step::{Io, Next, Powered, Shared, StepRun, circuit_on, put_back, view_or_model_name};
+use super::timing::Timing;
 use super::words;
-use crate::control::{Controller, Refusal, StopReason, device_power, put_back_off};
-use crate::model::{Connection, Model, Motor};
+use super::{circuits, motors, switches};
+use crate::control::{Controller, StopReason};
+use crate::model::{Connection, Model};
 use crate::protocol::device::DEVICE_COUNT;
-use crate::protocol::message::{Message, Packet, SwitchId};
-
-use super::circuits::CircuitItem;
-use super::motors::MotorItem;
-use super::switches::SwitchItem;
-
-/// The check's clocks. Defaults suit a real unit (1 Hz status, 10 Hz flap/trim status).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Timing {
-    /// How long the person has to flip a switch on and off.
-    pub switch_timeout: Duration,
-    /// After an input changed, how long its circuits have to follow (DEVICE_STATUS
-    /// comes once a second).
-    pub follow_wait: Duration,
-    /// DEVICE_POWER has no answer of its own: the unit's DEVICE_STATUS showing the
-    /// circuit in the new state is the answer. Wait this long before sending again …
-    pub power_timeout: Duration,
-    /// … this many times in all.
-    pub power_tries: u8,
-    /// The longest a circuit stays on: two fresh DEVICE_STATUS take about two seconds.
-    pub on_for: Duration,
-    /// Each direction's run of a motor.
-    pub motor_run: Duration,
-    /// After a run, FLAP_TRIM_STATUS (10 Hz) has this long to show where it stopped.
-    pub motor_settle: Duration,
-    /// After an interruption, how long the check waits to see a circuit go back off.
-    pub stop_wait: Duration,
-}
-
-impl Default for Timing {
-    fn default() -> Self {
-        Timing {
-            switch_timeout: Duration::from_secs(30),
-            follow_wait: Duration::from_millis(2500),
-            power_timeout: Duration::from_millis(2500),
-            power_tries: 2,
-            on_for: Duration::from_secs(5),
-            motor_run: Duration::from_millis(600),
-            motor_settle: Duration::from_millis(400),
-            stop_wait: Duration::from_secs(3),
-        }
-    }
-}
-
-impl Timing {
-    /// How long one motor's test takes at most: two runs, their settling, and the
-    /// run back.
-    pub fn motor_for(&self) -> Duration {
-        (self.motor_run + self.motor_settle) * 3
-    }
-}
 
 /// How the check was asked to run.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -85,38 +37,6 @@ pub struct Options {
     /// a finding can name the time of day something happened ("sent at 21:40:12
     /// UTC"); `None`: it says how long before instead. The flow never reads a clock.
     pub clock: Option<std::time::SystemTime>,
-}
-
-/// What the person does. The app maps keys to these, `vpx-efis check` typed answers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Command {
-    /// Confirm (before power), or go on after a timed-out item.
-    Enter,
-    Up,
-    Down,
-    /// Before power: exclude the selected circuit, or take back a suggested exclusion.
-    Toggle,
-    /// Skip the item under test.
-    SkipItem,
-    /// Skip the rest of the step.
-    SkipStep,
-    /// Try a timed-out or stopped item again.
-    Retry,
-    /// Stop the check: put back what it changed, and say what is left.
-    Stop,
-}
-
-/// What the caller must do after the flow moved.
-#[derive(Debug, Default, Clone, PartialEq)]
-pub struct Out {
-    /// To queue on the link, in this order, before letting go of the controller.
-    pub packets: Vec<Packet>,
-    /// Each result as it came, in words, for a headless run to print.
-    pub news: Vec<String>,
-    /// The check ended in this call, finished or interrupted, at whatever stage: the
-    /// app writes its report now (marked INCOMPLETE when interrupted). Set once per
-    /// check, by [`CheckFlow::finish`], the one way every end goes.
-    pub ended: bool,
 }
 
 /// What ended the check from outside.
@@ -149,18 +69,11 @@ impl Cause {
     }
 }
 
-/// A circuit the check switched on and has not yet seen back off.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Powered {
-    pub id: u8,
-}
-
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub(super) enum Phase {
     Confirm,
-    Switches(SwitchItem),
-    Circuits(CircuitItem),
-    Motors(MotorItem),
+    /// A step's item under test.
+    Testing(Box<dyn StepRun>),
     /// Interrupted: waiting to see `Powered` go off before the list of what is left
     /// is final.
     Stopping {
@@ -199,61 +112,16 @@ pub fn confirmed_line(view: &CheckView) -> String {
     )
 }
 
-/// What the calls share: the model, the controller and where the packets go.
-pub(super) struct Io<'a> {
-    pub model: &'a Model,
-    pub ctl: &'a mut Controller,
-    pub now: Instant,
-    pub out: &'a mut Out,
-}
-
-impl Io<'_> {
-    /// Switches circuit `id` on by the rule of the page's own power keys
-    /// ([`device_power`]: never the starter or a motor, not a faulted pin, not a state
-    /// the page does not know); on a refusal nothing is sent and the words say why.
-    pub fn power_on(&mut self, id: u8) -> Result<(), Refusal> {
-        let message = device_power(self.model, self.now, id, true)?;
-        self.send(message);
-        Ok(())
-    }
-
-    /// Switches back off a circuit this check switched on ([`put_back_off`]).
-    pub fn power_off(&mut self, id: u8) -> Result<(), Refusal> {
-        let message = put_back_off(self.model, id)?;
-        self.send(message);
-        Ok(())
-    }
-
-    fn send(&mut self, message: Message) {
-        let cnt = self.ctl.next_cnt();
-        self.out.packets.push(Packet::request(cnt, message));
-    }
-
-    /// How many DEVICE_STATUS broadcasts the page has heard so far.
-    pub fn statuses(&self) -> u64 {
-        self.model
-            .link
-            .rx
-            .get("DEVICE_STATUS")
-            .map_or(0, |s| s.count)
-    }
-}
-
 /// The installation check in progress. See the module docs.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct CheckFlow {
-    pub(super) opts: Options,
-    pub(super) phase: Phase,
-    /// Faults present when the check started (or found on the item under test):
-    /// only a new fault elsewhere interrupts.
-    pub(super) known_faults: BTreeSet<u8>,
+    opts: Options,
+    phase: Phase,
+    /// What the steps read and add to: the timing, the faults known, trouble ahead,
+    /// the clock.
+    shared: Shared,
     system_fault_at_start: bool,
     write_errors_at_start: u64,
-    /// The `now` the flow was made with: [`Options::clock`]'s instant.
-    made_at: Instant,
-    /// A step found something that ends the check (a circuit that will not go back
-    /// off, a motor stopped by lost communication): handled at the end of the tick.
-    pub(super) trouble_ahead: Option<String>,
 }
 
 impl CheckFlow {
@@ -267,35 +135,26 @@ impl CheckFlow {
             .live_faults(now)
             .unwrap_or(([crate::protocol::FaultCode::NoFault; DEVICE_COUNT], false));
         let flow = CheckFlow {
-            known_faults: (0..DEVICE_COUNT as u8)
-                .filter(|&i| codes[i as usize].is_fault())
-                .collect(),
+            shared: Shared {
+                timing: opts.timing,
+                known_faults: (0..DEVICE_COUNT as u8)
+                    .filter(|&i| codes[i as usize].is_fault())
+                    .collect(),
+                trouble_ahead: None,
+                clock: opts.clock,
+                made_at: now,
+            },
             system_fault_at_start: system,
             write_errors_at_start: model.link.write_errors,
             opts,
             phase: Phase::Confirm,
-            made_at: now,
-            trouble_ahead: None,
         };
         flow.replan(view, model, now);
         flow
     }
 
-    /// The wall-clock time of an instant, if the caller gave the flow its clock.
-    pub(super) fn wall(&self) -> impl Fn(Instant) -> Option<std::time::SystemTime> + use<> {
-        let (clock, made_at) = (self.opts.clock, self.made_at);
-        move |at| {
-            let clock = clock?;
-            if at >= made_at {
-                clock.checked_add(at - made_at)
-            } else {
-                clock.checked_sub(made_at - at)
-            }
-        }
-    }
-
     pub fn timing(&self) -> &Timing {
-        &self.opts.timing
+        &self.shared.timing
     }
 
     /// Where the check is, for the tests that stop it at every stage: the step, then
@@ -304,9 +163,13 @@ impl CheckFlow {
     pub(super) fn stage(&self) -> String {
         match &self.phase {
             Phase::Confirm => "before power".into(),
-            Phase::Switches(i) => format!("switches: {}", i.stage()),
-            Phase::Circuits(i) => format!("circuits: {}", i.stage()),
-            Phase::Motors(i) => format!("motors: {}", i.stage()),
+            Phase::Testing(run) => {
+                let step = Step::SKIPPABLE
+                    .iter()
+                    .find(|(s, _)| *s == run.step())
+                    .map_or("", |(_, word)| word);
+                format!("{step}: {}", run.stage())
+            }
             Phase::Stopping { .. } => "stopping".into(),
             Phase::Done => "done".into(),
         }
@@ -321,15 +184,13 @@ impl CheckFlow {
     pub fn next_deadline(&self) -> Option<Instant> {
         match &self.phase {
             Phase::Confirm | Phase::Done => None,
-            Phase::Switches(i) => i.deadline(),
-            Phase::Circuits(i) => i.deadline(),
-            Phase::Motors(i) => i.deadline(),
+            Phase::Testing(run) => run.deadline(),
             Phase::Stopping { until, .. } => Some(*until),
         }
     }
 
     fn replan(&self, view: &mut CheckView, model: &Model, now: Instant) {
-        let t = &self.opts.timing;
+        let t = &self.shared.timing;
         let lengths = plan::Lengths {
             on_for: t.on_for,
             motor_for: t.motor_for(),
@@ -387,7 +248,7 @@ impl CheckFlow {
         }
         match &mut self.phase {
             Phase::Confirm => self.confirm_command(cmd, view, model, ctl, now, &mut out),
-            Phase::Switches(_) | Phase::Circuits(_) | Phase::Motors(_) => {
+            Phase::Testing(_) => {
                 let mut io = Io {
                     model,
                     ctl,
@@ -485,46 +346,83 @@ impl CheckFlow {
     }
 
     /// Moves to `step` (or the first one after it not skipped) and starts its first item.
-    pub(super) fn enter_step(&mut self, mut step: Step, view: &mut CheckView, io: &mut Io) {
+    fn enter_step(&mut self, mut step: Step, view: &mut CheckView, io: &mut Io) {
         loop {
             view.step = step;
             view.current = None;
             view.prompt = None;
             let skipped = self.opts.skip.contains(&step);
-            let started = match step {
-                Step::Confirm => false,
-                Step::Switches => {
-                    self.switches_begin(view, io, skipped);
-                    matches!(self.phase, Phase::Switches(_))
-                }
-                Step::Circuits => {
-                    self.circuits_begin(view, io, skipped);
-                    matches!(self.phase, Phase::Circuits(_))
-                }
-                Step::Motors => {
-                    self.motors_begin(view, io, skipped);
-                    matches!(self.phase, Phase::Motors(_))
-                }
+            let run: Option<Box<dyn StepRun>> = match step {
+                Step::Confirm => None,
+                Step::Switches => Some(Box::new(switches::Switches::default())),
+                Step::Circuits => Some(Box::new(circuits::Circuits::default())),
+                Step::Motors => Some(Box::new(motors::Motors::default())),
                 Step::Loads => {
                     if !skipped {
                         self.loads(view, io);
                     } else {
                         io.out.news.push("– Load analysis: skipped".into());
                     }
-                    false
+                    None
                 }
                 Step::Done => {
                     self.finish(view, io);
                     return;
                 }
             };
-            // A step with nothing to do may already have gone on by itself (its
-            // `*_next` enters the next step): going on here too would run the rest
-            // twice, and say "Check complete" twice.
-            if started || view.step != step {
-                return;
+            if let Some(mut run) = run {
+                if !skipped {
+                    run.begin(view, io, &mut self.shared);
+                }
+                if self.next_item(run, 0, view, io) {
+                    return;
+                }
             }
             step = next_step(step);
+        }
+    }
+
+    /// The step loop: starts the step's first item from `from` not done yet, and the
+    /// next while each is done at once (faulted before it was touched, refused, …).
+    /// Whether one is under test now; if not, the step is over.
+    fn next_item(
+        &mut self,
+        mut run: Box<dyn StepRun>,
+        mut from: usize,
+        view: &mut CheckView,
+        io: &mut Io,
+    ) -> bool {
+        let step = run.step();
+        loop {
+            if self.opts.skip.contains(&step) {
+                let any = view.skip_rest(step, "step skipped");
+                if from == 0 || (any && run.says_skip_midway()) {
+                    io.out.news.push(run.skipped_line().into());
+                }
+            }
+            let Some(idx) = view.next_not_run(step, from) else {
+                return false;
+            };
+            match run.start(idx, view, io, &mut self.shared) {
+                Next::Stay => {
+                    self.phase = Phase::Testing(run);
+                    return true;
+                }
+                Next::From(i) => from = i,
+            }
+        }
+    }
+
+    /// After a call into the item under test: on `Next::From`, the next item, or the
+    /// next step.
+    fn go_on(&mut self, next: Next, view: &mut CheckView, io: &mut Io) {
+        let Next::From(from) = next else { return };
+        let Phase::Testing(run) = std::mem::replace(&mut self.phase, Phase::Done) else {
+            return;
+        };
+        let step = run.step();
+        if !self.next_item(run, from, view, io) {
+            self.enter_step(next_step(step), view, io);
         }
     }
 
@@ -618,12 +516,12 @@ impl CheckFlow {
                 }
                 self.item_command(Command::SkipItem, view, io);
             }
-            _ => match self.phase {
-                Phase::Switches(_) => self.switches_command(cmd, view, io),
-                Phase::Circuits(_) => self.circuits_command(cmd, view, io),
-                Phase::Motors(_) => self.motors_command(cmd, view, io),
-                _ => {}
-            },
+            _ => {
+                if let Phase::Testing(run) = &mut self.phase {
+                    let next = run.command(cmd, view, io, &mut self.shared);
+                    self.go_on(next, view, io);
+                }
+            }
         }
     }
 
@@ -653,14 +551,15 @@ impl CheckFlow {
             now,
             out: &mut out,
         };
-        match self.phase {
-            Phase::Switches(_) => self.switches_tick(view, &mut io),
-            Phase::Circuits(_) => self.circuits_tick(view, &mut io),
-            Phase::Motors(_) => self.motors_tick(view, &mut io),
+        match &mut self.phase {
+            Phase::Testing(run) => {
+                let next = run.tick(view, &mut io, &mut self.shared);
+                self.go_on(next, view, &mut io);
+            }
             Phase::Stopping { .. } => self.stopping_tick(view, &mut io),
             Phase::Confirm | Phase::Done => {}
         }
-        if let Some(cause) = self.trouble_ahead.take() {
+        if let Some(cause) = self.shared.trouble_ahead.take() {
             // The step already stopped its motor (the controller's own reason stands);
             // a circuit that will not go back off has no motor running.
             self.interrupt_with(
@@ -712,7 +611,7 @@ impl CheckFlow {
         let under_test = self.under_test();
         (0..DEVICE_COUNT as u8)
             .filter(|&i| codes[i as usize].is_fault())
-            .find(|i| !self.known_faults.contains(i) && !under_test.contains(i))
+            .find(|i| !self.shared.known_faults.contains(i) && !under_test.contains(i))
             .map(|i| {
                 let name = view_or_model_name(view, model, i);
                 (
@@ -726,9 +625,7 @@ impl CheckFlow {
     /// or motor under test, or the circuits the switch under test powers.
     fn under_test(&self) -> Vec<u8> {
         match &self.phase {
-            Phase::Switches(i) => i.circuits().to_vec(),
-            Phase::Circuits(i) => vec![i.id],
-            Phase::Motors(i) => vec![i.motor.device_id()],
+            Phase::Testing(run) => run.under_test(),
             _ => Vec::new(),
         }
     }
@@ -822,32 +719,17 @@ impl CheckFlow {
             now,
             out,
         };
-        match std::mem::replace(&mut self.phase, Phase::Done) {
-            Phase::Circuits(item) => match item.stop(&mut io) {
-                Ok(p) => powered = p,
-                Err(why) => left.push((
-                    item.id,
-                    view_or_model_name(view, model, item.id),
-                    format!("ON when the check stopped: DEVICE_POWER off not sent: {why}"),
-                )),
-            },
-            Phase::Motors(item) => {
-                // Stopped here for the check's own reason, unless stopped already
-                // (ctl_stop, or the controller's own tick, whose reason stands); say
-                // where it stopped if it had moved.
-                io.out.packets.extend(io.ctl.stop(now, reason));
-                if let Some(words) = item.left_words(io.model, now) {
-                    left.push((item.motor.device_id(), item.name(), words));
-                }
-            }
-            _ => {}
+        if let Phase::Testing(mut run) = std::mem::replace(&mut self.phase, Phase::Done) {
+            let stopped = run.stop(reason, view, &mut io);
+            powered = stopped.powered;
+            left.extend(stopped.left);
         }
         io.out.news.push(format!("Interrupted: {cause}"));
         match powered {
             Some(p) if may_wait && comm => {
                 self.phase = Phase::Stopping {
                     powered: p,
-                    until: now + self.opts.timing.stop_wait,
+                    until: now + self.shared.timing.stop_wait,
                     cause,
                     left,
                 };
@@ -857,7 +739,7 @@ impl CheckFlow {
                         view_or_model_name(view, model, p.id)
                     ),
                     watching: "DEVICE_STATUS, to see it off".into(),
-                    time_left: Some(self.opts.timing.stop_wait),
+                    time_left: Some(self.shared.timing.stop_wait),
                     keys: vec![],
                 });
             }
@@ -903,7 +785,7 @@ impl CheckFlow {
         };
         let name = view_or_model_name(view, io.model, powered.id);
         if off {
-            self.put_back(powered.id, view, io.model, io.now);
+            put_back(powered.id, view, io.model, io.now);
         } else {
             let why = match state {
                 Some(true) => "ON: DEVICE_POWER off sent, the unit still shows it on",
@@ -929,18 +811,6 @@ impl CheckFlow {
         view.interrupted = Some(Interruption { cause, left });
         self.finish(view, io);
     }
-
-    /// `id` was switched back off by DEVICE_POWER: the unit holds it off until its
-    /// switch is cycled (ICD Appendix A, §6.4.1), so the person is told which.
-    pub(super) fn put_back(&mut self, id: u8, view: &mut CheckView, model: &Model, now: Instant) {
-        let spec = model.circuits(now).into_iter().find(|c| c.id == id);
-        if let Some(SwitchId::Input(n)) = spec.and_then(|c| c.switch)
-            && !view.to_cycle.iter().any(|(i, ..)| *i == id)
-        {
-            view.to_cycle
-                .push((id, view_or_model_name(view, model, id), SwitchId::Input(n)));
-        }
-    }
 }
 
 fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut Out) {
@@ -948,7 +818,7 @@ fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut Ou
 }
 
 /// The step after `step`.
-pub(super) fn next_step(step: Step) -> Step {
+fn next_step(step: Step) -> Step {
     match step {
         Step::Confirm => Step::Switches,
         Step::Switches => Step::Circuits,
@@ -956,26 +826,4 @@ pub(super) fn next_step(step: Step) -> Step {
         Step::Motors => Step::Loads,
         Step::Loads | Step::Done => Step::Done,
     }
-}
-
-pub(super) fn view_or_model_name(view: &CheckView, model: &Model, id: u8) -> String {
-    view.circuits
-        .iter()
-        .find(|c| c.id == id)
-        .map(|c| c.name.clone())
-        .unwrap_or_else(|| model.display_name(id))
-}
-
-/// Whether `id` is on in the live DEVICE_STATUS (`None`: no live status).
-pub(super) fn circuit_on(model: &Model, now: Instant, id: u8) -> Option<bool> {
-    model.live_devices(now).map(|d| d.on[id as usize])
-}
-
-/// The motor's name as the results show it.
-pub(super) fn motor_name(m: Motor) -> String {
-    let n = m.name();
-    let mut c = n.chars();
-    c.next()
-        .map(|f| f.to_uppercase().collect::<String>() + c.as_str())
-        .unwrap_or_default()
 }

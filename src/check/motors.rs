@@ -25,9 +25,9 @@
 
 use std::time::{Duration, Instant};
 
-use super::flow::{CheckFlow, Command, Io, Phase, motor_name, next_step};
+use super::calls::Command;
 use super::state::{CheckView, MotorFinding, MotorResult, Outcome, Prompt, Step};
-use super::switches::news;
+use super::step::{Io, Next, Shared, StepRun, Stopped, motor_name, news};
 pub use crate::control::endpoints::expected_sign;
 use crate::control::endpoints::{self, ends, heads_for, opposite, position, room};
 use crate::control::{Direction, StopReason, motor_check};
@@ -214,37 +214,19 @@ impl MotorItem {
     }
 }
 
-impl CheckFlow {
-    pub(super) fn motors_begin(&mut self, view: &mut CheckView, io: &mut Io, _skipped: bool) {
-        self.motor_next(0, view, io);
-    }
-
-    fn motor_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
-        if self.opts.skip.contains(&Step::Motors) {
-            let mut any = false;
-            for r in view
-                .motors
-                .iter_mut()
-                .filter(|r| r.outcome == Outcome::NotRun)
-            {
-                r.outcome = Outcome::Skipped("step skipped".into());
-                any = true;
-            }
-            if any || from == 0 {
-                io.out.news.push("– Motors: skipped".into());
-            }
-        }
-        let Some(idx) =
-            (from..view.motors.len()).find(|&i| view.motors[i].outcome == Outcome::NotRun)
-        else {
-            self.phase = Phase::Done;
-            return self.enter_step(next_step(Step::Motors), view, io);
-        };
+impl Motors {
+    fn start_item(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
         let motor = view.motors[idx].motor;
         view.current = Some(idx);
         view.motors[idx].positions.clear();
         view.prompt = Some(running_prompt(motor));
-        self.phase = Phase::Motors(MotorItem {
+        self.item = Some(MotorItem {
             idx,
             motor,
             dirs: directions(motor),
@@ -258,20 +240,20 @@ impl CheckFlow {
             probes: 0,
             probed: Duration::ZERO,
             stage: Stage::Start,
-            run: self.opts.timing.motor_run,
-            settle: self.opts.timing.motor_settle,
+            run: shared.timing.motor_run,
+            settle: shared.timing.motor_settle,
             skipped: false,
         });
-        self.motors_tick(view, io);
+        self.tick_item(view, io, shared)
     }
 
-    pub(super) fn motors_tick(&mut self, view: &mut CheckView, io: &mut Io) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+    fn tick_item(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         let now = io.now;
         let Some(ft) = io.model.live_flap_trim(now).copied() else {
-            return;
+            return Next::Stay;
         };
         let pos = position(item.motor, &ft);
         match item.stage {
@@ -295,7 +277,7 @@ impl CheckFlow {
                         let (idx, motor) = (item.idx, item.motor);
                         io.out.news.push(format!("– {}: {why}", motor_name(motor)));
                         view.motors[idx].outcome = Outcome::Skipped(why);
-                        return self.motor_next(idx + 1, view, io);
+                        return Next::From(idx + 1);
                     }
                     // Toward the side with more room first.
                     (Some(ra), Some(rb)) if rb > ra => [b, a],
@@ -306,11 +288,11 @@ impl CheckFlow {
                 };
                 let d = item.dirs[0];
                 let length = item.run;
-                self.motor_run(d, length, None, view, io);
+                return self.run(d, length, None, view, io, shared);
             }
             Stage::Running { since, .. } => {
                 if io.ctl.running().is_some_and(|r| r.motor == item.motor) {
-                    return;
+                    return Next::Stay;
                 }
                 let stop = io
                     .ctl
@@ -370,10 +352,10 @@ impl CheckFlow {
                         } else {
                             item.motor.fault(&ft)
                         };
-                        self.known_faults.insert(item.motor.device_id());
+                        shared.known_faults.insert(item.motor.device_id());
                         let idx = item.idx;
                         record(view, idx, MotorFinding::Faulted(code), io);
-                        self.motor_next(idx + 1, view, io);
+                        return Next::From(idx + 1);
                     }
                     Some(
                         r @ (StopReason::CommLost
@@ -384,7 +366,7 @@ impl CheckFlow {
                         | StopReason::PageStalled
                         | StopReason::Starved),
                     ) => {
-                        self.trouble_ahead = Some(format!(
+                        shared.trouble_ahead = Some(format!(
                             "the {} stopped: {}",
                             item.motor.name(),
                             r.describe()
@@ -395,13 +377,13 @@ impl CheckFlow {
                             ran: stopped_at.saturating_duration_since(since),
                         };
                         let why = format!("The {} stopped: {}", item.motor.name(), r.describe());
-                        self.motor_pause(&why, view, io);
+                        return self.pause(&why, view, io);
                     }
                 }
             }
             Stage::Settle { until } => {
                 if now < until {
-                    return;
+                    return Next::Stay;
                 }
                 if item.leg < 2
                     && let Some(rest) = item.rest.take()
@@ -414,10 +396,10 @@ impl CheckFlow {
                     let went = (i32::from(pos) - i32::from(item.starts[item.leg])) * way;
                     item.probed = item.ran[item.leg];
                     if went > 0 {
-                        return self.motor_run(d, rest, Some(way), view, io);
+                        return self.run(d, rest, Some(way), view, io, shared);
                     }
                     if went == 0 && item.probes < MAX_PROBES {
-                        return self.motor_run(d, rest, None, view, io);
+                        return self.run(d, rest, None, view, io, shared);
                     }
                     if went < 0 {
                         item.ended_at[item.leg] = heads_for(item.motor, opposite(d), &ft);
@@ -446,7 +428,7 @@ impl CheckFlow {
                         }
                         _ => item.run,
                     };
-                    return self.motor_run(d, length, None, view, io);
+                    return self.run(d, length, None, view, io, shared);
                 }
                 let idx = item.idx;
                 if item.leg == 2 && view.motors[idx].outcome == Outcome::NotRun && !item.skipped {
@@ -460,16 +442,23 @@ impl CheckFlow {
                     );
                     record(view, idx, f, io);
                 }
-                self.motor_return(pos, view, io);
+                return self.run_back(pos, view, io, shared);
             }
         }
+        Next::Stay
     }
 
     /// Runs the motor back toward where it was, once, if it is not there; else the
     /// next motor.
-    fn motor_return(&mut self, pos: u8, view: &mut CheckView, io: &mut Io) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+    fn run_back(
+        &mut self,
+        pos: u8,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         let idx = item.idx;
         let back = item.p0.map_or(0, |p0| i32::from(p0) - i32::from(pos));
@@ -488,7 +477,7 @@ impl CheckFlow {
                 let motor = item.motor;
                 not_back(view, idx, motor, pos, p0, io);
             }
-            return self.motor_next(idx + 1, view, io);
+            return Next::From(idx + 1);
         }
         item.leg = 3;
         let dir = if back.signum() == moved.signum() {
@@ -498,22 +487,24 @@ impl CheckFlow {
         };
         let ratio = back.abs() as f32 / moved.abs() as f32;
         let length = ran.mul_f32(ratio).min(item.run * 2);
-        self.motor_run(dir, length, Some(back.signum()), view, io);
+        self.run(dir, length, Some(back.signum()), view, io, shared)
     }
 
     /// Runs the motor `d` for `length`; `way` is which way the check expects the
     /// position to go when it knows better than the direction (the run back, after it
     /// saw the motor go), so the run keeps off the endpoint it will really reach.
-    fn motor_run(
+    #[allow(clippy::too_many_arguments)]
+    fn run(
         &mut self,
         d: Direction,
         length: Duration,
         way: Option<i32>,
         view: &mut CheckView,
         io: &mut Io,
-    ) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         let now = io.now;
         let mut length = length;
@@ -539,7 +530,7 @@ impl CheckFlow {
                 record(view, idx, MotorFinding::Reversed, io);
             }
             item.leg = 2;
-            return self.motor_return(pos, view, io);
+            return self.run_back(pos, view, io, shared);
         }
         if let Some(ft) = io.model.live_flap_trim(now)
             && item.leg < 2
@@ -554,7 +545,7 @@ impl CheckFlow {
                 // counts as not moving, against its limit.
                 item.ended_at[item.leg] = heads_for(item.motor, d, ft);
                 item.stage = Stage::Settle { until: now };
-                return;
+                return Next::Stay;
             }
             // Near the endpoint behind it, and its way not known: a probe first.
             item.rest = None;
@@ -589,27 +580,27 @@ impl CheckFlow {
                         item.motor.name(),
                         unseen.describe()
                     );
-                    return self.motor_pause(&why, view, io);
+                    return self.pause(&why, view, io);
                 }
                 match motor_check(io.model, item.motor, d, now) {
                     Err(StopReason::MotorFault(code)) => {
-                        self.known_faults.insert(item.motor.device_id());
+                        shared.known_faults.insert(item.motor.device_id());
                         record(view, idx, MotorFinding::Faulted(code), io);
                     }
                     Err(StopReason::CommLost) => {
-                        self.trouble_ahead = Some("COMMUNICATION LOST".into());
-                        return;
+                        shared.trouble_ahead = Some("COMMUNICATION LOST".into());
+                        return Next::Stay;
                     }
                     // No position to go by (none fresh enough to keep it off its
                     // endpoint, or none at all): it waits, as a run cut short does,
                     // for the person to try again or skip it (which runs it back).
-                    Err(StopReason::MotorStatusLost) => return self.motor_pause(&why.0, view, io),
+                    Err(StopReason::MotorStatusLost) => return self.pause(&why.0, view, io),
                     _ if io
                         .model
                         .flap_trim
                         .is_some_and(|st| st.age(now) > endpoints::POSITION_FRESH) =>
                     {
-                        return self.motor_pause(&why.0, view, io);
+                        return self.pause(&why.0, view, io);
                     }
                     _ if view.motors[idx].outcome == Outcome::NotRun => {
                         view.motors[idx].outcome = Outcome::Skipped(why.0.clone());
@@ -634,16 +625,17 @@ impl CheckFlow {
                         .push(format!("  {}: not run back: {}", motor_name(motor), why.0));
                     not_back(view, idx, motor, pos, p0, io);
                 }
-                self.motor_next(idx + 1, view, io);
+                return Next::From(idx + 1);
             }
         }
+        Next::Stay
     }
 
     /// The motor under test waits for the person: `why` (a sentence without its
     /// full stop), then retry or skip.
-    fn motor_pause(&mut self, why: &str, view: &mut CheckView, io: &mut Io) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+    fn pause(&mut self, why: &str, view: &mut CheckView, io: &mut Io) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         if !matches!(item.stage, Stage::Paused { .. }) {
             item.stage = Stage::Paused {
@@ -662,11 +654,18 @@ impl CheckFlow {
             keys: vec![("r", "retry"), ("s", "skip"), ("Esc", "stop")],
         });
         io.out.news.push(format!("  {why}"));
+        Next::Stay
     }
 
-    pub(super) fn motors_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+    fn command_item(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         let idx = item.idx;
         match cmd {
@@ -705,7 +704,7 @@ impl CheckFlow {
                 match pos {
                     Some(pos) if item.p0.is_some() && item.leg < 3 => {
                         item.leg = 2;
-                        self.motor_return(pos, view, io)
+                        self.run_back(pos, view, io, shared)
                     }
                     Some(pos) if let Some(p0) = item.p0 => {
                         // Skipped during the run back: it stays where it is.
@@ -713,9 +712,9 @@ impl CheckFlow {
                             let motor = item.motor;
                             not_back(view, idx, motor, pos, p0, io);
                         }
-                        self.motor_next(idx + 1, view, io)
+                        Next::From(idx + 1)
                     }
-                    _ => self.motor_next(idx + 1, view, io),
+                    _ => Next::From(idx + 1),
                 }
             }
             Command::Retry if matches!(item.stage, Stage::Paused { .. }) => {
@@ -726,7 +725,7 @@ impl CheckFlow {
                 if item.leg < 2 {
                     (item.rest, item.probes, item.probed) = (None, 0, Duration::ZERO);
                     let (d, length) = (item.dirs[item.leg], item.run);
-                    self.motor_run(d, length, None, view, io);
+                    self.run(d, length, None, view, io, shared)
                 } else {
                     let pos = io
                         .model
@@ -734,12 +733,12 @@ impl CheckFlow {
                         .map(|ft| position(item.motor, ft));
                     item.leg = 2;
                     match pos {
-                        Some(pos) => self.motor_return(pos, view, io),
-                        None => self.motor_next(idx + 1, view, io),
+                        Some(pos) => self.run_back(pos, view, io, shared),
+                        None => Next::From(idx + 1),
                     }
                 }
             }
-            _ => {}
+            _ => Next::Stay,
         }
     }
 }
@@ -783,4 +782,73 @@ fn record(view: &mut CheckView, idx: usize, f: MotorFinding, io: &mut Io) {
     io.out.news.push(news(f.mark(), &what, &words));
     view.message = Some(format!("{what}: {words}"));
     row.outcome = Outcome::Found(f);
+}
+
+/// Step 4: the motors, one at a time.
+#[derive(Debug, Default)]
+pub(super) struct Motors {
+    item: Option<MotorItem>,
+}
+
+impl StepRun for Motors {
+    fn step(&self) -> Step {
+        Step::Motors
+    }
+
+    fn skipped_line(&self) -> &'static str {
+        "– Motors: skipped"
+    }
+
+    fn start(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
+        self.start_item(idx, view, io, shared)
+    }
+
+    fn tick(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+        self.tick_item(view, io, shared)
+    }
+
+    fn command(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        io: &mut Io,
+        shared: &mut Shared,
+    ) -> Next {
+        self.command_item(cmd, view, io, shared)
+    }
+
+    fn deadline(&self) -> Option<Instant> {
+        self.item.as_ref().and_then(MotorItem::deadline)
+    }
+
+    fn under_test(&self) -> Vec<u8> {
+        self.item.iter().map(|i| i.motor.device_id()).collect()
+    }
+
+    /// Stopped here for the check's own reason, unless stopped already (by the flow,
+    /// or the controller's own tick, whose reason stands); says where it stopped if
+    /// it had moved.
+    fn stop(&mut self, reason: StopReason, _view: &CheckView, io: &mut Io) -> Stopped {
+        let Some(item) = &self.item else {
+            return Stopped::default();
+        };
+        io.out.packets.extend(io.ctl.stop(io.now, reason));
+        Stopped {
+            powered: None,
+            left: item
+                .left_words(io.model, io.now)
+                .map(|words| (item.motor.device_id(), item.name(), words)),
+        }
+    }
+
+    #[cfg(test)]
+    fn stage(&self) -> String {
+        self.item.as_ref().map_or("", MotorItem::stage).into()
+    }
 }

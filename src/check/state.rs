@@ -415,6 +415,49 @@ impl CheckView {
     }
 }
 
+impl CheckView {
+    /// Marks each of `step`'s rows not run yet as skipped with `why`: whether any was.
+    pub fn skip_rest(&mut self, step: Step, why: &str) -> bool {
+        fn skip<'a, F: 'a>(outcomes: impl Iterator<Item = &'a mut Outcome<F>>, why: &str) -> bool {
+            let mut any = false;
+            for o in outcomes.filter(|o| matches!(o, Outcome::NotRun)) {
+                *o = Outcome::Skipped(why.into());
+                any = true;
+            }
+            any
+        }
+        match step {
+            Step::Switches => skip(self.switches.iter_mut().map(|r| &mut r.outcome), why),
+            Step::Circuits => skip(self.circuits.iter_mut().map(|r| &mut r.outcome), why),
+            Step::Motors => skip(self.motors.iter_mut().map(|r| &mut r.outcome), why),
+            _ => false,
+        }
+    }
+
+    /// The first of `step`'s rows from `from` on that has not run yet.
+    pub fn next_not_run(&self, step: Step, from: usize) -> Option<usize> {
+        let rows: Vec<bool> = match step {
+            Step::Switches => self
+                .switches
+                .iter()
+                .map(|r| r.outcome == Outcome::NotRun)
+                .collect(),
+            Step::Circuits => self
+                .circuits
+                .iter()
+                .map(|r| r.outcome == Outcome::NotRun)
+                .collect(),
+            Step::Motors => self
+                .motors
+                .iter()
+                .map(|r| r.outcome == Outcome::NotRun)
+                .collect(),
+            _ => Vec::new(),
+        };
+        (from..rows.len()).find(|&i| rows[i])
+    }
+}
+
 impl SwitchFinding {
     pub fn mark(&self) -> Mark {
         match self {

@@ -6,8 +6,9 @@ use std::time::{Duration, Instant};
 
 mod against;
 
-use super::flow::{Cause, CheckFlow, Command, Options};
+use super::flow::{Cause, CheckFlow, Options};
 use super::plan::Choices;
+use super::{Command, Timing};
 use crate::check::state::{
     CheckView, CircuitFinding, Input, Mark, MotorFinding, NotFollowed, Outcome, Step, SwitchFinding,
 };
@@ -2017,7 +2018,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
     let mut r = Rig::with(
         &scenario(),
         Options {
-            timing: super::flow::Timing {
+            timing: Timing {
                 follow_wait: Duration::from_secs(8),
                 ..Default::default()
             },
@@ -2034,7 +2035,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
     r.model.apply_packet(r.now, &Packet::from_vpx(0, stale));
     r.flow = CheckFlow::new(
         Options {
-            timing: super::flow::Timing {
+            timing: Timing {
                 follow_wait: Duration::from_secs(8),
                 ..Default::default()
             },
@@ -2287,7 +2288,7 @@ fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
 fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
     type Reach = fn(&mut Rig);
     let short_switch = || Options {
-        timing: super::flow::Timing {
+        timing: Timing {
             switch_timeout: Duration::from_secs(2),
             ..Default::default()
         },

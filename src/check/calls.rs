@@ -1,0 +1,36 @@
+//! What a call into the flow takes from the person, and what it gives back for the
+//! app to carry out.
+
+use crate::protocol::message::Packet;
+
+/// What the person does. The app maps keys to these, `vpx-efis check` typed answers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Command {
+    /// Confirm (before power), or go on after a timed-out item.
+    Enter,
+    Up,
+    Down,
+    /// Before power: exclude the selected circuit, or take back a suggested exclusion.
+    Toggle,
+    /// Skip the item under test.
+    SkipItem,
+    /// Skip the rest of the step.
+    SkipStep,
+    /// Try a timed-out or stopped item again.
+    Retry,
+    /// Stop the check: put back what it changed, and say what is left.
+    Stop,
+}
+
+/// What the caller must do after the flow moved.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub struct Out {
+    /// To queue on the link, in this order, before letting go of the controller.
+    pub packets: Vec<Packet>,
+    /// Each result as it came, in words, for a headless run to print.
+    pub news: Vec<String>,
+    /// The check ended in this call, finished or interrupted, at whatever stage: the
+    /// app writes its report now (marked INCOMPLETE when interrupted). Set once per
+    /// check, by [`CheckFlow::finish`], the one way every end goes.
+    pub ended: bool,
+}
