@@ -49,7 +49,9 @@ use crate::ui::{
 use motor_stream::MotorPath;
 
 pub use background::choose_theme;
-pub use check::{CheckEnd, HeadlessCheck, run_headless, run_headless_with};
+pub use check::{
+    CheckEnd, HeadlessCheck, prepare_report_dir, run_headless, run_headless_with, write_report,
+};
 pub use gateway::xfsp_setup;
 pub use options::{PageOptions, XfspOptions};
 pub use queries::{QueryPacer, connect_queries};

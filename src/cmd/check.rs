@@ -79,7 +79,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<()> {
     // A report folder that cannot be made is said now, before the port is opened,
     // not at the end of the check when the report would be lost.
     if let Some(dir) = &h.report {
-        crate::check::report::prepare(dir).map_err(|e| UsageError(format!("--report: {e}")))?;
+        crate::app::prepare_report_dir(dir).map_err(|e| UsageError(format!("--report: {e}")))?;
     }
     match run_headless(h)? {
         CheckEnd::Passed => Ok(()),

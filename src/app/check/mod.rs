@@ -9,6 +9,10 @@
 //! the page ends (quit, a signal, a closed terminal, a panic, the drop guard) first
 //! interrupts the check, which switches off the circuit it has on.
 
+mod report_files;
+
+pub use report_files::{prepare as prepare_report_dir, write as write_report};
+
 use std::io::BufRead;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -208,7 +212,7 @@ impl App {
             ours: crate::program::VERSION.to_string(),
             travel,
         };
-        let written = crate::check::report::write(&dir, &self.check.view, &about);
+        let written = report_files::write(&dir, &self.check.view, &about);
         // Only a report on the disk counts as written: one that failed (a USB stick
         // pulled, a folder made read-only) stays to be written again with `w`, the
         // results still in memory.
