@@ -8,7 +8,7 @@ use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use vpx_efis::check::report::{self, About};
 use vpx_efis::check::state::{
-    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LeftBehind, LoadsView,
     MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Step, SwitchFinding, SwitchResult,
 };
 use vpx_efis::loads;
@@ -251,7 +251,7 @@ fn interrupted() -> CheckView {
     view.skipped_steps = vec![Step::Motors];
     view.interrupted = Some(Interruption {
         cause: "communication lost".into(),
-        left: vec![(
+        left: vec![LeftBehind::new(
             0x11,
             "Landing Lt".into(),
             "unknown: ON when the link went".into(),

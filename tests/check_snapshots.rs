@@ -14,7 +14,7 @@ use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier};
 
 use vpx_efis::check::state::{
-    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LeftBehind, LoadsView,
     MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding,
     SwitchResult, Unasked,
 };
@@ -674,12 +674,12 @@ fn interrupted() -> CheckView {
         interrupted: Some(Interruption {
             cause: "COMMUNICATION LOST while Landing Lt was on".into(),
             left: vec![
-                (
+                LeftBehind::new(
                     0x11,
                     "Landing Lt".into(),
                     "unknown: no answer, last seen ON".into(),
                 ),
-                (4, "Nav Lt".into(), "OFF, held by DEVICE_POWER".into()),
+                LeftBehind::new(4, "Nav Lt".into(), "OFF, held by DEVICE_POWER".into()),
             ],
         }),
         report: Some(PathBuf::from(

@@ -24,11 +24,11 @@ pub enum Command {
 
 /// What the caller must do after the flow moved.
 #[derive(Debug, Default, Clone, PartialEq)]
-pub struct Out {
+pub struct Effects {
     /// To queue on the link, in this order, before letting go of the controller.
     pub packets: Vec<Packet>,
     /// Each result as it came, in words, for a headless run to print.
-    pub news: Vec<String>,
+    pub progress: Vec<String>,
     /// The check ended in this call, finished or interrupted, at whatever stage: the
     /// app writes its report now (marked INCOMPLETE when interrupted). Set once per
     /// check, by [`CheckFlow::finish`], the one way every end goes.

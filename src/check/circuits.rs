@@ -15,9 +15,11 @@
 use std::time::Instant;
 
 use super::calls::Command;
-use super::state::{BreakerLoad, CheckView, CircuitFinding, CircuitResult, Outcome, Prompt, Step};
+use super::state::{
+    BreakerLoad, CheckView, CircuitFinding, CircuitResult, LeftBehind, Outcome, Prompt, Step,
+};
 use super::step::{
-    Io, Next, Powered, Shared, StepRun, Stopped, news, put_back, view_or_model_name,
+    CallContext, Next, Powered, Shared, StepRun, Stopped, put_back, result_line, view_or_model_name,
 };
 use crate::control::{Refusal, StopReason};
 use crate::exchange::{Try, Verdict};
@@ -134,13 +136,13 @@ impl CircuitItem {
 
     /// The check stops here: switch it off if the check switched it on. Returns the
     /// circuit to watch go off, or why the off could not be sent.
-    pub fn stop(&self, io: &mut Io) -> Result<Option<Powered>, Refusal> {
+    pub fn stop(&self, cx: &mut CallContext) -> Result<Option<Powered>, Refusal> {
         match &self.stage {
             Stage::Measure {
                 request: Some(_), ..
             }
             | Stage::PutBack { .. } => {
-                io.power_off(self.id)?;
+                cx.power_off(self.id)?;
                 Ok(Some(Powered { id: self.id }))
             }
             Stage::Measure { request: None, .. } | Stage::Waiting => Ok(None),
@@ -161,27 +163,27 @@ impl Circuits {
         &mut self,
         idx: usize,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let id = view.circuits[idx].id;
         let name = view.circuits[idx].name.clone();
         view.current = Some(idx);
-        let now = io.now;
-        let st = state(io.model, now, id);
+        let now = cx.now;
+        let st = state(cx.model, now, id);
         if let CircuitState::Fault(code) = st {
             // Faulted before the check touched it: that is its finding.
             shared.known_faults.insert(id);
-            record(view, idx, CircuitFinding::Faulted(code), io);
+            record(view, idx, CircuitFinding::Faulted(code), cx);
             return Next::From(idx + 1);
         }
         let was_on = st == CircuitState::On;
-        if !was_on && let Some(unseen) = io.ctl.unseen() {
-            return self.wait(idx, &unseen.describe(), view, io, shared);
+        if !was_on && let Some(unseen) = cx.ctl.unseen() {
+            return self.wait(idx, &unseen.describe(), view, cx, shared);
         }
-        if !was_on && let Err(why) = io.power_on(id) {
+        if !was_on && let Err(why) = cx.power_on(id) {
             // Refused by the page's own rule: nothing sent, and the words say why.
-            return self.not_switched(idx, why, view, io);
+            return self.not_switched(idx, why, view, cx);
         }
         let request = (!was_on)
             .then(|| Try::with(now, shared.timing.power_timeout, shared.timing.power_tries));
@@ -200,7 +202,7 @@ impl Circuits {
             id,
             started: now,
             stage: Stage::Measure {
-                statuses_at_send: io.statuses(),
+                statuses_at_send: cx.statuses(),
                 request,
             },
             on_for: shared.timing.on_for,
@@ -208,12 +210,17 @@ impl Circuits {
         Next::Stay
     }
 
-    fn tick_item(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+    fn tick_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
-        let (idx, id, now) = (item.idx, item.id, io.now);
-        let st = state(io.model, now, id);
+        let (idx, id, now) = (item.idx, item.id, cx.now);
+        let st = state(cx.model, now, id);
         if let Some(p) = view.prompt.as_mut() {
             p.time_left = item.deadline().map(|d| d.saturating_duration_since(now));
         }
@@ -225,8 +232,8 @@ impl Circuits {
                 let finding = if let CircuitState::Fault(code) = st {
                     shared.known_faults.insert(id);
                     Some(CircuitFinding::Faulted(code))
-                } else if io.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
-                    let current = io
+                } else if cx.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
+                    let current = cx
                         .model
                         .live_devices(now)
                         .map_or(Tenths(0), |d| d.current[id as usize]);
@@ -238,16 +245,16 @@ impl Circuits {
                         .as_mut()
                         .map(|t| t.judge(st == CircuitState::On, now))
                     {
-                        Some(Verdict::Resend) => match io.power_on(id) {
+                        Some(Verdict::Resend) => match cx.power_on(id) {
                             Ok(()) => None,
                             Err(why) => {
                                 // The first on went out: put it back all the same.
                                 let why = format!("not switched: {why}");
                                 view.circuits[idx].outcome = Outcome::Skipped(why.clone());
-                                io.out
-                                    .news
+                                cx.out
+                                    .progress
                                     .push(format!("– {}: {why}", view.circuits[idx].name));
-                                return self.put_back_item(view, io, shared);
+                                return self.put_back_item(view, cx, shared);
                             }
                         },
                         Some(Verdict::NoAnswer) => Some(CircuitFinding::DidNotSwitch),
@@ -258,9 +265,9 @@ impl Circuits {
                     return Next::Stay;
                 };
                 let sent = request.is_some();
-                record(view, idx, f, io);
+                record(view, idx, f, cx);
                 if sent {
-                    return self.put_back_item(view, io, shared);
+                    return self.put_back_item(view, cx, shared);
                 } else {
                     return Next::From(idx + 1);
                 }
@@ -270,11 +277,11 @@ impl Circuits {
                 let off = matches!(st, CircuitState::Off | CircuitState::Fault(_));
                 match request.judge(off, now) {
                     Verdict::Answered => {
-                        put_back(id, view, io.model, now);
+                        put_back(id, view, cx.model, now);
                         return Next::From(idx + 1);
                     }
                     Verdict::Resend => {
-                        if let Err(why) = io.power_off(id) {
+                        if let Err(why) = cx.power_off(id) {
                             shared.trouble_ahead = Some(format!(
                                 "{} could not be switched back off: {why}",
                                 view.circuits[idx].name
@@ -294,11 +301,16 @@ impl Circuits {
         Next::Stay
     }
 
-    fn put_back_item(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+    fn put_back_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
-        if let Err(why) = io.power_off(item.id) {
+        if let Err(why) = cx.power_off(item.id) {
             shared.trouble_ahead = Some(format!(
                 "{} could not be switched back off: {why}",
                 view.circuits[item.idx].name
@@ -306,7 +318,7 @@ impl Circuits {
         }
         item.stage = Stage::PutBack {
             request: Try::with(
-                io.now,
+                cx.now,
                 shared.timing.power_timeout,
                 shared.timing.power_tries,
             ),
@@ -321,7 +333,7 @@ impl Circuits {
         &mut self,
         cmd: Command,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let Some(item) = &self.item else {
@@ -329,7 +341,7 @@ impl Circuits {
         };
         let idx = item.idx;
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
-            return self.start_item(idx, view, io, shared);
+            return self.start_item(idx, view, cx, shared);
         }
         if cmd != Command::SkipItem {
             return Next::Stay;
@@ -339,12 +351,12 @@ impl Circuits {
                 let sent = request.is_some();
                 if view.circuits[idx].outcome == Outcome::NotRun {
                     view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
-                    io.out
-                        .news
+                    cx.out
+                        .progress
                         .push(format!("– {}: skipped", view.circuits[idx].name));
                 }
                 if sent {
-                    return self.put_back_item(view, io, shared);
+                    return self.put_back_item(view, cx, shared);
                 } else {
                     return Next::From(idx + 1);
                 }
@@ -353,8 +365,8 @@ impl Circuits {
             Stage::PutBack { .. } => {}
             Stage::Waiting => {
                 view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
-                io.out
-                    .news
+                cx.out
+                    .progress
                     .push(format!("– {}: skipped", view.circuits[idx].name));
                 return Next::From(idx + 1);
             }
@@ -371,7 +383,7 @@ impl Circuits {
         idx: usize,
         why: &str,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let row = &view.circuits[idx];
@@ -380,7 +392,7 @@ impl Circuits {
             "Paused before switching {name} on: {why}; nothing is switched on while the \
              page cannot be seen. r: go on; s: skip it."
         );
-        io.out.news.push(format!("  {todo}"));
+        cx.out.progress.push(format!("  {todo}"));
         view.prompt = Some(Prompt {
             todo,
             watching: format!("{name}'s state (DEVICE_STATUS)"),
@@ -390,7 +402,7 @@ impl Circuits {
         self.item = Some(CircuitItem {
             idx,
             id,
-            started: io.now,
+            started: cx.now,
             stage: Stage::Waiting,
             on_for: shared.timing.on_for,
         });
@@ -404,12 +416,12 @@ impl Circuits {
         idx: usize,
         why: Refusal,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
     ) -> Next {
         let why = format!("not switched: {why}");
         let row = &mut view.circuits[idx];
-        io.out
-            .news
+        cx.out
+            .progress
             .push(format!("– {} ({}): {why}", row.name, row.pin));
         view.message = Some(format!("{}: {why}", row.name));
         row.outcome = Outcome::Skipped(why);
@@ -417,10 +429,12 @@ impl Circuits {
     }
 }
 
-fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, io: &mut Io) {
+fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, cx: &mut CallContext) {
     let row = &mut view.circuits[idx];
     let what = format!("{} ({})", row.name, row.pin);
-    io.out.news.push(news(f.mark(), &what, &f.words()));
+    cx.out
+        .progress
+        .push(result_line(f.mark(), &what, &f.words()));
     view.message = Some(format!("{}: {}", row.name, f.words()));
     row.outcome = Outcome::Found(f);
 }
@@ -444,24 +458,24 @@ impl StepRun for Circuits {
         &mut self,
         idx: usize,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
-        self.start_item(idx, view, io, shared)
+        self.start_item(idx, view, cx, shared)
     }
 
-    fn tick(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
-        self.tick_item(view, io, shared)
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+        self.tick_item(view, cx, shared)
     }
 
     fn command(
         &mut self,
         cmd: Command,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
-        self.command_item(cmd, view, io, shared)
+        self.command_item(cmd, view, cx, shared)
     }
 
     fn deadline(&self) -> Option<Instant> {
@@ -472,20 +486,20 @@ impl StepRun for Circuits {
         self.item.iter().map(|i| i.id).collect()
     }
 
-    fn stop(&mut self, _reason: StopReason, view: &CheckView, io: &mut Io) -> Stopped {
+    fn stop(&mut self, _reason: StopReason, view: &CheckView, cx: &mut CallContext) -> Stopped {
         let Some(item) = &self.item else {
             return Stopped::default();
         };
-        match item.stop(io) {
+        match item.stop(cx) {
             Ok(powered) => Stopped {
                 powered,
                 left: None,
             },
             Err(why) => Stopped {
                 powered: None,
-                left: Some((
+                left: Some(LeftBehind::new(
                     item.id,
-                    view_or_model_name(view, io.model, item.id),
+                    view_or_model_name(view, cx.model, item.id),
                     format!("ON when the check stopped: DEVICE_POWER off not sent: {why}"),
                 )),
             },

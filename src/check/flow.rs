@@ -11,10 +11,12 @@
 
 use std::time::Instant;
 
-use super::calls::{Command, Out};
+use super::calls::{Command, Effects};
 use super::plan::{self, Choices};
-use super::state::{CheckView, Interruption, Prompt, Step};
-use super::step::{Io, Next, Powered, Shared, StepRun, circuit_on, put_back, view_or_model_name};
+use super::state::{CheckView, Interruption, LeftBehind, Prompt, Step};
+use super::step::{
+    CallContext, Next, Powered, Shared, StepRun, circuit_on, put_back, view_or_model_name,
+};
 use super::timing::Timing;
 use super::words;
 use super::{circuits, motors, switches};
@@ -80,7 +82,7 @@ pub(super) enum Phase {
         powered: Powered,
         until: Instant,
         cause: String,
-        left: Vec<(u8, String, String)>,
+        left: Vec<LeftBehind>,
     },
     Done,
 }
@@ -238,8 +240,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Out {
-        let mut out = Out::default();
+    ) -> Effects {
+        let mut out = Effects::default();
         if cmd == Command::Stop {
             if !self.finished() {
                 self.interrupt(Cause::Quit, true, view, model, ctl, now, &mut out);
@@ -249,13 +251,13 @@ impl CheckFlow {
         match &mut self.phase {
             Phase::Confirm => self.confirm_command(cmd, view, model, ctl, now, &mut out),
             Phase::Testing(_) => {
-                let mut io = Io {
+                let mut cx = CallContext {
                     model,
                     ctl,
                     now,
                     out: &mut out,
                 };
-                self.item_command(cmd, view, &mut io);
+                self.item_command(cmd, view, &mut cx);
             }
             Phase::Stopping { .. } | Phase::Done => {}
         }
@@ -269,7 +271,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Out,
+        out: &mut Effects,
     ) {
         let rows = view.plan.len() + view.excluded.len();
         match cmd {
@@ -322,7 +324,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Out,
+        out: &mut Effects,
     ) {
         self.replan(view, model, now);
         if let Err(why) = plan::ready(model, now) {
@@ -330,23 +332,23 @@ impl CheckFlow {
             return;
         }
         view.message = None;
-        out.news.push(confirmed_line(view));
+        out.progress.push(confirmed_line(view));
         // Every item gets its line now, so an interruption leaves the ones never
         // reached listed as not run.
         view.switches = super::switches::rows(view, model, now);
         view.circuits = super::circuits::rows(view, model, now);
         view.motors = super::motors::rows(view);
-        let mut io = Io {
+        let mut cx = CallContext {
             model,
             ctl,
             now,
             out,
         };
-        self.enter_step(Step::Switches, view, &mut io);
+        self.enter_step(Step::Switches, view, &mut cx);
     }
 
     /// Moves to `step` (or the first one after it not skipped) and starts its first item.
-    fn enter_step(&mut self, mut step: Step, view: &mut CheckView, io: &mut Io) {
+    fn enter_step(&mut self, mut step: Step, view: &mut CheckView, cx: &mut CallContext) {
         loop {
             view.step = step;
             view.current = None;
@@ -359,22 +361,22 @@ impl CheckFlow {
                 Step::Motors => Some(Box::new(motors::Motors::default())),
                 Step::Loads => {
                     if !skipped {
-                        self.loads(view, io);
+                        self.loads(view, cx);
                     } else {
-                        io.out.news.push("– Load analysis: skipped".into());
+                        cx.out.progress.push("– Load analysis: skipped".into());
                     }
                     None
                 }
                 Step::Done => {
-                    self.finish(view, io);
+                    self.finish(view, cx);
                     return;
                 }
             };
             if let Some(mut run) = run {
                 if !skipped {
-                    run.begin(view, io, &mut self.shared);
+                    run.begin(view, cx, &mut self.shared);
                 }
-                if self.next_item(run, 0, view, io) {
+                if self.next_item(run, 0, view, cx) {
                     return;
                 }
             }
@@ -390,20 +392,20 @@ impl CheckFlow {
         mut run: Box<dyn StepRun>,
         mut from: usize,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
     ) -> bool {
         let step = run.step();
         loop {
             if self.opts.skip.contains(&step) {
                 let any = view.skip_rest(step, "step skipped");
                 if from == 0 || (any && run.says_skip_midway()) {
-                    io.out.news.push(run.skipped_line().into());
+                    cx.out.progress.push(run.skipped_line().into());
                 }
             }
             let Some(idx) = view.next_not_run(step, from) else {
                 return false;
             };
-            match run.start(idx, view, io, &mut self.shared) {
+            match run.start(idx, view, cx, &mut self.shared) {
                 Next::Stay => {
                     self.phase = Phase::Testing(run);
                     return true;
@@ -415,40 +417,40 @@ impl CheckFlow {
 
     /// After a call into the item under test: on `Next::From`, the next item, or the
     /// next step.
-    fn go_on(&mut self, next: Next, view: &mut CheckView, io: &mut Io) {
+    fn go_on(&mut self, next: Next, view: &mut CheckView, cx: &mut CallContext) {
         let Next::From(from) = next else { return };
         let Phase::Testing(run) = std::mem::replace(&mut self.phase, Phase::Done) else {
             return;
         };
         let step = run.step();
-        if !self.next_item(run, from, view, io) {
-            self.enter_step(next_step(step), view, io);
+        if !self.next_item(run, from, view, cx) {
+            self.enter_step(next_step(step), view, cx);
         }
     }
 
     /// Step 5: the builder's load file with the currents just measured, or its
     /// template written for next time. The one step that touches a file, as the
     /// setup flow's backup does.
-    fn loads(&mut self, view: &mut CheckView, io: &mut Io) {
+    fn loads(&mut self, view: &mut CheckView, cx: &mut CallContext) {
         use super::state::LoadsView;
         use crate::loads::disk::{Opened, open_or_create};
         let Some(path) = self.opts.loads_file.clone() else {
             view.loads = Some(LoadsView::Refused(
                 "no place for the load file (no config folder on this system)".into(),
             ));
-            io.out
-                .news
+            cx.out
+                .progress
                 .push("– Load analysis: no place for the load file".into());
             return;
         };
-        let loads = match open_or_create(&path, &io.model.circuits(io.now)) {
+        let loads = match open_or_create(&path, &cx.model.circuits(cx.now)) {
             Ok(Opened::Read(file)) => {
                 let analysis = crate::loads::analyse(&file, &view.measured_amps());
-                io.out
-                    .news
+                cx.out
+                    .progress
                     .push(format!("Load analysis ({}):", path.display()));
                 for phase in crate::loads::Phase::ALL {
-                    io.out.news.push(format!(
+                    cx.out.progress.push(format!(
                         "  {}: {:.1} A, {}",
                         phase.title(),
                         analysis.phase(phase).amps,
@@ -458,7 +460,7 @@ impl CheckFlow {
                 LoadsView::Analysed { path, analysis }
             }
             Ok(Opened::TemplateWritten(p)) => {
-                io.out.news.push(format!(
+                cx.out.progress.push(format!(
                     "– Load analysis: no load file yet; its template, listing every \
                      circuit, was written to {}: fill it in and run the check again",
                     p.display()
@@ -466,16 +468,16 @@ impl CheckFlow {
                 LoadsView::TemplateWritten(p)
             }
             Err(e) => {
-                io.out.news.push(format!("✗ Load analysis: {e}"));
+                cx.out.progress.push(format!("✗ Load analysis: {e}"));
                 LoadsView::Refused(e.to_string())
             }
         };
         view.loads = Some(loads);
     }
 
-    fn finish(&mut self, view: &mut CheckView, io: &mut Io) {
+    fn finish(&mut self, view: &mut CheckView, cx: &mut CallContext) {
         self.phase = Phase::Done;
-        io.out.ended = true;
+        cx.out.ended = true;
         // An interrupted check stays on the step where it stopped: the step bar must
         // not show the report as reached.
         if view.interrupted.is_none() {
@@ -497,14 +499,14 @@ impl CheckFlow {
             keys: vec![("Esc", "back to the device list")],
         });
         if view.interrupted.is_none() {
-            io.out.news.push(format!(
+            cx.out.progress.push(format!(
                 "Check complete: {} to fix",
                 view.left_to_fix().len()
             ));
         }
     }
 
-    fn item_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
+    fn item_command(&mut self, cmd: Command, view: &mut CheckView, cx: &mut CallContext) {
         match cmd {
             Command::SkipStep => {
                 // The item under test is skipped (and put back); each step's next
@@ -514,12 +516,12 @@ impl CheckFlow {
                 if !view.skipped_steps.contains(&step) {
                     view.skipped_steps.push(step);
                 }
-                self.item_command(Command::SkipItem, view, io);
+                self.item_command(Command::SkipItem, view, cx);
             }
             _ => {
                 if let Phase::Testing(run) = &mut self.phase {
-                    let next = run.command(cmd, view, io, &mut self.shared);
-                    self.go_on(next, view, io);
+                    let next = run.command(cmd, view, cx, &mut self.shared);
+                    self.go_on(next, view, cx);
                 }
             }
         }
@@ -532,8 +534,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Out {
-        let mut out = Out::default();
+    ) -> Effects {
+        let mut out = Effects::default();
         if matches!(self.phase, Phase::Confirm) {
             self.replan(view, model, now);
             if self.opts.yes && plan::ready(model, now).is_ok() {
@@ -545,7 +547,7 @@ impl CheckFlow {
             self.interrupt_with(cause, reason, true, view, model, ctl, now, &mut out);
             return out;
         }
-        let mut io = Io {
+        let mut cx = CallContext {
             model,
             ctl,
             now,
@@ -553,10 +555,10 @@ impl CheckFlow {
         };
         match &mut self.phase {
             Phase::Testing(run) => {
-                let next = run.tick(view, &mut io, &mut self.shared);
-                self.go_on(next, view, &mut io);
+                let next = run.tick(view, &mut cx, &mut self.shared);
+                self.go_on(next, view, &mut cx);
             }
-            Phase::Stopping { .. } => self.stopping_tick(view, &mut io),
+            Phase::Stopping { .. } => self.stopping_tick(view, &mut cx),
             Phase::Confirm | Phase::Done => {}
         }
         if let Some(cause) = self.shared.trouble_ahead.take() {
@@ -642,8 +644,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Out {
-        let mut out = Out::default();
+    ) -> Effects {
+        let mut out = Effects::default();
         if !matches!(self.phase, Phase::Done) {
             self.interrupt(cause, may_wait, view, model, ctl, now, &mut out);
         }
@@ -659,7 +661,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Out,
+        out: &mut Effects,
     ) {
         let reason = cause.stop_reason();
         if matches!(self.phase, Phase::Confirm) {
@@ -669,25 +671,25 @@ impl CheckFlow {
                 cause: cause.words(),
                 left: Vec::new(),
             });
-            let mut io = Io {
+            let mut cx = CallContext {
                 model,
                 ctl,
                 now,
                 out,
             };
-            self.finish(view, &mut io);
+            self.finish(view, &mut cx);
             return;
         }
         if let Phase::Stopping { until, .. } = &mut self.phase {
             // A second stop (quit while waiting to see a circuit off): stop waiting.
             *until = now;
-            let mut io = Io {
+            let mut cx = CallContext {
                 model,
                 ctl,
                 now,
                 out,
             };
-            self.stopping_tick(view, &mut io);
+            self.stopping_tick(view, &mut cx);
             return;
         }
         ctl_stop(ctl, now, reason, out);
@@ -706,25 +708,25 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Out,
+        out: &mut Effects,
     ) {
         let link_failed = model.link.write_errors > self.write_errors_at_start
             || !matches!(model.connection, Connection::Connected { .. });
         let comm = !model.comm_lost(now) && !link_failed;
-        let mut left: Vec<(u8, String, String)> = Vec::new();
+        let mut left: Vec<LeftBehind> = Vec::new();
         let mut powered = None;
-        let mut io = Io {
+        let mut cx = CallContext {
             model,
             ctl,
             now,
             out,
         };
         if let Phase::Testing(mut run) = std::mem::replace(&mut self.phase, Phase::Done) {
-            let stopped = run.stop(reason, view, &mut io);
+            let stopped = run.stop(reason, view, &mut cx);
             powered = stopped.powered;
             left.extend(stopped.left);
         }
-        io.out.news.push(format!("Interrupted: {cause}"));
+        cx.out.progress.push(format!("Interrupted: {cause}"));
         match powered {
             Some(p) if may_wait && comm => {
                 self.phase = Phase::Stopping {
@@ -757,23 +759,23 @@ impl CheckFlow {
                         }
                     )
                 };
-                left.insert(0, (p.id, name, why));
-                self.end_interrupted(cause, left, view, &mut io);
+                left.insert(0, LeftBehind::new(p.id, name, why));
+                self.end_interrupted(cause, left, view, &mut cx);
             }
-            None => self.end_interrupted(cause, left, view, &mut io),
+            None => self.end_interrupted(cause, left, view, &mut cx),
         }
     }
 
-    fn stopping_tick(&mut self, view: &mut CheckView, io: &mut Io) {
+    fn stopping_tick(&mut self, view: &mut CheckView, cx: &mut CallContext) {
         let Phase::Stopping { powered, until, .. } = &self.phase else {
             return;
         };
         let (powered, until) = (*powered, *until);
-        let state = circuit_on(io.model, io.now, powered.id);
+        let state = circuit_on(cx.model, cx.now, powered.id);
         let off = state == Some(false);
-        if !off && io.now < until {
+        if !off && cx.now < until {
             if let Some(p) = view.prompt.as_mut() {
-                p.time_left = Some(until.saturating_duration_since(io.now));
+                p.time_left = Some(until.saturating_duration_since(cx.now));
             }
             return;
         }
@@ -783,37 +785,42 @@ impl CheckFlow {
         else {
             return;
         };
-        let name = view_or_model_name(view, io.model, powered.id);
+        let name = view_or_model_name(view, cx.model, powered.id);
         if off {
-            put_back(powered.id, view, io.model, io.now);
+            put_back(powered.id, view, cx.model, cx.now);
         } else {
             let why = match state {
                 Some(true) => "ON: DEVICE_POWER off sent, the unit still shows it on",
                 _ => "unknown: it was ON; DEVICE_POWER off sent, no status since",
             };
-            left.insert(0, (powered.id, name, why.to_string()));
+            left.insert(0, LeftBehind::new(powered.id, name, why.to_string()));
         }
-        self.end_interrupted(cause, left, view, io);
+        self.end_interrupted(cause, left, view, cx);
     }
 
     fn end_interrupted(
         &mut self,
         cause: String,
-        left: Vec<(u8, String, String)>,
+        left: Vec<LeftBehind>,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
     ) {
-        for (id, name, why) in &left {
-            io.out
-                .news
+        for LeftBehind {
+            id,
+            name,
+            state: why,
+        } in &left
+        {
+            cx.out
+                .progress
                 .push(format!("  left: {name} (device {id}): {why}"));
         }
         view.interrupted = Some(Interruption { cause, left });
-        self.finish(view, io);
+        self.finish(view, cx);
     }
 }
 
-fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut Out) {
+fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut Effects) {
     out.packets.extend(ctl.stop(now, reason));
 }
 

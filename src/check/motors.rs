@@ -26,8 +26,8 @@
 use std::time::{Duration, Instant};
 
 use super::calls::Command;
-use super::state::{CheckView, MotorFinding, MotorResult, Outcome, Prompt, Step};
-use super::step::{Io, Next, Shared, StepRun, Stopped, motor_name, news};
+use super::state::{CheckView, LeftBehind, MotorFinding, MotorResult, Outcome, Prompt, Step};
+use super::step::{CallContext, Next, Shared, StepRun, Stopped, motor_name, result_line};
 pub use crate::control::endpoints::expected_sign;
 use crate::control::endpoints::{self, ends, heads_for, opposite, position, room};
 use crate::control::{Direction, StopReason, motor_check};
@@ -219,7 +219,7 @@ impl Motors {
         &mut self,
         idx: usize,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let motor = view.motors[idx].motor;
@@ -244,15 +244,20 @@ impl Motors {
             settle: shared.timing.motor_settle,
             skipped: false,
         });
-        self.tick_item(view, io, shared)
+        self.tick_item(view, cx, shared)
     }
 
-    fn tick_item(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+    fn tick_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
-        let now = io.now;
-        let Some(ft) = io.model.live_flap_trim(now).copied() else {
+        let now = cx.now;
+        let Some(ft) = cx.model.live_flap_trim(now).copied() else {
             return Next::Stay;
         };
         let pos = position(item.motor, &ft);
@@ -275,7 +280,9 @@ impl Motors {
                             e.down
                         );
                         let (idx, motor) = (item.idx, item.motor);
-                        io.out.news.push(format!("– {}: {why}", motor_name(motor)));
+                        cx.out
+                            .progress
+                            .push(format!("– {}: {why}", motor_name(motor)));
                         view.motors[idx].outcome = Outcome::Skipped(why);
                         return Next::From(idx + 1);
                     }
@@ -288,13 +295,13 @@ impl Motors {
                 };
                 let d = item.dirs[0];
                 let length = item.run;
-                return self.run(d, length, None, view, io, shared);
+                return self.run(d, length, None, view, cx, shared);
             }
             Stage::Running { since, .. } => {
-                if io.ctl.running().is_some_and(|r| r.motor == item.motor) {
+                if cx.ctl.running().is_some_and(|r| r.motor == item.motor) {
                     return Next::Stay;
                 }
-                let stop = io
+                let stop = cx
                     .ctl
                     .last_stop()
                     .filter(|s| s.at >= since && s.motor == item.motor)
@@ -320,7 +327,7 @@ impl Motors {
                                 item.probed + stopped_at.saturating_duration_since(since);
                             item.rest = None;
                         }
-                        io.out.news.push(format!(
+                        cx.out.progress.push(format!(
                             "  {} stopped at its endpoint ({end}), position {pos}",
                             motor_name(item.motor)
                         ));
@@ -338,7 +345,7 @@ impl Motors {
                                 item.probed + stopped_at.saturating_duration_since(since);
                             item.rest = None;
                         }
-                        io.out.news.push(format!(
+                        cx.out.progress.push(format!(
                             "  {}, position {pos}",
                             crate::control::against::stopped(item.motor, asked)
                         ));
@@ -354,7 +361,7 @@ impl Motors {
                         };
                         shared.known_faults.insert(item.motor.device_id());
                         let idx = item.idx;
-                        record(view, idx, MotorFinding::Faulted(code), io);
+                        record(view, idx, MotorFinding::Faulted(code), cx);
                         return Next::From(idx + 1);
                     }
                     Some(
@@ -377,7 +384,7 @@ impl Motors {
                             ran: stopped_at.saturating_duration_since(since),
                         };
                         let why = format!("The {} stopped: {}", item.motor.name(), r.describe());
-                        return self.pause(&why, view, io);
+                        return self.pause(&why, view, cx);
                     }
                 }
             }
@@ -396,14 +403,14 @@ impl Motors {
                     let went = (i32::from(pos) - i32::from(item.starts[item.leg])) * way;
                     item.probed = item.ran[item.leg];
                     if went > 0 {
-                        return self.run(d, rest, Some(way), view, io, shared);
+                        return self.run(d, rest, Some(way), view, cx, shared);
                     }
                     if went == 0 && item.probes < MAX_PROBES {
-                        return self.run(d, rest, None, view, io, shared);
+                        return self.run(d, rest, None, view, cx, shared);
                     }
                     if went < 0 {
                         item.ended_at[item.leg] = heads_for(item.motor, opposite(d), &ft);
-                        io.out.news.push(format!(
+                        cx.out.progress.push(format!(
                             "  {} went the other way from {} to {pos}: run no further",
                             motor_name(item.motor),
                             item.starts[item.leg]
@@ -428,7 +435,7 @@ impl Motors {
                         }
                         _ => item.run,
                     };
-                    return self.run(d, length, None, view, io, shared);
+                    return self.run(d, length, None, view, cx, shared);
                 }
                 let idx = item.idx;
                 if item.leg == 2 && view.motors[idx].outcome == Outcome::NotRun && !item.skipped {
@@ -440,9 +447,9 @@ impl Motors {
                         item.ended_at,
                         &ft,
                     );
-                    record(view, idx, f, io);
+                    record(view, idx, f, cx);
                 }
-                return self.run_back(pos, view, io, shared);
+                return self.run_back(pos, view, cx, shared);
             }
         }
         Next::Stay
@@ -454,7 +461,7 @@ impl Motors {
         &mut self,
         pos: u8,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let Some(item) = &mut self.item else {
@@ -475,7 +482,7 @@ impl Motors {
             {
                 // Not back, and no run left that would bring it: say where it is.
                 let motor = item.motor;
-                not_back(view, idx, motor, pos, p0, io);
+                not_back(view, idx, motor, pos, p0, cx);
             }
             return Next::From(idx + 1);
         }
@@ -487,7 +494,7 @@ impl Motors {
         };
         let ratio = back.abs() as f32 / moved.abs() as f32;
         let length = ran.mul_f32(ratio).min(item.run * 2);
-        self.run(dir, length, Some(back.signum()), view, io, shared)
+        self.run(dir, length, Some(back.signum()), view, cx, shared)
     }
 
     /// Runs the motor `d` for `length`; `way` is which way the check expects the
@@ -500,21 +507,21 @@ impl Motors {
         length: Duration,
         way: Option<i32>,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
-        let now = io.now;
+        let now = cx.now;
         let mut length = length;
         // Seen moving against its command (by this check's first run, or before it):
         // no test run is made until the person confirms one at the page's keys; the
         // finding is that, and the run back goes the way it was seen to go.
         if item.leg < 2
             && way.is_none()
-            && let Some(asked) = io.ctl.against().seen(item.motor)
-            && let Some(pos) = io
+            && let Some(asked) = cx.ctl.against().seen(item.motor)
+            && let Some(pos) = cx
                 .model
                 .live_flap_trim(now)
                 .map(|ft| position(item.motor, ft))
@@ -522,17 +529,17 @@ impl Motors {
             let idx = item.idx;
             if view.motors[idx].outcome == Outcome::NotRun {
                 if item.leg == 0 {
-                    io.out.news.push(format!(
+                    cx.out.progress.push(format!(
                         "  {}: not run",
                         crate::control::against::words(item.motor, asked)
                     ));
                 }
-                record(view, idx, MotorFinding::Reversed, io);
+                record(view, idx, MotorFinding::Reversed, cx);
             }
             item.leg = 2;
-            return self.run_back(pos, view, io, shared);
+            return self.run_back(pos, view, cx, shared);
         }
-        if let Some(ft) = io.model.live_flap_trim(now)
+        if let Some(ft) = cx.model.live_flap_trim(now)
             && item.leg < 2
             && way.is_none()
         {
@@ -557,12 +564,12 @@ impl Motors {
                 length = p;
             }
         }
-        match io
+        match cx
             .ctl
-            .run_for_moving(io.model, item.motor, d, way, length, now)
+            .run_for_moving(cx.model, item.motor, d, way, length, now)
         {
             Ok(p) => {
-                io.out.packets.extend(p);
+                cx.out.packets.extend(p);
                 if item.leg < 2 {
                     // As planned; a run ended early at its endpoint says how long.
                     item.ran[item.leg] = item.probed + length;
@@ -571,7 +578,7 @@ impl Motors {
             }
             Err(why) => {
                 let idx = item.idx;
-                if let Some(unseen) = io.ctl.unseen() {
+                if let Some(unseen) = cx.ctl.unseen() {
                     // Nobody can see the page: nothing moves until the person is back
                     // and asks (r), as after a run the same cause cut short.
                     let why = format!(
@@ -580,12 +587,12 @@ impl Motors {
                         item.motor.name(),
                         unseen.describe()
                     );
-                    return self.pause(&why, view, io);
+                    return self.pause(&why, view, cx);
                 }
-                match motor_check(io.model, item.motor, d, now) {
+                match motor_check(cx.model, item.motor, d, now) {
                     Err(StopReason::MotorFault(code)) => {
                         shared.known_faults.insert(item.motor.device_id());
-                        record(view, idx, MotorFinding::Faulted(code), io);
+                        record(view, idx, MotorFinding::Faulted(code), cx);
                     }
                     Err(StopReason::CommLost) => {
                         shared.trouble_ahead = Some("COMMUNICATION LOST".into());
@@ -594,24 +601,24 @@ impl Motors {
                     // No position to go by (none fresh enough to keep it off its
                     // endpoint, or none at all): it waits, as a run cut short does,
                     // for the person to try again or skip it (which runs it back).
-                    Err(StopReason::MotorStatusLost) => return self.pause(&why.0, view, io),
-                    _ if io
+                    Err(StopReason::MotorStatusLost) => return self.pause(&why.0, view, cx),
+                    _ if cx
                         .model
                         .flap_trim
                         .is_some_and(|st| st.age(now) > endpoints::POSITION_FRESH) =>
                     {
-                        return self.pause(&why.0, view, io);
+                        return self.pause(&why.0, view, cx);
                     }
                     _ if view.motors[idx].outcome == Outcome::NotRun => {
                         view.motors[idx].outcome = Outcome::Skipped(why.0.clone());
-                        io.out
-                            .news
+                        cx.out
+                            .progress
                             .push(format!("– {}: {}", motor_name(item.motor), why.0));
                     }
                     _ => {}
                 }
                 // A run back that could not be made leaves it where it is: said so.
-                let pos = io
+                let pos = cx
                     .model
                     .live_flap_trim(now)
                     .map(|ft| position(item.motor, ft));
@@ -620,10 +627,12 @@ impl Motors {
                     && (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN
                 {
                     let motor = item.motor;
-                    io.out
-                        .news
-                        .push(format!("  {}: not run back: {}", motor_name(motor), why.0));
-                    not_back(view, idx, motor, pos, p0, io);
+                    cx.out.progress.push(format!(
+                        "  {}: not run back: {}",
+                        motor_name(motor),
+                        why.0
+                    ));
+                    not_back(view, idx, motor, pos, p0, cx);
                 }
                 return Next::From(idx + 1);
             }
@@ -633,7 +642,7 @@ impl Motors {
 
     /// The motor under test waits for the person: `why` (a sentence without its
     /// full stop), then retry or skip.
-    fn pause(&mut self, why: &str, view: &mut CheckView, io: &mut Io) -> Next {
+    fn pause(&mut self, why: &str, view: &mut CheckView, cx: &mut CallContext) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
@@ -653,7 +662,7 @@ impl Motors {
             time_left: None,
             keys: vec![("r", "retry"), ("s", "skip"), ("Esc", "stop")],
         });
-        io.out.news.push(format!("  {why}"));
+        cx.out.progress.push(format!("  {why}"));
         Next::Stay
     }
 
@@ -661,7 +670,7 @@ impl Motors {
         &mut self,
         cmd: Command,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let Some(item) = &mut self.item else {
@@ -670,19 +679,19 @@ impl Motors {
         let idx = item.idx;
         match cmd {
             Command::SkipItem => {
-                io.out
+                cx.out
                     .packets
-                    .extend(io.ctl.stop(io.now, StopReason::OtherKey));
+                    .extend(cx.ctl.stop(cx.now, StopReason::OtherKey));
                 if view.motors[idx].outcome == Outcome::NotRun {
                     view.motors[idx].outcome = Outcome::Skipped("you skipped it".into());
-                    io.out
-                        .news
+                    cx.out
+                        .progress
                         .push(format!("– {}: skipped", motor_name(item.motor)));
                 }
                 item.skipped = true;
-                let pos = io
+                let pos = cx
                     .model
-                    .live_flap_trim(io.now)
+                    .live_flap_trim(cx.now)
                     .map(|ft| position(item.motor, ft));
                 // A test run cut short by this skip (or paused before it) counts
                 // for as far as it went, so the run back knows the way and the rate.
@@ -691,7 +700,7 @@ impl Motors {
                 {
                     let ran = match item.stage {
                         Stage::Running { since, length } => {
-                            io.now.saturating_duration_since(since).min(length)
+                            cx.now.saturating_duration_since(since).min(length)
                         }
                         Stage::Paused { ran } => ran,
                         Stage::Settle { .. } => item.run,
@@ -704,13 +713,13 @@ impl Motors {
                 match pos {
                     Some(pos) if item.p0.is_some() && item.leg < 3 => {
                         item.leg = 2;
-                        self.run_back(pos, view, io, shared)
+                        self.run_back(pos, view, cx, shared)
                     }
                     Some(pos) if let Some(p0) = item.p0 => {
                         // Skipped during the run back: it stays where it is.
                         if (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN {
                             let motor = item.motor;
-                            not_back(view, idx, motor, pos, p0, io);
+                            not_back(view, idx, motor, pos, p0, cx);
                         }
                         Next::From(idx + 1)
                     }
@@ -725,15 +734,15 @@ impl Motors {
                 if item.leg < 2 {
                     (item.rest, item.probes, item.probed) = (None, 0, Duration::ZERO);
                     let (d, length) = (item.dirs[item.leg], item.run);
-                    self.run(d, length, None, view, io, shared)
+                    self.run(d, length, None, view, cx, shared)
                 } else {
-                    let pos = io
+                    let pos = cx
                         .model
-                        .live_flap_trim(io.now)
+                        .live_flap_trim(cx.now)
                         .map(|ft| position(item.motor, ft));
                     item.leg = 2;
                     match pos {
-                        Some(pos) => self.run_back(pos, view, io, shared),
+                        Some(pos) => self.run_back(pos, view, cx, shared),
                         None => Next::From(idx + 1),
                     }
                 }
@@ -755,13 +764,13 @@ fn running_prompt(motor: Motor) -> Prompt {
     }
 }
 
-/// The motor ends its item away from where the check found it: said in the news, and
+/// The motor ends its item away from where the check found it: said in the result_line, and
 /// in the result when it was skipped (a finding keeps its words; its positions show
 /// where it ended).
-fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, io: &mut Io) {
+fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, cx: &mut CallContext) {
     let words = format!("stopped at position {pos}, it was at {p0}: not run back");
-    io.out
-        .news
+    cx.out
+        .progress
         .push(format!("  {}: {words}", motor_name(motor)));
     let row = &mut view.motors[idx];
     if row.positions.last() != Some(&pos) {
@@ -775,11 +784,11 @@ fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, io:
     view.message = Some(format!("{}: {words}", motor_name(motor)));
 }
 
-fn record(view: &mut CheckView, idx: usize, f: MotorFinding, io: &mut Io) {
+fn record(view: &mut CheckView, idx: usize, f: MotorFinding, cx: &mut CallContext) {
     let row = &mut view.motors[idx];
     let what = motor_name(row.motor);
     let words = f.words();
-    io.out.news.push(news(f.mark(), &what, &words));
+    cx.out.progress.push(result_line(f.mark(), &what, &words));
     view.message = Some(format!("{what}: {words}"));
     row.outcome = Outcome::Found(f);
 }
@@ -803,24 +812,24 @@ impl StepRun for Motors {
         &mut self,
         idx: usize,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
-        self.start_item(idx, view, io, shared)
+        self.start_item(idx, view, cx, shared)
     }
 
-    fn tick(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
-        self.tick_item(view, io, shared)
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+        self.tick_item(view, cx, shared)
     }
 
     fn command(
         &mut self,
         cmd: Command,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
-        self.command_item(cmd, view, io, shared)
+        self.command_item(cmd, view, cx, shared)
     }
 
     fn deadline(&self) -> Option<Instant> {
@@ -834,16 +843,16 @@ impl StepRun for Motors {
     /// Stopped here for the check's own reason, unless stopped already (by the flow,
     /// or the controller's own tick, whose reason stands); says where it stopped if
     /// it had moved.
-    fn stop(&mut self, reason: StopReason, _view: &CheckView, io: &mut Io) -> Stopped {
+    fn stop(&mut self, reason: StopReason, _view: &CheckView, cx: &mut CallContext) -> Stopped {
         let Some(item) = &self.item else {
             return Stopped::default();
         };
-        io.out.packets.extend(io.ctl.stop(io.now, reason));
+        cx.out.packets.extend(cx.ctl.stop(cx.now, reason));
         Stopped {
             powered: None,
             left: item
-                .left_words(io.model, io.now)
-                .map(|words| (item.motor.device_id(), item.name(), words)),
+                .left_words(cx.model, cx.now)
+                .map(|words| LeftBehind::new(item.motor.device_id(), item.name(), words)),
         }
     }
 

@@ -10,7 +10,8 @@ use std::path::Path;
 use std::time::SystemTime;
 
 use super::state::{
-    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, Outcome, Step, SwitchResult,
+    CheckView, CircuitFinding, CircuitResult, LeftBehind, LoadsView, Mark, Outcome, Step,
+    SwitchResult,
 };
 use super::words::{self, badge, switch_id as switch_text};
 use crate::loads::analysis::amps_text;
@@ -263,7 +264,7 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
                 "It could not put everything back. It left these circuits so:\n\n\
                  | Circuit | Pin | Left |\n|---|---|---|\n",
             );
-            for (id, name, state) in &i.left {
+            for LeftBehind { id, name, state } in &i.left {
                 let pin = device::device(*id).map_or("?", |d| d.system_name);
                 let _ = writeln!(o, "| {} | {pin} | {} |", cell(name), cell(state));
             }

@@ -286,9 +286,25 @@ pub struct Prompt {
 pub struct Interruption {
     /// "quit", "communication lost", "the link failed: …", "Landing Light faulted".
     pub cause: String,
-    /// Each circuit the check left not as it found it: id, name, and in words the
-    /// state it was left in ("ON, held by DEVICE_POWER", "unknown: no answer").
-    pub left: Vec<(u8, String, String)>,
+    /// Each circuit (or motor) the check left not as it found it.
+    pub left: Vec<LeftBehind>,
+}
+
+/// A circuit or motor the check left not as it found it, and how.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LeftBehind {
+    /// Its device id.
+    pub id: u8,
+    pub name: String,
+    /// In words, the state it was left in: "ON, held by DEVICE_POWER", "unknown: no
+    /// answer", "stopped at position 40, it was at 20: not run back".
+    pub state: String,
+}
+
+impl LeftBehind {
+    pub fn new(id: u8, name: String, state: String) -> LeftBehind {
+        LeftBehind { id, name, state }
+    }
 }
 
 /// A circuit the check will switch on, and for how long.

@@ -7,8 +7,8 @@
 use std::collections::BTreeSet;
 use std::time::{Instant, SystemTime};
 
-use super::calls::{Command, Out};
-use super::state::{CheckView, Mark, Step};
+use super::calls::{Command, Effects};
+use super::state::{CheckView, LeftBehind, Mark, Step};
 use super::timing::Timing;
 use crate::control::{Controller, Refusal, StopReason, device_power, put_back_off};
 use crate::model::{Model, Motor};
@@ -40,21 +40,26 @@ pub(super) trait StepRun: std::fmt::Debug {
     }
 
     /// Before the first item, when the step is not skipped.
-    fn begin(&mut self, _view: &mut CheckView, _io: &mut Io, _shared: &mut Shared) {}
+    fn begin(&mut self, _view: &mut CheckView, _io: &mut CallContext, _shared: &mut Shared) {}
 
     /// Starts item `idx` (its row is not done yet).
-    fn start(&mut self, idx: usize, view: &mut CheckView, io: &mut Io, shared: &mut Shared)
-    -> Next;
+    fn start(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next;
 
     /// Time passed or packets arrived.
-    fn tick(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next;
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next;
 
     /// A command from the person for the item under test (not Stop, not SkipStep).
     fn command(
         &mut self,
         cmd: Command,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next;
 
@@ -66,7 +71,7 @@ pub(super) trait StepRun: std::fmt::Debug {
 
     /// The check stops during this item: stop what it runs (for `reason`), and say
     /// what it leaves.
-    fn stop(&mut self, reason: StopReason, view: &CheckView, io: &mut Io) -> Stopped;
+    fn stop(&mut self, reason: StopReason, view: &CheckView, cx: &mut CallContext) -> Stopped;
 
     /// The item's own stage, for the tests that stop the check at every stage.
     #[cfg(test)]
@@ -78,8 +83,8 @@ pub(super) trait StepRun: std::fmt::Debug {
 pub(super) struct Stopped {
     /// A circuit switched back off now, to watch go off.
     pub powered: Option<Powered>,
-    /// A line for the list of what the check left: id, name, in words.
-    pub left: Option<(u8, String, String)>,
+    /// Its line in the list of what the check left.
+    pub left: Option<LeftBehind>,
 }
 
 /// A circuit the check switched on and has not yet seen back off.
@@ -117,14 +122,14 @@ impl Shared {
 }
 
 /// What the calls share: the model, the controller and where the packets go.
-pub(super) struct Io<'a> {
+pub(super) struct CallContext<'a> {
     pub model: &'a Model,
     pub ctl: &'a mut Controller,
     pub now: Instant,
-    pub out: &'a mut Out,
+    pub out: &'a mut Effects,
 }
 
-impl Io<'_> {
+impl CallContext<'_> {
     /// Switches circuit `id` on by the rule of the page's own power keys
     /// ([`device_power`]: never the starter or a motor, not a faulted pin, not a state
     /// the page does not know); on a refusal nothing is sent and the words say why.
@@ -191,6 +196,6 @@ pub(super) fn motor_name(m: Motor) -> String {
 }
 
 /// A result as a headless run prints it: "✓ PASS switch 3: …".
-pub(super) fn news(mark: Mark, what: &str, words: &str) -> String {
+pub(super) fn result_line(mark: Mark, what: &str, words: &str) -> String {
     format!("{} {} {what}: {words}", mark.symbol(), mark.word())
 }

@@ -19,7 +19,7 @@ use super::calls::Command;
 use super::plan;
 use super::state::Step;
 use super::state::{CheckView, Input, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult};
-use super::step::{Io, Next, Shared, StepRun, Stopped, circuit_on, news};
+use super::step::{CallContext, Next, Shared, StepRun, Stopped, circuit_on, result_line};
 use crate::control::StopReason;
 use crate::model::{CircuitState, Hold, Model, Motor, TrimKind};
 use crate::protocol::message::{SwitchId, SwitchInputs};
@@ -151,7 +151,7 @@ impl Switches {
         &mut self,
         idx: usize,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let row = &mut view.switches[idx];
@@ -160,7 +160,7 @@ impl Switches {
             idx,
             input: row.input,
             circuits: row.circuits.clone(),
-            deadline: io.now + shared.timing.switch_timeout,
+            deadline: cx.now + shared.timing.switch_timeout,
             base: None,
             changed_at: None,
             returned: false,
@@ -188,16 +188,21 @@ impl Switches {
             time_left: Some(shared.timing.switch_timeout),
             keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
         });
-        io.out.news.push(format!(
+        cx.out.progress.push(format!(
             "Switch inputs: {} (you have {} s)",
             view.prompt.as_ref().map_or("", |p| p.todo.as_str()),
             shared.timing.switch_timeout.as_secs()
         ));
         self.item = Some(item);
-        self.tick_item(view, io, shared)
+        self.tick_item(view, cx, shared)
     }
 
-    fn tick_item(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
+    fn tick_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
         let wall = |at| shared.wall(at);
         let Some(item) = &mut self.item else {
             return Next::Stay;
@@ -205,8 +210,8 @@ impl Switches {
         if item.timed_out {
             return Next::Stay;
         }
-        let now = io.now;
-        let Some(sys) = io.model.live_system(now) else {
+        let now = cx.now;
+        let Some(sys) = cx.model.live_system(now) else {
             return Next::Stay;
         };
         let cur = sys.switches;
@@ -214,7 +219,7 @@ impl Switches {
             let on = item
                 .circuits
                 .iter()
-                .map(|&id| (id, circuit_on(io.model, now, id).unwrap_or(false)))
+                .map(|&id| (id, circuit_on(cx.model, now, id).unwrap_or(false)))
                 .collect();
             item.base = Some((cur, on));
             return Next::Stay;
@@ -242,10 +247,10 @@ impl Switches {
             .into_iter()
             .find(|&i| i != item.input && i.is_on(&cur) != i.is_on(base));
         for (id, was) in base_on {
-            if let Some(h) = io.model.hold(*id) {
+            if let Some(h) = cx.model.hold(*id) {
                 item.holds.insert(*id, h);
             }
-            if circuit_on(io.model, now, *id).is_none_or(|on| on == *was) {
+            if circuit_on(cx.model, now, *id).is_none_or(|on| on == *was) {
                 continue;
             }
             match (this_away, other_away) {
@@ -266,7 +271,7 @@ impl Switches {
             Some(at)
                 if item.returned && (all_followed || now >= at + shared.timing.follow_wait) =>
             {
-                Some(follow_finding(item, io.model, now, &wall))
+                Some(follow_finding(item, cx.model, now, &wall))
             }
             None if item.others.iter().any(|(_, back)| *back) => Some(SwitchFinding::OtherChanged(
                 item.others.iter().map(|(i, _)| *i).collect(),
@@ -275,12 +280,12 @@ impl Switches {
         };
         if let Some(f) = finding {
             let idx = item.idx;
-            record(view, idx, f, io);
+            record(view, idx, f, cx);
             return Next::From(idx + 1);
         }
         if now >= item.deadline {
             let f = if item.changed_at.is_some() {
-                follow_finding(item, io.model, now, &wall)
+                follow_finding(item, cx.model, now, &wall)
             } else if !item.others.is_empty() {
                 SwitchFinding::OtherChanged(item.others.iter().map(|(i, _)| *i).collect())
             } else {
@@ -289,7 +294,7 @@ impl Switches {
             item.timed_out = true;
             let idx = item.idx;
             let label = item.input.label();
-            record(view, idx, f, io);
+            record(view, idx, f, cx);
             view.prompt = Some(Prompt {
                 todo: format!("Time is up for {label}. r: try it again; Enter: go on to the next."),
                 watching: String::new(),
@@ -301,8 +306,8 @@ impl Switches {
                     ("Esc", "stop"),
                 ],
             });
-            io.out
-                .news
+            cx.out
+                .progress
                 .push(format!("  {label}: time is up (r: retry, Enter: next)"));
         }
         Next::Stay
@@ -312,7 +317,7 @@ impl Switches {
         &mut self,
         cmd: Command,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
         let Some(item) = &self.item else {
@@ -322,12 +327,12 @@ impl Switches {
         match cmd {
             Command::SkipItem => {
                 view.switches[idx].outcome = Outcome::Skipped("you skipped it".into());
-                io.out
-                    .news
+                cx.out
+                    .progress
                     .push(format!("– {}: skipped", view.switches[idx].input.label()));
                 Next::From(idx + 1)
             }
-            Command::Retry => self.start_item(idx, view, io, shared),
+            Command::Retry => self.start_item(idx, view, cx, shared),
             Command::Enter if timed_out => Next::From(idx + 1),
             _ => Next::Stay,
         }
@@ -392,12 +397,12 @@ fn input_switch(input: Input) -> Option<SwitchId> {
     }
 }
 
-fn record(view: &mut CheckView, idx: usize, f: SwitchFinding, io: &mut Io) {
+fn record(view: &mut CheckView, idx: usize, f: SwitchFinding, cx: &mut CallContext) {
     let name_of = |id| view.name_of(id);
     let words = f.words(&name_of);
     let mark = f.mark();
     let label = view.switches[idx].input.label();
-    io.out.news.push(news(mark, &label, &words));
+    cx.out.progress.push(result_line(mark, &label, &words));
     view.message = Some(format!("{label}: {words}"));
     view.switches[idx].outcome = Outcome::Found(f);
 }
@@ -422,9 +427,9 @@ impl StepRun for Switches {
     }
 
     /// What will not be asked, and why, before the first thing that is.
-    fn begin(&mut self, view: &mut CheckView, io: &mut Io, _shared: &mut Shared) {
+    fn begin(&mut self, view: &mut CheckView, cx: &mut CallContext, _shared: &mut Shared) {
         for u in &view.unasked {
-            io.out.news.push(format!("– {}", u.why));
+            cx.out.progress.push(format!("– {}", u.why));
         }
     }
 
@@ -432,24 +437,24 @@ impl StepRun for Switches {
         &mut self,
         idx: usize,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
-        self.start_item(idx, view, io, shared)
+        self.start_item(idx, view, cx, shared)
     }
 
-    fn tick(&mut self, view: &mut CheckView, io: &mut Io, shared: &mut Shared) -> Next {
-        self.tick_item(view, io, shared)
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+        self.tick_item(view, cx, shared)
     }
 
     fn command(
         &mut self,
         cmd: Command,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
         shared: &mut Shared,
     ) -> Next {
-        self.command_item(cmd, view, io, shared)
+        self.command_item(cmd, view, cx, shared)
     }
 
     fn deadline(&self) -> Option<Instant> {
@@ -463,7 +468,7 @@ impl StepRun for Switches {
     }
 
     /// Nothing of a switch input is powered by the check: nothing to stop.
-    fn stop(&mut self, _reason: StopReason, _view: &CheckView, _io: &mut Io) -> Stopped {
+    fn stop(&mut self, _reason: StopReason, _view: &CheckView, _io: &mut CallContext) -> Stopped {
         Stopped::default()
     }
 

@@ -6,8 +6,8 @@
 use std::time::Duration;
 
 use super::state::{
-    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, MotorFinding, MotorResult,
-    NEAR_BREAKER_PERCENT, NotFollowed, Outcome, SwitchFinding, SwitchResult,
+    CheckView, CircuitFinding, CircuitResult, LeftBehind, LoadsView, Mark, MotorFinding,
+    MotorResult, NEAR_BREAKER_PERCENT, NotFollowed, Outcome, SwitchFinding, SwitchResult,
 };
 use crate::protocol::device;
 use crate::protocol::fault::FaultCode;
@@ -291,7 +291,7 @@ impl CheckView {
             ));
         }
         if let Some(i) = &self.interrupted {
-            for (id, name, state) in &i.left {
+            for LeftBehind { id, name, state } in &i.left {
                 let pin = device::device(*id).map_or("?", |d| d.system_name);
                 out.push(format!(
                     "{name} ({pin}), left by the interrupted check: {state}"

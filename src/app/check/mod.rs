@@ -35,7 +35,7 @@ pub(super) struct CheckState {
     flow: Option<CheckFlow>,
     view: CheckView,
     /// Results as they came, for a headless run to print.
-    news: Vec<String>,
+    progress: Vec<String>,
     /// Where the report goes once the check ends, and when the check started.
     report_dir: Option<PathBuf>,
     started: Option<std::time::SystemTime>,
@@ -69,7 +69,7 @@ impl App {
             crate::model::LogLevel::Info,
             "check: the installation check started".into(),
         );
-        self.check.news.clear();
+        self.check.progress.clear();
         self.check.started = Some(wall);
         self.check.reported = false;
         self.check.leave_asked = false;
@@ -87,8 +87,8 @@ impl App {
     }
 
     /// The results that came since the last call, in words.
-    pub fn take_check_news(&mut self) -> Vec<String> {
-        std::mem::take(&mut self.check.news)
+    pub fn take_check_progress(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.check.progress)
     }
 
     /// Runs `f` on the flow with the model and the controller, queueing the packets
@@ -100,7 +100,7 @@ impl App {
             &mut CheckView,
             &crate::model::Model,
             &mut crate::control::Controller,
-        ) -> crate::check::Out,
+        ) -> crate::check::Effects,
     ) {
         let Some(flow) = self.check.flow.as_mut() else {
             return;
@@ -116,7 +116,7 @@ impl App {
                 (std::mem::take(&mut out.packets), out)
             })
         };
-        self.check.news.extend(out.news);
+        self.check.progress.extend(out.progress);
         if !was_finished && flow.finished() {
             let how = match CheckEnd::of(view) {
                 CheckEnd::Passed => "everything passed",
@@ -235,7 +235,7 @@ impl App {
             Some(_) => "✗ The report could not be written (why: above); w writes it again.".into(),
             None => line.clone(),
         });
-        self.check.news.push(line);
+        self.check.progress.push(line);
         self.dirty = true;
     }
 
@@ -681,7 +681,7 @@ fn headless_loop(
         }
     };
     loop {
-        let news = |app: &mut App| print_news(app, out);
+        let progress = |app: &mut App| print_progress(app, out);
         match pump(
             app,
             &mut input,
@@ -689,7 +689,7 @@ fn headless_loop(
             far,
             on_line,
             App::check_finished,
-            news,
+            progress,
         ) {
             Pumped::InputEnded => {
                 // Standard input ended part way: the switch step, if it is under way,
@@ -716,7 +716,7 @@ fn headless_loop(
                     soon,
                     |_, _| {},
                     App::check_finished,
-                    |app: &mut App| print_news(app, out),
+                    |app: &mut App| print_progress(app, out),
                 ) {}
                 app.check_interrupt(Cause::Signal(t.name().into()), false, Instant::now());
                 break;
@@ -725,7 +725,7 @@ fn headless_loop(
         }
     }
     app.write_check_report();
-    print_news(app, out);
+    print_progress(app, out);
     let view = app.check_view().clone();
     print_summary(&view, out)?;
     let end = CheckEnd::of(&view);
@@ -741,8 +741,8 @@ fn headless_loop(
 }
 
 /// Prints the check's results that came since the last call, as they came.
-fn print_news(app: &mut App, out: &mut dyn std::io::Write) {
-    for line in app.take_check_news() {
+fn print_progress(app: &mut App, out: &mut dyn std::io::Write) {
+    for line in app.take_check_progress() {
         let _ = writeln!(out, "{line}");
     }
     let _ = out.flush();
@@ -841,7 +841,12 @@ fn print_summary(view: &CheckView, out: &mut dyn std::io::Write) -> std::io::Res
                  DEVICE_POWER: flip the switches listed above."
             )?;
         }
-        for (id, name, why) in &i.left {
+        for crate::check::state::LeftBehind {
+            id,
+            name,
+            state: why,
+        } in &i.left
+        {
             writeln!(out, "  - {name} (device {id}): {why}")?;
         }
     }

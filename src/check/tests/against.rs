@@ -298,20 +298,20 @@ fn the_check_stops_its_run_and_the_keys_then_refuse_it() {
     let seen = r.check_watching(PITCH, 3000);
     let lo = *seen.iter().min().unwrap();
     let hi = *seen.iter().max().unwrap();
-    assert!(lo >= 123 && hi <= 133, "{lo}..{hi}: {:?}", r.news);
+    assert!(lo >= 123 && hi <= 133, "{lo}..{hi}: {:?}", r.progress);
     let m = &r.view.motors[1];
     assert_eq!(
         m.outcome,
         Found::Found(MotorFinding::Reversed),
         "{:?}",
-        r.news
+        r.progress
     );
     assert!(
-        r.news.iter().any(|n| n.contains(
+        r.progress.iter().any(|n| n.contains(
             "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped"
         )),
         "{:?}",
-        r.news
+        r.progress
     );
     r.run(500);
     let out = r.key('d', KeyEventKind::Press, false);
@@ -331,7 +331,7 @@ fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
     let at = r.pitch_pos();
     r.start();
     r.run_until(20_000, |r| r.view.step == Step::Done);
-    assert!(r.trim_moves_since(from).is_empty(), "{:?}", r.news);
+    assert!(r.trim_moves_since(from).is_empty(), "{:?}", r.progress);
     assert_eq!(r.pitch_pos(), at);
     let m = &r.view.motors[1];
     assert_eq!(m.outcome, Found::Found(MotorFinding::Reversed));

@@ -10,7 +10,8 @@ use super::flow::{Cause, CheckFlow, Options};
 use super::plan::Choices;
 use super::{Command, Timing};
 use crate::check::state::{
-    CheckView, CircuitFinding, Input, Mark, MotorFinding, NotFollowed, Outcome, Step, SwitchFinding,
+    CheckView, CircuitFinding, Input, LeftBehind, Mark, MotorFinding, NotFollowed, Outcome, Step,
+    SwitchFinding,
 };
 use crate::control::{Controller, StopReason};
 use crate::model::{Model, Motor, Setting, Source, TrimKind};
@@ -112,7 +113,7 @@ struct Rig {
     now: Instant,
     /// Every packet that went to the unit, with when.
     sent: Vec<(Duration, Packet)>,
-    news: Vec<String>,
+    progress: Vec<String>,
     /// How many times the flow said the check ended (the app writes a report each).
     ended: u32,
     /// Drop DEVICE_POWER on the way (a unit that does not act on it).
@@ -151,7 +152,7 @@ impl Rig {
             t0,
             now: t0,
             sent: Vec::new(),
-            news: Vec::new(),
+            progress: Vec::new(),
             ended: 0,
             deaf_to_power: false,
             cut: false,
@@ -219,7 +220,7 @@ impl Rig {
             let out = self
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
-            self.news.extend(out.news);
+            self.progress.extend(out.progress);
             self.ended += u32::from(out.ended);
             self.send(out.packets);
         }
@@ -244,7 +245,7 @@ impl Rig {
         let out = self
             .flow
             .command(c, &mut self.view, &self.model, &mut self.ctl, self.now);
-        self.news.extend(out.news);
+        self.progress.extend(out.progress);
         self.ended += u32::from(out.ended);
         self.send(out.packets);
     }
@@ -258,7 +259,7 @@ impl Rig {
             &mut self.ctl,
             self.now,
         );
-        self.news.extend(out.news);
+        self.progress.extend(out.progress);
         self.ended += u32::from(out.ended);
         self.send(out.packets);
     }
@@ -511,9 +512,9 @@ fn a_switch_that_works_passes_once_its_circuits_followed() {
         &Outcome::Found(SwitchFinding::Passed)
     );
     assert!(
-        r.news.iter().any(|n| n.starts_with("✓ PASS switch 2")),
+        r.progress.iter().any(|n| n.starts_with("✓ PASS switch 2")),
         "{:?}",
-        r.news
+        r.progress
     );
     assert!(r.powers(4).is_empty(), "the switch step sends nothing");
 }
@@ -619,7 +620,7 @@ fn another_input_changing_instead_is_a_crossed_pair() {
         &Outcome::Found(SwitchFinding::OtherChanged(vec![Input::Switch(3)]))
     );
     assert!(
-        r.news
+        r.progress
             .iter()
             .any(|n| n.contains("switch 3 changed instead: switches crossed"))
     );
@@ -1116,7 +1117,7 @@ fn quit_that_cannot_wait_says_the_circuit_was_sent_off_unconfirmed() {
     assert_eq!(i.cause, "ended by a signal (SIGTERM)");
     assert_eq!(
         i.left,
-        vec![(
+        vec![LeftBehind::new(
             17,
             "Landing Lt".to_string(),
             "ON when the check stopped: DEVICE_POWER off sent, not confirmed".to_string()
@@ -1136,7 +1137,7 @@ fn communication_lost_mid_circuit_leaves_it_unknown() {
     assert_eq!(i.cause, "COMMUNICATION LOST");
     assert_eq!(
         i.left,
-        vec![(
+        vec![LeftBehind::new(
             17,
             "Landing Lt".to_string(),
             "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)"
@@ -1156,9 +1157,9 @@ fn a_link_that_cannot_send_ends_the_check() {
     assert!(r.flow.finished());
     let i = r.view.interrupted.clone().unwrap();
     assert_eq!(i.cause, "the link could not send: Input/output error");
-    assert_eq!(i.left[0].0, 17);
+    assert_eq!(i.left[0].id, 17);
     assert_eq!(
-        i.left[0].2,
+        i.left[0].state,
         "unknown: it was ON; DEVICE_POWER off sent, not confirmed (the link could not send)"
     );
 }
@@ -1210,9 +1211,9 @@ fn quit_mid_motor_run_sends_its_stop_and_says_where_it_was_left() {
     );
     let i = r.view.interrupted.clone().unwrap();
     assert_eq!(i.left.len(), 1, "{:?}", i.left);
-    assert_eq!(i.left[0].0, 0);
+    assert_eq!(i.left[0].id, 0);
     assert!(
-        i.left[0].2.contains("it was at 20: not run back"),
+        i.left[0].state.contains("it was at 20: not run back"),
         "{:?}",
         i.left
     );
@@ -1295,7 +1296,7 @@ fn the_whole_check_in_order_with_results_as_they_come() {
     assert!(r.view.interrupted.is_none());
     assert_eq!(r.view.step, Step::Done);
     let order: Vec<&str> = r
-        .news
+        .progress
         .iter()
         .filter_map(|n| {
             if n.contains("Landing Lt") {
@@ -1309,8 +1310,8 @@ fn the_whole_check_in_order_with_results_as_they_come() {
             }
         })
         .collect();
-    assert_eq!(order, vec!["circuit", "motor", "loads"], "{:?}", r.news);
-    assert!(r.news.last().unwrap().starts_with("Check complete"));
+    assert_eq!(order, vec!["circuit", "motor", "loads"], "{:?}", r.progress);
+    assert!(r.progress.last().unwrap().starts_with("Check complete"));
 }
 
 // ===== check-motors: DEVICE_POWER through control's rules, motors at their endpoints =====
@@ -1337,7 +1338,7 @@ impl Rig {
             let out = self
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
-            self.news.extend(out.news);
+            self.progress.extend(out.progress);
             self.ended += u32::from(out.ended);
             self.send(out.packets);
         }
@@ -1359,7 +1360,11 @@ fn a_circuit_the_page_may_not_switch_is_not_switched_and_says_why() {
     let words = "not switched: Nav Lt's state is not known yet";
     assert_eq!(r.circuit(4), &Outcome::Skipped(words.to_string()));
     assert!(r.powers(4).is_empty(), "nothing on the wire for it");
-    assert!(r.news.iter().any(|n| n.contains(words)), "{:?}", r.news);
+    assert!(
+        r.progress.iter().any(|n| n.contains(words)),
+        "{:?}",
+        r.progress
+    );
     for id in [5, 17, 18] {
         assert!(
             matches!(r.circuit(id), Outcome::Skipped(w) if w.starts_with("not switched: ")),
@@ -1569,18 +1574,18 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
         let m = &r.view.motors[1];
         assert_eq!(m.outcome, Outcome::Found(MotorFinding::Reversed), "{m:?}");
         assert!(
-            r.news.iter().any(|n| n.contains(
+            r.progress.iter().any(|n| n.contains(
                 "pitch trim moved up when asked down: its leads or its \
                                      sensor may be swapped; stopped"
             )),
             "{:?}",
-            r.news
+            r.progress
         );
         let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
         assert!(
             (back - i32::from(at)).abs() <= super::motors::BACK_WITHIN,
             "from {at}: left at {back}; {m:?} {:?}",
-            r.news
+            r.progress
         );
     }
 }
@@ -1598,13 +1603,17 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
         let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
         let seen = r.check_watching(PITCH, 3000);
         let lowest = *seen.iter().min().unwrap();
-        assert!(lowest >= floor, "from {at}: down to {lowest}; {:?}", r.news);
+        assert!(
+            lowest >= floor,
+            "from {at}: down to {lowest}; {:?}",
+            r.progress
+        );
         let m = &r.view.motors[1];
         assert_eq!(
             m.outcome,
             Outcome::Found(MotorFinding::Reversed),
             "{m:?} {:?}",
-            r.news
+            r.progress
         );
         // Every TRIM_MOVE on is followed by its off: no run ended by starving.
         let moves: Vec<(u128, bool)> = r
@@ -1632,7 +1641,7 @@ fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
         m.outcome,
         Outcome::Found(MotorFinding::Moves),
         "{m:?} {:?}",
-        r.news
+        r.progress
     );
     assert!(m.positions[1] >= 40, "the rest of the run was made: {m:?}");
     let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
@@ -1667,11 +1676,11 @@ fn flap_runs_longer_than_their_room_stop_at_both_endpoints() {
         Outcome::Found(MotorFinding::Moves)
     );
     assert!(
-        r.news
+        r.progress
             .iter()
             .any(|n| n.contains("stopped at its endpoint (20)")),
         "{:?}",
-        r.news
+        r.progress
     );
     r.run_until(20_000, |r| r.view.step == Step::Done);
     let back = i32::from(r.unit.snapshot(r.now).flap_position);
@@ -1816,11 +1825,11 @@ fn an_input_that_also_powers_something_left_alone_is_never_asked() {
         );
     }
     assert!(
-        r.news
+        r.progress
             .iter()
             .any(|n| n == "– switch 4 also powers Pitot Heat (excluded): not asked"),
         "{:?}",
-        r.news
+        r.progress
     );
     // The person does every input asked for; none of them is 1, 4 or 7, and nothing
     // on those switches is ever switched.
@@ -2099,11 +2108,11 @@ fn the_steps_after_the_switches_run_once_when_skipped() {
     r.start();
     r.cmd(Command::SkipStep);
     assert_eq!(r.view.step, Step::Done);
-    let count = |s: &str| r.news.iter().filter(|n| n.starts_with(s)).count();
-    assert_eq!(count("Check complete"), 1, "{:?}", r.news);
-    assert_eq!(count("– Circuits: skipped"), 1, "{:?}", r.news);
-    assert_eq!(count("– Motors: skipped"), 1, "{:?}", r.news);
-    assert_eq!(count("– Load analysis: skipped"), 1, "{:?}", r.news);
+    let count = |s: &str| r.progress.iter().filter(|n| n.starts_with(s)).count();
+    assert_eq!(count("Check complete"), 1, "{:?}", r.progress);
+    assert_eq!(count("– Circuits: skipped"), 1, "{:?}", r.progress);
+    assert_eq!(count("– Motors: skipped"), 1, "{:?}", r.progress);
+    assert_eq!(count("– Load analysis: skipped"), 1, "{:?}", r.progress);
 }
 
 // ----- the page unseen -----

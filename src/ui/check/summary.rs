@@ -431,11 +431,11 @@ fn left_lines(view: &CheckView, area: Rect) -> Vec<Line<'static>> {
     } else {
         int.left
             .iter()
-            .map(|(_, name, state)| {
+            .map(|l| {
                 Line::from(vec![
-                    Span::raw(fit(name, 16)),
+                    Span::raw(fit(&l.name, 16)),
                     Span::raw(" "),
-                    Span::styled(state.clone(), theme::caution()),
+                    Span::styled(l.state.clone(), theme::caution()),
                 ])
             })
             .collect()
