@@ -780,6 +780,29 @@ fn circuits_paused_unseen() -> CheckView {
     }
 }
 
+/// A light under test asks "Is it lit?" while it is on (issue 25; the flow's words,
+/// `check::circuits`): y and n answer it, from the page's keys or the phone.
+fn circuits_is_it_lit() -> CheckView {
+    CheckView {
+        prompt: Some(Prompt {
+            todo: "Switching Landing Lt on to measure it, then back off. Is it lit? y: yes, \
+                   n: no."
+                .into(),
+            watching: "Landing Lt's state and current (DEVICE_STATUS, once a second)".into(),
+            time_left: Some(Duration::from_secs(4)),
+            keys: vec![
+                ("y", "lit"),
+                ("n", "not lit"),
+                ("s", "skip"),
+                ("S", "skip step"),
+                ("Esc", "stop"),
+            ],
+        }),
+        message: None,
+        ..circuits()
+    }
+}
+
 fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
     let p = page(Palette::Terminal);
     let on6 = [EFIS_ON, (0x11, 61), (0x12, 38)];
@@ -804,7 +827,14 @@ fn every_state() -> Vec<(&'static str, CheckView, Model, ViewState, Instant)> {
             p.clone(),
             ts,
         ),
-        ("circuits", circuits(), lc, p.clone(), tc),
+        ("circuits", circuits(), lc.clone(), p.clone(), tc),
+        (
+            "circuits_is_it_lit",
+            circuits_is_it_lit(),
+            lc,
+            p.clone(),
+            tc,
+        ),
         (
             "circuits_link_stale",
             circuits(),

@@ -20,6 +20,8 @@ pub enum Command {
     Retry,
     /// Stop the check: put back what it changed, and say what is left.
     Stop,
+    /// The answer to "Is it lit?" for the light under test: what the person saw.
+    Lit(bool),
 }
 
 /// What the caller must do after the flow moved.

@@ -15,8 +15,10 @@
 use std::time::Instant;
 
 use super::calls::Command;
+use super::lights;
 use super::state::{
-    BreakerLoad, CheckView, CircuitFinding, CircuitResult, LeftBehind, Outcome, Prompt, Step,
+    BreakerLoad, CheckView, CircuitFinding, CircuitResult, LeftBehind, LitAnswer, Outcome, Prompt,
+    Step,
 };
 use super::step::{
     CallContext, Next, Powered, Shared, StepRun, Stopped, put_back, result_line, view_or_model_name,
@@ -187,15 +189,23 @@ impl Circuits {
         }
         let request = (!was_on)
             .then(|| Try::with(now, shared.timing.power_timeout, shared.timing.power_tries));
+        let light = lights::is_light(&name);
+        let mut todo = if was_on {
+            format!("{name} is on already: measuring it as it is.")
+        } else {
+            format!("Switching {name} on to measure it, then back off.")
+        };
+        let mut keys = vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")];
+        if light {
+            // Only a person looking can say a lamp shines: asked while it is on.
+            todo.push_str(LIT_QUESTION);
+            keys.splice(0..0, [("y", "lit"), ("n", "not lit")]);
+        }
         view.prompt = Some(Prompt {
-            todo: if was_on {
-                format!("{name} is on already: measuring it as it is.")
-            } else {
-                format!("Switching {name} on to measure it, then back off.")
-            },
+            todo,
             watching: format!("{name}'s state and current (DEVICE_STATUS, once a second)"),
             time_left: Some(shared.timing.on_for),
-            keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
+            keys,
         });
         self.item = Some(CircuitItem {
             idx,
@@ -324,7 +334,11 @@ impl Circuits {
             ),
         };
         if let Some(p) = view.prompt.as_mut() {
-            p.todo = format!("Switching {} back off.", view.circuits[item.idx].name);
+            let row = &view.circuits[item.idx];
+            p.todo = format!("Switching {} back off.", row.name);
+            if p.keys.contains(&("y", "lit")) {
+                p.todo.push_str(" Was it lit? y: yes, n: no.");
+            }
         }
         Next::Stay
     }
@@ -342,6 +356,13 @@ impl Circuits {
         let idx = item.idx;
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
             return self.start_item(idx, view, cx, shared);
+        }
+        if let Command::Lit(lit) = cmd {
+            // While it is on, or going back off just after: what the person saw.
+            if !matches!(item.stage, Stage::Waiting) && lights::is_light(&view.circuits[idx].name) {
+                answer_lit(idx, lit, view, cx);
+            }
+            return Next::Stay;
         }
         if cmd != Command::SkipItem {
             return Next::Stay;
@@ -509,5 +530,29 @@ impl StepRun for Circuits {
     #[cfg(test)]
     fn stage(&self) -> String {
         self.item.as_ref().map_or("", CircuitItem::stage).into()
+    }
+}
+
+/// The question put to the person for a light while it is on.
+const LIT_QUESTION: &str = " Is it lit? y: yes, n: no.";
+
+/// The person said light `idx` was lit (or dark): kept beside its current for the
+/// report (a later answer replaces an earlier one), and the question is answered.
+fn answer_lit(idx: usize, lit: bool, view: &mut CheckView, cx: &mut CallContext) {
+    let row = &view.circuits[idx];
+    let (id, name) = (row.id, row.name.clone());
+    match view.lit.iter_mut().find(|l| l.id == id) {
+        Some(l) => l.lit = lit,
+        None => view.lit.push(LitAnswer { id, lit }),
+    }
+    let seen = if lit { "lit" } else { "dark" };
+    cx.out.progress.push(format!("  {name}: you saw it {seen}"));
+    view.message = Some(format!("{name}: you saw it {seen}"));
+    if let Some(p) = view.prompt.as_mut() {
+        for q in [LIT_QUESTION, " Was it lit? y: yes, n: no."] {
+            p.todo = p.todo.replace(q, "");
+        }
+        p.todo.push_str(&format!(" You saw it {seen}."));
+        p.keys.retain(|(k, _)| *k != "y" && *k != "n");
     }
 }

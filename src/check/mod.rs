@@ -12,6 +12,7 @@
 mod calls;
 mod circuits;
 pub mod flow;
+pub mod lights;
 mod motors;
 pub mod plan;
 pub mod report;

@@ -446,6 +446,15 @@ fn circuits(o: &mut String, view: &CheckView) {
          | Circuit | Pin | Breaker | Result | Current | What happened |\n|---|---|---|---|---|---|\n",
     );
     for c in &view.circuits {
+        // What the person saw of a light, beside its current; a disagreement in words.
+        let (mut current, mut what) = (measured(c), words::circuit(c));
+        if let Some(lit) = view.lit_of(c.id) {
+            let (seen, disagree) = words::lit_seen(c, lit);
+            current = format!("{current}, {seen}");
+            if let Some(d) = disagree {
+                what = format!("{what}; {d}");
+            }
+        }
         let _ = writeln!(
             o,
             "| {} | {} | {} | {} | {} | {} |",
@@ -453,8 +462,8 @@ fn circuits(o: &mut String, view: &CheckView) {
             c.pin,
             or_dash(c.breaker, |b| format!("{b} A")),
             badge(c.mark()),
-            measured(c),
-            cell(&words::circuit(c))
+            cell(&current),
+            cell(&what)
         );
     }
     o.push('\n');
@@ -689,7 +698,11 @@ pub fn csv(view: &CheckView, about: &About) -> String {
             c.mark(),
             amps,
             String::new(),
-            words::circuit(c),
+            match view.lit_of(c.id).map(|lit| words::lit_seen(c, lit)) {
+                Some((seen, Some(d))) => format!("{}; {seen}; {d}", words::circuit(c)),
+                Some((seen, None)) => format!("{}; {seen}", words::circuit(c)),
+                None => words::circuit(c),
+            },
         );
     }
     for m in &view.motors {

@@ -6,6 +6,7 @@
 
 use std::time::Duration;
 
+use super::calls::Command;
 use crate::model::Motor;
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{SwitchId, SwitchInputs, Tenths};
@@ -386,6 +387,28 @@ pub struct CheckView {
     pub show_loads: bool,
     /// Step 5, once reached: the load analysis, or why there is none.
     pub loads: Option<LoadsView>,
+    /// What the person saw of each light while the check had it on ("Is it lit?").
+    pub lit: Vec<LitAnswer>,
+}
+
+/// A person's answer to "Is it lit?" for a light (`super::lights`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LitAnswer {
+    /// The circuit's device id.
+    pub id: u8,
+    /// Seen lit (`true`) or dark.
+    pub lit: bool,
+}
+
+/// An answer the prompt offers now, as plain data for any front end (the page's
+/// keys, the phone remote): its id ("go_on", "skip", "retry", "lit_yes", "lit_no"),
+/// the page's key for it, its words, and the command it gives the flow.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Answer {
+    pub id: &'static str,
+    pub key: &'static str,
+    pub words: &'static str,
+    pub command: Command,
 }
 
 /// Step 5's result: the load analysis of the builder's file, or why there is none.
@@ -416,6 +439,39 @@ impl Mark {
 }
 
 impl CheckView {
+    /// The answers the prompt offers now (see [`Answer`]): the prompt's own keys,
+    /// those a person away from the keyboard can give. Stopping the check and
+    /// skipping a whole step stay with the keyboard.
+    pub fn prompt_answers(&self) -> Vec<Answer> {
+        let Some(p) = &self.prompt else {
+            return Vec::new();
+        };
+        p.keys
+            .iter()
+            .filter_map(|&(key, words)| {
+                let (id, command) = match key {
+                    "Enter" => ("go_on", Command::Enter),
+                    "s" => ("skip", Command::SkipItem),
+                    "r" => ("retry", Command::Retry),
+                    "y" => ("lit_yes", Command::Lit(true)),
+                    "n" => ("lit_no", Command::Lit(false)),
+                    _ => return None,
+                };
+                Some(Answer {
+                    id,
+                    key,
+                    words,
+                    command,
+                })
+            })
+            .collect()
+    }
+
+    /// What the person said of light `id`, if asked and answered.
+    pub fn lit_of(&self, id: u8) -> Option<bool> {
+        self.lit.iter().find(|l| l.id == id).map(|l| l.lit)
+    }
+
     /// The currents step 3 measured, for the load analysis: device id and amperes.
     /// Only a real reading counts: "no current while on" is a fault to fix, not the
     /// circuit's load, and a faulted circuit gave none.

@@ -187,6 +187,31 @@ pub fn fault(code: FaultCode) -> String {
     }
 }
 
+/// What the person saw of a light (`lit`: lit or dark) beside what the unit measured:
+/// the words for beside its current, and, when the two disagree, what that means.
+/// "No current" and "lit" disagree; so do a current and "dark".
+pub fn lit_seen(c: &CircuitResult, lit: bool) -> (String, Option<String>) {
+    let seen = if lit { "seen lit" } else { "seen dark" };
+    let disagree = match (&c.outcome, lit) {
+        (Outcome::Found(CircuitFinding::NoCurrent), true) => Some(
+            "you saw it lit, yet the unit read no current: the two disagree (the lamp may \
+             be fed from another pin, or the unit's current reading is wrong)"
+                .to_string(),
+        ),
+        (
+            Outcome::Found(
+                CircuitFinding::Within { amps, .. } | CircuitFinding::NearBreaker { amps, .. },
+            ),
+            false,
+        ) => Some(format!(
+            "the unit read {amps:.1} A, yet you saw it dark: the two disagree (a lamp out \
+             with another load on its pin, or another lamp wired to it)"
+        )),
+        _ => None,
+    };
+    (seen.to_string(), disagree)
+}
+
 /// An outcome's words: the finding's own, or why there is none.
 fn outcome<F>(o: &Outcome<F>, found: impl Fn(&F) -> String) -> String {
     match o {

@@ -83,6 +83,8 @@ fn typed(line: &str) -> Option<Command> {
         "s" | "skip" => Command::SkipItem,
         "S" | "skip step" => Command::SkipStep,
         "r" | "retry" => Command::Retry,
+        "y" | "yes" | "lit" => Command::Lit(true),
+        "n" | "no" | "dark" => Command::Lit(false),
         "q" | "quit" | "stop" => Command::Stop,
         _ => return None,
     })

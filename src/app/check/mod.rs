@@ -349,6 +349,8 @@ impl App {
             KeyCode::Char('s') => Command::SkipItem,
             KeyCode::Char('S') => Command::SkipStep,
             KeyCode::Char('r') => Command::Retry,
+            KeyCode::Char('y') => Command::Lit(true),
+            KeyCode::Char('n') => Command::Lit(false),
             _ => return Flow::Continue,
         };
         self.check_command(cmd, now);

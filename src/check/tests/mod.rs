@@ -2411,3 +2411,110 @@ fn a_check_that_finishes_ends_once() {
     r.run(500);
     assert_eq!(r.ended, 1);
 }
+
+/// Issue 25: each light (Nav Lt, Strobe, Landing Lt here; not EFIS or the
+/// alternators) is asked "Is it lit?" while the check has it on, the answers offered
+/// as plain data; the answer goes into the report beside the current, and where it
+/// disagrees with the current (Strobe draws nothing yet is seen lit; Nav Lt draws
+/// 1.5 A yet is seen dark) the report says so in words.
+#[test]
+fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
+    use std::collections::BTreeSet;
+    let mut r = Rig::new(Rig::circuits_only());
+    r.start();
+    let said = |id: u8| match id {
+        4 => Some(false),
+        5 | 17 => Some(true),
+        _ => None,
+    };
+    let (mut asked, mut on_test, mut answered) =
+        (BTreeSet::new(), BTreeSet::new(), BTreeSet::new());
+    let mut nav_prompt = None;
+    for _ in 0..6000 {
+        if r.view.step != Step::Circuits {
+            break;
+        }
+        if let Some(c) = r.view.current.and_then(|i| r.view.circuits.get(i)).cloned() {
+            on_test.insert(c.id);
+            let ids: Vec<&str> = r.view.prompt_answers().iter().map(|a| a.id).collect();
+            if ids.contains(&"lit_yes") && ids.contains(&"lit_no") {
+                asked.insert(c.id);
+                if c.id == 4 && nav_prompt.is_none() {
+                    let p = r.view.prompt.clone().unwrap();
+                    nav_prompt = Some(format!(
+                        "todo: {}\nkeys: {:?}\nanswers: {:?}",
+                        p.todo,
+                        p.keys,
+                        r.view.prompt_answers()
+                    ));
+                }
+                // Answered once the unit shows it on, as a person would.
+                if !answered.contains(&c.id)
+                    && r.model
+                        .live_devices(r.now)
+                        .is_some_and(|d| d.on[c.id as usize])
+                    && let Some(lit) = said(c.id)
+                {
+                    r.cmd(Command::Lit(lit));
+                    answered.insert(c.id);
+                }
+            } else if !asked.contains(&c.id) {
+                // Not a light: a "lit" answer is not taken.
+                r.cmd(Command::Lit(true));
+            }
+        }
+        r.run(10);
+    }
+    assert!(on_test.contains(&2), "EFIS was tested: {on_test:?}");
+    assert_eq!(asked, BTreeSet::from([4, 5, 17]));
+    assert_eq!(r.view.lit_of(4), Some(false));
+    assert_eq!(r.view.lit_of(5), Some(true));
+    assert_eq!(r.view.lit_of(17), Some(true));
+    assert_eq!(r.view.lit.len(), 3, "{:?}", r.view.lit);
+    assert!(
+        r.progress.iter().any(|l| l == "  Nav Lt: you saw it dark"),
+        "{:?}",
+        r.progress
+    );
+    insta::assert_snapshot!("nav_light_is_it_lit_prompt", nav_prompt.unwrap());
+
+    r.run_until(20_000, |r| r.flow.finished());
+    let about = super::report::About {
+        when: std::time::UNIX_EPOCH + Duration::from_secs(1_796_149_812),
+        port: "sim".into(),
+        unit: None,
+        ours: "0".into(),
+        travel: vec![],
+    };
+    let md = super::report::markdown(&r.view, &about);
+    let row = |name: &str| {
+        md[md.find("## Circuits").unwrap()..]
+            .lines()
+            .find(|l| l.starts_with(&format!("| {name} |")))
+            .unwrap_or_else(|| panic!("no row for {name}:\n{md}"))
+            .to_string()
+    };
+    let nav = row("Nav Lt");
+    assert!(nav.contains("| 1.5 A, seen dark |"), "{nav}");
+    assert!(
+        nav.contains("the unit read 1.5 A, yet you saw it dark: the two disagree"),
+        "{nav}"
+    );
+    let strobe = row("Strobe");
+    assert!(strobe.contains("| 0 A, seen lit |"), "{strobe}");
+    assert!(
+        strobe.contains("you saw it lit, yet the unit read no current: the two disagree"),
+        "{strobe}"
+    );
+    let landing = row("Landing Lt");
+    assert!(landing.contains(", seen lit |"), "{landing}");
+    assert!(!landing.contains("disagree"), "{landing}");
+    let efis = row("EFIS");
+    assert!(!efis.contains("seen"), "{efis}");
+    let csv = super::report::csv(&r.view, &about);
+    assert!(
+        csv.lines()
+            .any(|l| l.contains(",Strobe,") && l.contains("seen lit; you saw it lit, yet")),
+        "{csv}"
+    );
+}
