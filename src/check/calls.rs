@@ -33,6 +33,29 @@ pub struct Effects {
     pub progress: Vec<String>,
     /// The check ended in this call, finished or interrupted, at whatever stage: the
     /// app writes its report now (marked INCOMPLETE when interrupted). Set once per
-    /// check, by [`CheckFlow::finish`], the one way every end goes.
+    /// check, by `CheckFlow::finish`, the one way every end goes.
     pub ended: bool,
+    /// The check reached its load analysis: the app opens the load file (reads it, or
+    /// writes its template when there is none) and hands the result back with
+    /// `CheckFlow::loads_opened`, in the same turn; the flow touches no file.
+    pub open_loads: Option<LoadsToOpen>,
+}
+
+impl Effects {
+    /// Adds what a later call in the same turn gave back, after this call's own.
+    pub fn absorb(&mut self, later: Effects) {
+        self.packets.extend(later.packets);
+        self.progress.extend(later.progress);
+        self.ended |= later.ended;
+        if later.open_loads.is_some() {
+            self.open_loads = later.open_loads;
+        }
+    }
+}
+
+/// The load file the load analysis needs, and the circuits its template lists.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadsToOpen {
+    pub path: std::path::PathBuf,
+    pub circuits: Vec<crate::model::Circuit>,
 }

@@ -76,6 +76,8 @@ pub(super) enum Phase {
     Confirm,
     /// A step's item under test.
     Testing(Box<dyn StepRun>),
+    /// Waiting for the app to open the load file (`Effects::open_loads`).
+    Loads,
     /// Interrupted: waiting to see `Powered` go off before the list of what is left
     /// is final.
     Stopping {
@@ -173,6 +175,7 @@ impl CheckFlow {
                 format!("{step}: {}", run.stage())
             }
             Phase::Stopping { .. } => "stopping".into(),
+            Phase::Loads => "loads".into(),
             Phase::Done => "done".into(),
         }
     }
@@ -185,7 +188,7 @@ impl CheckFlow {
     /// When the flow must be ticked next, if it waits on a clock.
     pub fn next_deadline(&self) -> Option<Instant> {
         match &self.phase {
-            Phase::Confirm | Phase::Done => None,
+            Phase::Confirm | Phase::Done | Phase::Loads => None,
             Phase::Testing(run) => run.deadline(),
             Phase::Stopping { until, .. } => Some(*until),
         }
@@ -259,7 +262,7 @@ impl CheckFlow {
                 };
                 self.item_command(cmd, view, &mut cx);
             }
-            Phase::Stopping { .. } | Phase::Done => {}
+            Phase::Stopping { .. } | Phase::Done | Phase::Loads => {}
         }
         out
     }
@@ -361,7 +364,10 @@ impl CheckFlow {
                 Step::Motors => Some(Box::new(motors::Motors::default())),
                 Step::Loads => {
                     if !skipped {
-                        self.loads(view, cx);
+                        if self.loads(view, cx) {
+                            // The app opens the file, then `loads_opened` goes on.
+                            return;
+                        }
                     } else {
                         cx.out.progress.push("– Load analysis: skipped".into());
                     }
@@ -429,21 +435,52 @@ impl CheckFlow {
     }
 
     /// Step 5: the builder's load file with the currents just measured, or its
-    /// template written for next time. The one step that touches a file, as the
-    /// setup flow's backup does.
-    fn loads(&mut self, view: &mut CheckView, cx: &mut CallContext) {
-        use super::state::LoadsView;
-        use crate::loads::disk::{Opened, open_or_create};
+    /// template written for next time. The flow touches no file: it asks the app to
+    /// open it (`Effects::open_loads`) and goes on in [`CheckFlow::loads_opened`].
+    /// Whether it waits for the app to open the file.
+    fn loads(&mut self, view: &mut CheckView, cx: &mut CallContext) -> bool {
         let Some(path) = self.opts.loads_file.clone() else {
-            view.loads = Some(LoadsView::Refused(
+            view.loads = Some(super::state::LoadsView::Refused(
                 "no place for the load file (no config folder on this system)".into(),
             ));
             cx.out
                 .progress
                 .push("– Load analysis: no place for the load file".into());
-            return;
+            return false;
         };
-        let loads = match open_or_create(&path, &cx.model.circuits(cx.now)) {
+        cx.out.open_loads = Some(super::calls::LoadsToOpen {
+            path,
+            circuits: cx.model.circuits(cx.now),
+        });
+        self.phase = Phase::Loads;
+        true
+    }
+
+    /// The app opened the load file the flow asked for (`Effects::open_loads`): the
+    /// analysis with the currents just measured, or the template written, or why
+    /// neither; then the report.
+    pub fn loads_opened(
+        &mut self,
+        opened: Result<crate::loads::disk::Opened, crate::loads::disk::LoadError>,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+    ) -> Effects {
+        use super::state::LoadsView;
+        use crate::loads::disk::Opened;
+        let mut effects = Effects::default();
+        let (Phase::Loads, Some(path)) = (&self.phase, self.opts.loads_file.clone()) else {
+            return effects;
+        };
+        let mut cx = CallContext {
+            model,
+            ctl,
+            now,
+            out: &mut effects,
+        };
+        let cx = &mut cx;
+        let loads = match opened {
             Ok(Opened::Read(file)) => {
                 let analysis = crate::loads::analyse(&file, &view.measured_amps());
                 cx.out
@@ -473,6 +510,9 @@ impl CheckFlow {
             }
         };
         view.loads = Some(loads);
+        self.phase = Phase::Done;
+        self.enter_step(next_step(Step::Loads), view, cx);
+        effects
     }
 
     fn finish(&mut self, view: &mut CheckView, cx: &mut CallContext) {
@@ -559,7 +599,7 @@ impl CheckFlow {
                 self.go_on(next, view, &mut cx);
             }
             Phase::Stopping { .. } => self.stopping_tick(view, &mut cx),
-            Phase::Confirm | Phase::Done => {}
+            Phase::Confirm | Phase::Done | Phase::Loads => {}
         }
         if let Some(cause) = self.shared.trouble_ahead.take() {
             // The step already stopped its motor (the controller's own reason stands);

@@ -22,7 +22,7 @@ mod switches;
 mod timing;
 pub mod words;
 
-pub use calls::{Command, Effects};
+pub use calls::{Command, Effects, LoadsToOpen};
 pub use circuits::judge as judge_current;
 pub use flow::{Cause, CheckFlow, Options};
 pub use motors::{expected_sign, judge as judge_motor};

@@ -112,6 +112,12 @@ impl App {
             let model = lock(&shared);
             self.controller.act_with(crate::audit::Origin::Check, |c| {
                 let mut out = f(flow, view, &model, c);
+                // The flow touches no file: the load file is opened here, and the
+                // flow goes on with what was found, in the same turn.
+                if let Some(req) = out.open_loads.take() {
+                    let opened = crate::loads::disk::open_or_create(&req.path, &req.circuits);
+                    out.absorb(flow.loads_opened(opened, view, &model, c, Instant::now()));
+                }
                 (std::mem::take(&mut out.packets), out)
             })
         };

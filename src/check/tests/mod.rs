@@ -220,10 +220,26 @@ impl Rig {
             let out = self
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
-            self.progress.extend(out.progress);
-            self.ended += u32::from(out.ended);
-            self.send(out.packets);
+            self.take(out);
         }
+    }
+
+    /// What a call gave back: its progress and packets; a load file to open is
+    /// opened here, as the app does, and the flow told in the same turn.
+    fn take(&mut self, mut out: crate::check::Effects) {
+        if let Some(req) = out.open_loads.take() {
+            let opened = crate::loads::disk::open_or_create(&req.path, &req.circuits);
+            out.absorb(self.flow.loads_opened(
+                opened,
+                &mut self.view,
+                &self.model,
+                &mut self.ctl,
+                self.now,
+            ));
+        }
+        self.progress.extend(out.progress);
+        self.ended += u32::from(out.ended);
+        self.send(out.packets);
     }
 
     /// Runs until `done` holds, at most `ms`.
@@ -245,9 +261,7 @@ impl Rig {
         let out = self
             .flow
             .command(c, &mut self.view, &self.model, &mut self.ctl, self.now);
-        self.progress.extend(out.progress);
-        self.ended += u32::from(out.ended);
-        self.send(out.packets);
+        self.take(out);
     }
 
     fn interrupt(&mut self, cause: Cause, may_wait: bool) {
@@ -259,9 +273,7 @@ impl Rig {
             &mut self.ctl,
             self.now,
         );
-        self.progress.extend(out.progress);
-        self.ended += u32::from(out.ended);
-        self.send(out.packets);
+        self.take(out);
     }
 
     fn flip(&mut self, n: u8, on: bool) {
@@ -1338,9 +1350,7 @@ impl Rig {
             let out = self
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
-            self.progress.extend(out.progress);
-            self.ended += u32::from(out.ended);
-            self.send(out.packets);
+            self.take(out);
         }
     }
 }
@@ -2516,5 +2526,47 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
         csv.lines()
             .any(|l| l.contains(",Strobe,") && l.contains("seen lit; you saw it lit, yet")),
         "{csv}"
+    );
+}
+
+/// Issue 23: the flow writes no file. Reaching the load analysis it asks the app to
+/// open the load file (`Effects::open_loads`, with the circuits its template lists)
+/// and waits, the file untouched; handed the result, it goes on to the report.
+#[test]
+fn the_load_analysis_asks_the_app_to_open_the_file_and_writes_nothing_itself() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("loads.toml");
+    let mut r = Rig::new(Options {
+        skip: vec![Step::Switches, Step::Circuits, Step::Motors],
+        loads_file: Some(path.clone()),
+        ..Options::default()
+    });
+    let out = r
+        .flow
+        .command(Command::Enter, &mut r.view, &r.model, &mut r.ctl, r.now);
+    let req = out
+        .open_loads
+        .clone()
+        .expect("the flow asks for the load file");
+    assert_eq!(req.path, path);
+    assert!(req.circuits.iter().any(|c| c.name == "Landing Lt"));
+    assert!(!out.ended && !r.flow.finished());
+    assert!(!path.exists(), "the flow wrote the load file itself");
+    assert_eq!(r.flow.next_deadline(), None);
+    let opened = crate::loads::disk::open_or_create(&req.path, &req.circuits);
+    let done = r
+        .flow
+        .loads_opened(opened, &mut r.view, &r.model, &mut r.ctl, r.now);
+    assert!(done.ended && r.flow.finished());
+    assert_eq!(
+        r.view.loads,
+        Some(crate::check::state::LoadsView::TemplateWritten(
+            path.clone()
+        ))
+    );
+    assert!(
+        done.progress.iter().any(|l| l.contains("its template")),
+        "{:?}",
+        done.progress
     );
 }
