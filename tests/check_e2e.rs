@@ -10,13 +10,13 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::unbounded;
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use vpx_efis::app::{App, AppOptions, CheckEnd, HeadlessCheck, run_headless_with};
+use vpx_efis::check::state::{
+    CircuitFinding, Input, LeftBehind, MotorFinding, Outcome, Step, SwitchFinding,
+};
 use vpx_efis::check::{Options, Timing};
 use vpx_efis::link;
 use vpx_efis::model::{Motor, Source, TrimKind};
 use vpx_efis::sim::{self, MotorDirection, MotorId, SimCommand, SimHandle, SimOptions};
-use vpx_efis::ui::check::state::{
-    CircuitFinding, Input, MotorFinding, Outcome, Step, SwitchFinding,
-};
 use vpx_efis::ui::state::Screen;
 
 /// One rig at a time: each is a sim, a page and a pty, and a loaded machine that
@@ -378,7 +378,7 @@ fn communication_lost_mid_circuit_says_the_state_is_unknown() {
     assert_eq!(i.cause, "COMMUNICATION LOST");
     assert_eq!(
         i.left,
-        vec![(
+        vec![LeftBehind::new(
             17,
             "Landing Lt".to_string(),
             "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)"
@@ -445,8 +445,8 @@ fn quit_mid_motor_run_puts_the_stop_on_the_wire() {
     });
     let i = r.app.check_view().interrupted.clone().unwrap();
     assert_eq!(i.left.len(), 1, "{:?}", i.left);
-    assert_eq!(i.left[0].0, 0, "the flaps");
-    assert!(i.left[0].2.contains("not run back"), "{:?}", i.left);
+    assert_eq!(i.left[0].id, 0, "the flaps");
+    assert!(i.left[0].state.contains("not run back"), "{:?}", i.left);
 }
 
 #[test]

@@ -16,10 +16,10 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use vpx_efis::app::{App, AppOptions, Flow, Terminated, Termination};
 use vpx_efis::check::Options;
+use vpx_efis::check::state::Step;
 use vpx_efis::link;
 use vpx_efis::model::Source;
 use vpx_efis::sim::{self, SimHandle, SimOptions};
-use vpx_efis::ui::check::state::Step;
 
 /// One rig at a time: a loaded machine running several can starve the unit's 1 Hz
 /// status into COMMUNICATION LOST.

@@ -7,14 +7,14 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use vpx_efis::check::report::{self, About};
+use vpx_efis::check::state::{
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LeftBehind, LoadsView,
+    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Step, SwitchFinding, SwitchResult,
+};
 use vpx_efis::loads;
 use vpx_efis::model::{Motor, TrimKind};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{HardwareVersion, SwitchId, Version};
-use vpx_efis::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
-    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Step, SwitchFinding, SwitchResult,
-};
 
 /// 2026-12-01T18:30:12Z.
 fn when() -> SystemTime {
@@ -251,7 +251,7 @@ fn interrupted() -> CheckView {
     view.skipped_steps = vec![Step::Motors];
     view.interrupted = Some(Interruption {
         cause: "communication lost".into(),
-        left: vec![(
+        left: vec![LeftBehind::new(
             0x11,
             "Landing Lt".into(),
             "unknown: ON when the link went".into(),
@@ -548,7 +548,7 @@ fn entries(dir: &Path) -> Vec<String> {
 fn the_files_are_named_with_the_time_and_never_replace_an_earlier_report() {
     let dir = tempfile::tempdir().unwrap();
     let view = finished();
-    let w = report::write(dir.path(), &view, &about()).unwrap();
+    let w = vpx_efis::app::write_report(dir.path(), &view, &about()).unwrap();
     assert_eq!(w.markdown, dir.path().join("vpx-check-2026-12-01T1830Z.md"));
     assert_eq!(w.csv, dir.path().join("vpx-check-2026-12-01T1830Z.csv"));
     assert_eq!(
@@ -560,7 +560,7 @@ fn the_files_are_named_with_the_time_and_never_replace_an_earlier_report() {
         report::csv(&view, &about())
     );
     // A second check in the same minute.
-    let again = report::write(dir.path(), &interrupted(), &about()).unwrap();
+    let again = vpx_efis::app::write_report(dir.path(), &interrupted(), &about()).unwrap();
     assert_eq!(
         again.markdown,
         dir.path().join("vpx-check-2026-12-01T1830Z-2.md")
@@ -586,7 +586,7 @@ fn the_files_are_named_with_the_time_and_never_replace_an_earlier_report() {
 fn a_missing_folder_is_made_and_a_failed_write_leaves_no_file() {
     let dir = tempfile::tempdir().unwrap();
     let missing = dir.path().join("logs").join("checks");
-    let w = report::write(&missing, &finished(), &about()).unwrap();
+    let w = vpx_efis::app::write_report(&missing, &finished(), &about()).unwrap();
     assert_eq!(w.markdown, missing.join("vpx-check-2026-12-01T1830Z.md"));
     assert_eq!(
         entries(&missing),
@@ -599,7 +599,8 @@ fn a_missing_folder_is_made_and_a_failed_write_leaves_no_file() {
     let other = tempfile::tempdir().unwrap();
     let blocked = other.path().join("checks");
     std::fs::write(&blocked, "not a folder").unwrap();
-    let e = report::write(&blocked.join("reports"), &finished(), &about()).unwrap_err();
+    let e =
+        vpx_efis::app::write_report(&blocked.join("reports"), &finished(), &about()).unwrap_err();
     assert!(
         e.to_string().starts_with("cannot make the report folder "),
         "{e}"

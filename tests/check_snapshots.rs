@@ -13,16 +13,16 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier};
 
+use vpx_efis::check::state::{
+    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LeftBehind, LoadsView,
+    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding,
+    SwitchResult, Unasked,
+};
 use vpx_efis::loads;
 use vpx_efis::model::{Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::FaultCode;
 use vpx_efis::protocol::message::SwitchId;
 use vpx_efis::ui::check;
-use vpx_efis::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LoadsView,
-    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Prompt, Step, SwitchFinding,
-    SwitchResult, Unasked,
-};
 use vpx_efis::ui::palette::{Palette, ThemeChoice, Why};
 use vpx_efis::ui::state::{MotorRun, ViewState};
 
@@ -674,12 +674,12 @@ fn interrupted() -> CheckView {
         interrupted: Some(Interruption {
             cause: "COMMUNICATION LOST while Landing Lt was on".into(),
             left: vec![
-                (
+                LeftBehind::new(
                     0x11,
                     "Landing Lt".into(),
                     "unknown: no answer, last seen ON".into(),
                 ),
-                (4, "Nav Lt".into(), "OFF, held by DEVICE_POWER".into()),
+                LeftBehind::new(4, "Nav Lt".into(), "OFF, held by DEVICE_POWER".into()),
             ],
         }),
         report: Some(PathBuf::from(
@@ -780,6 +780,29 @@ fn circuits_paused_unseen() -> CheckView {
     }
 }
 
+/// A light under test asks "Is it lit?" while it is on (issue 25; the flow's words,
+/// `check::circuits`): y and n answer it, from the page's keys or the phone.
+fn circuits_is_it_lit() -> CheckView {
+    CheckView {
+        prompt: Some(Prompt {
+            todo: "Switching Landing Lt on to measure it, then back off. Is it lit? y: yes, \
+                   n: no."
+                .into(),
+            watching: "Landing Lt's state and current (DEVICE_STATUS, once a second)".into(),
+            time_left: Some(Duration::from_secs(4)),
+            keys: vec![
+                ("y", "lit"),
+                ("n", "not lit"),
+                ("s", "skip"),
+                ("S", "skip step"),
+                ("Esc", "stop"),
+            ],
+        }),
+        message: None,
+        ..circuits()
+    }
+}
+
 /// Each state, with the motor run the page is streaming while it is drawn.
 #[allow(clippy::type_complexity)]
 fn every_state() -> Vec<(
@@ -812,7 +835,14 @@ fn every_state() -> Vec<(
             p.clone(),
             ts,
         ),
-        ("circuits", circuits(), lc, p.clone(), tc),
+        ("circuits", circuits(), lc.clone(), p.clone(), tc),
+        (
+            "circuits_is_it_lit",
+            circuits_is_it_lit(),
+            lc,
+            p.clone(),
+            tc,
+        ),
         (
             "circuits_link_stale",
             circuits(),
@@ -1366,7 +1396,7 @@ fn the_summary_counts_as_the_report_does() {
         };
         let md = vpx_efis::check::report::markdown(&v, &about);
         let n = |m| v.marks().filter(|x| *x == m).count();
-        use vpx_efis::ui::check::state::Mark;
+        use vpx_efis::check::state::Mark;
         let skipped = n(Mark::Skipped);
         if skipped > 0 {
             assert!(

@@ -9,9 +9,9 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Color;
 
+use vpx_efis::check::state::LoadsView;
 use vpx_efis::loads::{self, Phase};
 use vpx_efis::ui::check::loads::render;
-use vpx_efis::ui::check::state::LoadsView;
 use vpx_efis::ui::palette::Palette;
 
 mod themes;

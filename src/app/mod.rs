@@ -43,7 +43,9 @@ use page::{IDLE_REDRAW, MIN_FRAME_GAP, input_closed};
 use runner::spawn_input_thread;
 
 pub use background::choose_theme;
-pub use check::{CheckEnd, HeadlessCheck, run_headless, run_headless_with};
+pub use check::{
+    CheckEnd, HeadlessCheck, prepare_report_dir, run_headless, run_headless_with, write_report,
+};
 pub use gateway::xfsp_setup;
 pub use options::{PageOptions, XfspOptions};
 pub use page::{App, AppOptions, Flow, Wake};

@@ -17,12 +17,12 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use super::{App, lock};
 use crate::audit::Origin;
+use crate::check::state::Step;
 use crate::control::{Action, LEASE, StopReason, commands};
 use crate::model::LogLevel;
 use crate::remote::{
     self, Answer, CheckPrompt, Command, DEFAULT_PORT, PageSide, Remote, Reply, Request,
 };
-use crate::ui::check::state::Step;
 use crate::ui::state::{Overlay, RemoteView, Screen};
 
 /// The remote as the page holds it.
@@ -318,11 +318,9 @@ impl App {
     }
 
     /// The check's DO NOW for the phone, while the check runs on the page: its prompt
-    /// and the answers its keys offer now.
-    ///
-    /// An adapter to what the check takes today (keys): the answers are the prompt's
-    /// keys whose words are "go on", "skip" and "retry" ([`answer_of_key`]);
-    /// `lit_question` stays `None` until the check asks "Is it lit?" itself.
+    /// and the answers it offers now ([`crate::check::state::CheckView::prompt_answers`]).
+    /// "Is it lit?" is its own question on the phone (`lit_question`), answered
+    /// `lit_yes` / `lit_no`.
     /// Decision: the confirmation before power is not offered on the phone: what will
     /// be powered is listed on the laptop, and confirmed there.
     fn check_prompt(&self) -> Option<CheckPrompt> {
@@ -334,32 +332,35 @@ impl App {
             return None;
         }
         let p = v.prompt.as_ref()?;
-        let answers = p
-            .keys
+        let offered = v.prompt_answers();
+        let lit = offered.iter().any(|a| a.id.starts_with("lit_"));
+        let answers = offered
             .iter()
-            .filter_map(|&(key, words)| answer_of_key(key, words).map(|(a, _)| a))
+            .filter(|a| !a.id.starts_with("lit_"))
+            .map(|a| Answer {
+                id: a.id,
+                label: label_of(a.id),
+            })
             .collect();
         Some(CheckPrompt {
             step: v.step.title().to_string(),
             prompt: p.todo.clone(),
             answers,
-            lit_question: None,
+            lit_question: lit.then(|| "Is it lit?".to_string()),
         })
     }
 
     /// An answer from the phone, as the key the check takes for it, if offered now.
     fn remote_check_answer(&mut self, answer: &str, now: Instant) -> Reply {
-        let key = self
-            .check_prompt()
-            .is_some()
-            .then(|| self.check_view().prompt.as_ref())
-            .flatten()
-            .and_then(|p| {
-                p.keys.iter().find_map(|&(key, words)| {
-                    answer_of_key(key, words).filter(|(a, _)| a.id == answer)
-                })
-            })
-            .map(|(_, code)| code);
+        let offered = if self.check_prompt().is_some() {
+            self.check_view().prompt_answers()
+        } else {
+            Vec::new()
+        };
+        let key = offered
+            .into_iter()
+            .find(|a| a.id == answer)
+            .and_then(|a| key_code(a.key));
         let Some(key) = key else {
             return Reply::Refused(format!("{answer} is not offered now"));
         };
@@ -369,20 +370,22 @@ impl App {
     }
 }
 
-/// The phone's answer for a key the check's prompt offers, by the prompt's words
-/// (the same key means "go on" in one prompt and "retry" in another), with the key
-/// to give the check for it.
-fn answer_of_key(key: &str, words: &str) -> Option<(Answer, KeyCode)> {
-    let code = match key {
-        "Enter" => KeyCode::Enter,
-        k if k.chars().count() == 1 => KeyCode::Char(k.chars().next()?),
-        _ => return None,
-    };
-    let (id, label) = match words {
-        "go on" | "confirm" => ("go_on", "Go on"),
-        "skip" => ("skip", "Skip"),
-        "retry" => ("retry", "Retry"),
-        _ => return None,
-    };
-    Some((Answer { id, label }, code))
+/// The phone's button words for an answer the check offers.
+fn label_of(id: &str) -> &'static str {
+    match id {
+        "go_on" => "Go on",
+        "skip" => "Skip",
+        "retry" => "Retry",
+        "lit_yes" => "Yes, lit",
+        _ => "No, dark",
+    }
+}
+
+/// The key the check's prompt names, as the page's key event carries it.
+fn key_code(key: &str) -> Option<KeyCode> {
+    match key {
+        "Enter" => Some(KeyCode::Enter),
+        k if k.chars().count() == 1 => k.chars().next().map(KeyCode::Char),
+        _ => None,
+    }
 }

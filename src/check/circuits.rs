@@ -14,15 +14,19 @@
 
 use std::time::Instant;
 
-use super::flow::{CheckFlow, Command, Io, Phase, Powered, next_step};
-use super::switches::news;
-use crate::control::Refusal;
+use super::calls::Command;
+use super::lights;
+use super::state::{
+    BreakerLoad, CheckView, CircuitFinding, CircuitResult, LeftBehind, LitAnswer, Outcome, Prompt,
+    Step,
+};
+use super::step::{
+    CallContext, Next, Powered, Shared, StepRun, Stopped, put_back, result_line, view_or_model_name,
+};
+use crate::control::{Refusal, StopReason};
 use crate::exchange::{Try, Verdict};
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::Tenths;
-use crate::ui::check::state::{
-    BreakerLoad, CheckView, CircuitFinding, CircuitResult, Outcome, Prompt, Step,
-};
 
 /// One line per circuit, in pin order: the planned ones to run, the ones left alone
 /// with why (motors have their own step).
@@ -134,13 +138,13 @@ impl CircuitItem {
 
     /// The check stops here: switch it off if the check switched it on. Returns the
     /// circuit to watch go off, or why the off could not be sent.
-    pub fn stop(&self, io: &mut Io) -> Result<Option<Powered>, Refusal> {
+    pub fn stop(&self, cx: &mut CallContext) -> Result<Option<Powered>, Refusal> {
         match &self.stage {
             Stage::Measure {
                 request: Some(_), ..
             }
             | Stage::PutBack { .. } => {
-                io.power_off(self.id)?;
+                cx.power_off(self.id)?;
                 Ok(Some(Powered { id: self.id }))
             }
             Stage::Measure { request: None, .. } | Stage::Waiting => Ok(None),
@@ -156,90 +160,77 @@ fn state(model: &Model, now: Instant, id: u8) -> CircuitState {
         .map_or(CircuitState::Unknown, |c| c.state)
 }
 
-impl CheckFlow {
-    pub(super) fn circuits_begin(&mut self, view: &mut CheckView, io: &mut Io, _skipped: bool) {
-        self.circuit_next(0, view, io);
-    }
-
-    fn circuit_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
-        if self.opts.skip.contains(&Step::Circuits) {
-            let mut any = false;
-            for r in view
-                .circuits
-                .iter_mut()
-                .filter(|r| r.outcome == Outcome::NotRun)
-            {
-                r.outcome = Outcome::Skipped("step skipped".into());
-                any = true;
-            }
-            if any || from == 0 {
-                io.out.news.push("– Circuits: skipped".into());
-            }
-        }
-        let Some(idx) =
-            (from..view.circuits.len()).find(|&i| view.circuits[i].outcome == Outcome::NotRun)
-        else {
-            self.phase = Phase::Done;
-            return self.enter_step(next_step(Step::Circuits), view, io);
-        };
-        self.circuit_start(idx, view, io);
-    }
-
-    fn circuit_start(&mut self, idx: usize, view: &mut CheckView, io: &mut Io) {
+impl Circuits {
+    fn start_item(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
         let id = view.circuits[idx].id;
         let name = view.circuits[idx].name.clone();
         view.current = Some(idx);
-        let now = io.now;
-        let st = state(io.model, now, id);
+        let now = cx.now;
+        let st = state(cx.model, now, id);
         if let CircuitState::Fault(code) = st {
             // Faulted before the check touched it: that is its finding.
-            self.known_faults.insert(id);
-            record(view, idx, CircuitFinding::Faulted(code), io);
-            return self.circuit_next(idx + 1, view, io);
+            shared.known_faults.insert(id);
+            record(view, idx, CircuitFinding::Faulted(code), cx);
+            return Next::From(idx + 1);
         }
         let was_on = st == CircuitState::On;
-        if !was_on && let Some(unseen) = io.ctl.unseen() {
-            return self.circuit_wait(idx, &unseen.describe(), view, io);
+        if !was_on && let Some(unseen) = cx.ctl.unseen() {
+            return self.wait(idx, &unseen.describe(), view, cx, shared);
         }
-        if !was_on && let Err(why) = io.power_on(id) {
+        if !was_on && let Err(why) = cx.power_on(id) {
             // Refused by the page's own rule: nothing sent, and the words say why.
-            return self.not_switched(idx, why, view, io);
+            return self.not_switched(idx, why, view, cx);
         }
-        let request = (!was_on).then(|| {
-            Try::with(
-                now,
-                self.opts.timing.power_timeout,
-                self.opts.timing.power_tries,
-            )
-        });
+        let request = (!was_on)
+            .then(|| Try::with(now, shared.timing.power_timeout, shared.timing.power_tries));
+        let light = lights::is_light(&name);
+        let mut todo = if was_on {
+            format!("{name} is on already: measuring it as it is.")
+        } else {
+            format!("Switching {name} on to measure it, then back off.")
+        };
+        let mut keys = vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")];
+        if light {
+            // Only a person looking can say a lamp shines: asked while it is on.
+            todo.push_str(LIT_QUESTION);
+            keys.splice(0..0, [("y", "lit"), ("n", "not lit")]);
+        }
         view.prompt = Some(Prompt {
-            todo: if was_on {
-                format!("{name} is on already: measuring it as it is.")
-            } else {
-                format!("Switching {name} on to measure it, then back off.")
-            },
+            todo,
             watching: format!("{name}'s state and current (DEVICE_STATUS, once a second)"),
-            time_left: Some(self.opts.timing.on_for),
-            keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
+            time_left: Some(shared.timing.on_for),
+            keys,
         });
-        self.phase = Phase::Circuits(CircuitItem {
+        self.item = Some(CircuitItem {
             idx,
             id,
             started: now,
             stage: Stage::Measure {
-                statuses_at_send: io.statuses(),
+                statuses_at_send: cx.statuses(),
                 request,
             },
-            on_for: self.opts.timing.on_for,
+            on_for: shared.timing.on_for,
         });
+        Next::Stay
     }
 
-    pub(super) fn circuits_tick(&mut self, view: &mut CheckView, io: &mut Io) {
-        let Phase::Circuits(item) = &mut self.phase else {
-            return;
+    fn tick_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
-        let (idx, id, now) = (item.idx, item.id, io.now);
-        let st = state(io.model, now, id);
+        let (idx, id, now) = (item.idx, item.id, cx.now);
+        let st = state(cx.model, now, id);
         if let Some(p) = view.prompt.as_mut() {
             p.time_left = item.deadline().map(|d| d.saturating_duration_since(now));
         }
@@ -249,10 +240,10 @@ impl CheckFlow {
                 request,
             } => {
                 let finding = if let CircuitState::Fault(code) = st {
-                    self.known_faults.insert(id);
+                    shared.known_faults.insert(id);
                     Some(CircuitFinding::Faulted(code))
-                } else if io.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
-                    let current = io
+                } else if cx.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
+                    let current = cx
                         .model
                         .live_devices(now)
                         .map_or(Tenths(0), |d| d.current[id as usize]);
@@ -264,29 +255,31 @@ impl CheckFlow {
                         .as_mut()
                         .map(|t| t.judge(st == CircuitState::On, now))
                     {
-                        Some(Verdict::Resend) => match io.power_on(id) {
+                        Some(Verdict::Resend) => match cx.power_on(id) {
                             Ok(()) => None,
                             Err(why) => {
                                 // The first on went out: put it back all the same.
                                 let why = format!("not switched: {why}");
                                 view.circuits[idx].outcome = Outcome::Skipped(why.clone());
-                                io.out
-                                    .news
+                                cx.out
+                                    .progress
                                     .push(format!("– {}: {why}", view.circuits[idx].name));
-                                return self.circuit_put_back(view, io);
+                                return self.put_back_item(view, cx, shared);
                             }
                         },
                         Some(Verdict::NoAnswer) => Some(CircuitFinding::DidNotSwitch),
                         _ => None,
                     }
                 };
-                let Some(f) = finding else { return };
+                let Some(f) = finding else {
+                    return Next::Stay;
+                };
                 let sent = request.is_some();
-                record(view, idx, f, io);
+                record(view, idx, f, cx);
                 if sent {
-                    self.circuit_put_back(view, io);
+                    return self.put_back_item(view, cx, shared);
                 } else {
-                    self.circuit_next(idx + 1, view, io);
+                    return Next::From(idx + 1);
                 }
             }
             Stage::Waiting => {}
@@ -294,19 +287,19 @@ impl CheckFlow {
                 let off = matches!(st, CircuitState::Off | CircuitState::Fault(_));
                 match request.judge(off, now) {
                     Verdict::Answered => {
-                        self.put_back(id, view, io.model, now);
-                        self.circuit_next(idx + 1, view, io);
+                        put_back(id, view, cx.model, now);
+                        return Next::From(idx + 1);
                     }
                     Verdict::Resend => {
-                        if let Err(why) = io.power_off(id) {
-                            self.trouble_ahead = Some(format!(
+                        if let Err(why) = cx.power_off(id) {
+                            shared.trouble_ahead = Some(format!(
                                 "{} could not be switched back off: {why}",
                                 view.circuits[idx].name
                             ));
                         }
                     }
                     Verdict::NoAnswer => {
-                        self.trouble_ahead = Some(format!(
+                        shared.trouble_ahead = Some(format!(
                             "{} did not switch back off",
                             view.circuits[idx].name
                         ));
@@ -315,113 +308,251 @@ impl CheckFlow {
                 }
             }
         }
+        Next::Stay
     }
 
-    fn circuit_put_back(&mut self, view: &mut CheckView, io: &mut Io) {
-        let Phase::Circuits(item) = &mut self.phase else {
-            return;
+    fn put_back_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
-        if let Err(why) = io.power_off(item.id) {
-            self.trouble_ahead = Some(format!(
+        if let Err(why) = cx.power_off(item.id) {
+            shared.trouble_ahead = Some(format!(
                 "{} could not be switched back off: {why}",
                 view.circuits[item.idx].name
             ));
         }
         item.stage = Stage::PutBack {
             request: Try::with(
-                io.now,
-                self.opts.timing.power_timeout,
-                self.opts.timing.power_tries,
+                cx.now,
+                shared.timing.power_timeout,
+                shared.timing.power_tries,
             ),
         };
         if let Some(p) = view.prompt.as_mut() {
-            p.todo = format!("Switching {} back off.", view.circuits[item.idx].name);
+            let row = &view.circuits[item.idx];
+            p.todo = format!("Switching {} back off.", row.name);
+            if p.keys.contains(&("y", "lit")) {
+                p.todo.push_str(" Was it lit? y: yes, n: no.");
+            }
         }
+        Next::Stay
     }
 
-    pub(super) fn circuits_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
-        let Phase::Circuits(item) = &self.phase else {
-            return;
+    fn command_item(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &self.item else {
+            return Next::Stay;
         };
         let idx = item.idx;
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
-            return self.circuit_start(idx, view, io);
+            return self.start_item(idx, view, cx, shared);
+        }
+        if let Command::Lit(lit) = cmd {
+            // While it is on, or going back off just after: what the person saw.
+            if !matches!(item.stage, Stage::Waiting) && lights::is_light(&view.circuits[idx].name) {
+                answer_lit(idx, lit, view, cx);
+            }
+            return Next::Stay;
         }
         if cmd != Command::SkipItem {
-            return;
+            return Next::Stay;
         }
         match &item.stage {
             Stage::Measure { request, .. } => {
                 let sent = request.is_some();
                 if view.circuits[idx].outcome == Outcome::NotRun {
                     view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
-                    io.out
-                        .news
+                    cx.out
+                        .progress
                         .push(format!("– {}: skipped", view.circuits[idx].name));
                 }
                 if sent {
-                    self.circuit_put_back(view, io);
+                    return self.put_back_item(view, cx, shared);
                 } else {
-                    self.circuit_next(idx + 1, view, io);
+                    return Next::From(idx + 1);
                 }
             }
             // Already going back off: the skip takes effect once it is.
             Stage::PutBack { .. } => {}
             Stage::Waiting => {
                 view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
-                io.out
-                    .news
+                cx.out
+                    .progress
                     .push(format!("– {}: skipped", view.circuits[idx].name));
-                self.circuit_next(idx + 1, view, io);
+                return Next::From(idx + 1);
             }
         }
+        Next::Stay
     }
 }
 
-impl CheckFlow {
+impl Circuits {
     /// Circuit `idx` waits, not switched on, because the page cannot be seen (`why`):
     /// see [`Stage::Waiting`]. Asked again (r) while still unseen, it waits again.
-    fn circuit_wait(&mut self, idx: usize, why: &str, view: &mut CheckView, io: &mut Io) {
+    fn wait(
+        &mut self,
+        idx: usize,
+        why: &str,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
         let row = &view.circuits[idx];
         let (id, name) = (row.id, row.name.clone());
         let todo = format!(
             "Paused before switching {name} on: {why}; nothing is switched on while the \
              page cannot be seen. r: go on; s: skip it."
         );
-        io.out.news.push(format!("  {todo}"));
+        cx.out.progress.push(format!("  {todo}"));
         view.prompt = Some(Prompt {
             todo,
             watching: format!("{name}'s state (DEVICE_STATUS)"),
             time_left: None,
             keys: vec![("r", "go on"), ("s", "skip"), ("Esc", "stop")],
         });
-        self.phase = Phase::Circuits(CircuitItem {
+        self.item = Some(CircuitItem {
             idx,
             id,
-            started: io.now,
+            started: cx.now,
             stage: Stage::Waiting,
-            on_for: self.opts.timing.on_for,
+            on_for: shared.timing.on_for,
         });
+        Next::Stay
     }
 
     /// The page's rule refused to switch the circuit on: that is its line, in
     /// control's words, and the next circuit.
-    fn not_switched(&mut self, idx: usize, why: Refusal, view: &mut CheckView, io: &mut Io) {
+    fn not_switched(
+        &mut self,
+        idx: usize,
+        why: Refusal,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+    ) -> Next {
         let why = format!("not switched: {why}");
         let row = &mut view.circuits[idx];
-        io.out
-            .news
+        cx.out
+            .progress
             .push(format!("– {} ({}): {why}", row.name, row.pin));
         view.message = Some(format!("{}: {why}", row.name));
         row.outcome = Outcome::Skipped(why);
-        self.circuit_next(idx + 1, view, io);
+        Next::From(idx + 1)
     }
 }
 
-fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, io: &mut Io) {
+fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, cx: &mut CallContext) {
     let row = &mut view.circuits[idx];
     let what = format!("{} ({})", row.name, row.pin);
-    io.out.news.push(news(f.mark(), &what, &f.words()));
+    cx.out
+        .progress
+        .push(result_line(f.mark(), &what, &f.words()));
     view.message = Some(format!("{}: {}", row.name, f.words()));
     row.outcome = Outcome::Found(f);
+}
+
+/// Step 3: the circuits, one at a time.
+#[derive(Debug, Default)]
+pub(super) struct Circuits {
+    item: Option<CircuitItem>,
+}
+
+impl StepRun for Circuits {
+    fn step(&self) -> Step {
+        Step::Circuits
+    }
+
+    fn skipped_line(&self) -> &'static str {
+        "– Circuits: skipped"
+    }
+
+    fn start(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        self.start_item(idx, view, cx, shared)
+    }
+
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+        self.tick_item(view, cx, shared)
+    }
+
+    fn command(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        self.command_item(cmd, view, cx, shared)
+    }
+
+    fn deadline(&self) -> Option<Instant> {
+        self.item.as_ref().and_then(CircuitItem::deadline)
+    }
+
+    fn under_test(&self) -> Vec<u8> {
+        self.item.iter().map(|i| i.id).collect()
+    }
+
+    fn stop(&mut self, _reason: StopReason, view: &CheckView, cx: &mut CallContext) -> Stopped {
+        let Some(item) = &self.item else {
+            return Stopped::default();
+        };
+        match item.stop(cx) {
+            Ok(powered) => Stopped {
+                powered,
+                left: None,
+            },
+            Err(why) => Stopped {
+                powered: None,
+                left: Some(LeftBehind::new(
+                    item.id,
+                    view_or_model_name(view, cx.model, item.id),
+                    format!("ON when the check stopped: DEVICE_POWER off not sent: {why}"),
+                )),
+            },
+        }
+    }
+
+    #[cfg(test)]
+    fn stage(&self) -> String {
+        self.item.as_ref().map_or("", CircuitItem::stage).into()
+    }
+}
+
+/// The question put to the person for a light while it is on.
+const LIT_QUESTION: &str = " Is it lit? y: yes, n: no.";
+
+/// The person said light `idx` was lit (or dark): kept beside its current for the
+/// report (a later answer replaces an earlier one), and the question is answered.
+fn answer_lit(idx: usize, lit: bool, view: &mut CheckView, cx: &mut CallContext) {
+    let row = &view.circuits[idx];
+    let (id, name) = (row.id, row.name.clone());
+    match view.lit.iter_mut().find(|l| l.id == id) {
+        Some(l) => l.lit = lit,
+        None => view.lit.push(LitAnswer { id, lit }),
+    }
+    let seen = if lit { "lit" } else { "dark" };
+    cx.out.progress.push(format!("  {name}: you saw it {seen}"));
+    view.message = Some(format!("{name}: you saw it {seen}"));
+    if let Some(p) = view.prompt.as_mut() {
+        for q in [LIT_QUESTION, " Was it lit? y: yes, n: no."] {
+            p.todo = p.todo.replace(q, "");
+        }
+        p.todo.push_str(&format!(" You saw it {seen}."));
+        p.keys.retain(|(k, _)| *k != "y" && *k != "n");
+    }
 }

@@ -9,66 +9,20 @@
 //! still held. The flow itself notices COMMUNICATION LOST, a link that cannot send,
 //! and a fault that appears mid-step, from the model.
 
-use std::collections::BTreeSet;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
+use super::calls::{Command, Effects};
 use super::plan::{self, Choices};
-use crate::control::{Controller, Refusal, StopReason, device_power, put_back_off};
-use crate::model::{Connection, Model, Motor};
+use super::state::{CheckView, Interruption, LeftBehind, Prompt, Step};
+use super::step::{
+    CallContext, Next, Powered, Shared, StepRun, circuit_on, put_back, view_or_model_name,
+};
+use super::timing::Timing;
+use super::words;
+use super::{circuits, motors, switches};
+use crate::control::{Controller, StopReason};
+use crate::model::{Connection, Model};
 use crate::protocol::device::DEVICE_COUNT;
-use crate::protocol::message::{Message, Packet, SwitchId};
-use crate::ui::check::state::{CheckView, Interruption, Prompt, Step};
-use crate::ui::check::words;
-
-use super::circuits::CircuitItem;
-use super::motors::MotorItem;
-use super::switches::SwitchItem;
-
-/// The check's clocks. Defaults suit a real unit (1 Hz status, 10 Hz flap/trim status).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Timing {
-    /// How long the person has to flip a switch on and off.
-    pub switch_timeout: Duration,
-    /// After an input changed, how long its circuits have to follow (DEVICE_STATUS
-    /// comes once a second).
-    pub follow_wait: Duration,
-    /// DEVICE_POWER has no answer of its own: the unit's DEVICE_STATUS showing the
-    /// circuit in the new state is the answer. Wait this long before sending again …
-    pub power_timeout: Duration,
-    /// … this many times in all.
-    pub power_tries: u8,
-    /// The longest a circuit stays on: two fresh DEVICE_STATUS take about two seconds.
-    pub on_for: Duration,
-    /// Each direction's run of a motor.
-    pub motor_run: Duration,
-    /// After a run, FLAP_TRIM_STATUS (10 Hz) has this long to show where it stopped.
-    pub motor_settle: Duration,
-    /// After an interruption, how long the check waits to see a circuit go back off.
-    pub stop_wait: Duration,
-}
-
-impl Default for Timing {
-    fn default() -> Self {
-        Timing {
-            switch_timeout: Duration::from_secs(30),
-            follow_wait: Duration::from_millis(2500),
-            power_timeout: Duration::from_millis(2500),
-            power_tries: 2,
-            on_for: Duration::from_secs(5),
-            motor_run: Duration::from_millis(600),
-            motor_settle: Duration::from_millis(400),
-            stop_wait: Duration::from_secs(3),
-        }
-    }
-}
-
-impl Timing {
-    /// How long one motor's test takes at most: two runs, their settling, and the
-    /// run back.
-    pub fn motor_for(&self) -> Duration {
-        (self.motor_run + self.motor_settle) * 3
-    }
-}
 
 /// How the check was asked to run.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -85,38 +39,6 @@ pub struct Options {
     /// a finding can name the time of day something happened ("sent at 21:40:12
     /// UTC"); `None`: it says how long before instead. The flow never reads a clock.
     pub clock: Option<std::time::SystemTime>,
-}
-
-/// What the person does. The app maps keys to these, `vpx-efis check` typed answers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Command {
-    /// Confirm (before power), or go on after a timed-out item.
-    Enter,
-    Up,
-    Down,
-    /// Before power: exclude the selected circuit, or take back a suggested exclusion.
-    Toggle,
-    /// Skip the item under test.
-    SkipItem,
-    /// Skip the rest of the step.
-    SkipStep,
-    /// Try a timed-out or stopped item again.
-    Retry,
-    /// Stop the check: put back what it changed, and say what is left.
-    Stop,
-}
-
-/// What the caller must do after the flow moved.
-#[derive(Debug, Default, Clone, PartialEq)]
-pub struct Out {
-    /// To queue on the link, in this order, before letting go of the controller.
-    pub packets: Vec<Packet>,
-    /// Each result as it came, in words, for a headless run to print.
-    pub news: Vec<String>,
-    /// The check ended in this call, finished or interrupted, at whatever stage: the
-    /// app writes its report now (marked INCOMPLETE when interrupted). Set once per
-    /// check, by [`CheckFlow::finish`], the one way every end goes.
-    pub ended: bool,
 }
 
 /// What ended the check from outside.
@@ -149,25 +71,20 @@ impl Cause {
     }
 }
 
-/// A circuit the check switched on and has not yet seen back off.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Powered {
-    pub id: u8,
-}
-
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub(super) enum Phase {
     Confirm,
-    Switches(SwitchItem),
-    Circuits(CircuitItem),
-    Motors(MotorItem),
+    /// A step's item under test.
+    Testing(Box<dyn StepRun>),
+    /// Waiting for the app to open the load file (`Effects::open_loads`).
+    Loads,
     /// Interrupted: waiting to see `Powered` go off before the list of what is left
     /// is final.
     Stopping {
         powered: Powered,
         until: Instant,
         cause: String,
-        left: Vec<(u8, String, String)>,
+        left: Vec<LeftBehind>,
     },
     Done,
 }
@@ -199,61 +116,16 @@ pub fn confirmed_line(view: &CheckView) -> String {
     )
 }
 
-/// What the calls share: the model, the controller and where the packets go.
-pub(super) struct Io<'a> {
-    pub model: &'a Model,
-    pub ctl: &'a mut Controller,
-    pub now: Instant,
-    pub out: &'a mut Out,
-}
-
-impl Io<'_> {
-    /// Switches circuit `id` on by the rule of the page's own power keys
-    /// ([`device_power`]: never the starter or a motor, not a faulted pin, not a state
-    /// the page does not know); on a refusal nothing is sent and the words say why.
-    pub fn power_on(&mut self, id: u8) -> Result<(), Refusal> {
-        let message = device_power(self.model, self.now, id, true)?;
-        self.send(message);
-        Ok(())
-    }
-
-    /// Switches back off a circuit this check switched on ([`put_back_off`]).
-    pub fn power_off(&mut self, id: u8) -> Result<(), Refusal> {
-        let message = put_back_off(self.model, id)?;
-        self.send(message);
-        Ok(())
-    }
-
-    fn send(&mut self, message: Message) {
-        let cnt = self.ctl.next_cnt();
-        self.out.packets.push(Packet::request(cnt, message));
-    }
-
-    /// How many DEVICE_STATUS broadcasts the page has heard so far.
-    pub fn statuses(&self) -> u64 {
-        self.model
-            .link
-            .rx
-            .get("DEVICE_STATUS")
-            .map_or(0, |s| s.count)
-    }
-}
-
 /// The installation check in progress. See the module docs.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct CheckFlow {
-    pub(super) opts: Options,
-    pub(super) phase: Phase,
-    /// Faults present when the check started (or found on the item under test):
-    /// only a new fault elsewhere interrupts.
-    pub(super) known_faults: BTreeSet<u8>,
+    opts: Options,
+    phase: Phase,
+    /// What the steps read and add to: the timing, the faults known, trouble ahead,
+    /// the clock.
+    shared: Shared,
     system_fault_at_start: bool,
     write_errors_at_start: u64,
-    /// The `now` the flow was made with: [`Options::clock`]'s instant.
-    made_at: Instant,
-    /// A step found something that ends the check (a circuit that will not go back
-    /// off, a motor stopped by lost communication): handled at the end of the tick.
-    pub(super) trouble_ahead: Option<String>,
 }
 
 impl CheckFlow {
@@ -267,35 +139,26 @@ impl CheckFlow {
             .live_faults(now)
             .unwrap_or(([crate::protocol::FaultCode::NoFault; DEVICE_COUNT], false));
         let flow = CheckFlow {
-            known_faults: (0..DEVICE_COUNT as u8)
-                .filter(|&i| codes[i as usize].is_fault())
-                .collect(),
+            shared: Shared {
+                timing: opts.timing,
+                known_faults: (0..DEVICE_COUNT as u8)
+                    .filter(|&i| codes[i as usize].is_fault())
+                    .collect(),
+                trouble_ahead: None,
+                clock: opts.clock,
+                made_at: now,
+            },
             system_fault_at_start: system,
             write_errors_at_start: model.link.write_errors,
             opts,
             phase: Phase::Confirm,
-            made_at: now,
-            trouble_ahead: None,
         };
         flow.replan(view, model, now);
         flow
     }
 
-    /// The wall-clock time of an instant, if the caller gave the flow its clock.
-    pub(super) fn wall(&self) -> impl Fn(Instant) -> Option<std::time::SystemTime> + use<> {
-        let (clock, made_at) = (self.opts.clock, self.made_at);
-        move |at| {
-            let clock = clock?;
-            if at >= made_at {
-                clock.checked_add(at - made_at)
-            } else {
-                clock.checked_sub(made_at - at)
-            }
-        }
-    }
-
     pub fn timing(&self) -> &Timing {
-        &self.opts.timing
+        &self.shared.timing
     }
 
     /// Where the check is, for the tests that stop it at every stage: the step, then
@@ -304,10 +167,15 @@ impl CheckFlow {
     pub(super) fn stage(&self) -> String {
         match &self.phase {
             Phase::Confirm => "before power".into(),
-            Phase::Switches(i) => format!("switches: {}", i.stage()),
-            Phase::Circuits(i) => format!("circuits: {}", i.stage()),
-            Phase::Motors(i) => format!("motors: {}", i.stage()),
+            Phase::Testing(run) => {
+                let step = Step::SKIPPABLE
+                    .iter()
+                    .find(|(s, _)| *s == run.step())
+                    .map_or("", |(_, word)| word);
+                format!("{step}: {}", run.stage())
+            }
             Phase::Stopping { .. } => "stopping".into(),
+            Phase::Loads => "loads".into(),
             Phase::Done => "done".into(),
         }
     }
@@ -320,16 +188,14 @@ impl CheckFlow {
     /// When the flow must be ticked next, if it waits on a clock.
     pub fn next_deadline(&self) -> Option<Instant> {
         match &self.phase {
-            Phase::Confirm | Phase::Done => None,
-            Phase::Switches(i) => i.deadline(),
-            Phase::Circuits(i) => i.deadline(),
-            Phase::Motors(i) => i.deadline(),
+            Phase::Confirm | Phase::Done | Phase::Loads => None,
+            Phase::Testing(run) => run.deadline(),
             Phase::Stopping { until, .. } => Some(*until),
         }
     }
 
     fn replan(&self, view: &mut CheckView, model: &Model, now: Instant) {
-        let t = &self.opts.timing;
+        let t = &self.shared.timing;
         let lengths = plan::Lengths {
             on_for: t.on_for,
             motor_for: t.motor_for(),
@@ -377,8 +243,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Out {
-        let mut out = Out::default();
+    ) -> Effects {
+        let mut out = Effects::default();
         if cmd == Command::Stop {
             if !self.finished() {
                 self.interrupt(Cause::Quit, true, view, model, ctl, now, &mut out);
@@ -387,16 +253,16 @@ impl CheckFlow {
         }
         match &mut self.phase {
             Phase::Confirm => self.confirm_command(cmd, view, model, ctl, now, &mut out),
-            Phase::Switches(_) | Phase::Circuits(_) | Phase::Motors(_) => {
-                let mut io = Io {
+            Phase::Testing(_) => {
+                let mut cx = CallContext {
                     model,
                     ctl,
                     now,
                     out: &mut out,
                 };
-                self.item_command(cmd, view, &mut io);
+                self.item_command(cmd, view, &mut cx);
             }
-            Phase::Stopping { .. } | Phase::Done => {}
+            Phase::Stopping { .. } | Phase::Done | Phase::Loads => {}
         }
         out
     }
@@ -408,7 +274,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Out,
+        out: &mut Effects,
     ) {
         let rows = view.plan.len() + view.excluded.len();
         match cmd {
@@ -461,7 +327,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Out,
+        out: &mut Effects,
     ) {
         self.replan(view, model, now);
         if let Err(why) = plan::ready(model, now) {
@@ -469,88 +335,159 @@ impl CheckFlow {
             return;
         }
         view.message = None;
-        out.news.push(confirmed_line(view));
+        out.progress.push(confirmed_line(view));
         // Every item gets its line now, so an interruption leaves the ones never
         // reached listed as not run.
         view.switches = super::switches::rows(view, model, now);
         view.circuits = super::circuits::rows(view, model, now);
         view.motors = super::motors::rows(view);
-        let mut io = Io {
+        let mut cx = CallContext {
             model,
             ctl,
             now,
             out,
         };
-        self.enter_step(Step::Switches, view, &mut io);
+        self.enter_step(Step::Switches, view, &mut cx);
     }
 
     /// Moves to `step` (or the first one after it not skipped) and starts its first item.
-    pub(super) fn enter_step(&mut self, mut step: Step, view: &mut CheckView, io: &mut Io) {
+    fn enter_step(&mut self, mut step: Step, view: &mut CheckView, cx: &mut CallContext) {
         loop {
             view.step = step;
             view.current = None;
             view.prompt = None;
             let skipped = self.opts.skip.contains(&step);
-            let started = match step {
-                Step::Confirm => false,
-                Step::Switches => {
-                    self.switches_begin(view, io, skipped);
-                    matches!(self.phase, Phase::Switches(_))
-                }
-                Step::Circuits => {
-                    self.circuits_begin(view, io, skipped);
-                    matches!(self.phase, Phase::Circuits(_))
-                }
-                Step::Motors => {
-                    self.motors_begin(view, io, skipped);
-                    matches!(self.phase, Phase::Motors(_))
-                }
+            let run: Option<Box<dyn StepRun>> = match step {
+                Step::Confirm => None,
+                Step::Switches => Some(Box::new(switches::Switches::default())),
+                Step::Circuits => Some(Box::new(circuits::Circuits::default())),
+                Step::Motors => Some(Box::new(motors::Motors::default())),
                 Step::Loads => {
                     if !skipped {
-                        self.loads(view, io);
+                        if self.loads(view, cx) {
+                            // The app opens the file, then `loads_opened` goes on.
+                            return;
+                        }
                     } else {
-                        io.out.news.push("– Load analysis: skipped".into());
+                        cx.out.progress.push("– Load analysis: skipped".into());
                     }
-                    false
+                    None
                 }
                 Step::Done => {
-                    self.finish(view, io);
+                    self.finish(view, cx);
                     return;
                 }
             };
-            // A step with nothing to do may already have gone on by itself (its
-            // `*_next` enters the next step): going on here too would run the rest
-            // twice, and say "Check complete" twice.
-            if started || view.step != step {
-                return;
+            if let Some(mut run) = run {
+                if !skipped {
+                    run.begin(view, cx, &mut self.shared);
+                }
+                if self.next_item(run, 0, view, cx) {
+                    return;
+                }
             }
             step = next_step(step);
         }
     }
 
-    /// Step 5: the builder's load file with the currents just measured, or its
-    /// template written for next time. The one step that touches a file, as the
-    /// setup flow's backup does.
-    fn loads(&mut self, view: &mut CheckView, io: &mut Io) {
-        use crate::loads::disk::{Opened, open_or_create};
-        use crate::ui::check::state::LoadsView;
-        let Some(path) = self.opts.loads_file.clone() else {
-            view.loads = Some(LoadsView::Refused(
-                "no place for the load file (no config folder on this system)".into(),
-            ));
-            io.out
-                .news
-                .push("– Load analysis: no place for the load file".into());
+    /// The step loop: starts the step's first item from `from` not done yet, and the
+    /// next while each is done at once (faulted before it was touched, refused, …).
+    /// Whether one is under test now; if not, the step is over.
+    fn next_item(
+        &mut self,
+        mut run: Box<dyn StepRun>,
+        mut from: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+    ) -> bool {
+        let step = run.step();
+        loop {
+            if self.opts.skip.contains(&step) {
+                let any = view.skip_rest(step, "step skipped");
+                if from == 0 || (any && run.says_skip_midway()) {
+                    cx.out.progress.push(run.skipped_line().into());
+                }
+            }
+            let Some(idx) = view.next_not_run(step, from) else {
+                return false;
+            };
+            match run.start(idx, view, cx, &mut self.shared) {
+                Next::Stay => {
+                    self.phase = Phase::Testing(run);
+                    return true;
+                }
+                Next::From(i) => from = i,
+            }
+        }
+    }
+
+    /// After a call into the item under test: on `Next::From`, the next item, or the
+    /// next step.
+    fn go_on(&mut self, next: Next, view: &mut CheckView, cx: &mut CallContext) {
+        let Next::From(from) = next else { return };
+        let Phase::Testing(run) = std::mem::replace(&mut self.phase, Phase::Done) else {
             return;
         };
-        let loads = match open_or_create(&path, &io.model.circuits(io.now)) {
+        let step = run.step();
+        if !self.next_item(run, from, view, cx) {
+            self.enter_step(next_step(step), view, cx);
+        }
+    }
+
+    /// Step 5: the builder's load file with the currents just measured, or its
+    /// template written for next time. The flow touches no file: it asks the app to
+    /// open it (`Effects::open_loads`) and goes on in [`CheckFlow::loads_opened`].
+    /// Whether it waits for the app to open the file.
+    fn loads(&mut self, view: &mut CheckView, cx: &mut CallContext) -> bool {
+        let Some(path) = self.opts.loads_file.clone() else {
+            view.loads = Some(super::state::LoadsView::Refused(
+                "no place for the load file (no config folder on this system)".into(),
+            ));
+            cx.out
+                .progress
+                .push("– Load analysis: no place for the load file".into());
+            return false;
+        };
+        cx.out.open_loads = Some(super::calls::LoadsToOpen {
+            path,
+            circuits: cx.model.circuits(cx.now),
+        });
+        self.phase = Phase::Loads;
+        true
+    }
+
+    /// The app opened the load file the flow asked for (`Effects::open_loads`): the
+    /// analysis with the currents just measured, or the template written, or why
+    /// neither; then the report.
+    pub fn loads_opened(
+        &mut self,
+        opened: Result<crate::loads::disk::Opened, crate::loads::disk::LoadError>,
+        view: &mut CheckView,
+        model: &Model,
+        ctl: &mut Controller,
+        now: Instant,
+    ) -> Effects {
+        use super::state::LoadsView;
+        use crate::loads::disk::Opened;
+        let mut effects = Effects::default();
+        let (Phase::Loads, Some(path)) = (&self.phase, self.opts.loads_file.clone()) else {
+            return effects;
+        };
+        let mut cx = CallContext {
+            model,
+            ctl,
+            now,
+            out: &mut effects,
+        };
+        let cx = &mut cx;
+        let loads = match opened {
             Ok(Opened::Read(file)) => {
                 let analysis = crate::loads::analyse(&file, &view.measured_amps());
-                io.out
-                    .news
+                cx.out
+                    .progress
                     .push(format!("Load analysis ({}):", path.display()));
                 for phase in crate::loads::Phase::ALL {
-                    io.out.news.push(format!(
+                    cx.out.progress.push(format!(
                         "  {}: {:.1} A, {}",
                         phase.title(),
                         analysis.phase(phase).amps,
@@ -560,7 +497,7 @@ impl CheckFlow {
                 LoadsView::Analysed { path, analysis }
             }
             Ok(Opened::TemplateWritten(p)) => {
-                io.out.news.push(format!(
+                cx.out.progress.push(format!(
                     "– Load analysis: no load file yet; its template, listing every \
                      circuit, was written to {}: fill it in and run the check again",
                     p.display()
@@ -568,25 +505,26 @@ impl CheckFlow {
                 LoadsView::TemplateWritten(p)
             }
             Err(e) => {
-                io.out.news.push(format!("✗ Load analysis: {e}"));
+                cx.out.progress.push(format!("✗ Load analysis: {e}"));
                 LoadsView::Refused(e.to_string())
             }
         };
         view.loads = Some(loads);
+        self.phase = Phase::Done;
+        self.enter_step(next_step(Step::Loads), view, cx);
+        effects
     }
 
-    fn finish(&mut self, view: &mut CheckView, io: &mut Io) {
+    fn finish(&mut self, view: &mut CheckView, cx: &mut CallContext) {
         self.phase = Phase::Done;
-        io.out.ended = true;
+        cx.out.ended = true;
         // An interrupted check stays on the step where it stopped: the step bar must
         // not show the report as reached.
         if view.interrupted.is_none() {
             view.step = Step::Done;
         }
         view.current = None;
-        let fails = view
-            .marks()
-            .filter(|m| *m == crate::ui::check::state::Mark::Fail);
+        let fails = view.marks().filter(|m| *m == super::state::Mark::Fail);
         let n = fails.count();
         view.prompt = Some(Prompt {
             todo: if view.interrupted.is_some() {
@@ -601,14 +539,14 @@ impl CheckFlow {
             keys: vec![("Esc", "back to the device list")],
         });
         if view.interrupted.is_none() {
-            io.out.news.push(format!(
+            cx.out.progress.push(format!(
                 "Check complete: {} to fix",
                 view.left_to_fix().len()
             ));
         }
     }
 
-    fn item_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
+    fn item_command(&mut self, cmd: Command, view: &mut CheckView, cx: &mut CallContext) {
         match cmd {
             Command::SkipStep => {
                 // The item under test is skipped (and put back); each step's next
@@ -618,14 +556,14 @@ impl CheckFlow {
                 if !view.skipped_steps.contains(&step) {
                     view.skipped_steps.push(step);
                 }
-                self.item_command(Command::SkipItem, view, io);
+                self.item_command(Command::SkipItem, view, cx);
             }
-            _ => match self.phase {
-                Phase::Switches(_) => self.switches_command(cmd, view, io),
-                Phase::Circuits(_) => self.circuits_command(cmd, view, io),
-                Phase::Motors(_) => self.motors_command(cmd, view, io),
-                _ => {}
-            },
+            _ => {
+                if let Phase::Testing(run) = &mut self.phase {
+                    let next = run.command(cmd, view, cx, &mut self.shared);
+                    self.go_on(next, view, cx);
+                }
+            }
         }
     }
 
@@ -636,8 +574,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Out {
-        let mut out = Out::default();
+    ) -> Effects {
+        let mut out = Effects::default();
         if matches!(self.phase, Phase::Confirm) {
             self.replan(view, model, now);
             if self.opts.yes && plan::ready(model, now).is_ok() {
@@ -649,20 +587,21 @@ impl CheckFlow {
             self.interrupt_with(cause, reason, true, view, model, ctl, now, &mut out);
             return out;
         }
-        let mut io = Io {
+        let mut cx = CallContext {
             model,
             ctl,
             now,
             out: &mut out,
         };
-        match self.phase {
-            Phase::Switches(_) => self.switches_tick(view, &mut io),
-            Phase::Circuits(_) => self.circuits_tick(view, &mut io),
-            Phase::Motors(_) => self.motors_tick(view, &mut io),
-            Phase::Stopping { .. } => self.stopping_tick(view, &mut io),
-            Phase::Confirm | Phase::Done => {}
+        match &mut self.phase {
+            Phase::Testing(run) => {
+                let next = run.tick(view, &mut cx, &mut self.shared);
+                self.go_on(next, view, &mut cx);
+            }
+            Phase::Stopping { .. } => self.stopping_tick(view, &mut cx),
+            Phase::Confirm | Phase::Done | Phase::Loads => {}
         }
-        if let Some(cause) = self.trouble_ahead.take() {
+        if let Some(cause) = self.shared.trouble_ahead.take() {
             // The step already stopped its motor (the controller's own reason stands);
             // a circuit that will not go back off has no motor running.
             self.interrupt_with(
@@ -714,7 +653,7 @@ impl CheckFlow {
         let under_test = self.under_test();
         (0..DEVICE_COUNT as u8)
             .filter(|&i| codes[i as usize].is_fault())
-            .find(|i| !self.known_faults.contains(i) && !under_test.contains(i))
+            .find(|i| !self.shared.known_faults.contains(i) && !under_test.contains(i))
             .map(|i| {
                 let name = view_or_model_name(view, model, i);
                 (
@@ -728,9 +667,7 @@ impl CheckFlow {
     /// or motor under test, or the circuits the switch under test powers.
     fn under_test(&self) -> Vec<u8> {
         match &self.phase {
-            Phase::Switches(i) => i.circuits().to_vec(),
-            Phase::Circuits(i) => vec![i.id],
-            Phase::Motors(i) => vec![i.motor.device_id()],
+            Phase::Testing(run) => run.under_test(),
             _ => Vec::new(),
         }
     }
@@ -747,8 +684,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Out {
-        let mut out = Out::default();
+    ) -> Effects {
+        let mut out = Effects::default();
         if !matches!(self.phase, Phase::Done) {
             self.interrupt(cause, may_wait, view, model, ctl, now, &mut out);
         }
@@ -764,7 +701,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Out,
+        out: &mut Effects,
     ) {
         let reason = cause.stop_reason();
         if matches!(self.phase, Phase::Confirm) {
@@ -774,25 +711,25 @@ impl CheckFlow {
                 cause: cause.words(),
                 left: Vec::new(),
             });
-            let mut io = Io {
+            let mut cx = CallContext {
                 model,
                 ctl,
                 now,
                 out,
             };
-            self.finish(view, &mut io);
+            self.finish(view, &mut cx);
             return;
         }
         if let Phase::Stopping { until, .. } = &mut self.phase {
             // A second stop (quit while waiting to see a circuit off): stop waiting.
             *until = now;
-            let mut io = Io {
+            let mut cx = CallContext {
                 model,
                 ctl,
                 now,
                 out,
             };
-            self.stopping_tick(view, &mut io);
+            self.stopping_tick(view, &mut cx);
             return;
         }
         ctl_stop(ctl, now, reason, out);
@@ -811,45 +748,30 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Out,
+        out: &mut Effects,
     ) {
         let link_failed = model.link.write_errors > self.write_errors_at_start
             || !matches!(model.connection, Connection::Connected { .. });
         let comm = !model.comm_lost(now) && !link_failed;
-        let mut left: Vec<(u8, String, String)> = Vec::new();
+        let mut left: Vec<LeftBehind> = Vec::new();
         let mut powered = None;
-        let mut io = Io {
+        let mut cx = CallContext {
             model,
             ctl,
             now,
             out,
         };
-        match std::mem::replace(&mut self.phase, Phase::Done) {
-            Phase::Circuits(item) => match item.stop(&mut io) {
-                Ok(p) => powered = p,
-                Err(why) => left.push((
-                    item.id,
-                    view_or_model_name(view, model, item.id),
-                    format!("ON when the check stopped: DEVICE_POWER off not sent: {why}"),
-                )),
-            },
-            Phase::Motors(item) => {
-                // Stopped here for the check's own reason, unless stopped already
-                // (ctl_stop, or the controller's own tick, whose reason stands); say
-                // where it stopped if it had moved.
-                io.out.packets.extend(io.ctl.stop(now, reason));
-                if let Some(words) = item.left_words(io.model, now) {
-                    left.push((item.motor.device_id(), item.name(), words));
-                }
-            }
-            _ => {}
+        if let Phase::Testing(mut run) = std::mem::replace(&mut self.phase, Phase::Done) {
+            let stopped = run.stop(reason, view, &mut cx);
+            powered = stopped.powered;
+            left.extend(stopped.left);
         }
-        io.out.news.push(format!("Interrupted: {cause}"));
+        cx.out.progress.push(format!("Interrupted: {cause}"));
         match powered {
             Some(p) if may_wait && comm => {
                 self.phase = Phase::Stopping {
                     powered: p,
-                    until: now + self.opts.timing.stop_wait,
+                    until: now + self.shared.timing.stop_wait,
                     cause,
                     left,
                 };
@@ -859,7 +781,7 @@ impl CheckFlow {
                         view_or_model_name(view, model, p.id)
                     ),
                     watching: "DEVICE_STATUS, to see it off".into(),
-                    time_left: Some(self.opts.timing.stop_wait),
+                    time_left: Some(self.shared.timing.stop_wait),
                     keys: vec![],
                 });
             }
@@ -877,23 +799,23 @@ impl CheckFlow {
                         }
                     )
                 };
-                left.insert(0, (p.id, name, why));
-                self.end_interrupted(cause, left, view, &mut io);
+                left.insert(0, LeftBehind::new(p.id, name, why));
+                self.end_interrupted(cause, left, view, &mut cx);
             }
-            None => self.end_interrupted(cause, left, view, &mut io),
+            None => self.end_interrupted(cause, left, view, &mut cx),
         }
     }
 
-    fn stopping_tick(&mut self, view: &mut CheckView, io: &mut Io) {
+    fn stopping_tick(&mut self, view: &mut CheckView, cx: &mut CallContext) {
         let Phase::Stopping { powered, until, .. } = &self.phase else {
             return;
         };
         let (powered, until) = (*powered, *until);
-        let state = circuit_on(io.model, io.now, powered.id);
+        let state = circuit_on(cx.model, cx.now, powered.id);
         let off = state == Some(false);
-        if !off && io.now < until {
+        if !off && cx.now < until {
             if let Some(p) = view.prompt.as_mut() {
-                p.time_left = Some(until.saturating_duration_since(io.now));
+                p.time_left = Some(until.saturating_duration_since(cx.now));
             }
             return;
         }
@@ -903,54 +825,47 @@ impl CheckFlow {
         else {
             return;
         };
-        let name = view_or_model_name(view, io.model, powered.id);
+        let name = view_or_model_name(view, cx.model, powered.id);
         if off {
-            self.put_back(powered.id, view, io.model, io.now);
+            put_back(powered.id, view, cx.model, cx.now);
         } else {
             let why = match state {
                 Some(true) => "ON: DEVICE_POWER off sent, the unit still shows it on",
                 _ => "unknown: it was ON; DEVICE_POWER off sent, no status since",
             };
-            left.insert(0, (powered.id, name, why.to_string()));
+            left.insert(0, LeftBehind::new(powered.id, name, why.to_string()));
         }
-        self.end_interrupted(cause, left, view, io);
+        self.end_interrupted(cause, left, view, cx);
     }
 
     fn end_interrupted(
         &mut self,
         cause: String,
-        left: Vec<(u8, String, String)>,
+        left: Vec<LeftBehind>,
         view: &mut CheckView,
-        io: &mut Io,
+        cx: &mut CallContext,
     ) {
-        for (id, name, why) in &left {
-            io.out
-                .news
+        for LeftBehind {
+            id,
+            name,
+            state: why,
+        } in &left
+        {
+            cx.out
+                .progress
                 .push(format!("  left: {name} (device {id}): {why}"));
         }
         view.interrupted = Some(Interruption { cause, left });
-        self.finish(view, io);
-    }
-
-    /// `id` was switched back off by DEVICE_POWER: the unit holds it off until its
-    /// switch is cycled (ICD Appendix A, §6.4.1), so the person is told which.
-    pub(super) fn put_back(&mut self, id: u8, view: &mut CheckView, model: &Model, now: Instant) {
-        let spec = model.circuits(now).into_iter().find(|c| c.id == id);
-        if let Some(SwitchId::Input(n)) = spec.and_then(|c| c.switch)
-            && !view.to_cycle.iter().any(|(i, ..)| *i == id)
-        {
-            view.to_cycle
-                .push((id, view_or_model_name(view, model, id), SwitchId::Input(n)));
-        }
+        self.finish(view, cx);
     }
 }
 
-fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut Out) {
+fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut Effects) {
     out.packets.extend(ctl.stop(now, reason));
 }
 
 /// The step after `step`.
-pub(super) fn next_step(step: Step) -> Step {
+fn next_step(step: Step) -> Step {
     match step {
         Step::Confirm => Step::Switches,
         Step::Switches => Step::Circuits,
@@ -958,26 +873,4 @@ pub(super) fn next_step(step: Step) -> Step {
         Step::Motors => Step::Loads,
         Step::Loads | Step::Done => Step::Done,
     }
-}
-
-pub(super) fn view_or_model_name(view: &CheckView, model: &Model, id: u8) -> String {
-    view.circuits
-        .iter()
-        .find(|c| c.id == id)
-        .map(|c| c.name.clone())
-        .unwrap_or_else(|| model.display_name(id))
-}
-
-/// Whether `id` is on in the live DEVICE_STATUS (`None`: no live status).
-pub(super) fn circuit_on(model: &Model, now: Instant, id: u8) -> Option<bool> {
-    model.live_devices(now).map(|d| d.on[id as usize])
-}
-
-/// The motor's name as the results show it.
-pub(super) fn motor_name(m: Motor) -> String {
-    let n = m.name();
-    let mut c = n.chars();
-    c.next()
-        .map(|f| f.to_uppercase().collect::<String>() + c.as_str())
-        .unwrap_or_default()
 }

@@ -1,21 +1,33 @@
 //! The installation check: every switch input, circuit and motor tested in turn, an
 //! electrical load analysis, and a report for the builder's log. A flow like `setup`:
-//! keys and ticks in, the view (`ui::check::state::CheckView`) changed and what the app
-//! must send out. Pure and driven on the caller's clock; the app only wires it to the
-//! link, the page's controller (so every motor rule and stop cause applies) and the
-//! terminal.
+//! the person's commands and ticks in, the view ([`state::CheckView`]) changed and
+//! what the app must send out. Pure and driven on the caller's clock; the app only
+//! wires it to the link, the page's controller (so every motor rule and stop cause
+//! applies) and the terminal.
+//!
+//! The arrows inside run one way: `flow` drives the steps (`switches`, `circuits`,
+//! `motors`) through the one interface in `step`, which is all a step knows of the
+//! flow; `state` and `words` are the data and the words everyone reads.
 
+mod calls;
 mod circuits;
 pub mod flow;
+pub mod lights;
 mod motors;
 pub mod plan;
 pub mod report;
+pub mod state;
+mod step;
 mod switches;
+mod timing;
+pub mod words;
 
+pub use calls::{Command, Effects, LoadsToOpen};
 pub use circuits::judge as judge_current;
-pub use flow::{Cause, CheckFlow, Command, Options, Out, Timing};
+pub use flow::{Cause, CheckFlow, Options};
 pub use motors::{expected_sign, judge as judge_motor};
 pub use plan::{Choices, SUGGEST_EXCLUDING};
+pub use timing::Timing;
 
 #[cfg(test)]
 mod tests;

@@ -25,14 +25,14 @@
 
 use std::time::{Duration, Instant};
 
-use super::flow::{CheckFlow, Command, Io, Phase, motor_name, next_step};
-use super::switches::news;
+use super::calls::Command;
+use super::state::{CheckView, LeftBehind, MotorFinding, MotorResult, Outcome, Prompt, Step};
+use super::step::{CallContext, Next, Shared, StepRun, Stopped, motor_name, result_line};
 pub use crate::control::endpoints::expected_sign;
 use crate::control::endpoints::{self, ends, heads_for, opposite, position, room};
 use crate::control::{Direction, StopReason, motor_check};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
-use crate::ui::check::state::{CheckView, MotorFinding, MotorResult, Outcome, Prompt, Step};
 
 /// A run moved the motor if its position changed at least this many counts (the
 /// same count the controller's watch needs before it takes a run to go the other way).
@@ -214,37 +214,19 @@ impl MotorItem {
     }
 }
 
-impl CheckFlow {
-    pub(super) fn motors_begin(&mut self, view: &mut CheckView, io: &mut Io, _skipped: bool) {
-        self.motor_next(0, view, io);
-    }
-
-    fn motor_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
-        if self.opts.skip.contains(&Step::Motors) {
-            let mut any = false;
-            for r in view
-                .motors
-                .iter_mut()
-                .filter(|r| r.outcome == Outcome::NotRun)
-            {
-                r.outcome = Outcome::Skipped("step skipped".into());
-                any = true;
-            }
-            if any || from == 0 {
-                io.out.news.push("– Motors: skipped".into());
-            }
-        }
-        let Some(idx) =
-            (from..view.motors.len()).find(|&i| view.motors[i].outcome == Outcome::NotRun)
-        else {
-            self.phase = Phase::Done;
-            return self.enter_step(next_step(Step::Motors), view, io);
-        };
+impl Motors {
+    fn start_item(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
         let motor = view.motors[idx].motor;
         view.current = Some(idx);
         view.motors[idx].positions.clear();
         view.prompt = Some(running_prompt(motor));
-        self.phase = Phase::Motors(MotorItem {
+        self.item = Some(MotorItem {
             idx,
             motor,
             dirs: directions(motor),
@@ -258,20 +240,25 @@ impl CheckFlow {
             probes: 0,
             probed: Duration::ZERO,
             stage: Stage::Start,
-            run: self.opts.timing.motor_run,
-            settle: self.opts.timing.motor_settle,
+            run: shared.timing.motor_run,
+            settle: shared.timing.motor_settle,
             skipped: false,
         });
-        self.motors_tick(view, io);
+        self.tick_item(view, cx, shared)
     }
 
-    pub(super) fn motors_tick(&mut self, view: &mut CheckView, io: &mut Io) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+    fn tick_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
-        let now = io.now;
-        let Some(ft) = io.model.live_flap_trim(now).copied() else {
-            return;
+        let now = cx.now;
+        let Some(ft) = cx.model.live_flap_trim(now).copied() else {
+            return Next::Stay;
         };
         let pos = position(item.motor, &ft);
         match item.stage {
@@ -293,9 +280,11 @@ impl CheckFlow {
                             e.down
                         );
                         let (idx, motor) = (item.idx, item.motor);
-                        io.out.news.push(format!("– {}: {why}", motor_name(motor)));
+                        cx.out
+                            .progress
+                            .push(format!("– {}: {why}", motor_name(motor)));
                         view.motors[idx].outcome = Outcome::Skipped(why);
-                        return self.motor_next(idx + 1, view, io);
+                        return Next::From(idx + 1);
                     }
                     // Toward the side with more room first.
                     (Some(ra), Some(rb)) if rb > ra => [b, a],
@@ -306,13 +295,13 @@ impl CheckFlow {
                 };
                 let d = item.dirs[0];
                 let length = item.run;
-                self.motor_run(d, length, None, view, io);
+                return self.run(d, length, None, view, cx, shared);
             }
             Stage::Running { since, .. } => {
-                if io.ctl.running().is_some_and(|r| r.motor == item.motor) {
-                    return;
+                if cx.ctl.running().is_some_and(|r| r.motor == item.motor) {
+                    return Next::Stay;
                 }
-                let stop = io
+                let stop = cx
                     .ctl
                     .last_stop()
                     .filter(|s| s.at >= since && s.motor == item.motor)
@@ -338,7 +327,7 @@ impl CheckFlow {
                                 item.probed + stopped_at.saturating_duration_since(since);
                             item.rest = None;
                         }
-                        io.out.news.push(format!(
+                        cx.out.progress.push(format!(
                             "  {} stopped at its endpoint ({end}), position {pos}",
                             motor_name(item.motor)
                         ));
@@ -356,7 +345,7 @@ impl CheckFlow {
                                 item.probed + stopped_at.saturating_duration_since(since);
                             item.rest = None;
                         }
-                        io.out.news.push(format!(
+                        cx.out.progress.push(format!(
                             "  {}, position {pos}",
                             crate::control::against::stopped(item.motor, asked)
                         ));
@@ -370,10 +359,10 @@ impl CheckFlow {
                         } else {
                             item.motor.fault(&ft)
                         };
-                        self.known_faults.insert(item.motor.device_id());
+                        shared.known_faults.insert(item.motor.device_id());
                         let idx = item.idx;
-                        record(view, idx, MotorFinding::Faulted(code), io);
-                        self.motor_next(idx + 1, view, io);
+                        record(view, idx, MotorFinding::Faulted(code), cx);
+                        return Next::From(idx + 1);
                     }
                     Some(
                         r @ (StopReason::CommLost
@@ -384,7 +373,7 @@ impl CheckFlow {
                         | StopReason::PageStalled
                         | StopReason::Starved),
                     ) => {
-                        self.trouble_ahead = Some(format!(
+                        shared.trouble_ahead = Some(format!(
                             "the {} stopped: {}",
                             item.motor.name(),
                             r.describe()
@@ -395,13 +384,13 @@ impl CheckFlow {
                             ran: stopped_at.saturating_duration_since(since),
                         };
                         let why = format!("The {} stopped: {}", item.motor.name(), r.describe());
-                        self.motor_pause(&why, view, io);
+                        return self.pause(&why, view, cx);
                     }
                 }
             }
             Stage::Settle { until } => {
                 if now < until {
-                    return;
+                    return Next::Stay;
                 }
                 if item.leg < 2
                     && let Some(rest) = item.rest.take()
@@ -414,14 +403,14 @@ impl CheckFlow {
                     let went = (i32::from(pos) - i32::from(item.starts[item.leg])) * way;
                     item.probed = item.ran[item.leg];
                     if went > 0 {
-                        return self.motor_run(d, rest, Some(way), view, io);
+                        return self.run(d, rest, Some(way), view, cx, shared);
                     }
                     if went == 0 && item.probes < MAX_PROBES {
-                        return self.motor_run(d, rest, None, view, io);
+                        return self.run(d, rest, None, view, cx, shared);
                     }
                     if went < 0 {
                         item.ended_at[item.leg] = heads_for(item.motor, opposite(d), &ft);
-                        io.out.news.push(format!(
+                        cx.out.progress.push(format!(
                             "  {} went the other way from {} to {pos}: run no further",
                             motor_name(item.motor),
                             item.starts[item.leg]
@@ -446,7 +435,7 @@ impl CheckFlow {
                         }
                         _ => item.run,
                     };
-                    return self.motor_run(d, length, None, view, io);
+                    return self.run(d, length, None, view, cx, shared);
                 }
                 let idx = item.idx;
                 if item.leg == 2 && view.motors[idx].outcome == Outcome::NotRun && !item.skipped {
@@ -458,18 +447,25 @@ impl CheckFlow {
                         item.ended_at,
                         &ft,
                     );
-                    record(view, idx, f, io);
+                    record(view, idx, f, cx);
                 }
-                self.motor_return(pos, view, io);
+                return self.run_back(pos, view, cx, shared);
             }
         }
+        Next::Stay
     }
 
     /// Runs the motor back toward where it was, once, if it is not there; else the
     /// next motor.
-    fn motor_return(&mut self, pos: u8, view: &mut CheckView, io: &mut Io) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+    fn run_back(
+        &mut self,
+        pos: u8,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         let idx = item.idx;
         let back = item.p0.map_or(0, |p0| i32::from(p0) - i32::from(pos));
@@ -486,9 +482,9 @@ impl CheckFlow {
             {
                 // Not back, and no run left that would bring it: say where it is.
                 let motor = item.motor;
-                not_back(view, idx, motor, pos, p0, io);
+                not_back(view, idx, motor, pos, p0, cx);
             }
-            return self.motor_next(idx + 1, view, io);
+            return Next::From(idx + 1);
         }
         item.leg = 3;
         let dir = if back.signum() == moved.signum() {
@@ -498,32 +494,34 @@ impl CheckFlow {
         };
         let ratio = back.abs() as f32 / moved.abs() as f32;
         let length = ran.mul_f32(ratio).min(item.run * 2);
-        self.motor_run(dir, length, Some(back.signum()), view, io);
+        self.run(dir, length, Some(back.signum()), view, cx, shared)
     }
 
     /// Runs the motor `d` for `length`; `way` is which way the check expects the
     /// position to go when it knows better than the direction (the run back, after it
     /// saw the motor go), so the run keeps off the endpoint it will really reach.
-    fn motor_run(
+    #[allow(clippy::too_many_arguments)]
+    fn run(
         &mut self,
         d: Direction,
         length: Duration,
         way: Option<i32>,
         view: &mut CheckView,
-        io: &mut Io,
-    ) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
-        let now = io.now;
+        let now = cx.now;
         let mut length = length;
         // Seen moving against its command (by this check's first run, or before it):
         // no test run is made until the person confirms one at the page's keys; the
         // finding is that, and the run back goes the way it was seen to go.
         if item.leg < 2
             && way.is_none()
-            && let Some(asked) = io.ctl.against().seen(item.motor)
-            && let Some(pos) = io
+            && let Some(asked) = cx.ctl.against().seen(item.motor)
+            && let Some(pos) = cx
                 .model
                 .live_flap_trim(now)
                 .map(|ft| position(item.motor, ft))
@@ -531,17 +529,17 @@ impl CheckFlow {
             let idx = item.idx;
             if view.motors[idx].outcome == Outcome::NotRun {
                 if item.leg == 0 {
-                    io.out.news.push(format!(
+                    cx.out.progress.push(format!(
                         "  {}: not run",
                         crate::control::against::words(item.motor, asked)
                     ));
                 }
-                record(view, idx, MotorFinding::Reversed, io);
+                record(view, idx, MotorFinding::Reversed, cx);
             }
             item.leg = 2;
-            return self.motor_return(pos, view, io);
+            return self.run_back(pos, view, cx, shared);
         }
-        if let Some(ft) = io.model.live_flap_trim(now)
+        if let Some(ft) = cx.model.live_flap_trim(now)
             && item.leg < 2
             && way.is_none()
         {
@@ -554,7 +552,7 @@ impl CheckFlow {
                 // counts as not moving, against its limit.
                 item.ended_at[item.leg] = heads_for(item.motor, d, ft);
                 item.stage = Stage::Settle { until: now };
-                return;
+                return Next::Stay;
             }
             // Near the endpoint behind it, and its way not known: a probe first.
             item.rest = None;
@@ -566,12 +564,12 @@ impl CheckFlow {
                 length = p;
             }
         }
-        match io
+        match cx
             .ctl
-            .run_for_moving(io.model, item.motor, d, way, length, now)
+            .run_for_moving(cx.model, item.motor, d, way, length, now)
         {
             Ok(p) => {
-                io.out.packets.extend(p);
+                cx.out.packets.extend(p);
                 if item.leg < 2 {
                     // As planned; a run ended early at its endpoint says how long.
                     item.ran[item.leg] = item.probed + length;
@@ -580,7 +578,7 @@ impl CheckFlow {
             }
             Err(why) => {
                 let idx = item.idx;
-                if let Some(unseen) = io.ctl.unseen() {
+                if let Some(unseen) = cx.ctl.unseen() {
                     // Nobody can see the page: nothing moves until the person is back
                     // and asks (r), as after a run the same cause cut short.
                     let why = format!(
@@ -589,38 +587,38 @@ impl CheckFlow {
                         item.motor.name(),
                         unseen.describe()
                     );
-                    return self.motor_pause(&why, view, io);
+                    return self.pause(&why, view, cx);
                 }
-                match motor_check(io.model, item.motor, d, now) {
+                match motor_check(cx.model, item.motor, d, now) {
                     Err(StopReason::MotorFault(code)) => {
-                        self.known_faults.insert(item.motor.device_id());
-                        record(view, idx, MotorFinding::Faulted(code), io);
+                        shared.known_faults.insert(item.motor.device_id());
+                        record(view, idx, MotorFinding::Faulted(code), cx);
                     }
                     Err(StopReason::CommLost) => {
-                        self.trouble_ahead = Some("COMMUNICATION LOST".into());
-                        return;
+                        shared.trouble_ahead = Some("COMMUNICATION LOST".into());
+                        return Next::Stay;
                     }
                     // No position to go by (none fresh enough to keep it off its
                     // endpoint, or none at all): it waits, as a run cut short does,
                     // for the person to try again or skip it (which runs it back).
-                    Err(StopReason::MotorStatusLost) => return self.motor_pause(&why.0, view, io),
-                    _ if io
+                    Err(StopReason::MotorStatusLost) => return self.pause(&why.0, view, cx),
+                    _ if cx
                         .model
                         .flap_trim
                         .is_some_and(|st| st.age(now) > endpoints::POSITION_FRESH) =>
                     {
-                        return self.motor_pause(&why.0, view, io);
+                        return self.pause(&why.0, view, cx);
                     }
                     _ if view.motors[idx].outcome == Outcome::NotRun => {
                         view.motors[idx].outcome = Outcome::Skipped(why.0.clone());
-                        io.out
-                            .news
+                        cx.out
+                            .progress
                             .push(format!("– {}: {}", motor_name(item.motor), why.0));
                     }
                     _ => {}
                 }
                 // A run back that could not be made leaves it where it is: said so.
-                let pos = io
+                let pos = cx
                     .model
                     .live_flap_trim(now)
                     .map(|ft| position(item.motor, ft));
@@ -629,21 +627,24 @@ impl CheckFlow {
                     && (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN
                 {
                     let motor = item.motor;
-                    io.out
-                        .news
-                        .push(format!("  {}: not run back: {}", motor_name(motor), why.0));
-                    not_back(view, idx, motor, pos, p0, io);
+                    cx.out.progress.push(format!(
+                        "  {}: not run back: {}",
+                        motor_name(motor),
+                        why.0
+                    ));
+                    not_back(view, idx, motor, pos, p0, cx);
                 }
-                self.motor_next(idx + 1, view, io);
+                return Next::From(idx + 1);
             }
         }
+        Next::Stay
     }
 
     /// The motor under test waits for the person: `why` (a sentence without its
     /// full stop), then retry or skip.
-    fn motor_pause(&mut self, why: &str, view: &mut CheckView, io: &mut Io) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+    fn pause(&mut self, why: &str, view: &mut CheckView, cx: &mut CallContext) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         if !matches!(item.stage, Stage::Paused { .. }) {
             item.stage = Stage::Paused {
@@ -661,29 +662,36 @@ impl CheckFlow {
             time_left: None,
             keys: vec![("r", "retry"), ("s", "skip"), ("Esc", "stop")],
         });
-        io.out.news.push(format!("  {why}"));
+        cx.out.progress.push(format!("  {why}"));
+        Next::Stay
     }
 
-    pub(super) fn motors_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
-        let Phase::Motors(item) = &mut self.phase else {
-            return;
+    fn command_item(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         let idx = item.idx;
         match cmd {
             Command::SkipItem => {
-                io.out
+                cx.out
                     .packets
-                    .extend(io.ctl.stop(io.now, StopReason::OtherKey));
+                    .extend(cx.ctl.stop(cx.now, StopReason::OtherKey));
                 if view.motors[idx].outcome == Outcome::NotRun {
                     view.motors[idx].outcome = Outcome::Skipped("you skipped it".into());
-                    io.out
-                        .news
+                    cx.out
+                        .progress
                         .push(format!("– {}: skipped", motor_name(item.motor)));
                 }
                 item.skipped = true;
-                let pos = io
+                let pos = cx
                     .model
-                    .live_flap_trim(io.now)
+                    .live_flap_trim(cx.now)
                     .map(|ft| position(item.motor, ft));
                 // A test run cut short by this skip (or paused before it) counts
                 // for as far as it went, so the run back knows the way and the rate.
@@ -692,7 +700,7 @@ impl CheckFlow {
                 {
                     let ran = match item.stage {
                         Stage::Running { since, length } => {
-                            io.now.saturating_duration_since(since).min(length)
+                            cx.now.saturating_duration_since(since).min(length)
                         }
                         Stage::Paused { ran } => ran,
                         Stage::Settle { .. } => item.run,
@@ -705,17 +713,17 @@ impl CheckFlow {
                 match pos {
                     Some(pos) if item.p0.is_some() && item.leg < 3 => {
                         item.leg = 2;
-                        self.motor_return(pos, view, io)
+                        self.run_back(pos, view, cx, shared)
                     }
                     Some(pos) if let Some(p0) = item.p0 => {
                         // Skipped during the run back: it stays where it is.
                         if (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN {
                             let motor = item.motor;
-                            not_back(view, idx, motor, pos, p0, io);
+                            not_back(view, idx, motor, pos, p0, cx);
                         }
-                        self.motor_next(idx + 1, view, io)
+                        Next::From(idx + 1)
                     }
-                    _ => self.motor_next(idx + 1, view, io),
+                    _ => Next::From(idx + 1),
                 }
             }
             Command::Retry if matches!(item.stage, Stage::Paused { .. }) => {
@@ -726,20 +734,20 @@ impl CheckFlow {
                 if item.leg < 2 {
                     (item.rest, item.probes, item.probed) = (None, 0, Duration::ZERO);
                     let (d, length) = (item.dirs[item.leg], item.run);
-                    self.motor_run(d, length, None, view, io);
+                    self.run(d, length, None, view, cx, shared)
                 } else {
-                    let pos = io
+                    let pos = cx
                         .model
-                        .live_flap_trim(io.now)
+                        .live_flap_trim(cx.now)
                         .map(|ft| position(item.motor, ft));
                     item.leg = 2;
                     match pos {
-                        Some(pos) => self.motor_return(pos, view, io),
-                        None => self.motor_next(idx + 1, view, io),
+                        Some(pos) => self.run_back(pos, view, cx, shared),
+                        None => Next::From(idx + 1),
                     }
                 }
             }
-            _ => {}
+            _ => Next::Stay,
         }
     }
 }
@@ -756,13 +764,13 @@ fn running_prompt(motor: Motor) -> Prompt {
     }
 }
 
-/// The motor ends its item away from where the check found it: said in the news, and
+/// The motor ends its item away from where the check found it: said in the result_line, and
 /// in the result when it was skipped (a finding keeps its words; its positions show
 /// where it ended).
-fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, io: &mut Io) {
+fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, cx: &mut CallContext) {
     let words = format!("stopped at position {pos}, it was at {p0}: not run back");
-    io.out
-        .news
+    cx.out
+        .progress
         .push(format!("  {}: {words}", motor_name(motor)));
     let row = &mut view.motors[idx];
     if row.positions.last() != Some(&pos) {
@@ -776,11 +784,80 @@ fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, io:
     view.message = Some(format!("{}: {words}", motor_name(motor)));
 }
 
-fn record(view: &mut CheckView, idx: usize, f: MotorFinding, io: &mut Io) {
+fn record(view: &mut CheckView, idx: usize, f: MotorFinding, cx: &mut CallContext) {
     let row = &mut view.motors[idx];
     let what = motor_name(row.motor);
     let words = f.words();
-    io.out.news.push(news(f.mark(), &what, &words));
+    cx.out.progress.push(result_line(f.mark(), &what, &words));
     view.message = Some(format!("{what}: {words}"));
     row.outcome = Outcome::Found(f);
+}
+
+/// Step 4: the motors, one at a time.
+#[derive(Debug, Default)]
+pub(super) struct Motors {
+    item: Option<MotorItem>,
+}
+
+impl StepRun for Motors {
+    fn step(&self) -> Step {
+        Step::Motors
+    }
+
+    fn skipped_line(&self) -> &'static str {
+        "– Motors: skipped"
+    }
+
+    fn start(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        self.start_item(idx, view, cx, shared)
+    }
+
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+        self.tick_item(view, cx, shared)
+    }
+
+    fn command(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        self.command_item(cmd, view, cx, shared)
+    }
+
+    fn deadline(&self) -> Option<Instant> {
+        self.item.as_ref().and_then(MotorItem::deadline)
+    }
+
+    fn under_test(&self) -> Vec<u8> {
+        self.item.iter().map(|i| i.motor.device_id()).collect()
+    }
+
+    /// Stopped here for the check's own reason, unless stopped already (by the flow,
+    /// or the controller's own tick, whose reason stands); says where it stopped if
+    /// it had moved.
+    fn stop(&mut self, reason: StopReason, _view: &CheckView, cx: &mut CallContext) -> Stopped {
+        let Some(item) = &self.item else {
+            return Stopped::default();
+        };
+        cx.out.packets.extend(cx.ctl.stop(cx.now, reason));
+        Stopped {
+            powered: None,
+            left: item
+                .left_words(cx.model, cx.now)
+                .map(|words| LeftBehind::new(item.motor.device_id(), item.name(), words)),
+        }
+    }
+
+    #[cfg(test)]
+    fn stage(&self) -> String {
+        self.item.as_ref().map_or("", MotorItem::stage).into()
+    }
 }

@@ -21,9 +21,9 @@
 
 use std::time::{Duration, Instant};
 
+use super::state::{Excluded, Input, Planned, Step, Unasked};
 use crate::model::{Circuit, CircuitKind, Model, Motor, TrimKind};
 use crate::protocol::message::SwitchId;
-use crate::ui::check::state::{Excluded, Input, Planned, Step, Unasked};
 
 /// Words in a circuit's name that make the check suggest leaving it alone.
 pub const SUGGEST_EXCLUDING: [&str; 3] = ["pitot", "heat", "starter"];

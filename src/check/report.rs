@@ -2,22 +2,23 @@
 //! reads (on screen or printed: plain tables, symbols with their words, nothing that
 //! needs colour or a wide page of box art) and a CSV of every measurement for a
 //! spreadsheet. Both are named with the check's time, `vpx-check-2026-12-01T1830Z.md`
-//! and `.csv`, each there whole or not at all, never over an earlier report.
+//! and `.csv`. This builds their text; the app writes them (`app::check::report_files`),
+//! each there whole or not at all, never over an earlier report.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::SystemTime;
 
-use crate::files;
+use super::state::{
+    CheckView, CircuitFinding, CircuitResult, LeftBehind, LoadsView, Mark, Outcome, Step,
+    SwitchResult,
+};
+use super::words::{self, badge, switch_id as switch_text};
 use crate::loads::analysis::amps_text;
 use crate::loads::{Analysis, Figure, Phase};
 use crate::model::Motor;
 use crate::protocol::device;
 use crate::protocol::message::{SwitchId, Version};
-use crate::ui::check::state::{
-    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, Outcome, Step, SwitchResult,
-};
-use crate::ui::check::words::{self, badge, switch_id as switch_text};
 
 /// Where and when the check ran, beside what it found.
 #[derive(Debug, Clone, PartialEq)]
@@ -41,13 +42,6 @@ impl About {
     }
 }
 
-/// The two files written.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Written {
-    pub markdown: PathBuf,
-    pub csv: PathBuf,
-}
-
 /// `vpx-check-2026-12-01T1830Z`: the check's time in UTC to the minute, sortable and
 /// without the colons some file systems refuse.
 pub fn stem(when: SystemTime) -> String {
@@ -55,70 +49,10 @@ pub fn stem(when: SystemTime) -> String {
     format!("vpx-check-{}T{}{}Z", &t[..10], &t[11..13], &t[14..16])
 }
 
-/// Writes the Markdown report and the CSV into `dir`, creating the folder (and its
-/// parents) if it is missing: the report comes at the end of a check that took the
-/// builder many minutes, and refusing it then for a folder not made yet would lose
-/// it. (The headless check makes the folder before it starts, so a folder that cannot
-/// be made is said before anything is switched on; the path written is printed.)
-///
-/// Each file is written whole or not at all and never over another
-/// ([`crate::files::write_new`]): a second check in the same minute gets `-2`, `-3`…,
-/// the name chosen by the write itself, so a report that appears between choosing a
-/// name and writing it is never replaced. The two files share their name: when the
-/// CSV's is taken (a stray file), the Markdown just written is taken back and the next
-/// pair is tried; when the CSV cannot be written, the Markdown is taken back too, so a
-/// failed write leaves nothing behind.
-pub fn write(dir: &Path, view: &CheckView, about: &About) -> std::io::Result<Written> {
-    prepare(dir)?;
-    let stem = stem(about.when);
-    let (md_text, csv_text) = (markdown(view, about), csv(view, about));
-    for n in 1..1000 {
-        let name = if n == 1 {
-            stem.clone()
-        } else {
-            format!("{stem}-{n}")
-        };
-        let md = dir.join(format!("{name}.md"));
-        let csv_path = dir.join(format!("{name}.csv"));
-        if !files::write_new(&md, md_text.as_bytes())? {
-            continue;
-        }
-        match files::write_new(&csv_path, csv_text.as_bytes()) {
-            Ok(true) => {
-                return Ok(Written {
-                    markdown: md,
-                    csv: csv_path,
-                });
-            }
-            Ok(false) => {
-                let _ = std::fs::remove_file(&md);
-            }
-            Err(e) => {
-                let _ = std::fs::remove_file(&md);
-                return Err(e);
-            }
-        }
-    }
-    Err(std::io::Error::other(format!(
-        "{}: a thousand reports named {stem} already",
-        dir.display()
-    )))
-}
-
 /// The reports folder: `reports` beside the config file, with the load file. The
 /// audit log ([`crate::audit`]) is kept there too.
 pub fn default_dir() -> Option<std::path::PathBuf> {
     crate::loads::disk::default_path().and_then(|p| p.parent().map(|d| d.join("reports")))
-}
-
-/// Makes the report folder if it is missing; an error names the folder.
-pub fn prepare(dir: &Path) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| {
-        std::io::Error::new(
-            e.kind(),
-            format!("cannot make the report folder {}: {e}", dir.display()),
-        )
-    })
 }
 
 fn unit_text(v: Option<Version>) -> String {
@@ -330,7 +264,7 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
                 "It could not put everything back. It left these circuits so:\n\n\
                  | Circuit | Pin | Left |\n|---|---|---|\n",
             );
-            for (id, name, state) in &i.left {
+            for LeftBehind { id, name, state } in &i.left {
                 let pin = device::device(*id).map_or("?", |d| d.system_name);
                 let _ = writeln!(o, "| {} | {pin} | {} |", cell(name), cell(state));
             }
@@ -512,6 +446,15 @@ fn circuits(o: &mut String, view: &CheckView) {
          | Circuit | Pin | Breaker | Result | Current | What happened |\n|---|---|---|---|---|---|\n",
     );
     for c in &view.circuits {
+        // What the person saw of a light, beside its current; a disagreement in words.
+        let (mut current, mut what) = (measured(c), words::circuit(c));
+        if let Some(lit) = view.lit_of(c.id) {
+            let (seen, disagree) = words::lit_seen(c, lit);
+            current = format!("{current}, {seen}");
+            if let Some(d) = disagree {
+                what = format!("{what}; {d}");
+            }
+        }
         let _ = writeln!(
             o,
             "| {} | {} | {} | {} | {} | {} |",
@@ -519,8 +462,8 @@ fn circuits(o: &mut String, view: &CheckView) {
             c.pin,
             or_dash(c.breaker, |b| format!("{b} A")),
             badge(c.mark()),
-            measured(c),
-            cell(&words::circuit(c))
+            cell(&current),
+            cell(&what)
         );
     }
     o.push('\n');
@@ -755,7 +698,11 @@ pub fn csv(view: &CheckView, about: &About) -> String {
             c.mark(),
             amps,
             String::new(),
-            words::circuit(c),
+            match view.lit_of(c.id).map(|lit| words::lit_seen(c, lit)) {
+                Some((seen, Some(d))) => format!("{}; {seen}; {d}", words::circuit(c)),
+                Some((seen, None)) => format!("{}; {seen}", words::circuit(c)),
+                None => words::circuit(c),
+            },
         );
     }
     for m in &view.motors {
@@ -793,73 +740,6 @@ pub fn csv(view: &CheckView, about: &About) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut e: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        e.sort();
-        e
-    }
-
-    #[test]
-    fn a_name_half_taken_moves_both_files_to_the_next_name() {
-        let dir = tempfile::tempdir().unwrap();
-        let view = CheckView::default();
-        let about = About {
-            when: std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812),
-            port: "/dev/ttyUSB0".into(),
-            unit: None,
-            ours: "0.1.0".into(),
-            travel: vec![],
-        };
-        // A CSV left alone under the first name (its report deleted), a report alone
-        // under the second: the check's pair goes to the third, and neither is touched.
-        std::fs::write(dir.path().join("vpx-check-2026-12-01T1830Z.csv"), "old csv").unwrap();
-        std::fs::write(dir.path().join("vpx-check-2026-12-01T1830Z-2.md"), "old md").unwrap();
-        let w = write(dir.path(), &view, &about).unwrap();
-        assert_eq!(
-            w.markdown,
-            dir.path().join("vpx-check-2026-12-01T1830Z-3.md")
-        );
-        assert_eq!(w.csv, dir.path().join("vpx-check-2026-12-01T1830Z-3.csv"));
-        assert_eq!(
-            entries(dir.path()),
-            [
-                "vpx-check-2026-12-01T1830Z-2.md",
-                "vpx-check-2026-12-01T1830Z-3.csv",
-                "vpx-check-2026-12-01T1830Z-3.md",
-                "vpx-check-2026-12-01T1830Z.csv",
-            ]
-        );
-        let read = |n: &str| std::fs::read_to_string(dir.path().join(n)).unwrap();
-        assert_eq!(read("vpx-check-2026-12-01T1830Z.csv"), "old csv");
-        assert_eq!(read("vpx-check-2026-12-01T1830Z-2.md"), "old md");
-        assert_eq!(
-            read("vpx-check-2026-12-01T1830Z-3.md"),
-            markdown(&view, &about)
-        );
-    }
-
-    #[test]
-    fn a_missing_folder_is_made_and_one_that_cannot_be_is_named() {
-        let dir = tempfile::tempdir().unwrap();
-        let folder = dir.path().join("logs").join("checks");
-        prepare(&folder).unwrap();
-        assert!(folder.is_dir());
-        // A file where a folder must go.
-        let blocked = dir.path().join("file");
-        std::fs::write(&blocked, "x").unwrap();
-        let e = prepare(&blocked.join("reports")).unwrap_err().to_string();
-        assert!(
-            e.starts_with(&format!(
-                "cannot make the report folder {}: ",
-                blocked.join("reports").display()
-            )),
-            "{e}"
-        );
-    }
 
     #[test]
     fn a_name_is_the_minute_in_utc() {

@@ -15,13 +15,14 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
-use super::flow::{CheckFlow, Command, Io, Phase, circuit_on, next_step};
+use super::calls::Command;
 use super::plan;
+use super::state::Step;
+use super::state::{CheckView, Input, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult};
+use super::step::{CallContext, Next, Shared, StepRun, Stopped, circuit_on, result_line};
+use crate::control::StopReason;
 use crate::model::{CircuitState, Hold, Model, Motor, TrimKind};
 use crate::protocol::message::{SwitchId, SwitchInputs};
-use crate::ui::check::state::{
-    CheckView, Input, Mark, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult,
-};
 
 /// Every input SYSTEM_STATUS reports, for spotting one that changed instead.
 const ALL_INPUTS: [Input; 16] = [
@@ -145,58 +146,21 @@ impl SwitchItem {
     }
 }
 
-impl CheckFlow {
-    pub(super) fn switches_begin(&mut self, view: &mut CheckView, io: &mut Io, skipped: bool) {
-        if skipped {
-            for r in view
-                .switches
-                .iter_mut()
-                .filter(|r| r.outcome == Outcome::NotRun)
-            {
-                r.outcome = Outcome::Skipped("step skipped".into());
-            }
-            io.out.news.push("– Switch inputs: skipped".into());
-            return;
-        }
-        // What will not be asked, and why, before the first thing that is.
-        for u in &view.unasked {
-            io.out.news.push(format!("– {}", u.why));
-        }
-        self.switch_next(0, view, io);
-    }
-
-    /// Starts the first item from `from` not done yet, or the next step.
-    fn switch_next(&mut self, from: usize, view: &mut CheckView, io: &mut Io) {
-        if self
-            .opts
-            .skip
-            .contains(&crate::ui::check::state::Step::Switches)
-        {
-            for r in view
-                .switches
-                .iter_mut()
-                .filter(|r| r.outcome == Outcome::NotRun)
-            {
-                r.outcome = Outcome::Skipped("step skipped".into());
-            }
-        }
-        let Some(idx) =
-            (from..view.switches.len()).find(|&i| view.switches[i].outcome == Outcome::NotRun)
-        else {
-            self.phase = Phase::Done;
-            return self.enter_step(next_step(crate::ui::check::state::Step::Switches), view, io);
-        };
-        self.switch_start(idx, view, io);
-    }
-
-    fn switch_start(&mut self, idx: usize, view: &mut CheckView, io: &mut Io) {
+impl Switches {
+    fn start_item(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
         let row = &mut view.switches[idx];
         row.outcome = Outcome::NotRun;
         let item = SwitchItem {
             idx,
             input: row.input,
             circuits: row.circuits.clone(),
-            deadline: io.now + self.opts.timing.switch_timeout,
+            deadline: cx.now + shared.timing.switch_timeout,
             base: None,
             changed_at: None,
             returned: false,
@@ -205,7 +169,7 @@ impl CheckFlow {
             holds: BTreeMap::new(),
             others: Vec::new(),
             timed_out: false,
-            follow_wait: self.opts.timing.follow_wait,
+            follow_wait: shared.timing.follow_wait,
         };
         let names: Vec<String> = item.circuits.iter().map(|&i| view.name_of(i)).collect();
         let label = item.input.label();
@@ -221,39 +185,44 @@ impl CheckFlow {
             } else {
                 format!("{label} and {}", names.join(", "))
             },
-            time_left: Some(self.opts.timing.switch_timeout),
+            time_left: Some(shared.timing.switch_timeout),
             keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
         });
-        io.out.news.push(format!(
+        cx.out.progress.push(format!(
             "Switch inputs: {} (you have {} s)",
             view.prompt.as_ref().map_or("", |p| p.todo.as_str()),
-            self.opts.timing.switch_timeout.as_secs()
+            shared.timing.switch_timeout.as_secs()
         ));
-        self.phase = Phase::Switches(item);
-        self.switches_tick(view, io);
+        self.item = Some(item);
+        self.tick_item(view, cx, shared)
     }
 
-    pub(super) fn switches_tick(&mut self, view: &mut CheckView, io: &mut Io) {
-        let wall = self.wall();
-        let Phase::Switches(item) = &mut self.phase else {
-            return;
+    fn tick_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let wall = |at| shared.wall(at);
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
         };
         if item.timed_out {
-            return;
+            return Next::Stay;
         }
-        let now = io.now;
-        let Some(sys) = io.model.live_system(now) else {
-            return;
+        let now = cx.now;
+        let Some(sys) = cx.model.live_system(now) else {
+            return Next::Stay;
         };
         let cur = sys.switches;
         let Some((base, base_on)) = &item.base else {
             let on = item
                 .circuits
                 .iter()
-                .map(|&id| (id, circuit_on(io.model, now, id).unwrap_or(false)))
+                .map(|&id| (id, circuit_on(cx.model, now, id).unwrap_or(false)))
                 .collect();
             item.base = Some((cur, on));
-            return;
+            return Next::Stay;
         };
         if item.input.is_on(&cur) != item.input.is_on(base) {
             item.changed_at.get_or_insert(now);
@@ -278,10 +247,10 @@ impl CheckFlow {
             .into_iter()
             .find(|&i| i != item.input && i.is_on(&cur) != i.is_on(base));
         for (id, was) in base_on {
-            if let Some(h) = io.model.hold(*id) {
+            if let Some(h) = cx.model.hold(*id) {
                 item.holds.insert(*id, h);
             }
-            if circuit_on(io.model, now, *id).is_none_or(|on| on == *was) {
+            if circuit_on(cx.model, now, *id).is_none_or(|on| on == *was) {
                 continue;
             }
             match (this_away, other_away) {
@@ -300,9 +269,9 @@ impl CheckFlow {
         let all_followed = item.followed.len() == item.circuits.len();
         let finding = match item.changed_at {
             Some(at)
-                if item.returned && (all_followed || now >= at + self.opts.timing.follow_wait) =>
+                if item.returned && (all_followed || now >= at + shared.timing.follow_wait) =>
             {
-                Some(follow_finding(item, io.model, now, &wall))
+                Some(follow_finding(item, cx.model, now, &wall))
             }
             None if item.others.iter().any(|(_, back)| *back) => Some(SwitchFinding::OtherChanged(
                 item.others.iter().map(|(i, _)| *i).collect(),
@@ -311,12 +280,12 @@ impl CheckFlow {
         };
         if let Some(f) = finding {
             let idx = item.idx;
-            record(view, idx, f, io);
-            return self.switch_next(idx + 1, view, io);
+            record(view, idx, f, cx);
+            return Next::From(idx + 1);
         }
         if now >= item.deadline {
             let f = if item.changed_at.is_some() {
-                follow_finding(item, io.model, now, &wall)
+                follow_finding(item, cx.model, now, &wall)
             } else if !item.others.is_empty() {
                 SwitchFinding::OtherChanged(item.others.iter().map(|(i, _)| *i).collect())
             } else {
@@ -325,7 +294,7 @@ impl CheckFlow {
             item.timed_out = true;
             let idx = item.idx;
             let label = item.input.label();
-            record(view, idx, f, io);
+            record(view, idx, f, cx);
             view.prompt = Some(Prompt {
                 todo: format!("Time is up for {label}. r: try it again; Enter: go on to the next."),
                 watching: String::new(),
@@ -337,28 +306,35 @@ impl CheckFlow {
                     ("Esc", "stop"),
                 ],
             });
-            io.out
-                .news
+            cx.out
+                .progress
                 .push(format!("  {label}: time is up (r: retry, Enter: next)"));
         }
+        Next::Stay
     }
 
-    pub(super) fn switches_command(&mut self, cmd: Command, view: &mut CheckView, io: &mut Io) {
-        let Phase::Switches(item) = &self.phase else {
-            return;
+    fn command_item(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &self.item else {
+            return Next::Stay;
         };
         let (idx, timed_out) = (item.idx, item.timed_out);
         match cmd {
             Command::SkipItem => {
                 view.switches[idx].outcome = Outcome::Skipped("you skipped it".into());
-                io.out
-                    .news
+                cx.out
+                    .progress
                     .push(format!("– {}: skipped", view.switches[idx].input.label()));
-                self.switch_next(idx + 1, view, io);
+                Next::From(idx + 1)
             }
-            Command::Retry => self.switch_start(idx, view, io),
-            Command::Enter if timed_out => self.switch_next(idx + 1, view, io),
-            _ => {}
+            Command::Retry => self.start_item(idx, view, cx, shared),
+            Command::Enter if timed_out => Next::From(idx + 1),
+            _ => Next::Stay,
         }
     }
 }
@@ -421,17 +397,83 @@ fn input_switch(input: Input) -> Option<SwitchId> {
     }
 }
 
-fn record(view: &mut CheckView, idx: usize, f: SwitchFinding, io: &mut Io) {
+fn record(view: &mut CheckView, idx: usize, f: SwitchFinding, cx: &mut CallContext) {
     let name_of = |id| view.name_of(id);
     let words = f.words(&name_of);
     let mark = f.mark();
     let label = view.switches[idx].input.label();
-    io.out.news.push(news(mark, &label, &words));
+    cx.out.progress.push(result_line(mark, &label, &words));
     view.message = Some(format!("{label}: {words}"));
     view.switches[idx].outcome = Outcome::Found(f);
 }
 
-/// A result as a headless run prints it: "✓ PASS switch 3: …".
-pub(super) fn news(mark: Mark, what: &str, words: &str) -> String {
-    format!("{} {} {what}: {words}", mark.symbol(), mark.word())
+/// Step 2: the switch inputs, one at a time.
+#[derive(Debug, Default)]
+pub(super) struct Switches {
+    item: Option<SwitchItem>,
+}
+
+impl StepRun for Switches {
+    fn step(&self) -> Step {
+        Step::Switches
+    }
+
+    fn skipped_line(&self) -> &'static str {
+        "– Switch inputs: skipped"
+    }
+
+    fn says_skip_midway(&self) -> bool {
+        false
+    }
+
+    /// What will not be asked, and why, before the first thing that is.
+    fn begin(&mut self, view: &mut CheckView, cx: &mut CallContext, _shared: &mut Shared) {
+        for u in &view.unasked {
+            cx.out.progress.push(format!("– {}", u.why));
+        }
+    }
+
+    fn start(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        self.start_item(idx, view, cx, shared)
+    }
+
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+        self.tick_item(view, cx, shared)
+    }
+
+    fn command(
+        &mut self,
+        cmd: Command,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        self.command_item(cmd, view, cx, shared)
+    }
+
+    fn deadline(&self) -> Option<Instant> {
+        self.item.as_ref().and_then(SwitchItem::deadline)
+    }
+
+    fn under_test(&self) -> Vec<u8> {
+        self.item
+            .as_ref()
+            .map_or_else(Vec::new, |i| i.circuits().to_vec())
+    }
+
+    /// Nothing of a switch input is powered by the check: nothing to stop.
+    fn stop(&mut self, _reason: StopReason, _view: &CheckView, _io: &mut CallContext) -> Stopped {
+        Stopped::default()
+    }
+
+    #[cfg(test)]
+    fn stage(&self) -> String {
+        self.item.as_ref().map_or("", SwitchItem::stage).into()
+    }
 }

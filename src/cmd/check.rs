@@ -8,10 +8,10 @@ use std::path::PathBuf;
 use clap::Args;
 
 use crate::app::{CheckEnd, HeadlessCheck, run_headless};
+use crate::check::state::Step;
 use crate::check::{Choices, Options};
 use crate::cmd::common::PortArgs;
 use crate::program::UsageError;
-use crate::ui::check::state::Step;
 
 /// How the check ended, carried to `main` for the exit status; its text is the
 /// one-line verdict printed last.
@@ -106,7 +106,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<()> {
     // A report folder that cannot be made is said now, before the port is opened,
     // not at the end of the check when the report would be lost.
     if let Some(dir) = &h.report {
-        crate::check::report::prepare(dir).map_err(|e| UsageError(format!("--report: {e}")))?;
+        crate::app::prepare_report_dir(dir).map_err(|e| UsageError(format!("--report: {e}")))?;
     }
     match run_headless(h)? {
         CheckEnd::Passed => Ok(()),

@@ -9,11 +9,10 @@ use std::time::Duration;
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::{PITCH, Rig, pitch_at, pitch_ctx};
+use crate::check::state::{MotorFinding, Outcome as Found, Step};
+use crate::control::run_state::ReleaseMode;
 use crate::control::{Controller, Direction, Outcome, StopReason, StreamerConfig};
 use crate::protocol::message::Message;
-use crate::ui::check::state::{MotorFinding, Outcome as Found, Step};
-use crate::ui::state::ReleaseMode;
-use crate::xfsp::drive::MotorDrive;
 
 const STOPPED: &str =
     "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped";
@@ -299,20 +298,20 @@ fn the_check_stops_its_run_and_the_keys_then_refuse_it() {
     let seen = r.check_watching(PITCH, 3000);
     let lo = *seen.iter().min().unwrap();
     let hi = *seen.iter().max().unwrap();
-    assert!(lo >= 123 && hi <= 133, "{lo}..{hi}: {:?}", r.news);
+    assert!(lo >= 123 && hi <= 133, "{lo}..{hi}: {:?}", r.progress);
     let m = &r.view.motors[1];
     assert_eq!(
         m.outcome,
         Found::Found(MotorFinding::Reversed),
         "{:?}",
-        r.news
+        r.progress
     );
     assert!(
-        r.news.iter().any(|n| n.contains(
+        r.progress.iter().any(|n| n.contains(
             "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped"
         )),
         "{:?}",
-        r.news
+        r.progress
     );
     r.run(500);
     let out = r.key('d', KeyEventKind::Press, false);
@@ -332,7 +331,7 @@ fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
     let at = r.pitch_pos();
     r.start();
     r.run_until(20_000, |r| r.view.step == Step::Done);
-    assert!(r.trim_moves_since(from).is_empty(), "{:?}", r.news);
+    assert!(r.trim_moves_since(from).is_empty(), "{:?}", r.progress);
     assert_eq!(r.pitch_pos(), at);
     let m = &r.view.motors[1];
     assert_eq!(m.outcome, Found::Found(MotorFinding::Reversed));
@@ -348,56 +347,6 @@ fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
             .unwrap_err()
             .0
             .contains("not run: confirm a run at the page")
-    );
-}
-
-/// The XFSp gateway's drive, sharing the page's record: a network run nose-up is
-/// stopped within a few counts as moving against its command (the words in the
-/// event log), and the page's keys then refuse it; the network is refused what the
-/// keys saw.
-#[test]
-fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
-    let mut r = rig(128);
-    let mut drive = MotorDrive::new(StreamerConfig::default());
-    drive.share_against(r.ctl.against());
-    let mut seen = Vec::new();
-    for i in 0..200 {
-        if i % 25 == 0 {
-            // PTRIMREQ +50000: nose up, toward 30 (raw ~78), repeated at 4 Hz.
-            drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
-        }
-        let p = drive.tick(&mut r.model, r.now);
-        r.send(p);
-        seen.extend(r.run_watching(10, PITCH));
-    }
-    let hi = *seen.iter().max().unwrap();
-    assert!((131..=134).contains(&hi), "went down to {hi}");
-    assert!(drive.running().is_none());
-    assert!(
-        r.model.events.iter().any(|e| e
-            .text
-            .contains("it moved down when asked up: its leads or its sensor")),
-        "{:?}",
-        r.model.events
-    );
-    let out = r.key('u', KeyEventKind::Press, false);
-    assert!(out.packets.is_empty());
-    assert!(out.notice.unwrap().contains("press u again"));
-
-    // The other way round: the keys saw the flaps' record... here the pitch trim's,
-    // so a fresh drive sharing it refuses a request for it, nothing sent.
-    let mut other = MotorDrive::new(StreamerConfig::default());
-    other.share_against(r.ctl.against());
-    other.request(PITCH, -50_000, 0x43, None, r.now);
-    let p = other.tick(&mut r.model, r.now);
-    assert!(p.is_empty(), "{p:?}");
-    assert!(
-        r.model
-            .events
-            .iter()
-            .any(|e| e.text.contains("0x0043") && e.text.contains("not run: confirm")),
-        "{:?}",
-        r.model.events
     );
 }
 
@@ -501,43 +450,4 @@ fn a_motor_that_never_shows_its_way_is_only_probed_while_held() {
     assert!(r.ctl.running().is_none());
     assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Released);
     assert_eq!(r.unit.snapshot(r.now).roll_trim_position, 205);
-}
-
-/// The XFSp gateway's drive, the same reversed trim parked at 220: a network run
-/// nose-up starts as probes and never takes it past 220 beyond the one count of
-/// noise; stopped as moving against its command, said in the event log.
-#[test]
-fn the_gateway_probes_a_network_run_near_the_endpoint_behind_it() {
-    let mut r = rig(220);
-    let mut drive = MotorDrive::new(StreamerConfig::default());
-    drive.share_against(r.ctl.against());
-    let from = r.sent.len();
-    let mut seen = vec![r.pitch_pos()];
-    for i in 0..150 {
-        if i % 25 == 0 {
-            drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
-        }
-        let p = drive.tick(&mut r.model, r.now);
-        r.send(p);
-        seen.extend(r.run_watching(10, PITCH));
-    }
-    let most = *seen.iter().max().unwrap();
-    assert!(most <= 221, "past 220 to {most}: {seen:?}");
-    assert!(drive.running().is_none());
-    let events: Vec<&str> = r.model.events.iter().map(|e| e.text.as_str()).collect();
-    assert!(
-        events
-            .iter()
-            .any(|e| e.contains("pitch trim near its down endpoint: trying a short run first")),
-        "{events:?}"
-    );
-    assert!(
-        events
-            .iter()
-            .any(|e| e.contains("it moved down when asked up: its leads or its sensor")),
-        "{events:?}"
-    );
-    let moves = r.trim_moves_since(from);
-    assert!(moves[0] && !moves.last().unwrap(), "{moves:?}");
-    assert_eq!(r.ctl.against().seen(PITCH), Some(Direction::Up));
 }

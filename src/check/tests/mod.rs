@@ -6,17 +6,19 @@ use std::time::{Duration, Instant};
 
 mod against;
 
-use super::flow::{Cause, CheckFlow, Command, Options};
+use super::flow::{Cause, CheckFlow, Options};
 use super::plan::Choices;
+use super::{Command, Timing};
+use crate::check::state::{
+    CheckView, CircuitFinding, Input, LeftBehind, Mark, MotorFinding, NotFollowed, Outcome, Step,
+    SwitchFinding,
+};
 use crate::control::{Controller, StopReason};
 use crate::model::{Model, Motor, Setting, Source, TrimKind};
 use crate::protocol::FaultCode;
 use crate::protocol::decoder::{Decoder, Event};
 use crate::protocol::message::{Message, Packet, SwitchId};
 use crate::sim::{Scenario, SimCommand, Unit, UnitOptions};
-use crate::ui::check::state::{
-    CheckView, CircuitFinding, Input, Mark, MotorFinding, NotFollowed, Outcome, Step, SwitchFinding,
-};
 
 /// A small aircraft: one circuit of each kind the findings need.
 fn scenario() -> String {
@@ -111,7 +113,7 @@ struct Rig {
     now: Instant,
     /// Every packet that went to the unit, with when.
     sent: Vec<(Duration, Packet)>,
-    news: Vec<String>,
+    progress: Vec<String>,
     /// How many times the flow said the check ended (the app writes a report each).
     ended: u32,
     /// Drop DEVICE_POWER on the way (a unit that does not act on it).
@@ -150,7 +152,7 @@ impl Rig {
             t0,
             now: t0,
             sent: Vec::new(),
-            news: Vec::new(),
+            progress: Vec::new(),
             ended: 0,
             deaf_to_power: false,
             cut: false,
@@ -218,10 +220,26 @@ impl Rig {
             let out = self
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
-            self.news.extend(out.news);
-            self.ended += u32::from(out.ended);
-            self.send(out.packets);
+            self.take(out);
         }
+    }
+
+    /// What a call gave back: its progress and packets; a load file to open is
+    /// opened here, as the app does, and the flow told in the same turn.
+    fn take(&mut self, mut out: crate::check::Effects) {
+        if let Some(req) = out.open_loads.take() {
+            let opened = crate::loads::disk::open_or_create(&req.path, &req.circuits);
+            out.absorb(self.flow.loads_opened(
+                opened,
+                &mut self.view,
+                &self.model,
+                &mut self.ctl,
+                self.now,
+            ));
+        }
+        self.progress.extend(out.progress);
+        self.ended += u32::from(out.ended);
+        self.send(out.packets);
     }
 
     /// Runs until `done` holds, at most `ms`.
@@ -243,9 +261,7 @@ impl Rig {
         let out = self
             .flow
             .command(c, &mut self.view, &self.model, &mut self.ctl, self.now);
-        self.news.extend(out.news);
-        self.ended += u32::from(out.ended);
-        self.send(out.packets);
+        self.take(out);
     }
 
     fn interrupt(&mut self, cause: Cause, may_wait: bool) {
@@ -257,9 +273,7 @@ impl Rig {
             &mut self.ctl,
             self.now,
         );
-        self.news.extend(out.news);
-        self.ended += u32::from(out.ended);
-        self.send(out.packets);
+        self.take(out);
     }
 
     fn flip(&mut self, n: u8, on: bool) {
@@ -510,9 +524,9 @@ fn a_switch_that_works_passes_once_its_circuits_followed() {
         &Outcome::Found(SwitchFinding::Passed)
     );
     assert!(
-        r.news.iter().any(|n| n.starts_with("✓ PASS switch 2")),
+        r.progress.iter().any(|n| n.starts_with("✓ PASS switch 2")),
         "{:?}",
-        r.news
+        r.progress
     );
     assert!(r.powers(4).is_empty(), "the switch step sends nothing");
 }
@@ -567,10 +581,9 @@ fn a_switch_never_flipped_times_out_and_can_be_retried() {
         r.switch(Input::FlapUp),
         &Outcome::Found(SwitchFinding::Changed)
     );
-    let words =
-        crate::ui::check::words::switch(&r.view.switches[r.view.current.unwrap() - 1], |id| {
-            r.view.name_of(id)
-        });
+    let words = crate::check::words::switch(&r.view.switches[r.view.current.unwrap() - 1], |id| {
+        r.view.name_of(id)
+    });
     assert_eq!(words, "the input changed (no circuit is assigned to it)");
 }
 
@@ -619,7 +632,7 @@ fn another_input_changing_instead_is_a_crossed_pair() {
         &Outcome::Found(SwitchFinding::OtherChanged(vec![Input::Switch(3)]))
     );
     assert!(
-        r.news
+        r.progress
             .iter()
             .any(|n| n.contains("switch 3 changed instead: switches crossed"))
     );
@@ -1116,7 +1129,7 @@ fn quit_that_cannot_wait_says_the_circuit_was_sent_off_unconfirmed() {
     assert_eq!(i.cause, "ended by a signal (SIGTERM)");
     assert_eq!(
         i.left,
-        vec![(
+        vec![LeftBehind::new(
             17,
             "Landing Lt".to_string(),
             "ON when the check stopped: DEVICE_POWER off sent, not confirmed".to_string()
@@ -1136,7 +1149,7 @@ fn communication_lost_mid_circuit_leaves_it_unknown() {
     assert_eq!(i.cause, "COMMUNICATION LOST");
     assert_eq!(
         i.left,
-        vec![(
+        vec![LeftBehind::new(
             17,
             "Landing Lt".to_string(),
             "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)"
@@ -1156,9 +1169,9 @@ fn a_link_that_cannot_send_ends_the_check() {
     assert!(r.flow.finished());
     let i = r.view.interrupted.clone().unwrap();
     assert_eq!(i.cause, "the link could not send: Input/output error");
-    assert_eq!(i.left[0].0, 17);
+    assert_eq!(i.left[0].id, 17);
     assert_eq!(
-        i.left[0].2,
+        i.left[0].state,
         "unknown: it was ON; DEVICE_POWER off sent, not confirmed (the link could not send)"
     );
 }
@@ -1210,9 +1223,9 @@ fn quit_mid_motor_run_sends_its_stop_and_says_where_it_was_left() {
     );
     let i = r.view.interrupted.clone().unwrap();
     assert_eq!(i.left.len(), 1, "{:?}", i.left);
-    assert_eq!(i.left[0].0, 0);
+    assert_eq!(i.left[0].id, 0);
     assert!(
-        i.left[0].2.contains("it was at 20: not run back"),
+        i.left[0].state.contains("it was at 20: not run back"),
         "{:?}",
         i.left
     );
@@ -1295,7 +1308,7 @@ fn the_whole_check_in_order_with_results_as_they_come() {
     assert!(r.view.interrupted.is_none());
     assert_eq!(r.view.step, Step::Done);
     let order: Vec<&str> = r
-        .news
+        .progress
         .iter()
         .filter_map(|n| {
             if n.contains("Landing Lt") {
@@ -1309,8 +1322,8 @@ fn the_whole_check_in_order_with_results_as_they_come() {
             }
         })
         .collect();
-    assert_eq!(order, vec!["circuit", "motor", "loads"], "{:?}", r.news);
-    assert!(r.news.last().unwrap().starts_with("Check complete"));
+    assert_eq!(order, vec!["circuit", "motor", "loads"], "{:?}", r.progress);
+    assert!(r.progress.last().unwrap().starts_with("Check complete"));
 }
 
 // ===== check-motors: DEVICE_POWER through control's rules, motors at their endpoints =====
@@ -1337,9 +1350,7 @@ impl Rig {
             let out = self
                 .flow
                 .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
-            self.news.extend(out.news);
-            self.ended += u32::from(out.ended);
-            self.send(out.packets);
+            self.take(out);
         }
     }
 }
@@ -1359,7 +1370,11 @@ fn a_circuit_the_page_may_not_switch_is_not_switched_and_says_why() {
     let words = "not switched: Nav Lt's state is not known yet";
     assert_eq!(r.circuit(4), &Outcome::Skipped(words.to_string()));
     assert!(r.powers(4).is_empty(), "nothing on the wire for it");
-    assert!(r.news.iter().any(|n| n.contains(words)), "{:?}", r.news);
+    assert!(
+        r.progress.iter().any(|n| n.contains(words)),
+        "{:?}",
+        r.progress
+    );
     for id in [5, 17, 18] {
         assert!(
             matches!(r.circuit(id), Outcome::Skipped(w) if w.starts_with("not switched: ")),
@@ -1496,7 +1511,7 @@ fn pitch_ctx(setup: bool) -> crate::control::KeyContext {
 #[test]
 fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_screens() {
     use crate::control::StreamerConfig;
-    use crate::ui::state::ReleaseMode;
+    use crate::control::run_state::ReleaseMode;
     use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
     for setup in [false, true] {
         let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());
@@ -1569,18 +1584,18 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
         let m = &r.view.motors[1];
         assert_eq!(m.outcome, Outcome::Found(MotorFinding::Reversed), "{m:?}");
         assert!(
-            r.news.iter().any(|n| n.contains(
+            r.progress.iter().any(|n| n.contains(
                 "pitch trim moved up when asked down: its leads or its \
                                      sensor may be swapped; stopped"
             )),
             "{:?}",
-            r.news
+            r.progress
         );
         let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
         assert!(
             (back - i32::from(at)).abs() <= super::motors::BACK_WITHIN,
             "from {at}: left at {back}; {m:?} {:?}",
-            r.news
+            r.progress
         );
     }
 }
@@ -1598,13 +1613,17 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
         let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
         let seen = r.check_watching(PITCH, 3000);
         let lowest = *seen.iter().min().unwrap();
-        assert!(lowest >= floor, "from {at}: down to {lowest}; {:?}", r.news);
+        assert!(
+            lowest >= floor,
+            "from {at}: down to {lowest}; {:?}",
+            r.progress
+        );
         let m = &r.view.motors[1];
         assert_eq!(
             m.outcome,
             Outcome::Found(MotorFinding::Reversed),
             "{m:?} {:?}",
-            r.news
+            r.progress
         );
         // Every TRIM_MOVE on is followed by its off: no run ended by starving.
         let moves: Vec<(u128, bool)> = r
@@ -1632,7 +1651,7 @@ fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
         m.outcome,
         Outcome::Found(MotorFinding::Moves),
         "{m:?} {:?}",
-        r.news
+        r.progress
     );
     assert!(m.positions[1] >= 40, "the rest of the run was made: {m:?}");
     let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
@@ -1667,11 +1686,11 @@ fn flap_runs_longer_than_their_room_stop_at_both_endpoints() {
         Outcome::Found(MotorFinding::Moves)
     );
     assert!(
-        r.news
+        r.progress
             .iter()
             .any(|n| n.contains("stopped at its endpoint (20)")),
         "{:?}",
-        r.news
+        r.progress
     );
     r.run_until(20_000, |r| r.view.step == Step::Done);
     let back = i32::from(r.unit.snapshot(r.now).flap_position);
@@ -1816,11 +1835,11 @@ fn an_input_that_also_powers_something_left_alone_is_never_asked() {
         );
     }
     assert!(
-        r.news
+        r.progress
             .iter()
             .any(|n| n == "– switch 4 also powers Pitot Heat (excluded): not asked"),
         "{:?}",
-        r.news
+        r.progress
     );
     // The person does every input asked for; none of them is 1, 4 or 7, and nothing
     // on those switches is ever switched.
@@ -2018,7 +2037,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
     let mut r = Rig::with(
         &scenario(),
         Options {
-            timing: super::flow::Timing {
+            timing: Timing {
                 follow_wait: Duration::from_secs(8),
                 ..Default::default()
             },
@@ -2035,7 +2054,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
     r.model.apply_packet(r.now, &Packet::from_vpx(0, stale));
     r.flow = CheckFlow::new(
         Options {
-            timing: super::flow::Timing {
+            timing: Timing {
                 follow_wait: Duration::from_secs(8),
                 ..Default::default()
             },
@@ -2099,11 +2118,11 @@ fn the_steps_after_the_switches_run_once_when_skipped() {
     r.start();
     r.cmd(Command::SkipStep);
     assert_eq!(r.view.step, Step::Done);
-    let count = |s: &str| r.news.iter().filter(|n| n.starts_with(s)).count();
-    assert_eq!(count("Check complete"), 1, "{:?}", r.news);
-    assert_eq!(count("– Circuits: skipped"), 1, "{:?}", r.news);
-    assert_eq!(count("– Motors: skipped"), 1, "{:?}", r.news);
-    assert_eq!(count("– Load analysis: skipped"), 1, "{:?}", r.news);
+    let count = |s: &str| r.progress.iter().filter(|n| n.starts_with(s)).count();
+    assert_eq!(count("Check complete"), 1, "{:?}", r.progress);
+    assert_eq!(count("– Circuits: skipped"), 1, "{:?}", r.progress);
+    assert_eq!(count("– Motors: skipped"), 1, "{:?}", r.progress);
+    assert_eq!(count("– Load analysis: skipped"), 1, "{:?}", r.progress);
 }
 
 // ----- the page unseen -----
@@ -2288,7 +2307,7 @@ fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
 fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
     type Reach = fn(&mut Rig);
     let short_switch = || Options {
-        timing: super::flow::Timing {
+        timing: Timing {
             switch_timeout: Duration::from_secs(2),
             ..Default::default()
         },
@@ -2401,4 +2420,153 @@ fn a_check_that_finishes_ends_once() {
     r.cmd(Command::Stop);
     r.run(500);
     assert_eq!(r.ended, 1);
+}
+
+/// Issue 25: each light (Nav Lt, Strobe, Landing Lt here; not EFIS or the
+/// alternators) is asked "Is it lit?" while the check has it on, the answers offered
+/// as plain data; the answer goes into the report beside the current, and where it
+/// disagrees with the current (Strobe draws nothing yet is seen lit; Nav Lt draws
+/// 1.5 A yet is seen dark) the report says so in words.
+#[test]
+fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
+    use std::collections::BTreeSet;
+    let mut r = Rig::new(Rig::circuits_only());
+    r.start();
+    let said = |id: u8| match id {
+        4 => Some(false),
+        5 | 17 => Some(true),
+        _ => None,
+    };
+    let (mut asked, mut on_test, mut answered) =
+        (BTreeSet::new(), BTreeSet::new(), BTreeSet::new());
+    let mut nav_prompt = None;
+    for _ in 0..6000 {
+        if r.view.step != Step::Circuits {
+            break;
+        }
+        if let Some(c) = r.view.current.and_then(|i| r.view.circuits.get(i)).cloned() {
+            on_test.insert(c.id);
+            let ids: Vec<&str> = r.view.prompt_answers().iter().map(|a| a.id).collect();
+            if ids.contains(&"lit_yes") && ids.contains(&"lit_no") {
+                asked.insert(c.id);
+                if c.id == 4 && nav_prompt.is_none() {
+                    let p = r.view.prompt.clone().unwrap();
+                    nav_prompt = Some(format!(
+                        "todo: {}\nkeys: {:?}\nanswers: {:?}",
+                        p.todo,
+                        p.keys,
+                        r.view.prompt_answers()
+                    ));
+                }
+                // Answered once the unit shows it on, as a person would.
+                if !answered.contains(&c.id)
+                    && r.model
+                        .live_devices(r.now)
+                        .is_some_and(|d| d.on[c.id as usize])
+                    && let Some(lit) = said(c.id)
+                {
+                    r.cmd(Command::Lit(lit));
+                    answered.insert(c.id);
+                }
+            } else if !asked.contains(&c.id) {
+                // Not a light: a "lit" answer is not taken.
+                r.cmd(Command::Lit(true));
+            }
+        }
+        r.run(10);
+    }
+    assert!(on_test.contains(&2), "EFIS was tested: {on_test:?}");
+    assert_eq!(asked, BTreeSet::from([4, 5, 17]));
+    assert_eq!(r.view.lit_of(4), Some(false));
+    assert_eq!(r.view.lit_of(5), Some(true));
+    assert_eq!(r.view.lit_of(17), Some(true));
+    assert_eq!(r.view.lit.len(), 3, "{:?}", r.view.lit);
+    assert!(
+        r.progress.iter().any(|l| l == "  Nav Lt: you saw it dark"),
+        "{:?}",
+        r.progress
+    );
+    insta::assert_snapshot!("nav_light_is_it_lit_prompt", nav_prompt.unwrap());
+
+    r.run_until(20_000, |r| r.flow.finished());
+    let about = super::report::About {
+        when: std::time::UNIX_EPOCH + Duration::from_secs(1_796_149_812),
+        port: "sim".into(),
+        unit: None,
+        ours: "0".into(),
+        travel: vec![],
+    };
+    let md = super::report::markdown(&r.view, &about);
+    let row = |name: &str| {
+        md[md.find("## Circuits").unwrap()..]
+            .lines()
+            .find(|l| l.starts_with(&format!("| {name} |")))
+            .unwrap_or_else(|| panic!("no row for {name}:\n{md}"))
+            .to_string()
+    };
+    let nav = row("Nav Lt");
+    assert!(nav.contains("| 1.5 A, seen dark |"), "{nav}");
+    assert!(
+        nav.contains("the unit read 1.5 A, yet you saw it dark: the two disagree"),
+        "{nav}"
+    );
+    let strobe = row("Strobe");
+    assert!(strobe.contains("| 0 A, seen lit |"), "{strobe}");
+    assert!(
+        strobe.contains("you saw it lit, yet the unit read no current: the two disagree"),
+        "{strobe}"
+    );
+    let landing = row("Landing Lt");
+    assert!(landing.contains(", seen lit |"), "{landing}");
+    assert!(!landing.contains("disagree"), "{landing}");
+    let efis = row("EFIS");
+    assert!(!efis.contains("seen"), "{efis}");
+    let csv = super::report::csv(&r.view, &about);
+    assert!(
+        csv.lines()
+            .any(|l| l.contains(",Strobe,") && l.contains("seen lit; you saw it lit, yet")),
+        "{csv}"
+    );
+}
+
+/// Issue 23: the flow writes no file. Reaching the load analysis it asks the app to
+/// open the load file (`Effects::open_loads`, with the circuits its template lists)
+/// and waits, the file untouched; handed the result, it goes on to the report.
+#[test]
+fn the_load_analysis_asks_the_app_to_open_the_file_and_writes_nothing_itself() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("loads.toml");
+    let mut r = Rig::new(Options {
+        skip: vec![Step::Switches, Step::Circuits, Step::Motors],
+        loads_file: Some(path.clone()),
+        ..Options::default()
+    });
+    let out = r
+        .flow
+        .command(Command::Enter, &mut r.view, &r.model, &mut r.ctl, r.now);
+    let req = out
+        .open_loads
+        .clone()
+        .expect("the flow asks for the load file");
+    assert_eq!(req.path, path);
+    assert!(req.circuits.iter().any(|c| c.name == "Landing Lt"));
+    assert!(!out.ended && !r.flow.finished());
+    assert!(!path.exists(), "the flow wrote the load file itself");
+    assert_eq!(r.flow.next_deadline(), None);
+    let opened = crate::loads::disk::open_or_create(&req.path, &req.circuits);
+    let done = r
+        .flow
+        .loads_opened(opened, &mut r.view, &r.model, &mut r.ctl, r.now);
+    assert!(done.ended && r.flow.finished());
+    assert_eq!(
+        r.view.loads,
+        Some(crate::check::state::LoadsView::TemplateWritten(
+            path.clone()
+        ))
+    );
+    assert!(
+        done.progress.iter().any(|l| l.contains("its template")),
+        "{:?}",
+        done.progress
+    );
 }

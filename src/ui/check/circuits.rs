@@ -11,8 +11,9 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
-use super::state::{BreakerLoad, CheckView, CircuitResult};
-use super::{fit, progress_span, progress_words, section, words, words_style};
+use super::{fit, progress_span, progress_words, section, words_style};
+use crate::check::state::{BreakerLoad, CheckView, CircuitResult};
+use crate::check::words;
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::Tenths;
 use crate::ui::{fast, theme, values};

@@ -12,8 +12,9 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
-use super::state::{CheckView, Planned};
-use super::{fit, section, words};
+use super::{fit, section};
+use crate::check::state::{CheckView, Planned};
+use crate::check::words;
 use crate::ui::{fast, theme, values};
 
 const NAME_W: usize = 16;

@@ -6,7 +6,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
-use super::state::{CheckView, Step};
+use crate::check::state::{CheckView, Step};
 use crate::ui::state::ViewState;
 use crate::ui::{fast, theme};
 

@@ -6,7 +6,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 
-use super::state::{LoadsView, Mark};
+use crate::check::state::{LoadsView, Mark};
 use crate::loads::analysis::{MARGIN_WARNING_PERCENT, amps_text, minutes_text};
 use crate::loads::{Analysis, Figure, Level, Phase};
 use crate::ui::theme;

@@ -1,4 +1,4 @@
-//! The installation check's screens. Pure widgets over [`state::CheckView`] and the
+//! The installation check's screens. Pure widgets over [`CheckView`] and the
 //! model: the flow (`crate::check`) changes the view, these draw it.
 //!
 //! Every step's screen has the same frame: the page's title line, the steps with the
@@ -13,10 +13,9 @@ pub mod keys;
 pub mod list;
 pub mod loads;
 pub mod motors;
-pub mod state;
+
 pub mod summary;
 pub mod switches;
-pub mod words;
 
 use std::time::Instant;
 
@@ -29,8 +28,9 @@ use ratatui::widgets::{Block, Borders};
 
 use super::state::{MotorRun, ViewState};
 use super::{MIN_HEIGHT, MIN_WIDTH, comm_banner, fast, palette::Palette, theme, title_bar};
+use crate::check::state::{CheckView, Mark, Prompt, Step};
+use crate::check::words;
 use crate::model::Model;
-use state::{CheckView, Mark, Prompt, Step};
 
 /// Draws the check as the person sees it: [`render`], then repainted in the palette
 /// the page chose (`page.theme`: dark, light or no colour). `page` is the page's own

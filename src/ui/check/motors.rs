@@ -12,8 +12,9 @@ use ratatui::style::Modifier;
 use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
-use super::state::{CheckView, Mark};
-use super::{fit, head_w, progress_span, progress_words, section, words, words_style};
+use super::{fit, head_w, progress_span, progress_words, section, words_style};
+use crate::check::state::{CheckView, Mark};
+use crate::check::words;
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 use crate::ui::state::MotorRun;

@@ -13,8 +13,9 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
-use super::state::{CheckView, LoadsView, Mark, Step};
-use super::{circuits, fit, head_w, mark_span, motors, section, switches, words, words_style};
+use super::{circuits, fit, head_w, mark_span, motors, section, switches, words_style};
+use crate::check::state::{CheckView, LoadsView, Mark, Step};
+use crate::check::words;
 use crate::model::Model;
 use crate::protocol::message::SwitchId;
 use crate::ui::title_bar::middle_ellipsis;
@@ -161,7 +162,7 @@ fn report_line(view: &CheckView, width: u16) -> Line<'static> {
             let room = width.saturating_sub("Report ".len() + also.len());
             Line::from(vec![
                 Span::styled("Report ", theme::label()),
-                Span::styled(words::path_fit(p, room), theme::info()),
+                Span::styled(path_fit(p, room), theme::info()),
                 Span::styled(also, theme::label()),
             ])
         }
@@ -430,11 +431,11 @@ fn left_lines(view: &CheckView, area: Rect) -> Vec<Line<'static>> {
     } else {
         int.left
             .iter()
-            .map(|(_, name, state)| {
+            .map(|l| {
                 Line::from(vec![
-                    Span::raw(fit(name, 16)),
+                    Span::raw(fit(&l.name, 16)),
                     Span::raw(" "),
-                    Span::styled(state.clone(), theme::caution()),
+                    Span::styled(l.state.clone(), theme::caution()),
                 ])
             })
             .collect()
@@ -489,7 +490,7 @@ pub fn render_interrupted(
         (Some(p), None) => Line::styled(
             format!(
                 "Report, marked incomplete: {}",
-                words::path_fit(p, usize::from(area.width).saturating_sub(27))
+                path_fit(p, usize::from(area.width).saturating_sub(27))
             ),
             theme::label(),
         ),
@@ -523,4 +524,58 @@ pub fn render_interrupted(
         &results_rows(view, model, now),
         view.scroll,
     );
+}
+
+/// `path` in at most `width` characters: the file name kept whole (it is what a
+/// person looks for), the folder shortened in its middle ("/home/…/reports/").
+/// Only a file name wider than `width` itself is cut, at its start.
+pub fn path_fit(path: &std::path::Path, width: usize) -> String {
+    let full = path.display().to_string();
+    if full.chars().count() <= width {
+        return full;
+    }
+    let name = path
+        .file_name()
+        .map_or_else(|| full.clone(), |n| n.to_string_lossy().into_owned());
+    let name_w = name.chars().count();
+    let sep = std::path::MAIN_SEPARATOR;
+    // "…/" and the name at least.
+    if name_w + 2 > width {
+        let keep = width.saturating_sub(1);
+        let tail: String = name.chars().skip(name_w.saturating_sub(keep)).collect();
+        return format!("…{tail}").chars().take(width).collect();
+    }
+    let dir = path
+        .parent()
+        .map(|d| format!("{}{sep}", d.display()))
+        .unwrap_or_default();
+    let room = width - name_w;
+    format!(
+        "{}{name}",
+        crate::ui::title_bar::middle_ellipsis(&dir, room)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_path_too_long_keeps_its_file_name_whole() {
+        use std::path::Path;
+        let p = Path::new("/home/builder/.config/vpx-efis/reports/vpx-check-2026-12-02T0028Z.md");
+        assert_eq!(path_fit(p, 200), p.display().to_string());
+        let short = path_fit(p, 50);
+        assert_eq!(short.chars().count(), 50, "{short}");
+        // The name is joined with the OS's separator (a `\` on Windows).
+        let sep = std::path::MAIN_SEPARATOR;
+        assert!(
+            short.ends_with(&format!("{sep}vpx-check-2026-12-02T0028Z.md")),
+            "{short}"
+        );
+        assert!(short.starts_with("/home/"), "{short}");
+        assert!(short.contains('…'), "{short}");
+        // Narrower than the name: the end of the name, which tells the reports apart.
+        assert_eq!(path_fit(p, 10), "…T0028Z.md");
+    }
 }

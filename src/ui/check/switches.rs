@@ -12,8 +12,9 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
-use super::state::{CheckView, Input};
-use super::{fit, head_w, progress_span, progress_words, section, words, words_style};
+use super::{fit, head_w, progress_span, progress_words, section, words_style};
+use crate::check::state::{CheckView, Input};
+use crate::check::words;
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::SwitchInputs;
 use crate::ui::switches::{OFF_MARK, ON_MARK};

@@ -1,13 +1,12 @@
 //! What the installation check shows, and what its report records: the step it is on,
 //! what the person must do and what the page is watching, and every result so far.
 //! Pure data and the verdicts (marks); the words for it are in [`super::words`]. The
-//! flow (`crate::check`) changes it; the screen (`ui::check`) and the report
-//! (`check::report`) read it. It lives under `ui` for
-//! the same reason as the setup screens' `SetupView`: the flow stands on the view,
-//! never the other way round.
+//! flow owns it and changes it; the screen (`ui::check`) and the report
+//! ([`super::report`]) only read it.
 
 use std::time::Duration;
 
+use super::calls::Command;
 use crate::model::Motor;
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{SwitchId, SwitchInputs, Tenths};
@@ -288,9 +287,25 @@ pub struct Prompt {
 pub struct Interruption {
     /// "quit", "communication lost", "the link failed: …", "Landing Light faulted".
     pub cause: String,
-    /// Each circuit the check left not as it found it: id, name, and in words the
-    /// state it was left in ("ON, held by DEVICE_POWER", "unknown: no answer").
-    pub left: Vec<(u8, String, String)>,
+    /// Each circuit (or motor) the check left not as it found it.
+    pub left: Vec<LeftBehind>,
+}
+
+/// A circuit or motor the check left not as it found it, and how.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LeftBehind {
+    /// Its device id.
+    pub id: u8,
+    pub name: String,
+    /// In words, the state it was left in: "ON, held by DEVICE_POWER", "unknown: no
+    /// answer", "stopped at position 40, it was at 20: not run back".
+    pub state: String,
+}
+
+impl LeftBehind {
+    pub fn new(id: u8, name: String, state: String) -> LeftBehind {
+        LeftBehind { id, name, state }
+    }
 }
 
 /// A circuit the check will switch on, and for how long.
@@ -365,13 +380,35 @@ pub struct CheckView {
     /// results are still here, and `w` writes them again.
     pub report_error: Option<String>,
     /// Once the check has ended: the results scrolled this many lines down (the app
-    /// keeps it within the list, [`super::results_scroll_max`]).
+    /// keeps it within the list, `ui::check::results_scroll_max`).
     pub scroll: usize,
     /// Once the check has ended: the load analysis (table, bar chart, circuits)
     /// shown instead of the results (`l`).
     pub show_loads: bool,
     /// Step 5, once reached: the load analysis, or why there is none.
     pub loads: Option<LoadsView>,
+    /// What the person saw of each light while the check had it on ("Is it lit?").
+    pub lit: Vec<LitAnswer>,
+}
+
+/// A person's answer to "Is it lit?" for a light (`super::lights`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LitAnswer {
+    /// The circuit's device id.
+    pub id: u8,
+    /// Seen lit (`true`) or dark.
+    pub lit: bool,
+}
+
+/// An answer the prompt offers now, as plain data for any front end (the page's
+/// keys, the phone remote): its id ("go_on", "skip", "retry", "lit_yes", "lit_no"),
+/// the page's key for it, its words, and the command it gives the flow.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Answer {
+    pub id: &'static str,
+    pub key: &'static str,
+    pub words: &'static str,
+    pub command: Command,
 }
 
 /// Step 5's result: the load analysis of the builder's file, or why there is none.
@@ -402,6 +439,49 @@ impl Mark {
 }
 
 impl CheckView {
+    /// The answers the prompt offers now (see [`Answer`]): the prompt's own keys,
+    /// those a person away from the keyboard can give. Stopping the check and
+    /// skipping a whole step stay with the keyboard.
+    pub fn prompt_answers(&self) -> Vec<Answer> {
+        let Some(p) = &self.prompt else {
+            return Vec::new();
+        };
+        p.keys
+            .iter()
+            .filter_map(|&(key, words)| {
+                // The id by the prompt's words, the command by its key: the same key
+                // means "go on" in one prompt and "retry" in another (`r`).
+                let id = match words {
+                    "go on" | "confirm" => "go_on",
+                    "skip" => "skip",
+                    "retry" => "retry",
+                    "lit" => "lit_yes",
+                    "not lit" => "lit_no",
+                    _ => return None,
+                };
+                let command = match key {
+                    "Enter" => Command::Enter,
+                    "s" => Command::SkipItem,
+                    "r" => Command::Retry,
+                    "y" => Command::Lit(true),
+                    "n" => Command::Lit(false),
+                    _ => return None,
+                };
+                Some(Answer {
+                    id,
+                    key,
+                    words,
+                    command,
+                })
+            })
+            .collect()
+    }
+
+    /// What the person said of light `id`, if asked and answered.
+    pub fn lit_of(&self, id: u8) -> Option<bool> {
+        self.lit.iter().find(|l| l.id == id).map(|l| l.lit)
+    }
+
     /// The currents step 3 measured, for the load analysis: device id and amperes.
     /// Only a real reading counts: "no current while on" is a fault to fix, not the
     /// circuit's load, and a faulted circuit gave none.
@@ -414,6 +494,49 @@ impl CheckView {
                 _ => None,
             })
             .collect()
+    }
+}
+
+impl CheckView {
+    /// Marks each of `step`'s rows not run yet as skipped with `why`: whether any was.
+    pub fn skip_rest(&mut self, step: Step, why: &str) -> bool {
+        fn skip<'a, F: 'a>(outcomes: impl Iterator<Item = &'a mut Outcome<F>>, why: &str) -> bool {
+            let mut any = false;
+            for o in outcomes.filter(|o| matches!(o, Outcome::NotRun)) {
+                *o = Outcome::Skipped(why.into());
+                any = true;
+            }
+            any
+        }
+        match step {
+            Step::Switches => skip(self.switches.iter_mut().map(|r| &mut r.outcome), why),
+            Step::Circuits => skip(self.circuits.iter_mut().map(|r| &mut r.outcome), why),
+            Step::Motors => skip(self.motors.iter_mut().map(|r| &mut r.outcome), why),
+            _ => false,
+        }
+    }
+
+    /// The first of `step`'s rows from `from` on that has not run yet.
+    pub fn next_not_run(&self, step: Step, from: usize) -> Option<usize> {
+        let rows: Vec<bool> = match step {
+            Step::Switches => self
+                .switches
+                .iter()
+                .map(|r| r.outcome == Outcome::NotRun)
+                .collect(),
+            Step::Circuits => self
+                .circuits
+                .iter()
+                .map(|r| r.outcome == Outcome::NotRun)
+                .collect(),
+            Step::Motors => self
+                .motors
+                .iter()
+                .map(|r| r.outcome == Outcome::NotRun)
+                .collect(),
+            _ => Vec::new(),
+        };
+        (from..rows.len()).find(|&i| rows[i])
     }
 }
 

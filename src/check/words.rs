@@ -6,8 +6,8 @@
 use std::time::Duration;
 
 use super::state::{
-    CheckView, CircuitFinding, CircuitResult, LoadsView, Mark, MotorFinding, MotorResult,
-    NEAR_BREAKER_PERCENT, NotFollowed, Outcome, SwitchFinding, SwitchResult,
+    CheckView, CircuitFinding, CircuitResult, LeftBehind, LoadsView, Mark, MotorFinding,
+    MotorResult, NEAR_BREAKER_PERCENT, NotFollowed, Outcome, SwitchFinding, SwitchResult,
 };
 use crate::protocol::device;
 use crate::protocol::fault::FaultCode;
@@ -187,6 +187,31 @@ pub fn fault(code: FaultCode) -> String {
     }
 }
 
+/// What the person saw of a light (`lit`: lit or dark) beside what the unit measured:
+/// the words for beside its current, and, when the two disagree, what that means.
+/// "No current" and "lit" disagree; so do a current and "dark".
+pub fn lit_seen(c: &CircuitResult, lit: bool) -> (String, Option<String>) {
+    let seen = if lit { "seen lit" } else { "seen dark" };
+    let disagree = match (&c.outcome, lit) {
+        (Outcome::Found(CircuitFinding::NoCurrent), true) => Some(
+            "you saw it lit, yet the unit read no current: the two disagree (the lamp may \
+             be fed from another pin, or the unit's current reading is wrong)"
+                .to_string(),
+        ),
+        (
+            Outcome::Found(
+                CircuitFinding::Within { amps, .. } | CircuitFinding::NearBreaker { amps, .. },
+            ),
+            false,
+        ) => Some(format!(
+            "the unit read {amps:.1} A, yet you saw it dark: the two disagree (a lamp out \
+             with another load on its pin, or another lamp wired to it)"
+        )),
+        _ => None,
+    };
+    (seen.to_string(), disagree)
+}
+
 /// An outcome's words: the finding's own, or why there is none.
 fn outcome<F>(o: &Outcome<F>, found: impl Fn(&F) -> String) -> String {
     match o {
@@ -291,7 +316,7 @@ impl CheckView {
             ));
         }
         if let Some(i) = &self.interrupted {
-            for (id, name, state) in &i.left {
+            for LeftBehind { id, name, state } in &i.left {
                 let pin = device::device(*id).map_or("?", |d| d.system_name);
                 out.push(format!(
                     "{name} ({pin}), left by the interrupted check: {state}"
@@ -321,36 +346,6 @@ pub fn report_written(markdown: &std::path::Path, csv: &std::path::Path) -> Stri
         Some(dir) => format!("Report written: {md} and {csv_said} in {}", dir.display()),
         None => format!("Report written: {md} and {csv_said}"),
     }
-}
-
-/// `path` in at most `width` characters: the file name kept whole (it is what a
-/// person looks for), the folder shortened in its middle ("/home/…/reports/").
-/// Only a file name wider than `width` itself is cut, at its start.
-pub fn path_fit(path: &std::path::Path, width: usize) -> String {
-    let full = path.display().to_string();
-    if full.chars().count() <= width {
-        return full;
-    }
-    let name = path
-        .file_name()
-        .map_or_else(|| full.clone(), |n| n.to_string_lossy().into_owned());
-    let name_w = name.chars().count();
-    let sep = std::path::MAIN_SEPARATOR;
-    // "…/" and the name at least.
-    if name_w + 2 > width {
-        let keep = width.saturating_sub(1);
-        let tail: String = name.chars().skip(name_w.saturating_sub(keep)).collect();
-        return format!("…{tail}").chars().take(width).collect();
-    }
-    let dir = path
-        .parent()
-        .map(|d| format!("{}{sep}", d.display()))
-        .unwrap_or_default();
-    let room = width - name_w;
-    format!(
-        "{}{name}",
-        crate::ui::title_bar::middle_ellipsis(&dir, room)
-    )
 }
 
 /// Where a motor was, as percent of its travel from the up (left) end (`ends`: the
@@ -486,22 +481,8 @@ mod tests {
     }
 
     #[test]
-    fn a_path_too_long_keeps_its_file_name_whole() {
+    fn a_report_written_says_the_names_whole_then_the_folder() {
         use std::path::Path;
-        let p = Path::new("/home/builder/.config/vpx-efis/reports/vpx-check-2026-12-02T0028Z.md");
-        assert_eq!(path_fit(p, 200), p.display().to_string());
-        let short = path_fit(p, 50);
-        assert_eq!(short.chars().count(), 50, "{short}");
-        // The name is joined with the OS's separator (a `\` on Windows).
-        let sep = std::path::MAIN_SEPARATOR;
-        assert!(
-            short.ends_with(&format!("{sep}vpx-check-2026-12-02T0028Z.md")),
-            "{short}"
-        );
-        assert!(short.starts_with("/home/"), "{short}");
-        assert!(short.contains('…'), "{short}");
-        // Narrower than the name: the end of the name, which tells the reports apart.
-        assert_eq!(path_fit(p, 10), "…T0028Z.md");
         assert_eq!(
             report_written(
                 Path::new("/r/vpx-check-2026-12-02T0028Z.md"),

@@ -1,0 +1,226 @@
+//! Issue 27.1, the XFSp gateway's part: a network run of a motor that moves against
+//! its command is stopped within a few counts, and the record is shared with the
+//! page's keys, both ways (`control::against`). On the fake clock, against the virtual
+//! VP-X's pitch trim with its leads swapped (up 30, down 220). The check's own part
+//! is in `src/check/tests/against.rs`; these live here because the check stands
+//! beside the gateway, not above it.
+
+use std::time::{Duration, Instant};
+
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use vpx_efis::control::run_state::ReleaseMode;
+use vpx_efis::control::{Controller, Direction, KeyContext, Outcome, Selected, StreamerConfig};
+use vpx_efis::model::{CircuitKind, CircuitState, Model, Motor, Setting, Source, TrimKind};
+use vpx_efis::protocol::decoder::{Decoder, Event};
+use vpx_efis::protocol::message::{Message, Packet};
+use vpx_efis::sim::{Scenario, Unit, UnitOptions};
+use vpx_efis::xfsp::drive::MotorDrive;
+
+const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
+
+/// The pitch trim alone, parked at `pos`, its leads swapped.
+fn scenario(pos: u8) -> String {
+    let mut s = format!(
+        "description = \"gateway against\"\n[electrical]\nbattery_volts = 12.6\n\
+         [flap]\nenabled = false\nup = 0\ndown = 0\nposition = 0\n\
+         [pitch_trim]\nenabled = true\nup = 30\ndown = 220\nneutral = 125\npower = 100\n\
+         position = {pos}\nreversed = true\n\
+         [roll_trim]\nenabled = false\nup = 0\ndown = 0\nneutral = 0\n"
+    );
+    for id in 4..=28 {
+        s.push_str(&format!("[[device]]\nid = {id}\nenabled = false\n"));
+    }
+    s
+}
+
+/// The page's loop without a screen: the unit, the model and the controller, 10 ms
+/// at a time.
+struct Rig {
+    unit: Unit,
+    rx: Decoder,
+    model: Model,
+    ctl: Controller,
+    now: Instant,
+    sent: Vec<Packet>,
+}
+
+fn rig(at: u8) -> Rig {
+    let now = Instant::now();
+    let s = Scenario::from_toml(&scenario(at)).unwrap();
+    let mut model = Model::new(Source::Simulated {
+        scenario: "gateway".into(),
+    });
+    model.note_connected(now, "test".into());
+    let mut r = Rig {
+        unit: Unit::with_memory_eeprom(&s, UnitOptions::default(), now),
+        rx: Decoder::new(),
+        model,
+        ctl: Controller::new(StreamerConfig {
+            release_mode: ReleaseMode::KeyRelease,
+            ..StreamerConfig::default()
+        }),
+        now,
+        sent: Vec::new(),
+    };
+    let queries: Vec<Packet> = Setting::all()
+        .enumerate()
+        .map(|(i, s)| Packet::request(i as u8, s.query()))
+        .collect();
+    r.send(queries);
+    r.run_watching(1500, PITCH);
+    r
+}
+
+impl Rig {
+    fn send(&mut self, packets: Vec<Packet>) {
+        for p in packets {
+            self.model.note_sent(self.now, &p);
+            self.unit.feed(&p.to_bytes(), self.now);
+            self.sent.push(p);
+        }
+    }
+
+    /// `ms` of the loop, with the unit's own pitch trim position every 10 ms.
+    fn run_watching(&mut self, ms: u64, motor: Motor) -> Vec<u8> {
+        assert_eq!(motor, PITCH);
+        let mut seen = Vec::new();
+        for _ in 0..ms / 10 {
+            self.now += Duration::from_millis(10);
+            self.unit.tick(self.now);
+            let out = self.unit.take_output();
+            let mut frames = Vec::new();
+            self.rx.push(&out, |e| {
+                if let Event::Frame(f) = e {
+                    frames.push(Packet::parse(&f).unwrap());
+                }
+            });
+            for p in frames {
+                self.model.apply_packet(self.now, &p);
+            }
+            let p = self.ctl.tick(&self.model, self.now);
+            self.send(p);
+            seen.push(self.pitch_pos());
+        }
+        seen
+    }
+
+    fn pitch_pos(&self) -> u8 {
+        self.unit.snapshot(self.now).pitch_trim_position
+    }
+
+    /// A key on the device list with the pitch trim's row selected.
+    fn key(&mut self, c: char, kind: KeyEventKind, setup: bool) -> Outcome {
+        let ctx = KeyContext {
+            selected: Some(Selected {
+                id: PITCH.device_id(),
+                kind: CircuitKind::Trim(TrimKind::Pitch),
+                state: CircuitState::Off,
+            }),
+            overlay_open: false,
+            past_endpoints: setup,
+        };
+        let key = KeyEvent::new_with_kind(KeyCode::Char(c), KeyModifiers::NONE, kind);
+        let out = self.ctl.handle_key(key, &ctx, &self.model, self.now);
+        self.send(out.packets.clone());
+        out
+    }
+
+    fn trim_moves_since(&self, from: usize) -> Vec<bool> {
+        self.sent[from..]
+            .iter()
+            .filter_map(|p| match p.message {
+                Message::TrimMove(t) => Some(t.on),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+/// The XFSp gateway's drive, sharing the page's record: a network run nose-up is
+/// stopped within a few counts as moving against its command (the words in the
+/// event log), and the page's keys then refuse it; the network is refused what the
+/// keys saw.
+#[test]
+fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
+    let mut r = rig(128);
+    let mut drive = MotorDrive::new(StreamerConfig::default());
+    drive.share_against(r.ctl.against());
+    let mut seen = Vec::new();
+    for i in 0..200 {
+        if i % 25 == 0 {
+            // PTRIMREQ +50000: nose up, toward 30 (raw ~78), repeated at 4 Hz.
+            drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
+        }
+        let p = drive.tick(&mut r.model, r.now);
+        r.send(p);
+        seen.extend(r.run_watching(10, PITCH));
+    }
+    let hi = *seen.iter().max().unwrap();
+    assert!((131..=134).contains(&hi), "went down to {hi}");
+    assert!(drive.running().is_none());
+    assert!(
+        r.model.events.iter().any(|e| e
+            .text
+            .contains("it moved down when asked up: its leads or its sensor")),
+        "{:?}",
+        r.model.events
+    );
+    let out = r.key('u', KeyEventKind::Press, false);
+    assert!(out.packets.is_empty());
+    assert!(out.notice.unwrap().contains("press u again"));
+
+    // The other way round: the keys saw the flaps' record... here the pitch trim's,
+    // so a fresh drive sharing it refuses a request for it, nothing sent.
+    let mut other = MotorDrive::new(StreamerConfig::default());
+    other.share_against(r.ctl.against());
+    other.request(PITCH, -50_000, 0x43, None, r.now);
+    let p = other.tick(&mut r.model, r.now);
+    assert!(p.is_empty(), "{p:?}");
+    assert!(
+        r.model
+            .events
+            .iter()
+            .any(|e| e.text.contains("0x0043") && e.text.contains("not run: confirm")),
+        "{:?}",
+        r.model.events
+    );
+}
+
+/// The XFSp gateway's drive, the same reversed trim parked at 220: a network run
+/// nose-up starts as probes and never takes it past 220 beyond the one count of
+/// noise; stopped as moving against its command, said in the event log.
+#[test]
+fn the_gateway_probes_a_network_run_near_the_endpoint_behind_it() {
+    let mut r = rig(220);
+    let mut drive = MotorDrive::new(StreamerConfig::default());
+    drive.share_against(r.ctl.against());
+    let from = r.sent.len();
+    let mut seen = vec![r.pitch_pos()];
+    for i in 0..150 {
+        if i % 25 == 0 {
+            drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
+        }
+        let p = drive.tick(&mut r.model, r.now);
+        r.send(p);
+        seen.extend(r.run_watching(10, PITCH));
+    }
+    let most = *seen.iter().max().unwrap();
+    assert!(most <= 221, "past 220 to {most}: {seen:?}");
+    assert!(drive.running().is_none());
+    let events: Vec<&str> = r.model.events.iter().map(|e| e.text.as_str()).collect();
+    assert!(
+        events
+            .iter()
+            .any(|e| e.contains("pitch trim near its down endpoint: trying a short run first")),
+        "{events:?}"
+    );
+    assert!(
+        events
+            .iter()
+            .any(|e| e.contains("it moved down when asked up: its leads or its sensor")),
+        "{events:?}"
+    );
+    let moves = r.trim_moves_since(from);
+    assert!(moves[0] && !moves.last().unwrap(), "{moves:?}");
+    assert_eq!(r.ctl.against().seen(PITCH), Some(Direction::Up));
+}
