@@ -481,3 +481,62 @@ fn code_lines_skip_comments_blanks_and_tests() {
     let early = "#[cfg(test)]\nmod tests;\nfn a() {}\nfn b() {}\n";
     assert_eq!(code_lines(early), 4);
 }
+
+/// What a flow must not do itself (issue 23, item 2): read a clock, touch a file,
+/// read stdin or know the terminal. The app does these and hands the results in.
+const FLOW_IO: &[&str] = &[
+    "Instant::now",
+    "SystemTime::now",
+    "std::fs",
+    "fs::",
+    "File::",
+    "stdin",
+    "crossterm",
+    "ratatui",
+    "std::env",
+];
+
+/// The lines of a flow file's code that do I/O, outside its tests.
+fn flow_io_lines(code: &str) -> Vec<(usize, &'static str)> {
+    let end = code
+        .lines()
+        .position(|l| l.trim() == "#[cfg(test)]")
+        .unwrap_or(usize::MAX);
+    code.lines()
+        .enumerate()
+        .take_while(|(i, _)| *i < end)
+        .flat_map(|(i, l)| {
+            FLOW_IO
+                .iter()
+                .filter(move |w| l.contains(*w))
+                .map(move |w| (i + 1, *w))
+        })
+        .collect()
+}
+
+#[test]
+fn the_flows_read_no_clock_file_stdin_or_terminal() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut found = Vec::new();
+    for flow in ["check", "setup"] {
+        let mut files = Vec::new();
+        rust_files(&src.join(flow), &mut files);
+        for file in files {
+            let rel = file.strip_prefix(&src).expect("under src");
+            if rel.components().any(|c| c.as_os_str() == "tests") {
+                continue;
+            }
+            let code = without_comments(&fs::read_to_string(&file).expect("read"));
+            for (line, what) in flow_io_lines(&code) {
+                found.push(format!("src/{}:{line}: {what}", rel.display()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "a flow does I/O itself: {found:#?}");
+}
+
+#[test]
+fn flow_io_is_found_in_code_and_not_in_its_tests() {
+    let code = "fn a() {\n    let t = Instant::now();\n}\n#[cfg(test)]\nmod tests {\n    fn b() { std::fs::read(\"x\"); }\n}\n";
+    assert_eq!(flow_io_lines(code), vec![(2, "Instant::now")]);
+}
