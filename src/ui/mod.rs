@@ -113,9 +113,18 @@ pub fn render(
         Constraint::Length(key_bar::height(view, area.width)),
     ])
     .areas(area);
-    title_bar::render(frame, title, model, now);
-    if let Some(r) = &view.remote {
-        remote::render_title(frame, title, r);
+    match &view.remote {
+        // The remote's note takes the title's right end, and the title the rest:
+        // the title shortens its own words to fit rather than being painted over.
+        Some(r) => {
+            let note = remote::title_note(r, title.width);
+            let w = (note.chars().count() as u16).min(title.width);
+            let [left, right] =
+                Layout::horizontal([Constraint::Fill(1), Constraint::Length(w)]).areas(title);
+            title_bar::render(frame, left, model, now);
+            remote::render_title(frame, right, &note);
+        }
+        None => title_bar::render(frame, title, model, now),
     }
     if let Some(b) = &banner {
         comm_banner::render(frame, banner_area, b);

@@ -83,15 +83,21 @@ pub fn paired_words(n: usize) -> String {
     }
 }
 
-/// The title's note while the remote is on, drawn at the right end of the title line
-/// over whatever was there.
-pub fn render_title(frame: &mut Frame, area: Rect, remote: &RemoteView) {
-    let text = format!(" REMOTE: {} ", paired_words(remote.paired));
-    let w = (text.chars().count() as u16).min(area.width);
-    let at = Rect::new(area.x + area.width - w, area.y, w, 1);
+/// The title's note while the remote is on: how many phones are paired, shorter on a
+/// narrow terminal so that the title keeps its own words.
+pub fn title_note(remote: &RemoteView, width: u16) -> String {
+    if width >= 100 {
+        format!(" REMOTE: {} ", paired_words(remote.paired))
+    } else {
+        format!(" REMOTE: {} paired ", remote.paired)
+    }
+}
+
+/// The title's note, drawn in `area` at the right end of the title line.
+pub fn render_title(frame: &mut Frame, area: Rect, note: &str) {
     frame.render_widget(
-        Paragraph::new(Line::from(Span::styled(text, theme::caution()))),
-        at,
+        Paragraph::new(Line::from(Span::styled(note.to_string(), theme::caution()))),
+        area,
     );
 }
 
