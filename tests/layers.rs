@@ -540,3 +540,16 @@ fn flow_io_is_found_in_code_and_not_in_its_tests() {
     let code = "fn a() {\n    let t = Instant::now();\n}\n#[cfg(test)]\nmod tests {\n    fn b() { std::fs::read(\"x\"); }\n}\n";
     assert_eq!(flow_io_lines(code), vec![(2, "Instant::now")]);
 }
+
+/// `ui` draws for the page, and the page alone uses it: a subcommand or the command
+/// line that needs a word of it (a theme's name) takes it from where `ui` does.
+#[test]
+fn nothing_but_app_imports_ui() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let wrong: Vec<String> = imports(&src)
+        .into_iter()
+        .filter(|i| i.to == "ui" && i.from != "ui" && i.from != "app")
+        .map(|i| format!("{}:{}: {} -> ui", i.file, i.line, i.from))
+        .collect();
+    assert!(wrong.is_empty(), "only app draws: {wrong:#?}");
+}

@@ -13,10 +13,10 @@ use crate::cmd::flash::FlashPortArgs;
 use crate::cmd::page::PageArgs;
 use crate::link::PortAddr;
 use crate::program::UsageError;
+use crate::settings::values::Theme as Requested;
 use crate::settings::{
     self, BAUD_ENV, Origin, PORT_ENV, Setting, XFSP_CONTROL_ENV, XFSP_CONTROL_FROM_ENV, values,
 };
-use crate::ui::palette::Requested;
 
 /// A file's setting as the value of a flag that may be absent (`--port`,
 /// `--repeat-delay`).

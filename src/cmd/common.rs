@@ -8,8 +8,8 @@ use clap::{Args, ValueEnum};
 
 use crate::app::XfspOptions;
 use crate::link::PortAddr;
+use crate::settings::values::Theme as Requested;
 use crate::settings::{BAUD_ENV, PORT_ENV, XFSP_CONTROL_ENV, XFSP_CONTROL_FROM_ENV, values};
-use crate::ui::palette::Requested;
 
 #[derive(Debug, Clone, Args)]
 pub struct PortArgs {
@@ -84,7 +84,7 @@ impl From<XfspArgs> for XfspOptions {
 }
 
 /// `--theme` takes the words the config file takes ([`values::THEMES`]); see
-/// [`crate::ui::palette`].
+/// the page's palette (`ui::palette`).
 impl ValueEnum for Requested {
     fn value_variants<'a>() -> &'a [Self] {
         const ALL: [Requested; values::THEMES.len()] = {

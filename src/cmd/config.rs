@@ -8,8 +8,8 @@ use anyhow::Context;
 use clap::Args;
 
 use crate::cmd::common::{PortArgs, XfspArgs};
+use crate::settings::values::Theme as Requested;
 use crate::settings::{BAUD_ENV, CONFIG_ENV, KEYS, Origin, PORT_ENV};
-use crate::ui::palette::Requested;
 
 #[derive(Debug, Args)]
 pub struct ConfigArgs {

@@ -6,7 +6,7 @@ use clap::Args;
 
 use crate::app::PageOptions;
 use crate::cmd::common::{PortArgs, XfspArgs};
-use crate::ui::palette::Requested;
+use crate::settings::values::Theme as Requested;
 
 #[derive(Debug, Clone, Args)]
 pub struct PageArgs {
