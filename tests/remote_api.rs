@@ -353,6 +353,22 @@ fn the_state_is_live_and_an_event_follows_a_change() {
         .expect("Nav Lt");
     assert_eq!(nav["name"], "Nav Lt");
     assert_eq!(nav["state"], "ON");
+    assert_eq!(nav["switchable"], true);
+    // The starter is only reset and a motor is run (ICD Table 40: ids 0x01, and 0x00,
+    // 0x1D, 0x1E): neither is offered a switch; every other circuit is.
+    for d in st["devices"].as_array().unwrap() {
+        let id = d["id"].as_u64().unwrap();
+        let fixed = matches!(id, 0x00 | 0x01 | 0x1D | 0x1E);
+        assert_eq!(d["switchable"], !fixed, "{d}");
+    }
+    assert!(
+        st["devices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|d| d["id"] == 1),
+        "the starter is listed"
+    );
     assert!(nav["amps"].as_f64().is_some_and(|a| a > 1.0), "{nav}");
     assert_eq!(st["motors"]["pitch"]["fitted"], true);
     assert!(st["motors"]["pitch"]["position_percent"].is_u64());

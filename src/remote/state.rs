@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::control::Direction;
+use crate::control::{Direction, put_back_off};
 use crate::model::{CircuitState, Connection, Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 
@@ -56,6 +56,10 @@ pub struct Device {
     pub state: &'static str,
     pub amps: Option<f64>,
     pub fault: Option<String>,
+    /// Whether DEVICE_POWER may switch it at all: not the starter (only reset) nor a
+    /// motor (run, not switched), by control's own rule ([`put_back_off`]), so the
+    /// phone offers no button that can only be refused.
+    pub switchable: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -107,6 +111,7 @@ pub fn build(model: &Model, page: &PageSide, now: Instant) -> State {
                 state,
                 amps: c.amps.filter(|_| !comm_lost).map(tenths),
                 fault,
+                switchable: put_back_off(model, c.id).is_ok(),
             }
         })
         .collect();
