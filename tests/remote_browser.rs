@@ -895,6 +895,12 @@ fn every_text_meets_wcag_contrast_light_and_dark() {
          return ['on', 'off', 'fault'].every((c) => s.includes('state ' + c))",
         Duration::from_secs(5),
     );
+    // The fault in words (ICD Table 43's 0x08 OVER_CURRENT), not only in red.
+    let fault = h.browser.exec(
+        "return [...document.querySelectorAll('#devices .state.fault')].map((e) => e.textContent)",
+        json!([]),
+    );
+    assert_eq!(fault, json!(["FAULT: OVER CURRENT"]));
     // The banners and the notice as they show when they do.
     h.browser.exec(
         "for (const id of ['stale', 'commlost', 'notice']) \
