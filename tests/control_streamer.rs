@@ -2,6 +2,9 @@
 //! sends the exact stop message, and no gap between move messages exceeds 250 ms even
 //! when the main loop wakes late.
 
+mod common;
+
+use common::live_unit::{device_status, system_status};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
@@ -14,9 +17,8 @@ use vpx_efis::protocol::device::{DEVICE_COUNT, FLAPS, TRIM_P, TRIM_R};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::frame::Node;
 use vpx_efis::protocol::message::{
-    DeviceStatus, FaultStatus, FlapDirection, FlapFlags, FlapMove, FlapTrimStatus, Message,
-    MiscFlags, Packet, SignedTenths, SystemStatus, Tenths, TrimDirection, TrimFlags, TrimMove,
-    TrimType, WigWagModeSetting,
+    FaultStatus, FlapDirection, FlapFlags, FlapMove, FlapTrimStatus, Message, Packet,
+    TrimDirection, TrimFlags, TrimMove, TrimType,
 };
 use vpx_efis::ui::state::ReleaseMode;
 
@@ -29,37 +31,6 @@ fn ms(n: u64) -> Duration {
 }
 
 // ----- the unit's side: broadcasts that keep the model live -----
-
-fn system_status() -> Packet {
-    Packet::from_vpx(
-        0,
-        SystemStatus {
-            system_current: Tenths(100),
-            main_bus_volts: SignedTenths(138),
-            aux_battery_volts: Tenths(0),
-            internal_temp: 30,
-            switches: Default::default(),
-            misc: MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: Default::default(),
-            data_integrity_code: None,
-        },
-    )
-}
-
-fn device_status() -> Packet {
-    Packet::from_vpx(
-        0,
-        DeviceStatus {
-            on: [false; DEVICE_COUNT],
-            current: [Tenths(0); DEVICE_COUNT],
-        },
-    )
-}
 
 fn flap_trim(pitch_fault: FaultCode) -> FlapTrimStatus {
     let trim = TrimFlags {

@@ -3,54 +3,24 @@
 //! stop message when the lease runs out, when the remote lets go, and on every stop
 //! cause a key's run has; a run that ended is not restarted by renewals.
 
+mod common;
+
+use common::live_unit::{device_status, system_status};
 use std::time::{Duration, Instant};
 
 use vpx_efis::control::{
     Controller, Direction, LEASE, MAX_WIRE_INTERVAL, StopReason, StreamerConfig,
 };
 use vpx_efis::model::{Model, Motor, Source, TrimKind};
-use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
-    DeviceStatus, FlapFlags, FlapTrimStatus, Message, MiscFlags, Packet, SignedTenths,
-    SystemStatus, Tenths, TrimDirection, TrimFlags, TrimMove, TrimType, WigWagModeSetting,
+    FlapFlags, FlapTrimStatus, Message, Packet, TrimDirection, TrimFlags, TrimMove, TrimType,
 };
 
 const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 
 fn ms(n: u64) -> Duration {
     Duration::from_millis(n)
-}
-
-fn system_status() -> Packet {
-    Packet::from_vpx(
-        0,
-        SystemStatus {
-            system_current: Tenths(100),
-            main_bus_volts: SignedTenths(138),
-            aux_battery_volts: Tenths(0),
-            internal_temp: 30,
-            switches: Default::default(),
-            misc: MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: Default::default(),
-            data_integrity_code: None,
-        },
-    )
-}
-
-fn device_status() -> Packet {
-    Packet::from_vpx(
-        0,
-        DeviceStatus {
-            on: [false; DEVICE_COUNT],
-            current: [Tenths(0); DEVICE_COUNT],
-        },
-    )
 }
 
 /// Flaps and both trims fitted, mid-travel (so no endpoint or probe is in play).

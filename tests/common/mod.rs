@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod cpu;
+pub mod live_unit;
 pub mod process;
 pub mod sim_process;
 pub mod xfsp_peer;
