@@ -24,7 +24,7 @@ fn capture() -> Vec<u8> {
     let mut cnt = 0u8;
     let mut push = |out: &mut Vec<u8>, msg: vpx_efis::protocol::Message, i: usize| {
         cnt = cnt.wrapping_add(1);
-        // Alternate the two destinations a unit may use for broadcasts (reading note 22).
+        // Alternate the two destinations a unit may use for broadcasts (icd-reading R22).
         let dst = if i.is_multiple_of(2) {
             Node::External
         } else {

@@ -12,6 +12,6 @@ pub const COMM_LOST_AFTER: Duration = Duration::from_millis(2500);
 pub const STATUS_STALE_AFTER: Duration = COMM_LOST_AFTER;
 /// FLAP_TRIM_STATUS is 10 Hz; a second without it means positions are no longer live.
 pub const FLAP_TRIM_STALE_AFTER: Duration = Duration::from_millis(1000);
-/// Reading note 9: FAULT_STATUS is sent only while a fault exists, so status arriving
+/// icd-reading R9: FAULT_STATUS is sent only while a fault exists, so status arriving
 /// without it for this long means "no faults", not lost communication.
 pub const FAULT_STATUS_QUIET_AFTER: Duration = Duration::from_millis(2500);

@@ -194,7 +194,7 @@ pub struct Expected {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ExpectKind {
     Always,
-    /// FAULT_STATUS: only while a fault exists (reading note 9), so silence is good news.
+    /// FAULT_STATUS: only while a fault exists (icd-reading R9), so silence is good news.
     WhileFault,
     /// EXTERNAL_DATA: only when we have air data to send.
     WhenWeHaveData,

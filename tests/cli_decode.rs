@@ -373,7 +373,7 @@ fn a_false_header_hides_no_frame_in_a_capture() {
 }
 
 /// Issue 26 item 6: the switch said once, plainly, by the byte that was sent, and
-/// what the page reads it as only where that differs (reading note 10).
+/// what the page reads it as only where that differs (icd-reading R10).
 #[test]
 fn a_switch_read_as_always_on_shows_the_byte_that_was_sent() {
     for (frame, switch) in [

@@ -121,7 +121,7 @@ fn s8_2_2_retrieve_flap_settings() {
         (f.enabled, f.up, f.down, f.circuit_breaker),
         (true, 20, 220, 6)
     );
-    // The other special ids of reading note 13.
+    // The other special ids of icd-reading R13.
     assert!(matches!(
         c.request(DeviceSpecQuery { device_id: 30 }),
         Message::TrimSpec(TrimSpec {
@@ -224,7 +224,7 @@ fn s8_3_2_monitor_device_status() {
         d.current[5]
     );
     assert_eq!(d.current[9].0, 0);
-    // DEVICE_STATUS_QUERY (reading note 6) answers at once, echoing the number.
+    // DEVICE_STATUS_QUERY (icd-reading R6) answers at once, echoing the number.
     let cnt = c.send(DeviceStatusQuery);
     c.wait_for("DEVICE_STATUS answering the query", |p| {
         (p.cnt == cnt && matches!(p.message, Message::DeviceStatus(_))).then_some(())
@@ -249,7 +249,7 @@ fn s8_3_3_monitor_fault_status() {
         Some(FaultCode::NoFault),
         "35 bytes, a code for everyone"
     );
-    // Cleared: FAULT_STATUS stops (reading note 9).
+    // Cleared: FAULT_STATUS stops (icd-reading R9).
     c.send(DeviceClear { device_id: 9 });
     c.next("SYSTEM_STATUS", |m| {
         matches!(m, Message::SystemStatus(_)).then_some(())

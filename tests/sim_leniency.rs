@@ -135,7 +135,7 @@ fn flap_move(cnt: u8, on: u8, direction: u8) -> Vec<u8> {
 
 #[test]
 fn trim_move_at_exactly_4_hz_runs_steadily_and_a_late_one_is_only_counted() {
-    // ICD §6.4.2 "at least 4Hz", reading note 19: 250 ms apart keeps the motor going.
+    // ICD §6.4.2 "at least 4Hz", icd-reading R19: 250 ms apart keeps the motor going.
     let mut b = Bench::new(AIRCRAFT);
     b.run(100);
     for i in 0..8u8 {

@@ -56,7 +56,7 @@ fn broadcast_rates_are_1_hz_and_10_hz_within_5_percent() {
             "{name}: {r:.3} Hz, want {want} Hz ± 5 %"
         );
     }
-    // The unit's own count runs on across every broadcast (reading note 14).
+    // The unit's own count runs on across every broadcast (icd-reading R14).
     let cnts: Vec<u8> = c.log.iter().map(|(_, p)| p.cnt).collect();
     assert!(
         cnts.windows(2).all(|w| w[1] == w[0].wrapping_add(1)),

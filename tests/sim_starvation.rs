@@ -1,4 +1,4 @@
-//! The 4 Hz rule of TRIM_MOVE (ICD §6.4.2, reading note 19), on the wire: a page that
+//! The 4 Hz rule of TRIM_MOVE (ICD §6.4.2, icd-reading R19), on the wire: a page that
 //! streams every 200 ms keeps the motor running; a 400 ms gap stops it once (the unit
 //! stops 300 ms after the last message: 250 ms plus its margin, see `sim::motors`).
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.

@@ -3,8 +3,8 @@
 //! **How fast the unit can be asked.** ICD v2.1 gives no request rate and says
 //! nothing of how the VP-X queues requests; the real unit's buffers are not
 //! published. What the ICD does fix is the line (§3.2.1: 57600 baud, 8N1, so 5760
-//! bytes a second each way) and the size of every frame (8 + payload + 1, reading
-//! note 1). The connect set below is 91 requests, 936 bytes towards the unit
+//! bytes a second each way) and the size of every frame (8 + payload + 1, icd-reading
+//! R1). The connect set below is 91 requests, 936 bytes towards the unit
 //! (163 ms of line), and its answers are 1608 bytes back (279 ms): 31 DEVICE_NAMEs
 //! of 26 bytes, 28 DEVICE_SPECs of 13, 25 DEVICE_ENABLEs of 11, FLAP_SPEC 20, two
 //! TRIM_SPECs 16, SYSTEM_SPEC 11, WIG_WAG_SPEC 13, VERSION 12, DEVICE_STATUS 75.
@@ -51,7 +51,7 @@ pub const REFRESH_EVERY: Duration = Duration::from_secs(60);
 enum Ask {
     /// VERSION (ICD Table 11), answered with VERSION.
     Version,
-    /// DEVICE_STATUS_QUERY (reading note 6), answered with DEVICE_STATUS.
+    /// DEVICE_STATUS_QUERY (icd-reading R6), answered with DEVICE_STATUS.
     Status,
     /// A setting's query (ICD Tables 18, 22, 23), answered with the setting's message.
     Setting(Setting),
@@ -77,7 +77,7 @@ impl Ask {
     }
 }
 
-/// The setting DEVICE_SPEC_QUERY `id` reads (reading note 13).
+/// The setting DEVICE_SPEC_QUERY `id` reads (icd-reading R13).
 fn spec_setting(id: u8) -> Setting {
     match id {
         FLAPS => Setting::Flaps,

@@ -29,7 +29,7 @@
 //! breaker_amps = 7
 //! overspeed_position = 20
 //! max_speed_kt = 100
-//! endpoint_duration_s = 0.5         # in tenths of a second on the wire (reading note 23)
+//! endpoint_duration_s = 0.5         # in tenths of a second on the wire (icd-reading R23)
 //!
 //! [pitch_trim]                      # TRIM_SPEC, Table 15; name is DEVICE_NAME 30
 //! name = ""
@@ -59,7 +59,7 @@
 //! ```
 //!
 //! Speeds are in knots: the unit compares them with the airspeed this EFIS sends it in
-//! EXTERNAL_DATA, and this EFIS sends knots (reading note 20). Names are single bytes:
+//! EXTERNAL_DATA, and this EFIS sends knots (icd-reading R20). Names are single bytes:
 //! each character U+0000–U+00FF is one byte (Latin-1), so a name the unit holds comes
 //! back byte for byte, while anything above U+00FF is refused.
 //!

@@ -679,7 +679,7 @@ mod tests {
     #[test]
     fn a_factory_unit_round_trips_too() {
         // Factory values outside the ICD's ranges (15 A pins at 2 A, trim power 100 %)
-        // are what a fresh unit reports and must come back (reading note 16).
+        // are what a fresh unit reports and must come back (icd-reading R16).
         let b = Backup {
             version: version(),
             config: UnitConfig::default(),

@@ -2,7 +2,7 @@
 //! long, which motors it will run, and what it leaves alone and why.
 //!
 //! Never touched, whatever the person says: the starter (ICD Appendix B note 1,
-//! reading note 18: the EFIS may only reset it) and the alternator fields (Field_Pri
+//! icd-reading R18: the EFIS may only reset it) and the alternator fields (Field_Pri
 //! and the SYSTEM_SPEC secondary alternator: an alternator field powered with the
 //! engine stopped only drains the battery and heats the field winding). Suggested for
 //! exclusion, which the person may take back on the screen: names with "pitot",

@@ -130,7 +130,7 @@ pub fn put_back_off(model: &Model, id: u8) -> Result<Message, Refusal> {
 fn power(model: &Model, now: Instant, id: u8, on: bool) -> Result<Message, Refusal> {
     let name = model.display_name(id);
     if id == STARTER {
-        // ICD Appendix B note 1, reading note 18.
+        // ICD Appendix B note 1, icd-reading R18.
         return refuse(
             "the starter cannot be switched from the EFIS, only reset; \
              the VP-X turns it off above 500 RPM",

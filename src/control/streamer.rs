@@ -1,6 +1,6 @@
 //! The motor streamer: a held key becomes a TRIM_MOVE/FLAP_MOVE stream with a dead man.
 //!
-//! ICD §6.4.2/§6.4.3 and reading note 19: while a motor should run, its move message
+//! ICD §6.4.2/§6.4.3 and icd-reading R19: while a motor should run, its move message
 //! must reach the unit at 4 Hz or more (no gap over 250 ms), and the unit stops the
 //! motor when they stop coming. That rule protects against a lost stop message; this
 //! module protects against the other runaway, a page that keeps streaming after the
@@ -29,7 +29,7 @@ use crate::model::{Motor, TrimKind};
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{FlapDirection, FlapMove, Packet, TrimDirection, TrimMove};
 
-/// Reading note 19: the longest gap the unit tolerates between move messages.
+/// icd-reading R19: the longest gap the unit tolerates between move messages.
 pub const MAX_WIRE_INTERVAL: Duration = Duration::from_millis(250);
 /// The longest resend period accepted. The 50 ms left below [`MAX_WIRE_INTERVAL`] is
 /// for a sender that wakes late (a loaded machine).
@@ -433,7 +433,7 @@ impl MotorStreamer {
     }
 
     /// The next command number, shared by every request the page sends so the unit's
-    /// echoes (reading note 14) can be told apart.
+    /// echoes (icd-reading R14) can be told apart.
     pub fn next_cnt(&mut self) -> u8 {
         let c = self.cnt;
         self.cnt = self.cnt.wrapping_add(1);

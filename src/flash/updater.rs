@@ -13,8 +13,8 @@
 //!
 //! Decisions:
 //!
-//! * **Address unit**: page numbers, as [`crate::protocol::bootloader`] decides (reading
-//!   note 24); every address sent is logged as page and byte address.
+//! * **Address unit**: page numbers, as [`crate::protocol::bootloader`] decides (icd-reading
+//!   R24); every address sent is logged as page and byte address.
 //! * **Probe order.** VERSION first, so a unit running its software never sees a
 //!   bootloader frame unless an update was decided; QUERY_PORT only when VERSION gets
 //!   no answer. Each protocol ignores the other's frames (`0xE7 0x7E` vs `0x69 0x96`).

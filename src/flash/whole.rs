@@ -4,7 +4,7 @@
 //! Vertical Power can recover (§7.3).
 //!
 //! The figures, from the hardware (the ICD names the processor only by its signature,
-//! reading note 17: an ATmega2560, 256 KiB of flash in 256-byte pages):
+//! icd-reading R17: an ATmega2560, 256 KiB of flash in 256-byte pages):
 //!
 //! * **Program range**: the flash below the bootloader section. The ICD does not give
 //!   the bootloader's size; the ATmega2560's boot section is 512 to 4096 words at the

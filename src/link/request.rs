@@ -3,7 +3,7 @@
 //! screens. It knows the wire, not the model: it returns messages and a
 //! [`UnitConfig`], and keeps no state about the unit between calls.
 //!
-//! **Matching a reply.** ICD Table 2 note 1 and reading note 14: the EFIS chooses the
+//! **Matching a reply.** ICD Table 2 note 1 and icd-reading R14: the EFIS chooses the
 //! command number of each request and the VP-X echoes it in the response, while
 //! broadcasts carry the unit's own count. A reply is therefore a packet from the unit
 //! whose command number is one this request used *and* that the caller's `matches`
@@ -272,7 +272,7 @@ impl UnitClient {
     }
 
     /// DEVICE_SPEC_QUERY for `id` (ICD §6.2.6). The answer's type depends on the id
-    /// (reading note 13): 0 FLAP_SPEC, 29/30 TRIM_SPEC roll/pitch, 253 SYSTEM_SPEC,
+    /// (icd-reading R13): 0 FLAP_SPEC, 29/30 TRIM_SPEC roll/pitch, 253 SYSTEM_SPEC,
     /// 254 WIG_WAG_SPEC, others DEVICE_SPEC for that id.
     pub fn query_spec(&mut self, id: u8) -> Result<Message, RequestError> {
         self.request(
@@ -457,7 +457,7 @@ fn forward(tx: &Sender<Inbound>, port: &std::sync::Mutex<String>, e: LinkEvent) 
     let _ = tx.send(i);
 }
 
-/// Whether `m` is the answer to DEVICE_SPEC_QUERY `id` (reading note 13).
+/// Whether `m` is the answer to DEVICE_SPEC_QUERY `id` (icd-reading R13).
 pub fn query_answers(id: u8, m: &Message) -> bool {
     match (id, m) {
         (FLAPS, Message::FlapSpec(_)) => true,
@@ -476,7 +476,7 @@ pub fn query_answers(id: u8, m: &Message) -> bool {
 /// Table 19's byte 1 is "the device identifier used when sending the specification
 /// request", and note 1 names only 253 (SYSTEM_SPEC) and 254 (WIG_WAG_SPEC).
 /// TRIM_SPEC and FLAP_SPEC carry no device id, so the ICD names none for their
-/// SPEC_ACK (0, 29 and 30 are only the query's mapping, reading note 13): for them
+/// SPEC_ACK (0, 29 and 30 are only the query's mapping, icd-reading R13): for them
 /// the echoed command number alone identifies the answer, whatever id it carries.
 /// (The virtual VP-X answers FLAP_SPEC with 0 and TRIM_SPEC with 29/30.)
 pub fn spec_ack_id(spec: &Message) -> Option<u8> {

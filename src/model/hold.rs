@@ -51,8 +51,8 @@ impl Holds {
     /// The page wrote `message` at `at`.
     pub fn sent(&mut self, at: Instant, message: &Message, specs: &[Option<DeviceSpec>]) {
         match message {
-            // Appendix B: the starter cannot be switched from outside (reading note
-            // 18), and the motors run only by TRIM_MOVE / FLAP_MOVE.
+            // Appendix B: the starter cannot be switched from outside (icd-reading
+            // R18), and the motors run only by TRIM_MOVE / FLAP_MOVE.
             Message::DevicePower(d) if ![STARTER, FLAPS, TRIM_R, TRIM_P].contains(&d.device_id) => {
                 if let Some(slot) = self.0.get_mut(usize::from(d.device_id)) {
                     *slot = Some(Hold { on: d.on, at });

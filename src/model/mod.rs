@@ -590,7 +590,7 @@ impl Model {
 
     /// Live fault codes per device and the system fault flag, or `None` when there is
     /// no live status to judge by. A quiet FAULT_STATUS while the other broadcasts
-    /// flow means no faults (reading note 9).
+    /// flow means no faults (icd-reading R9).
     pub fn live_faults(&self, now: Instant) -> Option<([FaultCode; DEVICE_COUNT], bool)> {
         if self.comm_lost(now) {
             return None;

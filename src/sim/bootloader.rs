@@ -1,11 +1,11 @@
 //! The bootloader of ICD §7, entered by SOFTWARE_UPDATE (§6.1.3).
 //!
 //! Frames are `0x69 0x96 <cmd> <num> <jump=0> <num 16-bit words of data>` (Table 35).
-//! The flash is modelled as 256 KiB in 256-byte pages (reading note 17: the SIGNATURE
+//! The flash is modelled as 256 KiB in 256-byte pages (icd-reading R17: the SIGNATURE
 //! reply is the ATmega2560's), erased to 0xFF; programming ANDs the new bytes into the
 //! page as real flash does, so a flasher that forgets FLASH_ERASE reads back garbage.
 //!
-//! Decisions where the ICD is silent or loose (reading note 24):
+//! Decisions where the ICD is silent or loose (icd-reading R24):
 //!
 //! * **Address unit.** FLASH_PROG's and FLASH_READ's 16-bit little-endian address is a
 //!   **page number** (byte address / 256): 16 bits of bytes or words cannot reach all of

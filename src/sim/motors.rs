@@ -3,7 +3,7 @@
 //! A motor has a position 0–255 (the position sensor) and moves it while driven. What
 //! drives it:
 //!
-//! * **TRIM_MOVE / FLAP_MOVE streams** (reading note 19). §6.4.2 asks the EFIS for
+//! * **TRIM_MOVE / FLAP_MOVE streams** (icd-reading R19). §6.4.2 asks the EFIS for
 //!   "at least 4Hz", an interval of 250 ms at most, so a message exactly 250 ms after
 //!   the last (or a few ms later, through a USB adapter's jitter) must keep the motor
 //!   running. Decision: each "on" message keeps it running for [`STREAM_TIMEOUT`]
@@ -33,7 +33,7 @@ use super::scenario::{MotorDirection, MotorId};
 use crate::protocol::FaultCode;
 
 /// The longest interval the EFIS may leave between two TRIM_MOVE / FLAP_MOVE
-/// messages (ICD §6.4.2 "at least 4Hz", reading note 19). A longer one is *late*.
+/// messages (ICD §6.4.2 "at least 4Hz", icd-reading R19). A longer one is *late*.
 pub const STREAM_INTERVAL: Duration = Duration::from_millis(250);
 /// How much later than [`STREAM_INTERVAL`] the unit still keeps a run going: an EFIS
 /// streaming at exactly 4 Hz must not stutter on a few ms of line or scheduler jitter.

@@ -250,7 +250,7 @@ pub struct FlapSection {
     pub overspeed_position: u8,
     #[serde(default)]
     pub max_speed: u16,
-    /// Seconds (sent in tenths, reading note 23).
+    /// Seconds (sent in tenths, icd-reading R23).
     #[serde(default)]
     pub endpoint_duration: f32,
     #[serde(default)]

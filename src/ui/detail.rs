@@ -122,7 +122,7 @@ fn spec_line(model: &Model, c: &Circuit) -> Line<'static> {
                 spans.extend(field("up/down", format!("{}/{}", s.up, s.down)));
                 spans.extend(field("mid", format!("{}/{}", s.midpoint_1, s.midpoint_2)));
                 // Speeds are knots, as the setup screens and backups say them (the
-                // EFIS's own unit, READING-NOTES 20).
+                // EFIS's own unit, icd-reading R20).
                 spans.extend(field("max speed", format!("{} kt", s.max_speed)));
             }
             None => spans.extend(field("spec", "not received".into())),

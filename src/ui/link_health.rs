@@ -94,7 +94,7 @@ fn age_items(model: &Model, now: Instant) -> Vec<Vec<Span<'static>>> {
             FLAP_TRIM_STALE_AFTER,
         ),
     ];
-    // Reading note 9: FAULT_STATUS is only sent while a fault exists, so its silence
+    // icd-reading R9: FAULT_STATUS is only sent while a fault exists, so its silence
     // while status flows is good news, not a link problem.
     let fault_quiet = model
         .link

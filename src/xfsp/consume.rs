@@ -1,6 +1,6 @@
 //! Air and engine data taken from the network for the VP-X's EXTERNAL_DATA.
 //!
-//! The five inputs the VP-X wants (reading note 8) are IAS, GROUNDSPEED, P-ALT,
+//! The five inputs the VP-X wants (icd-reading X8) are IAS, GROUNDSPEED, P-ALT,
 //! FUELPRES and ENGRPM. The draft gives them no scale, so each is taken as whole units
 //! of what EXTERNAL_DATA carries: IAS and ground speed in the EFIS's speed unit (the
 //! one FLAP_SPEC/TRIM_SPEC speeds use), pressure altitude in feet, fuel pressure in PSI,
@@ -20,9 +20,9 @@ use super::dict::Confidence;
 use super::idents::{self, Ident};
 use super::param::Parameter;
 
-/// Reading note 20: the VP-X itself gives up on EXTERNAL_DATA after 2 s.
+/// icd-reading R20: the VP-X itself gives up on EXTERNAL_DATA after 2 s.
 pub const MAX_AGE: Duration = Duration::from_secs(2);
-/// EXTERNAL_DATA is sent at 1 Hz (reading note 20).
+/// EXTERNAL_DATA is sent at 1 Hz (icd-reading R20).
 pub const SEND_PERIOD: Duration = Duration::from_secs(1);
 
 /// The five inputs, in EXTERNAL_DATA order.

@@ -30,7 +30,7 @@ use socket2::{Domain, Protocol, Socket, Type};
 use crate::platform::Os;
 use crate::transient::is_transient;
 
-/// The draft's default group and port (reading note 9).
+/// The draft's default group and port (icd-reading X9).
 pub const DEFAULT_TARGET: &str = "224.0.2.69:20234";
 /// Datagrams queued between the receiving thread and the main loop.
 pub const QUEUE: usize = 4096;

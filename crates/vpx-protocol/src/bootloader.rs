@@ -1,4 +1,4 @@
-//! The VP-X bootloader protocol, ICD §7 (Tables 35–39, reading notes 17 and 24).
+//! The VP-X bootloader protocol, ICD §7 (Tables 35–39, icd-reading R17 and R24).
 //!
 //! After SOFTWARE_UPDATE the unit stops speaking the main protocol and listens for
 //! frames of its own: `0x69 0x96`, one ASCII command character, `num` (payload size
@@ -25,8 +25,8 @@
 //!   field "Flash Page Address". The same unit is used for FLASH_READ. Callers should
 //!   log every address sent; [`byte_address`] and [`page_address`] convert.
 //! * **FLASH_READ size** is in bytes: the reply is "<page_size> bytes" (§7.5.5).
-//! * **Address and size are little-endian** (low byte first, Tables 38, 39, reading
-//!   note 3), unlike the main protocol.
+//! * **Address and size are little-endian** (low byte first, Tables 38, 39, icd-reading
+//!   R3), unlike the main protocol.
 //! * **Jump byte other than 0** ("always 0 for the VP-X") is taken as "not a frame"
 //!   and the decoder resyncs past it.
 
@@ -41,8 +41,8 @@ pub const HEADER_LEN: usize = 5;
 pub const SIGNATURE: [u8; 3] = [0x01, 0x98, 0x1E];
 /// ATmega2560 flash page: 128 words (note 17).
 pub const PAGE_SIZE: usize = 256;
-/// Program flash of the ATmega2560 the SIGNATURE reply names: 256 KiB (ICD §7.5.6, reading
-/// note 17).
+/// Program flash of the ATmega2560 the SIGNATURE reply names: 256 KiB (ICD §7.5.6, icd-reading
+/// R17).
 pub const FLASH_SIZE: usize = 256 * 1024;
 /// Number of [`PAGE_SIZE`] pages in the flash: 1024, so a page number fits FLASH_PROG's
 /// 16-bit address (ICD Table 38).
@@ -57,8 +57,8 @@ pub const SECONDARY_PORT: u8 = 0;
 pub const SERIAL_CONF_REPLY: &[u8] = b"!!!";
 /// FLASH_ERASE reply: `'e'` when the erase is complete (ICD §7.5.2).
 pub const FLASH_ERASE_REPLY: &[u8] = b"e";
-/// FLASH_PROG reply: upper-case `'P'` when the page is written (ICD §7.5.3, reading note
-/// 17).
+/// FLASH_PROG reply: upper-case `'P'` when the page is written (ICD §7.5.3, icd-reading
+/// R17).
 pub const FLASH_PROG_REPLY: &[u8] = b"P";
 /// QUERY_PORT reply: `"VP_AVRBOOT"` (ICD §7.5.4).
 pub const QUERY_PORT_REPLY: &[u8] = b"VP_AVRBOOT";
@@ -83,14 +83,14 @@ pub fn page_address(byte_address: u32) -> Option<u16> {
 /// What a bootloader command or reply got wrong (ICD §7).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum BootError {
-    /// FLASH_PROG data longer than one 256-byte flash page (ICD Table 38, reading note 17).
+    /// FLASH_PROG data longer than one 256-byte flash page (ICD Table 38, icd-reading R17).
     #[error("flash page data is {len} bytes; a page is {PAGE_SIZE}")]
     PageTooLong {
         /// Bytes of data given.
         len: usize,
     },
-    /// A page number past the end of the 256 KiB flash (ICD Tables 38 and 39, reading note
-    /// 24).
+    /// A page number past the end of the 256 KiB flash (ICD Tables 38 and 39, icd-reading
+    /// R24).
     #[error("page {page} is outside the {PAGE_COUNT}-page flash")]
     PageOutsideFlash {
         /// The page number asked for.

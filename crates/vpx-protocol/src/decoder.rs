@@ -8,7 +8,7 @@
 //! impossible length) we advance **one byte**, never a whole frame, so a real frame
 //! hidden inside garbage is still found. Memory is one maximal frame.
 //!
-//! A frame is `8 + len + 1` bytes (ICD §3.2.2, Table 1, reading note 1). A *candidate*
+//! A frame is `8 + len + 1` bytes (ICD §3.2.2, Table 1, icd-reading R1). A *candidate*
 //! is any `E7 7E` pair; what the decoder does with one, in this order:
 //!
 //! 1. **Impossible at the header.** A known id whose length field is not the length its
@@ -521,7 +521,7 @@ mod tests {
     const DEVICE_POWER: [u8; 11] = [
         0xE7, 0x7E, 0x13, 0x00, 0x02, 0x01, 0x00, 0x02, 0x05, 0x01, 0x70,
     ];
-    /// SPEC_ACK device 5 no error, cnt 3, VP-X → EFIS (0x11/0x06, reading note 4):
+    /// SPEC_ACK device 5 no error, cnt 3, VP-X → EFIS (0x11/0x06, icd-reading R4):
     /// E7^7E^11^06^03^00^01^02^05^00 = 0x8B, inverted = 0x74.
     const SPEC_ACK: [u8; 11] = [
         0xE7, 0x7E, 0x11, 0x06, 0x03, 0x00, 0x01, 0x02, 0x05, 0x00, 0x74,

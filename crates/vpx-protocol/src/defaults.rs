@@ -1,7 +1,7 @@
 //! Factory defaults, ICD Appendix F (Table 44): what a unit holds after EEPROM_ERASE or
 //! a failed integrity check.
 //!
-//! Reading note 21: the EFIS breaker is 2 A in Table 40 but 5 A in Table 44. The
+//! icd-reading R21: the EFIS breaker is 2 A in Table 40 but 5 A in Table 44. The
 //! defaults appendix is the table that describes a reset unit, so 5 A is used here.
 
 use super::device::{self, DEVICE_COUNT, EFIS, FIELD_PRI, STARTER};
@@ -65,7 +65,7 @@ pub fn flap_spec() -> FlapSpec {
     }
 }
 
-/// Pitch and roll share their defaults; power is 100 % (reading note 16).
+/// Pitch and roll share their defaults; power is 100 % (icd-reading R16).
 pub fn trim_spec(trim_type: TrimType) -> TrimSpec {
     TrimSpec {
         trim_type,
@@ -98,7 +98,7 @@ mod tests {
         assert_eq!(
             device_spec(EFIS).circuit_breaker,
             5,
-            "reading note 21: Appendix F's 5 A"
+            "icd-reading R21: Appendix F's 5 A"
         );
         assert_eq!(device_spec(EFIS).switch_id, SwitchId::AlwaysOn);
         assert_eq!(

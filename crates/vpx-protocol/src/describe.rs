@@ -2,7 +2,7 @@
 //!
 //! Field names follow the ICD tables (lower-cased); values carry their real units
 //! ("main bus 13.8 V"), devices are shown by id and Table 40 name. Pure: no I/O.
-//! Speeds are knots: the ICD leaves their unit to the EFIS (READING-NOTES 20), and
+//! Speeds are knots: the ICD leaves their unit to the EFIS (icd-reading R20), and
 //! this one's is knots, as its setup screens and backups say.
 //!
 //! JSON numbers in real units are computed from the integer on the wire as `f64`
@@ -169,7 +169,7 @@ fn switches_on(s: &SwitchInputs) -> String {
 }
 
 /// The switch of a DEVICE_SPEC for JSON's `switch`, with the byte that was on the wire
-/// where reading note 10 reads two bytes alike: "always on (255)" for 255, which the
+/// where icd-reading R10 reads two bytes alike: "always on (255)" for 255, which the
 /// page takes as 11. A mechanic can then see which of the two a real unit uses.
 fn switch_label(m: &DeviceSpec) -> String {
     match m.switch_raw {
@@ -179,7 +179,7 @@ fn switch_label(m: &DeviceSpec) -> String {
 }
 
 /// The switch of a DEVICE_SPEC said once, by the byte that was sent, then what it
-/// means: "switch 3 (input 3)", "switch 11 (always on)". Where reading note 10 reads a
+/// means: "switch 3 (input 3)", "switch 11 (always on)". Where icd-reading R10 reads a
 /// byte as another (255 is always on, as 11), the reading says so: "switch 255 (always
 /// on; read as 11)".
 fn switch_text(m: &DeviceSpec) -> String {
@@ -686,7 +686,7 @@ mod tests {
 
     #[test]
     fn device_spec_shows_the_switch_byte_that_was_sent() {
-        // Reading note 10: 255 and 11 both mean always on; the page takes 11, and the
+        // icd-reading R10: 255 and 11 both mean always on; the page takes 11, and the
         // typed message keeps the 255 that was on the wire so decode can show it.
         let p = Packet::parse_bytes(&SPEC_SW_255).unwrap();
         let Message::DeviceSpec(spec) = p.message else {
@@ -704,7 +704,7 @@ mod tests {
             (&j["switch_id"], &j["switch_raw"], &j["switch"]),
             (&json!(11), &json!(255), &json!("always on (255)"))
         );
-        // What the page sends for always on is 11, whatever it read (reading note 10).
+        // What the page sends for always on is 11, whatever it read (icd-reading R10).
         assert_eq!(p.message.emit().as_slice(), [0x04, 0x05, 0x0B, 0x00]);
 
         // Sent as 11: nothing to add.

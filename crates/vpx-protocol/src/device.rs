@@ -27,7 +27,7 @@ pub struct DeviceInfo {
     /// Table 40 "Amps": highest breaker setting, whole amps.
     pub amps_max: u8,
     /// Table 40's default breaker. For the EFIS this says 2 A while Appendix F says 5 A
-    /// (reading note 21); see `defaults` for the value the virtual unit resets to.
+    /// (icd-reading R21); see `defaults` for the value the virtual unit resets to.
     pub default_breaker: u8,
     /// Table 40 "Current Fault Support": whether DEVICE_SPEC's current fault flag applies.
     pub current_fault_support: bool,
@@ -50,7 +50,7 @@ impl DeviceInfo {
 /// Device 0x00, Flaps (ICD Table 40).
 pub const FLAPS: u8 = 0x00;
 /// Device 0x01, Starter (ICD Table 40): cannot be switched from the EFIS, only reset
-/// (reading note 18).
+/// (icd-reading R18).
 pub const STARTER: u8 = 0x01;
 /// Device 0x02, EFIS (ICD Table 40): its switch must not be 0 (Table 13 note 4).
 pub const EFIS: u8 = 0x02;

@@ -5,7 +5,7 @@ use super::frame::MessageId;
 pub enum LenRule {
     /// Exactly this many bytes (the "Payload Size" line of the message's ICD section).
     Exact(usize),
-    /// Inclusive range; FAULT_STATUS is the only variable-length message (reading note 9).
+    /// Inclusive range; FAULT_STATUS is the only variable-length message (icd-reading R9).
     Between(usize, usize),
 }
 
@@ -33,7 +33,7 @@ impl core::fmt::Display for LenRule {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum Error {
     /// Fewer bytes than the frame needs: 8 header bytes, `len` payload bytes and the
-    /// checksum (ICD Table 1, reading note 1).
+    /// checksum (ICD Table 1, icd-reading R1).
     #[error("frame is {got} bytes, shorter than its header and checksum need ({need})")]
     Truncated {
         /// Bytes given.
@@ -45,7 +45,7 @@ pub enum Error {
     #[error("frame does not start with 0xE7 0x7E")]
     BadHeader,
     /// The checksum byte is not the inverted XOR of the bytes before it (ICD §4.1.3,
-    /// reading note 2).
+    /// icd-reading R2).
     #[error("bad checksum: computed {computed:#04x}, frame carries {found:#04x}")]
     BadChecksum {
         /// What the bytes before the checksum give.

@@ -22,7 +22,7 @@ pub const MAX_FRAME: usize = HEADER_LEN + MAX_PAYLOAD + 1;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct MessageId {
     /// Major command id (Table 2 byte 3): the message group, 0x10–0x15 (ICD Table 3,
-    /// reading note 5).
+    /// icd-reading R5).
     pub major: u8,
     /// Minor command id (Table 2 byte 4): the message within its group (ICD Tables 4–9).
     pub minor: u8,
@@ -51,7 +51,7 @@ pub enum Node {
     /// 0xFE, unknown (ICD Table 1).
     Unknown,
     /// 0xFF, broadcast (ICD Table 1; accepted as the destination of status messages,
-    /// reading note 22).
+    /// icd-reading R22).
     Broadcast,
     /// Any other byte, kept as it was.
     Other(u8),
@@ -104,7 +104,7 @@ pub struct FrameHeader {
     /// Major and minor command id (Table 2 bytes 3 and 4).
     pub id: MessageId,
     /// Command number: chosen by the EFIS per request and echoed in the reply;
-    /// the VP-X's own running count on broadcasts (reading note 14).
+    /// the VP-X's own running count on broadcasts (icd-reading R14).
     pub cnt: u8,
     /// Source (Table 2 byte 6).
     pub src: Node,

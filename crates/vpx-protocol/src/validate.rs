@@ -11,15 +11,15 @@
 //! Decisions where the ICD is silent or contradicts itself (each pinned by a test):
 //!
 //! * **Factory-default breaker.** The 15 A pins take 5–15 A (Table 40) yet default to
-//!   2 A (Tables 40 and 44). As reading note 16 does for trim power, the pin's own
+//!   2 A (Tables 40 and 44). As icd-reading R16 does for trim power, the pin's own
 //!   factory default is accepted although outside its range: a restore of a backup
 //!   taken from a fresh unit must not be refused, and the unit itself reports it.
-//!   The same holds for pitch trim power 100 % against Table 15's 40–90 (reading
-//!   note 16). A strict reading would answer these with 0x03 / 0x01; we take the
+//!   The same holds for pitch trim power 100 % against Table 15's 40–90 (icd-reading
+//!   R16). A strict reading would answer these with 0x03 / 0x01; we take the
 //!   unit's own values over the table's range.
 //! * **DEVICE_SPEC for 0, 29 and 30.** Table 13's id range is 0–30, but the flaps and
 //!   trims are configured by FLAP_SPEC and TRIM_SPEC (their DEVICE_SPEC_QUERY answers
-//!   with those, reading note 13), and a breaker or switch for them would be stored
+//!   with those, icd-reading R13), and a breaker or switch for them would be stored
 //!   where nothing reads it back: refused `InvalidDevice` (0x02).
 //! * **"Same switch" for the alternators** (Table 13 note 6, Table 14 note 5) means the
 //!   same switch 1–10 or both always on (11). Both always off (0) is not a shared
@@ -352,11 +352,11 @@ pub fn check_system_spec(cfg: &UnitConfig, spec: &SystemSpec) -> Result<(), Refu
 
 // ---------------------------------------------------------------- TRIM_SPEC
 
-/// Trim power is 40–90 % (ICD Table 15); 100 is the factory value (Table 44, reading
-/// note 16) and accepted too.
+/// Trim power is 40–90 % (ICD Table 15); 100 is the factory value (Table 44, icd-reading
+/// R16) and accepted too.
 pub const TRIM_POWER_RANGE: core::ops::RangeInclusive<u8> = 40..=90;
-/// What a unit fresh from EEPROM_ERASE reports for trim power (ICD Table 44, reading note
-/// 16).
+/// What a unit fresh from EEPROM_ERASE reports for trim power (ICD Table 44, icd-reading
+/// R16).
 pub const TRIM_POWER_FACTORY: u8 = 100;
 /// Highest TRIM_SPEC speed (ICD Table 15, bytes 6–7: 0–300).
 pub const TRIM_SPEED_MAX: u16 = 300;
@@ -412,7 +412,7 @@ pub fn check_trim_spec(_cfg: &UnitConfig, spec: &TrimSpec) -> Result<(), Refusal
 pub const FLAP_BREAKER_RANGE: core::ops::RangeInclusive<u8> = 1..=10;
 /// Highest FLAP_SPEC max speed (ICD Table 16, bytes 8–9: 0–500).
 pub const FLAP_MAX_SPEED_MAX: u16 = 500;
-/// Tenths of a second (reading note 23).
+/// Tenths of a second (icd-reading R23).
 pub const FLAP_ENDPOINT_DURATION_MAX: u16 = 300;
 
 /// FLAP_SPEC, ICD Table 16. In order:

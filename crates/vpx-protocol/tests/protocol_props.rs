@@ -4,13 +4,13 @@
 //! Where the ICD maps two byte values to one typed value, the strategies generate
 //! only the canonical typed value, because the other one cannot come back:
 //! - enumerations are built with `from_byte` (so `SwitchId` 255 appears as
-//!   `AlwaysOn`, which is sent as 11 — reading note 10);
+//!   `AlwaysOn`, which is sent as 11 — icd-reading R10);
 //! - one-bit fields (trim type in TRIM_SPEC, wig-wag mode in SYSTEM_STATUS) are only
 //!   the two values the bit can hold;
 //! - `Option<u8>` device ids whose `None` is sent as 255 are never `Some(255)`, and
 //!   "error/integrity code 0 = none" is never `Some(code 0)`;
 //! - FAULT_STATUS codes are a prefix of `Some`s followed by `None`s, which is all a
-//!   payload length can express (reading note 9).
+//!   payload length can express (icd-reading R9).
 
 use proptest::prelude::*;
 use vpx_protocol::decoder::DecoderStats;
@@ -467,7 +467,7 @@ fn false_header() -> impl Strategy<Value = Vec<u8>> {
                     .unwrap();
                 (known.major, known.minor, len)
             }
-            // An id the ICD does not define (majors are 0x10-0x15, reading note 5),
+            // An id the ICD does not define (majors are 0x10-0x15, icd-reading R5),
             // with a length some message can have, then with one none can.
             2 => (0x20 | minor, minor, raw % (MAX_MESSAGE_LEN as u8 + 1)),
             _ => (
@@ -502,7 +502,7 @@ proptest! {
         let bytes = p.to_bytes();
         prop_assert_eq!(Packet::parse_bytes(&bytes), Ok(p));
         // The length byte agrees with what was written, and the frame is 8 + len + 1
-        // (reading note 1).
+        // (icd-reading R1).
         prop_assert_eq!(bytes.len(), 8 + bytes[7] as usize + 1);
     }
 

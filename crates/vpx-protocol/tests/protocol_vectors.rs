@@ -3,7 +3,7 @@
 //! the ICD tables and checked both ways: the bytes parse to the typed value written
 //! out field by field, and the typed value emits exactly those bytes.
 //!
-//! Every checksum was worked by hand (ICD §4.1.3, reading note 2: XOR of every byte
+//! Every checksum was worked by hand (ICD §4.1.3, icd-reading R2: XOR of every byte
 //! before it, both sync bytes included, then NOT) and the working is in the comment
 //! above it as `header … = h; payload … = p; h^p = x; !x = checksum`. Nothing here is
 //! produced by our encoder, so an encoder and decoder that agree on a wrong reading
@@ -115,7 +115,7 @@ fn device_spec() {
 
 #[test]
 fn device_spec_switch_255_is_always_on_and_is_sent_as_11() {
-    // Reading note 10: Table 13 note 3 says 255, most of the ICD says 11. Both decode as
+    // icd-reading R10: Table 13 note 3 says 255, most of the ICD says 11. Both decode as
     // always-on; we send 11.
     // header E7^7E^11^00^31^01^00^04 = BC; payload 0C^0A^FF^00 = F9; BC^F9 = 45; !45 = BA
     let with_255 = [
@@ -160,7 +160,7 @@ fn system_spec() {
 
 #[test]
 fn trim_spec() {
-    // Table 15 (reading note 15, MSB first: type, enable, polarity). Flags 0x60 =
+    // Table 15 (icd-reading R15, MSB first: type, enable, polarity). Flags 0x60 =
     // 0b0110_0000: pitch, enabled, inverted. Up 200, down 30, neutral 128, power 60 %,
     // speed 300 = 0x012C (both bytes non-zero, so byte order shows).
     // header E7^7E^11^02^33^01^00^07 = BF;
@@ -192,7 +192,7 @@ fn flap_spec() {
     // Table 16. Flags 0xA0 = 0b1010_0000: position-based, NOT enabled, inverted (the
     // enable bit clear between two set bits pins the order). Up 20, down 220, midpoints
     // 80/160, breaker 7 A, overspeed position 70, max speed 150 = 0x0096, endpoint
-    // duration 5 tenths = 0.5 s (reading note 23).
+    // duration 5 tenths = 0.5 s (icd-reading R23).
     // header E7^7E^11^03^34^01^00^0B = B5;
     // payload A0^14^DC^50^A0^07^46^00^96^00^05 = 4A; B5^4A = FF; !FF = 00
     let bytes = [
@@ -251,7 +251,7 @@ fn device_spec_query_for_system_spec() {
 
 #[test]
 fn spec_ack_with_error() {
-    // Tables 19/20, 0x11/0x06 (reading note 4): device 9, error 0x04 invalid switch id.
+    // Tables 19/20, 0x11/0x06 (icd-reading R4): device 9, error 0x04 invalid switch id.
     // header E7^7E^11^06^36^00^01^02 = BB; payload 09^04 = 0D; BB^0D = B6; !B6 = 49
     let bytes = [
         0xE7, 0x7E, 0x11, 0x06, 0x36, 0x00, 0x01, 0x02, 0x09, 0x04, 0x49,
@@ -348,7 +348,7 @@ fn device_enable_query() {
 
 #[test]
 fn system_status() {
-    // Table 24 as reading note 8 lays it out (12 bytes):
+    // Table 24 as icd-reading R8 lays it out (12 bytes):
     //   system current 12.3 A      = 123  = 00 7B
     //   main bus volts -1.5 V      = -15  = FF F1 (signed: a sign bug shows as 6552.1 V)
     //   aux battery 12.5 V         = 125  = 00 7D
@@ -416,7 +416,7 @@ fn device_status_value() -> DeviceStatus {
 
 #[test]
 fn device_status() {
-    // Table 26 with reading note 7 (bit i of byte k is device 8k+i):
+    // Table 26 with icd-reading R7 (bit i of byte k is device 8k+i):
     //   byte 0: devices 1, 2 → bits 1, 2 = 06;  byte 1: device 9 → bit 1 = 02
     //   byte 2: none = 00;                      byte 3: device 30 → bit 6 = 40
     // Currents, u16 at offset 4 + 2·id:
@@ -446,7 +446,7 @@ fn device_status() {
 
 #[test]
 fn flap_trim_status_broadcast_to_ff() {
-    // Table 27, addressed to 0xFF (reading note 22: broadcasts may use 0x01 or 0xFF).
+    // Table 27, addressed to 0xFF (icd-reading R22: broadcasts may use 0x01 or 0xFF).
     //   flap flags: enabled (bit 7) + overspeed alarm (bit 4) = 90
     //   trim flags: pitch enabled (7) + pitch motor running (6) + roll enabled (4) +
     //               roll fault (2) = D4
@@ -516,7 +516,7 @@ fn flap_trim_status_broadcast_to_ff() {
 
 #[test]
 fn fault_status_full() {
-    // Table 28 with reading note 7: device 9 (byte 1 bit 1 = 02) and device 29 (byte 3
+    // Table 28 with icd-reading R7: device 9 (byte 1 bit 1 = 02) and device 29 (byte 3
     // bit 5 = 20) faulted, plus the system fault in byte 3's MSB: 20|80 = A0.
     // Codes at offset 4 + id: device 9 = 07 SHORT_CIRCUIT, device 29 = 0E TRIM_RUNAWAY.
     // header E7^7E^12^03^45^00^01^23 = EF; payload 00^02^00^A0^07^0E = AB; EF^AB = 44;
@@ -555,7 +555,7 @@ fn fault_status_full() {
 
 #[test]
 fn fault_status_short() {
-    // Reading note 9: a shorter payload (≥ 4) is accepted; codes it lacks are unknown.
+    // icd-reading R9: a shorter payload (≥ 4) is accepted; codes it lacks are unknown.
     // 6 bytes: device 0 faulted (byte 0 bit 0), codes for devices 0 (0A FLAP_RUNAWAY)
     // and 1 (00) only.
     // header E7^7E^12^03^46^00^01^06 = C9; payload 01^00^00^00^0A^00 = 0B; C9^0B = C2;
@@ -583,7 +583,7 @@ fn fault_status_short() {
 
 #[test]
 fn device_status_query() {
-    // Appendix D 0x12/0x04, reading note 6: no payload.
+    // Appendix D 0x12/0x04, icd-reading R6: no payload.
     // header E7^7E^12^04^47^01^00^00 = C9; no payload; !C9 = 36
     let bytes = [0xE7, 0x7E, 0x12, 0x04, 0x47, 0x01, 0x00, 0x00, 0x36];
     both_ways(&bytes, to_vpx(0x47, DeviceStatusQuery));

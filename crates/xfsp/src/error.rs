@@ -16,7 +16,7 @@ pub enum Error {
         len: usize,
     },
 
-    /// The header's `len` promises more bytes than the datagram holds (reading note 3).
+    /// The header's `len` promises more bytes than the datagram holds (icd-reading X3).
     #[error("header len {declared} runs past the datagram ({available} bytes after the header)")]
     LenPastEnd {
         /// The header's `len`.
@@ -89,7 +89,7 @@ pub enum Error {
     ParamTooLarge {
         /// The parameter's size with its header and padding.
         size: usize,
-        /// The datagram budget for parameters (reading note 9: 1460 bytes on IPv4).
+        /// The datagram budget for parameters (icd-reading X9: 1460 bytes on IPv4).
         limit: usize,
     },
 }

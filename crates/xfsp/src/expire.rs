@@ -1,9 +1,9 @@
-//! The parameter Expire octet (§3.2.2, reading note 4): upper five bits mantissa M,
+//! The parameter Expire octet (§3.2.2, icd-reading X4): upper five bits mantissa M,
 //! lower three bits exponent E, lifetime = 3·(M+1)·10^(E+1) ms; 0xFF never expires.
 
 use std::time::Duration;
 
-/// A parameter's time to live, as its wire octet (§3.2.2, reading note 4).
+/// A parameter's time to live, as its wire octet (§3.2.2, icd-reading X4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Expire(pub u8);
 

@@ -1,4 +1,4 @@
-//! The 12-byte XFSp message header (§3.1, reading note 1), network byte order:
+//! The 12-byte XFSp message header (§3.1, icd-reading X1), network byte order:
 //!
 //! ```text
 //!  0               1               2               3
@@ -14,7 +14,7 @@
 pub use super::dict::{CertLevel, MsgClass, MsgOp, Tcid};
 use super::{cursor::Reader, error::Error};
 
-/// Size of the message header in bytes (§3.1, reading note 1).
+/// Size of the message header in bytes (§3.1, icd-reading X1).
 pub const HEADER_LEN: usize = 12;
 
 /// The message header as it is on the wire (§3.1, Figure 1), `len` included as received.
@@ -22,8 +22,8 @@ pub const HEADER_LEN: usize = 12;
 pub struct Header {
     /// §3.1 `src id`: the sender's locally configured source id, unique on the network.
     pub src_id: u16,
-    /// §3.1 `message number`: monotonically increasing per source (compared as in reading
-    /// note 7).
+    /// §3.1 `message number`: monotonically increasing per source (compared as in icd-reading
+    /// X7).
     pub msg_num: u16,
     /// §3.1 `msg class` (Table 1).
     pub class: MsgClass,
@@ -33,7 +33,7 @@ pub struct Header {
     pub flags: u16,
     /// §3.1 `tcid`: transcoder id (Table 4).
     pub tcid: Tcid,
-    /// Bytes after the header (reading note 3). A parsed header keeps what the sender
+    /// Bytes after the header (icd-reading X3). A parsed header keeps what the sender
     /// wrote; whether it fits the datagram is checked by the message parser.
     pub len: u16,
 }

@@ -351,7 +351,7 @@ mod tests {
         s.split_whitespace().collect::<Vec<_>>().join(" ")
     }
 
-    /// Reading note 5: an ident is its hex groups run together (`%x00.29` is 0x29).
+    /// icd-reading X5: an ident is its hex groups run together (`%x00.29` is 0x29).
     fn spec_ident(token: &str) -> u32 {
         let hex: String = token.trim_start_matches("%x").split('.').collect();
         u32::from_str_radix(&hex, 16).unwrap_or_else(|e| panic!("ident {token}: {e}"))

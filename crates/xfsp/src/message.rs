@@ -3,7 +3,7 @@
 //! MAINT and OP messages carry parameters; RAW messages carry opaque bytes. A class
 //! the draft does not define is treated as RAW, since nothing says how to frame it.
 //!
-//! Header `len` (reading note 3): we send the number of bytes after the header. On
+//! Header `len` (icd-reading X3): we send the number of bytes after the header. On
 //! receipt the datagram's real size is what counts: the whole rest of the datagram is
 //! the body, and a `len` that runs past the end is malformed. (The draft's own §5.1
 //! example says 0x28 for 32 bytes of parameters; by this reading it is malformed, and a
@@ -204,7 +204,7 @@ mod tests {
     use proptest::prelude::*;
 
     /// §5.1 written out by hand from Figures 4-6, except `len`: 0x20 (32 bytes of
-    /// parameters follow) where the draft prints 0x28 (reading note 3).
+    /// parameters follow) where the draft prints 0x28 (icd-reading X3).
     const RADIO: [u8; 44] = [
         0x03, 0xE9, 0x00, 0x14, 0x03, 0x02, 0x00, 0x05, 0x00, 0x00, 0x00, 0x20, // header
         0x00, 0x02, 0x00, 0x00, 0x00, 0x40, 0x00, 0x24, 0x02, 0x80, 0xFF, 0x05, // COMFREQKHZ

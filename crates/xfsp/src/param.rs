@@ -1,4 +1,4 @@
-//! One XFSp parameter (§3.2, reading note 2): a 12-byte header and data padded with
+//! One XFSp parameter (§3.2, icd-reading X2): a 12-byte header and data padded with
 //! zeros to a multiple of four.
 //!
 //! ```text
@@ -19,7 +19,7 @@ use super::expire::Expire;
 use super::format::{FormatId, Value};
 use super::idents::Ident;
 
-/// Size of a parameter header (§3.2, reading note 2).
+/// Size of a parameter header (§3.2, icd-reading X2).
 pub const PARAM_HEADER_LEN: usize = 12;
 /// Largest data length the 12-bit field can carry (§3.2 Parameter Data Len).
 pub const MAX_DATA_LEN: usize = 0xFFF;
@@ -182,7 +182,7 @@ impl<'a> Params<'a> {
         };
         let (block, rest) = after_header.split_at_checked(padded).ok_or(past_end)?;
         // Draft §3.2: data "MUST be padded to a multiple of four bytes"; that the
-        // padding is zero is only our sending rule (reading note XFSp 2), so on
+        // padding is zero is only our sending rule (icd-reading X2), so on
         // receipt its bytes are skipped whatever they hold.
         let data = block.get(..len).ok_or(past_end)?;
         self.rest = rest;

@@ -1,7 +1,7 @@
 //! §4.4 reception: each source's messages are processed in order and only once.
 //!
 //! Message numbers are compared in 16-bit serial-number arithmetic (RFC 1982,
-//! reading note 7): `n` is newer than `last` when `(n - last) mod 65536` is in
+//! icd-reading X7): `n` is newer than `last` when `(n - last) mod 65536` is in
 //! 1..=32767. Equal is a duplicate; anything else is late (out of order) and is
 //! discarded, as §2 requires ("if received out of order, a message MUST be ignored").
 //!
@@ -41,8 +41,8 @@ pub const FORGET_AFTER: Duration = Duration::from_secs(10);
 /// Silent sources are swept from the table at most this often.
 pub const SWEEP_EVERY: Duration = Duration::from_secs(1);
 
-/// Whether `n` comes after `last` in 16-bit serial-number arithmetic (RFC 1982, reading
-/// note 7).
+/// Whether `n` comes after `last` in 16-bit serial-number arithmetic (RFC 1982, icd-reading
+/// X7).
 pub fn serial_newer(n: u16, last: u16) -> bool {
     (1..=32767).contains(&n.wrapping_sub(last))
 }
@@ -61,7 +61,7 @@ pub enum Verdict {
 /// The result of offering a datagram to the receiver (§4.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Received<'a> {
-    /// Newer than every message processed from its source (§2, §4.4, reading note 7):
+    /// Newer than every message processed from its source (§2, §4.4, icd-reading X7):
     /// process it.
     Fresh(MessageView<'a>),
     /// A message number already processed from this source (§2: "MUST ignore all duplicate

@@ -2,7 +2,7 @@
 //! coalesced into as few datagrams as fit, each with the next message number.
 //!
 //! The budget is for parameter bytes (after the 12-byte header): 1460 on IPv4, 1440 on
-//! IPv6 (§2, reading note 9), so a datagram never needs IP fragmentation. Numbers start
+//! IPv6 (§2, icd-reading X9), so a datagram never needs IP fragmentation. Numbers start
 //! wherever the caller says ("an arbitrary initial value") and wrap modulo 65536, which
 //! receivers handle with serial-number arithmetic.
 

@@ -9,7 +9,7 @@ use xfsp::{
 };
 
 /// The §5.1 "Adjust radio" datagram, typed in byte by byte from Figures 4, 5 and 6,
-/// with `len` = 0x20 (the bytes that follow) per reading note 3.
+/// with `len` = 0x20 (the bytes that follow) per icd-reading X3.
 const ADJUST_RADIO: &[u8] = &[
     0x03, 0xE9, // src id 1001
     0x00, 0x14, // message number 20

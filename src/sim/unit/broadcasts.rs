@@ -21,7 +21,7 @@ impl Unit {
         let d = self.device_status();
         self.broadcast(d, now);
         self.wire.device_status += 1;
-        // §6.3.4: only while a fault exists (reading note 9).
+        // §6.3.4: only while a fault exists (icd-reading R9).
         if let Some(f) = self.fault_status() {
             self.broadcast(f, now);
             self.wire.fault_status += 1;

@@ -47,7 +47,7 @@ pub const FAST_PERIOD: Duration = Duration::from_millis(100);
 pub const EXTERNAL_DATA_TIMEOUT: Duration = Duration::from_secs(2);
 /// Each wig-wag light is on for this long, then the other (the ICD gives no rate).
 pub const WIG_WAG_HALF_PERIOD: Duration = Duration::from_millis(500);
-/// The starter is cut above this valid RPM (Appendix B note 1, reading note 18).
+/// The starter is cut above this valid RPM (Appendix B note 1, icd-reading R18).
 pub const STARTER_CUTOUT_RPM: u16 = 500;
 
 /// Fixed facts about the unit, chosen when it is built.

@@ -51,7 +51,7 @@ pub struct SimStats {
     pub pitch_trim_running: bool,
     pub roll_trim_running: bool,
     /// Streams that ended because no TRIM_MOVE/FLAP_MOVE came for 300 ms (the 250 ms
-    /// of reading note 19 plus the unit's margin, see `sim::motors`).
+    /// of icd-reading R19 plus the unit's margin, see `sim::motors`).
     pub flap_starvations: u64,
     pub pitch_trim_starvations: u64,
     pub roll_trim_starvations: u64,
@@ -70,7 +70,7 @@ pub struct SimStats {
     pub external_data_missing: bool,
     pub software_update_flag: bool,
     pub eeprom_writes: u64,
-    /// Broadcast command count (the unit's own, reading note 14).
+    /// Broadcast command count (the unit's own, icd-reading R14).
     pub broadcast_cnt: u8,
     /// The last log lines, oldest first.
     pub log: Vec<String>,

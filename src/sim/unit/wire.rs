@@ -298,7 +298,7 @@ impl Unit {
 
     fn spec_query(&mut self, cnt: u8, id: u8, now: Instant) {
         let c = &self.config;
-        // Reading note 13.
+        // icd-reading R13.
         let m: Message = match id {
             FLAPS => c.flap.into(),
             TRIM_R => c.roll_trim.into(),

@@ -19,7 +19,7 @@ pub struct ExternalValidity {
     pub rpm: bool,
 }
 
-/// EXTERNAL_DATA — ICD Table 34, sent by the EFIS at 1 Hz (reading note 20). Speeds are
+/// EXTERNAL_DATA — ICD Table 34, sent by the EFIS at 1 Hz (icd-reading R20). Speeds are
 /// in the EFIS's own unit, the same one used in FLAP_SPEC/TRIM_SPEC/WIG_WAG_SPEC.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ExternalData {
@@ -31,8 +31,8 @@ pub struct ExternalData {
     pub baro_altitude: i32,
     /// PSI.
     pub fuel_pressure: i16,
-    /// Table 34 bytes 11–12: engine RPM (the starter is turned off above 500, reading note
-    /// 18).
+    /// Table 34 bytes 11–12: engine RPM (the starter is turned off above 500, icd-reading
+    /// R18).
     pub rpm: u16,
     /// Table 34 byte 13: which of the fields above are valid.
     pub valid: ExternalValidity,

@@ -16,13 +16,13 @@ pub struct DeviceSpec {
     pub device_id: u8,
     /// Electronic circuit breaker, whole amps (range per device, Appendix B).
     pub circuit_breaker: u8,
-    /// Table 13 byte 3: the external switch, 0 off, 1–10, 11 or 255 always on (reading note
-    /// 10).
+    /// Table 13 byte 3: the external switch, 0 off, 1–10, 11 or 255 always on (icd-reading
+    /// R10).
     pub switch_id: SwitchId,
     /// Table 13 byte 4: current fault checking enabled.
     pub current_fault: bool,
     /// The switch byte as it was on the wire, for a spec decoded from a frame; `None`
-    /// for one built here. Reading note 10 folds 255 into 11 (always on), and a person
+    /// for one built here. icd-reading R10 folds 255 into 11 (always on), and a person
     /// checking a real unit needs to see which of the two it uses. Only shown: what is
     /// sent is always `switch_id`'s byte (11 for always on), and two specs that mean
     /// the same setting are equal whichever byte said it.
@@ -94,7 +94,7 @@ impl Payload for SystemSpec {
     }
 }
 
-/// TRIM_SPEC — ICD Table 15. Flag bits MSB first: type, enable, polarity (reading note 15).
+/// TRIM_SPEC — ICD Table 15. Flag bits MSB first: type, enable, polarity (icd-reading R15).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct TrimSpec {
     /// Table 15 byte 1, bit 7: trim type, 0 pitch, 1 roll.
@@ -110,7 +110,7 @@ pub struct TrimSpec {
     /// Table 15 byte 4: neutral point, position sensor 0–255.
     pub neutral: u8,
     /// Percent power above `speed` (pitch only). 40–90; a fresh unit reports 100
-    /// (Appendix F, reading note 16).
+    /// (Appendix F, icd-reading R16).
     pub power: u8,
     /// IAS/GS above which power is reduced, in the EFIS's speed unit.
     pub speed: u16,
@@ -153,7 +153,7 @@ impl Payload for TrimSpec {
     }
 }
 
-/// FLAP_SPEC — ICD Table 16. Flag bits MSB first: mode, enable, polarity (reading note 15).
+/// FLAP_SPEC — ICD Table 16. Flag bits MSB first: mode, enable, polarity (icd-reading R15).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct FlapSpec {
     /// Table 16 byte 1, bit 7: 0 momentary, 1 position-based.
@@ -177,7 +177,7 @@ pub struct FlapSpec {
     pub overspeed_position: u8,
     /// Speed above which flap-down is inhibited and the overspeed alarm sounds (EFIS unit).
     pub max_speed: u16,
-    /// Extra run time at the endpoints, in tenths of a second (reading note 23).
+    /// Extra run time at the endpoints, in tenths of a second (icd-reading R23).
     pub endpoint_duration: Tenths,
 }
 
@@ -257,7 +257,7 @@ impl Payload for WigWagSpec {
 }
 
 /// DEVICE_SPEC_QUERY — ICD Table 18. 0 → FLAP_SPEC, 29/30 → TRIM_SPEC, 253 →
-/// SYSTEM_SPEC, 254 → WIG_WAG_SPEC, others → DEVICE_SPEC (reading note 13).
+/// SYSTEM_SPEC, 254 → WIG_WAG_SPEC, others → DEVICE_SPEC (icd-reading R13).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceSpecQuery {
     /// Table 18 byte 1: 0–30, 253 (system) or 254 (wig-wag).
@@ -276,7 +276,7 @@ impl Payload for DeviceSpecQuery {
     }
 }
 
-/// SPEC_ACK — ICD Tables 19 and 20; 0x11/0x06 (reading note 4). `error: None` is code 0.
+/// SPEC_ACK — ICD Tables 19 and 20; 0x11/0x06 (icd-reading R4). `error: None` is code 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SpecAck {
     /// Table 19 byte 1: the device id of the spec being answered; 253 for SYSTEM_SPEC, 254
@@ -305,7 +305,7 @@ impl Payload for SpecAck {
     }
 }
 
-/// DEVICE_NAME — ICD Table 21; 0x11/0x07 (reading note 4). Up to 16 ASCII bytes,
+/// DEVICE_NAME — ICD Table 21; 0x11/0x07 (icd-reading R4). Up to 16 ASCII bytes,
 /// NUL-terminated when shorter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceName {
@@ -410,7 +410,7 @@ impl Payload for DeviceEnable {
     }
 }
 
-/// The first byte of TRIM_SPEC and FLAP_SPEC (ICD Tables 15, 16; reading note 15): MSB
+/// The first byte of TRIM_SPEC and FLAP_SPEC (ICD Tables 15, 16; icd-reading R15): MSB
 /// first, the kind bit (roll trim / position-based flaps), enable, polarity.
 fn spec_flags(b: u8) -> (bool, bool, Polarity) {
     let polarity = if bit(b, 5) {

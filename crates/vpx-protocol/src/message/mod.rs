@@ -185,7 +185,7 @@ pub(crate) fn flag(message: &'static str, field: &'static str, b: u8) -> Result<
 }
 
 /// The longest payload taken where the request's payload is ignored (VERSION,
-/// §6.1.2) or not described at all (DEVICE_STATUS_QUERY, reading note 6): the length
+/// §6.1.2) or not described at all (DEVICE_STATUS_QUERY, icd-reading R6): the length
 /// of DEVICE_STATUS, the longest message of the ICD, so that such a frame never
 /// stretches the decoder's bound ([`MAX_MESSAGE_LEN`], checked by a test). A longer
 /// one is not a frame of the ICD.
@@ -298,7 +298,7 @@ messages!(
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Packet {
     /// Command number (ICD Table 2 byte 5): the EFIS's choice on a request, echoed in the
-    /// reply; the unit's own count on broadcasts (reading note 14).
+    /// reply; the unit's own count on broadcasts (icd-reading R14).
     pub cnt: u8,
     /// Source (ICD Table 2 byte 6).
     pub src: Node,

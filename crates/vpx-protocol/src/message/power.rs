@@ -31,7 +31,7 @@ impl Payload for DevicePower {
 }
 
 /// TRIM_MOVE — ICD Table 30. Must be repeated at 4 Hz or more while the motor runs
-/// (reading note 19); `on = false` stops it at once.
+/// (icd-reading R19); `on = false` stops it at once.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TrimMove {
     /// Table 30 byte 1: 0 pitch, 1 roll.

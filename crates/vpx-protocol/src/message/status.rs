@@ -7,7 +7,7 @@ use crate::error::{LenRule, Result};
 use crate::fault::FaultCode;
 use crate::frame::MessageId;
 
-/// SYSTEM_STATUS byte 8–9: the external switch inputs, live (ICD Table 24; reading note 8).
+/// SYSTEM_STATUS byte 8–9: the external switch inputs, live (ICD Table 24; icd-reading R8).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SwitchInputs {
     /// Table 24 byte 8, bit 7 (MSB): roll trim down switch.
@@ -99,7 +99,7 @@ pub struct SystemFaultFlags {
     pub external_data_missing: bool,
 }
 
-/// SYSTEM_STATUS — ICD Table 24 with reading note 8: 12 bytes.
+/// SYSTEM_STATUS — ICD Table 24 with icd-reading R8: 12 bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SystemStatus {
     /// Total system current, amps in tenths.
@@ -110,11 +110,11 @@ pub struct SystemStatus {
     pub aux_battery_volts: Tenths,
     /// Whole degrees Celsius.
     pub internal_temp: u8,
-    /// Table 24 bytes 8–9 (reading note 8): the external switch inputs.
+    /// Table 24 bytes 8–9 (icd-reading R8): the external switch inputs.
     pub switches: SwitchInputs,
-    /// Table 24 byte 10 (reading note 8): misc flags.
+    /// Table 24 byte 10 (icd-reading R8): misc flags.
     pub misc: MiscFlags,
-    /// Table 24 byte 11 (reading note 8): system fault flags.
+    /// Table 24 byte 11 (icd-reading R8): system fault flags.
     pub faults: SystemFaultFlags,
     /// 0 is "no error" and decodes as `None` (ICD Table 25).
     pub data_integrity_code: Option<DataIntegrityCode>,
@@ -191,7 +191,7 @@ impl Payload for SystemStatus {
     }
 }
 
-/// DEVICE_STATUS — ICD Table 26. Bit i of byte k is device 8k+i (reading note 7).
+/// DEVICE_STATUS — ICD Table 26. Bit i of byte k is device 8k+i (icd-reading R7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceStatus {
     /// Indexed by device id.
@@ -376,14 +376,14 @@ impl Payload for FlapTrimStatus {
 }
 
 /// FAULT_STATUS — ICD Table 28. Bit i of byte k is device 8k+i; the MSB of byte 4 is
-/// the system fault (reading note 7). Reading note 9: 35 bytes, but a shorter payload
+/// the system fault (icd-reading R7). icd-reading R9: 35 bytes, but a shorter payload
 /// (at least the 4 bit bytes) is accepted and the codes it lacks are `None`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FaultStatus {
     /// Table 28 bytes 1–4: whether device `i` is faulted (bit i mod 8 of byte i / 8,
-    /// reading note 7).
+    /// icd-reading R7).
     pub faulted: [bool; DEVICE_COUNT],
-    /// Table 28 byte 4, MSB: the system fault flag (reading note 7).
+    /// Table 28 byte 4, MSB: the system fault flag (icd-reading R7).
     pub system_fault: bool,
     /// Per device id; `None` where the payload stopped before that device's code.
     pub codes: [Option<FaultCode>; DEVICE_COUNT],
@@ -423,7 +423,7 @@ impl Payload for FaultStatus {
     }
 }
 
-/// DEVICE_STATUS_QUERY — Appendix D only (0x12/0x04); reading note 6: no payload, asks
+/// DEVICE_STATUS_QUERY — Appendix D only (0x12/0x04); icd-reading R6: no payload, asks
 /// for an immediate DEVICE_STATUS. No table describes a payload, so whatever one comes
 /// (up to [`IGNORED_PAYLOAD_MAX`] bytes) is ignored; we send none.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -118,7 +118,7 @@ byte_enum! {
 }
 
 byte_enum! {
-    /// SPEC_ACK error codes (ICD Table 20; reading note 11: 0x01–0x09).
+    /// SPEC_ACK error codes (ICD Table 20; icd-reading R11: 0x01–0x09).
     SpecAckError {
         /// 0x01: parameter value out of range.
         OutOfRange = 0x01,
@@ -194,7 +194,7 @@ impl DataIntegrityCode {
 
 /// The external switch a device follows (ICD Table 13 notes 3–6).
 ///
-/// Reading note 10: 11 means "always on" in most places of the ICD, 255 in one. We
+/// icd-reading R10: 11 means "always on" in most places of the ICD, 255 in one. We
 /// decode both as [`SwitchId::AlwaysOn`] and always send 11.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum SwitchId {
@@ -209,7 +209,7 @@ pub enum SwitchId {
 }
 
 impl SwitchId {
-    /// The byte sent for always on (reading note 10: 11, not 255).
+    /// The byte sent for always on (icd-reading R10: 11, not 255).
     pub const ALWAYS_ON_BYTE: u8 = 11;
 
     /// The switch of a DEVICE_SPEC byte 3 (ICD Table 13).

@@ -1,7 +1,7 @@
 //! BUS (§3.3.7, format 10): a bus or electronic circuit breaker. Carried by ECBSTAT
 //! (0x40) and BUSSTAT (0x45).
 //!
-//! Layout (reading note 6): state u8, ecbflags u8, then eleven i16 (involts,
+//! Layout (icd-reading X6): state u8, ecbflags u8, then eleven i16 (involts,
 //! drawamps, maxamps, champs, clamps, minamps, outvolts, maxvolts, chvolts, clvolts,
 //! minvolts) = 24 bytes, then the label to the end of the data.
 //!
@@ -13,11 +13,11 @@
 use crate::cursor::Reader;
 use crate::dict::{EcbFlags, EcbState};
 
-/// Bytes before the label (§3.3.7: "length(data) + 24", reading note 6).
+/// Bytes before the label (§3.3.7: "length(data) + 24", icd-reading X6).
 pub const BUS_FIXED_LEN: usize = 24;
 
 /// Wire units per volt and per amp: every BUS volts/amps field is in tenths (the draft
-/// names no scale; reading note 6 asks us to choose one).
+/// names no scale; icd-reading X6 asks us to choose one).
 pub const BUS_SCALE: f32 = 10.0;
 
 /// A BUS value (§3.3.7, Table 18). Volts and amps fields are in tenths (see

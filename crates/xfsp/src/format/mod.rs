@@ -7,7 +7,7 @@
 //! |---|---|---|
 //! | WAYPOINT | 80 | `12*12(OCTET)` = 12 bytes, `16*16(OCTET)` = 16; wtype u8, ctype u8, flags u16 |
 //! | CASMSG | label + 4 | level u8, rsvd u8, flags u16 |
-//! | BUS | label + 24 | state u8, ecbflags u8, eleven i16 (reading note 6) |
+//! | BUS | label + 24 | state u8, ecbflags u8, eleven i16 (icd-reading X6) |
 //! | RANGE | 24 + ticks | units u16 (Table 22 has 16-bit values) |
 //! | APP | label + 56 | aircraftid and swrev 16 bytes each |
 //! | UPDATE | label + 56 | progflags u32, activity 32 bytes |
