@@ -781,7 +781,7 @@ mod tests {
     }
 
     #[test]
-    fn query_answers_follows_reading_note_13() {
+    fn query_answers_follows_icd_reading_r13() {
         use crate::protocol::defaults;
         let pitch = Message::TrimSpec(defaults::trim_spec(TrimType::Pitch));
         let roll = Message::TrimSpec(defaults::trim_spec(TrimType::Roll));

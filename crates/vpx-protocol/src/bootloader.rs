@@ -10,17 +10,17 @@
 //!
 //! Decisions where the ICD is silent or contradicts itself:
 //!
-//! * **Frame sizes** come from the tables, not the "Total Size" lines (note 24):
+//! * **Frame sizes** come from the tables, not the "Total Size" lines (icd-reading R24):
 //!   SERIAL_CONF is 5 + 6 = 11 bytes, not 9.
 //! * **FLASH_PROG's command character is lower-case `'p'`** and its reply upper-case
-//!   `'P'` (§7.5.3, note 17): we send `'p'`. Table 35's and Table 36's lists (and
+//!   `'P'` (§7.5.3, icd-reading R17): we send `'p'`. Table 35's and Table 36's lists (and
 //!   Appendix D) say `P`, so a host written from those tables sends `'P'`; the
 //!   device-side decoder takes both as FLASH_PROG (liberal on receipt). Table 35's list
 //!   also names an `O` that no section describes; it is not a command here and is
 //!   ignored like any unknown one.
-//! * **Address unit** (note 24): the 16-bit address of FLASH_PROG and FLASH_READ is a
-//!   **page number** (byte address / 256). The ATmega2560 (SIGNATURE 1E 98 01, note
-//!   17) has 256 KiB of flash: byte addresses (0–262143) and even word addresses
+//! * **Address unit** (icd-reading R24): the 16-bit address of FLASH_PROG and FLASH_READ is a
+//!   **page number** (byte address / 256). The ATmega2560 (SIGNATURE 1E 98 01,
+//!   icd-reading R17) has 256 KiB of flash: byte addresses (0–262143) and even word addresses
 //!   (0–131071) overflow 16 bits, page numbers (0–1023) do not, and Table 38 calls the
 //!   field "Flash Page Address". The same unit is used for FLASH_READ. Callers should
 //!   log every address sent; [`byte_address`] and [`page_address`] convert.
@@ -37,9 +37,9 @@ use core::fmt;
 pub const HEADER: [u8; 2] = [0x69, 0x96];
 /// Header, command, `num` and jump byte (ICD Table 35).
 pub const HEADER_LEN: usize = 5;
-/// SIGNATURE reply: the ATmega2560's 1E 98 01 in reverse (ICD §7.5.6, note 17).
+/// SIGNATURE reply: the ATmega2560's 1E 98 01 in reverse (ICD §7.5.6, icd-reading R17).
 pub const SIGNATURE: [u8; 3] = [0x01, 0x98, 0x1E];
-/// ATmega2560 flash page: 128 words (note 17).
+/// ATmega2560 flash page: 128 words (icd-reading R17).
 pub const PAGE_SIZE: usize = 256;
 /// Program flash of the ATmega2560 the SIGNATURE reply names: 256 KiB (ICD §7.5.6, icd-reading
 /// R17).

@@ -1,7 +1,7 @@
 //! The parameter table of §3.4: every ident the draft defines, with its name, what
 //! the unit and subunit fields mean for it, and its format.
 //!
-//! Readings (note 5): MUX is written `%x00.29` and APPSTAT `%x00.00.00.81`; both are
+//! Readings (icd-reading X5): MUX is written `%x00.29` and APPSTAT `%x00.00.00.81`; both are
 //! read as the hex digits run together (0x29 and 0x81), which also fits their place
 //! in the otherwise sequential table. AOA and AOAR are both `%x00.00.77` in the
 //! draft. That is a genuine clash, so the table keeps both and a parameter is
