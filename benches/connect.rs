@@ -3,7 +3,7 @@
 //! DEVICE_NAME, DEVICE_ENABLE, FLAP/TRIM/SYSTEM/WIG_WAG spec answered:
 //! `Setting::all()`), against `vpx-efis sim --pty` as a user runs it, a second
 //! process paced at 5760 bytes a second each way (57600 baud, 8N1). The goal is
-//! under 1 s (issue 14); the answers alone take 0.28 s of line (`app::queries`).
+//! under 1 s; the answers alone take 0.28 s of line (`app::queries`).
 //! Each sample is a fresh sim process and a fresh page; the distribution (min,
 //! median, max) is printed after the run.
 //!

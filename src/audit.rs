@@ -1,7 +1,7 @@
-//! The audit log: the record of what was done to the aircraft that day (issue 25.4).
+//! The audit log: the record of what was done to the aircraft that day.
 //!
 //! Every command to the unit, whatever asked for it (a key, the installation check,
-//! the setup screens, the XFSp network, later the remote), is recorded where they all
+//! the setup screens, the XFSp network, the phone remote), is recorded where they all
 //! pass: the page's [`crate::app::StopGate`], which is told each packet's
 //! [`Origin`]. One JSON object a line, in `vpx-audit-YYYY-MM-DD.jsonl` (the UTC day)
 //! in the reports folder beside the check's reports:
@@ -57,7 +57,7 @@ pub enum Origin {
     Setup,
     /// A node on the XFSp network (`--xfsp-control`).
     Xfsp,
-    /// The walk-around remote (issue 25; not yet built).
+    /// The walk-around remote on a phone (`--remote`).
     Remote,
     /// The page itself: the stops it sends at quit, on a link error or a reconnect.
     Page,

@@ -6,7 +6,7 @@
 use std::time::Duration;
 
 /// SYSTEM_STATUS and DEVICE_STATUS silent this long means communication is lost
-/// (issue: "more than 2.5 s"; both are 1 Hz broadcasts, so two missed in a row).
+/// (more than 2.5 s: both are 1 Hz broadcasts, so two missed in a row).
 pub const COMM_LOST_AFTER: Duration = Duration::from_millis(2500);
 /// A 1 Hz broadcast older than this is no longer shown.
 pub const STATUS_STALE_AFTER: Duration = COMM_LOST_AFTER;

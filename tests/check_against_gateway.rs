@@ -1,4 +1,4 @@
-//! Issue 27.1, the XFSp gateway's part: a network run of a motor that moves against
+//! The XFSp gateway's part: a network run of a motor that moves against
 //! its command is stopped within a few counts, and the record is shared with the
 //! page's keys, both ways (`control::against`). On the fake clock, against the virtual
 //! VP-X's pitch trim with its leads swapped (up 30, down 220). The check's own part

@@ -612,7 +612,7 @@ fn headless_check_refuses_an_exclude_that_names_no_circuit() {
     );
 }
 
-/// Review item 8 through the real parts: the install scenario's reversed pitch trim
+/// Through the real parts: the install scenario's reversed pitch trim
 /// parked 5 counts from its up endpoint (30). The check's first run is "down", the
 /// side with more room, but the swapped leads drive it up, toward 30: the page stops
 /// it there with its stop message, and the sim's own sensor never reads past 30.

@@ -1,6 +1,5 @@
-//! Issue 24: a headless `vpx-efis check` whose standard input is at its end
-//! (`/dev/null`, a closed pipe, cron, a service, CI) spun one core at 100 % for the
-//! whole check. Here the check runs as the process a user starts, against
+//! A headless `vpx-efis check` whose standard input is at its end (`/dev/null`, a
+//! closed pipe, cron, a service, CI) must not spin a core waiting for answers. Here the check runs as the process a user starts, against
 //! `vpx-efis sim --tcp` (so this runs on Windows too), with nobody to answer: it says
 //! so, skips the switch step (which needs a person), powers nothing without `--yes`,
 //! and is idle while it waits on the unit.

@@ -780,7 +780,7 @@ fn circuits_paused_unseen() -> CheckView {
     }
 }
 
-/// A light under test asks "Is it lit?" while it is on (issue 25; the flow's words,
+/// A light under test asks "Is it lit?" while it is on (the flow's words,
 /// `check::circuits`): y and n answer it, from the page's keys or the phone.
 fn circuits_is_it_lit() -> CheckView {
     CheckView {

@@ -325,7 +325,7 @@ fn completions_man_and_version() {
     );
 }
 
-/// Issue 25.5: commands from the network are off by default; the flag, the
+/// Commands from the network are off by default; the flag, the
 /// environment and the file turn them on and `config` says which; a malformed list
 /// and a list without `--xfsp-control` are refused before anything is opened.
 #[test]

@@ -325,7 +325,7 @@ const DEVICE_SPEC_12: &[u8] = &[
 
 #[test]
 fn a_false_header_hides_no_frame_in_a_capture() {
-    // The capture of issue 16: a PING, an unknown id claiming 250 bytes, then three
+    // A capture with a false header: a PING, an unknown id claiming 250 bytes, then three
     // intact frames and the end. Then the same with a DEVICE_STATUS header claiming
     // its own 66 bytes (possible, so held), and with one at the very end.
     let false_250: &[u8] = &[0xE7, 0x7E, 0x20, 0x00, 0x00, 0x00, 0x00, 0xFA];
@@ -372,7 +372,7 @@ fn a_false_header_hides_no_frame_in_a_capture() {
     );
 }
 
-/// Issue 26 item 6: the switch said once, plainly, by the byte that was sent, and
+/// The switch said once, plainly, by the byte that was sent, and
 /// what the page reads it as only where that differs (icd-reading R10).
 #[test]
 fn a_switch_read_as_always_on_shows_the_byte_that_was_sent() {

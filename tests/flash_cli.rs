@@ -247,7 +247,7 @@ fn whole_program() -> String {
     format!(":040000000C948000DC\n{body}")
 }
 
-/// Issue 27.2: three images written by hand that cannot be a whole program, each
+/// Three images written by hand that cannot be a whole program, each
 /// refused with its reason and numbers before the port is even opened: the unit
 /// never hears a byte (no SOFTWARE_UPDATE, no bootloader command), its flash is as
 /// it was, and it still runs its software.
@@ -347,7 +347,7 @@ fn force_image_flashes_an_image_that_cannot_be_whole_with_a_warning() {
     );
 }
 
-/// Issue 26.3: `--yes` skips only the question. The §7.3 precautions are printed on
+/// `--yes` skips only the question. The §7.3 precautions are printed on
 /// every update, before the erase.
 #[test]
 fn flash_yes_still_states_the_precautions_before_the_erase() {

@@ -1,5 +1,5 @@
-//! Issue 17: `vpx-efis gateway` against a virtual VP-X whose unused pins are disabled
-//! (as on any real installation) spun a whole core. Here both run as the separate
+//! `vpx-efis gateway` against a virtual VP-X whose unused pins are disabled (as on
+//! any real installation) must not spin a core. Here both run as the separate
 //! processes a user starts, the gateway publishing to a peer on 127.0.0.1, and the
 //! gateway's own CPU time (from /proc, so another process's load does not count) is
 //! measured while the unit sends its 1 Hz and 10 Hz broadcasts and nothing changes.

@@ -1,11 +1,11 @@
-//! The layers of DEVELOPERS' guide, held by a test: the program's top-level modules
+//! The layers sketched in `src/lib.rs`, held by a test: the program's top-level modules
 //! import only downward, and no two of them import each other, directly or round a
 //! circle. It reads `src/` as text (every `crate::x` path, `use crate::{a, b}` groups
 //! included, comments left out) and names the file and line of each import it refuses.
 //!
 //! Imports that break the rule today are listed in [`DEBT`], each once, so that the
 //! list can only shrink: a new one fails the test with its file and line, and one that
-//! has been mended fails it too until its line in the list goes (issue 23, item 6).
+//! has been mended fails it too until its line in the list goes.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -57,7 +57,7 @@ const LAYERS: &[(&str, &[&str])] = &[
 /// Imports that break the layering today, as `from -> to`. Mend one, then remove
 /// its line here.
 const DEBT: &[&str] = &[
-    // Empty since issue 23: every import runs down the layers.
+    // Empty: every import runs down the layers.
 ];
 
 /// One import of another top-level module: where it is, and what it names.
@@ -301,7 +301,7 @@ fn every_top_level_module_has_a_layer() {
     );
 }
 
-/// `lib.rs`'s data-flow sketch names every module the crate has (issue 23, item 6),
+/// `lib.rs`'s data-flow sketch names every module the crate has,
 /// so a new module cannot be added without saying where it stands.
 #[test]
 fn the_sketch_in_lib_rs_names_every_module() {
@@ -393,7 +393,7 @@ fn source_roots() -> Vec<PathBuf> {
     roots
 }
 
-/// One module layout (issue 23, item 5): a module with children is `foo/mod.rs`,
+/// One module layout: a module with children is `foo/mod.rs`,
 /// never `foo.rs` beside `foo/`, so that a reader finds a module in one place.
 #[test]
 fn modules_with_children_live_in_mod_rs() {
@@ -415,7 +415,7 @@ fn modules_with_children_live_in_mod_rs() {
 /// Files that are still over [`MAX_CODE_LINES`]; the list can only shrink.
 const TOO_LONG: &[&str] = &[];
 
-/// No file holds more than this many lines of code before its tests (issue 23, item 5).
+/// No file holds more than this many lines of code before its tests.
 const MAX_CODE_LINES: usize = 1000;
 
 /// Lines of a file before its inline `#[cfg(test)] mod … {` block, blank lines and
@@ -482,7 +482,7 @@ fn code_lines_skip_comments_blanks_and_tests() {
     assert_eq!(code_lines(early), 4);
 }
 
-/// What a flow must not do itself (issue 23, item 2): read a clock, touch a file,
+/// What a flow must not do itself: read a clock, touch a file,
 /// read stdin or know the terminal. The app does these and hands the results in.
 const FLOW_IO: &[&str] = &[
     "Instant::now",

@@ -1,6 +1,6 @@
 //! The load file's template for the `install` scenario's aircraft, as the check writes
 //! it on a first run: each circuit's phases guessed from its name and marked as a
-//! guess, so that its analysis already tells the phases apart (issue 26 item 7).
+//! guess, so that its analysis already tells the phases apart.
 
 use std::time::{Duration, Instant};
 

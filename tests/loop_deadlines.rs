@@ -1,7 +1,7 @@
 //! Every loop in the product that sleeps until a computed deadline, checked on a fake
 //! clock: after the poll it makes at `now`, the next deadline is later than `now`. A
 //! deadline at or before `now` makes a `select!` with `default(deadline - now)` return
-//! at once, forever: a loop spinning a whole core (issue 17).
+//! at once, forever: a loop spinning a whole core.
 //!
 //! The loops, and where each is checked:
 //! - the virtual VP-X's run loop (`sim::run_loop`): [`sim_unit`] here;

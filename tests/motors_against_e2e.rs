@@ -1,4 +1,4 @@
-//! Issue 27.1 end to end: a motor that moves against its command, run from the
+//! End to end: a motor that moves against its command, run from the
 //! device list's keys, is stopped within a few counts with the words, refused until
 //! the person confirms, and never taken past its endpoint. The real page (`App`) on
 //! the slave of a real pseudo-terminal opened by `vpx-efis sim --pty --scenario …`
@@ -310,7 +310,7 @@ fn parked(at: u8, reversed: bool) -> (tempfile::TempDir, Rig) {
     (dir, r)
 }
 
-/// The gap left in issue 27.1: the reversed pitch trim parked at its down endpoint
+/// The reversed pitch trim parked at its down endpoint
 /// 220 with nothing known of its way. `u` (away from 220, as the page believes)
 /// starts as short probes, and the trim never goes past 220 beyond the one count of
 /// noise (before the probes: 223–224), stopped with the words and its stop on the

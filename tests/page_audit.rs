@@ -1,4 +1,4 @@
-//! The audit log (issue 25.4) through the real page against the virtual VP-X on a
+//! The audit log through the real page against the virtual VP-X on a
 //! real pseudo-terminal (`page_rig`), with `--xfsp-control` on a UDP peer on
 //! 127.0.0.1: a power key, a reset, a motor run, the installation check and an XFSp
 //! command each leave their line, with their origin, in a file of JSON lines.
@@ -217,7 +217,7 @@ fn every_command_from_every_origin_leaves_its_line() {
             .any(|l| l["command"].as_str().is_some_and(|c| c.contains("QUERY"))),
         "queries are no commands: {all}"
     );
-    // Issue 27.8: the same actions, in the page's event log with their origin.
+    // The same actions, in the page's event log with their origin.
     let events: Vec<String> = rig
         .app
         .model()

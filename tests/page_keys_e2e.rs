@@ -180,8 +180,8 @@ fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
     );
     assert!(worst <= Duration::from_millis(220), "interval {worst:?}");
     // The learned gap is 3 × 40 ms = 120 ms, and the stop is written ~120.2 ms after
-    // the last repeat (measured with other builds running, load average ~5): issue
-    // 12's promise is 150 ms, and a hold on a machine that woke this test's own
+    // the last repeat (measured with other builds running, load average ~5): the
+    // promise is 150 ms, and a hold on a machine that woke this test's own
     // thread on time is held to it. Where every hold found the machine saturated (4
     // busy loops on 2 cores put the stop at 128–178 ms: the motor thread and the
     // link's writer each wait for a core after the deadline) the bound is 175 ms;

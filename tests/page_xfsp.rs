@@ -67,8 +67,8 @@ fn thread_cpu() -> Duration {
     Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32)
 }
 
-/// Issue 17: against a unit whose unused pins are disabled, the page's loop with the
-/// gateway in it spun a whole core (a publisher deadline stuck in the past). Once the
+/// Against a unit whose unused pins are disabled, the page's loop with the gateway in
+/// it must not spin a core (as it would with a publisher deadline stuck in the past). Once the
 /// unit's DEVICE_ENABLE replies are in, the loop's deadline is ahead of every tick, and
 /// the thread running the loop sleeps between them.
 #[cfg(unix)]
@@ -131,7 +131,7 @@ fn the_page_with_xfsp_sleeps_between_deadlines_when_most_pins_are_disabled() {
     sim.stop();
 }
 
-/// Issue 25.5 in the page: `--xfsp` without `--xfsp-control` publishes, but an
+/// In the page: `--xfsp` without `--xfsp-control` publishes, but an
 /// ECBSTAT OFF from a peer leaves the demo's EFIS on and the refusal is in the page's
 /// event log, with the count; with `--xfsp-control` the same request switches it.
 #[test]

@@ -1,4 +1,4 @@
-//! The walk-around remote's phone page in a real browser (issue 25): headless Chromium
+//! The walk-around remote's phone page in a real browser: headless Chromium
 //! at a phone's 390×844, driven through WebDriver (`webdriver`), against the real page
 //! binary (`vpx-efis --port … --remote 127.0.0.1:PORT` in a real terminal) wired to the
 //! virtual VP-X as its own process (`vpx-efis sim --pty`), through a tap that records

@@ -882,7 +882,7 @@ fn notice_is_shown() {
     assert!(t.contains("reset refused: EFIS is not faulted"), "{t}");
 }
 
-/// Issue 27.1's words (`control::against`), as the controller gives them.
+/// A motor that moved against its command, in the words (`control::against`) as the controller gives them.
 const MOVED_AGAINST: &str =
     "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped";
 const MOVED_AGAINST_REFUSED: &str = "pitch trim moved down when asked up: its leads or its \
@@ -1434,7 +1434,7 @@ fn link_errors_80x24_wrap_inside_the_left_column() {
     insta::assert_snapshot!(text(&draw(&m, &view_selecting(EFIS), now, 80, 24)));
 }
 
-/// Issue 26 item 4: every row of the left column (the list, the detail and, on short
+/// Every row of the left column (the list, the detail and, on short
 /// terminals, the link's lines) ends at the column's edge, whatever the size and the
 /// state: walking the drawn buffer, the cell on the edge is a border on every row from
 /// the list's top line to the row above the keys.
@@ -1485,7 +1485,7 @@ fn no_row_of_the_left_column_crosses_its_edge() {
     assert!(walked > 1000, "{walked} rows walked");
 }
 
-/// Issue 27.8: the Events panel says what the person did, each line with its origin
+/// The Events panel says what the person did, each line with its origin
 /// ("key:", "check:", "setup:", and the network's own "XFSp 0x…"), in the words the
 /// page writes (`control::commands::said`), a refusal among them.
 #[test]
@@ -1531,7 +1531,7 @@ fn events_panel_lists_the_persons_own_actions_with_their_origin() {
     insta::assert_snapshot!(t);
 }
 
-/// Issue 24: a full frame of the page as the bytes crossterm's own writer sends a VT
+/// A full frame of the page as the bytes crossterm's own writer sends a VT
 /// console, the same on every OS: the snapshot is written on Linux and CI checks it
 /// for x86_64-pc-windows-gnu under Wine too. The same escape sequences mean the same
 /// screen on any VT console, which Windows 10 and later have. Each escape starts a

@@ -1,4 +1,4 @@
-//! Issue 24: what a mechanic on Windows relies on, run as the processes they start,
+//! What a mechanic on Windows relies on, run as the processes they start,
 //! through what Windows has: `vpx-efis sim --tcp` over TCP (no pseudo-terminals on
 //! Windows), the gateway over UDP on 127.0.0.1, every file we write under a path of
 //! the OS (on Windows `C:\…`), and, under Wine, a real COM port above COM9 mapped to a

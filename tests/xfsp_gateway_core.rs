@@ -1197,7 +1197,7 @@ fn an_older_number_is_discarded_until_its_source_was_silent_for_10_s() {
     assert_eq!(power(&out), [(6, true)]);
 }
 
-// ----- network motor runs under the endpoint rule (review item 4) -----
+// ----- network motor runs under the endpoint rule -----
 
 /// How long a decided move or stop takes to act on the motor: the serial write at
 /// 57600 baud and the unit's own loop.
@@ -1403,7 +1403,7 @@ fn a_network_run_stops_on_a_position_older_than_0_4_s() {
     assert!(run.said("its position is not fresh"), "{:#?}", run.events);
 }
 
-/// Issue 25.5: without `--xfsp-control` every kind of command (ECBSTAT, a motor
+/// Without `--xfsp-control` every kind of command (ECBSTAT, a motor
 /// request, a master reset) is refused: nothing for the unit, the reason in the event
 /// log once (not once a datagram), and each counted. Air data is still forwarded.
 #[test]

@@ -349,7 +349,7 @@ fn drive(
     (lo, hi)
 }
 
-/// Review item 4 over real parts: the `install` scenario's pitch trim has its leads
+/// Over real parts: the `install` scenario's pitch trim has its leads
 /// swapped. Sent nose-down from neutral (PTRIMREQ −80000, raw 201 from 125), it runs
 /// nose-up, against its command: the gateway stops it within a few counts (it ran to
 /// the unit's run cap before, some 250 counts, far past the endpoint at 30), with the
@@ -459,7 +459,7 @@ fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_w
     drop(pty.slave);
 }
 
-/// Issue 25.5 over real parts: the bridge started without `--xfsp-control` publishes
+/// Over real parts: the bridge started without `--xfsp-control` publishes
 /// (the peer hears ECBSTAT) but a peer's ECBSTAT OFF and PTRIMREQ change nothing on the
 /// unit; its standard error gives the reason once, and its closing line the count.
 /// With `--xfsp-control-from` naming another source, the peer is still refused and
@@ -592,7 +592,7 @@ fn stop(mut bridge: Bridge) -> Vec<String> {
     bridge.lines()
 }
 
-/// Issue 26.8 over real UDP: one source's IAS, then 300 other sources (past the 256
+/// Over real UDP: one source's IAS, then 300 other sources (past the 256
 /// the receiver once held, which then evicted the first), then the first source's
 /// message again, replayed with another IAS. It must still be a duplicate: the
 /// bridge's closing counts say 301 fresh and 1 duplicate (with a count-bound table

@@ -1,9 +1,9 @@
 //! Which circuits are lights, for the question only a person outside can answer: "Is
-//! it lit?" (issue 25). The unit measures a lamp's current; only someone looking can
+//! it lit?". The unit measures a lamp's current; only someone looking can
 //! say the lamp shines, and the two together catch a lamp out on a pin that still
 //! draws, or a lamp lit from another pin.
 //!
-//! Decision (the issue names the words, not the matching): a name is split into words
+//! Decision (what a light is called is known, how to match it is not): a name is split into words
 //! at anything not a letter or digit and where a lower-case letter meets a capital
 //! ("NavLts" is "Nav", "Lts"). It is a light when
 //! - a word is "lt" or "lts" (whole words only: "Alt Field", "Main Alt" and "Volts"

@@ -168,7 +168,7 @@ pub enum SwitchFinding {
 }
 
 /// The share of its breaker, in percent, at which a circuit's draw is called tight
-/// (issue 14: "≥ 80 %").
+/// (80 % and over).
 pub const NEAR_BREAKER_PERCENT: u16 = 80;
 
 /// What a circuit's current is against its breaker. Judged on the unit's own tenths

@@ -1,4 +1,4 @@
-//! The walk-around remote (issue 25): the page on a phone at the wingtip, over HTTP.
+//! The walk-around remote: the page on a phone at the wingtip, over HTTP.
 //!
 //! Off until asked for (`--remote`, or the page's key): then an axum server on a
 //! current-thread tokio runtime, on a thread of its own, bound only to the address

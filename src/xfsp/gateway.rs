@@ -130,7 +130,7 @@ pub const FORGET_SOURCE_AFTER: Duration = super::receiver::FORGET_AFTER;
 /// request at 4 Hz must not bury the log.
 pub const NOT_ALLOWED_SAID_EVERY: Duration = Duration::from_secs(10);
 
-/// Who may command the unit over the network (issue 25.5). XFSp -00 has no
+/// Who may command the unit over the network. XFSp -00 has no
 /// authentication, so nobody may unless the person asked: `--xfsp-control` for any
 /// source, `--xfsp-control-from` for listed ones. Publishing and taking air data do
 /// not depend on it.

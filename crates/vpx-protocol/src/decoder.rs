@@ -526,7 +526,7 @@ mod tests {
     const SPEC_ACK: [u8; 11] = [
         0xE7, 0x7E, 0x11, 0x06, 0x03, 0x00, 0x01, 0x02, 0x05, 0x00, 0x74,
     ];
-    /// The false header of the issue: an unknown id (0x20/0x00) claiming 250 bytes, a
+    /// A false header: an unknown id (0x20/0x00) claiming 250 bytes, a
     /// length no message of the ICD has.
     const UNKNOWN_250: [u8; 8] = [0xE7, 0x7E, 0x20, 0x00, 0x00, 0x00, 0x00, 0xFA];
     /// An unknown id claiming 64 bytes: possible, so it is held (73 bytes).
@@ -537,7 +537,7 @@ mod tests {
     const STATUS_2: [u8; 8] = [0xE7, 0x7E, 0x12, 0x01, 0x00, 0x00, 0x00, 0x02];
 
     #[test]
-    fn the_capture_of_the_issue_yields_every_frame() {
+    fn a_capture_with_false_headers_yields_every_frame() {
         // PING, the false header, DEVICE_POWER, PING, SPEC_ACK, end of capture.
         let stream = cat(&[&PING, &UNKNOWN_250, &DEVICE_POWER, &PING, &SPEC_ACK]);
         let (events, pending, end) = same_however_read(&stream);
@@ -830,7 +830,7 @@ mod tests {
 
     #[test]
     fn false_header_on_a_paced_line_delays_no_frame() {
-        // Goal of the issue: a false header delays no real frame by more than 50 ms at
+        // A false header delays no real frame by more than 50 ms at
         // the real line rate. Reads of one byte (each judged as it comes) and reads
         // every 1 ms and 16 ms (a USB-serial adapter's latency timer).
         let headers: [&[u8]; 5] = [

@@ -16,7 +16,7 @@
 //! anyway (draft §4.4's lifetimes, our 10 s rule). An old message replayed after 10 s
 //! of silence is taken once.
 //!
-//! Decision, memory (issue 26.8): the table is bounded by time, never by a count.
+//! Decision, memory: the table is bounded by time, never by a count.
 //! A count (we had 256) is passed by a busy network or a flood of forged source ids,
 //! and evicting a source that is still talking makes its next duplicate or late
 //! message look fresh: an old IAS taken as new. So a source is dropped only once it
@@ -340,7 +340,7 @@ mod tests {
         );
     }
 
-    /// Issue 26.8: 300 sources (more than the 256 the table once held) all talking
+    /// 300 sources (more than the 256 the table once held) all talking
     /// within 10 s: none is forgotten, so a duplicate from the first is still a
     /// duplicate. After 10 s of silence a source is forgotten and its next message
     /// taken; a second later the table holds only the sources still talking.

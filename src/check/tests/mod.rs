@@ -824,7 +824,7 @@ fn each_circuit_is_measured_judged_and_put_back() {
     );
 }
 
-/// Issue 14's "≥ 80 %" includes 80 % itself, for the breaker sizes where 0.8 × the
+/// "Tight" is 80 % and over, 80 % itself included, for the breaker sizes where 0.8 × the
 /// rating is not exact in binary (worked by hand: 80 % of 13 A is 10.4 A, 104 tenths).
 #[test]
 fn a_draw_of_exactly_80_percent_of_the_breaker_is_tight() {
@@ -1036,7 +1036,7 @@ fn the_motor_findings_from_positions() {
         MotorFinding::NoMovement
     );
     assert_eq!(MotorFinding::AgainstLimit.mark(), Mark::Warn);
-    // Review item 2: a run stopped at the other endpoint is reversed only if its
+    // A run stopped at the other endpoint is reversed only if its
     // position went that way: one that went its own way (or nowhere) is not.
     use super::motors::judge_runs;
     assert_ne!(
@@ -1355,7 +1355,7 @@ impl Rig {
     }
 }
 
-/// Review item 9: the check switches a circuit on only by the page's own rule
+/// The check switches a circuit on only by the page's own rule
 /// (`control::device_power`). A unit whose DEVICE_STATUS went quiet (SYSTEM_STATUS
 /// still comes, so communication is not lost) leaves each circuit's state unknown,
 /// which the page's power key refuses: the circuit's line says so in control's
@@ -1443,7 +1443,7 @@ impl Rig {
 
 const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 
-/// Review item 8: the unit does not stop TRIM_MOVE at the endpoints (Table 15 note
+/// The unit does not stop TRIM_MOVE at the endpoints (Table 15 note
 /// 4), so the page does. A timed run (the check's) of the pitch trim 5 counts from its
 /// up endpoint, heading up for 1.5 s (37 counts at 25 a second), ends at the endpoint
 /// with its stop on the wire, and the trim never passes it.
@@ -1600,7 +1600,7 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
     }
 }
 
-/// Review item 1: a pitch trim with its leads swapped, parked exactly at its up
+/// A pitch trim with its leads swapped, parked exactly at its up
 /// endpoint 30 (or one count off it): the check's first run is "down" (all the room),
 /// but the trim really goes up. Its way is not known yet and the endpoint behind it
 /// is near, so the run starts as probes short enough that, at the fastest motor
@@ -1772,7 +1772,7 @@ fn a_stale_position_mid_run_stops_the_motor_and_says_why() {
 }
 
 // ===== check-switches: the switch step never powers what is left alone, and says
-// truthfully why circuits did not follow (review items 6 and 7) =====
+// truthfully why circuits did not follow =====
 
 /// The scenario with Strobe moved to switch 4 beside Pitot Heat, and Landing Lt to
 /// switch 1 beside the alternator field.
@@ -2422,7 +2422,7 @@ fn a_check_that_finishes_ends_once() {
     assert_eq!(r.ended, 1);
 }
 
-/// Issue 25: each light (Nav Lt, Strobe, Landing Lt here; not EFIS or the
+/// Each light (Nav Lt, Strobe, Landing Lt here; not EFIS or the
 /// alternators) is asked "Is it lit?" while the check has it on, the answers offered
 /// as plain data; the answer goes into the report beside the current, and where it
 /// disagrees with the current (Strobe draws nothing yet is seen lit; Nav Lt draws
@@ -2529,7 +2529,7 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     );
 }
 
-/// Issue 23: the flow writes no file. Reaching the load analysis it asks the app to
+/// The flow writes no file. Reaching the load analysis it asks the app to
 /// open the load file (`Effects::open_loads`, with the circuits its template lists)
 /// and waits, the file untouched; handed the result, it goes on to the report.
 #[test]

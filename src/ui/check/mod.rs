@@ -111,7 +111,7 @@ pub fn render(
             Step::Switches => switches::render(frame, body, view, model, now),
             Step::Circuits => circuits::render(frame, body, view, model, now),
             Step::Motors => motors::render(frame, body, view, model, running, now),
-            // The load analysis's own widget (issue-14-loads), its circuits scrolled
+            // The load analysis's own widget, its circuits scrolled
             // from the selection.
             Step::Loads => loads::render(
                 frame.buffer_mut(),
