@@ -157,10 +157,6 @@ impl CheckFlow {
         flow
     }
 
-    pub fn timing(&self) -> &Timing {
-        &self.shared.timing
-    }
-
     /// Where the check is, for the tests that stop it at every stage: the step, then
     /// the item's own stage ("circuits: measure, as it is").
     #[cfg(test)]

@@ -153,29 +153,11 @@ impl SimHandle {
         let _ = self.ctrl.send(Ctrl::Inject(cmd));
     }
 
-    /// A person sets cockpit switch 1–10 on or off. What the unit's inputs see goes
-    /// through the scenario's wiring (a dead input never changes; crossed switches
-    /// close each other's input).
-    pub fn set_switch(&self, switch: u8, on: bool) {
-        self.inject(SimCommand::Switch { switch, on });
-    }
-
     /// A person flips cockpit switch 1–10 to its other position and back `hold`
     /// later, without blocking the caller. Hold it over a second: the unit shows its
     /// inputs once a second (SYSTEM_STATUS), so a page may miss a shorter flip.
     pub fn flip_switch(&self, switch: u8, hold: Duration) {
         self.inject(SimCommand::FlipSwitch { switch, hold });
-    }
-
-    /// A person holds the flap or trim switch in `direction` and lets go `hold`
-    /// later, without blocking the caller (SYSTEM_STATUS byte 8 shows it meanwhile,
-    /// and the motor runs as its switch drives it).
-    pub fn press_motor_switch(&self, motor: MotorId, direction: MotorDirection, hold: Duration) {
-        self.inject(SimCommand::PressMotorSwitch {
-            motor,
-            direction,
-            hold,
-        });
     }
 
     /// The whole 256 KiB program flash.
