@@ -365,13 +365,17 @@ impl BootResponse {
             BootCommand::QueryPort => BootResponse::Port,
             BootCommand::FlashRead { .. } => BootResponse::Flash(reply.to_vec()),
             BootCommand::Signature => {
-                let s = [reply[0], reply[1], reply[2]];
+                let s: [u8; 3] = reply
+                    .try_into()
+                    .map_err(|_| unexpected(format!("{} bytes", SIGNATURE.len())))?;
                 if s != SIGNATURE {
                     return Err(BootError::WrongSignature(s));
                 }
                 BootResponse::Signature(s)
             }
-            BootCommand::Version => BootResponse::Version(u16::from_be_bytes([reply[0], reply[1]])),
+            BootCommand::Version => BootResponse::Version(u16::from_be_bytes(
+                reply.try_into().map_err(|_| unexpected("2 bytes".into()))?,
+            )),
             BootCommand::Exit => BootResponse::Exit,
         })
     }
@@ -541,15 +545,17 @@ impl BootCommandDecoder {
         let bad = Prefix::Bad {
             unknown_command: false,
         };
-        match b.len() {
-            0 => return Prefix::Partial,
-            _ if b[0] != HEADER[0] => return bad,
-            1 => return Prefix::Partial,
-            _ if b[1] != HEADER[1] => return bad,
-            2 => return Prefix::Partial,
-            _ => {}
+        for (i, &want) in HEADER.iter().enumerate() {
+            match b.get(i) {
+                None => return Prefix::Partial,
+                Some(&got) if got != want => return bad,
+                Some(_) => {}
+            }
         }
-        if num_fits(b[2], 0).is_none() {
+        let Some(&cmd) = b.get(2) else {
+            return Prefix::Partial;
+        };
+        if num_fits(cmd, 0).is_none() {
             return Prefix::Bad {
                 unknown_command: true,
             };
@@ -557,7 +563,7 @@ impl BootCommandDecoder {
         let Some(&num) = b.get(3) else {
             return Prefix::Partial;
         };
-        if num_fits(b[2], num) != Some(true) {
+        if num_fits(cmd, num) != Some(true) {
             return bad;
         }
         match b.get(4) {

@@ -98,7 +98,9 @@ impl UnitConfig {
     /// into `devices[0]` so that the two places that hold it never disagree.
     pub fn apply_flap_spec(&mut self, spec: &FlapSpec) {
         self.flap = *spec;
-        self.devices[FLAPS as usize].circuit_breaker = spec.circuit_breaker;
+        if let Some(flaps) = self.devices.get_mut(FLAPS as usize) {
+            flaps.circuit_breaker = spec.circuit_breaker;
+        }
     }
 
     /// Stores an accepted WIG_WAG_SPEC (ICD Table 17).
@@ -125,7 +127,9 @@ impl UnitConfig {
             EnableFlag::Disabled => false,
             _ => return,
         };
-        self.enabled[e.device_id as usize] = on;
+        if let Some(slot) = self.enabled.get_mut(e.device_id as usize) {
+            *slot = on;
+        }
     }
 }
 

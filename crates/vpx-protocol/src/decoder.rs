@@ -185,9 +185,16 @@ impl Decoder {
             // have given it, so `pending` and the events would depend on the reads.
             let upto = self.need();
             let take = upto.saturating_sub(self.len).min(input.len());
-            self.buf[self.len..self.len + take].copy_from_slice(&input[..take]);
+            let (Some((now, later)), Some(dst)) = (
+                input.split_at_checked(take),
+                self.buf.get_mut(self.len..self.len + take),
+            ) else {
+                // `need` never asks past the buffer (it holds the largest frame).
+                break;
+            };
+            dst.copy_from_slice(now);
             self.len += take;
-            input = &input[take..];
+            input = later;
             // Re-scan the held bytes in place (no copy of the buffer): a candidate
             // still incomplete may now give way to a frame completed inside it.
             // Whatever is left over is again an incomplete candidate that starts with
@@ -195,7 +202,7 @@ impl Decoder {
             let n = self.len;
             let done = Self::scan(
                 &mut self.stats,
-                &self.buf[..n],
+                self.buf.get(..n).unwrap_or_default(),
                 Input::MoreMayCome,
                 &mut on_event,
             );
@@ -206,9 +213,15 @@ impl Decoder {
             return;
         }
         let done = Self::scan(&mut self.stats, input, Input::MoreMayCome, &mut on_event);
-        let rest = &input[done..];
-        self.buf[..rest.len()].copy_from_slice(rest);
-        self.len = rest.len();
+        let rest = input.get(done..).unwrap_or_default();
+        // What is left is one incomplete candidate, shorter than the largest frame.
+        self.len = match self.buf.get_mut(..rest.len()) {
+            Some(dst) => {
+                dst.copy_from_slice(rest);
+                rest.len()
+            }
+            None => 0,
+        };
     }
 
     /// The input has ended (end of a capture or replay, a port closed): the held bytes
@@ -218,15 +231,16 @@ impl Decoder {
     /// pending and the decoder starts afresh on the next `push`.
     pub fn finish(&mut self, mut on_event: impl FnMut(Event<'_>)) {
         let n = self.len;
-        let done = Self::scan(&mut self.stats, &self.buf[..n], Input::Ended, &mut on_event);
+        let held = self.buf.get(..n).unwrap_or_default();
+        let done = Self::scan(&mut self.stats, held, Input::Ended, &mut on_event);
         debug_assert_eq!(done, n, "at the end of input everything is decided");
         self.len = 0;
     }
 
     /// How many bytes the held candidate must reach before it can be judged.
     fn need(&self) -> usize {
-        let b = &self.buf[..self.len];
-        if b.len() >= 2 && b[1] != SYNC2 {
+        let b = self.buf.get(..self.len).unwrap_or_default();
+        if b.get(1).is_some_and(|&x| x != SYNC2) {
             return b.len();
         }
         if b.len() < HEADER_LEN {
@@ -251,10 +265,11 @@ impl Decoder {
         let mut skip_from = 0;
         loop {
             // Find the next candidate start.
-            let start = match data[at..].iter().position(|&b| b == SYNC1) {
+            let from = data.get(at..).unwrap_or_default();
+            let start = match from.iter().position(|&b| b == SYNC1) {
                 Some(i) => at + i,
                 None => {
-                    Self::skip(stats, &data[skip_from..], on_event);
+                    Self::skip(stats, data.get(skip_from..).unwrap_or_default(), on_event);
                     return data.len();
                 }
             };
@@ -265,7 +280,7 @@ impl Decoder {
                     skip_from = next;
                 }
                 Step::Incomplete => {
-                    Self::skip(stats, &data[skip_from..start], on_event);
+                    Self::skip(stats, between(data, skip_from, start), on_event);
                     return start;
                 }
                 Step::Truncated => return data.len(),
@@ -284,10 +299,11 @@ impl Decoder {
         on_event: &mut impl FnMut(Event<'a>),
         skip_from: usize,
     ) -> Step {
-        let rest = &data[start..];
-        if rest.len() >= 2 && rest[1] != SYNC2 {
+        let rest = data.get(start..).unwrap_or_default();
+        if rest.get(1).is_some_and(|&x| x != SYNC2) {
             return Step::Garbage;
         }
+        let after_sync = rest.get(1..).unwrap_or_default();
         let total = if rest.len() < HEADER_LEN {
             None
         } else {
@@ -295,53 +311,53 @@ impl Decoder {
                 Some(len) => Some(HEADER_LEN + len + 1),
                 None => {
                     // Rule 1: impossible at the header.
-                    Self::skip(stats, &data[skip_from..start], on_event);
+                    Self::skip(stats, between(data, skip_from, start), on_event);
                     stats.bad_length += 1;
                     stats.skipped_bytes += 1;
-                    on_event(Event::BadLength(&rest[..HEADER_LEN]));
+                    on_event(Event::BadLength(rest.get(..HEADER_LEN).unwrap_or(rest)));
                     return Step::Reported(start + 1);
                 }
             }
         };
-        let Some(total) = total.filter(|&t| rest.len() >= t) else {
+        let Some(frame) = total.and_then(|t| rest.get(..t)) else {
             // Incomplete. Rule 2: every intact frame in the held bytes lies within
             // the bytes this candidate claims.
-            if holds_known_frame(&rest[1..]) {
+            if holds_known_frame(after_sync) {
                 return Step::Garbage;
             }
             return match input {
                 Input::MoreMayCome => Step::Incomplete,
                 // It can never complete. Give it up one byte, unless nothing intact
                 // follows: then it is the frame the input was cut in.
-                Input::Ended if holds_any_frame(&rest[1..]) => Step::Garbage,
+                Input::Ended if holds_any_frame(after_sync) => Step::Garbage,
                 Input::Ended => {
-                    Self::skip(stats, &data[skip_from..start], on_event);
+                    Self::skip(stats, between(data, skip_from, start), on_event);
                     stats.truncated_bytes += rest.len() as u64;
                     on_event(Event::Truncated(rest));
                     Step::Truncated
                 }
             };
         };
-        let frame = &rest[..total];
+        let total = frame.len();
         // Rule 2 before the checksum, so a candidate is judged the same whether the
         // inner frame completed while it was still incomplete or in the same read.
         // First a branch-free look for a sync byte where an inner frame could start
         // (most frames have none), so that every good frame does not pay the search.
         let inner_starts = frame.get(1..total.saturating_sub(MIN_FRAME - 1));
         if inner_starts.is_some_and(|b| b.iter().fold(false, |any, &x| any | (x == SYNC1)))
-            && holds_known_frame(&frame[1..])
+            && holds_known_frame(frame.get(1..).unwrap_or_default())
         {
             return Step::Garbage;
         }
-        if checksum(&frame[..total - 1]) != frame[total - 1] {
-            Self::skip(stats, &data[skip_from..start], on_event);
+        if !checksum_holds(frame) {
+            Self::skip(stats, between(data, skip_from, start), on_event);
             stats.bad_checksum += 1;
             stats.skipped_bytes += 1;
             on_event(Event::BadChecksum(frame));
             return Step::Reported(start + 1);
         }
-        Self::skip(stats, &data[skip_from..start], on_event);
-        if message::lookup(MessageId::new(frame[2], frame[3])).is_some() {
+        Self::skip(stats, between(data, skip_from, start), on_event);
+        if message::lookup(id_of(frame)).is_some() {
             stats.frames += 1;
             on_event(Event::Frame(FrameRef::new_unchecked(frame)));
         } else {
@@ -363,12 +379,35 @@ impl Decoder {
 /// if some message with its id can have it: the length its table gives for a known id,
 /// at most [`MAX_MESSAGE_LEN`] for an unknown one.
 fn possible_length(header: &[u8]) -> Option<usize> {
-    let len = header[HEADER_LEN - 1] as usize;
-    let possible = match message::lookup(MessageId::new(header[2], header[3])) {
+    let &[_, _, major, minor, _, _, _, len, ..] = header else {
+        return None;
+    };
+    let len = len as usize;
+    let possible = match message::lookup(MessageId::new(major, minor)) {
         Some((_, rule)) => rule.allows(len),
         None => len <= MAX_MESSAGE_LEN,
     };
     possible.then_some(len)
+}
+
+/// `data[from..to]`, or nothing where that is not a range of `data`.
+fn between(data: &[u8], from: usize, to: usize) -> &[u8] {
+    data.get(from..to).unwrap_or_default()
+}
+
+/// The id in a header's bytes 3 and 4 (0/0, no message, for fewer bytes).
+fn id_of(header: &[u8]) -> MessageId {
+    match header {
+        &[_, _, major, minor, ..] => MessageId::new(major, minor),
+        _ => MessageId::new(0, 0),
+    }
+}
+
+/// Whether a frame's last byte is the checksum of the bytes before it.
+fn checksum_holds(frame: &[u8]) -> bool {
+    frame
+        .split_last()
+        .is_some_and(|(&sum, body)| checksum(body) == sum)
 }
 
 /// Whether `span` holds, wholly, an intact frame of a known message.
@@ -388,13 +427,16 @@ fn holds_frame(span: &[u8], known_only: bool) -> bool {
     // The last place a frame can start and still fit.
     let last = span.len() - MIN_FRAME;
     let mut at = 0;
-    while let Some(i) = span[at..=last].iter().position(|&b| b == SYNC1) {
-        let rest = &span[at + i..];
-        if rest[1] == SYNC2
-            && (!known_only || message::lookup(MessageId::new(rest[2], rest[3])).is_some())
+    while let Some(i) = span
+        .get(at..=last)
+        .and_then(|s| s.iter().position(|&b| b == SYNC1))
+    {
+        let rest = span.get(at + i..).unwrap_or_default();
+        if rest.get(1) == Some(&SYNC2)
+            && (!known_only || message::lookup(id_of(rest)).is_some())
             && let Some(len) = possible_length(rest)
             && let Some(frame) = rest.get(..HEADER_LEN + len + 1)
-            && checksum(&frame[..frame.len() - 1]) == frame[frame.len() - 1]
+            && checksum_holds(frame)
         {
             return true;
         }

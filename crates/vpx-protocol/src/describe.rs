@@ -16,7 +16,7 @@ use alloc::{
 
 use serde_json::{Value, json};
 
-use super::device::{DEVICE_COUNT, SYSTEM_FAULT_ID, SYSTEM_SPEC_ID, WIG_WAG_SPEC_ID, device};
+use super::device::{SYSTEM_FAULT_ID, SYSTEM_SPEC_ID, WIG_WAG_SPEC_ID, device};
 use super::frame::Node;
 use super::message::*;
 
@@ -321,14 +321,15 @@ pub fn describe(msg: &Message) -> String {
             }
         ),
         Message::DeviceStatus(m) => {
-            let on: Vec<String> = (0..DEVICE_COUNT)
-                .filter(|&i| m.on[i])
-                .map(|i| format!("{} {:.1} A", device_label(i as u8), tenths(m.current[i].0)))
+            let devices = || m.on.iter().zip(&m.current).enumerate();
+            let on: Vec<String> = devices()
+                .filter(|&(_, (&on, _))| on)
+                .map(|(i, (_, c))| format!("{} {:.1} A", device_label(i as u8), tenths(c.0)))
                 .collect();
             // An off device drawing current is worth seeing; off devices at zero are not.
-            let off: Vec<String> = (0..DEVICE_COUNT)
-                .filter(|&i| !m.on[i] && m.current[i].0 != 0)
-                .map(|i| format!("{} {:.1} A", device_label(i as u8), tenths(m.current[i].0)))
+            let off: Vec<String> = devices()
+                .filter(|&(_, (&on, c))| !on && c.0 != 0)
+                .map(|(i, (_, c))| format!("{} {:.1} A", device_label(i as u8), tenths(c.0)))
                 .collect();
             let mut s = format!(
                 "on: {}",
@@ -374,18 +375,19 @@ pub fn describe(msg: &Message) -> String {
             m.roll_trim_neutral,
         ),
         Message::FaultStatus(m) => {
-            let faulted: Vec<String> = (0..DEVICE_COUNT)
-                .filter(|&i| m.faulted[i])
-                .map(|i| match m.codes[i] {
-                    Some(c) => format!("{} {}", device_label(i as u8), fault_name(c)),
+            let devices = || m.faulted.iter().zip(&m.codes).enumerate();
+            let faulted: Vec<String> = devices()
+                .filter(|&(_, (&faulted, _))| faulted)
+                .map(|(i, (_, code))| match code {
+                    Some(c) => format!("{} {}", device_label(i as u8), fault_name(*c)),
                     None => format!("{} (no code sent)", device_label(i as u8)),
                 })
                 .collect();
             // A code without its fault bit is unusual enough to show.
-            let stray: Vec<String> = (0..DEVICE_COUNT)
-                .filter_map(|i| match m.codes[i] {
-                    Some(c) if !m.faulted[i] && c.is_fault() => {
-                        Some(format!("{} {}", device_label(i as u8), fault_name(c)))
+            let stray: Vec<String> = devices()
+                .filter_map(|(i, (&faulted, code))| match code {
+                    Some(c) if !faulted && c.is_fault() => {
+                        Some(format!("{} {}", device_label(i as u8), fault_name(*c)))
                     }
                     _ => None,
                 })
@@ -545,9 +547,9 @@ pub fn to_json(msg: &Message) -> Value {
         }),
         Message::SystemStatus(m) => {
             let s = &m.switches;
-            let switches: Vec<u8> = (0..10u8)
-                .filter(|&i| s.switch[i as usize])
-                .map(|i| i + 1)
+            let switches: Vec<u8> = (1..=10u8)
+                .zip(s.switch)
+                .filter_map(|(n, on)| on.then_some(n))
                 .collect();
             json!({
                 "system_current_a": tenths(m.system_current.0),
@@ -574,13 +576,13 @@ pub fn to_json(msg: &Message) -> Value {
             })
         }
         Message::DeviceStatus(m) => {
-            let devices: Vec<Value> = (0..DEVICE_COUNT)
-                .map(|i| {
+            let devices: Vec<Value> = (m.on.iter().zip(&m.current).enumerate())
+                .map(|(i, (on, current))| {
                     json!({
                         "id": i,
                         "name": device(i as u8).map(|d| d.system_name),
-                        "on": m.on[i],
-                        "current_a": tenths(m.current[i].0),
+                        "on": on,
+                        "current_a": tenths(current.0),
                     })
                 })
                 .collect();
@@ -616,14 +618,14 @@ pub fn to_json(msg: &Message) -> Value {
             })),
         }),
         Message::FaultStatus(m) => {
-            let devices: Vec<Value> = (0..DEVICE_COUNT)
-                .filter(|&i| m.faulted[i] || m.codes[i].is_some_and(|c| c.is_fault()))
-                .map(|i| {
+            let devices: Vec<Value> = (m.faulted.iter().zip(&m.codes).enumerate())
+                .filter(|&(_, (&faulted, code))| faulted || code.is_some_and(|c| c.is_fault()))
+                .map(|(i, (faulted, code))| {
                     json!({
                         "id": i,
                         "name": device(i as u8).map(|d| d.system_name),
-                        "faulted": m.faulted[i],
-                        "fault_code": m.codes[i].map(fault_json),
+                        "faulted": faulted,
+                        "fault_code": code.map(fault_json),
                     })
                 })
                 .collect();
@@ -673,6 +675,7 @@ fn merge(mut a: Value, b: Value) -> Value {
 mod tests {
     use super::*;
     use crate::Packet;
+    use crate::device::DEVICE_COUNT;
 
     /// DEVICE_SPEC, cnt 1, VP-X → EFIS: device 4, breaker 5 A, switch `sw`, current
     /// fault off (ICD Table 13). Checksums by hand: E7^7E^11^00^01^00^01^04^04^05^00 =

@@ -129,19 +129,24 @@ impl<'a> FrameRef<'a> {
                 need: HEADER_LEN + 1,
             });
         }
-        if bytes[0] != SYNC1 || bytes[1] != SYNC2 {
+        let Some(&[sync1, sync2, _, _, _, _, _, len]) = bytes.first_chunk::<HEADER_LEN>() else {
+            return Err(Error::Truncated {
+                got: bytes.len(),
+                need: HEADER_LEN + 1,
+            });
+        };
+        if sync1 != SYNC1 || sync2 != SYNC2 {
             return Err(Error::BadHeader);
         }
-        let need = HEADER_LEN + bytes[7] as usize + 1;
-        if bytes.len() < need {
+        let need = HEADER_LEN + len as usize + 1;
+        let Some(bytes) = bytes.get(..need) else {
             return Err(Error::Truncated {
                 got: bytes.len(),
                 need,
             });
-        }
-        let bytes = &bytes[..need];
-        let computed = checksum(&bytes[..need - 1]);
-        let found = bytes[need - 1];
+        };
+        let (&found, before) = bytes.split_last().ok_or(Error::BadHeader)?;
+        let computed = checksum(before);
         if computed != found {
             return Err(Error::BadChecksum { computed, found });
         }
@@ -153,25 +158,33 @@ impl<'a> FrameRef<'a> {
         FrameRef { bytes }
     }
 
+    /// Header byte `i` (0-based). A checked frame always has its 8 header bytes; 0
+    /// stands in only for a byte that cannot be missing.
+    fn byte(&self, i: usize) -> u8 {
+        self.bytes.get(i).copied().unwrap_or(0)
+    }
+
     /// The header fields (ICD Table 2, bytes 3–7).
     pub fn header(&self) -> FrameHeader {
         FrameHeader {
             id: self.id(),
-            cnt: self.bytes[4],
-            src: Node::from_byte(self.bytes[5]),
-            dst: Node::from_byte(self.bytes[6]),
+            cnt: self.byte(4),
+            src: Node::from_byte(self.byte(5)),
+            dst: Node::from_byte(self.byte(6)),
         }
     }
 
     /// Major and minor command id (ICD Table 2, bytes 3 and 4).
     pub fn id(&self) -> MessageId {
-        MessageId::new(self.bytes[2], self.bytes[3])
+        MessageId::new(self.byte(2), self.byte(3))
     }
 
     /// The payload: the `<len>` bytes after the header, without the checksum (ICD Table 1,
     /// bytes 9+).
     pub fn payload(&self) -> &'a [u8] {
-        &self.bytes[HEADER_LEN..self.bytes.len() - 1]
+        self.bytes
+            .get(HEADER_LEN..self.bytes.len().saturating_sub(1))
+            .unwrap_or_default()
     }
 
     /// The whole frame, header to checksum.
@@ -187,21 +200,27 @@ pub fn emit_frame(header: &FrameHeader, payload: &[u8], out: &mut [u8]) -> Resul
         return Err(Error::PayloadTooLong(payload.len()));
     }
     let total = HEADER_LEN + payload.len() + 1;
-    if out.len() < total {
-        return Err(Error::Truncated {
-            got: out.len(),
-            need: total,
-        });
-    }
-    out[0] = SYNC1;
-    out[1] = SYNC2;
-    out[2] = header.id.major;
-    out[3] = header.id.minor;
-    out[4] = header.cnt;
-    out[5] = header.src.to_byte();
-    out[6] = header.dst.to_byte();
-    out[7] = payload.len() as u8;
-    out[HEADER_LEN..total - 1].copy_from_slice(payload);
-    out[total - 1] = checksum(&out[..total - 1]);
+    let truncated = Error::Truncated {
+        got: out.len(),
+        need: total,
+    };
+    let Some((head, rest)) = out.split_first_chunk_mut::<HEADER_LEN>() else {
+        return Err(truncated);
+    };
+    let Some((body, [sum, ..])) = rest.split_at_mut_checked(payload.len()) else {
+        return Err(truncated);
+    };
+    *head = [
+        SYNC1,
+        SYNC2,
+        header.id.major,
+        header.id.minor,
+        header.cnt,
+        header.src.to_byte(),
+        header.dst.to_byte(),
+        payload.len() as u8,
+    ];
+    body.copy_from_slice(payload);
+    *sum = !head.iter().chain(body.iter()).fold(0u8, |acc, b| acc ^ b);
     Ok(total)
 }

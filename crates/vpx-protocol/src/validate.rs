@@ -430,8 +430,8 @@ pub fn check_flap_spec(_cfg: &UnitConfig, spec: &FlapSpec) -> Result<(), Refusal
     use SpecAckError::*;
     if spec.midpoint_1 != 0 && spec.midpoint_2 != 0 {
         let p = [spec.up, spec.midpoint_1, spec.midpoint_2, spec.down];
-        let rising = p.windows(2).all(|w| w[0] < w[1]);
-        let falling = p.windows(2).all(|w| w[0] > w[1]);
+        let rising = p.windows(2).all(|w| matches!(w, [a, b] if a < b));
+        let falling = p.windows(2).all(|w| matches!(w, [a, b] if a > b));
         if !rising && !falling {
             return Err(refuse(
                 BadOrder,

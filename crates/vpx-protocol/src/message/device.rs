@@ -5,8 +5,8 @@ use alloc::string::String;
 use super::types::{
     EnableFlag, FlapMode, OvervoltageLimit, Polarity, SpecAckError, SwitchId, Tenths, TrimType,
 };
-use super::{Payload, Reader, Writer, bit, flag};
-use crate::error::{LenRule, Result};
+use super::{Payload, Reader, Writer, bit, exact, flag};
+use crate::error::{Error, LenRule, Result};
 use crate::frame::MessageId;
 
 /// DEVICE_SPEC — ICD Table 13.
@@ -53,6 +53,7 @@ impl Payload for DeviceSpec {
     const NAME: &'static str = "DEVICE_SPEC";
     const LEN: LenRule = LenRule::Exact(4);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 4>(p)?;
         Ok(DeviceSpec {
             device_id: p[0],
             circuit_breaker: p[1],
@@ -83,6 +84,7 @@ impl Payload for SystemSpec {
     const NAME: &'static str = "SYSTEM_SPEC";
     const LEN: LenRule = LenRule::Exact(2);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 2>(p)?;
         Ok(SystemSpec {
             overvoltage_limit: OvervoltageLimit::from_byte(p[0]),
             secondary_alternator: opt_id(p[1]),
@@ -241,6 +243,7 @@ impl Payload for WigWagSpec {
     const NAME: &'static str = "WIG_WAG_SPEC";
     const LEN: LenRule = LenRule::Exact(4);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 4>(p)?;
         Ok(WigWagSpec {
             device_one: opt_id(p[0]),
             device_two: opt_id(p[1]),
@@ -269,6 +272,7 @@ impl Payload for DeviceSpecQuery {
     const NAME: &'static str = "DEVICE_SPEC_QUERY";
     const LEN: LenRule = LenRule::Exact(1);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 1>(p)?;
         Ok(DeviceSpecQuery { device_id: p[0] })
     }
     fn emit_payload(&self, w: &mut Writer) {
@@ -291,6 +295,7 @@ impl Payload for SpecAck {
     const NAME: &'static str = "SPEC_ACK";
     const LEN: LenRule = LenRule::Exact(2);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 2>(p)?;
         Ok(SpecAck {
             device_id: p[0],
             error: match p[1] {
@@ -322,7 +327,9 @@ impl DeviceName {
             return None;
         }
         let mut name = [0u8; 16];
-        name[..text.len()].copy_from_slice(text.as_bytes());
+        for (n, &b) in name.iter_mut().zip(text.as_bytes()) {
+            *n = b;
+        }
         Some(DeviceName { device_id, name })
     }
 
@@ -351,13 +358,18 @@ impl Payload for DeviceName {
     const NAME: &'static str = "DEVICE_NAME";
     const LEN: LenRule = LenRule::Between(2, 17);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let Some((&device_id, given)) = p.split_first() else {
+            return Err(Error::BadLength {
+                message: Self::NAME,
+                expected: Self::LEN,
+                got: p.len(),
+            });
+        };
         let mut name = [0u8; 16];
-        let given = &p[1..];
-        name[..given.len()].copy_from_slice(given);
-        Ok(DeviceName {
-            device_id: p[0],
-            name,
-        })
+        for (n, &b) in name.iter_mut().zip(given) {
+            *n = b;
+        }
+        Ok(DeviceName { device_id, name })
     }
     fn emit_payload(&self, w: &mut Writer) {
         w.u8(self.device_id);
@@ -377,6 +389,7 @@ impl Payload for DeviceNameQuery {
     const NAME: &'static str = "DEVICE_NAME_QUERY";
     const LEN: LenRule = LenRule::Exact(1);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 1>(p)?;
         Ok(DeviceNameQuery { device_id: p[0] })
     }
     fn emit_payload(&self, w: &mut Writer) {
@@ -399,6 +412,7 @@ impl Payload for DeviceEnable {
     const NAME: &'static str = "DEVICE_ENABLE";
     const LEN: LenRule = LenRule::Exact(2);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 2>(p)?;
         Ok(DeviceEnable {
             device_id: p[0],
             flag: EnableFlag::from_byte(p[1]),

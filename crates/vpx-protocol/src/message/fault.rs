@@ -1,6 +1,6 @@
 //! Fault messages, ICD §6.5 (major 0x14).
 
-use super::{Payload, Writer};
+use super::{Payload, Writer, exact};
 use crate::error::{LenRule, Result};
 use crate::frame::MessageId;
 
@@ -16,6 +16,7 @@ impl Payload for DeviceClear {
     const NAME: &'static str = "DEVICE_CLEAR";
     const LEN: LenRule = LenRule::Exact(1);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 1>(p)?;
         Ok(DeviceClear { device_id: p[0] })
     }
     fn emit_payload(&self, w: &mut Writer) {

@@ -67,6 +67,17 @@ pub trait Payload: Sized {
     }
 }
 
+/// The payload of a message whose `LEN` is `Exact(N)`, as an array its fields are
+/// read from. [`Payload::parse`] has checked the length already; this checks it again,
+/// with the same error, rather than trust an index.
+fn exact<P: Payload, const N: usize>(p: &[u8]) -> Result<[u8; N]> {
+    p.try_into().map_err(|_| Error::BadLength {
+        message: P::NAME,
+        expected: P::LEN,
+        got: p.len(),
+    })
+}
+
 /// A payload on the stack: no message is longer than 255 bytes (ICD Table 1, `<len>`).
 #[derive(Clone, Copy)]
 pub struct PayloadBuf {
@@ -77,7 +88,7 @@ pub struct PayloadBuf {
 impl PayloadBuf {
     /// The payload bytes.
     pub fn as_slice(&self) -> &[u8] {
-        &self.buf[..self.len]
+        self.buf.get(..self.len).unwrap_or_default()
     }
 }
 
@@ -254,12 +265,12 @@ macro_rules! messages {
                 LenRule::Between(_, hi) => hi,
             },)+];
             let mut max = 0;
-            let mut i = 0;
-            while i < lens.len() {
-                if lens[i] > max {
-                    max = lens[i];
+            let mut rest: &[usize] = &lens;
+            while let [len, tail @ ..] = rest {
+                if *len > max {
+                    max = *len;
                 }
-                i += 1;
+                rest = tail;
             }
             max
         };
@@ -366,7 +377,7 @@ impl Packet {
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = [0u8; MAX_FRAME];
         let n = self.emit_into(&mut out);
-        out[..n].to_vec()
+        out.get(..n).unwrap_or_default().to_vec()
     }
 }
 

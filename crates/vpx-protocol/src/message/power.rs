@@ -1,7 +1,7 @@
 //! Power messages, ICD §6.4 (major 0x13).
 
 use super::types::{FlapDirection, TrimDirection, TrimType, WigWagModeSetting};
-use super::{Payload, Writer, flag};
+use super::{Payload, Writer, exact, flag};
 use crate::error::{LenRule, Result};
 use crate::frame::MessageId;
 
@@ -19,6 +19,7 @@ impl Payload for DevicePower {
     const NAME: &'static str = "DEVICE_POWER";
     const LEN: LenRule = LenRule::Exact(2);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 2>(p)?;
         Ok(DevicePower {
             device_id: p[0],
             on: flag(Self::NAME, "Power State", p[1])?,
@@ -47,6 +48,7 @@ impl Payload for TrimMove {
     const NAME: &'static str = "TRIM_MOVE";
     const LEN: LenRule = LenRule::Exact(3);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 3>(p)?;
         Ok(TrimMove {
             trim_type: TrimType::from_byte(p[0]),
             on: flag(Self::NAME, "Power State", p[1])?,
@@ -74,6 +76,7 @@ impl Payload for FlapMove {
     const NAME: &'static str = "FLAP_MOVE";
     const LEN: LenRule = LenRule::Exact(2);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 2>(p)?;
         Ok(FlapMove {
             on: flag(Self::NAME, "Power State", p[0])?,
             direction: FlapDirection::from_byte(p[1]),
@@ -97,6 +100,7 @@ impl Payload for WigWagMode {
     const NAME: &'static str = "WIG_WAG_MODE";
     const LEN: LenRule = LenRule::Exact(1);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 1>(p)?;
         Ok(WigWagMode {
             mode: WigWagModeSetting::from_byte(p[0]),
         })

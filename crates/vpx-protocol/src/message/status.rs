@@ -1,9 +1,9 @@
 //! Status messages, ICD §6.3 (major 0x12). Broadcast by the unit.
 
 use super::types::{DataIntegrityCode, SignedTenths, Tenths, WigWagModeSetting};
-use super::{IGNORED_PAYLOAD_MAX, Payload, Reader, Writer, bit};
+use super::{IGNORED_PAYLOAD_MAX, Payload, Reader, Writer, bit, exact};
 use crate::device::DEVICE_COUNT;
-use crate::error::{LenRule, Result};
+use crate::error::{Error, LenRule, Result};
 use crate::fault::FaultCode;
 use crate::frame::MessageId;
 
@@ -205,6 +205,7 @@ impl Payload for DeviceStatus {
     const NAME: &'static str = "DEVICE_STATUS";
     const LEN: LenRule = LenRule::Exact(66);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 66>(p)?;
         let on = unpack_bits(&p[..4]);
         let mut current = [Tenths(0); DEVICE_COUNT];
         let mut r = Reader::new(&p[4..]);
@@ -404,20 +405,27 @@ impl Payload for FaultStatus {
     const NAME: &'static str = "FAULT_STATUS";
     const LEN: LenRule = LenRule::Between(4, 35);
     fn parse_payload(p: &[u8]) -> Result<Self> {
-        let faulted = unpack_bits(&p[..4]);
+        let Some((bits, code_bytes)) = p.split_first_chunk::<4>() else {
+            return Err(Error::BadLength {
+                message: Self::NAME,
+                expected: Self::LEN,
+                got: p.len(),
+            });
+        };
+        let faulted = unpack_bits(bits);
         let mut codes = [None; DEVICE_COUNT];
-        for (c, &b) in codes.iter_mut().zip(&p[4..]) {
+        for (c, &b) in codes.iter_mut().zip(code_bytes) {
             *c = Some(FaultCode::from_byte(b));
         }
         Ok(FaultStatus {
             faulted,
-            system_fault: bit(p[3], 7),
+            system_fault: bit(bits[3], 7),
             codes,
         })
     }
     fn emit_payload(&self, w: &mut Writer) {
         w.bytes(&pack_bits(&self.faulted, self.system_fault));
-        for c in &self.codes[..self.codes_len()] {
+        for c in self.codes.iter().take(self.codes_len()) {
             w.u8(c.map_or(0, FaultCode::to_byte));
         }
     }
@@ -447,7 +455,7 @@ fn bits(set: &[(u8, bool)]) -> u8 {
 fn unpack_bits(p: &[u8]) -> [bool; DEVICE_COUNT] {
     let mut out = [false; DEVICE_COUNT];
     for (id, o) in out.iter_mut().enumerate() {
-        *o = p[id / 8] & (1 << (id % 8)) != 0;
+        *o = p.get(id / 8).is_some_and(|b| b & (1 << (id % 8)) != 0);
     }
     out
 }
@@ -455,8 +463,8 @@ fn unpack_bits(p: &[u8]) -> [bool; DEVICE_COUNT] {
 fn pack_bits(devices: &[bool; DEVICE_COUNT], top_bit: bool) -> [u8; 4] {
     let mut out = [0u8; 4];
     for (id, &on) in devices.iter().enumerate() {
-        if on {
-            out[id / 8] |= 1 << (id % 8);
+        if on && let Some(byte) = out.get_mut(id / 8) {
+            *byte |= 1 << (id % 8);
         }
     }
     if top_bit {

@@ -1,7 +1,7 @@
 //! System messages, ICD §6.1 (major 0x10).
 
 use super::types::HardwareVersion;
-use super::{IGNORED_PAYLOAD_MAX, Payload, Reader, Writer, flag};
+use super::{IGNORED_PAYLOAD_MAX, Payload, Reader, Writer, exact, flag};
 use crate::error::{Error, LenRule, Result};
 use crate::frame::MessageId;
 
@@ -17,6 +17,7 @@ impl Payload for Ping {
     const NAME: &'static str = "PING";
     const LEN: LenRule = LenRule::Exact(1);
     fn parse_payload(p: &[u8]) -> Result<Self> {
+        let p = exact::<Self, 1>(p)?;
         Ok(Ping {
             ack: flag(Self::NAME, "ACK flag", p[0])?,
         })
@@ -113,16 +114,14 @@ impl Payload for EepromErase {
     const NAME: &'static str = "EEPROM_ERASE";
     const LEN: LenRule = LenRule::Between(0, 1);
     fn parse_payload(p: &[u8]) -> Result<Self> {
-        if p.is_empty() {
+        let Some(&response_code) = p.first() else {
             return Err(Error::BadLength {
                 message: Self::NAME,
                 expected: LenRule::Exact(1),
                 got: 0,
             });
-        }
-        Ok(EepromErase {
-            response_code: p[0],
-        })
+        };
+        Ok(EepromErase { response_code })
     }
     fn emit_payload(&self, w: &mut Writer) {
         w.u8(self.response_code);
