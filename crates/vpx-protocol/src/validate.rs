@@ -10,18 +10,19 @@
 //!
 //! Decisions where the ICD is silent or contradicts itself (each pinned by a test):
 //!
-//! * **Factory-default breaker.** The 15 A pins take 5–15 A (Table 40) yet default to
+//! * **Factory-default breaker** (icd-reading R25). The 15 A pins take 5–15 A (Table 40) yet default to
 //!   2 A (Tables 40 and 44). As icd-reading R16 does for trim power, the pin's own
 //!   factory default is accepted although outside its range: a restore of a backup
 //!   taken from a fresh unit must not be refused, and the unit itself reports it.
 //!   The same holds for pitch trim power 100 % against Table 15's 40–90 (icd-reading
 //!   R16). A strict reading would answer these with 0x03 / 0x01; we take the
 //!   unit's own values over the table's range.
-//! * **DEVICE_SPEC for 0, 29 and 30.** Table 13's id range is 0–30, but the flaps and
+//! * **DEVICE_SPEC for 0, 29 and 30** (icd-reading R26). Table 13's id range is 0–30, but the flaps and
 //!   trims are configured by FLAP_SPEC and TRIM_SPEC (their DEVICE_SPEC_QUERY answers
 //!   with those, icd-reading R13), and a breaker or switch for them would be stored
 //!   where nothing reads it back: refused `InvalidDevice` (0x02).
-//! * **"Same switch" for the alternators** (Table 13 note 6, Table 14 note 5) means the
+//! * **"Same switch" for the alternators** (Table 13 note 6, Table 14 note 5;
+//!   icd-reading R27) means the
 //!   same switch 1–10 or both always on (11). Both always off (0) is not a shared
 //!   switch: it is the factory state of the primary alternator and of every pin, and
 //!   two alternators that never run cannot run together.

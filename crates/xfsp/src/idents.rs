@@ -459,7 +459,7 @@ mod tests {
     }
 
     #[test]
-    fn the_typo_readings_of_note_5() {
+    fn typo_idents_read_as_their_hex_and_aoa_is_told_from_aoar_by_format() {
         assert_eq!(spec_ident("%x00.29"), 0x29);
         assert_eq!(spec_ident("%x00.00.00.81"), 0x81);
         assert_eq!(by_name("MUX").map(|p| p.ident), Some(Ident(0x29)));
@@ -470,7 +470,7 @@ mod tests {
     }
 
     #[test]
-    fn the_electrical_idents_of_note_8() {
+    fn the_electrical_idents_have_their_names_and_formats() {
         let expect = [
             (CASMSG, "CASMSG", FormatId::CasMsg),
             (FLAPREQ, "FLAPREQ", FormatId::Sint),

@@ -351,8 +351,8 @@ impl DeviceName {
 
 /// Table 21's 17 bytes are a maximum (§6 intro: "payload size ... represent the maximum
 /// size"; the name is "up to 16 bytes", shorter ones "should be null-terminated").
-/// Decision: we send 17; we take 2–17 (the id and at least the terminating NUL, or a
-/// name cut short), the missing bytes read as NUL.
+/// Decision (icd-reading R28): we send 17; we take 2–17 (the id and at least the
+/// terminating NUL, or a name cut short), the missing bytes read as NUL.
 impl Payload for DeviceName {
     const ID: MessageId = MessageId::new(0x11, 0x07);
     const NAME: &'static str = "DEVICE_NAME";

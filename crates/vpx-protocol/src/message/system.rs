@@ -31,7 +31,7 @@ impl Payload for Ping {
 /// "Payload data sent by the external system is ignored by the VP-X"); we send three
 /// zeros, the table's size.
 ///
-/// Decision, for what we receive: a payload of any length up to
+/// Decision (icd-reading R29), for what we receive: a payload of any length up to
 /// [`IGNORED_PAYLOAD_MAX`] passes the frame check (so a request of another length
 /// reaches the virtual VP-X, which answers it); the three fields of Table 11 decode
 /// from a payload of at least 3 bytes, bytes after them are ignored, and a shorter
@@ -99,10 +99,11 @@ impl Payload for SoftwareUpdate {
 /// EEPROM_ERASE — ICD Table 12. Response code 0 means success.
 ///
 /// The request carries no meaning in its byte (§6.1.4 gives the table for the
-/// response), and an EFIS may send it with no payload at all. Decision: the frame
-/// check takes 0 or 1 bytes; the typed message needs its response code, so an empty
-/// payload is a [`Error::BadLength`] here (an empty *reply* never reads as success)
-/// and the virtual VP-X answers an empty *request* all the same. We send 1 byte.
+/// response), and an EFIS may send it with no payload at all. Decision (icd-reading
+/// R30): the frame check takes 0 or 1 bytes; the typed message needs its response
+/// code, so an empty payload is a [`Error::BadLength`] here (an empty *reply* never
+/// reads as success) and the virtual VP-X answers an empty *request* all the same. We
+/// send 1 byte.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EepromErase {
     /// Table 12 byte 1: 0 success, anything else failure.
