@@ -295,6 +295,30 @@ pub fn from_model(
     (assess(file, &unit, system.as_ref()), system)
 }
 
+/// The row of one circuit as the page lists it: its breaker, and its current while on.
+pub fn circuit_row(
+    file: &[LoadCircuit],
+    c: &crate::model::Circuit,
+    system: Option<&SystemVoltage>,
+) -> Row {
+    let run = file
+        .iter()
+        .find(|f| f.id == c.id)
+        .map(|f| f.wire)
+        .unwrap_or_default();
+    let amps = (c.state == CircuitState::On)
+        .then_some(c.amps)
+        .flatten()
+        .map(f64::from);
+    row(c.id, c.name.clone(), run, c.breaker, amps, system)
+}
+
+/// Whether circuit `id`'s breaker is over the wire `file` gives it (Table 11-3).
+pub fn unprotected(file: &[LoadCircuit], id: u8, breaker: Option<u8>) -> bool {
+    let wire = file.iter().find(|f| f.id == id).and_then(|f| f.wire.wire);
+    matches!((wire, breaker), (Some(w), Some(b)) if !w.protected_by(f64::from(b)))
+}
+
 /// The circuits a unit's configuration (read from it, or from a backup) shows: each
 /// one's name (DEVICE_NAME, else its pin) and breaker (DEVICE_SPEC; the trims' fixed
 /// one). Flaps and trims count where they are enabled, pins 4–28 where shown.
