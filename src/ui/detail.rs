@@ -202,7 +202,10 @@ fn wire_line(r: &Row) -> Line<'static> {
     match r.verdict {
         Verdict::Unprotected => {
             let words = r.unprotected_words().unwrap_or_default();
-            spans.insert(0, Span::styled("⚠ UNPROTECTED ", theme::alert()));
+            spans.insert(
+                0,
+                Span::styled(format!("⚠{NBSP}UNPROTECTED "), theme::alert()),
+            );
             spans.push(Span::styled(words, theme::alert()));
         }
         Verdict::Drop => {
@@ -211,11 +214,11 @@ fn wire_line(r: &Row) -> Line<'static> {
                 .map(|f| format!(": a run of at most {} would pass", wire::feet_text(f)))
                 .unwrap_or_default();
             spans.push(Span::styled(
-                format!("⚠ DROP over the limit{under}"),
+                format!("⚠{NBSP}DROP over the limit{under}"),
                 theme::caution(),
             ));
         }
-        _ => spans.push(Span::raw(format!("✓ {}", r.verdict.word()))),
+        _ => spans.push(Span::raw(format!("✓{NBSP}{}", r.verdict.word()))),
     }
     Line::from(spans)
 }
