@@ -9,6 +9,9 @@
 //! 2. VERSION: a file from other hardware is refused (only VERSION has been sent).
 //! 3. The unit's settings are read and the differences listed; the person confirms
 //!    (or `--yes`). With no terminal to ask on and no `--yes`, nothing is written.
+//!    A breaker of the backup above what its circuit's wire allows (the load file's
+//!    `wire`, AC 43.13-1B Table 11-3) is listed and asked on the terminal even with
+//!    `--yes`: it disarms the wire's protection, as setup asks it.
 //! 4. With `--erase-first`, EEPROM_ERASE (ICD §6.1.4) must answer result code 0, and
 //!    the now-factory settings are read again.
 //! 5. Each differing setting is written in the order [`crate::backup::plan`] explains,
@@ -41,7 +44,7 @@ pub struct RestoreArgs {
     pub port: PortArgs,
     /// The TOML backup to restore.
     pub file: PathBuf,
-    /// Don't ask for confirmation.
+    /// Don't ask for confirmation (a breaker over its wire is still asked).
     #[arg(long)]
     pub yes: bool,
     /// Erase the EEPROM first (ICD §6.1.4), then import.
