@@ -71,6 +71,19 @@ fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     p
 }
 
+/// `vpx-efis backup` of the unit on `port`, into `dir`.
+fn backup_of(dir: &Path, port: &str) -> PathBuf {
+    let backup = dir.join("unit.toml");
+    let o = vpx(dir, &["backup", "--port", port, backup.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", err(&o));
+    backup
+}
+
+/// `vpx-efis wires --json` against the unit on `port` with the load file `loads`.
+fn wires_json(dir: &Path, port: &str, loads: &str) -> Output {
+    vpx(dir, &["wires", "--port", port, "--loads", loads, "--json"])
+}
+
 /// `wires --json`'s row for `pin`.
 fn row<'a>(rows: &'a serde_json::Value, pin: &str) -> &'a serde_json::Value {
     rows.as_array()
@@ -114,10 +127,7 @@ fn wires_finds_the_unprotected_strobe_and_the_long_run_then_passes_once_correcte
         err(&o)
     );
 
-    let o = vpx(
-        dir.path(),
-        &["wires", "--port", &port, "--loads", loads, "--json"],
-    );
+    let o = wires_json(dir.path(), &port, loads);
     assert_eq!(o.status.code(), Some(1));
     let rows = json(&o);
     let strobe = row(&rows, "10A-1");
@@ -142,17 +152,7 @@ fn wires_finds_the_unprotected_strobe_and_the_long_run_then_passes_once_correcte
     assert_eq!(row(&rows, "EFIS")["verdict"], "not entered");
 
     let fixed = write(dir.path(), "fixed.toml", &corrected());
-    let o = vpx(
-        dir.path(),
-        &[
-            "wires",
-            "--port",
-            &port,
-            "--loads",
-            fixed.to_str().unwrap(),
-            "--json",
-        ],
-    );
+    let o = wires_json(dir.path(), &port, fixed.to_str().unwrap());
     assert_eq!(o.status.code(), Some(0), "{}{}", out(&o), err(&o));
     let rows = json(&o);
     assert_eq!(row(&rows, "10A-1")["max_breaker_amps"], 7.5);
@@ -214,12 +214,7 @@ fn a_bad_wire_line_is_named_by_path_line_and_field_and_exits_2() {
 fn from_a_backup_only_breaker_against_wire_is_judged() {
     let dir = tempfile::tempdir().unwrap();
     let (sim, port) = sim_pty("wires");
-    let backup = dir.path().join("unit.toml");
-    let o = vpx(
-        dir.path(),
-        &["backup", "--port", &port, backup.to_str().unwrap()],
-    );
-    assert!(o.status.success(), "{}", err(&o));
+    let backup = backup_of(dir.path(), &port);
     drop(sim);
     let loads = write(dir.path(), "loads.toml", WRONG);
     let o = vpx(
@@ -250,12 +245,7 @@ fn from_a_backup_only_breaker_against_wire_is_judged() {
 fn restore_lists_each_breaker_over_its_wire_and_writes_nothing_unasked() {
     let dir = tempfile::tempdir().unwrap();
     let (_sim, port) = sim_pty("wires");
-    let backup = dir.path().join("unit.toml");
-    let o = vpx(
-        dir.path(),
-        &["backup", "--port", &port, backup.to_str().unwrap()],
-    );
-    assert!(o.status.success(), "{}", err(&o));
+    let backup = backup_of(dir.path(), &port);
     // The strobe's breaker raised to 7 A in the backup: over 22 AWG's 5 A, and a
     // difference for the restore to write.
     let text = std::fs::read_to_string(&backup).unwrap();
@@ -299,17 +289,7 @@ fn restore_lists_each_breaker_over_its_wire_and_writes_nothing_unasked() {
         out(&o)
     );
     assert!(err(&o).contains("nothing was written"), "{}", err(&o));
-    let o = vpx(
-        dir.path(),
-        &[
-            "wires",
-            "--port",
-            &port,
-            "--loads",
-            loads.to_str().unwrap(),
-            "--json",
-        ],
-    );
+    let o = wires_json(dir.path(), &port, loads.to_str().unwrap());
     assert_eq!(row(&json(&o), "10A-1")["breaker_amps"], 6, "still 6 A");
 
     // With the wire corrected (20 AWG: 7.5 A), the same backup is written.
@@ -328,17 +308,7 @@ fn restore_lists_each_breaker_over_its_wire_and_writes_nothing_unasked() {
     );
     assert!(o.status.success(), "{}{}", out(&o), err(&o));
     assert!(!out(&o).contains("would not protect"), "{}", out(&o));
-    let o = vpx(
-        dir.path(),
-        &[
-            "wires",
-            "--port",
-            &port,
-            "--loads",
-            fixed.to_str().unwrap(),
-            "--json",
-        ],
-    );
+    let o = wires_json(dir.path(), &port, fixed.to_str().unwrap());
     assert_eq!(row(&json(&o), "10A-1")["breaker_amps"], 7);
 }
 
