@@ -184,6 +184,14 @@ fn wire_line(r: &Row) -> Line<'static> {
             Span::styled("not entered (the load file's wire lines)", theme::unknown()),
         ]);
     };
+    if r.verdict == Verdict::Unprotected {
+        // Short, so that a short panel still has room for the keys under it.
+        let words = r.unprotected_words().unwrap_or_default();
+        return Line::from(vec![
+            Span::styled(format!("⚠{NBSP}UNPROTECTED "), theme::alert()),
+            Span::styled(words, theme::alert()),
+        ]);
+    }
     let mut spans = field("wire", w.to_string());
     if let Some(run) = r.run_feet {
         let ret = if r.return_assumed {
@@ -200,14 +208,6 @@ fn wire_line(r: &Row) -> Line<'static> {
         spans.extend(field("drop", format!("{d:.2} V of {l} V")));
     }
     match r.verdict {
-        Verdict::Unprotected => {
-            let words = r.unprotected_words().unwrap_or_default();
-            spans.insert(
-                0,
-                Span::styled(format!("⚠{NBSP}UNPROTECTED "), theme::alert()),
-            );
-            spans.push(Span::styled(words, theme::alert()));
-        }
         Verdict::Drop => {
             let under = r
                 .longest_run_feet
