@@ -11,6 +11,8 @@ mod common;
 use std::time::{Duration, Instant};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
 use vpx_efis::app::{App, AppOptions};
 use vpx_efis::link;
 use vpx_efis::model::Source;
@@ -30,6 +32,19 @@ fn until(app: &mut App, what: &str, limit: Duration, f: impl Fn(&App) -> bool) {
         assert!(Instant::now() < end, "timed out waiting for {what}");
         app.pump_until(Instant::now() + Duration::from_millis(20));
     }
+}
+
+/// The screen as text, one line per row, trailing blanks trimmed.
+fn screen(app: &mut App) -> String {
+    let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
+    app.draw(&mut term, Instant::now()).unwrap();
+    let buf = term.backend().buffer().clone();
+    (0..buf.area.height)
+        .map(|y| {
+            let line: String = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
+            line.trim_end().to_string() + "\n"
+        })
+        .collect()
 }
 
 fn sent(app: &App, name: &str) -> u64 {
@@ -78,7 +93,19 @@ fn setup_asks_before_a_breaker_goes_over_its_wire_and_sends_nothing_before_y() {
     assert_eq!(app.view().setup.forms.device.circuit_breaker, 6);
 
     key(&mut app, KeyCode::Down); // the breaker
+    // The unit's own 6 A is already over the wire's 5 A, and the page says so.
+    let over = "its wire is 22 AWG: AC 43.13-1B Table 11-3 allows 5 A: over it, Enter asks first";
+    assert!(screen(&mut app).contains(over), "{}", screen(&mut app));
+    key(&mut app, KeyCode::Char('5'));
+    assert!(
+        screen(&mut app).contains("its wire is 22 AWG: AC 43.13-1B Table 11-3 allows 5 A\n"),
+        "{}",
+        screen(&mut app)
+    );
+    key(&mut app, KeyCode::Backspace);
     key(&mut app, KeyCode::Char('7'));
+    assert_eq!(app.view().setup.forms.device.circuit_breaker, 7);
+    assert!(screen(&mut app).contains(over), "{}", screen(&mut app));
     key(&mut app, KeyCode::Enter);
     let Dialog::Disarm { consequences } = app.view().setup.dialog.clone() else {
         panic!("no question: {:?}", app.view().setup.message);
