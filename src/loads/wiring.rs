@@ -541,6 +541,79 @@ mod tests {
         assert!((idle.drop_at_breaker_volts.unwrap() - 3.24).abs() < 1e-9);
     }
 
+    /// A unit's configuration: disabled pins are not circuits, a name read or the pin,
+    /// and the trims' breaker is their fixed 2 A (ICD Table 40), whatever is stored.
+    #[test]
+    fn a_configuration_gives_its_shown_circuits_names_and_breakers() {
+        use crate::protocol::device::{TRIM_P, TRIM_R};
+        let mut cfg = UnitConfig::default();
+        cfg.enabled[5] = false;
+        cfg.names[4][..6].copy_from_slice(b"Nav Lt");
+        cfg.devices[4].circuit_breaker = 3;
+        cfg.pitch_trim.enabled = true;
+        cfg.roll_trim.enabled = false;
+        cfg.devices[TRIM_P as usize].circuit_breaker = 9;
+        let got = configured(&cfg);
+        assert!(got.iter().all(|(id, _, _)| *id != 5 && *id != TRIM_R));
+        assert!(got.contains(&(4, "Nav Lt".into(), 3)));
+        assert!(got.contains(&(6, "5A-3".into(), cfg.devices[6].circuit_breaker)));
+        assert!(got.contains(&(TRIM_P, "Trim_P".into(), 2)));
+    }
+
+    /// The notes say the system, each assumption and the metric count, once each.
+    #[test]
+    fn the_notes_say_the_system_the_assumptions_and_the_metric_count() {
+        let file = vec![
+            LoadCircuit {
+                id: 4,
+                name: "Nav".into(),
+                amps: None,
+                duty: [0.0; 7],
+                wire: run("1.0 mm2", Some(10.0), None),
+            },
+            LoadCircuit {
+                id: 5,
+                name: "Strobe".into(),
+                amps: None,
+                duty: [0.0; 7],
+                wire: run("20 AWG", Some(10.0), Some(2.0)),
+            },
+        ];
+        let s = system(Some(32), Some(14.2)).unwrap();
+        let rows = assess(&file, &[], Some(&s));
+        let notes = notes(&rows, Some(&s));
+        assert!(
+            notes[0].starts_with(
+                "a 14 V system: AC 43.13-1B Table 11-6 allows a continuous drop of 0.5 V"
+            ),
+            "{notes:?}"
+        );
+        assert!(notes[1].contains("the bus decides"), "{notes:?}");
+        assert!(
+            notes
+                .iter()
+                .any(|n| n.starts_with("no return_length for 5A-1: taken as grounded at the load")),
+            "{notes:?}"
+        );
+        assert!(
+            notes
+                .iter()
+                .any(|n| n.starts_with("5A-1: 1 mm² is counted as 18 AWG")),
+            "{notes:?}"
+        );
+        assert!(
+            notes.iter().any(|n| n.contains("in general conservative")),
+            "{notes:?}"
+        );
+        // No system and no wire: only that no drop is held against a limit.
+        let none = super::notes(&[], None);
+        assert_eq!(none.len(), 1, "{none:?}");
+        assert!(
+            none[0].contains("no drop is held against a limit"),
+            "{none:?}"
+        );
+    }
+
     #[test]
     fn every_circuit_of_the_file_and_the_unit_is_listed_once_in_pin_order() {
         let file = vec![LoadCircuit {
