@@ -61,6 +61,7 @@ pub enum Command {
     Check(CheckArgs),
     /// Hold each circuit's breaker against its wire (AC 43.13-1B Table 11-3) and its
     /// current against its voltage drop (Table 11-6), from the load file's `wire`
-    /// lines. Exits 1 when a breaker does not protect its wire or a drop is over.
+    /// lines. Exits 1 when a breaker does not protect its wire or a measured drop is
+    /// over the limit.
     Wires(WiresArgs),
 }
