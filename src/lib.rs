@@ -19,7 +19,8 @@
 //! 4. Intent into commands: [`control`] (keys and runs under the safety rules, the
 //!    motor streamer) and [`exchange`] (request, answer, retry on the caller's clock).
 //! 5. Flows and maintenance: [`check`] (the installation check), [`setup`] (the setup
-//!    screens' writes), [`loads`] (the load analysis), [`backup`], [`flash`],
+//!    screens' writes), [`loads`] (the load analysis, and each breaker held against
+//!    its wire by AC 43.13-1B's tables), [`backup`], [`flash`],
 //!    [`xfsp`] (the gateway onto the XFSp network) and [`settings`] (flags, environment
 //!    and config file).
 //! 6. [`remote`]: the walk-around remote, an HTTP server for a paired phone; what

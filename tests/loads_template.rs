@@ -59,6 +59,9 @@ fn the_install_template_guesses_each_circuits_phases_and_marks_them() {
         "[circuit.10A-1]\n\
          name = \"Landing Lt\"\n\
          # amps = 0.0\n\
+         # wire = \"\"            # not entered: a gauge (\"22 AWG\") or metric (\"1.0 mm2\")\n\
+         # wire_length = \"\"     # not entered: pin to load, \"12 ft\" or \"3.6 m\"\n\
+         # return_length = \"\"   # not entered: load to ground block, if not grounded at the load\n\
          # guessed from the name: a landing or taxi light: on to taxi, take off and land; \
          the one light kept on the battery\n\
          ground = false       # guess: check\n\

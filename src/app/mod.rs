@@ -34,6 +34,7 @@ mod signals;
 mod stop_gate;
 mod terminal;
 mod traffic;
+mod wires;
 
 use std::sync::{Mutex, MutexGuard};
 

@@ -450,7 +450,10 @@ impl App {
             }
             Action::CloseOverlay => self.view.overlay = Overlay::None,
             Action::TrafficView => self.view.screen = Screen::Traffic,
-            Action::Setup => self.view.screen = Screen::Setup,
+            Action::Setup => {
+                self.view.screen = Screen::Setup;
+                self.reload_wires();
+            }
             _ => {}
         }
     }

@@ -90,6 +90,7 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
     if let Some(addr) = args.remote {
         app.start_remote(addr, std::time::Instant::now())?;
     }
+    app.reload_wires();
     app.arm_emergency_stop();
     let input = spawn_input_thread();
     let result = app.run(&mut guard.terminal, &input, &terminations);

@@ -478,6 +478,26 @@ impl CheckFlow {
         let cx = &mut cx;
         let loads = match opened {
             Ok(Opened::Read(file)) => {
+                let (rows, system) = crate::loads::wiring::from_model(
+                    &file.circuits,
+                    cx.model,
+                    cx.now,
+                    &view.measured_amps(),
+                );
+                for r in &rows {
+                    if let Some(w) = r.unprotected_words() {
+                        cx.out.progress.push(format!(
+                            "{} wires: {w}",
+                            super::words::badge(super::state::Mark::Fail)
+                        ));
+                    } else if let Some(w) = r.drop_words() {
+                        cx.out.progress.push(format!(
+                            "{} wires: {w}",
+                            super::words::badge(super::state::Mark::Warn)
+                        ));
+                    }
+                }
+                view.wires = Some(super::state::WiresView { rows, system });
                 let analysis = crate::loads::analyse(&file, &view.measured_amps());
                 cx.out
                     .progress

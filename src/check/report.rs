@@ -213,6 +213,7 @@ pub fn markdown(view: &CheckView, about: &About) -> String {
     circuits(&mut o, view);
     motors(&mut o, view, about);
     loads(&mut o, view);
+    wires(&mut o, view);
 
     o.push_str("## Left to fix\n\n");
     let fix = view.left_to_fix();
@@ -550,6 +551,68 @@ fn loads(o: &mut String, view: &CheckView) {
         }
         Some(LoadsView::Analysed { path, analysis }) => analysed(o, path, analysis),
     }
+}
+
+/// Each circuit's wire against its breaker (an unprotected wire fails) and the current
+/// the check measured against the drop its run allows (over the limit warns).
+fn wires(o: &mut String, view: &CheckView) {
+    use crate::loads::{wire, wiring};
+    // Without the load file (the Load analysis section says why) there is nothing
+    // to hold the breakers against, and no section.
+    let Some(w) = &view.wires else {
+        return;
+    };
+    o.push_str("## Wires\n\n");
+    if w.rows.iter().all(|r| r.wire.is_none()) {
+        o.push_str(
+            "No circuit's wire is entered in the load file (`wire`, `wire_length`, \
+             `return_length` in each `[circuit.PIN]`): nothing to hold the breakers \
+             against.\n\n",
+        );
+        return;
+    }
+    o.push_str(
+        "Each breaker held against its wire (AC 43.13-1B ¶11-48, Table 11-3), and each \
+         current the check measured against the voltage drop its run allows (Table 11-6).\n\n\
+         | Pin | Circuit | Wire | Run | Breaker | Largest for the wire | Measured | Drop | Limit | Verdict |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in &w.rows {
+        let verdict = match r.verdict {
+            wiring::Verdict::Unprotected => words::badge(Mark::Fail),
+            wiring::Verdict::Drop => words::badge(Mark::Warn),
+            wiring::Verdict::Ok => words::badge(Mark::Pass),
+            wiring::Verdict::NotEntered => "not entered".into(),
+        };
+        let _ = writeln!(
+            o,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {verdict} |",
+            r.pin,
+            cell(&r.name),
+            or_dash(r.wire, |w| w.to_string()),
+            or_dash(r.run_feet, wire::feet_text),
+            or_dash(r.breaker_amps, |b| format!("{b} A")),
+            or_dash(r.max_breaker_amps, |m| format!(
+                "{} A",
+                wiring::amps_text(m)
+            )),
+            or_dash(r.amps, |a| format!("{a:.1} A")),
+            or_dash(r.drop_volts, |d| format!("{d:.2} V")),
+            or_dash(r.drop_limit_volts, |l| format!("{l} V")),
+        );
+    }
+    o.push('\n');
+    for r in &w.rows {
+        if let Some(t) = r.unprotected_words() {
+            let _ = writeln!(o, "- {} {t}.", words::badge(Mark::Fail));
+        } else if let Some(t) = r.drop_words() {
+            let _ = writeln!(o, "- {} {t}.", words::badge(Mark::Warn));
+        }
+    }
+    for n in wiring::notes(&w.rows, w.system.as_ref()) {
+        let _ = writeln!(o, "- Note: {n}.");
+    }
+    o.push('\n');
 }
 
 fn analysed(o: &mut String, path: &Path, a: &Analysis) {

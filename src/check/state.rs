@@ -387,6 +387,9 @@ pub struct CheckView {
     pub show_loads: bool,
     /// Step 5, once reached: the load analysis, or why there is none.
     pub loads: Option<LoadsView>,
+    /// Step 5, with the load file read: each circuit's wire against its breaker and
+    /// the current measured (`crate::loads::wiring`).
+    pub wires: Option<WiresView>,
     /// What the person saw of each light while the check had it on ("Is it lit?").
     pub lit: Vec<LitAnswer>,
 }
@@ -425,6 +428,27 @@ pub enum LoadsView {
     TemplateWritten(std::path::PathBuf),
     /// The file could not be used: its path, line and what is wrong, in words.
     Refused(String),
+}
+
+/// The wires of the load file held against the unit's breakers and the check's
+/// currents: an unprotected wire is a failure, a drop over the limit a warning.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WiresView {
+    pub rows: Vec<crate::loads::wiring::Row>,
+    pub system: Option<crate::loads::wire::SystemVoltage>,
+}
+
+impl WiresView {
+    /// One mark per circuit with a wire entered.
+    pub fn marks(&self) -> impl Iterator<Item = Mark> + '_ {
+        use crate::loads::wiring::Verdict;
+        self.rows.iter().filter_map(|r| match r.verdict {
+            Verdict::Unprotected => Some(Mark::Fail),
+            Verdict::Drop => Some(Mark::Warn),
+            Verdict::Ok => Some(Mark::Pass),
+            Verdict::NotEntered => None,
+        })
+    }
 }
 
 impl Mark {
@@ -606,6 +630,7 @@ impl CheckView {
             .map(SwitchResult::mark)
             .chain(self.circuits.iter().map(CircuitResult::mark))
             .chain(self.motors.iter().map(MotorResult::mark))
+            .chain(self.wires.iter().flat_map(WiresView::marks))
     }
 
     /// Whether anything failed (a warning is not a failure).

@@ -309,6 +309,16 @@ impl CheckView {
             Some(LoadsView::Refused(why)) => out.push(format!("Load analysis: {why}")),
             None => {}
         }
+        for r in self.wires.iter().flat_map(|w| &w.rows) {
+            if let Some(t) = r.unprotected_words() {
+                out.push(format!(
+                    "Wires, {t}: lower the breaker to what its wire allows, or fit a \
+                     thicker wire"
+                ));
+            } else if let Some(t) = r.drop_words() {
+                out.push(format!("Wires, {t}"));
+            }
+        }
         for (_, name, switch) in &self.to_cycle {
             out.push(format!(
                 "{name}: {} (the check left it held by DEVICE_POWER)",

@@ -13,6 +13,7 @@ use crate::cmd::gateway::GatewayArgs;
 use crate::cmd::page::PageArgs;
 use crate::cmd::restore::RestoreArgs;
 use crate::cmd::sim::SimArgs;
+use crate::cmd::wires::WiresArgs;
 use crate::cmd::xfsp_dump::XfspDumpArgs;
 use crate::program::VERSION;
 
@@ -58,4 +59,9 @@ pub enum Command {
     /// as they come. Exits 0 when everything passed, 1 when anything failed, 2 when it
     /// was interrupted.
     Check(CheckArgs),
+    /// Hold each circuit's breaker against its wire (AC 43.13-1B Table 11-3) and its
+    /// current against its voltage drop (Table 11-6), from the load file's `wire`
+    /// lines. Exits 1 when a breaker does not protect its wire or a measured drop is
+    /// over the limit.
+    Wires(WiresArgs),
 }

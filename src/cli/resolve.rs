@@ -224,6 +224,7 @@ fn resolve_with(
         None | Some(
             Command::Backup(_)
                 | Command::Check(_)
+                | Command::Wires(_)
                 | Command::Restore(_)
                 | Command::Flash(_)
                 | Command::Gateway(_)
@@ -256,6 +257,7 @@ fn resolve_with(
         }
         Some(Command::Backup(a)) => r.port(&mut a.port)?,
         Some(Command::Check(a)) => r.port(&mut a.port)?,
+        Some(Command::Wires(a)) => r.port(&mut a.port)?,
         Some(Command::Restore(a)) => r.port(&mut a.port)?,
         Some(Command::Flash(a)) => r.flash_port(&mut a.port),
         Some(Command::Gateway(a)) => {

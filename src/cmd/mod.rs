@@ -13,4 +13,5 @@ pub mod page;
 pub mod ports;
 pub mod restore;
 pub mod sim;
+pub mod wires;
 pub mod xfsp_dump;

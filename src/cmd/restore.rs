@@ -9,6 +9,9 @@
 //! 2. VERSION: a file from other hardware is refused (only VERSION has been sent).
 //! 3. The unit's settings are read and the differences listed; the person confirms
 //!    (or `--yes`). With no terminal to ask on and no `--yes`, nothing is written.
+//!    A breaker of the backup above what its circuit's wire allows (the load file's
+//!    `wire`, AC 43.13-1B Table 11-3) is listed and asked on the terminal even with
+//!    `--yes`: it disarms the wire's protection, as setup asks it.
 //! 4. With `--erase-first`, EEPROM_ERASE (ICD §6.1.4) must answer result code 0, and
 //!    the now-factory settings are read again.
 //! 5. Each differing setting is written in the order [`crate::backup::plan`] explains,
@@ -17,7 +20,7 @@
 //! 6. Everything is read back and compared with the file.
 
 use std::io::{BufRead, IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use clap::Args;
@@ -27,6 +30,7 @@ use crate::cmd::backup::{connect, progress_bar, read_with_progress};
 use crate::cmd::common::PortArgs;
 use crate::link::request::{DEFAULT_TIMEOUT, DEFAULT_TRIES};
 use crate::link::{SpecError, UnitClient};
+use crate::loads::wiring;
 use crate::program::UsageError;
 use crate::protocol::config::UnitConfig;
 use crate::protocol::message::Message;
@@ -40,12 +44,16 @@ pub struct RestoreArgs {
     pub port: PortArgs,
     /// The TOML backup to restore.
     pub file: PathBuf,
-    /// Don't ask for confirmation.
+    /// Don't ask for confirmation (a breaker over its wire is still asked).
     #[arg(long)]
     pub yes: bool,
     /// Erase the EEPROM first (ICD §6.1.4), then import.
     #[arg(long)]
     pub erase_first: bool,
+    /// The load file whose `wire` lines the backup's breakers are held against
+    /// (default: loads.toml beside the config file, where there is one).
+    #[arg(long, value_name = "FILE")]
+    pub loads: Option<PathBuf>,
 }
 
 pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
@@ -59,6 +67,8 @@ pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
         .into());
     }
     let (target, made) = backup::load_made(&args.file)?;
+    // Read before the unit is opened: a bad load file is refused with nothing sent.
+    let over_wires = over_wires(args.loads.as_deref(), &target.config)?;
     eprintln!(
         "{}",
         backup::provenance::describe(made.as_ref(), &target.version)
@@ -102,6 +112,19 @@ pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
         for c in &changes {
             println!("  {c}");
         }
+    }
+    if !over_wires.is_empty() {
+        println!(
+            "{} breaker(s) in {} would not protect their wire (AC 43.13-1B ¶11-48):",
+            over_wires.len(),
+            args.file.display()
+        );
+        for w in &over_wires {
+            println!("  {w}");
+        }
+        // Asked even with --yes, as setup asks it: a breaker over its wire disarms the
+        // wire's protection, and only a person at the terminal can mean that.
+        confirm_wires(over_wires.len())?;
     }
     let question = if args.erase_first {
         "Erase the unit's EEPROM (every setting back to its factory default, ICD §6.1.4) and then write the backup?"
@@ -161,6 +184,56 @@ fn confirm(question: &str) -> anyhow::Result<()> {
     let mut line = String::new();
     std::io::stdin().lock().read_line(&mut line)?;
     if matches!(line.trim().to_ascii_lowercase().as_str(), "y" | "yes") {
+        Ok(())
+    } else {
+        bail!("not confirmed; nothing was written")
+    }
+}
+
+/// Each breaker of `config` above what the load file's wire for its circuit allows,
+/// in words ("Strobe Lt's wire is 22 AWG: AC 43.13-1B Table 11-3 allows 5 A; a 6 A
+/// breaker would not protect it"). `--loads` must be readable; the default file may
+/// be absent (then nothing is held against a wire).
+fn over_wires(loads: Option<&Path>, config: &UnitConfig) -> anyhow::Result<Vec<String>> {
+    let path = match loads {
+        Some(p) => p.to_path_buf(),
+        None => match crate::loads::disk::default_path().filter(|p| p.exists()) {
+            Some(p) => p,
+            None => return Ok(Vec::new()),
+        },
+    };
+    let file = crate::loads::disk::read_circuits(&path).map_err(|e| UsageError(e.to_string()))?;
+    let unit: Vec<(u8, String, u8)> = wiring::configured(config);
+    let circuits: Vec<wiring::Circuit<'_>> = unit
+        .iter()
+        .map(|(id, name, breaker)| wiring::Circuit {
+            id: *id,
+            name: Some(name),
+            breaker_amps: Some(*breaker),
+            amps: None,
+        })
+        .collect();
+    Ok(wiring::assess(&file, &circuits, None)
+        .iter()
+        .filter_map(wiring::Row::unprotected_words)
+        .collect())
+}
+
+/// The wire question: `y` on the terminal, whatever `--yes` says; without a terminal
+/// nothing is written.
+fn confirm_wires(n: usize) -> anyhow::Result<()> {
+    if !std::io::stdin().is_terminal() {
+        bail!(
+            "{n} breaker(s) would not protect their wire, and standard input is not a \
+             terminal to ask on (--yes does not answer this); nothing was written. Lower \
+             those breakers in the backup, or correct the wires in the load file."
+        );
+    }
+    eprint!("y: set them anyway; anything else: nothing is written. [y/N] ");
+    let _ = std::io::stderr().flush();
+    let mut line = String::new();
+    std::io::stdin().lock().read_line(&mut line)?;
+    if line.trim().eq_ignore_ascii_case("y") {
         Ok(())
     } else {
         bail!("not confirmed; nothing was written")

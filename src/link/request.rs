@@ -26,8 +26,8 @@ use crate::protocol::device::{
     self, DEVICE_COUNT, FLAPS, SYSTEM_SPEC_ID, TRIM_P, TRIM_R, WIG_WAG_SPEC_ID, enable_flag_allowed,
 };
 use crate::protocol::message::{
-    DeviceEnable, DeviceNameQuery, DeviceSpecQuery, EepromErase, EnableFlag, Message, SpecAck,
-    SpecAckError, TrimType, Version,
+    DeviceEnable, DeviceNameQuery, DeviceSpecQuery, DeviceStatus, DeviceStatusQuery, EepromErase,
+    EnableFlag, Message, SpecAck, SpecAckError, SystemStatus, TrimType, Version,
 };
 use crate::protocol::{Error as WireError, Packet};
 
@@ -312,6 +312,42 @@ impl UnitClient {
         )? {
             Message::DeviceEnable(e) => Ok(e.flag == EnableFlag::Enabled),
             _ => unreachable!("matcher accepts only DEVICE_ENABLE"),
+        }
+    }
+
+    /// DEVICE_STATUS_QUERY (ICD Table 2): every circuit's on/off and current now.
+    pub fn device_status(&mut self) -> Result<DeviceStatus, RequestError> {
+        match self.request(
+            DeviceStatusQuery,
+            |m| matches!(m, Message::DeviceStatus(_)),
+            DEFAULT_TIMEOUT,
+            DEFAULT_TRIES,
+        )? {
+            Message::DeviceStatus(s) => Ok(s),
+            _ => unreachable!("matcher accepts only DEVICE_STATUS"),
+        }
+    }
+
+    /// The next SYSTEM_STATUS the unit broadcasts (1 Hz, ICD Table 24), waiting up to
+    /// `timeout`; `None` when none came.
+    pub fn next_system_status(&mut self, timeout: Duration) -> Option<SystemStatus> {
+        self.drain();
+        let end = Instant::now() + timeout;
+        loop {
+            let left = end.saturating_duration_since(Instant::now());
+            match self.rx.recv_timeout(left) {
+                Ok(Inbound::Packet(p)) => {
+                    if let (crate::protocol::Node::Vpx, Message::SystemStatus(s)) =
+                        (p.src, p.message)
+                    {
+                        return Some(s);
+                    }
+                }
+                Ok(Inbound::Up) => self.down = None,
+                Ok(Inbound::Down(r)) => self.down = Some(r),
+                Ok(Inbound::Malformed { .. }) => {}
+                Err(_) => return None,
+            }
         }
     }
 

@@ -396,6 +396,7 @@ mod tests {
             name: name.into(),
             amps,
             duty,
+            wire: Default::default(),
         }
     }
 

@@ -49,6 +49,18 @@ pub fn read(path: &Path) -> Result<LoadFile, LoadError> {
     })
 }
 
+/// Reads only the circuits of the file at `path` (its wires), not its ratings.
+pub fn read_circuits(path: &Path) -> Result<Vec<file::LoadCircuit>, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|error| LoadError::Io {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    file::parse_circuits(&text).map_err(|problem| LoadError::Bad {
+        path: path.to_path_buf(),
+        problem,
+    })
+}
+
 /// Reads the file at `path`, or, when there is none, writes the template listing
 /// `circuits` there (and the folders it needs).
 pub fn open_or_create(path: &Path, circuits: &[Circuit]) -> Result<Opened, LoadError> {

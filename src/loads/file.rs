@@ -15,6 +15,10 @@
 //! cruise_night = false
 //! landing = true
 //! emergency = false           # on the battery alone, the alternator failed
+//! wire = "16 AWG"             # its wire: an AWG gauge, or "1.0 mm2" (optional)
+//! wire_length = "12 ft"       # from the VP-X pin to the load, ft or m (optional)
+//! return_length = "4 ft"      # the load's ground back to a ground block (optional;
+//!                             #   absent: grounded at the load)
 //! ```
 //!
 //! A phase a circuit does not mention is off in it. Every problem is named with its
@@ -29,6 +33,8 @@ use toml::Spanned;
 
 use crate::toml_lines::{self, Value};
 
+use super::wire::{self, Wire};
+use super::wiring::WireRun;
 use super::{Phase, guess};
 use crate::model::Circuit;
 use crate::protocol::device;
@@ -50,6 +56,8 @@ pub struct LoadCircuit {
     /// Per phase (indexed by [`Phase::index`]), the fraction of the time it is on:
     /// 1 for on, 0 for off.
     pub duty: [f64; 7],
+    /// Its wire, held against its breaker and its current ([`super::wiring`]).
+    pub wire: WireRun,
 }
 
 impl LoadCircuit {
@@ -114,18 +122,21 @@ struct RawCircuit {
     cruise_night: Option<Value>,
     landing: Option<Value>,
     emergency: Option<Value>,
+    wire: Option<Value>,
+    wire_length: Option<Value>,
+    return_length: Option<Value>,
 }
 
 impl RawCircuit {
-    fn phases(self) -> [(Phase, Option<Value>); 7] {
+    fn phases(&self) -> [(Phase, Option<&Value>); 7] {
         [
-            (Phase::Ground, self.ground),
-            (Phase::Taxi, self.taxi),
-            (Phase::TakeOff, self.take_off),
-            (Phase::CruiseDay, self.cruise_day),
-            (Phase::CruiseNight, self.cruise_night),
-            (Phase::Landing, self.landing),
-            (Phase::Emergency, self.emergency),
+            (Phase::Ground, self.ground.as_ref()),
+            (Phase::Taxi, self.taxi.as_ref()),
+            (Phase::TakeOff, self.take_off.as_ref()),
+            (Phase::CruiseDay, self.cruise_day.as_ref()),
+            (Phase::CruiseNight, self.cruise_night.as_ref()),
+            (Phase::Landing, self.landing.as_ref()),
+            (Phase::Emergency, self.emergency.as_ref()),
         ]
     }
 }
@@ -187,8 +198,34 @@ pub fn parse(text: &str) -> Result<LoadFile, Problem> {
         }
     };
 
+    let circuits = read_circuits(text, raw.circuit)?;
+    Ok(LoadFile {
+        alternator_amps,
+        battery_amp_hours,
+        battery_usable,
+        circuits,
+    })
+}
+
+/// Reads only the circuits, not the ratings: for `vpx-efis wires`, which needs the
+/// wires and not the alternator or the battery, so a file still without its ratings
+/// (the template as written) is read for its wires.
+pub fn parse_circuits(text: &str) -> Result<Vec<LoadCircuit>, Problem> {
+    let raw: Raw = toml_lines::parse(text).map_err(|r| Problem {
+        line: r.line,
+        message: plain_serde_words(r),
+    })?;
+    read_circuits(text, raw.circuit)
+}
+
+/// Every `[circuit.PIN]` section, in pin order; the first problem stops the reading.
+fn read_circuits(
+    text: &str,
+    raw: BTreeMap<Spanned<String>, RawCircuit>,
+) -> Result<Vec<LoadCircuit>, Problem> {
+    let at = |v: &Value| Some(toml_lines::line(text, v));
     let mut circuits: Vec<(LoadCircuit, usize)> = Vec::new();
-    for (key, rc) in raw.circuit {
+    for (key, rc) in raw {
         let key_line = toml_lines::line(text, &key);
         let key = key.into_inner();
         let Some(dev) = device::DEVICES
@@ -262,29 +299,62 @@ pub fn parse(text: &str) -> Result<LoadFile, Problem> {
         let mut duty = [0.0; 7];
         for (phase, v) in rc.phases() {
             let Some(v) = v else { continue };
-            duty[phase.index()] = fraction(&v).map_err(|why| Problem {
-                line: at(&v),
+            duty[phase.index()] = fraction(v).map_err(|why| Problem {
+                line: at(v),
                 message: format!("{}: {why}", field(phase.key())),
             })?;
         }
+        let text_of = |key: &str, v: &Option<Value>| -> Result<Option<(String, usize)>, Problem> {
+            match v {
+                None => Ok(None),
+                Some(v) => match v.get_ref() {
+                    toml::Value::String(s) => Ok(Some((s.clone(), toml_lines::line(text, v)))),
+                    other => Err(Problem {
+                        line: at(v),
+                        message: format!(
+                            "{}: {} where text in quotes was expected (\"16 AWG\", \"12 ft\")",
+                            field(key),
+                            kind(other)
+                        ),
+                    }),
+                },
+            }
+        };
+        let named = |key: &str, line: usize, why: String| Problem {
+            line: Some(line),
+            message: format!("{}: {why}", field(key)),
+        };
+        let wire = match text_of("wire", &rc.wire)? {
+            None => None,
+            Some((t, line)) => Some(Wire::parse(&t).map_err(|why| named("wire", line, why))?),
+        };
+        let length = |key: &str, v: &Option<Value>| -> Result<Option<f64>, Problem> {
+            match text_of(key, v)? {
+                None => Ok(None),
+                Some((t, line)) => wire::parse_length(&t)
+                    .map(Some)
+                    .map_err(|why| named(key, line, why)),
+            }
+        };
+        let wire = WireRun {
+            wire,
+            feed_feet: length("wire_length", &rc.wire_length)?,
+            return_feet: length("return_length", &rc.return_length)?,
+        };
         circuits.push((
             LoadCircuit {
                 id: dev.id,
                 name,
                 amps,
                 duty,
+                wire,
             },
             key_line,
         ));
     }
     let mut circuits: Vec<LoadCircuit> = circuits.into_iter().map(|(c, _)| c).collect();
     circuits.sort_by_key(|c| c.id);
-    Ok(LoadFile {
-        alternator_amps,
-        battery_amp_hours,
-        battery_usable,
-        circuits,
-    })
+    Ok(circuits)
 }
 
 /// A number, whole or decimal, as the field asks.
@@ -337,7 +407,8 @@ fn plain_serde_words(r: toml_lines::Refusal) -> String {
             let phases: Vec<&str> = Phase::ALL.iter().map(|p| p.key()).collect();
             format!(
                 "unknown key {key:?}: the file's keys are alternator_amps, battery_amp_hours, \
-                 battery_usable and [circuit.PIN] sections; a circuit's keys are name, amps, {}",
+                 battery_usable and [circuit.PIN] sections; a circuit's keys are name, amps, {}, \
+                 wire, wire_length and return_length",
                 phases.join(", ")
             )
         }
@@ -363,6 +434,12 @@ const HEADER: &str = "\
 #   ground, taxi, take_off, cruise_day, cruise_night, landing, emergency
 #             whether it is on in that phase: true or false, or the fraction of the
 #             time it is on (0.1 for a trim motor: a tenth of the time)
+#   wire           its wire: \"22 AWG\" (a gauge of AC 43.13-1B), or metric, \"1.0 mm2\"
+#   wire_length    from the VP-X pin to the load: \"12 ft\" or \"3.6 m\"
+#   return_length  the load's ground wire back to a ground block, where it has one;
+#                  absent, it is taken as grounded at the load
+#             `vpx-efis wires` holds each breaker against its wire (AC 43.13-1B
+#             Table 11-3) and each current against its voltage drop (Table 11-6).
 # A phase a circuit does not mention is off in it. The emergency phase runs on the
 # battery alone: the alternator has failed, and its field is off.
 ";
@@ -459,6 +536,7 @@ pub fn template_circuits(circuits: &[Circuit]) -> Vec<LoadCircuit> {
             name: c.name.clone(),
             amps: None,
             duty: g.duty,
+            wire: WireRun::default(),
         })
         .collect()
 }
@@ -468,6 +546,43 @@ fn write_circuits(out: &mut String, circuits: &[LoadCircuit]) {
     sorted.sort_by_key(|c| c.id);
     for c in sorted {
         write_circuit(out, c, None);
+    }
+}
+
+/// A circuit's wire lines; each one not entered is written commented, saying so.
+fn write_wire(out: &mut String, run: &WireRun) {
+    match run.wire {
+        Some(w) => {
+            let _ = writeln!(out, "wire = \"{}\"", w.file_text());
+        }
+        None => out.push_str(
+            "# wire = \"\"            # not entered: a gauge (\"22 AWG\") or metric (\"1.0 mm2\")\n",
+        ),
+    }
+    for (key, feet, what) in [
+        (
+            "wire_length",
+            run.feed_feet,
+            "pin to load, \"12 ft\" or \"3.6 m\"",
+        ),
+        (
+            "return_length",
+            run.return_feet,
+            "load to ground block, if not grounded at the load",
+        ),
+    ] {
+        match feet {
+            Some(f) => {
+                let _ = writeln!(out, "{key} = \"{} ft\"", number_text(f));
+            }
+            None => {
+                let _ = writeln!(
+                    out,
+                    "{:<23}# not entered: {what}",
+                    format!("# {key} = \"\"")
+                );
+            }
+        }
     }
 }
 
@@ -482,6 +597,7 @@ fn write_circuit(out: &mut String, c: &LoadCircuit, guess: Option<&str>) {
         }
         None => out.push_str("# amps = 0.0\n"),
     }
+    write_wire(out, &c.wire);
     if let Some(why) = guess {
         let _ = writeln!(out, "# guessed from the name: {why}");
     }
@@ -540,18 +656,29 @@ mod tests {
                     name: "EFIS \"left\" # 1".into(),
                     amps: Some(2.25),
                     duty: [1.0; 7],
+                    wire: WireRun {
+                        wire: Some(Wire::parse("1.0 mm²").unwrap()),
+                        feed_feet: Some(12.5),
+                        return_feet: None,
+                    },
                 },
                 LoadCircuit {
                     id: 0x0A,
                     name: "Landing Lt".into(),
                     amps: None,
                     duty: [0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0],
+                    wire: WireRun {
+                        wire: Some(Wire::parse("16 AWG").unwrap()),
+                        feed_feet: Some(14.0),
+                        return_feet: Some(3.25),
+                    },
                 },
                 LoadCircuit {
                     id: TRIM_P,
                     name: "Pitch trim".into(),
                     amps: Some(1.0),
                     duty: [0.0, 0.05, 0.1, 0.1, 0.1, 0.1, 0.1],
+                    wire: WireRun::default(),
                 },
             ],
         }
@@ -690,6 +817,67 @@ mod tests {
             problem(&format!("{RATINGS}[circuit.5A-1]\namps = -1\n")),
             "line 4: [circuit.5A-1] amps: -1 A is below zero; write the current the \
              circuit draws"
+        );
+    }
+
+    /// Each bad wire line is named by its line and field; a good one read in feet.
+    #[test]
+    fn wire_lines_are_read_and_bad_ones_named_with_line_and_field() {
+        let at = |lines: &str| format!("{RATINGS}[circuit.5A-3]\nname = \"Strobe\"\n{lines}");
+        let f = parse(&at(
+            "wire = \"22 awg\"\nwire_length = \"3.6 m\"\nreturn_length = \"4 ft\"\n",
+        ))
+        .unwrap();
+        let w = f.circuits[0].wire;
+        assert_eq!(w.wire.map(|w| w.awg), Some(22));
+        // 3.6 m / 0.3048 = 11.811 ft, and 4 ft of return: 15.811 ft.
+        assert!((w.run_feet().unwrap() - 15.811).abs() < 0.001);
+        let p = problem(&at("wire = \"21 AWG\"\n"));
+        assert!(
+            p.starts_with("line 5: [circuit.5A-3] wire: \"21 AWG\": there is no 21 AWG in AC 43.13-1B Table 11-9"),
+            "{p}"
+        );
+        assert_eq!(
+            problem(&at("wire_length = \"0 ft\"\n")),
+            "line 5: [circuit.5A-3] wire_length: \"0 ft\": a wire's length is more than 0"
+        );
+        assert_eq!(
+            problem(&at("return_length = \"-2 m\"\n")),
+            "line 5: [circuit.5A-3] return_length: \"-2 m\": a wire's length is more than 0"
+        );
+        let p = problem(&at("wire_length = \"500 ft\"\n"));
+        assert!(
+            p.starts_with("line 5: [circuit.5A-3] wire_length: \"500 ft\" is implausible"),
+            "{p}"
+        );
+        let p = problem(&at("wire_length = \"12 yd\"\n"));
+        assert!(
+            p.starts_with("line 5: [circuit.5A-3] wire_length: \"12 yd\": say the unit"),
+            "{p}"
+        );
+        let p = problem(&at("wire = 22\n"));
+        assert!(
+            p.starts_with("line 5: [circuit.5A-3] wire: a number where text in quotes"),
+            "{p}"
+        );
+    }
+
+    /// The template writes the wire lines commented, as not entered, and they read
+    /// back as nothing entered.
+    #[test]
+    fn the_template_writes_the_wire_lines_commented_as_not_entered() {
+        let text = template(&unit());
+        assert!(
+            text.contains("\n[circuit.5A-7]\nname = \"Landing Lt\"\n# amps = 0.0\n# wire = \"\"            # not entered"),
+            "{text}"
+        );
+        assert!(
+            text.contains("# wire_length = \"\"     # not entered"),
+            "{text}"
+        );
+        assert!(
+            text.contains("# return_length = \"\"   # not entered"),
+            "{text}"
         );
     }
 

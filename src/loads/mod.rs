@@ -7,7 +7,11 @@
 //!   emergency endurance on the battery), pure;
 //! - [`disk`]: reading the file, and writing the template on the first run without
 //!   ever writing over a file that is there;
-//! - [`guess`]: the template's phases for each circuit, guessed from its name.
+//! - [`guess`]: the template's phases for each circuit, guessed from its name;
+//! - [`wire`]: the wire rules of FAA AC 43.13-1B chapter 11 (the largest breaker per
+//!   gauge, resistance per foot, the allowable voltage drop), each citing its table;
+//! - [`wiring`]: each circuit's wire (from the file) held against its breaker and its
+//!   current by those rules, with a verdict.
 //!
 //! It stands on `protocol` (the pins of Appendix B) and `model` (the circuits the unit
 //! has) only; the installation check (`crate::check`), its screen (`ui::check::loads`)
@@ -17,6 +21,8 @@ pub mod analysis;
 pub mod disk;
 pub mod file;
 pub mod guess;
+pub mod wire;
+pub mod wiring;
 
 pub use analysis::{Analysis, Figure, Level, PhaseTotal, Row, analyse};
 pub use file::{LoadCircuit, LoadFile, Problem};

@@ -17,6 +17,7 @@ use super::probe::{EraseEnd, Probes};
 use super::view::{Dialog, Field, Page, SetupView, Tone, missing_summary};
 use super::{form, write};
 use crate::backup::{self, Backup, Provenance};
+use crate::loads::LoadCircuit;
 use crate::model::{Model, Source};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{STARTER, TRIM_R};
@@ -78,6 +79,9 @@ pub struct SetupFlow {
     /// disarm a protection.
     pending: Vec<Message>,
     on_screen: bool,
+    /// The load file's circuits, for their wires: a breaker above what its wire
+    /// allows is asked with `y` like a setting that disarms a protection.
+    wires: Vec<LoadCircuit>,
 }
 
 fn say(sv: &mut SetupView, tone: Tone, text: impl Into<String>) {
@@ -88,6 +92,18 @@ const BUSY: &str = "wait: the last write is still waiting for the unit";
 const NO_FILE: &str = "type a file name in the Backup file field first";
 
 impl SetupFlow {
+    /// The load file's circuits (their wires), read by the app.
+    pub fn set_wires(&mut self, wires: Vec<LoadCircuit>) {
+        self.wires = wires;
+    }
+
+    /// What `messages` would disarm, a breaker over its wire included, in words.
+    fn consequences(&self, messages: &[Message], model: &Model, now: Instant) -> Vec<String> {
+        let mut out = form::disarms(messages, model, now);
+        out.extend(form::over_wires(messages, model, &self.wires));
+        out
+    }
+
     /// When the app must tick for a setup timeout.
     pub fn next_deadline(&self) -> Option<Instant> {
         [self.queue.next_deadline(), self.probes.next_deadline()]
@@ -198,7 +214,7 @@ impl SetupFlow {
                 say(sv, Tone::Bad, "refused before sending: nothing was sent");
             }
             Ok(()) => {
-                let consequences = form::disarms(&messages, model, now);
+                let consequences = self.consequences(&messages, model, now);
                 if !consequences.is_empty() {
                     // Nothing goes out until the person has read what it turns off.
                     self.pending = messages;
@@ -336,7 +352,7 @@ impl SetupFlow {
         let notes = backup::software_note(&b.version, &unit_version)
             .into_iter()
             .chain(
-                form::disarms(&self.pending, model, now)
+                self.consequences(&self.pending, model, now)
                     .into_iter()
                     .map(|c| format!("turns a protection off: {c}")),
             )
@@ -425,7 +441,7 @@ impl SetupFlow {
                 self.tick_into(sv, model, now, out);
             }
             (Dialog::Load { .. }, SetupKey::Enter)
-                if !form::disarms(&self.pending, model, now).is_empty() =>
+                if !self.consequences(&self.pending, model, now).is_empty() =>
             {
                 say(
                     sv,
@@ -1181,6 +1197,64 @@ mod tests {
         let (_, sv, sent) = change_and_send(&mut m, t0, Page::Device, Field::CurrentFault, 5);
         assert_eq!(sv.dialog, Dialog::None);
         assert_eq!(sent.len(), 1, "5A-2's check switched on: {sent:?}");
+    }
+
+    /// A breaker above what the circuit's wire allows (AC 43.13-1B Table 11-3: 5 A for
+    /// 22 AWG) is a protection disarmed: Enter sends nothing and asks, naming the wire
+    /// and the limit; only `y` sends it. At the chart's 5 A it goes out at once.
+    #[test]
+    fn a_breaker_over_its_wire_is_asked_naming_the_wire_and_the_limit() {
+        use crate::loads::wiring::WireRun;
+        let strobe = 0x11; // 10A-1: up to 10 A on the pin, 5 A on its 22 AWG wire
+        let wires = vec![LoadCircuit {
+            id: strobe,
+            name: "Strobe".into(),
+            amps: None,
+            duty: [0.0; 7],
+            wire: WireRun {
+                wire: Some(crate::loads::wire::Wire::parse("22 AWG").unwrap()),
+                feed_feet: Some(12.0),
+                return_feet: None,
+            },
+        }];
+        let t0 = Instant::now();
+        let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
+        m.apply_packet(
+            t0,
+            &Packet::from_vpx(1, DeviceName::new(strobe, "Strobe Lt").unwrap()),
+        );
+        let (mut sv, mut flow) = (SetupView::default(), SetupFlow::default());
+        flow.tick(&mut sv, true, Some(strobe), &mut m, t0);
+        flow.set_wires(wires.clone());
+        sv.field = 1;
+        assert_eq!(sv.field(), Field::Breaker);
+        flow.key(SetupKey::Char('6'), &mut sv, &mut m, t0, WALL);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
+        assert!(out.send.is_empty(), "nothing sent before y: {:?}", out.send);
+        let Dialog::Disarm { consequences } = sv.dialog.clone() else {
+            panic!("no confirmation: {:?}", sv.message);
+        };
+        assert_eq!(
+            consequences,
+            [
+                "Strobe Lt's wire is 22 AWG: AC 43.13-1B Table 11-3 allows 5 A; a 6 A \
+              breaker would not protect it"
+            ]
+        );
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
+        assert!(out.send.is_empty(), "Enter never confirms");
+        let out = flow.key(SetupKey::Char('y'), &mut sv, &mut m, t0, WALL);
+        assert_eq!(out.send, vec![Message::from(sv.forms.device)]);
+        assert_eq!(sv.forms.device.circuit_breaker, 6);
+
+        // 5 A, what the chart allows, is not asked.
+        let (t0, mut m, mut sv, mut flow) = opened_on(strobe);
+        flow.set_wires(wires);
+        sv.field = 1;
+        flow.key(SetupKey::Char('5'), &mut sv, &mut m, t0, WALL);
+        let out = flow.key(SetupKey::Enter, &mut sv, &mut m, t0, WALL);
+        assert_eq!(sv.dialog, Dialog::None);
+        assert_eq!(out.send.len(), 1, "5 A on 22 AWG goes out at once");
     }
 
     /// A breaker above the pin's rating never reaches a confirmation: Appendix B's

@@ -7,6 +7,8 @@ use std::time::Instant;
 use super::view::{
     Field, Forms, Held, Page, device_choices, secondary_alternator_choices, wig_wag_choices,
 };
+use crate::loads::LoadCircuit;
+use crate::loads::wiring::breaker_words;
 use crate::model::Model;
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{self, enable_flag_allowed};
@@ -390,10 +392,43 @@ pub fn messages(forms: &Forms, page: Page, model: &Model) -> Result<Vec<Message>
     Ok(out)
 }
 
-/// The bus voltage from which a system counts as a 28 V one: a 14 V system's bus
-/// runs 12–15 V, a 28 V system's 24–29 V, and the unit's two overvoltage limits,
-/// 16 V and 32 V, are one for each (ICD Table 14 notes 1 and 2).
-pub const SYSTEM_28V_FROM: f32 = 20.0;
+/// The bus voltage from which a system counts as a 28 V one (ICD Table 14 notes 1
+/// and 2), one figure with the wire rules' choice of system.
+pub use crate::loads::wire::SYSTEM_28V_FROM;
+
+/// Each breaker `messages` set above what its circuit's wire allows (AC 43.13-1B
+/// ¶11-48, Table 11-3), in words naming the wire and the limit: "Strobe Lt's wire is
+/// 22 AWG: AC 43.13-1B Table 11-3 allows 5 A; a 6 A breaker would not protect it".
+/// `wires`: the load file's circuits. Only a breaker the write changes is asked
+/// about (one the unit already holds was asked, or read, before).
+pub fn over_wires(messages: &[Message], model: &Model, wires: &[LoadCircuit]) -> Vec<String> {
+    let held = |id: u8| -> Option<u8> {
+        if id == device::FLAPS {
+            model.flap_spec.map(|s| s.value.circuit_breaker)
+        } else {
+            model
+                .device_specs
+                .get(id as usize)
+                .copied()
+                .flatten()
+                .map(|s| s.value.circuit_breaker)
+        }
+    };
+    messages
+        .iter()
+        .filter_map(|m| match m {
+            Message::DeviceSpec(d) => Some((d.device_id, d.circuit_breaker)),
+            Message::FlapSpec(f) => Some((device::FLAPS, f.circuit_breaker)),
+            _ => None,
+        })
+        .filter(|&(id, breaker)| held(id) != Some(breaker))
+        .filter_map(|(id, breaker)| {
+            let w = wires.iter().find(|c| c.id == id)?.wire.wire?;
+            (!w.protected_by(f64::from(breaker)))
+                .then(|| breaker_words(&model.display_name(id), &w, breaker))
+        })
+        .collect()
+}
 
 /// What each of `messages` would disarm, in words naming the consequence, for a
 /// confirmation before anything is sent. Empty when nothing is disarmed.

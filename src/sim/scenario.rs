@@ -117,6 +117,7 @@ pub const BUILT_IN: &[(&str, &str)] = &[
         "reversed-flaps",
         include_str!("../../assets/scenarios/reversed-flaps.toml"),
     ),
+    ("wires", include_str!("../../assets/scenarios/wires.toml")),
 ];
 
 /// A whole scenario; see the module documentation for the file format.

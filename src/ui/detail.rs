@@ -8,6 +8,8 @@ use ratatui::text::{Line, Span};
 
 use super::panel::Panel;
 use super::{theme, values};
+use crate::loads::wire;
+use crate::loads::wiring::{self, Row, Verdict};
 use crate::model::{Circuit, CircuitKind, CircuitState, Model, TrimKind};
 use crate::protocol::device;
 use crate::protocol::message::FlapMode;
@@ -174,7 +176,60 @@ fn spec_line(model: &Model, c: &Circuit) -> Line<'static> {
     Line::from(spans)
 }
 
-pub fn render(frame: &mut Frame, area: Rect, model: &Model, selected: Option<&Circuit>) {
+/// The circuit's wire and its verdict (`loads::wiring`), in words with a symbol.
+fn wire_line(r: &Row) -> Line<'static> {
+    let Some(w) = r.wire else {
+        return Line::from(vec![
+            Span::styled("wire ", theme::label()),
+            Span::styled("not entered (the load file's wire lines)", theme::unknown()),
+        ]);
+    };
+    if r.verdict == Verdict::Unprotected {
+        // Short, so that a short panel still has room for the keys under it.
+        let words = r.unprotected_words().unwrap_or_default();
+        return Line::from(vec![
+            Span::styled(format!("⚠{NBSP}UNPROTECTED "), theme::alert()),
+            Span::styled(words, theme::alert()),
+        ]);
+    }
+    let mut spans = field("wire", w.to_string());
+    if let Some(run) = r.run_feet {
+        let ret = if r.return_assumed {
+            " (ground at load)"
+        } else {
+            ""
+        };
+        spans.extend(field("run", format!("{}{ret}", wire::feet_text(run))));
+    }
+    if let Some(m) = r.max_breaker_amps {
+        spans.extend(field("allows", format!("{} A", wiring::amps_text(m))));
+    }
+    if let (Some(d), Some(l)) = (r.drop_volts, r.drop_limit_volts) {
+        spans.extend(field("drop", format!("{d:.2} V of {l} V")));
+    }
+    match r.verdict {
+        Verdict::Drop => {
+            let under = r
+                .longest_run_feet
+                .map(|f| format!(": a run of at most {} would pass", wire::feet_text(f)))
+                .unwrap_or_default();
+            spans.push(Span::styled(
+                format!("⚠{NBSP}DROP over the limit{under}"),
+                theme::caution(),
+            ));
+        }
+        _ => spans.push(Span::raw(format!("✓{NBSP}{}", r.verdict.word()))),
+    }
+    Line::from(spans)
+}
+
+pub fn render(
+    frame: &mut Frame,
+    area: Rect,
+    model: &Model,
+    selected: Option<&Circuit>,
+    wire: Option<&Row>,
+) {
     let panel = |frame: &mut Frame, title: Line| {
         Panel {
             right_side: true,
@@ -237,6 +292,17 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, selected: Option<&Ci
             Span::raw(what),
         ]));
     }
+    // A breaker over its wire is a fire risk: said before the keys, where a short
+    // panel cannot cut it off; any other wire verdict after the spec.
+    let wire = wire.map(|r| (r.verdict == Verdict::Unprotected, wire_line(r)));
+    let wire_after = match wire {
+        Some((true, line)) => {
+            lines.push(line);
+            None
+        }
+        Some((false, line)) => Some(line),
+        None => None,
+    };
     lines.push(Line::from(key_spans(&key_actions(c))));
     if let Some(i) = info {
         lines.push(Line::from(vec![
@@ -249,6 +315,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, selected: Option<&Ci
         ]));
     }
     lines.push(spec_line(model, c));
+    lines.extend(wire_after);
     let inner = panel(frame, title);
     super::fast::wrapped(frame.buffer_mut(), inner, &lines);
 }

@@ -118,6 +118,19 @@ fn write_line(buf: &mut Buffer, inner: Rect, y: u16, cells: &[(&str, Style)]) {
     }
 }
 
+/// A breaker over its wire (AC 43.13-1B Table 11-3), marked at the end of the name
+/// column with a symbol and a word, so it never rests on colour: the detail pane says
+/// which wire and which limit.
+pub const UNPROTECTED_MARK: &str = "⚠WIRE";
+
+fn mark_unprotected(buf: &mut Buffer, inner: Rect, y: u16) {
+    let (x, w) = columns(inner)[0];
+    let n = UNPROTECTED_MARK.chars().count() as u16;
+    if w > n {
+        super::fast::put(buf, x + w - n, y, UNPROTECTED_MARK, n, theme::alert());
+    }
+}
+
 /// `rereading`: the unit's names and settings are being read again after a loss
 /// (`model::reread`), which the title says.
 pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState, rereading: bool) {
@@ -194,6 +207,9 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState,
                 let cells = cells(c);
                 let refs = cells.each_ref().map(|(t, s)| (t.as_str(), *s));
                 write_line(buf, inner, y, &refs);
+                if crate::loads::wiring::unprotected(&view.wires, c.id, c.breaker) {
+                    mark_unprotected(buf, inner, y);
+                }
             }
         }
         if selected_index == Some(offset + k) {

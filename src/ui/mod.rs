@@ -149,7 +149,12 @@ pub fn render(
     ])
     .areas(left);
     device_list::render(frame, list, &rows, view, model.rereading().is_some());
-    detail::render(frame, detail_area, model, selected);
+    // Without a load file no circuit has a wire to show, not even "not entered".
+    let wire = selected.filter(|_| !view.wires.is_empty()).map(|c| {
+        let system = crate::loads::wiring::model_system(model, now);
+        crate::loads::wiring::circuit_row(&view.wires, c, system.as_ref())
+    });
+    detail::render(frame, detail_area, model, selected, wire.as_ref());
     if !link_panel {
         link_health::render_line(frame, link_line, model, now);
     }

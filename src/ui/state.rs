@@ -56,7 +56,7 @@ pub struct RemoteView {
 /// a [`ControlState`] read from the controller for each frame; the view copies none.
 pub use crate::control::run_state::{ControlState, MotorRun, ReleaseMode, RepeatTiming};
 
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct ViewState {
     pub screen: Screen,
     /// Device id of the selected row, so the selection survives re-sorting.
@@ -71,6 +71,9 @@ pub struct ViewState {
     pub theme: super::palette::ThemeChoice,
     /// The walk-around remote, while it is on.
     pub remote: Option<RemoteView>,
+    /// The load file's circuits, for their wires: the device list marks a breaker
+    /// over its wire, the detail pane gives the wire's verdict.
+    pub wires: Vec<crate::loads::LoadCircuit>,
 }
 
 impl ViewState {

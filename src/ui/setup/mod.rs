@@ -54,7 +54,7 @@ pub fn render(
     title_bar::render(frame, title, model, now);
     render_tabs(frame, tabs, sv);
     match sv.page {
-        Page::Device => device::render(frame, body, model, sv, now),
+        Page::Device => device::render(frame, body, model, sv, &view.wires, now),
         Page::System => system::render(frame, body, model, sv, now),
         Page::Flaps => flaps::render(frame, body, model, view, running, now),
         Page::PitchTrim | Page::RollTrim => trim::render(frame, body, model, view, running, now),
