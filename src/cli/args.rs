@@ -58,4 +58,12 @@ pub enum Command {
     /// as they come. Exits 0 when everything passed, 1 when anything failed, 2 when it
     /// was interrupted.
     Check(CheckArgs),
+    /// Write the guide's reference pages (docs/src/reference) from the code that
+    /// defines them; hidden, for developers (`cargo run -- reference`).
+    #[command(hide = true)]
+    Reference {
+        /// The folder to write them in.
+        #[arg(default_value = crate::cli::reference::DIR)]
+        dir: std::path::PathBuf,
+    },
 }

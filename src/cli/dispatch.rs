@@ -28,6 +28,7 @@ pub fn main() -> ExitCode {
             Some(Command::Completions(a)) => crate::cmd::completions::run(a.shell, Cli::command()),
             Some(Command::Man) => crate::cmd::completions::man(Cli::command()),
             Some(Command::Check(a)) => crate::cmd::check::run(a),
+            Some(Command::Reference { dir }) => crate::cli::reference::run(&dir),
         });
     match result {
         Ok(()) => ExitCode::from(exit::OK),
