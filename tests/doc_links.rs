@@ -31,42 +31,47 @@ fn documents() -> Vec<PathBuf> {
     docs
 }
 
+/// For each line, whether it belongs to a fenced code block (its fences included).
+fn in_fence(text: &str) -> Vec<bool> {
+    let mut open: Option<String> = None;
+    text.lines()
+        .map(|line| {
+            let trimmed = line.trim();
+            let ticks: String = trimmed
+                .chars()
+                .take_while(|&c| c == '`' || c == '~')
+                .collect();
+            match &open {
+                Some(fence) => {
+                    if ticks.len() >= fence.len() && trimmed == ticks {
+                        open = None;
+                    }
+                    true
+                }
+                None if ticks.len() >= 3 => {
+                    open = Some(ticks);
+                    true
+                }
+                None => false,
+            }
+        })
+        .collect()
+}
+
 /// The text with fenced code blocks and inline code blanked out (lines kept), so that
-/// nothing in code is taken for a link or a heading.
+/// nothing in code is taken for a link.
 fn prose_only(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
-    let mut fence: Option<String> = None;
-    for line in text.lines() {
-        let trimmed = line.trim_start();
-        let ticks: String = trimmed
-            .chars()
-            .take_while(|&c| c == '`' || c == '~')
-            .collect();
-        match &fence {
-            Some(open) => {
-                if ticks.len() >= open.len()
-                    && ticks.starts_with(&open[..1])
-                    && trimmed.trim() == ticks
-                {
-                    fence = None;
+    for (line, fenced) in text.lines().zip(in_fence(text)) {
+        if !fenced {
+            let mut in_code = false;
+            for c in line.chars() {
+                if c == '`' {
+                    in_code = !in_code;
+                    out.push(' ');
+                } else {
+                    out.push(if in_code { ' ' } else { c });
                 }
-                out.push('\n');
-                continue;
-            }
-            None if ticks.len() >= 3 => {
-                fence = Some(ticks);
-                out.push('\n');
-                continue;
-            }
-            None => {}
-        }
-        let mut in_code = false;
-        for c in line.chars() {
-            if c == '`' {
-                in_code = !in_code;
-                out.push(' ');
-            } else {
-                out.push(if in_code { ' ' } else { c });
             }
         }
         out.push('\n');
@@ -117,21 +122,8 @@ fn heading_text(raw: &str) -> String {
 /// Every heading anchor of a page, duplicates numbered `-1`, `-2`… as both tools do.
 fn anchors(text: &str) -> BTreeSet<String> {
     let mut found = BTreeSet::new();
-    let mut fence: Option<String> = None;
-    for line in text.lines() {
-        let trimmed = line.trim_start();
-        let ticks: String = trimmed
-            .chars()
-            .take_while(|&c| c == '`' || c == '~')
-            .collect();
-        if let Some(open) = &fence {
-            if ticks.len() >= open.len() && trimmed.trim() == ticks {
-                fence = None;
-            }
-            continue;
-        }
-        if ticks.len() >= 3 {
-            fence = Some(ticks);
+    for (line, fenced) in text.lines().zip(in_fence(text)) {
+        if fenced {
             continue;
         }
         let hashes = line.chars().take_while(|&c| c == '#').count();
