@@ -296,3 +296,25 @@ fn a_broken_link_or_anchor_is_found() {
         "{problems:?}"
     );
 }
+
+/// The README fits two screens, and CI runs exactly the test command it gives.
+#[test]
+fn the_readme_is_short_and_ci_runs_its_test_command() {
+    let readme = fs::read_to_string(root().join("README.md")).unwrap();
+    let lines = readme.lines().count();
+    assert!(
+        lines <= 200,
+        "README.md has {lines} lines: the guide is the place for more"
+    );
+    let command = readme
+        .split("Run the tests:\n\n```sh\n")
+        .nth(1)
+        .and_then(|s| s.lines().next())
+        .expect("the README's set-up gives the test command");
+    assert!(command.starts_with("cargo test "), "{command}");
+    let ci = fs::read_to_string(root().join(".ci/run")).unwrap();
+    assert!(
+        ci.lines().any(|l| l.starts_with(command)),
+        ".ci/run does not run the README's test command {command:?}"
+    );
+}
