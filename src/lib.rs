@@ -1,5 +1,6 @@
 //! vpx-efis: a terminal EFIS electrical page for the Vertical Power VP-X.
 //!
+// ANCHOR: layers
 //! The data flows one way through the modules, lowest layer first; a module imports
 //! its own layer and those below, never one above (`tests/layers.rs` holds this):
 //!
@@ -29,6 +30,7 @@
 //! 8. [`app`]: wires the page together; [`cmd`]: one file per subcommand, each owning
 //!    its clap arguments; [`cli`]: the command line, on top, composing them, filling
 //!    them from the config file and dispatching.
+// ANCHOR_END: layers
 
 pub mod app;
 pub mod audit;

@@ -1,6 +1,6 @@
 //! The installation check's report, from hand-built views: a check that ran to the end
 //! with a fault of each kind, and one interrupted half-way. The Markdown and the CSV
-//! are pinned as snapshots (the README's sample is the first), and what a builder
+//! are pinned as snapshots (the guide's sample is the first), and what a builder
 //! and an inspector look for is asserted line by line.
 
 use std::path::{Path, PathBuf};
@@ -633,13 +633,13 @@ fn in_report_order(md: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// The README's sample report is a real one: the `install` scenario run headless. A
+/// The guide's sample report (docs/src/report.md) is a real one: the `install` scenario run headless. A
 /// real run's times and readings vary, so it is not compared word for word; but it
 /// must read as the writer writes today: a report's title and result, its sections in
 /// order (the list of which is checked against the writer here too), printable, and
 /// none of the words the writer no longer uses.
 #[test]
-fn the_readme_sample_is_a_report_as_the_writer_writes_it() {
+fn the_guides_sample_is_a_report_as_the_writer_writes_it() {
     for md in [
         report::markdown(&finished(), &about()),
         report::markdown(&interrupted(), &about()),
@@ -650,13 +650,13 @@ fn the_readme_sample_is_a_report_as_the_writer_writes_it() {
     assert!(all.contains("\n## Switches to cycle\n"));
     assert!(report::markdown(&interrupted(), &about()).contains("\n## Interrupted\n"));
 
-    let readme = include_str!("../README.md");
-    let sample = readme
+    let guide = include_str!("../docs/src/report.md");
+    let sample = guide
         .split("<summary>A sample report")
         .nth(1)
         .and_then(|s| s.split("````markdown\n").nth(1))
         .and_then(|s| s.split("\n````").next())
-        .expect("the README has a sample report");
+        .expect("the guide's report page has a sample report");
     assert!(
         sample.starts_with("# VP-X installation check, "),
         "{sample}"
@@ -686,6 +686,6 @@ fn the_readme_sample_is_a_report_as_the_writer_writes_it() {
         "of a 11 A",
         "of a 18 A",
     ] {
-        assert!(!sample.contains(stale), "{stale:?} in the README's sample");
+        assert!(!sample.contains(stale), "{stale:?} in the guide's sample");
     }
 }

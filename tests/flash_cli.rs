@@ -204,7 +204,7 @@ fn without_a_port_flash_says_how_to_try_it_on_the_virtual_unit() {
 
 /// SIGTERM mid-update: flash finishes the page in progress, leaves the unit in its
 /// bootloader (never restarted into a half-written image), says to run it again, and
-/// exits 128 + 15 as the README's exit-code table promises, not 1.
+/// exits 128 + 15 as the exit codes (program::exit::MEANINGS) promise, not 1.
 #[test]
 fn a_signal_mid_update_stops_at_a_safe_point_and_exits_128_plus_n() {
     let rig = start();

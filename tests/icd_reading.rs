@@ -1,4 +1,4 @@
-//! The readings of the ICD and the XFSp draft live in `docs/icd-reading.md`, inside the
+//! The readings of the ICD and the XFSp draft live in `docs/src/contributing/icd-reading.md`, inside the
 //! repository. This test keeps the code and that file in step:
 //!
 //! * every citation `icd-reading R7` (or `icd-reading R17 and R24`, `icd-reading X3`)
@@ -11,7 +11,7 @@ use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-const DOC: &str = "docs/icd-reading.md";
+const DOC: &str = "docs/src/contributing/icd-reading.md";
 
 /// Where citations are looked for, from the repository root.
 const SOURCE_DIRS: &[&str] = &["src", "tests", "benches", "crates"];

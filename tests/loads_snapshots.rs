@@ -314,14 +314,11 @@ fn the_bars_are_drawn_to_scale_against_the_alternator() {
     assert_eq!(buf[(13 + 60, e)].symbol(), " ");
 }
 
-/// The README's load-file example reads as it says, and its screen is this file's.
+/// The guide's load-file example (docs/src/loads.md) reads as it says, and its screen
+/// is this file's.
 #[test]
-fn the_readme_example_file_and_screen_are_what_the_code_does() {
-    let readme = include_str!("../README.md");
-    let section = readme
-        .split("## Electrical load analysis\n")
-        .nth(1)
-        .expect("the README has the load-analysis section");
+fn the_guides_example_file_and_screen_are_what_the_code_does() {
+    let section = include_str!("../docs/src/loads.md");
     let toml = section
         .split("```toml\n")
         .nth(1)

@@ -948,11 +948,12 @@ fn every_text_meets_wcag_contrast_light_and_dark() {
     );
 }
 
-/// The README's screenshots of the phone page, light and dark, at 390×844: run by
-/// hand (`cargo test --test remote_browser -- --ignored readme_screenshots`) when the
-/// page's look changes, then commit `docs/remote-*.png`.
+/// The guide's screenshots of the phone page, light and dark, at 390×844: run by
+/// `scripts/screenshots` (or by hand, `cargo test --test remote_browser -- --ignored
+/// readme_screenshots`) when the page's look changes, then commit
+/// `docs/src/images/remote-*.png`.
 #[test]
-#[ignore = "writes the README's screenshots; run by hand"]
+#[ignore = "writes the guide's screenshots; run by scripts/screenshots"]
 fn readme_screenshots() {
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let Some(mut h) = Hangar::open() else { return };
@@ -968,7 +969,7 @@ fn readme_screenshots() {
          s.textContent.startsWith('FAULT'))",
         Duration::from_secs(4),
     );
-    let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/src/images");
     std::fs::create_dir_all(&docs).unwrap();
     // Light at the top (totals, motors), dark at the lights.
     for scheme in ["light", "dark"] {

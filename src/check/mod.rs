@@ -9,6 +9,7 @@
 //! `motors`) through the one interface in `step`, which is all a step knows of the
 //! flow; `state` and `words` are the data and the words everyone reads.
 
+pub mod advice;
 mod calls;
 mod circuits;
 pub mod flow;

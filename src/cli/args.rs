@@ -64,4 +64,12 @@ pub enum Command {
     /// lines. Exits 1 when a breaker does not protect its wire or a measured drop is
     /// over the limit.
     Wires(WiresArgs),
+    /// Write the guide's reference pages (docs/src/reference) from the code that
+    /// defines them; hidden, for developers (`cargo run -- reference`).
+    #[command(hide = true)]
+    Reference {
+        /// The folder to write them in.
+        #[arg(default_value = crate::cli::reference::DIR)]
+        dir: std::path::PathBuf,
+    },
 }

@@ -20,7 +20,7 @@ use crate::xfsp::net::{Target, XfspNet};
 use crate::xfsp::{Expire, Header, ParamView, Received, Receiver, idents};
 
 /// The scales behind the numbers, for `xfsp-dump --help` (the draft names none; the
-/// README's XFSp section says the same).
+/// the guide's XFSp chapter says the same).
 pub const SCALES_HELP: &str = "\
 Numbers as vpx-efis publishes them (the XFSp draft names no scales; this dump prints
 BUS values already divided, in A and V):

@@ -10,7 +10,7 @@ use crate::model::Circuit;
 /// (`~/.config/vpx-efis` on Linux, `~/Library/Application Support/vpx-efis` on
 /// macOS, `%APPDATA%\vpx-efis\config` on Windows).
 pub fn default_path() -> Option<PathBuf> {
-    // Beside the config file, wherever `VPX_EFIS_CONFIG` puts it, as the README says:
+    // Beside the config file, wherever `VPX_EFIS_CONFIG` puts it, as the guide says:
     // the check's reports and the audit log go beside it too.
     crate::places::config_path().and_then(|c| c.parent().map(|d| d.join("loads.toml")))
 }

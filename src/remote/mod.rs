@@ -9,11 +9,13 @@
 //! as a [`Request`] on a channel: the page carries it out through `control` and the
 //! stop gate with the origin "remote", and answers. Nothing here sends to the unit.
 //!
-//! The API is the contract of `README.md` ("The walk-around remote"):
+//! The API is the contract of the guide (`docs/src/remote.md`, and the routes in
+//! [`routes`], from which its HTTP API page is generated):
 //! [`server`] holds the routes, [`pairing`] the code and the sessions, [`state`] the
 //! JSON state with the model's staleness.
 
 pub mod pairing;
+pub mod routes;
 pub mod server;
 pub mod state;
 

@@ -871,7 +871,7 @@ mod tests {
     }
 
     /// The `install` scenario's faults are a contract with the installation check's
-    /// end-to-end test and the README: exactly these, and nothing else.
+    /// end-to-end test and the README and the guide: exactly these, and nothing else.
     #[test]
     fn install_has_exactly_its_six_wiring_faults() {
         let s = load_scenario("install").unwrap();

@@ -1,6 +1,6 @@
 //! The frame of ICD §4 (Table 1/2): an 8-byte header, the payload, a checksum.
 //!
-//! Readings taken (docs/icd-reading.md): a frame is `8 + len + 1` bytes (icd-reading
+//! Readings taken (docs/src/contributing/icd-reading.md): a frame is `8 + len + 1` bytes (icd-reading
 //! R1, the "Total Size" lines are ignored); the checksum is the XOR of every byte
 //! before it, both header bytes included, then inverted (icd-reading R2); majors run
 //! 0x10–0x15 (icd-reading R5).
