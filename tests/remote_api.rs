@@ -580,6 +580,86 @@ fn a_replayed_or_altered_signed_request_is_refused_and_sends_nothing() {
     assert_eq!(a.status, 200, "{a:?}");
 }
 
+/// Issue 35 item 4: against the `demo` and `install` scenarios the phone lists what
+/// the page lists (enabled devices, by name, ICD Appendix A), and the flaps and trims
+/// only under MOTORS. Checked against the page's own list, and against the scenario
+/// files read here: every pin they disable is absent, every name they give present.
+#[test]
+fn the_phone_lists_what_the_page_lists_and_motors_only_under_motors() {
+    for name in ["demo", "install"] {
+        let scenario = vpx_efis::sim::load_scenario(name).unwrap();
+        let mut rig = Rig::with_sim(
+            AppOptions::default(),
+            vpx_efis::sim::SimOptions::new(scenario),
+        );
+        rig.app
+            .start_remote(Some("127.0.0.1:0".parse().unwrap()), Instant::now())
+            .expect("the remote starts");
+        rig.ready();
+        // The enable flags read (ICD Table 23: devices 4–28 have one), as on a page
+        // that has finished connecting.
+        rig.until("the enable flags", Duration::from_secs(10), |app, _| {
+            app.model().enabled[4..=28].iter().all(Option::is_some)
+        });
+        let base = split_pairing_url(&rig.app.remote_url().unwrap()).0;
+        let phone = pair(&mut rig, &base);
+        let st = phone.get("/api/state").body;
+        let listed: Vec<(u64, String)> = st["devices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|d| {
+                (
+                    d["id"].as_u64().unwrap(),
+                    d["name"].as_str().unwrap().to_string(),
+                )
+            })
+            .collect();
+        let page: Vec<(u64, String)> = rig
+            .app
+            .model()
+            .circuits(Instant::now())
+            .into_iter()
+            .filter(|c| {
+                !matches!(
+                    c.kind,
+                    vpx_efis::model::CircuitKind::Flaps | vpx_efis::model::CircuitKind::Trim(_)
+                )
+            })
+            .map(|c| (u64::from(c.id), c.name.trim().to_string()))
+            .collect();
+        assert_eq!(listed, page, "{name}: the phone's list is not the page's");
+        let toml: toml::Table = std::fs::read_to_string(format!(
+            "{}/assets/scenarios/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap()
+        .parse()
+        .unwrap();
+        for d in toml["device"].as_array().unwrap() {
+            let id = d["id"].as_integer().unwrap() as u64;
+            let on_phone = listed.iter().find(|(i, _)| *i == id);
+            if d.get("enabled").and_then(|e| e.as_bool()) == Some(false) {
+                assert!(on_phone.is_none(), "{name}: disabled pin {id} listed");
+            } else if let Some(n) = d.get("name").and_then(|n| n.as_str()) {
+                assert_eq!(
+                    on_phone.map(|(_, n)| n.as_str()),
+                    Some(n),
+                    "{name}: device {id}"
+                );
+            }
+        }
+        // Flaps 0x00, pitch trim 0x1D, roll trim 0x1E (ICD Table 40): never a row.
+        for motor in [0x00, 0x1D, 0x1E] {
+            assert!(
+                !listed.iter().any(|(i, _)| *i == motor),
+                "{name}: motor {motor:#04x} listed as a circuit: {listed:?}"
+            );
+        }
+        assert!(st["motors"]["flaps"].is_object());
+    }
+}
+
 /// The pitch moves on the wire since `from`: (time, on).
 fn pitch_moves(rig: &Rig, from: usize) -> Vec<(Instant, bool)> {
     rig.sent(from)

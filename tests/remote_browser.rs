@@ -202,10 +202,20 @@ struct Hangar {
 impl Hangar {
     /// `None` (skipped, with a message) when there is no chromedriver and CI is unset.
     fn open() -> Option<Hangar> {
+        Hangar::open_with(None)
+    }
+
+    /// As [`Hangar::open`], the sim on a built-in scenario (`demo`, `install`) when
+    /// one is named, else on [`SCENARIO`].
+    fn open_with(built_in: Option<&str>) -> Option<Hangar> {
         let browser = Browser::start()?;
         let dir = tempfile::tempdir().unwrap();
         let scenario = dir.path().join("remote.toml");
         std::fs::write(&scenario, SCENARIO).unwrap();
+        let scenario = match built_in {
+            Some(name) => std::ffi::OsString::from(name),
+            None => scenario.into_os_string(),
+        };
         let mut sim = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
             .args(["sim", "--pty", "--scenario"])
             .arg(&scenario)
@@ -781,6 +791,99 @@ fn a_listener_replaying_what_the_phone_sent_is_refused_and_nothing_reaches_the_u
         ran,
         "a replayed renewal ran the trim"
     );
+}
+
+/// Issue 35 item 4, on the phone: against the `demo` and `install` scenarios the
+/// list holds the enabled devices by name (every name the scenario file gives, no pin
+/// it disables) and no flap or trim row; the motors fitted show under MOTORS only.
+#[test]
+fn the_phone_lists_the_enabled_devices_by_name_and_motors_only_under_motors() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    for name in ["demo", "install"] {
+        let Some(h) = Hangar::open_with(Some(name)) else {
+            return;
+        };
+        h.pair();
+        let toml: toml::Table = std::fs::read_to_string(format!(
+            "{}/assets/scenarios/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap()
+        .parse()
+        .unwrap();
+        let devices = toml["device"].as_array().unwrap();
+        // Wait until the enable flags are read: no disabled pin left on the list.
+        let disabled: Vec<i64> = (devices.iter())
+            .filter(|d| d.get("enabled").and_then(|e| e.as_bool()) == Some(false))
+            .map(|d| d["id"].as_integer().unwrap())
+            .collect();
+        // ... and the names read: the page's connect reads both (until then it shows
+        // a pin's own name, as the page does).
+        let names: Vec<(i64, String)> = (devices.iter())
+            .filter_map(|d| Some((d["id"].as_integer()?, d.get("name")?.as_str()?.to_string())))
+            .collect();
+        let names_js = serde_json::to_string(&names).unwrap();
+        h.browser.wait_for(
+            "the disabled pins gone from the list and the names read",
+            &format!(
+                "const rows = [...document.querySelectorAll('#devices .device')]; \
+                 const ids = rows.map((r) => Number(r.dataset.id)); \
+                 const name = (id) => {{ const r = rows.find((r) => Number(r.dataset.id) === id); \
+                   return r ? r.querySelector('.name').textContent : null; }}; \
+                 return ids.length > 0 && {disabled:?}.every((d) => !ids.includes(d)) \
+                   && {names_js}.every(([id, n]) => name(id) === n)"
+            ),
+            Duration::from_secs(10),
+        );
+        let rows = h.browser.exec(
+            "return [...document.querySelectorAll('#devices .device')].map((r) => \
+             [Number(r.dataset.id), r.querySelector('.name').textContent, \
+              r.querySelector('button.act').textContent])",
+            json!([]),
+        );
+        let rows: Vec<(i64, String, String)> = (rows.as_array().unwrap().iter())
+            .map(|r| {
+                (
+                    r[0].as_i64().unwrap(),
+                    r[1].as_str().unwrap().to_string(),
+                    r[2].as_str().unwrap().to_string(),
+                )
+            })
+            .collect();
+        for d in devices {
+            let id = d["id"].as_integer().unwrap();
+            let row = rows.iter().find(|r| r.0 == id);
+            if disabled.contains(&id) {
+                assert!(row.is_none(), "{name}: disabled pin {id} listed: {rows:?}");
+            } else if let Some(n) = d.get("name").and_then(|n| n.as_str()) {
+                assert_eq!(row.map(|r| r.1.as_str()), Some(n), "{name}: device {id}");
+            }
+        }
+        // Flaps 0x00, pitch trim 0x1D, roll trim 0x1E (ICD Table 40).
+        for motor in [0x00, 0x1D, 0x1E] {
+            assert!(
+                !rows.iter().any(|r| r.0 == motor),
+                "{name}: motor {motor:#04x} listed as a circuit: {rows:?}"
+            );
+        }
+        let cards = h.browser.exec(
+            "return [...document.querySelectorAll('#motors .motor:not(.hidden)')].map((m) => \
+             m.dataset.motor)",
+            json!([]),
+        );
+        let fitted: Vec<&str> = ["flap", "pitch_trim", "roll_trim"]
+            .into_iter()
+            .zip(["flaps", "pitch", "roll"])
+            .filter(|(t, _)| {
+                toml.get(*t)
+                    .and_then(|s| s.as_table())
+                    .is_some_and(|s| s.get("enabled").and_then(|e| e.as_bool()) != Some(false))
+            })
+            .map(|(_, m)| m)
+            .collect();
+        assert_eq!(cards, json!(fitted), "{name}: the motors under MOTORS");
+        eprintln!("{name}: {} rows on the phone", rows.len());
+    }
 }
 
 /// The installation check started at the laptop: the phone shows its DO NOW prompt
