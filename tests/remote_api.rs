@@ -137,7 +137,7 @@ fn pairing_by_the_key_is_single_use_and_locks_after_five_wrong() {
         (a.status, a.body.clone()),
         (401, json!({"error": "wrong code"}))
     );
-    // Unsigned, or the key sent in the clear as a pairing code once was: refused.
+    // Unsigned, a code in its body: refused.
     let a = Ask::default().post(&pair_url, Some(json!({ "code": "482913" })));
     assert_eq!(a.status, 400, "{a:?}");
 

@@ -32,7 +32,7 @@ pub enum Overlay {
     #[default]
     None,
     Help,
-    /// The walk-around remote: its URL, QR code and pairing code.
+    /// The walk-around remote: its QR code, its URL and the words to type.
     Remote,
 }
 
