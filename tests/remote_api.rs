@@ -1,14 +1,16 @@
 //! The walk-around remote's API with a real HTTP client (ureq) against the page
 //! wired to the virtual VP-X through a real pseudo-terminal (`page_rig`), the tap
-//! recording every byte on the wire: pairing, 401 on every route without a session
-//! (and nothing changed), 403, 429; the state and an event after a change; power and
+//! recording every byte on the wire: pairing by the key in the QR code's URL (signed,
+//! single use), 401 on every route without a session or without its signature (and
+//! nothing changed), 403, 429; the state and an event after a change; power and
 //! clear through control's refusals; a lease left to expire and an explicit stop,
-//! timed on the wire.
+//! timed on the wire. The phone is `common::phone`, signing as the page does.
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
 #![cfg(unix)]
 
 mod common;
 mod page_rig;
+use common::phone::{Answer, Phone, agent, answer, pair_with, split_pairing_url};
 use page_rig::*;
 
 use std::io::{BufRead, BufReader};
@@ -34,58 +36,17 @@ fn rig_with_remote(audit: Option<std::path::PathBuf>) -> (Rig, String) {
         .expect("the remote starts");
     rig.ready();
     let url = rig.app.remote_url().unwrap();
-    let base = url.split("/?pair=").next().unwrap().to_string();
+    let base = split_pairing_url(&url).0;
     (rig, base)
 }
 
-fn code_of(rig: &Rig) -> String {
-    rig.app
-        .remote_url()
-        .unwrap()
-        .rsplit("pair=")
-        .next()
-        .unwrap()
-        .to_string()
+/// The QR code's key now.
+fn key_of(rig: &Rig) -> Vec<u8> {
+    split_pairing_url(&rig.app.remote_url().unwrap()).1
 }
 
-fn agent() -> ureq::Agent {
-    ureq::Agent::config_builder()
-        .http_status_as_error(false)
-        .timeout_global(Some(Duration::from_secs(5)))
-        .build()
-        .into()
-}
-
-/// An HTTP answer: status, the headers we look at, the body as JSON (or Null).
-#[derive(Debug)]
-struct Answer {
-    status: u16,
-    cookie: Option<String>,
-    retry_after: Option<String>,
-    body: Value,
-}
-
-fn answer(r: Result<ureq::http::Response<ureq::Body>, ureq::Error>) -> Answer {
-    let mut r = r.expect("an HTTP answer");
-    let header = |n: &str| {
-        r.headers()
-            .get(n)
-            .and_then(|v| v.to_str().ok())
-            .map(str::to_string)
-    };
-    let (cookie, retry_after) = (header("set-cookie"), header("retry-after"));
-    let status = r.status().as_u16();
-    let text = r.body_mut().read_to_string().unwrap_or_default();
-    Answer {
-        status,
-        cookie,
-        retry_after,
-        body: serde_json::from_str(&text).unwrap_or(Value::Null),
-    }
-}
-
-/// A request as a phone or a script makes it: `session` as the cookie, `origin` as
-/// the Origin header.
+/// A request as a script makes it, unsigned: `session` as the session's header,
+/// `origin` as the Origin header.
 #[derive(Clone, Default)]
 struct Ask {
     session: Option<String>,
@@ -96,7 +57,7 @@ impl Ask {
     fn post(&self, url: &str, body: Option<Value>) -> Answer {
         let mut req = agent().post(url);
         if let Some(s) = &self.session {
-            req = req.header("Cookie", &format!("vpx_session={s}"));
+            req = req.header("X-Vpx-Session", s);
         }
         if let Some(o) = &self.origin {
             req = req.header("Origin", o);
@@ -110,7 +71,7 @@ impl Ask {
     fn get(&self, url: &str) -> Answer {
         let mut req = agent().get(url);
         if let Some(s) = &self.session {
-            req = req.header("Cookie", &format!("vpx_session={s}"));
+            req = req.header("X-Vpx-Session", s);
         }
         if let Some(o) = &self.origin {
             req = req.header("Origin", o);
@@ -131,19 +92,9 @@ fn during<T: Send + 'static>(rig: &mut Rig, f: impl FnOnce() -> T + Send + 'stat
     h.join().expect("the call's thread")
 }
 
-/// Pairs a phone: its session token.
-fn pair(rig: &mut Rig, base: &str) -> String {
-    let code = code_of(rig);
-    let a = Ask::default().post(&format!("{base}/api/pair"), Some(json!({ "code": code })));
-    assert_eq!(a.status, 200, "{a:?}");
-    let cookie = a.cookie.expect("a session cookie");
-    cookie
-        .strip_prefix("vpx_session=")
-        .unwrap()
-        .split(';')
-        .next()
-        .unwrap()
-        .to_string()
+/// Pairs a phone by the QR code's key.
+fn pair(rig: &mut Rig, base: &str) -> Phone {
+    pair_with(base, &key_of(rig), None).expect("paired")
 }
 
 fn commands_sent(rig: &Rig, from: usize) -> Vec<(Instant, Packet)> {
@@ -171,66 +122,54 @@ fn log_lines(rig: &Rig) -> Vec<String> {
 }
 
 #[test]
-fn pairing_gives_an_httponly_strict_session_once_and_locks_after_five_wrong() {
+fn pairing_by_the_key_is_single_use_and_locks_after_five_wrong() {
     let (mut rig, base) = rig_with_remote(None);
     let pair_url = format!("{base}/api/pair");
-    let first = code_of(&rig);
-    let wrong = format!("{:06}", (first.parse::<u32>().unwrap() + 1) % 1_000_000);
-    let a = Ask::default().post(&pair_url, Some(json!({ "code": wrong })));
+    let first = key_of(&rig);
+    let url = rig.app.remote_url().unwrap();
+    assert!(
+        url.starts_with(&format!("{base}/#k=")) && !url.contains('?'),
+        "the key is in the fragment, and nothing in the query: {url}"
+    );
+    assert!(first.len() * 8 >= 96, "{} bits", first.len() * 8);
+    let a = pair_with(&base, b"a guess at the key", None).err().unwrap();
     assert_eq!(
         (a.status, a.body.clone()),
         (401, json!({"error": "wrong code"}))
     );
+    // Unsigned, a code in its body: refused.
+    let a = Ask::default().post(&pair_url, Some(json!({ "code": "482913" })));
+    assert_eq!(a.status, 400, "{a:?}");
 
-    let a = Ask::default().post(&pair_url, Some(json!({ "code": first })));
-    assert_eq!((a.status, a.body.clone()), (200, json!({"paired": true})));
-    let cookie = a.cookie.unwrap();
-    let token = cookie
-        .strip_prefix("vpx_session=")
-        .unwrap()
-        .split(';')
-        .next()
-        .unwrap();
-    assert_eq!(token.len(), 64, "32 random bytes in hex: {cookie}");
-    assert!(token.bytes().all(|b| b.is_ascii_hexdigit()));
-    for attr in ["HttpOnly", "SameSite=Strict", "Path=/"] {
-        assert!(cookie.contains(attr), "{attr} missing: {cookie}");
-    }
+    let phone = pair_with(&base, &first, None).expect("the QR code's key pairs");
+    assert_eq!(phone.session().len(), 32, "16 random bytes in hex");
+    assert!(!phone.typed);
     rig.app.pump_until(Instant::now() + ms(50));
-    assert_ne!(code_of(&rig), first, "the page shows a fresh code");
+    assert_ne!(key_of(&rig), first, "the page shows a fresh key");
     assert_eq!(rig.app.view().remote.as_ref().unwrap().paired, 1);
-    let again = Ask::default().post(&pair_url, Some(json!({ "code": first })));
-    assert_eq!(again.status, 401, "a code works once");
+    let again = pair_with(&base, &first, None).err().unwrap();
+    assert_eq!(again.status, 401, "a key pairs once");
 
     // The session works; a foreign Origin is refused before anything else.
-    let phone = Ask {
-        session: Some(token.to_string()),
-        origin: None,
-    };
     assert_eq!(phone.get(&format!("{base}/api/state")).status, 200);
-    let own = Ask {
-        origin: Some(base.clone()),
-        ..phone.clone()
-    };
+    let own = phone.with_origin(&base);
     assert_eq!(own.get(&format!("{base}/api/state")).status, 200);
-    let foreign = Ask {
-        origin: Some("http://evil.example".into()),
-        ..phone.clone()
-    };
+    let foreign = phone.with_origin("http://evil.example");
     let a = foreign.get(&format!("{base}/api/state"));
     assert_eq!((a.status, a.body), (403, json!({"error": "origin"})));
-    let a = foreign.post(&pair_url, Some(json!({ "code": code_of(&rig) })));
+    let a = pair_with(&base, &key_of(&rig), Some("http://evil.example"))
+        .err()
+        .unwrap();
     assert_eq!(a.status, 403, "pairing from a foreign page is refused too");
 
-    // The right code reset the count; the reused code was the first wrong one, and
+    // The right key reset the count; the reused key was the first wrong one, and
     // four more make five in a row.
     for _ in 0..4 {
-        let a = Ask::default().post(&pair_url, Some(json!({ "code": "000000x" })));
+        let a = pair_with(&base, b"another guess", None).err().unwrap();
         assert_eq!(a.status, 401);
     }
-    let right = code_of(&rig);
-    let a = Ask::default().post(&pair_url, Some(json!({ "code": right })));
-    assert_eq!(a.status, 429, "locked, even for the right code: {a:?}");
+    let a = pair_with(&base, &key_of(&rig), None).err().unwrap();
+    assert_eq!(a.status, 429, "locked, even for the right key: {a:?}");
     assert_eq!(a.body["error"], "locked");
     let left = a.body["retry_after_s"].as_u64().unwrap();
     assert!((59..=60).contains(&left), "{left}");
@@ -246,11 +185,33 @@ fn pairing_gives_an_httponly_strict_session_once_and_locks_after_five_wrong() {
     assert_eq!(rig.app.view().remote.as_ref().unwrap().paired, 0);
 }
 
+/// The words under the QR code pair a phone without a camera, however they are
+/// typed, and the laptop marks it as paired the weaker way.
+#[test]
+fn typed_words_pair_and_the_phone_is_marked_on_the_laptop() {
+    let (mut rig, base) = rig_with_remote(None);
+    let words = rig.app.view().remote.as_ref().unwrap().words.clone();
+    assert_eq!(words.split(' ').count(), 5, "{words}");
+    let phone = Phone::type_words(&base, &format!(" {} ", words.to_uppercase()))
+        .expect("the typed words pair");
+    assert!(phone.typed);
+    assert_eq!(phone.get(&format!("{base}/api/state")).status, 200);
+    rig.app.pump_until(Instant::now() + ms(50));
+    let view = rig.app.view().remote.clone().unwrap();
+    assert_eq!((view.paired, view.typed), (1, 1));
+    assert_ne!(view.words, words, "fresh words");
+    let scanned = pair(&mut rig, &base);
+    assert!(!scanned.typed);
+    rig.app.pump_until(Instant::now() + ms(50));
+    let view = rig.app.view().remote.clone().unwrap();
+    assert_eq!((view.paired, view.typed), (2, 1));
+}
+
 #[test]
 fn every_route_without_a_session_is_401_and_changes_nothing() {
     let (mut rig, base) = rig_with_remote(None);
     // A real session exists, so a wrong one is wrong, not merely absent.
-    let _ = pair(&mut rig, &base);
+    let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
     let log_before = log_lines(&rig).len();
     let state_before = rig.app.model().circuits(Instant::now());
@@ -291,7 +252,11 @@ fn every_route_without_a_session_is_401_and_changes_nothing() {
         ("POST", "/api/logout".into(), None),
         ("GET", "/api/nothing-here".into(), None),
     ];
-    for session in [None, Some("00".repeat(32)), Some(String::new())] {
+    // No session, a made-up one, an empty one; then the real session's id (a
+    // listener sees it) without a signature: refused in words, nothing changed.
+    let real = Some(phone.session());
+    for session in [None, Some("00".repeat(16)), Some(String::new()), real] {
+        let unsigned = session.as_deref() == Some(phone.session().as_str());
         let ask = Ask {
             session,
             origin: None,
@@ -303,9 +268,14 @@ fn every_route_without_a_session_is_401_and_changes_nothing() {
                 "GET" => ask.get(&url),
                 _ => ask.post(&url, body),
             });
+            let words = if unsigned {
+                "unsigned or malformed signature"
+            } else {
+                "not paired"
+            };
             assert_eq!(
-                (a.status, a.body),
-                (401, json!({"error": "not paired"})),
+                (a.status, a.body["error"].clone()),
+                (401, json!(words)),
                 "{method} {path}"
             );
         }
@@ -336,10 +306,7 @@ fn every_route_without_a_session_is_401_and_changes_nothing() {
 #[test]
 fn the_state_is_live_and_an_event_follows_a_change() {
     let (mut rig, base) = rig_with_remote(None);
-    let phone = Ask {
-        session: Some(pair(&mut rig, &base)),
-        origin: None,
-    };
+    let phone = pair(&mut rig, &base);
     let st = phone.get(&format!("{base}/api/state")).body;
     assert_eq!(st["comm_lost"], false);
     let volts = st["bus_volts"].as_f64().expect("bus volts, a number");
@@ -376,14 +343,9 @@ fn the_state_is_live_and_an_event_follows_a_change() {
 
     // The events stream: the state at once, then Nav Lt off after the command.
     let (tx, rx) = std::sync::mpsc::channel::<(Instant, Value)>();
-    let events_url = format!("{base}/api/events");
-    let session = phone.session.clone().unwrap();
+    let listener = phone.clone();
     std::thread::spawn(move || {
-        let r = agent()
-            .get(&events_url)
-            .header("Cookie", &format!("vpx_session={session}"))
-            .call()
-            .unwrap();
+        let r = listener.events();
         assert_eq!(
             r.headers().get("content-type").unwrap(),
             "text/event-stream"
@@ -454,10 +416,7 @@ fn the_state_is_live_and_an_event_follows_a_change() {
 fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
     let dir = tempfile::tempdir().unwrap();
     let (mut rig, base) = rig_with_remote(Some(dir.path().to_path_buf()));
-    let phone = Ask {
-        session: Some(pair(&mut rig, &base)),
-        origin: None,
-    };
+    let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
     let call = |rig: &mut Rig, path: &str, body: Option<Value>| {
         let url = format!("{base}{path}");
@@ -538,6 +497,169 @@ fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
     );
 }
 
+/// A listener's replays: each signed request the phone sent, sent again as it was,
+/// is refused and sends nothing; with its body or path changed, refused; one held
+/// back longer than the signing window, refused as stale. The phone goes on working.
+#[test]
+fn a_replayed_or_altered_signed_request_is_refused_and_sends_nothing() {
+    let (mut rig, base) = rig_with_remote(None);
+    let phone = pair(&mut rig, &base);
+    let power = phone.request("POST", "/api/device/9/power", Some(&json!({"on": false})));
+    let renew = phone.request(
+        "POST",
+        "/api/motor/pitch",
+        Some(&json!({"direction": "up"})),
+    );
+    let held_back = phone.request("POST", "/api/device/4/power", Some(&json!({"on": false})));
+    let b = base.clone();
+    let (p, r) = (power.clone(), renew.clone());
+    let first = during(&mut rig, move || {
+        (common::phone::send(&b, &p), common::phone::send(&b, &r))
+    });
+    assert_eq!((first.0.status, first.1.status), (200, 200), "{first:?}");
+    let stop = phone.request("POST", "/api/motor/pitch", Some(&json!({"stop": true})));
+    let b = base.clone();
+    let a = during(&mut rig, move || common::phone::send(&b, &stop));
+    assert_eq!(a.status, 200);
+    rig.app.pump_until(Instant::now() + ms(300));
+    let from = rig.wire_len();
+    let log_before = log_lines(&rig).len();
+    let mut altered = power.clone();
+    altered.body = br#"{"on":true}"#.to_vec();
+    let mut moved = power.clone();
+    moved.path = "/api/device/4/power".into();
+    let cases = [
+        (power.clone(), "replayed counter"),
+        (renew.clone(), "replayed counter"),
+        (altered, "bad signature"),
+        (moved, "bad signature"),
+    ];
+    for (req, words) in cases {
+        let b = base.clone();
+        let r = req.clone();
+        let a = during(&mut rig, move || common::phone::send(&b, &r));
+        assert_eq!(
+            (a.status, a.body["error"].clone()),
+            (401, json!(words)),
+            "{} {} {}",
+            req.method,
+            req.path,
+            String::from_utf8_lossy(&req.body)
+        );
+    }
+    // Held back past the window (5 s), the request the phone never sent is stale.
+    std::thread::sleep(vpx_efis::remote::signing::MAX_AGE + ms(200));
+    let b = base.clone();
+    let a = during(&mut rig, move || common::phone::send(&b, &held_back));
+    assert_eq!(
+        (a.status, a.body["error"].clone()),
+        (401, json!("stale request"))
+    );
+    rig.app.pump_until(Instant::now() + ms(600));
+    assert_eq!(
+        commands_sent(&rig, from),
+        vec![],
+        "a replay reached the wire"
+    );
+    assert!(
+        !log_lines(&rig)[log_before..]
+            .iter()
+            .any(|l| l.starts_with("remote:")),
+        "{:?}",
+        &log_lines(&rig)[log_before..]
+    );
+    assert!(
+        rig.app.motor_run().is_none(),
+        "a replayed renewal runs nothing"
+    );
+    // The phone itself goes on.
+    let p = phone.clone();
+    let a = during(&mut rig, move || {
+        p.post("/api/device/9/power", Some(json!({"on": true})))
+    });
+    assert_eq!(a.status, 200, "{a:?}");
+}
+
+/// Issue 35 item 4: against the `demo` and `install` scenarios the phone lists what
+/// the page lists (enabled devices, by name, ICD Appendix A), and the flaps and trims
+/// only under MOTORS. Checked against the page's own list, and against the scenario
+/// files read here: every pin they disable is absent, every name they give present.
+#[test]
+fn the_phone_lists_what_the_page_lists_and_motors_only_under_motors() {
+    for name in ["demo", "install"] {
+        let scenario = vpx_efis::sim::load_scenario(name).unwrap();
+        let mut rig = Rig::with_sim(
+            AppOptions::default(),
+            vpx_efis::sim::SimOptions::new(scenario),
+        );
+        rig.app
+            .start_remote(Some("127.0.0.1:0".parse().unwrap()), Instant::now())
+            .expect("the remote starts");
+        rig.ready();
+        // The enable flags read (ICD Table 23: devices 4–28 have one), as on a page
+        // that has finished connecting.
+        rig.until("the enable flags", Duration::from_secs(10), |app, _| {
+            app.model().enabled[4..=28].iter().all(Option::is_some)
+        });
+        let base = split_pairing_url(&rig.app.remote_url().unwrap()).0;
+        let phone = pair(&mut rig, &base);
+        let st = phone.get("/api/state").body;
+        let listed: Vec<(u64, String)> = st["devices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|d| {
+                (
+                    d["id"].as_u64().unwrap(),
+                    d["name"].as_str().unwrap().to_string(),
+                )
+            })
+            .collect();
+        let page: Vec<(u64, String)> = rig
+            .app
+            .model()
+            .circuits(Instant::now())
+            .into_iter()
+            .filter(|c| {
+                !matches!(
+                    c.kind,
+                    vpx_efis::model::CircuitKind::Flaps | vpx_efis::model::CircuitKind::Trim(_)
+                )
+            })
+            .map(|c| (u64::from(c.id), c.name.trim().to_string()))
+            .collect();
+        assert_eq!(listed, page, "{name}: the phone's list is not the page's");
+        let toml: toml::Table = std::fs::read_to_string(format!(
+            "{}/assets/scenarios/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap()
+        .parse()
+        .unwrap();
+        for d in toml["device"].as_array().unwrap() {
+            let id = d["id"].as_integer().unwrap() as u64;
+            let on_phone = listed.iter().find(|(i, _)| *i == id);
+            if d.get("enabled").and_then(|e| e.as_bool()) == Some(false) {
+                assert!(on_phone.is_none(), "{name}: disabled pin {id} listed");
+            } else if let Some(n) = d.get("name").and_then(|n| n.as_str()) {
+                assert_eq!(
+                    on_phone.map(|(_, n)| n.as_str()),
+                    Some(n),
+                    "{name}: device {id}"
+                );
+            }
+        }
+        // Flaps 0x00, pitch trim 0x1D, roll trim 0x1E (ICD Table 40): never a row.
+        for motor in [0x00, 0x1D, 0x1E] {
+            assert!(
+                !listed.iter().any(|(i, _)| *i == motor),
+                "{name}: motor {motor:#04x} listed as a circuit: {listed:?}"
+            );
+        }
+        assert!(st["motors"]["flaps"].is_object());
+    }
+}
+
 /// The pitch moves on the wire since `from`: (time, on).
 fn pitch_moves(rig: &Rig, from: usize) -> Vec<(Instant, bool)> {
     rig.sent(from)
@@ -553,10 +675,7 @@ fn pitch_moves(rig: &Rig, from: usize) -> Vec<(Instant, bool)> {
 fn a_lease_left_to_expire_is_stopped_on_the_wire_within_300_ms_and_a_tick() {
     let dir = tempfile::tempdir().unwrap();
     let (mut rig, base) = rig_with_remote(Some(dir.path().to_path_buf()));
-    let phone = Ask {
-        session: Some(pair(&mut rig, &base)),
-        origin: None,
-    };
+    let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
     let url = format!("{base}/api/motor/pitch");
     let p = phone.clone();
@@ -602,10 +721,7 @@ fn wait_for_stop(rig: &mut Rig, from: usize) -> Instant {
 #[test]
 fn an_explicit_stop_is_on_the_wire_within_150_ms_and_renewals_keep_the_run() {
     let (mut rig, base) = rig_with_remote(None);
-    let phone = Ask {
-        session: Some(pair(&mut rig, &base)),
-        origin: None,
-    };
+    let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
     let url = format!("{base}/api/motor/pitch");
     // Held for a second: a renewal every 100 ms, as the phone page sends them.
@@ -646,10 +762,7 @@ fn an_explicit_stop_is_on_the_wire_within_150_ms_and_renewals_keep_the_run() {
 fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
     let dir = tempfile::tempdir().unwrap();
     let (mut rig, base) = rig_with_remote(None);
-    let phone = Ask {
-        session: Some(pair(&mut rig, &base)),
-        origin: None,
-    };
+    let phone = pair(&mut rig, &base);
     let state_url = format!("{base}/api/state");
     let answer_url = format!("{base}/api/check/answer");
     let answer = |rig: &mut Rig, a: &str| {
@@ -712,11 +825,7 @@ fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
 #[test]
 fn stopping_the_remote_closes_its_socket_and_ends_every_session() {
     let (mut rig, base) = rig_with_remote(None);
-    let token = pair(&mut rig, &base);
-    let phone = Ask {
-        session: Some(token),
-        origin: None,
-    };
+    let phone = pair(&mut rig, &base);
     assert_eq!(phone.get(&format!("{base}/api/state")).status, 200);
     let addr = base.trim_start_matches("http://").to_string();
     // The overlay is shown: p stops the remote.
@@ -737,7 +846,7 @@ fn stopping_the_remote_closes_its_socket_and_ends_every_session() {
         crossterm::event::KeyEventKind::Press,
     );
     let url = rig.app.remote_url().expect("on again");
-    let base2 = url.split("/?pair=").next().unwrap().to_string();
+    let base2 = split_pairing_url(&url).0;
     assert_eq!(phone.get(&format!("{base2}/api/state")).status, 401);
     // The page quits: the socket closes with it.
     let addr2 = base2.trim_start_matches("http://").to_string();
@@ -748,10 +857,7 @@ fn stopping_the_remote_closes_its_socket_and_ends_every_session() {
 #[test]
 fn any_other_command_from_the_remote_stops_its_run_first() {
     let (mut rig, base) = rig_with_remote(None);
-    let phone = Ask {
-        session: Some(pair(&mut rig, &base)),
-        origin: None,
-    };
+    let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
     let (p, u) = (phone.clone(), format!("{base}/api/motor/pitch"));
     let a = during(&mut rig, move || {
@@ -786,20 +892,15 @@ fn bound_to_every_address_the_origin_is_the_address_the_phone_used() {
         .expect("the remote starts");
     let url = rig.app.remote_url().unwrap();
     assert!(!url.starts_with("http://0.0.0.0"), "{url}");
-    let port = url
-        .split("/?pair=")
-        .next()
-        .unwrap()
+    let port = split_pairing_url(&url)
+        .0
         .rsplit(':')
         .next()
         .unwrap()
         .to_string();
     let base = format!("http://127.0.0.1:{port}");
-    let token = pair(&mut rig, &base);
-    let with_origin = |origin: &str| Ask {
-        session: Some(token.clone()),
-        origin: Some(origin.to_string()),
-    };
+    let phone = pair(&mut rig, &base);
+    let with_origin = |origin: &str| phone.with_origin(origin);
     let state = format!("{base}/api/state");
     assert_eq!(with_origin(&base).get(&state).status, 200);
     for foreign in [
@@ -815,10 +916,7 @@ fn bound_to_every_address_the_origin_is_the_address_the_phone_used() {
 fn a_light_is_asked_is_it_lit_on_the_phone_and_the_answer_reaches_the_report() {
     let dir = tempfile::tempdir().unwrap();
     let (mut rig, base) = rig_with_remote(None);
-    let phone = Ask {
-        session: Some(pair(&mut rig, &base)),
-        origin: None,
-    };
+    let phone = pair(&mut rig, &base);
     let state_url = format!("{base}/api/state");
     let answer_url = format!("{base}/api/check/answer");
     rig.app.set_check_report_dir(Some(dir.path().to_path_buf()));

@@ -202,10 +202,20 @@ struct Hangar {
 impl Hangar {
     /// `None` (skipped, with a message) when there is no chromedriver and CI is unset.
     fn open() -> Option<Hangar> {
+        Hangar::open_with(None)
+    }
+
+    /// As [`Hangar::open`], the sim on a built-in scenario (`demo`, `install`) when
+    /// one is named, else on [`SCENARIO`].
+    fn open_with(built_in: Option<&str>) -> Option<Hangar> {
         let browser = Browser::start()?;
         let dir = tempfile::tempdir().unwrap();
         let scenario = dir.path().join("remote.toml");
         std::fs::write(&scenario, SCENARIO).unwrap();
+        let scenario = match built_in {
+            Some(name) => std::ffi::OsString::from(name),
+            None => scenario.into_os_string(),
+        };
         let mut sim = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
             .args(["sim", "--pty", "--scenario"])
             .arg(&scenario)
@@ -243,24 +253,56 @@ impl Hangar {
         })
     }
 
-    /// The pairing URL the page shows now, read from the terminal.
+    /// The pairing URL the page shows now, read from the terminal: the key (128
+    /// bits, 22 base64url characters) in its fragment.
     fn pairing_url(&self) -> String {
         let start = Instant::now();
-        let needle = format!("{}/?pair=", self.base);
+        let needle = format!("{}/#k=", self.base);
         loop {
             let screen = String::from_utf8_lossy(&self.term.output()).into_owned();
             if let Some(at) = screen.rfind(&needle) {
-                let code: String = screen[at + needle.len()..]
+                let key: String = screen[at + needle.len()..]
                     .chars()
-                    .take_while(char::is_ascii_digit)
+                    .take_while(|c| c.is_ascii_alphanumeric() || *c == '-' || *c == '_')
                     .collect();
-                if code.len() == 6 {
-                    return format!("{needle}{code}");
+                if key.len() == 22 {
+                    return format!("{needle}{key}");
                 }
             }
             assert!(
                 start.elapsed() < Duration::from_secs(10),
-                "the page showed no pairing URL {needle}NNNNNN"
+                "the page showed no pairing URL {needle}KEY"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    /// The five words the overlay shows now, read from the terminal: the last run of
+    /// five BIP-39 words after "and type the words".
+    fn pairing_words(&self) -> String {
+        let list = bip39::Language::English.word_list();
+        let start = Instant::now();
+        loop {
+            let screen = String::from_utf8_lossy(&self.term.output()).into_owned();
+            if let Some(at) = screen.rfind("and type the words") {
+                let plain = strip_csi(&screen[at..]);
+                let tokens: Vec<&str> = plain
+                    .split(|c: char| !c.is_ascii_lowercase())
+                    .filter(|t| !t.is_empty())
+                    .collect();
+                if let Some(w) = tokens
+                    .windows(5)
+                    .find(|w| w.iter().all(|t| list.contains(t)))
+                {
+                    return w.join(" ");
+                }
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(10),
+                "the page showed no words to type: {:?}",
+                screen
+                    .rfind("and type the words")
+                    .map(|at| &screen[at..(at + 600).min(screen.len())])
             );
             std::thread::sleep(Duration::from_millis(50));
         }
@@ -339,6 +381,26 @@ impl Hangar {
     }
 }
 
+/// `s` without its terminal control sequences (ESC [ … final byte), each one a space.
+fn strip_csi(s: &str) -> String {
+    let mut out = String::new();
+    let mut chars = s.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c == '\u{1b}' && chars.peek() == Some(&'[') {
+            chars.next();
+            for c in chars.by_ref() {
+                if ('@'..='~').contains(&c) {
+                    break;
+                }
+            }
+            out.push(' ');
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 fn trim_on(moves: &[(SystemTime, TrimMove)]) -> Vec<SystemTime> {
     moves
         .iter()
@@ -368,8 +430,12 @@ fn opening_the_url_pairs_and_the_list_is_live() {
     h.pair();
     let url = h.browser.url();
     assert!(
-        !url.contains("pair="),
-        "the code left in the address bar: {url}"
+        !url.contains("#k="),
+        "the key left in the address bar: {url}"
+    );
+    assert!(
+        h.browser.text("#typed").is_empty(),
+        "a scanned phone is not marked as typed"
     );
     h.wait_row_state("Nav Lt", "OFF", Duration::from_secs(5));
     h.wait_row_state("EFIS", "ON", Duration::from_secs(1));
@@ -385,22 +451,21 @@ fn opening_the_url_pairs_and_the_list_is_live() {
     h.wait_row_state("Nav Lt", "OFF", Duration::from_secs(4));
 }
 
-/// Without a code in the URL the phone asks for it: a wrong one is refused in words,
-/// the right one (typed as the page shows it, "482 913") pairs.
+/// Without a key in the URL the phone asks for the words: wrong ones are refused in
+/// words, the right ones (typed as a person might, capitals and commas) pair, and the
+/// phone says it was paired the weaker way.
 #[test]
-fn typing_the_code_pairs() {
+fn typing_the_words_pairs_and_the_phone_says_it_is_weaker() {
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let Some(h) = Hangar::open() else { return };
-    let url = h.pairing_url();
-    let code = &url[url.len() - 6..];
+    let words = h.pairing_words();
     h.browser.goto(&h.base);
     h.browser.wait_for(
         "the pairing form",
         "return !document.getElementById('pairing').classList.contains('hidden')",
         Duration::from_secs(5),
     );
-    let wrong = if code == "000000" { "111111" } else { "000000" };
-    h.browser.type_into("#pair-code", wrong);
+    h.browser.type_into("#pair-code", "zoo zoo zoo zoo zoo");
     h.browser.click("#pair-button");
     h.browser.wait_for(
         "the refusal",
@@ -409,26 +474,30 @@ fn typing_the_code_pairs() {
     );
     assert!(
         !h.browser.text("#pairing").is_empty(),
-        "still asks for a code"
+        "still asks for the words"
     );
     h.browser
         .exec("document.getElementById('pair-code').value = ''", json!([]));
     h.browser
-        .type_into("#pair-code", &format!("{} {}", &code[..3], &code[3..]));
+        .type_into("#pair-code", &words.to_uppercase().replace(' ', ", "));
     h.browser.click("#pair-button");
     h.wait_live();
     h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
+    let marked = h.browser.text("#typed");
+    assert!(
+        marked.starts_with("Paired by typed words: weaker than the QR code."),
+        "{marked:?}"
+    );
 }
 
-/// Five wrong codes in a row lock pairing: the right code after them is refused, and
-/// the phone says so, with the seconds left.
+/// Five wrong attempts in a row lock pairing: the right words after them are
+/// refused, and the phone says so, with the seconds left.
 #[test]
 fn five_wrong_codes_lock_pairing_in_words() {
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let Some(h) = Hangar::open() else { return };
-    let url = h.pairing_url();
-    let code = url[url.len() - 6..].to_string();
-    let wrong = if code == "000000" { "111111" } else { "000000" };
+    let words = h.pairing_words();
+    let wrong = "zoo zoo zoo zoo zoo";
     h.browser.goto(&h.base);
     h.browser.wait_for(
         "the pairing form",
@@ -436,7 +505,7 @@ fn five_wrong_codes_lock_pairing_in_words() {
         Duration::from_secs(5),
     );
     let mut said = Vec::new();
-    for attempt in [wrong, wrong, wrong, wrong, wrong, code.as_str()] {
+    for attempt in [wrong, wrong, wrong, wrong, wrong, words.as_str()] {
         h.browser.exec(
             "document.getElementById('pair-msg').textContent = ''",
             json!([]),
@@ -461,7 +530,7 @@ fn five_wrong_codes_lock_pairing_in_words() {
     };
     assert!(
         locked(&said[5]),
-        "the right code, after five wrong: {said:#?}"
+        "the right words, after five wrong: {said:#?}"
     );
     assert!(
         h.browser.text("#live").is_empty(),
@@ -510,6 +579,311 @@ fn a_tap_switches_a_circuit() {
         .filter(|(_, m)| matches!(m, Message::DevicePower(p) if p.device_id == 1))
         .collect();
     assert!(starter.is_empty(), "sent for the starter: {starter:?}");
+}
+
+/// The page's own SHA-256 and HMAC (a page on http:// has no `crypto.subtle`) give
+/// RFC 4231's HMAC-SHA-256 test cases 1, 2, 3, 4, 6 and 7 (6 and 7: a key longer
+/// than the block) and FIPS 180-4's SHA-256 examples, written here from the RFC and
+/// the standard; and signing a request takes well under 1 ms on the phone.
+#[test]
+fn the_pages_sha256_and_hmac_match_rfc_4231_and_signing_is_fast() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.browser.goto(&h.base);
+    h.browser.wait_for(
+        "the page",
+        "return !!window.vpxCrypto",
+        Duration::from_secs(5),
+    );
+    let key131 = "aa".repeat(131);
+    let cases = json!([
+        ["0b".repeat(20), hexs(b"Hi There"),
+         "b0344c61d8db38535ca8afceaf0bf12b881dc200c9833da726e9376c2e32cff7"],
+        [hexs(b"Jefe"), hexs(b"what do ya want for nothing?"),
+         "5bdcc146bf60754e6a042426089575c75a003f089d2739839dec58b964ec3843"],
+        ["aa".repeat(20), "dd".repeat(50),
+         "773ea91e36800e46854db8ebd09181a72959098b3ef8c122d9635514ced565fe"],
+        ["0102030405060708090a0b0c0d0e0f10111213141516171819", "cd".repeat(50),
+         "82558a389a443c0ea4cc819899f2083a85f0faa3e578f8077a2e3ff46729665b"],
+        [key131, hexs(b"Test Using Larger Than Block-Size Key - Hash Key First"),
+         "60e431591ee0b67f0d8a26aacbf5b77f8e0bc6213728c5140546040f0ee37f54"],
+        ["aa".repeat(131), hexs(b"This is a test using a larger than block-size key and a larger than block-size data. The key needs to be hashed before being used by the HMAC algorithm."),
+         "9b09ffa71b942fcb27635fbcd5b0e944bfdc63644f0713938a7f51535c3a35e2"],
+    ]);
+    let got = h.browser.exec(
+        "const c = window.vpxCrypto; \
+         const un = (s) => new Uint8Array((s.match(/../g) || []).map((x) => parseInt(x, 16))); \
+         return arguments[0].map(([k, m, want]) => [c.hex(c.hmacSha256(un(k), un(m))), want]) \
+           .concat([[c.hex(c.sha256(c.utf8('abc'))), \
+             'ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad'], \
+             [c.hex(c.sha256(c.utf8(''))), \
+             'e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855'], \
+             [c.hex(c.sha256(c.utf8('abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq'))), \
+             '248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1']]);",
+        json!([cases]),
+    );
+    for pair in got.as_array().unwrap() {
+        assert_eq!(pair[0], pair[1], "the page's digest against the reference");
+    }
+    // Signing as the page does for a tap: a thousand of them, timed by the page.
+    let per = h.browser.exec(
+        "const c = window.vpxCrypto; const key = new Uint8Array(16).fill(7); \
+         const msg = 'vpx-efis/1\\n00112233445566778899aabbccddeeff\\n12345\\n987654\\nPOST\\n\
+/api/device/17/power\\n{\"on\":true}'; \
+         const t0 = performance.now(); \
+         for (let i = 0; i < 1000; i++) c.hmacSha256(key, c.utf8(msg + i)); \
+         return (performance.now() - t0) / 1000;",
+        json!([]),
+    );
+    let per = per.as_f64().unwrap();
+    eprintln!("signing a request on the page: {:.1} µs", per * 1000.0);
+    assert!(per < 1.0, "signing took {per:.3} ms a request");
+}
+
+fn hexs(b: &[u8]) -> String {
+    b.iter().map(|x| format!("{x:02x}")).collect()
+}
+
+/// Wraps `fetch` in every page before its own script runs (DevTools'
+/// `Page.addScriptToEvaluateOnNewDocument`): each request the page makes is kept, as
+/// a listener on the WiFi would see it, in `window.__captured` (the events stream's
+/// too) and in localStorage, which outlives a page left.
+const CAPTURE: &str = "
+    (() => {
+      const real = window.fetch;
+      window.__captured = [];
+      window.fetch = function (input, init) {
+        init = init || {};
+        window.__captured.push({ method: init.method || 'GET', path: String(input),
+          headers: Object.assign({}, init.headers || {}), body: init.body || '' });
+        return real.apply(this, arguments);
+      };
+    })();";
+
+/// A captured request, sent again from a plain HTTP client with the Origin the
+/// browser added: status and the error's words.
+fn replay(base: &str, req: &serde_json::Value, body: Option<&str>) -> (u16, String) {
+    let url = format!("{base}{}", req["path"].as_str().unwrap());
+    let agent: ureq::Agent = ureq::Agent::config_builder()
+        .http_status_as_error(false)
+        .timeout_global(Some(Duration::from_secs(5)))
+        .build()
+        .into();
+    let headers = req["headers"].as_object().unwrap();
+    let body = body.unwrap_or(req["body"].as_str().unwrap_or(""));
+    let resp = match req["method"].as_str().unwrap() {
+        "GET" => {
+            let mut r = agent.get(&url).header("Origin", base);
+            for (k, v) in headers {
+                r = r.header(k, v.as_str().unwrap());
+            }
+            r.call()
+        }
+        _ => {
+            let mut r = agent.post(&url).header("Origin", base);
+            for (k, v) in headers {
+                r = r.header(k, v.as_str().unwrap());
+            }
+            r.send(body)
+        }
+    };
+    let mut resp = resp.expect("an answer");
+    let status = resp.status().as_u16();
+    let text = resp.body_mut().read_to_string().unwrap_or_default();
+    let words = serde_json::from_str::<serde_json::Value>(&text)
+        .ok()
+        .and_then(|v| v["error"].as_str().map(str::to_string))
+        .unwrap_or(text);
+    (status, words)
+}
+
+/// Issue 36's listener: Chromium at phone size pairs by the QR code's URL and
+/// switches a circuit; every request it made, captured whole (method, path, headers,
+/// body), is sent again from a plain HTTP client: refused, and nothing reaches the
+/// unit; altered (another state, another device), refused. The phone still works
+/// afterwards. The same for a held trim's lease renewals: sent again, they run
+/// nothing.
+#[test]
+fn a_listener_replaying_what_the_phone_sent_is_refused_and_nothing_reaches_the_unit() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    let Some(h) = Hangar::open() else { return };
+    h.browser.cdp(
+        "Page.addScriptToEvaluateOnNewDocument",
+        json!({ "source": CAPTURE }),
+    );
+    h.pair();
+    h.wait_row_state("Landing Lt", "OFF", Duration::from_secs(5));
+    h.browser.click("#devices .device[data-id='17'] button.act");
+    h.wait_row_state("Landing Lt", "ON", Duration::from_secs(4));
+    let captured = h.browser.exec("return window.__captured", json!([]));
+    let find = |method: &str, path: &str| {
+        captured
+            .as_array()
+            .unwrap()
+            .iter()
+            .rev()
+            .find(|r| r["method"] == method && r["path"] == path)
+            .cloned()
+            .unwrap_or_else(|| panic!("no {method} {path} captured: {captured}"))
+    };
+    let pair = find("POST", "/api/pair");
+    let power = find("POST", "/api/device/17/power");
+    let events = find("GET", "/api/events");
+    assert_eq!(power["body"], r#"{"on":true}"#);
+    let headers = power["headers"].as_object().unwrap();
+    assert!(
+        headers.contains_key("X-Vpx-Mac") && !headers.contains_key("Cookie"),
+        "signed, with no cookie to steal: {power}"
+    );
+    let powers = |h: &Hangar| {
+        (h.tap.sent().into_iter())
+            .filter(|(_, m)| matches!(m, Message::DevicePower(_)))
+            .count()
+    };
+    let before = powers(&h);
+    assert_eq!(before, 1, "the phone's tap sent one DEVICE_POWER");
+    // The replays and the forgeries.
+    assert_eq!(replay(&h.base, &pair, None), (401, "wrong code".into()));
+    assert_eq!(
+        replay(&h.base, &power, None),
+        (401, "replayed counter".into())
+    );
+    assert_eq!(
+        replay(&h.base, &power, Some(r#"{"on":false}"#)),
+        (401, "bad signature".into())
+    );
+    let mut other = power.clone();
+    other["path"] = json!("/api/device/2/power");
+    assert_eq!(
+        replay(&h.base, &other, Some(r#"{"on":false}"#)),
+        (401, "bad signature".into())
+    );
+    assert_eq!(
+        replay(&h.base, &events, None),
+        (401, "replayed counter".into())
+    );
+    std::thread::sleep(Duration::from_millis(500));
+    assert_eq!(powers(&h), before, "a replay reached the unit");
+    // The phone goes on: the light off from the phone.
+    h.browser.click("#devices .device[data-id='17'] button.act");
+    h.wait_row_state("Landing Lt", "OFF", Duration::from_secs(4));
+    assert_eq!(powers(&h), before + 1);
+
+    // A held trim: its renewals captured, the run over, then sent again.
+    h.browser.exec("window.__captured = []", json!([]));
+    h.browser
+        .touch_hold("#motor-pitch-up", Duration::from_millis(600));
+    std::thread::sleep(Duration::from_millis(600));
+    let captured = h.browser.exec("return window.__captured", json!([]));
+    let renewals: Vec<serde_json::Value> = (captured.as_array().unwrap().iter())
+        .filter(|r| r["path"] == "/api/motor/pitch" && r["body"] == r#"{"direction":"up"}"#)
+        .cloned()
+        .collect();
+    assert!(renewals.len() >= 3, "{captured}");
+    let ran = trim_on(&h.tap.trim_moves()).len();
+    assert!(ran > 0, "the trim never ran for the phone");
+    for r in &renewals {
+        assert_eq!(replay(&h.base, r, None), (401, "replayed counter".into()));
+    }
+    std::thread::sleep(Duration::from_millis(500));
+    assert_eq!(
+        trim_on(&h.tap.trim_moves()).len(),
+        ran,
+        "a replayed renewal ran the trim"
+    );
+}
+
+/// Issue 35 item 4, on the phone: against the `demo` and `install` scenarios the
+/// list holds the enabled devices by name (every name the scenario file gives, no pin
+/// it disables) and no flap or trim row; the motors fitted show under MOTORS only.
+#[test]
+fn the_phone_lists_the_enabled_devices_by_name_and_motors_only_under_motors() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+    for name in ["demo", "install"] {
+        let Some(h) = Hangar::open_with(Some(name)) else {
+            return;
+        };
+        h.pair();
+        let toml: toml::Table = std::fs::read_to_string(format!(
+            "{}/assets/scenarios/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap()
+        .parse()
+        .unwrap();
+        let devices = toml["device"].as_array().unwrap();
+        // Wait until the enable flags are read: no disabled pin left on the list.
+        let disabled: Vec<i64> = (devices.iter())
+            .filter(|d| d.get("enabled").and_then(|e| e.as_bool()) == Some(false))
+            .map(|d| d["id"].as_integer().unwrap())
+            .collect();
+        // ... and the names read: the page's connect reads both (until then it shows
+        // a pin's own name, as the page does).
+        let names: Vec<(i64, String)> = (devices.iter())
+            .filter_map(|d| Some((d["id"].as_integer()?, d.get("name")?.as_str()?.to_string())))
+            .collect();
+        let names_js = serde_json::to_string(&names).unwrap();
+        h.browser.wait_for(
+            "the disabled pins gone from the list and the names read",
+            &format!(
+                "const rows = [...document.querySelectorAll('#devices .device')]; \
+                 const ids = rows.map((r) => Number(r.dataset.id)); \
+                 const name = (id) => {{ const r = rows.find((r) => Number(r.dataset.id) === id); \
+                   return r ? r.querySelector('.name').textContent : null; }}; \
+                 return ids.length > 0 && {disabled:?}.every((d) => !ids.includes(d)) \
+                   && {names_js}.every(([id, n]) => name(id) === n)"
+            ),
+            Duration::from_secs(10),
+        );
+        let rows = h.browser.exec(
+            "return [...document.querySelectorAll('#devices .device')].map((r) => \
+             [Number(r.dataset.id), r.querySelector('.name').textContent, \
+              r.querySelector('button.act').textContent])",
+            json!([]),
+        );
+        let rows: Vec<(i64, String, String)> = (rows.as_array().unwrap().iter())
+            .map(|r| {
+                (
+                    r[0].as_i64().unwrap(),
+                    r[1].as_str().unwrap().to_string(),
+                    r[2].as_str().unwrap().to_string(),
+                )
+            })
+            .collect();
+        for d in devices {
+            let id = d["id"].as_integer().unwrap();
+            let row = rows.iter().find(|r| r.0 == id);
+            if disabled.contains(&id) {
+                assert!(row.is_none(), "{name}: disabled pin {id} listed: {rows:?}");
+            } else if let Some(n) = d.get("name").and_then(|n| n.as_str()) {
+                assert_eq!(row.map(|r| r.1.as_str()), Some(n), "{name}: device {id}");
+            }
+        }
+        // Flaps 0x00, pitch trim 0x1D, roll trim 0x1E (ICD Table 40).
+        for motor in [0x00, 0x1D, 0x1E] {
+            assert!(
+                !rows.iter().any(|r| r.0 == motor),
+                "{name}: motor {motor:#04x} listed as a circuit: {rows:?}"
+            );
+        }
+        let cards = h.browser.exec(
+            "return [...document.querySelectorAll('#motors .motor:not(.hidden)')].map((m) => \
+             m.dataset.motor)",
+            json!([]),
+        );
+        let fitted: Vec<&str> = ["flap", "pitch_trim", "roll_trim"]
+            .into_iter()
+            .zip(["flaps", "pitch", "roll"])
+            .filter(|(t, _)| {
+                toml.get(*t)
+                    .and_then(|s| s.as_table())
+                    .is_some_and(|s| s.get("enabled").and_then(|e| e.as_bool()) != Some(false))
+            })
+            .map(|(_, m)| m)
+            .collect();
+        assert_eq!(cards, json!(fitted), "{name}: the motors under MOTORS");
+        eprintln!("{name}: {} rows on the phone", rows.len());
+    }
 }
 
 /// The installation check started at the laptop: the phone shows its DO NOW prompt

@@ -19,6 +19,7 @@ mod common;
 mod page_rig;
 
 use common::cpu::process_cpu_time;
+use common::phone::Phone;
 use common::sim_process::{Kill, sim_pty};
 use page_rig::terminal::{Term, find, page};
 
@@ -38,11 +39,16 @@ fn free_port() -> u16 {
         .port()
 }
 
-/// The pairing code in the page's output (the overlay's URL).
-fn code_in(out: &[u8]) -> Option<String> {
-    let at = find(out, b"?pair=")? + 6;
-    let digits: String = out[at..].iter().take(6).map(|&b| b as char).collect();
-    (digits.len() == 6 && digits.bytes().all(|b| b.is_ascii_digit())).then_some(digits)
+/// The pairing URL in the page's output (the overlay's, with its key: 22 base64url
+/// characters).
+fn url_in(out: &[u8], base: &str) -> Option<String> {
+    let at = find(out, format!("{base}/#k=").as_bytes())?;
+    let url: String = out[at..]
+        .iter()
+        .map(|&b| b as char)
+        .take_while(|c| c.is_ascii_alphanumeric() || ":/.#=_-".contains(*c))
+        .collect();
+    (url.len() == base.len() + 4 + 22).then_some(url)
 }
 
 #[test]
@@ -61,9 +67,9 @@ fn the_page_is_idle_with_a_phone_listening_to_its_events() {
     }
     let child = Kill(child);
     let start = Instant::now();
-    let code = loop {
-        if let Some(c) = code_in(&term.output()) {
-            break c;
+    let url = loop {
+        if let Some(u) = url_in(&term.output(), &base) {
+            break u;
         }
         assert!(
             start.elapsed() < Duration::from_secs(10),
@@ -72,33 +78,11 @@ fn the_page_is_idle_with_a_phone_listening_to_its_events() {
         );
         std::thread::sleep(Duration::from_millis(20));
     };
-    let agent: ureq::Agent = ureq::Agent::config_builder()
-        .http_status_as_error(false)
-        .build()
-        .into();
-    let r = agent
-        .post(&format!("{base}/api/pair"))
-        .send_json(serde_json::json!({ "code": code }))
-        .expect("pairing");
-    assert_eq!(r.status(), 200);
-    let cookie = r
-        .headers()
-        .get("set-cookie")
-        .unwrap()
-        .to_str()
-        .unwrap()
-        .split(';')
-        .next()
-        .unwrap()
-        .to_string();
-    // The phone: the events stream, counting the states it hears.
+    let phone = Phone::scan(&url).expect("pairing");
+    // The phone: the events stream, signed, counting the states it hears.
     let heard = Arc::new(AtomicUsize::new(0));
     let h = heard.clone();
-    let events = agent
-        .get(&format!("{base}/api/events"))
-        .header("Cookie", &cookie)
-        .call()
-        .expect("the events stream");
+    let events = phone.events();
     std::thread::spawn(move || {
         let mut lines = BufReader::new(events.into_body().into_reader()).lines();
         while let Some(Ok(line)) = lines.next() {
@@ -221,7 +205,7 @@ fn off_the_remote_has_no_thread_and_no_socket() {
     term.typed(b"p");
     wait("no remote thread after p", &remote_thread);
     wait("the pairing URL", &|| {
-        find(&term.output(), b"?pair=").is_some()
+        find(&term.output(), b"/#k=").is_some()
     });
     assert_eq!(listening(pid), 1, "the remote listens on one socket");
     term.typed(b"p");

@@ -1,7 +1,10 @@
-//! The walk-around remote's overlay on the page (TestBackend): the URL as text, the
-//! same URL as a QR code that holds exactly the code's modules with its quiet zone,
-//! dark on light in every palette, the code in words and the count of phones, also
-//! in the title; legible without colour.
+//! The walk-around remote's overlay on the page (TestBackend): the URL with its key as
+//! text and as a QR code that holds exactly the code's modules with its quiet zone,
+//! dark on light in every palette (NO_COLOR included: not reverse video), read back
+//! from the drawn cells by a QR decoder (`rqrr`) as a phone's camera would see them on
+//! light and dark terminals; the address and words for a phone without a camera,
+//! what is protected, and the count of phones (those paired by typed words marked),
+//! also in the title.
 
 use std::time::Instant;
 
@@ -12,25 +15,51 @@ use ratatui::style::{Color, Modifier};
 use vpx_efis::model::{Model, Source};
 use vpx_efis::ui;
 use vpx_efis::ui::palette::Palette;
+use vpx_efis::ui::palette::rgb;
 use vpx_efis::ui::remote::qr_rows;
 use vpx_efis::ui::state::{ControlState, Overlay, RemoteView, ViewState};
 
 mod themes;
 
-const URL: &str = "http://192.168.1.20:8750/?pair=482913";
+/// A key of 128 bits in base64url, as the remote makes them.
+const URL: &str = "http://192.168.1.20:8750/#k=q83vEjRWeJCrze8SNFZ4kA";
+const WORDS: &str = "abandon ability able about above";
 
-fn view(paired: usize) -> ViewState {
+fn view(paired: usize, typed: usize) -> ViewState {
     ViewState {
         overlay: Overlay::Remote,
         remote: Some(RemoteView {
             url: URL.into(),
-            code: "482913".into(),
+            address: "http://192.168.1.20:8750/".into(),
+            words: WORDS.into(),
             paired,
+            typed,
             loopback_only: false,
             qr: [qr_rows(URL, 4), qr_rows(URL, 2)],
         }),
         ..ViewState::default()
     }
+}
+
+/// The overlay alone on an empty screen, its words unwrapped into one line.
+fn overlay_words(view: &ViewState, w: u16, h: u16) -> String {
+    let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+    terminal
+        .draw(|f| ui::remote::render(f, view.remote.as_ref().unwrap()))
+        .unwrap();
+    let t = text(terminal.backend().buffer());
+    t.chars()
+        .map(|c| {
+            if "█▀▄│╭╮╰╯─".contains(c) {
+                ' '
+            } else {
+                c
+            }
+        })
+        .collect::<String>()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 fn draw(view: &ViewState, w: u16, h: u16) -> Buffer {
@@ -127,19 +156,27 @@ fn modules_wanted(zone: usize) -> Vec<Vec<bool>> {
 }
 
 #[test]
-fn the_overlay_shows_the_url_the_qr_code_the_code_and_the_phones() {
-    let buf = draw(&view(2), 100, 40);
+fn the_overlay_shows_the_url_the_qr_code_the_words_and_the_phones() {
+    let buf = draw(&view(2, 0), 100, 40);
     insta::assert_snapshot!(text(&buf));
     let t = text(&buf);
-    assert!(t.contains(&format!("open {URL}")), "{t}");
-    assert!(t.contains("pairing code 482 913"), "{t}");
-    assert!(t.contains("2 phones paired"), "{t}");
+    assert!(t.contains(&format!("or open {URL}")), "{t}");
     assert!(
         t.lines()
             .next()
             .unwrap()
             .contains("REMOTE: 2 phones paired")
     );
+    let words = overlay_words(&view(2, 0), 100, 40);
+    for want in [
+        "No camera? Open http://192.168.1.20:8750/ and type the words",
+        WORDS,
+        vpx_efis::remote::PROTECTED,
+        "2 phones paired",
+    ] {
+        assert!(words.contains(want), "{want:?} missing: {words}");
+    }
+    assert!(!words.contains("typed words"), "{words}");
     assert_eq!(
         modules_drawn(&buf),
         modules_wanted(4),
@@ -147,22 +184,65 @@ fn the_overlay_shows_the_url_the_qr_code_the_code_and_the_phones() {
     );
 }
 
+/// A phone paired by typed words is marked, with what it risks, in the overlay and
+/// the title.
 #[test]
-fn on_80x24_the_code_keeps_a_quiet_zone_of_two_and_everything_fits() {
-    let buf = draw(&view(0), 80, 24);
+fn a_phone_paired_by_typed_words_is_marked() {
+    let buf = draw(&view(2, 1), 120, 40);
+    let t = text(&buf);
+    assert!(
+        t.lines()
+            .next()
+            .unwrap()
+            .contains("REMOTE: 2 phones paired, 1 by typed words"),
+        "{t}"
+    );
+    let words = overlay_words(&view(2, 1), 120, 40);
+    assert!(
+        words.contains(&format!(
+            "2 phones paired, 1 by typed words {}",
+            vpx_efis::ui::remote::TYPED_RISK
+        )),
+        "{words}"
+    );
+    let narrow = text(&draw(&view(1, 1), 80, 24));
+    assert!(
+        narrow
+            .lines()
+            .next()
+            .unwrap()
+            .contains("REMOTE: 1 paired (1 typed)"),
+        "{narrow}"
+    );
+}
+
+#[test]
+fn on_80x24_the_words_go_beside_the_code_and_it_keeps_its_full_quiet_zone() {
+    let buf = draw(&view(0, 0), 80, 24);
     insta::assert_snapshot!(text(&buf));
     let t = text(&buf);
-    for words in [URL, "pairing code 482 913", "no phone paired", "unpair all"] {
+    for words in [URL, WORDS, "no phone paired", "unpair all"] {
         assert!(t.contains(words), "{words} missing:\n{t}");
     }
-    assert_eq!(modules_drawn(&buf), modules_wanted(2));
+    assert!(
+        overlay_words(&view(0, 0), 80, 24).contains(vpx_efis::remote::PROTECTED),
+        "what is protected, at 80x24"
+    );
+    assert_eq!(modules_drawn(&buf), modules_wanted(4));
 }
 
 #[test]
 fn the_code_is_dark_on_light_in_every_palette_and_legible_without_colour() {
-    let buf = draw(&view(1), 100, 40);
+    let buf = draw(&view(1, 0), 100, 40);
     let cells = qr_cells(&buf);
-    for palette in [Palette::Dark, Palette::Light, Palette::Terminal] {
+    // NO_COLOR too: the code is a picture that must be dark on light to scan, so it
+    // keeps its two colours there, never reverse video.
+    for palette in [
+        Palette::Dark,
+        Palette::Light,
+        Palette::Terminal,
+        Palette::Mono,
+    ] {
         let p = themes::painted(&buf, palette);
         for &(x, y) in &cells {
             assert_eq!(
@@ -170,29 +250,111 @@ fn the_code_is_dark_on_light_in_every_palette_and_legible_without_colour() {
                 (Color::Indexed(16), Color::Indexed(231)),
                 "{palette:?} at {x},{y}"
             );
+            assert!(
+                !p[(x, y)].modifier.contains(Modifier::REVERSED),
+                "{palette:?} at {x},{y}"
+            );
         }
     }
     themes::check_themes("remote_overlay", &buf);
-    // NO_COLOR: no colour at all; the code's cells in reverse video (dark glyphs on
-    // the terminal's text colour), and every word still there.
+    // Without colour every word is still there, and nothing but the code has colour.
     let mono = themes::painted(&buf, Palette::Mono);
-    for &(x, y) in &cells {
-        let c = &mono[(x, y)];
-        assert_eq!((c.fg, c.bg), (Color::Reset, Color::Reset));
-        assert!(c.modifier.contains(Modifier::REVERSED), "{x},{y}");
-    }
     let t = text(&mono);
-    for words in [
-        URL,
-        "pairing code 482 913",
-        "1 phone paired",
-        "REMOTE: 1 phone paired",
-    ] {
+    for words in [URL, WORDS, "1 phone paired", "REMOTE: 1 phone paired"] {
         assert!(t.contains(words), "{words} missing without colour:\n{t}");
     }
-    assert!(
-        mono.content
-            .iter()
-            .all(|c| c.fg == Color::Reset && c.bg == Color::Reset)
-    );
+    let qr: std::collections::HashSet<_> = cells.into_iter().collect();
+    let w = mono.area.width;
+    for (i, c) in mono.content.iter().enumerate() {
+        let at = (i as u16 % w, i as u16 / w);
+        if !qr.contains(&at) {
+            assert_eq!((c.fg, c.bg), (Color::Reset, Color::Reset), "{at:?}");
+        }
+    }
+}
+
+/// The terminal's own text and background colours, for cells that use them.
+#[derive(Clone, Copy, Debug)]
+enum Term {
+    Dark,
+    Light,
+}
+
+/// The screen as a camera sees it: `SCALE` pixels a module across, two modules a cell
+/// down (half blocks), each pixel's grey from the cell's colours as the terminal shows
+/// them (reverse video swapped, the terminal's defaults for Reset). Text other than
+/// the code's blocks is a blob of its colour in the middle of its cell.
+fn photograph(buf: &Buffer, term: Term) -> (usize, usize, Vec<u8>) {
+    const SCALE: usize = 4;
+    let (w, h) = (buf.area.width as usize, buf.area.height as usize);
+    let (pw, ph) = (w * SCALE, h * 2 * SCALE);
+    let (text_grey, page_grey) = match term {
+        Term::Dark => (230u8, 20u8),
+        Term::Light => (20u8, 250u8),
+    };
+    let grey = |c: Color, default: u8| match rgb(c) {
+        Some(v) => (v.luminance() * 255.0).round() as u8,
+        None => default,
+    };
+    let mut px = vec![0u8; pw * ph];
+    for y in 0..h {
+        for x in 0..w {
+            let cell = &buf[(x as u16, y as u16)];
+            let (mut fg, mut bg) = (grey(cell.fg, text_grey), grey(cell.bg, page_grey));
+            if cell.modifier.contains(Modifier::REVERSED) {
+                std::mem::swap(&mut fg, &mut bg);
+            }
+            let sym = cell.symbol();
+            let (top, bottom) = match sym {
+                "█" => (true, true),
+                "▀" => (true, false),
+                "▄" => (false, true),
+                _ => (false, false),
+            };
+            let blob = !matches!(sym, "█" | "▀" | "▄" | " " | "");
+            for dy in 0..2 * SCALE {
+                for dx in 0..SCALE {
+                    let on = if dy < SCALE { top } else { bottom }
+                        || (blob
+                            && (1..SCALE - 1).contains(&dx)
+                            && (2..2 * SCALE - 2).contains(&dy));
+                    px[(y * 2 * SCALE + dy) * pw + x * SCALE + dx] = if on { fg } else { bg };
+                }
+            }
+        }
+    }
+    (pw, ph, px)
+}
+
+/// What a QR decoder reads off the photographed screen: every code it finds.
+fn decoded(buf: &Buffer, term: Term) -> Vec<String> {
+    let (w, h, px) = photograph(buf, term);
+    let mut img = rqrr::PreparedImage::prepare_from_greyscale(w, h, |x, y| px[y * w + x]);
+    img.detect_grids()
+        .into_iter()
+        .filter_map(|g| g.decode().ok().map(|(_, text)| text))
+        .collect()
+}
+
+/// Issue 35 item 6: a decoder reads the URL off the drawn cells in the dark and light
+/// themes and without colour, on dark and light terminals, at 80x24 and 120x40.
+#[test]
+fn a_qr_decoder_reads_the_url_off_the_drawn_cells_in_every_theme_and_size() {
+    for (w, h) in [(80, 24), (120, 40)] {
+        let buf = draw(&view(1, 0), w, h);
+        for (palette, terms) in [
+            (Palette::Dark, &[Term::Dark, Term::Light][..]),
+            (Palette::Light, &[Term::Light][..]),
+            (Palette::Mono, &[Term::Dark, Term::Light][..]),
+        ] {
+            let painted = themes::painted(&buf, palette);
+            for &term in terms {
+                assert_eq!(
+                    decoded(&painted, term),
+                    vec![URL.to_string()],
+                    "{palette:?} on a {term:?} terminal at {w}x{h}"
+                );
+            }
+        }
+    }
 }

@@ -88,7 +88,7 @@ impl App {
         self.dirty = true;
     }
 
-    /// The remote's URL with its pairing code, while it is on.
+    /// The remote's URL with its pairing key, while it is on.
     pub fn remote_url(&self) -> Option<String> {
         self.remote.server.as_ref().map(Remote::pairing_url)
     }
@@ -127,7 +127,7 @@ impl App {
                             LogLevel::Info,
                             "remote: every phone unpaired".into(),
                         );
-                        "every phone is unpaired: pair again with the code".to_string()
+                        "every phone is unpaired: pair again by the QR code".to_string()
                     }
                     None => "the remote is off (p starts it)".to_string(),
                 };
@@ -186,21 +186,24 @@ impl App {
         let old = self.view.remote.as_ref();
         if let (Some(s), Some(v)) = (&self.remote.server, old)
             && v.paired == s.paired()
-            && v.code == s.code()
+            && v.typed == s.typed()
+            && v.words == s.words()
         {
             return;
         }
         let view = self.remote.server.as_ref().map(|s| {
             let url = s.pairing_url();
-            // The QR code is made again only for a new code.
+            // The QR code is made again only for a new key.
             let qr = match old {
                 Some(v) if v.url == url => v.qr.clone(),
                 _ => [4, 2].map(|zone| crate::ui::remote::qr_rows(&url, zone)),
             };
             RemoteView {
                 url,
-                code: s.code(),
+                address: s.base_url(),
+                words: s.words(),
                 paired: s.paired(),
+                typed: s.typed(),
                 loopback_only: self.remote.loopback_only,
                 qr,
             }

@@ -11,12 +11,16 @@
 //!
 //! The API is the contract of the guide (`docs/src/remote.md`, and the routes in
 //! [`routes`], from which its HTTP API page is generated):
-//! [`server`] holds the routes, [`pairing`] the code and the sessions, [`state`] the
-//! JSON state with the model's staleness.
+//! [`server`] holds the routes, [`pairing`] the offer and the sessions, [`signing`]
+//! the signed requests, [`state`] the JSON state with the model's staleness.
+//!
+//! What is protected, in one sentence (the overlay and the guide say it too):
+//! [`PROTECTED`].
 
 pub mod pairing;
 pub mod routes;
 pub mod server;
+pub mod signing;
 pub mod state;
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener, UdpSocket};
@@ -30,6 +34,10 @@ use crate::control::Direction;
 use crate::model::{Model, Motor};
 
 pub use state::{Answer, CheckPrompt, PageSide};
+
+/// What a listener on the network can and cannot do, as the overlay and the README
+/// say it.
+pub const PROTECTED: &str = "Anyone on this WiFi can see the circuits' states, but only a paired phone can act: its key never crosses the network.";
 
 /// The port the remote listens on unless told otherwise.
 pub const DEFAULT_PORT: u16 = 8750;
@@ -163,20 +171,29 @@ impl Remote {
         self.addr
     }
 
-    /// The URL with the pairing code in it, as the page shows it and its QR code
-    /// holds it.
+    /// The URL with the pairing key in its fragment, as the QR code holds it.
     pub fn pairing_url(&self) -> String {
-        format!("http://{}/?pair={}", self.shown, self.code())
+        format!("http://{}/#k={}", self.shown, self.shared.pairing().key())
     }
 
-    /// The pairing code now.
-    pub fn code(&self) -> String {
-        self.shared.pairing().code().to_string()
+    /// The page's address without the key: what a person types.
+    pub fn base_url(&self) -> String {
+        format!("http://{}/", self.shown)
+    }
+
+    /// The words a phone without a camera types now.
+    pub fn words(&self) -> String {
+        self.shared.pairing().words().to_string()
     }
 
     /// How many phones are paired.
     pub fn paired(&self) -> usize {
         self.shared.pairing().paired()
+    }
+
+    /// How many of them by typed words.
+    pub fn typed(&self) -> usize {
+        self.shared.pairing().typed()
     }
 
     /// Ends every phone's session.

@@ -15,7 +15,13 @@ pub struct Route {
 /// What every `/api/*` route but `/api/pair` answers without a paired session, and
 /// what any route answers to a foreign `Origin`, before its own handler runs.
 pub const GATE: &str = "Every `/api/*` route but `/api/pair` answers 401 \
-    `{\"error\":\"not paired\"}` without a valid session, and changes nothing. A request whose \
+    `{\"error\":\"not paired\"}` without a valid session, and 401 with the refusal's words \
+    (`\"bad signature\"`, `\"replayed counter\"`, `\"stale request\"`, `\"unsigned or \
+    malformed signature\"`) without a valid signature, and changes nothing. A request is signed \
+    by four headers: `X-Vpx-Session`, `X-Vpx-Counter` (only grows), `X-Vpx-Time` (the laptop's \
+    clock in ms, which every answer carries as `X-Vpx-Now`) and `X-Vpx-Mac`, the HMAC-SHA-256 \
+    in hex of `vpx-efis/1\\n{session}\\n{counter}\\n{time}\\n{METHOD}\\n{path}\\n{body}` \
+    (`src/remote/signing.rs`). A request whose \
     `Origin` header is not the page's own (`http://ADDR:PORT`) gets 403 \
     `{\"error\":\"origin\"}` before anything else; a request without `Origin` (a script) is \
     judged by its session alone. A path that is no route gets 404 \
@@ -27,14 +33,14 @@ pub const ROUTES: &[Route] = &[
         path: "/",
         body: "",
         answers: "the phone page (compiled in); no session needed, no data in it. \
-                  `?pair=CODE` pairs",
+                  `#k=KEY` pairs (the fragment never reaches the laptop)",
     },
     Route {
         method: "POST",
         path: "/api/pair",
-        body: "`{\"code\":\"482913\"}`",
-        answers: "200 `{\"paired\":true}` and `Set-Cookie: vpx_session=…; HttpOnly; \
-                  SameSite=Strict; Path=/`; 401 `{\"error\":\"wrong code\"}`; 429 \
+        body: "signed with the QR code's key, or with SHA-256 of `vpx-efis typed pairing\\n` \
+               and the typed words (session empty, counter and time 0)",
+        answers: "200 `{\"paired\":true,\"session\":\"…\",\"typed\":false,\"now_ms\":N}`; 401 `{\"error\":\"wrong code\"}`; 429 \
                   `{\"error\":\"locked\",\"retry_after_s\":N}` with `Retry-After: N`",
     },
     Route {

@@ -3,9 +3,11 @@
 //! [`Request`], whose answer it waits for: the page carries it out through `control`
 //! (nothing here sends anything to the unit).
 //!
-//! Before any route: a foreign `Origin` gets 403, then every `/api/*` route but
-//! `/api/pair` without a valid session gets 401, so nothing reaches a handler, let
-//! alone the page, without a paired phone.
+//! Before any route: a foreign `Origin` gets 403; then every `/api/*` route but
+//! `/api/pair` needs a paired session (401 "not paired") and a request signed with
+//! its key ([`super::signing`]: 401 with the refusal's words), so nothing reaches a
+//! handler, let alone the page, that a listener could have sent. `/api/pair` checks
+//! its own signature against the offer ([`super::pairing`]).
 
 use std::convert::Infallible;
 use std::net::SocketAddr;
@@ -14,6 +16,7 @@ use std::time::{Duration, Instant};
 
 use axum::Json;
 use axum::Router;
+use axum::body::{Body, Bytes};
 use axum::extract::{Path, Request as HttpRequest, State as Ctx};
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::middleware::{self, Next};
@@ -25,7 +28,8 @@ use serde::Deserialize;
 use serde_json::json;
 use tokio::sync::{Notify, oneshot};
 
-use super::pairing::{PairResult, Pairing};
+use super::pairing::{Denied, How, PairResult, Pairing};
+use super::signing::{self, Claim};
 use super::state::{self, PageSide};
 use super::{Command, Reply, Request};
 use crate::control::Direction;
@@ -33,8 +37,8 @@ use crate::model::{Model, Motor, TrimKind};
 
 /// The phone page, compiled in.
 const INDEX: &str = include_str!("../../assets/remote/index.html");
-/// The session cookie's name.
-pub const COOKIE: &str = "vpx_session";
+/// The largest request body taken: every one the phone sends is a few bytes.
+const MAX_BODY: usize = 4096;
 /// The longest the events stream goes without sending the state: the phone's sign
 /// that the page is alive.
 pub const HEARTBEAT: Duration = Duration::from_millis(1000);
@@ -55,6 +59,8 @@ pub struct Shared {
     published: Mutex<(u64, Option<String>)>,
     /// Poked by the page when the model or its side changed.
     pub(super) changed: Notify,
+    /// The laptop's clock for signed requests starts here.
+    epoch: Instant,
 }
 
 impl Shared {
@@ -64,7 +70,13 @@ impl Shared {
             page: Mutex::new(PageSide::default()),
             published: Mutex::new((0, None)),
             changed: Notify::new(),
+            epoch: Instant::now(),
         }
+    }
+
+    /// The laptop's clock as signed requests carry it: ms since the remote started.
+    pub(super) fn now_ms(&self) -> u64 {
+        self.epoch.elapsed().as_millis() as u64
     }
 
     pub(super) fn pairing(&self) -> MutexGuard<'_, Pairing> {
@@ -135,19 +147,38 @@ fn refused(words: String) -> Response {
     (StatusCode::CONFLICT, Json(json!({ "refused": words }))).into_response()
 }
 
-/// The session token in the request's cookie, if any.
+/// The session a request names (`X-Vpx-Session`), if any.
 fn session_of(headers: &HeaderMap) -> Option<String> {
     headers
-        .get_all(header::COOKIE)
-        .iter()
-        .filter_map(|v| v.to_str().ok())
-        .flat_map(|v| v.split(';'))
-        .filter_map(|kv| kv.trim().split_once('='))
-        .find(|(k, _)| *k == COOKIE)
-        .map(|(_, v)| v.to_string())
+        .get(signing::H_SESSION)
+        .and_then(|v| v.to_str().ok())
+        .map(str::to_string)
 }
 
-/// Origin first (403), then the session (401) for every `/api/*` but the pairing.
+/// The signature's headers, if all four are there and readable.
+fn claim_of(headers: &HeaderMap) -> Option<Claim> {
+    let text = |name: &str| headers.get(name).and_then(|v| v.to_str().ok());
+    Some(Claim {
+        session: text(signing::H_SESSION).unwrap_or_default().to_string(),
+        counter: text(signing::H_COUNTER)?.parse().ok()?,
+        time_ms: text(signing::H_TIME)?.parse().ok()?,
+        mac: text(signing::H_MAC)?.to_string(),
+    })
+}
+
+/// 401 in the words of a signature's refusal, with the laptop's clock in the body
+/// too, so that a phone whose reckoning drifted can set it right and sign again.
+fn unsigned(s: &Server, words: &str) -> Response {
+    (
+        StatusCode::UNAUTHORIZED,
+        Json(json!({ "error": words, "now_ms": s.shared.now_ms() })),
+    )
+        .into_response()
+}
+
+/// Origin first (403), then the session and its signature (401) for every `/api/*`
+/// but the pairing, which checks its own. The body is read here (at most
+/// [`MAX_BODY`]), as the signature covers it, and handed on as it came.
 async fn gate(Ctx(s): Ctx<Server>, req: HttpRequest, next: Next) -> Response {
     let host = req.headers().get(header::HOST).map(HeaderValue::as_bytes);
     if let Some(origin) = req.headers().get(header::ORIGIN)
@@ -155,17 +186,46 @@ async fn gate(Ctx(s): Ctx<Server>, req: HttpRequest, next: Next) -> Response {
     {
         return error(StatusCode::FORBIDDEN, "origin");
     }
-    let path = req.uri().path();
-    if path.starts_with("/api/") && path != "/api/pair" {
+    let path = req.uri().path().to_string();
+    let req = if path.starts_with("/api/") && path != "/api/pair" {
         let paired = session_of(req.headers()).is_some_and(|t| s.shared.pairing().is_session(&t));
         if !paired {
             return error(StatusCode::UNAUTHORIZED, "not paired");
         }
-    }
+        let Some(claim) = claim_of(req.headers()) else {
+            return unsigned(&s, &signing::Refusal::Malformed.to_string());
+        };
+        let (parts, body) = req.into_parts();
+        let Ok(body) = axum::body::to_bytes(body, MAX_BODY).await else {
+            return error(StatusCode::PAYLOAD_TOO_LARGE, "body too large");
+        };
+        let target = parts
+            .uri
+            .path_and_query()
+            .map_or(path.as_str(), |p| p.as_str());
+        let verdict = s.shared.pairing().verify(
+            &claim,
+            parts.method.as_str(),
+            target,
+            &body,
+            s.shared.now_ms(),
+        );
+        match verdict {
+            Ok(_) => {}
+            Err(Denied::NotPaired) => return error(StatusCode::UNAUTHORIZED, "not paired"),
+            Err(Denied::Signature(why)) => return unsigned(&s, &why.to_string()),
+        }
+        HttpRequest::from_parts(parts, Body::from(body))
+    } else {
+        req
+    };
     let mut resp = next.run(req).await;
     // Nothing here may be cached: a state is only true when it is fetched.
     resp.headers_mut()
         .insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
+    if let Ok(v) = HeaderValue::from_str(&s.shared.now_ms().to_string()) {
+        resp.headers_mut().insert(signing::H_NOW, v);
+    }
     resp
 }
 
@@ -177,27 +237,26 @@ async fn index() -> Html<&'static str> {
     Html(INDEX)
 }
 
-#[derive(Deserialize)]
-struct PairBody {
-    code: String,
-}
-
-async fn pair(Ctx(s): Ctx<Server>, body: Option<Json<PairBody>>) -> Response {
-    let Some(Json(body)) = body else {
-        return error(StatusCode::BAD_REQUEST, "send {\"code\":\"123456\"}");
+/// `POST /api/pair`, signed with the QR code's key or the typed words' key (session
+/// "", counter 0). Its body is not read: the signature alone says which offer.
+async fn pair(Ctx(s): Ctx<Server>, headers: HeaderMap, body: Bytes) -> Response {
+    let Some(claim) = claim_of(&headers) else {
+        return error(
+            StatusCode::BAD_REQUEST,
+            "sign the pairing with the QR code's key or the typed words",
+        );
     };
-    let result = s.shared.pairing().pair(&body.code, Instant::now());
+    let result = s.shared.pairing().pair(&claim, &body, Instant::now());
     // The title's count and the overlay's code changed.
     s.shared.changed.notify_waiters();
     match result {
-        PairResult::Paired(token) => {
-            let cookie = format!("{COOKIE}={token}; HttpOnly; SameSite=Strict; Path=/");
-            let mut resp = Json(json!({ "paired": true })).into_response();
-            if let Ok(v) = HeaderValue::from_str(&cookie) {
-                resp.headers_mut().insert(header::SET_COOKIE, v);
-            }
-            resp
-        }
+        PairResult::Paired { session, how } => Json(json!({
+            "paired": true,
+            "session": session,
+            "typed": how == How::Typed,
+            "now_ms": s.shared.now_ms(),
+        }))
+        .into_response(),
         PairResult::Wrong => error(StatusCode::UNAUTHORIZED, "wrong code"),
         PairResult::Locked(secs) => (
             StatusCode::TOO_MANY_REQUESTS,
@@ -409,10 +468,5 @@ async fn logout(Ctx(s): Ctx<Server>, headers: HeaderMap) -> Response {
         s.shared.pairing().end(&t);
     }
     s.shared.changed.notify_waiters();
-    let mut resp = Json(json!({ "paired": false })).into_response();
-    let gone = format!("{COOKIE}=; HttpOnly; SameSite=Strict; Path=/; Max-Age=0");
-    if let Ok(v) = HeaderValue::from_str(&gone) {
-        resp.headers_mut().insert(header::SET_COOKIE, v);
-    }
-    resp
+    Json(json!({ "paired": false })).into_response()
 }

@@ -2,13 +2,17 @@
 //! model at the moment it is asked for, with the model's own staleness: a value that
 //! is not live is `null`, never an old number, and with COMMUNICATION LOST every
 //! value is `null` and every circuit `"UNKNOWN"`.
+//!
+//! The devices are the page's list (ICD Appendix A: "Only enabled devices should be
+//! displayed", by name: `Model::circuits`), less the flaps and trims, which the phone
+//! shows only under MOTORS, as motors to run rather than circuits to switch.
 
 use std::time::Instant;
 
 use serde::Serialize;
 
 use crate::control::{Direction, put_back_off};
-use crate::model::{CircuitState, Connection, Model, Motor, TrimKind};
+use crate::model::{CircuitKind, CircuitState, Connection, Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 
 /// What only the page knows: the motor it is streaming and the installation check's
@@ -96,6 +100,7 @@ pub fn build(model: &Model, page: &PageSide, now: Instant) -> State {
     let devices = model
         .circuits(now)
         .into_iter()
+        .filter(|c| !matches!(c.kind, CircuitKind::Flaps | CircuitKind::Trim(_)))
         .map(|c| {
             let (state, fault) = match c.state {
                 _ if comm_lost => ("UNKNOWN", None),

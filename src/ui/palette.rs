@@ -75,6 +75,11 @@ impl Palette {
             }
             Palette::Mono => {
                 for cell in &mut buf.content {
+                    // The remote's QR code is a picture that must be dark on light
+                    // to scan: it keeps its own two colours (ui::remote).
+                    if cell.bg == super::remote::QR_LIGHT {
+                        continue;
+                    }
                     if cell.bg != Color::Reset {
                         cell.modifier.insert(Modifier::REVERSED);
                     }

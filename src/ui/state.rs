@@ -32,18 +32,23 @@ pub enum Overlay {
     #[default]
     None,
     Help,
-    /// The walk-around remote: its URL, QR code and pairing code.
+    /// The walk-around remote: its QR code, its URL and the words to type.
     Remote,
 }
 
 /// The walk-around remote while it is on, for the overlay and the title.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct RemoteView {
-    /// `http://ADDR:PORT/?pair=CODE`.
+    /// `http://ADDR:PORT/#k=KEY`: the QR code's URL, the key in its fragment.
     pub url: String,
-    pub code: String,
+    /// `http://ADDR:PORT/`: what a phone without a camera opens.
+    pub address: String,
+    /// The words it types then.
+    pub words: String,
     /// Phones paired now.
     pub paired: usize,
+    /// Of them, paired by typed words (weaker than the QR code's key).
+    pub typed: usize,
     /// No LAN address was found: only this laptop can reach it.
     pub loopback_only: bool,
     /// The URL's QR code in half blocks, with a quiet zone of 4 modules and of 2

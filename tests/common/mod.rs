@@ -4,6 +4,7 @@
 
 pub mod cpu;
 pub mod live_unit;
+pub mod phone;
 pub mod process;
 pub mod sim_process;
 pub mod xfsp_peer;
