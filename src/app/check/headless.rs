@@ -12,7 +12,6 @@ use super::super::{App, AppOptions, builtin_sim, signals};
 use crate::check::state::{CheckView, Mark, Step};
 use crate::check::words;
 use crate::check::{Cause, Command, Options, plan};
-use crate::control::MotorStreamer;
 use crate::link::{self, PortAddr};
 use crate::model::Source;
 
@@ -121,14 +120,10 @@ pub fn run_headless_with(
         ..AppOptions::default()
     };
     let mut app = App::new(source, connector, options);
-    let handle = app.link_handle();
+    // The page's panic path: the hook's stop goes through the app's stop gate, after
+    // any send in progress and before any later move, and into the audit log.
     super::super::terminal::install_panic_hook();
-    super::super::terminal::set_emergency_stop(move || {
-        for p in MotorStreamer::emergency_stop_packets() {
-            let _ = handle.send(p);
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    });
+    app.arm_emergency_stop();
     let result = headless_loop(&mut app, h, lines, terminations, out);
     app.shutdown();
     super::super::terminal::clear_emergency_stop();
