@@ -553,3 +553,75 @@ fn nothing_but_app_imports_ui() {
         .collect();
     assert!(wrong.is_empty(), "only app draws: {wrong:#?}");
 }
+
+/// Where a way to the unit's wire may be held (issue 31, item 2): the link itself, the
+/// virtual unit, `control` (which decides every motor's stop), and the app's stop gate,
+/// which every command and the panic's emergency stop go through, in order, audited.
+const WIRE_HOLDERS: &[&str] = &["link/", "sim/", "control/", "app/stop_gate.rs"];
+
+/// Lines of a file's code, before its tests, that could write to a link around the
+/// stop gate: a `LinkHandle` named, or a link's handle taken for anything but the gate.
+fn around_the_gate(code: &str) -> Vec<usize> {
+    let code = without_comments(code);
+    let end = code
+        .lines()
+        .position(|l| l.trim() == "#[cfg(test)]")
+        .unwrap_or(usize::MAX);
+    code.lines()
+        .enumerate()
+        .take_while(|(i, _)| *i < end)
+        .filter(|(_, l)| {
+            l.contains("LinkHandle") || (l.contains(".handle()") && !l.contains("StopGate::"))
+        })
+        .map(|(i, _)| i + 1)
+        .collect()
+}
+
+/// Outside the link, the sim, `control` and the stop gate, no code holds a way to the
+/// wire: a stop (or any packet) written there would pass the gate that keeps a move
+/// from following the panic's stop, and would miss the audit log.
+#[test]
+fn nothing_writes_to_a_link_around_the_stop_gate() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut found = Vec::new();
+    for file in files {
+        let rel = file.strip_prefix(&src).expect("under src");
+        let rel = rel.to_string_lossy().replace('\\', "/");
+        if WIRE_HOLDERS.iter().any(|h| rel.starts_with(h)) || rel.contains("/tests/") {
+            continue;
+        }
+        for line in around_the_gate(&fs::read_to_string(&file).expect("read")) {
+            found.push(format!("src/{rel}:{line}"));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "a way to the wire around the stop gate (send through the app's StopGate): {found:#?}"
+    );
+}
+
+/// The headless check's old panic hook, planted: found, line by line; the gate's own
+/// use of the handle and test code are not.
+#[test]
+fn a_stop_written_around_the_gate_is_found() {
+    let planted = "\
+fn arm(app: &App) {
+    let handle = app.link.handle();
+    set_emergency_stop(move || {
+        for p in MotorStreamer::emergency_stop_packets() {
+            let _ = handle.send(p);
+        }
+    });
+}
+fn hold(h: crate::link::LinkHandle) {}
+fn gate(link: &Link) -> StopGate { StopGate::new(link.handle()) }
+// a comment about link.handle() is no code
+#[cfg(test)]
+mod tests {
+    fn t(link: &Link) { let _ = link.handle().send(stop()); }
+}
+";
+    assert_eq!(around_the_gate(planted), vec![2, 9]);
+}

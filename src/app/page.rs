@@ -17,7 +17,7 @@ use crate::control::{
     Action, Controller, KeyContext, MotorStreamer, RESEND_PERIOD, StopReason, StreamerConfig,
 };
 use crate::exchange::Rereader;
-use crate::link::{Connector, Link, LinkHandle};
+use crate::link::{Connector, Link};
 use crate::model::{Model, Source};
 use crate::protocol::message::Packet;
 use crate::ui::palette::ThemeChoice;
@@ -99,8 +99,8 @@ pub struct App {
     pub(super) controller: Arc<MotorPath>,
     pub(super) motor_thread: Option<std::thread::JoinHandle<()>>,
     pub(super) link: Option<Link>,
-    pub(super) handle: LinkHandle,
-    /// Every packet the page sends goes through here; `None` in replay.
+    /// The app's one way to the wire: every packet the page sends goes through here;
+    /// `None` in replay.
     pub(super) gate: Option<Arc<StopGate>>,
     /// The audit log's way in, to hear of a file it cannot write.
     pub(super) audit: Option<Audit>,
@@ -154,7 +154,6 @@ impl App {
         let sink: SharedSink =
             Arc::new(link_sink(model.clone(), wake_tx.clone(), recorder.clone()));
         let (link, replay) = start(sink, model.clone());
-        let handle = link.handle();
         let mut config = StreamerConfig {
             max_run: options.max_run,
             release_mode: options.release_mode,
@@ -185,7 +184,7 @@ impl App {
         }
         let gate = replay
             .is_none()
-            .then(|| Arc::new(StopGate::with_audit(handle.clone(), audit.clone())));
+            .then(|| Arc::new(StopGate::with_audit(link.handle(), audit.clone())));
         let controller = MotorPath::new(controller, gate.clone());
         let motor_thread = if replay.is_none() {
             controller.spawn(wake_tx)
@@ -198,7 +197,6 @@ impl App {
             controller,
             motor_thread,
             link: Some(link),
-            handle,
             gate,
             audit,
             wake_rx,
@@ -242,10 +240,6 @@ impl App {
             // A replay runs no motors: nothing to say about key repeats.
             repeat: self.replay.is_none().then(|| c.repeat_timing()),
         })
-    }
-
-    pub fn link_handle(&self) -> LinkHandle {
-        self.handle.clone()
     }
 
     /// Wake-ups from the link, for a select loop.
