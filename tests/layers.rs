@@ -496,20 +496,26 @@ const FLOW_IO: &[&str] = &[
     "std::env",
 ];
 
-/// The lines of a flow file's code that do I/O, outside its tests.
-fn flow_io_lines(code: &str) -> Vec<(usize, &'static str)> {
+/// A file's lines before its first `#[cfg(test)]`, numbered from 1.
+fn lines_before_tests(code: &str) -> impl Iterator<Item = (usize, &str)> {
     let end = code
         .lines()
         .position(|l| l.trim() == "#[cfg(test)]")
         .unwrap_or(usize::MAX);
     code.lines()
         .enumerate()
-        .take_while(|(i, _)| *i < end)
+        .take_while(move |(i, _)| *i < end)
+        .map(|(i, l)| (i + 1, l))
+}
+
+/// The lines of a flow file's code that do I/O, outside its tests.
+fn flow_io_lines(code: &str) -> Vec<(usize, &'static str)> {
+    lines_before_tests(code)
         .flat_map(|(i, l)| {
             FLOW_IO
                 .iter()
                 .filter(move |w| l.contains(*w))
-                .map(move |w| (i + 1, *w))
+                .map(move |w| (i, *w))
         })
         .collect()
 }
@@ -563,17 +569,11 @@ const WIRE_HOLDERS: &[&str] = &["link/", "sim/", "control/", "app/stop_gate.rs"]
 /// stop gate: a `LinkHandle` named, or a link's handle taken for anything but the gate.
 fn around_the_gate(code: &str) -> Vec<usize> {
     let code = without_comments(code);
-    let end = code
-        .lines()
-        .position(|l| l.trim() == "#[cfg(test)]")
-        .unwrap_or(usize::MAX);
-    code.lines()
-        .enumerate()
-        .take_while(|(i, _)| *i < end)
+    lines_before_tests(&code)
         .filter(|(_, l)| {
             l.contains("LinkHandle") || (l.contains(".handle()") && !l.contains("StopGate::"))
         })
-        .map(|(i, _)| i + 1)
+        .map(|(i, _)| i)
         .collect()
 }
 
