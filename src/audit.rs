@@ -61,6 +61,9 @@ pub enum Origin {
     Remote,
     /// The page itself: the stops it sends at quit, on a link error or a reconnect.
     Page,
+    /// The panic hook's emergency stop ([`crate::app::StopGate::emergency_stop`]),
+    /// in whichever process panicked.
+    Panic,
 }
 
 impl Origin {
@@ -72,6 +75,7 @@ impl Origin {
             Origin::Xfsp => "xfsp",
             Origin::Remote => "remote",
             Origin::Page => "page",
+            Origin::Panic => "panic",
         }
     }
 }

@@ -496,20 +496,26 @@ const FLOW_IO: &[&str] = &[
     "std::env",
 ];
 
-/// The lines of a flow file's code that do I/O, outside its tests.
-fn flow_io_lines(code: &str) -> Vec<(usize, &'static str)> {
+/// A file's lines before its first `#[cfg(test)]`, numbered from 1.
+fn lines_before_tests(code: &str) -> impl Iterator<Item = (usize, &str)> {
     let end = code
         .lines()
         .position(|l| l.trim() == "#[cfg(test)]")
         .unwrap_or(usize::MAX);
     code.lines()
         .enumerate()
-        .take_while(|(i, _)| *i < end)
+        .take_while(move |(i, _)| *i < end)
+        .map(|(i, l)| (i + 1, l))
+}
+
+/// The lines of a flow file's code that do I/O, outside its tests.
+fn flow_io_lines(code: &str) -> Vec<(usize, &'static str)> {
+    lines_before_tests(code)
         .flat_map(|(i, l)| {
             FLOW_IO
                 .iter()
                 .filter(move |w| l.contains(*w))
-                .map(move |w| (i + 1, *w))
+                .map(move |w| (i, *w))
         })
         .collect()
 }
@@ -552,4 +558,70 @@ fn nothing_but_app_imports_ui() {
         .map(|i| format!("{}:{}: {} -> ui", i.file, i.line, i.from))
         .collect();
     assert!(wrong.is_empty(), "only app draws: {wrong:#?}");
+}
+
+/// Where a way to the unit's wire may be held (issue 31, item 2): the link itself, the
+/// virtual unit, `control` (which decides every motor's stop), and the app's stop gate,
+/// which every command and the panic's emergency stop go through, in order, audited.
+const WIRE_HOLDERS: &[&str] = &["link/", "sim/", "control/", "app/stop_gate.rs"];
+
+/// Lines of a file's code, before its tests, that could write to a link around the
+/// stop gate: a `LinkHandle` named, or a link's handle taken for anything but the gate.
+fn around_the_gate(code: &str) -> Vec<usize> {
+    let code = without_comments(code);
+    lines_before_tests(&code)
+        .filter(|(_, l)| {
+            l.contains("LinkHandle") || (l.contains(".handle()") && !l.contains("StopGate::"))
+        })
+        .map(|(i, _)| i)
+        .collect()
+}
+
+/// Outside the link, the sim, `control` and the stop gate, no code holds a way to the
+/// wire: a stop (or any packet) written there would pass the gate that keeps a move
+/// from following the panic's stop, and would miss the audit log.
+#[test]
+fn nothing_writes_to_a_link_around_the_stop_gate() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut found = Vec::new();
+    for file in files {
+        let rel = file.strip_prefix(&src).expect("under src");
+        let rel = rel.to_string_lossy().replace('\\', "/");
+        if WIRE_HOLDERS.iter().any(|h| rel.starts_with(h)) || rel.contains("/tests/") {
+            continue;
+        }
+        for line in around_the_gate(&fs::read_to_string(&file).expect("read")) {
+            found.push(format!("src/{rel}:{line}"));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "a way to the wire around the stop gate (send through the app's StopGate): {found:#?}"
+    );
+}
+
+/// The headless check's old panic hook, planted: found, line by line; the gate's own
+/// use of the handle and test code are not.
+#[test]
+fn a_stop_written_around_the_gate_is_found() {
+    let planted = "\
+fn arm(app: &App) {
+    let handle = app.link.handle();
+    set_emergency_stop(move || {
+        for p in MotorStreamer::emergency_stop_packets() {
+            let _ = handle.send(p);
+        }
+    });
+}
+fn hold(h: crate::link::LinkHandle) {}
+fn gate(link: &Link) -> StopGate { StopGate::new(link.handle()) }
+// a comment about link.handle() is no code
+#[cfg(test)]
+mod tests {
+    fn t(link: &Link) { let _ = link.handle().send(stop()); }
+}
+";
+    assert_eq!(around_the_gate(planted), vec![2, 9]);
 }

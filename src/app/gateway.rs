@@ -1,14 +1,16 @@
-//! The XFSp gateway inside the page (`--xfsp`): the same core the headless bridge
-//! runs, fed from the page's loop so circuits, faults and positions go out on the
-//! network while the person watches, and network commands show in the event log.
+//! The XFSp gateway on the app's loop: inside the page (`--xfsp`), so circuits,
+//! faults and positions go out on the network while the person watches, and network
+//! commands show in the event log; and in `vpx-efis gateway`, the same app with no
+//! screen.
 
 use std::net::Ipv4Addr;
-use std::time::Instant;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 
-use super::XfspOptions;
-use super::{App, lock};
+use super::serve::Wait;
+use super::{App, XfspOptions, lock, terminal};
 use crate::audit::Origin;
 use crate::xfsp::dict::CertLevel;
 use crate::xfsp::gateway::{Control, Gateway, GatewayConfig, source_list};
@@ -80,6 +82,44 @@ impl App {
             net_error_said: false,
         });
         Ok(())
+    }
+
+    /// `vpx-efis gateway`'s front on the app's loop ([`App::serve`]): no screen and no
+    /// input; `each_pass` after every tick (the gateway says its new event-log lines).
+    /// Returns once `stop` is raised (looked at every `poll` at the latest) or a
+    /// thread has panicked.
+    pub fn serve_until(
+        &mut self,
+        stop: &AtomicBool,
+        poll: Duration,
+        mut each_pass: impl FnMut(&App),
+    ) {
+        let never = crossbeam_channel::never::<()>();
+        let wait = Wait {
+            input: &never,
+            terminations: &crossbeam_channel::never(),
+            until: None,
+            poll: Some(poll),
+        };
+        self.serve(
+            wait,
+            |app, now| {
+                app.no_screen(now);
+                each_pass(app);
+                (stop.load(Ordering::SeqCst) || terminal::panicked()).then_some(())
+            },
+            |_, _| None,
+        );
+    }
+
+    /// The gateway's counters, while XFSp is on (the headless gateway's closing line).
+    pub fn xfsp_stats(&self) -> Option<crate::xfsp::gateway::GatewayStats> {
+        self.gateway.as_ref().map(|g| g.gateway.stats())
+    }
+
+    /// The address the XFSp sockets send from, while XFSp is on.
+    pub fn xfsp_local_addr(&self) -> Option<std::net::SocketAddr> {
+        self.gateway.as_ref().and_then(|g| g.net.local_addr().ok())
     }
 
     /// Datagrams from the network, or a channel that never delivers.

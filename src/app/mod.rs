@@ -11,7 +11,9 @@
 //!   (see `motor_stream`), so no redraw, terminal write or model lock delays it.
 //!
 //! The files, one job each: `page` holds the page's state and answers keys, link
-//! wake-ups and ticks; `link_sink` applies what the link reports to the model;
+//! wake-ups and ticks; `serve` is the loop every process runs (the page, the
+//! headless check, the gateway), each with its own front; `stop_gate` is the one way
+//! to the wire and the panic's stop; `link_sink` applies what the link reports to the model;
 //! `options` is what the page is asked to do and its checks; `runner` runs the page
 //! as the process (`vpx-efis` with no subcommand). The flows the page hosts
 //! (`check`, `setup`, `traffic`, `gateway`, `replay`) add their own `impl App` blocks.
@@ -29,6 +31,7 @@ mod record;
 mod remote;
 mod replay;
 mod runner;
+mod serve;
 mod setup;
 mod signals;
 mod stop_gate;

@@ -6,7 +6,7 @@
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-use crossbeam_channel::{Receiver, select, unbounded};
+use crossbeam_channel::{Receiver, unbounded};
 use crossterm::event::Event as TermEvent;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
@@ -17,7 +17,7 @@ use crate::control::{
     Action, Controller, KeyContext, MotorStreamer, RESEND_PERIOD, StopReason, StreamerConfig,
 };
 use crate::exchange::Rereader;
-use crate::link::{Connector, Link, LinkHandle};
+use crate::link::{Connector, Link};
 use crate::model::{Model, Source};
 use crate::protocol::message::Packet;
 use crate::ui::palette::ThemeChoice;
@@ -27,6 +27,7 @@ use crate::ui::{
 
 use super::link_sink::{SharedSink, link_sink};
 use super::motor_stream::MotorPath;
+use super::serve::{Outside, Wait};
 use super::{
     QueryPacer, Recorder, StopGate, Terminated, Termination, check, gateway, lock, replay, terminal,
 };
@@ -98,8 +99,8 @@ pub struct App {
     pub(super) controller: Arc<MotorPath>,
     pub(super) motor_thread: Option<std::thread::JoinHandle<()>>,
     pub(super) link: Option<Link>,
-    pub(super) handle: LinkHandle,
-    /// Every packet the page sends goes through here; `None` in replay.
+    /// The app's one way to the wire: every packet the page sends goes through here;
+    /// `None` in replay.
     pub(super) gate: Option<Arc<StopGate>>,
     /// The audit log's way in, to hear of a file it cannot write.
     pub(super) audit: Option<Audit>,
@@ -153,7 +154,6 @@ impl App {
         let sink: SharedSink =
             Arc::new(link_sink(model.clone(), wake_tx.clone(), recorder.clone()));
         let (link, replay) = start(sink, model.clone());
-        let handle = link.handle();
         let mut config = StreamerConfig {
             max_run: options.max_run,
             release_mode: options.release_mode,
@@ -184,7 +184,7 @@ impl App {
         }
         let gate = replay
             .is_none()
-            .then(|| Arc::new(StopGate::with_audit(handle.clone(), audit.clone())));
+            .then(|| Arc::new(StopGate::with_audit(link.handle(), audit.clone())));
         let controller = MotorPath::new(controller, gate.clone());
         let motor_thread = if replay.is_none() {
             controller.spawn(wake_tx)
@@ -197,7 +197,6 @@ impl App {
             controller,
             motor_thread,
             link: Some(link),
-            handle,
             gate,
             audit,
             wake_rx,
@@ -241,10 +240,6 @@ impl App {
             // A replay runs no motors: nothing to say about key repeats.
             repeat: self.replay.is_none().then(|| c.repeat_timing()),
         })
-    }
-
-    pub fn link_handle(&self) -> LinkHandle {
-        self.handle.clone()
     }
 
     /// Wake-ups from the link, for a select loop.
@@ -661,31 +656,28 @@ impl App {
     /// Runs the link, the XFSp network and timers (no input) until `until`: for tests
     /// and for replay.
     pub fn pump_until(&mut self, until: Instant) {
-        let xfsp = self.xfsp_incoming();
-        loop {
-            let now = Instant::now();
-            if now >= until {
-                return;
-            }
-            let deadline = self.next_deadline(now).min(until);
-            let phones = self.remote_requests();
-            select! {
-                recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
-                recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
-                recv(phones) -> r => if let Ok(r) = r { self.remote_request(r, Instant::now()) },
-                default(deadline.saturating_duration_since(now)) => {}
-            }
-            self.tick(Instant::now());
-            // Keep the draw bookkeeping moving as the real loop would.
-            let now = Instant::now();
-            if self.dirty && self.last_draw.is_none_or(|t| now >= self.redraw_from(t)) {
-                self.last_draw = Some(now);
-                self.dirty = false;
-                self.news_at = None;
-                self.drawn_revision = lock(&self.model).revision();
-                self.drawn_control = self.control_state();
-            }
-        }
+        let never = crossbeam_channel::never::<()>();
+        self.serve(
+            Wait {
+                input: &never,
+                terminations: &crossbeam_channel::never(),
+                until: Some(until),
+                poll: None,
+            },
+            |app, _| {
+                // Keep the draw bookkeeping moving as the page would.
+                let now = Instant::now();
+                if app.dirty && app.last_draw.is_none_or(|t| now >= app.redraw_from(t)) {
+                    app.last_draw = Some(now);
+                    app.dirty = false;
+                    app.news_at = None;
+                    app.drawn_revision = lock(&app.model).revision();
+                    app.drawn_control = app.control_state();
+                }
+                None::<()>
+            },
+            |_, _| None,
+        );
     }
 
     /// Stops any motor, lets the writer flush, and closes the link.
@@ -710,57 +702,55 @@ impl App {
         }
     }
 
-    /// The select loop over input, link wake-ups and deadlines. A [`Termination`]
-    /// (SIGTERM, SIGHUP, SIGINT, a closed console) leaves it as `q` does, returning
-    /// [`Terminated`]; the caller's shutdown then puts the motor stop on the wire.
+    /// The page's front on the app's loop ([`App::serve`]): terminal input, drawing.
+    /// A [`Termination`] (SIGTERM, SIGHUP, SIGINT, a closed console) leaves it as `q`
+    /// does, returning [`Terminated`]; the caller's shutdown then puts the motor stop
+    /// on the wire.
     pub fn run<B: Backend>(
         &mut self,
         terminal: &mut Terminal<B>,
         input: &Receiver<TermEvent>,
         terminations: &Receiver<Termination>,
     ) -> anyhow::Result<()> {
-        let xfsp = self.xfsp_incoming();
-        loop {
-            let now = Instant::now();
-            self.tick(now);
-            if terminal::panicked() {
-                anyhow::bail!("a thread of the page panicked; motors were sent their stop");
-            }
-            self.draw_if_needed(terminal, now)?;
-            let deadline = self.next_deadline(Instant::now());
-            let phones = self.remote_requests();
-            select! {
-                recv(input) -> ev => match ev {
-                    Ok(ev) => {
-                        if self.handle_term_event(ev, Instant::now()) == Flow::Quit {
-                            return Ok(());
-                        }
-                    }
-                    Err(_) => {
-                        // No release can arrive any more: stop before waiting for a signal.
-                        self.controller.stop(Instant::now(), StopReason::Quit);
-                        self.check_interrupt(crate::check::Cause::Quit, false, Instant::now());
-                        return Err(input_closed(terminations));
-                    }
-                },
-                recv(terminations) -> t => if let Ok(t) = t {
-                    self.check_interrupt(
+        let wait = Wait {
+            input,
+            terminations,
+            until: None,
+            poll: None,
+        };
+        let ended = self.serve(
+            wait,
+            |app, now| {
+                if terminal::panicked() {
+                    return Some(Err(anyhow::anyhow!(
+                        "a thread of the page panicked; motors were sent their stop"
+                    )));
+                }
+                app.draw_if_needed(terminal, now)
+                    .err()
+                    .map(|e| Err(e.into()))
+            },
+            |app, outside| match outside {
+                Outside::Input(ev) => {
+                    (app.handle_term_event(ev, Instant::now()) == Flow::Quit).then_some(Ok(()))
+                }
+                Outside::InputEnded => {
+                    // No release can arrive any more: stop before waiting for a signal.
+                    app.controller.stop(Instant::now(), StopReason::Quit);
+                    app.check_interrupt(crate::check::Cause::Quit, false, Instant::now());
+                    Some(Err(input_closed(terminations)))
+                }
+                Outside::Signal(t) => {
+                    app.check_interrupt(
                         crate::check::Cause::Signal(t.name().into()),
                         false,
                         Instant::now(),
                     );
-                    return Err(Terminated(t).into());
-                },
-                recv(self.wake_rx) -> w => if let Ok(w) = w { self.on_wake(w, Instant::now()) },
-                recv(xfsp) -> d => if let Ok(d) = d { self.xfsp_receive(d) },
-                recv(phones) -> r => if let Ok(r) = r { self.remote_request(r, Instant::now()) },
-                default(deadline.saturating_duration_since(Instant::now())) => {}
-            }
-            // Drain what else is waiting so a burst is one redraw.
-            while let Ok(w) = self.wake_rx.try_recv() {
-                self.on_wake(w, Instant::now());
-            }
-        }
+                    Some(Err(Terminated(t).into()))
+                }
+            },
+        );
+        ended.unwrap_or(Ok(()))
     }
 }
 

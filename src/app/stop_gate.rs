@@ -95,7 +95,7 @@ impl StopGate {
             }
         };
         for p in MotorStreamer::emergency_stop_packets() {
-            self.put(Origin::Page, p, None);
+            self.put(Origin::Panic, p, None);
         }
     }
 

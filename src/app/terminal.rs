@@ -96,7 +96,9 @@ pub fn panicked() -> bool {
     PANICKED.load(Ordering::SeqCst)
 }
 
-/// Registers what the panic hook must do first: send the motor stop messages.
+/// Registers what the panic hook must do first: the process's emergency stop (every
+/// motor's stop through the app's [`super::StopGate`]; for `flash`, its stop at the
+/// next safe point).
 pub fn set_emergency_stop(f: impl Fn() + Send + 'static) {
     if let Ok(mut slot) = EMERGENCY_STOP.lock() {
         *slot = Some(Box::new(f));

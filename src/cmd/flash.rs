@@ -22,6 +22,7 @@
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, IsTerminal, LineWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant, SystemTime};
 
 use anyhow::{Context, bail};
@@ -178,6 +179,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     // From here Ctrl-C (or SIGTERM, SIGHUP, a closed console) stops at the next safe
     // point instead of killing us mid-page; see `flash::updater`.
     let interrupted = stop_on_termination(&mut opts)?;
+    let _panic = stop_on_panic(&opts);
     let _awake = keep_awake(&mut log);
     let pages = image.page_count() as u64;
     let bar = progress_bar(pages * 2);
@@ -237,6 +239,9 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
         }
         Err(e) => {
             bar.abandon_with_message("stopped");
+            if crate::app::panicked() {
+                log.line("-- a thread of vpx-efis panicked: stopping at the next safe point");
+            }
             log.line(&format!("-- STOPPED: {e}"));
             log.finish();
             let by = interrupted.by();
@@ -293,6 +298,29 @@ fn stop_on_termination(opts: &mut Options) -> anyhow::Result<StopFlag> {
     })?;
     opts.cancel = Some(flag.raised.clone());
     Ok(flag)
+}
+
+/// The app's panic path, for flash: the same hook as every process (the panic is
+/// flagged, the terminal given back, the message printed), whose first act is the
+/// process's emergency stop. Flash sends no motor command, so there is no stop gate
+/// to close; its emergency stop is the one a signal gets: finish the page in
+/// progress, then stop, never restarting the unit into a half-written image. Until
+/// dropped.
+fn stop_on_panic(opts: &Options) -> PanicStop {
+    crate::app::install_panic_hook();
+    if let Some(cancel) = opts.cancel.clone() {
+        crate::app::set_emergency_stop(move || cancel.store(true, Ordering::SeqCst));
+    }
+    PanicStop
+}
+
+/// Disarms flash's emergency stop when the update is over.
+struct PanicStop;
+
+impl Drop for PanicStop {
+    fn drop(&mut self) {
+        crate::app::clear_emergency_stop();
+    }
 }
 
 /// `FILE.hex.log`, next to the file.

@@ -52,7 +52,7 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::time::{Duration, Instant};
 
-use crate::model::{COMM_LOST_AFTER, CircuitState, Model, Motor, TrimKind};
+use crate::model::{COMM_LOST_AFTER, Circuit, CircuitState, Model, Motor, Setting, TrimKind};
 use crate::protocol::device::SYSTEM_FAULT_ID;
 use crate::protocol::fault::FaultCode;
 
@@ -83,6 +83,22 @@ pub const SYSTEM_LABEL: &str = "VP-X";
 pub fn bus_label(item: &str) -> Vec<u8> {
     super::format::latin1_bytes(&format!("{SYSTEM_LABEL}/{item}"))
 }
+/// A circuit's name as the network is told it. While the name is not known (being
+/// read again after a loss of communication, or left unknown by an unanswered write)
+/// the screen's "? (name re-reading…)" would give every such circuit one and the same
+/// label, and a receiver that follows the draft tells circuits apart by label alone.
+/// So the network gets the pin's own Table 40 name, marked: "5A-3 (name re-reading)",
+/// longer than the 16 bytes a DEVICE_NAME can be (ICD Table 21), so it can be no
+/// circuit's real name either.
+pub fn network_name(model: &Model, c: &Circuit) -> String {
+    let name = Setting::Name(c.id);
+    if model.is_unknown(name) || model.rereading_setting(name) {
+        format!("{} (name re-reading)", c.pin)
+    } else {
+        c.name.clone()
+    }
+}
+
 /// BUSSTAT units.
 pub const BUS_MAIN: u16 = 0;
 pub const BUS_AUX: u16 = 1;
@@ -377,7 +393,7 @@ impl Publisher {
                 flags: EcbFlags::default(),
                 draw_amps: c.amps.map_or(0, Bus::to_tenths),
                 max_amps: c.breaker.map_or(0, |b| Bus::to_tenths(f32::from(b))),
-                label: bus_label(&c.name),
+                label: bus_label(&network_name(model, &c)),
                 ..Bus::default()
             };
             let confidence = if state == EcbState::Unknown0 {
@@ -471,7 +487,10 @@ impl Publisher {
             if let CircuitState::Fault(code) = c.state {
                 want.insert(
                     u16::from(c.id),
-                    CasMsg::new(cas_level(code), &fault_label(&c.name, code)),
+                    CasMsg::new(
+                        cas_level(code),
+                        &fault_label(&network_name(model, &c), code),
+                    ),
                 );
             }
         }

@@ -6,13 +6,13 @@ use std::io::BufRead;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use crossbeam_channel::{Receiver, select, unbounded};
+use crossbeam_channel::{Receiver, unbounded};
 
+use super::super::serve::{Outside, Wait};
 use super::super::{App, AppOptions, builtin_sim, signals};
 use crate::check::state::{CheckView, Mark, Step};
 use crate::check::words;
 use crate::check::{Cause, Command, Options, plan};
-use crate::control::MotorStreamer;
 use crate::link::{self, PortAddr};
 use crate::model::Source;
 
@@ -121,14 +121,10 @@ pub fn run_headless_with(
         ..AppOptions::default()
     };
     let mut app = App::new(source, connector, options);
-    let handle = app.link_handle();
+    // The page's panic path: the hook's stop goes through the app's stop gate, after
+    // any send in progress and before any later move, and into the audit log.
     super::super::terminal::install_panic_hook();
-    super::super::terminal::set_emergency_stop(move || {
-        for p in MotorStreamer::emergency_stop_packets() {
-            let _ = handle.send(p);
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    });
+    app.arm_emergency_stop();
     let result = headless_loop(&mut app, h, lines, terminations, out);
     app.shutdown();
     super::super::terminal::clear_emergency_stop();
@@ -163,7 +159,8 @@ const NOBODY_TO_ANSWER: &str = "Standard input is at its end (no terminal, /dev/
 const SWITCHES_NEED_A_PERSON: &str = "The switch step, which needs a person to flip each \
      switch and say when it is done, is skipped.";
 
-/// Waits for wake-ups, typed lines or a signal until `until` or `done`.
+/// The headless check's front on the app's loop ([`App::serve`]): typed lines and
+/// signals until `until` or `done`.
 fn pump(
     app: &mut App,
     input: &mut Typed,
@@ -174,33 +171,35 @@ fn pump(
     mut after_tick: impl FnMut(&mut App),
 ) -> Pumped {
     let never = crossbeam_channel::never();
-    loop {
-        let now = Instant::now();
-        app.tick(now);
-        // No screen: nothing is ever waiting to be drawn.
-        app.dirty = false;
-        app.last_draw = Some(now);
-        after_tick(app);
-        if done(app) || now >= until {
-            return Pumped::Done;
+    let wait = Wait {
+        input: if input.ended { &never } else { input.lines },
+        terminations,
+        until: Some(until),
+        poll: None,
+    };
+    let pumped = app.serve(
+        wait,
+        |app, now| {
+            app.no_screen(now);
+            after_tick(app);
+            done(app).then_some(Pumped::Done)
+        },
+        |app, outside| match outside {
+            Outside::Input(l) => {
+                on_line(app, l);
+                None
+            }
+            Outside::InputEnded => Some(Pumped::InputEnded),
+            Outside::Signal(t) => Some(Pumped::Signal(t)),
+        },
+    );
+    match pumped {
+        Some(Pumped::InputEnded) => {
+            input.ended = true;
+            Pumped::InputEnded
         }
-        let deadline = app.next_deadline(now).min(until);
-        let lines = if input.ended { &never } else { input.lines };
-        select! {
-            recv(app.wake_rx) -> w => if let Ok(w) = w { app.on_wake(w, Instant::now()) },
-            recv(lines) -> l => match l {
-                Ok(l) => on_line(app, l),
-                Err(_) => {
-                    input.ended = true;
-                    return Pumped::InputEnded;
-                }
-            },
-            recv(terminations) -> t => if let Ok(t) = t { return Pumped::Signal(t) },
-            default(deadline.saturating_duration_since(Instant::now())) => {}
-        }
-        while let Ok(w) = app.wake_rx.try_recv() {
-            app.on_wake(w, Instant::now());
-        }
+        Some(p) => p,
+        None => Pumped::Done,
     }
 }
 
