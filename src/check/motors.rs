@@ -1,6 +1,6 @@
 //! Step 4, motors: flaps and each enabled trim run briefly one way, then the other,
-//! through the page's controller ([`Controller::run_for`]): the same 4 Hz stream and
-//! every stop cause of the page. The position in FLAP_TRIM_STATUS (ICD Table 27)
+//! through the controller's one entry for motor runs ([`Controller::start`]): the same
+//! 4 Hz stream, permit, endpoint watch, probes and every stop cause as the page's keys. The position in FLAP_TRIM_STATUS (ICD Table 27)
 //! before and after each run says whether it moved, and which way; then it is run
 //! back to where it was.
 //!
@@ -20,17 +20,22 @@
 //! as not moving, at its limit); a motor with no room either way is not run at all,
 //! and its line says why. A run ended at its endpoint
 //! that still moved is a pass; one that could not move for it "runs against a limit".
+//! A run started near the endpoint behind it goes as probes until the motor shows its
+//! way ([`endpoints::Probing`], the controller's): a motor found moving against its
+//! command that way is stopped there and recorded, and refused to every origin after.
 //!
-//! [`Controller::run_for`]: crate::control::Controller::run_for
+//! [`Controller::start`]: crate::control::Controller::start
 
 use std::time::{Duration, Instant};
 
 use super::calls::Command;
 use super::state::{CheckView, LeftBehind, MotorFinding, MotorResult, Outcome, Prompt, Step};
 use super::step::{CallContext, Next, Shared, StepRun, Stopped, motor_name, result_line};
+use crate::audit::Origin;
 pub use crate::control::endpoints::expected_sign;
-use crate::control::endpoints::{self, ends, heads_for, opposite, position, room};
-use crate::control::{Direction, StopReason, motor_check};
+use crate::control::endpoints::{self, Way, ends, heads_for, opposite, position, room};
+use crate::control::run::Refused;
+use crate::control::{Direction, How, StopReason};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 
@@ -40,8 +45,6 @@ pub use crate::control::endpoints::MOVED;
 /// Within this many counts of an endpoint (or the sensor's 0 / 255), the motor is at
 /// that limit.
 pub const AT_LIMIT: i32 = 3;
-/// Probes in a row that showed no way before a test run is taken as not moving.
-const MAX_PROBES: u8 = 4;
 /// Put back when it ends within this many counts of where it was.
 pub const BACK_WITHIN: i32 = 3;
 
@@ -158,15 +161,10 @@ pub(super) struct MotorItem {
     moves: [i32; 2],
     /// The endpoint each test run was stopped at, or had no room to be made for.
     ended_at: [Option<u8>; 2],
-    /// How long each test run ran: the whole run, or until it was cut short. With
-    /// `moves` it gives the rate for the run back.
+    /// How long each test run drove its motor: the whole run, or until it was cut
+    /// short, less the pauses of its probes. With `moves` it gives the rate for the
+    /// run back.
     ran: [Duration; 2],
-    /// While the test run is a probe ([`endpoints::probe`]): the rest of its length,
-    /// run once the probe showed its way.
-    rest: Option<Duration>,
-    /// Probes made in this test run, and how long they ran.
-    probes: u8,
-    probed: Duration,
     stage: Stage,
     run: Duration,
     settle: Duration,
@@ -236,9 +234,6 @@ impl Motors {
             moves: [0; 2],
             ended_at: [None; 2],
             ran: [Duration::ZERO; 2],
-            rest: None,
-            probes: 0,
-            probed: Duration::ZERO,
             stage: Stage::Start,
             run: shared.timing.motor_run,
             settle: shared.timing.motor_settle,
@@ -305,17 +300,17 @@ impl Motors {
                     .ctl
                     .last_stop()
                     .filter(|s| s.at >= since && s.motor == item.motor)
-                    .map(|s| (s.reason, s.at));
-                let stopped_at = stop.map_or(now, |(_, at)| at);
-                match stop.map(|(r, _)| r) {
+                    .map(|s| (s.reason, s.at, s.driven));
+                let stopped_at = stop.map_or(now, |(_, at, _)| at);
+                if item.leg < 2
+                    && let Some((_, _, driven)) = stop
+                {
+                    item.ran[item.leg] = driven;
+                }
+                match stop.map(|(r, _, _)| r) {
                     Some(StopReason::RunDone) | None => {
-                        // A probe only needs the next position after its stop.
-                        let settle = match item.rest {
-                            Some(_) => endpoints::PROBE_SETTLE.min(item.settle),
-                            None => item.settle,
-                        };
                         item.stage = Stage::Settle {
-                            until: now + settle,
+                            until: now + item.settle,
                         };
                     }
                     // Stopped at its endpoint by the controller: the run is over, for
@@ -323,9 +318,6 @@ impl Motors {
                     Some(StopReason::AtEndpoint(end)) => {
                         if item.leg < 2 {
                             item.ended_at[item.leg] = Some(end);
-                            item.ran[item.leg] =
-                                item.probed + stopped_at.saturating_duration_since(since);
-                            item.rest = None;
                         }
                         cx.out.progress.push(format!(
                             "  {} stopped at its endpoint ({end}), position {pos}",
@@ -341,9 +333,6 @@ impl Motors {
                     Some(StopReason::MovedAgainst(asked)) => {
                         if item.leg < 2 {
                             item.ended_at[item.leg] = heads_for(item.motor, opposite(asked), &ft);
-                            item.ran[item.leg] =
-                                item.probed + stopped_at.saturating_duration_since(since);
-                            item.rest = None;
                         }
                         cx.out.progress.push(format!(
                             "  {}, position {pos}",
@@ -392,35 +381,8 @@ impl Motors {
                 if now < until {
                     return Next::Stay;
                 }
-                if item.leg < 2
-                    && let Some(rest) = item.rest.take()
-                {
-                    // A probe: on the way it showed, the rest of the run; no way yet,
-                    // another probe; the other way, the run is over there (the
-                    // controller's watch stops it at that endpoint otherwise).
-                    let d = item.dirs[item.leg];
-                    let way = expected_sign(item.motor, d, &ft);
-                    let went = (i32::from(pos) - i32::from(item.starts[item.leg])) * way;
-                    item.probed = item.ran[item.leg];
-                    if went > 0 {
-                        return self.run(d, rest, Some(way), view, cx, shared);
-                    }
-                    if went == 0 && item.probes < MAX_PROBES {
-                        return self.run(d, rest, None, view, cx, shared);
-                    }
-                    if went < 0 {
-                        item.ended_at[item.leg] = heads_for(item.motor, opposite(d), &ft);
-                        cx.out.progress.push(format!(
-                            "  {} went the other way from {} to {pos}: run no further",
-                            motor_name(item.motor),
-                            item.starts[item.leg]
-                        ));
-                    }
-                }
                 view.motors[item.idx].positions.push(pos);
                 if item.leg < 2 {
-                    item.probes = 0;
-                    item.probed = Duration::ZERO;
                     let start = item.starts[item.leg];
                     item.moves[item.leg] = i32::from(pos) - i32::from(start);
                     item.leg += 1;
@@ -494,18 +456,17 @@ impl Motors {
         };
         let ratio = back.abs() as f32 / moved.abs() as f32;
         let length = ran.mul_f32(ratio).min(item.run * 2);
-        self.run(dir, length, Some(back.signum()), view, cx, shared)
+        self.run(dir, length, Way::of(back), view, cx, shared)
     }
 
     /// Runs the motor `d` for `length`; `way` is which way the check expects the
     /// position to go when it knows better than the direction (the run back, after it
     /// saw the motor go), so the run keeps off the endpoint it will really reach.
-    #[allow(clippy::too_many_arguments)]
     fn run(
         &mut self,
         d: Direction,
         length: Duration,
-        way: Option<i32>,
+        way: Option<Way>,
         view: &mut CheckView,
         cx: &mut CallContext,
         shared: &mut Shared,
@@ -514,39 +475,12 @@ impl Motors {
             return Next::Stay;
         };
         let now = cx.now;
-        let mut length = length;
-        // Seen moving against its command (by this check's first run, or before it):
-        // no test run is made until the person confirms one at the page's keys; the
-        // finding is that, and the run back goes the way it was seen to go.
-        if item.leg < 2
-            && way.is_none()
-            && let Some(asked) = cx.ctl.against().seen(item.motor)
-            && let Some(pos) = cx
-                .model
-                .live_flap_trim(now)
-                .map(|ft| position(item.motor, ft))
-        {
-            let idx = item.idx;
-            if view.motors[idx].outcome == Outcome::NotRun {
-                if item.leg == 0 {
-                    cx.out.progress.push(format!(
-                        "  {}: not run",
-                        crate::control::against::words(item.motor, asked)
-                    ));
-                }
-                record(view, idx, MotorFinding::Reversed, cx);
-            }
-            item.leg = 2;
-            return self.run_back(pos, view, cx, shared);
-        }
         if let Some(ft) = cx.model.live_flap_trim(now)
             && item.leg < 2
             && way.is_none()
         {
             let pos = position(item.motor, ft);
-            if item.probes == 0 {
-                item.starts[item.leg] = pos;
-            }
+            item.starts[item.leg] = pos;
             if room(item.motor, d, pos, ft).is_some_and(|r| r <= endpoints::START_ROOM) {
                 // At (or past) the endpoint it heads for: this run is not made; it
                 // counts as not moving, against its limit.
@@ -554,66 +488,79 @@ impl Motors {
                 item.stage = Stage::Settle { until: now };
                 return Next::Stay;
             }
-            // Near the endpoint behind it, and its way not known: a probe first.
-            item.rest = None;
-            if let Some(p) = endpoints::probe(item.motor, d, pos, ft)
-                && p < length
-            {
-                item.rest = Some(length - p);
-                item.probes += 1;
-                length = p;
-            }
         }
+        let how = How::For { length, way };
         match cx
             .ctl
-            .run_for_moving(cx.model, item.motor, d, way, length, now)
+            .start(Origin::Check, cx.model, item.motor, d, how, now)
         {
             Ok(p) => {
                 cx.out.packets.extend(p);
                 if item.leg < 2 {
-                    // As planned; a run ended early at its endpoint says how long.
-                    item.ran[item.leg] = item.probed + length;
+                    // As planned; the run's stop says how long it drove the motor.
+                    item.ran[item.leg] = length;
                 }
                 item.stage = Stage::Running { since: now, length };
             }
             Err(why) => {
                 let idx = item.idx;
-                if let Some(unseen) = cx.ctl.unseen() {
-                    // Nobody can see the page: nothing moves until the person is back
-                    // and asks (r), as after a run the same cause cut short.
-                    let why = format!(
-                        "the {} did not start: {}; nothing moves while the page cannot be \
-                         seen",
-                        item.motor.name(),
-                        unseen.describe()
-                    );
-                    return self.pause(&why, view, cx);
-                }
-                match motor_check(cx.model, item.motor, d, now) {
-                    Err(StopReason::MotorFault(code)) => {
+                match why.reason {
+                    Refused::Unseen(unseen) => {
+                        // Nobody can see the page: nothing moves until the person is
+                        // back and asks (r), as after a run the same cause cut short.
+                        let why = format!(
+                            "the {} did not start: {}; nothing moves while the page cannot \
+                             be seen",
+                            item.motor.name(),
+                            unseen.describe()
+                        );
+                        return self.pause(&why, view, cx);
+                    }
+                    // Seen moving against its command (by this check's first run, or
+                    // before it): no test run is made until the person confirms one at
+                    // the page's keys; the finding is that, and the run back goes the
+                    // way it was seen to go.
+                    Refused::Against(asked) if item.leg < 2 => {
+                        if view.motors[idx].outcome == Outcome::NotRun {
+                            if item.leg == 0 {
+                                cx.out.progress.push(format!(
+                                    "  {}: not run",
+                                    crate::control::against::words(item.motor, asked)
+                                ));
+                            }
+                            record(view, idx, MotorFinding::Reversed, cx);
+                        }
+                        item.leg = 2;
+                        return match cx
+                            .model
+                            .live_flap_trim(now)
+                            .map(|ft| position(item.motor, ft))
+                        {
+                            Some(pos) => self.run_back(pos, view, cx, shared),
+                            None => Next::From(idx + 1),
+                        };
+                    }
+                    Refused::Model(StopReason::MotorFault(code)) => {
                         shared.known_faults.insert(item.motor.device_id());
                         record(view, idx, MotorFinding::Faulted(code), cx);
                     }
-                    Err(StopReason::CommLost) => {
+                    Refused::Model(StopReason::CommLost) => {
                         shared.trouble_ahead = Some("COMMUNICATION LOST".into());
                         return Next::Stay;
                     }
                     // No position to go by (none fresh enough to keep it off its
                     // endpoint, or none at all): it waits, as a run cut short does,
                     // for the person to try again or skip it (which runs it back).
-                    Err(StopReason::MotorStatusLost) => return self.pause(&why.0, view, cx),
-                    _ if cx
-                        .model
-                        .flap_trim
-                        .is_some_and(|st| st.age(now) > endpoints::POSITION_FRESH) =>
-                    {
-                        return self.pause(&why.0, view, cx);
+                    Refused::Model(StopReason::MotorStatusLost) | Refused::PositionStale => {
+                        return self.pause(&why.words, view, cx);
                     }
                     _ if view.motors[idx].outcome == Outcome::NotRun => {
-                        view.motors[idx].outcome = Outcome::Skipped(why.0.clone());
-                        cx.out
-                            .progress
-                            .push(format!("– {}: {}", motor_name(item.motor), why.0));
+                        view.motors[idx].outcome = Outcome::Skipped(why.words.clone());
+                        cx.out.progress.push(format!(
+                            "– {}: {}",
+                            motor_name(item.motor),
+                            why.words
+                        ));
                     }
                     _ => {}
                 }
@@ -630,7 +577,7 @@ impl Motors {
                     cx.out.progress.push(format!(
                         "  {}: not run back: {}",
                         motor_name(motor),
-                        why.0
+                        why.words
                     ));
                     not_back(view, idx, motor, pos, p0, cx);
                 }
@@ -732,7 +679,6 @@ impl Motors {
                 // run back still goes to where the check found it.
                 view.prompt = Some(running_prompt(item.motor));
                 if item.leg < 2 {
-                    (item.rest, item.probes, item.probed) = (None, 0, Duration::ZERO);
                     let (d, length) = (item.dirs[item.leg], item.run);
                     self.run(d, length, None, view, cx, shared)
                 } else {

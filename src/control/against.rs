@@ -20,7 +20,7 @@
 //!   the network cannot confirm: they are refused and say so.
 //! - A confirmed run goes knowing the way the motor really moves: it is refused at
 //!   the endpoint that way and stopped at both endpoints by position, as any run that
-//!   keeps to them ([`super::endpoints::permit_moving`], `Watch::moving`).
+//!   keeps to them ([`super::run::permit`], `Watch::moving`).
 //!
 //! The record lasts as long as the page (or the headless gateway) runs: the person
 //! who fixes the wiring starts the page again. It is shared ([`Against`] is a handle)
@@ -32,7 +32,7 @@
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use super::endpoints::{expected_sign, opposite};
+use super::endpoints::{Way, expected_way, opposite};
 use super::streamer::{Direction, StopReason};
 use crate::model::{Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
@@ -69,28 +69,17 @@ impl Against {
         self.lock()[slot(motor)]
     }
 
-    /// The way (+1 grow, −1 shrink) a run of `motor` `direction` is known to move the
-    /// position: against the direction's own, for a motor seen moving against its
-    /// command; `None` for one that was not.
+    /// The way a run of `motor` `direction` is known to move the position: against
+    /// the direction's own, for a motor seen moving against its command; `None` for
+    /// one that was not.
     pub fn known_way(
         &self,
         motor: Motor,
         direction: Direction,
         ft: &FlapTrimStatus,
-    ) -> Option<i32> {
+    ) -> Option<Way> {
         self.seen(motor)
-            .map(|_| -expected_sign(motor, direction, ft))
-    }
-
-    /// Why a run of `motor` that nobody confirmed is refused, if it is: for the
-    /// origins that cannot confirm (the installation check, the network).
-    pub fn refusal(&self, motor: Motor) -> Option<String> {
-        self.seen(motor).map(|asked| {
-            format!(
-                "{}; not run: confirm a run at the page (press its key twice)",
-                words(motor, asked)
-            )
-        })
+            .map(|_| expected_way(motor, direction, ft).reversed())
     }
 }
 
@@ -107,17 +96,6 @@ pub fn words(motor: Motor, asked: Direction) -> String {
 /// The page's words for a run stopped this way.
 pub fn stopped(motor: Motor, asked: Direction) -> String {
     format!("{}; stopped", words(motor, asked))
-}
-
-/// The refusal of a key's run, naming the key that confirms it.
-pub fn confirm_words(motor: Motor, seen: Direction, direction: Direction) -> String {
-    format!(
-        "{}; let go, then press {} again within {} s to run it {} anyway, watching the motor",
-        words(motor, seen),
-        key_name(direction),
-        CONFIRM_WITHIN.as_secs(),
-        direction.name()
-    )
 }
 
 /// The device list's key for `direction` (`control::keymap`).
@@ -168,7 +146,5 @@ mod tests {
         b.record(PITCH, Direction::Up);
         assert_eq!(a.seen(PITCH), Some(Direction::Up));
         assert_eq!(a.seen(Motor::Flaps), None);
-        assert!(a.refusal(PITCH).unwrap().contains("not run"));
-        assert_eq!(a.refusal(Motor::Flaps), None);
     }
 }

@@ -28,7 +28,7 @@ fn refuse<T>(why: impl Into<String>) -> Result<T, Refusal> {
     Err(Refusal(why.into()))
 }
 
-const COMM_LOST: &str = "COMMUNICATION LOST: nothing is sent until the VP-X is heard again, \
+pub(super) const COMM_LOST: &str = "COMMUNICATION LOST: nothing is sent until the VP-X is heard again, \
                          because the result could not be seen";
 
 /// The message for a command action (`Action::is_command`), or why not. Other actions
@@ -239,26 +239,4 @@ pub fn motor_check(
         return Err(StopReason::FlapDownInhibited);
     }
     Ok(())
-}
-
-/// [`motor_check`] as a refusal to start, in words.
-pub fn motor_permit(
-    model: &Model,
-    motor: Motor,
-    direction: Direction,
-    now: Instant,
-) -> Result<(), Refusal> {
-    motor_check(model, motor, direction, now).map_err(|r| {
-        Refusal(match r {
-            StopReason::CommLost => COMM_LOST.to_string(),
-            StopReason::MotorFault(_) => {
-                format!(
-                    "{} is faulted ({}): reset it with r first",
-                    motor.name(),
-                    r.describe()
-                )
-            }
-            r => format!("{} cannot run: {}", motor.name(), r.describe()),
-        })
-    })
 }

@@ -41,11 +41,11 @@
 
 use std::time::{Duration, Instant};
 
+use crate::audit::Origin;
 use crate::control::endpoints::{self, ProbeNext, Probing, Watch};
+use crate::control::run::{self, Known};
 use crate::control::run_state::ReleaseMode;
-use crate::control::{
-    Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check, motor_permit,
-};
+use crate::control::{Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check};
 use crate::model::{LogLevel, Model, Motor, TrimKind};
 use crate::protocol::message::Packet;
 
@@ -379,10 +379,20 @@ impl MotorDrive {
             // The page's own rule for a run that keeps to the endpoints: no start at
             // (or within a run's first unwatched travel of) the endpoint ahead, nor on
             // a position too old to keep it off it.
-            let permit = motor_permit(model, motor, direction, now)
-                .map_err(|r| r.0)
-                .and_then(|()| self.against.refusal(motor).map_or(Ok(()), Err))
-                .and_then(|()| endpoints::permit(model, motor, direction, now));
+            let known = Known {
+                way: None,
+                confirmed: false,
+                keep_ends: true,
+            };
+            let permit = run::permit(
+                Origin::Xfsp,
+                model,
+                &self.against,
+                motor,
+                direction,
+                known,
+                now,
+            );
             if let Err(why) = permit {
                 self.counts.refused += 1;
                 model.log(
