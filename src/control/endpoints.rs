@@ -185,9 +185,9 @@ fn at_end(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Option<NoR
 pub struct Watch {
     pub motor: Motor,
     pub direction: Direction,
-    /// The way the position is expected to go (+1 grow, −1 shrink) until the run
-    /// shows its own: the direction's ([`expected_sign`]), or what the caller saw
-    /// this motor do (a reversed motor run back by the installation check).
+    /// The way the position is expected to go until the run shows its own: the
+    /// direction's ([`expected_sign`]), or what the caller saw this motor do (a
+    /// reversed motor run back by the installation check).
     way: Option<Way>,
     /// Whether the run keeps to the endpoints: all but the setup screens' capture.
     keep_ends: bool,
@@ -195,6 +195,8 @@ pub struct Watch {
     samples: Vec<(Instant, u8)>,
     /// The run's first position.
     first: Option<u8>,
+    /// The farthest the run has gone its expected way from `first`, in counts.
+    farthest: i32,
 }
 
 impl Watch {
@@ -206,6 +208,7 @@ impl Watch {
             keep_ends: true,
             samples: Vec::new(),
             first: None,
+            farthest: 0,
         }
     }
 
@@ -227,6 +230,20 @@ impl Watch {
             way: Some(way),
             ..Watch::new(motor, direction)
         }
+    }
+
+    /// The run's watch from `model`'s position when it starts (if fresh), rather than
+    /// from the first it checks: a motor that moves at once is judged from where it
+    /// was, not from a position heard a tick into its run.
+    pub fn from_start(mut self, model: &Model, now: Instant) -> Watch {
+        if let Some(st) = model
+            .flap_trim
+            .as_ref()
+            .filter(|st| st.age(now) <= POSITION_FRESH)
+        {
+            self.first = Some(position(self.motor, &st.value));
+        }
+        self
     }
 
     /// Counts a second over the latest samples at least [`RATE_SPAN`] apart.
@@ -278,7 +295,14 @@ impl Watch {
             .map_or_else(|| expected_sign(self.motor, self.direction, ft), Way::sign);
         let (pos, first) = (i32::from(pos), i32::from(first));
         let against = Err(StopReason::MovedAgainst(self.direction));
-        if self.way.is_none() && (pos - first) * -expected >= MOVED {
+        // Gone MOVED counts back from the farthest it got its own way (from where it
+        // started, at the least): moving against its command. A motor that starts
+        // its own way and then turns back (a slipping drive, a sensor losing its
+        // reference, air loads back-driving a weak trim) is caught there, not once it
+        // is back past where it started.
+        let gone = (pos - first) * expected;
+        self.farthest = self.farthest.max(gone);
+        if self.way.is_none() && self.farthest - gone >= MOVED {
             return against;
         }
         let Some(e) = ends(self.motor, ft).filter(|_| self.keep_ends) else {
@@ -583,6 +607,21 @@ mod tests {
         assert_eq!(seen[2], Err(StopReason::MovedAgainst(Direction::Down)));
         // Its own way, no stop for it.
         let seen = watch(PITCH, Direction::Up, &[128, 126, 123, 120]);
+        assert!(seen.iter().all(Result::is_ok), "{seen:?}");
+    }
+
+    /// Issue 31: the XFSp gateway's own rule (gone 3 counts from the nearest it came
+    /// to its target) made the watch's, for every origin. Asked up (shrinking) from
+    /// 128, a trim that goes to 120 and then turns back is stopped at 123, three
+    /// counts from the farthest it got, though still 5 short of where it started
+    /// (the rule from the start alone waited for 131). Two counts back is noise.
+    #[test]
+    fn a_run_that_turns_back_is_stopped_a_few_counts_from_the_farthest_it_got() {
+        let seen = watch(PITCH, Direction::Up, &[128, 125, 122, 120, 121, 122, 123]);
+        let against = Err(StopReason::MovedAgainst(Direction::Up));
+        assert_eq!(&seen[..6], &[Ok(()); 6], "{seen:?}");
+        assert_eq!(seen[6], against);
+        let seen = watch(PITCH, Direction::Up, &[128, 125, 122, 120, 122, 121, 119]);
         assert!(seen.iter().all(Result::is_ok), "{seen:?}");
     }
 

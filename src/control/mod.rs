@@ -317,11 +317,12 @@ impl Controller {
                 Refused::NotStarted,
             ));
         }
-        self.watch = Some(match (known.keep_ends, way) {
+        let watch = match (known.keep_ends, way) {
             (false, _) => endpoints::Watch::capture(motor, direction, way),
             (true, Some(w)) => endpoints::Watch::moving(motor, direction, w),
             (true, None) => endpoints::Watch::new(motor, direction),
-        });
+        };
+        self.watch = Some(watch.from_start(model, now));
         self.probe = None;
         if known.keep_ends
             && way.is_none()

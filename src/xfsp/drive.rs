@@ -18,10 +18,9 @@
 //! shows its way ([`endpoints::Probing`]), as the page's keys do, so a motor wired
 //! the wrong way is not driven past that endpoint beyond [`endpoints::NOISE`].
 //!
-//! Like every run, it also ends as soon as it moves [`endpoints::MOVED`] counts against
-//! the direction it was driven, from where it started or (a run here has a target)
-//! [`AWAY`] counts away from the nearest it came to its target
-//! ([`StopReason::MovedAgainst`]): a motor with swapped leads or polarity runs away
+//! Like every run, it also ends as soon as it moves [`endpoints::MOVED`] counts back
+//! from the farthest it got the way it was driven (the watch's rule,
+//! [`StopReason::MovedAgainst`]): a motor with swapped leads or polarity runs away
 //! from where it was sent, and is stopped there rather than at the far endpoint. A
 //! motor seen doing so, here or by any other origin sharing the record
 //! ([`MotorDrive::share_against`]), is refused from then on: the network cannot
@@ -38,11 +37,20 @@
 //! (a run started, or the motor was already there) or refused (no live position or
 //! scale, a motor check failed, at its endpoint, or it expired waiting for another
 //! run to end).
+//!
+//! [`endpoints::MOVED`]: crate::control::endpoints::MOVED
+//! [`endpoints::NEAR`]: crate::control::endpoints::NEAR
+//! [`endpoints::NOISE`]: crate::control::endpoints::NOISE
+//! [`endpoints::POSITION_FRESH`]: crate::control::endpoints::POSITION_FRESH
+//! [`endpoints::Probing`]: crate::control::endpoints::Probing
+//! [`endpoints::Probing::next`]: crate::control::endpoints::Probing::next
+//! [`endpoints::START_ROOM`]: crate::control::endpoints::START_ROOM
+//! [`endpoints::Watch`]: crate::control::endpoints::Watch
 
 use std::time::{Duration, Instant};
 
 use crate::audit::Origin;
-use crate::control::endpoints::{self, ProbeNext, Probing, Watch};
+use crate::control::endpoints::{ProbeNext, Probing, Watch};
 use crate::control::run::{self, Known};
 use crate::control::run_state::ReleaseMode;
 use crate::control::{Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check};
@@ -56,11 +64,6 @@ pub const REQUEST_HOLD: Duration = Duration::from_millis(1200);
 /// Raw counts short of the target at which the motor is stopped: the 10 Hz position
 /// reports lag the motor, so stopping a count early lands on the target, not past it.
 pub const STOP_MARGIN: i32 = 1;
-/// Counts a run's position may go away from its target (from the nearest it came)
-/// before the run ends as moving against its command ([`StopReason::MovedAgainst`]): the
-/// installation check's "moved" ([`endpoints::MOVED`]), so one count of sensor noise,
-/// or two, never ends a good run.
-pub const AWAY: i32 = endpoints::MOVED;
 
 pub const MOTORS: [Motor; 3] = [
     Motor::Flaps,
@@ -92,10 +95,8 @@ struct Active {
     /// The request's target on the draft's scale, and in raw counts.
     target: i32,
     raw_target: u8,
-    /// Its watch over the endpoints and the position's age.
+    /// Its watch over the endpoints, the position's age and its way.
     watch: Watch,
-    /// The fewest counts it has been short of the target (see [`AWAY`]).
-    closest: i32,
     /// Going as probes until the motor shows its way ([`endpoints::Probing`]).
     probe: Option<Probing>,
 }
@@ -181,11 +182,6 @@ impl MotorDrive {
 
     pub fn running(&self) -> Option<(Motor, Direction)> {
         self.streamer.running_key()
-    }
-
-    /// The request held for each motor (flaps, pitch, roll).
-    pub fn requests(&self) -> [Option<MotorRequest>; 3] {
-        self.slots.map(|s| s.req)
     }
 
     /// The request held for `motor`.
@@ -421,8 +417,7 @@ impl MotorDrive {
                     direction,
                     target: req.target,
                     raw_target,
-                    watch: Watch::new(motor, direction),
-                    closest: axis.remaining(motor, direction, pos, raw_target),
+                    watch: Watch::new(motor, direction).from_start(model, now),
                     probe,
                 });
                 model.log(
@@ -497,27 +492,14 @@ fn position(model: &Model, motor: Motor, now: Instant) -> Option<(Axis, u8)> {
 }
 
 impl Active {
-    /// Whether the run ends by its position against its target (the endpoints and
-    /// the position's age are the watch's): reached, or gone [`AWAY`] from it.
+    /// Whether the run ends by its position against its target (the endpoints, the
+    /// position's age and its way are the watch's): reached.
     fn progress(&mut self, model: &Model, now: Instant) -> Option<(StopReason, String, bool)> {
         // motor_check and the watch have already made sure the position is live.
         let (axis, pos) = position(model, self.motor, now)?;
         let remaining = axis.remaining(self.motor, self.direction, pos, self.raw_target);
-        if remaining <= STOP_MARGIN {
-            return Some((StopReason::Released, "target reached".to_string(), true));
-        }
-        self.closest = self.closest.min(remaining);
-        (remaining - self.closest >= AWAY).then(|| {
-            let reason = StopReason::MovedAgainst(self.direction);
-            let why = format!(
-                "{} (raw {pos}, {} counts from target {} after {})",
-                reason.describe(),
-                remaining,
-                self.raw_target,
-                self.closest
-            );
-            (reason, why, true)
-        })
+        (remaining <= STOP_MARGIN)
+            .then(|| (StopReason::Released, "target reached".to_string(), true))
     }
 }
 
