@@ -222,3 +222,67 @@ pub fn permit(
     }
     Ok(way)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::TrimKind;
+    use crate::protocol::fault::FaultCode;
+
+    const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
+
+    /// Issue 35, item 5: a refusal's words fit where it was asked from. Only the
+    /// page's keys are told of keys; the phone of its buttons and the laptop's page;
+    /// the network that it cannot confirm; the check where a person can.
+    #[test]
+    fn each_origin_is_told_in_its_own_words() {
+        let against = Refused::Against(Direction::Up);
+        let fault = Refused::Model(StopReason::MotorFault(FaultCode::TrimRunaway));
+        let ended = Refused::LeaseEnded(StopReason::MaxRunTime);
+        let said = |origin, reason| words(origin, PITCH, Direction::Up, reason);
+        let moved = "pitch trim moved down when asked up: its leads or its sensor may be swapped";
+        assert_eq!(
+            said(Origin::Key, against),
+            format!(
+                "{moved}; let go, then press u again within 3 s to run it up anyway, \
+                 watching the motor"
+            )
+        );
+        assert_eq!(said(Origin::Setup, against), said(Origin::Key, against));
+        assert_eq!(
+            said(Origin::Remote, against),
+            format!(
+                "{moved}; not run from the phone: to run it anyway, confirm a run on the \
+                 laptop's page, watching the motor"
+            )
+        );
+        assert_eq!(
+            said(Origin::Xfsp, against),
+            format!(
+                "{moved}; not run on a network request: a run can only be confirmed on the \
+                 page, by a person watching the motor"
+            )
+        );
+        assert_eq!(
+            said(Origin::Check, against),
+            format!(
+                "{moved}; not run: confirm a run on the page's device list, watching the motor"
+            )
+        );
+        assert!(said(Origin::Key, fault).ends_with("reset it with r first"));
+        assert!(said(Origin::Key, ended).ends_with("let go and press again"));
+        for origin in [Origin::Remote, Origin::Xfsp, Origin::Check] {
+            for reason in [against, fault, ended] {
+                let w = said(origin, reason);
+                for keys in ["press u", "with r", "its key", "press its key twice"] {
+                    assert!(!w.contains(keys), "{origin:?}: {w}");
+                }
+            }
+        }
+        assert_eq!(
+            said(Origin::Remote, ended),
+            "pitch trim stopped: maximum run time reached; let go of the button and press \
+             it again"
+        );
+    }
+}
