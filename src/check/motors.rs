@@ -130,6 +130,31 @@ pub fn judge_runs(
     }
 }
 
+/// Which of a motor's runs the item is at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Leg {
+    /// The first test run, `dirs[0]`.
+    First,
+    /// The second test run, `dirs[1]`.
+    Second,
+    /// The test runs are over (or were skipped): it is run back to where it was, if
+    /// it is not there.
+    Back,
+    /// The run back was started: no run follows it.
+    RunningBack,
+}
+
+impl Leg {
+    /// The test run's index into the item's per-run arrays, for the two test runs.
+    fn test(self) -> Option<usize> {
+        match self {
+            Leg::First => Some(0),
+            Leg::Second => Some(1),
+            Leg::Back | Leg::RunningBack => None,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy)]
 enum Stage {
     /// Waiting for a live position to start from.
@@ -155,8 +180,7 @@ pub(super) struct MotorItem {
     pub motor: Motor,
     dirs: [Direction; 2],
     p0: Option<u8>,
-    /// 0 and 1: the test runs; 2: the run back.
-    leg: usize,
+    leg: Leg,
     starts: [u8; 2],
     moves: [i32; 2],
     /// The endpoint each test run was stopped at, or had no room to be made for.
@@ -177,7 +201,7 @@ impl MotorItem {
     pub(super) fn stage(&self) -> &'static str {
         match &self.stage {
             Stage::Start => "start",
-            Stage::Running { .. } if self.leg == 2 => "running back",
+            Stage::Running { .. } if self.leg == Leg::RunningBack => "running back",
             Stage::Running { .. } => "running",
             Stage::Settle { .. } => "settle",
             Stage::Paused { .. } => "paused",
@@ -229,7 +253,7 @@ impl Motors {
             motor,
             dirs: directions(motor),
             p0: None,
-            leg: 0,
+            leg: Leg::First,
             starts: [0; 2],
             moves: [0; 2],
             ended_at: [None; 2],
@@ -302,10 +326,8 @@ impl Motors {
                     .filter(|s| s.at >= since && s.motor == item.motor)
                     .map(|s| (s.reason, s.at, s.driven));
                 let stopped_at = stop.map_or(now, |(_, at, _)| at);
-                if item.leg < 2
-                    && let Some((_, _, driven)) = stop
-                {
-                    item.ran[item.leg] = driven;
+                if let (Some(k), Some((_, _, driven))) = (item.leg.test(), stop) {
+                    item.ran[k] = driven;
                 }
                 match stop.map(|(r, _, _)| r) {
                     Some(StopReason::RunDone) | None => {
@@ -316,8 +338,8 @@ impl Motors {
                     // Stopped at its endpoint by the controller: the run is over, for
                     // as far as it went.
                     Some(StopReason::AtEndpoint(end)) => {
-                        if item.leg < 2 {
-                            item.ended_at[item.leg] = Some(end);
+                        if let Some(k) = item.leg.test() {
+                            item.ended_at[k] = Some(end);
                         }
                         cx.out.progress.push(format!(
                             "  {} stopped at its endpoint ({end}), position {pos}",
@@ -331,8 +353,8 @@ impl Motors {
                     // run over where it went (the other direction's endpoint is
                     // where it was really heading), which the finding will say.
                     Some(StopReason::MovedAgainst(asked)) => {
-                        if item.leg < 2 {
-                            item.ended_at[item.leg] = heads_for(item.motor, opposite(asked), &ft);
+                        if let Some(k) = item.leg.test() {
+                            item.ended_at[k] = heads_for(item.motor, opposite(asked), &ft);
                         }
                         cx.out.progress.push(format!(
                             "  {}, position {pos}",
@@ -382,12 +404,11 @@ impl Motors {
                     return Next::Stay;
                 }
                 view.motors[item.idx].positions.push(pos);
-                if item.leg < 2 {
-                    let start = item.starts[item.leg];
-                    item.moves[item.leg] = i32::from(pos) - i32::from(start);
-                    item.leg += 1;
+                if let Some(k) = item.leg.test() {
+                    item.moves[k] = i32::from(pos) - i32::from(item.starts[k]);
+                    item.leg = if k == 0 { Leg::Second } else { Leg::Back };
                 }
-                if item.leg == 1 {
+                if item.leg == Leg::Second {
                     let d = item.dirs[1];
                     // No longer than the first run's rate says reaches its endpoint.
                     let rate = item.moves[0].abs() as f32 / item.ran[0].as_secs_f32().max(1e-3);
@@ -400,7 +421,10 @@ impl Motors {
                     return self.run(d, length, None, view, cx, shared);
                 }
                 let idx = item.idx;
-                if item.leg == 2 && view.motors[idx].outcome == Outcome::NotRun && !item.skipped {
+                if item.leg == Leg::Back
+                    && view.motors[idx].outcome == Outcome::NotRun
+                    && !item.skipped
+                {
                     let f = judge_runs(
                         item.motor,
                         item.dirs,
@@ -438,7 +462,11 @@ impl Motors {
             1
         };
         let (moved, dir, ran) = (item.moves[k], item.dirs[k], item.ran[k]);
-        if item.leg >= 3 || back.abs() <= BACK_WITHIN || moved.abs() < MOVED || ran.is_zero() {
+        if item.leg == Leg::RunningBack
+            || back.abs() <= BACK_WITHIN
+            || moved.abs() < MOVED
+            || ran.is_zero()
+        {
             if back.abs() > BACK_WITHIN
                 && let Some(p0) = item.p0
             {
@@ -448,7 +476,7 @@ impl Motors {
             }
             return Next::From(idx + 1);
         }
-        item.leg = 3;
+        item.leg = Leg::RunningBack;
         let dir = if back.signum() == moved.signum() {
             dir
         } else {
@@ -476,15 +504,15 @@ impl Motors {
         };
         let now = cx.now;
         if let Some(ft) = cx.model.live_flap_trim(now)
-            && item.leg < 2
+            && let Some(k) = item.leg.test()
             && way.is_none()
         {
             let pos = position(item.motor, ft);
-            item.starts[item.leg] = pos;
+            item.starts[k] = pos;
             if room(item.motor, d, pos, ft).is_some_and(|r| r <= endpoints::START_ROOM) {
                 // At (or past) the endpoint it heads for: this run is not made; it
                 // counts as not moving, against its limit.
-                item.ended_at[item.leg] = heads_for(item.motor, d, ft);
+                item.ended_at[k] = heads_for(item.motor, d, ft);
                 item.stage = Stage::Settle { until: now };
                 return Next::Stay;
             }
@@ -496,9 +524,9 @@ impl Motors {
         {
             Ok(p) => {
                 cx.out.packets.extend(p);
-                if item.leg < 2 {
+                if let Some(k) = item.leg.test() {
                     // As planned; the run's stop says how long it drove the motor.
-                    item.ran[item.leg] = length;
+                    item.ran[k] = length;
                 }
                 item.stage = Stage::Running { since: now, length };
             }
@@ -520,9 +548,9 @@ impl Motors {
                     // before it): no test run is made until the person confirms one at
                     // the page's keys; the finding is that, and the run back goes the
                     // way it was seen to go.
-                    Refused::Against(asked) if item.leg < 2 => {
+                    Refused::Against(asked) if item.leg.test().is_some() => {
                         if view.motors[idx].outcome == Outcome::NotRun {
-                            if item.leg == 0 {
+                            if item.leg == Leg::First {
                                 cx.out.progress.push(format!(
                                     "  {}: not run",
                                     crate::control::against::words(item.motor, asked)
@@ -530,7 +558,7 @@ impl Motors {
                             }
                             record(view, idx, MotorFinding::Reversed, cx);
                         }
-                        item.leg = 2;
+                        item.leg = Leg::Back;
                         return match cx
                             .model
                             .live_flap_trim(now)
@@ -569,7 +597,7 @@ impl Motors {
                     .model
                     .live_flap_trim(now)
                     .map(|ft| position(item.motor, ft));
-                if item.leg >= 3
+                if item.leg == Leg::RunningBack
                     && let (Some(p0), Some(pos)) = (item.p0, pos)
                     && (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN
                 {
@@ -643,7 +671,7 @@ impl Motors {
                 // A test run cut short by this skip (or paused before it) counts
                 // for as far as it went, so the run back knows the way and the rate.
                 if let Some(pos) = pos
-                    && item.leg < 2
+                    && let Some(k) = item.leg.test()
                 {
                     let ran = match item.stage {
                         Stage::Running { since, length } => {
@@ -653,13 +681,13 @@ impl Motors {
                         Stage::Settle { .. } => item.run,
                         Stage::Start => Duration::ZERO,
                     };
-                    item.moves[item.leg] = i32::from(pos) - i32::from(item.starts[item.leg]);
-                    item.ran[item.leg] = ran;
+                    item.moves[k] = i32::from(pos) - i32::from(item.starts[k]);
+                    item.ran[k] = ran;
                 }
                 // Run it back first if it moved.
                 match pos {
-                    Some(pos) if item.p0.is_some() && item.leg < 3 => {
-                        item.leg = 2;
+                    Some(pos) if item.p0.is_some() && item.leg != Leg::RunningBack => {
+                        item.leg = Leg::Back;
                         self.run_back(pos, view, cx, shared)
                     }
                     Some(pos) if let Some(p0) = item.p0 => {
@@ -678,15 +706,15 @@ impl Motors {
                 // the first direction and a run already measured are kept, so the
                 // run back still goes to where the check found it.
                 view.prompt = Some(running_prompt(item.motor));
-                if item.leg < 2 {
-                    let (d, length) = (item.dirs[item.leg], item.run);
+                if let Some(k) = item.leg.test() {
+                    let (d, length) = (item.dirs[k], item.run);
                     self.run(d, length, None, view, cx, shared)
                 } else {
                     let pos = cx
                         .model
                         .live_flap_trim(cx.now)
                         .map(|ft| position(item.motor, ft));
-                    item.leg = 2;
+                    item.leg = Leg::Back;
                     match pos {
                         Some(pos) => self.run_back(pos, view, cx, shared),
                         None => Next::From(idx + 1),
