@@ -34,7 +34,7 @@ use std::time::Duration;
 
 use super::endpoints::{Way, expected_way, opposite};
 use super::streamer::{Direction, StopReason};
-use crate::model::{Motor, TrimKind};
+use crate::model::Motor;
 use crate::protocol::message::FlapTrimStatus;
 
 /// How long after a refusal the same key confirms the run.
@@ -45,14 +45,6 @@ pub const CONFIRM_WITHIN: Duration = Duration::from_secs(3);
 #[derive(Debug, Clone, Default)]
 pub struct Against(Arc<Mutex<[Option<Direction>; 3]>>);
 
-fn slot(motor: Motor) -> usize {
-    match motor {
-        Motor::Flaps => 0,
-        Motor::Trim(TrimKind::Pitch) => 1,
-        Motor::Trim(TrimKind::Roll) => 2,
-    }
-}
-
 impl Against {
     fn lock(&self) -> std::sync::MutexGuard<'_, [Option<Direction>; 3]> {
         // A panic elsewhere while holding it leaves a plain array: still good.
@@ -61,12 +53,12 @@ impl Against {
 
     /// `motor` was asked `asked` and moved the other way.
     pub fn record(&self, motor: Motor, asked: Direction) {
-        self.lock()[slot(motor)] = Some(asked);
+        self.lock()[motor.index()] = Some(asked);
     }
 
     /// The direction `motor` was asked when it was seen moving against it, if it was.
     pub fn seen(&self, motor: Motor) -> Option<Direction> {
-        self.lock()[slot(motor)]
+        self.lock()[motor.index()]
     }
 
     /// The way a run of `motor` `direction` is known to move the position: against
@@ -119,6 +111,7 @@ pub fn asked(reason: StopReason) -> Option<Direction> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::TrimKind;
 
     const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 

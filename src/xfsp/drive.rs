@@ -50,11 +50,11 @@
 use std::time::{Duration, Instant};
 
 use crate::audit::Origin;
-use crate::control::endpoints::{ProbeNext, Probing, Watch};
+use crate::control::endpoints::{self, ProbeNext, Probing, Watch};
 use crate::control::run::{self, Known};
 use crate::control::run_state::ReleaseMode;
 use crate::control::{Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check};
-use crate::model::{LogLevel, Model, Motor, TrimKind};
+use crate::model::{LogLevel, Model, Motor};
 use crate::protocol::message::Packet;
 
 use super::scale::Axis;
@@ -64,12 +64,6 @@ pub const REQUEST_HOLD: Duration = Duration::from_millis(1200);
 /// Raw counts short of the target at which the motor is stopped: the 10 Hz position
 /// reports lag the motor, so stopping a count early lands on the target, not past it.
 pub const STOP_MARGIN: i32 = 1;
-
-pub const MOTORS: [Motor; 3] = [
-    Motor::Flaps,
-    Motor::Trim(TrimKind::Pitch),
-    Motor::Trim(TrimKind::Roll),
-];
 
 /// A motor request as heard.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -186,22 +180,11 @@ impl MotorDrive {
 
     /// The request held for `motor`.
     pub fn request_for(&self, motor: Motor) -> Option<MotorRequest> {
-        let [f, p, r] = &self.slots;
-        match motor {
-            Motor::Flaps => f,
-            Motor::Trim(TrimKind::Pitch) => p,
-            Motor::Trim(TrimKind::Roll) => r,
-        }
-        .req
+        self.slots[motor.index()].req
     }
 
     fn slot(&mut self, motor: Motor) -> &mut Slot {
-        let [f, p, r] = &mut self.slots;
-        match motor {
-            Motor::Flaps => f,
-            Motor::Trim(TrimKind::Pitch) => p,
-            Motor::Trim(TrimKind::Roll) => r,
-        }
+        &mut self.slots[motor.index()]
     }
 
     pub fn next_deadline(&self) -> Option<Instant> {
@@ -245,7 +228,7 @@ impl MotorDrive {
     pub fn tick(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
         let mut out = Vec::new();
         let running = self.active.as_ref().map(|a| a.motor);
-        for motor in MOTORS {
+        for motor in Motor::ALL {
             let local_busy = self.local_busy;
             let slot = self.slot(motor);
             let Some(r) = slot.req.filter(|r| now >= r.until) else {
@@ -333,7 +316,7 @@ impl MotorDrive {
         if self.local_busy {
             return Vec::new();
         }
-        for motor in MOTORS {
+        for motor in Motor::ALL {
             let slot = *self.slot(motor);
             let Some(req) = slot.req else { continue };
             if slot.latched == Some(req.target) {
@@ -483,12 +466,7 @@ impl MotorDrive {
 fn position(model: &Model, motor: Motor, now: Instant) -> Option<(Axis, u8)> {
     let ft = model.live_flap_trim(now)?;
     let axis = Axis::for_motor(motor, ft)?;
-    let pos = match motor {
-        Motor::Flaps => ft.flap_position,
-        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
-        Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
-    };
-    Some((axis, pos))
+    Some((axis, endpoints::position(motor, ft)))
 }
 
 impl Active {
