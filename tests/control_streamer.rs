@@ -806,36 +806,21 @@ fn a_motor_does_not_start_where_motors_are_refused() {
 fn a_timed_run_does_not_start_where_motors_are_refused() {
     let t0 = Instant::now();
     let model = live_model(t0);
+    let check_run = |ctl: &mut Controller| {
+        let how = How::For {
+            length: ms(600),
+            way: None,
+        };
+        ctl.start(Origin::Check, &model, PITCH, Direction::Up, how, t0)
+    };
     let mut fine = Controller::default();
-    let p = fine
-        .start(
-            Origin::Check,
-            &model,
-            PITCH,
-            Direction::Up,
-            How::For {
-                length: ms(600),
-                way: None,
-            },
-            t0,
-        )
-        .expect("a healthy page runs the trim");
+    let p = check_run(&mut fine).expect("a healthy page runs the trim");
     assert_eq!(p.len(), 1, "{p:?}");
     assert!(fine.running().is_some());
 
     let mut ctl = Controller::default();
     ctl.refuse_motors("motors unavailable: no thread".into());
-    let r = ctl.start(
-        Origin::Check,
-        &model,
-        PITCH,
-        Direction::Up,
-        How::For {
-            length: ms(600),
-            way: None,
-        },
-        t0,
-    );
+    let r = check_run(&mut ctl);
     assert_eq!(r.unwrap_err().words, "motors unavailable: no thread");
     assert!(ctl.running().is_none());
     assert!(
