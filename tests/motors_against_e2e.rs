@@ -416,10 +416,13 @@ impl Rig {
 /// first), and the flaps of `reversed-flaps` at their up endpoint 20 (run down
 /// first). Afterwards the first press of that key on the device list is refused
 /// with no move on the wire (it is now known to run the motor into the endpoint it
-/// is at), and so is the other key, which says how to confirm.
+/// is at), and so is the other key, which says how to confirm. The other motor,
+/// wired right (`install`'s flaps at their up endpoint 20, `reversed-flaps`' pitch
+/// trim at 125), moves the commanded way: near an endpoint it shows its way in
+/// probes, and the pauses between them do not eat its test run.
 #[test]
 fn a_reversal_the_check_finds_by_probing_is_refused_to_the_keys() {
-    for (scenario, section, from, to, motor, id, keys) in [
+    for (scenario, section, from, to, motor, id, keys, right) in [
         (
             "install",
             "pitch_trim",
@@ -431,6 +434,7 @@ fn a_reversal_the_check_finds_by_probing_is_refused_to_the_keys() {
                 ('u', "at its down endpoint"),
                 ('d', "press d again within 3 s"),
             ],
+            Motor::Flaps,
         ),
         (
             "reversed-flaps",
@@ -443,6 +447,7 @@ fn a_reversal_the_check_finds_by_probing_is_refused_to_the_keys() {
                 ('d', "at its up endpoint"),
                 ('u', "press u again within 3 s"),
             ],
+            PITCH,
         ),
     ] {
         let (dir, mut r) = moved(scenario, section, from, to);
@@ -451,6 +456,12 @@ fn a_reversal_the_check_finds_by_probing_is_refused_to_the_keys() {
         assert_eq!(
             r.finding(motor),
             Outcome::Found(MotorFinding::Reversed),
+            "{scenario}: {:?}",
+            r.app.take_check_progress()
+        );
+        assert_eq!(
+            r.finding(right),
+            Outcome::Found(MotorFinding::Moves),
             "{scenario}: {:?}",
             r.app.take_check_progress()
         );

@@ -358,7 +358,7 @@ impl Controller {
             endpoints::ProbeNext::Again(length) => self.streamer.probe(now, length),
             endpoints::ProbeNext::Go => {
                 self.probe = None;
-                self.streamer.go(now)
+                self.streamer.resume(now)
             }
             endpoints::ProbeNext::Against => {
                 self.probe = None;

@@ -564,30 +564,24 @@ impl MotorStreamer {
         out
     }
 
-    /// A run paused after its probe streams again, from now.
+    /// A run paused after its probe streams again, from now. A timed run gets back
+    /// the time the pause took: its length is the time its motor is driven (the run
+    /// cap still holds), so probes near an endpoint do not eat a check's test run.
     pub fn resume(&mut self, now: Instant) -> Vec<Packet> {
         let mut out = self.expire(now);
         if let Some(run) = self.run.as_mut()
             && let Some(paused) = run.paused.take()
         {
-            run.paused_for += now.saturating_duration_since(paused);
+            let pause = now.saturating_duration_since(paused);
+            run.paused_for += pause;
+            if !run.leased
+                && let Some(until) = run.until.as_mut()
+            {
+                *until += pause;
+            }
             run.last_sent = now;
             let key = run.key;
             out.push(self.move_packet(key, true));
-        }
-        out
-    }
-
-    /// A run whose probes showed its way streams on ([`resume`](Self::resume)); a
-    /// timed run gets back the time its probes' pauses took, so its motor is driven
-    /// for the length asked (the run cap still holds).
-    pub fn go(&mut self, now: Instant) -> Vec<Packet> {
-        let out = self.resume(now);
-        if let Some(run) = self.run.as_mut()
-            && !run.leased
-            && let Some(until) = run.until.as_mut()
-        {
-            *until += run.paused_for;
         }
         out
     }
