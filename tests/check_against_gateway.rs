@@ -3,11 +3,15 @@
 //! page's keys, both ways (`control::against`). On the fake clock, against the virtual
 //! VP-X's pitch trim with its leads swapped (up 30, down 220). The check's own part
 //! is in `src/check/tests/against.rs`; these live here because the check stands
-//! beside the gateway, not above it.
+//! beside the gateway, not above it. So does the check whose probe finds the
+//! reversal, and the keys, the remote and the gateway that then refuse the motor.
 
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use vpx_efis::check::state::{CheckView, MotorFinding, Outcome as Found, Step};
+use vpx_efis::check::{CheckFlow, Command, Options};
+use vpx_efis::control::run::Refused;
 use vpx_efis::control::run_state::ReleaseMode;
 use vpx_efis::control::{Controller, Direction, KeyContext, Outcome, Selected, StreamerConfig};
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Motor, Setting, Source, TrimKind};
@@ -180,7 +184,7 @@ fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
         r.model
             .events
             .iter()
-            .any(|e| e.text.contains("0x0043") && e.text.contains("not run: confirm")),
+            .any(|e| e.text.contains("0x0043") && e.text.contains("not run on a network request")),
         "{:?}",
         r.model.events
     );
@@ -223,4 +227,101 @@ fn the_gateway_probes_a_network_run_near_the_endpoint_behind_it() {
     let moves = r.trim_moves_since(from);
     assert!(moves[0] && !moves.last().unwrap(), "{moves:?}");
     assert_eq!(r.ctl.against().seen(PITCH), Some(Direction::Up));
+}
+
+/// Issue 31, item 1: the check finds the reversed pitch trim, parked at its down
+/// endpoint 220, by probing (its first run, up, goes down past nothing: the probe
+/// shows its way). That finding is recorded as for any run: afterwards the first
+/// press of `u` at the keys is refused with nothing on the wire, and so are the
+/// remote's lease and a network request, each in the words of where it was asked.
+#[test]
+fn a_reversal_the_check_finds_by_probing_is_refused_to_keys_remote_and_network() {
+    let mut r = rig(220);
+    let opts = Options {
+        skip: vec![Step::Switches, Step::Circuits, Step::Loads],
+        ..Options::default()
+    };
+    let mut view = CheckView::default();
+    let mut flow = CheckFlow::new(opts, &mut view, &r.model, r.now);
+    let out = flow.command(Command::Enter, &mut view, &r.model, &mut r.ctl, r.now);
+    r.send(out.packets);
+    let mut seen = vec![r.pitch_pos()];
+    let mut progress = Vec::new();
+    for _ in 0..2000 {
+        if view.step == Step::Done {
+            break;
+        }
+        seen.extend(r.run_watching(10, PITCH));
+        let out = flow.tick(&mut view, &r.model, &mut r.ctl, r.now);
+        progress.extend(out.progress);
+        r.send(out.packets);
+    }
+    assert_eq!(view.step, Step::Done, "{progress:?}");
+    let pitch = view.motors.iter().find(|m| m.motor == PITCH).unwrap();
+    assert_eq!(
+        pitch.outcome,
+        Found::Found(MotorFinding::Reversed),
+        "{progress:?}"
+    );
+    let most = *seen.iter().max().unwrap();
+    assert!(most <= 221, "past 220 to {most}: {progress:?}");
+    assert_eq!(r.ctl.against().seen(PITCH), Some(Direction::Up));
+    r.run_watching(4000, PITCH);
+
+    // The keys: refused both ways, nothing sent, in the keys' words. `u` is known
+    // now to run it down, and it is at its down endpoint: refused by that endpoint
+    // before a confirmation is offered; `d` can be confirmed.
+    let from = r.sent.len();
+    for (key, words) in [
+        ('u', "is at its down endpoint"),
+        ('d', "let go, then press d again"),
+    ] {
+        let out = r.key(key, KeyEventKind::Press, false);
+        assert!(out.packets.is_empty(), "{out:?}");
+        let notice = out.notice.unwrap();
+        assert!(notice.contains(words), "{notice}");
+        r.key(key, KeyEventKind::Release, false);
+        r.run_watching(3200, PITCH);
+    }
+
+    // The remote: refused both ways, with the reason as a type, and no key named to
+    // the phone.
+    let (p, got) = r.ctl.lease(&r.model, PITCH, Direction::Up, r.now);
+    r.send(p);
+    let why = got.unwrap_err();
+    assert!(
+        matches!(
+            why.reason,
+            Refused::AtEndpoint {
+                toward: Direction::Down,
+                ..
+            }
+        ),
+        "{why:?}"
+    );
+    let (p, got) = r.ctl.lease(&r.model, PITCH, Direction::Down, r.now);
+    r.send(p);
+    let why = got.unwrap_err();
+    assert_eq!(why.reason, Refused::Against(Direction::Up));
+    assert!(why.words.contains("not run from the phone"), "{why}");
+    assert!(!why.words.contains("press"), "{why}");
+
+    // The network: a request refused, said in the event log.
+    let mut drive = MotorDrive::new(StreamerConfig::default());
+    drive.share_against(r.ctl.against());
+    drive.request(PITCH, 50_000, 0x44, None, r.now);
+    let p = drive.tick(&mut r.model, r.now);
+    r.send(p);
+    assert_eq!(drive.counts().refused, 1);
+    assert!(drive.running().is_none());
+    r.run_watching(500, PITCH);
+    assert!(r.trim_moves_since(from).is_empty(), "a refused run moved");
+    assert!(
+        r.model
+            .events
+            .iter()
+            .any(|e| e.text.contains("0x0044") && e.text.contains("is at its down endpoint")),
+        "{:?}",
+        r.model.events
+    );
 }

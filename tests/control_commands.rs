@@ -121,7 +121,9 @@ fn flaps_and_trims_are_not_switched_with_device_power() {
             "{id} must be on the page for this test to mean anything"
         );
         for a in [Action::PowerOn(id), Action::PowerOff(id)] {
-            assert!(refused(a, &m, t0).contains("motor keys"));
+            let why = refused(a, &m, t0);
+            assert!(why.contains("is a motor: it is run up or down"), "{why}");
+            assert!(!why.contains("key"), "it reaches the phone too: {why}");
         }
     }
 }
@@ -358,7 +360,7 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
         ]
     );
     // The same rule for anything else that resets (a remote) and for switching the
-    // circuit on (the installation check): the words, never "reset it with r first".
+    // circuit on (the installation check): the words, never "reset it first".
     let t = t + Duration::from_secs(1);
     heard(&mut m, t);
     let why = refused(Action::Reset(LANDING), &m, t);
@@ -370,5 +372,20 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
     assert_eq!(
         vpx_efis::control::device_power(&m, t, LANDING, true),
         Err(vpx_efis::control::Refusal(why))
+    );
+}
+
+/// Issue 35, item 5: a circuit's refusals reach the phone and the network as well as
+/// the page, so they name no key: a faulted circuit is to be reset first (a motor's
+/// words: `flaps_and_trims_are_not_switched_with_device_power`).
+#[test]
+fn a_circuit_refusal_names_no_key() {
+    let t0 = Instant::now();
+    let m = model(t0, &[(7, FaultCode::OverCurrent)], false);
+    let faulted = refused(Action::PowerOn(7), &m, t0);
+    assert!(faulted.ends_with("reset it first"), "{faulted}");
+    assert!(
+        !faulted.contains(" r ") && !faulted.contains("key"),
+        "{faulted}"
     );
 }

@@ -8,8 +8,9 @@ use common::live_unit::{device_status, system_status};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use vpx_efis::audit::Origin;
 use vpx_efis::control::{
-    Action, Controller, Direction, KeyContext, MAX_WIRE_INTERVAL, MotorStreamer, Selected,
+    Action, Controller, Direction, How, KeyContext, MAX_WIRE_INTERVAL, MotorStreamer, Selected,
     StopReason, StreamerConfig,
 };
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Motor, Source, TrimKind};
@@ -805,17 +806,22 @@ fn a_motor_does_not_start_where_motors_are_refused() {
 fn a_timed_run_does_not_start_where_motors_are_refused() {
     let t0 = Instant::now();
     let model = live_model(t0);
+    let check_run = |ctl: &mut Controller| {
+        let how = How::For {
+            length: ms(600),
+            way: None,
+        };
+        ctl.start(Origin::Check, &model, PITCH, Direction::Up, how, t0)
+    };
     let mut fine = Controller::default();
-    let p = fine
-        .run_for(&model, PITCH, Direction::Up, ms(600), t0)
-        .expect("a healthy page runs the trim");
+    let p = check_run(&mut fine).expect("a healthy page runs the trim");
     assert_eq!(p.len(), 1, "{p:?}");
     assert!(fine.running().is_some());
 
     let mut ctl = Controller::default();
     ctl.refuse_motors("motors unavailable: no thread".into());
-    let r = ctl.run_for(&model, PITCH, Direction::Up, ms(600), t0);
-    assert_eq!(r.unwrap_err().0, "motors unavailable: no thread");
+    let r = check_run(&mut ctl);
+    assert_eq!(r.unwrap_err().words, "motors unavailable: no thread");
     assert!(ctl.running().is_none());
     assert!(
         ctl.tick(&model, t0 + ms(250)).is_empty(),

@@ -625,3 +625,92 @@ mod tests {
 ";
     assert_eq!(around_the_gate(planted), vec![2, 9]);
 }
+
+/// Issue 31: every motor run, from every origin, goes through `control`'s one entry.
+/// So outside `control` (the virtual unit and the codecs aside) no code but tests:
+/// builds a TRIM_MOVE or FLAP_MOVE, holds a `MotorStreamer` (its stateless
+/// `emergency_stop_packets` is for the stop gate and the panic paths), or records a
+/// motor with `Against`.
+const MOTOR_RUN_SIGNS: &[(&str, &str)] = &[
+    ("TrimMove {", "builds a TRIM_MOVE"),
+    ("FlapMove {", "builds a FLAP_MOVE"),
+    ("move_packet(", "builds a TRIM_MOVE or FLAP_MOVE"),
+    ("MotorStreamer::new", "holds a MotorStreamer"),
+    (": MotorStreamer", "holds a MotorStreamer"),
+    ("against.record(", "records with Against"),
+    ("Against::record", "records with Against"),
+];
+
+/// Where a motor run is still assembled outside `control`, as `file: what`. Mend
+/// one, then remove its line here. The XFSp gateway still runs its own streamer
+/// beside the page's (issue 31, item 2), until it runs in the App's one loop.
+const MOTOR_RUN_DEBT: &[&str] = &[
+    "src/xfsp/drive.rs: holds a MotorStreamer",
+    "src/xfsp/drive.rs: records with Against",
+];
+
+/// What of [`MOTOR_RUN_SIGNS`] the code before its `#[cfg(test)]` shows, by line.
+fn motor_run_lines(code: &str) -> Vec<(usize, &'static str)> {
+    let code = without_comments(code);
+    code.lines()
+        .take_while(|l| l.trim() != "#[cfg(test)]")
+        .enumerate()
+        .flat_map(|(i, l)| {
+            MOTOR_RUN_SIGNS
+                .iter()
+                .filter(move |(sign, _)| l.contains(sign))
+                .map(move |(_, what)| (i + 1, *what))
+        })
+        .collect()
+}
+
+#[test]
+fn motor_runs_are_assembled_only_in_control() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut found: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    for file in files {
+        let rel = file.strip_prefix(&src).expect("under src");
+        let top = top_module(rel).unwrap_or_default();
+        if ["control", "sim", "protocol"].contains(&top.as_str())
+            || rel.components().any(|c| c.as_os_str() == "tests")
+        {
+            continue;
+        }
+        let text = fs::read_to_string(&file).expect("read");
+        for (line, what) in motor_run_lines(&text) {
+            let key = format!("src/{}: {what}", rel.display()).replace('\\', "/");
+            found.entry(key).or_default().push(line);
+        }
+    }
+    let new: Vec<String> = found
+        .iter()
+        .filter(|(k, _)| !MOTOR_RUN_DEBT.contains(&k.as_str()))
+        .map(|(k, lines)| format!("{k} (lines {lines:?})"))
+        .collect();
+    assert!(
+        new.is_empty(),
+        "a motor run assembled outside control: {new:#?}"
+    );
+    let mended: Vec<_> = MOTOR_RUN_DEBT
+        .iter()
+        .filter(|d| !found.contains_key(**d))
+        .collect();
+    assert!(
+        mended.is_empty(),
+        "mended: remove from MOTOR_RUN_DEBT: {mended:?}"
+    );
+}
+
+#[test]
+fn a_planted_motor_run_is_found_in_code_and_not_in_comments_strings_or_tests() {
+    let code = "struct D {\n    s: MotorStreamer,\n}\n\
+                // MotorStreamer::new in a comment\n\
+                fn f() { log(\"TrimMove { on }\"); self.against.record(m, d); }\n\
+                #[cfg(test)]\nmod tests {\n    fn t() { move_packet(0, m, d, true); }\n}\n";
+    assert_eq!(
+        motor_run_lines(code),
+        vec![(2, "holds a MotorStreamer"), (5, "records with Against")]
+    );
+}

@@ -15,6 +15,8 @@ use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use vpx_efis::app::{App, AppOptions};
+use vpx_efis::check::Options;
+use vpx_efis::check::state::{MotorFinding, Outcome, Step};
 use vpx_efis::link;
 use vpx_efis::model::{Motor, Source, TrimKind};
 use vpx_efis::protocol::device::{FLAPS, TRIM_P};
@@ -340,4 +342,147 @@ fn install_a_pitch_trim_wired_right_parked_at_its_endpoint_runs_after_its_probe(
     eprintln!("wired right, parked at 220: u for 3 s: up to {least}");
     assert!(seen.iter().all(|&p| p <= 220), "{seen:?}");
     assert!(least <= 170, "only to {least}: {seen:?}");
+}
+
+/// `scenario` (a file name or a built-in's) with `[section]`'s `position = from` made
+/// `position = to`, in a scenario file the sim reads.
+fn moved(scenario: &str, section: &str, from: u8, to: u8) -> (tempfile::TempDir, Rig) {
+    let dir = tempfile::tempdir().unwrap();
+    let text = match scenario {
+        "install" => include_str!("../assets/scenarios/install.toml"),
+        _ => include_str!("../assets/scenarios/reversed-flaps.toml"),
+    };
+    let head = format!("[{section}]");
+    let at = text.find(&head).unwrap();
+    let (before, after) = text.split_at(at);
+    let old = format!("position = {from}\n");
+    assert!(after.contains(&old), "{section}: {old}");
+    let toml = format!(
+        "{before}{}",
+        after.replacen(&old, &format!("position = {to}\n"), 1)
+    );
+    let path = dir.path().join(format!("{scenario}-{to}.toml"));
+    std::fs::write(&path, toml).unwrap();
+    let r = Rig::new(path.to_str().unwrap());
+    (dir, r)
+}
+
+impl Rig {
+    /// The installation check, from the page, with only its motors step, to its end;
+    /// then back on the device list.
+    fn check_motors(&mut self, reports: &std::path::Path) {
+        self.app.set_check_report_dir(Some(reports.to_path_buf()));
+        self.until("the unit's settings", 20_000, |app| {
+            vpx_efis::check::plan::ready(&app.model(), Instant::now()).is_ok()
+        });
+        let options = Options {
+            skip: vec![Step::Switches, Step::Circuits, Step::Loads],
+            ..Options::default()
+        };
+        self.app.open_check(options, Instant::now());
+        let enter =
+            KeyEvent::new_with_kind(KeyCode::Enter, KeyModifiers::NONE, KeyEventKind::Press);
+        self.app
+            .handle_term_event(Event::Key(enter), Instant::now());
+        let end = Instant::now() + Duration::from_secs(60);
+        while !self.app.check_finished() {
+            assert!(
+                Instant::now() < end,
+                "the check did not end: {:?}, {:?}",
+                self.app.check_view().prompt.clone(),
+                self.app.take_check_progress()
+            );
+            self.wait(20);
+        }
+        let esc = KeyEvent::new_with_kind(KeyCode::Esc, KeyModifiers::NONE, KeyEventKind::Press);
+        self.app.handle_term_event(Event::Key(esc), Instant::now());
+        self.wait(100);
+    }
+
+    fn finding(&self, motor: Motor) -> Outcome<MotorFinding> {
+        let v = self.app.check_view();
+        v.motors
+            .iter()
+            .find(|m| m.motor == motor)
+            .unwrap()
+            .outcome
+            .clone()
+    }
+}
+
+/// Issue 31, item 1: the check, run from the page against `sim --pty` as its own
+/// process, finds a reversed motor parked at the endpoint its first run backs away
+/// from, by probing: the pitch trim of `install` at its down endpoint 220 (run up
+/// first), and the flaps of `reversed-flaps` at their up endpoint 20 (run down
+/// first). Afterwards the first press of that key on the device list is refused
+/// with no move on the wire (it is now known to run the motor into the endpoint it
+/// is at), and so is the other key, which says how to confirm. The other motor,
+/// wired right (`install`'s flaps at their up endpoint 20, `reversed-flaps`' pitch
+/// trim at 125), moves the commanded way: near an endpoint it shows its way in
+/// probes, and the pauses between them do not eat its test run.
+#[test]
+fn a_reversal_the_check_finds_by_probing_is_refused_to_the_keys() {
+    for (scenario, section, from, to, motor, id, keys, right) in [
+        (
+            "install",
+            "pitch_trim",
+            125,
+            220,
+            PITCH,
+            TRIM_P,
+            [
+                ('u', "at its down endpoint"),
+                ('d', "press d again within 3 s"),
+            ],
+            Motor::Flaps,
+        ),
+        (
+            "reversed-flaps",
+            "flap",
+            120,
+            20,
+            Motor::Flaps,
+            FLAPS,
+            [
+                ('d', "at its up endpoint"),
+                ('u', "press u again within 3 s"),
+            ],
+            PITCH,
+        ),
+    ] {
+        let (dir, mut r) = moved(scenario, section, from, to);
+        assert_eq!(r.pos(motor), to, "{scenario}");
+        r.check_motors(dir.path());
+        assert_eq!(
+            r.finding(motor),
+            Outcome::Found(MotorFinding::Reversed),
+            "{scenario}: {:?}",
+            r.app.take_check_progress()
+        );
+        assert_eq!(
+            r.finding(right),
+            Outcome::Found(MotorFinding::Moves),
+            "{scenario}: {:?}",
+            r.app.take_check_progress()
+        );
+        r.select(id);
+        for (key, words) in keys {
+            r.wait(3200);
+            let at = r.pos(motor);
+            let mark = r.mark();
+            r.key(key, KeyEventKind::Press);
+            r.wait(500);
+            let screen = r.screen();
+            r.key(key, KeyEventKind::Release);
+            r.wait(300);
+            let moves = r.moves_since(mark);
+            eprintln!("{scenario}: after the check, {key} at {at}: moves {moves:?}");
+            assert!(
+                moves.is_empty(),
+                "{scenario}: {key} sent a move after the check found it reversed"
+            );
+            assert!(r.pos(motor).abs_diff(at) <= 1, "{scenario}");
+            assert!(screen.contains(words), "{scenario}, {key}: {screen}");
+        }
+    }
 }

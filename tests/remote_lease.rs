@@ -123,7 +123,7 @@ impl Rig {
     fn lease(&mut self, direction: Direction) -> Result<(), String> {
         let (p, r) = self.ctl.lease(&self.model, PITCH, direction, self.now);
         self.put(p);
-        r.map_err(|e| e.0)
+        r.map_err(|e| e.words)
     }
 
     /// The remote's `{"stop":true}`.
@@ -249,7 +249,8 @@ fn a_run_cut_short_is_not_restarted_by_its_renewals() {
         } else {
             let why = got.expect_err("renewed after the run cap");
             assert!(
-                why.contains("maximum run time") && why.contains("let go and press again"),
+                why.contains("maximum run time")
+                    && why.contains("let go of the button and press it again"),
                 "{why}"
             );
         }

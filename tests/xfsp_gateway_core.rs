@@ -1312,7 +1312,7 @@ fn a_network_run_going_away_from_its_target_stops_within_a_few_counts() {
         let (lo, _) = run.range();
         let away = 125.0 - lo;
         assert!(
-            away <= (vpx_efis::xfsp::drive::AWAY + 3) as f32,
+            away <= (vpx_efis::control::endpoints::MOVED + 3) as f32,
             "phase {phase}: went {away} counts the wrong way"
         );
         assert!(stop <= ms(400), "phase {phase}: stopped after {stop:?}");
@@ -1353,7 +1353,7 @@ fn a_network_run_to_the_endpoint_stops_before_passing_it() {
 }
 
 /// A run with swapped leads started two counts off the endpoint behind it is stopped
-/// by position as it reaches that endpoint, before it has gone [`AWAY`] counts: as
+/// by position as it reaches that endpoint, before it has gone `MOVED` counts: as
 /// moving against its command.
 /// (It can still pass by up to one 10 Hz position's travel: 2.5 counts at 25 a
 /// second; the installation check probes there, the gateway does not yet.)

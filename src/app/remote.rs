@@ -243,13 +243,13 @@ impl App {
                             "remote: {} {} refused: {}",
                             motor.name(),
                             direction.name(),
-                            why.0
+                            why.words
                         );
                         if self.remote.refused.as_ref() != Some(&line) {
                             lock(&self.model).log(now, LogLevel::Warning, line.clone());
                             self.remote.refused = Some(line);
                         }
-                        Reply::Refused(why.0)
+                        Reply::Refused(why.words)
                     }
                 }
             }

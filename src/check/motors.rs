@@ -1,6 +1,6 @@
 //! Step 4, motors: flaps and each enabled trim run briefly one way, then the other,
-//! through the page's controller ([`Controller::run_for`]): the same 4 Hz stream and
-//! every stop cause of the page. The position in FLAP_TRIM_STATUS (ICD Table 27)
+//! through the controller's one entry for motor runs ([`Controller::start`]): the same
+//! 4 Hz stream, permit, endpoint watch, probes and every stop cause as the page's keys. The position in FLAP_TRIM_STATUS (ICD Table 27)
 //! before and after each run says whether it moved, and which way; then it is run
 //! back to where it was.
 //!
@@ -20,17 +20,22 @@
 //! as not moving, at its limit); a motor with no room either way is not run at all,
 //! and its line says why. A run ended at its endpoint
 //! that still moved is a pass; one that could not move for it "runs against a limit".
+//! A run started near the endpoint behind it goes as probes until the motor shows its
+//! way ([`endpoints::Probing`], the controller's): a motor found moving against its
+//! command that way is stopped there and recorded, and refused to every origin after.
 //!
-//! [`Controller::run_for`]: crate::control::Controller::run_for
+//! [`Controller::start`]: crate::control::Controller::start
 
 use std::time::{Duration, Instant};
 
 use super::calls::Command;
 use super::state::{CheckView, LeftBehind, MotorFinding, MotorResult, Outcome, Prompt, Step};
 use super::step::{CallContext, Next, Shared, StepRun, Stopped, motor_name, result_line};
+use crate::audit::Origin;
 pub use crate::control::endpoints::expected_sign;
-use crate::control::endpoints::{self, ends, heads_for, opposite, position, room};
-use crate::control::{Direction, StopReason, motor_check};
+use crate::control::endpoints::{self, Way, ends, heads_for, opposite, position, room};
+use crate::control::run::Refused;
+use crate::control::{Direction, How, StopReason};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 
@@ -40,8 +45,6 @@ pub use crate::control::endpoints::MOVED;
 /// Within this many counts of an endpoint (or the sensor's 0 / 255), the motor is at
 /// that limit.
 pub const AT_LIMIT: i32 = 3;
-/// Probes in a row that showed no way before a test run is taken as not moving.
-const MAX_PROBES: u8 = 4;
 /// Put back when it ends within this many counts of where it was.
 pub const BACK_WITHIN: i32 = 3;
 
@@ -127,6 +130,31 @@ pub fn judge_runs(
     }
 }
 
+/// Which of a motor's runs the item is at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Leg {
+    /// The first test run, `dirs[0]`.
+    First,
+    /// The second test run, `dirs[1]`.
+    Second,
+    /// The test runs are over (or were skipped): it is run back to where it was, if
+    /// it is not there.
+    Back,
+    /// The run back was started: no run follows it.
+    RunningBack,
+}
+
+impl Leg {
+    /// The test run's index into the item's per-run arrays, for the two test runs.
+    fn test(self) -> Option<usize> {
+        match self {
+            Leg::First => Some(0),
+            Leg::Second => Some(1),
+            Leg::Back | Leg::RunningBack => None,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy)]
 enum Stage {
     /// Waiting for a live position to start from.
@@ -152,21 +180,15 @@ pub(super) struct MotorItem {
     pub motor: Motor,
     dirs: [Direction; 2],
     p0: Option<u8>,
-    /// 0 and 1: the test runs; 2: the run back.
-    leg: usize,
+    leg: Leg,
     starts: [u8; 2],
     moves: [i32; 2],
     /// The endpoint each test run was stopped at, or had no room to be made for.
     ended_at: [Option<u8>; 2],
-    /// How long each test run ran: the whole run, or until it was cut short. With
-    /// `moves` it gives the rate for the run back.
+    /// How long each test run drove its motor: the whole run, or until it was cut
+    /// short, less the pauses of its probes. With `moves` it gives the rate for the
+    /// run back.
     ran: [Duration; 2],
-    /// While the test run is a probe ([`endpoints::probe`]): the rest of its length,
-    /// run once the probe showed its way.
-    rest: Option<Duration>,
-    /// Probes made in this test run, and how long they ran.
-    probes: u8,
-    probed: Duration,
     stage: Stage,
     run: Duration,
     settle: Duration,
@@ -179,7 +201,7 @@ impl MotorItem {
     pub(super) fn stage(&self) -> &'static str {
         match &self.stage {
             Stage::Start => "start",
-            Stage::Running { .. } if self.leg == 2 => "running back",
+            Stage::Running { .. } if self.leg == Leg::RunningBack => "running back",
             Stage::Running { .. } => "running",
             Stage::Settle { .. } => "settle",
             Stage::Paused { .. } => "paused",
@@ -231,14 +253,11 @@ impl Motors {
             motor,
             dirs: directions(motor),
             p0: None,
-            leg: 0,
+            leg: Leg::First,
             starts: [0; 2],
             moves: [0; 2],
             ended_at: [None; 2],
             ran: [Duration::ZERO; 2],
-            rest: None,
-            probes: 0,
-            probed: Duration::ZERO,
             stage: Stage::Start,
             run: shared.timing.motor_run,
             settle: shared.timing.motor_settle,
@@ -305,27 +324,22 @@ impl Motors {
                     .ctl
                     .last_stop()
                     .filter(|s| s.at >= since && s.motor == item.motor)
-                    .map(|s| (s.reason, s.at));
-                let stopped_at = stop.map_or(now, |(_, at)| at);
-                match stop.map(|(r, _)| r) {
+                    .map(|s| (s.reason, s.at, s.driven));
+                let stopped_at = stop.map_or(now, |(_, at, _)| at);
+                if let (Some(k), Some((_, _, driven))) = (item.leg.test(), stop) {
+                    item.ran[k] = driven;
+                }
+                match stop.map(|(r, _, _)| r) {
                     Some(StopReason::RunDone) | None => {
-                        // A probe only needs the next position after its stop.
-                        let settle = match item.rest {
-                            Some(_) => endpoints::PROBE_SETTLE.min(item.settle),
-                            None => item.settle,
-                        };
                         item.stage = Stage::Settle {
-                            until: now + settle,
+                            until: now + item.settle,
                         };
                     }
                     // Stopped at its endpoint by the controller: the run is over, for
                     // as far as it went.
                     Some(StopReason::AtEndpoint(end)) => {
-                        if item.leg < 2 {
-                            item.ended_at[item.leg] = Some(end);
-                            item.ran[item.leg] =
-                                item.probed + stopped_at.saturating_duration_since(since);
-                            item.rest = None;
+                        if let Some(k) = item.leg.test() {
+                            item.ended_at[k] = Some(end);
                         }
                         cx.out.progress.push(format!(
                             "  {} stopped at its endpoint ({end}), position {pos}",
@@ -339,11 +353,8 @@ impl Motors {
                     // run over where it went (the other direction's endpoint is
                     // where it was really heading), which the finding will say.
                     Some(StopReason::MovedAgainst(asked)) => {
-                        if item.leg < 2 {
-                            item.ended_at[item.leg] = heads_for(item.motor, opposite(asked), &ft);
-                            item.ran[item.leg] =
-                                item.probed + stopped_at.saturating_duration_since(since);
-                            item.rest = None;
+                        if let Some(k) = item.leg.test() {
+                            item.ended_at[k] = heads_for(item.motor, opposite(asked), &ft);
                         }
                         cx.out.progress.push(format!(
                             "  {}, position {pos}",
@@ -392,40 +403,12 @@ impl Motors {
                 if now < until {
                     return Next::Stay;
                 }
-                if item.leg < 2
-                    && let Some(rest) = item.rest.take()
-                {
-                    // A probe: on the way it showed, the rest of the run; no way yet,
-                    // another probe; the other way, the run is over there (the
-                    // controller's watch stops it at that endpoint otherwise).
-                    let d = item.dirs[item.leg];
-                    let way = expected_sign(item.motor, d, &ft);
-                    let went = (i32::from(pos) - i32::from(item.starts[item.leg])) * way;
-                    item.probed = item.ran[item.leg];
-                    if went > 0 {
-                        return self.run(d, rest, Some(way), view, cx, shared);
-                    }
-                    if went == 0 && item.probes < MAX_PROBES {
-                        return self.run(d, rest, None, view, cx, shared);
-                    }
-                    if went < 0 {
-                        item.ended_at[item.leg] = heads_for(item.motor, opposite(d), &ft);
-                        cx.out.progress.push(format!(
-                            "  {} went the other way from {} to {pos}: run no further",
-                            motor_name(item.motor),
-                            item.starts[item.leg]
-                        ));
-                    }
-                }
                 view.motors[item.idx].positions.push(pos);
-                if item.leg < 2 {
-                    item.probes = 0;
-                    item.probed = Duration::ZERO;
-                    let start = item.starts[item.leg];
-                    item.moves[item.leg] = i32::from(pos) - i32::from(start);
-                    item.leg += 1;
+                if let Some(k) = item.leg.test() {
+                    item.moves[k] = i32::from(pos) - i32::from(item.starts[k]);
+                    item.leg = if k == 0 { Leg::Second } else { Leg::Back };
                 }
-                if item.leg == 1 {
+                if item.leg == Leg::Second {
                     let d = item.dirs[1];
                     // No longer than the first run's rate says reaches its endpoint.
                     let rate = item.moves[0].abs() as f32 / item.ran[0].as_secs_f32().max(1e-3);
@@ -438,7 +421,10 @@ impl Motors {
                     return self.run(d, length, None, view, cx, shared);
                 }
                 let idx = item.idx;
-                if item.leg == 2 && view.motors[idx].outcome == Outcome::NotRun && !item.skipped {
+                if item.leg == Leg::Back
+                    && view.motors[idx].outcome == Outcome::NotRun
+                    && !item.skipped
+                {
                     let f = judge_runs(
                         item.motor,
                         item.dirs,
@@ -476,7 +462,11 @@ impl Motors {
             1
         };
         let (moved, dir, ran) = (item.moves[k], item.dirs[k], item.ran[k]);
-        if item.leg >= 3 || back.abs() <= BACK_WITHIN || moved.abs() < MOVED || ran.is_zero() {
+        if item.leg == Leg::RunningBack
+            || back.abs() <= BACK_WITHIN
+            || moved.abs() < MOVED
+            || ran.is_zero()
+        {
             if back.abs() > BACK_WITHIN
                 && let Some(p0) = item.p0
             {
@@ -486,7 +476,7 @@ impl Motors {
             }
             return Next::From(idx + 1);
         }
-        item.leg = 3;
+        item.leg = Leg::RunningBack;
         let dir = if back.signum() == moved.signum() {
             dir
         } else {
@@ -494,18 +484,17 @@ impl Motors {
         };
         let ratio = back.abs() as f32 / moved.abs() as f32;
         let length = ran.mul_f32(ratio).min(item.run * 2);
-        self.run(dir, length, Some(back.signum()), view, cx, shared)
+        self.run(dir, length, Way::of(back), view, cx, shared)
     }
 
     /// Runs the motor `d` for `length`; `way` is which way the check expects the
     /// position to go when it knows better than the direction (the run back, after it
     /// saw the motor go), so the run keeps off the endpoint it will really reach.
-    #[allow(clippy::too_many_arguments)]
     fn run(
         &mut self,
         d: Direction,
         length: Duration,
-        way: Option<i32>,
+        way: Option<Way>,
         view: &mut CheckView,
         cx: &mut CallContext,
         shared: &mut Shared,
@@ -514,106 +503,92 @@ impl Motors {
             return Next::Stay;
         };
         let now = cx.now;
-        let mut length = length;
-        // Seen moving against its command (by this check's first run, or before it):
-        // no test run is made until the person confirms one at the page's keys; the
-        // finding is that, and the run back goes the way it was seen to go.
-        if item.leg < 2
-            && way.is_none()
-            && let Some(asked) = cx.ctl.against().seen(item.motor)
-            && let Some(pos) = cx
-                .model
-                .live_flap_trim(now)
-                .map(|ft| position(item.motor, ft))
-        {
-            let idx = item.idx;
-            if view.motors[idx].outcome == Outcome::NotRun {
-                if item.leg == 0 {
-                    cx.out.progress.push(format!(
-                        "  {}: not run",
-                        crate::control::against::words(item.motor, asked)
-                    ));
-                }
-                record(view, idx, MotorFinding::Reversed, cx);
-            }
-            item.leg = 2;
-            return self.run_back(pos, view, cx, shared);
-        }
         if let Some(ft) = cx.model.live_flap_trim(now)
-            && item.leg < 2
+            && let Some(k) = item.leg.test()
             && way.is_none()
         {
             let pos = position(item.motor, ft);
-            if item.probes == 0 {
-                item.starts[item.leg] = pos;
-            }
+            item.starts[k] = pos;
             if room(item.motor, d, pos, ft).is_some_and(|r| r <= endpoints::START_ROOM) {
                 // At (or past) the endpoint it heads for: this run is not made; it
                 // counts as not moving, against its limit.
-                item.ended_at[item.leg] = heads_for(item.motor, d, ft);
+                item.ended_at[k] = heads_for(item.motor, d, ft);
                 item.stage = Stage::Settle { until: now };
                 return Next::Stay;
             }
-            // Near the endpoint behind it, and its way not known: a probe first.
-            item.rest = None;
-            if let Some(p) = endpoints::probe(item.motor, d, pos, ft)
-                && p < length
-            {
-                item.rest = Some(length - p);
-                item.probes += 1;
-                length = p;
-            }
         }
+        let how = How::For { length, way };
         match cx
             .ctl
-            .run_for_moving(cx.model, item.motor, d, way, length, now)
+            .start(Origin::Check, cx.model, item.motor, d, how, now)
         {
             Ok(p) => {
                 cx.out.packets.extend(p);
-                if item.leg < 2 {
-                    // As planned; a run ended early at its endpoint says how long.
-                    item.ran[item.leg] = item.probed + length;
+                if let Some(k) = item.leg.test() {
+                    // As planned; the run's stop says how long it drove the motor.
+                    item.ran[k] = length;
                 }
                 item.stage = Stage::Running { since: now, length };
             }
             Err(why) => {
                 let idx = item.idx;
-                if let Some(unseen) = cx.ctl.unseen() {
-                    // Nobody can see the page: nothing moves until the person is back
-                    // and asks (r), as after a run the same cause cut short.
-                    let why = format!(
-                        "the {} did not start: {}; nothing moves while the page cannot be \
-                         seen",
-                        item.motor.name(),
-                        unseen.describe()
-                    );
-                    return self.pause(&why, view, cx);
-                }
-                match motor_check(cx.model, item.motor, d, now) {
-                    Err(StopReason::MotorFault(code)) => {
+                match why.reason {
+                    Refused::Unseen(unseen) => {
+                        // Nobody can see the page: nothing moves until the person is
+                        // back and asks (r), as after a run the same cause cut short.
+                        let why = format!(
+                            "the {} did not start: {}; nothing moves while the page cannot \
+                             be seen",
+                            item.motor.name(),
+                            unseen.describe()
+                        );
+                        return self.pause(&why, view, cx);
+                    }
+                    // Seen moving against its command (by this check's first run, or
+                    // before it): no test run is made until the person confirms one at
+                    // the page's keys; the finding is that, and the run back goes the
+                    // way it was seen to go.
+                    Refused::Against(asked) if item.leg.test().is_some() => {
+                        if view.motors[idx].outcome == Outcome::NotRun {
+                            if item.leg == Leg::First {
+                                cx.out.progress.push(format!(
+                                    "  {}: not run",
+                                    crate::control::against::words(item.motor, asked)
+                                ));
+                            }
+                            record(view, idx, MotorFinding::Reversed, cx);
+                        }
+                        item.leg = Leg::Back;
+                        return match cx
+                            .model
+                            .live_flap_trim(now)
+                            .map(|ft| position(item.motor, ft))
+                        {
+                            Some(pos) => self.run_back(pos, view, cx, shared),
+                            None => Next::From(idx + 1),
+                        };
+                    }
+                    Refused::Model(StopReason::MotorFault(code)) => {
                         shared.known_faults.insert(item.motor.device_id());
                         record(view, idx, MotorFinding::Faulted(code), cx);
                     }
-                    Err(StopReason::CommLost) => {
+                    Refused::Model(StopReason::CommLost) => {
                         shared.trouble_ahead = Some("COMMUNICATION LOST".into());
                         return Next::Stay;
                     }
                     // No position to go by (none fresh enough to keep it off its
                     // endpoint, or none at all): it waits, as a run cut short does,
                     // for the person to try again or skip it (which runs it back).
-                    Err(StopReason::MotorStatusLost) => return self.pause(&why.0, view, cx),
-                    _ if cx
-                        .model
-                        .flap_trim
-                        .is_some_and(|st| st.age(now) > endpoints::POSITION_FRESH) =>
-                    {
-                        return self.pause(&why.0, view, cx);
+                    Refused::Model(StopReason::MotorStatusLost) | Refused::PositionStale => {
+                        return self.pause(&why.words, view, cx);
                     }
                     _ if view.motors[idx].outcome == Outcome::NotRun => {
-                        view.motors[idx].outcome = Outcome::Skipped(why.0.clone());
-                        cx.out
-                            .progress
-                            .push(format!("– {}: {}", motor_name(item.motor), why.0));
+                        view.motors[idx].outcome = Outcome::Skipped(why.words.clone());
+                        cx.out.progress.push(format!(
+                            "– {}: {}",
+                            motor_name(item.motor),
+                            why.words
+                        ));
                     }
                     _ => {}
                 }
@@ -622,7 +597,7 @@ impl Motors {
                     .model
                     .live_flap_trim(now)
                     .map(|ft| position(item.motor, ft));
-                if item.leg >= 3
+                if item.leg == Leg::RunningBack
                     && let (Some(p0), Some(pos)) = (item.p0, pos)
                     && (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN
                 {
@@ -630,7 +605,7 @@ impl Motors {
                     cx.out.progress.push(format!(
                         "  {}: not run back: {}",
                         motor_name(motor),
-                        why.0
+                        why.words
                     ));
                     not_back(view, idx, motor, pos, p0, cx);
                 }
@@ -696,7 +671,7 @@ impl Motors {
                 // A test run cut short by this skip (or paused before it) counts
                 // for as far as it went, so the run back knows the way and the rate.
                 if let Some(pos) = pos
-                    && item.leg < 2
+                    && let Some(k) = item.leg.test()
                 {
                     let ran = match item.stage {
                         Stage::Running { since, length } => {
@@ -706,13 +681,13 @@ impl Motors {
                         Stage::Settle { .. } => item.run,
                         Stage::Start => Duration::ZERO,
                     };
-                    item.moves[item.leg] = i32::from(pos) - i32::from(item.starts[item.leg]);
-                    item.ran[item.leg] = ran;
+                    item.moves[k] = i32::from(pos) - i32::from(item.starts[k]);
+                    item.ran[k] = ran;
                 }
                 // Run it back first if it moved.
                 match pos {
-                    Some(pos) if item.p0.is_some() && item.leg < 3 => {
-                        item.leg = 2;
+                    Some(pos) if item.p0.is_some() && item.leg != Leg::RunningBack => {
+                        item.leg = Leg::Back;
                         self.run_back(pos, view, cx, shared)
                     }
                     Some(pos) if let Some(p0) = item.p0 => {
@@ -731,16 +706,15 @@ impl Motors {
                 // the first direction and a run already measured are kept, so the
                 // run back still goes to where the check found it.
                 view.prompt = Some(running_prompt(item.motor));
-                if item.leg < 2 {
-                    (item.rest, item.probes, item.probed) = (None, 0, Duration::ZERO);
-                    let (d, length) = (item.dirs[item.leg], item.run);
+                if let Some(k) = item.leg.test() {
+                    let (d, length) = (item.dirs[k], item.run);
                     self.run(d, length, None, view, cx, shared)
                 } else {
                     let pos = cx
                         .model
                         .live_flap_trim(cx.now)
                         .map(|ft| position(item.motor, ft));
-                    item.leg = 2;
+                    item.leg = Leg::Back;
                     match pos {
                         Some(pos) => self.run_back(pos, view, cx, shared),
                         None => Next::From(idx + 1),

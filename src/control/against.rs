@@ -20,7 +20,7 @@
 //!   the network cannot confirm: they are refused and say so.
 //! - A confirmed run goes knowing the way the motor really moves: it is refused at
 //!   the endpoint that way and stopped at both endpoints by position, as any run that
-//!   keeps to them ([`super::endpoints::permit_moving`], `Watch::moving`).
+//!   keeps to them ([`super::run::permit`], `Watch::moving`).
 //!
 //! The record lasts as long as the page (or the headless gateway) runs: the person
 //! who fixes the wiring starts the page again. It is shared ([`Against`] is a handle)
@@ -32,9 +32,9 @@
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use super::endpoints::{expected_sign, opposite};
+use super::endpoints::{Way, expected_way, opposite};
 use super::streamer::{Direction, StopReason};
-use crate::model::{Motor, TrimKind};
+use crate::model::Motor;
 use crate::protocol::message::FlapTrimStatus;
 
 /// How long after a refusal the same key confirms the run.
@@ -45,14 +45,6 @@ pub const CONFIRM_WITHIN: Duration = Duration::from_secs(3);
 #[derive(Debug, Clone, Default)]
 pub struct Against(Arc<Mutex<[Option<Direction>; 3]>>);
 
-fn slot(motor: Motor) -> usize {
-    match motor {
-        Motor::Flaps => 0,
-        Motor::Trim(TrimKind::Pitch) => 1,
-        Motor::Trim(TrimKind::Roll) => 2,
-    }
-}
-
 impl Against {
     fn lock(&self) -> std::sync::MutexGuard<'_, [Option<Direction>; 3]> {
         // A panic elsewhere while holding it leaves a plain array: still good.
@@ -61,36 +53,25 @@ impl Against {
 
     /// `motor` was asked `asked` and moved the other way.
     pub fn record(&self, motor: Motor, asked: Direction) {
-        self.lock()[slot(motor)] = Some(asked);
+        self.lock()[motor.index()] = Some(asked);
     }
 
     /// The direction `motor` was asked when it was seen moving against it, if it was.
     pub fn seen(&self, motor: Motor) -> Option<Direction> {
-        self.lock()[slot(motor)]
+        self.lock()[motor.index()]
     }
 
-    /// The way (+1 grow, −1 shrink) a run of `motor` `direction` is known to move the
-    /// position: against the direction's own, for a motor seen moving against its
-    /// command; `None` for one that was not.
+    /// The way a run of `motor` `direction` is known to move the position: against
+    /// the direction's own, for a motor seen moving against its command; `None` for
+    /// one that was not.
     pub fn known_way(
         &self,
         motor: Motor,
         direction: Direction,
         ft: &FlapTrimStatus,
-    ) -> Option<i32> {
+    ) -> Option<Way> {
         self.seen(motor)
-            .map(|_| -expected_sign(motor, direction, ft))
-    }
-
-    /// Why a run of `motor` that nobody confirmed is refused, if it is: for the
-    /// origins that cannot confirm (the installation check, the network).
-    pub fn refusal(&self, motor: Motor) -> Option<String> {
-        self.seen(motor).map(|asked| {
-            format!(
-                "{}; not run: confirm a run at the page (press its key twice)",
-                words(motor, asked)
-            )
-        })
+            .map(|_| expected_way(motor, direction, ft).reversed())
     }
 }
 
@@ -107,17 +88,6 @@ pub fn words(motor: Motor, asked: Direction) -> String {
 /// The page's words for a run stopped this way.
 pub fn stopped(motor: Motor, asked: Direction) -> String {
     format!("{}; stopped", words(motor, asked))
-}
-
-/// The refusal of a key's run, naming the key that confirms it.
-pub fn confirm_words(motor: Motor, seen: Direction, direction: Direction) -> String {
-    format!(
-        "{}; let go, then press {} again within {} s to run it {} anyway, watching the motor",
-        words(motor, seen),
-        key_name(direction),
-        CONFIRM_WITHIN.as_secs(),
-        direction.name()
-    )
 }
 
 /// The device list's key for `direction` (`control::keymap`).
@@ -141,6 +111,7 @@ pub fn asked(reason: StopReason) -> Option<Direction> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::TrimKind;
 
     const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 
@@ -168,7 +139,5 @@ mod tests {
         b.record(PITCH, Direction::Up);
         assert_eq!(a.seen(PITCH), Some(Direction::Up));
         assert_eq!(a.seen(Motor::Flaps), None);
-        assert!(a.refusal(PITCH).unwrap().contains("not run"));
-        assert_eq!(a.refusal(Motor::Flaps), None);
     }
 }

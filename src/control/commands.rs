@@ -28,7 +28,7 @@ fn refuse<T>(why: impl Into<String>) -> Result<T, Refusal> {
     Err(Refusal(why.into()))
 }
 
-const COMM_LOST: &str = "COMMUNICATION LOST: nothing is sent until the VP-X is heard again, \
+pub(super) const COMM_LOST: &str = "COMMUNICATION LOST: nothing is sent until the VP-X is heard again, \
                          because the result could not be seen";
 
 /// The message for a command action (`Action::is_command`), or why not. Other actions
@@ -117,7 +117,7 @@ pub fn put_back_off(model: &Model, id: u8) -> Result<Message, Refusal> {
     match id {
         STARTER => refuse("the starter cannot be switched from the EFIS, only reset"),
         FLAPS | TRIM_P | TRIM_R => refuse(format!(
-            "{name} is a motor: it is run with the motor keys, not switched on or off"
+            "{name} is a motor: it is run up or down, not switched on or off"
         )),
         _ => Ok(DevicePower {
             device_id: id,
@@ -141,16 +141,17 @@ fn power(model: &Model, now: Instant, id: u8, on: bool) -> Result<Message, Refus
     };
     match kind {
         CircuitKind::Flaps | CircuitKind::Trim(_) => refuse(format!(
-            "{name} is a motor: it is run with the motor keys, not switched on or off"
+            "{name} is a motor: it is run up or down, not switched on or off"
         )),
         _ => match state {
-            // Not "reset it with r first" to a circuit that is past its one reset.
+            // Not "reset it first" to a circuit that is past its one reset. The words
+            // name no key: they reach the phone and the network too.
             CircuitState::Fault(_) if on && model.faulted_again_after_reset(id, now) => {
                 refuse(faulted_again(&name))
             }
             // Appendix E: a faulted pin stays off until the fault is cleared.
             CircuitState::Fault(code) if on => refuse(format!(
-                "{name} is faulted ({}): reset it with r first",
+                "{name} is faulted ({}): reset it first",
                 code.name()
             )),
             CircuitState::Unknown => refuse(format!("{name}'s state is not known yet")),
@@ -239,26 +240,4 @@ pub fn motor_check(
         return Err(StopReason::FlapDownInhibited);
     }
     Ok(())
-}
-
-/// [`motor_check`] as a refusal to start, in words.
-pub fn motor_permit(
-    model: &Model,
-    motor: Motor,
-    direction: Direction,
-    now: Instant,
-) -> Result<(), Refusal> {
-    motor_check(model, motor, direction, now).map_err(|r| {
-        Refusal(match r {
-            StopReason::CommLost => COMM_LOST.to_string(),
-            StopReason::MotorFault(_) => {
-                format!(
-                    "{} is faulted ({}): reset it with r first",
-                    motor.name(),
-                    r.describe()
-                )
-            }
-            r => format!("{} cannot run: {}", motor.name(), r.describe()),
-        })
-    })
 }

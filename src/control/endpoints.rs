@@ -111,19 +111,72 @@ pub fn room(motor: Motor, direction: Direction, pos: u8, ft: &FlapTrimStatus) ->
     Some((i32::from(end) - i32::from(pos)) * expected_sign(motor, direction, ft))
 }
 
-/// Words for a refused start (no more than [`START_ROOM`] toward the endpoint), or
-/// `None` when `direction` has room (or there are no endpoints).
-pub fn no_room(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Option<String> {
+/// Which way a run moves its motor's position, in raw sensor counts: the sensor's
+/// sense, as opposed to the [`Direction`] asked (which is the unit's and the keys').
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Way {
+    Grows,
+    Shrinks,
+}
+
+impl Way {
+    /// The way of a change of position; `None` for none.
+    pub fn of(change: i32) -> Option<Way> {
+        match change.signum() {
+            1 => Some(Way::Grows),
+            -1 => Some(Way::Shrinks),
+            _ => None,
+        }
+    }
+
+    /// +1 or −1, for the arithmetic of positions.
+    pub fn sign(self) -> i32 {
+        match self {
+            Way::Grows => 1,
+            Way::Shrinks => -1,
+        }
+    }
+
+    pub fn reversed(self) -> Way {
+        match self {
+            Way::Grows => Way::Shrinks,
+            Way::Shrinks => Way::Grows,
+        }
+    }
+}
+
+/// The way running `motor` `direction` should move its position ([`expected_sign`]).
+pub fn expected_way(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Way {
+    if expected_sign(motor, direction, ft) > 0 {
+        Way::Grows
+    } else {
+        Way::Shrinks
+    }
+}
+
+/// Why a run that keeps to the endpoints may not start ([`room_to_run`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoRoom {
+    /// Its position is older than [`POSITION_FRESH`].
+    Stale,
+    /// No more than [`START_ROOM`] from the endpoint it would reach, which is the one
+    /// `toward` heads for.
+    At {
+        toward: Direction,
+        position: u8,
+        endpoint: u8,
+    },
+}
+
+/// The endpoint `direction` heads for, if `pos` is no more than [`START_ROOM`] from it.
+fn at_end(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Option<NoRoom> {
     let pos = position(motor, ft);
     let room = room(motor, direction, pos, ft)?;
     let end = heads_for(motor, direction, ft)?;
-    (room <= START_ROOM).then(|| {
-        format!(
-            "the {} is at its {} endpoint (position {pos}, endpoint {end}): it does not run \
-             past it from here",
-            motor.name(),
-            direction.name()
-        )
+    (room <= START_ROOM).then_some(NoRoom::At {
+        toward: direction,
+        position: pos,
+        endpoint: end,
     })
 }
 
@@ -132,16 +185,18 @@ pub fn no_room(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Optio
 pub struct Watch {
     pub motor: Motor,
     pub direction: Direction,
-    /// The way the position is expected to go (+1 grow, −1 shrink) until the run
-    /// shows its own: the direction's ([`expected_sign`]), or what the caller saw
-    /// this motor do (a reversed motor run back by the installation check).
-    way: Option<i32>,
+    /// The way the position is expected to go until the run shows its own: the
+    /// direction's ([`expected_sign`]), or what the caller saw this motor do (a
+    /// reversed motor run back by the installation check).
+    way: Option<Way>,
     /// Whether the run keeps to the endpoints: all but the setup screens' capture.
     keep_ends: bool,
     /// The latest positions with when the page heard them, oldest first.
     samples: Vec<(Instant, u8)>,
     /// The run's first position.
     first: Option<u8>,
+    /// The farthest the run has gone its expected way from `first`, in counts.
+    farthest: i32,
 }
 
 impl Watch {
@@ -153,6 +208,7 @@ impl Watch {
             keep_ends: true,
             samples: Vec::new(),
             first: None,
+            farthest: 0,
         }
     }
 
@@ -160,20 +216,34 @@ impl Watch {
     /// new ones are found), but not against its command ([`super::against`]), nor on
     /// a stale position. `way`: the way a motor known to move against its command
     /// moves (a confirmed run), which is then not stopped for it.
-    pub fn capture(motor: Motor, direction: Direction, way: Option<i32>) -> Watch {
+    pub fn capture(motor: Motor, direction: Direction, way: Option<Way>) -> Watch {
         Watch {
-            way: way.map(i32::signum),
+            way,
             keep_ends: false,
             ..Watch::new(motor, direction)
         }
     }
 
-    /// A run whose position the caller expects to go `way` (+1 grow, −1 shrink).
-    pub fn moving(motor: Motor, direction: Direction, way: i32) -> Watch {
+    /// A run whose position the caller expects to go `way`.
+    pub fn moving(motor: Motor, direction: Direction, way: Way) -> Watch {
         Watch {
-            way: Some(way.signum()),
+            way: Some(way),
             ..Watch::new(motor, direction)
         }
+    }
+
+    /// The run's watch from `model`'s position when it starts (if fresh), rather than
+    /// from the first it checks: a motor that moves at once is judged from where it
+    /// was, not from a position heard a tick into its run.
+    pub fn from_start(mut self, model: &Model, now: Instant) -> Watch {
+        if let Some(st) = model
+            .flap_trim
+            .as_ref()
+            .filter(|st| st.age(now) <= POSITION_FRESH)
+        {
+            self.first = Some(position(self.motor, &st.value));
+        }
+        self
     }
 
     /// Counts a second over the latest samples at least [`RATE_SPAN`] apart.
@@ -222,10 +292,17 @@ impl Watch {
         }
         let expected = self
             .way
-            .unwrap_or_else(|| expected_sign(self.motor, self.direction, ft));
+            .map_or_else(|| expected_sign(self.motor, self.direction, ft), Way::sign);
         let (pos, first) = (i32::from(pos), i32::from(first));
         let against = Err(StopReason::MovedAgainst(self.direction));
-        if self.way.is_none() && (pos - first) * -expected >= MOVED {
+        // Gone MOVED counts back from the farthest it got its own way (from where it
+        // started, at the least): moving against its command. A motor that starts
+        // its own way and then turns back (a slipping drive, a sensor losing its
+        // reference, air loads back-driving a weak trim) is caught there, not once it
+        // is back past where it started.
+        let gone = (pos - first) * expected;
+        self.farthest = self.farthest.max(gone);
+        if self.way.is_none() && self.farthest - gone >= MOVED {
             return against;
         }
         let Some(e) = ends(self.motor, ft).filter(|_| self.keep_ends) else {
@@ -378,44 +455,30 @@ impl Probing {
     }
 }
 
-/// Whether a run that keeps to the endpoints may start `direction` now, in words.
-pub fn permit(
+/// Whether a run that keeps to the endpoints may start `direction` now: its position
+/// fresh, and room to the endpoint it will reach. `way`: the way the caller knows the
+/// run moves the position (`None`: the direction's own).
+pub fn room_to_run(
     model: &Model,
     motor: Motor,
     direction: Direction,
+    way: Option<Way>,
     now: Instant,
-) -> Result<(), String> {
-    permit_moving(model, motor, direction, None, now)
-}
-
-/// [`permit`] for a run whose position the caller expects to go `way` (+1 grow,
-/// −1 shrink; `None`: the direction's way): the room is toward the endpoint that way.
-pub fn permit_moving(
-    model: &Model,
-    motor: Motor,
-    direction: Direction,
-    way: Option<i32>,
-    now: Instant,
-) -> Result<(), String> {
+) -> Result<(), NoRoom> {
     let Some(st) = model.flap_trim.as_ref() else {
-        return Ok(()); // `motor_permit` already says there is no live status.
+        return Ok(()); // `motor_check` already says there is no live status.
     };
     if st.age(now) > POSITION_FRESH {
-        return Err(format!(
-            "{} cannot run: {}",
-            motor.name(),
-            StopReason::PositionStale.describe()
-        ));
+        return Err(NoRoom::Stale);
     }
     let ft = &st.value;
-    match way {
-        Some(w) if w.signum() != expected_sign(motor, direction, ft) => {
-            // Run one way to move the other: the room is toward the endpoint it will
-            // really reach, which is the other direction's.
-            no_room(motor, opposite(direction), ft).map_or(Ok(()), Err)
-        }
-        _ => no_room(motor, direction, ft).map_or(Ok(()), Err),
-    }
+    let toward = match way {
+        // Run one way to move the other: the room is toward the endpoint it will
+        // really reach, which is the other direction's.
+        Some(w) if w != expected_way(motor, direction, ft) => opposite(direction),
+        _ => direction,
+    };
+    at_end(motor, toward, ft).map_or(Ok(()), Err)
 }
 
 /// The other way.
@@ -515,7 +578,10 @@ mod tests {
         assert_eq!(seen, vec![Ok(()), Ok(()), against]);
         // A run the check sends down expecting it to shrink (it saw it so), that then
         // goes back up to 30 and past: an endpoint.
-        let seen = watch_with(Watch::moving(PITCH, Direction::Down, 1), &[32, 31, 30]);
+        let seen = watch_with(
+            Watch::moving(PITCH, Direction::Down, Way::Grows),
+            &[32, 31, 30],
+        );
         assert_eq!(seen[2], Err(StopReason::AtEndpoint(30)));
     }
 
@@ -541,6 +607,21 @@ mod tests {
         assert_eq!(seen[2], Err(StopReason::MovedAgainst(Direction::Down)));
         // Its own way, no stop for it.
         let seen = watch(PITCH, Direction::Up, &[128, 126, 123, 120]);
+        assert!(seen.iter().all(Result::is_ok), "{seen:?}");
+    }
+
+    /// Issue 31: the XFSp gateway's own rule (gone 3 counts from the nearest it came
+    /// to its target) made the watch's, for every origin. Asked up (shrinking) from
+    /// 128, a trim that goes to 120 and then turns back is stopped at 123, three
+    /// counts from the farthest it got, though still 5 short of where it started
+    /// (the rule from the start alone waited for 131). Two counts back is noise.
+    #[test]
+    fn a_run_that_turns_back_is_stopped_a_few_counts_from_the_farthest_it_got() {
+        let seen = watch(PITCH, Direction::Up, &[128, 125, 122, 120, 121, 122, 123]);
+        let against = Err(StopReason::MovedAgainst(Direction::Up));
+        assert_eq!(&seen[..6], &[Ok(()); 6], "{seen:?}");
+        assert_eq!(seen[6], against);
+        let seen = watch(PITCH, Direction::Up, &[128, 125, 122, 120, 122, 121, 119]);
         assert!(seen.iter().all(Result::is_ok), "{seen:?}");
     }
 
@@ -570,7 +651,7 @@ mod tests {
         let seen = watch_with(Watch::capture(PITCH, Direction::Up, None), &[34, 36, 38]);
         assert_eq!(seen[2], Err(StopReason::MovedAgainst(Direction::Up)));
         let seen = watch_with(
-            Watch::capture(PITCH, Direction::Up, Some(1)),
+            Watch::capture(PITCH, Direction::Up, Some(Way::Grows)),
             &[34, 36, 38, 40],
         );
         assert!(seen.iter().all(Result::is_ok), "confirmed: {seen:?}");

@@ -4,6 +4,8 @@
 //! - [`commands`]: an action and the model → a message, or a refusal in words.
 //! - [`streamer`]: the 4 Hz move stream with its dead man (see its docs for every way
 //!   a run ends).
+//! - [`run`]: the one permit for a motor run and its refusal (a reason, and words for
+//!   where it was asked from); [`Controller::start`] is the one entry for every run.
 //!
 //! [`Controller`] ties them together for the app's main loop. Nothing here reads a
 //! clock, sleeps, spawns or does I/O: the loop passes `now`, sends the packets it gets
@@ -23,6 +25,7 @@ pub mod commands;
 pub mod endpoints;
 pub mod keymap;
 pub mod release;
+pub mod run;
 pub mod run_state;
 pub mod streamer;
 
@@ -30,14 +33,15 @@ use std::time::{Duration, Instant};
 
 use crossterm::event::KeyEvent;
 
+use self::endpoints::Way;
+use self::run::{Known, MotorRefusal, Refused};
 use self::run_state::{MotorRun, ReleaseMode, RepeatTiming};
+use crate::audit::Origin;
 use crate::model::{Model, Motor};
 use crate::protocol::message::Packet;
 
 pub use against::Against;
-pub use commands::{
-    Refusal, command, device_power, motor_check, motor_permit, put_back_off, reset,
-};
+pub use commands::{Refusal, command, device_power, motor_check, put_back_off, reset};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};
 pub use release::{release_mode, release_mode_here};
 pub use streamer::{
@@ -74,10 +78,7 @@ pub struct Controller {
     /// A key's run refused for a motor seen moving against its command: the same key
     /// pressed again before [`against::CONFIRM_WITHIN`] runs it.
     confirm: Option<(Motor, Direction, Instant)>,
-    /// The way the run a key is starting is known to move (a confirmed run), for its
-    /// watch.
-    starting_way: Option<i32>,
-    /// A key's run going as probes until its motor shows its way
+    /// A run going as probes until its motor shows its way
     /// ([`Controller::probe_step`]).
     probe: Option<endpoints::Probing>,
     /// The terminal is too small to show the page ([`Controller::set_page_hidden`]).
@@ -93,6 +94,20 @@ pub struct Controller {
     /// remote lets go.
     remote_run: Option<(Motor, Direction)>,
     lease_ended: Option<(Motor, Direction, StopReason)>,
+}
+
+/// How a motor run lasts ([`Controller::start`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum How {
+    /// While its key is held: a fresh press at the page (the device list's keys,
+    /// setup's endpoint capture), ended by the streamer's dead man.
+    Press,
+    /// For `length`, with no key behind it (the installation check). `way`: the way
+    /// the caller saw this motor move (the check running back what it moved), which
+    /// the run keeps to.
+    For { length: Duration, way: Option<Way> },
+    /// While the remote renews it ([`LEASE`]).
+    Lease,
 }
 
 /// The walk-around remote's lease: a run lives this long past its last renewal.
@@ -115,7 +130,6 @@ impl Controller {
             watch: None,
             against: Against::default(),
             confirm: None,
-            starting_way: None,
             probe: None,
             hidden: false,
             unfocused: false,
@@ -133,7 +147,7 @@ impl Controller {
 
     /// Why the person cannot see the page now, if they cannot: the terminal too small
     /// for it, or not focused. A run stops the moment it happens; and while it lasts,
-    /// a run with no key behind it ([`Controller::run_for`], the installation check's)
+    /// a run with no key behind it ([`How::For`], the installation check's)
     /// is refused, since nobody is watching what it would move. A key's run needs a
     /// key, which an unseen page ignores ([`Controller::handle_key_hidden`]) or an
     /// unfocused terminal does not send.
@@ -215,56 +229,122 @@ impl Controller {
             ..Outcome::default()
         };
         out.notice = self.take_notice();
-        let before = self.streamer.running_key();
-        self.starting_way = None;
         self.handle_mapped(keymap::map(&key, ctx), ctx, model, now, &mut out);
-        // A run this key started keeps to the endpoints unless the screen runs motors
-        // past them on purpose (the setup screens); either is watched for moving
-        // against its command, unless it was confirmed knowing it does.
-        if before.is_none()
-            && let Some((motor, direction)) = self.streamer.running_key()
-        {
-            let way = self.starting_way;
-            self.watch = Some(match (ctx.past_endpoints, way) {
-                (true, _) => endpoints::Watch::capture(motor, direction, way),
-                (false, Some(w)) => endpoints::Watch::moving(motor, direction, w),
-                (false, None) => endpoints::Watch::new(motor, direction),
-            });
-            self.probe = None;
-            if !ctx.past_endpoints
-                && way.is_none()
-                && let Some(words) = self.start_probe(model, motor, direction, now, &mut out)
-            {
-                out.notice.get_or_insert(words);
-            }
-        }
         out
     }
 
-    /// A key's run that keeps to the endpoints, its motor's way not known, started
-    /// within [`endpoints::NEAR`] of the endpoint behind it: a motor wired the wrong
-    /// way would pass that endpoint between two positions, so the run goes as a probe
-    /// first ([`endpoints::Probing`]), as the installation check's runs do. Returns the
-    /// notice.
-    fn start_probe(
+    /// The one entry for a motor run, from every origin: the keys (`Key`, and
+    /// `Setup` for the setup screens' endpoint capture, which runs past endpoints),
+    /// the installation check (`Check`), the walk-around remote (`Remote`, through
+    /// [`Controller::lease`]). In one place:
+    /// - the permit: motors refused this session, a page nobody sees (for a run with
+    ///   no key behind it), then [`run::permit`] (the model's checks, the endpoint
+    ///   ahead, a motor seen moving against its command: a key's run confirmed by its
+    ///   key pressed again, [`against`]);
+    /// - the stream ([`MotorStreamer`]) as `how` says;
+    /// - the endpoint watch ([`endpoints::Watch`]);
+    /// - near the endpoint behind it with its way not known, probes first
+    ///   ([`endpoints::Probing`], [`Controller::probe_step`]);
+    /// - the wrong-way stop and its record ([`Controller::end_run`]), which refuses the
+    ///   motor to every origin afterwards.
+    ///
+    /// Returns what to send; [`Controller::probe_words`] says whether it started as a
+    /// probe.
+    pub fn start(
         &mut self,
+        origin: Origin,
         model: &Model,
         motor: Motor,
         direction: Direction,
+        how: How,
         now: Instant,
-        out: &mut Outcome,
-    ) -> Option<String> {
-        let (probing, length) = endpoints::Probing::start(model, motor, direction, now)?;
-        out.packets.extend(self.streamer.probe(now, length));
-        self.probe = Some(probing);
-        Some(probing.words())
+    ) -> Result<Vec<Packet>, MotorRefusal> {
+        if let Some(why) = &self.motors_refused {
+            return Err(MotorRefusal {
+                motor,
+                direction,
+                reason: Refused::MotorsOff,
+                words: why.clone(),
+            });
+        }
+        // A run with no key behind it is refused while nobody can see the page; a
+        // key's needs a key, which an unseen page ignores; the remote's person is at
+        // the wingtip, watching the motor itself.
+        if let How::For { .. } = how
+            && let Some(unseen) = self.unseen()
+        {
+            return Err(MotorRefusal::new(
+                origin,
+                motor,
+                direction,
+                Refused::Unseen(unseen),
+            ));
+        }
+        let keys = matches!(origin, Origin::Key | Origin::Setup);
+        let confirmed = keys
+            && self.against.seen(motor).is_some()
+            && self.confirm.take().is_some_and(|(m, d, at)| {
+                (m, d) == (motor, direction)
+                    && now.saturating_duration_since(at) <= against::CONFIRM_WITHIN
+            });
+        let known = Known {
+            way: match how {
+                How::For { way, .. } => way,
+                How::Press | How::Lease => None,
+            },
+            confirmed,
+            keep_ends: origin != Origin::Setup,
+        };
+        let way = match run::permit(origin, model, &self.against, motor, direction, known, now) {
+            Ok(way) => way,
+            Err(why) => {
+                if keys && let Refused::Against(_) = why.reason {
+                    self.confirm = Some((motor, direction, now));
+                }
+                return Err(why);
+            }
+        };
+        let mut out = match how {
+            How::Press => self.streamer.press(now, motor, direction),
+            How::For { length, .. } => self.streamer.run_for(now, motor, direction, length),
+            How::Lease => self.streamer.lease(now, motor, direction, LEASE),
+        };
+        if self.streamer.running_key() != Some((motor, direction)) {
+            return Err(MotorRefusal::new(
+                origin,
+                motor,
+                direction,
+                Refused::NotStarted,
+            ));
+        }
+        let watch = match (known.keep_ends, way) {
+            (false, _) => endpoints::Watch::capture(motor, direction, way),
+            (true, Some(w)) => endpoints::Watch::moving(motor, direction, w),
+            (true, None) => endpoints::Watch::new(motor, direction),
+        };
+        self.watch = Some(watch.from_start(model, now));
+        self.probe = None;
+        if known.keep_ends
+            && way.is_none()
+            && let Some((probing, length)) = endpoints::Probing::start(model, motor, direction, now)
+        {
+            out.extend(self.streamer.probe(now, length));
+            self.probe = Some(probing);
+        }
+        Ok(out)
+    }
+
+    /// The words while the run going on probes its way ("pitch trim near its down
+    /// endpoint: trying a short run first").
+    pub fn probe_words(&self) -> Option<String> {
+        self.probe.map(|p| p.words())
     }
 
     /// A probing run, once its probe stopped and a position came after the stop
     /// ([`endpoints::Probing::next`]): gone the commanded way, it streams on as any
     /// run; gone the other way, it is stopped as moving against its command (with
     /// the words of [`against`] and its record); not moved, another probe, for as
-    /// long as its key is held.
+    /// long as the run lasts.
     fn probe_step(&mut self, model: &Model, now: Instant) -> Vec<Packet> {
         let Some(p) = self.probe else {
             return Vec::new();
@@ -282,10 +362,21 @@ impl Controller {
             }
             endpoints::ProbeNext::Against => {
                 self.probe = None;
-                self.against.record(p.motor, p.direction);
-                self.stop(now, StopReason::MovedAgainst(p.direction))
+                self.end_run(now, StopReason::MovedAgainst(p.direction))
             }
         }
+    }
+
+    /// Ends the run going on for `reason` the page found (the model, the watch, a
+    /// probe); a run that moved against its command is recorded, so every origin
+    /// refuses its motor from then on ([`against`]).
+    fn end_run(&mut self, now: Instant, reason: StopReason) -> Vec<Packet> {
+        if let (Some((motor, _)), Some(asked)) =
+            (self.streamer.running_key(), against::asked(reason))
+        {
+            self.against.record(motor, asked);
+        }
+        self.stop(now, reason)
     }
 
     fn handle_mapped(
@@ -345,15 +436,20 @@ impl Controller {
                 let p = match phase {
                     KeyPhase::Repeat => self.streamer.repeat(now, motor, direction),
                     KeyPhase::Press if self.streamer.would_start(now, motor, direction) => {
-                        let permit = match &self.motors_refused {
-                            Some(why) => Err(Refusal(why.clone())),
-                            None => motor_permit(model, motor, direction, now)
-                                .and_then(|()| self.key_permit(model, motor, direction, ctx, now)),
+                        let origin = if ctx.past_endpoints {
+                            Origin::Setup
+                        } else {
+                            Origin::Key
                         };
-                        match permit {
-                            Ok(()) => self.streamer.press(now, motor, direction),
+                        match self.start(origin, model, motor, direction, How::Press, now) {
+                            Ok(p) => {
+                                if let Some(words) = self.probe_words() {
+                                    out.notice.get_or_insert(words);
+                                }
+                                p
+                            }
                             Err(why) => {
-                                out.notice = Some(why.0);
+                                out.notice = Some(why.words);
                                 self.streamer.press_refused(now, motor, direction)
                             }
                         }
@@ -405,41 +501,6 @@ impl Controller {
             }
             other => out.action = other,
         }
-    }
-
-    /// A key's run past the model's checks: kept off the endpoint it heads for
-    /// (unless the screen runs past them), and for a motor seen moving against its
-    /// command, refused until the same key comes again within
-    /// [`against::CONFIRM_WITHIN`] ([`against`]); then it runs knowing its way.
-    fn key_permit(
-        &mut self,
-        model: &Model,
-        motor: Motor,
-        direction: Direction,
-        ctx: &KeyContext,
-        now: Instant,
-    ) -> Result<(), Refusal> {
-        let known = model
-            .flap_trim
-            .as_ref()
-            .and_then(|st| self.against.known_way(motor, direction, &st.value));
-        if !ctx.past_endpoints {
-            endpoints::permit_moving(model, motor, direction, known, now).map_err(Refusal)?;
-        }
-        let Some(seen) = self.against.seen(motor) else {
-            return Ok(());
-        };
-        let confirmed = self.confirm.take().is_some_and(|(m, d, at)| {
-            m == motor
-                && d == direction
-                && now.saturating_duration_since(at) <= against::CONFIRM_WITHIN
-        });
-        if confirmed {
-            self.starting_way = known;
-            return Ok(());
-        }
-        self.confirm = Some((motor, direction, now));
-        Err(Refusal(against::confirm_words(motor, seen, direction)))
     }
 
     /// Ends a run the model says must end (lost communication, a motor fault, lost
@@ -501,86 +562,16 @@ impl Controller {
             _ => Ok(()),
         };
         match motor_check(model, motor, direction, now).and(endpoint) {
-            Err(reason) => {
-                if let Some(asked) = against::asked(reason) {
-                    self.against.record(motor, asked);
-                }
-                self.stop(now, reason)
-            }
+            Err(reason) => self.end_run(now, reason),
             Ok(()) => Vec::new(),
         }
     }
 
-    /// Runs `motor` `direction` for `length` with no key behind it (the installation
-    /// check), if the page may stream a motor at all ([`Controller::refuse_motors`]),
-    /// the model permits it now ([`motor_permit`]) and it is not at the endpoint it
-    /// heads for ([`endpoints::permit`]). From then on it is a run like any other:
-    /// [`Controller::tick`] ends it on lost communication, a fault or lost status, at
-    /// its endpoint or on a stale position ([`endpoints`]), any key or quit ends it,
-    /// and the stream ends it at `length` ([`StopReason::RunDone`]).
-    pub fn run_for(
-        &mut self,
-        model: &Model,
-        motor: Motor,
-        direction: Direction,
-        length: Duration,
-        now: Instant,
-    ) -> Result<Vec<Packet>, Refusal> {
-        // A page whose motor thread did not start has nothing to resend the move:
-        // the unit would see one move and then a gap, not a stream.
-        if let Some(why) = &self.motors_refused {
-            return Err(Refusal(why.clone()));
-        }
-        self.run_for_moving(model, motor, direction, None, length, now)
-    }
-
-    /// [`Controller::run_for`] of a run whose position the caller expects to go `way`
-    /// (+1 grow, −1 shrink) rather than the direction's own way: the installation
-    /// check running back a motor it saw go the wrong way. The endpoint that way is
-    /// the one the run keeps off; any other stop is as for every run.
-    pub fn run_for_moving(
-        &mut self,
-        model: &Model,
-        motor: Motor,
-        direction: Direction,
-        way: Option<i32>,
-        length: Duration,
-        now: Instant,
-    ) -> Result<Vec<Packet>, Refusal> {
-        if let Some(why) = &self.motors_refused {
-            return Err(Refusal(why.clone()));
-        }
-        if let Some(unseen) = self.unseen() {
-            return Err(Refusal(format!("not started: {}", unseen.describe())));
-        }
-        motor_permit(model, motor, direction, now)?;
-        // A motor seen moving against its command runs only for a caller that says
-        // the way it saw it go (the check running back what it moved); nobody here
-        // can confirm a run of it.
-        if way.is_none()
-            && let Some(why) = self.against.refusal(motor)
-        {
-            return Err(Refusal(why));
-        }
-        endpoints::permit_moving(model, motor, direction, way, now).map_err(Refusal)?;
-        let out = self.streamer.run_for(now, motor, direction, length);
-        if self.streamer.running_key() == Some((motor, direction)) {
-            self.watch = Some(match way {
-                Some(w) => endpoints::Watch::moving(motor, direction, w),
-                None => endpoints::Watch::new(motor, direction),
-            });
-        }
-        Ok(out)
-    }
-
     /// The walk-around remote's hold-to-run: starts `motor` `direction` with a
     /// [`LEASE`], or renews the lease of the run it started
-    /// ([`MotorStreamer::lease`]). A new run is permitted as the installation
-    /// check's are (the model's checks, the endpoints, a motor seen moving against
-    /// its command), but not refused for a page nobody sees: the person is at the
-    /// wingtip watching the motor itself. Started near the endpoint behind it, it goes
-    /// as probes until the motor shows its way ([`endpoints::Probing`]), as a key's
-    /// run does. A run that ended for any reason but the
+    /// ([`MotorStreamer::lease`]). A new run goes through [`Controller::start`] as
+    /// every run does, but is not refused for a page nobody sees: the person is at
+    /// the wingtip watching the motor itself. A run that ended for any reason but the
     /// remote's own stop is not restarted by renewals: they are refused, with the
     /// reason, until the remote lets go ([`Controller::lease_stop`]) or asks for
     /// another motor or direction. Returns what to send, and the refusal if any.
@@ -590,7 +581,7 @@ impl Controller {
         motor: Motor,
         direction: Direction,
         now: Instant,
-    ) -> (Vec<Packet>, Result<(), Refusal>) {
+    ) -> (Vec<Packet>, Result<(), MotorRefusal>) {
         let key = (motor, direction);
         let mut out = self.check_model(model, now);
         out.extend(self.streamer.tick(now));
@@ -606,14 +597,13 @@ impl Controller {
         }
         if let Some((m, d, reason)) = self.lease_ended {
             if (m, d) == key {
-                return (
-                    out,
-                    Err(Refusal(format!(
-                        "{} stopped: {}; let go and press again",
-                        motor.name(),
-                        reason.describe()
-                    ))),
+                let why = MotorRefusal::new(
+                    Origin::Remote,
+                    motor,
+                    direction,
+                    Refused::LeaseEnded(reason),
                 );
+                return (out, Err(why));
             }
             self.lease_ended = None;
         }
@@ -621,33 +611,13 @@ impl Controller {
             out.extend(self.streamer.lease(now, motor, direction, LEASE));
             return (out, Ok(()));
         }
-        let permit = match &self.motors_refused {
-            Some(why) => Err(Refusal(why.clone())),
-            None => motor_permit(model, motor, direction, now),
-        }
-        .and_then(|()| match self.against.refusal(motor) {
-            Some(why) => Err(Refusal(why)),
-            None => Ok(()),
-        })
-        .and_then(|()| {
-            endpoints::permit_moving(model, motor, direction, None, now).map_err(Refusal)
-        });
-        if let Err(why) = permit {
-            return (out, Err(why));
-        }
-        out.extend(self.streamer.lease(now, motor, direction, LEASE));
-        if self.streamer.running_key() == Some(key) {
-            self.watch = Some(endpoints::Watch::new(motor, direction));
-            self.probe = None;
-            self.remote_run = Some(key);
-            // Near the endpoint behind it, as probes until the motor shows its way,
-            // as a key's run goes.
-            let mut probed = Outcome::default();
-            self.start_probe(model, motor, direction, now, &mut probed);
-            out.extend(probed.packets);
-            (out, Ok(()))
-        } else {
-            (out, Err(Refusal(format!("{} did not start", motor.name()))))
+        match self.start(Origin::Remote, model, motor, direction, How::Lease, now) {
+            Ok(p) => {
+                out.extend(p);
+                self.remote_run = Some(key);
+                (out, Ok(()))
+            }
+            Err(why) => (out, Err(why)),
         }
     }
 
@@ -720,8 +690,12 @@ impl Controller {
         if let Some(asked) = against::asked(s.reason) {
             return Some(against::stopped(s.motor, asked));
         }
+        let again = match s.reason {
+            StopReason::MaxRunTime => "; press the key again",
+            _ => "",
+        };
         (!s.reason.is_normal())
-            .then(|| format!("{} stopped: {}", s.motor.name(), s.reason.describe()))
+            .then(|| format!("{} stopped: {}{again}", s.motor.name(), s.reason.describe()))
     }
 }
 

@@ -166,7 +166,7 @@ impl StopReason {
             StopReason::MotorFault(code) => format!("motor fault {}", code.name()),
             StopReason::MotorDisabled => "the motor is not enabled".into(),
             StopReason::FlapDownInhibited => "flap down is inhibited".into(),
-            StopReason::MaxRunTime => "maximum run time reached; press the key again".into(),
+            StopReason::MaxRunTime => "maximum run time reached".into(),
             StopReason::PageHidden => "the terminal is too small to show the page".into(),
             StopReason::Starved => "the page fell behind the 4 Hz stream".into(),
             StopReason::PageStalled => "the page stopped responding".into(),
@@ -209,6 +209,9 @@ pub struct StopRecord {
     pub reason: StopReason,
     pub at: Instant,
     pub ran_for: Duration,
+    /// How long the motor was driven: `ran_for` less the pauses between a run's
+    /// probes ([`MotorStreamer::probe`]).
+    pub driven: Duration,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -356,6 +359,8 @@ struct Run {
     /// When a probe's stop went out: the run is on, its motor stopped, nothing is
     /// resent until [`MotorStreamer::resume`].
     paused: Option<Instant>,
+    /// The pauses after its probes so far, ended ones.
+    paused_for: Duration,
 }
 
 /// Turns motor key events into the move stream. See the module docs.
@@ -502,6 +507,7 @@ impl MotorStreamer {
             leased: false,
             probe_until: None,
             paused: None,
+            paused_for: Duration::ZERO,
         });
         out.push(self.move_packet(key, true));
         out
@@ -558,12 +564,21 @@ impl MotorStreamer {
         out
     }
 
-    /// A run paused after its probe streams again, from now.
+    /// A run paused after its probe streams again, from now. A timed run gets back
+    /// the time the pause took: its length is the time its motor is driven (the run
+    /// cap still holds), so probes near an endpoint do not eat a check's test run.
     pub fn resume(&mut self, now: Instant) -> Vec<Packet> {
         let mut out = self.expire(now);
         if let Some(run) = self.run.as_mut()
-            && run.paused.take().is_some()
+            && let Some(paused) = run.paused.take()
         {
+            let pause = now.saturating_duration_since(paused);
+            run.paused_for += pause;
+            if !run.leased
+                && let Some(until) = run.until.as_mut()
+            {
+                *until += pause;
+            }
             run.last_sent = now;
             let key = run.key;
             out.push(self.move_packet(key, true));
@@ -751,6 +766,7 @@ impl MotorStreamer {
                     leased: false,
                     probe_until: None,
                     paused: None,
+                    paused_for: Duration::ZERO,
                 });
                 out.push(self.move_packet(key, true));
             }
@@ -852,12 +868,18 @@ impl MotorStreamer {
         let Some(run) = self.run.take() else {
             return Vec::new();
         };
+        let ran_for = now.saturating_duration_since(run.started);
+        let paused = run.paused_for
+            + run
+                .paused
+                .map_or(Duration::ZERO, |p| now.saturating_duration_since(p));
         self.last_stop = Some(StopRecord {
             motor: run.key.0,
             direction: run.key.1,
             reason,
             at: now,
-            ran_for: now.saturating_duration_since(run.started),
+            ran_for,
+            driven: ran_for.saturating_sub(paused),
         });
         vec![self.move_packet(run.key, false)]
     }

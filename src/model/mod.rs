@@ -180,6 +180,23 @@ pub enum Motor {
 }
 
 impl Motor {
+    /// Every motor, in FLAP_TRIM_STATUS's order (ICD Table 27): flaps, pitch trim,
+    /// roll trim.
+    pub const ALL: [Motor; 3] = [
+        Motor::Flaps,
+        Motor::Trim(TrimKind::Pitch),
+        Motor::Trim(TrimKind::Roll),
+    ];
+
+    /// Its place in [`Motor::ALL`], for anything kept per motor.
+    pub fn index(self) -> usize {
+        match self {
+            Motor::Flaps => 0,
+            Motor::Trim(TrimKind::Pitch) => 1,
+            Motor::Trim(TrimKind::Roll) => 2,
+        }
+    }
+
     /// The motor whose row has device id `id` (Appendix B), if it is one.
     pub fn of_device(id: u8) -> Option<Motor> {
         match id {

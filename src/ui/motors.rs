@@ -15,16 +15,10 @@ use super::{theme, values};
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 
-const MOTORS: [Motor; 3] = [
-    Motor::Flaps,
-    Motor::Trim(TrimKind::Pitch),
-    Motor::Trim(TrimKind::Roll),
-];
-
 pub const POSITION_MARK: &str = "●";
 
 fn shown(model: &Model, now: Instant) -> Vec<Motor> {
-    MOTORS
+    Motor::ALL
         .into_iter()
         .filter(|m| model.is_shown(m.device_id(), now))
         .collect()
@@ -183,7 +177,7 @@ fn flags(model: &Model, now: Instant) -> Vec<(String, Style)> {
         return Vec::new();
     };
     let mut out = Vec::new();
-    for m in MOTORS {
+    for m in Motor::ALL {
         let code = m.fault(ft);
         if code.is_fault() {
             out.push((

@@ -18,10 +18,9 @@
 //! shows its way ([`endpoints::Probing`]), as the page's keys do, so a motor wired
 //! the wrong way is not driven past that endpoint beyond [`endpoints::NOISE`].
 //!
-//! Like every run, it also ends as soon as it moves [`endpoints::MOVED`] counts against
-//! the direction it was driven, from where it started or (a run here has a target)
-//! [`AWAY`] counts away from the nearest it came to its target
-//! ([`StopReason::MovedAgainst`]): a motor with swapped leads or polarity runs away
+//! Like every run, it also ends as soon as it moves [`endpoints::MOVED`] counts back
+//! from the farthest it got the way it was driven (the watch's rule,
+//! [`StopReason::MovedAgainst`]): a motor with swapped leads or polarity runs away
 //! from where it was sent, and is stopped there rather than at the far endpoint. A
 //! motor seen doing so, here or by any other origin sharing the record
 //! ([`MotorDrive::share_against`]), is refused from then on: the network cannot
@@ -38,15 +37,24 @@
 //! (a run started, or the motor was already there) or refused (no live position or
 //! scale, a motor check failed, at its endpoint, or it expired waiting for another
 //! run to end).
+//!
+//! [`endpoints::MOVED`]: crate::control::endpoints::MOVED
+//! [`endpoints::NEAR`]: crate::control::endpoints::NEAR
+//! [`endpoints::NOISE`]: crate::control::endpoints::NOISE
+//! [`endpoints::POSITION_FRESH`]: crate::control::endpoints::POSITION_FRESH
+//! [`endpoints::Probing`]: crate::control::endpoints::Probing
+//! [`endpoints::Probing::next`]: crate::control::endpoints::Probing::next
+//! [`endpoints::START_ROOM`]: crate::control::endpoints::START_ROOM
+//! [`endpoints::Watch`]: crate::control::endpoints::Watch
 
 use std::time::{Duration, Instant};
 
+use crate::audit::Origin;
 use crate::control::endpoints::{self, ProbeNext, Probing, Watch};
+use crate::control::run::{self, Known};
 use crate::control::run_state::ReleaseMode;
-use crate::control::{
-    Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check, motor_permit,
-};
-use crate::model::{LogLevel, Model, Motor, TrimKind};
+use crate::control::{Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check};
+use crate::model::{LogLevel, Model, Motor};
 use crate::protocol::message::Packet;
 
 use super::scale::Axis;
@@ -56,17 +64,6 @@ pub const REQUEST_HOLD: Duration = Duration::from_millis(1200);
 /// Raw counts short of the target at which the motor is stopped: the 10 Hz position
 /// reports lag the motor, so stopping a count early lands on the target, not past it.
 pub const STOP_MARGIN: i32 = 1;
-/// Counts a run's position may go away from its target (from the nearest it came)
-/// before the run ends as moving against its command ([`StopReason::MovedAgainst`]): the
-/// installation check's "moved" ([`endpoints::MOVED`]), so one count of sensor noise,
-/// or two, never ends a good run.
-pub const AWAY: i32 = endpoints::MOVED;
-
-pub const MOTORS: [Motor; 3] = [
-    Motor::Flaps,
-    Motor::Trim(TrimKind::Pitch),
-    Motor::Trim(TrimKind::Roll),
-];
 
 /// A motor request as heard.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -92,10 +89,8 @@ struct Active {
     /// The request's target on the draft's scale, and in raw counts.
     target: i32,
     raw_target: u8,
-    /// Its watch over the endpoints and the position's age.
+    /// Its watch over the endpoints, the position's age and its way.
     watch: Watch,
-    /// The fewest counts it has been short of the target (see [`AWAY`]).
-    closest: i32,
     /// Going as probes until the motor shows its way ([`endpoints::Probing`]).
     probe: Option<Probing>,
 }
@@ -183,29 +178,13 @@ impl MotorDrive {
         self.streamer.running_key()
     }
 
-    /// The request held for each motor (flaps, pitch, roll).
-    pub fn requests(&self) -> [Option<MotorRequest>; 3] {
-        self.slots.map(|s| s.req)
-    }
-
     /// The request held for `motor`.
     pub fn request_for(&self, motor: Motor) -> Option<MotorRequest> {
-        let [f, p, r] = &self.slots;
-        match motor {
-            Motor::Flaps => f,
-            Motor::Trim(TrimKind::Pitch) => p,
-            Motor::Trim(TrimKind::Roll) => r,
-        }
-        .req
+        self.slots[motor.index()].req
     }
 
     fn slot(&mut self, motor: Motor) -> &mut Slot {
-        let [f, p, r] = &mut self.slots;
-        match motor {
-            Motor::Flaps => f,
-            Motor::Trim(TrimKind::Pitch) => p,
-            Motor::Trim(TrimKind::Roll) => r,
-        }
+        &mut self.slots[motor.index()]
     }
 
     pub fn next_deadline(&self) -> Option<Instant> {
@@ -249,7 +228,7 @@ impl MotorDrive {
     pub fn tick(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
         let mut out = Vec::new();
         let running = self.active.as_ref().map(|a| a.motor);
-        for motor in MOTORS {
+        for motor in Motor::ALL {
             let local_busy = self.local_busy;
             let slot = self.slot(motor);
             let Some(r) = slot.req.filter(|r| now >= r.until) else {
@@ -337,7 +316,7 @@ impl MotorDrive {
         if self.local_busy {
             return Vec::new();
         }
-        for motor in MOTORS {
+        for motor in Motor::ALL {
             let slot = *self.slot(motor);
             let Some(req) = slot.req else { continue };
             if slot.latched == Some(req.target) {
@@ -379,10 +358,20 @@ impl MotorDrive {
             // The page's own rule for a run that keeps to the endpoints: no start at
             // (or within a run's first unwatched travel of) the endpoint ahead, nor on
             // a position too old to keep it off it.
-            let permit = motor_permit(model, motor, direction, now)
-                .map_err(|r| r.0)
-                .and_then(|()| self.against.refusal(motor).map_or(Ok(()), Err))
-                .and_then(|()| endpoints::permit(model, motor, direction, now));
+            let known = Known {
+                way: None,
+                confirmed: false,
+                keep_ends: true,
+            };
+            let permit = run::permit(
+                Origin::Xfsp,
+                model,
+                &self.against,
+                motor,
+                direction,
+                known,
+                now,
+            );
             if let Err(why) = permit {
                 self.counts.refused += 1;
                 model.log(
@@ -411,8 +400,7 @@ impl MotorDrive {
                     direction,
                     target: req.target,
                     raw_target,
-                    watch: Watch::new(motor, direction),
-                    closest: axis.remaining(motor, direction, pos, raw_target),
+                    watch: Watch::new(motor, direction).from_start(model, now),
                     probe,
                 });
                 model.log(
@@ -478,36 +466,18 @@ impl MotorDrive {
 fn position(model: &Model, motor: Motor, now: Instant) -> Option<(Axis, u8)> {
     let ft = model.live_flap_trim(now)?;
     let axis = Axis::for_motor(motor, ft)?;
-    let pos = match motor {
-        Motor::Flaps => ft.flap_position,
-        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
-        Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
-    };
-    Some((axis, pos))
+    Some((axis, endpoints::position(motor, ft)))
 }
 
 impl Active {
-    /// Whether the run ends by its position against its target (the endpoints and
-    /// the position's age are the watch's): reached, or gone [`AWAY`] from it.
+    /// Whether the run ends by its position against its target (the endpoints, the
+    /// position's age and its way are the watch's): reached.
     fn progress(&mut self, model: &Model, now: Instant) -> Option<(StopReason, String, bool)> {
         // motor_check and the watch have already made sure the position is live.
         let (axis, pos) = position(model, self.motor, now)?;
         let remaining = axis.remaining(self.motor, self.direction, pos, self.raw_target);
-        if remaining <= STOP_MARGIN {
-            return Some((StopReason::Released, "target reached".to_string(), true));
-        }
-        self.closest = self.closest.min(remaining);
-        (remaining - self.closest >= AWAY).then(|| {
-            let reason = StopReason::MovedAgainst(self.direction);
-            let why = format!(
-                "{} (raw {pos}, {} counts from target {} after {})",
-                reason.describe(),
-                remaining,
-                self.raw_target,
-                self.closest
-            );
-            (reason, why, true)
-        })
+        (remaining <= STOP_MARGIN)
+            .then(|| (StopReason::Released, "target reached".to_string(), true))
     }
 }
 

@@ -99,7 +99,7 @@ use crate::protocol::message::Packet;
 
 use super::consume::{AirData, Forwarded};
 use super::dict::{CertLevel, Confidence, EcbState};
-use super::drive::{MotorDrive, MotorRequest};
+use super::drive::MotorDrive;
 use super::format::{CasMsg, Value, latin1};
 use super::header::Header;
 use super::idents::{self, Ident};
@@ -385,11 +385,6 @@ impl Gateway {
     /// The CAS messages we have standing on the network.
     pub fn standing_cas(&self) -> Vec<(u16, CasMsg)> {
         self.publisher.standing_cas()
-    }
-
-    /// The motor requests held (flaps, pitch trim, roll trim).
-    pub fn motor_requests(&self) -> [Option<MotorRequest>; 3] {
-        self.drive.requests()
     }
 
     pub fn running_motor(&self) -> Option<Motor> {

@@ -147,13 +147,10 @@ fn a_key_run_moving_against_its_command_stops_and_then_needs_a_confirmation() {
         assert!(seen.iter().all(|&p| p <= 220), "{seen:?}");
     }
     r.run(400);
-    for _ in 0..2 {
+    for words in ["down endpoint", "down endpoint"] {
         let out = r.key('u', KeyEventKind::Press, false);
         assert!(
-            out.notice
-                .as_deref()
-                .unwrap_or("")
-                .contains("down endpoint"),
+            out.notice.as_deref().unwrap_or("").contains(words),
             "{out:?}"
         );
         assert!(out.packets.is_empty());
@@ -335,18 +332,27 @@ fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
     assert_eq!(r.pitch_pos(), at);
     let m = &r.view.motors[1];
     assert_eq!(m.outcome, Found::Found(MotorFinding::Reversed));
-    let refused = r.ctl.run_for(
+    let refused = r.ctl.start(
+        crate::audit::Origin::Check,
         &r.model,
         PITCH,
         Direction::Up,
-        Duration::from_secs(1),
+        crate::control::How::For {
+            length: Duration::from_secs(1),
+            way: None,
+        },
         r.now,
+    );
+    let refused = refused.unwrap_err();
+    assert_eq!(
+        refused.reason,
+        crate::control::run::Refused::Against(Direction::Up)
     );
     assert!(
         refused
-            .unwrap_err()
-            .0
-            .contains("not run: confirm a run at the page")
+            .words
+            .contains("not run: confirm a run on the page's device list"),
+        "{refused}"
     );
 }
 

@@ -1452,11 +1452,15 @@ fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());
     let p = r
         .ctl
-        .run_for(
+        .start(
+            crate::audit::Origin::Check,
             &r.model,
             PITCH,
             crate::control::Direction::Up,
-            Duration::from_millis(1500),
+            crate::control::How::For {
+                length: Duration::from_millis(1500),
+                way: None,
+            },
             r.now,
         )
         .unwrap();
@@ -1476,15 +1480,19 @@ fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     assert!(last.0 - t_start < 500);
     assert_eq!(moves.iter().filter(|(_, on)| !on).count(), 1);
     // And from there it does not start up again: no room.
-    let refused = r.ctl.run_for(
+    let refused = r.ctl.start(
+        crate::audit::Origin::Check,
         &r.model,
         PITCH,
         crate::control::Direction::Up,
-        Duration::from_millis(600),
+        crate::control::How::For {
+            length: Duration::from_millis(600),
+            way: None,
+        },
         r.now,
     );
     assert!(
-        matches!(&refused, Err(w) if w.0.contains("at its up endpoint")),
+        matches!(&refused, Err(w) if w.words.contains("at its up endpoint")),
         "{refused:?}"
     );
 }
