@@ -412,3 +412,54 @@ fn headless_a_report_that_cannot_be_written_is_an_error_naming_the_folder() {
     drop(slave);
     sim.stop();
 }
+
+/// "Is it lit?" on the page: the light the check switched on stays on past its
+/// measurement, the screen asking with the time left, until the person answers `y`;
+/// then it goes back off, and the report says it went off at the answer.
+#[test]
+fn a_light_is_held_on_until_the_person_answers_on_the_page() {
+    let mut r = Rig::mid_circuit();
+    let name = r.under_test();
+    assert_eq!(name, "Nav Lt", "the install scenario's first light");
+    r.until("Nav Lt measured and held", Duration::from_secs(10), |app| {
+        prompt(app).contains("is on and measured")
+    });
+    let held_from = Instant::now();
+    // Past the 5 s a circuit was kept on before, it is still on, and still asked.
+    while held_from.elapsed() < Duration::from_secs(6) {
+        r.app.pump_until(Instant::now() + Duration::from_millis(50));
+        assert!(r.sim.stats().powered[4], "Nav Lt switched off unanswered");
+    }
+    let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
+    r.app.draw(&mut term, Instant::now()).unwrap();
+    let screen: String = {
+        let buf = term.backend().buffer();
+        (0..buf.area.height)
+            .map(|y| {
+                (0..buf.area.width)
+                    .map(|x| buf[(x, y)].symbol().to_string())
+                    .collect::<String>()
+                    + "\n"
+            })
+            .collect()
+    };
+    assert!(screen.contains("Is it lit?"), "{screen}");
+    let left = r.app.check_view().prompt.as_ref().and_then(|p| p.time_left);
+    assert!(
+        left.is_some_and(|l| l > Duration::from_secs(45) && l < Duration::from_secs(55)),
+        "{left:?}"
+    );
+    r.key(KeyCode::Char('y'), KeyModifiers::NONE);
+    let end = Instant::now() + Duration::from_secs(4);
+    while r.sim.stats().powered[4] {
+        assert!(
+            Instant::now() < end,
+            "Nav Lt not switched off at the answer"
+        );
+        r.app.pump_until(Instant::now() + Duration::from_millis(20));
+    }
+    assert_eq!(
+        r.app.check_view().lit_answer(4).map(|a| (a.lit, a.ended)),
+        Some((Some(true), vpx_efis::check::state::LitEnd::Answer))
+    );
+}
