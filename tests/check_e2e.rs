@@ -673,3 +673,73 @@ fn a_reversed_trim_parked_near_its_endpoint_never_passes_it() {
         pitch.positions
     );
 }
+
+/// The motor test pauses for r (retry) or s (skip) when the flap position stops
+/// coming; with standard input at its end (a closed channel here) nobody can type
+/// either: the headless check says so and skips, and the check ends.
+#[test]
+fn headless_a_motor_pause_after_stdin_ended_is_said_and_skipped() {
+    let r = Rig::new();
+    let (tx, lines) = unbounded::<String>();
+    drop(tx);
+    let (_ttx, terminations) = unbounded();
+    let h = HeadlessCheck {
+        port: Some(r.path.parse().unwrap()),
+        baud: 57_600,
+        scenario: "install".into(),
+        options: Options {
+            skip: vec![Step::Switches, Step::Circuits, Step::Loads],
+            yes: true,
+            ..r.options()
+        },
+        report: None,
+    };
+    let Rig { app, sim, .. } = r;
+    app.shutdown();
+    // The unit falls silent for 1.6 s as the check is confirmed: the flaps' first
+    // run stops on a stale position and pauses, as does what follows while it is
+    // silent; never long enough (2.5 s) to lose communication.
+    let sim = std::sync::Arc::new(sim);
+    let mut out = SilenceAt {
+        text: Vec::new(),
+        at: "Confirmed:",
+        sim: Some(sim.clone()),
+    };
+    let started = Instant::now();
+    let end = run_headless_with(h, &lines, &terminations, &mut out).unwrap();
+    let text = String::from_utf8(out.text).unwrap();
+    assert!(
+        text.contains(
+            "Standard input is at its end (no terminal, /dev/null, a closed pipe): nobody \
+             can answer here. The check was waiting for r (retry) or s (skip), which nobody \
+             can type now: skipped."
+        ),
+        "{text}"
+    );
+    assert!(started.elapsed() < Duration::from_secs(60), "{text}");
+    assert_ne!(end, CheckEnd::Interrupted, "{text}");
+}
+
+/// The headless check's output, which silences the unit the first time a line with
+/// `at` is written.
+struct SilenceAt {
+    text: Vec<u8>,
+    at: &'static str,
+    sim: Option<std::sync::Arc<SimHandle>>,
+}
+
+impl std::io::Write for SilenceAt {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.text.extend_from_slice(buf);
+        if String::from_utf8_lossy(buf).contains(self.at)
+            && let Some(sim) = self.sim.take()
+        {
+            sim.inject(SimCommand::Silent(Duration::from_millis(1600)));
+        }
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
