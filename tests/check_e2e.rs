@@ -23,13 +23,27 @@ use vpx_efis::ui::state::Screen;
 /// runs them all at once can starve a unit's 1 Hz status into COMMUNICATION LOST.
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
+/// Dropped in field order, on a failure too: the page (its link closed, its motor
+/// stopped), the sim, the pty; only then is the next rig's turn.
 struct Rig {
-    _turn: std::sync::MutexGuard<'static, ()>,
     app: App,
     sim: SimHandle,
     path: String,
     _slave: serialport::TTYPort,
     dir: tempfile::TempDir,
+    _turn: std::sync::MutexGuard<'static, ()>,
+}
+
+/// A test that panicked sets the page's panic flag for the whole process (the hook
+/// that `run_headless_with` installs: a panic anywhere stops every motor, and the
+/// page stops ticking for good). Every later rig here would then wait out its limits
+/// on a page that no longer acts: fail at once instead, naming the cause.
+fn no_earlier_panic() {
+    assert!(
+        !vpx_efis::app::panicked(),
+        "an earlier test in this binary panicked, and the page's panic flag is \
+         process-wide: this rig's page would not act"
+    );
 }
 
 impl Rig {
@@ -40,6 +54,7 @@ impl Rig {
     /// The `install` scenario as `change` leaves it.
     fn with(change: impl FnOnce(&mut sim::Scenario)) -> Rig {
         let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+        no_earlier_panic();
         let pty = link::open_pty_pair().expect("pty");
         let reader = pty.master.try_clone_native().expect("clone master");
         let mut scenario = sim::load_scenario("install").unwrap();
@@ -54,12 +69,12 @@ impl Rig {
             AppOptions::default(),
         );
         let mut r = Rig {
-            _turn: turn,
             app,
             sim,
             path: pty.path.clone(),
             _slave: pty.slave,
             dir: tempfile::tempdir().unwrap(),
+            _turn: turn,
         };
         let end = Instant::now() + Duration::from_secs(20);
         loop {
@@ -76,6 +91,8 @@ impl Rig {
             loads_file: Some(self.dir.path().join("loads.toml")),
             timing: Timing {
                 switch_timeout: Duration::from_secs(6),
+                // Nobody looks at the lights here: none is held for "Is it lit?".
+                lit_for: Duration::ZERO,
                 ..Timing::default()
             },
             ..Options::default()
@@ -122,7 +139,9 @@ impl Rig {
     /// and off (switch 7's wire is dead, 5 and 6 are crossed: the person cannot tell).
     fn do_the_switches(&mut self) {
         let mut done = 0;
+        let end = Instant::now() + Duration::from_secs(180);
         while self.app.check_view().step == Step::Switches {
+            assert!(Instant::now() < end, "the switch step never ended");
             let v = self.app.check_view();
             let Some(i) = v.current else {
                 self.pump(20);
@@ -427,7 +446,9 @@ fn quit_mid_motor_run_puts_the_stop_on_the_wire() {
         app.motor_run().is_some()
     });
     // Until they have clearly moved from 20 (the up endpoint), down.
+    let end = Instant::now() + Duration::from_secs(10);
     while r.sim.stats().flap_position < 26 {
+        assert!(Instant::now() < end, "the flaps never moved down");
         r.pump(20);
     }
     assert!(r.sim.stats().flap_running);
