@@ -306,8 +306,9 @@ impl Circuits {
                 );
                 record(view, idx, f, cx);
                 let asking = asks_lit(view, idx);
-                if asking && lit_on && now < item.started + shared.timing.lit_for {
-                    // Measured: held on until the person answers, up to the cap.
+                // Measured: held on until the person answers, up to the cap. A light on
+                // by its switch is not held: it stays on after the check moves on.
+                if asking && lit_on && sent && now < item.started + shared.timing.lit_for {
                     item.stage = Stage::Asking {
                         sent,
                         until: item.started + shared.timing.lit_for,
