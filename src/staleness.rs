@@ -15,3 +15,14 @@ pub const FLAP_TRIM_STALE_AFTER: Duration = Duration::from_millis(1000);
 /// icd-reading R9: FAULT_STATUS is sent only while a fault exists, so status arriving
 /// without it for this long means "no faults", not lost communication.
 pub const FAULT_STATUS_QUIET_AFTER: Duration = Duration::from_millis(2500);
+/// FAULT_STATUS's period while a fault exists (ICD Table 6 and §6.3.4: 1 Hz).
+pub const FAULT_STATUS_PERIOD: Duration = Duration::from_secs(1);
+/// How late a FAULT_STATUS may come after its period before it counts as not coming
+/// (after a reset, the sign that the fault is gone: §6.3.4 sends it only while a fault
+/// exists). Decision, the ICD being silent on jitter: half a period. A whole second of
+/// the unit's broadcasts (SYSTEM_STATUS 21 bytes, DEVICE_STATUS 75, FAULT_STATUS 44,
+/// ten FLAP_TRIM_STATUS of 27) is 410 bytes, about 70 ms of a 57600-baud line; a
+/// USB-serial adapter's latency timer (16 ms by default) and a serial-to-network
+/// bridge add tens of milliseconds more. A broadcast 500 ms late is missing, not late;
+/// a wait much longer would keep a cleared fault on screen with the reset unanswered.
+pub const FAULT_STATUS_MARGIN: Duration = Duration::from_millis(500);

@@ -23,13 +23,27 @@ use vpx_efis::ui::state::Screen;
 /// runs them all at once can starve a unit's 1 Hz status into COMMUNICATION LOST.
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
+/// Dropped in field order, on a failure too: the page (its link closed, its motor
+/// stopped), the sim, the pty; only then is the next rig's turn.
 struct Rig {
-    _turn: std::sync::MutexGuard<'static, ()>,
     app: App,
     sim: SimHandle,
     path: String,
     _slave: serialport::TTYPort,
     dir: tempfile::TempDir,
+    _turn: std::sync::MutexGuard<'static, ()>,
+}
+
+/// A test that panicked sets the page's panic flag for the whole process (the hook
+/// that `run_headless_with` installs: a panic anywhere stops every motor, and the
+/// page stops ticking for good). Every later rig here would then wait out its limits
+/// on a page that no longer acts: fail at once instead, naming the cause.
+fn no_earlier_panic() {
+    assert!(
+        !vpx_efis::app::panicked(),
+        "an earlier test in this binary panicked, and the page's panic flag is \
+         process-wide: this rig's page would not act"
+    );
 }
 
 impl Rig {
@@ -40,6 +54,7 @@ impl Rig {
     /// The `install` scenario as `change` leaves it.
     fn with(change: impl FnOnce(&mut sim::Scenario)) -> Rig {
         let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
+        no_earlier_panic();
         let pty = link::open_pty_pair().expect("pty");
         let reader = pty.master.try_clone_native().expect("clone master");
         let mut scenario = sim::load_scenario("install").unwrap();
@@ -54,12 +69,12 @@ impl Rig {
             AppOptions::default(),
         );
         let mut r = Rig {
-            _turn: turn,
             app,
             sim,
             path: pty.path.clone(),
             _slave: pty.slave,
             dir: tempfile::tempdir().unwrap(),
+            _turn: turn,
         };
         let end = Instant::now() + Duration::from_secs(20);
         loop {
@@ -76,6 +91,8 @@ impl Rig {
             loads_file: Some(self.dir.path().join("loads.toml")),
             timing: Timing {
                 switch_timeout: Duration::from_secs(6),
+                // Nobody looks at the lights here: none is held for "Is it lit?".
+                lit_for: Duration::ZERO,
                 ..Timing::default()
             },
             ..Options::default()
@@ -122,7 +139,9 @@ impl Rig {
     /// and off (switch 7's wire is dead, 5 and 6 are crossed: the person cannot tell).
     fn do_the_switches(&mut self) {
         let mut done = 0;
+        let end = Instant::now() + Duration::from_secs(180);
         while self.app.check_view().step == Step::Switches {
+            assert!(Instant::now() < end, "the switch step never ended");
             let v = self.app.check_view();
             let Some(i) = v.current else {
                 self.pump(20);
@@ -427,7 +446,9 @@ fn quit_mid_motor_run_puts_the_stop_on_the_wire() {
         app.motor_run().is_some()
     });
     // Until they have clearly moved from 20 (the up endpoint), down.
+    let end = Instant::now() + Duration::from_secs(10);
     while r.sim.stats().flap_position < 26 {
+        assert!(Instant::now() < end, "the flaps never moved down");
         r.pump(20);
     }
     assert!(r.sim.stats().flap_running);
@@ -672,4 +693,74 @@ fn a_reversed_trim_parked_near_its_endpoint_never_passes_it() {
         after.pitch_trim_position,
         pitch.positions
     );
+}
+
+/// The motor test pauses for r (retry) or s (skip) when the flap position stops
+/// coming; with standard input at its end (a closed channel here) nobody can type
+/// either: the headless check says so and skips, and the check ends.
+#[test]
+fn headless_a_motor_pause_after_stdin_ended_is_said_and_skipped() {
+    let r = Rig::new();
+    let (tx, lines) = unbounded::<String>();
+    drop(tx);
+    let (_ttx, terminations) = unbounded();
+    let h = HeadlessCheck {
+        port: Some(r.path.parse().unwrap()),
+        baud: 57_600,
+        scenario: "install".into(),
+        options: Options {
+            skip: vec![Step::Switches, Step::Circuits, Step::Loads],
+            yes: true,
+            ..r.options()
+        },
+        report: None,
+    };
+    let Rig { app, sim, .. } = r;
+    app.shutdown();
+    // The unit falls silent for 1.6 s as the check is confirmed: the flaps' first
+    // run stops on a stale position and pauses, as does what follows while it is
+    // silent; never long enough (2.5 s) to lose communication.
+    let sim = std::sync::Arc::new(sim);
+    let mut out = SilenceAt {
+        text: Vec::new(),
+        at: "Confirmed:",
+        sim: Some(sim.clone()),
+    };
+    let started = Instant::now();
+    let end = run_headless_with(h, &lines, &terminations, &mut out).unwrap();
+    let text = String::from_utf8(out.text).unwrap();
+    assert!(
+        text.contains(
+            "Standard input is at its end (no terminal, /dev/null, a closed pipe): nobody \
+             can answer here. The check was waiting for r (retry) or s (skip), which nobody \
+             can type now: skipped."
+        ),
+        "{text}"
+    );
+    assert!(started.elapsed() < Duration::from_secs(60), "{text}");
+    assert_ne!(end, CheckEnd::Interrupted, "{text}");
+}
+
+/// The headless check's output, which silences the unit the first time a line with
+/// `at` is written.
+struct SilenceAt {
+    text: Vec<u8>,
+    at: &'static str,
+    sim: Option<std::sync::Arc<SimHandle>>,
+}
+
+impl std::io::Write for SilenceAt {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.text.extend_from_slice(buf);
+        if String::from_utf8_lossy(buf).contains(self.at)
+            && let Some(sim) = self.sim.take()
+        {
+            sim.inject(SimCommand::Silent(Duration::from_millis(1600)));
+        }
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
 }

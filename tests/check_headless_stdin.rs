@@ -196,3 +196,57 @@ fn measure(_child: &Kill, _secs: u64) {
         common::cpu::process_cpu_time(0).unwrap_err()
     );
 }
+
+/// "Is it lit?" headless: the question is printed, the light held on past its
+/// measurement until the person types an answer, and switched off at it; then
+/// standard input closes mid-check, and the next light is not held for an answer
+/// that cannot come.
+#[test]
+fn a_headless_check_holds_a_light_on_until_the_typed_answer() {
+    let (_sim, addr) = sim_tcp("install");
+    let home = tempfile::tempdir().unwrap();
+    let reports = home.path().join("reports");
+    let (mut child, rx) = check(
+        &addr,
+        &[
+            "--yes",
+            "--skip",
+            "switches,motors,loads",
+            "--report",
+            reports.to_str().unwrap(),
+        ],
+        Stdio::piped(),
+        home.path(),
+    );
+    let mut stdin = child.0.stdin.take().unwrap();
+    let asked = until(&rx, "Nav Lt: is it lit?", Duration::from_secs(30));
+    assert_eq!(
+        asked.last().unwrap(),
+        "  Nav Lt: is it lit? Type y (lit), n (not lit) or s (skip the question); it \
+         stays on until you answer, 60 s at most.",
+    );
+    let asked_at = Instant::now();
+    // Measured within the unit's two broadcasts, and then held: nothing more for
+    // 7 s (the check kept a circuit on for 5 s at most before).
+    let measured = until(&rx, "Nav Lt (5A-1)", Duration::from_secs(6));
+    assert!(measured.last().unwrap().contains("draws"), "{measured:?}");
+    let quiet = rx.recv_timeout(Duration::from_secs(7).saturating_sub(asked_at.elapsed()));
+    assert!(quiet.is_err(), "said while the light was held: {quiet:?}");
+    use std::io::Write as _;
+    writeln!(stdin, "y").unwrap();
+    let answered = until(&rx, "Nav Lt: you saw", Duration::from_secs(3));
+    assert_eq!(
+        answered.last().unwrap(),
+        "  Nav Lt: you saw it lit; switched back off at your answer"
+    );
+    // The next light is asked; standard input closes: nobody can answer it.
+    until(&rx, "is it lit?", Duration::from_secs(30));
+    drop(stdin);
+    let rest = to_the_end(&rx, Duration::from_secs(40)).join("\n");
+    assert!(rest.contains(NOBODY), "{rest}");
+    assert!(
+        rest.contains("not asked if it is lit: nobody could answer (standard input ended)"),
+        "{rest}"
+    );
+    assert!(rest.contains("Summary:"), "{rest}");
+}

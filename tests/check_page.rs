@@ -15,8 +15,8 @@ use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use vpx_efis::app::{App, AppOptions, Flow, Terminated, Termination};
-use vpx_efis::check::Options;
 use vpx_efis::check::state::Step;
+use vpx_efis::check::{Options, Timing};
 use vpx_efis::link;
 use vpx_efis::model::Source;
 use vpx_efis::sim::{self, SimHandle, SimOptions};
@@ -53,9 +53,23 @@ impl Rig {
         Rig::at_circuit(false)
     }
 
+    /// As [`Rig::mid_circuit`], its lights held on for "Is it lit?" (elsewhere here
+    /// nobody looks at them, and none is held).
+    fn mid_light() -> Rig {
+        Rig::starting(false, Timing::default())
+    }
+
     /// As [`Rig::mid_circuit`], on a circuit that was `on_already` (its switch on,
     /// measured as it is, nothing sent) or one the check itself switched on.
     fn at_circuit(on_already: bool) -> Rig {
+        let timing = Timing {
+            lit_for: Duration::ZERO,
+            ..Timing::default()
+        };
+        Rig::starting(on_already, timing)
+    }
+
+    fn starting(on_already: bool, timing: Timing) -> Rig {
         let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
         let (path, slave, sim) = install_unit();
         let app = App::new(
@@ -76,6 +90,7 @@ impl Rig {
         let options = Options {
             skip: vec![Step::Switches],
             loads_file: Some(r.dir.path().join("loads.toml")),
+            timing,
             ..Options::default()
         };
         r.app
@@ -411,4 +426,55 @@ fn headless_a_report_that_cannot_be_written_is_an_error_naming_the_folder() {
     assert!(text.contains("Summary: "), "{text}");
     drop(slave);
     sim.stop();
+}
+
+/// "Is it lit?" on the page: the light the check switched on stays on past its
+/// measurement, the screen asking with the time left, until the person answers `y`;
+/// then it goes back off, and the report says it went off at the answer.
+#[test]
+fn a_light_is_held_on_until_the_person_answers_on_the_page() {
+    let mut r = Rig::mid_light();
+    let name = r.under_test();
+    assert_eq!(name, "Nav Lt", "the install scenario's first light");
+    r.until("Nav Lt measured and held", Duration::from_secs(10), |app| {
+        prompt(app).contains("is on and measured")
+    });
+    let held_from = Instant::now();
+    // Past the 5 s a circuit was kept on before, it is still on, and still asked.
+    while held_from.elapsed() < Duration::from_secs(6) {
+        r.app.pump_until(Instant::now() + Duration::from_millis(50));
+        assert!(r.sim.stats().powered[4], "Nav Lt switched off unanswered");
+    }
+    let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
+    r.app.draw(&mut term, Instant::now()).unwrap();
+    let screen: String = {
+        let buf = term.backend().buffer();
+        (0..buf.area.height)
+            .map(|y| {
+                (0..buf.area.width)
+                    .map(|x| buf[(x, y)].symbol().to_string())
+                    .collect::<String>()
+                    + "\n"
+            })
+            .collect()
+    };
+    assert!(screen.contains("Is it lit?"), "{screen}");
+    let left = r.app.check_view().prompt.as_ref().and_then(|p| p.time_left);
+    assert!(
+        left.is_some_and(|l| l > Duration::from_secs(45) && l < Duration::from_secs(55)),
+        "{left:?}"
+    );
+    r.key(KeyCode::Char('y'), KeyModifiers::NONE);
+    let end = Instant::now() + Duration::from_secs(4);
+    while r.sim.stats().powered[4] {
+        assert!(
+            Instant::now() < end,
+            "Nav Lt not switched off at the answer"
+        );
+        r.app.pump_until(Instant::now() + Duration::from_millis(20));
+    }
+    assert_eq!(
+        r.app.check_view().lit_answer(4).map(|a| (a.lit, a.ended)),
+        Some((Some(true), vpx_efis::check::state::LitEnd::Answer))
+    );
 }

@@ -389,3 +389,45 @@ fn a_circuit_refusal_names_no_key() {
         "{faulted}"
     );
 }
+
+/// A reset the unit has not yet answered: a second `r` sends nothing and says why
+/// (it would count as a reset of a circuit that may have no fault left), nor does
+/// `o` switch it on. Once DEVICE_STATUS shows it on, the reset is answered.
+#[test]
+fn a_second_reset_before_the_unit_answers_the_first_sends_nothing_and_says_why() {
+    const LANDING: u8 = 17;
+    let t0 = Instant::now();
+    let s = |n: u64| t0 + Duration::from_millis(n);
+    let mut m = model(t0, &[(LANDING, FaultCode::ShortCircuit)], false);
+    m.apply_packet(
+        t0,
+        &Packet::from_vpx(
+            0,
+            vpx_efis::protocol::message::DeviceName::new(LANDING, "Landing Lt").unwrap(),
+        ),
+    );
+    let reset = Action::Reset(LANDING);
+    let first = command(&reset, &m, s(100)).expect("the first reset goes out");
+    assert_eq!(
+        first,
+        Message::DeviceClear(DeviceClear { device_id: LANDING })
+    );
+    m.note_sent(s(100), &Packet::request(1, first));
+    assert_eq!(
+        refused(reset.clone(), &m, s(600)),
+        "Landing Lt: a reset was sent 0.5 s ago and the unit has not yet said whether \
+         SHORT_CIRCUIT cleared; nothing more is sent until it does (its next broadcast)"
+    );
+    assert!(refused(Action::PowerOn(LANDING), &m, s(600)).contains("a reset was sent"));
+    // Its switch is on: the unit's next DEVICE_STATUS shows it on. Answered.
+    let (st, mut d) = status(WigWagModeSetting::Auto);
+    if let Message::DeviceStatus(ds) = &mut d.message {
+        ds.on[LANDING as usize] = true;
+    }
+    m.apply_packet(s(1000), &st);
+    m.apply_packet(s(1000), &d);
+    assert_eq!(
+        refused(reset, &m, s(1000)),
+        "Landing Lt has no fault to reset"
+    );
+}

@@ -307,6 +307,14 @@ mod fixtures {
         })
     }
 
+    /// The EFIS shorted, and a reset sent 100 ms ago that the unit has not answered.
+    pub fn reset_sent() -> (Model, Instant) {
+        let (mut m, now) = faulted_device();
+        let clear = vpx_efis::protocol::message::DeviceClear { device_id: EFIS };
+        m.note_sent(now - Duration::from_millis(100), &Packet::request(7, clear));
+        (m, now)
+    }
+
     pub fn system_fault() -> (Model, Instant) {
         normal_with(|s, _, _| {
             s.system_current = Tenths(612);
@@ -567,6 +575,24 @@ fn faulted_device_names_the_fault_in_red_and_explains_it() {
     // Reset is offered (not dimmed) for a faulted device.
     let (x, y) = find(&buf, "reset\u{a0}fault", "\u{a0}r\u{a0}");
     assert!(!buf[(x, y)].modifier.contains(Modifier::DIM));
+}
+
+/// After `r`, until the unit's next broadcast answers it, the row says the reset is
+/// sent, in the caution colour, not as a current fault in red; the detail pane says
+/// what it waits for, and `r` is dimmed.
+#[test]
+fn a_reset_not_yet_answered_is_said_beside_the_fault_not_shown_as_current() {
+    let (m, now) = fixtures::reset_sent();
+    let buf = draw(&m, &view_selecting(EFIS), now, 80, 24);
+    insta::assert_snapshot!(format!("{buf:?}"));
+    assert_eq!(
+        state_cell(&buf, "EFIS", "SHORT_CIRCUIT · reset sent"),
+        Color::Yellow
+    );
+    let t = text(&buf);
+    assert!(t.contains("RESET SENT for SHORT_CIRCUIT (0x07)"), "{t}");
+    let (x, y) = find(&buf, "waiting\u{a0}for", "\u{a0}r\u{a0}");
+    assert!(buf[(x, y)].modifier.contains(Modifier::DIM));
 }
 
 #[test]
@@ -1021,6 +1047,13 @@ fn every_state() -> Vec<(&'static str, Model, ViewState, Instant, u16, u16)> {
         view_selecting(EFIS),
         120,
         40,
+    );
+    add(
+        "reset_sent",
+        fixtures::reset_sent(),
+        view_selecting(EFIS),
+        80,
+        24,
     );
     add(
         "system_fault",

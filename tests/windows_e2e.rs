@@ -127,6 +127,48 @@ fn backup_over_tcp_writes_the_file_where_asked() {
     assert!(toml.contains("Landing Lt"), "{toml}");
 }
 
+/// `restore` over TCP changes a breaker: the backup file edited as a person would
+/// (Nav Lt's 3 A breaker lowered to 2 A), restored with `--yes`, says the change and
+/// verifies it, and a backup taken after it reads 2 A.
+#[test]
+fn restore_over_tcp_changes_a_breaker() {
+    let (_sim, addr) = sim_tcp("install");
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path().join("N123AB backups");
+    std::fs::create_dir(&dir).unwrap();
+    let file = dir.join("unit.toml");
+    os_path(&file);
+    let o = run(
+        &["backup", "--port", &addr, file.to_str().unwrap()],
+        home.path(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let nav = "[devices.5A-1]\nname = \"Nav Lt\"\nshow_on_page = true\nbreaker_amps = ";
+    let backup = std::fs::read_to_string(&file).unwrap();
+    assert!(backup.contains(&format!("{nav}3\n")), "{backup}");
+    std::fs::write(
+        &file,
+        backup.replace(&format!("{nav}3\n"), &format!("{nav}2\n")),
+    )
+    .unwrap();
+    let o = run(
+        &["restore", "--port", &addr, "--yes", file.to_str().unwrap()],
+        home.path(),
+    );
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(t.contains("Nav Lt") && t.contains("3 A → 2 A"), "{t}");
+    assert!(t.contains("verified"), "{t}");
+    let after = dir.join("after.toml");
+    let o = run(
+        &["backup", "--port", &addr, after.to_str().unwrap()],
+        home.path(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let after = std::fs::read_to_string(&after).unwrap();
+    assert!(after.contains(&format!("{nav}2\n")), "{after}");
+}
+
 /// The gateway bridges a unit reached over TCP onto XFSp over UDP, to a peer on
 /// 127.0.0.1: ECBSTAT for the unit's circuits arrives.
 #[test]

@@ -497,7 +497,12 @@ impl App {
         }
         let (ticked, queries) = {
             let model = lock(&self.model);
-            if model.revision() != self.drawn_revision && !self.dirty {
+            // A reset's answer can change with no packet (its FAULT_STATUS overdue).
+            let timed = self
+                .last_draw
+                .and_then(|t| model.next_change(t))
+                .is_some_and(|t| now >= t);
+            if (model.revision() != self.drawn_revision || timed) && !self.dirty {
                 self.dirty = true;
                 self.news_at = Some(now);
             }
@@ -572,6 +577,13 @@ impl App {
         // every resend period, so COMMUNICATION LOST or a motor fault stops it on time
         // and the thread sees the loop alive.
         let motor = self.controller.running().map(|_| now + RESEND_PERIOD);
+        let (reread, reset_answer) = {
+            let model = lock(&self.model);
+            (
+                self.rereader.next_deadline(&model, now),
+                model.next_change(now),
+            )
+        };
         [
             motor,
             self.pacer.next_deadline(),
@@ -579,7 +591,8 @@ impl App {
             self.xfsp_deadline(),
             self.setup.next_deadline(),
             self.check_deadline(),
-            self.rereader.next_deadline(&lock(&self.model), now),
+            reread,
+            reset_answer,
             Some(redraw),
         ]
         .into_iter()

@@ -22,6 +22,9 @@ pub enum Command {
     Stop,
     /// The answer to "Is it lit?" for the light under test: what the person saw.
     Lit(bool),
+    /// Nobody can answer any more (a headless check's standard input ended): no
+    /// light is held on for an answer that cannot come.
+    NobodyToAnswer,
 }
 
 /// What the caller must do after the flow moved.

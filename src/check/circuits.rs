@@ -17,12 +17,13 @@ use std::time::Instant;
 use super::calls::Command;
 use super::lights;
 use super::state::{
-    BreakerLoad, CheckView, CircuitFinding, CircuitResult, LeftBehind, LitAnswer, Outcome, Prompt,
-    Step,
+    BreakerLoad, CheckView, CircuitFinding, CircuitResult, LeftBehind, LitAnswer, LitEnd, Outcome,
+    Prompt, Step,
 };
 use super::step::{
     CallContext, Next, Powered, Shared, StepRun, Stopped, put_back, result_line, view_or_model_name,
 };
+use super::words;
 use crate::control::{Refusal, StopReason};
 use crate::exchange::{Try, Verdict};
 use crate::model::{CircuitState, Model};
@@ -92,6 +93,9 @@ enum Stage {
         /// `None`: it was on already, nothing sent.
         request: Option<Try>,
     },
+    /// A light measured and still on, held so until the person says whether it is
+    /// lit, or `until` (the cap, [`super::Timing::lit_for`] after it was switched on).
+    Asking { sent: bool, until: Instant },
     /// DEVICE_POWER off sent, waiting to see it off.
     PutBack { request: Try },
     /// The page could not be seen (the terminal too small, or not focused) when the
@@ -120,6 +124,7 @@ impl CircuitItem {
                 request: Some(_), ..
             } => "measure, switched on",
             Stage::Measure { request: None, .. } => "measure, as it is",
+            Stage::Asking { .. } => "asking if it is lit",
             Stage::PutBack { .. } => "put back",
             Stage::Waiting => "waiting to be seen",
         }
@@ -131,6 +136,7 @@ impl CircuitItem {
                 request: Some(t), ..
             } => t.deadline().min(self.started + self.on_for),
             Stage::Measure { request: None, .. } => self.started + self.on_for,
+            Stage::Asking { until, .. } => *until,
             Stage::PutBack { request } => request.deadline(),
             Stage::Waiting => return None,
         })
@@ -143,11 +149,14 @@ impl CircuitItem {
             Stage::Measure {
                 request: Some(_), ..
             }
+            | Stage::Asking { sent: true, .. }
             | Stage::PutBack { .. } => {
                 cx.power_off(self.id)?;
                 Ok(Some(Powered { id: self.id }))
             }
-            Stage::Measure { request: None, .. } | Stage::Waiting => Ok(None),
+            Stage::Measure { request: None, .. }
+            | Stage::Asking { sent: false, .. }
+            | Stage::Waiting => Ok(None),
         }
     }
 }
@@ -189,7 +198,7 @@ impl Circuits {
         }
         let request = (!was_on)
             .then(|| Try::with(now, shared.timing.power_timeout, shared.timing.power_tries));
-        let light = lights::is_light(&name);
+        let light = lights::is_light(&name) && !shared.nobody_to_answer;
         let mut todo = if was_on {
             format!("{name} is on already: measuring it as it is.")
         } else {
@@ -197,9 +206,23 @@ impl Circuits {
         };
         let mut keys = vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")];
         if light {
-            // Only a person looking can say a lamp shines: asked while it is on.
+            // Only a person looking can say a lamp shines: asked while it is on, and
+            // it stays on until answered, up to the cap.
             todo.push_str(LIT_QUESTION);
             keys.splice(0..0, [("y", "lit"), ("n", "not lit")]);
+            cx.out.progress.push(format!(
+                "  {name}: is it lit? Type y (lit), n (not lit) or s (skip the question); it \
+                 stays on until you answer, {} s at most.",
+                shared.timing.lit_for.as_secs()
+            ));
+        } else if lights::is_light(&name) {
+            view.lit.retain(|l| l.id != id);
+            view.lit.push(LitAnswer {
+                id,
+                lit: None,
+                ended: LitEnd::NobodyToAnswer,
+                switched: !was_on,
+            });
         }
         view.prompt = Some(Prompt {
             todo,
@@ -275,16 +298,44 @@ impl Circuits {
                     return Next::Stay;
                 };
                 let sent = request.is_some();
+                let lit_on = matches!(
+                    f,
+                    CircuitFinding::Within { .. }
+                        | CircuitFinding::NearBreaker { .. }
+                        | CircuitFinding::NoCurrent
+                );
                 record(view, idx, f, cx);
-                if sent {
-                    return self.put_back_item(view, cx, shared);
-                } else {
-                    return Next::From(idx + 1);
+                let asking = asks_lit(view, idx);
+                // Measured: held on until the person answers, up to the cap. A light on
+                // by its switch is not held: it stays on after the check moves on.
+                if asking && lit_on && sent && now < item.started + shared.timing.lit_for {
+                    item.stage = Stage::Asking {
+                        sent,
+                        until: item.started + shared.timing.lit_for,
+                    };
+                    return self.asking_prompt(view, now);
+                }
+                return self.after_light(idx, sent, view, cx, shared);
+            }
+            Stage::Asking { sent, until } => {
+                let (sent, until) = (*sent, *until);
+                if now >= until {
+                    let held = until.saturating_duration_since(item.started);
+                    end_lit(idx, None, LitEnd::Cap(held), sent, view, cx);
+                    return self.after_light(idx, sent, view, cx, shared);
+                }
+                if let CircuitState::Fault(_) | CircuitState::Off = st {
+                    // It went off by itself (a fault, or its switch): nothing to hold.
+                    return self.after_light(idx, sent, view, cx, shared);
                 }
             }
             Stage::Waiting => {}
             Stage::PutBack { request } => {
-                let off = matches!(st, CircuitState::Off | CircuitState::Fault(_));
+                // A faulted pin is off (Appendix E), its reset answered or not.
+                let off = matches!(
+                    st,
+                    CircuitState::Off | CircuitState::Fault(_) | CircuitState::ResetSent(_)
+                );
                 match request.judge(off, now) {
                     Verdict::Answered => {
                         put_back(id, view, cx.model, now);
@@ -309,6 +360,53 @@ impl Circuits {
             }
         }
         Next::Stay
+    }
+
+    /// The prompt while a measured light is held on for its answer, with the time
+    /// left before it goes off unanswered.
+    fn asking_prompt(&mut self, view: &mut CheckView, now: Instant) -> Next {
+        let Some(item) = &self.item else {
+            return Next::Stay;
+        };
+        let Stage::Asking { sent, until } = item.stage else {
+            return Next::Stay;
+        };
+        let name = view.circuits[item.idx].name.clone();
+        let off = if sent {
+            "it goes back off at your answer"
+        } else {
+            "it is on by its switch and stays so"
+        };
+        view.prompt = Some(Prompt {
+            todo: format!("{name} is on and measured.{LIT_QUESTION} ({off}; s: skip the question)"),
+            watching: format!("{name}'s state (DEVICE_STATUS)"),
+            time_left: Some(until.saturating_duration_since(now)),
+            keys: vec![
+                ("y", "lit"),
+                ("n", "not lit"),
+                ("s", "skip"),
+                ("S", "skip step"),
+                ("Esc", "stop"),
+            ],
+        });
+        Next::Stay
+    }
+
+    /// The light's question is over (or was never held): put it back off if the
+    /// check switched it on, else on to the next.
+    fn after_light(
+        &mut self,
+        idx: usize,
+        sent: bool,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        if sent {
+            self.put_back_item(view, cx, shared)
+        } else {
+            Next::From(idx + 1)
+        }
     }
 
     fn put_back_item(
@@ -336,9 +434,7 @@ impl Circuits {
         if let Some(p) = view.prompt.as_mut() {
             let row = &view.circuits[item.idx];
             p.todo = format!("Switching {} back off.", row.name);
-            if p.keys.contains(&("y", "lit")) {
-                p.todo.push_str(" Was it lit? y: yes, n: no.");
-            }
+            p.keys.retain(|(k, _)| *k != "y" && *k != "n");
         }
         Next::Stay
     }
@@ -357,10 +453,43 @@ impl Circuits {
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
             return self.start_item(idx, view, cx, shared);
         }
+        let on_hold = match item.stage {
+            Stage::Asking { sent, .. } => Some(sent),
+            _ => None,
+        };
+        let sent_on = matches!(
+            item.stage,
+            Stage::Measure {
+                request: Some(_),
+                ..
+            }
+        );
         if let Command::Lit(lit) = cmd {
-            // While it is on, or going back off just after: what the person saw.
-            if !matches!(item.stage, Stage::Waiting) && lights::is_light(&view.circuits[idx].name) {
-                answer_lit(idx, lit, view, cx);
+            // While it is on: what the person saw. Measured, it goes off now.
+            if matches!(item.stage, Stage::Measure { .. } | Stage::Asking { .. })
+                && asks_lit(view, idx)
+            {
+                end_lit(
+                    idx,
+                    Some(lit),
+                    LitEnd::Answer,
+                    on_hold.unwrap_or(sent_on),
+                    view,
+                    cx,
+                );
+                if let Some(sent) = on_hold {
+                    return self.after_light(idx, sent, view, cx, shared);
+                }
+            }
+            return Next::Stay;
+        }
+        if cmd == Command::NobodyToAnswer {
+            if let Some(sent) = on_hold {
+                end_lit(idx, None, LitEnd::NobodyToAnswer, sent, view, cx);
+                return self.after_light(idx, sent, view, cx, shared);
+            }
+            if matches!(item.stage, Stage::Measure { .. }) && asks_lit(view, idx) {
+                end_lit(idx, None, LitEnd::NobodyToAnswer, sent_on, view, cx);
             }
             return Next::Stay;
         }
@@ -368,6 +497,11 @@ impl Circuits {
             return Next::Stay;
         }
         match &item.stage {
+            Stage::Asking { sent, .. } => {
+                let sent = *sent;
+                end_lit(idx, None, LitEnd::Skipped, sent, view, cx);
+                return self.after_light(idx, sent, view, cx, shared);
+            }
             Stage::Measure { request, .. } => {
                 let sent = request.is_some();
                 if view.circuits[idx].outcome == Outcome::NotRun {
@@ -536,23 +670,37 @@ impl StepRun for Circuits {
 /// The question put to the person for a light while it is on.
 const LIT_QUESTION: &str = " Is it lit? y: yes, n: no.";
 
-/// The person said light `idx` was lit (or dark): kept beside its current for the
-/// report (a later answer replaces an earlier one), and the question is answered.
-fn answer_lit(idx: usize, lit: bool, view: &mut CheckView, cx: &mut CallContext) {
+/// Whether light `idx`'s question is still open: a light, asked, not yet ended.
+fn asks_lit(view: &CheckView, idx: usize) -> bool {
+    let row = &view.circuits[idx];
+    lights::is_light(&row.name) && view.lit_answer(row.id).is_none()
+}
+
+/// "Is it lit?" for light `idx` ended: the person's answer (`lit`) and what ended it,
+/// kept beside its current for the report. `switched`: the check had switched it on,
+/// so it goes back off now.
+fn end_lit(
+    idx: usize,
+    lit: Option<bool>,
+    ended: LitEnd,
+    switched: bool,
+    view: &mut CheckView,
+    cx: &mut CallContext,
+) {
     let row = &view.circuits[idx];
     let (id, name) = (row.id, row.name.clone());
-    match view.lit.iter_mut().find(|l| l.id == id) {
-        Some(l) => l.lit = lit,
-        None => view.lit.push(LitAnswer { id, lit }),
-    }
-    let seen = if lit { "lit" } else { "dark" };
-    cx.out.progress.push(format!("  {name}: you saw it {seen}"));
-    view.message = Some(format!("{name}: you saw it {seen}"));
+    view.lit.retain(|l| l.id != id);
+    view.lit.push(LitAnswer {
+        id,
+        lit,
+        ended,
+        switched,
+    });
+    let said = words::lit_ended(lit, ended, switched);
+    cx.out.progress.push(format!("  {name}: {said}"));
+    view.message = Some(format!("{name}: {said}"));
     if let Some(p) = view.prompt.as_mut() {
-        for q in [LIT_QUESTION, " Was it lit? y: yes, n: no."] {
-            p.todo = p.todo.replace(q, "");
-        }
-        p.todo.push_str(&format!(" You saw it {seen}."));
+        p.todo = p.todo.replace(LIT_QUESTION, "");
         p.keys.retain(|(k, _)| *k != "y" && *k != "n");
     }
 }

@@ -147,6 +147,7 @@ impl CheckFlow {
                 trouble_ahead: None,
                 clock: opts.clock,
                 made_at: now,
+                nobody_to_answer: false,
             },
             system_fault_at_start: system,
             write_errors_at_start: model.link.write_errors,
@@ -241,6 +242,9 @@ impl CheckFlow {
         now: Instant,
     ) -> Effects {
         let mut out = Effects::default();
+        if cmd == Command::NobodyToAnswer {
+            self.shared.nobody_to_answer = true;
+        }
         if cmd == Command::Stop {
             if !self.finished() {
                 self.interrupt(Cause::Quit, true, view, model, ctl, now, &mut out);

@@ -456,6 +456,10 @@ fn circuits(o: &mut String, view: &CheckView) {
                 what = format!("{what}; {d}");
             }
         }
+        // How the question ended, so when the light went off.
+        if let Some(a) = view.lit_answer(c.id) {
+            what = format!("{what}; {}", words::lit_ended(a.lit, a.ended, a.switched));
+        }
         let _ = writeln!(
             o,
             "| {} | {} | {} | {} | {} | {} |",
@@ -761,10 +765,16 @@ pub fn csv(view: &CheckView, about: &About) -> String {
             c.mark(),
             amps,
             String::new(),
-            match view.lit_of(c.id).map(|lit| words::lit_seen(c, lit)) {
-                Some((seen, Some(d))) => format!("{}; {seen}; {d}", words::circuit(c)),
-                Some((seen, None)) => format!("{}; {seen}", words::circuit(c)),
-                None => words::circuit(c),
+            {
+                let mut what = match view.lit_of(c.id).map(|lit| words::lit_seen(c, lit)) {
+                    Some((seen, Some(d))) => format!("{}; {seen}; {d}", words::circuit(c)),
+                    Some((seen, None)) => format!("{}; {seen}", words::circuit(c)),
+                    None => words::circuit(c),
+                };
+                if let Some(a) = view.lit_answer(c.id) {
+                    what = format!("{what}; {}", words::lit_ended(a.lit, a.ended, a.switched));
+                }
+                what
             },
         );
     }

@@ -394,13 +394,31 @@ pub struct CheckView {
     pub lit: Vec<LitAnswer>,
 }
 
-/// A person's answer to "Is it lit?" for a light (`super::lights`).
+/// "Is it lit?" for a light (`super::lights`): what the person said, and what ended
+/// the question.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct LitAnswer {
     /// The circuit's device id.
     pub id: u8,
-    /// Seen lit (`true`) or dark.
-    pub lit: bool,
+    /// Seen lit (`true`) or dark; `None`: not answered.
+    pub lit: Option<bool>,
+    pub ended: LitEnd,
+    /// The check switched it on (so it went back off when the question ended); else
+    /// it was on by its switch and left so.
+    pub switched: bool,
+}
+
+/// What ended "Is it lit?": the light was held on until then.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LitEnd {
+    /// The person's answer.
+    Answer,
+    /// No answer within the cap ([`super::Timing::lit_for`]).
+    Cap(std::time::Duration),
+    /// The person went on (s) without answering.
+    Skipped,
+    /// Nobody could answer (standard input ended): not held for one.
+    NobodyToAnswer,
 }
 
 /// An answer the prompt offers now, as plain data for any front end (the page's
@@ -503,7 +521,12 @@ impl CheckView {
 
     /// What the person said of light `id`, if asked and answered.
     pub fn lit_of(&self, id: u8) -> Option<bool> {
-        self.lit.iter().find(|l| l.id == id).map(|l| l.lit)
+        self.lit.iter().find(|l| l.id == id).and_then(|l| l.lit)
+    }
+
+    /// "Is it lit?" for light `id`, if it was asked.
+    pub fn lit_answer(&self, id: u8) -> Option<LitAnswer> {
+        self.lit.iter().find(|l| l.id == id).copied()
     }
 
     /// The currents step 3 measured, for the load analysis: device id and amperes.

@@ -107,6 +107,8 @@ pub(super) struct Shared {
     pub clock: Option<SystemTime>,
     /// The `now` the flow was made with.
     pub made_at: Instant,
+    /// [`super::Command::NobodyToAnswer`] came: nothing is held for a person.
+    pub nobody_to_answer: bool,
 }
 
 impl Shared {

@@ -360,7 +360,9 @@ fn follow_finding(
         .map(|&id| {
             let c = circuits.iter().find(|c| c.id == id);
             let why = match c.map(|c| (c.state, c.switch)) {
-                Some((CircuitState::Fault(code), _)) => NotFollowed::Faulted(code),
+                Some((CircuitState::Fault(code) | CircuitState::ResetSent(code), _)) => {
+                    NotFollowed::Faulted(code)
+                }
                 Some((_, Some(s))) if Some(s) != input_switch(item.input) => {
                     NotFollowed::AssignedTo(s)
                 }

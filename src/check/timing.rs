@@ -17,6 +17,12 @@ pub struct Timing {
     pub power_tries: u8,
     /// The longest a circuit stays on: two fresh DEVICE_STATUS take about two seconds.
     pub on_for: Duration,
+    /// The longest a light is held on for the person to answer "Is it lit?". Decision:
+    /// a minute. Long enough to walk from the laptop to the farthest light of a light
+    /// aircraft (a wingtip, the tail) and look, or to answer from the phone; short
+    /// enough that a landing light in a wingtip, which has no cooling air on the
+    /// ground, is not left burning for nobody, nor the battery drawn down.
+    pub lit_for: Duration,
     /// Each direction's run of a motor.
     pub motor_run: Duration,
     /// After a run, FLAP_TRIM_STATUS (10 Hz) has this long to show where it stopped.
@@ -33,6 +39,7 @@ impl Default for Timing {
             power_timeout: Duration::from_millis(2500),
             power_tries: 2,
             on_for: Duration::from_secs(5),
+            lit_for: Duration::from_secs(60),
             motor_run: Duration::from_millis(600),
             motor_settle: Duration::from_millis(400),
             stop_wait: Duration::from_secs(3),

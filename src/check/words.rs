@@ -6,7 +6,7 @@
 use std::time::Duration;
 
 use super::state::{
-    CheckView, CircuitFinding, CircuitResult, LeftBehind, LoadsView, Mark, MotorFinding,
+    CheckView, CircuitFinding, CircuitResult, LeftBehind, LitEnd, LoadsView, Mark, MotorFinding,
     MotorResult, NEAR_BREAKER_PERCENT, NotFollowed, Outcome, SwitchFinding, SwitchResult,
 };
 use crate::protocol::device;
@@ -184,6 +184,32 @@ pub fn fault(code: FaultCode) -> String {
             )
         }
         _ => format!("faulted: {}", code.name()),
+    }
+}
+
+/// How "Is it lit?" ended, and so when the light went back off: "you saw it lit; off
+/// at your answer", "no answer in 60 s; switched off then", …. `switched`: the check
+/// had switched it on (else it is on by its switch and stays so).
+pub fn lit_ended(lit: Option<bool>, ended: LitEnd, switched: bool) -> String {
+    let seen = match lit {
+        Some(true) => "you saw it lit",
+        Some(false) => "you saw it dark",
+        None => "not answered",
+    };
+    let off = |when: &str| {
+        if switched {
+            format!("switched back off {when}")
+        } else {
+            "left on by its switch".to_string()
+        }
+    };
+    match ended {
+        LitEnd::Answer => format!("{seen}; {}", off("at your answer")),
+        LitEnd::Cap(held) => format!("no answer in {} s; {}", held.as_secs(), off("then")),
+        LitEnd::Skipped => format!("{seen} (you skipped the question); {}", off("then")),
+        LitEnd::NobodyToAnswer => {
+            "not asked if it is lit: nobody could answer (standard input ended)".into()
+        }
     }
 }
 

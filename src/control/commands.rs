@@ -154,6 +154,7 @@ fn power(model: &Model, now: Instant, id: u8, on: bool) -> Result<Message, Refus
                 "{name} is faulted ({}): reset it first",
                 code.name()
             )),
+            CircuitState::ResetSent(code) if on => refuse(waiting_for_reset(model, now, id, code)),
             CircuitState::Unknown => refuse(format!("{name}'s state is not known yet")),
             _ => Ok(DevicePower { device_id: id, on }.into()),
         },
@@ -194,9 +195,25 @@ pub fn reset(model: &Model, now: Instant, id: u8, confirmed: bool) -> Result<Mes
             )),
             _ => Ok(DeviceClear { device_id: id }.into()),
         },
+        // A second reset before the unit answered the first would count as a reset
+        // of a circuit that may no longer have a fault.
+        Some((_, CircuitState::ResetSent(code))) => refuse(waiting_for_reset(model, now, id, code)),
         Some((_, CircuitState::Unknown)) => refuse(format!("{name}'s state is not known yet")),
         _ => refuse(format!("{name} has no fault to reset")),
     }
+}
+
+/// Why nothing more is sent to a circuit whose reset the unit has not yet answered.
+fn waiting_for_reset(model: &Model, now: Instant, id: u8, code: FaultCode) -> String {
+    let name = model.display_name(id);
+    let ago = model
+        .resets_sent(id)
+        .map_or(0.0, |r| now.saturating_duration_since(r.at).as_secs_f64());
+    format!(
+        "{name}: a reset was sent {ago:.1} s ago and the unit has not yet said whether \
+         {} cleared; nothing more is sent until it does (its next broadcast)",
+        code.name()
+    )
 }
 
 /// Whether `motor` may run (or keep running) `direction` now. Each reason is also the

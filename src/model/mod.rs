@@ -28,14 +28,15 @@ mod resets;
 mod setting;
 pub use hold::{Hold, Holds};
 pub use reread::{REREAD_GIVE_UP, Reread};
-pub use resets::{RESET_SETTLE, ResetsSent};
+pub use resets::{AfterReset, RESET_SETTLE, ResetsSent, reset_sent_words};
 pub use setting::Setting;
 #[cfg(test)]
 pub(crate) use setting::factory_answer;
 
 /// How long each broadcast stays current (a leaf, shared with the traffic log).
 pub use crate::staleness::{
-    COMM_LOST_AFTER, FAULT_STATUS_QUIET_AFTER, FLAP_TRIM_STALE_AFTER, STATUS_STALE_AFTER,
+    COMM_LOST_AFTER, FAULT_STATUS_MARGIN, FAULT_STATUS_PERIOD, FAULT_STATUS_QUIET_AFTER,
+    FLAP_TRIM_STALE_AFTER, STATUS_STALE_AFTER,
 };
 /// The page asks for every spec, name and enable flag again every minute
 /// (`app::queries::REFRESH_EVERY`); a setting last heard longer ago than this missed
@@ -240,6 +241,10 @@ pub enum CircuitState {
     On,
     Off,
     Fault(FaultCode),
+    /// The unit reported this fault and the page has sent a reset for it since, which
+    /// the unit has not yet answered ([`AfterReset::Waiting`]): it may be gone, so it
+    /// is never shown as a current fault.
+    ResetSent(FaultCode),
     /// No live data: communication lost or not yet received.
     Unknown,
 }
@@ -624,7 +629,10 @@ impl Model {
             .and_then(|f| f.fresh(now, FAULT_STATUS_QUIET_AFTER))
         {
             for (i, c) in codes.iter_mut().enumerate() {
-                if f.faulted[i] {
+                // A fault the unit cleared on a reset, though its last FAULT_STATUS,
+                // made before the reset, still lists it.
+                let cleared = matches!(self.after_reset(i as u8, now), Some(AfterReset::Cleared));
+                if f.faulted[i] && !cleared {
                     // A fault bit without its code (short payload) is still a fault.
                     *c = match f.codes[i] {
                         Some(FaultCode::NoFault) | None => FaultCode::Unknown(0xFF),
@@ -734,12 +742,16 @@ impl Model {
                         } else {
                             motor_fault.unwrap_or(FaultCode::NoFault)
                         };
-                        if code.is_fault() {
-                            CircuitState::Fault(code)
-                        } else if d.on[i] {
+                        let switched = if d.on[i] {
                             CircuitState::On
                         } else {
                             CircuitState::Off
+                        };
+                        match self.after_reset(id, now) {
+                            _ if !code.is_fault() => switched,
+                            Some(AfterReset::Waiting { .. }) => CircuitState::ResetSent(code),
+                            Some(AfterReset::Cleared) => switched,
+                            _ => CircuitState::Fault(code),
                         }
                     }
                     _ => CircuitState::Unknown,

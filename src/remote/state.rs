@@ -12,7 +12,9 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::control::{Direction, put_back_off};
-use crate::model::{CircuitKind, CircuitState, Connection, Model, Motor, TrimKind};
+use crate::model::{
+    CircuitKind, CircuitState, Connection, Model, Motor, TrimKind, reset_sent_words,
+};
 use crate::protocol::message::FlapTrimStatus;
 
 /// What only the page knows: the motor it is streaming and the installation check's
@@ -59,6 +61,7 @@ pub struct Device {
     /// "ON", "OFF", "FAULT" or "UNKNOWN".
     pub state: &'static str,
     pub amps: Option<f64>,
+    /// The fault's name; "SHORT_CIRCUIT · reset sent" while a reset is unanswered.
     pub fault: Option<String>,
     /// Whether DEVICE_POWER may switch it at all: not the starter (only reset) nor a
     /// motor (run, not switched), by control's own rule ([`put_back_off`]), so the
@@ -107,6 +110,7 @@ pub fn build(model: &Model, page: &PageSide, now: Instant) -> State {
                 CircuitState::On => ("ON", None),
                 CircuitState::Off => ("OFF", None),
                 CircuitState::Fault(code) => ("FAULT", Some(code.name())),
+                CircuitState::ResetSent(code) => ("FAULT", Some(reset_sent_words(code))),
                 CircuitState::Unknown => ("UNKNOWN", None),
             };
             Device {

@@ -34,9 +34,12 @@ fn act(key: &'static str, action: impl Into<String>, enabled: bool) -> KeyAction
 /// What the keys do to `c` (Appendix A: reset dimmed unless faulted; the starter can
 /// only be reset; trim and flap rows show up/down or left/right).
 pub fn key_actions(c: &Circuit) -> Vec<KeyAction> {
-    let faulted = matches!(c.state, CircuitState::Fault(_));
+    let faulted = matches!(c.state, CircuitState::Fault(_) | CircuitState::ResetSent(_));
     let live = c.state != CircuitState::Unknown;
-    let reset = act("r", "reset fault", faulted && !c.faulted_again);
+    let reset = match c.state {
+        CircuitState::ResetSent(_) => act("r", "reset sent: waiting for the unit", false),
+        _ => act("r", "reset fault", faulted && !c.faulted_again),
+    };
     // AC 43.13-1B: reset once, then find the cause; a second reset is asked for.
     let again = c
         .faulted_again
@@ -282,6 +285,15 @@ pub fn render(
     let info = fault
         .and_then(|code| code.info())
         .filter(|i| !i.description.is_empty());
+    if let CircuitState::ResetSent(code) = c.state {
+        lines.push(Line::from(vec![
+            Span::styled(
+                format!("RESET SENT for {} ({:#04x}) ", code.name(), code.to_byte()),
+                theme::caution(),
+            ),
+            Span::raw("waiting for the unit's next broadcast to say whether it cleared"),
+        ]));
+    }
     if let Some(code) = fault {
         let what = info.map_or("Code not described in ICD Appendix E.", |i| i.description);
         lines.push(Line::from(vec![

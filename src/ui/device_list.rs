@@ -13,7 +13,7 @@ use ratatui::text::Line;
 use super::panel::Panel;
 use super::state::{SortOrder, ViewState};
 use super::{theme, values};
-use crate::model::{Circuit, CircuitKind, Model};
+use crate::model::{Circuit, CircuitKind, CircuitState, Model};
 
 /// Flaps and trims form their own group under the other devices (Appendix A).
 fn is_motor(c: &Circuit) -> bool {
@@ -57,6 +57,20 @@ const HIGHLIGHT: &str = "▶";
 /// The text and style of each of a circuit's seven cells.
 fn cells(c: &Circuit) -> [(String, Style); 7] {
     let dim = theme::unknown();
+    if let CircuitState::ResetSent(_) = c.state {
+        // "SHORT_CIRCUIT · reset sent" is wider than the State column: it runs on
+        // over the amps, breaker and switch until the unit answers the reset.
+        let blank = || (String::new(), Style::new());
+        return [
+            (c.name.clone(), Style::new()),
+            (c.pin.to_string(), theme::label()),
+            (role(c).to_string(), theme::info()),
+            (values::state_text(c.state), theme::state(c.state)),
+            blank(),
+            blank(),
+            blank(),
+        ];
+    }
     [
         (c.name.clone(), Style::new()),
         (c.pin.to_string(), theme::label()),
@@ -108,10 +122,20 @@ fn columns(inner: Rect) -> [(u16, u16); 7] {
 /// One line of the list written straight into the buffer: the list is the largest
 /// part of the frame, and a `Table` of styled cells cost more than the rest of the
 /// page together.
+/// A cell wider than its column runs on over the empty cells after it.
 fn write_line(buf: &mut Buffer, inner: Rect, y: u16, cells: &[(&str, Style)]) {
     let right = inner.right();
-    for ((x, w), (text, style)) in columns(inner).iter().zip(cells) {
-        let w = (*w).min(right.saturating_sub(*x));
+    let cols = columns(inner);
+    for (i, ((x, w), (text, style))) in cols.iter().zip(cells).enumerate() {
+        let needed = text.chars().count() as u16;
+        let mut w = *w;
+        for ((nx, nw), (next, _)) in cols.iter().zip(cells).skip(i + 1) {
+            if w >= needed || !next.is_empty() {
+                break;
+            }
+            w = nx + nw - x;
+        }
+        let w = w.min(right.saturating_sub(*x));
         if w > 0 {
             super::fast::put(buf, *x, y, text, w, *style);
         }

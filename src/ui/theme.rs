@@ -28,6 +28,8 @@ pub fn state(state: CircuitState) -> Style {
         CircuitState::On => Style::new().fg(ON).add_modifier(Modifier::BOLD),
         CircuitState::Off => Style::new().fg(OFF),
         CircuitState::Fault(_) => Style::new().fg(FAULT).add_modifier(Modifier::BOLD),
+        // Not red: the fault may be gone. The words say what is known.
+        CircuitState::ResetSent(_) => caution(),
         CircuitState::Unknown => Style::new().fg(UNKNOWN),
     }
 }

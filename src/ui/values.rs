@@ -21,6 +21,7 @@ pub fn state_text(s: CircuitState) -> String {
         CircuitState::On => "ON".into(),
         CircuitState::Off => "OFF".into(),
         CircuitState::Fault(code) => code.name(),
+        CircuitState::ResetSent(code) => crate::model::reset_sent_words(code),
         CircuitState::Unknown => BLANK.into(),
     }
 }

@@ -120,11 +120,14 @@ pub fn lifetime_expire() -> Expire {
 /// | FLAP_ACTIVE 0x0B, TRIM_ACTIVE 0x10 | DISABLED (not cleared: switch held) |
 /// | FLAP_DISABLED 0x0C, TRIM_DISABLED 0x0F | DISABLED (until power cycle) |
 /// | reserved or unlisted codes | DISABLED (the pin is off; why is not known) |
+///
+/// A fault whose reset the unit has not yet answered is UNKNOWN: it may be gone, and
+/// an ecb-state has no words to say "reset sent" (its RESET is a request).
 pub fn ecb_state(state: CircuitState) -> EcbState {
     match state {
         CircuitState::On => EcbState::On,
         CircuitState::Off => EcbState::Off,
-        CircuitState::Unknown => EcbState::Unknown0,
+        CircuitState::Unknown | CircuitState::ResetSent(_) => EcbState::Unknown0,
         CircuitState::Fault(code) => fault_ecb_state(code),
     }
 }

@@ -155,6 +155,31 @@ enum Pumped {
 const NOBODY_TO_ANSWER: &str = "Standard input is at its end (no terminal, /dev/null, a closed \
      pipe): nobody can answer here.";
 
+/// What the headless check does with a prompt that waits for r or s (a motor test
+/// paused) once standard input has ended.
+const PAUSE_NEEDS_A_PERSON: &str = "The check was waiting for r (retry) or s (skip), which \
+     nobody can type now: skipped.";
+
+/// Whether the check waits, with no time limit, for the person to retry or skip (a
+/// motor test paused).
+fn waits_for_retry_or_skip(app: &App) -> bool {
+    let view = app.check_view();
+    let answers = view.prompt_answers();
+    view.prompt.as_ref().is_some_and(|p| p.time_left.is_none())
+        && answers.iter().any(|a| a.id == "skip")
+        && answers.iter().any(|a| a.id == "retry" || a.id == "go_on")
+}
+
+/// Once standard input has ended, a prompt that waits for r or s is said and skipped,
+/// as the switch step is.
+fn skip_if_nobody(app: &mut App, ended: bool, out: &mut dyn std::io::Write) {
+    if ended && !app.check_finished() && waits_for_retry_or_skip(app) {
+        let _ = writeln!(out, "{NOBODY_TO_ANSWER} {PAUSE_NEEDS_A_PERSON}");
+        app.check_command(Command::SkipItem, Instant::now());
+        print_progress(app, out);
+    }
+}
+
 /// Why the switch step is skipped when standard input has ended.
 const SWITCHES_NEED_A_PERSON: &str = "The switch step, which needs a person to flip each \
      switch and say when it is done, is skipped.";
@@ -273,6 +298,10 @@ fn headless_loop(
     }
     app.set_check_report_dir(h.report.clone());
     app.open_check(options, Instant::now());
+    if input.ended {
+        // No light is held on for an answer nobody can give.
+        app.check_command(Command::NobodyToAnswer, Instant::now());
+    }
     print_plan(app.check_view(), out)?;
     if skips_switches {
         writeln!(out, "{NOBODY_TO_ANSWER} {SWITCHES_NEED_A_PERSON}")?;
@@ -334,7 +363,11 @@ fn headless_loop(
         }
     };
     loop {
-        let progress = |app: &mut App| print_progress(app, out);
+        let ended = input.ended;
+        let progress = |app: &mut App| {
+            print_progress(app, out);
+            skip_if_nobody(app, ended, out);
+        };
         match pump(
             app,
             &mut input,
@@ -356,6 +389,8 @@ fn headless_loop(
                 if switching {
                     app.check_command(Command::SkipStep, Instant::now());
                 }
+                app.check_command(Command::NobodyToAnswer, Instant::now());
+                skip_if_nobody(app, true, out);
             }
             Pumped::Signal(t) => {
                 // Ctrl-C or SIGTERM: stop the motor, switch the circuit back off, and

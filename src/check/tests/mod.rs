@@ -127,7 +127,22 @@ impl Rig {
         Rig::with(&scenario(), opts)
     }
 
+    /// Nobody looks at the lights here: each goes back off once measured, as if "Is
+    /// it lit?" were not held ([`Rig::holding_lights`] holds it).
     fn with(toml: &str, opts: Options) -> Rig {
+        let timing = Timing {
+            lit_for: Duration::ZERO,
+            ..opts.timing
+        };
+        Rig::build(toml, Options { timing, ..opts })
+    }
+
+    /// A light is held on until "Is it lit?" is answered, up to its cap.
+    fn holding_lights(opts: Options) -> Rig {
+        Rig::build(&scenario(), opts)
+    }
+
+    fn build(toml: &str, opts: Options) -> Rig {
         let t0 = Instant::now();
         let s = Scenario::from_toml(toml).unwrap();
         let unit = Unit::with_memory_eeprom(&s, UnitOptions::default(), t0);
@@ -1311,7 +1326,7 @@ fn the_whole_check_in_order_with_results_as_they_come() {
         .progress
         .iter()
         .filter_map(|n| {
-            if n.contains("Landing Lt") {
+            if n.contains("Landing Lt (10A-1)") {
                 Some("circuit")
             } else if n.contains("Flaps:") {
                 Some("motor")
@@ -2430,25 +2445,29 @@ fn a_check_that_finishes_ends_once() {
     assert_eq!(r.ended, 1);
 }
 
-/// Each light (Nav Lt, Strobe, Landing Lt here; not EFIS or the
-/// alternators) is asked "Is it lit?" while the check has it on, the answers offered
-/// as plain data; the answer goes into the report beside the current, and where it
+/// Each light (Nav Lt, Strobe, Landing Lt here; not EFIS or the alternators) is
+/// asked "Is it lit?" while the check has it on, the answers offered as plain data,
+/// and it is held on until the answer, or the cap (a minute) with none, with the time
+/// left shown. The answer goes into the report beside the current, and where it
 /// disagrees with the current (Strobe draws nothing yet is seen lit; Nav Lt draws
-/// 1.5 A yet is seen dark) the report says so in words.
+/// 1.5 A yet is seen dark) the report says so in words; so does how the light went
+/// off (at the answer, or at the cap for Landing Lt, which nobody answers).
 #[test]
 fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     use std::collections::BTreeSet;
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::holding_lights(Rig::circuits_only());
     r.start();
     let said = |id: u8| match id {
         4 => Some(false),
-        5 | 17 => Some(true),
+        5 => Some(true),
         _ => None,
     };
+    // The first time_left seen while Landing Lt is held, measured and on.
+    let mut held_left = None;
     let (mut asked, mut on_test, mut answered) =
         (BTreeSet::new(), BTreeSet::new(), BTreeSet::new());
     let mut nav_prompt = None;
-    for _ in 0..6000 {
+    for _ in 0..12_000 {
         if r.view.step != Step::Circuits {
             break;
         }
@@ -2465,6 +2484,15 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
                         p.keys,
                         r.view.prompt_answers()
                     ));
+                }
+                if c.id == 17
+                    && held_left.is_none()
+                    && r.view
+                        .prompt
+                        .as_ref()
+                        .is_some_and(|p| p.todo.contains("measured"))
+                {
+                    held_left = r.view.prompt.as_ref().and_then(|p| p.time_left);
                 }
                 // Answered once the unit shows it on, as a person would.
                 if !answered.contains(&c.id)
@@ -2487,12 +2515,40 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     assert_eq!(asked, BTreeSet::from([4, 5, 17]));
     assert_eq!(r.view.lit_of(4), Some(false));
     assert_eq!(r.view.lit_of(5), Some(true));
-    assert_eq!(r.view.lit_of(17), Some(true));
+    assert_eq!(r.view.lit_of(17), None);
     assert_eq!(r.view.lit.len(), 3, "{:?}", r.view.lit);
+    assert_eq!(
+        r.view.lit_answer(17).map(|a| a.ended),
+        Some(super::state::LitEnd::Cap(Duration::from_secs(60)))
+    );
+    for line in [
+        "  Nav Lt: you saw it dark; switched back off at your answer",
+        "  Landing Lt: no answer in 60 s; switched back off then",
+    ] {
+        assert!(
+            r.progress.iter().any(|l| l == line),
+            "{line}: {:?}",
+            r.progress
+        );
+    }
+    // Landing Lt was held on for the whole minute and then switched off; the time
+    // left was shown while it was held.
+    let sent_at = |on: bool| {
+        r.sent
+            .iter()
+            .find(|(_, p)| p.message == Message::DevicePower(power(17, on)))
+            .map(|(at, _)| *at)
+            .unwrap()
+    };
+    let held = sent_at(false) - sent_at(true);
     assert!(
-        r.progress.iter().any(|l| l == "  Nav Lt: you saw it dark"),
-        "{:?}",
-        r.progress
+        held >= Duration::from_secs(60) && held < Duration::from_millis(60_200),
+        "{held:?}"
+    );
+    let left = held_left.expect("time left shown while held");
+    assert!(
+        left > Duration::from_secs(50) && left < Duration::from_secs(60),
+        "{left:?}"
     );
     insta::assert_snapshot!("nav_light_is_it_lit_prompt", nav_prompt.unwrap());
 
@@ -2524,9 +2580,16 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
         strobe.contains("you saw it lit, yet the unit read no current: the two disagree"),
         "{strobe}"
     );
+    assert!(
+        nav.contains("you saw it dark; switched back off at your answer"),
+        "{nav}"
+    );
     let landing = row("Landing Lt");
-    assert!(landing.contains(", seen lit |"), "{landing}");
-    assert!(!landing.contains("disagree"), "{landing}");
+    assert!(!landing.contains("seen"), "{landing}");
+    assert!(
+        landing.contains("no answer in 60 s; switched back off then"),
+        "{landing}"
+    );
     let efis = row("EFIS");
     assert!(!efis.contains("seen"), "{efis}");
     let csv = super::report::csv(&r.view, &about);
