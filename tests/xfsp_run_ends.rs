@@ -179,7 +179,7 @@ impl Rig {
             Some(_) => {}
             None => self.moved_at = self.now,
         }
-        if (self.now - self.t0).as_millis() % 100 == 0 {
+        if (self.now - self.t0).as_millis().is_multiple_of(100) {
             self.report();
         }
         let out = self.ctl.tick(&self.m, self.now);
@@ -207,11 +207,11 @@ impl Rig {
         while self.now < end {
             self.pass();
             if self.wire.last().is_some_and(|w| !w.1) {
-                let s = self.ctl.last_stop().expect("a stop").clone();
+                let s = *self.ctl.last_stop().expect("a stop");
                 assert_eq!(s.motor, Motor::Flaps);
                 return (s.reason, self.now);
             }
-            if (self.now - self.t0).as_millis() % 250 == 0 && repeat(self) {
+            if (self.now - self.t0).as_millis().is_multiple_of(250) && repeat(self) {
                 self.request(target, Some(ms(600)));
             }
         }
