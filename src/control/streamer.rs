@@ -136,7 +136,8 @@ pub enum StopReason {
     /// was not renewed in time: the finger left the button, or the phone went quiet.
     LeaseExpired,
     /// A run to a target asked over the network (XFSp) was not renewed in time: the
-    /// requests stopped coming, or the requester went quiet.
+    /// requests stopped coming, or the requester went quiet. A requester has no stop
+    /// of its own, so this is how it lets go ([`StopReason::is_normal`]).
     RequestsStopped,
     /// A run to a target ([`super::How::Target`]) reached it.
     TargetReached,
@@ -205,6 +206,7 @@ impl StopReason {
                 | StopReason::RunDone
                 | StopReason::RemoteStop
                 | StopReason::TargetReached
+                | StopReason::RequestsStopped
         )
     }
 }

@@ -15,7 +15,8 @@
 //!
 //! One stream on the link: a network request starts only while no other run goes on
 //! (the page's keys, setup, the check or the remote), and waits for it; any of them
-//! starting a run ends the network's, and any key at the page does too. A person at
+//! starting a run ends the network's, and any key at the page does too, as do the
+//! terminal losing focus or becoming too small (every run ends then). A person at
 //! the laptop or the wingtip comes before the network.
 //!
 //! After a run ends for any reason the target is *latched*: the same target does not
