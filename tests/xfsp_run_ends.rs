@@ -4,18 +4,21 @@
 //! plant that moves the flaps as the move messages on the wire say (one count every
 //! 40 ms, up endpoint 40, down 200), reported at 10 Hz.
 
+mod common;
+
+use common::live_unit::{device_status, system_status};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use vpx_efis::control::run_state::ReleaseMode;
 use vpx_efis::control::{
     Controller, Direction, KeyContext, MAX_WIRE_INTERVAL, Selected, StopReason, StreamerConfig,
 };
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Motor, Source};
-use vpx_efis::protocol::device::{DEVICE_COUNT, FLAPS};
+use vpx_efis::protocol::device::FLAPS;
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
-    DeviceStatus, FlapDirection, FlapFlags, FlapTrimStatus, Message, MiscFlags, Packet,
-    SignedTenths, SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
+    FlapDirection, FlapFlags, FlapTrimStatus, Message, Packet, TrimFlags,
 };
 use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig};
 use vpx_efis::xfsp::{Confidence, Expire, Parameter, Sender, Value, idents};
@@ -87,27 +90,8 @@ impl Rig {
         }
         let at = self.now;
         if !self.status_lost {
-            let s = SystemStatus {
-                system_current: Tenths(50),
-                main_bus_volts: SignedTenths(138),
-                aux_battery_volts: Tenths(126),
-                internal_temp: 30,
-                switches: Default::default(),
-                misc: MiscFlags {
-                    starter_annunciator: false,
-                    wig_wag_mode: WigWagModeSetting::Auto,
-                    software_update: false,
-                    wig_wag_active: false,
-                },
-                faults: Default::default(),
-                data_integrity_code: None,
-            };
-            let d = DeviceStatus {
-                on: [false; DEVICE_COUNT],
-                current: [Tenths(0); DEVICE_COUNT],
-            };
-            self.m.apply_packet(at, &Packet::from_vpx(0, s));
-            self.m.apply_packet(at, &Packet::from_vpx(1, d));
+            self.m.apply_packet(at, &system_status());
+            self.m.apply_packet(at, &device_status());
         }
         let ft = FlapTrimStatus {
             flap: FlapFlags {
@@ -218,6 +202,20 @@ impl Rig {
         panic!("not stopped: {:#?}", self.m.events);
     }
 
+    /// As [`Rig::run`] to [`FAR`], repeated, with `act` on every pass from `after`.
+    fn run_acting(
+        &mut self,
+        after: Duration,
+        mut act: impl FnMut(&mut Rig),
+    ) -> (StopReason, Instant) {
+        self.run(FAR, 5, |r| {
+            if r.now - r.t0 >= after {
+                act(r);
+            }
+            true
+        })
+    }
+
     /// After the stop: for a second, with the requests for the same target still
     /// coming (`Some`) or not, nothing moves the flaps again; the stream had no gap
     /// over 250 ms; the event log says why.
@@ -314,11 +312,8 @@ fn a_network_run_ends_on_lost_communication() {
 #[test]
 fn a_network_run_ends_when_the_unit_goes_silent() {
     let mut r = rig(60, StreamerConfig::default());
-    let (why, at) = r.run(FAR, 5, |r| {
-        if r.now - r.t0 >= ms(500) {
-            r.silent = true;
-        }
-        true
+    let (why, at) = r.run_acting(ms(500), |r| {
+        r.silent = true;
     });
     assert_eq!(why, StopReason::PositionStale);
     // The last report at 500 ms.
@@ -332,11 +327,8 @@ fn a_network_run_ends_when_the_unit_goes_silent() {
 #[test]
 fn a_network_run_ends_on_a_motor_fault() {
     let mut r = rig(60, StreamerConfig::default());
-    let (why, _) = r.run(FAR, 5, |r| {
-        if r.now - r.t0 >= ms(700) {
-            r.fault = FaultCode::FlapRunaway;
-        }
-        true
+    let (why, _) = r.run_acting(ms(700), |r| {
+        r.fault = FaultCode::FlapRunaway;
     });
     assert_eq!(why, StopReason::MotorFault(FaultCode::FlapRunaway));
     r.settled(Some(FAR), &why.describe());
@@ -393,40 +385,48 @@ fn a_network_run_ends_at_the_run_cap() {
 }
 
 /// A person at the keys comes first: any key ends a network run, even the very key
-/// of its motor and direction (`d` on the flaps), which then takes nothing over.
+/// of its motor and direction (`d` on the flaps), which then takes nothing over: its
+/// auto-repeats, which come as presses in a terminal without release reports, do not
+/// start a run of their own.
 #[test]
 fn a_network_run_ends_on_a_key_at_the_page() {
-    let mut r = rig(60, StreamerConfig::default());
-    let (why, _) = r.run(FAR, 5, |r| {
-        if r.now - r.t0 >= ms(1000) {
-            let ctx = KeyContext {
-                selected: Some(Selected {
-                    id: FLAPS,
-                    kind: CircuitKind::Flaps,
-                    state: CircuitState::On,
-                }),
-                overlay_open: false,
-                past_endpoints: false,
-            };
-            let key = KeyEvent::new(KeyCode::Char('d'), KeyModifiers::NONE);
-            let o = r.ctl.handle_key(key, &ctx, &r.m, r.now);
-            r.wire(o.packets);
-        }
-        true
+    let config = StreamerConfig {
+        release_mode: ReleaseMode::AutoRepeat,
+        ..StreamerConfig::default()
+    };
+    let mut r = rig(60, config);
+    let ctx = KeyContext {
+        selected: Some(Selected {
+            id: FLAPS,
+            kind: CircuitKind::Flaps,
+            state: CircuitState::On,
+        }),
+        overlay_open: false,
+        past_endpoints: false,
+    };
+    let d = KeyEvent::new(KeyCode::Char('d'), KeyModifiers::NONE);
+    let (why, _) = r.run_acting(ms(1000), |r| {
+        let o = r.ctl.handle_key(d, &ctx, &r.m, r.now);
+        r.wire(o.packets);
     });
     assert_eq!(why, StopReason::OtherKey);
+    // The key held on: its repeats every 30 ms start nothing.
+    for _ in 0..10 {
+        for _ in 0..3 {
+            r.pass();
+        }
+        let o = r.ctl.handle_key(d, &ctx, &r.m, r.now);
+        r.wire(o.packets);
+    }
     r.settled(Some(FAR), "another key was pressed");
 }
 
 #[test]
 fn a_network_run_ends_on_a_link_error() {
     let mut r = rig(60, StreamerConfig::default());
-    let (why, _) = r.run(FAR, 5, |r| {
-        if r.now - r.t0 >= ms(1000) {
-            let p = r.ctl.on_link_error(r.now);
-            r.wire(p);
-        }
-        true
+    let (why, _) = r.run_acting(ms(1000), |r| {
+        let p = r.ctl.on_link_error(r.now);
+        r.wire(p);
     });
     assert_eq!(why, StopReason::LinkError);
     r.settled(Some(FAR), "the link could not send");

@@ -11,6 +11,7 @@ use crossbeam_channel::Receiver;
 
 use super::serve::Wait;
 use super::{App, XfspOptions, lock, terminal};
+use crate::audit::Origin;
 use crate::xfsp::dict::CertLevel;
 use crate::xfsp::gateway::{Control, Gateway, GatewayConfig, source_list};
 use crate::xfsp::net::{Datagram, Target, XfspNet};
@@ -175,8 +176,10 @@ impl App {
         let Some(g) = self.gateway.as_mut() else {
             return;
         };
+        // Leaving is the process's own stop, not the network's.
         let mut model = lock(&self.model);
-        self.controller
-            .act_xfsp(|c| (g.gateway.shutdown(&mut model, c, now), ()));
+        self.controller.act_with(Origin::Page, |c| {
+            (g.gateway.shutdown(&mut model, c, now), ())
+        });
     }
 }

@@ -459,8 +459,16 @@ impl Controller {
             out.packets
                 .extend(self.streamer.stop(now, StopReason::OtherKey));
             out.notice = self.stopped_notice();
-            if action == Some(Action::Quit) {
-                out.action = action;
+            match action {
+                // Held on, its repeats do not start a run of their own: the person
+                // presses again for that, as after any stop.
+                Some(Action::Motor {
+                    motor, direction, ..
+                }) => out
+                    .packets
+                    .extend(self.streamer.press_refused(now, motor, direction)),
+                Some(Action::Quit) => out.action = action,
+                _ => {}
             }
             return;
         }
