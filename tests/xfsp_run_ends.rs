@@ -228,8 +228,12 @@ impl Rig {
             }
             self.pass();
         }
-        let last = self.wire.last().unwrap();
-        assert!(!last.1, "moved again after its stop: {:?}", self.wire);
+        let stop = self.wire.iter().position(|w| !w.1).unwrap();
+        assert!(
+            self.wire[stop..].iter().all(|w| !w.1),
+            "moved again after its stop: {:?}",
+            self.wire
+        );
         assert_eq!(self.moving, None);
         let ons: Vec<Instant> = self.wire.iter().filter(|w| w.1).map(|w| w.0).collect();
         for w in ons.windows(2) {
