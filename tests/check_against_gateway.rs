@@ -147,21 +147,20 @@ impl Rig {
 #[test]
 fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
     let mut r = rig(128);
-    let mut drive = MotorDrive::new(StreamerConfig::default());
-    drive.share_against(r.ctl.against());
+    let mut drive = MotorDrive::default();
     let mut seen = Vec::new();
     for i in 0..200 {
         if i % 25 == 0 {
             // PTRIMREQ +50000: nose up, toward 30 (raw ~78), repeated at 4 Hz.
             drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
         }
-        let p = drive.tick(&mut r.model, r.now);
+        let p = drive.tick(&mut r.ctl, &mut r.model, r.now);
         r.send(p);
         seen.extend(r.run_watching(10, PITCH));
     }
     let hi = *seen.iter().max().unwrap();
     assert!((131..=134).contains(&hi), "went down to {hi}");
-    assert!(drive.running().is_none());
+    assert!(drive.running(&r.ctl).is_none());
     assert!(
         r.model.events.iter().any(|e| e
             .text
@@ -175,10 +174,9 @@ fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
 
     // The other way round: the keys saw the flaps' record... here the pitch trim's,
     // so a fresh drive sharing it refuses a request for it, nothing sent.
-    let mut other = MotorDrive::new(StreamerConfig::default());
-    other.share_against(r.ctl.against());
+    let mut other = MotorDrive::default();
     other.request(PITCH, -50_000, 0x43, None, r.now);
-    let p = other.tick(&mut r.model, r.now);
+    let p = other.tick(&mut r.ctl, &mut r.model, r.now);
     assert!(p.is_empty(), "{p:?}");
     assert!(
         r.model
@@ -196,21 +194,20 @@ fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
 #[test]
 fn the_gateway_probes_a_network_run_near_the_endpoint_behind_it() {
     let mut r = rig(220);
-    let mut drive = MotorDrive::new(StreamerConfig::default());
-    drive.share_against(r.ctl.against());
+    let mut drive = MotorDrive::default();
     let from = r.sent.len();
     let mut seen = vec![r.pitch_pos()];
     for i in 0..150 {
         if i % 25 == 0 {
             drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
         }
-        let p = drive.tick(&mut r.model, r.now);
+        let p = drive.tick(&mut r.ctl, &mut r.model, r.now);
         r.send(p);
         seen.extend(r.run_watching(10, PITCH));
     }
     let most = *seen.iter().max().unwrap();
     assert!(most <= 221, "past 220 to {most}: {seen:?}");
-    assert!(drive.running().is_none());
+    assert!(drive.running(&r.ctl).is_none());
     let events: Vec<&str> = r.model.events.iter().map(|e| e.text.as_str()).collect();
     assert!(
         events
@@ -307,13 +304,12 @@ fn a_reversal_the_check_finds_by_probing_is_refused_to_keys_remote_and_network()
     assert!(!why.words.contains("press"), "{why}");
 
     // The network: a request refused, said in the event log.
-    let mut drive = MotorDrive::new(StreamerConfig::default());
-    drive.share_against(r.ctl.against());
+    let mut drive = MotorDrive::default();
     drive.request(PITCH, 50_000, 0x44, None, r.now);
-    let p = drive.tick(&mut r.model, r.now);
+    let p = drive.tick(&mut r.ctl, &mut r.model, r.now);
     r.send(p);
     assert_eq!(drive.counts().refused, 1);
-    assert!(drive.running().is_none());
+    assert!(drive.running(&r.ctl).is_none());
     r.run_watching(500, PITCH);
     assert!(r.trim_moves_since(from).is_empty(), "a refused run moved");
     assert!(

@@ -641,14 +641,6 @@ const MOTOR_RUN_SIGNS: &[(&str, &str)] = &[
     ("Against::record", "records with Against"),
 ];
 
-/// Where a motor run is still assembled outside `control`, as `file: what`. Mend
-/// one, then remove its line here. The XFSp gateway still runs its own streamer
-/// beside the page's (issue 31, item 2), until it runs in the App's one loop.
-const MOTOR_RUN_DEBT: &[&str] = &[
-    "src/xfsp/drive.rs: holds a MotorStreamer",
-    "src/xfsp/drive.rs: records with Against",
-];
-
 /// What of [`MOTOR_RUN_SIGNS`] the code before its `#[cfg(test)]` shows, by line.
 fn motor_run_lines(code: &str) -> Vec<(usize, &'static str)> {
     let code = without_comments(code);
@@ -684,22 +676,13 @@ fn motor_runs_are_assembled_only_in_control() {
             found.entry(key).or_default().push(line);
         }
     }
-    let new: Vec<String> = found
+    let found: Vec<String> = found
         .iter()
-        .filter(|(k, _)| !MOTOR_RUN_DEBT.contains(&k.as_str()))
         .map(|(k, lines)| format!("{k} (lines {lines:?})"))
         .collect();
     assert!(
-        new.is_empty(),
-        "a motor run assembled outside control: {new:#?}"
-    );
-    let mended: Vec<_> = MOTOR_RUN_DEBT
-        .iter()
-        .filter(|d| !found.contains_key(**d))
-        .collect();
-    assert!(
-        mended.is_empty(),
-        "mended: remove from MOTOR_RUN_DEBT: {mended:?}"
+        found.is_empty(),
+        "a motor run assembled outside control: {found:#?}"
     );
 }
 

@@ -149,7 +149,8 @@ fn motor_drive() {
     use vpx_efis::xfsp::drive::MotorDrive;
     let t0 = Instant::now();
     let mut m = model();
-    let mut drive = MotorDrive::new(StreamerConfig::default());
+    let mut drive = MotorDrive::default();
+    let mut ctl = vpx_efis::control::Controller::default();
     let feed = |m: &mut Model, at: Instant, pos: u8| {
         let d = DeviceStatus {
             on: [false; DEVICE_COUNT],
@@ -189,9 +190,14 @@ fn motor_drive() {
     let mut ticks = 0;
     while now < t0 + ms(3000) {
         feed(&mut m, now, 40 + ((now - t0).as_millis() / 50) as u8);
-        drive.tick(&mut m, now);
+        drive.tick(&mut ctl, &mut m, now);
         ticks += 1;
-        match drive.next_deadline() {
+        // The page's loop sleeps until the first of the two.
+        match [drive.next_deadline(), ctl.next_deadline()]
+            .into_iter()
+            .flatten()
+            .min()
+        {
             Some(next) => {
                 assert!(next > now, "tick at +{:?}", now - t0);
                 now = next;
@@ -201,10 +207,15 @@ fn motor_drive() {
     }
     assert!(ticks > 2, "the flaps ran");
     assert!(
-        drive.running().is_none(),
+        drive.running(&ctl).is_none() && ctl.running().is_none(),
         "stopped once the requests expired"
     );
-    assert_eq!(drive.counts().refused, 1, "the pitch trim had no scale");
+    assert_eq!(
+        drive.counts().refused,
+        1,
+        "the pitch trim had no scale: {:#?}",
+        m.events
+    );
 }
 
 /// A restore cut short leaves many settings unknown: they are asked a batch at a time

@@ -3,8 +3,11 @@
 
 use std::time::{Duration, Instant};
 
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use proptest::prelude::*;
-use vpx_efis::model::{Model, Source};
+use vpx_efis::audit::Origin;
+use vpx_efis::control::{Controller, Direction, How, KeyContext, StopReason};
+use vpx_efis::model::{Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
@@ -194,7 +197,8 @@ fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
     let mut m = model();
     status(&mut m, t0, &[2]);
     let mut gw = Gateway::new(commanded(), t0);
-    let ps = params(&gw.tick(&mut m, t0));
+    let mut ctl = Controller::default();
+    let ps = params(&gw.tick(&mut m, &mut ctl, t0));
     let efis = find(&ps, idents::ECBSTAT, 2).expect("EFIS published");
     let b = bus(efis);
     assert_eq!(b.state, EcbState::On);
@@ -223,12 +227,17 @@ fn every_item_is_refreshed_at_least_once_a_second_and_not_resent_unchanged_soone
     let t0 = Instant::now();
     let mut m = model();
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut seen: Vec<(Instant, Parameter)> = Vec::new();
     let mut now = t0;
     while now < t0 + ms(3000) {
         // The unit broadcasts at 1 Hz; the gateway is ticked when it asks to be.
         status(&mut m, now - ms((now - t0).as_millis() as u64 % 1000), &[2]);
-        seen.extend(params(&gw.tick(&mut m, now)).into_iter().map(|p| (now, p)));
+        seen.extend(
+            params(&gw.tick(&mut m, &mut ctl, now))
+                .into_iter()
+                .map(|p| (now, p)),
+        );
         let next = gw.next_deadline();
         assert!(
             next > now && next <= now + ms(100),
@@ -255,10 +264,11 @@ fn a_short_circuit_raises_cas_and_master_warning_then_clear_three_times() {
     let mut m = model();
     status(&mut m, t0, &[]);
     let mut gw = Gateway::new(commanded(), t0);
-    gw.tick(&mut m, t0);
+    let mut ctl = Controller::default();
+    gw.tick(&mut m, &mut ctl, t0);
     // Later than the 100 ms minimum interval, so ECBSTAT goes out with the CAS.
     fault(&mut m, t0 + ms(200), 5, FaultCode::ShortCircuit);
-    let ps = params(&gw.tick(&mut m, t0 + ms(200)));
+    let ps = params(&gw.tick(&mut m, &mut ctl, t0 + ms(200)));
     // Unit: "CAS System ID" (draft CASMSG), ours = our source id; the label tells
     // alerts apart.
     assert_eq!(
@@ -283,7 +293,7 @@ fn a_short_circuit_raises_cas_and_master_warning_then_clear_three_times() {
     while now < t0 + ms(7000) {
         now = gw.next_deadline();
         status(&mut m, now, &[]);
-        let ps = params(&gw.tick(&mut m, now));
+        let ps = params(&gw.tick(&mut m, &mut ctl, now));
         master_seen.extend(master_of(&ps, idents::MSTRWARN));
         for (u, level, label) in cas(&ps) {
             if level == CasLevel::Clear {
@@ -327,13 +337,14 @@ fn lost_communication_publishes_unknown_and_says_so_once_past_the_start_grace() 
     status(&mut m, t0, &[2]);
     flaps(&mut m, t0, 120);
     let mut gw = Gateway::new(commanded(), t0);
-    let ps = params(&gw.tick(&mut m, t0));
+    let mut ctl = Controller::default();
+    let ps = params(&gw.tick(&mut m, &mut ctl, t0));
     assert_eq!(
         find(&ps, idents::FLAPPOS, 0).map(|p| p.value.clone()),
         Some(Value::Sint(50_000))
     );
     let later = t0 + ms(2600);
-    let ps = params(&gw.tick(&mut m, later));
+    let ps = params(&gw.tick(&mut m, &mut ctl, later));
     let efis = find(&ps, idents::ECBSTAT, 2).expect("republished on change");
     assert_eq!(bus(efis).state, EcbState::Unknown0);
     assert_eq!(bus(efis).draw_amps, 0, "no stale amps");
@@ -351,7 +362,7 @@ fn lost_communication_publishes_unknown_and_says_so_once_past_the_start_grace() 
     assert_eq!(gw.standing_cas()[0].0, CAS_UNIT_COMM_LOST, "our key inside");
     // Heard again: the message is withdrawn.
     status(&mut m, later + ms(500), &[2]);
-    let ps = params(&gw.tick(&mut m, later + ms(500)));
+    let ps = params(&gw.tick(&mut m, &mut ctl, later + ms(500)));
     assert_eq!(cas(&ps)[0].1, CasLevel::Clear);
     assert_eq!(
         bus(find(&ps, idents::ECBSTAT, 2).unwrap()).state,
@@ -364,8 +375,9 @@ fn a_gateway_that_never_heard_the_unit_waits_before_crying_comm_lost() {
     let t0 = Instant::now();
     let mut m = model();
     let mut gw = Gateway::new(commanded(), t0);
-    assert!(cas(&params(&gw.tick(&mut m, t0 + ms(1000)))).is_empty());
-    let ps = params(&gw.tick(&mut m, t0 + ms(2600)));
+    let mut ctl = Controller::default();
+    assert!(cas(&params(&gw.tick(&mut m, &mut ctl, t0 + ms(1000)))).is_empty());
+    let ps = params(&gw.tick(&mut m, &mut ctl, t0 + ms(2600)));
     assert_eq!(cas(&ps).len(), 1);
 }
 
@@ -375,8 +387,9 @@ fn forwarded_air_data_is_valid_only_while_fresh() {
     let mut m = model();
     status(&mut m, t0, &[]);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     assert!(
-        gw.tick(&mut m, t0).to_unit.is_empty(),
+        gw.tick(&mut m, &mut ctl, t0).to_unit.is_empty(),
         "no air data heard, none sent"
     );
     let mut peer = Sender::new(PEER, 1);
@@ -387,24 +400,24 @@ fn forwarded_air_data_is_valid_only_while_fresh() {
             Parameter::new(idents::ENGRPM, Value::Uint(2400)),
         ],
     );
-    assert!(gw.receive(&d, &mut m, t0 + ms(100)).is_empty());
+    assert!(gw.receive(&d, &mut m, &mut ctl, t0 + ms(100)).is_empty());
     let ext = |s: &Step| {
         s.to_unit.iter().find_map(|p| match p.message {
             Message::ExternalData(e) => Some(e),
             _ => None,
         })
     };
-    let e = ext(&gw.tick(&mut m, t0 + ms(100))).expect("sent at once");
+    let e = ext(&gw.tick(&mut m, &mut ctl, t0 + ms(100))).expect("sent at once");
     assert_eq!((e.indicated_airspeed, e.rpm), (88, 2400));
     assert!(e.valid.indicated_airspeed && e.valid.rpm && !e.valid.baro_altitude);
     assert!(
-        ext(&gw.tick(&mut m, t0 + ms(600))).is_none(),
+        ext(&gw.tick(&mut m, &mut ctl, t0 + ms(600))).is_none(),
         "1 Hz, not faster"
     );
-    let e = ext(&gw.tick(&mut m, t0 + ms(2100))).unwrap();
+    let e = ext(&gw.tick(&mut m, &mut ctl, t0 + ms(2100))).unwrap();
     assert!(!e.valid.indicated_airspeed, "past its 1.5 s expire");
     assert!(e.valid.rpm, "2.0 s old is still fresh");
-    let e = ext(&gw.tick(&mut m, t0 + ms(3100))).unwrap();
+    let e = ext(&gw.tick(&mut m, &mut ctl, t0 + ms(3100))).unwrap();
     assert!(!e.valid.rpm, "never-expiring data is still at most 2 s old");
     let f = gw.forwarding(t0 + ms(3100));
     assert_eq!(f[0].last.map(|s| s.value), Some(88));
@@ -417,12 +430,13 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
     let mut m = model();
     status(&mut m, t0, &[2]);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 100);
     let on5 = request(
         &mut peer,
         vec![ecb_request(5, EcbState::On, Confidence::UserSel)],
     );
-    let out = gw.receive(&on5, &mut m, t0);
+    let out = gw.receive(&on5, &mut m, &mut ctl, t0);
     assert!(matches!(
         out.as_slice(),
         [Packet {
@@ -438,13 +452,16 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
             .contains("5A-2 ON -> DEVICE_POWER")
     );
     // The same bytes again, and an older message: both ignored by number.
-    assert!(gw.receive(&on5, &mut m, t0 + ms(1500)).is_empty());
+    assert!(gw.receive(&on5, &mut m, &mut ctl, t0 + ms(1500)).is_empty());
     let mut old = Sender::new(PEER, 50);
     let off2 = request(
         &mut old,
         vec![ecb_request(2, EcbState::Off, Confidence::SysSel)],
     );
-    assert!(gw.receive(&off2, &mut m, t0 + ms(1600)).is_empty());
+    assert!(
+        gw.receive(&off2, &mut m, &mut ctl, t0 + ms(1600))
+            .is_empty()
+    );
     assert_eq!(gw.stats().rx.duplicate, 1);
     assert_eq!(gw.stats().rx.out_of_order, 1);
     // Status-only confidence is another node's report, not a request.
@@ -452,13 +469,19 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
         &mut peer,
         vec![ecb_request(2, EcbState::Off, Confidence::High)],
     );
-    assert!(gw.receive(&high, &mut m, t0 + ms(1700)).is_empty());
+    assert!(
+        gw.receive(&high, &mut m, &mut ctl, t0 + ms(1700))
+            .is_empty()
+    );
     // The starter cannot be switched; reset only when faulted; both logged.
     let starter = request(
         &mut peer,
         vec![ecb_request(1, EcbState::On, Confidence::UserSel)],
     );
-    assert!(gw.receive(&starter, &mut m, t0 + ms(1800)).is_empty());
+    assert!(
+        gw.receive(&starter, &mut m, &mut ctl, t0 + ms(1800))
+            .is_empty()
+    );
     assert!(
         m.events
             .back()
@@ -470,14 +493,17 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
         &mut peer,
         vec![ecb_request(2, EcbState::Reset, Confidence::UserSel)],
     );
-    assert!(gw.receive(&reset, &mut m, t0 + ms(1900)).is_empty());
+    assert!(
+        gw.receive(&reset, &mut m, &mut ctl, t0 + ms(1900))
+            .is_empty()
+    );
     assert!(m.events.back().unwrap().text.contains("no fault to reset"));
     fault(&mut m, t0 + ms(1950), 2, FaultCode::OverCurrent);
     let reset = request(
         &mut peer,
         vec![ecb_request(2, EcbState::Reset, Confidence::UserSel)],
     );
-    let out = gw.receive(&reset, &mut m, t0 + ms(2000));
+    let out = gw.receive(&reset, &mut m, &mut ctl, t0 + ms(2000));
     assert!(
         matches!(out.as_slice(), [Packet { message: Message::DeviceClear(c), .. }] if c.device_id == 2)
     );
@@ -487,7 +513,7 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
         &mut me,
         vec![ecb_request(2, EcbState::Off, Confidence::UserSel)],
     );
-    assert!(gw.receive(&own, &mut m, t0 + ms(2100)).is_empty());
+    assert!(gw.receive(&own, &mut m, &mut ctl, t0 + ms(2100)).is_empty());
     assert_eq!(gw.stats().own, 1);
     // A unit and a label that name different circuits: refused, in words, counted.
     let refused = gw.stats().commands_refused;
@@ -496,8 +522,13 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
         b.label = b"LANDING LT".to_vec();
     }
     assert!(
-        gw.receive(&request(&mut peer, vec![other]), &mut m, t0 + ms(2200))
-            .is_empty()
+        gw.receive(
+            &request(&mut peer, vec![other]),
+            &mut m,
+            &mut ctl,
+            t0 + ms(2200)
+        )
+        .is_empty()
     );
     assert!(
         m.events
@@ -529,6 +560,7 @@ fn a_flap_request_streams_toward_the_target_and_stops_there() {
     // the stream) would not answer.
     flaps(&mut m, t0, 60);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let req = |peer: &mut Sender, target| {
         request(
@@ -541,7 +573,7 @@ fn a_flap_request_streams_toward_the_target_and_stops_there() {
         )
     };
     // 50 % of 40..200 is raw 120.
-    let out = gw.receive(&req(&mut peer, 50_000), &mut m, t0);
+    let out = gw.receive(&req(&mut peer, 50_000), &mut m, &mut ctl, t0);
     assert_eq!(flap_moves(&out), [(true, Down)]);
     let mut now = t0;
     let mut sends = vec![t0];
@@ -554,9 +586,9 @@ fn a_flap_request_streams_toward_the_target_and_stops_there() {
         flaps(&mut m, now, pos);
         let mut out = Vec::new();
         if (now - t0).as_millis() % 400 < 100 {
-            out.extend(gw.receive(&req(&mut peer, 50_000), &mut m, now));
+            out.extend(gw.receive(&req(&mut peer, 50_000), &mut m, &mut ctl, now));
         }
-        out.extend(gw.tick(&mut m, now).to_unit);
+        out.extend(gw.tick(&mut m, &mut ctl, now).to_unit);
         for (on, dir) in flap_moves(&out) {
             assert_eq!(dir, Down);
             if on {
@@ -572,10 +604,10 @@ fn a_flap_request_streams_toward_the_target_and_stops_there() {
         assert!(w[1] - w[0] <= ms(250), "stream gap {:?}", w[1] - w[0]);
     }
     // Requests for the same target keep coming: it is not restarted.
-    let out = gw.receive(&req(&mut peer, 50_000), &mut m, now + ms(50));
+    let out = gw.receive(&req(&mut peer, 50_000), &mut m, &mut ctl, now + ms(50));
     assert!(flap_moves(&out).is_empty());
     // A new target goes the other way.
-    let out = gw.receive(&req(&mut peer, 0), &mut m, now + ms(60));
+    let out = gw.receive(&req(&mut peer, 0), &mut m, &mut ctl, now + ms(60));
     assert_eq!(flap_moves(&out), [(true, Up)]);
 }
 
@@ -590,6 +622,7 @@ fn a_flap_request_that_is_not_repeated_stops_at_its_expiry() {
     // the stream) would not answer.
     flaps(&mut m, t0, 60);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let d = request(
         &mut peer,
@@ -600,13 +633,16 @@ fn a_flap_request_that_is_not_repeated_stops_at_its_expiry() {
         ],
     );
     const FULL: i32 = 100_000;
-    assert_eq!(flap_moves(&gw.receive(&d, &mut m, t0)), [(true, Down)]);
+    assert_eq!(
+        flap_moves(&gw.receive(&d, &mut m, &mut ctl, t0)),
+        [(true, Down)]
+    );
     let mut now = t0;
     let mut stop_at = None;
     while now < t0 + ms(2000) && stop_at.is_none() {
         now = gw.next_deadline();
         flaps(&mut m, now, 60);
-        if flap_moves(&gw.tick(&mut m, now).to_unit).contains(&(false, Down)) {
+        if flap_moves(&gw.tick(&mut m, &mut ctl, now).to_unit).contains(&(false, Down)) {
             stop_at = Some(now);
         }
     }
@@ -630,12 +666,13 @@ fn motor_requests_need_live_status_and_log_their_refusal() {
     let mut m = model();
     status(&mut m, t0, &[]);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let d = request(
         &mut peer,
         vec![Parameter::new(idents::FLAPREQ, Value::Sint(50_000)).confidence(Confidence::UserSel)],
     );
-    assert!(gw.receive(&d, &mut m, t0).is_empty());
+    assert!(gw.receive(&d, &mut m, &mut ctl, t0).is_empty());
     assert!(m.events.back().unwrap().text.contains("request refused"));
 }
 
@@ -651,6 +688,7 @@ proptest! {
         let mut m = model();
         status(&mut m, t0, &[2]);
         let mut gw = Gateway::new(commanded(), t0);
+        let mut ctl = Controller::default();
         for (i, mut d) in datagrams.into_iter().enumerate() {
             if ecb && d.len() >= 24 {
                 // Steer some inputs into a valid-looking header and an ECBSTAT ident.
@@ -663,8 +701,8 @@ proptest! {
                 d[21] = 128; // USERSEL
             }
             let now = t0 + ms(i as u64 * 10);
-            let _ = gw.receive(&d, &mut m, now);
-            let _ = gw.tick(&mut m, now);
+            let _ = gw.receive(&d, &mut m, &mut ctl, now);
+            let _ = gw.tick(&mut m, &mut ctl, now);
         }
     }
 }
@@ -678,8 +716,9 @@ fn the_pages_keys_come_before_network_motor_requests() {
     let t0 = Instant::now();
     let mut m = model();
     status(&mut m, t0, &[]);
-    flaps(&mut m, t0, 40);
+    pitch(&mut m, t0, 100);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let req = |peer: &mut Sender, target| {
         request(
@@ -691,33 +730,59 @@ fn the_pages_keys_come_before_network_motor_requests() {
             ],
         )
     };
-    // The page runs a motor: a network request does not start.
-    assert!(gw.set_local_motor(&mut m, t0, true).is_empty());
-    assert!(flap_moves(&gw.receive(&req(&mut peer, 50_000), &mut m, t0)).is_empty());
-    assert!(flap_moves(&gw.tick(&mut m, t0 + ms(100)).to_unit).is_empty());
-    assert_eq!(gw.running_motor(), None);
+    // The page's keys run a motor (on the one controller): a network request does
+    // not start.
+    let pitch = Motor::Trim(TrimKind::Pitch);
+    let keys = ctl.start(Origin::Key, &m, pitch, Direction::Up, How::Press, t0);
+    assert!(!keys.expect("the key's run").is_empty());
+    assert!(flap_moves(&gw.receive(&req(&mut peer, 50_000), &mut m, &mut ctl, t0)).is_empty());
+    assert!(flap_moves(&gw.tick(&mut m, &mut ctl, t0 + ms(100)).to_unit).is_empty());
+    assert_eq!(gw.running_motor(&ctl), None);
+    assert_eq!(
+        ctl.running().map(|r| r.motor),
+        Some(pitch),
+        "the key's run goes on"
+    );
     // The page's run ends: the waiting request starts.
-    gw.set_local_motor(&mut m, t0 + ms(150), false);
-    let out = gw.receive(&req(&mut peer, 60_000), &mut m, t0 + ms(150));
+    ctl.stop(t0 + ms(150), StopReason::Released);
+    let out = gw.receive(&req(&mut peer, 60_000), &mut m, &mut ctl, t0 + ms(150));
     let mut moves = flap_moves(&out);
-    moves.extend(flap_moves(&gw.tick(&mut m, t0 + ms(160)).to_unit));
+    moves.extend(flap_moves(&gw.tick(&mut m, &mut ctl, t0 + ms(160)).to_unit));
     assert!(moves.contains(&(true, Down)), "{moves:?}");
-    // A key at the page stops it, with the stop message.
-    assert_eq!(
-        flap_moves(&gw.local_key(&mut m, t0 + ms(200))),
-        [(false, Down)]
-    );
-    assert_eq!(gw.running_motor(), None);
-    // The same target repeated is not restarted.
-    let out = gw.receive(&req(&mut peer, 60_000), &mut m, t0 + ms(250));
+    assert_eq!(gw.running_motor(&ctl), Some(Motor::Flaps));
+    // A key at the page stops it, with the stop message: a person comes first.
+    let any = KeyEvent::new(KeyCode::Char('j'), KeyModifiers::NONE);
+    let o = ctl.handle_key(any, &no_selection(), &m, t0 + ms(200));
+    assert_eq!(flap_moves(&o.packets), [(false, Down)]);
+    assert_eq!(gw.running_motor(&ctl), None);
+    let out = gw.tick(&mut m, &mut ctl, t0 + ms(210)).to_unit;
     assert!(flap_moves(&out).is_empty());
-    // And a page run starting stops a network run on the next tick.
-    let out = gw.receive(&req(&mut peer, 90_000), &mut m, t0 + ms(300));
+    // The same target repeated is not restarted.
+    let out = gw.receive(&req(&mut peer, 60_000), &mut m, &mut ctl, t0 + ms(250));
+    assert!(flap_moves(&out).is_empty());
+    // And a key's run (here setup's, which any origin's start would do alike) ends a
+    // network run at once: the network's waits, the person's goes.
+    let out = gw.receive(&req(&mut peer, 90_000), &mut m, &mut ctl, t0 + ms(300));
     assert_eq!(flap_moves(&out), [(true, Down)]);
-    assert_eq!(
-        flap_moves(&gw.set_local_motor(&mut m, t0 + ms(320), true)),
-        [(false, Down)]
-    );
+    let o = ctl.handle_key(any, &no_selection(), &m, t0 + ms(320));
+    assert_eq!(flap_moves(&o.packets), [(false, Down)]);
+    let said = |m: &Model| {
+        m.events
+            .iter()
+            .filter(|e| e.text == "XFSp: flaps stopped: another key was pressed")
+            .count()
+    };
+    assert_eq!(said(&m), 1, "the first stop, said on its next tick");
+    gw.tick(&mut m, &mut ctl, t0 + ms(330));
+    assert_eq!(said(&m), 2, "{:#?}", m.events);
+}
+
+fn no_selection() -> KeyContext {
+    KeyContext {
+        selected: None,
+        overlay_open: false,
+        past_endpoints: false,
+    }
 }
 
 fn named(m: &mut Model, at: Instant, id: u8, name: &str) {
@@ -757,11 +822,12 @@ fn circuit_requests_match_by_label_by_unit_or_both_and_a_mismatch_is_refused() {
     named(&mut m, t0, 7, "SPARE");
     named(&mut m, t0, 8, "Spare");
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let mut at = t0;
     let mut send = |gw: &mut Gateway, m: &mut Model, p: Parameter| {
         at += ms(10);
-        gw.receive(&request(&mut peer, vec![p]), m, at)
+        gw.receive(&request(&mut peer, vec![p]), m, &mut ctl, at)
     };
 
     // Label only, unit 0 as a requester following the draft sends it; any case.
@@ -849,7 +915,10 @@ fn run_masters(
         for &(id, code) in faults {
             fault(m, now, id, code);
         }
-        seen.extend(master_of(&params(&gw.tick(m, now)), ident));
+        seen.extend(master_of(
+            &params(&gw.tick(m, &mut Controller::default(), now)),
+            ident,
+        ));
         now = gw.next_deadline();
     }
     (now, seen)
@@ -861,6 +930,7 @@ fn master_caution_reset_by_usersel_false_stays_false_until_a_new_caution() {
     let mut m = model();
     status(&mut m, t0, &[]);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let oc = [(5, FaultCode::OverCurrent)];
     let (now, seen) = run_masters(&mut gw, &mut m, t0, 1, &oc, idents::MSTRCAUTN);
     assert_eq!(seen.last(), Some(&true));
@@ -874,7 +944,7 @@ fn master_caution_reset_by_usersel_false_stays_false_until_a_new_caution() {
             Confidence::UserSel,
         )],
     );
-    gw.receive(&reset, &mut m, now);
+    gw.receive(&reset, &mut m, &mut ctl, now);
     assert!(
         m.events
             .back()
@@ -894,7 +964,7 @@ fn master_caution_reset_by_usersel_false_stays_false_until_a_new_caution() {
         &mut display,
         vec![master_request(idents::MSTRCAUTN, false, Confidence::SysSel)],
     );
-    gw.receive(&reset, &mut m, now);
+    gw.receive(&reset, &mut m, &mut ctl, now);
     let (_, seen) = run_masters(&mut gw, &mut m, now, 2, &two, idents::MSTRCAUTN);
     assert!(seen.iter().all(|&v| !v), "{seen:?}");
     // Status confidence is another node's report, not a reset; TRUE is refused.
@@ -903,13 +973,13 @@ fn master_caution_reset_by_usersel_false_stays_false_until_a_new_caution() {
         &mut display,
         vec![master_request(idents::MSTRCAUTN, false, Confidence::High)],
     );
-    gw.receive(&high, &mut m, now + ms(2100));
+    gw.receive(&high, &mut m, &mut ctl, now + ms(2100));
     assert_eq!(gw.stats().commands_taken, before.commands_taken);
     let set = request(
         &mut display,
         vec![master_request(idents::MSTRCAUTN, true, Confidence::UserSel)],
     );
-    gw.receive(&set, &mut m, now + ms(2200));
+    gw.receive(&set, &mut m, &mut ctl, now + ms(2200));
     assert_eq!(gw.stats().commands_refused, before.commands_refused + 1);
     assert!(
         m.events
@@ -927,6 +997,7 @@ fn master_warning_rises_on_a_short_and_resets_the_same_way() {
     let mut m = model();
     status(&mut m, t0, &[]);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let short = [(5, FaultCode::ShortCircuit)];
     let (now, seen) = run_masters(&mut gw, &mut m, t0, 1, &short, idents::MSTRWARN);
     assert_eq!(seen.last(), Some(&true));
@@ -936,7 +1007,7 @@ fn master_warning_rises_on_a_short_and_resets_the_same_way() {
         &mut display,
         vec![master_request(idents::MSTRWARN, false, Confidence::SysSel)],
     );
-    gw.receive(&reset, &mut m, now);
+    gw.receive(&reset, &mut m, &mut ctl, now);
     assert!(
         m.events
             .back()
@@ -961,12 +1032,13 @@ fn refused_and_expired_motor_requests_are_counted() {
     status(&mut m, t0, &[]);
     flaps(&mut m, t0, 40); // roll trim not configured: no scale
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let roll = request(
         &mut peer,
         vec![Parameter::new(idents::RTRIMREQ, Value::Sint(20_000)).confidence(Confidence::UserSel)],
     );
-    assert!(gw.receive(&roll, &mut m, t0).is_empty());
+    assert!(gw.receive(&roll, &mut m, &mut ctl, t0).is_empty());
     assert_eq!(
         (gw.stats().commands_taken, gw.stats().commands_refused),
         (0, 1)
@@ -983,10 +1055,22 @@ fn refused_and_expired_motor_requests_are_counted() {
         &mut peer,
         vec![Parameter::new(idents::PTRIMREQ, Value::Uint(5)).confidence(Confidence::UserSel)],
     );
-    gw.receive(&wrong, &mut m, t0 + ms(10));
+    gw.receive(&wrong, &mut m, &mut ctl, t0 + ms(10));
     assert_eq!(gw.stats().commands_refused, 2);
     // A flap request waiting behind the page's keys until it expires.
-    gw.set_local_motor(&mut m, t0 + ms(20), true);
+    pitch(&mut m, t0 + ms(20), 100);
+    let keys = ctl.start(
+        Origin::Check,
+        &m,
+        Motor::Trim(TrimKind::Pitch),
+        Direction::Up,
+        How::For {
+            length: ms(2000),
+            way: None,
+        },
+        t0 + ms(20),
+    );
+    assert!(keys.is_ok(), "{keys:?}");
     let flap = request(
         &mut peer,
         vec![
@@ -995,13 +1079,12 @@ fn refused_and_expired_motor_requests_are_counted() {
                 .expire(Expire::at_least(ms(300))),
         ],
     );
-    gw.receive(&flap, &mut m, t0 + ms(20));
+    gw.receive(&flap, &mut m, &mut ctl, t0 + ms(20));
     let mut now = t0 + ms(20);
     while now < t0 + ms(1000) {
         status(&mut m, now, &[]);
         flaps(&mut m, now, 40);
-        gw.set_local_motor(&mut m, now, true);
-        gw.tick(&mut m, now);
+        gw.tick(&mut m, &mut ctl, now);
         now = gw.next_deadline();
     }
     assert_eq!(
@@ -1009,8 +1092,9 @@ fn refused_and_expired_motor_requests_are_counted() {
         (0, 3)
     );
     assert!(m.events.iter().any(|e| {
-        e.text
-            .contains("expired while the page's keys were running a motor")
+        e.text.contains(
+            "expired while another run (the page's keys, the check or the remote) was going on",
+        )
     }));
 }
 
@@ -1024,7 +1108,8 @@ fn after_every_tick_the_gateway_deadline_is_in_the_future() {
     status(&mut m, t0, &[2]);
     flaps(&mut m, t0, 40);
     let mut gw = Gateway::new(commanded(), t0);
-    gw.tick(&mut m, t0);
+    let mut ctl = Controller::default();
+    gw.tick(&mut m, &mut ctl, t0);
     for id in 4..=28u8 {
         let e = DeviceEnable {
             device_id: id,
@@ -1062,9 +1147,9 @@ fn after_every_tick_the_gateway_deadline_is_in_the_future() {
                     Parameter::new(idents::IAS, Value::Sint(70)),
                 ],
             );
-            gw.receive(&d, &mut m, now);
+            gw.receive(&d, &mut m, &mut ctl, now);
         }
-        gw.tick(&mut m, now);
+        gw.tick(&mut m, &mut ctl, now);
         ticks += 1;
         let next = gw.next_deadline();
         assert!(next > now, "tick at +{:?}: deadline not ahead", now - t0);
@@ -1086,11 +1171,12 @@ fn system_item_labels_name_our_circuits_and_other_systems_are_refused() {
     named(&mut m, t0, 6, "TAXI LT");
     named(&mut m, t0, 7, "NAV/STROBE");
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let mut at = t0;
     let mut send = |gw: &mut Gateway, m: &mut Model, p: Parameter| {
         at += ms(10);
-        gw.receive(&request(&mut peer, vec![p]), m, at)
+        gw.receive(&request(&mut peer, vec![p]), m, &mut ctl, at)
     };
     let out = send(
         &mut gw,
@@ -1140,6 +1226,7 @@ fn a_request_sent_as_devstatus_is_taken() {
     let mut m = model();
     status(&mut m, t0, &[2]);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let kind = MsgKind {
         op: MsgOp::DevStatus,
         ..MsgKind::flight_data(CertLevel::Experimental)
@@ -1149,7 +1236,7 @@ fn a_request_sent_as_devstatus_is_taken() {
         .unwrap()
         .remove(0);
     assert_eq!(d[5], 3, "the header says DEVSTATUS");
-    assert_eq!(power(&gw.receive(&d, &mut m, t0)), [(5, true)]);
+    assert_eq!(power(&gw.receive(&d, &mut m, &mut ctl, t0)), [(5, true)]);
 }
 
 /// Draft §4.4: a message numbered below the last one from its source "MUST be
@@ -1163,6 +1250,7 @@ fn an_older_number_is_discarded_until_its_source_was_silent_for_10_s() {
     let mut m = model();
     status(&mut m, t0, &[2]);
     let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
     let before = Sender::new(PEER, 100)
         .pack(
             MsgKind::flight_data(CertLevel::Experimental),
@@ -1170,7 +1258,10 @@ fn an_older_number_is_discarded_until_its_source_was_silent_for_10_s() {
         )
         .unwrap()
         .remove(0);
-    assert_eq!(power(&gw.receive(&before, &mut m, t0)), [(5, true)]);
+    assert_eq!(
+        power(&gw.receive(&before, &mut m, &mut ctl, t0)),
+        [(5, true)]
+    );
     // The node restarts and numbers from 7: within 10 s of its last message, discarded.
     let restarted = |n| {
         Sender::new(PEER, n)
@@ -1181,19 +1272,22 @@ fn an_older_number_is_discarded_until_its_source_was_silent_for_10_s() {
             .unwrap()
             .remove(0)
     };
-    assert!(gw.receive(&restarted(7), &mut m, t0 + ms(9_000)).is_empty());
+    assert!(
+        gw.receive(&restarted(7), &mut m, &mut ctl, t0 + ms(9_000))
+            .is_empty()
+    );
     assert_eq!(gw.stats().rx.out_of_order, 1);
     // Heard again 9 s later (18 s after its last fresh message but only 9 s after the
     // discarded one): still within 10 s of hearing it, so still discarded.
     status(&mut m, t0 + ms(18_000), &[2, 5]);
     assert!(
-        gw.receive(&restarted(8), &mut m, t0 + ms(18_000))
+        gw.receive(&restarted(8), &mut m, &mut ctl, t0 + ms(18_000))
             .is_empty()
     );
     assert_eq!(gw.stats().rx.out_of_order, 2);
     // More than 10 s of silence: forgotten, and its low number is taken.
     status(&mut m, t0 + ms(28_500), &[2, 5]);
-    let out = gw.receive(&restarted(9), &mut m, t0 + ms(28_500));
+    let out = gw.receive(&restarted(9), &mut m, &mut ctl, t0 + ms(28_500));
     assert_eq!(power(&out), [(6, true)]);
 }
 
@@ -1225,6 +1319,7 @@ impl TrimRun {
         status(&mut m, t0, &[]);
         pitch(&mut m, t0, start);
         let mut gw = Gateway::new(commanded(), t0);
+        let mut ctl = Controller::default();
         let mut peer = Sender::new(PEER, 1);
         let mut pos = f32::from(start);
         let mut on = false;
@@ -1258,7 +1353,7 @@ impl TrimRun {
                             .expire(Expire::at_least(ms(600))),
                     ],
                 );
-                out.extend(gw.receive(&d, &mut m, now));
+                out.extend(gw.receive(&d, &mut m, &mut ctl, now));
             }
             let heard = (step * 5) % 100 == phase % 100;
             if heard {
@@ -1268,7 +1363,7 @@ impl TrimRun {
                 }
             }
             if heard || now >= gw.next_deadline() {
-                out.extend(gw.tick(&mut m, now).to_unit);
+                out.extend(gw.tick(&mut m, &mut ctl, now).to_unit);
             }
             for p in &out {
                 if let Message::TrimMove(tm) = p.message {
@@ -1413,6 +1508,7 @@ fn without_control_commands_are_refused_logged_once_and_counted() {
     status(&mut m, t0, &[2]);
     pitch(&mut m, t0, 125);
     let mut gw = Gateway::new(GatewayConfig::default(), t0);
+    let mut ctl = Controller::default();
     assert_eq!(gw.config().control, Control::Off, "off by default");
     let mut peer = Sender::new(PEER, 100);
     let commands = vec![
@@ -1426,8 +1522,8 @@ fn without_control_commands_are_refused_logged_once_and_counted() {
     for i in 0..8u64 {
         let d = request(&mut peer, commands.clone());
         let at = t0 + ms(250 * i);
-        to_unit.extend(gw.receive(&d, &mut m, at));
-        to_unit.extend(gw.tick(&mut m, at).to_unit);
+        to_unit.extend(gw.receive(&d, &mut m, &mut ctl, at));
+        to_unit.extend(gw.tick(&mut m, &mut ctl, at).to_unit);
     }
     assert!(
         to_unit
@@ -1441,7 +1537,7 @@ fn without_control_commands_are_refused_logged_once_and_counted() {
             .any(|p| matches!(p.message, Message::ExternalData(_))),
         "air data is still forwarded"
     );
-    assert_eq!(gw.running_motor(), None);
+    assert_eq!(gw.running_motor(&ctl), None);
     let s = gw.stats();
     assert_eq!(s.commands_not_allowed, 24, "3 commands x 8 datagrams");
     assert_eq!((s.commands_taken, s.commands_refused), (0, 0));
@@ -1459,7 +1555,7 @@ fn without_control_commands_are_refused_logged_once_and_counted() {
     assert!(said[0].contains("--xfsp-control"), "{said:?}");
     // Ten seconds on, the same source is said again, with the count so far.
     let d = request(&mut peer, commands[..1].to_vec());
-    assert!(gw.receive(&d, &mut m, t0 + ms(12_000)).is_empty());
+    assert!(gw.receive(&d, &mut m, &mut ctl, t0 + ms(12_000)).is_empty());
     let last = &m.events.back().unwrap().text;
     assert!(
         last.contains("25 network commands refused so far"),
@@ -1479,16 +1575,20 @@ fn only_listed_sources_may_command() {
         ..GatewayConfig::default()
     };
     let mut gw = Gateway::new(cfg, t0);
+    let mut ctl = Controller::default();
     let mut stranger = Sender::new(PEER, 100);
     let off = |s: &mut Sender| request(s, vec![ecb_request(2, EcbState::Off, Confidence::UserSel)]);
-    assert!(gw.receive(&off(&mut stranger), &mut m, t0).is_empty());
+    assert!(
+        gw.receive(&off(&mut stranger), &mut m, &mut ctl, t0)
+            .is_empty()
+    );
     let last = &m.events.back().unwrap().text;
     assert!(
         last.contains("0x0042 is not in --xfsp-control-from (0x1234)"),
         "{last}"
     );
     let mut listed = Sender::new(0x1234, 7);
-    let out = gw.receive(&off(&mut listed), &mut m, t0 + ms(10));
+    let out = gw.receive(&off(&mut listed), &mut m, &mut ctl, t0 + ms(10));
     assert!(
         matches!(out.as_slice(), [Packet { message: Message::DevicePower(p), .. }] if p.device_id == 2 && !p.on),
         "{out:?}"

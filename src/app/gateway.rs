@@ -74,8 +74,7 @@ impl App {
                 config.control.describe()
             ),
         );
-        let mut gateway = Gateway::new(config, now);
-        gateway.share_against(self.controller.with(|c| c.against()));
+        let gateway = Gateway::new(config, now);
         self.gateway = Some(PageGateway {
             gateway,
             net,
@@ -130,16 +129,14 @@ impl App {
     }
 
     pub(super) fn xfsp_receive(&mut self, d: Datagram) {
-        let local = self.controller.running().is_some();
         let Some(g) = self.gateway.as_mut() else {
             return;
         };
-        // One motor stream at a time on the link: the page's keys come first.
-        let mut packets = g
-            .gateway
-            .set_local_motor(&mut lock(&self.model), d.at, local);
-        packets.extend(g.gateway.receive(&d.bytes, &mut lock(&self.model), d.at));
-        self.send(Origin::Xfsp, packets);
+        // Motor requests run through the page's controller, the one way every run
+        // goes (`control::How::Target`): the page's keys come first.
+        let mut model = lock(&self.model);
+        self.controller
+            .act_xfsp(|c| (g.gateway.receive(&d.bytes, &mut model, c, d.at), ()));
         // No redraw of its own: what the network changes on screen (a command in the
         // event log, what is forwarded) goes through the model, whose revision `tick`
         // watches. Marking every datagram dirty redrew the page for each of our own,
@@ -147,16 +144,17 @@ impl App {
     }
 
     pub(super) fn xfsp_tick(&mut self, now: Instant) {
-        let local = self.controller.running().is_some();
         let Some(g) = self.gateway.as_mut() else {
             return;
         };
-        let mut to_unit = g
-            .gateway
-            .set_local_motor(&mut lock(&self.model), now, local);
-        let step = g.gateway.tick(&mut lock(&self.model), now);
-        to_unit.extend(step.to_unit);
-        match g.net.send_all(&step.datagrams) {
+        let datagrams = {
+            let mut model = lock(&self.model);
+            self.controller.act_xfsp(|c| {
+                let step = g.gateway.tick(&mut model, c, now);
+                (step.to_unit, step.datagrams)
+            })
+        };
+        match g.net.send_all(&datagrams) {
             Err(e) if !g.net_error_said => {
                 lock(&self.model).log(
                     now,
@@ -165,38 +163,23 @@ impl App {
                 );
                 g.net_error_said = true;
             }
-            Ok(()) if !step.datagrams.is_empty() => g.net_error_said = false,
+            Ok(()) if !datagrams.is_empty() => g.net_error_said = false,
             _ => {}
         }
-        self.send(Origin::Xfsp, to_unit);
-    }
-
-    /// Any key at the page ends a network-driven motor run.
-    pub(super) fn xfsp_local_key(&mut self, now: Instant) {
-        let Some(g) = self.gateway.as_mut() else {
-            return;
-        };
-        let packets = g.gateway.local_key(&mut lock(&self.model), now);
-        self.send(Origin::Key, packets);
     }
 
     pub(super) fn xfsp_deadline(&self) -> Option<Instant> {
         self.gateway.as_ref().map(|g| g.gateway.next_deadline())
     }
 
-    pub(super) fn xfsp_link_error(&mut self, now: Instant) {
-        let Some(g) = self.gateway.as_mut() else {
-            return;
-        };
-        let packets = g.gateway.on_link_error(&mut lock(&self.model), now);
-        self.send(Origin::Page, packets);
-    }
-
     pub(super) fn xfsp_shutdown(&mut self, now: Instant) {
         let Some(g) = self.gateway.as_mut() else {
             return;
         };
-        let packets = g.gateway.shutdown(&mut lock(&self.model), now);
-        self.send(Origin::Page, packets);
+        // Leaving is the process's own stop, not the network's.
+        let mut model = lock(&self.model);
+        self.controller.act_with(Origin::Page, |c| {
+            (g.gateway.shutdown(&mut model, c, now), ())
+        });
     }
 }

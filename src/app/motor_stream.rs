@@ -141,6 +141,21 @@ impl MotorPath {
         self.act_locked(s, f)
     }
 
+    /// The XFSp gateway's turn (`f` runs it with the controller): what it sends is
+    /// the network's; the resends and the stop of the run going on are the
+    /// network's only while that run is one the network asked for
+    /// ([`Controller::target_running`]), not a key's it waited behind.
+    pub fn act_xfsp<R>(&self, f: impl FnOnce(&mut Controller) -> (Vec<Packet>, R)) -> R {
+        let mut s = self.lock();
+        let (packets, r) = f(&mut s.controller);
+        if s.controller.target_running().is_some() {
+            s.origin = Origin::Xfsp;
+        }
+        self.queue(Origin::Xfsp, packets);
+        s.poke_if_earlier();
+        r
+    }
+
     /// As [`MotorPath::act_with`] for whatever started the run in progress (the page losing
     /// focus, or its being hidden, stops that run).
     pub fn act_on_run(&self, f: impl FnOnce(&mut Controller) -> Vec<Packet>) {

@@ -290,14 +290,10 @@ impl App {
         if let TermEvent::Key(key) = event
             && self.page_hidden()
         {
-            self.xfsp_local_key(now);
             return self.hidden_key(key, now);
         }
         if let Some(flow) = self.replay_key(&event, now) {
             return flow;
-        }
-        if matches!(event, TermEvent::Key(_)) {
-            self.xfsp_local_key(now);
         }
         match event {
             TermEvent::Key(key) if self.view.screen == Screen::Traffic => {
@@ -473,7 +469,6 @@ impl App {
             }
             Wake::WriteError => {
                 self.controller.stop(now, StopReason::LinkError);
-                self.xfsp_link_error(now);
                 let n = self.controller.take_notice();
                 self.set_notice(now, n);
             }

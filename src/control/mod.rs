@@ -94,7 +94,34 @@ pub struct Controller {
     /// remote lets go.
     remote_run: Option<(Motor, Direction)>,
     lease_ended: Option<(Motor, Direction, StopReason)>,
+    /// The network's run to a position ([`How::Target`]) as it was started.
+    target: Option<TargetRun>,
 }
+
+/// A run to a position asked over the network ([`How::Target`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TargetRun {
+    pub motor: Motor,
+    pub direction: Direction,
+    /// The target, in raw counts of FLAP_TRIM_STATUS.
+    pub position: u8,
+    /// Where it started, in raw counts: the target lies the way from here that the
+    /// run is driven, whichever way the sensor counts.
+    from: u8,
+}
+
+impl TargetRun {
+    /// Raw counts still to go to the target: zero or less once there or past it.
+    fn remaining(&self, position: u8) -> i32 {
+        let sign = (i32::from(self.position) - i32::from(self.from)).signum();
+        (i32::from(self.position) - i32::from(position)) * sign
+    }
+}
+
+/// Raw counts short of its target at which a run to a position ([`How::Target`])
+/// ends: the 10 Hz position reports lag the motor, so stopping a count early lands
+/// on the target, not past it.
+pub const TARGET_MARGIN: i32 = 1;
 
 /// How a motor run lasts ([`Controller::start`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -108,6 +135,13 @@ pub enum How {
     For { length: Duration, way: Option<Way> },
     /// While the remote renews it ([`LEASE`]).
     Lease,
+    /// To a position asked over the network (XFSp's FLAPREQ, PTRIMREQ, RTRIMREQ):
+    /// toward raw `position`, ending there ([`StopReason::TargetReached`]), for as
+    /// long as the requests renew it ([`Controller::renew_target`]) within `lease`
+    /// ([`StopReason::RequestsStopped`]). It starts only when no other run is going
+    /// on, and any run another origin starts ends it: a person at the keys, the
+    /// remote or the check comes before the network.
+    Target { position: u8, lease: Duration },
 }
 
 /// The walk-around remote's lease: a run lives this long past its last renewal.
@@ -136,6 +170,7 @@ impl Controller {
             reset_asked: None,
             remote_run: None,
             lease_ended: None,
+            target: None,
         }
     }
 
@@ -236,7 +271,8 @@ impl Controller {
     /// The one entry for a motor run, from every origin: the keys (`Key`, and
     /// `Setup` for the setup screens' endpoint capture, which runs past endpoints),
     /// the installation check (`Check`), the walk-around remote (`Remote`, through
-    /// [`Controller::lease`]). In one place:
+    /// [`Controller::lease`]), the XFSp gateway (`Xfsp`, [`How::Target`]). In one
+    /// place:
     /// - the permit: motors refused this session, a page nobody sees (for a run with
     ///   no key behind it), then [`run::permit`] (the model's checks, the endpoint
     ///   ahead, a motor seen moving against its command: a key's run confirmed by its
@@ -280,6 +316,11 @@ impl Controller {
                 Refused::Unseen(unseen),
             ));
         }
+        if let How::Target { .. } = how
+            && self.streamer.running_key().is_some()
+        {
+            return Err(MotorRefusal::new(origin, motor, direction, Refused::Busy));
+        }
         let keys = matches!(origin, Origin::Key | Origin::Setup);
         let confirmed = keys
             && self.against.seen(motor).is_some()
@@ -290,7 +331,7 @@ impl Controller {
         let known = Known {
             way: match how {
                 How::For { way, .. } => way,
-                How::Press | How::Lease => None,
+                How::Press | How::Lease | How::Target { .. } => None,
             },
             confirmed,
             keep_ends: origin != Origin::Setup,
@@ -308,6 +349,16 @@ impl Controller {
             How::Press => self.streamer.press(now, motor, direction),
             How::For { length, .. } => self.streamer.run_for(now, motor, direction, length),
             How::Lease => self.streamer.lease(now, motor, direction, LEASE),
+            How::Target { lease, .. } => {
+                self.settle_remote();
+                self.streamer.lease_ending(
+                    now,
+                    motor,
+                    direction,
+                    lease,
+                    StopReason::RequestsStopped,
+                )
+            }
         };
         if self.streamer.running_key() != Some((motor, direction)) {
             return Err(MotorRefusal::new(
@@ -324,6 +375,15 @@ impl Controller {
         };
         self.watch = Some(watch.from_start(model, now));
         self.probe = None;
+        self.target = match how {
+            How::Target { position, .. } => model.flap_trim.as_ref().map(|st| TargetRun {
+                motor,
+                direction,
+                position,
+                from: endpoints::position(motor, &st.value),
+            }),
+            _ => None,
+        };
         if known.keep_ends
             && way.is_none()
             && let Some((probing, length)) = endpoints::Probing::start(model, motor, direction, now)
@@ -393,6 +453,25 @@ impl Controller {
             Some(Action::KeyReleased) => self.reset_asked,
             _ => self.reset_asked.take(),
         };
+        if self.target_running().is_some() {
+            // A person at the keys comes before the network: any key, a motor key
+            // of the very run too, ends a run the network asked for.
+            out.packets
+                .extend(self.streamer.stop(now, StopReason::OtherKey));
+            out.notice = self.stopped_notice();
+            match action {
+                // Held on, its repeats do not start a run of their own: the person
+                // presses again for that, as after any stop.
+                Some(Action::Motor {
+                    motor, direction, ..
+                }) => out
+                    .packets
+                    .extend(self.streamer.press_refused(now, motor, direction)),
+                Some(Action::Quit) => out.action = action,
+                _ => {}
+            }
+            return;
+        }
         if self.streamer.running_key().is_some() {
             match action {
                 Some(Action::Motor {
@@ -563,7 +642,62 @@ impl Controller {
         };
         match motor_check(model, motor, direction, now).and(endpoint) {
             Err(reason) => self.end_run(now, reason),
-            Ok(()) => Vec::new(),
+            Ok(()) => match (self.target_running(), &model.flap_trim) {
+                (Some(t), Some(st))
+                    if t.remaining(endpoints::position(motor, &st.value)) <= TARGET_MARGIN =>
+                {
+                    self.stop(now, StopReason::TargetReached)
+                }
+                _ => Vec::new(),
+            },
+        }
+    }
+
+    /// The network's run to a position ([`How::Target`]) going on, if one is.
+    pub fn target_running(&self) -> Option<TargetRun> {
+        self.target.filter(|t| {
+            self.streamer.running_key() == Some((t.motor, t.direction))
+                && self.streamer.lease_lapse() == Some(StopReason::RequestsStopped)
+        })
+    }
+
+    /// A request renews the network's run to a position for `lease` from `now`
+    /// (never past the run cap). Returns what to send (a stop, if the run's own
+    /// clocks ran out first).
+    pub fn renew_target(&mut self, now: Instant, lease: Duration) -> Vec<Packet> {
+        match self.target_running() {
+            Some(t) => self.streamer.lease_ending(
+                now,
+                t.motor,
+                t.direction,
+                lease,
+                StopReason::RequestsStopped,
+            ),
+            None => Vec::new(),
+        }
+    }
+
+    /// Ends the network's run to a position, if it is the one going on; any other
+    /// run is left alone.
+    pub fn stop_target(&mut self, now: Instant, reason: StopReason) -> Vec<Packet> {
+        match self.target_running() {
+            Some(_) => self.stop(now, reason),
+            None => Vec::new(),
+        }
+    }
+
+    /// The remote's run, if it ended without the remote's own stop, is remembered as
+    /// ended, so its renewals do not take another leased run for it.
+    fn settle_remote(&mut self) {
+        if let Some(k) = self.remote_run
+            && !(self.streamer.leased() && self.streamer.running_key() == Some(k))
+        {
+            self.remote_run = None;
+            let reason = self
+                .streamer
+                .last_stop()
+                .map_or(StopReason::LeaseExpired, |s| s.reason);
+            self.lease_ended = Some((k.0, k.1, reason));
         }
     }
 
@@ -585,16 +719,7 @@ impl Controller {
         let key = (motor, direction);
         let mut out = self.check_model(model, now);
         out.extend(self.streamer.tick(now));
-        if let Some(k) = self.remote_run
-            && !(self.streamer.leased() && self.streamer.running_key() == Some(k))
-        {
-            self.remote_run = None;
-            let reason = self
-                .streamer
-                .last_stop()
-                .map_or(StopReason::LeaseExpired, |s| s.reason);
-            self.lease_ended = Some((k.0, k.1, reason));
-        }
+        self.settle_remote();
         if let Some((m, d, reason)) = self.lease_ended {
             if (m, d) == key {
                 let why = MotorRefusal::new(

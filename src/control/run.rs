@@ -56,6 +56,8 @@ pub enum Refused {
     LeaseEnded(StopReason),
     /// The stream did not start (the direction does not apply to the motor).
     NotStarted,
+    /// Another run is going on (a network request waits for it, [`super::How::Target`]).
+    Busy,
 }
 
 /// A refused motor run: why, and the words for where it was asked from.
@@ -160,6 +162,10 @@ pub fn words(origin: Origin, motor: Motor, direction: Direction, reason: Refused
             why.describe()
         ),
         Refused::NotStarted => format!("{} did not start", motor.name()),
+        Refused::Busy => format!(
+            "{} not started: another motor run is going on",
+            motor.name()
+        ),
     }
 }
 

@@ -135,6 +135,12 @@ pub enum StopReason {
     /// A leased run ([`MotorStreamer::lease`], the walk-around remote's hold-to-run)
     /// was not renewed in time: the finger left the button, or the phone went quiet.
     LeaseExpired,
+    /// A run to a target asked over the network (XFSp) was not renewed in time: the
+    /// requests stopped coming, or the requester went quiet. A requester has no stop
+    /// of its own, so this is how it lets go ([`StopReason::is_normal`]).
+    RequestsStopped,
+    /// A run to a target ([`super::How::Target`]) reached it.
+    TargetReached,
     /// The remote asked for its run to stop (`{"stop":true}`: the finger let go).
     RemoteStop,
     /// A fault elsewhere on the unit (another circuit, or FAULT_STATUS's system
@@ -174,6 +180,8 @@ impl StopReason {
             StopReason::RunDone => "the timed run ended".into(),
             StopReason::LeaseExpired => "the remote stopped renewing its run".into(),
             StopReason::RemoteStop => "released on the remote".into(),
+            StopReason::RequestsStopped => "the network requests for it stopped".into(),
+            StopReason::TargetReached => "target reached".into(),
             StopReason::UnitFault => "a fault elsewhere on the unit".into(),
             StopReason::AtEndpoint(end) => format!("at its endpoint (position {end})"),
             StopReason::PositionStale => format!(
@@ -197,6 +205,8 @@ impl StopReason {
                 | StopReason::RepeatsStopped
                 | StopReason::RunDone
                 | StopReason::RemoteStop
+                | StopReason::TargetReached
+                | StopReason::RequestsStopped
         )
     }
 }
@@ -350,9 +360,9 @@ struct Run {
     /// A timed run ([`MotorStreamer::run_for`]): it ends here, and no key keeps it
     /// alive or ends it early but as any key does (another key, release).
     until: Option<Instant>,
-    /// A leased run ([`MotorStreamer::lease`]): `until` is its lease, renewed by
-    /// each call, and its end is [`StopReason::LeaseExpired`].
-    leased: bool,
+    /// A leased run ([`MotorStreamer::lease`], [`MotorStreamer::lease_ending`]):
+    /// `until` is its lease, renewed by each call, and its end is this reason.
+    leased: Option<StopReason>,
     /// A probe ([`MotorStreamer::probe`]): the motor is stopped on the wire here,
     /// the run (and its key) going on.
     probe_until: Option<Instant>,
@@ -504,7 +514,7 @@ impl MotorStreamer {
             started: now,
             last_sent: now,
             until: Some(now + length.min(self.config.max_run)),
-            leased: false,
+            leased: None,
             probe_until: None,
             paused: None,
             paused_for: Duration::ZERO,
@@ -528,9 +538,23 @@ impl MotorStreamer {
         direction: Direction,
         lease: Duration,
     ) -> Vec<Packet> {
+        self.lease_ending(now, motor, direction, lease, StopReason::LeaseExpired)
+    }
+
+    /// As [`lease`](Self::lease), for a lease whose lapse ends the run for `lapse`
+    /// (a network requester's, [`StopReason::RequestsStopped`]); a call renews only
+    /// a run leased with the same `lapse`.
+    pub fn lease_ending(
+        &mut self,
+        now: Instant,
+        motor: Motor,
+        direction: Direction,
+        lease: Duration,
+        lapse: StopReason,
+    ) -> Vec<Packet> {
         let out = self.expire(now);
         if let Some(run) = self.run.as_mut()
-            && run.leased
+            && run.leased == Some(lapse)
             && run.key == (motor, direction)
         {
             run.until = Some((now + lease).min(run.started + self.config.max_run));
@@ -539,14 +563,21 @@ impl MotorStreamer {
         let mut out = out;
         out.extend(self.run_for(now, motor, direction, lease));
         if let Some(run) = self.run.as_mut() {
-            run.leased = true;
+            run.leased = Some(lapse);
         }
         out
     }
 
-    /// Whether the run going on is a leased one ([`MotorStreamer::lease`]).
+    /// What the lapse of the lease of the run going on would end it for, if it is
+    /// leased.
+    pub fn lease_lapse(&self) -> Option<StopReason> {
+        self.run.and_then(|r| r.leased)
+    }
+
+    /// Whether the run going on is the remote's leased one ([`MotorStreamer::lease`]).
     pub fn leased(&self) -> bool {
-        self.run.is_some_and(|r| r.leased)
+        self.run
+            .is_some_and(|r| r.leased == Some(StopReason::LeaseExpired))
     }
 
     /// Makes the run going on a probe: its motor runs only until `now + length`,
@@ -574,7 +605,7 @@ impl MotorStreamer {
         {
             let pause = now.saturating_duration_since(paused);
             run.paused_for += pause;
-            if !run.leased
+            if run.leased.is_none()
                 && let Some(until) = run.until.as_mut()
             {
                 *until += pause;
@@ -763,7 +794,7 @@ impl MotorStreamer {
                     started: now,
                     last_sent: now,
                     until: None,
-                    leased: false,
+                    leased: None,
                     probe_until: None,
                     paused: None,
                     paused_for: Duration::ZERO,
@@ -851,11 +882,7 @@ impl MotorStreamer {
             } else if now >= run.started + self.config.max_run {
                 Some(StopReason::MaxRunTime)
             } else if run.until.is_some_and(|u| now >= u) {
-                Some(if run.leased {
-                    StopReason::LeaseExpired
-                } else {
-                    StopReason::RunDone
-                })
+                Some(run.leased.unwrap_or(StopReason::RunDone))
             } else if self.dead_man_deadline().is_some_and(|d| now >= d) {
                 Some(StopReason::RepeatsStopped)
             } else {

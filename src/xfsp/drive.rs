@@ -1,59 +1,38 @@
-//! FLAPREQ/PTRIMREQ/RTRIMREQ: drive a motor toward a requested position with control's
-//! [`MotorStreamer`], so the network gets exactly the safe 4 Hz stream the keys get.
+//! FLAPREQ/PTRIMREQ/RTRIMREQ: drive a motor toward a requested position through
+//! control's one entry for a motor run ([`Controller::start`], [`How::Target`]), on the
+//! page's own stream, so the network gets exactly the safe 4 Hz stream, the permit,
+//! the endpoint watch, the probes and the wrong-way rule the keys get.
 //!
 //! A request is held for the shorter of its Expire and [`REQUEST_HOLD`]; a requester
-//! keeps a motor running only by repeating the request (we recommend 4 Hz). The run
-//! ends, with a stop message, on the first of: the target reached or passed, the
-//! request expiring (requests stopped), any reason control's `motor_check` gives (lost
-//! communication, motor fault, disabled, flap-down inhibit, lost motor status), the
-//! streamer's own limits (maximum run time, starved stream), a link error, or shutdown.
+//! keeps a motor running only by repeating the request (we recommend 4 Hz): each
+//! request renews the run's lease to its own end ([`Controller::renew_target`]), and
+//! the stream's dead man ends the run when the requests stop
+//! ([`StopReason::RequestsStopped`]). The run ends, with a stop message, on the first
+//! of: the target reached ([`StopReason::TargetReached`]), the requests stopping, and
+//! every end control gives any run (lost communication, a motor fault, the motor
+//! disabled, flap-down inhibit, lost motor status, an endpoint, a stale position,
+//! moving against its command, the run cap, a starved stream, a link error, quit).
 //!
-//! The unit does not stop a TRIM_MOVE/FLAP_MOVE stream at the motor's endpoints (ICD
-//! Tables 15 and 16), so a network run keeps to them by the same rule as the page's own
-//! runs ([`endpoints::Watch`]): it is refused within [`endpoints::START_ROOM`] of the
-//! endpoint it heads for, and ends at the endpoint ahead (or just before it would pass
-//! it at the rate it is moving), at the endpoint behind once it moves toward it, and on
-//! a position older than [`endpoints::POSITION_FRESH`]. Started within
-//! [`endpoints::NEAR`] of the endpoint behind it, it goes as probes until the motor
-//! shows its way ([`endpoints::Probing`]), as the page's keys do, so a motor wired
-//! the wrong way is not driven past that endpoint beyond [`endpoints::NOISE`].
-//!
-//! Like every run, it also ends as soon as it moves [`endpoints::MOVED`] counts back
-//! from the farthest it got the way it was driven (the watch's rule,
-//! [`StopReason::MovedAgainst`]): a motor with swapped leads or polarity runs away
-//! from where it was sent, and is stopped there rather than at the far endpoint. A
-//! motor seen doing so, here or by any other origin sharing the record
-//! ([`MotorDrive::share_against`]), is refused from then on: the network cannot
-//! confirm such a run ([`crate::control::against`]).
+//! One stream on the link: a network request starts only while no other run goes on
+//! (the page's keys, setup, the check or the remote), and waits for it; any of them
+//! starting a run ends the network's, and any key at the page does too, as do the
+//! terminal losing focus or becoming too small (every run ends then). A person at
+//! the laptop or the wingtip comes before the network.
 //!
 //! After a run ends for any reason the target is *latched*: the same target does not
 //! start the motor again, so a position that settles a count away from the target, or a
 //! fault that clears, never makes the motor hunt or restart by itself. A different
 //! target, or the requests stopping and starting again, is a new request.
 //!
-//! One motor runs at a time (the streamer has one run); other requests wait their turn.
-//!
 //! Every request gets an answer in the event log and in [`MotorDrive::counts`]: taken
 //! (a run started, or the motor was already there) or refused (no live position or
-//! scale, a motor check failed, at its endpoint, or it expired waiting for another
-//! run to end).
-//!
-//! [`endpoints::MOVED`]: crate::control::endpoints::MOVED
-//! [`endpoints::NEAR`]: crate::control::endpoints::NEAR
-//! [`endpoints::NOISE`]: crate::control::endpoints::NOISE
-//! [`endpoints::POSITION_FRESH`]: crate::control::endpoints::POSITION_FRESH
-//! [`endpoints::Probing`]: crate::control::endpoints::Probing
-//! [`endpoints::Probing::next`]: crate::control::endpoints::Probing::next
-//! [`endpoints::START_ROOM`]: crate::control::endpoints::START_ROOM
-//! [`endpoints::Watch`]: crate::control::endpoints::Watch
+//! scale, the permit refused it, or it expired waiting for another run to end).
 
 use std::time::{Duration, Instant};
 
 use crate::audit::Origin;
-use crate::control::endpoints::{self, ProbeNext, Probing, Watch};
-use crate::control::run::{self, Known};
-use crate::control::run_state::ReleaseMode;
-use crate::control::{Against, Direction, MotorStreamer, StopReason, StreamerConfig, motor_check};
+use crate::control::endpoints;
+use crate::control::{Controller, Direction, How, StopReason, TARGET_MARGIN};
 use crate::model::{LogLevel, Model, Motor};
 use crate::protocol::message::Packet;
 
@@ -61,9 +40,6 @@ use super::scale::Axis;
 
 /// How long a request is held without a repeat: one 1 Hz period plus 200 ms of jitter.
 pub const REQUEST_HOLD: Duration = Duration::from_millis(1200);
-/// Raw counts short of the target at which the motor is stopped: the 10 Hz position
-/// reports lag the motor, so stopping a count early lands on the target, not past it.
-pub const STOP_MARGIN: i32 = 1;
 
 /// A motor request as heard.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -81,18 +57,14 @@ struct Slot {
     latched: Option<i32>,
 }
 
-/// The run going on now.
-#[derive(Debug, Clone)]
+/// The run this drive started, as it asked for it.
+#[derive(Debug, Clone, Copy)]
 struct Active {
     motor: Motor,
     direction: Direction,
     /// The request's target on the draft's scale, and in raw counts.
     target: i32,
     raw_target: u8,
-    /// Its watch over the endpoints, the position's age and its way.
-    watch: Watch,
-    /// Going as probes until the motor shows its way ([`endpoints::Probing`]).
-    probe: Option<Probing>,
 }
 
 /// How the requests this drive served ended, for the gateway's counters.
@@ -106,51 +78,27 @@ pub struct DriveCounts {
 
 #[derive(Debug, Clone)]
 pub struct MotorDrive {
-    streamer: MotorStreamer,
     slots: [Slot; 3],
     active: Option<Active>,
-    /// The page's own keys are running a motor: the network waits, so two streams
-    /// (perhaps in opposite directions) never share the link.
-    local_busy: bool,
     counts: DriveCounts,
-    /// Motors seen moving against their command, shared with the page's keys.
-    against: Against,
 }
 
-impl MotorDrive {
-    /// `config.release_mode` is forced to key-release: a network request has no key
-    /// repeats, and its dead man is the request hold instead.
-    pub fn new(mut config: StreamerConfig) -> MotorDrive {
-        config.release_mode = ReleaseMode::KeyRelease;
-        // A request's own expiry is this drive's dead man; there are no key repeats.
-        config.key_release_repeat_guard = None;
+impl Default for MotorDrive {
+    fn default() -> Self {
         MotorDrive {
-            streamer: MotorStreamer::new(config),
             slots: [Slot {
                 req: None,
                 latched: None,
             }; 3],
             active: None,
-            local_busy: false,
             counts: DriveCounts::default(),
-            against: Against::default(),
         }
     }
+}
 
-    /// Shares the record of motors seen moving against their command with the other
-    /// origins of runs (the page's controller): what one saw, every one refuses.
-    pub fn share_against(&mut self, against: Against) {
-        self.against = against;
-    }
-
+impl MotorDrive {
     pub fn counts(&self) -> DriveCounts {
         self.counts
-    }
-
-    /// A command number from the streamer's counter, so every request the gateway
-    /// sends is numbered from one sequence.
-    pub fn next_cnt(&mut self) -> u8 {
-        self.streamer.next_cnt()
     }
 
     /// Records a request; `life` is its Expire (`None` for never).
@@ -174,8 +122,12 @@ impl MotorDrive {
         });
     }
 
-    pub fn running(&self) -> Option<(Motor, Direction)> {
-        self.streamer.running_key()
+    /// The motor this drive's run moves, while the controller runs it.
+    pub fn running(&self, ctl: &Controller) -> Option<Motor> {
+        let a = self.active?;
+        ctl.target_running()
+            .filter(|t| (t.motor, t.direction, t.position) == (a.motor, a.direction, a.raw_target))
+            .map(|t| t.motor)
     }
 
     /// The request held for `motor`.
@@ -187,34 +139,26 @@ impl MotorDrive {
         &mut self.slots[motor.index()]
     }
 
+    /// When a held request runs out (the controller's own deadlines are its own).
     pub fn next_deadline(&self) -> Option<Instant> {
-        let reqs = self.slots.iter().filter_map(|s| s.req.map(|r| r.until));
-        reqs.chain(self.streamer.next_deadline()).min()
+        self.slots
+            .iter()
+            .filter_map(|s| s.req.map(|r| r.until))
+            .min()
     }
 
-    /// Stops any run now (link error, shutdown).
-    /// Whether the page's own keys run a motor: while they do, a network run stops
-    /// (its target done with) and none starts.
-    pub fn set_local_busy(&mut self, model: &mut Model, now: Instant, busy: bool) -> Vec<Packet> {
-        self.local_busy = busy;
-        if busy && self.active.is_some() {
-            self.stop(model, now, StopReason::OtherKey)
-        } else {
-            Vec::new()
-        }
-    }
-
-    /// A key at the page stops a network run, as any other key stops a keyed one.
-    pub fn local_key(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
-        if self.active.is_some() {
-            self.stop(model, now, StopReason::OtherKey)
-        } else {
-            Vec::new()
-        }
-    }
-
-    pub fn stop(&mut self, model: &mut Model, now: Instant, reason: StopReason) -> Vec<Packet> {
-        let out = self.streamer.stop(now, reason);
+    /// Ends this drive's run, if the controller still runs it (shutdown).
+    pub fn stop(
+        &mut self,
+        ctl: &mut Controller,
+        model: &mut Model,
+        now: Instant,
+        reason: StopReason,
+    ) -> Vec<Packet> {
+        let out = match self.running(ctl) {
+            Some(_) => ctl.stop_target(now, reason),
+            None => Vec::new(),
+        };
         if let Some(a) = self.active.take() {
             log_stop(model, now, a.motor, &reason.describe());
             self.slot(a.motor).latched = Some(a.target);
@@ -222,26 +166,34 @@ impl MotorDrive {
         out
     }
 
-    /// Expires requests, ends a run that must end, re-sends, and starts a waiting one.
-    /// Call it at [`next_deadline`](Self::next_deadline) and after every packet applied
-    /// to the model, so a reached target or a fault stops the motor at once.
-    pub fn tick(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
+    /// Expires requests, renews or ends this drive's run, and starts a waiting one.
+    /// Call it at [`next_deadline`](Self::next_deadline) and after every packet
+    /// applied to the model and every request heard. The controller's own checks
+    /// (the target, the watch, the probes, the model) run in its tick, which the App
+    /// calls on every pass; they run here too while this drive's run goes on, so the
+    /// gateway's core is whole without the App.
+    pub fn tick(&mut self, ctl: &mut Controller, model: &mut Model, now: Instant) -> Vec<Packet> {
         let mut out = Vec::new();
-        let running = self.active.as_ref().map(|a| a.motor);
+        if self.running(ctl).is_some() {
+            out.extend(ctl.tick(model, now));
+        }
+        let running = self.running(ctl);
+        let other = ctl.running().is_some() && running.is_none();
+        // This drive's run, going on or ended just now by its own lease's lapse.
+        let ours = self.active.map(|a| a.motor);
         for motor in Motor::ALL {
-            let local_busy = self.local_busy;
             let slot = self.slot(motor);
             let Some(r) = slot.req.filter(|r| now >= r.until) else {
                 continue;
             };
-            let served = slot.latched == Some(r.target) || running == Some(motor);
+            let served = slot.latched == Some(r.target) || ours == Some(motor);
             slot.req = None;
             slot.latched = None;
             if !served {
                 // Never dropped in silence: it waited for another run and ran out.
                 self.counts.refused += 1;
-                let why = if local_busy {
-                    "the page's keys were running a motor"
+                let why = if other {
+                    "another run (the page's keys, the check or the remote) was going on"
                 } else {
                     "another motor was running"
                 };
@@ -257,65 +209,45 @@ impl MotorDrive {
                 );
             }
         }
-        if let Some(mut a) = self.active.take() {
-            // (reason, words for the log, whether this target is done with)
-            let stop = match self.slot(a.motor).req {
-                None => Some((
-                    StopReason::Released,
-                    "requests stopped or expired".into(),
-                    true,
-                )),
-                // The new target starts below, from wherever the motor stopped.
-                Some(r) if r.target != a.target => Some((
-                    StopReason::Released,
-                    "a new target was requested".into(),
-                    false,
-                )),
-                Some(_) => match motor_check(model, a.motor, a.direction, now)
-                    .and_then(|()| a.watch.check(model, now))
-                {
-                    Err(reason) => Some((reason, reason.describe(), true)),
-                    Ok(()) => a.progress(model, now),
-                },
-            };
-            match stop {
-                Some((reason, why, done)) => {
-                    if let Some(asked) = crate::control::against::asked(reason) {
-                        self.against.record(a.motor, asked);
-                    }
-                    out.extend(self.streamer.stop(now, reason));
-                    log_stop(model, now, a.motor, &why);
-                    if done {
+        if let Some(a) = self.active.take() {
+            if running.is_some() {
+                match self.slot(a.motor).req {
+                    None => {
+                        out.extend(ctl.stop_target(now, StopReason::RequestsStopped));
+                        log_stop(model, now, a.motor, "requests stopped or expired");
                         self.slot(a.motor).latched = Some(a.target);
                     }
+                    // The new target starts below, from wherever the motor stopped.
+                    Some(r) if r.target != a.target => {
+                        out.extend(ctl.stop_target(now, StopReason::Released));
+                        log_stop(model, now, a.motor, "a new target was requested");
+                    }
+                    Some(r) => {
+                        out.extend(ctl.renew_target(now, r.until.saturating_duration_since(now)));
+                        self.active = Some(a);
+                    }
                 }
-                None => self.active = Some(a),
+            } else {
+                // The controller ended it: the target, the requests stopping, or any
+                // end of a run.
+                let why = ctl.last_stop().filter(|s| s.motor == a.motor).map_or_else(
+                    || "its run ended".to_string(),
+                    |s| match s.reason {
+                        StopReason::RequestsStopped => "requests stopped or expired".into(),
+                        r => r.describe(),
+                    },
+                );
+                log_stop(model, now, a.motor, &why);
+                self.slot(a.motor).latched = Some(a.target);
             }
         }
-        out.extend(self.streamer.tick(now));
-        out.extend(self.probe_step(model, now));
-        if let Some(a) = self
-            .active
-            .take_if(|_| self.streamer.running_key().is_none())
-        {
-            // The streamer ended the run itself (maximum run time, starved stream).
-            let why = self
-                .streamer
-                .last_stop()
-                .map_or_else(|| "stream ended".to_string(), |s| s.reason.describe());
-            log_stop(model, now, a.motor, &why);
-            self.slot(a.motor).latched = Some(a.target);
-        }
-        if self.active.is_none() {
-            out.extend(self.start_next(model, now));
+        if self.active.is_none() && ctl.running().is_none() {
+            out.extend(self.start_next(ctl, model, now));
         }
         out
     }
 
-    fn start_next(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
-        if self.local_busy {
-            return Vec::new();
-        }
+    fn start_next(&mut self, ctl: &mut Controller, model: &mut Model, now: Instant) -> Vec<Packet> {
         for motor in Motor::ALL {
             let slot = *self.slot(motor);
             let Some(req) = slot.req else { continue };
@@ -340,7 +272,7 @@ impl MotorDrive {
             let raw_target = axis.to_raw(req.target);
             let Some(direction) = axis
                 .direction(motor, pos, raw_target)
-                .filter(|&d| axis.remaining(motor, d, pos, raw_target) > STOP_MARGIN)
+                .filter(|&d| axis.remaining(motor, d, pos, raw_target) > TARGET_MARGIN)
             else {
                 self.counts.taken += 1;
                 model.log(
@@ -355,110 +287,51 @@ impl MotorDrive {
                 );
                 continue;
             };
-            // The page's own rule for a run that keeps to the endpoints: no start at
-            // (or within a run's first unwatched travel of) the endpoint ahead, nor on
-            // a position too old to keep it off it.
-            let known = Known {
-                way: None,
-                confirmed: false,
-                keep_ends: true,
+            let how = How::Target {
+                position: raw_target,
+                lease: req.until.saturating_duration_since(now),
             };
-            let permit = run::permit(
-                Origin::Xfsp,
-                model,
-                &self.against,
-                motor,
-                direction,
-                known,
-                now,
-            );
-            if let Err(why) = permit {
-                self.counts.refused += 1;
-                model.log(
-                    now,
-                    LogLevel::Warning,
-                    format!(
-                        "XFSp {:#06x}: {} request refused: {why}",
-                        req.src,
-                        motor.name()
-                    ),
-                );
-                continue;
-            }
-            // A fresh press: forget any key the streamer still holds from a last run.
-            let mut out = self.streamer.release(now);
-            out.extend(self.streamer.press(now, motor, direction));
-            if self.streamer.running_key() == Some((motor, direction)) {
-                self.counts.taken += 1;
-                self.slot(motor).latched = None;
-                let probe = Probing::start(model, motor, direction, now).map(|(p, length)| {
-                    out.extend(self.streamer.probe(now, length));
-                    p
-                });
-                self.active = Some(Active {
-                    motor,
-                    direction,
-                    target: req.target,
-                    raw_target,
-                    watch: Watch::new(motor, direction).from_start(model, now),
-                    probe,
-                });
-                model.log(
-                    now,
-                    LogLevel::Info,
-                    format!(
-                        "XFSp {:#06x}: moving {} {} toward {} (raw {pos} -> {raw_target})",
-                        req.src,
-                        motor.name(),
-                        direction.name(),
-                        req.target
-                    ),
-                );
-                if let Some(p) = probe {
-                    model.log(now, LogLevel::Info, format!("XFSp: {}", p.words()));
+            match ctl.start(Origin::Xfsp, model, motor, direction, how, now) {
+                Err(why) => {
+                    self.counts.refused += 1;
+                    model.log(
+                        now,
+                        LogLevel::Warning,
+                        format!(
+                            "XFSp {:#06x}: {} request refused: {why}",
+                            req.src,
+                            motor.name()
+                        ),
+                    );
                 }
-            } else {
-                self.counts.refused += 1;
-                model.log(
-                    now,
-                    LogLevel::Warning,
-                    format!(
-                        "XFSp {:#06x}: {} request refused: the motor stream did not start",
-                        req.src,
-                        motor.name()
-                    ),
-                );
+                Ok(out) => {
+                    self.counts.taken += 1;
+                    self.slot(motor).latched = None;
+                    self.active = Some(Active {
+                        motor,
+                        direction,
+                        target: req.target,
+                        raw_target,
+                    });
+                    model.log(
+                        now,
+                        LogLevel::Info,
+                        format!(
+                            "XFSp {:#06x}: moving {} {} toward {} (raw {pos} -> {raw_target})",
+                            req.src,
+                            motor.name(),
+                            direction.name(),
+                            req.target
+                        ),
+                    );
+                    if let Some(words) = ctl.probe_words() {
+                        model.log(now, LogLevel::Info, format!("XFSp: {words}"));
+                    }
+                    return out;
+                }
             }
-            return out;
         }
         Vec::new()
-    }
-}
-
-impl MotorDrive {
-    /// A probing run ([`endpoints::Probing::next`]), as the page's keys': on the
-    /// commanded way it streams on; the other way it is stopped as moving against
-    /// its command, recorded for every origin; not moved, another probe.
-    fn probe_step(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
-        let Some(a) = self.active.as_mut() else {
-            return Vec::new();
-        };
-        let Some(p) = a.probe else {
-            return Vec::new();
-        };
-        match p.next(model, self.streamer.paused_since(), now) {
-            ProbeNext::Wait => Vec::new(),
-            ProbeNext::Again(length) => self.streamer.probe(now, length),
-            ProbeNext::Go => {
-                a.probe = None;
-                self.streamer.resume(now)
-            }
-            ProbeNext::Against => {
-                let reason = StopReason::MovedAgainst(p.direction);
-                self.against.record(p.motor, p.direction);
-                self.stop(model, now, reason)
-            }
-        }
     }
 }
 
@@ -467,18 +340,6 @@ fn position(model: &Model, motor: Motor, now: Instant) -> Option<(Axis, u8)> {
     let ft = model.live_flap_trim(now)?;
     let axis = Axis::for_motor(motor, ft)?;
     Some((axis, endpoints::position(motor, ft)))
-}
-
-impl Active {
-    /// Whether the run ends by its position against its target (the endpoints, the
-    /// position's age and its way are the watch's): reached.
-    fn progress(&mut self, model: &Model, now: Instant) -> Option<(StopReason, String, bool)> {
-        // motor_check and the watch have already made sure the position is live.
-        let (axis, pos) = position(model, self.motor, now)?;
-        let remaining = axis.remaining(self.motor, self.direction, pos, self.raw_target);
-        (remaining <= STOP_MARGIN)
-            .then(|| (StopReason::Released, "target reached".to_string(), true))
-    }
 }
 
 fn log_stop(model: &mut Model, now: Instant, motor: Motor, why: &str) {

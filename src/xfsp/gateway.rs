@@ -10,6 +10,7 @@
 //! # use vpx_efis::xfsp::net::{Target, XfspNet};
 //! # fn send_to_unit(_: vpx_efis::protocol::message::Packet) {}
 //! # let mut model = Model::new(Source::Simulated { scenario: "demo".into() });
+//! # let mut ctl = vpx_efis::control::Controller::default();
 //! # let link_events = crossbeam_channel::never::<()>();
 //! let now = Instant::now();
 //! let mut gw = Gateway::new(GatewayConfig::default(), now);
@@ -23,21 +24,24 @@
 //!         }
 //!         recv(net.incoming()) -> d => {
 //!             if let Ok(d) = d {
-//!                 for p in gw.receive(&d.bytes, &mut model, d.at) { send_to_unit(p) }
+//!                 for p in gw.receive(&d.bytes, &mut model, &mut ctl, d.at) { send_to_unit(p) }
 //!             }
 //!         }
 //!         default(wait) => {}
 //!     }
-//!     let step = gw.tick(&mut model, Instant::now());
+//!     let step = gw.tick(&mut model, &mut ctl, Instant::now());
 //!     for p in step.to_unit { send_to_unit(p) }
 //!     let _ = net.send_all(&step.datagrams);
 //! }
 //! ```
 //!
-//! Duties of the caller, each of which the motor stream's safety depends on (as for
-//! control's `Controller`): call [`Gateway::tick`] at [`Gateway::next_deadline`] and
-//! after applying received packets; call [`Gateway::on_link_error`] when a write to the
-//! unit fails and [`Gateway::shutdown`] before leaving, sending what they return.
+//! Motor requests run through the [`Controller`] the caller passes, the one every
+//! motor run of the process goes through ([`super::drive`]). Duties of the caller,
+//! each of which the motor stream's safety depends on (as for the controller): call
+//! [`Gateway::tick`] at [`Gateway::next_deadline`] and after applying received
+//! packets, tick the controller as for any run (a link error, quit and the rest end
+//! the network's run as they end any), and call [`Gateway::shutdown`] before leaving,
+//! sending what they return.
 //!
 //! Every command taken from the network, and every refusal, goes to the model's event
 //! log (`model.log`), prefixed "XFSp" and the sender's source id, and is counted in
@@ -92,10 +96,10 @@
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
-use crate::control::{Action, MotorStreamer, StopReason, StreamerConfig, command};
+use crate::control::{Action, Controller, MotorStreamer, StopReason, command};
 use crate::model::{LogLevel, Model, Motor, TrimKind};
 use crate::protocol::device::DEVICE_COUNT;
-use crate::protocol::message::Packet;
+use crate::protocol::message::{Message, Packet};
 
 use super::consume::{AirData, Forwarded};
 use super::dict::{CertLevel, Confidence, EcbState};
@@ -186,8 +190,6 @@ pub struct GatewayConfig {
     pub cert: CertLevel,
     /// The first message number ("an arbitrary initial value", §4.1).
     pub first_msg_num: u16,
-    /// The motor stream's settings (resend period, maximum run).
-    pub streamer: StreamerConfig,
     /// Who may command the unit (off unless asked for).
     pub control: Control,
 }
@@ -199,7 +201,6 @@ impl Default for GatewayConfig {
             source_id: 0x5650,
             cert: CertLevel::Experimental,
             first_msg_num: 0,
-            streamer: StreamerConfig::default(),
             control: Control::Off,
         }
     }
@@ -259,7 +260,7 @@ impl Gateway {
             receiver: Receiver::default(),
             publisher: Publisher::new(cfg.cert, cfg.source_id, now),
             air: AirData::default(),
-            drive: MotorDrive::new(cfg.streamer),
+            drive: MotorDrive::default(),
             recent: HashMap::new(),
             not_allowed_said: HashMap::new(),
             last_tick: now,
@@ -275,12 +276,19 @@ impl Gateway {
     /// Takes one datagram from the network. Returns packets for the VP-X (circuit
     /// commands, and the first move message of a motor request) to send at once.
     /// Malformed, duplicate, out-of-order and our own datagrams are counted and dropped.
-    pub fn receive(&mut self, datagram: &[u8], model: &mut Model, now: Instant) -> Vec<Packet> {
-        let mut out = Vec::new();
+    /// Motor requests run through `ctl`, the controller every origin's runs go through.
+    pub fn receive(
+        &mut self,
+        datagram: &[u8],
+        model: &mut Model,
+        ctl: &mut Controller,
+        now: Instant,
+    ) -> Vec<Packet> {
         if Header::parse(datagram).is_ok_and(|h| h.src_id == self.cfg.source_id) {
             self.stats.own += 1;
-            return out;
+            return Vec::new();
         }
+        let mut commands = Vec::new();
         let params: Vec<(u16, Result<Parameter, super::Error>)> =
             match self.receiver.receive(datagram, now) {
                 Received::Fresh(view) => {
@@ -291,20 +299,24 @@ impl Gateway {
             };
         for (src, p) in params {
             match p {
-                Ok(p) => self.take(src, &p, model, now, &mut out),
+                Ok(p) => self.take(src, &p, model, now, &mut commands),
                 Err(_) => self.stats.undecodable += 1,
             }
         }
-        out.extend(self.drive.tick(model, now));
+        let mut out: Vec<Packet> = commands
+            .into_iter()
+            .map(|m| Packet::request(ctl.next_cnt(), m))
+            .collect();
+        out.extend(self.drive.tick(ctl, model, now));
         out
     }
 
     /// Everything due at `now`: the motor stream, EXTERNAL_DATA at 1 Hz, and the
     /// published parameters packed into datagrams.
-    pub fn tick(&mut self, model: &mut Model, now: Instant) -> Step {
-        let mut to_unit = self.drive.tick(model, now);
+    pub fn tick(&mut self, model: &mut Model, ctl: &mut Controller, now: Instant) -> Step {
+        let mut to_unit = self.drive.tick(ctl, model, now);
         if let Some(d) = self.air.due(now) {
-            to_unit.push(Packet::request(self.drive.next_cnt(), d));
+            to_unit.push(Packet::request(ctl.next_cnt(), d));
         }
         let params = self.publisher.poll(model, now);
         let mut datagrams = Vec::new();
@@ -343,34 +355,15 @@ impl Gateway {
         .unwrap_or(self.last_tick + POLL)
     }
 
-    /// A write to the unit failed: stop any motor run (its stream can no longer be
-    /// trusted to arrive).
-    pub fn on_link_error(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
-        self.drive.stop(model, now, StopReason::LinkError)
-    }
-
-    /// The page's keys run a motor (`busy`): the network's motor requests wait, and a
-    /// network run in progress stops. Call before [`Gateway::tick`].
-    pub fn set_local_motor(&mut self, model: &mut Model, now: Instant, busy: bool) -> Vec<Packet> {
-        self.drive.set_local_busy(model, now, busy)
-    }
-
-    /// Shares the page's record of motors seen moving against their command
-    /// ([`crate::control::against`]): the network refuses what the keys saw, and the
-    /// keys what the network saw.
-    pub fn share_against(&mut self, against: crate::control::Against) {
-        self.drive.share_against(against);
-    }
-
-    /// A key was pressed at the page: a network-driven run stops, as for any key.
-    pub fn local_key(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
-        self.drive.local_key(model, now)
-    }
-
     /// Leaving: stop messages for every motor, running or not, since a stop that is
     /// not needed is harmless and a missing one is not.
-    pub fn shutdown(&mut self, model: &mut Model, now: Instant) -> Vec<Packet> {
-        let mut out = self.drive.stop(model, now, StopReason::Quit);
+    pub fn shutdown(
+        &mut self,
+        model: &mut Model,
+        ctl: &mut Controller,
+        now: Instant,
+    ) -> Vec<Packet> {
+        let mut out = self.drive.stop(ctl, model, now, StopReason::Quit);
         if out.is_empty() {
             out.extend(MotorStreamer::emergency_stop_packets());
         }
@@ -387,8 +380,9 @@ impl Gateway {
         self.publisher.standing_cas()
     }
 
-    pub fn running_motor(&self) -> Option<Motor> {
-        self.drive.running().map(|(m, _)| m)
+    /// The motor a network request runs, while `ctl` runs it.
+    pub fn running_motor(&self, ctl: &Controller) -> Option<Motor> {
+        self.drive.running(ctl)
     }
 
     pub fn stats(&self) -> GatewayStats {
@@ -412,7 +406,7 @@ impl Gateway {
         p: &Parameter,
         model: &mut Model,
         now: Instant,
-        out: &mut Vec<Packet>,
+        out: &mut Vec<Message>,
     ) {
         if self.air.offer(src, p, now).is_some() {
             return;
@@ -585,7 +579,7 @@ impl Gateway {
         p: &Parameter,
         model: &mut Model,
         now: Instant,
-        out: &mut Vec<Packet>,
+        out: &mut Vec<Message>,
     ) {
         let Value::Bus(bus) = &p.value else {
             return self.refuse(model, now, format!("{who}: ECBSTAT refused: not a BUS"));
@@ -653,7 +647,7 @@ impl Gateway {
                     LogLevel::Info,
                     format!("{who}: {name} {state_name} -> {}", message.name()),
                 );
-                out.push(Packet::request(self.drive.next_cnt(), message));
+                out.push(message);
             }
             Err(why) => self.refuse(
                 model,
