@@ -1085,11 +1085,11 @@ fn leaving_the_page_mid_run_stops_it() {
         .filter(|t| *t > 0.0)
         .expect("the page saw pagehide");
     assert!(stop >= left, "stopped before the page was left: {moves:?}");
+    // The page also stops on `visibilitychange` to hidden, which a browser fires just
+    // before `pagehide`: the stop may lead pagehide's own timestamp by a few ms. That
+    // it follows the leaving is asserted above; here, that it is not late.
     let after = wall_ms(stop) - hidden;
-    assert!(
-        (0.0..=150.0).contains(&after),
-        "stop {after:.0} ms after pagehide"
-    );
+    assert!(after <= 150.0, "stop {after:.0} ms after pagehide");
     assert!(
         trim_on(&moves).iter().all(|t| *t < stop),
         "the trim ran again after its stop: {moves:?}"
