@@ -514,6 +514,21 @@ fn flap_trim_status_broadcast_to_ff() {
     assert_eq!(frames, vec![bytes.to_vec()]);
 }
 
+/// What the tests start from: every field 0, every flag clear, no fault or error
+/// code; the payloads' lengths from Tables 24, 26 and 27.
+#[test]
+fn the_status_defaults_are_the_all_zero_payloads() {
+    #[track_caller]
+    fn zeros<P: Payload + Default + PartialEq + core::fmt::Debug>(len: usize) {
+        let zeros = vec![0u8; len];
+        assert_eq!(P::parse(&zeros), Ok(P::default()), "{}", P::NAME);
+        assert_eq!(P::default().emit().as_slice(), zeros, "{}", P::NAME);
+    }
+    zeros::<SystemStatus>(12);
+    zeros::<DeviceStatus>(66);
+    zeros::<FlapTrimStatus>(18);
+}
+
 #[test]
 fn fault_status_full() {
     // Table 28 with icd-reading R7: device 9 (byte 1 bit 1 = 02) and device 29 (byte 3

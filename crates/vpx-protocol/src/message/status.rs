@@ -120,6 +120,35 @@ pub struct SystemStatus {
     pub data_integrity_code: Option<DataIntegrityCode>,
 }
 
+/// The all-zero misc flags byte: no starter, wig-wag auto and not active.
+impl Default for MiscFlags {
+    fn default() -> Self {
+        MiscFlags {
+            starter_annunciator: false,
+            wig_wag_mode: WigWagModeSetting::Auto,
+            software_update: false,
+            wig_wag_active: false,
+        }
+    }
+}
+
+/// The all-zero payload: 0 A, 0 V, 0 °C, every input open, no flag, no error code.
+/// What a test starts from before it sets the fields it is about.
+impl Default for SystemStatus {
+    fn default() -> Self {
+        SystemStatus {
+            system_current: Tenths(0),
+            main_bus_volts: SignedTenths(0),
+            aux_battery_volts: Tenths(0),
+            internal_temp: 0,
+            switches: SwitchInputs::default(),
+            misc: MiscFlags::default(),
+            faults: SystemFaultFlags::default(),
+            data_integrity_code: None,
+        }
+    }
+}
+
 impl Payload for SystemStatus {
     const ID: MessageId = MessageId::new(0x12, 0x00);
     const NAME: &'static str = "SYSTEM_STATUS";
@@ -192,12 +221,23 @@ impl Payload for SystemStatus {
 }
 
 /// DEVICE_STATUS — ICD Table 26. Bit i of byte k is device 8k+i (icd-reading R7).
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceStatus {
     /// Indexed by device id.
     pub on: [bool; DEVICE_COUNT],
     /// Current per device, amps in tenths, indexed by device id.
     pub current: [Tenths; DEVICE_COUNT],
+}
+
+/// The all-zero payload: every device off, drawing 0 A.
+impl Default for DeviceStatus {
+    fn default() -> Self {
+        DeviceStatus {
+            on: [false; DEVICE_COUNT],
+            current: [Tenths(0); DEVICE_COUNT],
+        }
+    }
 }
 
 impl Payload for DeviceStatus {
@@ -289,6 +329,35 @@ pub struct FlapTrimStatus {
     pub roll_trim_down: u8,
     /// Table 27 byte 18: roll trim neutral position (0 when roll trim is not enabled).
     pub roll_trim_neutral: u8,
+}
+
+/// The all-zero payload: every axis disabled, still and without a fault, every position
+/// and endpoint 0. What a test starts from before it sets the fields it is about.
+impl Default for FlapTrimStatus {
+    fn default() -> Self {
+        let none = FaultCode::NoFault;
+        FlapTrimStatus {
+            flap: FlapFlags::default(),
+            pitch_trim: TrimFlags::default(),
+            roll_trim: TrimFlags::default(),
+            flap_position: 0,
+            pitch_trim_position: 0,
+            roll_trim_position: 0,
+            flap_fault: none,
+            pitch_trim_fault: none,
+            roll_trim_fault: none,
+            flap_up: 0,
+            flap_down: 0,
+            flap_midpoint_1: 0,
+            flap_midpoint_2: 0,
+            pitch_trim_up: 0,
+            pitch_trim_down: 0,
+            pitch_trim_neutral: 0,
+            roll_trim_up: 0,
+            roll_trim_down: 0,
+            roll_trim_neutral: 0,
+        }
+    }
 }
 
 impl Payload for FlapTrimStatus {
