@@ -140,11 +140,7 @@ pub fn build(
         }
     }
     // Flaps first, then pitch and roll: the order of the motors panel.
-    plan.motors.sort_by_key(|(m, _)| match m {
-        Motor::Flaps => 0,
-        Motor::Trim(TrimKind::Pitch) => 1,
-        Motor::Trim(TrimKind::Roll) => 2,
-    });
+    plan.motors.sort_by_key(|(m, _)| m.index());
     plan.unasked = unasked(&circuits, &plan, skip.contains(&Step::Motors));
     plan
 }

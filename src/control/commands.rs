@@ -6,7 +6,7 @@
 use std::fmt;
 use std::time::Instant;
 
-use crate::model::{CircuitKind, CircuitState, Model, Motor, TrimKind};
+use crate::model::{CircuitKind, CircuitState, Model, Motor};
 use crate::protocol::device::{self, FLAPS, STARTER, SYSTEM_FAULT_ID, TRIM_P, TRIM_R};
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{DeviceClear, DevicePower, Message, WigWagMode, WigWagModeSetting};
@@ -230,11 +230,8 @@ pub fn motor_check(
     let Some(ft) = model.live_flap_trim(now) else {
         return Err(StopReason::MotorStatusLost);
     };
-    let (enabled, flagged) = match motor {
-        Motor::Flaps => (ft.flap.enabled, ft.flap.fault),
-        Motor::Trim(TrimKind::Pitch) => (ft.pitch_trim.enabled, ft.pitch_trim.fault),
-        Motor::Trim(TrimKind::Roll) => (ft.roll_trim.enabled, ft.roll_trim.fault),
-    };
+    let axis = ft.axis(motor.axis());
+    let (enabled, flagged) = (axis.enabled, axis.fault);
     let code = motor.fault(ft);
     if code.is_fault() {
         return Err(StopReason::MotorFault(code));

@@ -25,7 +25,7 @@
 use std::time::{Duration, Instant};
 
 use super::streamer::{Direction, StopReason};
-use crate::model::{Model, Motor, TrimKind};
+use crate::model::{Model, Motor};
 use crate::protocol::message::FlapTrimStatus;
 
 /// The oldest position a run that keeps to the endpoints may go on by: four
@@ -65,21 +65,14 @@ pub struct Ends {
 
 /// The motor's endpoints, or `None` when they are not configured (the same value).
 pub fn ends(motor: Motor, ft: &FlapTrimStatus) -> Option<Ends> {
-    let (down, up) = match motor {
-        Motor::Flaps => (ft.flap_down, ft.flap_up),
-        Motor::Trim(TrimKind::Pitch) => (ft.pitch_trim_down, ft.pitch_trim_up),
-        Motor::Trim(TrimKind::Roll) => (ft.roll_trim_down, ft.roll_trim_up),
-    };
+    let a = ft.axis(motor.axis());
+    let (down, up) = (a.down, a.up);
     (down != up).then_some(Ends { down, up })
 }
 
 /// The motor's position, raw sensor counts.
 pub fn position(motor: Motor, ft: &FlapTrimStatus) -> u8 {
-    match motor {
-        Motor::Flaps => ft.flap_position,
-        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
-        Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
-    }
+    ft.position(motor.axis())
 }
 
 /// +1 when running `motor` `direction` should make the position grow, −1 when shrink.
@@ -494,7 +487,7 @@ pub fn opposite(d: Direction) -> Direction {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Source, Stamped};
+    use crate::model::{Source, Stamped, TrimKind};
     use crate::protocol::fault::FaultCode;
     use crate::protocol::message::{FlapFlags, TrimFlags};
 

@@ -17,9 +17,9 @@ use crate::protocol::device::{
 };
 use crate::protocol::fault::FaultCode;
 use crate::protocol::message::{
-    DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EepromErase, EnableFlag, ExternalData,
-    FaultStatus, FlapSpec, FlapTrimStatus, Message, Packet, SpecAck, SwitchId, SystemSpec,
-    SystemStatus, TrimSpec, TrimType, Version, WigWagSpec,
+    Axis, DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EepromErase, EnableFlag,
+    ExternalData, FaultStatus, FlapSpec, FlapTrimStatus, Message, Packet, SpecAck, SwitchId,
+    SystemSpec, SystemStatus, TrimSpec, TrimType, Version, WigWagSpec,
 };
 
 mod hold;
@@ -225,13 +225,19 @@ impl Motor {
         }
     }
 
+    /// Its axis of FLAP_TRIM_STATUS (ICD Table 27): which of that message's fields are
+    /// this motor's.
+    pub fn axis(self) -> Axis {
+        match self {
+            Motor::Flaps => Axis::Flap,
+            Motor::Trim(TrimKind::Pitch) => Axis::PitchTrim,
+            Motor::Trim(TrimKind::Roll) => Axis::RollTrim,
+        }
+    }
+
     /// The live fault code of this motor from FLAP_TRIM_STATUS, if any.
     pub fn fault(self, ft: &FlapTrimStatus) -> FaultCode {
-        match self {
-            Motor::Flaps => ft.flap_fault,
-            Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_fault,
-            Motor::Trim(TrimKind::Roll) => ft.roll_trim_fault,
-        }
+        ft.axis(self.axis()).fault_code
     }
 }
 
@@ -682,6 +688,22 @@ impl Model {
             .and_then(|s| s.value.secondary_alternator)
     }
 
+    /// A motor's configuration as the unit last reported it (FLAP_SPEC or TRIM_SPEC,
+    /// ICD Tables 15 and 16): whether it is enabled, and its (up, down) endpoints.
+    /// Configuration, not a reading: it may be old.
+    pub fn motor_spec(&self, motor: Motor) -> Option<(bool, (u8, u8))> {
+        let trim = |t: &Option<Stamped<TrimSpec>>| {
+            t.map(|s| (s.value.enabled, (s.value.up, s.value.down)))
+        };
+        match motor {
+            Motor::Flaps => self
+                .flap_spec
+                .map(|s| (s.value.enabled, (s.value.up, s.value.down))),
+            Motor::Trim(TrimKind::Pitch) => trim(&self.pitch_trim_spec),
+            Motor::Trim(TrimKind::Roll) => trim(&self.roll_trim_spec),
+        }
+    }
+
     /// Whether a device belongs on the page: starter, EFIS and Field_Pri always; flaps
     /// and trims by their enable flags; 4–28 by DEVICE_ENABLE. A device whose flag we
     /// have not (yet) been told is shown: hiding a circuit from someone checking
@@ -690,17 +712,9 @@ impl Model {
         let ft = self.live_flap_trim(now);
         match id {
             STARTER | EFIS | FIELD_PRI => true,
-            FLAPS => ft
-                .map(|f| f.flap.enabled)
-                .or(self.flap_spec.map(|s| s.value.enabled))
-                .unwrap_or(false),
-            TRIM_P => ft
-                .map(|f| f.pitch_trim.enabled)
-                .or(self.pitch_trim_spec.map(|s| s.value.enabled))
-                .unwrap_or(false),
-            TRIM_R => ft
-                .map(|f| f.roll_trim.enabled)
-                .or(self.roll_trim_spec.map(|s| s.value.enabled))
+            id if let Some(m) = Motor::of_device(id) => ft
+                .map(|f| f.axis(m.axis()).enabled)
+                .or(self.motor_spec(m).map(|(enabled, _)| enabled))
                 .unwrap_or(false),
             id => self
                 .enabled
@@ -729,12 +743,8 @@ impl Model {
                     _ => CircuitKind::Device,
                 };
                 let i = id as usize;
-                let motor_fault = ft.map(|f| match kind {
-                    CircuitKind::Flaps => f.flap_fault,
-                    CircuitKind::Trim(TrimKind::Pitch) => f.pitch_trim_fault,
-                    CircuitKind::Trim(TrimKind::Roll) => f.roll_trim_fault,
-                    _ => FaultCode::NoFault,
-                });
+                let motor_fault =
+                    ft.map(|f| Motor::of_device(id).map_or(FaultCode::NoFault, |m| m.fault(f)));
                 let state = match (devices, faults) {
                     (Some(d), Some((codes, _))) => {
                         let code = if codes[i].is_fault() {

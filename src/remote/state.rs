@@ -150,23 +150,14 @@ pub fn build(model: &Model, page: &PageSide, now: Instant) -> State {
 }
 
 fn fitted(ft: &FlapTrimStatus, m: Motor) -> bool {
-    match m {
-        Motor::Flaps => ft.flap.enabled,
-        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim.enabled,
-        Motor::Trim(TrimKind::Roll) => ft.roll_trim.enabled,
-    }
+    ft.axis(m.axis()).enabled
 }
 
 /// Percent of travel from the up (left) end, clamped, as the page's gauge shows it;
 /// `None` for a motor not fitted or with no travel configured.
 fn percent(ft: &FlapTrimStatus, m: Motor) -> Option<u8> {
-    let (pos, from, to) = match m {
-        Motor::Flaps => (ft.flap_position, ft.flap_up, ft.flap_down),
-        Motor::Trim(TrimKind::Pitch) => {
-            (ft.pitch_trim_position, ft.pitch_trim_up, ft.pitch_trim_down)
-        }
-        Motor::Trim(TrimKind::Roll) => (ft.roll_trim_position, ft.roll_trim_up, ft.roll_trim_down),
-    };
+    let a = ft.axis(m.axis());
+    let (pos, from, to) = (a.position, a.up, a.down);
     if !fitted(ft, m) || from == to {
         return None;
     }

@@ -305,7 +305,7 @@ pub fn capture(
     model: &Model,
     now: Instant,
 ) -> Result<String, String> {
-    use crate::model::{Motor, TrimKind};
+    use crate::model::Motor;
     let Some(motor) = page.motor() else {
         return Err("p captures a motor position on the flaps and trim pages".into());
     };
@@ -325,11 +325,7 @@ pub fn capture(
     let Some(ft) = model.live_flap_trim(now) else {
         return Err("no live FLAP_TRIM_STATUS: the position is not known".into());
     };
-    let pos = match motor {
-        Motor::Flaps => ft.flap_position,
-        Motor::Trim(TrimKind::Pitch) => ft.pitch_trim_position,
-        Motor::Trim(TrimKind::Roll) => ft.roll_trim_position,
-    };
+    let pos = ft.position(motor.axis());
     set_typed(forms, page, field, &pos.to_string());
     Ok(format!(
         "{} set to the {} position {pos}; Enter sends it",

@@ -48,42 +48,33 @@ struct Gauge {
     faulted: bool,
 }
 
-fn gauge(m: Motor, ft: &FlapTrimStatus) -> Gauge {
+/// The gauge's label and the words at its ends.
+fn names(m: Motor) -> (&'static str, &'static str, &'static str) {
     match m {
-        Motor::Flaps => Gauge {
-            label: "Flaps",
-            left: "UP",
-            right: "DN",
-            from: ft.flap_up,
-            to: ft.flap_down,
-            marks: vec![(ft.flap_midpoint_1, "1"), (ft.flap_midpoint_2, "2")],
-            position: ft.flap_position,
-            running: ft.flap.motor_running,
-            faulted: ft.flap.fault || ft.flap_fault.is_fault(),
-        },
-        Motor::Trim(TrimKind::Pitch) => Gauge {
-            label: "Pitch",
-            left: "UP",
-            right: "DN",
-            from: ft.pitch_trim_up,
-            to: ft.pitch_trim_down,
-            marks: vec![(ft.pitch_trim_neutral, "N")],
-            position: ft.pitch_trim_position,
-            running: ft.pitch_trim.motor_running,
-            faulted: ft.pitch_trim.fault || ft.pitch_trim_fault.is_fault(),
-        },
+        Motor::Flaps => ("Flaps", "UP", "DN"),
+        Motor::Trim(TrimKind::Pitch) => ("Pitch", "UP", "DN"),
         // Roll "up" is left (ICD Table 30 note 2).
-        Motor::Trim(TrimKind::Roll) => Gauge {
-            label: "Roll",
-            left: " L",
-            right: "R ",
-            from: ft.roll_trim_up,
-            to: ft.roll_trim_down,
-            marks: vec![(ft.roll_trim_neutral, "N")],
-            position: ft.roll_trim_position,
-            running: ft.roll_trim.motor_running,
-            faulted: ft.roll_trim.fault || ft.roll_trim_fault.is_fault(),
-        },
+        Motor::Trim(TrimKind::Roll) => ("Roll", " L", "R "),
+    }
+}
+
+fn gauge(m: Motor, ft: &FlapTrimStatus) -> Gauge {
+    let a = ft.axis(m.axis());
+    let (label, left, right) = names(m);
+    let marks = match a.neutral {
+        Some(neutral) => vec![(neutral, "N")],
+        None => vec![(ft.flap_midpoint_1, "1"), (ft.flap_midpoint_2, "2")],
+    };
+    Gauge {
+        label,
+        left,
+        right,
+        from: a.up,
+        to: a.down,
+        marks,
+        position: a.position,
+        running: a.motor_running,
+        faulted: a.fault || a.fault_code.is_fault(),
     }
 }
 
@@ -111,16 +102,11 @@ fn percent(g: &Gauge) -> u8 {
 }
 
 fn gauge_line(m: Motor, ft: Option<&FlapTrimStatus>, width: u16) -> Line<'static> {
-    let label_of = |m: Motor| match m {
-        Motor::Flaps => "Flaps",
-        Motor::Trim(TrimKind::Pitch) => "Pitch",
-        Motor::Trim(TrimKind::Roll) => "Roll",
-    };
     // label 6, ends 2+2, status 5
     let track_w = (width as usize).saturating_sub(6 + 4 + 1 + 5).max(3);
     let Some(ft) = ft else {
         return Line::from(vec![
-            Span::styled(format!("{:<6}", label_of(m)), theme::label()),
+            Span::styled(format!("{:<6}", names(m).0), theme::label()),
             Span::styled(
                 format!("{:^w$}", values::BLANK, w = track_w + 4),
                 theme::unknown(),

@@ -447,28 +447,14 @@ impl Publisher {
             );
         }
         if let Some(ft) = model.live_flap_trim(now).filter(|_| !lost) {
-            for (motor, ident, enabled, raw) in [
-                (
-                    Motor::Flaps,
-                    idents::FLAPPOS,
-                    ft.flap.enabled,
-                    ft.flap_position,
-                ),
-                (
-                    Motor::Trim(TrimKind::Pitch),
-                    idents::PTRIMPOS,
-                    ft.pitch_trim.enabled,
-                    ft.pitch_trim_position,
-                ),
-                (
-                    Motor::Trim(TrimKind::Roll),
-                    idents::RTRIMPOS,
-                    ft.roll_trim.enabled,
-                    ft.roll_trim_position,
-                ),
+            for (motor, ident) in [
+                (Motor::Flaps, idents::FLAPPOS),
+                (Motor::Trim(TrimKind::Pitch), idents::PTRIMPOS),
+                (Motor::Trim(TrimKind::Roll), idents::RTRIMPOS),
             ] {
-                if let Some(axis) = Axis::for_motor(motor, ft).filter(|_| enabled) {
-                    out.push(self.param(ident, 0, Value::Sint(axis.to_scale(raw))));
+                let a = ft.axis(motor.axis());
+                if let Some(axis) = Axis::for_motor(motor, ft).filter(|_| a.enabled) {
+                    out.push(self.param(ident, 0, Value::Sint(axis.to_scale(a.position))));
                 }
             }
         }

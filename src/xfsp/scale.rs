@@ -43,18 +43,11 @@ impl Axis {
     /// The axis from the endpoints FLAP_TRIM_STATUS carries, or `None` when they do not
     /// describe any travel.
     pub fn for_motor(motor: Motor, ft: &FlapTrimStatus) -> Option<Axis> {
-        let (zero, positive, negative) = match motor {
-            Motor::Flaps => (ft.flap_up, ft.flap_down, None),
-            Motor::Trim(TrimKind::Pitch) => (
-                ft.pitch_trim_neutral,
-                ft.pitch_trim_up,
-                Some(ft.pitch_trim_down),
-            ),
-            Motor::Trim(TrimKind::Roll) => (
-                ft.roll_trim_neutral,
-                ft.roll_trim_down,
-                Some(ft.roll_trim_up),
-            ),
+        let a = ft.axis(motor.axis());
+        let (zero, positive, negative) = match (motor, a.neutral) {
+            (Motor::Trim(TrimKind::Pitch), Some(neutral)) => (neutral, a.up, Some(a.down)),
+            (Motor::Trim(TrimKind::Roll), Some(neutral)) => (neutral, a.down, Some(a.up)),
+            _ => (a.up, a.down, None),
         };
         Axis::new(zero, positive, negative)
     }

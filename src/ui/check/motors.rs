@@ -22,33 +22,13 @@ use crate::ui::{fast, theme, values};
 
 /// A motor's travel: its ends' words, the sensor at each end, and where it is now.
 fn travel(m: Motor, ft: &FlapTrimStatus) -> (&'static str, &'static str, u8, u8, u8, bool) {
-    match m {
-        Motor::Flaps => (
-            "UP",
-            "DN",
-            ft.flap_up,
-            ft.flap_down,
-            ft.flap_position,
-            ft.flap.motor_running,
-        ),
-        Motor::Trim(TrimKind::Pitch) => (
-            "UP",
-            "DN",
-            ft.pitch_trim_up,
-            ft.pitch_trim_down,
-            ft.pitch_trim_position,
-            ft.pitch_trim.motor_running,
-        ),
+    let a = ft.axis(m.axis());
+    let (left, right) = match m {
+        Motor::Flaps | Motor::Trim(TrimKind::Pitch) => ("UP", "DN"),
         // Roll "up" is left (ICD Table 30 note 2).
-        Motor::Trim(TrimKind::Roll) => (
-            " L",
-            "R ",
-            ft.roll_trim_up,
-            ft.roll_trim_down,
-            ft.roll_trim_position,
-            ft.roll_trim.motor_running,
-        ),
-    }
+        Motor::Trim(TrimKind::Roll) => (" L", "R "),
+    };
+    (left, right, a.up, a.down, a.position, a.motor_running)
 }
 
 /// A motor's travel ends in sensor counts: the live FLAP_TRIM_STATUS's, else the
@@ -58,11 +38,7 @@ pub fn ends(m: Motor, model: &Model, now: Instant) -> Option<(u8, u8)> {
         let (_, _, from, to, _, _) = travel(m, ft);
         return Some((from, to));
     }
-    match m {
-        Motor::Flaps => model.flap_spec.map(|s| (s.value.up, s.value.down)),
-        Motor::Trim(TrimKind::Pitch) => model.pitch_trim_spec.map(|s| (s.value.up, s.value.down)),
-        Motor::Trim(TrimKind::Roll) => model.roll_trim_spec.map(|s| (s.value.up, s.value.down)),
-    }
+    model.motor_spec(m).map(|(_, ends)| ends)
 }
 
 /// The positions a motor went through (raw counts) as percent of its travel from

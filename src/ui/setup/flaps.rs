@@ -18,20 +18,10 @@ pub fn live_lines(
     motor: Motor,
     now: Instant,
 ) -> Vec<Line<'static>> {
-    use crate::model::TrimKind;
     let mut out = Vec::new();
-    let live = model.live_flap_trim(now).map(|ft| match motor {
-        Motor::Flaps => (ft.flap_position, ft.flap.enabled, ft.flap.motor_running),
-        Motor::Trim(TrimKind::Pitch) => (
-            ft.pitch_trim_position,
-            ft.pitch_trim.enabled,
-            ft.pitch_trim.motor_running,
-        ),
-        Motor::Trim(TrimKind::Roll) => (
-            ft.roll_trim_position,
-            ft.roll_trim.enabled,
-            ft.roll_trim.motor_running,
-        ),
+    let live = model.live_flap_trim(now).map(|ft| {
+        let a = ft.axis(motor.axis());
+        (a.position, a.enabled, a.motor_running)
     });
     let mut spans = vec![Span::styled("live position ", theme::label())];
     match live {

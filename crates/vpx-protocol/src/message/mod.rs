@@ -20,8 +20,8 @@ pub use device::{
 pub use fault::DeviceClear;
 pub use power::{DevicePower, FlapMove, TrimMove, WigWagMode};
 pub use status::{
-    DeviceStatus, DeviceStatusQuery, FaultStatus, FlapFlags, FlapTrimStatus, MiscFlags,
-    SwitchInputs, SystemFaultFlags, SystemStatus, TrimFlags,
+    Axis, AxisStatus, DeviceStatus, DeviceStatusQuery, FaultStatus, FlapFlags, FlapTrimStatus,
+    MiscFlags, SwitchInputs, SystemFaultFlags, SystemStatus, TrimFlags,
 };
 pub use system::{EepromErase, Ping, SoftwareUpdate, Version};
 pub use types::*;

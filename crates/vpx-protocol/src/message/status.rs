@@ -445,6 +445,92 @@ impl Payload for FlapTrimStatus {
     }
 }
 
+/// One of the three motors FLAP_TRIM_STATUS reports on, in the table's order (ICD
+/// Table 27): each has its flags, its position, its fault code and its endpoints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Axis {
+    /// The flaps.
+    Flap,
+    /// The pitch trim.
+    PitchTrim,
+    /// The roll trim: its "up" is left, its "down" right (Table 30 note 2).
+    RollTrim,
+}
+
+/// One axis's fields of FLAP_TRIM_STATUS (ICD Table 27), gathered from its bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AxisStatus {
+    /// Bytes 1–2: the axis is enabled.
+    pub enabled: bool,
+    /// Bytes 1–2: the axis's motor is running.
+    pub motor_running: bool,
+    /// Bytes 1–2: the axis's fault flag.
+    pub fault: bool,
+    /// Bytes 3–5: its current position, 0–255.
+    pub position: u8,
+    /// Bytes 6–8: its fault code (Table 43).
+    pub fault_code: FaultCode,
+    /// Bytes 9, 13, 16: the up endpoint (roll trim: left).
+    pub up: u8,
+    /// Bytes 10, 14, 17: the down endpoint (roll trim: right).
+    pub down: u8,
+    /// Bytes 15, 18: a trim's neutral position; `None` for the flaps, whose
+    /// midpoints (bytes 11–12) are theirs alone.
+    pub neutral: Option<u8>,
+}
+
+impl FlapTrimStatus {
+    /// The fields of one axis: the one place that says which byte is whose.
+    pub fn axis(&self, axis: Axis) -> AxisStatus {
+        let f = &self.flap;
+        let (flags, position, fault_code, up, down, neutral) = match axis {
+            Axis::Flap => (
+                TrimFlags {
+                    enabled: f.enabled,
+                    motor_running: f.motor_running,
+                    fault: f.fault,
+                },
+                self.flap_position,
+                self.flap_fault,
+                self.flap_up,
+                self.flap_down,
+                None,
+            ),
+            Axis::PitchTrim => (
+                self.pitch_trim,
+                self.pitch_trim_position,
+                self.pitch_trim_fault,
+                self.pitch_trim_up,
+                self.pitch_trim_down,
+                Some(self.pitch_trim_neutral),
+            ),
+            Axis::RollTrim => (
+                self.roll_trim,
+                self.roll_trim_position,
+                self.roll_trim_fault,
+                self.roll_trim_up,
+                self.roll_trim_down,
+                Some(self.roll_trim_neutral),
+            ),
+        };
+        AxisStatus {
+            enabled: flags.enabled,
+            motor_running: flags.motor_running,
+            fault: flags.fault,
+            position,
+            fault_code,
+            up,
+            down,
+            neutral,
+        }
+    }
+
+    /// The current position of one axis, 0–255 (Table 27 bytes 3–5).
+    pub fn position(&self, axis: Axis) -> u8 {
+        self.axis(axis).position
+    }
+}
+
 /// FAULT_STATUS — ICD Table 28. Bit i of byte k is device 8k+i; the MSB of byte 4 is
 /// the system fault (icd-reading R7). icd-reading R9: 35 bytes, but a shorter payload
 /// (at least the 4 bit bytes) is accepted and the codes it lacks are `None`.
@@ -540,4 +626,57 @@ fn pack_bits(devices: &[bool; DEVICE_COUNT], top_bit: bool) -> [u8; 4] {
         out[3] |= 0x80;
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each axis takes its own bytes of Table 27: every byte a different value, written
+    /// by hand from the table, so a byte given to the wrong axis shows.
+    #[test]
+    fn each_axis_reads_its_own_bytes_of_table_27() {
+        let payload = [
+            0b1010_0000, // byte 1: flaps enabled, fault; not running
+            0b0101_1000, // byte 2: pitch running; roll enabled, running
+            11,          // 3: flap position
+            12,          // 4: pitch trim position
+            13,          // 5: roll trim position
+            0x01,        // 6: flap fault code
+            0x00,        // 7: pitch trim fault code
+            0x02,        // 8: roll trim fault code
+            21,          // 9: flap up
+            22,          // 10: flap down
+            23,          // 11: flap midpoint 1
+            24,          // 12: flap midpoint 2
+            31,          // 13: pitch trim up
+            32,          // 14: pitch trim down
+            33,          // 15: pitch trim neutral
+            41,          // 16: roll trim up
+            42,          // 17: roll trim down
+            43,          // 18: roll trim neutral
+        ];
+        let ft = FlapTrimStatus::parse(&payload).unwrap();
+        let at = |a| {
+            let s = ft.axis(a);
+            (s.enabled, s.motor_running, s.fault, s.position)
+        };
+        assert_eq!(at(Axis::Flap), (true, false, true, 11));
+        assert_eq!(at(Axis::PitchTrim), (false, true, false, 12));
+        assert_eq!(at(Axis::RollTrim), (true, true, false, 13));
+        let ends = |a| {
+            let s = ft.axis(a);
+            (s.up, s.down, s.neutral)
+        };
+        assert_eq!(ends(Axis::Flap), (21, 22, None));
+        assert_eq!(ends(Axis::PitchTrim), (31, 32, Some(33)));
+        assert_eq!(ends(Axis::RollTrim), (41, 42, Some(43)));
+        let codes = [Axis::Flap, Axis::PitchTrim, Axis::RollTrim].map(|a| ft.axis(a).fault_code);
+        assert_eq!(
+            codes,
+            [0x01, 0x00, 0x02].map(FaultCode::from_byte),
+            "bytes 6, 7, 8"
+        );
+        assert_eq!(ft.position(Axis::RollTrim), 13);
+    }
 }
