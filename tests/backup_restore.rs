@@ -10,7 +10,8 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use serialport::TTYPort;
-use vpx_efis::link::request::{DEFAULT_TRIES, query_answers};
+use vpx_efis::exchange::TRIES;
+use vpx_efis::link::request::query_answers;
 use vpx_efis::link::{
     RequestError, SpecError, UnitClient, open_pty_pair, serial_connector, serve_line,
 };
@@ -181,7 +182,7 @@ fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
         DeviceName::new(5, "Changed").unwrap().into(),
     ];
     for m in edits {
-        c.send_spec(m, Duration::from_secs(1), DEFAULT_TRIES)
+        c.send_spec(m, Duration::from_secs(1), TRIES)
             .unwrap_or_else(|e| panic!("setting up the test: {e}"));
     }
     assert!(c.set_enable(6, !original.enabled[6]).unwrap());
@@ -720,7 +721,7 @@ fn backup_and_restore_over_tcp_bring_a_changed_unit_back() {
             ..original.pitch_trim
         }),
         Duration::from_secs(1),
-        DEFAULT_TRIES,
+        TRIES,
     )
     .unwrap();
     c.close();

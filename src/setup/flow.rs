@@ -770,7 +770,7 @@ mod tests {
     use super::*;
     use std::time::Duration;
 
-    use crate::exchange::Rereader;
+    use crate::model::Rereader;
     use crate::model::{Setting, Source};
     use crate::protocol::Packet;
     use crate::protocol::message::{
