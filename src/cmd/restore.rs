@@ -66,7 +66,8 @@ pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
         )
         .into());
     }
-    let (target, made) = backup::load_made(&args.file)?;
+    let (target, made) = backup::load_made(&args.file)
+        .map_err(|e| anyhow::anyhow!("{e}\nNothing was sent to the unit."))?;
     // Read before the unit is opened: a bad load file is refused with nothing sent.
     let over_wires = over_wires(args.loads.as_deref(), &target.config)?;
     eprintln!(
