@@ -9,8 +9,9 @@
 //!    them the small helpers [`program`] (version, usage error, exit codes),
 //!    [`places`] (where the config file and the files beside it live),
 //!    [`utc`], [`files`] (every file the program writes), [`toml_lines`],
-//!    [`platform`], [`transient`] (which I/O errors a reader retries) and
-//!    [`staleness`] (how long each broadcast stays current).
+//!    [`platform`], [`transient`] (which I/O errors a reader retries),
+//!    [`staleness`] (how long each broadcast stays current) and [`exchange`] (ask the
+//!    unit, wait for its answer, try again: the one retry engine).
 //! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files),
 //!    [`traffic`] (every frame, for the traffic view) and [`audit`] (every command
 //!    sent to the unit, with its origin, in a file of JSON lines).
@@ -18,7 +19,7 @@
 //!    staleness decided here), and [`sim`], the virtual VP-X (sans-IO: bytes in,
 //!    bytes out, the caller's clock).
 //! 4. Intent into commands: [`control`] (keys and runs under the safety rules, the
-//!    motor streamer) and [`exchange`] (request, answer, retry on the caller's clock).
+//!    motor streamer).
 //! 5. Flows and maintenance: [`check`] (the installation check), [`setup`] (the setup
 //!    screens' writes), [`loads`] (the load analysis, and each breaker held against
 //!    its wire by AC 43.13-1B's tables), [`backup`], [`flash`],

@@ -10,7 +10,8 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use serialport::TTYPort;
-use vpx_efis::link::request::{DEFAULT_TRIES, query_answers};
+use vpx_efis::exchange::TRIES;
+use vpx_efis::link::request::query_answers;
 use vpx_efis::link::{
     RequestError, SpecError, UnitClient, open_pty_pair, serial_connector, serve_line,
 };
@@ -181,7 +182,7 @@ fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
         DeviceName::new(5, "Changed").unwrap().into(),
     ];
     for m in edits {
-        c.send_spec(m, Duration::from_secs(1), DEFAULT_TRIES)
+        c.send_spec(m, Duration::from_secs(1), TRIES)
             .unwrap_or_else(|e| panic!("setting up the test: {e}"));
     }
     assert!(c.set_enable(6, !original.enabled[6]).unwrap());
@@ -292,7 +293,7 @@ fn bad_files_are_refused_by_field_and_nothing_is_sent() {
         (
             "malformed.toml",
             text.replace("[wig_wag]", "[wig_wag"),
-            vec!["(file): not valid TOML", "line"],
+            vec!["malformed.toml, line ", ": not valid TOML"],
         ),
         (
             "typed.toml",
@@ -308,10 +309,10 @@ fn bad_files_are_refused_by_field_and_nothing_is_sent() {
             .replace("warm_up_s = 5", "warm_up_s = 61")
             .replace("max_speed_kt = 100", "max_speed_kt = 501"),
             vec![
-                "3 problems, nothing was sent to the unit",
-                "system.overvoltage_limit_volts: must be 16 or 32",
-                "flaps.max_speed_kt: flap max speed 501 is above 500",
-                "wig_wag.warm_up_s: warm-up 61 s is outside 5–60 s",
+                "Nothing was sent to the unit.",
+                ": system.overvoltage_limit_volts: must be 16 or 32",
+                ": flaps.max_speed_kt: flap max speed 501 is above 500",
+                ": wig_wag.warm_up_s: warm-up 61 s is outside 5–60 s",
             ],
         ),
     ];
@@ -720,7 +721,7 @@ fn backup_and_restore_over_tcp_bring_a_changed_unit_back() {
             ..original.pitch_trim
         }),
         Duration::from_secs(1),
-        DEFAULT_TRIES,
+        TRIES,
     )
     .unwrap();
     c.close();

@@ -286,7 +286,7 @@ fn a_bad_config_file_is_refused_naming_its_line_by_the_commands_that_read_it() {
     std::fs::write(&cfg, "port = \"/dev/ttyUSB0\"\nspeed = 3\n").unwrap();
     refused(
         &vpx(&["config"], &[], &cfg),
-        "line 2: unknown key \"speed\"",
+        "line 2: speed: unknown key; the keys are port, baud",
     );
     // Commands that use no setting are not stopped by it.
     let o = vpx(&["ports"], &[], &cfg);

@@ -27,6 +27,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "platform",
             "transient",
             "staleness",
+            "exchange",
         ],
     ),
     (
@@ -34,10 +35,7 @@ const LAYERS: &[(&str, &[&str])] = &[
         &["link", "traffic", "audit"],
     ),
     ("what we know, and the virtual unit", &["model", "sim"]),
-    (
-        "intent into commands under the safety rules",
-        &["control", "exchange"],
-    ),
+    ("intent into commands under the safety rules", &["control"]),
     (
         "flows and maintenance",
         &[

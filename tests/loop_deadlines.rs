@@ -8,7 +8,7 @@
 //! - the query pacer (page and gateway): [`query_pacer`] here;
 //! - the motor streamer (page keys and network requests): [`motor_streamer`] here;
 //! - the gateway's air data and motor drive: [`air_data`], [`motor_drive`] here;
-//! - the page's re-reads of settings left unknown (`exchange::Rereader`):
+//! - the page's re-reads of settings left unknown (`model::Rereader`):
 //!   [`rereader`] here;
 //! - the XFSp publisher: `xfsp::publish` unit tests (disabled pins, stale positions);
 //! - the gateway (`Gateway::next_deadline`, headless loop and page):
@@ -222,8 +222,8 @@ fn motor_drive() {
 /// with a gap between batches, then paced, and the deadline is always ahead.
 #[test]
 fn rereader() {
-    use vpx_efis::exchange::{REREAD_BATCH, REREAD_BATCH_GAP, Rereader};
     use vpx_efis::model::Setting;
+    use vpx_efis::model::{REREAD_BATCH, REREAD_BATCH_GAP, Rereader};
     let t0 = Instant::now();
     let mut m = model();
     for id in 4..=20u8 {

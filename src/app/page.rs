@@ -16,8 +16,8 @@ use crate::control::run_state::{ControlState, MotorRun};
 use crate::control::{
     Action, Controller, KeyContext, MotorStreamer, RESEND_PERIOD, StopReason, StreamerConfig,
 };
-use crate::exchange::Rereader;
 use crate::link::{Connector, Link};
+use crate::model::Rereader;
 use crate::model::{Model, Source};
 use crate::protocol::message::Packet;
 use crate::ui::palette::ThemeChoice;

@@ -25,7 +25,7 @@
 //! carry the answers (~0.3 s plus the broadcasts). A request whose answer does not
 //! come within [`ANSWER_WAIT`] (noise on the line, a unit that ignores it) gives up
 //! its place; the setting it asked for is asked again later by the re-reads
-//! (`exchange::Rereader`) or the minute's refresh. A unit older than software 2.0,
+//! (`model::Rereader`) or the minute's refresh. A unit older than software 2.0,
 //! which has no DEVICE_NAME_QUERY or DEVICE_ENABLE to answer, so costs 0.2 s per
 //! four of those 56 requests: under 3 s for the set, and never a burst.
 

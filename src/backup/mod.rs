@@ -75,8 +75,7 @@ pub mod reader;
 pub mod schema;
 pub mod writer;
 
-use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 pub use diff::{Change, diff};
 pub use plan::{PlanError, Step, plan};
@@ -86,6 +85,7 @@ pub use writer::{normalized, to_toml, to_toml_made};
 
 use crate::protocol::config::UnitConfig;
 use crate::protocol::message::Version;
+use crate::toml_lines::FileError;
 
 /// The `format` number this program writes and reads.
 pub const FORMAT: u32 = 1;
@@ -97,57 +97,21 @@ pub struct Backup {
     pub config: UnitConfig,
 }
 
-/// One thing wrong with a backup file: where (a path in the file) and why.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Problem {
-    /// `devices.5A-3.breaker_amps`, `wig_wag`, or `(file)` for TOML syntax.
-    pub field: String,
-    pub message: String,
-}
-
-impl fmt::Display for Problem {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.field, self.message)
-    }
-}
-
-/// Why a backup file cannot be used; every problem, each by its path in the file.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LoadError {
-    pub file: PathBuf,
-    pub problems: Vec<Problem>,
-}
-
-impl fmt::Display for LoadError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let n = self.problems.len();
-        write!(
-            f,
-            "{}: {n} problem{}, nothing was sent to the unit:",
-            self.file.display(),
-            if n == 1 { "" } else { "s" }
-        )?;
-        for p in &self.problems {
-            write!(f, "\n  {p}")?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for LoadError {}
+/// What a backup file is called in what is said of it.
+const KIND: &str = "backup file";
 
 /// Reads and checks a backup file as a whole (see [`from_toml`]).
-pub fn load(path: &Path) -> Result<Backup, LoadError> {
+pub fn load(path: &Path) -> Result<Backup, FileError> {
     load_made(path).map(|(b, _)| b)
 }
 
 /// [`load`], and where the backup came from if the file says.
-pub fn load_made(path: &Path) -> Result<(Backup, Option<Provenance>), LoadError> {
+pub fn load_made(path: &Path) -> Result<(Backup, Option<Provenance>), FileError> {
     read_made(path, std::fs::read_to_string(path))
 }
 
 /// [`load`] of a file someone else read: its text, or why it could not be read.
-pub fn read(path: &Path, text: std::io::Result<String>) -> Result<Backup, LoadError> {
+pub fn read(path: &Path, text: std::io::Result<String>) -> Result<Backup, FileError> {
     read_made(path, text).map(|(b, _)| b)
 }
 
@@ -155,16 +119,11 @@ pub fn read(path: &Path, text: std::io::Result<String>) -> Result<Backup, LoadEr
 pub fn read_made(
     path: &Path,
     text: std::io::Result<String>,
-) -> Result<(Backup, Option<Provenance>), LoadError> {
-    let text = text.map_err(|e| LoadError {
-        file: path.to_path_buf(),
-        problems: vec![Problem {
-            field: "(file)".into(),
-            message: format!("cannot read it: {e}"),
-        }],
-    })?;
-    from_toml_made(&text).map_err(|problems| LoadError {
-        file: path.to_path_buf(),
+) -> Result<(Backup, Option<Provenance>), FileError> {
+    let text = text.map_err(|e| FileError::unreadable(KIND, path.to_path_buf(), &e))?;
+    from_toml_made(&text).map_err(|problems| FileError {
+        kind: KIND,
+        path: path.to_path_buf(),
         problems,
     })
 }
@@ -280,22 +239,40 @@ mod tests {
     }
 
     #[test]
-    fn a_load_error_lists_every_problem_under_the_file() {
+    fn a_load_error_names_path_line_and_field_of_every_problem() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("bad.toml");
-        std::fs::write(&path, "format = 2\n").unwrap();
+        let good = to_toml(&Backup {
+            version: v(HardwareVersion::VpxPro, 1, 2),
+            config: UnitConfig::default(),
+        });
+        let bad = good
+            .replace("format = 1", "format = 2")
+            .replace("warm_up_s = 5", "warm_up_s = \"five\"")
+            .replace("[devices.5A-3]\n", "[devices.5A-3]\ncolour = 1\n");
+        std::fs::write(&path, &bad).unwrap();
+        // Lines found in the text, not by the reader.
+        let line = |start: &str| 1 + bad.lines().position(|l| l.starts_with(start)).unwrap();
         let err = load(&path).unwrap_err().to_string();
-        let mut lines = err.lines();
-        assert!(
-            lines
-                .next()
-                .unwrap()
-                .ends_with("problems, nothing was sent to the unit:")
-        );
-        assert!(
-            err.contains("\n  format: 2 is not a format this program reads"),
-            "{err}"
-        );
-        assert!(err.contains("\n  devices: missing"), "{err}");
+        let at = format!("backup file {}, ", path.display());
+        let want = [
+            format!(
+                "{at}line {}: format: 2 is not a format this program reads",
+                line("format")
+            ),
+            format!(
+                "{at}line {}: devices.5A-3.colour: unknown setting",
+                line("colour")
+            ),
+            format!(
+                "{at}line {}: wig_wag.warm_up_s: must be a whole number",
+                line("warm_up_s")
+            ),
+        ];
+        let lines: Vec<&str> = err.lines().collect();
+        assert_eq!(lines.len(), want.len(), "{err}");
+        for w in want {
+            assert!(lines.iter().any(|l| l.starts_with(&w)), "{w}\nin\n{err}");
+        }
     }
 }

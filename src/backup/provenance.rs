@@ -14,8 +14,8 @@
 
 use std::time::SystemTime;
 
-use super::Problem;
 use crate::protocol::message::Version;
+use crate::toml_lines::Problem;
 
 /// The file's `[made]` section: when, from what and by which vpx-efis it was made.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -45,6 +45,7 @@ pub fn read(t: &toml::Table, problems: &mut Vec<Problem>) -> Option<Provenance> 
         toml::Value::Table(s) => s,
         _ => {
             problems.push(Problem {
+                line: None,
                 field: "made".into(),
                 message: "not a section ([made])".into(),
             });
@@ -55,6 +56,7 @@ pub fn read(t: &toml::Table, problems: &mut Vec<Problem>) -> Option<Provenance> 
         Some(toml::Value::String(s)) => s.clone(),
         Some(_) => {
             problems.push(Problem {
+                line: None,
                 field: format!("made.{key}"),
                 message: "not text".into(),
             });
@@ -67,6 +69,7 @@ pub fn read(t: &toml::Table, problems: &mut Vec<Problem>) -> Option<Provenance> 
         Some(toml::Value::Boolean(b)) => *b,
         Some(_) => {
             problems.push(Problem {
+                line: None,
                 field: "made.simulated".into(),
                 message: "not true or false".into(),
             });

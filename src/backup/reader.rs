@@ -1,8 +1,9 @@
 //! Reading the backup file. Deliberately not one `serde` pass: that stops at the first
-//! problem, while a person fixing a file wants all of them at once, each by its path
-//! in the file (`devices.5A-3.breaker_amps`). The file is parsed as TOML, each value
-//! is read on its own by its [`schema`](super::schema) key, and the result is judged by
-//! the same §6.2 rules the unit applies ([`validate::whole_config`]).
+//! problem, while a person fixing a file wants all of them at once, each by its line
+//! and its path in the file (`devices.5A-3.breaker_amps`, [`toml_lines`]). The file is
+//! parsed as TOML, each value is read on its own by its [`schema`](super::schema) key,
+//! and the result is judged by the same §6.2 rules the unit applies
+//! ([`validate::whole_config`]).
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -17,7 +18,7 @@ use super::schema::{
     WIG_WAG_WARM_UP,
 };
 use super::writer::NONE;
-use super::{Backup, FORMAT, Problem};
+use super::{Backup, FORMAT};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{DEVICES, FLAPS, TRIM_P, TRIM_R, enable_flag_allowed};
 use crate::protocol::message::{
@@ -25,6 +26,7 @@ use crate::protocol::message::{
     Version,
 };
 use crate::protocol::validate;
+use crate::toml_lines::{self, Keys, Problem};
 
 /// Reads a backup from TOML text: every problem, from TOML syntax to a breaker outside
 /// its pin's range or a wig-wag device on no switch, is listed by its path in the file.
@@ -34,16 +36,7 @@ pub fn from_toml(text: &str) -> Result<Backup, Vec<Problem>> {
 
 /// [`from_toml`], and the `[made]` section if the file has one.
 pub fn from_toml_made(text: &str) -> Result<(Backup, Option<Provenance>), Vec<Problem>> {
-    let table: toml::Table = match text.parse() {
-        Ok(t) => t,
-        Err(e) => {
-            let e: toml::de::Error = e;
-            return Err(vec![Problem {
-                field: "(file)".into(),
-                message: format!("not valid TOML: {}", e.to_string().trim_end()),
-            }]);
-        }
-    };
+    let table = toml_lines::table(text).map_err(|p| vec![p])?;
     let mut problems = Vec::new();
     let made = provenance::read(&table, &mut problems);
     let backup = read_file(&table, &mut problems);
@@ -54,16 +47,22 @@ pub fn from_toml_made(text: &str) -> Result<(Backup, Option<Provenance>), Vec<Pr
         let field = file_path(&p.field);
         if !reported.iter().any(|r| field.starts_with(r.as_str())) {
             problems.push(Problem {
+                line: None,
                 field,
                 message: p.message,
             });
         }
     }
     if problems.is_empty() {
-        Ok((backup, made))
-    } else {
-        Err(problems)
+        return Ok((backup, made));
     }
+    let keys = Keys::of(text);
+    for p in &mut problems {
+        p.line = keys.line(&p.field);
+    }
+    // Those of the file as a whole (a section it lacks) first, then in its order.
+    problems.sort_by_key(|p| p.line);
+    Err(problems)
 }
 
 /// One TOML table being read: typed getters that record a problem (with the full path)
@@ -86,6 +85,7 @@ impl<'a, 'p> Section<'a, 'p> {
             Some(toml::Value::Table(t)) => Some(t),
             Some(v) => {
                 problems.push(Problem {
+                    line: None,
                     field: path.clone(),
                     message: format!("must be a table ([{path}]), not {}", kind(v)),
                 });
@@ -93,6 +93,7 @@ impl<'a, 'p> Section<'a, 'p> {
             }
             None => {
                 problems.push(Problem {
+                    line: None,
                     field: path.clone(),
                     message: format!("missing: the file has no [{path}] table"),
                 });
@@ -109,6 +110,7 @@ impl<'a, 'p> Section<'a, 'p> {
 
     fn problem(&mut self, key: &str, message: String) {
         self.problems.push(Problem {
+            line: None,
             field: format!("{}.{key}", self.path),
             message,
         });
@@ -299,6 +301,7 @@ impl<'a, 'p> Section<'a, 'p> {
         for key in table.keys() {
             if !self.asked.contains(&key.as_str()) {
                 self.problems.push(Problem {
+                    line: None,
                     field: format!("{}.{key}", self.path),
                     message: format!(
                         "unknown setting; [{}] has {}",
@@ -339,6 +342,7 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
     match t.get("format") {
         Some(toml::Value::Integer(n)) if *n == FORMAT as i64 => {}
         Some(v) => problems.push(Problem {
+            line: None,
             field: "format".into(),
             message: format!(
                 "{} is not a format this program reads (it reads format = {FORMAT})",
@@ -349,6 +353,7 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
             ),
         }),
         None => problems.push(Problem {
+            line: None,
             field: "format".into(),
             message: format!("missing (format = {FORMAT}); is this a vpx-efis backup?"),
         }),
@@ -367,6 +372,7 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
     for key in t.keys() {
         if !TOP.contains(&key.as_str()) {
             problems.push(Problem {
+                line: None,
                 field: key.clone(),
                 message: format!("unknown section; a backup has {}", TOP.join(", ")),
             });
@@ -524,6 +530,7 @@ fn read_devices(t: &toml::Table, cfg: &mut UnitConfig, problems: &mut Vec<Proble
         Some(toml::Value::Table(d)) => Some(d),
         Some(v) => {
             problems.push(Problem {
+                line: None,
                 field: "devices".into(),
                 message: format!("must be tables like [devices.5A-1], not {}", kind(v)),
             });
@@ -531,6 +538,7 @@ fn read_devices(t: &toml::Table, cfg: &mut UnitConfig, problems: &mut Vec<Proble
         }
         None => {
             problems.push(Problem {
+                line: None,
                 field: "devices".into(),
                 message: "missing: the file has no [devices.…] tables".into(),
             });
@@ -552,6 +560,7 @@ fn read_devices(t: &toml::Table, cfg: &mut UnitConfig, problems: &mut Vec<Proble
                     .into(),
             };
             problems.push(Problem {
+                line: None,
                 field: format!("devices.{key}"),
                 message: format!("no such pin; {hint}"),
             });
@@ -718,11 +727,12 @@ mod tests {
         assert!(at("[devices.15A-3]") < at("[devices.3A-1]"));
     }
 
+    /// Each problem's field and words (its line is held in tests of its own).
     fn problems(text: &str) -> Vec<String> {
         from_toml(text)
             .unwrap_err()
             .into_iter()
-            .map(|p| p.to_string())
+            .map(|p| format!("{}: {}", p.field, p.message))
             .collect()
     }
 
@@ -735,10 +745,13 @@ mod tests {
 
     #[test]
     fn a_toml_syntax_error_says_where() {
-        let p = problems("format = 1\n[devices.5A-1\nname = \"x\"\n");
+        let p = from_toml("format = 1\n[devices.5A-1\nname = \"x\"\n").unwrap_err();
         assert_eq!(p.len(), 1);
-        assert!(p[0].starts_with("(file): not valid TOML"), "{p:?}");
-        assert!(p[0].contains("line 2"), "{p:?}");
+        assert_eq!(p[0].line, Some(2), "{p:?}");
+        assert!(
+            p[0].to_string().starts_with("line 2: not valid TOML"),
+            "{p:?}"
+        );
     }
 
     #[test]
@@ -798,14 +811,15 @@ mod tests {
             .replace("reduced_power_percent = 60", "reduced_power_percent = 95")
             .replace("endpoint_duration_s = 0.5", "endpoint_duration_s = 31.5")
             .replace("speed_kt = 80", "speed_kt = 250");
+        // In the file's order: the devices come last in it.
         let p = problems(&text);
         assert_eq!(
             p,
             [
-                "devices.5A-3.breaker_amps: 7 A is outside 1–5 A for 5A-3 (ICD Table 40)",
                 "flaps.endpoint_duration_s: endpoint duration 31.5 s is above 30.0 s (ICD Table 16, in tenths)",
                 "pitch_trim.reduced_power_percent: trim power 95 % is outside 40–90 % (ICD Table 15; 100 % is the factory value and also accepted)",
                 "wig_wag.speed_kt: wig-wag speed 250 is above 200 (ICD Table 17)",
+                "devices.5A-3.breaker_amps: 7 A is outside 1–5 A for 5A-3 (ICD Table 40)",
             ]
         );
     }

@@ -461,7 +461,7 @@ impl CheckFlow {
     /// neither; then the report.
     pub fn loads_opened(
         &mut self,
-        opened: Result<crate::loads::disk::Opened, crate::loads::disk::LoadError>,
+        opened: Result<crate::loads::disk::Opened, crate::toml_lines::FileError>,
         view: &mut CheckView,
         model: &Model,
         ctl: &mut Controller,

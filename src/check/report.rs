@@ -551,7 +551,12 @@ fn loads(o: &mut String, view: &CheckView) {
             );
         }
         Some(LoadsView::Refused(why)) => {
-            let _ = writeln!(o, "The load file could not be used: {why}\n");
+            // One problem a line, each with its path, line and field.
+            let _ = writeln!(o, "The load file could not be used:\n");
+            for problem in why.lines() {
+                let _ = writeln!(o, "- {problem}");
+            }
+            let _ = writeln!(o);
         }
         Some(LoadsView::Analysed { path, analysis }) => analysed(o, path, analysis),
     }

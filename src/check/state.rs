@@ -444,7 +444,8 @@ pub enum LoadsView {
     /// There was no file: the template was written here, for the builder to fill in
     /// before the next check.
     TemplateWritten(std::path::PathBuf),
-    /// The file could not be used: its path, line and what is wrong, in words.
+    /// The file could not be used: every problem, one a line, each with its path,
+    /// line, field and what is wrong, in words.
     Refused(String),
 }
 

@@ -217,7 +217,7 @@ fn resolve_with(
     command: &mut Option<Command>,
     page: &mut PageArgs,
     matches: &ArgMatches,
-    load: impl FnOnce() -> Result<settings::Loaded, settings::ConfigError>,
+    load: impl FnOnce() -> Result<settings::Loaded, crate::toml_lines::FileError>,
 ) -> anyhow::Result<Vec<Effective>> {
     let uses_settings = matches!(
         command,

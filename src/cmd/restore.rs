@@ -28,7 +28,7 @@ use clap::Args;
 use crate::backup::{self, Step, normalized};
 use crate::cmd::backup::{connect, progress_bar, read_with_progress};
 use crate::cmd::common::PortArgs;
-use crate::link::request::{DEFAULT_TIMEOUT, DEFAULT_TRIES};
+use crate::exchange::{ANSWER_TIMEOUT, TRIES};
 use crate::link::{SpecError, UnitClient};
 use crate::loads::wiring;
 use crate::program::UsageError;
@@ -66,7 +66,8 @@ pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
         )
         .into());
     }
-    let (target, made) = backup::load_made(&args.file)?;
+    let (target, made) = backup::load_made(&args.file)
+        .map_err(|e| anyhow::anyhow!("{e}\nNothing was sent to the unit."))?;
     // Read before the unit is opened: a bad load file is refused with nothing sent.
     let over_wires = over_wires(args.loads.as_deref(), &target.config)?;
     eprintln!(
@@ -271,23 +272,24 @@ fn write_steps(
     let mut held = current.clone();
     for (i, step) in steps.iter().enumerate() {
         bar.set_position(i as u64);
-        let result: Result<(), String> = match *step {
-            Step::Spec { message, .. } => client
-                .send_spec(message, DEFAULT_TIMEOUT, DEFAULT_TRIES)
-                .map_err(|e| match e {
-                    SpecError::Refused { error, .. } => {
-                        format!("{e}. {}", validate::explain(error, &held, &message))
-                    }
-                    e => e.to_string(),
-                }),
-            Step::Enable { device_id, shown } => match client.set_enable(device_id, shown) {
-                Ok(true) => Ok(()),
-                Ok(false) => Err(format!(
-                    "the unit did not store {step}: read back, it still holds the other value"
-                )),
-                Err(e) => Err(e.to_string()),
-            },
-        };
+        let result: Result<(), String> =
+            match *step {
+                Step::Spec { message, .. } => client
+                    .send_spec(message, ANSWER_TIMEOUT, TRIES)
+                    .map_err(|e| match e {
+                        SpecError::Refused { error, .. } => {
+                            format!("{e}. {}", validate::explain(error, &held, &message))
+                        }
+                        e => e.to_string(),
+                    }),
+                Step::Enable { device_id, shown } => match client.set_enable(device_id, shown) {
+                    Ok(true) => Ok(()),
+                    Ok(false) => Err(format!(
+                        "the unit did not store {step}: read back, it still holds the other value"
+                    )),
+                    Err(e) => Err(e.to_string()),
+                },
+            };
         if let Err(why) = result {
             bar.finish_and_clear();
             bail!(failure_report(steps, i, &why, erased));

@@ -56,6 +56,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+use crate::exchange::{ANSWER_TIMEOUT, TRIES, Try, Verdict};
 use crate::protocol::bootloader::{
     BootCommand, BootError, BootResponse, BootResponseReader, PAGE_SIZE,
 };
@@ -122,9 +123,9 @@ pub struct Options {
     /// One try of any command but FLASH_ERASE.
     pub timeout: Duration,
     /// Tries of each command, the first included.
-    pub tries: u32,
+    pub tries: u8,
     pub erase_timeout: Duration,
-    pub erase_tries: u32,
+    pub erase_tries: u8,
     /// Times SOFTWARE_UPDATE is sent when the bootloader does not answer SERIAL_CONF.
     pub enter_tries: u32,
     /// Time the unit gets after SOFTWARE_UPDATE to start its bootloader: bytes sent
@@ -148,8 +149,8 @@ pub struct Options {
 impl Default for Options {
     fn default() -> Self {
         Options {
-            timeout: Duration::from_secs(1),
-            tries: 3,
+            timeout: ANSWER_TIMEOUT,
+            tries: TRIES,
             erase_timeout: Duration::from_secs(30),
             erase_tries: 2,
             enter_tries: 3,
@@ -567,12 +568,14 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
         &mut self,
         cmd: &BootCommand,
         timeout: Duration,
-        tries: u32,
+        tries: u8,
     ) -> Result<BootResponse, Fail> {
-        let tries = tries.max(1);
         let what = cmd.to_string();
         let frame = cmd.emit();
-        for attempt in 1..=tries {
+        let mut try_ = Try::with(Instant::now(), timeout, tries);
+        let tries = try_.of();
+        loop {
+            let attempt = try_.attempt;
             if attempt > 1 {
                 self.settle()?;
             }
@@ -613,6 +616,9 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
                     }
                 }
             }
+            if try_.spent(Instant::now()) == Verdict::NoAnswer {
+                break;
+            }
         }
         Err(Fail::NoAnswer(format!(
             "the bootloader did not answer {} after {tries} tries of {} ms",
@@ -649,9 +655,11 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
     }
 
     /// VERSION in the main protocol; `None` if no try was answered.
-    fn version(&mut self, timeout: Duration, tries: u32) -> Result<Option<Version>, Fail> {
+    fn version(&mut self, timeout: Duration, tries: u8) -> Result<Option<Version>, Fail> {
         let mut sent = Vec::new();
-        for attempt in 1..=tries.max(1) {
+        let mut try_ = Try::with(Instant::now(), timeout, tries);
+        loop {
+            let attempt = try_.attempt;
             let cnt = self.take_cnt();
             sent.push(cnt);
             let bytes = Packet::request(cnt, Version::REQUEST).to_bytes();
@@ -679,11 +687,14 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
                 }
             }
             self.note(&format!(
-                "no answer to VERSION within {} ms (try {attempt} of {tries})",
-                timeout.as_millis()
+                "no answer to VERSION within {} ms (try {attempt} of {})",
+                timeout.as_millis(),
+                try_.of()
             ));
+            if try_.spent(Instant::now()) == Verdict::NoAnswer {
+                return Ok(None);
+            }
         }
-        Ok(None)
     }
 
     /// SOFTWARE_UPDATE if needed, then SERIAL_CONF, QUERY_PORT, SIGNATURE and VERSION.

@@ -11,7 +11,8 @@
 //! broadcast can carry the same number by chance; the type alone is not enough, because
 //! a late answer to an earlier request would be taken for this one.
 //!
-//! **Retries.** Each try is sent with a fresh command number. An answer carrying the
+//! **Retries.** When to send again and when to give up is [`crate::exchange`]'s, as for
+//! every request. Each try is sent with a fresh command number. An answer carrying the
 //! number of an *earlier* try of the same request is still accepted: a unit that was
 //! merely slow has answered the same question, and waiting for a second answer would
 //! only make it slower.
@@ -21,6 +22,7 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, unbounded};
 
 use super::connection::{Connector, Link, LinkEvent, RxItem};
+use crate::exchange::{ANSWER_TIMEOUT, TRIES, Try, Verdict};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{
     self, DEVICE_COUNT, FLAPS, SYSTEM_SPEC_ID, TRIM_P, TRIM_R, WIG_WAG_SPEC_ID, enable_flag_allowed,
@@ -31,12 +33,6 @@ use crate::protocol::message::{
 };
 use crate::protocol::{Error as WireError, Packet};
 
-/// How long to wait for an answer to one try, unless a caller says otherwise. The unit
-/// answers within a few frame times at 57600 baud; a second is generous and keeps a
-/// silent unit from looking like a hang (3 tries = 3 s).
-pub const DEFAULT_TIMEOUT: Duration = Duration::from_secs(1);
-/// Tries per request, the first one included.
-pub const DEFAULT_TRIES: u32 = 3;
 /// How long [`UnitClient::new`] waits for the port to open.
 pub const CONNECT_TIMEOUT: Duration = Duration::from_secs(3);
 /// EEPROM_ERASE rewrites the whole EEPROM of an ATmega2560 (4 KiB at about 3.4 ms a
@@ -47,7 +43,7 @@ pub const ERASE_TIMEOUT: Duration = Duration::from_secs(20);
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum RequestError {
     #[error("the unit did not answer {what} after {tries} {}", if *tries == 1 { "try" } else { "tries" })]
-    Timeout { what: String, tries: u32 },
+    Timeout { what: String, tries: u8 },
     #[error("the link to the unit was lost while asking {what}: {reason}")]
     LinkLost { what: String, reason: String },
     #[error("could not open the link to the unit: {reason}")]
@@ -143,16 +139,16 @@ impl UnitClient {
         message: impl Into<Message>,
         matches: impl Fn(&Message) -> bool,
         timeout: Duration,
-        tries: u32,
+        tries: u8,
     ) -> Result<Message, RequestError> {
         let message = message.into();
         let what = request_name(&message);
-        let tries = tries.max(1);
-        let mut sent: Vec<u8> = Vec::with_capacity(tries as usize);
+        let mut try_ = Try::with(Instant::now(), timeout, tries);
+        let mut sent: Vec<u8> = Vec::with_capacity(usize::from(try_.of()));
         // Whatever is queued from before this request (broadcasts, stale answers) cannot
         // be its answer; draining keeps the wait loop short and link state current.
         self.drain();
-        for _ in 0..tries {
+        loop {
             if let Some(reason) = self.down.clone() {
                 // Give a reopening port (a pulled and replugged cable) one timeout to
                 // come back before this try is spent.
@@ -204,10 +200,16 @@ impl UnitClient {
                     }
                 }
             }
+            if try_.spent(Instant::now()) == Verdict::NoAnswer {
+                break;
+            }
         }
         match self.down.clone() {
             Some(reason) => Err(RequestError::LinkLost { what, reason }),
-            None => Err(RequestError::Timeout { what, tries }),
+            None => Err(RequestError::Timeout {
+                what,
+                tries: try_.of(),
+            }),
         }
     }
 
@@ -218,7 +220,7 @@ impl UnitClient {
         &mut self,
         spec: impl Into<Message>,
         timeout: Duration,
-        tries: u32,
+        tries: u8,
     ) -> Result<(), SpecError> {
         let spec = spec.into();
         let want = spec_ack_id(&spec);
@@ -248,8 +250,8 @@ impl UnitClient {
         match self.request(
             Version::REQUEST,
             |m| matches!(m, Message::Version(_)),
-            DEFAULT_TIMEOUT,
-            DEFAULT_TRIES,
+            ANSWER_TIMEOUT,
+            TRIES,
         )? {
             Message::Version(v) => Ok(v),
             _ => unreachable!("matcher accepts only VERSION"),
@@ -278,8 +280,8 @@ impl UnitClient {
         self.request(
             DeviceSpecQuery { device_id: id },
             move |m| query_answers(id, m),
-            DEFAULT_TIMEOUT,
-            DEFAULT_TRIES,
+            ANSWER_TIMEOUT,
+            TRIES,
         )
     }
 
@@ -288,8 +290,8 @@ impl UnitClient {
         match self.request(
             DeviceNameQuery { device_id: id },
             move |m| matches!(m, Message::DeviceName(n) if n.device_id == id),
-            DEFAULT_TIMEOUT,
-            DEFAULT_TRIES,
+            ANSWER_TIMEOUT,
+            TRIES,
         )? {
             Message::DeviceName(n) => Ok(n.name),
             _ => unreachable!("matcher accepts only DEVICE_NAME"),
@@ -307,8 +309,8 @@ impl UnitClient {
                 matches!(m, Message::DeviceEnable(e) if e.device_id == id
                     && matches!(e.flag, EnableFlag::Enabled | EnableFlag::Disabled))
             },
-            DEFAULT_TIMEOUT,
-            DEFAULT_TRIES,
+            ANSWER_TIMEOUT,
+            TRIES,
         )? {
             Message::DeviceEnable(e) => Ok(e.flag == EnableFlag::Enabled),
             _ => unreachable!("matcher accepts only DEVICE_ENABLE"),
@@ -320,8 +322,8 @@ impl UnitClient {
         match self.request(
             DeviceStatusQuery,
             |m| matches!(m, Message::DeviceStatus(_)),
-            DEFAULT_TIMEOUT,
-            DEFAULT_TRIES,
+            ANSWER_TIMEOUT,
+            TRIES,
         )? {
             Message::DeviceStatus(s) => Ok(s),
             _ => unreachable!("matcher accepts only DEVICE_STATUS"),
@@ -728,7 +730,7 @@ mod tests {
                 },
             )]
         });
-        let err = c.send_spec(spec(6), DEFAULT_TIMEOUT, 1).unwrap_err();
+        let err = c.send_spec(spec(6), ANSWER_TIMEOUT, 1).unwrap_err();
         assert_eq!(
             err.to_string(),
             "the unit refused DEVICE_SPEC for 5A-3: Invalid circuit breaker value (SPEC_ACK code 0x03)"

@@ -3,8 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use super::file::{self, LoadFile, Problem};
+use super::file::{self, LoadFile};
 use crate::model::Circuit;
+use crate::toml_lines::{FileError, Problem};
 
 /// Where the file lives unless the caller says: `loads.toml` beside the config file
 /// (`~/.config/vpx-efis` on Linux, `~/Library/Application Support/vpx-efis` on
@@ -15,18 +16,8 @@ pub fn default_path() -> Option<PathBuf> {
     crate::places::config_path().and_then(|c| c.parent().map(|d| d.join("loads.toml")))
 }
 
-/// A load file that cannot be used, named with its path (and line).
-#[derive(Debug, thiserror::Error)]
-pub enum LoadError {
-    #[error("load file {}: {error}", path.display())]
-    Io {
-        path: PathBuf,
-        #[source]
-        error: std::io::Error,
-    },
-    #[error("load file {}, {problem}", path.display())]
-    Bad { path: PathBuf, problem: Problem },
-}
+/// What the load file is called in what is said of it.
+const KIND: &str = "load file";
 
 /// What the check found at the file's path.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,35 +29,39 @@ pub enum Opened {
 }
 
 /// Reads the file at `path`.
-pub fn read(path: &Path) -> Result<LoadFile, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|error| LoadError::Io {
+pub fn read(path: &Path) -> Result<LoadFile, FileError> {
+    read_with(path, file::parse)
+}
+
+fn read_with<T>(
+    path: &Path,
+    parse: impl Fn(&str) -> Result<T, Vec<Problem>>,
+) -> Result<T, FileError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| FileError::unreadable(KIND, path.to_path_buf(), &e))?;
+    parse(&text).map_err(|problems| FileError {
+        kind: KIND,
         path: path.to_path_buf(),
-        error,
-    })?;
-    file::parse(&text).map_err(|problem| LoadError::Bad {
-        path: path.to_path_buf(),
-        problem,
+        problems,
     })
 }
 
 /// Reads only the circuits of the file at `path` (its wires), not its ratings.
-pub fn read_circuits(path: &Path) -> Result<Vec<file::LoadCircuit>, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|error| LoadError::Io {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    file::parse_circuits(&text).map_err(|problem| LoadError::Bad {
-        path: path.to_path_buf(),
-        problem,
-    })
+pub fn read_circuits(path: &Path) -> Result<Vec<file::LoadCircuit>, FileError> {
+    read_with(path, file::parse_circuits)
 }
 
 /// Reads the file at `path`, or, when there is none, writes the template listing
 /// `circuits` there (and the folders it needs).
-pub fn open_or_create(path: &Path, circuits: &[Circuit]) -> Result<Opened, LoadError> {
-    let io = |error| LoadError::Io {
+pub fn open_or_create(path: &Path, circuits: &[Circuit]) -> Result<Opened, FileError> {
+    let io = |e: std::io::Error| FileError {
+        kind: KIND,
         path: path.to_path_buf(),
-        error,
+        problems: vec![Problem::new(
+            None,
+            "",
+            format!("cannot write its template: {e}"),
+        )],
     };
     if !path.exists() {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
@@ -121,8 +116,10 @@ mod tests {
         assert_eq!(
             e,
             format!(
-                "load file {}, alternator_amps is missing: write alternator_amps = the \
-                 alternator's rated output in amperes",
+                "load file {0}, alternator_amps: missing: write alternator_amps = the \
+                 alternator's rated output in amperes\n\
+                 load file {0}, battery_amp_hours: missing: write battery_amp_hours = the \
+                 battery's rated capacity in ampere-hours",
                 path.display()
             )
         );

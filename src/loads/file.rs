@@ -26,12 +26,12 @@
 //! pin order, whatever order the file lists them in.
 
 use std::collections::BTreeMap;
-use std::fmt::{self, Write};
+use std::fmt::Write;
 
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::toml_lines::{self, Value};
+use crate::toml_lines::{self, Problem, Value};
 
 use super::wire::{self, Wire};
 use super::wiring::WireRun;
@@ -82,26 +82,7 @@ pub struct LoadFile {
     pub circuits: Vec<LoadCircuit>,
 }
 
-/// What is wrong with a file: the line (when known) and, in words, the field and why.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Problem {
-    pub line: Option<usize>,
-    pub message: String,
-}
-
-impl fmt::Display for Problem {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.line {
-            Some(l) => write!(f, "line {l}: {}", self.message),
-            None => f.write_str(&self.message),
-        }
-    }
-}
-
-impl std::error::Error for Problem {}
-
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
 struct Raw {
     alternator_amps: Option<Value>,
     battery_amp_hours: Option<Value>,
@@ -110,8 +91,12 @@ struct Raw {
     circuit: BTreeMap<Spanned<String>, RawCircuit>,
 }
 
+/// The file's own keys, beside the `[circuit.PIN]` sections.
+const RATINGS: [&str; 3] = ["alternator_amps", "battery_amp_hours", "battery_usable"];
+/// A circuit's keys but its phases.
+const CIRCUIT_KEYS: [&str; 5] = ["name", "amps", "wire", "wire_length", "return_length"];
+
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
 struct RawCircuit {
     name: Option<Value>,
     amps: Option<Value>,
@@ -141,88 +126,144 @@ impl RawCircuit {
     }
 }
 
-/// Reads the file's text. The first problem stops the reading, named by its line.
-pub fn parse(text: &str) -> Result<LoadFile, Problem> {
-    let raw: Raw = toml_lines::parse(text).map_err(|r| Problem {
-        line: r.line,
-        message: plain_serde_words(r),
-    })?;
+/// Reads the file's text, listing every problem, each with its line and field
+/// ([`toml_lines`]).
+pub fn parse(text: &str) -> Result<LoadFile, Vec<Problem>> {
+    let raw: Raw = toml_lines::parse(text).map_err(|p| vec![p])?;
+    let mut problems = unknown_keys(text);
     let at = |v: &Value| Some(toml_lines::line(text, v));
 
-    let required = |key: &str, v: Option<Value>, what: &str| match v {
-        None => Err(Problem {
-            line: None,
-            message: format!("{key} is missing: write {key} = {what}"),
-        }),
-        Some(v) => {
-            let n = number(&v, key).map_err(|m| Problem {
-                line: at(&v),
-                message: m,
-            })?;
-            if n > 0.0 {
-                Ok(n)
-            } else {
-                Err(Problem {
-                    line: at(&v),
-                    message: format!("{key}: {n} must be more than 0 ({what})"),
-                })
-            }
+    let mut required = |key: &str, v: Option<Value>, what: &str| match v {
+        None => {
+            problems.push(Problem::new(
+                None,
+                key,
+                format!("missing: write {key} = {what}"),
+            ));
+            None
         }
+        Some(v) => match number(&v) {
+            Ok(n) if n > 0.0 => Some(n),
+            Ok(n) => {
+                problems.push(Problem::new(
+                    at(&v),
+                    key,
+                    format!("{n} must be more than 0 ({what})"),
+                ));
+                None
+            }
+            Err(why) => {
+                problems.push(Problem::new(at(&v), key, why));
+                None
+            }
+        },
     };
     let alternator_amps = required(
         "alternator_amps",
         raw.alternator_amps,
         "the alternator's rated output in amperes",
-    )?;
+    );
     let battery_amp_hours = required(
         "battery_amp_hours",
         raw.battery_amp_hours,
         "the battery's rated capacity in ampere-hours",
-    )?;
+    );
     let battery_usable = match raw.battery_usable {
-        None => DEFAULT_BATTERY_USABLE,
-        Some(v) => {
-            let bad = |m: String| Problem {
-                line: at(&v),
-                message: m,
-            };
-            let n = number(&v, "battery_usable").map_err(bad)?;
-            if n > 0.0 && n <= 1.0 {
-                n
-            } else {
-                return Err(bad(format!(
-                    "battery_usable: {n} is no share of the battery; write a number \
-                     more than 0 and at most 1 (0.8 for 80 %)"
-                )));
+        None => Some(DEFAULT_BATTERY_USABLE),
+        Some(v) => match number(&v) {
+            Ok(n) if n > 0.0 && n <= 1.0 => Some(n),
+            Ok(n) => {
+                problems.push(Problem::new(
+                    at(&v),
+                    "battery_usable",
+                    format!(
+                        "{n} is no share of the battery; write a number more than 0 and at \
+                         most 1 (0.8 for 80 %)"
+                    ),
+                ));
+                None
             }
-        }
+            Err(why) => {
+                problems.push(Problem::new(at(&v), "battery_usable", why));
+                None
+            }
+        },
     };
-
-    let circuits = read_circuits(text, raw.circuit)?;
-    Ok(LoadFile {
-        alternator_amps,
-        battery_amp_hours,
-        battery_usable,
-        circuits,
-    })
+    let circuits = read_circuits(text, raw.circuit, &mut problems);
+    match (alternator_amps, battery_amp_hours, battery_usable) {
+        (Some(alternator_amps), Some(battery_amp_hours), Some(battery_usable))
+            if problems.is_empty() =>
+        {
+            Ok(LoadFile {
+                alternator_amps,
+                battery_amp_hours,
+                battery_usable,
+                circuits,
+            })
+        }
+        _ => Err(in_line_order(problems)),
+    }
 }
 
 /// Reads only the circuits, not the ratings: for `vpx-efis wires`, which needs the
 /// wires and not the alternator or the battery, so a file still without its ratings
 /// (the template as written) is read for its wires.
-pub fn parse_circuits(text: &str) -> Result<Vec<LoadCircuit>, Problem> {
-    let raw: Raw = toml_lines::parse(text).map_err(|r| Problem {
-        line: r.line,
-        message: plain_serde_words(r),
-    })?;
-    read_circuits(text, raw.circuit)
+pub fn parse_circuits(text: &str) -> Result<Vec<LoadCircuit>, Vec<Problem>> {
+    let raw: Raw = toml_lines::parse(text).map_err(|p| vec![p])?;
+    let mut problems = unknown_keys(text);
+    let circuits = read_circuits(text, raw.circuit, &mut problems);
+    if problems.is_empty() {
+        Ok(circuits)
+    } else {
+        Err(in_line_order(problems))
+    }
 }
 
-/// Every `[circuit.PIN]` section, in pin order; the first problem stops the reading.
+/// A missing key (no line) first, then the rest as the file has them.
+fn in_line_order(mut problems: Vec<Problem>) -> Vec<Problem> {
+    problems.sort_by_key(|p| p.line);
+    problems
+}
+
+/// Every key the file does not have, with what it has instead.
+fn unknown_keys(text: &str) -> Vec<Problem> {
+    let phases: Vec<&str> = Phase::ALL.iter().map(|p| p.key()).collect();
+    let circuit_key = |k: &str| CIRCUIT_KEYS.contains(&k) || phases.contains(&k);
+    toml_lines::Keys::of(text)
+        .unknown(|p| match p {
+            [k] => RATINGS.contains(&k.as_str()) || k == "circuit",
+            [c, _] => c == "circuit",
+            [c, _, k] => c == "circuit" && circuit_key(k),
+            _ => false,
+        })
+        .into_iter()
+        .map(|(path, line)| match &path[..] {
+            [c, pin, k] if c == "circuit" => Problem::new(
+                Some(line),
+                format!("[circuit.{pin}] {k}"),
+                format!(
+                    "unknown key; a circuit's keys are name, amps, {}, wire, wire_length \
+                     and return_length",
+                    phases.join(", ")
+                ),
+            ),
+            _ => Problem::new(
+                Some(line),
+                path.join("."),
+                "unknown key; the file's keys are alternator_amps, battery_amp_hours, \
+                 battery_usable and [circuit.PIN] sections",
+            ),
+        })
+        .collect()
+}
+
+/// Every `[circuit.PIN]` section that reads, in pin order; what does not read is in
+/// `problems`.
 fn read_circuits(
     text: &str,
     raw: BTreeMap<Spanned<String>, RawCircuit>,
-) -> Result<Vec<LoadCircuit>, Problem> {
+    problems: &mut Vec<Problem>,
+) -> Vec<LoadCircuit> {
     let at = |v: &Value| Some(toml_lines::line(text, v));
     let mut circuits: Vec<(LoadCircuit, usize)> = Vec::new();
     for (key, rc) in raw {
@@ -232,141 +273,128 @@ fn read_circuits(
             .iter()
             .find(|d| d.system_name.eq_ignore_ascii_case(&key))
         else {
-            return Err(Problem {
-                line: Some(key_line),
-                message: format!(
-                    "[circuit.{key}]: {key:?} is no pin of the VP-X; the pins are {}",
+            problems.push(Problem::new(
+                Some(key_line),
+                format!("[circuit.{key}]"),
+                format!(
+                    "{key:?} is no pin of the VP-X; the pins are {}",
                     device::DEVICES
                         .iter()
                         .map(|d| d.system_name)
                         .collect::<Vec<_>>()
                         .join(", ")
                 ),
-            });
+            ));
+            continue;
         };
         if let Some((_, first)) = circuits.iter().find(|(c, _)| c.id == dev.id) {
-            return Err(Problem {
-                line: Some(key_line),
-                message: format!(
-                    "[circuit.{key}]: {} is listed twice, first on line {first}",
-                    dev.system_name
-                ),
-            });
+            problems.push(Problem::new(
+                Some(key_line),
+                format!("[circuit.{key}]"),
+                format!("{} is listed twice, first on line {first}", dev.system_name),
+            ));
+            continue;
         }
+        let before = problems.len();
         let field = |f: &str| format!("[circuit.{}] {f}", dev.system_name);
+        let mut bad = |v: &Value, f: &str, why: String| {
+            problems.push(Problem::new(at(v), field(f), why));
+        };
         let name = match &rc.name {
             None => dev.system_name.to_string(),
             Some(v) => match v.get_ref() {
                 toml::Value::String(s) => s.clone(),
                 other => {
-                    return Err(Problem {
-                        line: at(v),
-                        message: format!(
-                            "{}: {} where text in quotes was expected",
-                            field("name"),
-                            kind(other)
-                        ),
-                    });
+                    bad(
+                        v,
+                        "name",
+                        format!("{} where text in quotes was expected", kind(other)),
+                    );
+                    String::new()
                 }
             },
         };
-        let amps = match &rc.amps {
-            None => None,
-            Some(v) => {
-                let bad = |m: String| Problem {
-                    line: at(v),
-                    message: m,
-                };
-                let n = number(v, &field("amps")).map_err(bad)?;
-                if n < 0.0 {
-                    return Err(bad(format!(
-                        "{}: {n} A is below zero; write the current the circuit draws",
-                        field("amps")
-                    )));
-                }
-                if n > f64::from(dev.amps_max) {
-                    return Err(bad(format!(
-                        "{}: {n} A is more than the {} pin can carry ({} A at most, ICD \
-                         Appendix B)",
-                        field("amps"),
-                        dev.system_name,
-                        dev.amps_max
-                    )));
-                }
-                Some(n)
+        let amps = rc.amps.as_ref().and_then(|v| match number(v) {
+            Err(why) => {
+                bad(v, "amps", why);
+                None
             }
-        };
+            Ok(n) if n < 0.0 => {
+                bad(
+                    v,
+                    "amps",
+                    format!("{n} A is below zero; write the current the circuit draws"),
+                );
+                None
+            }
+            Ok(n) if n > f64::from(dev.amps_max) => {
+                bad(
+                    v,
+                    "amps",
+                    format!(
+                        "{n} A is more than the {} pin can carry ({} A at most, ICD \
+                         Appendix B)",
+                        dev.system_name, dev.amps_max
+                    ),
+                );
+                None
+            }
+            Ok(n) => Some(n),
+        });
         let mut duty = [0.0; 7];
         for (phase, v) in rc.phases() {
             let Some(v) = v else { continue };
-            duty[phase.index()] = fraction(v).map_err(|why| Problem {
-                line: at(v),
-                message: format!("{}: {why}", field(phase.key())),
-            })?;
+            match fraction(v) {
+                Ok(d) => duty[phase.index()] = d,
+                Err(why) => bad(v, phase.key(), why),
+            }
         }
-        let text_of = |key: &str, v: &Option<Value>| -> Result<Option<(String, usize)>, Problem> {
-            match v {
-                None => Ok(None),
-                Some(v) => match v.get_ref() {
-                    toml::Value::String(s) => Ok(Some((s.clone(), toml_lines::line(text, v)))),
-                    other => Err(Problem {
-                        line: at(v),
-                        message: format!(
-                            "{}: {} where text in quotes was expected (\"16 AWG\", \"12 ft\")",
-                            field(key),
-                            kind(other)
-                        ),
-                    }),
-                },
-            }
+        let text_of = |v: &Value| match v.get_ref() {
+            toml::Value::String(s) => Ok(s.clone()),
+            other => Err(format!(
+                "{} where text in quotes was expected (\"16 AWG\", \"12 ft\")",
+                kind(other)
+            )),
         };
-        let named = |key: &str, line: usize, why: String| Problem {
-            line: Some(line),
-            message: format!("{}: {why}", field(key)),
-        };
-        let wire = match text_of("wire", &rc.wire)? {
-            None => None,
-            Some((t, line)) => Some(Wire::parse(&t).map_err(|why| named("wire", line, why))?),
-        };
-        let length = |key: &str, v: &Option<Value>| -> Result<Option<f64>, Problem> {
-            match text_of(key, v)? {
-                None => Ok(None),
-                Some((t, line)) => wire::parse_length(&t)
-                    .map(Some)
-                    .map_err(|why| named(key, line, why)),
-            }
+        let gauge = rc.wire.as_ref().and_then(|v| {
+            let got = text_of(v).and_then(|t| Wire::parse(&t));
+            got.map_err(|why| bad(v, "wire", why)).ok()
+        });
+        let mut length = |key: &str, v: &Option<Value>| {
+            let v = v.as_ref()?;
+            let got = text_of(v).and_then(|t| wire::parse_length(&t));
+            got.map_err(|why| bad(v, key, why)).ok()
         };
         let wire = WireRun {
-            wire,
-            feed_feet: length("wire_length", &rc.wire_length)?,
-            return_feet: length("return_length", &rc.return_length)?,
+            wire: gauge,
+            feed_feet: length("wire_length", &rc.wire_length),
+            return_feet: length("return_length", &rc.return_length),
         };
-        circuits.push((
-            LoadCircuit {
-                id: dev.id,
-                name,
-                amps,
-                duty,
-                wire,
-            },
-            key_line,
-        ));
+        if problems.len() == before {
+            circuits.push((
+                LoadCircuit {
+                    id: dev.id,
+                    name,
+                    amps,
+                    duty,
+                    wire,
+                },
+                key_line,
+            ));
+        }
     }
     let mut circuits: Vec<LoadCircuit> = circuits.into_iter().map(|(c, _)| c).collect();
     circuits.sort_by_key(|c| c.id);
-    Ok(circuits)
+    circuits
 }
 
-/// A number, whole or decimal, as the field asks.
-fn number(v: &Value, field: &str) -> Result<f64, String> {
+/// A number, whole or decimal.
+fn number(v: &Value) -> Result<f64, String> {
     match v.get_ref() {
         toml::Value::Integer(i) => Ok(*i as f64),
         toml::Value::Float(f) if f.is_finite() => Ok(*f),
-        toml::Value::Float(f) => Err(format!("{field}: {f} is no number of amperes")),
-        other => Err(format!(
-            "{field}: {} where a number was expected",
-            kind(other)
-        )),
+        toml::Value::Float(f) => Err(format!("{f} is no number")),
+        other => Err(format!("{} where a number was expected", kind(other))),
     }
 }
 
@@ -396,23 +424,6 @@ fn kind(v: &toml::Value) -> &'static str {
         "array" => "a list",
         "table" => "a section",
         _ => "a date",
-    }
-}
-
-/// serde's words for an unknown key list every field in its own style; ours say
-/// which keys the file knows.
-fn plain_serde_words(r: toml_lines::Refusal) -> String {
-    match r.unknown_key {
-        Some(key) => {
-            let phases: Vec<&str> = Phase::ALL.iter().map(|p| p.key()).collect();
-            format!(
-                "unknown key {key:?}: the file's keys are alternator_amps, battery_amp_hours, \
-                 battery_usable and [circuit.PIN] sections; a circuit's keys are name, amps, {}, \
-                 wire, wire_length and return_length",
-                phases.join(", ")
-            )
-        }
-        None => r.message,
     }
 }
 
@@ -728,9 +739,11 @@ mod tests {
         }
         // Unedited, it is refused for its missing rating, not analysed with a guess.
         assert_eq!(
-            parse(&text).unwrap_err().message,
-            "alternator_amps is missing: write alternator_amps = the alternator's rated \
-             output in amperes"
+            problem(&text),
+            "alternator_amps: missing: write alternator_amps = the alternator's rated \
+             output in amperes\n\
+             battery_amp_hours: missing: write battery_amp_hours = the battery's rated \
+             capacity in ampere-hours"
         );
         let edited = text
             .replace("# alternator_amps = 40", "alternator_amps = 60")
@@ -748,8 +761,14 @@ mod tests {
         assert_eq!(by_id(EFIS).amps, None);
     }
 
+    /// Every problem, one a line.
     fn problem(text: &str) -> String {
-        parse(text).unwrap_err().to_string()
+        let p: Vec<String> = parse(text)
+            .unwrap_err()
+            .iter()
+            .map(|p| p.to_string())
+            .collect();
+        p.join("\n")
     }
 
     const RATINGS: &str = "alternator_amps = 40\nbattery_amp_hours = 17\n";
@@ -780,7 +799,10 @@ mod tests {
         );
         let text = format!("{RATINGS}[circuit.EFIS]\ntakeoff = true\n");
         let p = problem(&text);
-        assert!(p.starts_with("line 4: unknown key \"takeoff\": "), "{p}");
+        assert!(
+            p.starts_with("line 4: [circuit.EFIS] takeoff: unknown key; a circuit's keys are"),
+            "{p}"
+        );
         assert!(p.contains("take_off"), "{p}");
         let text = format!("{RATINGS}[circuit.efis]\ntaxi = true\n[circuit.EFIS]\n");
         let p = problem(&text);
@@ -800,7 +822,7 @@ mod tests {
         );
         assert_eq!(
             problem("alternator_amps = 40\n"),
-            "battery_amp_hours is missing: write battery_amp_hours = the battery's rated \
+            "battery_amp_hours: missing: write battery_amp_hours = the battery's rated \
              capacity in ampere-hours"
         );
         assert_eq!(
@@ -884,7 +906,39 @@ mod tests {
     #[test]
     fn broken_toml_is_named_with_its_line() {
         let p = parse(&format!("{RATINGS}[circuit.EFIS\ntaxi = true\n")).unwrap_err();
-        assert_eq!(p.line, Some(3));
+        assert_eq!(p.len(), 1);
+        assert_eq!(p[0].line, Some(3));
+    }
+
+    /// A file with a mistake in each part: every one listed, in the file's order, each
+    /// with its line and field, and a missing rating first.
+    #[test]
+    fn every_mistake_is_listed_at_once_with_line_and_field() {
+        let text = "alternator_amps = \"40 A\"\nbatery = 17\n\n\
+                    [circuit.5A-7]\ntaxi = 1.5\nwire = \"21 AWG\"\n\
+                    [circuit.5A-99]\ntaxi = true\n\
+                    [circuit.EFIS]\ntakeoff = true\namps = -1\n";
+        let got: Vec<(Option<usize>, String)> = parse(text)
+            .unwrap_err()
+            .into_iter()
+            .map(|p| (p.line, p.field))
+            .collect();
+        let want: Vec<(Option<usize>, String)> = [
+            (None, "battery_amp_hours"),
+            (Some(1), "alternator_amps"),
+            (Some(2), "batery"),
+            (Some(5), "[circuit.5A-7] taxi"),
+            (Some(6), "[circuit.5A-7] wire"),
+            (Some(7), "[circuit.5A-99]"),
+            (Some(10), "[circuit.EFIS] takeoff"),
+            (Some(11), "[circuit.EFIS] amps"),
+        ]
+        .into_iter()
+        .map(|(l, f)| (l, f.to_string()))
+        .collect();
+        assert_eq!(got, want);
+        // Without the ratings, the rest still: a typo is a typo.
+        assert_eq!(parse_circuits(text).unwrap_err().len(), want.len() - 2);
     }
 
     #[test]

@@ -25,7 +25,7 @@ pub mod wire;
 pub mod wiring;
 
 pub use analysis::{Analysis, Figure, Level, PhaseTotal, Row, analyse};
-pub use file::{LoadCircuit, LoadFile, Problem};
+pub use file::{LoadCircuit, LoadFile};
 
 /// The phases of flight the analysis adds up, in the order they are flown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -24,10 +24,14 @@ use crate::protocol::message::{
 
 mod hold;
 mod reread;
+mod rereader;
 mod resets;
 mod setting;
 pub use hold::{Hold, Holds};
 pub use reread::{REREAD_GIVE_UP, Reread};
+pub use rereader::{
+    CONNECT_GRACE, REREAD_BATCH, REREAD_BATCH_GAP, REREAD_GAP, REREAD_MAX_GAP, Rereader,
+};
 pub use resets::{AfterReset, RESET_SETTLE, ResetsSent, reset_sent_words};
 pub use setting::Setting;
 #[cfg(test)]

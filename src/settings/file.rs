@@ -20,7 +20,7 @@ use std::net::Ipv4Addr;
 
 use std::collections::BTreeMap;
 
-use crate::toml_lines::{self, Value};
+use crate::toml_lines::{self, Problem, Value};
 
 use super::values::{self, Theme};
 use crate::link::PortAddr;
@@ -61,33 +61,21 @@ pub const KEYS: [&str; 10] = [
     "xfsp_control_from",
 ];
 
-/// A problem in the file: the line it is on (when known) and what is wrong.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct FileProblem {
-    pub line: Option<usize>,
-    pub message: String,
-}
-
-/// Reads the file's text and lists every problem, each with its line, as `restore`
-/// does a backup file: a person fixes them all in one go, not one per run. Only a
-/// file that is not TOML at all stops at its first mistake (the parser cannot go on).
-pub fn parse(text: &str) -> Result<SettingsFile, Vec<FileProblem>> {
-    let raw: BTreeMap<String, Value> = toml_lines::parse(text).map_err(|r| {
-        vec![FileProblem {
-            line: r.line,
-            message: r.message,
-        }]
-    })?;
+/// Reads the file's text and lists every problem, each with its line and key
+/// ([`toml_lines`]).
+pub fn parse(text: &str) -> Result<SettingsFile, Vec<Problem>> {
+    let raw: BTreeMap<String, Value> = toml_lines::parse(text).map_err(|p| vec![p])?;
     let mut problems = Vec::new();
     for (key, v) in &raw {
         if !KEYS.contains(&key.as_str()) {
-            problems.push(FileProblem {
-                line: Some(toml_lines::line(text, v)),
-                message: format!("unknown key {key:?}; the keys are {}", KEYS.join(", ")),
-            });
+            problems.push(Problem::new(
+                Some(toml_lines::line(text, v)),
+                key,
+                format!("unknown key; the keys are {}", KEYS.join(", ")),
+            ));
         }
     }
-    let read = |key: &str| -> Result<Option<(String, usize)>, FileProblem> {
+    let read = |key: &str| -> Result<Option<(String, usize)>, Problem> {
         let Some(v) = raw.get(key) else {
             return Ok(None);
         };
@@ -96,10 +84,11 @@ pub fn parse(text: &str) -> Result<SettingsFile, Vec<FileProblem>> {
             toml::Value::String(s) => Ok(Some((s.clone(), line))),
             toml::Value::Integer(i) => Ok(Some((i.to_string(), line))),
             toml::Value::Boolean(b) => Ok(Some((b.to_string(), line))),
-            other => Err(FileProblem {
-                line: Some(line),
-                message: format!(
-                    "{key}: {} where text or a whole number was expected",
+            other => Err(Problem::new(
+                Some(line),
+                key,
+                format!(
+                    "{} where text or a whole number was expected",
                     match other.type_str() {
                         "array" => "a list",
                         "table" => "a section",
@@ -107,13 +96,13 @@ pub fn parse(text: &str) -> Result<SettingsFile, Vec<FileProblem>> {
                         _ => "a date",
                     }
                 ),
-            }),
+            )),
         }
     };
     fn check<T>(
-        problems: &mut Vec<FileProblem>,
+        problems: &mut Vec<Problem>,
         key: &str,
-        got: Result<Option<(String, usize)>, FileProblem>,
+        got: Result<Option<(String, usize)>, Problem>,
         f: impl Fn(&str) -> Result<T, String>,
     ) -> Option<Setting<T>> {
         let got = match got {
@@ -127,10 +116,7 @@ pub fn parse(text: &str) -> Result<SettingsFile, Vec<FileProblem>> {
         match f(&text) {
             Ok(value) => Some(Setting { value, line }),
             Err(why) => {
-                problems.push(FileProblem {
-                    line: Some(line),
-                    message: format!("{key}: {why}"),
-                });
+                problems.push(Problem::new(Some(line), key, why));
                 None
             }
         }
@@ -239,7 +225,11 @@ mod tests {
                 2,
                 "baud: 0 is not a baud rate",
             ),
-            ("\n\nbaud = 57600\nspeed = 3\n", 4, "unknown key \"speed\""),
+            (
+                "\n\nbaud = 57600\nspeed = 3\n",
+                4,
+                "speed: unknown key; the keys are port,",
+            ),
             ("port = \"tcp://h\"\n", 1, "no port number"),
             ("theme = \"blue\"", 1, "auto, dark, light, mono, terminal"),
             ("baud = 57600\nbaud = 9600\n", 2, "duplicate key"),
@@ -258,7 +248,7 @@ mod tests {
             assert_eq!(p.len(), 1, "{text:?}: {p:?}");
             let p = &p[0];
             assert_eq!(p.line, Some(line), "{text:?}: {p:?}");
-            assert!(p.message.contains(words), "{text:?}: {p:?}");
+            assert!(p.to_string().contains(words), "{text:?}: {p}");
         }
     }
 
@@ -267,15 +257,17 @@ mod tests {
     fn every_mistake_is_listed_at_once() {
         let p =
             parse("baud = 0\ntheme = \"blue\"\nspeed = 3\nxfsp_iface = \"eth0\"\n").unwrap_err();
-        let got: Vec<(Option<usize>, &str)> =
-            p.iter().map(|p| (p.line, &p.message[..12])).collect();
+        let got: Vec<(Option<usize>, &str, &str)> = p
+            .iter()
+            .map(|p| (p.line, p.field.as_str(), &p.message[..8]))
+            .collect();
         assert_eq!(
             got,
             vec![
-                (Some(1), "baud: 0 is n"),
-                (Some(2), "theme: \"blue"),
-                (Some(3), "unknown key "),
-                (Some(4), "xfsp_iface: "),
+                (Some(1), "baud", "0 is not"),
+                (Some(2), "theme", "\"blue\" i"),
+                (Some(3), "speed", "unknown "),
+                (Some(4), "xfsp_iface", "\"eth0\" i"),
             ]
         );
     }

@@ -12,7 +12,9 @@ pub mod values;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-pub use file::{FileProblem, KEYS, Setting, SettingsFile, parse};
+use crate::toml_lines::FileError;
+
+pub use file::{KEYS, Setting, SettingsFile, parse};
 
 pub use crate::places::{CONFIG_ENV, config_path};
 pub const PORT_ENV: &str = "VPX_EFIS_PORT";
@@ -49,43 +51,18 @@ pub struct Loaded {
     pub file: SettingsFile,
 }
 
-/// A config file that cannot be used, named with its path and line: the first
-/// problem, and every other one after it (`more`), one a line.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ConfigError {
-    pub path: String,
-    pub line: Option<usize>,
-    pub message: String,
-    pub more: Vec<FileProblem>,
-}
-
-impl fmt::Display for ConfigError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let one = |f: &mut fmt::Formatter<'_>, line: Option<usize>, message: &str| {
-            let at = line.map(|l| format!(", line {l}")).unwrap_or_default();
-            write!(f, "config file {}{at}: {message}", self.path)
-        };
-        one(f, self.line, &self.message)?;
-        for p in &self.more {
-            writeln!(f)?;
-            one(f, p.line, &p.message)?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for ConfigError {}
+/// What the config file is called in what is said of it.
+const KIND: &str = "config file";
 
 /// Reads the config file; a missing one sets nothing and is no error.
-pub fn load() -> Result<Loaded, ConfigError> {
+pub fn load() -> Result<Loaded, FileError> {
     match config_path() {
         None => Ok(Loaded::default()),
         Some(path) => load_from(&path),
     }
 }
 
-pub fn load_from(path: &Path) -> Result<Loaded, ConfigError> {
-    let shown = path.display().to_string();
+pub fn load_from(path: &Path) -> Result<Loaded, FileError> {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
@@ -95,23 +72,12 @@ pub fn load_from(path: &Path) -> Result<Loaded, ConfigError> {
                 file: SettingsFile::default(),
             });
         }
-        Err(e) => {
-            return Err(ConfigError {
-                path: shown,
-                line: None,
-                message: format!("cannot read it: {e}"),
-                more: Vec::new(),
-            });
-        }
+        Err(e) => return Err(FileError::unreadable(KIND, path.to_path_buf(), &e)),
     };
-    let file = parse(&text).map_err(|mut p| {
-        let first = p.remove(0);
-        ConfigError {
-            path: shown,
-            line: first.line,
-            message: first.message,
-            more: p,
-        }
+    let file = parse(&text).map_err(|problems| FileError {
+        kind: KIND,
+        path: path.to_path_buf(),
+        problems,
     })?;
     Ok(Loaded {
         path: Some(path.to_path_buf()),
@@ -134,7 +100,7 @@ mod tests {
         let bad = dir.path().join("config.toml");
         std::fs::write(&bad, "port = \"/dev/ttyUSB0\"\nbaud = 12345\n").unwrap();
         let err = load_from(&bad).unwrap_err();
-        assert_eq!(err.line, Some(2));
+        assert_eq!(err.problems[0].line, Some(2));
         let text = err.to_string();
         assert!(
             text.starts_with(&format!("config file {}, line 2: baud:", bad.display())),

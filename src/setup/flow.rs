@@ -770,7 +770,7 @@ mod tests {
     use super::*;
     use std::time::Duration;
 
-    use crate::exchange::Rereader;
+    use crate::model::Rereader;
     use crate::model::{Setting, Source};
     use crate::protocol::Packet;
     use crate::protocol::message::{
@@ -1532,7 +1532,7 @@ mod tests {
             sv.message,
             Some((
                 Tone::Bad,
-                "unit.toml: 1 problem, nothing sent: (file): cannot read it: no such file".into()
+                "unit.toml: 1 problem, nothing sent: cannot read it: no such file".into()
             ))
         );
         // An answer nobody asked for changes nothing.

@@ -13,4 +13,4 @@ pub mod probe;
 pub mod view;
 pub mod write;
 
-pub use write::{ANSWER_TIMEOUT, TRIES, WriteQueue, unit_config};
+pub use write::{WriteQueue, unit_config};

@@ -19,7 +19,8 @@
 //! not be told apart. A failed write stops the rest, as a restore does, so the screen
 //! can say exactly what was applied.
 //!
-//! [`Rereader`]: crate::exchange::Rereader
+//! [`Rereader`]: crate::model::Rereader
+//! [`TRIES`]: crate::exchange::TRIES
 
 use std::time::Instant;
 
@@ -31,8 +32,6 @@ use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{FLAPS, TRIM_P, TRIM_R};
 use crate::protocol::message::{EnableFlag, Message, TrimType};
 use crate::protocol::validate;
-
-pub use crate::exchange::{ANSWER_TIMEOUT, TRIES};
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum Phase {
@@ -602,7 +601,10 @@ mod tests {
             DeviceName::new(9, "GPS 1").unwrap().into(),
         ]);
         assert_eq!(q.tick(&mut m, t0).len(), 1);
-        assert_eq!(q.next_deadline(), Some(t0 + ANSWER_TIMEOUT));
+        assert_eq!(
+            q.next_deadline(),
+            Some(t0 + crate::exchange::ANSWER_TIMEOUT)
+        );
         assert!(q.tick(&mut m, ms(t0, 999)).is_empty());
         assert_eq!(
             q.tick(&mut m, ms(t0, 1000)),

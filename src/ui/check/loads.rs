@@ -66,7 +66,9 @@ pub fn render(buf: &mut Buffer, area: Rect, loads: Option<&LoadsView>, first_cir
                 ),
                 theme::alert(),
             )]);
-            w.wrapped(why, theme::label());
+            for problem in why.lines() {
+                w.wrapped(problem, theme::label());
+            }
         }
         Some(LoadsView::Analysed { path, analysis }) => {
             w.line(&[
