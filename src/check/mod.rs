@@ -27,7 +27,7 @@ pub mod words;
 pub use calls::{Command, Effects, LoadsToOpen};
 pub use circuits::judge as judge_current;
 pub use flow::{Cause, CheckFlow, Options};
-pub use motors::{expected_sign, judge as judge_motor};
+pub use motors::judge as judge_motor;
 pub use plan::{Choices, SUGGEST_EXCLUDING};
 pub use timing::Timing;
 

@@ -8,7 +8,7 @@
 //! carries: flaps down, pitch trim down and roll trim right move toward the "down"
 //! endpoint. Where the ICD is silent (endpoints not configured, both 0) the decision
 //! is that those directions make the number grow, as the virtual VP-X does
-//! ([`expected_sign`]).
+//! ([`expected_way`]).
 //!
 //! The unit does not keep TRIM_MOVE/FLAP_MOVE to the endpoints (ICD Table 15 note 4,
 //! Table 16 note 1), so the runs do, through the controller's one rule for keys and
@@ -32,8 +32,9 @@ use super::calls::Command;
 use super::state::{CheckView, LeftBehind, MotorFinding, MotorResult, Outcome, Prompt, Step};
 use super::step::{CallContext, Next, Shared, StepRun, Stopped, motor_name, result_line};
 use crate::audit::Origin;
-pub use crate::control::endpoints::expected_sign;
-use crate::control::endpoints::{self, Way, ends, heads_for, opposite, position, room};
+use crate::control::endpoints::{
+    self, Way, ends, expected_way, heads_for, opposite, position, room,
+};
 use crate::control::run::Refused;
 use crate::control::{Direction, How, StopReason};
 use crate::model::{Model, Motor, TrimKind};
@@ -70,13 +71,11 @@ fn directions(motor: Motor) -> [Direction; 2] {
 /// Whether `pos` is at the limit `direction` runs toward: its endpoint, or the end of
 /// the sensor's range.
 pub fn at_limit(motor: Motor, direction: Direction, pos: u8, ft: &FlapTrimStatus) -> bool {
-    let s = expected_sign(motor, direction, ft);
     let configured = room(motor, direction, pos, ft).is_some_and(|r| r <= AT_LIMIT);
     let pos = i32::from(pos);
-    let sensor = if s > 0 {
-        pos >= 255 - AT_LIMIT
-    } else {
-        pos <= AT_LIMIT
+    let sensor = match expected_way(motor, direction, ft) {
+        Way::Grows => pos >= 255 - AT_LIMIT,
+        Way::Shrinks => pos <= AT_LIMIT,
     };
     configured || sensor
 }
@@ -107,7 +106,7 @@ pub fn judge_runs(
     ft: &FlapTrimStatus,
 ) -> MotorFinding {
     let moved = moves.map(|m| m.abs() >= MOVED);
-    let right = [0, 1].map(|k| moves[k].signum() == expected_sign(motor, dirs[k], ft));
+    let right = [0, 1].map(|k| Way::of(moves[k]) == Some(expected_way(motor, dirs[k], ft)));
     let own = [0, 1].map(|k| heads_for(motor, dirs[k], ft));
     let limited = [0, 1].map(|k| ended_at[k].is_some() && ended_at[k] == own[k]);
     let wrong = (0..2).any(|k| {
@@ -477,7 +476,7 @@ impl Motors {
             return Next::From(idx + 1);
         }
         item.leg = Leg::RunningBack;
-        let dir = if back.signum() == moved.signum() {
+        let dir = if Way::of(back) == Way::of(moved) {
             dir
         } else {
             opposite(dir)

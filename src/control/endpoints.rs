@@ -20,7 +20,7 @@
 //! Which way is which: a direction heads for its endpoint, "down" (pitch down, roll
 //! right, flaps down) for the down endpoint. Endpoints not configured (both the same,
 //! typically 0) give no endpoint to stop at; the installation check then reads the
-//! sensor's direction as the virtual VP-X has it ([`expected_sign`]).
+//! sensor's direction as the virtual VP-X has it ([`expected_way`]).
 
 use std::time::{Duration, Instant};
 
@@ -75,16 +75,16 @@ pub fn position(motor: Motor, ft: &FlapTrimStatus) -> u8 {
     ft.position(motor.axis())
 }
 
-/// +1 when running `motor` `direction` should make the position grow, −1 when shrink.
-/// Endpoints not configured: "down" grows (the virtual VP-X's sensor).
-pub fn expected_sign(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> i32 {
-    let down_grows = match ends(motor, ft) {
-        Some(e) if e.down < e.up => -1,
-        _ => 1,
+/// The way running `motor` `direction` should move its position: "down" toward the
+/// down endpoint. Endpoints not configured: "down" grows (the virtual VP-X's sensor).
+pub fn expected_way(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Way {
+    let down = match ends(motor, ft) {
+        Some(e) if e.down < e.up => Way::Shrinks,
+        _ => Way::Grows,
     };
     match direction {
-        Direction::Down | Direction::Right => down_grows,
-        Direction::Up | Direction::Left => -down_grows,
+        Direction::Down | Direction::Right => down,
+        Direction::Up | Direction::Left => down.reversed(),
     }
 }
 
@@ -101,7 +101,7 @@ pub fn heads_for(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Opt
 /// negative past it; `None` with no endpoints configured.
 pub fn room(motor: Motor, direction: Direction, pos: u8, ft: &FlapTrimStatus) -> Option<i32> {
     let end = heads_for(motor, direction, ft)?;
-    Some((i32::from(end) - i32::from(pos)) * expected_sign(motor, direction, ft))
+    Some(expected_way(motor, direction, ft).along(i32::from(end) - i32::from(pos)))
 }
 
 /// Which way a run moves its motor's position, in raw sensor counts: the sensor's
@@ -122,11 +122,20 @@ impl Way {
         }
     }
 
-    /// +1 or −1, for the arithmetic of positions.
-    pub fn sign(self) -> i32 {
+    /// How far a change of position goes this way, in counts: negative for a change
+    /// the other way.
+    pub fn along(self, change: i32) -> i32 {
         match self {
-            Way::Grows => 1,
-            Way::Shrinks => -1,
+            Way::Grows => change,
+            Way::Shrinks => -change,
+        }
+    }
+
+    /// Whether `pos` is at `end` or beyond it, going this way.
+    fn at_or_past(self, pos: f32, end: f32) -> bool {
+        match self {
+            Way::Grows => pos >= end,
+            Way::Shrinks => pos <= end,
         }
     }
 
@@ -135,15 +144,6 @@ impl Way {
             Way::Grows => Way::Shrinks,
             Way::Shrinks => Way::Grows,
         }
-    }
-}
-
-/// The way running `motor` `direction` should move its position ([`expected_sign`]).
-pub fn expected_way(motor: Motor, direction: Direction, ft: &FlapTrimStatus) -> Way {
-    if expected_sign(motor, direction, ft) > 0 {
-        Way::Grows
-    } else {
-        Way::Shrinks
     }
 }
 
@@ -179,7 +179,7 @@ pub struct Watch {
     pub motor: Motor,
     pub direction: Direction,
     /// The way the position is expected to go until the run shows its own: the
-    /// direction's ([`expected_sign`]), or what the caller saw this motor do (a
+    /// direction's ([`expected_way`]), or what the caller saw this motor do (a
     /// reversed motor run back by the installation check).
     way: Option<Way>,
     /// Whether the run keeps to the endpoints: all but the setup screens' capture.
@@ -285,7 +285,7 @@ impl Watch {
         }
         let expected = self
             .way
-            .map_or_else(|| expected_sign(self.motor, self.direction, ft), Way::sign);
+            .unwrap_or_else(|| expected_way(self.motor, self.direction, ft));
         let (pos, first) = (i32::from(pos), i32::from(first));
         let against = Err(StopReason::MovedAgainst(self.direction));
         // Gone MOVED counts back from the farthest it got its own way (from where it
@@ -293,7 +293,7 @@ impl Watch {
         // its own way and then turns back (a slipping drive, a sensor losing its
         // reference, air loads back-driving a weak trim) is caught there, not once it
         // is back past where it started.
-        let gone = (pos - first) * expected;
+        let gone = expected.along(pos - first);
         self.farthest = self.farthest.max(gone);
         if self.way.is_none() && self.farthest - gone >= MOVED {
             return against;
@@ -302,31 +302,35 @@ impl Watch {
             return Ok(());
         };
         let (lo, hi) = (i32::from(e.down.min(e.up)), i32::from(e.down.max(e.up)));
-        let way = if (pos - first) * -expected >= MOVED {
-            -expected
+        let way = if expected.reversed().along(pos - first) >= MOVED {
+            expected.reversed()
         } else {
             expected
         };
-        let end = |w: i32| if w > 0 { hi } else { lo };
+        let end = |w: Way| match w {
+            Way::Grows => hi,
+            Way::Shrinks => lo,
+        };
         // Ahead: at or past it now, or before the page looks again at a rate that
         // agrees with the way it moves (noise the other way projects nothing).
         let rate = self
             .rate()
-            .filter(|r| r.abs() >= STILL_RATE && r.signum() as i32 == way)
+            .filter(|r| r.abs() >= STILL_RATE && Way::of(r.signum() as i32) == Some(way))
             .unwrap_or(0.0);
         let ahead = pos as f32 + rate * (age + LOOKAHEAD).as_secs_f32();
-        if (ahead - end(way) as f32) * way as f32 >= 0.0 {
+        if way.at_or_past(ahead, end(way) as f32) {
             return Err(StopReason::AtEndpoint(end(way) as u8));
         }
         // Behind: reached having moved toward it, beyond the noise it started in.
-        let behind = end(-way);
-        let toward = (pos - first) * -way;
-        let noise = if (first - behind) * way <= 0 {
+        let back = way.reversed();
+        let behind = end(back);
+        let toward = back.along(pos - first);
+        let noise = if back.at_or_past(first as f32, behind as f32) {
             NOISE
         } else {
             0
         };
-        if (pos - behind) * way <= 0 && toward > noise {
+        if back.at_or_past(pos as f32, behind as f32) && toward > noise {
             return match self.way {
                 None => against,
                 Some(_) => Err(StopReason::AtEndpoint(behind as u8)),
@@ -426,8 +430,8 @@ impl Probing {
         }
         let ft = &st.value;
         let pos = position(self.motor, ft);
-        let went = (i32::from(pos) - i32::from(self.start))
-            * expected_sign(self.motor, self.direction, ft);
+        let went = expected_way(self.motor, self.direction, ft)
+            .along(i32::from(pos) - i32::from(self.start));
         if went < 0 {
             return ProbeNext::Against;
         }

@@ -113,8 +113,9 @@ pub struct TargetRun {
 impl TargetRun {
     /// Raw counts still to go to the target: zero or less once there or past it.
     fn remaining(&self, position: u8) -> i32 {
-        let sign = (i32::from(self.position) - i32::from(self.from)).signum();
-        (i32::from(self.position) - i32::from(position)) * sign
+        Way::of(i32::from(self.position) - i32::from(self.from)).map_or(0, |way| {
+            way.along(i32::from(self.position) - i32::from(position))
+        })
     }
 }
 

@@ -23,6 +23,7 @@
 //! requests are refused.
 
 use crate::control::Direction;
+use crate::control::endpoints::{Way, opposite};
 use crate::model::{Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 
@@ -60,7 +61,7 @@ impl Axis {
             return None;
         }
         if let Some(n) = negative
-            && (n - zero).signum() != -(positive - zero).signum()
+            && Way::of(n - zero) != Way::of(positive - zero).map(Way::reversed)
         {
             return None;
         }
@@ -71,9 +72,13 @@ impl Axis {
         })
     }
 
-    /// Sign of the raw change when moving toward +full scale.
-    fn up_sign(&self) -> i32 {
-        (self.positive - self.zero).signum()
+    /// The way the raw count goes toward +full scale.
+    fn positive_way(&self) -> Way {
+        if self.positive > self.zero {
+            Way::Grows
+        } else {
+            Way::Shrinks
+        }
     }
 
     /// A raw count on the draft's scale.
@@ -81,7 +86,7 @@ impl Axis {
         let d = i32::from(raw) - self.zero;
         let span_pos = self.positive - self.zero;
         let v = match self.negative {
-            Some(n) if d.signum() == -self.up_sign() => {
+            Some(n) if Way::of(d) == Some(self.positive_way().reversed()) => {
                 // On the negative side: scaled by that side's own span.
                 -ratio(d, n - self.zero)
             }
@@ -110,36 +115,33 @@ impl Axis {
     /// Which way to drive `motor` to take the raw position from `from` to `to`;
     /// `None` when it is already there.
     pub fn direction(&self, motor: Motor, from: u8, to: u8) -> Option<Direction> {
-        let d = (i32::from(to) - i32::from(from)) * self.up_sign();
-        let positive = match d.signum() {
-            0 => return None,
-            s => s > 0,
-        };
-        Some(match (motor, positive) {
-            (Motor::Flaps, true) => Direction::Down,
-            (Motor::Flaps, false) => Direction::Up,
-            (Motor::Trim(TrimKind::Pitch), true) => Direction::Up,
-            (Motor::Trim(TrimKind::Pitch), false) => Direction::Down,
-            (Motor::Trim(TrimKind::Roll), true) => Direction::Right,
-            (Motor::Trim(TrimKind::Roll), false) => Direction::Left,
+        let positive = Way::of(i32::from(to) - i32::from(from))? == self.positive_way();
+        Some(if positive {
+            toward_positive(motor)
+        } else {
+            opposite(toward_positive(motor))
         })
     }
 
     /// How far (in raw counts) `pos` still is from `target` when driving `direction`;
     /// zero or negative once it is there or past it.
     pub fn remaining(&self, motor: Motor, direction: Direction, pos: u8, target: u8) -> i32 {
-        let toward_positive = matches!(
-            (motor, direction),
-            (Motor::Flaps, Direction::Down)
-                | (Motor::Trim(TrimKind::Pitch), Direction::Up)
-                | (Motor::Trim(TrimKind::Roll), Direction::Right)
-        );
-        let s = if toward_positive {
-            self.up_sign()
+        let way = if direction == toward_positive(motor) {
+            self.positive_way()
         } else {
-            -self.up_sign()
+            self.positive_way().reversed()
         };
-        (i32::from(target) - i32::from(pos)) * s
+        way.along(i32::from(target) - i32::from(pos))
+    }
+}
+
+/// The direction that drives `motor` toward +full scale (see the module's notes):
+/// flaps down, pitch trim up (nose up), roll trim right.
+fn toward_positive(motor: Motor) -> Direction {
+    match motor {
+        Motor::Flaps => Direction::Down,
+        Motor::Trim(TrimKind::Pitch) => Direction::Up,
+        Motor::Trim(TrimKind::Roll) => Direction::Right,
     }
 }
 
