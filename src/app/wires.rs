@@ -14,7 +14,7 @@ impl App {
     /// No file means no wires; a bad one is said in the event log, and the wires
     /// read before are kept rather than forgotten.
     pub fn reload_wires(&mut self) {
-        let Some(path) = disk::default_path().filter(|p| p.exists()) else {
+        let Some(path) = crate::places::loads_path().filter(|p| p.exists()) else {
             return self.set_wires(Vec::new());
         };
         match disk::read_circuits(&path) {

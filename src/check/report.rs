@@ -49,12 +49,6 @@ pub fn stem(when: SystemTime) -> String {
     format!("vpx-check-{}T{}{}Z", &t[..10], &t[11..13], &t[14..16])
 }
 
-/// The reports folder: `reports` beside the config file, with the load file. The
-/// audit log ([`crate::audit`]) is kept there too.
-pub fn default_dir() -> Option<std::path::PathBuf> {
-    crate::loads::disk::default_path().and_then(|p| p.parent().map(|d| d.join("reports")))
-}
-
 fn unit_text(v: Option<Version>) -> String {
     v.map_or_else(
         || "did not answer VERSION".into(),

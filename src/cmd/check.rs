@@ -71,7 +71,7 @@ pub fn headless(args: CheckArgs) -> Result<HeadlessCheck, UsageError> {
                 excluded_here: Vec::new(),
             },
             yes: args.yes,
-            loads_file: args.loads.or_else(crate::loads::disk::default_path),
+            loads_file: args.loads.or_else(crate::places::loads_path),
             ..Options::default()
         },
         report: args.report,

@@ -258,7 +258,7 @@ fn confirm(question: &str) -> anyhow::Result<()> {
 fn over_wires(loads: Option<&Path>, config: &UnitConfig) -> anyhow::Result<Vec<String>> {
     let path = match loads {
         Some(p) => p.to_path_buf(),
-        None => match crate::loads::disk::default_path().filter(|p| p.exists()) {
+        None => match crate::places::loads_path().filter(|p| p.exists()) {
             Some(p) => p,
             None => return Ok(Vec::new()),
         },

@@ -88,7 +88,7 @@ impl<'a> From<&'a Row> for JsonRow<'a> {
 fn file_circuits(explicit: Option<&Path>) -> anyhow::Result<(Vec<LoadCircuit>, Option<String>)> {
     let path = match explicit {
         Some(p) => p.to_path_buf(),
-        None => match disk::default_path() {
+        None => match crate::places::loads_path() {
             Some(p) if p.exists() => p,
             Some(p) => {
                 return Ok((

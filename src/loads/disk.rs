@@ -7,15 +7,6 @@ use super::file::{self, LoadFile};
 use crate::model::Circuit;
 use crate::toml_lines::{FileError, Problem};
 
-/// Where the file lives unless the caller says: `loads.toml` beside the config file
-/// (`~/.config/vpx-efis` on Linux, `~/Library/Application Support/vpx-efis` on
-/// macOS, `%APPDATA%\vpx-efis\config` on Windows).
-pub fn default_path() -> Option<PathBuf> {
-    // Beside the config file, wherever `VPX_EFIS_CONFIG` puts it, as the guide says:
-    // the check's reports and the audit log go beside it too.
-    crate::places::config_path().and_then(|c| c.parent().map(|d| d.join("loads.toml")))
-}
-
 /// What the load file is called in what is said of it.
 const KIND: &str = "load file";
 

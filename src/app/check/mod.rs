@@ -49,7 +49,7 @@ pub(super) struct CheckState {
 /// the config file.
 fn page_options() -> Options {
     Options {
-        loads_file: crate::loads::disk::default_path(),
+        loads_file: crate::places::loads_path(),
         ..Options::default()
     }
 }
@@ -300,7 +300,7 @@ impl App {
         }
         self.open_check(page_options(), now);
         // The report goes beside the config file, with the load file.
-        self.set_check_report_dir(crate::check::report::default_dir());
+        self.set_check_report_dir(crate::places::reports_dir());
     }
 
     /// Scrolls the results (or the load analysis) of an ended check by `by` lines,
