@@ -47,15 +47,11 @@ fn capture() -> Vec<u8> {
                 main_bus_volts: vpx_efis::protocol::message::SignedTenths(138),
                 aux_battery_volts: Tenths(125),
                 internal_temp: 31,
-                switches: Default::default(),
                 misc: vpx_efis::protocol::message::MiscFlags {
-                    starter_annunciator: false,
-                    wig_wag_mode: vpx_efis::protocol::message::WigWagModeSetting::Auto,
-                    software_update: false,
                     wig_wag_active: s.is_multiple_of(3),
+                    ..Default::default()
                 },
-                faults: Default::default(),
-                data_integrity_code: None,
+                ..Default::default()
             }
             .into(),
             s,
@@ -85,15 +81,9 @@ fn capture() -> Vec<u8> {
             push(
                 &mut out,
                 FlapTrimStatus {
-                    flap: Default::default(),
-                    pitch_trim: Default::default(),
-                    roll_trim: Default::default(),
                     flap_position: 100 + t,
                     pitch_trim_position: 128,
                     roll_trim_position: 127,
-                    flap_fault: FaultCode::NoFault,
-                    pitch_trim_fault: FaultCode::NoFault,
-                    roll_trim_fault: FaultCode::NoFault,
                     flap_up: 20,
                     flap_down: 220,
                     flap_midpoint_1: 80,
@@ -104,6 +94,7 @@ fn capture() -> Vec<u8> {
                     roll_trim_up: 240,
                     roll_trim_down: 10,
                     roll_trim_neutral: 127,
+                    ..Default::default()
                 }
                 .into(),
                 s,

@@ -22,9 +22,8 @@ use ratatui::layout::Rect;
 use vpx_efis::model::{Model, Source};
 use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS};
 use vpx_efis::protocol::message::{
-    DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FaultStatus, FlapFlags,
-    FlapTrimStatus, MiscFlags, SignedTenths, SwitchId, SwitchInputs, SystemFaultFlags,
-    SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
+    DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FaultStatus, FlapTrimStatus,
+    SignedTenths, SwitchId, SwitchInputs, SystemStatus, Tenths,
 };
 use vpx_efis::protocol::{FaultCode, Message, Packet};
 #[cfg(unix)]
@@ -39,22 +38,12 @@ fn system(i: u64) -> SystemStatus {
         aux_battery_volts: Tenths(126),
         internal_temp: 33,
         switches: SwitchInputs::from_word(0x00FF),
-        misc: MiscFlags {
-            starter_annunciator: false,
-            wig_wag_mode: WigWagModeSetting::Auto,
-            software_update: false,
-            wig_wag_active: false,
-        },
-        faults: SystemFaultFlags::default(),
-        data_integrity_code: None,
+        ..Default::default()
     }
 }
 
 fn devices() -> DeviceStatus {
-    let mut d = DeviceStatus {
-        on: [false; DEVICE_COUNT],
-        current: [Tenths(0); DEVICE_COUNT],
-    };
+    let mut d = DeviceStatus::default();
     for id in (2..29).step_by(2) {
         d.on[id] = true;
         d.current[id] = Tenths(10 + id as u16);
@@ -62,35 +51,13 @@ fn devices() -> DeviceStatus {
     d
 }
 
+/// The snapshot tests' configured unit, so the bench draws what they pin.
+#[path = "../tests/common/configured.rs"]
+#[allow(dead_code)]
+mod configured;
+
 fn flap_trim(i: u64) -> FlapTrimStatus {
-    let on = TrimFlags {
-        enabled: true,
-        ..Default::default()
-    };
-    FlapTrimStatus {
-        flap: FlapFlags {
-            enabled: true,
-            ..Default::default()
-        },
-        pitch_trim: on,
-        roll_trim: on,
-        flap_position: 20 + (i % 200) as u8,
-        pitch_trim_position: 128,
-        roll_trim_position: 120,
-        flap_fault: FaultCode::NoFault,
-        pitch_trim_fault: FaultCode::NoFault,
-        roll_trim_fault: FaultCode::NoFault,
-        flap_up: 20,
-        flap_down: 220,
-        flap_midpoint_1: 90,
-        flap_midpoint_2: 160,
-        pitch_trim_up: 30,
-        pitch_trim_down: 230,
-        pitch_trim_neutral: 128,
-        roll_trim_up: 40,
-        roll_trim_down: 200,
-        roll_trim_neutral: 120,
-    }
+    configured::flap_trim((20 + (i % 200) as u8, 128, 120))
 }
 
 fn fault() -> FaultStatus {

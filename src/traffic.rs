@@ -481,17 +481,8 @@ mod tests {
             SystemStatus {
                 system_current: Tenths(10),
                 main_bus_volts: SignedTenths(140),
-                aux_battery_volts: Tenths(0),
                 internal_temp: 20,
-                switches: Default::default(),
-                misc: crate::protocol::message::MiscFlags {
-                    starter_annunciator: false,
-                    wig_wag_mode: crate::protocol::message::WigWagModeSetting::Auto,
-                    software_update: false,
-                    wig_wag_active: false,
-                },
-                faults: Default::default(),
-                data_integrity_code: None,
+                ..Default::default()
             },
         )
     }

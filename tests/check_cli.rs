@@ -4,39 +4,21 @@
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader, Write};
-use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
+use std::io::Write;
+use std::process::{Command, Stdio};
 use std::time::Duration;
 
-/// Ends a child process when the test ends, however it ends.
-struct Kill(Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
+mod common;
+use common::process::{EXE, Kill, lines, sim_pty};
 
 /// The headless check's output up to and including its "Confirmed:" line, run with
 /// `--yes` and `skip` against the `install` scenario; then it is told to stop.
 fn plan_with_skip(skip: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
-    let mut sim = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["sim", "--pty", "--scenario", "install"])
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run the sim");
-    let sim_out = sim.stdout.take().unwrap();
-    let _sim = Kill(sim);
-    let mut path = String::new();
-    BufReader::new(sim_out).read_line(&mut path).unwrap();
-    let mut check = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+    let (_sim, path) = sim_pty("install");
+    let mut check = Command::new(EXE)
         .env("VPX_EFIS_CONFIG", dir.path().join("config.toml"))
-        .args(["check", "--port", path.trim(), "--yes", "--skip", skip])
+        .args(["check", "--port", &path, "--yes", "--skip", skip])
         .arg("--loads")
         .arg(dir.path().join("loads.toml"))
         .stdin(Stdio::piped())
@@ -47,15 +29,7 @@ fn plan_with_skip(skip: &str) -> String {
     let out = check.stdout.take().unwrap();
     let mut stdin = check.stdin.take().unwrap();
     let _check = Kill(check);
-    let (tx, rx) = mpsc::channel();
-    std::thread::spawn(move || {
-        for line in BufReader::new(out).lines() {
-            let Ok(line) = line else { break };
-            if tx.send(line).is_err() {
-                break;
-            }
-        }
-    });
+    let rx = lines(out);
     let mut text = String::new();
     loop {
         let line = rx

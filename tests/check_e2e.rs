@@ -8,31 +8,18 @@
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::unbounded;
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
-use vpx_efis::app::{App, AppOptions, CheckEnd, HeadlessCheck, run_headless_with};
+use crossterm::event::KeyCode;
+use vpx_efis::app::{AppOptions, CheckEnd, HeadlessCheck, run_headless_with};
 use vpx_efis::check::state::{
     CircuitFinding, Input, LeftBehind, MotorFinding, Outcome, Step, SwitchFinding,
 };
 use vpx_efis::check::{Options, Timing};
-use vpx_efis::link;
-use vpx_efis::model::{Motor, Source, TrimKind};
+use vpx_efis::model::{Motor, TrimKind};
 use vpx_efis::sim::{self, MotorDirection, MotorId, SimCommand, SimHandle, SimOptions};
 use vpx_efis::ui::state::Screen;
 
-/// One rig at a time: each is a sim, a page and a pty, and a loaded machine that
-/// runs them all at once can starve a unit's 1 Hz status into COMMUNICATION LOST.
-static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-/// Dropped in field order, on a failure too: the page (its link closed, its motor
-/// stopped), the sim, the pty; only then is the next rig's turn.
-struct Rig {
-    app: App,
-    sim: SimHandle,
-    path: String,
-    _slave: serialport::TTYPort,
-    dir: tempfile::TempDir,
-    _turn: std::sync::MutexGuard<'static, ()>,
-}
+mod common;
+use common::rig::Rig;
 
 /// A test that panicked sets the page's panic flag for the whole process (the hook
 /// that `run_headless_with` installs: a panic anywhere stops every motor, and the
@@ -53,29 +40,10 @@ impl Rig {
 
     /// The `install` scenario as `change` leaves it.
     fn with(change: impl FnOnce(&mut sim::Scenario)) -> Rig {
-        let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-        no_earlier_panic();
-        let pty = link::open_pty_pair().expect("pty");
-        let reader = pty.master.try_clone_native().expect("clone master");
         let mut scenario = sim::load_scenario("install").unwrap();
         change(&mut scenario);
-        let options = SimOptions::new(scenario);
-        let sim = sim::spawn(options, Box::new(reader), Box::new(pty.master));
-        let app = App::new(
-            Source::Serial {
-                path: pty.path.clone(),
-            },
-            link::serial_connector(std::path::PathBuf::from(&pty.path), 57_600),
-            AppOptions::default(),
-        );
-        let mut r = Rig {
-            app,
-            sim,
-            path: pty.path.clone(),
-            _slave: pty.slave,
-            dir: tempfile::tempdir().unwrap(),
-            _turn: turn,
-        };
+        let mut r = Rig::alone(SimOptions::new(scenario), AppOptions::default());
+        no_earlier_panic();
         let end = Instant::now() + Duration::from_secs(20);
         loop {
             let ready = vpx_efis::check::plan::ready(&r.app.model(), Instant::now());
@@ -97,29 +65,6 @@ impl Rig {
             },
             ..Options::default()
         }
-    }
-
-    fn until(&mut self, what: &str, limit: Duration, f: impl Fn(&App) -> bool) {
-        let end = Instant::now() + limit;
-        while !f(&self.app) {
-            assert!(
-                Instant::now() < end,
-                "timed out waiting for {what}: {:#?}",
-                self.app.check_view().prompt
-            );
-            self.app
-                .pump_until(Instant::now() + Duration::from_millis(20));
-        }
-    }
-
-    fn pump(&mut self, ms: u64) {
-        self.app
-            .pump_until(Instant::now() + Duration::from_millis(ms));
-    }
-
-    fn key(&mut self, code: KeyCode) {
-        let k = KeyEvent::new_with_kind(code, KeyModifiers::NONE, KeyEventKind::Press);
-        self.app.handle_term_event(Event::Key(k), Instant::now());
     }
 
     /// The person moves a flap or trim switch one way for a while, then lets go.

@@ -7,15 +7,12 @@
 //! `IDLE_CPU_SECS=20 cargo test --release --test check_headless_stdin -- --nocapture`
 //! measures longer and prints the figure.
 
-use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 mod common;
-use common::process::{Kill, sim_tcp};
-
-const EXE: &str = env!("CARGO_BIN_EXE_vpx-efis");
+use common::process::{EXE, Kill, lines, sim_tcp};
 
 /// `vpx-efis check --port ADDR ARGS…` with `stdin`, its config folder in `home`, and
 /// its stdout lines on a channel.
@@ -35,15 +32,7 @@ fn check(
         .stderr(Stdio::null())
         .spawn()
         .expect("run vpx-efis check");
-    let (tx, rx) = mpsc::channel();
-    let stdout = child.stdout.take().unwrap();
-    std::thread::spawn(move || {
-        for l in BufReader::new(stdout).lines().map_while(Result::ok) {
-            if tx.send(l).is_err() {
-                return;
-            }
-        }
-    });
+    let rx = lines(child.stdout.take().unwrap());
     (Kill(child), rx)
 }
 

@@ -11,40 +11,16 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::unbounded;
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use crossterm::event::{Event, KeyCode, KeyModifiers};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use vpx_efis::app::{App, AppOptions, Flow, Terminated, Termination};
 use vpx_efis::check::state::Step;
 use vpx_efis::check::{Options, Timing};
-use vpx_efis::link;
-use vpx_efis::model::Source;
-use vpx_efis::sim::{self, SimHandle, SimOptions};
+use vpx_efis::sim::{self, SimOptions};
 
-/// One rig at a time: a loaded machine running several can starve the unit's 1 Hz
-/// status into COMMUNICATION LOST.
-static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-struct Rig {
-    _turn: std::sync::MutexGuard<'static, ()>,
-    app: App,
-    sim: SimHandle,
-    _slave: serialport::TTYPort,
-    dir: tempfile::TempDir,
-}
-
-/// The virtual VP-X (`install` scenario) on the master of a new pseudo-terminal: the
-/// slave's path, the slave (kept open for as long as the page uses it), and the sim.
-fn install_unit() -> (String, serialport::TTYPort, SimHandle) {
-    let pty = link::open_pty_pair().expect("pty");
-    let reader = pty.master.try_clone_native().expect("clone master");
-    let sim = sim::spawn(
-        SimOptions::new(sim::load_scenario("install").unwrap()),
-        Box::new(reader),
-        Box::new(pty.master),
-    );
-    (pty.path, pty.slave, sim)
-}
+mod common;
+use common::rig::{PtyUnit, Rig, one_at_a_time};
 
 impl Rig {
     /// A page on the install scenario with a check running: switches skipped,
@@ -70,20 +46,10 @@ impl Rig {
     }
 
     fn starting(on_already: bool, timing: Timing) -> Rig {
-        let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-        let (path, slave, sim) = install_unit();
-        let app = App::new(
-            Source::Serial { path: path.clone() },
-            link::serial_connector(PathBuf::from(&path), 57_600),
+        let mut r = Rig::alone(
+            SimOptions::new(sim::load_scenario("install").unwrap()),
             AppOptions::default(),
         );
-        let mut r = Rig {
-            _turn: turn,
-            app,
-            sim,
-            _slave: slave,
-            dir: tempfile::tempdir().unwrap(),
-        };
         r.until("the unit's settings", Duration::from_secs(20), |app| {
             vpx_efis::check::plan::ready(&app.model(), Instant::now()).is_ok()
         });
@@ -99,7 +65,7 @@ impl Rig {
         // here is one the check itself switches on.
         let on_before = r.app.model().live_devices(Instant::now()).unwrap().on;
         r.app.open_check(options, Instant::now());
-        r.key(KeyCode::Enter, KeyModifiers::NONE);
+        r.key_with(KeyCode::Enter, KeyModifiers::NONE);
         r.until(
             "a circuit switched on by the check, or one on already",
             Duration::from_secs(30),
@@ -114,20 +80,6 @@ impl Rig {
             },
         );
         r
-    }
-
-    fn until(&mut self, what: &str, limit: Duration, f: impl Fn(&App) -> bool) {
-        let end = Instant::now() + limit;
-        while !f(&self.app) {
-            assert!(Instant::now() < end, "timed out waiting for {what}");
-            self.app
-                .pump_until(Instant::now() + Duration::from_millis(20));
-        }
-    }
-
-    fn key(&mut self, code: KeyCode, mods: KeyModifiers) -> Flow {
-        let k = KeyEvent::new_with_kind(code, mods, KeyEventKind::Press);
-        self.app.handle_term_event(Event::Key(k), Instant::now())
     }
 
     fn reports(&self) -> PathBuf {
@@ -189,7 +141,7 @@ fn a_page_that_cannot_be_seen_switches_no_further_circuit_on() {
     r.app
         .handle_term_event(Event::Resize(120, 40), Instant::now());
     r.app.handle_term_event(Event::FocusLost, Instant::now());
-    r.key(KeyCode::Char('r'), KeyModifiers::NONE);
+    r.key_with(KeyCode::Char('r'), KeyModifiers::NONE);
     quiet(&mut r, "unfocused");
     assert!(
         prompt(&r.app).contains("the terminal lost focus"),
@@ -198,14 +150,14 @@ fn a_page_that_cannot_be_seen_switches_no_further_circuit_on() {
     );
     r.app.handle_term_event(Event::FocusGained, Instant::now());
     quiet(&mut r, "focused, not asked yet");
-    r.key(KeyCode::Char('r'), KeyModifiers::NONE);
+    r.key_with(KeyCode::Char('r'), KeyModifiers::NONE);
     r.until("the circuit switched on", Duration::from_secs(5), |app| {
         app.model()
             .live_devices(Instant::now())
             .is_some_and(|d| d.on[id])
     });
     assert_eq!(powers_sent(&r.app), sent + 1);
-    r.key(KeyCode::Esc, KeyModifiers::NONE);
+    r.key_with(KeyCode::Esc, KeyModifiers::NONE);
     r.until("the check to end", Duration::from_secs(20), |app| {
         app.check_finished()
     });
@@ -266,7 +218,10 @@ fn ctrl_c_on_the_check_screen_writes_an_incomplete_report_before_the_page_quits(
     let mut r = Rig::mid_circuit();
     let circuit = r.under_test();
     assert!(!r.reports().exists(), "no report before the check ends");
-    assert_eq!(r.key(KeyCode::Char('c'), KeyModifiers::CONTROL), Flow::Quit);
+    assert_eq!(
+        r.key_with(KeyCode::Char('c'), KeyModifiers::CONTROL),
+        Flow::Quit
+    );
     let md = the_report(&r.reports());
     says_incomplete_and_what_was_left(&md, "stopped by you", &circuit);
     // The step bar stays where it stopped.
@@ -281,7 +236,7 @@ fn esc_while_a_circuit_is_measured_as_it_is_writes_an_incomplete_report() {
     let mut r = Rig::at_circuit(true);
     let circuit = r.under_test();
     assert!(!r.reports().exists(), "no report before the check ends");
-    r.key(KeyCode::Esc, KeyModifiers::NONE);
+    r.key_with(KeyCode::Esc, KeyModifiers::NONE);
     assert!(r.app.check_finished(), "nothing to put back: ended at once");
     let md = the_report(&r.reports());
     assert!(
@@ -329,7 +284,7 @@ fn a_report_that_cannot_be_written_is_said_and_written_again_with_w() {
     std::fs::write(&blocked, "a file where the folder must go").unwrap();
     let folder = blocked.join("reports");
     r.app.set_check_report_dir(Some(folder.clone()));
-    r.key(KeyCode::Esc, KeyModifiers::NONE);
+    r.key_with(KeyCode::Esc, KeyModifiers::NONE);
     r.until("the check to end", Duration::from_secs(20), |app| {
         app.check_finished()
     });
@@ -352,7 +307,7 @@ fn a_report_that_cannot_be_written_is_said_and_written_again_with_w() {
         vpx_efis::ui::check::keys::keys(v)
     );
     // Esc once: not left, the results would go with the screen.
-    r.key(KeyCode::Esc, KeyModifiers::NONE);
+    r.key_with(KeyCode::Esc, KeyModifiers::NONE);
     assert_eq!(r.app.view().screen, vpx_efis::ui::state::Screen::Check);
     assert!(
         r.app
@@ -366,7 +321,7 @@ fn a_report_that_cannot_be_written_is_said_and_written_again_with_w() {
     );
     // The stick is back: `w` writes the same report, complete with what it left.
     std::fs::remove_file(&blocked).unwrap();
-    r.key(KeyCode::Char('w'), KeyModifiers::NONE);
+    r.key_with(KeyCode::Char('w'), KeyModifiers::NONE);
     assert_eq!(r.app.check_report_error(), None);
     let md = the_report(&folder);
     assert!(md.contains("**Result: INCOMPLETE.**"), "{md}");
@@ -379,7 +334,7 @@ fn a_report_that_cannot_be_written_is_said_and_written_again_with_w() {
         Some(folder.as_path())
     );
     // Written once: `w` again writes no second copy.
-    r.key(KeyCode::Char('w'), KeyModifiers::NONE);
+    r.key_with(KeyCode::Char('w'), KeyModifiers::NONE);
     assert_eq!(std::fs::read_dir(&folder).unwrap().count(), 2);
     r.sim.stop();
 }
@@ -388,13 +343,12 @@ fn a_report_that_cannot_be_written_is_said_and_written_again_with_w() {
 /// folder and the reason said, exit non-zero (1), after the summary was printed.
 #[test]
 fn headless_a_report_that_cannot_be_written_is_an_error_naming_the_folder() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let (path, slave, sim) = install_unit();
-    let dir = tempfile::tempdir().unwrap();
-    let blocked = dir.path().join("usb");
+    let _turn = one_at_a_time();
+    let unit = PtyUnit::start(SimOptions::new(sim::load_scenario("install").unwrap()));
+    let blocked = unit.dir.path().join("usb");
     std::fs::write(&blocked, "a file where the folder must go").unwrap();
     let h = vpx_efis::app::HeadlessCheck {
-        port: Some(path.parse().unwrap()),
+        port: Some(unit.path.parse().unwrap()),
         baud: 57_600,
         scenario: "install".into(),
         options: Options {
@@ -424,8 +378,7 @@ fn headless_a_report_that_cannot_be_written_is_an_error_naming_the_folder() {
         "{text}"
     );
     assert!(text.contains("Summary: "), "{text}");
-    drop(slave);
-    sim.stop();
+    unit.sim.stop();
 }
 
 /// "Is it lit?" on the page: the light the check switched on stays on past its
@@ -447,24 +400,14 @@ fn a_light_is_held_on_until_the_person_answers_on_the_page() {
     }
     let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
     r.app.draw(&mut term, Instant::now()).unwrap();
-    let screen: String = {
-        let buf = term.backend().buffer();
-        (0..buf.area.height)
-            .map(|y| {
-                (0..buf.area.width)
-                    .map(|x| buf[(x, y)].symbol().to_string())
-                    .collect::<String>()
-                    + "\n"
-            })
-            .collect()
-    };
+    let screen = common::screen::text(term.backend().buffer());
     assert!(screen.contains("Is it lit?"), "{screen}");
     let left = r.app.check_view().prompt.as_ref().and_then(|p| p.time_left);
     assert!(
         left.is_some_and(|l| l > Duration::from_secs(45) && l < Duration::from_secs(55)),
         "{left:?}"
     );
-    r.key(KeyCode::Char('y'), KeyModifiers::NONE);
+    r.key_with(KeyCode::Char('y'), KeyModifiers::NONE);
     let end = Instant::now() + Duration::from_secs(4);
     while r.sim.stats().powered[4] {
         assert!(

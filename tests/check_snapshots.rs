@@ -28,15 +28,15 @@ use vpx_efis::ui::state::{MotorRun, ViewState};
 
 mod themes;
 
+mod common;
+use common::screen::{find, plain_text};
+
 mod aircraft {
     use super::*;
-    use vpx_efis::protocol::Packet;
-    use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS, FIELD_PRI, STARTER};
+
+    use vpx_efis::protocol::device::{EFIS, FIELD_PRI, STARTER};
     use vpx_efis::protocol::message::{
-        DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FlapFlags, FlapMode,
-        FlapSpec, FlapTrimStatus, HardwareVersion, Message, MiscFlags, OvervoltageLimit, Polarity,
-        SignedTenths, SwitchInputs, SystemFaultFlags, SystemSpec, SystemStatus, Tenths, TrimFlags,
-        TrimSpec, TrimType, Version, WigWagModeSetting,
+        DeviceStatus, SignedTenths, SwitchInputs, SystemStatus, Tenths,
     };
 
     /// A freshly wired aircraft: id, name, breaker, switch.
@@ -53,27 +53,13 @@ mod aircraft {
         (0x17, "Fuel Pump", 10, SwitchId::Input(7)),
     ];
 
-    pub struct Aircraft {
-        pub model: Model,
-        pub t0: Instant,
-        cnt: u8,
-    }
+    pub use crate::common::configured::Unit as Aircraft;
 
     impl Aircraft {
-        pub fn apply(&mut self, ms: u64, msg: impl Into<Message>) {
-            self.cnt = self.cnt.wrapping_add(1);
-            let at = self.t0 + Duration::from_millis(ms);
-            self.model
-                .apply_packet(at, &Packet::from_vpx(self.cnt, msg));
-        }
-
         /// One second of broadcasts at `ms`: switch inputs `word`, circuits `on`
         /// (id, tenths of an amp), the flaps and trims where `positions` puts them.
         pub fn broadcast(&mut self, ms: u64, word: u16, on: &[(u8, u16)], positions: (u8, u8, u8)) {
-            let mut d = DeviceStatus {
-                on: [false; DEVICE_COUNT],
-                current: [Tenths(0); DEVICE_COUNT],
-            };
+            let mut d = DeviceStatus::default();
             for &(id, a) in on {
                 d.on[id as usize] = true;
                 d.current[id as usize] = Tenths(a);
@@ -83,147 +69,24 @@ mod aircraft {
                 SystemStatus {
                     system_current: Tenths(152),
                     main_bus_volts: SignedTenths(138),
-                    aux_battery_volts: Tenths(0),
                     internal_temp: 24,
                     switches: SwitchInputs::from_word(word),
-                    misc: MiscFlags {
-                        starter_annunciator: false,
-                        wig_wag_mode: WigWagModeSetting::Auto,
-                        software_update: false,
-                        wig_wag_active: false,
-                    },
-                    faults: SystemFaultFlags::default(),
-                    data_integrity_code: None,
+                    ..Default::default()
                 },
             );
             self.apply(ms, d);
-            self.apply(
-                ms + 20,
-                FlapTrimStatus {
-                    flap: FlapFlags {
-                        enabled: true,
-                        ..Default::default()
-                    },
-                    pitch_trim: TrimFlags {
-                        enabled: true,
-                        ..Default::default()
-                    },
-                    roll_trim: TrimFlags {
-                        enabled: true,
-                        motor_running: true,
-                        ..Default::default()
-                    },
-                    flap_position: positions.0,
-                    pitch_trim_position: positions.1,
-                    roll_trim_position: positions.2,
-                    flap_fault: FaultCode::NoFault,
-                    pitch_trim_fault: FaultCode::NoFault,
-                    roll_trim_fault: FaultCode::NoFault,
-                    flap_up: 20,
-                    flap_down: 220,
-                    flap_midpoint_1: 90,
-                    flap_midpoint_2: 160,
-                    pitch_trim_up: 30,
-                    pitch_trim_down: 230,
-                    pitch_trim_neutral: 128,
-                    roll_trim_up: 40,
-                    roll_trim_down: 200,
-                    roll_trim_neutral: 120,
-                },
-            );
+            let mut ft = crate::common::configured::flap_trim(positions);
+            ft.roll_trim.motor_running = true;
+            self.apply(ms + 20, ft);
         }
     }
 
     /// The unit configured at `t0`, on a real serial port.
     pub fn configured() -> Aircraft {
-        let t0 = Instant::now();
-        let mut a = Aircraft {
-            model: Model::new(Source::Serial {
-                path: "/dev/ttyUSB0".into(),
-            }),
-            t0,
-            cnt: 0,
+        let port = Source::Serial {
+            path: "/dev/ttyUSB0".into(),
         };
-        a.model.note_connected(t0, "/dev/ttyUSB0".into());
-        a.apply(
-            0,
-            Version {
-                hardware_version: HardwareVersion::VpxPro,
-                software_major: 1,
-                software_minor: 4,
-            },
-        );
-        a.apply(
-            0,
-            SystemSpec {
-                overvoltage_limit: OvervoltageLimit::V16,
-                secondary_alternator: None,
-            },
-        );
-        for id in 4..=28u8 {
-            let flag = if WIRED.iter().any(|w| w.0 == id) {
-                EnableFlag::Enabled
-            } else {
-                EnableFlag::Disabled
-            };
-            a.apply(
-                0,
-                DeviceEnable {
-                    device_id: id,
-                    flag,
-                },
-            );
-        }
-        for &(id, name, breaker, switch_id) in WIRED {
-            if !name.is_empty() {
-                a.apply(0, DeviceName::new(id, name).unwrap());
-            }
-            a.apply(
-                0,
-                DeviceSpec {
-                    device_id: id,
-                    circuit_breaker: breaker,
-                    switch_id,
-                    current_fault: true,
-                    switch_raw: None,
-                },
-            );
-        }
-        a.apply(
-            0,
-            FlapSpec {
-                mode: FlapMode::PositionBased,
-                enabled: true,
-                polarity: Polarity::Standard,
-                up: 20,
-                down: 220,
-                midpoint_1: 90,
-                midpoint_2: 160,
-                circuit_breaker: 7,
-                overspeed_position: 90,
-                max_speed: 100,
-                endpoint_duration: Tenths(5),
-            },
-        );
-        for (trim_type, up, down, neutral) in [
-            (TrimType::Pitch, 30, 230, 128),
-            (TrimType::Roll, 40, 200, 120),
-        ] {
-            a.apply(
-                0,
-                TrimSpec {
-                    trim_type,
-                    enabled: true,
-                    polarity: Polarity::Standard,
-                    up,
-                    down,
-                    neutral,
-                    power: 60,
-                    speed: 120,
-                },
-            );
-        }
-        a
+        Aircraft::answered(port, WIRED)
     }
 
     /// Ten seconds of a live unit with `word` on the inputs and `on` powered; `now` is
@@ -931,40 +794,11 @@ fn render_running(
     term.backend().buffer().clone()
 }
 
-fn text(buf: &Buffer) -> String {
-    let w = buf.area.width as usize;
-    let mut out = String::new();
-    for (i, cell) in buf.content.iter().enumerate() {
-        out.push_str(&cell.symbol().replace('\u{a0}', " "));
-        if (i + 1) % w == 0 {
-            out.push('\n');
-        }
-    }
-    out
-}
-
-/// The cell where `needle` starts, on the first line holding `on_line` and it.
-fn find(buf: &Buffer, on_line: &str, needle: &str) -> (u16, u16) {
-    let n: Vec<String> = needle.chars().map(String::from).collect();
-    for y in 0..buf.area.height {
-        let cells: Vec<&str> = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
-        if !cells.concat().contains(on_line) {
-            continue;
-        }
-        if let Some(x) = (0..=cells.len().saturating_sub(n.len()))
-            .find(|&x| (0..n.len()).all(|k| cells[x + k] == n[k]))
-        {
-            return (x as u16, y);
-        }
-    }
-    panic!("{needle:?} not on a line with {on_line:?}:\n{}", text(buf));
-}
-
 #[test]
 fn every_step_at_80x24() {
     for (name, v, m, p, now, run) in every_state() {
         let buf = render_running(&v, &m, &p, run, now, 80, 24);
-        insta::assert_snapshot!(format!("{name}_80x24"), text(&buf));
+        insta::assert_snapshot!(format!("{name}_80x24"), plain_text(&buf));
     }
 }
 
@@ -972,7 +806,7 @@ fn every_step_at_80x24() {
 fn every_step_at_160x50() {
     for (name, v, m, p, now, run) in every_state() {
         let buf = render_running(&v, &m, &p, run, now, 160, 50);
-        insta::assert_snapshot!(format!("{name}_160x50"), text(&buf));
+        insta::assert_snapshot!(format!("{name}_160x50"), plain_text(&buf));
     }
 }
 
@@ -984,7 +818,11 @@ fn every_step_in_every_theme() {
         let buf = render_running(&v, &m, &p, run, now, 80, 24);
         for palette in themes::PALETTES {
             let painted = themes::painted(&buf, palette);
-            assert_eq!(text(&painted), text(&buf), "painting changes no text");
+            assert_eq!(
+                plain_text(&painted),
+                plain_text(&buf),
+                "painting changes no text"
+            );
             insta::assert_snapshot!(
                 format!("theme_{}_{name}", palette.name().replace(' ', "_")),
                 themes::colour_map(&painted)
@@ -1023,7 +861,7 @@ fn cell(buf: &Buffer, on_line: &str, needle: &str) -> ratatui::buffer::Cell {
 fn marks_have_their_colour_and_always_their_word() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
     let buf = render(&done(), &m, &page(Palette::Terminal), now, 160, 50);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     for (line, badge, word, dark, light) in [
         ("Nav Lt", "✓ PASS", Color::Green, 40, 22),
         ("Strobe Lt", "✗ FAIL", Color::Red, 203, 124),
@@ -1060,7 +898,7 @@ fn the_input_under_test_is_on_a_badge_reversed_without_colour() {
     let (m, now) = aircraft::live(SW6, &[EFIS_ON, (0x11, 61), (0x12, 38)], (20, 128, 120));
     let buf = render(&switches(), &m, &page(Palette::Terminal), now, 80, 24);
     let badge = cell(&buf, "▶ 6●◀", "▶ 6●◀");
-    assert_eq!(badge.bg, Color::Gray, "{}", text(&buf));
+    assert_eq!(badge.bg, Color::Gray, "{}", plain_text(&buf));
     let mono = themes::painted(&buf, Palette::Mono);
     assert!(
         cell(&mono, "▶ 6●◀", "▶")
@@ -1074,7 +912,7 @@ fn the_input_under_test_is_on_a_badge_reversed_without_colour() {
     );
     // The live readings are there, and the circuits' live states are green ON.
     assert_eq!(cell(&buf, "Landing Lt", "ON").fg, Color::Green);
-    assert!(text(&buf).contains("6.1"));
+    assert!(plain_text(&buf).contains("6.1"));
 }
 
 /// With the link stale, nothing on any step's screen reads like a live value: no
@@ -1089,7 +927,7 @@ fn a_stale_link_never_looks_current() {
         ("circuits", circuits()),
         ("motors", motors()),
     ] {
-        let t = text(&render(&v, &m, &p, now, 80, 24));
+        let t = plain_text(&render(&v, &m, &p, now, 80, 24));
         assert!(
             t.contains("C O M M U N I C A T I O N   L O S T"),
             "{name}:\n{t}"
@@ -1101,11 +939,11 @@ fn a_stale_link_never_looks_current() {
             );
         }
     }
-    let t = text(&render(&switches(), &m, &p, now, 80, 24));
+    let t = plain_text(&render(&switches(), &m, &p, now, 80, 24));
     assert!(t.contains("inputs unknown: no live status"), "{t}");
-    let t = text(&render(&circuits(), &m, &p, now, 80, 24));
+    let t = plain_text(&render(&circuits(), &m, &p, now, 80, 24));
     assert!(t.contains("no live DEVICE_STATUS: current unknown"), "{t}");
-    let t = text(&render(&motors(), &m, &p, now, 80, 24));
+    let t = plain_text(&render(&motors(), &m, &p, now, 80, 24));
     assert!(t.contains("position unknown"), "{t}");
 }
 
@@ -1113,21 +951,29 @@ fn a_stale_link_never_looks_current() {
 fn a_tight_breaker_is_amber_and_says_so() {
     let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, 69)], (20, 128, 120));
     let buf = render(&circuits(), &m, &page(Palette::Terminal), now, 80, 24);
-    assert!(text(&buf).contains("86 % ≥ 80 %: tight"), "{}", text(&buf));
+    assert!(
+        plain_text(&buf).contains("86 % ≥ 80 %: tight"),
+        "{}",
+        plain_text(&buf)
+    );
     assert_eq!(cell(&buf, "Now ON", "86 %").fg, Color::Yellow);
     assert_eq!(cell(&buf, "Now ON", "█").fg, Color::Yellow);
     // Within the breaker, the same bar is green and says so.
     let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, 30)], (20, 128, 120));
     let buf = render(&circuits(), &m, &page(Palette::Terminal), now, 80, 24);
     assert_eq!(cell(&buf, "Now ON", "█").fg, Color::Green);
-    assert!(text(&buf).contains("38 % within"), "{}", text(&buf));
+    assert!(
+        plain_text(&buf).contains("38 % within"),
+        "{}",
+        plain_text(&buf)
+    );
 }
 
 #[test]
 fn once_stopped_the_check_asks_nothing_more() {
     let (m, now) = aircraft::stale(SW6, &[EFIS_ON]);
     let buf = render(&interrupted(), &m, &page(Palette::Terminal), now, 80, 24);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(!t.contains("DO NOW"), "{t}");
     assert!(!t.contains("skip step"), "{t}");
     assert!(t.contains("Esc  back to the device list"), "{t}");
@@ -1146,7 +992,7 @@ fn once_stopped_the_check_asks_nothing_more() {
 fn too_small_terminal_says_so() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
     for (w, h) in [(79, 24), (80, 23)] {
-        let t = text(&render(
+        let t = plain_text(&render(
             &switches(),
             &m,
             &page(Palette::Terminal),
@@ -1158,7 +1004,7 @@ fn too_small_terminal_says_so() {
         assert!(t.contains(&format!("{w}×{h} now, needs 80×24.")), "{t}");
     }
     let buf = render(&switches(), &m, &page(Palette::Terminal), now, 60, 20);
-    insta::assert_snapshot!(text(&buf));
+    insta::assert_snapshot!(plain_text(&buf));
 }
 
 /// `draw` paints in the page's palette, and only inside its area.
@@ -1198,13 +1044,13 @@ fn a_long_plan_is_all_seen_or_says_what_is_hidden() {
         v
     };
     let v = many(24);
-    let t = text(&render(&v, &m, &page(Palette::Terminal), now, 80, 24));
+    let t = plain_text(&render(&v, &m, &page(Palette::Terminal), now, 80, 24));
     for i in 0..24 {
         assert!(t.contains(&format!("Circuit {i:02}")), "circuit {i}:\n{t}");
     }
     assert!(!t.contains("not shown"), "{t}");
     insta::assert_snapshot!(t);
-    let t = text(&render(
+    let t = plain_text(&render(
         &many(40),
         &m,
         &page(Palette::Terminal),
@@ -1223,7 +1069,7 @@ fn a_long_plan_is_all_seen_or_says_what_is_hidden() {
         "{shown} shown:\n{t}"
     );
     // At 160×50 the same forty fit.
-    let t = text(&render(
+    let t = plain_text(&render(
         &many(40),
         &m,
         &page(Palette::Terminal),
@@ -1246,7 +1092,7 @@ fn a_stopped_check_with_nothing_failed_does_not_read_clean() {
     v.switches
         .retain(|s| !matches!(s.outcome, Outcome::Found(_)));
     let buf = render(&v, &m, &page(Palette::Terminal), now, 80, 24);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(!t.contains("Nothing left to fix"), "{t}");
     assert!(
         t.contains("Nothing failed so far, but 4 not run: check again."),
@@ -1266,7 +1112,7 @@ fn a_stopped_check_with_nothing_failed_does_not_read_clean() {
 fn the_ended_check_scrolls_to_every_result_and_says_its_keys() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
     let p = page(Palette::Terminal);
-    let top = text(&render(&done(), &m, &p, now, 80, 24));
+    let top = plain_text(&render(&done(), &m, &p, now, 80, 24));
     assert!(top.contains("more lines below"), "{top}");
     assert!(!top.contains("more lines above"), "{top}");
     assert!(top.contains("↑↓ PgUp PgDn Home End  scroll"), "{top}");
@@ -1275,7 +1121,7 @@ fn the_ended_check_scrolls_to_every_result_and_says_its_keys() {
     assert!(max > 20, "{max}");
     let at = |scroll| {
         let v = CheckView { scroll, ..done() };
-        text(&render(&v, &m, &p, now, 80, 24))
+        plain_text(&render(&v, &m, &p, now, 80, 24))
     };
     let end = at(max);
     assert_eq!(end, at(max + 50), "kept at the end");
@@ -1309,7 +1155,7 @@ fn a_report_not_written_says_why_and_the_key_to_write_it_again() {
             w,
             h,
         );
-        let t = text(&buf);
+        let t = plain_text(&buf);
         assert!(t.contains("✗ Report NOT written: "), "{t}");
         assert!(t.contains("w: write it again"), "{t}");
         assert!(t.contains(" w  write the report again"), "{t}");
@@ -1323,7 +1169,7 @@ fn a_report_not_written_says_why_and_the_key_to_write_it_again() {
 #[test]
 fn the_load_analysis_is_seen_after_the_check() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
-    let t = text(&render(
+    let t = plain_text(&render(
         &done_load_analysis(),
         &m,
         &page(Palette::Terminal),
@@ -1351,7 +1197,7 @@ fn the_load_analysis_is_seen_after_the_check() {
                 scroll,
                 ..done_load_analysis()
             };
-            text(&render(&v, &m, &p, now, 80, 24))
+            plain_text(&render(&v, &m, &p, now, 80, 24))
         })
         .collect();
     for want in ["│ alternator 18 A", "Fuel Pump      15A-1", "emergency"] {
@@ -1365,7 +1211,7 @@ fn the_load_analysis_is_seen_after_the_check() {
 fn circuit_rows_show_the_longest_pin_whole() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
     for (w, h) in [(80, 24), (120, 40)] {
-        let t = text(&render(
+        let t = plain_text(&render(
             &circuits_long_pins(),
             &m,
             &page(Palette::Terminal),
@@ -1386,7 +1232,7 @@ fn circuit_rows_show_the_longest_pin_whole() {
 fn the_summary_counts_as_the_report_does() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
     for v in [done(), no_load_file()] {
-        let t = text(&render(&v, &m, &page(Palette::Terminal), now, 160, 50));
+        let t = plain_text(&render(&v, &m, &page(Palette::Terminal), now, 160, 50));
         let about = vpx_efis::check::report::About {
             when: std::time::UNIX_EPOCH,
             port: "/dev/ttyUSB0".into(),

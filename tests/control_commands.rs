@@ -17,22 +17,14 @@ fn status(wig_wag: WigWagModeSetting) -> (Packet, Packet) {
     let s = SystemStatus {
         system_current: Tenths(100),
         main_bus_volts: SignedTenths(138),
-        aux_battery_volts: Tenths(0),
         internal_temp: 30,
-        switches: Default::default(),
         misc: MiscFlags {
-            starter_annunciator: false,
             wig_wag_mode: wig_wag,
-            software_update: false,
-            wig_wag_active: false,
+            ..Default::default()
         },
-        faults: Default::default(),
-        data_integrity_code: None,
+        ..Default::default()
     };
-    let mut d = DeviceStatus {
-        on: [false; DEVICE_COUNT],
-        current: [Tenths(0); DEVICE_COUNT],
-    };
+    let mut d = DeviceStatus::default();
     d.on[EFIS as usize] = true;
     (Packet::from_vpx(0, s), Packet::from_vpx(0, d))
 }

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::live_unit::{device_status, system_status};
+use common::live_unit::{self, Unit};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
@@ -18,8 +18,7 @@ use vpx_efis::protocol::device::{DEVICE_COUNT, FLAPS, TRIM_P, TRIM_R};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::frame::Node;
 use vpx_efis::protocol::message::{
-    FaultStatus, FlapDirection, FlapFlags, FlapMove, FlapTrimStatus, Message, Packet,
-    TrimDirection, TrimFlags, TrimMove, TrimType,
+    FaultStatus, FlapDirection, FlapMove, Message, Packet, TrimDirection, TrimMove, TrimType,
 };
 use vpx_efis::ui::state::ReleaseMode;
 
@@ -33,64 +32,8 @@ fn ms(n: u64) -> Duration {
 
 // ----- the unit's side: broadcasts that keep the model live -----
 
-fn flap_trim(pitch_fault: FaultCode) -> FlapTrimStatus {
-    let trim = TrimFlags {
-        enabled: true,
-        motor_running: false,
-        fault: pitch_fault.is_fault(),
-    };
-    FlapTrimStatus {
-        flap: FlapFlags {
-            enabled: true,
-            ..Default::default()
-        },
-        pitch_trim: trim,
-        roll_trim: TrimFlags {
-            fault: false,
-            ..trim
-        },
-        // Mid-travel, as the trims: a key's run near the endpoint behind it starts as
-        // probes (`control::endpoints::probe`), which a position that never moves
-        // cannot end; these tests are about the stream itself.
-        flap_position: 50,
-        pitch_trim_position: 50,
-        roll_trim_position: 50,
-        flap_fault: FaultCode::NoFault,
-        pitch_trim_fault: pitch_fault,
-        roll_trim_fault: FaultCode::NoFault,
-        flap_up: 0,
-        flap_down: 100,
-        flap_midpoint_1: 30,
-        flap_midpoint_2: 60,
-        pitch_trim_up: 0,
-        pitch_trim_down: 100,
-        pitch_trim_neutral: 50,
-        roll_trim_up: 0,
-        roll_trim_down: 100,
-        roll_trim_neutral: 50,
-    }
-}
-
-/// What the virtual unit is doing, so the loop can feed the model like the reader does.
-#[derive(Clone, Copy, PartialEq)]
-enum Unit {
-    Healthy,
-    /// SYSTEM_STATUS and DEVICE_STATUS stop; FLAP_TRIM_STATUS keeps coming.
-    StatusSilent,
-    PitchFault,
-}
-
 fn feed(model: &mut Model, unit: Unit, now: Instant) {
-    if unit != Unit::StatusSilent {
-        model.apply_packet(now, &system_status());
-        model.apply_packet(now, &device_status());
-    }
-    let fault = if unit == Unit::PitchFault {
-        FaultCode::TrimRunaway
-    } else {
-        FaultCode::NoFault
-    };
-    model.apply_packet(now, &Packet::from_vpx(0, flap_trim(fault)));
+    live_unit::feed(model, unit, 50, now);
 }
 
 fn live_model(now: Instant) -> Model {

@@ -7,35 +7,14 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
 use vpx_efis::flash::hex::to_hex_text;
-use vpx_efis::link::{PtyPair, open_pty_pair};
 use vpx_efis::protocol::bootloader::PAGE_SIZE;
-use vpx_efis::sim::{self, SimHandle, SimOptions};
+use vpx_efis::sim::{self, SimOptions};
 
-struct Rig {
-    sim: SimHandle,
-    _pty_slave: serialport::TTYPort,
-    path: String,
-    dir: tempfile::TempDir,
-}
+mod common;
+use common::rig::PtyUnit;
 
-fn start() -> Rig {
-    let PtyPair {
-        master,
-        slave,
-        path,
-    } = open_pty_pair().unwrap();
-    let reader = master.try_clone_native().unwrap();
-    let sim = sim::spawn(
-        SimOptions::new(sim::load_scenario("demo").unwrap()),
-        Box::new(reader),
-        Box::new(master),
-    );
-    Rig {
-        sim,
-        _pty_slave: slave,
-        path,
-        dir: tempfile::tempdir().unwrap(),
-    }
+fn start() -> PtyUnit {
+    PtyUnit::start(SimOptions::new(sim::load_scenario("demo").unwrap()))
 }
 
 fn bytes() -> Vec<u8> {
@@ -64,12 +43,12 @@ fn stderr(o: &Output) -> String {
 }
 
 /// The exchange log written beside the hex file `name`.
-fn log_beside(rig: &Rig, name: &str) -> String {
+fn log_beside(rig: &PtyUnit, name: &str) -> String {
     std::fs::read_to_string(rig.dir.path().join(format!("{name}.log"))).unwrap()
 }
 
 /// Nothing reached the bootloader and the flash is as it was.
-fn untouched(rig: &Rig) {
+fn untouched(rig: &PtyUnit) {
     let st = rig.sim.stats();
     assert!(!st.in_bootloader);
     assert_eq!(st.boot.commands, 0);

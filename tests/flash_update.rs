@@ -18,7 +18,10 @@ use vpx_efis::protocol::bootloader::{
 };
 use vpx_efis::protocol::message::{HardwareVersion, Message, Version};
 use vpx_efis::protocol::{Decoder, Event as WireEvent, Packet};
-use vpx_efis::sim::{self, SimCommand, SimHandle, SimOptions};
+use vpx_efis::sim::{self, SimCommand, SimOptions};
+
+mod common;
+use common::rig::PtyUnit;
 
 /// Short timeouts: on a pty answers come in microseconds, and the failure tests wait
 /// out every try.
@@ -48,28 +51,10 @@ fn answering() -> Options {
     }
 }
 
-struct Rig {
-    sim: SimHandle,
-    // The slave end is held so the master never sees end-of-file between runs.
-    _pty_slave: serialport::TTYPort,
-    path: String,
-}
-
-fn start_sim() -> Rig {
-    let PtyPair {
-        master,
-        slave,
-        path,
-    } = open_pty_pair().unwrap();
-    let reader = master.try_clone_native().unwrap();
+fn start_sim() -> PtyUnit {
     let opts = SimOptions::new(sim::load_scenario("demo").unwrap());
     assert_eq!(opts.hardware_version, 2, "these tests flash cu_2 images");
-    let sim = sim::spawn(opts, Box::new(reader), Box::new(master));
-    Rig {
-        sim,
-        _pty_slave: slave,
-        path,
-    }
+    PtyUnit::start(opts)
 }
 
 fn port(path: &str) -> Box<dyn serialport::SerialPort> {
@@ -179,7 +164,7 @@ fn a_full_update_leaves_the_image_in_flash_and_the_unit_back_with_the_flag() {
 
 /// Corrupts the FLASH_PROG of the image's 4th page: the injection is made once the 3rd
 /// page's 'P' has come back, well before the 4th page's frame is written.
-fn corrupt_fourth_page(rig: &Rig, byte128: u8) -> (flash::Outcome, Seen) {
+fn corrupt_fourth_page(rig: &PtyUnit, byte128: u8) -> (flash::Outcome, Seen) {
     let img = image(byte128);
     let mut p = port(&rig.path);
     let mut seen = Seen::default();

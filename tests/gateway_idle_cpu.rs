@@ -9,25 +9,14 @@
 #![cfg(target_os = "linux")]
 
 use std::collections::BTreeSet;
-use std::io::{BufRead, BufReader};
 use std::net::UdpSocket;
-use std::process::{Child, Command, Stdio};
-use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use vpx_efis::xfsp::{Body, Message, idents};
 
 mod common;
 use common::cpu::process_cpu_time;
-
-struct Kill(Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
+use common::process::{gateway, sim_pty};
 
 /// ECBSTAT units in whatever datagrams arrive within `for_`.
 fn ecb_units(peer: &UdpSocket, for_: Duration) -> (usize, BTreeSet<u16>) {
@@ -59,18 +48,7 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(4);
-    let exe = env!("CARGO_BIN_EXE_vpx-efis");
-    let mut sim = Command::new(exe)
-        .args(["sim", "--pty", "--scenario", "disabled-pins"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis sim");
-    let stdout = sim.stdout.take().unwrap();
-    let _sim = Kill(sim);
-    let mut path = String::new();
-    BufReader::new(stdout).read_line(&mut path).unwrap();
-    let path = path.trim().to_string();
+    let (_sim, path) = sim_pty("disabled-pins");
 
     let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
     peer.set_read_timeout(Some(Duration::from_millis(50)))
@@ -78,34 +56,9 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
     // Its config file (and so its audit log, in reports/ beside it) in a folder of the
     // test's own, not the home of whoever runs the tests.
     let home = tempfile::tempdir().unwrap();
-    let mut gateway = Command::new(exe)
-        .env("XDG_CONFIG_HOME", home.path())
-        .env("VPX_EFIS_CONFIG", home.path().join("none.toml"))
-        .args([
-            "gateway",
-            "--port",
-            &path,
-            "--xfsp-iface",
-            "127.0.0.1",
-            "--xfsp",
-        ])
-        .arg(peer.local_addr().unwrap().to_string())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run vpx-efis gateway");
-    let lines = Arc::new(Mutex::new(Vec::<String>::new()));
-    {
-        let stderr = gateway.stderr.take().unwrap();
-        let lines = lines.clone();
-        std::thread::spawn(move || {
-            for l in BufReader::new(stderr).lines().map_while(Result::ok) {
-                lines.lock().unwrap().push(l);
-            }
-        });
-    }
-    let pid = gateway.id();
-    let mut gateway = Kill(gateway);
+    let to = peer.local_addr().unwrap().to_string();
+    let (mut gateway, lines) = gateway(&path, &to, home.path());
+    let pid = gateway.0.id();
 
     // Only the wired pins are refreshed, once every DEVICE_ENABLE, name and spec has
     // been asked for and answered (about a third of a second at the line's rate): starter, EFIS,

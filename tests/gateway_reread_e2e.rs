@@ -9,9 +9,8 @@
 #![cfg(unix)]
 
 use std::collections::BTreeMap;
-use std::io::{BufRead, BufReader, Write};
+use std::io::Write;
 use std::net::UdpSocket;
-use std::process::{Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -19,7 +18,7 @@ use vpx_efis::xfsp::format::latin1;
 use vpx_efis::xfsp::{Body, EcbState, Message, Value, idents};
 
 mod common;
-use common::sim_process::Kill;
+use common::process::{Sim, gateway, sim};
 
 /// One ECBSTAT as heard: circuit (unit), label, state.
 type Ecb = (u16, String, EcbState);
@@ -73,21 +72,11 @@ fn labels_in(heard: &Heard, from: Instant, to: Instant) -> BTreeMap<u16, String>
 
 #[test]
 fn after_a_loss_every_circuit_is_published_under_its_own_name_within_2_s_and_never_shares_one() {
-    let exe = env!("CARGO_BIN_EXE_vpx-efis");
-    let mut sim = Command::new(exe)
-        .args(["sim", "--pty", "--scenario", "demo"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis sim");
-    let mut console = sim.stdin.take().unwrap();
-    let stdout = sim.stdout.take().unwrap();
-    let _sim = Kill(sim);
-    let mut path = String::new();
-    BufReader::new(stdout).read_line(&mut path).unwrap();
-    let path = path.trim().to_string();
-    assert!(!path.is_empty(), "the sim did not start");
+    let Sim {
+        process: _sim,
+        mut console,
+        line: path,
+    } = sim(&["--pty", "--scenario", "demo"]);
 
     let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
     peer.set_read_timeout(Some(Duration::from_millis(50)))
@@ -96,26 +85,7 @@ fn after_a_loss_every_circuit_is_published_under_its_own_name_within_2_s_and_nev
     let heard = listen(peer);
     // Its config file and audit log in a folder of the test's own.
     let home = tempfile::tempdir().unwrap();
-    let mut gateway = Command::new(exe)
-        .env("XDG_CONFIG_HOME", home.path())
-        .env("VPX_EFIS_CONFIG", home.path().join("none.toml"))
-        .args(["gateway", "--port", &path, "--xfsp-iface", "127.0.0.1"])
-        .args(["--xfsp", &to])
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run vpx-efis gateway");
-    let said = Arc::new(Mutex::new(Vec::<String>::new()));
-    {
-        let stderr = gateway.stderr.take().unwrap();
-        let said = said.clone();
-        std::thread::spawn(move || {
-            for l in BufReader::new(stderr).lines().map_while(Result::ok) {
-                said.lock().unwrap().push(l);
-            }
-        });
-    }
-    let _gateway = Kill(gateway);
+    let (_gateway, said) = gateway(&path, &to, home.path());
 
     // Before the loss: the labels settle once every name has been read (two refresh
     // rounds alike, with names the demo scenario gives, written here by hand).

@@ -16,6 +16,9 @@ use vpx_efis::ui::palette::Palette;
 
 mod themes;
 
+mod common;
+use common::screen::text;
+
 /// The aircraft of `loads::analysis`'s hand-worked test: landing leaves 16 % of a
 /// 32 A alternator.
 const WARNED: &str = r#"
@@ -116,18 +119,6 @@ fn draw(view: Option<&LoadsView>, first: usize, w: u16, h: u16) -> Buffer {
     let mut buf = Buffer::empty(Rect::new(0, 0, w, h));
     render(&mut buf, Rect::new(0, 0, w, h), view, first);
     buf
-}
-
-fn text(buf: &Buffer) -> String {
-    let w = buf.area.width as usize;
-    let mut out = String::new();
-    for (i, cell) in buf.content.iter().enumerate() {
-        out.push_str(cell.symbol());
-        if (i + 1) % w == 0 {
-            out.push('\n');
-        }
-    }
-    out
 }
 
 /// Every state the step can show, named, with the width and height drawn at.

@@ -144,8 +144,8 @@ fn air_data() {
 
 #[test]
 fn motor_drive() {
-    use vpx_efis::protocol::message::{DeviceStatus, FlapFlags, FlapTrimStatus, Packet, TrimFlags};
-    use vpx_efis::protocol::{FaultCode, device::DEVICE_COUNT, message::Tenths};
+    use vpx_efis::protocol::message::{DeviceStatus, FlapFlags, FlapTrimStatus, Packet};
+    use vpx_efis::protocol::{device::DEVICE_COUNT, message::Tenths};
     use vpx_efis::xfsp::drive::MotorDrive;
     let t0 = Instant::now();
     let mut m = model();
@@ -162,24 +162,10 @@ fn motor_drive() {
                 enabled: true,
                 ..Default::default()
             },
-            pitch_trim: TrimFlags::default(),
-            roll_trim: TrimFlags::default(),
             flap_position: pos,
-            pitch_trim_position: 0,
-            roll_trim_position: 0,
-            flap_fault: FaultCode::NoFault,
-            pitch_trim_fault: FaultCode::NoFault,
-            roll_trim_fault: FaultCode::NoFault,
             flap_up: 40,
             flap_down: 200,
-            flap_midpoint_1: 0,
-            flap_midpoint_2: 0,
-            pitch_trim_up: 0,
-            pitch_trim_down: 0,
-            pitch_trim_neutral: 0,
-            roll_trim_up: 0,
-            roll_trim_down: 0,
-            roll_trim_neutral: 0,
+            ..Default::default()
         };
         m.apply_packet(at, &Packet::from_vpx(3, ft));
     };

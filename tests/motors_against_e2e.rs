@@ -26,7 +26,7 @@ use vpx_efis::traffic::What;
 use vpx_efis::ui::state::ReleaseMode;
 
 mod common;
-use common::sim_process::{Kill, sim_pty};
+use common::process::{Kill, sim_pty};
 
 /// One rig at a time: two pages and two sims at the real line rate on a loaded
 /// machine can starve a status broadcast into COMMUNICATION LOST.
@@ -68,12 +68,8 @@ impl Rig {
     }
 
     fn until(&mut self, what: &str, limit_ms: u64, f: impl Fn(&App) -> bool) {
-        let end = Instant::now() + Duration::from_millis(limit_ms);
-        while !f(&self.app) {
-            assert!(Instant::now() < end, "timed out waiting for {what}");
-            self.app
-                .pump_until(Instant::now() + Duration::from_millis(20));
-        }
+        let limit = Duration::from_millis(limit_ms);
+        common::app::until(&mut self.app, what, limit, |app, _| f(app));
     }
 
     fn wait(&mut self, ms: u64) {

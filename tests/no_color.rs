@@ -75,17 +75,8 @@ fn comm_lost() -> (Model, Instant) {
     let status = vpx_efis::protocol::message::SystemStatus {
         system_current: vpx_efis::protocol::message::Tenths(150),
         main_bus_volts: vpx_efis::protocol::message::SignedTenths(139),
-        aux_battery_volts: vpx_efis::protocol::message::Tenths(0),
         internal_temp: 30,
-        switches: vpx_efis::protocol::message::SwitchInputs::from_word(0),
-        misc: vpx_efis::protocol::message::MiscFlags {
-            starter_annunciator: false,
-            wig_wag_mode: vpx_efis::protocol::message::WigWagModeSetting::Auto,
-            software_update: false,
-            wig_wag_active: false,
-        },
-        faults: Default::default(),
-        data_integrity_code: None,
+        ..Default::default()
     };
     m.apply_packet(t0, &vpx_efis::protocol::Packet::from_vpx(0, status));
     (m, t0 + Duration::from_secs(6))

@@ -18,14 +18,8 @@ use vpx_efis::ui::state::ReleaseMode;
 mod page_rig;
 use page_rig::*;
 
-fn line_of(buf: &Buffer, needle: &str) -> Option<(u16, String)> {
-    (0..buf.area.height).find_map(|y| {
-        let line: String = (0..buf.area.width)
-            .map(|x| buf[(x, y)].symbol().to_string())
-            .collect();
-        line.contains(needle).then_some((y, line))
-    })
-}
+mod common;
+use common::screen::{line_of, text};
 
 fn fg_of(buf: &Buffer, y: u16, line: &str, word: &str) -> Color {
     let col = line.find(word).expect("word on line");
@@ -207,7 +201,7 @@ fn a_silent_unit_brings_communication_lost_within_two_and_a_half_seconds() {
     );
     let buf = rig.render();
     assert!(line_of(&buf, "COMMUNICATION LOST").is_some());
-    let screen = screen_text(&buf);
+    let screen = text(&buf);
     let (_, nav) =
         line_of(&buf, "Nav Lt").unwrap_or_else(|| panic!("rows stay, values go:\n{screen}"));
     assert!(
@@ -325,7 +319,7 @@ fn a_second_r_after_the_circuit_faulted_again_sends_nothing_until_y() {
         |app, now| app.model().faulted_again_after_reset(NAV, now),
     );
     let buf = rig.render();
-    let screen = screen_text(&buf);
+    let screen = text(&buf);
     // The detail panel's keys are glued with non-breaking spaces.
     let (_, keys) = line_of(&buf, "Y\u{a0}").expect(&screen);
     assert!(

@@ -17,7 +17,7 @@ mod common;
 mod page_rig;
 
 use common::cpu::process_cpu_time;
-use common::sim_process::{Kill, sim_pty};
+use common::process::{Kill, sim_pty};
 use page_rig::terminal::{Term, find, page};
 
 /// A unit with nothing fitted that could change: every switchable pin 4–28 disabled,

@@ -10,7 +10,6 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEventKind};
-use ratatui::buffer::Buffer;
 use vpx_efis::protocol::Packet;
 use vpx_efis::protocol::message::{Message, TrimMove};
 use vpx_efis::ui::state::ReleaseMode;
@@ -18,16 +17,10 @@ use vpx_efis::ui::state::ReleaseMode;
 mod page_rig;
 use page_rig::*;
 
-static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+mod common;
+use common::screen::{line_of, text};
 
-fn line_of(buf: &Buffer, needle: &str) -> Option<(u16, String)> {
-    (0..buf.area.height).find_map(|y| {
-        let line: String = (0..buf.area.width)
-            .map(|x| buf[(x, y)].symbol().to_string())
-            .collect();
-        line.contains(needle).then_some((y, line))
-    })
-}
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
 
 fn trim_moves(rig: &Rig, from: usize) -> Vec<(Instant, TrimMove)> {
     rig.sent(from)
@@ -204,7 +197,7 @@ fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
     // The page says what it now uses.
     rig.app
         .pump_until(Instant::now() + Duration::from_millis(50));
-    let screen = screen_text(&rig.render());
+    let screen = text(&rig.render());
     let (_, line) = line_of(&rig.render(), "keys: auto-repeat · ").expect(&screen);
     let nums: Vec<u64> = line
         .split("keys: auto-repeat · ")
@@ -222,7 +215,7 @@ fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
     assert!((30..=60).contains(&nums[1]), "interval {line}");
     // And the help says what a tap does.
     rig.key(KeyCode::Char('?'), KeyEventKind::Press);
-    let help = screen_text(&rig.render());
+    let help = text(&rig.render());
     assert!(help.contains("a tap (no repeat) runs a motor"), "{help}");
 }
 
@@ -270,8 +263,8 @@ fn a_page_too_small_to_see_ignores_keys_and_a_shrink_stops_the_run() {
         rig.app.draw(&mut term, Instant::now()).unwrap();
         term.backend().buffer().clone()
     };
-    assert!(screen_text(&buf).contains("Terminal too small"));
-    assert!(screen_text(&buf).contains("Until then keys do nothing; Ctrl-C quits."));
+    assert!(text(&buf).contains("Terminal too small"));
+    assert!(text(&buf).contains("Until then keys do nothing; Ctrl-C quits."));
     // Help does not open unseen (it would be there, unasked, once the page fits);
     // quit still quits.
     rig.key(KeyCode::Char('?'), KeyEventKind::Press);

@@ -5,8 +5,7 @@
 // Needs a pseudo-terminal (`sim --pty`), which only Unix has.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader, Write};
-use std::process::{ChildStdin, Command, Stdio};
+use std::io::Write;
 use std::time::{Duration, Instant};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -18,48 +17,26 @@ use vpx_efis::model::{CircuitState, Source};
 use vpx_efis::protocol::FaultCode;
 
 mod common;
-use common::process::Kill;
+use common::process::{Sim, sim};
 
 const LANDING: u8 = 17;
 const TAXI: u8 = 18;
 
-/// `vpx-efis sim --pty --scenario demo`, its console on a pipe, and its pty's path.
-fn sim_with_console() -> (Kill, ChildStdin, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["sim", "--pty", "--scenario", "demo"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis sim");
-    let console = child.stdin.take().unwrap();
-    let mut path = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut path)
-        .unwrap();
-    assert!(!path.trim().is_empty(), "the sim gave no pty");
-    (Kill(child), console, path.trim().to_string())
-}
-
 struct Page {
     app: App,
-    console: ChildStdin,
-    _sim: Kill,
+    sim: Sim,
 }
 
 impl Page {
     fn new() -> Page {
-        let (sim, console, path) = sim_with_console();
+        let sim = sim(&["--pty", "--scenario", "demo"]);
+        let path = sim.line.clone();
         let app = App::new(
             Source::Serial { path: path.clone() },
             link::serial_connector(path.into(), 57_600),
             AppOptions::default(),
         );
-        let mut p = Page {
-            app,
-            console,
-            _sim: sim,
-        };
+        let mut p = Page { app, sim };
         p.until("the device list", Duration::from_secs(10), |app, now| {
             let m = app.model();
             m.live_devices(now).is_some() && m.names.iter().all(Option::is_some)
@@ -68,17 +45,12 @@ impl Page {
     }
 
     fn say(&mut self, line: &str) {
-        writeln!(self.console, "{line}").unwrap();
-        self.console.flush().unwrap();
+        writeln!(self.sim.console, "{line}").unwrap();
+        self.sim.console.flush().unwrap();
     }
 
     fn until(&mut self, what: &str, limit: Duration, f: impl Fn(&App, Instant) -> bool) {
-        let end = Instant::now() + limit;
-        while !f(&self.app, Instant::now()) {
-            assert!(Instant::now() < end, "timed out waiting for {what}");
-            self.app
-                .pump_until(Instant::now() + Duration::from_millis(10));
-        }
+        common::app::until(&mut self.app, what, limit, f);
     }
 
     fn state(&self, id: u8) -> CircuitState {

@@ -9,8 +9,8 @@
 //! loaded machine's cores. The page in a terminal needs a pseudo-terminal: Unix only.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::process::{ChildStdin, Command, Stdio};
+use std::io::{Read, Write};
+use std::process::ChildStdin;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
@@ -21,7 +21,7 @@ use vpx_efis::protocol::message::{DevicePower, Message, TrimMove};
 use vpx_efis::protocol::{Decoder, Event as DecEvent, Packet};
 
 mod common;
-use common::sim_process::Kill;
+use common::process::{Kill, Sim, sim};
 
 mod webdriver;
 use webdriver::{Browser, free_port};
@@ -212,26 +212,13 @@ impl Hangar {
         let dir = tempfile::tempdir().unwrap();
         let scenario = dir.path().join("remote.toml");
         std::fs::write(&scenario, SCENARIO).unwrap();
-        let scenario = match built_in {
-            Some(name) => std::ffi::OsString::from(name),
-            None => scenario.into_os_string(),
-        };
-        let mut sim = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-            .args(["sim", "--pty", "--scenario"])
-            .arg(&scenario)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("run vpx-efis sim");
-        let sim_console = sim.stdin.take().unwrap();
-        let mut out = BufReader::new(sim.stdout.take().unwrap());
-        let sim = Kill(sim);
-        let mut path = String::new();
-        out.read_line(&mut path).unwrap();
-        // Keep reading what the sim says, so that it never blocks on a full pipe.
-        std::thread::spawn(move || for _ in out.lines() {});
-        let tap = Tap::start(path.trim());
+        let scenario = built_in.unwrap_or_else(|| scenario.to_str().unwrap());
+        let Sim {
+            process: sim,
+            console: sim_console,
+            line: path,
+        } = sim(&["--pty", "--scenario", scenario]);
+        let tap = Tap::start(&path);
         let link = dir.path().join("vpx-serial");
         std::os::unix::fs::symlink(&tap.slave_path, &link).unwrap();
         let port = free_port();

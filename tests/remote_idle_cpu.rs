@@ -20,7 +20,7 @@ mod page_rig;
 
 use common::cpu::process_cpu_time;
 use common::phone::Phone;
-use common::sim_process::{Kill, sim_pty};
+use common::process::{Kill, sim_pty};
 use page_rig::terminal::{Term, find, page};
 
 fn secs() -> u64 {

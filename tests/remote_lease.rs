@@ -5,66 +5,19 @@
 
 mod common;
 
-use common::live_unit::{device_status, system_status};
+use common::live_unit::{self, Unit};
 use std::time::{Duration, Instant};
 
 use vpx_efis::control::{
     Controller, Direction, LEASE, MAX_WIRE_INTERVAL, StopReason, StreamerConfig,
 };
 use vpx_efis::model::{Model, Motor, Source, TrimKind};
-use vpx_efis::protocol::fault::FaultCode;
-use vpx_efis::protocol::message::{
-    FlapFlags, FlapTrimStatus, Message, Packet, TrimDirection, TrimFlags, TrimMove, TrimType,
-};
+use vpx_efis::protocol::message::{Message, Packet, TrimDirection, TrimMove, TrimType};
 
 const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 
 fn ms(n: u64) -> Duration {
     Duration::from_millis(n)
-}
-
-/// Flaps and both trims fitted, mid-travel (so no endpoint or probe is in play).
-fn flap_trim(pitch_fault: FaultCode, pitch_position: u8) -> FlapTrimStatus {
-    let trim = TrimFlags {
-        enabled: true,
-        motor_running: false,
-        fault: pitch_fault.is_fault(),
-    };
-    FlapTrimStatus {
-        flap: FlapFlags {
-            enabled: true,
-            ..Default::default()
-        },
-        pitch_trim: trim,
-        roll_trim: TrimFlags {
-            fault: false,
-            ..trim
-        },
-        flap_position: 50,
-        pitch_trim_position: pitch_position,
-        roll_trim_position: 50,
-        flap_fault: FaultCode::NoFault,
-        pitch_trim_fault: pitch_fault,
-        roll_trim_fault: FaultCode::NoFault,
-        flap_up: 0,
-        flap_down: 100,
-        flap_midpoint_1: 30,
-        flap_midpoint_2: 60,
-        pitch_trim_up: 0,
-        pitch_trim_down: 100,
-        pitch_trim_neutral: 50,
-        roll_trim_up: 0,
-        roll_trim_down: 100,
-        roll_trim_neutral: 50,
-    }
-}
-
-#[derive(Clone, Copy, PartialEq)]
-enum Unit {
-    Healthy,
-    /// SYSTEM_STATUS and DEVICE_STATUS stop: COMMUNICATION LOST after 2.5 s.
-    StatusSilent,
-    PitchFault,
 }
 
 /// The controller, a model fed as the link's reader would, and the wire on a fake
@@ -99,18 +52,7 @@ impl Rig {
     }
 
     fn feed(&mut self) {
-        if self.unit != Unit::StatusSilent {
-            self.model.apply_packet(self.now, &system_status());
-            self.model.apply_packet(self.now, &device_status());
-        }
-        let fault = match self.unit {
-            Unit::PitchFault => FaultCode::TrimRunaway,
-            _ => FaultCode::NoFault,
-        };
-        self.model.apply_packet(
-            self.now,
-            &Packet::from_vpx(0, flap_trim(fault, self.pitch_position)),
-        );
+        live_unit::feed(&mut self.model, self.unit, self.pitch_position, self.now);
         self.fed = self.now;
     }
 

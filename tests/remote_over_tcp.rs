@@ -14,20 +14,9 @@ use vpx_efis::link::{self, PortAddr};
 use vpx_efis::model::Source;
 
 mod common;
+use common::app::until;
 use common::phone::{Answer, Phone};
 use common::process::sim_tcp;
-
-fn until(app: &mut App, what: &str, limit: Duration, f: impl Fn(&App, Instant) -> bool) {
-    let end = Instant::now() + limit;
-    loop {
-        let now = Instant::now();
-        if f(app, now) {
-            return;
-        }
-        assert!(now < end, "timed out waiting for {what}");
-        app.pump_until(now + Duration::from_millis(20));
-    }
-}
 
 /// Runs `f` (the phone's HTTP calls) on a thread of its own while the page's loop
 /// runs here, as it would in its own process.

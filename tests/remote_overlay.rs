@@ -21,6 +21,9 @@ use vpx_efis::ui::state::{ControlState, Overlay, RemoteView, ViewState};
 
 mod themes;
 
+mod common;
+use common::screen::text;
+
 /// A key of 128 bits in base64url, as the remote makes them.
 const URL: &str = "http://192.168.1.20:8750/#k=q83vEjRWeJCrze8SNFZ4kA";
 const WORDS: &str = "abandon ability able about above";
@@ -71,18 +74,6 @@ fn draw(view: &ViewState, w: u16, h: u16) -> Buffer {
         .draw(|f| ui::render(f, &model, view, &ControlState::default(), Instant::now()))
         .unwrap();
     terminal.backend().buffer().clone()
-}
-
-fn text(buf: &Buffer) -> String {
-    let w = buf.area.width as usize;
-    let mut out = String::new();
-    for (i, cell) in buf.content.iter().enumerate() {
-        out.push_str(cell.symbol());
-        if (i + 1) % w == 0 {
-            out.push('\n');
-        }
-    }
-    out
 }
 
 /// The QR code's cells: every cell on xterm white, as (x, y).

@@ -16,6 +16,9 @@ use ratatui::style::Color;
 use vpx_efis::app::{self, App, AppOptions, Capture, Recorder};
 use vpx_efis::ui::state::Screen;
 
+mod common;
+use common::screen::text;
+
 fn captures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/captures")
 }
@@ -53,17 +56,6 @@ fn draw(app: &mut App, now: Instant, w: u16, h: u16) -> Buffer {
     let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
     app.draw(&mut term, now).unwrap();
     term.backend().buffer().clone()
-}
-
-fn text(buf: &Buffer) -> String {
-    (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
 }
 
 fn replay(file: &str) -> App {

@@ -14,16 +14,8 @@ use vpx_efis::model::Source;
 use vpx_efis::protocol::message::{Payload, SystemStatus};
 use vpx_efis::ui::{self, state::ViewState};
 
-fn text(buf: &Buffer) -> String {
-    (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
-}
+mod common;
+use common::screen::text;
 
 #[test]
 fn a_recorded_session_replays_to_the_same_frames_at_the_same_instants() {

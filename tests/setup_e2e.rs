@@ -6,18 +6,20 @@
 
 use std::time::{Duration, Instant};
 
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use crossterm::event::KeyCode;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::Color;
-use vpx_efis::app::{App, AppOptions};
-use vpx_efis::link;
-use vpx_efis::model::Source;
+use vpx_efis::app::AppOptions;
 use vpx_efis::protocol::message::{DeviceSpec, SwitchId};
 use vpx_efis::setup::view::{Page, WriteStatus};
-use vpx_efis::sim::{self, Scenario, SimCommand, SimHandle, SimOptions};
+use vpx_efis::sim::{Scenario, SimCommand, SimOptions};
 use vpx_efis::ui::state::{ReleaseMode, Screen};
+
+mod common;
+use common::rig::Rig;
+use common::screen::text;
 
 const SCENARIO: &str = r#"
 description = "setup e2e: a few devices, flaps fitted"
@@ -50,12 +52,6 @@ endpoint_duration = 0.5
 position = 20
 "#;
 
-struct Rig {
-    app: App,
-    sim: SimHandle,
-    _slave: serialport::TTYPort,
-}
-
 impl Rig {
     fn new() -> Rig {
         Rig::with_eeprom(None)
@@ -66,42 +62,16 @@ impl Rig {
     }
 
     fn with(scenario: &str, eeprom: Option<std::path::PathBuf>) -> Rig {
-        let pty = link::open_pty_pair().expect("pty");
-        let reader = pty.master.try_clone_native().expect("clone master");
         let mut options = SimOptions::new(Scenario::from_toml(scenario).unwrap());
         options.eeprom = eeprom;
-        let sim = sim::spawn(options, Box::new(reader), Box::new(pty.master));
-        let path = std::path::PathBuf::from(&pty.path);
-        let app = App::new(
-            Source::Serial {
-                path: pty.path.clone(),
-            },
-            link::serial_connector(path, 57_600),
+        Rig::start(
+            options,
             AppOptions {
                 max_run: Duration::from_secs(10),
                 release_mode: ReleaseMode::AutoRepeat,
                 ..AppOptions::default()
             },
-        );
-        Rig {
-            app,
-            sim,
-            _slave: pty.slave,
-        }
-    }
-
-    fn until(&mut self, what: &str, limit: Duration, f: impl Fn(&App) -> bool) {
-        let end = Instant::now() + limit;
-        while !f(&self.app) {
-            assert!(Instant::now() < end, "timed out waiting for {what}");
-            self.app
-                .pump_until(Instant::now() + Duration::from_millis(20));
-        }
-    }
-
-    fn key(&mut self, code: KeyCode) {
-        let k = KeyEvent::new_with_kind(code, KeyModifiers::NONE, KeyEventKind::Press);
-        self.app.handle_term_event(Event::Key(k), Instant::now());
+        )
     }
 
     fn keys(&mut self, s: &str) {
@@ -153,17 +123,6 @@ impl Rig {
     }
 }
 
-fn screen(buf: &Buffer) -> String {
-    (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
-}
-
 fn fg_of(buf: &Buffer, needle: &str) -> Color {
     for y in 0..buf.area.height {
         let line: String = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
@@ -171,7 +130,7 @@ fn fg_of(buf: &Buffer, needle: &str) -> Color {
             return buf[(line[..b].chars().count() as u16, y)].fg;
         }
     }
-    panic!("{needle:?} not on screen:\n{}", screen(buf));
+    panic!("{needle:?} not on screen:\n{}", text(buf));
 }
 
 #[test]
@@ -292,7 +251,7 @@ fn refusals_are_in_words_whether_from_the_unit_or_before_sending() {
     assert_eq!(rig.sim.stats().config.devices[9], before);
     let buf = rig.render();
     assert_eq!(fg_of(&buf, "refused by the unit"), Color::Red);
-    assert!(screen(&buf).contains("Invalid circuit breaker value"));
+    assert!(text(&buf).contains("Invalid circuit breaker value"));
 }
 
 #[test]
@@ -323,7 +282,7 @@ fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going(
     assert_eq!(rig.sent("DEVICE_SPEC"), 3);
     let buf = rig.render();
     assert_eq!(fg_of(&buf, "no answer after 3 tries"), Color::Red);
-    assert!(!screen(&buf).contains("saved ✓"));
+    assert!(!text(&buf).contains("saved ✓"));
     // Communication is lost, so the setting stays unknown and keeps being asked for;
     // when the unit talks again the page shows what it stored while silent.
     assert!(
@@ -479,11 +438,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
         vpx_efis::setup::view::Dialog::Erase { .. }
     ));
     let buf = rig.render();
-    assert!(
-        screen(&buf).contains("b  back up first to"),
-        "{}",
-        screen(&buf)
-    );
+    assert!(text(&buf).contains("b  back up first to"), "{}", text(&buf));
     rig.key(KeyCode::Esc);
     rig.app
         .pump_until(Instant::now() + Duration::from_millis(200));
@@ -536,23 +491,19 @@ fn a_failed_erase_is_said_plainly_and_not_shown_as_factory_settings() {
             vpx_efis::setup::view::Probe::Answered { .. }
         )
     });
-    let (_, text) = rig.app.view().setup.message.clone().expect("a message");
-    assert!(text.contains("failed (response code 1)"), "{text}");
-    assert!(!text.contains("factory settings"), "{text}");
+    let (_, said) = rig.app.view().setup.message.clone().expect("a message");
+    assert!(said.contains("failed (response code 1)"), "{said}");
+    assert!(!said.contains("factory settings"), "{said}");
     let buf = rig.render();
-    assert!(
-        screen(&buf).contains("EEPROM_ERASE failed"),
-        "{}",
-        screen(&buf)
-    );
+    assert!(text(&buf).contains("EEPROM_ERASE failed"), "{}", text(&buf));
 }
 
 /// The text of the screen row that holds `needle`.
 fn row_with(buf: &Buffer, needle: &str) -> String {
-    screen(buf)
+    text(buf)
         .lines()
         .find(|l| l.contains(needle))
-        .unwrap_or_else(|| panic!("{needle:?} not on screen:\n{}", screen(buf)))
+        .unwrap_or_else(|| panic!("{needle:?} not on screen:\n{}", text(buf)))
         .to_string()
 }
 
@@ -622,13 +573,16 @@ fn a_breaker_whose_spec_ack_is_lost_is_unknown_then_reread_and_shown_as_the_unit
         }
     );
     let buf = rig.render();
-    let text = screen(&buf);
+    let screen = text(&buf);
     assert!(
-        text.contains("no answer to the write; re-read: the unit holds 4 A"),
-        "{text}"
+        screen.contains("no answer to the write; re-read: the unit holds 4 A"),
+        "{screen}"
     );
-    assert!(row_with(&buf, "Circuit breaker").contains("4 A"), "{text}");
-    assert!(!text.contains("? A"), "{text}");
+    assert!(
+        row_with(&buf, "Circuit breaker").contains("4 A"),
+        "{screen}"
+    );
+    assert!(!screen.contains("? A"), "{screen}");
     rig.back_to_devices();
     let buf = rig.render();
     let row = row_with(&buf, "GPS 1");
@@ -664,9 +618,9 @@ fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answe
             .is_unknown(vpx_efis::model::Setting::Name(9))
     );
     let buf = rig.render();
-    let text = screen(&buf);
-    assert!(row_with(&buf, "Name").contains("? re-reading…"), "{text}");
-    assert!(!row_with(&buf, "Name").contains("GPS 1"), "{text}");
+    let screen = text(&buf);
+    assert!(row_with(&buf, "Name").contains("? re-reading…"), "{screen}");
+    assert!(!row_with(&buf, "Name").contains("GPS 1"), "{screen}");
     assert_eq!(fg_of(&buf, "no answer after 3 tries"), Color::Red);
     rig.until("the re-read's answer", Duration::from_secs(8), |app| {
         matches!(
@@ -680,12 +634,13 @@ fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answe
     assert!(
         row_with(&buf, "Name").contains("\"Nav 2\""),
         "{}",
-        screen(&buf)
+        text(&buf)
     );
     rig.back_to_devices();
     let buf = rig.render();
-    assert!(screen(&buf).contains("Nav 2"), "{}", screen(&buf));
-    assert!(!screen(&buf).contains("GPS 1"), "{}", screen(&buf));
+    let screen = text(&buf);
+    assert!(screen.contains("Nav 2"), "{screen}");
+    assert!(!screen.contains("GPS 1"), "{screen}");
 }
 
 #[test]
@@ -759,12 +714,12 @@ fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answ
         .pump_until(Instant::now() + Duration::from_millis(50));
     assert_eq!(rig.app.view().setup.forms.device.device_id, 9);
     let buf = rig.render();
-    let text = screen(&buf);
+    let screen = text(&buf);
     let row = row_with(&buf, "Switch");
-    assert!(row.contains("? not yet read from the unit"), "{text}");
+    assert!(row.contains("? not yet read from the unit"), "{screen}");
     assert!(
         !row.contains(" off "),
-        "Appendix F's switch is not shown: {text}"
+        "Appendix F's switch is not shown: {screen}"
     );
     // The breaker cannot be typed, and Enter sends nothing.
     rig.key(KeyCode::Down);
@@ -815,10 +770,13 @@ fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answ
     };
     assert_eq!(rig.app.view().setup.forms.device, unit);
     let buf = rig.render();
-    let text = screen(&buf);
-    assert!(row_with(&buf, "Circuit breaker").contains("2 A"), "{text}");
-    assert!(row_with(&buf, "Switch").contains("switch 2"), "{text}");
-    assert!(row_with(&buf, "Name").contains("GPS 1"), "{text}");
+    let screen = text(&buf);
+    assert!(
+        row_with(&buf, "Circuit breaker").contains("2 A"),
+        "{screen}"
+    );
+    assert!(row_with(&buf, "Switch").contains("switch 2"), "{screen}");
+    assert!(row_with(&buf, "Name").contains("GPS 1"), "{screen}");
     for label in [
         "Circuit breaker",
         "Switch",
@@ -826,7 +784,7 @@ fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answ
         "Name",
         "Shown",
     ] {
-        assert!(!row_with(&buf, label).contains("not yet read"), "{text}");
+        assert!(!row_with(&buf, label).contains("not yet read"), "{screen}");
     }
     assert_eq!(rig.sent("DEVICE_SPEC"), 0);
     // Now the breaker goes out with the unit's switch kept.

@@ -14,11 +14,14 @@ use vpx_efis::protocol::Packet;
 use vpx_efis::protocol::Payload;
 use vpx_efis::protocol::device::{EFIS, FIELD_PRI, STARTER};
 use vpx_efis::protocol::message::{
-    DeviceEnable, DeviceName, DeviceSpec, EnableFlag, FlapMode, FlapSpec, FlapTrimStatus,
-    HardwareVersion, Message, OvervoltageLimit, Polarity, SwitchId, SystemSpec, Tenths, TrimSpec,
-    TrimType, Version, WigWagSpec,
+    DeviceEnable, DeviceName, DeviceSpec, EnableFlag, FlapTrimStatus, Message, OvervoltageLimit,
+    SwitchId, WigWagSpec,
 };
 mod themes;
+
+mod common;
+use common::configured;
+use common::screen::text;
 
 use vpx_efis::setup::view::{
     Dialog, Field, Forms, FromUnit, Held, Page, Probe, SetupView, Tone, WriteLine, WriteStatus,
@@ -36,15 +39,7 @@ fn unit(t0: Instant) -> Model {
         path: "/dev/ttyUSB0".into(),
     });
     m.note_connected(t0, "/dev/ttyUSB0".into());
-    apply(
-        &mut m,
-        t0,
-        Version {
-            hardware_version: HardwareVersion::VpxPro,
-            software_major: 1,
-            software_minor: 4,
-        },
-    );
+    apply(&mut m, t0, configured::version());
     for id in 1..=28u8 {
         let (cb, sw) = match id {
             STARTER => (5, SwitchId::AlwaysOn),
@@ -87,49 +82,10 @@ fn unit(t0: Instant) -> Model {
         };
         apply(&mut m, t0, DeviceName::new(id, name).unwrap());
     }
-    apply(
-        &mut m,
-        t0,
-        SystemSpec {
-            overvoltage_limit: OvervoltageLimit::V16,
-            secondary_alternator: None,
-        },
-    );
-    apply(
-        &mut m,
-        t0,
-        FlapSpec {
-            mode: FlapMode::PositionBased,
-            enabled: true,
-            polarity: Polarity::Standard,
-            up: 20,
-            down: 220,
-            midpoint_1: 90,
-            midpoint_2: 160,
-            circuit_breaker: 7,
-            overspeed_position: 90,
-            max_speed: 100,
-            endpoint_duration: Tenths(5),
-        },
-    );
-    for (t, up, down, neutral) in [
-        (TrimType::Pitch, 30, 230, 128),
-        (TrimType::Roll, 40, 200, 120),
-    ] {
-        apply(
-            &mut m,
-            t0,
-            TrimSpec {
-                trim_type: t,
-                enabled: true,
-                polarity: Polarity::Standard,
-                up,
-                down,
-                neutral,
-                power: 60,
-                speed: 120,
-            },
-        );
+    apply(&mut m, t0, configured::system_spec());
+    apply(&mut m, t0, configured::flap_spec());
+    for spec in configured::trim_specs() {
+        apply(&mut m, t0, spec);
     }
     apply(
         &mut m,
@@ -141,7 +97,7 @@ fn unit(t0: Instant) -> Model {
             speed: 70,
         },
     );
-    let mut ft = FlapTrimStatus::parse(&[0u8; 18]).unwrap();
+    let mut ft = FlapTrimStatus::default();
     ft.flap.enabled = true;
     ft.pitch_trim.enabled = true;
     ft.roll_trim.enabled = true;
@@ -185,18 +141,6 @@ fn render(m: &Model, v: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
     let buf = term.backend().buffer().clone();
     themes::check_themes("setup_snapshots", &buf);
     buf
-}
-
-fn text(buf: &Buffer) -> String {
-    let w = buf.area.width as usize;
-    let mut out = String::new();
-    for (i, cell) in buf.content.iter().enumerate() {
-        out.push_str(cell.symbol());
-        if (i + 1) % w == 0 {
-            out.push('\n');
-        }
-    }
-    out
 }
 
 /// The foreground colour of the first cell of `needle` on screen.

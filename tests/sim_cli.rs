@@ -3,44 +3,29 @@
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader, Write};
-use std::process::{Command, Stdio};
+use std::io::Write;
+use std::process::Command;
 use std::time::Duration;
 
+mod common;
 mod sim_common;
 
+use common::process::{EXE, sim};
 use vpx_efis::protocol::message::*;
-
-struct Kill(std::process::Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
 
 #[test]
 fn sim_pty_prints_its_path_first_and_answers_on_it() {
     let dir = tempfile::tempdir().unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["sim", "--pty", "--scenario", "hangar", "--eeprom"])
-        .arg(dir.path().join("e.json"))
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis");
-    let stdout = child.stdout.take().unwrap();
-    let _guard = Kill(child);
-    let mut line = String::new();
-    BufReader::new(stdout).read_line(&mut line).unwrap();
-    let path = line.trim();
-    assert!(path.starts_with("/dev/"), "first line: {line:?}");
-    let port = serialport::new(path, 57_600)
-        .timeout(Duration::from_millis(20))
-        .open_native()
-        .expect("open the printed path");
-    let mut c = sim_common::Client::new(port);
+    let eeprom = dir.path().join("e.json");
+    let sim = sim(&[
+        "--pty",
+        "--scenario",
+        "hangar",
+        "--eeprom",
+        eeprom.to_str().unwrap(),
+    ]);
+    assert!(sim.line.starts_with("/dev/"), "first line: {:?}", sim.line);
+    let mut c = sim_common::Client::open(&sim.line, Duration::from_millis(20));
     assert_eq!(
         c.request(Ping { ack: false }),
         Message::Ping(Ping { ack: true })
@@ -54,7 +39,7 @@ fn sim_pty_prints_its_path_first_and_answers_on_it() {
 
 #[test]
 fn an_unknown_scenario_is_a_clear_error() {
-    let out = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+    let out = Command::new(EXE)
         .args(["sim", "--pty", "--scenario", "nonesuch"])
         .output()
         .unwrap();
@@ -69,23 +54,12 @@ fn an_unknown_scenario_is_a_clear_error() {
 /// standard input ends.
 #[test]
 fn switches_worked_on_standard_input_go_through_the_wiring() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["sim", "--pty", "--scenario", "install"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis");
-    let stdout = child.stdout.take().unwrap();
-    let mut stdin = child.stdin.take().unwrap();
-    let _guard = Kill(child);
-    let mut line = String::new();
-    BufReader::new(stdout).read_line(&mut line).unwrap();
-    let port = serialport::new(line.trim(), 57_600)
-        .timeout(Duration::from_millis(20))
-        .open_native()
-        .expect("open the printed path");
-    let mut c = sim_common::Client::new(port);
+    let common::process::Sim {
+        process: _guard,
+        console: mut stdin,
+        line,
+    } = sim(&["--pty", "--scenario", "install"]);
+    let mut c = sim_common::Client::open(&line, Duration::from_millis(20));
     let inputs = |c: &mut sim_common::Client| {
         c.next("SYSTEM_STATUS", |m| match m {
             Message::SystemStatus(s) => Some(s.switches.switch),

@@ -6,8 +6,6 @@
 //! longer and prints the figures.
 #![cfg(target_os = "linux")]
 
-use std::io::{BufRead, BufReader};
-use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
@@ -16,35 +14,11 @@ mod sim_common;
 use common::cpu::process_cpu_time;
 use vpx_efis::protocol::message::*;
 
-struct Kill(std::process::Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
 /// The sim's share of a core over `secs` while a client reads everything it sends.
 fn idle_share(extra: &[&str], secs: u64) -> (f64, usize) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["sim", "--pty", "--scenario", "disabled-pins"])
-        .args(extra)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis");
-    let pid = child.id();
-    let stdout = child.stdout.take().unwrap();
-    let _guard = Kill(child);
-    let mut line = String::new();
-    BufReader::new(stdout).read_line(&mut line).unwrap();
-    let port = serialport::new(line.trim(), 57_600)
-        .timeout(Duration::from_millis(50))
-        .open_native()
-        .expect("open the printed path");
-    let mut c = sim_common::Client::new(port);
+    let sim = common::process::sim(&[&["--pty", "--scenario", "disabled-pins"], extra].concat());
+    let pid = sim.process.0.id();
+    let mut c = sim_common::Client::open(&sim.line, Duration::from_millis(50));
     assert_eq!(
         c.request(Ping { ack: false }),
         Message::Ping(Ping { ack: true })

@@ -5,23 +5,13 @@
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader};
-use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+mod common;
 mod sim_common;
 
 use vpx_efis::protocol::message::*;
 use vpx_efis::sim::line_rate::BYTES_PER_SECOND;
-
-struct Kill(std::process::Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
 
 /// Names asked for in one burst: 93 DEVICE_NAME replies of 26 bytes (8 + 17 + 1) are
 /// 2418 bytes, 420 ms on a real line.
@@ -31,23 +21,8 @@ const REPLY_BYTES: usize = 8 + 17 + 1;
 /// Starts `vpx-efis sim --pty` with `extra` arguments, asks for [`ASKS`] names at
 /// once and returns how long the last reply took to arrive after the burst was sent.
 fn burst_of_names(extra: &[&str]) -> Duration {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["sim", "--pty", "--scenario", "install"])
-        .args(extra)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run vpx-efis");
-    let stdout = child.stdout.take().unwrap();
-    let _guard = Kill(child);
-    let mut line = String::new();
-    BufReader::new(stdout).read_line(&mut line).unwrap();
-    let port = serialport::new(line.trim(), 57_600)
-        .timeout(Duration::from_millis(20))
-        .open_native()
-        .expect("open the printed path");
-    let mut c = sim_common::Client::new(port);
+    let sim = common::process::sim(&[&["--pty", "--scenario", "install"], extra].concat());
+    let mut c = sim_common::Client::open(&sim.line, Duration::from_millis(20));
     // Past the first broadcasts, so the line is quiet but for the 1 Hz and 10 Hz ones.
     assert_eq!(
         c.request(Ping { ack: false }),

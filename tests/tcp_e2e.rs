@@ -3,8 +3,7 @@
 //! away and comes back on the same port, and `flash` through a TCP line to the virtual
 //! unit's bootloader.
 
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
@@ -15,28 +14,22 @@ use vpx_efis::model::{Connection, Source};
 use vpx_efis::protocol::bootloader::PAGE_SIZE;
 use vpx_efis::sim::{self, SimOptions};
 
+mod common;
+use common::app::until;
+use common::process::{EXE, Sim};
+
 /// `vpx-efis sim --tcp ADDR` as a child process; killed when dropped.
 struct SimProcess {
-    child: Child,
+    _sim: Sim,
     addr: PortAddr,
 }
 
 impl SimProcess {
     fn start(bind: &str) -> SimProcess {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-            .args(["sim", "--tcp", bind, "--scenario", "demo"])
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap();
-        let mut first = String::new();
-        BufReader::new(child.stdout.take().unwrap())
-            .read_line(&mut first)
-            .unwrap();
-        let addr: PortAddr = first.trim().parse().expect("tcp://HOST:PORT first");
-        assert!(addr.is_tcp(), "{first}");
-        SimProcess { child, addr }
+        let sim = common::process::sim(&["--tcp", bind, "--scenario", "demo"]);
+        let addr: PortAddr = sim.line.parse().expect("tcp://HOST:PORT first");
+        assert!(addr.is_tcp(), "{}", sim.line);
+        SimProcess { _sim: sim, addr }
     }
 
     fn port(&self) -> u16 {
@@ -44,13 +37,6 @@ impl SimProcess {
             PortAddr::Tcp { port, .. } => *port,
             PortAddr::Serial(_) => unreachable!(),
         }
-    }
-}
-
-impl Drop for SimProcess {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
     }
 }
 
@@ -62,18 +48,6 @@ fn page(addr: &PortAddr) -> App {
         link::port_connector(addr, 57_600),
         AppOptions::default(),
     )
-}
-
-fn until(app: &mut App, what: &str, limit: Duration, f: impl Fn(&App, Instant) -> bool) {
-    let end = Instant::now() + limit;
-    loop {
-        let now = Instant::now();
-        if f(app, now) {
-            return;
-        }
-        assert!(now < end, "timed out waiting for {what}");
-        app.pump_until(now + Duration::from_millis(20));
-    }
 }
 
 fn ready(app: &App, now: Instant) -> bool {
@@ -198,7 +172,7 @@ fn flash_over_tcp_programs_and_verifies_the_image() {
     let data: Vec<u8> = (0..3 * PAGE_SIZE + 5).map(|i| (i * 7 + 3) as u8).collect();
     let file = dir.path().join("cu_2.hex");
     std::fs::write(&file, to_hex_text(0x200, &data)).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+    let o = Command::new(EXE)
         // A small image, not a whole program: --force-image takes that risk (the refusal
         // itself is tested in flash_cli), so the test stays about the TCP path.
         .args([

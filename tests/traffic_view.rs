@@ -13,13 +13,13 @@ use ratatui::style::Color;
 
 use vpx_efis::link::{Direction, RxItem};
 use vpx_efis::model::{Model, Source};
-use vpx_efis::protocol::device::DEVICE_COUNT;
+use vpx_efis::protocol::Packet;
 use vpx_efis::protocol::message::{
-    DeviceStatus, FlapFlags, FlapTrimStatus, HardwareVersion, MiscFlags, Payload, Ping,
-    SignedTenths, SwitchInputs, SystemStatus, Tenths, TrimFlags, Version, WigWagModeSetting,
+    DeviceStatus, FlapTrimStatus, HardwareVersion, Payload, Ping, SignedTenths, SwitchInputs,
+    SystemStatus, Tenths, Version,
 };
-use vpx_efis::protocol::{FaultCode, Packet};
 use vpx_efis::traffic::{Health, KindFilter};
+mod common;
 mod themes;
 
 use vpx_efis::ui::{self, state::Screen, state::ViewState};
@@ -28,58 +28,25 @@ fn system() -> SystemStatus {
     SystemStatus {
         system_current: Tenths(84),
         main_bus_volts: SignedTenths(139),
-        aux_battery_volts: Tenths(0),
         internal_temp: 25,
         switches: SwitchInputs::from_word(0b11),
-        misc: MiscFlags {
-            starter_annunciator: false,
-            wig_wag_mode: WigWagModeSetting::Auto,
-            software_update: false,
-            wig_wag_active: false,
-        },
-        faults: Default::default(),
-        data_integrity_code: None,
+        ..Default::default()
     }
 }
 
 fn devices() -> DeviceStatus {
-    let mut d = DeviceStatus {
-        on: [false; DEVICE_COUNT],
-        current: [Tenths(0); DEVICE_COUNT],
-    };
+    let mut d = DeviceStatus::default();
     d.on[2] = true;
     d.current[2] = Tenths(25);
     d
 }
 
+/// The snapshots' configured unit, without its roll trim.
 fn flap_trim() -> FlapTrimStatus {
-    FlapTrimStatus {
-        flap: FlapFlags {
-            enabled: true,
-            ..Default::default()
-        },
-        pitch_trim: TrimFlags {
-            enabled: true,
-            ..Default::default()
-        },
-        roll_trim: TrimFlags::default(),
-        flap_position: 20,
-        pitch_trim_position: 128,
-        roll_trim_position: 0,
-        flap_fault: FaultCode::NoFault,
-        pitch_trim_fault: FaultCode::NoFault,
-        roll_trim_fault: FaultCode::NoFault,
-        flap_up: 20,
-        flap_down: 220,
-        flap_midpoint_1: 90,
-        flap_midpoint_2: 160,
-        pitch_trim_up: 30,
-        pitch_trim_down: 230,
-        pitch_trim_neutral: 128,
-        roll_trim_up: 0,
-        roll_trim_down: 0,
-        roll_trim_neutral: 0,
-    }
+    let mut ft = common::configured::flap_trim((20, 128, 0));
+    ft.roll_trim.enabled = false;
+    (ft.roll_trim_up, ft.roll_trim_down, ft.roll_trim_neutral) = (0, 0, 0);
+    ft
 }
 
 struct Session {

@@ -19,16 +19,17 @@ use vpx_efis::ui::{self, MIN_HEIGHT, MIN_WIDTH};
 
 mod themes;
 
+mod common;
+use common::screen::{find, plain_text};
+
 mod fixtures {
     use super::*;
     use vpx_efis::protocol::Packet;
     use vpx_efis::protocol::device::DEVICE_COUNT;
     use vpx_efis::protocol::message::{
         DataIntegrityCode, DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag,
-        FaultStatus, FlapFlags, FlapMode, FlapSpec, FlapTrimStatus, HardwareVersion, MiscFlags,
-        OvervoltageLimit, Polarity, SignedTenths, SwitchId, SwitchInputs, SystemFaultFlags,
-        SystemSpec, SystemStatus, Tenths, TrimFlags, TrimSpec, TrimType, Version,
-        WigWagModeSetting,
+        FaultStatus, FlapTrimStatus, MiscFlags, OvervoltageLimit, SignedTenths, SwitchId,
+        SwitchInputs, SystemFaultFlags, SystemSpec, SystemStatus, Tenths, WigWagModeSetting,
     };
 
     /// The devices the demo aircraft has wired, with names, breakers and switches.
@@ -57,35 +58,20 @@ mod fixtures {
         (0x17, 45),
     ];
 
-    pub struct Unit {
-        pub model: Model,
-        pub t0: Instant,
-        cnt: u8,
-    }
+    pub use crate::common::configured::Unit;
 
     pub fn system(amps: u16, volts: i16) -> SystemStatus {
         SystemStatus {
             system_current: Tenths(amps),
             main_bus_volts: SignedTenths(volts),
-            aux_battery_volts: Tenths(0),
             internal_temp: 31,
             switches: SwitchInputs::from_word(0b0000_0000_0111_1111),
-            misc: MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: SystemFaultFlags::default(),
-            data_integrity_code: None,
+            ..Default::default()
         }
     }
 
     pub fn devices(on: &[(u8, u16)]) -> DeviceStatus {
-        let mut d = DeviceStatus {
-            on: [false; DEVICE_COUNT],
-            current: [Tenths(0); DEVICE_COUNT],
-        };
+        let mut d = DeviceStatus::default();
         for &(id, amps) in on {
             d.on[id as usize] = true;
             d.current[id as usize] = Tenths(amps);
@@ -94,36 +80,7 @@ mod fixtures {
     }
 
     pub fn flap_trim() -> FlapTrimStatus {
-        FlapTrimStatus {
-            flap: FlapFlags {
-                enabled: true,
-                ..Default::default()
-            },
-            pitch_trim: TrimFlags {
-                enabled: true,
-                ..Default::default()
-            },
-            roll_trim: TrimFlags {
-                enabled: true,
-                ..Default::default()
-            },
-            flap_position: 20,
-            pitch_trim_position: 128,
-            roll_trim_position: 120,
-            flap_fault: FaultCode::NoFault,
-            pitch_trim_fault: FaultCode::NoFault,
-            roll_trim_fault: FaultCode::NoFault,
-            flap_up: 20,
-            flap_down: 220,
-            flap_midpoint_1: 90,
-            flap_midpoint_2: 160,
-            pitch_trim_up: 30,
-            pitch_trim_down: 230,
-            pitch_trim_neutral: 128,
-            roll_trim_up: 40,
-            roll_trim_down: 200,
-            roll_trim_neutral: 120,
-        }
+        crate::common::configured::flap_trim((20, 128, 120))
     }
 
     pub fn faults(devices: &[(u8, FaultCode)], system: bool) -> FaultStatus {
@@ -142,104 +99,7 @@ mod fixtures {
     impl Unit {
         /// A unit that answered every connect-time question at `t0`.
         pub fn configured(source: Source) -> Unit {
-            let t0 = Instant::now();
-            let mut u = Unit {
-                model: Model::new(source),
-                t0,
-                cnt: 0,
-            };
-            u.model.note_connected(t0, "/dev/ttyUSB0".into());
-            u.apply(
-                0,
-                Version {
-                    hardware_version: HardwareVersion::VpxPro,
-                    software_major: 1,
-                    software_minor: 4,
-                },
-            );
-            u.apply(
-                0,
-                SystemSpec {
-                    overvoltage_limit: OvervoltageLimit::V16,
-                    secondary_alternator: None,
-                },
-            );
-            for id in 4..=28u8 {
-                let wired = WIRED.iter().any(|w| w.0 == id);
-                let flag = if wired {
-                    EnableFlag::Enabled
-                } else {
-                    EnableFlag::Disabled
-                };
-                u.apply(
-                    0,
-                    DeviceEnable {
-                        device_id: id,
-                        flag,
-                    },
-                );
-            }
-            for &(id, name, breaker, switch_id) in WIRED {
-                if !name.is_empty() {
-                    u.apply(0, DeviceName::new(id, name).unwrap());
-                }
-                u.apply(
-                    0,
-                    DeviceSpec {
-                        device_id: id,
-                        circuit_breaker: breaker,
-                        switch_id,
-                        current_fault: true,
-                        switch_raw: None,
-                    },
-                );
-            }
-            u.apply(
-                0,
-                FlapSpec {
-                    mode: FlapMode::PositionBased,
-                    enabled: true,
-                    polarity: Polarity::Standard,
-                    up: 20,
-                    down: 220,
-                    midpoint_1: 90,
-                    midpoint_2: 160,
-                    circuit_breaker: 7,
-                    overspeed_position: 90,
-                    max_speed: 100,
-                    endpoint_duration: Tenths(5),
-                },
-            );
-            for (trim_type, up, down, neutral) in [
-                (TrimType::Pitch, 30, 230, 128),
-                (TrimType::Roll, 40, 200, 120),
-            ] {
-                u.apply(
-                    0,
-                    TrimSpec {
-                        trim_type,
-                        enabled: true,
-                        polarity: Polarity::Standard,
-                        up,
-                        down,
-                        neutral,
-                        power: 60,
-                        speed: 120,
-                    },
-                );
-            }
-            u
-        }
-
-        pub fn at(&self, ms: u64) -> Instant {
-            self.t0 + Duration::from_millis(ms)
-        }
-
-        pub fn apply(&mut self, ms: u64, message: impl Into<vpx_efis::protocol::Message>) {
-            self.cnt = self.cnt.wrapping_add(1);
-            let at = self.at(ms);
-            self.model
-                .apply_packet(at, &Packet::from_vpx(self.cnt, message));
+            Unit::answered(source, WIRED)
         }
 
         /// `secs` seconds of broadcasts starting at `from_ms`, one status pair per
@@ -471,41 +331,6 @@ fn draw_with(
     terminal.backend().buffer().clone()
 }
 
-/// The buffer as plain lines, for text snapshots. Non-breaking spaces (which keep a
-/// key beside its action when wrapping) look like spaces, so they are written as such.
-fn text(buf: &Buffer) -> String {
-    let w = buf.area.width as usize;
-    let mut out = String::new();
-    for (i, cell) in buf.content.iter().enumerate() {
-        out.push_str(&cell.symbol().replace('\u{a0}', " "));
-        if (i + 1) % w == 0 {
-            out.push('\n');
-        }
-    }
-    out
-}
-
-/// The first cell where `needle` starts, on a line that also contains `on_line`.
-fn find(buf: &Buffer, on_line: &str, needle: &str) -> (u16, u16) {
-    let n: Vec<String> = needle.chars().map(String::from).collect();
-    for y in 0..buf.area.height {
-        let cells: Vec<&str> = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
-        if !cells.concat().contains(on_line) {
-            continue;
-        }
-        // Cell by cell, since a cell's symbol may be several bytes.
-        if let Some(x) = (0..=cells.len().saturating_sub(n.len()))
-            .find(|&x| (0..n.len()).all(|k| cells[x + k] == n[k]))
-        {
-            return (x as u16, y);
-        }
-    }
-    panic!(
-        "{needle:?} not found on a line with {on_line:?}:\n{}",
-        text(buf)
-    );
-}
-
 /// The colour of the State column on the row of device `name`: `state` as a whole
 /// word to the right of the name.
 fn state_cell(buf: &Buffer, name: &str, state: &str) -> Color {
@@ -521,7 +346,10 @@ fn state_cell(buf: &Buffer, name: &str, state: &str) -> Color {
             return buf[(x as u16, y)].fg;
         }
     }
-    panic!("state {state:?} not on the {name:?} row:\n{}", text(buf));
+    panic!(
+        "state {state:?} not on the {name:?} row:\n{}",
+        plain_text(buf)
+    );
 }
 
 fn view_selecting(id: u8) -> ViewState {
@@ -535,14 +363,14 @@ fn view_selecting(id: u8) -> ViewState {
 fn normal_80x24() {
     let (m, now) = fixtures::normal();
     let buf = draw(&m, &view_selecting(EFIS), now, 80, 24);
-    insta::assert_snapshot!(text(&buf));
+    insta::assert_snapshot!(plain_text(&buf));
 }
 
 #[test]
 fn normal_160x50() {
     let (m, now) = fixtures::normal();
     let buf = draw(&m, &view_selecting(4), now, 160, 50);
-    insta::assert_snapshot!(text(&buf));
+    insta::assert_snapshot!(plain_text(&buf));
 }
 
 #[test]
@@ -560,7 +388,7 @@ fn normal_120x40_styles() {
         (buf[(x, y)].fg, buf[(x, y)].bg),
         (Color::White, Color::Black)
     );
-    assert!(!text(&buf).contains("COMMUNICATION LOST"));
+    assert!(!plain_text(&buf).contains("COMMUNICATION LOST"));
 }
 
 #[test]
@@ -569,7 +397,7 @@ fn faulted_device_names_the_fault_in_red_and_explains_it() {
     let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
     insta::assert_snapshot!(format!("{buf:?}"));
     assert_eq!(state_cell(&buf, "EFIS", "SHORT_CIRCUIT"), Color::Red);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(t.contains("Device short circuit."), "{t}");
     assert!(t.contains("remains off until cleared"), "{t}");
     // Reset is offered (not dimmed) for a faulted device.
@@ -589,7 +417,7 @@ fn a_reset_not_yet_answered_is_said_beside_the_fault_not_shown_as_current() {
         state_cell(&buf, "EFIS", "SHORT_CIRCUIT · reset sent"),
         Color::Yellow
     );
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(t.contains("RESET SENT for SHORT_CIRCUIT (0x07)"), "{t}");
     let (x, y) = find(&buf, "waiting\u{a0}for", "\u{a0}r\u{a0}");
     assert!(buf[(x, y)].modifier.contains(Modifier::DIM));
@@ -602,7 +430,7 @@ fn reset_is_dimmed_unless_faulted_and_starter_cannot_be_switched() {
     let (x, y) = find(&buf, "reset\u{a0}fault", "\u{a0}r\u{a0}");
     assert!(buf[(x, y)].modifier.contains(Modifier::DIM));
     let buf = draw(&m, &view_selecting(STARTER), now, 120, 40);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(t.contains("starter is switched by the VP-X only"), "{t}");
     let (x, y) = find(&buf, "starter\u{a0}is", "\u{a0}o/f\u{a0}");
     assert!(buf[(x, y)].modifier.contains(Modifier::DIM));
@@ -612,13 +440,13 @@ fn reset_is_dimmed_unless_faulted_and_starter_cannot_be_switched() {
 fn system_fault_and_every_flag_in_words() {
     let (m, now) = fixtures::system_fault();
     let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
-    insta::assert_snapshot!(text(&buf));
+    insta::assert_snapshot!(plain_text(&buf));
     // The flags wrap on screen, so their words are checked before wrapping.
     let flags: Vec<String> = ui::system_panel::flags(&m, now)
         .into_iter()
         .map(|(t, _)| t)
         .collect();
-    let t = format!("{}\n{}", flags.join("\n"), text(&buf));
+    let t = format!("{}\n{}", flags.join("\n"), plain_text(&buf));
     for words in [
         "SYSTEM FAULT",
         "OVER 60 A",
@@ -645,7 +473,7 @@ fn dual_alternator_running_green_standby_white() {
     insta::assert_snapshot!(format!("{buf:?}"));
     assert_eq!(state_cell(&buf, "Alternator ", "ON"), Color::Green);
     assert_eq!(state_cell(&buf, "Alternator 2", "OFF"), Color::White);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(t.contains("A1") && t.contains("A2"), "{t}");
     assert!(t.contains("secondary alternator"), "{t}");
 }
@@ -658,8 +486,8 @@ fn trim_running_shows_the_run_and_the_release_mode() {
         ..Default::default()
     };
     let buf = draw_with(&m, &view, &control_of("trim_running"), now, 120, 40);
-    insta::assert_snapshot!(text(&buf));
-    let t = text(&buf);
+    insta::assert_snapshot!(plain_text(&buf));
+    let t = plain_text(&buf);
     assert!(t.contains("▶ pitch trim up"), "{t}");
     assert!(t.contains("keys: release seen"), "{t}");
     assert!(
@@ -672,7 +500,7 @@ fn trim_running_shows_the_run_and_the_release_mode() {
 fn roll_trim_row_shows_left_and_right() {
     let (m, now) = fixtures::normal();
     let buf = draw(&m, &view_selecting(TRIM_R), now, 120, 40);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(
         t.contains("roll trim left") && t.contains("roll trim right"),
         "{t}"
@@ -684,8 +512,8 @@ fn roll_trim_row_shows_left_and_right() {
 fn flaps_with_midpoints_overspeed_and_inhibit() {
     let (m, now) = fixtures::flaps_midpoints();
     let buf = draw(&m, &view_selecting(FLAPS), now, 120, 40);
-    insta::assert_snapshot!(text(&buf));
-    let t = text(&buf);
+    insta::assert_snapshot!(plain_text(&buf));
+    let t = plain_text(&buf);
     assert!(t.contains("FLAP OVERSPEED ALARM"), "{t}");
     assert!(t.contains("flap down inhibited"), "{t}");
     assert!(t.contains("roll trim TRIM_RUNAWAY (0x0e)"), "{t}");
@@ -705,7 +533,7 @@ fn comm_lost_80x24_blanks_every_live_value() {
     let (m, now) = fixtures::comm_lost();
     let buf = draw(&m, &view_selecting(EFIS), now, 80, 24);
     insta::assert_snapshot!(format!("{buf:?}"));
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(t.contains("C O M M U N I C A T I O N   L O S T"), "{t}");
     let (x, y) = find(&buf, "C O M M", "C O M M");
     assert_eq!((buf[(x, y)].fg, buf[(x, y)].bg), (Color::White, Color::Red));
@@ -720,7 +548,7 @@ fn comm_lost_80x24_blanks_every_live_value() {
 fn comm_lost_160x50() {
     let (m, now) = fixtures::comm_lost();
     let buf = draw(&m, &view_selecting(EFIS), now, 160, 50);
-    insta::assert_snapshot!(text(&buf));
+    insta::assert_snapshot!(plain_text(&buf));
 }
 
 #[test]
@@ -736,7 +564,7 @@ fn comm_lost_recovers_by_itself_when_data_returns() {
         &vpx_efis::protocol::Packet::from_vpx(2, fixtures::devices(fixtures::ON)),
     );
     let buf = draw(&m, &view_selecting(EFIS), back, 80, 24);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(!t.contains("C O M M U N I C A T I O N"), "{t}");
     assert!(t.contains("13.9 V"), "{t}");
 }
@@ -749,8 +577,8 @@ fn help_overlay_lists_every_key() {
         ..view_selecting(EFIS)
     };
     let buf = draw(&m, &view, now, 100, 30);
-    insta::assert_snapshot!(text(&buf));
-    let t = text(&buf);
+    insta::assert_snapshot!(plain_text(&buf));
+    let t = plain_text(&buf);
     for (key, _) in vpx_efis::control::keymap::HELP {
         assert!(t.contains(key), "help lacks {key:?}:\n{t}");
     }
@@ -767,7 +595,7 @@ fn help_overlay_in_replay_adds_the_replay_keys_and_says_read_only() {
         overlay: Overlay::Help,
         ..view_selecting(EFIS)
     };
-    let t = text(&draw(&m, &view, now, 120, 40));
+    let t = plain_text(&draw(&m, &view, now, 120, 40));
     for (key, what) in ui::help::REPLAY_KEYS {
         assert!(
             t.contains(key) && t.contains(what),
@@ -785,21 +613,22 @@ fn help_overlay_80x24() {
         ..view_selecting(EFIS)
     };
     let buf = draw(&m, &view, now, 80, 24);
-    insta::assert_snapshot!(text(&buf));
+    insta::assert_snapshot!(plain_text(&buf));
 }
 
 #[test]
 fn too_small_terminal_says_so() {
     let (m, now) = fixtures::normal();
     let buf = draw(&m, &ViewState::default(), now, 60, 20);
-    insta::assert_snapshot!(text(&buf));
-    assert!(text(&buf).contains("needs 80×24"));
+    insta::assert_snapshot!(plain_text(&buf));
+    assert!(plain_text(&buf).contains("needs 80×24"));
     // One column or row short is already too small: the layout is not tried.
     for (w, h) in [(MIN_WIDTH - 1, MIN_HEIGHT), (MIN_WIDTH, MIN_HEIGHT - 1)] {
-        assert!(text(&draw(&m, &ViewState::default(), now, w, h)).contains("too small"));
+        assert!(plain_text(&draw(&m, &ViewState::default(), now, w, h)).contains("too small"));
     }
     assert!(
-        !text(&draw(&m, &ViewState::default(), now, MIN_WIDTH, MIN_HEIGHT)).contains("too small")
+        !plain_text(&draw(&m, &ViewState::default(), now, MIN_WIDTH, MIN_HEIGHT))
+            .contains("too small")
     );
 }
 
@@ -811,7 +640,7 @@ fn alphabetical_sort_keeps_flaps_and_trim_apart() {
         ..view_selecting(EFIS)
     };
     let buf = draw(&m, &view, now, 120, 40);
-    insta::assert_snapshot!(text(&buf));
+    insta::assert_snapshot!(plain_text(&buf));
     let names: Vec<String> = ui::ordered_circuits(&m, &view, now)
         .into_iter()
         .map(|c| c.name)
@@ -857,8 +686,8 @@ fn pin_order_keeps_flaps_and_trim_apart() {
 fn never_connected() {
     let (m, now) = fixtures::never_connected();
     let buf = draw(&m, &ViewState::default(), now, 80, 24);
-    insta::assert_snapshot!(text(&buf));
-    let t = text(&buf);
+    insta::assert_snapshot!(plain_text(&buf));
+    let t = plain_text(&buf);
     assert!(
         t.contains("N O   D A T A   Y E T") && t.contains("connecting"),
         "{t}"
@@ -869,16 +698,16 @@ fn never_connected() {
 fn connected_but_silent_is_communication_lost() {
     let (m, now) = fixtures::connected_silent();
     let buf = draw(&m, &ViewState::default(), now, 80, 24);
-    insta::assert_snapshot!(text(&buf));
-    assert!(text(&buf).contains("nothing heard"));
+    insta::assert_snapshot!(plain_text(&buf));
+    assert!(plain_text(&buf).contains("nothing heard"));
 }
 
 #[test]
 fn port_lost_says_it_is_reopening() {
     let (m, now) = fixtures::port_lost();
     let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
-    insta::assert_snapshot!(text(&buf));
-    let t = text(&buf);
+    insta::assert_snapshot!(plain_text(&buf));
+    let t = plain_text(&buf);
     assert!(
         t.contains("device disconnected") && t.contains("reopening"),
         "{t}"
@@ -904,7 +733,7 @@ fn notice_is_shown() {
         notice: Some("reset refused: EFIS is not faulted".into()),
         ..view_selecting(EFIS)
     };
-    let t = text(&draw(&m, &view, now, 120, 40));
+    let t = plain_text(&draw(&m, &view, now, 120, 40));
     assert!(t.contains("reset refused: EFIS is not faulted"), "{t}");
 }
 
@@ -935,7 +764,7 @@ fn a_motor_moving_against_its_command_is_said_whole_above_the_keys() {
             notice: Some(notice.into()),
             ..view_selecting(TRIM_P)
         };
-        let t = text(&draw(&m, &view, now, w, h));
+        let t = plain_text(&draw(&m, &view, now, w, h));
         let rows: Vec<&str> = t.lines().collect();
         let last = rows.len() - 1;
         assert!(
@@ -972,8 +801,8 @@ fn connection_state_kept_on_the_model() {
 fn short_terminal_scrolls_the_list_to_the_selection_and_says_what_is_hidden() {
     let (m, now) = fixtures::normal();
     let buf = draw(&m, &view_selecting(TRIM_P), now, 80, 24);
-    insta::assert_snapshot!(text(&buf));
-    let t = text(&buf);
+    insta::assert_snapshot!(plain_text(&buf));
+    let t = plain_text(&buf);
     assert!(t.contains("▲"), "{t}");
     let (x, y) = find(&buf, "Trim_P", "▶");
     assert_eq!(x, 0);
@@ -1219,7 +1048,11 @@ fn every_state_in_every_theme() {
         for palette in themes::PALETTES {
             let buf = draw_with(&m, &in_theme(&view, palette), &control_of(name), now, w, h);
             let painted = themes::painted(&buf, palette);
-            assert_eq!(text(&painted), text(&buf), "painting changes no text");
+            assert_eq!(
+                plain_text(&painted),
+                plain_text(&buf),
+                "painting changes no text"
+            );
             insta::assert_snapshot!(
                 format!("theme_{}_{name}", palette.name().replace(' ', "_")),
                 themes::colour_map(&painted)
@@ -1337,7 +1170,7 @@ fn contrast_check_names_the_cell_the_state_and_both_colours() {
 fn wide_terminal_gives_its_width_to_the_right_hand_panels() {
     let (m, now) = fixtures::normal();
     let buf = draw(&m, &view_selecting(4), now, 200, 60);
-    insta::assert_snapshot!(text(&buf));
+    insta::assert_snapshot!(plain_text(&buf));
     let (x, _) = find(&buf, "System", "System");
     assert!(x <= ui::LIST_MAX_WIDTH + 2, "right column starts at {x}");
     let (name_x, _) = find(&buf, "Nav Lt", "Nav Lt");
@@ -1406,7 +1239,7 @@ fn the_limit_line_is_dashed_so_no_colour_still_tells_it_from_the_trace() {
     let buf = themes::painted(&draw(&m, &view_selecting(EFIS), now, 80, 24), Palette::Mono);
     let (bx, by) = find(&buf, "bus V", "bus V");
     assert!(
-        !text(&buf).contains("limit"),
+        !plain_text(&buf).contains("limit"),
         "the label fits here; this test is about where it does not"
     );
     // The chart's first row: the y label, the axis, then the limit (16 V, above the
@@ -1414,7 +1247,7 @@ fn the_limit_line_is_dashed_so_no_colour_still_tells_it_from_the_trace() {
     let row: Vec<&str> = (bx..80).map(|x| buf[(x, by + 1)].symbol()).collect();
     let axis = row.iter().position(|s| *s == "│").expect("y axis") + 1;
     let line: String = row[axis..axis + 8].concat();
-    assert_eq!(line, "⠉ ⠉ ⠉ ⠉ ", "{}", text(&buf));
+    assert_eq!(line, "⠉ ⠉ ⠉ ⠉ ", "{}", plain_text(&buf));
     // The trace itself stays solid: four dots side by side on a row below the limit
     // (its row depends on the chart's height).
     let (amps_x, _) = find(&buf, "bus V", "amps");
@@ -1428,7 +1261,7 @@ fn the_limit_line_is_dashed_so_no_colour_still_tells_it_from_the_trace() {
     assert!(
         (by + 2..buf.area.height).any(solid),
         "no solid trace:\n{}",
-        text(&buf)
+        plain_text(&buf)
     );
 }
 
@@ -1458,13 +1291,13 @@ fn link_with_errors() -> (Model, Instant) {
 #[test]
 fn normal_100x30() {
     let (m, now) = fixtures::normal();
-    insta::assert_snapshot!(text(&draw(&m, &view_selecting(EFIS), now, 100, 30)));
+    insta::assert_snapshot!(plain_text(&draw(&m, &view_selecting(EFIS), now, 100, 30)));
 }
 
 #[test]
 fn link_errors_80x24_wrap_inside_the_left_column() {
     let (m, now) = link_with_errors();
-    insta::assert_snapshot!(text(&draw(&m, &view_selecting(EFIS), now, 80, 24)));
+    insta::assert_snapshot!(plain_text(&draw(&m, &view_selecting(EFIS), now, 80, 24)));
 }
 
 /// Every row of the left column (the list, the detail and, on short
@@ -1500,7 +1333,7 @@ fn no_row_of_the_left_column_crosses_its_edge() {
             let top = rows
                 .iter()
                 .position(|r| r.starts_with(" Devices"))
-                .unwrap_or_else(|| panic!("{name} {w}x{h}: no device list\n{}", text(&buf)));
+                .unwrap_or_else(|| panic!("{name} {w}x{h}: no device list\n{}", plain_text(&buf)));
             let edge = ui::left_column_width(w) - 1;
             // The key bar below the columns is one row, or more with a long notice.
             for y in top as u16..h - ui::key_bar::height(view, w) {
@@ -1509,7 +1342,7 @@ fn no_row_of_the_left_column_crosses_its_edge() {
                     matches!(cell, "│" | "┐" | "┤" | "┘"),
                     "{name} {w}x{h}: row {y} crosses the left column's edge at x={edge} \
                      ({cell:?}):\n{}",
-                    text(&buf)
+                    plain_text(&buf)
                 );
                 walked += 1;
             }
@@ -1551,7 +1384,7 @@ fn events_panel_lists_the_persons_own_actions_with_their_origin() {
         LogLevel::Info,
         "check: the installation check started".into(),
     );
-    let t = text(&draw(&m, &view_selecting(EFIS), now, 120, 40));
+    let t = plain_text(&draw(&m, &view_selecting(EFIS), now, 120, 40));
     let name = |id: u8| m.display_name(id).trim().to_string();
     for words in [
         format!("key: {} off (DEVICE_POWER sent)", name(4)),

@@ -20,7 +20,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-use common::sim_process::sim_pty;
+use common::process::sim_pty;
 
 const WRONG: &str = r#"
 [circuit.5A-1]

@@ -27,11 +27,7 @@ fn key(app: &mut App, code: KeyCode) {
 }
 
 fn until(app: &mut App, what: &str, limit: Duration, f: impl Fn(&App) -> bool) {
-    let end = Instant::now() + limit;
-    while !f(app) {
-        assert!(Instant::now() < end, "timed out waiting for {what}");
-        app.pump_until(Instant::now() + Duration::from_millis(20));
-    }
+    common::app::until(app, what, limit, |app, _| f(app));
 }
 
 /// The screen as text, one line per row, trailing blanks trimmed.
@@ -61,7 +57,7 @@ fn setup_asks_before_a_breaker_goes_over_its_wire_and_sends_nothing_before_y() {
     .unwrap();
     // SAFETY: the only test in this binary, before it starts a thread.
     unsafe { std::env::set_var("VPX_EFIS_CONFIG", dir.path().join("config.toml")) };
-    let (_sim, port) = common::sim_process::sim_pty("wires");
+    let (_sim, port) = common::process::sim_pty("wires");
     let mut app = App::new(
         Source::Serial { path: port.clone() },
         link::serial_connector(port.into(), 57_600),

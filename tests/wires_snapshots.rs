@@ -22,10 +22,13 @@ use vpx_efis::protocol::Packet;
 use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS};
 use vpx_efis::protocol::message::{
     DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FaultStatus, HardwareVersion,
-    MiscFlags, OvervoltageLimit, SignedTenths, SwitchId, SwitchInputs, SystemFaultFlags,
-    SystemSpec, SystemStatus, Tenths, Version, WigWagModeSetting,
+    OvervoltageLimit, SignedTenths, SwitchId, SwitchInputs, SystemSpec, SystemStatus, Tenths,
+    Version,
 };
 use vpx_efis::ui::state::{ControlState, ViewState};
+
+mod common;
+use common::screen::{find, plain_text};
 
 const NAV: u8 = 4; // 5A-1
 const STROBE: u8 = 0x11; // 10A-1
@@ -100,24 +103,13 @@ fn unit() -> (Model, Instant) {
         SystemStatus {
             system_current: Tenths(83),
             main_bus_volts: SignedTenths(141),
-            aux_battery_volts: Tenths(0),
             internal_temp: 22,
             switches: SwitchInputs::from_word(0b10),
-            misc: MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: SystemFaultFlags::default(),
-            data_integrity_code: None,
+            ..Default::default()
         }
         .into(),
     );
-    let mut d = DeviceStatus {
-        on: [false; DEVICE_COUNT],
-        current: [Tenths(0); DEVICE_COUNT],
-    };
+    let mut d = DeviceStatus::default();
     for (id, tenths) in [(EFIS, 28), (NAV, 20), (STROBE, 35)] {
         d.on[id as usize] = true;
         d.current[id as usize] = Tenths(tenths);
@@ -177,18 +169,6 @@ fn draw(model: &Model, view: &ViewState, now: Instant, w: u16, h: u16) -> Buffer
     terminal.backend().buffer().clone()
 }
 
-fn text(buf: &Buffer) -> String {
-    let w = buf.area.width as usize;
-    let mut out = String::new();
-    for (i, cell) in buf.content.iter().enumerate() {
-        out.push_str(&cell.symbol().replace('\u{a0}', " "));
-        if (i + 1) % w == 0 {
-            out.push('\n');
-        }
-    }
-    out
-}
-
 /// The list line of the row whose name starts with `name` (the first line holding it).
 fn line_of<'a>(screen: &'a str, name: &str) -> &'a str {
     screen
@@ -199,26 +179,14 @@ fn line_of<'a>(screen: &'a str, name: &str) -> &'a str {
 
 /// The colour of the first cell of `needle` on the first line holding `on_line`.
 fn colour(buf: &Buffer, on_line: &str, needle: &str) -> Color {
-    let n: Vec<String> = needle.chars().map(String::from).collect();
-    for y in 0..buf.area.height {
-        let cells: Vec<&str> = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
-        if !cells.concat().contains(on_line) {
-            continue;
-        }
-        if let Some(x) =
-            (0..=cells.len() - n.len()).find(|&x| (0..n.len()).all(|k| cells[x + k] == n[k]))
-        {
-            return buf[(x as u16, y)].fg;
-        }
-    }
-    panic!("{needle:?} not on a line with {on_line:?}:\n{}", text(buf));
+    buf[find(buf, on_line, needle)].fg
 }
 
 #[test]
 fn the_list_marks_an_unprotected_wire_and_the_detail_names_it_80x24() {
     let (m, now) = unit();
     let buf = draw(&m, &view(STROBE), now, 80, 24);
-    let screen = text(&buf);
+    let screen = plain_text(&buf);
     insta::assert_snapshot!(screen);
     // A symbol and a word on the strobe's row, in the fault colour; on no other row.
     assert!(line_of(&screen, "10A-1").contains("⚠WIRE"), "{screen}");
@@ -233,7 +201,7 @@ fn the_list_marks_an_unprotected_wire_and_the_detail_names_it_80x24() {
 fn the_detail_gives_the_drop_and_the_run_that_would_pass_120x40() {
     let (m, now) = unit();
     let buf = draw(&m, &view(NAV), now, 120, 40);
-    let screen = text(&buf);
+    let screen = plain_text(&buf);
     insta::assert_snapshot!(screen);
     let flat: String = screen.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(flat.contains("wire 22 AWG"), "{screen}");
@@ -252,14 +220,14 @@ fn the_detail_gives_the_drop_and_the_run_that_would_pass_120x40() {
 #[test]
 fn the_detail_of_a_right_wire_and_of_one_not_entered() {
     let (m, now) = unit();
-    let screen = text(&draw(&m, &view(LANDING), now, 120, 40));
+    let screen = plain_text(&draw(&m, &view(LANDING), now, 120, 40));
     let flat: String = screen.split_whitespace().collect::<Vec<_>>().join(" ");
     // 16 AWG allows 15 A (Table 11-3) over its 8 A breaker; off, so no drop now.
     assert!(
         flat.contains("wire 16 AWG run 12.0 ft (ground at load) allows 15 A ✓ ok"),
         "{screen}"
     );
-    let screen = text(&draw(&m, &view(EFIS), now, 120, 40));
+    let screen = plain_text(&draw(&m, &view(EFIS), now, 120, 40));
     assert!(
         screen.contains("wire not entered (the load file's wire lines)"),
         "{screen}"

@@ -11,8 +11,8 @@ use vpx_efis::model::{Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
-    DeviceStatus, FaultStatus, FlapFlags, FlapTrimStatus, Message, MiscFlags, Packet, SignedTenths,
-    SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
+    DeviceStatus, FaultStatus, FlapFlags, FlapTrimStatus, Message, Packet, SignedTenths,
+    SystemStatus, Tenths,
 };
 use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig, Step};
 use vpx_efis::xfsp::publish::{CAS_UNIT_COMM_LOST, LIFETIME};
@@ -33,6 +33,18 @@ fn commanded() -> GatewayConfig {
     }
 }
 
+/// A model and a gateway taking commands, made at `t0`, and the one controller they
+/// share with the page.
+fn commanded_gateway() -> (Instant, Model, Gateway, Controller) {
+    let t0 = Instant::now();
+    (
+        t0,
+        model(),
+        Gateway::new(commanded(), t0),
+        Controller::default(),
+    )
+}
+
 fn ms(n: u64) -> Duration {
     Duration::from_millis(n)
 }
@@ -45,10 +57,7 @@ fn model() -> Model {
 
 /// SYSTEM_STATUS + DEVICE_STATUS with `on` powered at 2.5 A each.
 fn status(m: &mut Model, at: Instant, on: &[u8]) {
-    let mut d = DeviceStatus {
-        on: [false; DEVICE_COUNT],
-        current: [Tenths(0); DEVICE_COUNT],
-    };
+    let mut d = DeviceStatus::default();
     for &id in on {
         d.on[id as usize] = true;
         d.current[id as usize] = Tenths(25);
@@ -58,15 +67,7 @@ fn status(m: &mut Model, at: Instant, on: &[u8]) {
         main_bus_volts: SignedTenths(138),
         aux_battery_volts: Tenths(126),
         internal_temp: 30,
-        switches: Default::default(),
-        misc: MiscFlags {
-            starter_annunciator: false,
-            wig_wag_mode: WigWagModeSetting::Auto,
-            software_update: false,
-            wig_wag_active: false,
-        },
-        faults: Default::default(),
-        data_integrity_code: None,
+        ..Default::default()
     };
     m.apply_packet(at, &Packet::from_vpx(0, s));
     m.apply_packet(at, &Packet::from_vpx(1, d));
@@ -95,33 +96,23 @@ fn pitch(m: &mut Model, at: Instant, pos: u8) {
 }
 
 fn flap_trim(m: &mut Model, at: Instant, flap: u8, pitch: Option<u8>) {
-    let ft = FlapTrimStatus {
+    let mut ft = FlapTrimStatus {
         flap: FlapFlags {
             enabled: true,
             ..Default::default()
         },
-        pitch_trim: TrimFlags {
-            enabled: pitch.is_some(),
-            ..Default::default()
-        },
-        roll_trim: TrimFlags::default(),
         flap_position: flap,
-        pitch_trim_position: pitch.unwrap_or(0),
-        roll_trim_position: 0,
-        flap_fault: FaultCode::NoFault,
-        pitch_trim_fault: FaultCode::NoFault,
-        roll_trim_fault: FaultCode::NoFault,
         flap_up: 40,
         flap_down: 200,
-        flap_midpoint_1: 0,
-        flap_midpoint_2: 0,
-        pitch_trim_up: if pitch.is_some() { 30 } else { 0 },
-        pitch_trim_down: if pitch.is_some() { 220 } else { 0 },
-        pitch_trim_neutral: if pitch.is_some() { 125 } else { 0 },
-        roll_trim_up: 0,
-        roll_trim_down: 0,
-        roll_trim_neutral: 0,
+        ..Default::default()
     };
+    if let Some(pitch) = pitch {
+        ft.pitch_trim.enabled = true;
+        ft.pitch_trim_position = pitch;
+        ft.pitch_trim_up = 30;
+        ft.pitch_trim_down = 220;
+        ft.pitch_trim_neutral = 125;
+    }
     m.apply_packet(at, &Packet::from_vpx(3, ft));
 }
 
@@ -193,11 +184,8 @@ fn ecb_request(unit: u16, state: EcbState, conf: Confidence) -> Parameter {
 
 #[test]
 fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[2]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let ps = params(&gw.tick(&mut m, &mut ctl, t0));
     let efis = find(&ps, idents::ECBSTAT, 2).expect("EFIS published");
     let b = bus(efis);
@@ -224,10 +212,7 @@ fn circuits_and_buses_are_published_with_state_amps_breaker_and_label() {
 
 #[test]
 fn every_item_is_refreshed_at_least_once_a_second_and_not_resent_unchanged_sooner() {
-    let t0 = Instant::now();
-    let mut m = model();
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     let mut seen: Vec<(Instant, Parameter)> = Vec::new();
     let mut now = t0;
     while now < t0 + ms(3000) {
@@ -260,11 +245,8 @@ fn every_item_is_refreshed_at_least_once_a_second_and_not_resent_unchanged_soone
 
 #[test]
 fn a_short_circuit_raises_cas_and_master_warning_then_clear_three_times() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     gw.tick(&mut m, &mut ctl, t0);
     // Later than the 100 ms minimum interval, so ECBSTAT goes out with the CAS.
     fault(&mut m, t0 + ms(200), 5, FaultCode::ShortCircuit);
@@ -332,12 +314,9 @@ fn every_appendix_e_code_maps_to_a_fault_state_and_a_level() {
 
 #[test]
 fn lost_communication_publishes_unknown_and_says_so_once_past_the_start_grace() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[2]);
     flaps(&mut m, t0, 120);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let ps = params(&gw.tick(&mut m, &mut ctl, t0));
     assert_eq!(
         find(&ps, idents::FLAPPOS, 0).map(|p| p.value.clone()),
@@ -372,10 +351,7 @@ fn lost_communication_publishes_unknown_and_says_so_once_past_the_start_grace() 
 
 #[test]
 fn a_gateway_that_never_heard_the_unit_waits_before_crying_comm_lost() {
-    let t0 = Instant::now();
-    let mut m = model();
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     assert!(cas(&params(&gw.tick(&mut m, &mut ctl, t0 + ms(1000)))).is_empty());
     let ps = params(&gw.tick(&mut m, &mut ctl, t0 + ms(2600)));
     assert_eq!(cas(&ps).len(), 1);
@@ -383,11 +359,8 @@ fn a_gateway_that_never_heard_the_unit_waits_before_crying_comm_lost() {
 
 #[test]
 fn forwarded_air_data_is_valid_only_while_fresh() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     assert!(
         gw.tick(&mut m, &mut ctl, t0).to_unit.is_empty(),
         "no air data heard, none sent"
@@ -426,11 +399,8 @@ fn forwarded_air_data_is_valid_only_while_fresh() {
 
 #[test]
 fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[2]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 100);
     let on5 = request(
         &mut peer,
@@ -552,15 +522,12 @@ fn flap_moves(ps: &[Packet]) -> Vec<(bool, vpx_efis::protocol::message::FlapDire
 #[test]
 fn a_flap_request_streams_toward_the_target_and_stops_there() {
     use vpx_efis::protocol::message::FlapDirection::{Down, Up};
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
     // 20 counts off the up endpoint: a run within endpoints::NEAR of the endpoint
     // behind it starts as probes, which these positions (moved by the test, not by
     // the stream) would not answer.
     flaps(&mut m, t0, 60);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let req = |peer: &mut Sender, target| {
         request(
@@ -614,15 +581,12 @@ fn a_flap_request_streams_toward_the_target_and_stops_there() {
 #[test]
 fn a_flap_request_that_is_not_repeated_stops_at_its_expiry() {
     use vpx_efis::protocol::message::FlapDirection::Down;
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
     // 20 counts off the up endpoint: a run within endpoints::NEAR of the endpoint
     // behind it starts as probes, which these positions (moved by the test, not by
     // the stream) would not answer.
     flaps(&mut m, t0, 60);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let d = request(
         &mut peer,
@@ -662,11 +626,8 @@ fn a_flap_request_that_is_not_repeated_stops_at_its_expiry() {
 
 #[test]
 fn motor_requests_need_live_status_and_log_their_refusal() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let d = request(
         &mut peer,
@@ -713,12 +674,9 @@ proptest! {
 #[test]
 fn the_pages_keys_come_before_network_motor_requests() {
     use vpx_efis::protocol::message::FlapDirection::Down;
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
     pitch(&mut m, t0, 100);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let req = |peer: &mut Sender, target| {
         request(
@@ -814,15 +772,12 @@ fn power(out: &[Packet]) -> Vec<(u8, bool)> {
 /// numbers work too, and both together must agree.
 #[test]
 fn circuit_requests_match_by_label_by_unit_or_both_and_a_mismatch_is_refused() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[2]);
     named(&mut m, t0, 5, "LANDING LT");
     named(&mut m, t0, 6, "TAXI LT");
     named(&mut m, t0, 7, "SPARE");
     named(&mut m, t0, 8, "Spare");
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let mut at = t0;
     let mut send = |gw: &mut Gateway, m: &mut Model, p: Parameter| {
@@ -926,11 +881,8 @@ fn run_masters(
 
 #[test]
 fn master_caution_reset_by_usersel_false_stays_false_until_a_new_caution() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let oc = [(5, FaultCode::OverCurrent)];
     let (now, seen) = run_masters(&mut gw, &mut m, t0, 1, &oc, idents::MSTRCAUTN);
     assert_eq!(seen.last(), Some(&true));
@@ -993,11 +945,8 @@ fn master_caution_reset_by_usersel_false_stays_false_until_a_new_caution() {
 
 #[test]
 fn master_warning_rises_on_a_short_and_resets_the_same_way() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let short = [(5, FaultCode::ShortCircuit)];
     let (now, seen) = run_masters(&mut gw, &mut m, t0, 1, &short, idents::MSTRWARN);
     assert_eq!(seen.last(), Some(&true));
@@ -1027,12 +976,9 @@ fn master_warning_rises_on_a_short_and_resets_the_same_way() {
 /// The exit summary's counts come from these: a refused RTRIMREQ is a refusal.
 #[test]
 fn refused_and_expired_motor_requests_are_counted() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[]);
     flaps(&mut m, t0, 40); // roll trim not configured: no scale
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let roll = request(
         &mut peer,
@@ -1103,12 +1049,9 @@ fn refused_and_expired_motor_requests_are_counted() {
 #[test]
 fn after_every_tick_the_gateway_deadline_is_in_the_future() {
     use vpx_efis::protocol::message::{DeviceEnable, EnableFlag};
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[2]);
     flaps(&mut m, t0, 40);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     gw.tick(&mut m, &mut ctl, t0);
     for id in 4..=28u8 {
         let e = DeviceEnable {
@@ -1164,14 +1107,11 @@ fn after_every_tick_the_gateway_deadline_is_in_the_future() {
 /// one for another system never does, even when the item matches one of ours.
 #[test]
 fn system_item_labels_name_our_circuits_and_other_systems_are_refused() {
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[2]);
     named(&mut m, t0, 5, "LANDING LT");
     named(&mut m, t0, 6, "TAXI LT");
     named(&mut m, t0, 7, "NAV/STROBE");
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let mut peer = Sender::new(PEER, 1);
     let mut at = t0;
     let mut send = |gw: &mut Gateway, m: &mut Model, p: Parameter| {
@@ -1222,11 +1162,8 @@ fn system_item_labels_name_our_circuits_and_other_systems_are_refused() {
 #[test]
 fn a_request_sent_as_devstatus_is_taken() {
     use vpx_efis::xfsp::MsgOp;
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[2]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let kind = MsgKind {
         op: MsgOp::DevStatus,
         ..MsgKind::flight_data(CertLevel::Experimental)
@@ -1246,11 +1183,8 @@ fn a_request_sent_as_devstatus_is_taken() {
 fn an_older_number_is_discarded_until_its_source_was_silent_for_10_s() {
     use vpx_efis::xfsp::gateway::FORGET_SOURCE_AFTER;
     assert_eq!(FORGET_SOURCE_AFTER, Duration::from_secs(10));
-    let t0 = Instant::now();
-    let mut m = model();
+    let (t0, mut m, mut gw, mut ctl) = commanded_gateway();
     status(&mut m, t0, &[2]);
-    let mut gw = Gateway::new(commanded(), t0);
-    let mut ctl = Controller::default();
     let before = Sender::new(PEER, 100)
         .pack(
             MsgKind::flight_data(CertLevel::Experimental),

@@ -17,9 +17,7 @@ use vpx_efis::control::{
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Motor, Source};
 use vpx_efis::protocol::device::FLAPS;
 use vpx_efis::protocol::fault::FaultCode;
-use vpx_efis::protocol::message::{
-    FlapDirection, FlapFlags, FlapTrimStatus, Message, Packet, TrimFlags,
-};
+use vpx_efis::protocol::message::{FlapDirection, FlapFlags, FlapTrimStatus, Message, Packet};
 use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig};
 use vpx_efis::xfsp::{Confidence, Expire, Parameter, Sender, Value, idents};
 
@@ -98,24 +96,11 @@ impl Rig {
                 enabled: true,
                 ..Default::default()
             },
-            pitch_trim: TrimFlags::default(),
-            roll_trim: TrimFlags::default(),
             flap_position: self.pos,
-            pitch_trim_position: 0,
-            roll_trim_position: 0,
             flap_fault: self.fault,
-            pitch_trim_fault: FaultCode::NoFault,
-            roll_trim_fault: FaultCode::NoFault,
             flap_up: 40,
             flap_down: 200,
-            flap_midpoint_1: 0,
-            flap_midpoint_2: 0,
-            pitch_trim_up: 0,
-            pitch_trim_down: 0,
-            pitch_trim_neutral: 0,
-            roll_trim_up: 0,
-            roll_trim_down: 0,
-            roll_trim_neutral: 0,
+            ..Default::default()
         };
         self.m.apply_packet(at, &Packet::from_vpx(3, ft));
     }

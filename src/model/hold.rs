@@ -113,8 +113,7 @@ mod tests {
     use super::*;
     use crate::model::{Model, Source};
     use crate::protocol::message::{
-        DeviceClear, DevicePower, MiscFlags, Packet, SignedTenths, SwitchInputs, Tenths,
-        WigWagModeSetting,
+        DeviceClear, DevicePower, Packet, SignedTenths, SwitchInputs, Tenths,
     };
 
     fn status(inputs_on: &[u8], warm_reset: bool) -> Packet {
@@ -125,17 +124,9 @@ mod tests {
         let mut s = SystemStatus {
             system_current: Tenths(10),
             main_bus_volts: SignedTenths(126),
-            aux_battery_volts: Tenths(0),
             internal_temp: 20,
             switches,
-            misc: MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: Default::default(),
-            data_integrity_code: None,
+            ..Default::default()
         };
         s.faults.warm_reset = warm_reset;
         Packet::from_vpx(0, s)

@@ -879,10 +879,7 @@ mod tests {
     use crate::protocol::message::{FaultStatus, SignedTenths, Tenths};
 
     fn status_packets(on: &[u8], amps: u16) -> (Packet, Packet) {
-        let mut d = DeviceStatus {
-            on: [false; DEVICE_COUNT],
-            current: [Tenths(0); DEVICE_COUNT],
-        };
+        let mut d = DeviceStatus::default();
         for &id in on {
             d.on[id as usize] = true;
             d.current[id as usize] = Tenths(amps);
@@ -890,17 +887,8 @@ mod tests {
         let s = SystemStatus {
             system_current: Tenths(123),
             main_bus_volts: SignedTenths(138),
-            aux_battery_volts: Tenths(0),
             internal_temp: 30,
-            switches: Default::default(),
-            misc: crate::protocol::message::MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: crate::protocol::message::WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: Default::default(),
-            data_integrity_code: None,
+            ..Default::default()
         };
         (Packet::from_vpx(0, s), Packet::from_vpx(1, d))
     }

@@ -188,8 +188,7 @@ mod tests {
     use crate::model::{CircuitState, Source};
     use crate::protocol::device::DEVICE_COUNT;
     use crate::protocol::message::{
-        DeviceClear, DeviceStatus, FaultStatus, MiscFlags, Packet, SignedTenths, SystemStatus,
-        Tenths, WigWagModeSetting,
+        DeviceClear, DeviceStatus, FaultStatus, Packet, SignedTenths, SystemStatus, Tenths,
     };
 
     const LANDING: u8 = 17;
@@ -201,27 +200,15 @@ mod tests {
 
     /// SYSTEM_STATUS and DEVICE_STATUS with `on` switched on.
     fn status(m: &mut Model, at: Instant, on: &[u8]) {
-        let mut d = DeviceStatus {
-            on: [false; DEVICE_COUNT],
-            current: [Tenths(0); DEVICE_COUNT],
-        };
+        let mut d = DeviceStatus::default();
         for &id in on {
             d.on[id as usize] = true;
         }
         let s = SystemStatus {
             system_current: Tenths(50),
             main_bus_volts: SignedTenths(138),
-            aux_battery_volts: Tenths(0),
             internal_temp: 30,
-            switches: Default::default(),
-            misc: MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: Default::default(),
-            data_integrity_code: None,
+            ..Default::default()
         };
         m.apply_packet(at, &Packet::from_vpx(0, s));
         m.apply_packet(at, &Packet::from_vpx(1, d));

@@ -566,8 +566,8 @@ mod tests {
     use crate::model::Source;
     use crate::protocol::device::DEVICE_COUNT;
     use crate::protocol::message::{
-        DeviceEnable, DeviceStatus, EnableFlag, FaultStatus, FlapFlags, FlapTrimStatus, MiscFlags,
-        Packet, SignedTenths, SystemStatus, Tenths, TrimFlags, WigWagModeSetting,
+        DeviceEnable, DeviceStatus, EnableFlag, FaultStatus, FlapFlags, FlapTrimStatus, Packet,
+        SignedTenths, SystemStatus, Tenths,
     };
 
     fn ms(n: u64) -> Duration {
@@ -582,10 +582,7 @@ mod tests {
 
     /// The unit's two 1 Hz broadcasts, EFIS on.
     fn status(m: &mut Model, at: Instant) {
-        let mut d = DeviceStatus {
-            on: [false; DEVICE_COUNT],
-            current: [Tenths(0); DEVICE_COUNT],
-        };
+        let mut d = DeviceStatus::default();
         d.on[2] = true;
         d.current[2] = Tenths(25);
         let s = SystemStatus {
@@ -593,15 +590,7 @@ mod tests {
             main_bus_volts: SignedTenths(138),
             aux_battery_volts: Tenths(126),
             internal_temp: 30,
-            switches: Default::default(),
-            misc: MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: Default::default(),
-            data_integrity_code: None,
+            ..Default::default()
         };
         m.apply_packet(at, &Packet::from_vpx(0, s));
         m.apply_packet(at, &Packet::from_vpx(1, d));
@@ -613,24 +602,10 @@ mod tests {
                 enabled: true,
                 ..Default::default()
             },
-            pitch_trim: TrimFlags::default(),
-            roll_trim: TrimFlags::default(),
             flap_position: 60,
-            pitch_trim_position: 0,
-            roll_trim_position: 0,
-            flap_fault: FaultCode::NoFault,
-            pitch_trim_fault: FaultCode::NoFault,
-            roll_trim_fault: FaultCode::NoFault,
             flap_up: 40,
             flap_down: 200,
-            flap_midpoint_1: 0,
-            flap_midpoint_2: 0,
-            pitch_trim_up: 0,
-            pitch_trim_down: 0,
-            pitch_trim_neutral: 0,
-            roll_trim_up: 0,
-            roll_trim_down: 0,
-            roll_trim_neutral: 0,
+            ..Default::default()
         };
         m.apply_packet(at, &Packet::from_vpx(3, ft));
     }

@@ -1,9 +1,13 @@
 //! The unit's side for the tests that run motors on a fake clock: the broadcasts that
-//! keep the model live (nothing on, nothing faulted, 13.8 V).
+//! keep the model live (nothing on, nothing faulted, 13.8 V), and the flaps and both
+//! trims standing mid-travel.
 
-use vpx_efis::protocol::device::DEVICE_COUNT;
+use std::time::Instant;
+
+use vpx_efis::model::Model;
+use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
-    DeviceStatus, MiscFlags, Packet, SignedTenths, SystemStatus, Tenths, WigWagModeSetting,
+    DeviceStatus, FlapFlags, FlapTrimStatus, Packet, SignedTenths, SystemStatus, Tenths, TrimFlags,
 };
 
 pub fn system_status() -> Packet {
@@ -12,27 +16,72 @@ pub fn system_status() -> Packet {
         SystemStatus {
             system_current: Tenths(100),
             main_bus_volts: SignedTenths(138),
-            aux_battery_volts: Tenths(0),
             internal_temp: 30,
-            switches: Default::default(),
-            misc: MiscFlags {
-                starter_annunciator: false,
-                wig_wag_mode: WigWagModeSetting::Auto,
-                software_update: false,
-                wig_wag_active: false,
-            },
-            faults: Default::default(),
-            data_integrity_code: None,
+            ..Default::default()
         },
     )
 }
 
 pub fn device_status() -> Packet {
-    Packet::from_vpx(
-        0,
-        DeviceStatus {
-            on: [false; DEVICE_COUNT],
-            current: [Tenths(0); DEVICE_COUNT],
+    Packet::from_vpx(0, DeviceStatus::default())
+}
+
+/// Flaps and both trims fitted, travelling 0 to 100, the flaps and roll trim at 50
+/// and the pitch trim at `pitch_position`, `pitch_fault` its fault code: mid-travel,
+/// so no endpoint is in play (a run near the endpoint behind it starts as probes,
+/// `control::endpoints::probe`, which a position that never moves cannot end).
+pub fn mid_travel(pitch_fault: FaultCode, pitch_position: u8) -> FlapTrimStatus {
+    let trim = TrimFlags {
+        enabled: true,
+        motor_running: false,
+        fault: pitch_fault.is_fault(),
+    };
+    FlapTrimStatus {
+        flap: FlapFlags {
+            enabled: true,
+            ..Default::default()
         },
-    )
+        pitch_trim: trim,
+        roll_trim: TrimFlags {
+            fault: false,
+            ..trim
+        },
+        flap_position: 50,
+        pitch_trim_position: pitch_position,
+        roll_trim_position: 50,
+        pitch_trim_fault: pitch_fault,
+        flap_down: 100,
+        flap_midpoint_1: 30,
+        flap_midpoint_2: 60,
+        pitch_trim_down: 100,
+        pitch_trim_neutral: 50,
+        roll_trim_down: 100,
+        roll_trim_neutral: 50,
+        ..Default::default()
+    }
+}
+
+/// What the virtual unit is doing, so a loop can feed the model as the link's reader
+/// does.
+#[derive(Clone, Copy, PartialEq)]
+pub enum Unit {
+    Healthy,
+    /// SYSTEM_STATUS and DEVICE_STATUS stop (COMMUNICATION LOST after 2.5 s);
+    /// FLAP_TRIM_STATUS keeps coming.
+    StatusSilent,
+    /// The pitch trim reports TRIM_RUNAWAY.
+    PitchFault,
+}
+
+/// One round of `unit`'s broadcasts at `now`, the pitch trim at `pitch_position`.
+pub fn feed(model: &mut Model, unit: Unit, pitch_position: u8, now: Instant) {
+    if unit != Unit::StatusSilent {
+        model.apply_packet(now, &system_status());
+        model.apply_packet(now, &device_status());
+    }
+    let fault = match unit {
+        Unit::PitchFault => FaultCode::TrimRunaway,
+        _ => FaultCode::NoFault,
+    };
+    model.apply_packet(now, &Packet::from_vpx(0, mid_travel(fault, pitch_position)));
 }

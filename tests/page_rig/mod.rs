@@ -59,18 +59,6 @@ neutral = 125
 position = 120
 "#;
 
-/// The whole buffer as text, a line per row, for a failure's message.
-pub fn screen_text(buf: &Buffer) -> String {
-    (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
-}
-
 pub type Wire = Arc<Mutex<Vec<(Instant, Vec<u8>)>>>;
 
 /// Joins a pty's master to the sim's pipe end and records what the page sends.

@@ -42,6 +42,15 @@ pub fn scenario(toml: &str) -> Scenario {
 }
 
 impl Client {
+    /// A client on the pty a `vpx-efis sim --pty` printed, reading in `tick`s.
+    pub fn open(path: &str, tick: Duration) -> Self {
+        let port = serialport::new(path, 57_600)
+            .timeout(tick)
+            .open_native()
+            .expect("open the printed path");
+        Client::new(port)
+    }
+
     pub fn new(port: TTYPort) -> Self {
         Client {
             port,
