@@ -12,8 +12,9 @@
 //!    [`platform`], [`transient`] (which I/O errors a reader retries) and
 //!    [`staleness`] (how long each broadcast stays current).
 //! 2. Bytes in and out: [`link`] (serial, TCP, pseudo-terminal, capture files),
-//!    [`traffic`] (every frame, for the traffic view) and [`audit`] (every command
-//!    sent to the unit, with its origin, in a file of JSON lines).
+//!    [`traffic`] (every frame, for the traffic view), [`audit`] (every command
+//!    sent to the unit, with its origin) and [`logbook`] (the aircraft's record in
+//!    SQLite: checks, changes, updates and the audit log, for the aircraft's life).
 //! 3. What we know: [`model`] (every fact with its time, and the traffic log;
 //!    staleness decided here), and [`sim`], the virtual VP-X (sans-IO: bytes in,
 //!    bytes out, the caller's clock).
@@ -44,6 +45,7 @@ pub mod files;
 pub mod flash;
 pub mod link;
 pub mod loads;
+pub mod logbook;
 pub mod model;
 pub mod places;
 pub mod platform;

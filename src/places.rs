@@ -17,3 +17,10 @@ pub fn config_path() -> Option<PathBuf> {
             .map(|d| d.config_dir().join("config.toml")),
     }
 }
+
+/// `logbook.sqlite` beside the config file: the aircraft's logbook
+/// ([`crate::logbook`]), unless `--logbook`, `VPX_EFIS_LOGBOOK` or the config key
+/// `logbook` moves it.
+pub fn logbook_path() -> Option<PathBuf> {
+    config_path().and_then(|c| c.parent().map(|d| d.join("logbook.sqlite")))
+}

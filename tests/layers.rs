@@ -31,7 +31,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ),
     (
         "bytes in and out, and the record of them",
-        &["link", "traffic", "audit"],
+        &["link", "traffic", "audit", "logbook"],
     ),
     ("what we know, and the virtual unit", &["model", "sim"]),
     (

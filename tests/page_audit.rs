@@ -1,7 +1,8 @@
 //! The audit log through the real page against the virtual VP-X on a
 //! real pseudo-terminal (`page_rig`), with `--xfsp-control` on a UDP peer on
 //! 127.0.0.1: a power key, a reset, a motor run, the installation check and an XFSp
-//! command each leave their line, with their origin, in a file of JSON lines.
+//! command each leave their line, with their origin, in the logbook's audit log, read
+//! back as the JSON lines `vpx-efis log --jsonl` gives.
 // Needs a pseudo-terminal (serialport::TTYPort), which only Unix has.
 #![cfg(unix)]
 
@@ -23,27 +24,17 @@ use vpx_efis::ui::state::ReleaseMode;
 use vpx_efis::xfsp::EcbState;
 use vpx_efis::xfsp::gateway::{Control, GatewayConfig};
 
-/// Every line of every audit file in `dir`, each parsed (a line that is not JSON
-/// fails the test).
-fn audit_lines(dir: &Path) -> Vec<Value> {
-    let Ok(entries) = std::fs::read_dir(dir) else {
+/// Every line of the audit log in the logbook at `path`, each parsed (a line that
+/// is not JSON fails the test); none while the logbook is not there yet.
+fn audit_lines(path: &Path) -> Vec<Value> {
+    if !path.exists() {
         return Vec::new();
-    };
-    let mut out = Vec::new();
-    for e in entries {
-        let path = e.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().to_string();
-        // The check's reports are written beside it.
-        if !(name.starts_with("vpx-audit-") && name.ends_with(".jsonl")) {
-            continue;
-        }
-        for line in std::fs::read_to_string(&path).unwrap().lines() {
-            out.push(
-                serde_json::from_str(line).unwrap_or_else(|e| panic!("not JSON ({e}): {line}")),
-            );
-        }
     }
-    out
+    vpx_efis::logbook::jsonl::all_audit_lines(path)
+        .unwrap_or_default()
+        .iter()
+        .map(|line| serde_json::from_str(line).unwrap_or_else(|e| panic!("not JSON ({e}): {line}")))
+        .collect()
 }
 
 fn has(lines: &[Value], origin: &str, command: &str, extra: impl Fn(&Value) -> bool) -> bool {
@@ -60,10 +51,13 @@ fn has(lines: &[Value], origin: &str, command: &str, extra: impl Fn(&Value) -> b
 #[test]
 fn every_command_from_every_origin_leaves_its_line() {
     let dir = tempfile::tempdir().unwrap();
-    let audit = dir.path().join("reports");
+    let audit = dir.path().join("logbook.sqlite");
     let mut rig = Rig::with_options(AppOptions {
         release_mode: ReleaseMode::KeyRelease,
-        audit: Some(audit.clone()),
+        logbook: Some(vpx_efis::logbook::Target {
+            path: audit.clone(),
+            aircraft: None,
+        }),
         ..AppOptions::default()
     });
     let mut peer = common::xfsp_peer::PagePeer::new();
@@ -137,7 +131,8 @@ fn every_command_from_every_origin_leaves_its_line() {
         loads_file: Some(dir.path().join("loads.toml")),
         ..Options::default()
     };
-    rig.app.set_check_report_dir(Some(audit.clone()));
+    rig.app
+        .set_check_report_dir(Some(dir.path().join("reports")));
     rig.app.open_check(options, Instant::now());
     rig.key(KeyCode::Enter, KeyEventKind::Press);
     let end = Instant::now() + Duration::from_secs(30);

@@ -26,9 +26,12 @@ fn ms(n: u64) -> Duration {
 }
 
 /// The page against the sim with the remote on 127.0.0.1 (a free port); its base URL.
-fn rig_with_remote(audit: Option<std::path::PathBuf>) -> (Rig, String) {
+fn rig_with_remote(logbook: Option<std::path::PathBuf>) -> (Rig, String) {
     let mut rig = Rig::with_options(AppOptions {
-        audit,
+        logbook: logbook.map(|path| vpx_efis::logbook::Target {
+            path,
+            aircraft: None,
+        }),
         ..AppOptions::default()
     });
     rig.app
@@ -415,7 +418,7 @@ fn the_state_is_live_and_an_event_follows_a_change() {
 #[test]
 fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut rig, base) = rig_with_remote(Some(dir.path().to_path_buf()));
+    let (mut rig, base) = rig_with_remote(Some(dir.path().join("logbook.sqlite")));
     let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
     let call = |rig: &mut Rig, path: &str, body: Option<Value>| {
@@ -470,23 +473,12 @@ fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
                 && e.text.starts_with("remote: GPS 1 reset refused"))
     );
     drop(rig);
-    let audit: Vec<Value> = std::fs::read_dir(dir.path())
-        .unwrap()
-        .filter_map(|e| {
-            let p = e.ok()?.path();
-            p.file_name()?
-                .to_str()?
-                .starts_with("vpx-audit-")
-                .then_some(p)
-        })
-        .flat_map(|p| {
-            std::fs::read_to_string(p)
-                .unwrap()
-                .lines()
-                .map(|l| serde_json::from_str::<Value>(l).unwrap())
-                .collect::<Vec<_>>()
-        })
-        .collect();
+    let audit: Vec<Value> =
+        vpx_efis::logbook::jsonl::all_audit_lines(&dir.path().join("logbook.sqlite"))
+            .unwrap()
+            .iter()
+            .map(|l| serde_json::from_str::<Value>(l).unwrap())
+            .collect();
     assert!(
         audit.iter().any(|l| l["origin"] == "remote"
             && l["command"]
@@ -674,7 +666,7 @@ fn pitch_moves(rig: &Rig, from: usize) -> Vec<(Instant, bool)> {
 #[test]
 fn a_lease_left_to_expire_is_stopped_on_the_wire_within_300_ms_and_a_tick() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut rig, base) = rig_with_remote(Some(dir.path().to_path_buf()));
+    let (mut rig, base) = rig_with_remote(Some(dir.path().join("logbook.sqlite")));
     let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
     let url = format!("{base}/api/motor/pitch");

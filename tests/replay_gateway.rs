@@ -29,7 +29,7 @@ fn the_gateway_records_both_directions_flushed_while_running() {
         iface: Ipv4Addr::LOCALHOST,
         gateway: GatewayConfig::default(),
         record: Some(path.clone()),
-        audit: None,
+        logbook: None,
     };
     let stop = Arc::new(AtomicBool::new(false));
     let s = stop.clone();

@@ -195,7 +195,7 @@ fn the_vpx_on_the_network_over_a_pty_and_udp() {
         iface: Ipv4Addr::LOCALHOST,
         gateway: commanded(),
         record: None,
-        audit: None,
+        logbook: None,
     });
 
     // Hangar: the EFIS is on switch 1, which is open.
@@ -291,7 +291,7 @@ fn multicast_pinned_to_loopback_reaches_a_listener_on_the_same_host() {
         iface: Ipv4Addr::LOCALHOST,
         gateway: GatewayConfig::default(),
         record: None,
-        audit: None,
+        logbook: None,
     });
     let end = Instant::now() + secs(8);
     let mut seen = false;
@@ -376,7 +376,7 @@ fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_w
         iface: Ipv4Addr::LOCALHOST,
         gateway: commanded(),
         record: None,
-        audit: None,
+        logbook: None,
     });
     assert!(
         peer.wait_for(secs(8), |p| p.ident == idents::PTRIMPOS),
@@ -487,7 +487,7 @@ fn network_commands_reach_the_unit_only_when_allowed_and_only_from_listed_source
             ..GatewayConfig::default()
         },
         record: None,
-        audit: None,
+        logbook: None,
     };
     let bridge = Bridge::start(opts(Control::Off, peer.addr()));
     assert!(
@@ -608,7 +608,7 @@ fn three_hundred_sources_do_not_make_an_old_message_fresh_again() {
         iface: Ipv4Addr::LOCALHOST,
         gateway: GatewayConfig::default(),
         record: None,
-        audit: None,
+        logbook: None,
     });
     assert!(
         peer.wait_for(secs(8), |_| true),

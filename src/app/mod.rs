@@ -22,6 +22,7 @@ mod background;
 mod check;
 mod gateway;
 mod link_sink;
+mod logbook;
 mod motor_stream;
 pub use motor_stream::LOOP_STALL;
 mod options;

@@ -11,7 +11,7 @@ use crossterm::event::Event as TermEvent;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 
-use crate::audit::{Audit, Origin};
+use crate::audit::Origin;
 use crate::control::run_state::{ControlState, MotorRun};
 use crate::control::{
     Action, Controller, KeyContext, MotorStreamer, RESEND_PERIOD, StopReason, StreamerConfig,
@@ -73,9 +73,10 @@ pub struct AppOptions {
     /// `--repeat-delay`: how long the first hold waits for the first key repeat, set
     /// by hand instead of learned.
     pub repeat_delay: Option<Duration>,
-    /// The folder of the audit log ([`crate::audit`]): every command sent, with its
-    /// origin. `None` records nothing (tests that do not look at it).
-    pub audit: Option<std::path::PathBuf>,
+    /// The logbook ([`crate::logbook`]) and the aircraft to record under: every
+    /// command sent (the audit log), with its origin, every check, setup write and
+    /// fault. `None` records nothing (tests that do not look at it).
+    pub logbook: Option<crate::logbook::Target>,
 }
 
 impl Default for AppOptions {
@@ -85,7 +86,7 @@ impl Default for AppOptions {
             release_mode: ReleaseMode::AutoRepeat,
             theme: ThemeChoice::default(),
             repeat_delay: None,
-            audit: None,
+            logbook: None,
         }
     }
 }
@@ -102,8 +103,10 @@ pub struct App {
     /// The app's one way to the wire: every packet the page sends goes through here;
     /// `None` in replay.
     pub(super) gate: Option<Arc<StopGate>>,
-    /// The audit log's way in, to hear of a file it cannot write.
-    pub(super) audit: Option<Audit>,
+    /// The logbook's way in: records, and its problems for the event log.
+    pub(super) logbook: Option<crate::logbook::Recorder>,
+    /// What the logbook was last told of the unit.
+    pub(super) told: super::logbook::Told,
     pub(super) wake_rx: Receiver<Wake>,
     pub(super) pacer: QueryPacer,
     pub(super) notice_until: Option<Instant>,
@@ -169,22 +172,29 @@ impl App {
             ..Default::default()
         };
         // A replay is read-only: no link for motors, and no thread to send on it.
-        let (audit, audit_failed) = match options.audit.clone().filter(|_| replay.is_none()) {
-            Some(dir) => match Audit::start(dir) {
-                Ok((a, _thread)) => (Some(a), None),
+        let (logbook, logbook_failed) = match options.logbook.clone().filter(|_| replay.is_none()) {
+            // The thread runs on its own; `shutdown` waits for its last records.
+            Some(t) => match crate::logbook::Recorder::start(t.path, t.aircraft) {
+                Ok((r, _thread)) => (Some(r), None),
                 Err(e) => (
                     None,
-                    Some(format!("audit log: its thread could not start ({e})")),
+                    Some(format!("logbook: its thread could not start ({e})")),
                 ),
             },
             None => (None, None),
         };
-        if let Some(why) = audit_failed {
+        if let Some(why) = logbook_failed {
             lock(&model).log(Instant::now(), crate::model::LogLevel::Warning, why);
+        }
+        if let Some(book) = &logbook {
+            lock(&model).aircraft = Some(crate::model::Aircraft {
+                registration: book.aircraft().map(str::to_string),
+                was_in: None,
+            });
         }
         let gate = replay
             .is_none()
-            .then(|| Arc::new(StopGate::with_audit(link.handle(), audit.clone())));
+            .then(|| Arc::new(StopGate::with_logbook(link.handle(), logbook.clone())));
         let controller = MotorPath::new(controller, gate.clone());
         let motor_thread = if replay.is_none() {
             controller.spawn(wake_tx)
@@ -198,7 +208,8 @@ impl App {
             motor_thread,
             link: Some(link),
             gate,
-            audit,
+            logbook,
+            told: Default::default(),
             wake_rx,
             pacer: QueryPacer::default(),
             notice_until: None,
@@ -517,7 +528,16 @@ impl App {
             )
         };
         self.send(Origin::Page, queries);
-        if let Some(why) = self.audit.as_ref().and_then(Audit::take_problem) {
+        {
+            let shared = self.model.clone();
+            let mut model = lock(&shared);
+            self.tell_logbook(&mut model);
+        }
+        if let Some(why) = self
+            .logbook
+            .as_ref()
+            .and_then(crate::logbook::Recorder::take_problem)
+        {
             lock(&self.model).log(now, crate::model::LogLevel::Warning, why);
         }
         self.set_notice(now, ticked.notice);
@@ -707,6 +727,11 @@ impl App {
         if let Some(link) = self.link.take() {
             // Queued packets (the stop above) are written before the link closes.
             link.shutdown();
+        }
+        // The last records (the stops just sent) are in the file before we leave; a
+        // logbook locked by another program is not waited for past this.
+        if let Some(book) = &self.logbook {
+            book.flush(crate::logbook::SHUTDOWN_WAIT);
         }
     }
 

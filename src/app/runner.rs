@@ -78,7 +78,7 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
         theme,
         release_mode: crate::control::release_mode_here(guard.key_release),
         repeat_delay,
-        audit: crate::check::report::default_dir(),
+        logbook: crate::logbook::target(),
     };
     let mut app = match recorder {
         Some(r) => App::recording(source, connector, options, r),

@@ -124,6 +124,10 @@ impl App {
                 .backup_read(text, &mut self.view.setup, &lock(&shared), now);
         }
         for m in out.send {
+            {
+                let shared = self.model.clone();
+                self.note_setup_sent(&lock(&shared), &m);
+            }
             lock(&self.model).log(
                 now,
                 crate::model::LogLevel::Info,
@@ -139,6 +143,7 @@ impl App {
         if out.reread_all {
             self.pacer.start(now);
         }
+        self.note_setup_settled();
         if out.leave {
             self.view.screen = Screen::Devices;
         }

@@ -10,15 +10,17 @@
 //! and queues no move (stops and queries still go).
 //!
 //! Being the one way, it is also where every command is recorded in the audit log
-//! ([`crate::audit`]), with the origin each caller names and whether it went.
+//! ([`crate::audit`], kept in the logbook), with the origin each caller names and
+//! whether it went.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, TryLockError};
 use std::time::{Duration, Instant};
 
-use crate::audit::{Audit, Origin};
+use crate::audit::Origin;
 use crate::control::MotorStreamer;
 use crate::link::LinkHandle;
+use crate::logbook::Recorder;
 use crate::protocol::message::{Message, Packet};
 
 /// How long the emergency stop waits for a send in progress to finish. Queueing a few
@@ -31,7 +33,7 @@ pub struct StopGate {
     link: LinkHandle,
     halted: AtomicBool,
     order: Mutex<()>,
-    audit: Option<Audit>,
+    logbook: Option<Recorder>,
 }
 
 impl StopGate {
@@ -40,14 +42,14 @@ impl StopGate {
             link,
             halted: AtomicBool::new(false),
             order: Mutex::new(()),
-            audit: None,
+            logbook: None,
         }
     }
 
-    /// As [`StopGate::new`], recording every command in `audit`.
-    pub fn with_audit(link: LinkHandle, audit: Option<Audit>) -> StopGate {
+    /// As [`StopGate::new`], recording every command in the `logbook`'s audit log.
+    pub fn with_logbook(link: LinkHandle, logbook: Option<Recorder>) -> StopGate {
         StopGate {
-            audit,
+            logbook,
             ..StopGate::new(link)
         }
     }
@@ -61,8 +63,8 @@ impl StopGate {
                 .send(p)
                 .map_err(|_| "the link to the unit is closed"),
         };
-        if let Some(a) = &self.audit {
-            a.record(origin, &p, result);
+        if let Some(book) = &self.logbook {
+            book.command(origin, &p, result);
         }
     }
 

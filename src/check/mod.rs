@@ -16,6 +16,7 @@ pub mod flow;
 pub mod lights;
 mod motors;
 pub mod plan;
+pub mod record;
 pub mod report;
 pub mod state;
 mod step;

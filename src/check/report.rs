@@ -88,7 +88,7 @@ fn switch_words(view: &CheckView, s: &SwitchResult) -> String {
 }
 
 /// The counts of the results, for the line at the top.
-fn tally(view: &CheckView) -> String {
+pub(crate) fn tally(view: &CheckView) -> String {
     let marks: Vec<Mark> = view.marks().collect();
     let n = |m: Mark| marks.iter().filter(|&&x| x == m).count();
     let mut parts = vec![];

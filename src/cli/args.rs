@@ -5,6 +5,7 @@ use clap::{Parser, Subcommand};
 
 use crate::cmd::backup::BackupArgs;
 use crate::cmd::check::CheckArgs;
+use crate::cmd::common::LogbookArgs;
 use crate::cmd::completions::CompletionsArgs;
 use crate::cmd::config::ConfigArgs;
 use crate::cmd::decode::DecodeArgs;
@@ -29,6 +30,9 @@ pub struct Cli {
 
     #[command(flatten)]
     pub page: PageArgs,
+
+    #[command(flatten)]
+    pub logbook: LogbookArgs,
 }
 
 #[derive(Debug, Subcommand)]

@@ -13,8 +13,12 @@ use crate::program::{UsageError, exit};
 pub fn main() -> ExitCode {
     let matches = Cli::command().get_matches();
     let mut cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
-    let result =
-        resolve(&mut cli.command, &mut cli.page, &matches).and_then(|report| match cli.command {
+    let result = resolve(&mut cli.command, &mut cli.page, &mut cli.logbook, &matches)
+        .inspect(|_| {
+            // Every command that records finds its logbook and aircraft here.
+            crate::logbook::set_target(cli.logbook.target());
+        })
+        .and_then(|report| match cli.command {
             None => crate::cmd::page::run(cli.page),
             Some(Command::Decode(a)) => crate::cmd::decode::run(a),
             Some(Command::Sim(a)) => crate::cmd::sim::run(a),

@@ -7,7 +7,7 @@ use clap::ArgMatches;
 use clap::parser::ValueSource;
 
 use crate::cli::Command;
-use crate::cmd::common::{PortArgs, XfspArgs};
+use crate::cmd::common::{LogbookArgs, PortArgs, XfspArgs};
 use crate::cmd::config::Effective;
 use crate::cmd::flash::FlashPortArgs;
 use crate::cmd::page::PageArgs;
@@ -183,6 +183,44 @@ impl Resolver<'_> {
         );
     }
 
+    /// `--logbook` and `--aircraft` (or their environment variables), or the file's
+    /// `logbook` (a relative path from the config file's folder) and `aircraft`.
+    fn logbook(&mut self, l: &mut LogbookArgs, config: Option<&std::path::Path>) {
+        let file = self.file.logbook.clone().map(|s| Setting {
+            value: Some(match config.and_then(std::path::Path::parent) {
+                Some(dir) if s.value.is_relative() => dir.join(&s.value),
+                _ => s.value,
+            }),
+            line: s.line,
+        });
+        self.pick(
+            "logbook",
+            "logbook",
+            Some(settings::LOGBOOK_ENV),
+            &mut l.logbook,
+            &file,
+            |p| match p {
+                Some(p) => p.display().to_string(),
+                None => crate::places::logbook_path().map_or_else(
+                    || "none: this system has no configuration folder".into(),
+                    |p| p.display().to_string(),
+                ),
+            },
+        );
+        let aircraft = optional(&self.file.aircraft);
+        self.pick(
+            "aircraft",
+            "aircraft",
+            Some(settings::AIRCRAFT_ENV),
+            &mut l.aircraft,
+            &aircraft,
+            |a| {
+                a.clone()
+                    .unwrap_or_else(|| "not named: records go under the unit".into())
+            },
+        );
+    }
+
     /// `--theme`, or the file's `theme`.
     fn theme(&mut self, theme: &mut Requested) {
         let file = self.file.theme.clone();
@@ -207,15 +245,17 @@ impl Resolver<'_> {
 pub fn resolve(
     command: &mut Option<Command>,
     page: &mut PageArgs,
+    logbook: &mut LogbookArgs,
     matches: &ArgMatches,
 ) -> anyhow::Result<Vec<Effective>> {
-    resolve_with(command, page, matches, settings::load)
+    resolve_with(command, page, logbook, matches, settings::load)
 }
 
 /// [`resolve`] with the config file read by `load` (tests give one directly).
 fn resolve_with(
     command: &mut Option<Command>,
     page: &mut PageArgs,
+    logbook: &mut LogbookArgs,
     matches: &ArgMatches,
     load: impl FnOnce() -> Result<settings::Loaded, settings::ConfigError>,
 ) -> anyhow::Result<Vec<Effective>> {
@@ -272,6 +312,7 @@ fn resolve_with(
         }
         _ => {}
     }
+    r.logbook(logbook, loaded.path.as_deref());
     let mut report = r.report;
     if let Some(Command::Config(_)) = command {
         report.insert(
@@ -306,13 +347,19 @@ mod tests {
         let m = Cli::command().try_get_matches_from(args)?;
         let mut cli = Cli::from_arg_matches(&m)?;
         let file = settings::parse(text).expect("a good file");
-        resolve_with(&mut cli.command, &mut cli.page, &m, || {
-            Ok(settings::Loaded {
-                path: None,
-                exists: true,
-                file,
-            })
-        })?;
+        resolve_with(
+            &mut cli.command,
+            &mut cli.page,
+            &mut cli.logbook,
+            &m,
+            || {
+                Ok(settings::Loaded {
+                    path: None,
+                    exists: true,
+                    file,
+                })
+            },
+        )?;
         Ok(cli.page.into())
     }
 

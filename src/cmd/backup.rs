@@ -41,6 +41,23 @@ pub fn run(args: BackupArgs) -> anyhow::Result<()> {
         unit.from,
         args.file.display()
     );
+    // The logbook keeps the backup's text as written (the file may be moved or
+    // edited later). A logbook that cannot take it is said; the backup stands.
+    let text = std::fs::read_to_string(&args.file).unwrap_or_default();
+    if let Some(why) = crate::logbook::record_now(
+        crate::logbook::Entry {
+            at: std::time::SystemTime::now(),
+            origin: crate::logbook::record::COMMAND_LINE,
+            summary: format!("backup to {}", args.file.display()),
+            what: crate::logbook::What::Backup {
+                path: Some(args.file.display().to_string()),
+                text,
+            },
+        },
+        Some(crate::logbook::record::Unit::of_config(&version, &b.config)),
+    ) {
+        eprintln!("vpx-efis: {why}");
+    }
     Ok(())
 }
 

@@ -9,7 +9,38 @@ use clap::{Args, ValueEnum};
 use crate::app::XfspOptions;
 use crate::link::PortAddr;
 use crate::settings::values::Theme as Requested;
-use crate::settings::{BAUD_ENV, PORT_ENV, XFSP_CONTROL_ENV, XFSP_CONTROL_FROM_ENV, values};
+use crate::settings::{
+    AIRCRAFT_ENV, BAUD_ENV, LOGBOOK_ENV, PORT_ENV, XFSP_CONTROL_ENV, XFSP_CONTROL_FROM_ENV, values,
+};
+
+/// The aircraft's logbook and the aircraft: options of every command, before or after
+/// the subcommand's name.
+#[derive(Debug, Clone, Default, Args)]
+pub struct LogbookArgs {
+    /// The aircraft's logbook, an SQLite file: every check, backup, restore, setting
+    /// written, firmware update, fault and command sent. Also read from the config
+    /// file. Default: logbook.sqlite beside the config file.
+    #[arg(long, global = true, value_name = "FILE", env = LOGBOOK_ENV)]
+    pub logbook: Option<std::path::PathBuf>,
+
+    /// The aircraft's registration (N123AB, G-ABCD), to record under. Also read from
+    /// the config file. Without one, records go under the unit (its VERSION and
+    /// circuit names).
+    #[arg(long, global = true, value_name = "REGISTRATION", env = AIRCRAFT_ENV,
+          value_parser = crate::logbook::registration)]
+    pub aircraft: Option<String>,
+}
+
+impl LogbookArgs {
+    /// Where to record: the file named, else the one beside the config file.
+    pub fn target(&self) -> Option<crate::logbook::Target> {
+        let path = self.logbook.clone().or_else(crate::places::logbook_path)?;
+        Some(crate::logbook::Target {
+            path,
+            aircraft: self.aircraft.clone(),
+        })
+    }
+}
 
 #[derive(Debug, Clone, Args)]
 pub struct PortArgs {

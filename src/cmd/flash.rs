@@ -182,6 +182,13 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     let _panic = stop_on_panic(&opts);
     let _awake = keep_awake(&mut log);
     let pages = image.page_count() as u64;
+    let before = match found {
+        Found::Running(v) => Some(version_words(&v)),
+        Found::Bootloader => None,
+    };
+    let record = |after: Option<String>, outcome: String| {
+        log_update(&args.file, before.clone(), after, outcome);
+    };
     let bar = progress_bar(pages * 2);
     let started = Instant::now();
     let result = flash::update(&mut port, &image, found, &opts, &mut |e| {
@@ -235,6 +242,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
             log.line(&format!("-- {summary}"));
             log.finish();
             eprintln!("{summary}\nlog: {}", log_path.display());
+            record(Some(version_words(&out.version)), "updated".into());
             Ok(())
         }
         Err(e) => {
@@ -244,6 +252,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
             }
             log.line(&format!("-- STOPPED: {e}"));
             log.finish();
+            record(None, format!("stopped: {e}"));
             let by = interrupted.by();
             match by {
                 // Our words, then the exit status of the signal (130 for Ctrl-C).
@@ -263,6 +272,46 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
 /// Keeps the machine from sleeping until dropped: a laptop that suspends mid-update
 /// leaves the unit in its bootloader. Best effort: a machine with no power manager to
 /// ask (Linux without D-Bus or logind, a container) flashes all the same, with a word.
+/// "VP-X Pro 2.1": a VERSION as the logbook keeps it.
+fn version_words(v: &crate::protocol::message::Version) -> String {
+    format!(
+        "{} {}.{}",
+        v.hardware_version.name(),
+        v.software_major,
+        v.software_minor
+    )
+}
+
+/// The update into the logbook: the image's SHA-256, the versions before and after,
+/// and how it ended. A logbook that cannot take it is said; the update stands.
+fn log_update(file: &Path, before: Option<String>, after: Option<String>, outcome: String) {
+    use sha2::Digest;
+    let sha = match std::fs::read(file) {
+        Ok(bytes) => hex(&sha2::Sha256::digest(&bytes)),
+        Err(e) => format!("not read again: {e}"),
+    };
+    let entry = crate::logbook::Entry {
+        at: std::time::SystemTime::now(),
+        origin: crate::logbook::record::COMMAND_LINE,
+        summary: format!(
+            "firmware {}: {} → {}: {outcome}",
+            file.display(),
+            before.as_deref().unwrap_or("(in its bootloader)"),
+            after.as_deref().unwrap_or("?")
+        ),
+        what: crate::logbook::What::Firmware(crate::logbook::record::Firmware {
+            image_sha256: sha,
+            image_path: file.display().to_string(),
+            version_before: before,
+            version_after: after,
+            outcome,
+        }),
+    };
+    if let Some(why) = crate::logbook::record_now(entry, None) {
+        eprintln!("vpx-efis: {why}");
+    }
+}
+
 fn keep_awake(log: &mut FlashLog) -> Option<keepawake::KeepAwake> {
     match keepawake::Builder::default()
         .idle(true)

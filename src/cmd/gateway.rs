@@ -38,8 +38,9 @@ pub struct BridgeOptions {
     pub iface: Ipv4Addr,
     pub gateway: GatewayConfig,
     pub record: Option<PathBuf>,
-    /// The audit log's folder ([`crate::audit`]): every command sent to the unit.
-    pub audit: Option<PathBuf>,
+    /// The logbook, and the aircraft ([`crate::logbook`]): every command sent to the
+    /// unit.
+    pub logbook: Option<crate::logbook::Target>,
 }
 
 impl BridgeOptions {
@@ -58,7 +59,7 @@ impl BridgeOptions {
             iface,
             gateway,
             record: args.record.clone(),
-            audit: crate::check::report::default_dir(),
+            logbook: crate::logbook::target(),
         })
     }
 }
@@ -119,7 +120,7 @@ pub fn run_bridge(
         Source::Replay { file } => format!(", replay {file}"),
     };
     let options = AppOptions {
-        audit: opts.audit.clone(),
+        logbook: opts.logbook.clone(),
         ..AppOptions::default()
     };
     let mut app = match recorder {

@@ -142,10 +142,24 @@ pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
         current
     };
     let steps = backup::plan(&current, &target.config)?;
-    write_steps(client, &current, &steps, args.erase_first)?;
+    let planned = backup::diff(&current, &target.config);
+    let log = |left: Option<&[backup::Change]>, failed: Option<String>| {
+        log_restore(&args.file, &version, &target.config, &planned, left, failed);
+    };
+    if let Err(e) = write_steps(client, &current, &steps, args.erase_first) {
+        log(None, Some(format!("{e:#}")));
+        return Err(e);
+    }
 
-    let after = read_all(client, "verify")?;
+    let after = match read_all(client, "verify") {
+        Ok(a) => a,
+        Err(e) => {
+            log(None, Some(format!("{e:#}")));
+            return Err(e);
+        }
+    };
     let left = backup::diff(&after, &target.config);
+    log(Some(&left), None);
     if !left.is_empty() || normalized(&after) != normalized(&target.config) {
         let mut msg = format!(
             "every setting was acknowledged, but reading them back, {} still differ from {}:",
@@ -163,6 +177,52 @@ pub fn run(args: RestoreArgs) -> anyhow::Result<()> {
         steps.len()
     );
     Ok(())
+}
+
+/// The restore into the logbook: each setting it set out to change, from what to
+/// what, confirmed when the read-back no longer differs (`left`: what still differs;
+/// `None` when the unit was not read back). A logbook that cannot take it is said;
+/// the restore stands.
+fn log_restore(
+    file: &Path,
+    version: &crate::protocol::message::Version,
+    config: &UnitConfig,
+    planned: &[backup::Change],
+    left: Option<&[backup::Change]>,
+    failed: Option<String>,
+) {
+    use crate::logbook::record::{COMMAND_LINE, SettingChange, Unit};
+    let changes: Vec<SettingChange> = planned
+        .iter()
+        .map(|c| SettingChange {
+            setting: c.setting.clone(),
+            old: Some(c.from.clone()),
+            new: c.to.clone(),
+            confirmed: left.is_some_and(|l| !l.iter().any(|x| x.path == c.path)),
+        })
+        .collect();
+    let confirmed = changes.iter().filter(|c| c.confirmed).count();
+    let summary = match &failed {
+        Some(why) => format!(
+            "restore of {}: failed ({why}); {} setting(s) meant to change",
+            file.display(),
+            changes.len()
+        ),
+        None => format!(
+            "restore of {}: {} setting(s) changed, {confirmed} confirmed by reading back",
+            file.display(),
+            changes.len()
+        ),
+    };
+    let entry = crate::logbook::Entry {
+        at: std::time::SystemTime::now(),
+        origin: COMMAND_LINE,
+        summary,
+        what: crate::logbook::What::Restore { changes },
+    };
+    if let Some(why) = crate::logbook::record_now(entry, Some(Unit::of_config(version, config))) {
+        eprintln!("vpx-efis: {why}");
+    }
 }
 
 fn read_all(client: &mut UnitClient, what: &str) -> anyhow::Result<UnitConfig> {

@@ -315,6 +315,37 @@ pub struct Model {
     /// Bumped whenever something a screen could show changes, so the page redraws
     /// only then (and once a second for ages).
     revision: u64,
+    /// Faults seen since the app last took them, for the logbook: device id (255:
+    /// the system fault flag), its name, the fault in words.
+    pub faults_seen: Vec<(u8, String, String)>,
+    /// The aircraft the page records under, for its title; `None` with no logbook.
+    pub aircraft: Option<Aircraft>,
+}
+
+/// The aircraft as the logbook knows it.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Aircraft {
+    /// Its registration (`--aircraft`); `None`: records go under the unit.
+    pub registration: Option<String>,
+    /// The unit was seen in another aircraft before: that one, and the day it was
+    /// last seen there.
+    pub was_in: Option<(String, String)>,
+}
+
+impl Aircraft {
+    /// The title's words: "N123AB", "aircraft not named (--aircraft)", then "this
+    /// unit was in N123AB until 2026-11-03" when it was.
+    pub fn words(&self) -> (String, Option<String>) {
+        let name = self
+            .registration
+            .clone()
+            .unwrap_or_else(|| "aircraft not named (--aircraft)".into());
+        let was = self
+            .was_in
+            .as_ref()
+            .map(|(reg, day)| format!("this unit was in {reg} until {day}"));
+        (name, was)
+    }
 }
 
 impl Model {
@@ -348,6 +379,8 @@ impl Model {
             events: VecDeque::with_capacity(EVENT_LOG_LEN),
             traffic: crate::traffic::TrafficLog::new(),
             revision: 0,
+            faults_seen: Vec::new(),
+            aircraft: None,
         }
     }
 
@@ -651,10 +684,13 @@ impl Model {
             if now_code.is_fault() && !was.is_fault() {
                 let name = self.display_name(id as u8);
                 self.log(at, LogLevel::Alert, format!("{name}: {}", now_code.name()));
+                self.faults_seen.push((id as u8, name, now_code.name()));
             }
         }
         if now_sys && !before.1 {
             self.log(at, LogLevel::Alert, "system fault".into());
+            self.faults_seen
+                .push((255, "system".into(), "system fault".into()));
         }
     }
 

@@ -45,10 +45,14 @@ pub struct SettingsFile {
     pub xfsp_cert: Option<Setting<u8>>,
     pub xfsp_control: Option<Setting<bool>>,
     pub xfsp_control_from: Option<Setting<values::SourceIds>>,
+    /// The logbook's file, as written (relative: from the config file's folder).
+    pub logbook: Option<Setting<std::path::PathBuf>>,
+    /// The aircraft's registration, checked and in upper case.
+    pub aircraft: Option<Setting<String>>,
 }
 
 /// The keys the file may hold, for the message that refuses any other.
-pub const KEYS: [&str; 10] = [
+pub const KEYS: [&str; 12] = [
     "port",
     "baud",
     "theme",
@@ -59,6 +63,8 @@ pub const KEYS: [&str; 10] = [
     "xfsp_cert",
     "xfsp_control",
     "xfsp_control_from",
+    "logbook",
+    "aircraft",
 ];
 
 /// A problem in the file: the line it is on (when known) and what is wrong.
@@ -164,6 +170,19 @@ pub fn parse(text: &str) -> Result<SettingsFile, Vec<FileProblem>> {
             "xfsp_control_from",
             read("xfsp_control_from"),
             values::source_ids,
+        ),
+        logbook: check(p, "logbook", read("logbook"), |t| {
+            if t.trim().is_empty() {
+                Err("an empty path: name the logbook's file, or leave the key out".into())
+            } else {
+                Ok(std::path::PathBuf::from(t))
+            }
+        }),
+        aircraft: check(
+            p,
+            "aircraft",
+            read("aircraft"),
+            crate::logbook::registration,
         ),
     };
     if problems.is_empty() {

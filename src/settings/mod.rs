@@ -19,6 +19,8 @@ pub const PORT_ENV: &str = "VPX_EFIS_PORT";
 pub const BAUD_ENV: &str = "VPX_EFIS_BAUD";
 pub const XFSP_CONTROL_ENV: &str = "VPX_EFIS_XFSP_CONTROL";
 pub const XFSP_CONTROL_FROM_ENV: &str = "VPX_EFIS_XFSP_CONTROL_FROM";
+pub const LOGBOOK_ENV: &str = "VPX_EFIS_LOGBOOK";
+pub const AIRCRAFT_ENV: &str = "VPX_EFIS_AIRCRAFT";
 
 /// Where an effective value came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

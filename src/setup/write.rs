@@ -319,7 +319,20 @@ pub fn reread_query(m: &Message) -> Message {
 /// What the unit holds for `m`'s setting, heard after `since`, in words, and whether
 /// it is what `m` set.
 fn held_after(model: &Model, m: &Message, since: Instant) -> Option<(String, bool)> {
-    let fresh = |at: Instant| at >= since;
+    held_where(model, m, |at| at >= since)
+}
+
+/// What the unit holds now for `m`'s setting, as far as the model knows, in words
+/// (the old value of a write, for the logbook).
+pub fn held_now(model: &Model, m: &Message) -> Option<String> {
+    held_where(model, m, |_| true).map(|(words, _)| words)
+}
+
+fn held_where(
+    model: &Model,
+    m: &Message,
+    fresh: impl Fn(Instant) -> bool,
+) -> Option<(String, bool)> {
     match m {
         Message::DeviceSpec(s) => {
             let h = model.device_specs.get(s.device_id as usize)?.as_ref()?;

@@ -27,7 +27,8 @@ const SHORT_TITLE: &str = " electrical ";
 const MIN_NAME: usize = 12;
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
-    super::fast::lines(frame.buffer_mut(), area, &[line(model, now, area.width)]);
+    let l = with_aircraft(line(model, now, area.width), model, area.width as usize);
+    super::fast::lines(frame.buffer_mut(), area, &[l]);
 }
 
 /// `s` in at most `max` characters, the middle replaced by "…" if it must be
@@ -138,6 +139,37 @@ pub fn line(model: &Model, now: Instant, width: u16) -> Line<'static> {
         }
     }
     build(false, None, 0, true)
+}
+
+/// The title line with the aircraft the page records under ([`crate::model::Aircraft`])
+/// where the room left allows: its registration, or "aircraft not named
+/// (--aircraft)"; and "this unit was in N123AB until 2026-11-03" after it when the
+/// unit was seen in another aircraft. What does not fit is left out whole (the event
+/// log says it too).
+fn with_aircraft(mut l: Line<'static>, model: &Model, width: usize) -> Line<'static> {
+    let Some(a) = &model.aircraft else {
+        return l;
+    };
+    let (name, was) = a.words();
+    let style = if a.registration.is_some() {
+        theme::panel_title()
+    } else {
+        theme::caution()
+    };
+    let mut pieces = vec![Span::styled(format!("  {name}"), style)];
+    if let Some(w) = was {
+        pieces.push(Span::styled(format!("  {w}"), theme::caution()));
+    }
+    // At the end of the line, after the version: the words that always stay keep
+    // their place.
+    for p in pieces {
+        if l.width() + p.width() <= width {
+            l.spans.push(p);
+        } else {
+            break;
+        }
+    }
+    l
 }
 
 #[cfg(test)]

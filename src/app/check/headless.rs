@@ -116,8 +116,7 @@ pub fn run_headless_with(
         }
     };
     let options = AppOptions {
-        // The audit log goes with the report.
-        audit: h.report.clone().or_else(crate::check::report::default_dir),
+        logbook: crate::logbook::target(),
         ..AppOptions::default()
     };
     let mut app = App::new(source, connector, options);

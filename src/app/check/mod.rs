@@ -39,6 +39,8 @@ pub(super) struct CheckState {
     report_dir: Option<PathBuf>,
     started: Option<std::time::SystemTime>,
     reported: bool,
+    /// The check's record is in the logbook (once per check, whatever the report).
+    logged: bool,
     /// Esc was pressed once with the report not written: the next one leaves.
     leave_asked: bool,
 }
@@ -71,6 +73,7 @@ impl App {
         self.check.progress.clear();
         self.check.started = Some(wall);
         self.check.reported = false;
+        self.check.logged = false;
         self.check.leave_asked = false;
         self.view.screen = Screen::Check;
         self.dirty = true;
@@ -182,9 +185,68 @@ impl App {
         if self.check.reported || self.check.flow.is_none() {
             return;
         }
+        let about = self.check_about();
         let Some(dir) = self.check.report_dir.clone() else {
+            self.log_check(&about);
             return;
         };
+        let written = report_files::write(&dir, &self.check.view, &about);
+        // Only a report on the disk counts as written: one that failed (a USB stick
+        // pulled, a folder made read-only) stays to be written again with `w`, the
+        // results still in memory.
+        let line = match written {
+            Ok(w) => {
+                self.check.reported = true;
+                self.check.view.report = Some(w.markdown.clone());
+                self.check.view.report_error = None;
+                words::report_written(&w.markdown, &w.csv)
+            }
+            Err(e) => {
+                let why = format!("{}: {e}", dir.display());
+                self.check.view.report_error = Some(why.clone());
+                format!("✗ The report could not be written to {why}")
+            }
+        };
+        // The logbook has it whether the report could be written or not (with the
+        // report's path when it was).
+        self.log_check(&about);
+        // The screen's one line of news is short (the summary's head has the path
+        // and the reason); the headless run prints the whole line.
+        self.check.view.message = Some(match &self.check.view.report_error {
+            Some(_) => "✗ The report could not be written (why: above); w writes it again.".into(),
+            None => line.clone(),
+        });
+        self.check.progress.push(line);
+        self.dirty = true;
+    }
+
+    /// The check's record into the logbook, once: its results, and the load file's
+    /// text as it is now (the check read it at its load analysis, minutes ago).
+    fn log_check(&mut self, about: &crate::check::report::About) {
+        if self.check.logged {
+            return;
+        }
+        self.check.logged = true;
+        let Some(book) = &self.logbook else {
+            return;
+        };
+        let load_file = match &self.check.view.loads {
+            Some(crate::check::state::LoadsView::Analysed { path, .. }) => {
+                std::fs::read_to_string(path).ok()
+            }
+            _ => None,
+        };
+        let record = crate::check::record::check(&self.check.view, about, load_file);
+        book.record(crate::logbook::Entry {
+            at: about.when,
+            origin: crate::audit::Origin::Check.word(),
+            summary: crate::check::record::summary(&record),
+            what: crate::logbook::What::Check(Box::new(record)),
+        });
+    }
+
+    /// Where and when the check ran, for its report and its record.
+    fn check_about(&self) -> crate::check::report::About {
         let (port, unit, travel) = {
             // One lock for all: two guards in one expression would deadlock.
             let m = self.model();
@@ -206,7 +268,7 @@ impl App {
                 .collect();
             (port, m.version.map(|v| v.value), travel)
         };
-        let about = crate::check::report::About {
+        crate::check::report::About {
             when: self
                 .check
                 .started
@@ -215,32 +277,7 @@ impl App {
             unit,
             ours: crate::program::VERSION.to_string(),
             travel,
-        };
-        let written = report_files::write(&dir, &self.check.view, &about);
-        // Only a report on the disk counts as written: one that failed (a USB stick
-        // pulled, a folder made read-only) stays to be written again with `w`, the
-        // results still in memory.
-        let line = match written {
-            Ok(w) => {
-                self.check.reported = true;
-                self.check.view.report = Some(w.markdown.clone());
-                self.check.view.report_error = None;
-                words::report_written(&w.markdown, &w.csv)
-            }
-            Err(e) => {
-                let why = format!("{}: {e}", dir.display());
-                self.check.view.report_error = Some(why.clone());
-                format!("✗ The report could not be written to {why}")
-            }
-        };
-        // The screen's one line of news is short (the summary's head has the path
-        // and the reason); the headless run prints the whole line.
-        self.check.view.message = Some(match &self.check.view.report_error {
-            Some(_) => "✗ The report could not be written (why: above); w writes it again.".into(),
-            None => line.clone(),
-        });
-        self.check.progress.push(line);
-        self.dirty = true;
+        }
     }
 
     /// Why the report of an ended check is not on the disk, if it failed.
