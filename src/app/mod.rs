@@ -21,6 +21,7 @@
 mod background;
 mod check;
 mod gateway;
+mod last_check;
 mod link_sink;
 mod logbook;
 mod motor_stream;

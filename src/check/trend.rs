@@ -48,6 +48,26 @@ pub struct Reading {
     pub tenths: Option<u16>,
 }
 
+impl From<&crate::logbook::query::CircuitRow> for Reading {
+    /// A circuit as the logbook kept it.
+    fn from(r: &crate::logbook::query::CircuitRow) -> Reading {
+        Reading {
+            pin: r.pin.clone(),
+            name: r.name.clone(),
+            tenths: r.amps.map(|a| tenths(a as f32)),
+        }
+    }
+}
+
+impl From<crate::logbook::query::LastCheckRows> for LastCheck {
+    fn from(l: crate::logbook::query::LastCheckRows) -> LastCheck {
+        LastCheck {
+            when: crate::logbook::query::time_of(&l.time),
+            circuits: l.circuits.iter().map(Reading::from).collect(),
+        }
+    }
+}
+
 /// Amperes as the unit's tenths (the model's amps are the unit's tenths over ten).
 pub fn tenths(amps: f32) -> u16 {
     (amps * 10.0).round().clamp(0.0, f32::from(u16::MAX)) as u16

@@ -1,0 +1,390 @@
+//! `vpx-efis log [--circuit NAME | --export FILE.html | --jsonl] [--json] [--limit N]`:
+//! the aircraft's logbook, read-only.
+//!
+//! - no option: the aircraft's latest entries, newest first;
+//! - `--circuit NAME`: that circuit's current at every check, as a small chart;
+//! - `--export FILE.html`: one self-contained, printable page of the aircraft's
+//!   records ([`crate::ui::aircraft_page`]);
+//! - `--jsonl`: the audit log's JSON lines, as its files had them;
+//! - `--json`: the entries, or the circuit's history, as JSON.
+//!
+//! The aircraft and the file are the global `--aircraft` and `--logbook` (their
+//! environment variables, their config keys); without `--aircraft`, the records kept
+//! under no registration.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use clap::Args;
+use serde::Serialize;
+
+use crate::check::trend::Reading;
+use crate::logbook::query::{self, CheckRow, CircuitRow, HistoryRow, time_of};
+use crate::logbook::{Logbook, Mode};
+use crate::program::UsageError;
+use crate::ui::aircraft_page::{self, AsBuilt, BuiltCircuit, CheckEntry, Page};
+use crate::ui::circuit_history::{self, Point};
+
+#[derive(Debug, Args)]
+pub struct LogArgs {
+    /// One circuit's current at every check (its name, as on the page; letter case
+    /// does not matter), as a chart.
+    #[arg(long, value_name = "NAME", conflicts_with_all = ["export", "jsonl"])]
+    pub circuit: Option<String>,
+    /// Write the aircraft's records as one printable HTML page.
+    #[arg(long, value_name = "FILE.html", conflicts_with = "jsonl")]
+    pub export: Option<PathBuf>,
+    /// Print the audit log (every command sent to the unit) as JSON lines, oldest first.
+    #[arg(long, conflicts_with = "json")]
+    pub jsonl: bool,
+    /// Print as JSON instead of words.
+    #[arg(long)]
+    pub json: bool,
+    /// How many of the latest entries to list.
+    #[arg(long, default_value_t = 30, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub limit: u32,
+}
+
+/// Where the logbook is and whose records to read: the global options' choice.
+fn open() -> anyhow::Result<(Logbook, Option<String>)> {
+    let Some(target) = crate::logbook::target() else {
+        return Err(UsageError(
+            "no logbook: there is no config folder on this system to keep it in; give \
+             --logbook FILE"
+                .into(),
+        )
+        .into());
+    };
+    let book = Logbook::open(&target.path, Mode::ReadOnly)?;
+    Ok((book, target.aircraft))
+}
+
+fn whose(aircraft: Option<&str>) -> String {
+    aircraft.map_or_else(
+        || "the records kept under no registration (--aircraft not given)".into(),
+        |a| a.to_string(),
+    )
+}
+
+pub fn run(args: LogArgs) -> anyhow::Result<()> {
+    let (book, aircraft) = open()?;
+    let aircraft = aircraft.as_deref();
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    if args.jsonl {
+        let which = crate::logbook::jsonl::Which {
+            aircraft,
+            ..Default::default()
+        };
+        let sent =
+            crate::logbook::jsonl::audit_lines(&book, &which, |line| writeln!(out, "{line}"))?;
+        // A closed pipe (`| head`) ends the listing; it is no error.
+        match sent {
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+            other => {
+                other?;
+            }
+        }
+        return Ok(());
+    }
+    if let Some(name) = &args.circuit {
+        return circuit(&book, aircraft, name, args.json, &mut out);
+    }
+    if let Some(path) = &args.export {
+        let page = page(&book, aircraft)?;
+        write_export(path, &aircraft_page::html(&page))?;
+        writeln!(
+            out,
+            "Wrote {}: {} checks, {} settings changed, {} firmware updates.",
+            path.display(),
+            page.checks.len(),
+            page.settings.len(),
+            page.firmware.len()
+        )?;
+        return Ok(());
+    }
+    entries(&book, aircraft, args.limit as usize, args.json, &mut out)
+}
+
+#[derive(Debug, Serialize)]
+struct JsonEntry<'a> {
+    time: &'a str,
+    aircraft: Option<&'a str>,
+    origin: &'a str,
+    kind: &'a str,
+    summary: &'a str,
+}
+
+fn entries(
+    book: &Logbook,
+    aircraft: Option<&str>,
+    limit: usize,
+    json: bool,
+    out: &mut impl std::io::Write,
+) -> anyhow::Result<()> {
+    let rows = query::latest_entries(book, aircraft, limit)?;
+    if json {
+        let list: Vec<JsonEntry> = rows
+            .iter()
+            .map(|r| JsonEntry {
+                time: &r.time,
+                aircraft: r.aircraft.as_deref(),
+                origin: &r.origin,
+                kind: &r.kind,
+                summary: &r.summary,
+            })
+            .collect();
+        writeln!(out, "{}", serde_json::to_string_pretty(&list)?)?;
+        return Ok(());
+    }
+    if rows.is_empty() {
+        writeln!(
+            out,
+            "No entry for {} in {}.",
+            whose(aircraft),
+            book.path().display()
+        )?;
+        let known = query::aircraft(book)?;
+        if !known.is_empty() {
+            writeln!(out, "Aircraft in it (--aircraft): {}.", known.join(", "))?;
+        }
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "The latest {} entries of {}, newest first (UTC):",
+        rows.len(),
+        whose(aircraft)
+    )?;
+    let kind_w = rows.iter().map(|r| r.kind.len()).max().unwrap_or(4);
+    let origin_w = rows.iter().map(|r| r.origin.len()).max().unwrap_or(3);
+    for r in &rows {
+        let when = time_of(&r.time).map_or_else(|| r.time.clone(), circuit_history::minute);
+        writeln!(
+            out,
+            "{when}  {:<kind_w$}  {:<origin_w$}  {}",
+            r.kind,
+            r.origin,
+            one_line(&r.summary)
+        )?;
+    }
+    Ok(())
+}
+
+/// A summary from the logbook on one line of the terminal.
+fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect()
+}
+
+#[derive(Debug, Serialize)]
+struct JsonReading<'a> {
+    time: &'a str,
+    name: &'a str,
+    pin: &'a str,
+    amps: Option<f64>,
+    verdict: &'a str,
+    finding: &'a str,
+}
+
+fn circuit(
+    book: &Logbook,
+    aircraft: Option<&str>,
+    name: &str,
+    json: bool,
+    out: &mut impl std::io::Write,
+) -> anyhow::Result<()> {
+    let rows = query::circuit_history(book, aircraft, name)?;
+    if rows.is_empty() {
+        let known = query::circuit_names(book, aircraft)?;
+        let known = if known.is_empty() {
+            format!("no check of {} is recorded", whose(aircraft))
+        } else {
+            format!("the circuits its checks know: {}", known.join(", "))
+        };
+        return Err(UsageError(format!("no circuit named {name:?}: {known}")).into());
+    }
+    if json {
+        let list: Vec<JsonReading> = rows
+            .iter()
+            .map(|r| JsonReading {
+                time: &r.time,
+                name: &r.name,
+                pin: &r.pin,
+                amps: r.amps,
+                verdict: &r.verdict,
+                finding: &r.finding,
+            })
+            .collect();
+        writeln!(out, "{}", serde_json::to_string_pretty(&list)?)?;
+        return Ok(());
+    }
+    let points: Vec<Point> = rows.iter().filter_map(point).collect();
+    let width = crossterm::terminal::size().map_or(80, |(w, _)| w).min(120);
+    let title = rows.last().map_or(name, |r| r.name.as_str());
+    write!(out, "{}", circuit_history::chart(title, &points, width))?;
+    Ok(())
+}
+
+fn point(r: &HistoryRow) -> Option<Point> {
+    Some(Point {
+        when: time_of(&r.time)?,
+        pin: r.pin.clone(),
+        tenths: r.amps.map(|a| crate::check::trend::tenths(a as f32)),
+        verdict: format!("{}: {}", r.verdict, r.finding),
+    })
+}
+
+/// The page's records, gathered from the logbook.
+fn page(book: &Logbook, aircraft: Option<&str>) -> anyhow::Result<Page> {
+    let checks = query::checks(book, aircraft)?;
+    let mut entries = Vec::with_capacity(checks.len());
+    let mut latest: Option<(&CheckRow, Vec<CircuitRow>)> = None;
+    for c in &checks {
+        let circuits = query::check_circuits(book, c.entry)?;
+        let Some(when) = time_of(&c.time) else {
+            continue;
+        };
+        entries.push(CheckEntry {
+            when,
+            result: match &c.interrupted {
+                Some(why) => format!("INCOMPLETE ({why}): {}", c.tally),
+                None => c.tally.clone(),
+            },
+            by: c.origin.clone(),
+            readings: circuits.iter().map(Reading::from).collect(),
+        });
+        latest = Some((c, circuits));
+    }
+    let settings = query::setting_changes(book, aircraft)?
+        .into_iter()
+        .filter_map(|s| {
+            Some(aircraft_page::SettingChange {
+                when: time_of(&s.time)?,
+                setting: s.setting,
+                old: s.old.unwrap_or_else(|| "not known".into()),
+                new: s.new,
+                confirmed: s.confirmed,
+                by: s.origin,
+            })
+        })
+        .collect();
+    let firmware = query::firmware(book, aircraft)?
+        .into_iter()
+        .filter_map(|f| {
+            Some(aircraft_page::FirmwareUpdate {
+                when: time_of(&f.time)?,
+                sha256: f.sha256,
+                before: f.before.unwrap_or_else(|| "not known".into()),
+                after: f.after.unwrap_or_else(|| "not known".into()),
+                outcome: f.outcome,
+            })
+        })
+        .collect();
+    let (as_built, analysis, unit) = match &latest {
+        Some((c, circuits)) => {
+            let when = time_of(&c.time).unwrap_or(std::time::UNIX_EPOCH);
+            let (built, analysis) = as_built(c, circuits, when);
+            (Some(built), analysis, c.unit.clone())
+        }
+        None => (None, None, None),
+    };
+    Ok(Page {
+        aircraft: aircraft.map_or_else(|| "Aircraft not named".into(), str::to_string),
+        unit,
+        written: Some(std::time::SystemTime::now()),
+        ours: crate::program::VERSION.to_string(),
+        as_built,
+        analysis,
+        checks: entries,
+        settings,
+        firmware,
+    })
+}
+
+/// The wiring as the latest check found it, each circuit's wire from the load file
+/// as it was at that check, and the load analysis made again from that file and the
+/// check's currents (the same arithmetic as the check's, `loads::analyse`).
+fn as_built(
+    c: &CheckRow,
+    circuits: &[CircuitRow],
+    when: std::time::SystemTime,
+) -> (
+    AsBuilt,
+    Option<(std::time::SystemTime, crate::loads::Analysis)>,
+) {
+    use crate::loads::{file, wiring};
+    let file = c.load_file.as_deref().and_then(|t| file::parse(t).ok());
+    let wires = file.as_ref().map(|f| f.circuits.as_slice()).unwrap_or(&[]);
+    let built = circuits
+        .iter()
+        .map(|r| {
+            let wire = wires
+                .iter()
+                .find(|w| w.id == r.device)
+                .map(|w| wiring::row(r.device, r.name.clone(), w.wire, r.breaker, r.amps, None));
+            BuiltCircuit {
+                pin: r.pin.clone(),
+                name: r.name.clone(),
+                breaker: r.breaker,
+                switch: r.switch.clone(),
+                wire,
+            }
+        })
+        .collect();
+    let measured: Vec<(u8, f32)> = circuits
+        .iter()
+        .filter_map(|r| Some((r.device, r.amps? as f32)).filter(|(_, a)| *a > 0.0))
+        .collect();
+    let analysis = file.map(|f| (when, crate::loads::analyse(&f, &measured)));
+    (
+        AsBuilt {
+            when,
+            circuits: built,
+        },
+        analysis,
+    )
+}
+
+/// Writes the page whole or not at all; a path that cannot be written is named.
+fn write_export(path: &Path, html: &str) -> anyhow::Result<()> {
+    if path.is_dir() {
+        return Err(UsageError(format!(
+            "{}: a folder; give the file to write, e.g. {}",
+            path.display(),
+            path.join("records.html").display()
+        ))
+        .into());
+    }
+    crate::files::write_atomically(path, html.as_bytes())
+        .with_context(|| format!("cannot write the export to {}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_export_path_that_cannot_be_written_is_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("x");
+        std::fs::write(&file, "").unwrap();
+        let e = write_export(&file.join("records.html"), "<p>").unwrap_err();
+        let t = format!("{e:#}");
+        assert!(
+            t.starts_with(&format!(
+                "cannot write the export to {}",
+                file.join("records.html").display()
+            )),
+            "{t}"
+        );
+        let e = write_export(dir.path(), "<p>").unwrap_err().to_string();
+        assert!(e.contains("a folder; give the file to write"), "{e}");
+        // A good path gets the page whole.
+        let good = dir.path().join("records.html");
+        write_export(&good, "<p>page</p>").unwrap();
+        assert_eq!(std::fs::read_to_string(good).unwrap(), "<p>page</p>");
+    }
+}
