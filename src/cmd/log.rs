@@ -228,12 +228,23 @@ fn circuit(
     Ok(())
 }
 
+/// "faulted: OVER_CURRENT", of "faulted: OVER_CURRENT (Device over-current). …".
+fn short(finding: &str) -> String {
+    let first = finding.split(['(', ';', '.']).next().unwrap_or("").trim();
+    if first.chars().count() > 40 {
+        format!("{}…", first.chars().take(39).collect::<String>())
+    } else {
+        first.to_string()
+    }
+}
+
 fn point(r: &HistoryRow) -> Option<Point> {
     Some(Point {
         when: time_of(&r.time)?,
         pin: r.pin.clone(),
         tenths: r.amps.map(|a| crate::check::trend::tenths(a as f32)),
-        verdict: format!("{}: {}", r.verdict, r.finding),
+        // The finding's first words: a chart line is no place for Appendix E.
+        verdict: format!("{}: {}", r.verdict, short(&r.finding)),
     })
 }
 

@@ -341,12 +341,11 @@ fn currents(o: &mut String, checks: &[CheckEntry]) {
         amps_text(trend::CHANGED_MIN_TENTHS as u16),
         trend::CHANGED_WORDS
     );
-    // The circuits: the latest check's first, then any seen only before.
+    // The circuits: the latest check's first (in its order, the unit's), then any
+    // seen only before.
     let mut names: Vec<(String, String)> = Vec::new();
     for c in checks.iter().rev() {
-        let mut these: Vec<&Reading> = c.readings.iter().collect();
-        these.sort_by(|a, b| a.pin.cmp(&b.pin));
-        for r in these {
+        for r in &c.readings {
             if !names
                 .iter()
                 .any(|(n, _)| n.trim().eq_ignore_ascii_case(r.name.trim()))
