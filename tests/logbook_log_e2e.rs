@@ -86,8 +86,8 @@ fn text(o: &Output) -> String {
 }
 
 /// One check of the circuits (switches and motors skipped, nobody to answer), its
-/// report's Markdown.
-fn check(dir: &Path, port: &str, reports: &str) -> String {
+/// report's Markdown and what it printed.
+fn check(dir: &Path, port: &str, reports: &str) -> (String, String) {
     let out = vpx(
         dir,
         &[
@@ -109,7 +109,7 @@ fn check(dir: &Path, port: &str, reports: &str) -> String {
         .filter_map(Result::ok)
         .find(|e| e.path().extension().is_some_and(|x| x == "md"))
         .unwrap_or_else(|| panic!("no report in {}:\n{}", folder.display(), text(&out)));
-    std::fs::read_to_string(md.path()).unwrap()
+    (std::fs::read_to_string(md.path()).unwrap(), text(&out))
 }
 
 /// The report's row of the circuit `name` in its table of circuits (its section
@@ -161,7 +161,7 @@ fn two_checks_with_a_load_changed_between_them_show_the_change_everywhere() {
     let port = port.trim().to_string();
     assert!(!port.is_empty(), "the sim did not start");
 
-    let first = check(d, &port, "first");
+    let (first, _) = check(d, &port, "first");
     // No check before it: no column for one.
     assert!(!first.contains("Last check"), "{first}");
     let was = tenths_of(&first, "Landing Lt");
@@ -184,7 +184,7 @@ fn two_checks_with_a_load_changed_between_them_show_the_change_everywhere() {
     console.flush().unwrap();
     std::thread::sleep(Duration::from_millis(500));
 
-    let second = check(d, &port, "second");
+    let (second, printed) = check(d, &port, "second");
     let now = tenths_of(&second, "Landing Lt");
     assert!((73..=79).contains(&now), "the console's 7.6 A: {second}");
     // Worked here from the two figures: the change in percent of the first, rounded.
@@ -199,6 +199,16 @@ fn two_checks_with_a_load_changed_between_them_show_the_change_everywhere() {
             amps(was)
         )),
         "{second}"
+    );
+    // The headless check's own line says it as it goes.
+    assert!(
+        printed.contains(&format!(
+            "Landing Lt (10A-1): draws {} of a 10 A breaker; last check {}, +{pct} %: changed \
+             since the last check",
+            amps(now),
+            amps(was)
+        )),
+        "{printed}"
     );
     // The Nav Lt did not change (within the sim's tenth or two): not marked.
     let nav = row(&second, "Nav Lt");
