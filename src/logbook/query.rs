@@ -38,18 +38,8 @@ pub struct CheckRow {
     pub unit: Option<String>,
 }
 
-/// One circuit at one check.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CircuitRow {
-    pub device: u8,
-    pub name: String,
-    pub pin: String,
-    pub breaker: Option<u8>,
-    pub switch: Option<String>,
-    pub amps: Option<f64>,
-    pub verdict: String,
-    pub finding: String,
-}
+/// One circuit at one check, read back as it was recorded.
+pub use super::record::CheckCircuit as CircuitRow;
 
 /// One circuit's reading at one check, for its history.
 #[derive(Debug, Clone, PartialEq)]
