@@ -259,7 +259,14 @@ fn bench_widgets(c: &mut Criterion<ThreadCpu>) {
         b.iter(|| {
             terminal
                 .draw(|f| {
-                    ui::detail::render(f, Rect::new(0, 27, 66, 12), &model, selected.as_ref(), None)
+                    ui::detail::render(
+                        f,
+                        Rect::new(0, 27, 66, 12),
+                        &model,
+                        selected.as_ref(),
+                        None,
+                        None,
+                    )
                 })
                 .unwrap();
         })

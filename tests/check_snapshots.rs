@@ -502,6 +502,43 @@ fn done() -> CheckView {
     }
 }
 
+/// The aircraft's last check, 2026-11-03 18:30 UTC, for the trend: Landing Lt drew
+/// 5.6 A (6.9 A now: +23 %, changed), Nav Lt 1.1 A (1.2 A now: +9 %), and the pump's
+/// pin had another name then (not compared).
+fn last_check() -> vpx_efis::check::trend::LastCheck {
+    use vpx_efis::check::trend::{LastCheck, Reading};
+    let r = |pin: &str, name: &str, tenths| Reading {
+        pin: pin.into(),
+        name: name.into(),
+        tenths,
+    };
+    LastCheck {
+        when: Some(std::time::UNIX_EPOCH + Duration::from_secs(1_793_730_600)),
+        circuits: vec![
+            r("5A-1", "Nav Lt", Some(11)),
+            r("5A-2", "Strobe Lt", Some(9)),
+            r("5A-3", "Beacon", Some(17)),
+            r("10A-1", "Landing Lt", Some(56)),
+            r("10A-2", "Taxi Lt", None),
+            r("15A-1", "Boost Pump", Some(44)),
+        ],
+    }
+}
+
+fn circuits_trend() -> CheckView {
+    CheckView {
+        last_check: Some(last_check()),
+        ..circuits()
+    }
+}
+
+fn done_trend() -> CheckView {
+    CheckView {
+        last_check: Some(last_check()),
+        ..done()
+    }
+}
+
 fn all_passed() -> CheckView {
     let mut v = done();
     v.switches.truncate(1);
@@ -700,6 +737,14 @@ fn every_state() -> Vec<(
         ),
         ("circuits", circuits(), lc.clone(), p.clone(), tc),
         (
+            "circuits_trend",
+            circuits_trend(),
+            lc.clone(),
+            p.clone(),
+            tc,
+        ),
+        ("done_trend", done_trend(), idle.clone(), p.clone(), ti),
+        (
             "circuits_is_it_lit",
             circuits_is_it_lit(),
             lc,
@@ -891,6 +936,28 @@ fn marks_have_their_colour_and_always_their_word() {
     }
     // The words after a failure are red too, not just its mark.
     assert_eq!(cell(&buf, "Strobe Lt", "no current").fg, Color::Red);
+}
+
+/// A current changed since the last check is said in words, and its row's words are
+/// drawn as a caution; a steady one keeps the plain style.
+#[test]
+fn a_current_changed_since_the_last_check_says_so_in_words_and_caution() {
+    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let buf = render(&done_trend(), &m, &page(Palette::Terminal), now, 160, 50);
+    let t = text(&buf);
+    assert!(
+        t.contains("last check 5.6 A, +23 %: changed since the last check"),
+        "{t}"
+    );
+    assert!(t.contains("last check 1.1 A, +9 %"), "{t}");
+    assert_eq!(
+        cell(&buf, "Landing Lt", "changed since").fg,
+        Color::Yellow,
+        "a change is a caution"
+    );
+    assert_eq!(cell(&buf, "Nav Lt", "last check").fg, Color::Reset);
+    let mono = themes::painted(&buf, Palette::Mono);
+    assert_eq!(cell(&mono, "Landing Lt", "changed since").fg, Color::Reset);
 }
 
 #[test]

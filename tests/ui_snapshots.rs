@@ -366,6 +366,46 @@ fn normal_80x24() {
     insta::assert_snapshot!(plain_text(&buf));
 }
 
+/// The detail pane gives the selected circuit's current at the aircraft's last check
+/// (from the logbook), with its date, in the label's style for the word and the
+/// text's for the figure.
+#[test]
+fn the_detail_pane_shows_the_last_check() {
+    use vpx_efis::check::trend::{LastCheck, Reading};
+    let (m, now) = fixtures::normal();
+    let view = ViewState {
+        last_check: Some(LastCheck {
+            // 2026-11-03T18:30:00Z.
+            when: Some(std::time::UNIX_EPOCH + Duration::from_secs(1_793_730_600)),
+            circuits: vec![Reading {
+                pin: "5A-1".into(),
+                name: "Nav Lt".into(),
+                tenths: Some(11),
+            }],
+        }),
+        ..view_selecting(4)
+    };
+    let buf = draw(&m, &view, now, 160, 50);
+    let t = text(&buf);
+    assert!(
+        t.contains("history last check 1.1 A, 2026-11-03 18:30 UTC"),
+        "{t}"
+    );
+    insta::assert_snapshot!(t);
+    let (x, y) = (0..buf.area.height)
+        .find_map(|y| {
+            let line: String = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
+            line.find("history last check")
+                .map(|i| (line[..i].chars().count() as u16, y))
+        })
+        .unwrap();
+    assert_eq!(
+        buf[(x, y)].fg,
+        vpx_efis::ui::theme::label().fg.unwrap_or_default()
+    );
+    assert_eq!(buf[(x + 8, y)].fg, ratatui::style::Color::Reset);
+}
+
 #[test]
 fn normal_160x50() {
     let (m, now) = fixtures::normal();

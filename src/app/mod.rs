@@ -21,7 +21,9 @@
 mod background;
 mod check;
 mod gateway;
+mod last_check;
 mod link_sink;
+pub mod log_views;
 mod logbook;
 mod motor_stream;
 pub use motor_stream::LOOP_STALL;

@@ -91,6 +91,7 @@ pub fn run(args: PageOptions) -> anyhow::Result<()> {
         app.start_remote(addr, std::time::Instant::now())?;
     }
     app.reload_wires();
+    app.reload_last_check();
     app.arm_emergency_stop();
     let input = spawn_input_thread();
     let result = app.run(&mut guard.terminal, &input, &terminations);

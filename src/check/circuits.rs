@@ -587,11 +587,15 @@ impl Circuits {
 fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, cx: &mut CallContext) {
     let row = &mut view.circuits[idx];
     let what = format!("{} ({})", row.name, row.pin);
-    cx.out
-        .progress
-        .push(result_line(f.mark(), &what, &f.words()));
-    view.message = Some(format!("{}: {}", row.name, f.words()));
+    let mut words = f.words();
+    let (mark, message) = (f.mark(), format!("{}: {}", row.name, f.words()));
     row.outcome = Outcome::Found(f);
+    // The headless check's line has the trend too, as the screen's row has.
+    if let Some(t) = view.trend(&view.circuits[idx]).words() {
+        words = format!("{words}; {t}");
+    }
+    cx.out.progress.push(result_line(mark, &what, &words));
+    view.message = Some(message);
 }
 
 /// Step 3: the circuits, one at a time.

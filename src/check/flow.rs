@@ -39,6 +39,9 @@ pub struct Options {
     /// a finding can name the time of day something happened ("sent at 21:40:12
     /// UTC"); `None`: it says how long before instead. The flow never reads a clock.
     pub clock: Option<std::time::SystemTime>,
+    /// This aircraft's last check, from the logbook, for the trend beside each
+    /// current (`super::trend`); `None`: there is none (or no logbook).
+    pub last_check: Option<super::trend::LastCheck>,
 }
 
 /// What ended the check from outside.
@@ -133,6 +136,7 @@ impl CheckFlow {
     pub fn new(opts: Options, view: &mut CheckView, model: &Model, now: Instant) -> CheckFlow {
         *view = CheckView {
             skipped_steps: opts.skip.clone(),
+            last_check: opts.last_check.clone(),
             ..CheckView::default()
         };
         let (codes, system) = model

@@ -22,6 +22,7 @@ pub mod state;
 mod step;
 mod switches;
 mod timing;
+pub mod trend;
 pub mod words;
 
 pub use calls::{Command, Effects, LoadsToOpen};

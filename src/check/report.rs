@@ -437,9 +437,34 @@ fn circuits(o: &mut String, view: &CheckView) {
     }
     o.push_str(
         "Each circuit switched on alone, its current read from two fresh DEVICE_STATUS \
-         broadcasts, then put back as it was.\n\n\
-         | Circuit | Pin | Breaker | Result | Current | What happened |\n|---|---|---|---|---|---|\n",
+         broadcasts, then put back as it was.",
     );
+    // Beside each current, the last check's and the change (`super::trend`).
+    let last = view.last_check.as_ref();
+    if let Some(w) = last.and_then(|l| l.when) {
+        let t = crate::utc::utc_text(w);
+        let _ = write!(
+            o,
+            " Beside each current, this aircraft's last check's ({} {} UTC) and the \
+             change; over {} % and at least {} is marked \"{}\".",
+            &t[..10],
+            &t[11..16],
+            super::trend::CHANGED_PERCENT,
+            super::trend::amps_text(super::trend::CHANGED_MIN_TENTHS as u16),
+            super::trend::CHANGED_WORDS
+        );
+    }
+    o.push_str("\n\n");
+    if last.is_some() {
+        o.push_str(
+            "| Circuit | Pin | Breaker | Result | Current | Last check | What happened |\n\
+             |---|---|---|---|---|---|---|\n",
+        );
+    } else {
+        o.push_str(
+            "| Circuit | Pin | Breaker | Result | Current | What happened |\n|---|---|---|---|---|---|\n",
+        );
+    }
     for c in &view.circuits {
         // What the person saw of a light, beside its current; a disagreement in words.
         let (mut current, mut what) = (measured(c), words::circuit(c));
@@ -454,18 +479,50 @@ fn circuits(o: &mut String, view: &CheckView) {
         if let Some(a) = view.lit_answer(c.id) {
             what = format!("{what}; {}", words::lit_ended(a.lit, a.ended, a.switched));
         }
+        let trend = last.map(|_| {
+            let t = view.trend(c);
+            match t.words() {
+                Some(w) if t.changed() => format!("⚠ {w}"),
+                Some(w) => w,
+                None => "—".into(),
+            }
+        });
         let _ = writeln!(
             o,
-            "| {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} |{} {} |",
             cell(&c.name),
             c.pin,
             or_dash(c.breaker, |b| format!("{b} A")),
             badge(c.mark()),
             cell(&current),
+            trend.map_or_else(String::new, |t| format!(" {} |", cell(&t))),
             cell(&what)
         );
     }
     o.push('\n');
+    let changed: Vec<String> = view
+        .circuits
+        .iter()
+        .filter(|c| view.trend(c).changed())
+        .map(|c| {
+            let t = view.trend(c);
+            format!(
+                "- ⚠ {} ({}): {}, {}",
+                c.name,
+                c.pin,
+                measured(c),
+                t.words().unwrap_or_default()
+            )
+        })
+        .collect();
+    if !changed.is_empty() {
+        let _ = writeln!(
+            o,
+            "Changed since the last check (a motor wearing or a connection corroding shows \
+             as a current that creeps; look at each):\n\n{}\n",
+            changed.join("\n")
+        );
+    }
 }
 
 /// "128 → 159 → 128 counts (50 % → 62 % → 50 % of travel)", or "—".
@@ -817,6 +874,83 @@ mod tests {
     fn a_name_is_the_minute_in_utc() {
         let t = std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812);
         assert_eq!(stem(t), "vpx-check-2026-12-01T1830Z");
+    }
+
+    /// The second check's report: each current beside the last check's, with the
+    /// change, and a change over the rule's line said in words and listed.
+    #[test]
+    fn each_current_is_beside_the_last_checks_with_the_change() {
+        use crate::check::trend::{LastCheck, Reading};
+        let c = |id, name: &str, pin, amps| CircuitResult {
+            id,
+            name: name.into(),
+            pin,
+            breaker: Some(10),
+            switch: None,
+            outcome: Outcome::Found(CircuitFinding::Within { amps, breaker: 10 }),
+        };
+        let mut view = CheckView {
+            circuits: vec![
+                c(4, "Nav Lt", "5A-1", 1.2),
+                c(0x11, "Landing Lt", "10A-1", 7.5),
+            ],
+            ..CheckView::default()
+        };
+        let about = About {
+            when: std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812),
+            port: "/dev/ttyUSB0".into(),
+            unit: None,
+            ours: "0.1.0".into(),
+            travel: vec![],
+        };
+        let first = markdown(&view, &about);
+        assert!(!first.contains("Last check"), "{first}");
+        view.last_check = Some(LastCheck {
+            // 2026-11-03T18:30:00Z.
+            when: Some(std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_793_730_600)),
+            circuits: vec![
+                Reading {
+                    pin: "5A-1".into(),
+                    name: "Nav Lt".into(),
+                    tenths: Some(11),
+                },
+                Reading {
+                    pin: "10A-1".into(),
+                    name: "Landing Lt".into(),
+                    tenths: Some(61),
+                },
+            ],
+        });
+        let md = markdown(&view, &about);
+        assert!(
+            md.contains("this aircraft's last check's (2026-11-03 18:30 UTC)"),
+            "{md}"
+        );
+        assert!(
+            md.contains(
+                "| Circuit | Pin | Breaker | Result | Current | Last check | What happened |"
+            ),
+            "{md}"
+        );
+        assert!(
+            md.contains("| Nav Lt | 5A-1 | 10 A | ✓ PASS | 1.2 A | last check 1.1 A, +9 % |"),
+            "{md}"
+        );
+        assert!(
+            md.contains(
+                "| Landing Lt | 10A-1 | 10 A | ✓ PASS | 7.5 A | ⚠ last check 6.1 A, +23 %: \
+                 changed since the last check |"
+            ),
+            "{md}"
+        );
+        assert!(
+            md.contains(
+                "- ⚠ Landing Lt (10A-1): 7.5 A, last check 6.1 A, +23 %: changed since the \
+                 last check"
+            ),
+            "{md}"
+        );
+        assert!(!md.contains("- ⚠ Nav Lt"), "{md}");
     }
 
     #[test]

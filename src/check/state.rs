@@ -392,6 +392,9 @@ pub struct CheckView {
     pub wires: Option<WiresView>,
     /// What the person saw of each light while the check had it on ("Is it lit?").
     pub lit: Vec<LitAnswer>,
+    /// The aircraft's last check (from the logbook, handed in by the app), for each
+    /// circuit's current beside the last one ([`CheckView::trend`]).
+    pub last_check: Option<super::trend::LastCheck>,
 }
 
 /// "Is it lit?" for a light (`super::lights`): what the person said, and what ended
@@ -530,6 +533,13 @@ impl CheckView {
         self.lit.iter().find(|l| l.id == id).copied()
     }
 
+    /// Circuit result `c`'s current against the last check's. A current is known
+    /// when the circuit was measured: "no current while on" is 0 A, a circuit that
+    /// faulted or did not switch has none.
+    pub fn trend(&self, c: &CircuitResult) -> super::trend::Trend {
+        super::trend::trend(self.last_check.as_ref(), c.pin, &c.name, c.tenths())
+    }
+
     /// The currents step 3 measured, for the load analysis: device id and amperes.
     /// Only a real reading counts: "no current while on" is a fault to fix, not the
     /// circuit's load, and a faulted circuit gave none.
@@ -637,6 +647,19 @@ impl SwitchResult {
 impl CircuitResult {
     pub fn mark(&self) -> Mark {
         self.outcome.mark_with(CircuitFinding::mark)
+    }
+
+    /// The current measured, in the unit's tenths: 0 for "no current while on";
+    /// `None` when the circuit gave no reading.
+    pub fn tenths(&self) -> Option<u16> {
+        match &self.outcome {
+            Outcome::Found(CircuitFinding::Within { amps, .. })
+            | Outcome::Found(CircuitFinding::NearBreaker { amps, .. }) => {
+                Some(super::trend::tenths(*amps))
+            }
+            Outcome::Found(CircuitFinding::NoCurrent) => Some(0),
+            _ => None,
+        }
     }
 }
 

@@ -11,6 +11,7 @@ use crate::cmd::config::ConfigArgs;
 use crate::cmd::decode::DecodeArgs;
 use crate::cmd::flash::FlashArgs;
 use crate::cmd::gateway::GatewayArgs;
+use crate::cmd::log::LogArgs;
 use crate::cmd::page::PageArgs;
 use crate::cmd::restore::RestoreArgs;
 use crate::cmd::sim::SimArgs;
@@ -68,6 +69,10 @@ pub enum Command {
     /// lines. Exits 1 when a breaker does not protect its wire or a measured drop is
     /// over the limit.
     Wires(WiresArgs),
+    /// The aircraft's logbook: its latest entries, a circuit's current at every check
+    /// (--circuit), a printable page of its records (--export), the audit log's JSON
+    /// lines (--jsonl).
+    Log(LogArgs),
     /// Write the guide's reference pages (docs/src/reference) from the code that
     /// defines them; hidden, for developers (`cargo run -- reference`).
     #[command(hide = true)]

@@ -33,6 +33,7 @@ pub fn main() -> ExitCode {
             Some(Command::Man) => crate::cmd::completions::man(Cli::command()),
             Some(Command::Check(a)) => crate::cmd::check::run(a),
             Some(Command::Wires(a)) => crate::cmd::wires::run(a),
+            Some(Command::Log(a)) => crate::cmd::log::run(a),
             Some(Command::Reference { dir }) => crate::cli::reference::run(&dir),
         });
     match result {

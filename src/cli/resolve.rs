@@ -269,6 +269,7 @@ fn resolve_with(
                 | Command::Flash(_)
                 | Command::Gateway(_)
                 | Command::Config(_)
+                | Command::Log(_)
         )
     );
     if !uses_settings {

@@ -9,6 +9,7 @@ pub mod config;
 pub mod decode;
 pub mod flash;
 pub mod gateway;
+pub mod log;
 pub mod page;
 pub mod ports;
 pub mod restore;

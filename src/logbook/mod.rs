@@ -14,6 +14,7 @@
 //! for ([`BUSY_TIMEOUT`]) and then said to be locked.
 
 pub mod jsonl;
+pub mod query;
 pub mod record;
 pub mod schema;
 pub mod writer;

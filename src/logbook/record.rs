@@ -95,7 +95,7 @@ pub struct CheckCircuit {
     pub switch: Option<String>,
     /// Measured; `None`: none.
     pub amps: Option<f64>,
-    /// `passed`, `warning`, `failed`, `skipped`, `not run`.
+    /// `PASS`, `WARN`, `FAIL`, `SKIPPED`, `NOT RUN`, as the report prints them.
     pub verdict: String,
     pub finding: String,
 }

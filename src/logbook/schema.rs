@@ -37,8 +37,8 @@
 //!   alternator and battery on `checks`) and the load file's text as it was. "A
 //!   circuit's current at every check" is `check_circuits_name`: by name, since
 //!   that is what the person asks for and what survives a circuit moving pins.
-//! - **Verdicts** are the check's marks in words: `passed`, `warning`, `failed`,
-//!   `skipped`, `not run` ([`crate::check::Mark::word`]).
+//! - **Verdicts** are the check's marks as its report prints them: `PASS`, `WARN`,
+//!   `FAIL`, `SKIPPED`, `NOT RUN` (`check::state::Mark::word`).
 //! - **A setup write and a restore** are both changes of settings: a setup write is
 //!   one entry with one `setting_changes` row, a restore one entry with a row per
 //!   setting it changed; `confirmed` is whether the unit's read-back matched.
@@ -145,7 +145,7 @@ CREATE TABLE check_circuits (
     breaker    INTEGER,            -- amperes
     switch     TEXT,               -- 'switch 3', 'dimmer', NULL: none
     amps       REAL,               -- measured; NULL: none
-    verdict    TEXT NOT NULL,      -- passed, warning, failed, skipped, not run
+    verdict    TEXT NOT NULL,      -- PASS, WARN, FAIL, SKIPPED, NOT RUN
     finding    TEXT NOT NULL,      -- in words
     PRIMARY KEY (entry, device)
 );

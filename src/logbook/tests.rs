@@ -505,3 +505,29 @@ fn a_full_disk_is_said_and_loses_nothing_written_before() {
         .unwrap();
     assert_eq!(n, 1, "the record before the disk filled is there");
 }
+
+/// Registrations as painted are taken (upper case); anything else is refused with
+/// the reason and an example.
+#[test]
+fn a_registration_is_checked_in_words() {
+    for (typed, want) in [
+        ("n123ab", "N123AB"),
+        (" G-ABCD ", "G-ABCD"),
+        ("VH-XYZ", "VH-XYZ"),
+        ("JA123A", "JA123A"),
+    ] {
+        assert_eq!(registration(typed).as_deref(), Ok(want), "{typed:?}");
+    }
+    for (typed, why) in [
+        ("", "an empty registration"),
+        ("N 123", "' ' is not a letter, digit or hyphen"),
+        ("N123ABCDEFGH", "12 characters"),
+        ("-ABC", "a hyphen goes only between"),
+        ("G--ABC", "a hyphen goes only between"),
+        ("12345", "it has no letter"),
+    ] {
+        let e = registration(typed).unwrap_err();
+        assert!(e.contains(why), "{typed:?}: {e}");
+        assert!(e.contains("N123AB"), "{typed:?}: no example in {e}");
+    }
+}

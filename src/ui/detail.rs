@@ -8,6 +8,7 @@ use ratatui::text::{Line, Span};
 
 use super::panel::Panel;
 use super::{theme, values};
+use crate::check::trend::{self, LastCheck};
 use crate::loads::wire;
 use crate::loads::wiring::{self, Row, Verdict};
 use crate::model::{Circuit, CircuitKind, CircuitState, Model, TrimKind};
@@ -226,12 +227,28 @@ fn wire_line(r: &Row) -> Line<'static> {
     Line::from(spans)
 }
 
+/// The selected circuit at the aircraft's last check (`check::trend`): "last check
+/// 6.1 A, 2026-11-03 18:30 UTC", or why there is no figure. `None` without a last
+/// check.
+pub fn last_check_line(last: &LastCheck, c: &Circuit) -> Option<Line<'static>> {
+    let words = trend::trend(Some(last), c.pin, &c.name, None).words()?;
+    let when = last.when.map_or_else(String::new, |w| {
+        let t = crate::utc::utc_text(w);
+        format!(", {} {} UTC", &t[..10], &t[11..16])
+    });
+    Some(Line::from(vec![
+        Span::styled("history ", theme::label()),
+        Span::raw(format!("{words}{when}")),
+    ]))
+}
+
 pub fn render(
     frame: &mut Frame,
     area: Rect,
     model: &Model,
     selected: Option<&Circuit>,
     wire: Option<&Row>,
+    last: Option<&LastCheck>,
 ) {
     let panel = |frame: &mut Frame, title: Line| {
         Panel {
@@ -277,6 +294,7 @@ pub fn render(
             },
         ),
     ])];
+    lines.extend(last.and_then(|l| last_check_line(l, c)));
     // Most important first: a short panel cuts the bottom lines off.
     let fault = match c.state {
         CircuitState::Fault(code) => Some(code),

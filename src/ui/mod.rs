@@ -1,8 +1,10 @@
 //! ratatui widgets that render the model and nothing else: no I/O, no clocks. The
 //! caller passes `now`, so the same model renders the same frame every time.
 
+pub mod aircraft_page;
 pub mod chart;
 pub mod check;
+pub mod circuit_history;
 pub mod comm_banner;
 pub mod detail;
 pub mod device_list;
@@ -154,7 +156,14 @@ pub fn render(
         let system = crate::loads::wiring::model_system(model, now);
         crate::loads::wiring::circuit_row(&view.wires, c, system.as_ref())
     });
-    detail::render(frame, detail_area, model, selected, wire.as_ref());
+    detail::render(
+        frame,
+        detail_area,
+        model,
+        selected,
+        wire.as_ref(),
+        view.last_check.as_ref(),
+    );
     if !link_panel {
         link_health::render_line(frame, link_line, model, now);
     }

@@ -79,6 +79,9 @@ pub struct ViewState {
     /// The load file's circuits, for their wires: the device list marks a breaker
     /// over its wire, the detail pane gives the wire's verdict.
     pub wires: Vec<crate::loads::LoadCircuit>,
+    /// The aircraft's last check, from the logbook: the detail pane gives the
+    /// selected circuit's current then.
+    pub last_check: Option<crate::check::trend::LastCheck>,
 }
 
 impl ViewState {

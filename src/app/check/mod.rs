@@ -63,6 +63,10 @@ impl App {
         // 21:40:12 UTC"); the flow itself reads no clock.
         let wall = std::time::SystemTime::now();
         options.clock = Some(wall);
+        // The trend: this aircraft's last check, from the logbook, unless given.
+        if options.last_check.is_none() {
+            options.last_check = self.reload_last_check();
+        }
         self.check.flow = Some(CheckFlow::new(options, &mut self.check.view, &model, now));
         drop(model);
         lock(&shared).log(

@@ -12,7 +12,7 @@ use ratatui::text::{Line, Span};
 
 use super::list::{self, Row};
 use super::{fit, progress_span, progress_words, section, words_style};
-use crate::check::state::{BreakerLoad, CheckView, CircuitResult};
+use crate::check::state::{BreakerLoad, CheckView, CircuitResult, Mark, Outcome};
 use crate::check::words;
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::Tenths;
@@ -47,7 +47,13 @@ pub fn load_bar(current: Tenths, breaker: u8, width: usize) -> Vec<Span<'static>
     ]
 }
 
-fn under_test(r: &CircuitResult, model: &Model, now: Instant, width: u16) -> Vec<Line<'static>> {
+fn under_test(
+    r: &CircuitResult,
+    last: Option<&crate::check::trend::LastCheck>,
+    model: &Model,
+    now: Instant,
+    width: u16,
+) -> Vec<Line<'static>> {
     let live = model.circuits(now).into_iter().find(|c| c.id == r.id);
     let state = live.as_ref().map_or(CircuitState::Unknown, |c| c.state);
     let amps = live.as_ref().and_then(|c| c.amps);
@@ -68,6 +74,10 @@ fn under_test(r: &CircuitResult, model: &Model, now: Instant, width: u16) -> Vec
             format!("   {}", words::switch_id(s)),
             theme::label(),
         ));
+    }
+    // What it drew at the last check, before this one is measured.
+    if let Some(w) = crate::check::trend::trend(last, r.pin, &r.name, None).words() {
+        first.push(Span::styled(format!("   {w}"), theme::label()));
     }
     let mut second = vec![
         Span::styled("Now ", theme::label()),
@@ -127,6 +137,18 @@ pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
         .enumerate()
         .map(|(i, r)| {
             let mark = r.mark();
+            // The last check's current and the change after the finding; a change the
+            // rule marks is in words and, on a pass, drawn as a caution too.
+            let trend = view.trend(r);
+            let mut what = words::circuit(r);
+            if let (Some(t), Outcome::Found(_)) = (trend.words(), &r.outcome) {
+                what = format!("{what}; {t}");
+            }
+            let style = if trend.changed() && mark == Mark::Pass {
+                theme::caution()
+            } else {
+                words_style(mark)
+            };
             Row {
                 head: vec![
                     progress_span(mark, i, current),
@@ -135,8 +157,8 @@ pub fn rows(view: &CheckView, current: Option<usize>) -> Vec<Row> {
                     Span::styled(fit(r.pin, pin_w), theme::label()),
                     Span::raw(" "),
                 ],
-                words: progress_words(mark, i, current, words::circuit(r)),
-                words_style: words_style(mark),
+                words: progress_words(mark, i, current, what),
+                words_style: style,
                 current: current == Some(i),
             }
         })
@@ -152,7 +174,7 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, no
     .areas(area);
     let inner = section(frame, test_area, "Under test");
     let mut lines = match view.current.and_then(|i| view.circuits.get(i)) {
-        Some(r) => under_test(r, model, now, inner.width),
+        Some(r) => under_test(r, view.last_check.as_ref(), model, now, inner.width),
         None => vec![Line::styled("No circuit under test.", theme::label())],
     };
     lines.extend(held);
