@@ -332,7 +332,10 @@ impl CheckView {
                 "Load analysis: fill in the load file {} and run the check again",
                 path.display()
             )),
-            Some(LoadsView::Refused(why)) => out.push(format!("Load analysis: {why}")),
+            // One item a problem of the file, each with its path, line and field.
+            Some(LoadsView::Refused(why)) => {
+                out.extend(why.lines().map(|p| format!("Load analysis: {p}")));
+            }
             None => {}
         }
         for r in self.wires.iter().flat_map(|w| &w.rows) {
