@@ -5,6 +5,7 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Wrap};
 
 use super::panel::Panel;
 use super::{theme, values};
@@ -329,5 +330,5 @@ pub fn render(
     lines.push(spec_line(model, c));
     lines.extend(wire_after);
     let inner = panel(frame, title);
-    super::fast::wrapped(frame.buffer_mut(), inner, &lines);
+    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), inner);
 }

@@ -1,7 +1,6 @@
 //! ratatui widgets that render the model and nothing else: no I/O, no clocks. The
 //! caller passes `now`, so the same model renders the same frame every time.
 
-pub mod chart;
 pub mod check;
 pub mod comm_banner;
 pub mod detail;
@@ -26,6 +25,7 @@ pub mod title_bar;
 pub mod too_small;
 pub mod traffic;
 pub mod values;
+pub mod wrap;
 
 use std::time::Instant;
 

@@ -8,6 +8,7 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Wrap};
 
 use super::panel;
 use super::state::{ControlState, ReleaseMode, RepeatTiming};
@@ -245,7 +246,8 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, control: &ControlSta
     .areas(inner);
     super::fast::lines(frame.buffer_mut(), gauges, &lines);
     if !flag_spans.is_empty() {
-        super::fast::wrapped(frame.buffer_mut(), flags_area, &[Line::from(flag_spans)]);
+        let flags = Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true });
+        frame.render_widget(flags, flags_area);
     }
     super::fast::lines(frame.buffer_mut(), mode_area, &[Line::from(last)]);
 }

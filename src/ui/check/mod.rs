@@ -27,7 +27,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders};
 
 use super::state::{MotorRun, ViewState};
-use super::{MIN_HEIGHT, MIN_WIDTH, comm_banner, fast, palette::Palette, theme, title_bar};
+use super::{MIN_HEIGHT, MIN_WIDTH, comm_banner, fast, palette::Palette, theme, title_bar, wrap};
 use crate::check::state::{CheckView, Mark, Prompt, Step};
 use crate::check::words;
 use crate::model::Model;
@@ -189,7 +189,7 @@ fn prompt_lines(p: &Prompt, width: u16) -> Vec<Line<'static>> {
         .map(|t| format!("  {} left", words::duration(t)));
     let time_w = time.as_ref().map_or(0, |t| t.chars().count());
     let lead = DO_NOW.chars().count() + 1;
-    let todo = list::wrap(&p.todo, width.saturating_sub(lead + time_w).max(10));
+    let todo = wrap::text(&p.todo, width.saturating_sub(lead + time_w).max(10));
     let mut out = Vec::new();
     for (i, part) in todo.into_iter().enumerate() {
         let mut spans = if i == 0 {
@@ -214,7 +214,7 @@ fn prompt_lines(p: &Prompt, width: u16) -> Vec<Line<'static>> {
     }
     if !p.watching.is_empty() {
         let lead = WATCHING.chars().count();
-        for (i, part) in list::wrap(&p.watching, width.saturating_sub(lead).max(10))
+        for (i, part) in wrap::text(&p.watching, width.saturating_sub(lead).max(10))
             .into_iter()
             .enumerate()
         {

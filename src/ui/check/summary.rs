@@ -19,7 +19,7 @@ use crate::check::words;
 use crate::model::Model;
 use crate::protocol::message::SwitchId;
 use crate::ui::title_bar::middle_ellipsis;
-use crate::ui::{fast, theme};
+use crate::ui::{fast, theme, wrap};
 
 /// Every result of every step, in step order.
 fn all_rows(view: &CheckView, model: &Model, now: Instant) -> Vec<(Step, Mark, Row)> {
@@ -199,7 +199,7 @@ fn cycle_lines(view: &CheckView, width: u16) -> Vec<Line<'static>> {
                     Span::raw(names),
                 ])]
             } else {
-                list::wrap(&whole, usize::from(width))
+                wrap::text(&whole, usize::from(width))
                     .into_iter()
                     .map(|l| Line::styled(l, theme::caution()))
                     .collect()
@@ -424,7 +424,7 @@ fn left_lines(view: &CheckView, area: Rect) -> Vec<Line<'static>> {
             "Every circuit the check switched is back as it found it, but held there by \
              DEVICE_POWER: flip the switches below."
         };
-        list::wrap(text, usize::from(area.width))
+        wrap::text(text, usize::from(area.width))
             .into_iter()
             .map(|l| Line::styled(l, theme::label()))
             .collect()
@@ -471,7 +471,7 @@ pub fn render_interrupted(
     let marks = item_marks(view);
     let left_lines = left_lines(view, area);
     let (head, left, cycle, results) = interrupted_areas(view, area);
-    let mut head_lines = list::wrap(
+    let mut head_lines = wrap::text(
         &format!("Stopped: {}.", int.cause),
         usize::from(area.width.saturating_sub(8)),
     )
