@@ -246,7 +246,7 @@ pub fn render(
     let Some(c) = selected else {
         let inner = panel(frame, Line::styled(" Detail ", theme::panel_title()));
         let hint = Line::styled("select a device with ↑/↓ or j/k", theme::label());
-        super::fast::lines(frame.buffer_mut(), inner, &[hint]);
+        super::unwrapped::lines(frame.buffer_mut(), inner, &[hint]);
         return;
     };
     let role = match c.kind {

@@ -67,7 +67,7 @@ pub fn render(frame: &mut Frame, area: Rect, view: &ViewState) {
                 height: area.height - above,
                 ..area
             };
-            super::fast::lines(frame.buffer_mut(), row, &[keys]);
+            super::unwrapped::lines(frame.buffer_mut(), row, &[keys]);
         }
         Some(n) => {
             let mut spans = vec![
@@ -75,8 +75,8 @@ pub fn render(frame: &mut Frame, area: Rect, view: &ViewState) {
                 Span::styled("│ ", theme::border()),
             ];
             spans.extend(keys.spans);
-            super::fast::lines(frame.buffer_mut(), area, &[Line::from(spans)]);
+            super::unwrapped::lines(frame.buffer_mut(), area, &[Line::from(spans)]);
         }
-        None => super::fast::lines(frame.buffer_mut(), area, &[keys]),
+        None => super::unwrapped::lines(frame.buffer_mut(), area, &[keys]),
     }
 }

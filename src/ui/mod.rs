@@ -6,7 +6,6 @@ pub mod comm_banner;
 pub mod detail;
 pub mod device_list;
 pub mod events;
-pub mod fast;
 pub mod help;
 pub mod key_bar;
 pub mod link_health;
@@ -24,6 +23,7 @@ pub mod theme;
 pub mod title_bar;
 pub mod too_small;
 pub mod traffic;
+pub mod unwrapped;
 pub mod values;
 pub mod wrap;
 

@@ -244,12 +244,12 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, control: &ControlSta
         Constraint::Length(1),
     ])
     .areas(inner);
-    super::fast::lines(frame.buffer_mut(), gauges, &lines);
+    super::unwrapped::lines(frame.buffer_mut(), gauges, &lines);
     if !flag_spans.is_empty() {
         let flags = Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true });
         frame.render_widget(flags, flags_area);
     }
-    super::fast::lines(frame.buffer_mut(), mode_area, &[Line::from(last)]);
+    super::unwrapped::lines(frame.buffer_mut(), mode_area, &[Line::from(last)]);
 }
 
 /// "660 ms / 40 ms, learned": the first-repeat delay and the repeat interval the page

@@ -134,7 +134,7 @@ fn trace(
             label.push(words);
         }
     }
-    super::fast::lines(frame.buffer_mut(), label_area, &[Line::from(label)]);
+    super::unwrapped::lines(frame.buffer_mut(), label_area, &[Line::from(label)]);
     if !lo.is_finite() || chart_area.height < 2 {
         return;
     }

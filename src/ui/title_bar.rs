@@ -27,7 +27,7 @@ const SHORT_TITLE: &str = " electrical ";
 const MIN_NAME: usize = 12;
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
-    super::fast::lines(frame.buffer_mut(), area, &[line(model, now, area.width)]);
+    super::unwrapped::lines(frame.buffer_mut(), area, &[line(model, now, area.width)]);
 }
 
 /// `s` in at most `max` characters, the middle replaced by "…" if it must be

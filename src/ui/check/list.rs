@@ -9,7 +9,7 @@ use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
-use crate::ui::{fast, theme, wrap};
+use crate::ui::{theme, unwrapped, wrap};
 
 /// One entry: its fixed columns, then its words.
 pub struct Row {
@@ -129,7 +129,7 @@ pub fn render(buf: &mut Buffer, area: Rect, rows: &[Row], focus: Option<usize>) 
         }
         lines.truncate(h);
     }
-    fast::lines(buf, area, &lines);
+    unwrapped::lines(buf, area, &lines);
 }
 
 /// What a scrolled list shows: from line `top`, `body` lines, with a line above
@@ -213,7 +213,7 @@ pub fn render_scrolled(buf: &mut Buffer, area: Rect, rows: &[Row], top: usize) {
             all.len() - s.top - s.body
         )));
     }
-    fast::lines(buf, area, &lines);
+    unwrapped::lines(buf, area, &lines);
 }
 
 fn more(text: String) -> Line<'static> {
