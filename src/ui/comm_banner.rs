@@ -94,7 +94,7 @@ fn why_lines(banner: &Banner, width: u16) -> Vec<String> {
     let why = match banner {
         Banner::Lost { why } | Banner::Waiting { why } => why,
     };
-    super::check::list::wrap(why, usize::from(width.saturating_sub(2)))
+    super::wrap::text(why, usize::from(width.saturating_sub(2)))
 }
 
 /// Letter-spaced, so the words read as a banner even in a small terminal.

@@ -5,6 +5,7 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Wrap};
 
 use super::panel::Panel;
 use super::{theme, values};
@@ -262,7 +263,7 @@ pub fn render(
     let Some(c) = selected else {
         let inner = panel(frame, Line::styled(" Detail ", theme::panel_title()));
         let hint = Line::styled("select a device with ↑/↓ or j/k", theme::label());
-        super::fast::lines(frame.buffer_mut(), inner, &[hint]);
+        super::unwrapped::lines(frame.buffer_mut(), inner, &[hint]);
         return;
     };
     let role = match c.kind {
@@ -347,5 +348,5 @@ pub fn render(
     lines.push(spec_line(model, c));
     lines.extend(wire_after);
     let inner = panel(frame, title);
-    super::fast::wrapped(frame.buffer_mut(), inner, &lines);
+    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), inner);
 }

@@ -137,7 +137,7 @@ fn write_line(buf: &mut Buffer, inner: Rect, y: u16, cells: &[(&str, Style)]) {
         }
         let w = w.min(right.saturating_sub(*x));
         if w > 0 {
-            super::fast::put(buf, *x, y, text, w, *style);
+            super::unwrapped::put(buf, *x, y, text, w, *style);
         }
     }
 }
@@ -151,7 +151,7 @@ fn mark_unprotected(buf: &mut Buffer, inner: Rect, y: u16) {
     let (x, w) = columns(inner)[0];
     let n = UNPROTECTED_MARK.chars().count() as u16;
     if w > n {
-        super::fast::put(buf, x + w - n, y, UNPROTECTED_MARK, n, theme::alert());
+        super::unwrapped::put(buf, x + w - n, y, UNPROTECTED_MARK, n, theme::alert());
     }
 }
 
@@ -242,7 +242,7 @@ pub fn render(frame: &mut Frame, area: Rect, rows: &[Circuit], view: &ViewState,
                 height: 1,
                 ..inner
             };
-            super::fast::put(buf, inner.x, y, HIGHLIGHT, 1, Style::new());
+            super::unwrapped::put(buf, inner.x, y, HIGHLIGHT, 1, Style::new());
             buf.set_style(row, theme::selected_row());
         }
     }

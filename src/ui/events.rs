@@ -74,7 +74,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     if lines.is_empty() {
         lines.push(Line::styled("nothing yet", theme::unknown()));
     }
-    super::fast::lines(frame.buffer_mut(), inner, &lines);
+    super::unwrapped::lines(frame.buffer_mut(), inner, &lines);
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Wrap};
 
 use super::state::{SortOrder, ViewState};
 use super::theme;
@@ -26,20 +27,8 @@ fn notice_rows(view: &ViewState, width: u16) -> u16 {
     if notice + keys(view).width() <= w {
         return 0;
     }
-    // Word-wrapped rows, counted as `fast::wrapped` fills them.
-    let mut rows = 1usize;
-    let mut used = 0usize;
-    for word in n.split(' ') {
-        let len = word.chars().count();
-        let need = if used == 0 { len } else { used + 1 + len };
-        if need <= w {
-            used = need;
-        } else {
-            rows += 1;
-            used = len.min(w);
-        }
-    }
-    (rows as u16).min(NOTICE_ROWS)
+    let rows = super::wrap::lines(&Line::raw(n), width.max(1)).len();
+    u16::try_from(rows).unwrap_or(u16::MAX).min(NOTICE_ROWS)
 }
 
 fn keys(view: &ViewState) -> Line<'static> {
@@ -72,13 +61,13 @@ pub fn render(frame: &mut Frame, area: Rect, view: &ViewState) {
                 ..area
             };
             let line = Line::from(Span::styled(n.clone(), theme::caution()));
-            super::fast::wrapped(frame.buffer_mut(), notice, &[line]);
+            frame.render_widget(Paragraph::new(line).wrap(Wrap { trim: true }), notice);
             let row = Rect {
                 y: area.y + above,
                 height: area.height - above,
                 ..area
             };
-            super::fast::lines(frame.buffer_mut(), row, &[keys]);
+            super::unwrapped::lines(frame.buffer_mut(), row, &[keys]);
         }
         Some(n) => {
             let mut spans = vec![
@@ -86,8 +75,8 @@ pub fn render(frame: &mut Frame, area: Rect, view: &ViewState) {
                 Span::styled("│ ", theme::border()),
             ];
             spans.extend(keys.spans);
-            super::fast::lines(frame.buffer_mut(), area, &[Line::from(spans)]);
+            super::unwrapped::lines(frame.buffer_mut(), area, &[Line::from(spans)]);
         }
-        None => super::fast::lines(frame.buffer_mut(), area, &[keys]),
+        None => super::unwrapped::lines(frame.buffer_mut(), area, &[keys]),
     }
 }

@@ -224,9 +224,9 @@ pub fn render_line(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     };
     let lines = flowed(model, now, inner.width);
     let buf = frame.buffer_mut();
-    super::fast::lines(buf, inner, &lines);
+    super::unwrapped::lines(buf, inner, &lines);
     for y in area.top()..area.bottom() {
-        super::fast::put(
+        super::unwrapped::put(
             buf,
             area.right() - 1,
             y,
@@ -248,5 +248,5 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
         joined(count_items(model, area.width >= 72), theme::label()),
     ];
     let inner = panel::titled(frame.buffer_mut(), area, " Link ");
-    super::fast::lines(frame.buffer_mut(), inner, &lines);
+    super::unwrapped::lines(frame.buffer_mut(), inner, &lines);
 }

@@ -1,15 +1,17 @@
 //! ratatui widgets that render the model and nothing else: no I/O, no clocks. The
 //! caller passes `now`, so the same model renders the same frame every time.
 
+<<<<<<< HEAD
 pub mod aircraft_page;
 pub mod chart;
+=======
+>>>>>>> widgets
 pub mod check;
 pub mod circuit_history;
 pub mod comm_banner;
 pub mod detail;
 pub mod device_list;
 pub mod events;
-pub mod fast;
 pub mod help;
 pub mod key_bar;
 pub mod link_health;
@@ -27,7 +29,9 @@ pub mod theme;
 pub mod title_bar;
 pub mod too_small;
 pub mod traffic;
+pub mod unwrapped;
 pub mod values;
+pub mod wrap;
 
 use std::time::Instant;
 

@@ -8,6 +8,7 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Wrap};
 
 use super::panel;
 use super::state::{ControlState, ReleaseMode, RepeatTiming};
@@ -229,11 +230,12 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, control: &ControlSta
         Constraint::Length(1),
     ])
     .areas(inner);
-    super::fast::lines(frame.buffer_mut(), gauges, &lines);
+    super::unwrapped::lines(frame.buffer_mut(), gauges, &lines);
     if !flag_spans.is_empty() {
-        super::fast::wrapped(frame.buffer_mut(), flags_area, &[Line::from(flag_spans)]);
+        let flags = Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true });
+        frame.render_widget(flags, flags_area);
     }
-    super::fast::lines(frame.buffer_mut(), mode_area, &[Line::from(last)]);
+    super::unwrapped::lines(frame.buffer_mut(), mode_area, &[Line::from(last)]);
 }
 
 /// "660 ms / 40 ms, learned": the first-repeat delay and the repeat interval the page

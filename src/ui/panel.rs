@@ -110,7 +110,7 @@ fn put_line(buf: &mut Buffer, at: Rect, title: &Line, alignment: Alignment) {
     if alignment == Alignment::Right && title.width() > usize::from(at.width) {
         return title.clone().alignment(alignment).render(at, buf);
     }
-    super::fast::lines(buf, at, std::slice::from_ref(title));
+    super::unwrapped::lines(buf, at, std::slice::from_ref(title));
 }
 
 #[cfg(test)]

@@ -10,9 +10,10 @@ use std::time::{Duration, Instant};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Style};
+use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
+use ratatui::widgets::{Axis, Chart, Dataset, GraphType};
 
-use super::chart::{Chart, Series};
 use super::panel;
 use super::theme;
 use crate::model::{BusSample, Model};
@@ -133,33 +134,13 @@ fn trace(
             label.push(words);
         }
     }
-    super::fast::lines(frame.buffer_mut(), label_area, &[Line::from(label)]);
+    super::unwrapped::lines(frame.buffer_mut(), label_area, &[Line::from(label)]);
     if !lo.is_finite() || chart_area.height < 2 {
         return;
     }
     let y = bounds(lo, hi, t.min_span, t.limit);
     let x = [-WINDOW.as_secs_f64(), 0.0];
     let runs = runs(&b);
-    let limit_line = t.limit.map(|l| [(x[0], l), (x[1], l)]);
-    let mut series: Vec<Series> = Vec::with_capacity(runs.len() + 1);
-    if let Some(line) = &limit_line {
-        series.push(Series {
-            points: line,
-            colour: theme::FAULT,
-            joined: true,
-            dashed: true,
-        });
-    }
-    let colour = t.colour.fg.unwrap_or(Color::Reset);
-    for run in &runs {
-        // A lone bucket between gaps is still a point on the chart.
-        series.push(Series {
-            points: run,
-            colour,
-            joined: run.len() > 1,
-            dashed: false,
-        });
-    }
     let minutes = WINDOW.as_secs() / 60;
     // The time labels take two rows (axis and labels): only where the chart keeps at
     // least two rows of plot.
@@ -184,14 +165,74 @@ fn trace(
         };
         Span::styled(text, theme::label())
     });
-    let chart = Chart {
-        x_bounds: x,
-        y_bounds: y,
-        x_labels: &time_labels,
-        y_labels: &value_labels,
-        axis_style: theme::border(),
-    };
-    chart.render(chart_area, frame.buffer_mut(), &series);
+    let dashes = t.limit.map(|l| {
+        let columns = graph_width(chart_area.width, &time_labels, &value_labels);
+        dashed(l, x, columns)
+    });
+    let mut datasets = Vec::with_capacity(runs.len() + 1);
+    if let Some(dashes) = &dashes {
+        datasets.push(dataset(dashes, theme::FAULT, GraphType::Scatter));
+    }
+    let colour = t.colour.fg.unwrap_or(Color::Reset);
+    for run in &runs {
+        // A lone bucket between gaps is still a point on the chart.
+        let kind = if run.len() > 1 {
+            GraphType::Line
+        } else {
+            GraphType::Scatter
+        };
+        datasets.push(dataset(run, colour, kind));
+    }
+    let chart = Chart::new(datasets)
+        .x_axis(axis(x, time_labels))
+        .y_axis(axis(y, value_labels.to_vec()))
+        .legend_position(None);
+    frame.render_widget(chart, chart_area);
+}
+
+fn axis(bounds: [f64; 2], labels: Vec<Span<'static>>) -> Axis<'static> {
+    let axis = Axis::default().bounds(bounds).style(theme::border());
+    if labels.is_empty() {
+        axis
+    } else {
+        axis.labels(labels)
+    }
+}
+
+fn dataset(points: &[(f64, f64)], colour: Color, kind: GraphType) -> Dataset<'_> {
+    Dataset::default()
+        .marker(Marker::Braille)
+        .graph_type(kind)
+        .style(Style::new().fg(colour))
+        .data(points)
+}
+
+/// The columns `Chart` leaves its graph in an area `width` wide: right of the y
+/// labels (widened for the part of the first time label left of the y axis, never
+/// more than a third of the chart) and of the y axis. ratatui's own layout for the
+/// axes drawn here; `a_dashed_line_leaves_every_other_cell_blank` holds it.
+fn graph_width(width: u16, x_labels: &[Span], y_labels: &[Span]) -> u16 {
+    let has_y = !y_labels.is_empty();
+    let mut left = y_labels.iter().map(Span::width).max().unwrap_or(0);
+    if let Some(first) = x_labels.first() {
+        left = left.max(first.width().saturating_sub(usize::from(has_y)));
+    }
+    let left = u16::try_from(left).unwrap_or(u16::MAX).min(width / 3);
+    let axis = u16::from(has_y && left + 1 < width);
+    width - left - axis
+}
+
+/// A level across the chart as dashes, for a graph `columns` cells wide: both dots
+/// of every other cell (braille has two dot columns a cell), so the line is told from
+/// a solid trace without colour.
+fn dashed(level: f64, [left, right]: [f64; 2], columns: u16) -> Vec<(f64, f64)> {
+    let dots = f64::from(columns) * 2.0 - 1.0;
+    (0..columns)
+        .step_by(2)
+        .flat_map(|c| [2 * c, 2 * c + 1])
+        .filter(|&d| d < columns * 2)
+        .map(|d| (left + f64::from(d) * (right - left) / dots.max(1.0), level))
+        .collect()
 }
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
@@ -258,6 +299,40 @@ mod tests {
         assert!((r[0][0].0 - (-WINDOW.as_secs_f64() + per / 2.0)).abs() < 1e-9);
         assert!((r[2][0].0 - (-per / 2.0)).abs() < 1e-9);
         assert!(runs(&[None, None]).is_empty());
+    }
+
+    /// The limit's dashes fill every other cell of the graph from its first column,
+    /// which holds `graph_width` to where `Chart` puts the graph.
+    #[test]
+    fn a_dashed_line_leaves_every_other_cell_blank() {
+        use ratatui::buffer::Buffer;
+        use ratatui::widgets::Widget;
+        for (width, time_axis, y_text) in [(40u16, true, "16.0"), (13, false, "16"), (9, true, "1")]
+        {
+            let area = Rect::new(0, 0, width, 6);
+            let time: Vec<Span<'static>> = if time_axis {
+                vec![Span::raw("-5 min"), Span::raw("now")]
+            } else {
+                Vec::new()
+            };
+            let values = vec![Span::raw(y_text), Span::raw(y_text)];
+            let columns = graph_width(width, &time, &values);
+            let dashes = dashed(16.0, [-300.0, 0.0], columns);
+            let mut buf = Buffer::empty(area);
+            Chart::new(vec![dataset(&dashes, Color::Red, GraphType::Scatter)])
+                .x_axis(axis([-300.0, 0.0], time))
+                .y_axis(axis([12.0, 16.0], values))
+                .legend_position(None)
+                .render(area, &mut buf);
+            let top: String = (width - columns..width)
+                .map(|x| buf[(x, 0)].symbol().to_string())
+                .collect();
+            let want: String = (0..columns)
+                .map(|c| if c % 2 == 0 { "⠉" } else { " " })
+                .collect();
+            assert_eq!(top, want, "{width} wide");
+            assert_eq!(buf[(width - columns - 1, 0)].symbol(), "│");
+        }
     }
 
     #[test]

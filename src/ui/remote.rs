@@ -106,24 +106,6 @@ pub fn render_title(frame: &mut Frame, area: Rect, note: &str) {
     );
 }
 
-/// `text` cut into lines of at most `width` characters at spaces (a word longer
-/// than the width gets a line of its own, cut by the frame).
-fn wrap(text: &str, width: usize) -> Vec<String> {
-    let mut lines = Vec::new();
-    let mut line = String::new();
-    for word in text.split(' ') {
-        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
-            lines.push(std::mem::take(&mut line));
-        }
-        if !line.is_empty() {
-            line.push(' ');
-        }
-        line.push_str(word);
-    }
-    lines.push(line);
-    lines
-}
-
 /// The overlay's words beside or under the code, each cut to `width`.
 fn words_column(remote: &RemoteView, width: usize) -> Vec<Line<'static>> {
     let mut items: Vec<(String, Style)> = vec![
@@ -148,7 +130,7 @@ fn words_column(remote: &RemoteView, width: usize) -> Vec<Line<'static>> {
     let mut lines: Vec<Line> = items
         .into_iter()
         .flat_map(|(text, style)| {
-            wrap(&text, width)
+            super::wrap::text(&text, width)
                 .into_iter()
                 .map(move |l| Line::styled(l, style))
         })

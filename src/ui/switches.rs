@@ -66,5 +66,5 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     }
     let inner = panel::titled(frame.buffer_mut(), area, " Switch inputs ");
     // Lines are laid out above for the width; no wrapping needed.
-    super::fast::lines(frame.buffer_mut(), inner, &lines);
+    super::unwrapped::lines(frame.buffer_mut(), inner, &lines);
 }

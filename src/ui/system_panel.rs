@@ -7,6 +7,7 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Wrap};
 
 use super::panel;
 use super::{theme, values};
@@ -145,6 +146,7 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     let [drawing, flags_area] =
         Layout::vertical([Constraint::Length(lines.len() as u16), Constraint::Fill(1)])
             .areas(inner);
-    super::fast::lines(frame.buffer_mut(), drawing, &lines);
-    super::fast::wrapped(frame.buffer_mut(), flags_area, &[Line::from(flag_spans)]);
+    super::unwrapped::lines(frame.buffer_mut(), drawing, &lines);
+    let flags = Paragraph::new(Line::from(flag_spans)).wrap(Wrap { trim: true });
+    frame.render_widget(flags, flags_area);
 }

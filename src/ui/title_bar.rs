@@ -28,7 +28,7 @@ const MIN_NAME: usize = 12;
 
 pub fn render(frame: &mut Frame, area: Rect, model: &Model, now: Instant) {
     let l = with_aircraft(line(model, now, area.width), model, area.width as usize);
-    super::fast::lines(frame.buffer_mut(), area, &[l]);
+    super::unwrapped::lines(frame.buffer_mut(), area, &[l]);
 }
 
 /// `s` in at most `max` characters, the middle replaced by "…" if it must be

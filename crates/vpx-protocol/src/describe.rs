@@ -1,9 +1,14 @@
 //! Every message in words and as JSON, for `vpx-efis decode` and the traffic view.
 //!
-//! Field names follow the ICD tables (lower-cased); values carry their real units
-//! ("main bus 13.8 V"), devices are shown by id and Table 40 name. Pure: no I/O.
+//! One table gives both: [`fields`] lists each message's fields, named as in its ICD
+//! table (lower-cased), with their values. [`describe`] joins them into words, each
+//! value in its real unit ("main bus 13.8 V"); [`to_json`] makes them an object, each
+//! key the field's name in snake case ending in its unit (`"main_bus_v": 13.8`).
+//! Devices are shown by id and Table 40 name. Pure: no I/O.
+//!
 //! Speeds are knots: the ICD leaves their unit to the EFIS (icd-reading R20), and
-//! this one's is knots, as its setup screens and backups say.
+//! this one's is knots, as its setup screens and backups say; so knots are said in
+//! the words but not written into a key.
 //!
 //! JSON numbers in real units are computed from the integer on the wire as `f64`
 //! (`138 / 10.0`), never through `f32`, so `13.8` prints as `13.8`.
@@ -11,10 +16,11 @@
 use alloc::{
     format,
     string::{String, ToString},
+    vec,
     vec::Vec,
 };
 
-use serde_json::{Value, json};
+use serde_json::{Map, Value, json};
 
 use super::device::{SYSTEM_FAULT_ID, SYSTEM_SPEC_ID, WIG_WAG_SPEC_ID, device};
 use super::frame::Node;
@@ -36,21 +42,131 @@ pub fn node_label(n: Node) -> String {
     }
 }
 
-fn tenths(v: u16) -> f64 {
-    v as f64 / 10.0
+/// One message in words: its fields with ICD names and real units.
+pub fn describe(msg: &Message) -> String {
+    let fields = fields(msg);
+    if fields.is_empty() {
+        return "no payload".into();
+    }
+    words(&fields)
 }
 
-fn on_off(b: bool) -> &'static str {
-    if b { "on" } else { "off" }
+/// One message's fields as a JSON object: ICD field names in snake case, real units
+/// named in the key (`_a`, `_v`, `_s`). The caller adds the message name and header.
+pub fn to_json(msg: &Message) -> Value {
+    Value::Object(members(fields(msg)))
 }
 
-fn yes_no(b: bool) -> &'static str {
-    if b { "yes" } else { "no" }
+/// A unit: as said after a value, and as the end of the value's JSON key.
+type Unit = (&'static str, &'static str);
+const NO_UNIT: Unit = ("", "");
+const AMPS: Unit = (" A", "_a");
+const VOLTS: Unit = (" V", "_v");
+const SECONDS: Unit = (" s", "_s");
+const CELSIUS: Unit = (" °C", "_c");
+const FEET: Unit = (" ft", "_ft");
+const PSI: Unit = (" psi", "_psi");
+const PERCENT: Unit = (" %", "_percent");
+const KNOTS: Unit = (" kt", "");
+
+/// One field of a message: its words ("circuit breaker 5 A") and its JSON members
+/// (`"circuit_breaker_a": 5`).
+struct Field {
+    words: String,
+    json: Vec<(String, Value)>,
+    /// Words that list several things ("switches on: switch 1, flap up"): the next
+    /// field is set off by a semicolon rather than a comma.
+    list: bool,
 }
 
-/// Names of the set flags, or `none`.
-fn flags(set: &[(&'static str, bool)]) -> String {
-    let on: Vec<&str> = set.iter().filter(|(_, b)| *b).map(|(n, _)| *n).collect();
+/// A field name as a JSON key: `wig-wag mode` as `wig_wag_mode`.
+fn snake(name: &str) -> String {
+    name.replace([' ', '-'], "_")
+}
+
+/// The field `name`, said as `name words`, in JSON `name: json`.
+fn field(name: &str, words: impl core::fmt::Display, json: impl Into<Value>) -> Field {
+    Field {
+        words: format!("{name} {words}"),
+        json: vec![(snake(name), json.into())],
+        list: false,
+    }
+}
+
+impl Field {
+    /// The JSON key differs from the name (the first member's key).
+    fn key(mut self, key: &str) -> Field {
+        if let Some(first) = self.json.first_mut() {
+            first.0 = key.into();
+        }
+        self
+    }
+
+    /// A JSON member the words say within the field's value.
+    fn also(mut self, key: &str, value: impl Into<Value>) -> Field {
+        self.json.push((key.into(), value.into()));
+        self
+    }
+}
+
+/// A number in `unit`: `speed 40 kt`, `"speed": 40`.
+fn num<T: core::fmt::Display + Into<Value> + Copy>(name: &str, v: T, unit: Unit) -> Field {
+    field(name, format!("{v}{}", unit.0), v).key(&(snake(name) + unit.1))
+}
+
+/// A number sent in tenths of `unit`: `main bus 13.8 V`, `"main_bus_v": 13.8`.
+fn tenths(name: &str, tenths: impl Into<f64>, unit: Unit) -> Field {
+    let v = tenths.into() / 10.0;
+    field(name, format!("{v:.1}{}", unit.0), v).key(&(snake(name) + unit.1))
+}
+
+/// A yes/no field, its two states in words: `power state on`, `"power_state": true`.
+fn flag(name: &str, b: bool, [yes, no]: [&str; 2]) -> Field {
+    field(name, if b { yes } else { no }, b)
+}
+
+/// A yes/no field said by its state alone: `enabled`, `"enabled": true`.
+fn state(name: &str, b: bool, [yes, no]: [&str; 2]) -> Field {
+    Field {
+        words: (if b { yes } else { no }).into(),
+        ..flag(name, b, [yes, no])
+    }
+}
+
+/// A device by id and name: `device 9 5A-6`, `"device": {"id": 9, "name": "5A-6"}`.
+fn device_field(name: &str, id: u8) -> Field {
+    field(name, device_label(id), device_json(id))
+}
+
+/// A device or none (255): `disabled (255)`, JSON `null`.
+fn opt_device(name: &str, id: Option<u8>) -> Field {
+    match id {
+        Some(id) => device_field(name, id),
+        None => field(name, "disabled (255)", Value::Null),
+    }
+}
+
+/// A group of fields under a name: `flap: position 40, up 20`; in JSON an object of
+/// its own (`nested`) or its members beside the others.
+fn group(name: &str, fields: Vec<Field>, nested: bool) -> Field {
+    let words = format!("{name}: {}", words(&fields));
+    let json = if nested {
+        vec![(snake(name), Value::Object(members(fields)))]
+    } else {
+        fields.into_iter().flat_map(|f| f.json).collect()
+    };
+    Field {
+        words,
+        json,
+        list: true,
+    }
+}
+
+/// Flags by their ICD names: in words the set ones (or `none`), in JSON each one.
+type Flags<'a> = [(&'a str, &'a str, bool)];
+
+fn set_flags(set: &Flags) -> String {
+    let on: Vec<&str> = set.iter().filter(|f| f.2).map(|f| f.0).collect();
     if on.is_empty() {
         "none".into()
     } else {
@@ -58,16 +174,352 @@ fn flags(set: &[(&'static str, bool)]) -> String {
     }
 }
 
-fn opt_device(id: Option<u8>) -> String {
-    id.map_or_else(|| "disabled (255)".into(), device_label)
+fn flag_members(set: &Flags) -> Vec<(String, Value)> {
+    set.iter()
+        .map(|&(_, key, b)| (key.into(), b.into()))
+        .collect()
 }
 
-fn opt_device_json(id: Option<u8>) -> Value {
-    id.map_or(Value::Null, device_json)
+/// A list of the flags that are set: `system faults: none`.
+fn flag_list(name: &str, set: &Flags) -> Field {
+    Field {
+        words: format!("{name}: {}", set_flags(set)),
+        json: flag_members(set),
+        list: true,
+    }
+}
+
+/// A position with its motor's flags: `position 40 [enabled, motor running]`.
+fn position(position: u8, set: &Flags) -> Field {
+    let mut f = field(
+        "position",
+        format!("{position} [{}]", set_flags(set)),
+        position,
+    );
+    f.json.extend(flag_members(set));
+    f
+}
+
+/// A value the unit may mark invalid: `ground speed 0 kt (invalid)`, with
+/// `"ground_speed_valid": false` beside it.
+fn reading<T: core::fmt::Display + Into<Value> + Copy>(
+    name: &str,
+    v: T,
+    unit: Unit,
+    valid: bool,
+) -> Field {
+    let mut f = num(name, v, unit).also(&(snake(name) + "_valid"), valid);
+    if !valid {
+        f.words.push_str(" (invalid)");
+    }
+    f
+}
+
+fn words(fields: &[Field]) -> String {
+    let mut s = String::new();
+    let mut after_list = None;
+    for f in fields {
+        match after_list {
+            Some(true) => s.push_str("; "),
+            Some(false) => s.push_str(", "),
+            None => {}
+        }
+        s.push_str(&f.words);
+        after_list = Some(f.list);
+    }
+    s
+}
+
+fn members(fields: Vec<Field>) -> Map<String, Value> {
+    fields.into_iter().flat_map(|f| f.json).collect()
 }
 
 fn device_json(id: u8) -> Value {
     json!({ "id": id, "name": device(id).map(|d| d.system_name) })
+}
+
+const ENABLED: [&str; 2] = ["enabled", "disabled"];
+const ON: [&str; 2] = ["on", "off"];
+const YES: [&str; 2] = ["yes", "no"];
+
+/// Every message's fields, in the order of its ICD table.
+fn fields(msg: &Message) -> Vec<Field> {
+    match msg {
+        Message::Ping(m) => vec![
+            field(
+                "ack flag",
+                format!(
+                    "{} ({})",
+                    u8::from(m.ack),
+                    if m.ack { "response" } else { "request" }
+                ),
+                m.ack,
+            )
+            .key("ack"),
+        ],
+        Message::Version(m) => vec![
+            field(
+                "hardware version",
+                format!(
+                    "{} ({})",
+                    m.hardware_version.to_byte(),
+                    m.hardware_version.name()
+                ),
+                m.hardware_version.to_byte(),
+            )
+            .also("hardware_name", m.hardware_version.name()),
+            field(
+                "software",
+                format!("{}.{}", m.software_major, m.software_minor),
+                m.software_major,
+            )
+            .key("software_major")
+            .also("software_minor", m.software_minor),
+        ],
+        Message::SoftwareUpdate(_) | Message::DeviceStatusQuery(_) => vec![],
+        Message::EepromErase(m) => vec![field(
+            "response code",
+            format!(
+                "{} ({})",
+                m.response_code,
+                if m.response_code == 0 {
+                    "success"
+                } else {
+                    "failure"
+                }
+            ),
+            m.response_code,
+        )],
+        Message::DeviceSpec(m) => vec![
+            device_field("device", m.device_id),
+            num("circuit breaker", m.circuit_breaker, AMPS),
+            field("switch", switch_text(m), switch_label(m))
+                .also("switch_id", m.switch_id.to_byte())
+                .also("switch_raw", m.switch_raw.unwrap_or(m.switch_id.to_byte())),
+            flag("current fault", m.current_fault, ENABLED),
+        ],
+        Message::SystemSpec(m) => vec![
+            field(
+                "overvoltage limit",
+                overvoltage(m.overvoltage_limit),
+                m.overvoltage_limit.to_byte(),
+            )
+            .also(
+                "overvoltage_limit_v",
+                match m.overvoltage_limit {
+                    OvervoltageLimit::V16 => json!(16),
+                    OvervoltageLimit::V32 => json!(32),
+                    OvervoltageLimit::Unknown(_) => Value::Null,
+                },
+            ),
+            opt_device("secondary alternator", m.secondary_alternator),
+        ],
+        Message::TrimSpec(m) => vec![
+            field("trim type", trim_type(m.trim_type), trim_type(m.trim_type)),
+            state("enabled", m.enabled, ENABLED),
+            field("polarity", polarity(m.polarity), polarity(m.polarity)),
+            num("up", m.up, NO_UNIT),
+            num("down", m.down, NO_UNIT),
+            num("neutral", m.neutral, NO_UNIT),
+            num("power", m.power, PERCENT),
+            num("speed", m.speed, KNOTS),
+        ],
+        Message::FlapSpec(m) => {
+            let mode = match m.mode {
+                FlapMode::Momentary => "momentary",
+                FlapMode::PositionBased => "position-based",
+            };
+            vec![
+                field("mode", mode, mode),
+                state("enabled", m.enabled, ENABLED),
+                field("polarity", polarity(m.polarity), polarity(m.polarity)),
+                num("up", m.up, NO_UNIT),
+                num("down", m.down, NO_UNIT),
+                num("midpoint 1", m.midpoint_1, NO_UNIT),
+                num("midpoint 2", m.midpoint_2, NO_UNIT),
+                num("circuit breaker", m.circuit_breaker, AMPS),
+                num("overspeed position", m.overspeed_position, NO_UNIT),
+                num("max speed", m.max_speed, KNOTS),
+                tenths("endpoint duration", m.endpoint_duration.0, SECONDS),
+            ]
+        }
+        Message::WigWagSpec(m) => vec![
+            opt_device("device one", m.device_one),
+            opt_device("device two", m.device_two),
+            num("warm up period", m.warm_up_period, SECONDS),
+            num("speed", m.speed, KNOTS),
+        ],
+        Message::DeviceSpecQuery(m) => {
+            vec![field("device", spec_target(m.device_id), m.device_id).key("device_id")]
+        }
+        Message::SpecAck(m) => vec![
+            field("device", spec_target(m.device_id), m.device_id).key("device_id"),
+            field(
+                "error code",
+                match m.error {
+                    None => "0 (none)".into(),
+                    Some(e) => format!("{:#04x} ({})", e.to_byte(), e.description()),
+                },
+                m.error.map_or(0, SpecAckError::to_byte),
+            )
+            .also("error", m.error.map(SpecAckError::description)),
+        ],
+        Message::DeviceName(m) => vec![
+            device_field("device", m.device_id),
+            field("device name", format!("{:?}", m.text()), m.text()),
+        ],
+        Message::DeviceNameQuery(m) => vec![device_field("device", m.device_id)],
+        Message::DeviceEnable(m) => vec![
+            device_field("device", m.device_id),
+            field("enable flag", enable_flag(m.flag), m.flag.to_byte()),
+        ],
+        Message::SystemStatus(m) => vec![
+            tenths("system current", m.system_current.0, AMPS),
+            tenths("main bus", m.main_bus_volts.0, VOLTS),
+            tenths("aux battery", m.aux_battery_volts.0, VOLTS),
+            num("internal temp", m.internal_temp, CELSIUS),
+            switches_on(&m.switches),
+            group(
+                "misc",
+                vec![
+                    flag("starter annunciator", m.misc.starter_annunciator, YES),
+                    field(
+                        "wig-wag mode",
+                        wig_wag_mode(m.misc.wig_wag_mode),
+                        wig_wag_mode(m.misc.wig_wag_mode),
+                    ),
+                    flag("software update", m.misc.software_update, YES),
+                    flag("wig-wag active", m.misc.wig_wag_active, YES),
+                ],
+                false,
+            ),
+            flag_list(
+                "system faults",
+                &[
+                    (
+                        "current > 48 A",
+                        "current_over_48a",
+                        m.faults.current_over_48a,
+                    ),
+                    (
+                        "current > 60 A",
+                        "current_over_60a",
+                        m.faults.current_over_60a,
+                    ),
+                    ("CU warm reset", "warm_reset", m.faults.warm_reset),
+                    (
+                        "data integrity failure",
+                        "data_integrity_failure",
+                        m.faults.data_integrity_failure,
+                    ),
+                    (
+                        "external data missing",
+                        "external_data_missing",
+                        m.faults.external_data_missing,
+                    ),
+                ],
+            ),
+            field(
+                "data integrity code",
+                match m.data_integrity_code {
+                    None => "0 (none)".into(),
+                    Some(c) => format!("{:#04x} ({})", c.to_byte(), c.description()),
+                },
+                m.data_integrity_code.map_or(0, |c| c.to_byte()),
+            ),
+        ],
+        Message::DeviceStatus(m) => vec![device_status(m)],
+        Message::FlapTrimStatus(m) => vec![
+            group(
+                "flap",
+                vec![
+                    position(
+                        m.flap_position,
+                        &[
+                            ("enabled", "enabled", m.flap.enabled),
+                            ("motor running", "motor_running", m.flap.motor_running),
+                            ("fault", "fault", m.flap.fault),
+                            ("overspeed alarm", "overspeed_alarm", m.flap.overspeed_alarm),
+                            (
+                                "down switch inhibited",
+                                "down_switch_inhibited",
+                                m.flap.down_switch_inhibited,
+                            ),
+                        ],
+                    ),
+                    fault_code(m.flap_fault),
+                    num("up", m.flap_up, NO_UNIT),
+                    num("down", m.flap_down, NO_UNIT),
+                    num("midpoint 1", m.flap_midpoint_1, NO_UNIT),
+                    num("midpoint 2", m.flap_midpoint_2, NO_UNIT),
+                ],
+                true,
+            ),
+            trim_status(
+                "pitch trim",
+                &m.pitch_trim,
+                m.pitch_trim_position,
+                m.pitch_trim_fault,
+                [m.pitch_trim_up, m.pitch_trim_down, m.pitch_trim_neutral],
+            ),
+            trim_status(
+                "roll trim",
+                &m.roll_trim,
+                m.roll_trim_position,
+                m.roll_trim_fault,
+                [m.roll_trim_up, m.roll_trim_down, m.roll_trim_neutral],
+            ),
+        ],
+        Message::FaultStatus(m) => vec![fault_status(m)],
+        Message::DevicePower(m) => vec![
+            device_field("device", m.device_id),
+            flag("power state", m.on, ON),
+        ],
+        Message::TrimMove(m) => {
+            let direction = trim_direction(m.trim_type, m.direction);
+            vec![
+                field("trim type", trim_type(m.trim_type), trim_type(m.trim_type)),
+                flag("power state", m.on, ON),
+                field("direction", &direction, direction.as_str()),
+            ]
+        }
+        Message::FlapMove(m) => {
+            let direction = flap_direction(m.direction);
+            vec![
+                flag("power state", m.on, ON),
+                field("direction", &direction, direction.as_str()),
+            ]
+        }
+        Message::WigWagMode(m) => {
+            let mode = wig_wag_mode(m.mode);
+            vec![field("wig-wag mode", &mode, mode.as_str())]
+        }
+        Message::DeviceClear(m) => {
+            let words = if m.device_id == SYSTEM_FAULT_ID {
+                format!("{} (system fault)", m.device_id)
+            } else {
+                device_label(m.device_id)
+            };
+            vec![field("device", words, m.device_id).key("device_id")]
+        }
+        Message::ExternalData(m) => vec![
+            reading(
+                "indicated airspeed",
+                m.indicated_airspeed,
+                KNOTS,
+                m.valid.indicated_airspeed,
+            ),
+            reading("ground speed", m.ground_speed, KNOTS, m.valid.ground_speed),
+            reading(
+                "baro altitude",
+                m.baro_altitude,
+                FEET,
+                m.valid.baro_altitude,
+            ),
+            reading("fuel pressure", m.fuel_pressure, PSI, m.valid.fuel_pressure),
+            reading("rpm", m.rpm, NO_UNIT, m.valid.rpm),
+        ],
+    }
 }
 
 /// DEVICE_SPEC_QUERY and SPEC_ACK use ids past the table for the other specs (Tables 18, 19).
@@ -141,30 +593,68 @@ fn fault_name(c: super::fault::FaultCode) -> String {
     format!("{:#04x} {}", c.to_byte(), c.name())
 }
 
-fn switches_on(s: &SwitchInputs) -> String {
-    let mut on: Vec<String> = s
-        .switch
-        .iter()
-        .enumerate()
-        .filter(|(_, b)| **b)
-        .map(|(i, _)| format!("switch {}", i + 1))
+fn fault_json(c: super::fault::FaultCode) -> Value {
+    json!({ "code": c.to_byte(), "name": c.name() })
+}
+
+fn fault_code(c: super::fault::FaultCode) -> Field {
+    field("fault code", fault_name(c), fault_json(c))
+}
+
+/// One trim's part of FLAP_TRIM_STATUS: `pitch trim: position 128 [enabled], …`.
+fn trim_status(
+    name: &str,
+    flags: &TrimFlags,
+    at: u8,
+    fault: super::fault::FaultCode,
+    [up, down, neutral]: [u8; 3],
+) -> Field {
+    let set = [
+        ("enabled", "enabled", flags.enabled),
+        ("motor running", "motor_running", flags.motor_running),
+        ("fault", "fault", flags.fault),
+    ];
+    group(
+        name,
+        vec![
+            position(at, &set),
+            fault_code(fault),
+            num("up", up, NO_UNIT),
+            num("down", down, NO_UNIT),
+            num("neutral", neutral, NO_UNIT),
+        ],
+        true,
+    )
+}
+
+/// SYSTEM_STATUS's switch inputs: in words the ones closed (`switch 1, flap up`), in
+/// JSON the numbered switches closed and each named one.
+fn switches_on(s: &SwitchInputs) -> Field {
+    let named = [
+        ("roll trim down", "roll_trim_down", s.roll_trim_down),
+        ("roll trim up", "roll_trim_up", s.roll_trim_up),
+        ("pitch trim down", "pitch_trim_down", s.pitch_trim_down),
+        ("pitch trim up", "pitch_trim_up", s.pitch_trim_up),
+        ("flap down", "flap_down", s.flap_down),
+        ("flap up", "flap_up", s.flap_up),
+    ];
+    let numbered: Vec<u8> = (1..=10u8)
+        .zip(s.switch)
+        .filter_map(|(n, on)| on.then_some(n))
         .collect();
-    for (name, b) in [
-        ("roll trim down", s.roll_trim_down),
-        ("roll trim up", s.roll_trim_up),
-        ("pitch trim down", s.pitch_trim_down),
-        ("pitch trim up", s.pitch_trim_up),
-        ("flap down", s.flap_down),
-        ("flap up", s.flap_up),
-    ] {
-        if b {
-            on.push(name.into());
-        }
-    }
-    if on.is_empty() {
+    let mut on: Vec<String> = numbered.iter().map(|n| format!("switch {n}")).collect();
+    on.extend(named.iter().filter(|f| f.2).map(|f| f.0.to_string()));
+    let words = if on.is_empty() {
         "none".into()
     } else {
         on.join(", ")
+    };
+    let mut json = vec![("switches_on".into(), numbered.into())];
+    json.extend(flag_members(&named));
+    Field {
+        words: format!("switches on: {words}"),
+        json,
+        list: true,
     }
 }
 
@@ -179,9 +669,9 @@ fn switch_label(m: &DeviceSpec) -> String {
 }
 
 /// The switch of a DEVICE_SPEC said once, by the byte that was sent, then what it
-/// means: "switch 3 (input 3)", "switch 11 (always on)". Where icd-reading R10 reads a
-/// byte as another (255 is always on, as 11), the reading says so: "switch 255 (always
-/// on; read as 11)".
+/// means: "3 (input 3)", "11 (always on)". Where icd-reading R10 reads a byte as
+/// another (255 is always on, as 11), the reading says so: "255 (always on; read as
+/// 11)".
 fn switch_text(m: &DeviceSpec) -> String {
     let read = m.switch_id.to_byte();
     let sent = m.switch_raw.unwrap_or(read);
@@ -192,483 +682,106 @@ fn switch_text(m: &DeviceSpec) -> String {
         SwitchId::Unknown(_) => "not a switch id: 0-11".to_string(),
     };
     if sent == read {
-        format!("switch {sent} ({meaning})")
+        format!("{sent} ({meaning})")
     } else {
-        format!("switch {sent} ({meaning}; read as {read})")
+        format!("{sent} ({meaning}; read as {read})")
     }
 }
 
-/// One message in words: its fields with ICD names and real units.
-pub fn describe(msg: &Message) -> String {
-    match msg {
-        Message::Ping(m) => format!(
-            "ack flag {} ({})",
-            m.ack as u8,
-            if m.ack { "response" } else { "request" }
-        ),
-        Message::Version(m) => format!(
-            "hardware version {} ({}), software {}.{}",
-            m.hardware_version.to_byte(),
-            m.hardware_version.name(),
-            m.software_major,
-            m.software_minor
-        ),
-        Message::SoftwareUpdate(_) | Message::DeviceStatusQuery(_) => "no payload".into(),
-        Message::EepromErase(m) => format!(
-            "response code {} ({})",
-            m.response_code,
-            if m.response_code == 0 {
-                "success"
-            } else {
-                "failure"
-            }
-        ),
-        Message::DeviceSpec(m) => format!(
-            "device {}, circuit breaker {} A, {}, current fault {}",
-            device_label(m.device_id),
-            m.circuit_breaker,
-            switch_text(m),
-            if m.current_fault {
-                "enabled"
-            } else {
-                "disabled"
-            }
-        ),
-        Message::SystemSpec(m) => format!(
-            "overvoltage limit {}, secondary alternator {}",
-            overvoltage(m.overvoltage_limit),
-            opt_device(m.secondary_alternator)
-        ),
-        Message::TrimSpec(m) => format!(
-            "trim type {}, {}, polarity {}, up {}, down {}, neutral {}, power {} %, speed {} kt",
-            trim_type(m.trim_type),
-            if m.enabled { "enabled" } else { "disabled" },
-            polarity(m.polarity),
-            m.up,
-            m.down,
-            m.neutral,
-            m.power,
-            m.speed
-        ),
-        Message::FlapSpec(m) => format!(
-            "mode {}, {}, polarity {}, up {}, down {}, midpoint 1 {}, midpoint 2 {}, \
-             circuit breaker {} A, overspeed position {}, max speed {} kt, endpoint duration {:.1} s",
-            match m.mode {
-                FlapMode::Momentary => "momentary",
-                FlapMode::PositionBased => "position-based",
-            },
-            if m.enabled { "enabled" } else { "disabled" },
-            polarity(m.polarity),
-            m.up,
-            m.down,
-            m.midpoint_1,
-            m.midpoint_2,
-            m.circuit_breaker,
-            m.overspeed_position,
-            m.max_speed,
-            tenths(m.endpoint_duration.0)
-        ),
-        Message::WigWagSpec(m) => format!(
-            "device one {}, device two {}, warm up period {} s, speed {} kt",
-            opt_device(m.device_one),
-            opt_device(m.device_two),
-            m.warm_up_period,
-            m.speed
-        ),
-        Message::DeviceSpecQuery(m) => format!("device {}", spec_target(m.device_id)),
-        Message::SpecAck(m) => format!(
-            "device {}, error code {}",
-            spec_target(m.device_id),
-            match m.error {
-                None => "0 (none)".into(),
-                Some(e) => format!("{:#04x} ({})", e.to_byte(), e.description()),
-            }
-        ),
-        Message::DeviceName(m) => format!(
-            "device {}, device name {:?}",
-            device_label(m.device_id),
-            m.text()
-        ),
-        Message::DeviceNameQuery(m) => format!("device {}", device_label(m.device_id)),
-        Message::DeviceEnable(m) => format!(
-            "device {}, enable flag {}",
-            device_label(m.device_id),
-            enable_flag(m.flag)
-        ),
-        Message::SystemStatus(m) => format!(
-            "system current {:.1} A, main bus {:.1} V, aux battery {:.1} V, internal temp {} °C, \
-             switches on: {}; misc: starter annunciator {}, wig-wag mode {}, software update {}, \
-             wig-wag active {}; system faults: {}; data integrity code {}",
-            tenths(m.system_current.0),
-            m.main_bus_volts.0 as f64 / 10.0,
-            tenths(m.aux_battery_volts.0),
-            m.internal_temp,
-            switches_on(&m.switches),
-            yes_no(m.misc.starter_annunciator),
-            wig_wag_mode(m.misc.wig_wag_mode),
-            yes_no(m.misc.software_update),
-            yes_no(m.misc.wig_wag_active),
-            flags(&[
-                ("current > 48 A", m.faults.current_over_48a),
-                ("current > 60 A", m.faults.current_over_60a),
-                ("CU warm reset", m.faults.warm_reset),
-                ("data integrity failure", m.faults.data_integrity_failure),
-                ("external data missing", m.faults.external_data_missing),
-            ]),
-            match m.data_integrity_code {
-                None => "0 (none)".into(),
-                Some(c) => format!("{:#04x} ({})", c.to_byte(), c.description()),
-            }
-        ),
-        Message::DeviceStatus(m) => {
-            let devices = || m.on.iter().zip(&m.current).enumerate();
-            let on: Vec<String> = devices()
-                .filter(|&(_, (&on, _))| on)
-                .map(|(i, (_, c))| format!("{} {:.1} A", device_label(i as u8), tenths(c.0)))
-                .collect();
-            // An off device drawing current is worth seeing; off devices at zero are not.
-            let off: Vec<String> = devices()
-                .filter(|&(_, (&on, c))| !on && c.0 != 0)
-                .map(|(i, (_, c))| format!("{} {:.1} A", device_label(i as u8), tenths(c.0)))
-                .collect();
-            let mut s = format!(
-                "on: {}",
-                if on.is_empty() {
-                    "none".into()
-                } else {
-                    on.join(", ")
-                }
-            );
-            if !off.is_empty() {
-                s.push_str(&format!("; off but drawing: {}", off.join(", ")));
-            }
-            s
+/// DEVICE_STATUS: in words the devices on with their currents, and the off ones
+/// drawing current (worth seeing; off devices at zero are not); in JSON every device.
+fn device_status(m: &DeviceStatus) -> Field {
+    let devices = || m.on.iter().zip(&m.current).enumerate();
+    let drawing = |(i, (_, c)): (usize, (&bool, &Tenths))| {
+        format!("{} {:.1} A", device_label(i as u8), f64::from(c.0) / 10.0)
+    };
+    let on: Vec<String> = devices().filter(|&(_, (&on, _))| on).map(drawing).collect();
+    let off: Vec<String> = devices()
+        .filter(|&(_, (&on, c))| !on && c.0 != 0)
+        .map(drawing)
+        .collect();
+    let mut words = format!(
+        "on: {}",
+        if on.is_empty() {
+            "none".into()
+        } else {
+            on.join(", ")
         }
-        Message::FlapTrimStatus(m) => format!(
-            "flap: position {} [{}], fault code {}, up {}, down {}, midpoint 1 {}, midpoint 2 {}; \
-             pitch trim: position {} [{}], fault code {}, up {}, down {}, neutral {}; \
-             roll trim: position {} [{}], fault code {}, up {}, down {}, neutral {}",
-            m.flap_position,
-            flags(&[
-                ("enabled", m.flap.enabled),
-                ("motor running", m.flap.motor_running),
-                ("fault", m.flap.fault),
-                ("overspeed alarm", m.flap.overspeed_alarm),
-                ("down switch inhibited", m.flap.down_switch_inhibited),
-            ]),
-            fault_name(m.flap_fault),
-            m.flap_up,
-            m.flap_down,
-            m.flap_midpoint_1,
-            m.flap_midpoint_2,
-            m.pitch_trim_position,
-            trim_flags(&m.pitch_trim),
-            fault_name(m.pitch_trim_fault),
-            m.pitch_trim_up,
-            m.pitch_trim_down,
-            m.pitch_trim_neutral,
-            m.roll_trim_position,
-            trim_flags(&m.roll_trim),
-            fault_name(m.roll_trim_fault),
-            m.roll_trim_up,
-            m.roll_trim_down,
-            m.roll_trim_neutral,
-        ),
-        Message::FaultStatus(m) => {
-            let devices = || m.faulted.iter().zip(&m.codes).enumerate();
-            let faulted: Vec<String> = devices()
-                .filter(|&(_, (&faulted, _))| faulted)
-                .map(|(i, (_, code))| match code {
-                    Some(c) => format!("{} {}", device_label(i as u8), fault_name(*c)),
-                    None => format!("{} (no code sent)", device_label(i as u8)),
-                })
-                .collect();
-            // A code without its fault bit is unusual enough to show.
-            let stray: Vec<String> = devices()
-                .filter_map(|(i, (&faulted, code))| match code {
-                    Some(c) if !faulted && c.is_fault() => {
-                        Some(format!("{} {}", device_label(i as u8), fault_name(*c)))
-                    }
-                    _ => None,
-                })
-                .collect();
-            let carried = m.codes.iter().filter(|c| c.is_some()).count();
-            let mut s = format!(
-                "faulted: {}; system fault {}; {} codes carried",
-                if faulted.is_empty() {
-                    "none".into()
-                } else {
-                    faulted.join(", ")
-                },
-                yes_no(m.system_fault),
-                carried
-            );
-            if !stray.is_empty() {
-                s.push_str(&format!("; codes without fault bit: {}", stray.join(", ")));
-            }
-            s
-        }
-        Message::DevicePower(m) => format!(
-            "device {}, power state {}",
-            device_label(m.device_id),
-            on_off(m.on)
-        ),
-        Message::TrimMove(m) => format!(
-            "trim type {}, power state {}, direction {}",
-            trim_type(m.trim_type),
-            on_off(m.on),
-            trim_direction(m.trim_type, m.direction)
-        ),
-        Message::FlapMove(m) => format!(
-            "power state {}, direction {}",
-            on_off(m.on),
-            flap_direction(m.direction)
-        ),
-        Message::WigWagMode(m) => format!("wig-wag mode {}", wig_wag_mode(m.mode)),
-        Message::DeviceClear(m) => {
-            if m.device_id == SYSTEM_FAULT_ID {
-                format!("device {} (system fault)", m.device_id)
-            } else {
-                format!("device {}", device_label(m.device_id))
-            }
-        }
-        Message::ExternalData(m) => {
-            let v = |b: bool| if b { "" } else { " (invalid)" };
-            format!(
-                "indicated airspeed {} kt{}, ground speed {} kt{}, baro altitude {} ft{}, \
-                 fuel pressure {} psi{}, rpm {}{}",
-                m.indicated_airspeed,
-                v(m.valid.indicated_airspeed),
-                m.ground_speed,
-                v(m.valid.ground_speed),
-                m.baro_altitude,
-                v(m.valid.baro_altitude),
-                m.fuel_pressure,
-                v(m.valid.fuel_pressure),
-                m.rpm,
-                v(m.valid.rpm)
-            )
-        }
+    );
+    if !off.is_empty() {
+        words.push_str(&format!("; off but drawing: {}", off.join(", ")));
     }
-}
-
-fn trim_flags(t: &TrimFlags) -> String {
-    flags(&[
-        ("enabled", t.enabled),
-        ("motor running", t.motor_running),
-        ("fault", t.fault),
-    ])
-}
-
-fn trim_flags_json(t: &TrimFlags) -> Value {
-    json!({ "enabled": t.enabled, "motor_running": t.motor_running, "fault": t.fault })
-}
-
-fn fault_json(c: super::fault::FaultCode) -> Value {
-    json!({ "code": c.to_byte(), "name": c.name() })
-}
-
-/// One message's fields as a JSON object: ICD field names in snake case, real units
-/// named in the key (`_a`, `_v`, `_s`). The caller adds the message name and header.
-pub fn to_json(msg: &Message) -> Value {
-    match msg {
-        Message::Ping(m) => json!({ "ack": m.ack }),
-        Message::Version(m) => json!({
-            "hardware_version": m.hardware_version.to_byte(),
-            "hardware_name": m.hardware_version.name(),
-            "software_major": m.software_major,
-            "software_minor": m.software_minor,
-        }),
-        Message::SoftwareUpdate(_) | Message::DeviceStatusQuery(_) => json!({}),
-        Message::EepromErase(m) => json!({ "response_code": m.response_code }),
-        Message::DeviceSpec(m) => json!({
-            "device": device_json(m.device_id),
-            "circuit_breaker_a": m.circuit_breaker,
-            "switch_id": m.switch_id.to_byte(),
-            "switch_raw": m.switch_raw.unwrap_or(m.switch_id.to_byte()),
-            "switch": switch_label(m),
-            "current_fault": m.current_fault,
-        }),
-        Message::SystemSpec(m) => json!({
-            "overvoltage_limit": m.overvoltage_limit.to_byte(),
-            "overvoltage_limit_v": match m.overvoltage_limit {
-                OvervoltageLimit::V16 => json!(16),
-                OvervoltageLimit::V32 => json!(32),
-                OvervoltageLimit::Unknown(_) => Value::Null,
-            },
-            "secondary_alternator": opt_device_json(m.secondary_alternator),
-        }),
-        Message::TrimSpec(m) => json!({
-            "trim_type": trim_type(m.trim_type),
-            "enabled": m.enabled,
-            "polarity": polarity(m.polarity),
-            "up": m.up,
-            "down": m.down,
-            "neutral": m.neutral,
-            "power_percent": m.power,
-            "speed": m.speed,
-        }),
-        Message::FlapSpec(m) => json!({
-            "mode": match m.mode {
-                FlapMode::Momentary => "momentary",
-                FlapMode::PositionBased => "position-based",
-            },
-            "enabled": m.enabled,
-            "polarity": polarity(m.polarity),
-            "up": m.up,
-            "down": m.down,
-            "midpoint_1": m.midpoint_1,
-            "midpoint_2": m.midpoint_2,
-            "circuit_breaker_a": m.circuit_breaker,
-            "overspeed_position": m.overspeed_position,
-            "max_speed": m.max_speed,
-            "endpoint_duration_s": tenths(m.endpoint_duration.0),
-        }),
-        Message::WigWagSpec(m) => json!({
-            "device_one": opt_device_json(m.device_one),
-            "device_two": opt_device_json(m.device_two),
-            "warm_up_period_s": m.warm_up_period,
-            "speed": m.speed,
-        }),
-        Message::DeviceSpecQuery(m) => json!({ "device_id": m.device_id }),
-        Message::SpecAck(m) => json!({
-            "device_id": m.device_id,
-            "error_code": m.error.map_or(0, SpecAckError::to_byte),
-            "error": m.error.map(SpecAckError::description),
-        }),
-        Message::DeviceName(m) => json!({
-            "device": device_json(m.device_id),
-            "device_name": m.text(),
-        }),
-        Message::DeviceNameQuery(m) => json!({ "device": device_json(m.device_id) }),
-        Message::DeviceEnable(m) => json!({
-            "device": device_json(m.device_id),
-            "enable_flag": m.flag.to_byte(),
-        }),
-        Message::SystemStatus(m) => {
-            let s = &m.switches;
-            let switches: Vec<u8> = (1..=10u8)
-                .zip(s.switch)
-                .filter_map(|(n, on)| on.then_some(n))
-                .collect();
+    let all: Vec<Value> = devices()
+        .map(|(i, (on, current))| {
             json!({
-                "system_current_a": tenths(m.system_current.0),
-                "main_bus_v": m.main_bus_volts.0 as f64 / 10.0,
-                "aux_battery_v": tenths(m.aux_battery_volts.0),
-                "internal_temp_c": m.internal_temp,
-                "switches_on": switches,
-                "roll_trim_down": s.roll_trim_down,
-                "roll_trim_up": s.roll_trim_up,
-                "pitch_trim_down": s.pitch_trim_down,
-                "pitch_trim_up": s.pitch_trim_up,
-                "flap_down": s.flap_down,
-                "flap_up": s.flap_up,
-                "starter_annunciator": m.misc.starter_annunciator,
-                "wig_wag_mode": wig_wag_mode(m.misc.wig_wag_mode),
-                "software_update": m.misc.software_update,
-                "wig_wag_active": m.misc.wig_wag_active,
-                "current_over_48a": m.faults.current_over_48a,
-                "current_over_60a": m.faults.current_over_60a,
-                "warm_reset": m.faults.warm_reset,
-                "data_integrity_failure": m.faults.data_integrity_failure,
-                "external_data_missing": m.faults.external_data_missing,
-                "data_integrity_code": m.data_integrity_code.map_or(0, |c| c.to_byte()),
+                "id": i,
+                "name": device(i as u8).map(|d| d.system_name),
+                "on": on,
+                "current_a": f64::from(current.0) / 10.0,
             })
-        }
-        Message::DeviceStatus(m) => {
-            let devices: Vec<Value> = (m.on.iter().zip(&m.current).enumerate())
-                .map(|(i, (on, current))| {
-                    json!({
-                        "id": i,
-                        "name": device(i as u8).map(|d| d.system_name),
-                        "on": on,
-                        "current_a": tenths(current.0),
-                    })
-                })
-                .collect();
-            json!({ "devices": devices })
-        }
-        Message::FlapTrimStatus(m) => json!({
-            "flap": {
-                "enabled": m.flap.enabled,
-                "motor_running": m.flap.motor_running,
-                "fault": m.flap.fault,
-                "overspeed_alarm": m.flap.overspeed_alarm,
-                "down_switch_inhibited": m.flap.down_switch_inhibited,
-                "position": m.flap_position,
-                "fault_code": fault_json(m.flap_fault),
-                "up": m.flap_up,
-                "down": m.flap_down,
-                "midpoint_1": m.flap_midpoint_1,
-                "midpoint_2": m.flap_midpoint_2,
-            },
-            "pitch_trim": merge(trim_flags_json(&m.pitch_trim), json!({
-                "position": m.pitch_trim_position,
-                "fault_code": fault_json(m.pitch_trim_fault),
-                "up": m.pitch_trim_up,
-                "down": m.pitch_trim_down,
-                "neutral": m.pitch_trim_neutral,
-            })),
-            "roll_trim": merge(trim_flags_json(&m.roll_trim), json!({
-                "position": m.roll_trim_position,
-                "fault_code": fault_json(m.roll_trim_fault),
-                "up": m.roll_trim_up,
-                "down": m.roll_trim_down,
-                "neutral": m.roll_trim_neutral,
-            })),
-        }),
-        Message::FaultStatus(m) => {
-            let devices: Vec<Value> = (m.faulted.iter().zip(&m.codes).enumerate())
-                .filter(|&(_, (&faulted, code))| faulted || code.is_some_and(|c| c.is_fault()))
-                .map(|(i, (faulted, code))| {
-                    json!({
-                        "id": i,
-                        "name": device(i as u8).map(|d| d.system_name),
-                        "faulted": faulted,
-                        "fault_code": code.map(fault_json),
-                    })
-                })
-                .collect();
-            json!({
-                "faulted": devices,
-                "system_fault": m.system_fault,
-                "codes_carried": m.codes.iter().filter(|c| c.is_some()).count(),
-            })
-        }
-        Message::DevicePower(m) => {
-            json!({ "device": device_json(m.device_id), "power_state": m.on })
-        }
-        Message::TrimMove(m) => json!({
-            "trim_type": trim_type(m.trim_type),
-            "power_state": m.on,
-            "direction": trim_direction(m.trim_type, m.direction),
-        }),
-        Message::FlapMove(m) => json!({
-            "power_state": m.on,
-            "direction": flap_direction(m.direction),
-        }),
-        Message::WigWagMode(m) => json!({ "wig_wag_mode": wig_wag_mode(m.mode) }),
-        Message::DeviceClear(m) => json!({ "device_id": m.device_id }),
-        Message::ExternalData(m) => json!({
-            "indicated_airspeed": m.indicated_airspeed,
-            "indicated_airspeed_valid": m.valid.indicated_airspeed,
-            "ground_speed": m.ground_speed,
-            "ground_speed_valid": m.valid.ground_speed,
-            "baro_altitude_ft": m.baro_altitude,
-            "baro_altitude_valid": m.valid.baro_altitude,
-            "fuel_pressure_psi": m.fuel_pressure,
-            "fuel_pressure_valid": m.valid.fuel_pressure,
-            "rpm": m.rpm,
-            "rpm_valid": m.valid.rpm,
-        }),
+        })
+        .collect();
+    Field {
+        words,
+        json: vec![("devices".into(), all.into())],
+        list: false,
     }
 }
 
-fn merge(mut a: Value, b: Value) -> Value {
-    if let (Some(a), Value::Object(b)) = (a.as_object_mut(), b) {
-        a.extend(b);
+/// FAULT_STATUS: the faulted devices with their codes, the system fault, how many
+/// codes the message carried, and any code sent without its fault bit (unusual enough
+/// to show).
+fn fault_status(m: &FaultStatus) -> Field {
+    let devices = || m.faulted.iter().zip(&m.codes).enumerate();
+    let faulted: Vec<String> = devices()
+        .filter(|&(_, (&faulted, _))| faulted)
+        .map(|(i, (_, code))| match code {
+            Some(c) => format!("{} {}", device_label(i as u8), fault_name(*c)),
+            None => format!("{} (no code sent)", device_label(i as u8)),
+        })
+        .collect();
+    let stray: Vec<String> = devices()
+        .filter_map(|(i, (&faulted, code))| match code {
+            Some(c) if !faulted && c.is_fault() => {
+                Some(format!("{} {}", device_label(i as u8), fault_name(*c)))
+            }
+            _ => None,
+        })
+        .collect();
+    let carried = m.codes.iter().filter(|c| c.is_some()).count();
+    let mut words = format!(
+        "faulted: {}; system fault {}; {} codes carried",
+        if faulted.is_empty() {
+            "none".into()
+        } else {
+            faulted.join(", ")
+        },
+        if m.system_fault { "yes" } else { "no" },
+        carried
+    );
+    if !stray.is_empty() {
+        words.push_str(&format!("; codes without fault bit: {}", stray.join(", ")));
     }
-    a
+    let listed: Vec<Value> = devices()
+        .filter(|&(_, (&faulted, code))| faulted || code.is_some_and(|c| c.is_fault()))
+        .map(|(i, (faulted, code))| {
+            json!({
+                "id": i,
+                "name": device(i as u8).map(|d| d.system_name),
+                "faulted": faulted,
+                "fault_code": code.map(fault_json),
+            })
+        })
+        .collect();
+    Field {
+        words,
+        json: vec![
+            ("faulted".into(), listed.into()),
+            ("system_fault".into(), m.system_fault.into()),
+            ("codes_carried".into(), carried.into()),
+        ],
+        list: false,
+    }
 }
 
 #[cfg(test)]

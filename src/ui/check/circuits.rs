@@ -16,7 +16,7 @@ use crate::check::state::{BreakerLoad, CheckView, CircuitResult, Mark, Outcome};
 use crate::check::words;
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::Tenths;
-use crate::ui::{fast, theme, values};
+use crate::ui::{theme, unwrapped, values};
 
 /// The current against the breaker: a bar and the share in words, in the colour of
 /// its meaning (within, tight, over), judged as the flow judges it ([`BreakerLoad`]).
@@ -178,11 +178,11 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, no
         None => vec![Line::styled("No circuit under test.", theme::label())],
     };
     lines.extend(held);
-    fast::lines(frame.buffer_mut(), inner, &lines);
+    unwrapped::lines(frame.buffer_mut(), inner, &lines);
     let inner = section(frame, results_area, "Results");
     let rows = rows(view, view.current);
     if rows.is_empty() {
-        fast::lines(
+        unwrapped::lines(
             frame.buffer_mut(),
             inner,
             &[Line::styled("No circuit to test.", theme::label())],

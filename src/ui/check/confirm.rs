@@ -15,7 +15,7 @@ use super::list::{self, Row};
 use super::{fit, section};
 use crate::check::state::{CheckView, Planned};
 use crate::check::words;
-use crate::ui::{fast, theme, values};
+use crate::ui::{theme, unwrapped, values};
 
 const NAME_W: usize = 16;
 const PACKED_NAME_W: usize = 14;
@@ -141,7 +141,7 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView) {
         "Each is put back as it was found.",
         theme::label(),
     ));
-    fast::lines(frame.buffer_mut(), inner, &lines);
+    unwrapped::lines(frame.buffer_mut(), inner, &lines);
 
     let motor_h = if view.planned_motors.is_empty() {
         0
@@ -162,12 +162,12 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView) {
                 Span::styled(format!(" {:>9}", words::duration(*d)), theme::info()),
             ]));
         }
-        fast::lines(frame.buffer_mut(), inner, &m);
+        unwrapped::lines(frame.buffer_mut(), inner, &m);
     }
 
     let inner = section(frame, right, "Left alone");
     if view.excluded.is_empty() {
-        fast::lines(
+        unwrapped::lines(
             frame.buffer_mut(),
             inner,
             &[Line::styled("Nothing is excluded.", theme::label())],

@@ -8,7 +8,7 @@ use ratatui::text::{Line, Span};
 
 use crate::check::state::{CheckView, Step};
 use crate::ui::state::ViewState;
-use crate::ui::{fast, theme};
+use crate::ui::{theme, unwrapped};
 
 /// The keys shown for `view`, with their words.
 pub fn keys(view: &CheckView) -> Vec<(&'static str, &'static str)> {
@@ -61,5 +61,5 @@ pub fn render(buf: &mut Buffer, area: Rect, view: &CheckView, page: &ViewState) 
         spans.push(Span::styled(format!(" {k} "), theme::key()));
         spans.push(Span::raw(format!(" {what}  ")));
     }
-    fast::lines(buf, area, &[Line::from(spans)]);
+    unwrapped::lines(buf, area, &[Line::from(spans)]);
 }

@@ -9,7 +9,7 @@ use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
-use crate::ui::{fast, theme};
+use crate::ui::{theme, unwrapped, wrap};
 
 /// One entry: its fixed columns, then its words.
 pub struct Row {
@@ -24,66 +24,6 @@ pub struct Row {
 const MIN_WORDS: usize = 24;
 /// Where words that go under the head start.
 const UNDER_INDENT: usize = 4;
-
-/// A number keeps its unit on its line ("18 %", "4.2 A", "3 s"): the space between
-/// them becomes a non-breaking one.
-fn glue(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut prev_digit = false;
-    for (i, word) in text.split(' ').enumerate() {
-        let unit = word.trim_end_matches([',', ')', ';', '.', ':']);
-        if i > 0 {
-            let sticks =
-                prev_digit && matches!(unit, "%" | "A" | "V" | "s" | "ms" | "min" | "counts");
-            out.push(if sticks { '\u{a0}' } else { ' ' });
-        }
-        out.push_str(word);
-        prev_digit = word.ends_with(|c: char| c.is_ascii_digit());
-    }
-    out
-}
-
-/// `text` in lines of at most `width` characters, broken at spaces where it can.
-pub fn wrap(text: &str, width: usize) -> Vec<String> {
-    let text = glue(text);
-    let width = width.max(1);
-    let mut out = Vec::new();
-    let mut line = String::new();
-    let mut len = 0;
-    for word in text.split(' ').filter(|w| !w.is_empty()) {
-        let mut word: Vec<char> = word.chars().collect();
-        loop {
-            let need = if len == 0 {
-                word.len()
-            } else {
-                len + 1 + word.len()
-            };
-            if need <= width {
-                if len > 0 {
-                    line.push(' ');
-                }
-                line.extend(word.iter());
-                len = need;
-                break;
-            }
-            if len > 0 {
-                out.push(std::mem::take(&mut line));
-                len = 0;
-                continue;
-            }
-            // A word longer than a whole line: split it.
-            let rest = word.split_off(width);
-            out.push(word.iter().collect());
-            word = rest;
-        }
-    }
-    if len > 0 || out.is_empty() {
-        out.push(line);
-    }
-    // The glue only keeps a number with its unit while breaking lines; the screen
-    // (and a copy from it) gets plain spaces.
-    out.into_iter().map(|l| l.replace('\u{a0}', " ")).collect()
-}
 
 fn head_width(head: &[Span]) -> usize {
     head.iter().map(|s| s.content.chars().count()).sum()
@@ -112,7 +52,7 @@ pub fn lines_of(row: &Row, width: u16) -> Vec<Line<'static>> {
         return out;
     }
     if width >= hw + MIN_WORDS {
-        for (i, part) in wrap(&row.words, width - hw).into_iter().enumerate() {
+        for (i, part) in wrap::text(&row.words, width - hw).into_iter().enumerate() {
             let mut spans = if i == 0 {
                 row.head.clone()
             } else {
@@ -124,7 +64,7 @@ pub fn lines_of(row: &Row, width: u16) -> Vec<Line<'static>> {
     } else {
         out.push(pad(Line::from(row.head.clone()).style(band)));
         let indent = UNDER_INDENT.min(width.saturating_sub(1));
-        for part in wrap(&row.words, width - indent) {
+        for part in wrap::text(&row.words, width - indent) {
             out.push(pad(Line::from(vec![
                 Span::raw(" ".repeat(indent)),
                 Span::styled(part, row.words_style),
@@ -189,7 +129,7 @@ pub fn render(buf: &mut Buffer, area: Rect, rows: &[Row], focus: Option<usize>) 
         }
         lines.truncate(h);
     }
-    fast::lines(buf, area, &lines);
+    unwrapped::lines(buf, area, &lines);
 }
 
 /// What a scrolled list shows: from line `top`, `body` lines, with a line above
@@ -273,7 +213,7 @@ pub fn render_scrolled(buf: &mut Buffer, area: Rect, rows: &[Row], top: usize) {
             all.len() - s.top - s.body
         )));
     }
-    fast::lines(buf, area, &lines);
+    unwrapped::lines(buf, area, &lines);
 }
 
 fn more(text: String) -> Line<'static> {
@@ -283,19 +223,6 @@ fn more(text: String) -> Line<'static> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn wraps_at_spaces_and_splits_only_words_too_long_for_a_line() {
-        assert_eq!(
-            wrap("no current while on: an open circuit", 16),
-            ["no current while", "on: an open", "circuit"]
-        );
-        assert_eq!(wrap("abcdefghij", 4), ["abcd", "efgh", "ij"]);
-        assert_eq!(wrap("", 10), [""]);
-        // A number and its unit stay together, and come out with a plain space.
-        assert_eq!(wrap("moved 0 % → 18 %)", 14), ["moved 0 % →", "18 %)"]);
-        assert_eq!(wrap("at 128 → 159 counts", 14), ["at 128 →", "159 counts"]);
-    }
 
     /// Scrolled to the top, the end, or past it: every line is reachable, the last
     /// one ends at the bottom, and what is hidden is said.

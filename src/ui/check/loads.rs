@@ -9,7 +9,7 @@ use ratatui::style::{Modifier, Style};
 use crate::check::state::{LoadsView, Mark};
 use crate::loads::analysis::{MARGIN_WARNING_PERCENT, amps_text, minutes_text};
 use crate::loads::{Analysis, Figure, Level, Phase};
-use crate::ui::theme;
+use crate::ui::{theme, wrap};
 
 fn mark(level: Level) -> Mark {
     Mark::of(level)
@@ -139,20 +139,11 @@ impl Writer<'_> {
 
     /// `text` wrapped at spaces to the area's width.
     fn wrapped(&mut self, text: &str, style: Style) {
-        let width = self.area.width.max(1) as usize;
-        let mut line = String::new();
-        for word in text.split(' ') {
-            let len = line.chars().count();
-            if len > 0 && len + 1 + word.chars().count() > width {
-                self.line(&[(std::mem::take(&mut line), style)]);
-            }
-            if !line.is_empty() {
-                line.push(' ');
-            }
-            line.push_str(word);
+        if text.is_empty() {
+            return;
         }
-        if !line.is_empty() {
-            self.line(&[(line, style)]);
+        for row in wrap::text(text, usize::from(self.area.width)) {
+            self.line(&[(row, style)]);
         }
     }
 }
@@ -211,7 +202,7 @@ fn phase_table(w: &mut Writer, a: &Analysis) {
 /// below at the same column; moves past its last line.
 fn hanging(w: &mut Writer, x: u16, text: &str, style: Style) {
     let room = usize::from(w.area.width.saturating_sub(x)).max(12);
-    for part in super::list::wrap(text, room) {
+    for part in wrap::text(text, room) {
         w.put(x, &part, style);
         w.y += 1;
     }

@@ -27,7 +27,9 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders};
 
 use super::state::{MotorRun, ViewState};
-use super::{MIN_HEIGHT, MIN_WIDTH, comm_banner, fast, palette::Palette, theme, title_bar};
+use super::{
+    MIN_HEIGHT, MIN_WIDTH, comm_banner, palette::Palette, theme, title_bar, unwrapped, wrap,
+};
 use crate::check::state::{CheckView, Mark, Prompt, Step};
 use crate::check::words;
 use crate::model::Model;
@@ -94,7 +96,7 @@ pub fn render(
         keys_area,
     ] = layout(view, model, area, now);
     title_bar::render(frame, title, model, now);
-    fast::lines(frame.buffer_mut(), steps, &[steps_line(view, steps.width)]);
+    unwrapped::lines(frame.buffer_mut(), steps, &[steps_line(view, steps.width)]);
     if let Some(b) = &banner {
         comm_banner::render(frame, banner_area, b);
     }
@@ -123,7 +125,7 @@ pub fn render(
         }
     }
     if let Some(m) = &view.message {
-        fast::lines(
+        unwrapped::lines(
             frame.buffer_mut(),
             message,
             &[Line::styled(m.clone(), theme::info())],
@@ -189,7 +191,7 @@ fn prompt_lines(p: &Prompt, width: u16) -> Vec<Line<'static>> {
         .map(|t| format!("  {} left", words::duration(t)));
     let time_w = time.as_ref().map_or(0, |t| t.chars().count());
     let lead = DO_NOW.chars().count() + 1;
-    let todo = list::wrap(&p.todo, width.saturating_sub(lead + time_w).max(10));
+    let todo = wrap::text(&p.todo, width.saturating_sub(lead + time_w).max(10));
     let mut out = Vec::new();
     for (i, part) in todo.into_iter().enumerate() {
         let mut spans = if i == 0 {
@@ -214,7 +216,7 @@ fn prompt_lines(p: &Prompt, width: u16) -> Vec<Line<'static>> {
     }
     if !p.watching.is_empty() {
         let lead = WATCHING.chars().count();
-        for (i, part) in list::wrap(&p.watching, width.saturating_sub(lead).max(10))
+        for (i, part) in wrap::text(&p.watching, width.saturating_sub(lead).max(10))
             .into_iter()
             .enumerate()
         {
@@ -237,7 +239,7 @@ fn render_prompt(frame: &mut Frame, area: Rect, p: &Prompt) {
         .border_style(theme::border());
     let inner = block.inner(area);
     frame.render_widget(block, area);
-    fast::lines(frame.buffer_mut(), inner, &prompt_lines(p, area.width));
+    unwrapped::lines(frame.buffer_mut(), inner, &prompt_lines(p, area.width));
 }
 
 /// The steps' short names, for a narrow line.
@@ -470,6 +472,6 @@ fn too_small(buf: &mut Buffer, area: Rect) {
         let w = line.width().min(usize::from(area.width)) as u16;
         let x = area.x + (area.width - w) / 2;
         let row = Rect::new(x, top + i as u16, w, 1).intersection(area);
-        fast::lines(buf, row, std::slice::from_ref(line));
+        unwrapped::lines(buf, row, std::slice::from_ref(line));
     }
 }

@@ -18,7 +18,7 @@ use crate::check::words;
 use crate::model::{Model, Motor, TrimKind};
 use crate::protocol::message::FlapTrimStatus;
 use crate::ui::state::MotorRun;
-use crate::ui::{fast, theme, values};
+use crate::ui::{theme, unwrapped, values};
 
 /// A motor's travel: its ends' words, the sensor at each end, and where it is now.
 fn travel(m: Motor, ft: &FlapTrimStatus) -> (&'static str, &'static str, u8, u8, u8, bool) {
@@ -155,7 +155,7 @@ pub fn render(
     if lines.is_empty() {
         lines.push(Line::styled("No flaps or trim enabled.", theme::label()));
     }
-    fast::lines(frame.buffer_mut(), inner, &lines);
+    unwrapped::lines(frame.buffer_mut(), inner, &lines);
     let inner = section(frame, results_area, "Results");
     list::render(
         frame.buffer_mut(),

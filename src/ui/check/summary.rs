@@ -19,7 +19,7 @@ use crate::check::words;
 use crate::model::Model;
 use crate::protocol::message::SwitchId;
 use crate::ui::title_bar::middle_ellipsis;
-use crate::ui::{fast, theme};
+use crate::ui::{theme, unwrapped, wrap};
 
 /// Every result of every step, in step order.
 fn all_rows(view: &CheckView, model: &Model, now: Instant) -> Vec<(Step, Mark, Row)> {
@@ -199,7 +199,7 @@ fn cycle_lines(view: &CheckView, width: u16) -> Vec<Line<'static>> {
                     Span::raw(names),
                 ])]
             } else {
-                list::wrap(&whole, usize::from(width))
+                wrap::text(&whole, usize::from(width))
                     .into_iter()
                     .map(|l| Line::styled(l, theme::caution()))
                     .collect()
@@ -218,7 +218,7 @@ fn render_cycle(frame: &mut Frame, area: Rect, view: &CheckView) {
             words::HOLD_RULE
         ),
     );
-    fast::lines(frame.buffer_mut(), inner, &cycle_lines(view, inner.width));
+    unwrapped::lines(frame.buffer_mut(), inner, &cycle_lines(view, inner.width));
 }
 
 fn cycle_height(view: &CheckView, width: u16) -> u16 {
@@ -337,7 +337,7 @@ fn render_loads(buf: &mut Buffer, area: Rect, view: &CheckView) {
     let s = list::scrolled(total, usize::from(area.height), view.scroll);
     let mut y = area.y;
     let say = |buf: &mut Buffer, y: u16, text: String| {
-        fast::lines(
+        unwrapped::lines(
             buf,
             Rect::new(area.x, y, area.width, 1),
             &[Line::styled(text, theme::label())],
@@ -370,7 +370,7 @@ pub fn render_done(frame: &mut Frame, area: Rect, view: &CheckView, model: &Mode
     }
     let [head, cycle, results] = done_areas(view, area);
     let inner = section(frame, head, "Check complete");
-    fast::lines(
+    unwrapped::lines(
         frame.buffer_mut(),
         inner,
         &[
@@ -424,7 +424,7 @@ fn left_lines(view: &CheckView, area: Rect) -> Vec<Line<'static>> {
             "Every circuit the check switched is back as it found it, but held there by \
              DEVICE_POWER: flip the switches below."
         };
-        list::wrap(text, usize::from(area.width))
+        wrap::text(text, usize::from(area.width))
             .into_iter()
             .map(|l| Line::styled(l, theme::label()))
             .collect()
@@ -471,7 +471,7 @@ pub fn render_interrupted(
     let marks = item_marks(view);
     let left_lines = left_lines(view, area);
     let (head, left, cycle, results) = interrupted_areas(view, area);
-    let mut head_lines = list::wrap(
+    let mut head_lines = wrap::text(
         &format!("Stopped: {}.", int.cause),
         usize::from(area.width.saturating_sub(8)),
     )
@@ -499,7 +499,7 @@ pub fn render_interrupted(
             theme::label(),
         ),
     });
-    fast::lines(frame.buffer_mut(), head, &head_lines);
+    unwrapped::lines(frame.buffer_mut(), head, &head_lines);
     let inner = section(frame, left, "Left by the check in this state");
     let hidden = left_lines.len().saturating_sub(usize::from(inner.height));
     let mut shown = left_lines;
@@ -510,14 +510,14 @@ pub fn render_interrupted(
             theme::caution(),
         ));
     }
-    fast::lines(frame.buffer_mut(), inner, &shown);
+    unwrapped::lines(frame.buffer_mut(), inner, &shown);
     if !view.to_cycle.is_empty() {
         render_cycle(frame, cycle, view);
     }
     let inner = section(frame, results, "Results so far");
     let [counts, rest] =
         Layout::vertical([Constraint::Length(1), Constraint::Fill(1)]).areas(inner);
-    fast::lines(frame.buffer_mut(), counts, &[count_line(&marks, view)]);
+    unwrapped::lines(frame.buffer_mut(), counts, &[count_line(&marks, view)]);
     list::render_scrolled(
         frame.buffer_mut(),
         rest,

@@ -18,7 +18,7 @@ use crate::check::words;
 use crate::model::{CircuitState, Model};
 use crate::protocol::message::SwitchInputs;
 use crate::ui::switches::{OFF_MARK, ON_MARK};
-use crate::ui::{fast, theme, values};
+use crate::ui::{theme, unwrapped, values};
 
 /// The inputs in the order the strip shows them, with their short labels.
 const FLAP_TRIM: [(Input, &str); 6] = [
@@ -181,7 +181,7 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, no
     .areas(area);
 
     let inner = section(frame, inputs_area, "Switch inputs, live");
-    fast::lines(frame.buffer_mut(), inner, &inputs_lines(live, tested));
+    unwrapped::lines(frame.buffer_mut(), inner, &inputs_lines(live, tested));
 
     let title = match tested {
         Some(i) => format!("Circuits on {}", i.label()),
@@ -189,12 +189,12 @@ pub fn render(frame: &mut Frame, area: Rect, view: &CheckView, model: &Model, no
     };
     let inner = section(frame, circuits_area, &title);
     let lines = circuit_lines(view, model, now, inner.height.into());
-    fast::lines(frame.buffer_mut(), inner, &lines);
+    unwrapped::lines(frame.buffer_mut(), inner, &lines);
 
     let inner = section(frame, results_area, "Results");
     let rows = rows(view, model, view.current);
     if rows.is_empty() {
-        fast::lines(
+        unwrapped::lines(
             frame.buffer_mut(),
             inner,
             &[Line::styled(
