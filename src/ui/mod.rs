@@ -1,11 +1,7 @@
 //! ratatui widgets that render the model and nothing else: no I/O, no clocks. The
 //! caller passes `now`, so the same model renders the same frame every time.
 
-<<<<<<< HEAD
 pub mod aircraft_page;
-pub mod chart;
-=======
->>>>>>> widgets
 pub mod check;
 pub mod circuit_history;
 pub mod comm_banner;
