@@ -944,7 +944,7 @@ fn marks_have_their_colour_and_always_their_word() {
 fn a_current_changed_since_the_last_check_says_so_in_words_and_caution() {
     let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
     let buf = render(&done_trend(), &m, &page(Palette::Terminal), now, 160, 50);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(
         t.contains("last check 5.6 A, +23 %: changed since the last check"),
         "{t}"

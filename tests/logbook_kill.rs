@@ -14,7 +14,7 @@ mod page_rig;
 
 use std::time::{Duration, Instant};
 
-use common::sim_process::{Kill, sim_pty};
+use common::process::{Kill, sim_pty};
 use page_rig::terminal::{Term, find, page};
 use rusqlite::{Connection, OpenFlags};
 

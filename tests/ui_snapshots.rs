@@ -386,7 +386,7 @@ fn the_detail_pane_shows_the_last_check() {
         ..view_selecting(4)
     };
     let buf = draw(&m, &view, now, 160, 50);
-    let t = text(&buf);
+    let t = plain_text(&buf);
     assert!(
         t.contains("history last check 1.1 A, 2026-11-03 18:30 UTC"),
         "{t}"
