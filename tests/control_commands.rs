@@ -105,16 +105,21 @@ fn power_commands_go_out_for_ordinary_devices() {
     );
 }
 
-#[test]
-fn flaps_and_trims_are_not_switched_with_device_power() {
-    let t0 = Instant::now();
-    let mut m = model(t0, &[], false);
-    // FLAP_TRIM_STATUS with every motor enabled puts their rows on the page.
+/// `m` with FLAP_TRIM_STATUS saying every motor is enabled, which puts their rows on
+/// the page.
+fn with_motors(mut m: Model, at: Instant) -> Model {
     let mut payload = [0u8; 18];
     payload[0] = 0x80;
     payload[1] = 0x90;
     let ft = FlapTrimStatus::parse(&payload).unwrap();
-    m.apply_packet(t0, &Packet::from_vpx(0, ft));
+    m.apply_packet(at, &Packet::from_vpx(0, ft));
+    m
+}
+
+#[test]
+fn flaps_and_trims_are_not_switched_with_device_power() {
+    let t0 = Instant::now();
+    let m = with_motors(model(t0, &[], false), t0);
     for id in [FLAPS, TRIM_P, TRIM_R] {
         assert!(
             m.is_shown(id, t0),
@@ -137,14 +142,7 @@ fn the_starter_and_the_motors_are_refused_by_one_rule_with_its_reason() {
     use vpx_efis::control::commands::{Reason, Unswitched};
     use vpx_efis::control::{put_back_off, switchable};
     let t0 = Instant::now();
-    let mut m = model(t0, &[], false);
-    let mut payload = [0u8; 18];
-    payload[0] = 0x80;
-    payload[1] = 0x90;
-    m.apply_packet(
-        t0,
-        &Packet::from_vpx(0, FlapTrimStatus::parse(&payload).unwrap()),
-    );
+    let m = with_motors(model(t0, &[], false), t0);
     for (id, what) in [
         (STARTER, Unswitched::Starter),
         (FLAPS, Unswitched::Motor),
