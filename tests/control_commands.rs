@@ -58,7 +58,7 @@ fn fault_status(faults: &[(u8, FaultCode)], system_fault: bool) -> Packet {
 
 fn refused(action: Action, m: &Model, now: Instant) -> String {
     match command(&action, m, now) {
-        Err(r) => r.0,
+        Err(r) => r.words,
         Ok(msg) => panic!("{action:?} was sent as {msg:?}"),
     }
 }
@@ -97,16 +97,21 @@ fn power_commands_go_out_for_ordinary_devices() {
     );
 }
 
-#[test]
-fn flaps_and_trims_are_not_switched_with_device_power() {
-    let t0 = Instant::now();
-    let mut m = model(t0, &[], false);
-    // FLAP_TRIM_STATUS with every motor enabled puts their rows on the page.
+/// `m` with FLAP_TRIM_STATUS saying every motor is enabled, which puts their rows on
+/// the page.
+fn with_motors(mut m: Model, at: Instant) -> Model {
     let mut payload = [0u8; 18];
     payload[0] = 0x80;
     payload[1] = 0x90;
     let ft = FlapTrimStatus::parse(&payload).unwrap();
-    m.apply_packet(t0, &Packet::from_vpx(0, ft));
+    m.apply_packet(at, &Packet::from_vpx(0, ft));
+    m
+}
+
+#[test]
+fn flaps_and_trims_are_not_switched_with_device_power() {
+    let t0 = Instant::now();
+    let m = with_motors(model(t0, &[], false), t0);
     for id in [FLAPS, TRIM_P, TRIM_R] {
         assert!(
             m.is_shown(id, t0),
@@ -116,6 +121,38 @@ fn flaps_and_trims_are_not_switched_with_device_power() {
             let why = refused(a, &m, t0);
             assert!(why.contains("is a motor: it is run up or down"), "{why}");
             assert!(!why.contains("key"), "it reaches the phone too: {why}");
+        }
+    }
+}
+
+/// What DEVICE_POWER never switches is one rule with one reason: switching it on or
+/// off and the check putting it back are refused alike, in the same words, and the
+/// phone offers no switch for it. A device that is no circuit says so with its own
+/// reason, even while communication is lost (the remote answers it "no device").
+#[test]
+fn the_starter_and_the_motors_are_refused_by_one_rule_with_its_reason() {
+    use vpx_efis::control::commands::{Reason, Unswitched};
+    use vpx_efis::control::{put_back_off, switchable};
+    let t0 = Instant::now();
+    let m = with_motors(model(t0, &[], false), t0);
+    for (id, what) in [
+        (STARTER, Unswitched::Starter),
+        (FLAPS, Unswitched::Motor),
+        (TRIM_P, Unswitched::Motor),
+        (TRIM_R, Unswitched::Motor),
+    ] {
+        let on = command(&Action::PowerOn(id), &m, t0).unwrap_err();
+        assert_eq!(on.reason, Reason::NeverSwitched(what), "{id}: {on}");
+        assert_eq!(command(&Action::PowerOff(id), &m, t0), Err(on.clone()));
+        assert_eq!(put_back_off(&m, id), Err(on), "the check's put-back, {id}");
+        assert!(!switchable(id));
+    }
+    assert!(switchable(EFIS) && switchable(7));
+    let later = t0 + Duration::from_millis(2600);
+    for (id, reason) in [(40, Reason::NoSuchDevice), (7, Reason::CommLost)] {
+        for a in [Action::PowerOn(id), Action::Reset(id)] {
+            let why = command(&a, &m, later).unwrap_err();
+            assert_eq!(why.reason, reason, "{a:?}: {why}");
         }
     }
 }
@@ -363,7 +400,10 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
     assert_eq!(refused(Action::PowerOn(LANDING), &m, t), why);
     assert_eq!(
         vpx_efis::control::device_power(&m, t, LANDING, true),
-        Err(vpx_efis::control::Refusal(why))
+        Err(vpx_efis::control::Refusal {
+            reason: vpx_efis::control::commands::Reason::FaultedAgain,
+            words: why
+        })
     );
 }
 

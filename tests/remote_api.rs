@@ -430,17 +430,21 @@ fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
     let now = Instant::now();
     let starter = vpx_efis::control::device_power(&rig.app.model(), now, 1, true)
         .expect_err("control refuses the starter")
-        .0;
+        .words;
     let a = call(&mut rig, "/api/device/1/power", Some(json!({"on": true})));
     assert_eq!((a.status, a.body), (409, json!({ "refused": starter })));
     // A reset is refused unless faulted.
     let not_faulted = vpx_efis::control::reset(&rig.app.model(), Instant::now(), 9, false)
         .expect_err("control refuses a reset with no fault")
-        .0;
+        .words;
     let a = call(&mut rig, "/api/device/9/clear", None);
     assert_eq!((a.status, a.body), (409, json!({ "refused": not_faulted })));
     let a = call(&mut rig, "/api/device/99/power", Some(json!({"on": true})));
     assert_eq!((a.status, a.body), (404, json!({"error": "no device 99"})));
+    // A device that exists but is not on this unit's list (the roll trim, not enabled
+    // here): control's reason, not the remote's own look at the list, makes it a 404.
+    let a = call(&mut rig, "/api/device/29/clear", None);
+    assert_eq!((a.status, a.body), (404, json!({"error": "no device 29"})));
     rig.app.pump_until(Instant::now() + ms(300));
     assert_eq!(
         commands_sent(&rig, from),

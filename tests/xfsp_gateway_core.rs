@@ -510,6 +510,48 @@ fn circuit_requests_follow_the_key_rules_and_only_usersel_or_syssel_count() {
     assert_eq!(gw.stats().commands_refused, refused + 1);
 }
 
+/// control's reason reaches the gateway as a type: a refusal no retry can change (the
+/// starter is never switched) is answered once a repeat window, as a request naming no
+/// circuit is; one a retry may pass (a reset before any fault) is answered each time.
+#[test]
+fn a_refusal_no_retry_can_change_is_answered_once_a_window() {
+    let t0 = Instant::now();
+    let mut m = model();
+    status(&mut m, t0, &[2]);
+    let mut gw = Gateway::new(commanded(), t0);
+    let mut ctl = Controller::default();
+    let mut peer = Sender::new(PEER, 100);
+    let mut refusals_after = |gw: &mut Gateway, m: &mut Model, id: u16, state, at| {
+        let bytes = request(&mut peer, vec![ecb_request(id, state, Confidence::UserSel)]);
+        assert!(gw.receive(&bytes, m, &mut ctl, at).is_empty());
+        gw.stats().commands_refused
+    };
+    assert_eq!(refusals_after(&mut gw, &mut m, 1, EcbState::On, t0), 1);
+    assert_eq!(
+        refusals_after(&mut gw, &mut m, 1, EcbState::On, t0 + ms(300)),
+        1,
+        "the starter's refusal again within the window"
+    );
+    assert_eq!(
+        refusals_after(&mut gw, &mut m, 1, EcbState::On, t0 + ms(1100)),
+        2
+    );
+    assert_eq!(
+        refusals_after(&mut gw, &mut m, 2, EcbState::Reset, t0 + ms(1200)),
+        3
+    );
+    assert_eq!(
+        refusals_after(&mut gw, &mut m, 2, EcbState::Reset, t0 + ms(1300)),
+        4
+    );
+    let said = m
+        .events
+        .iter()
+        .filter(|e| e.text.contains("refused"))
+        .count();
+    assert_eq!(said, 4, "each refusal counted is logged");
+}
+
 fn flap_moves(ps: &[Packet]) -> Vec<(bool, vpx_efis::protocol::message::FlapDirection)> {
     ps.iter()
         .filter_map(|p| match p.message {

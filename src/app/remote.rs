@@ -18,7 +18,8 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use super::{App, lock};
 use crate::audit::Origin;
 use crate::check::state::Step;
-use crate::control::{Action, LEASE, StopReason, commands};
+use crate::control::commands::{self, Reason};
+use crate::control::{Action, LEASE, StopReason};
 use crate::model::LogLevel;
 use crate::remote::{
     self, Answer, CheckPrompt, Command, DEFAULT_PORT, PageSide, Remote, Reply, Request,
@@ -287,18 +288,20 @@ impl App {
     fn remote_command(&mut self, id: u8, action: Action, now: Instant) -> Reply {
         let shared = self.model.clone();
         let model = lock(&shared);
-        if !model.circuits(now).iter().any(|c| c.id == id) {
+        let result = commands::command(&action, &model, now);
+        if result
+            .as_ref()
+            .is_err_and(|why| matches!(why.reason, Reason::NoSuchDevice | Reason::NotListed))
+        {
             return Reply::NoDevice(id);
         }
-        let result = self.controller.act_with(Origin::Remote, |c| {
-            match commands::command(&action, &model, now) {
-                Ok(message) => {
-                    let cnt = c.next_cnt();
-                    let p = crate::protocol::message::Packet::request(cnt, message);
-                    (vec![p], Ok(message))
-                }
-                Err(why) => (Vec::new(), Err(why.0)),
+        let result = self.controller.act_with(Origin::Remote, |c| match result {
+            Ok(message) => {
+                let cnt = c.next_cnt();
+                let p = crate::protocol::message::Packet::request(cnt, message);
+                (vec![p], Ok(message))
             }
+            Err(why) => (Vec::new(), Err(why.words)),
         });
         drop(model);
         let mut model = lock(&shared);

@@ -41,7 +41,7 @@ use crate::model::{Model, Motor};
 use crate::protocol::message::Packet;
 
 pub use against::Against;
-pub use commands::{Refusal, command, device_power, motor_check, put_back_off, reset};
+pub use commands::{Refusal, command, device_power, motor_check, put_back_off, reset, switchable};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};
 pub use release::{release_mode, release_mode_here};
 pub use streamer::{
@@ -554,7 +554,7 @@ impl Controller {
                                 let cnt = self.streamer.next_cnt();
                                 out.packets.push(Packet::request(cnt, message));
                             }
-                            Err(why) => out.notice = Some(why.0),
+                            Err(why) => out.notice = Some(why.words),
                         }
                     }
                     _ => out.notice = Some(NOTHING_TO_CONFIRM.into()),
@@ -575,7 +575,7 @@ impl Controller {
                     Err(why) if self.reset_asked.is_some() => {
                         out.notice = Some(format!("{why} (Y: reset it anyway)"));
                     }
-                    Err(why) => out.notice = Some(why.0),
+                    Err(why) => out.notice = Some(why.words),
                 }
                 out.action = Some(a);
             }

@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::control::{Direction, put_back_off};
+use crate::control::{Direction, switchable};
 use crate::model::{
     CircuitKind, CircuitState, Connection, Model, Motor, TrimKind, reset_sent_words,
 };
@@ -64,7 +64,7 @@ pub struct Device {
     /// The fault's name; "SHORT_CIRCUIT · reset sent" while a reset is unanswered.
     pub fault: Option<String>,
     /// Whether DEVICE_POWER may switch it at all: not the starter (only reset) nor a
-    /// motor (run, not switched), by control's own rule ([`put_back_off`]), so the
+    /// motor (run, not switched), by control's own rule ([`switchable`]), so the
     /// phone offers no button that can only be refused.
     pub switchable: bool,
 }
@@ -120,7 +120,7 @@ pub fn build(model: &Model, page: &PageSide, now: Instant) -> State {
                 state,
                 amps: c.amps.filter(|_| !comm_lost).map(tenths),
                 fault,
-                switchable: put_back_off(model, c.id).is_ok(),
+                switchable: switchable(c.id),
             }
         })
         .collect();

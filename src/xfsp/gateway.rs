@@ -244,8 +244,9 @@ pub struct Gateway {
     publisher: Publisher,
     air: AirData,
     drive: MotorDrive,
-    /// Requests taken (or refused for naming no circuit) lately, by (ident, unit or
-    /// device id, state): a repeat within [`COMMAND_REPEAT_WINDOW`] is the same request.
+    /// Requests taken (or refused for good: naming no circuit, or one never switched)
+    /// lately, by (ident, unit or device id, state): a repeat within
+    /// [`COMMAND_REPEAT_WINDOW`] is the same request.
     recent: HashMap<(Ident, u16, u8, Vec<u8>), Instant>,
     /// When each source last had a line for a command it may not give.
     not_allowed_said: HashMap<u16, Instant>,
@@ -649,11 +650,19 @@ impl Gateway {
                 );
                 out.push(message);
             }
-            Err(why) => self.refuse(
-                model,
-                now,
-                format!("{who}: {name} {state_name} refused: {why}"),
-            ),
+            Err(why) => {
+                // A refusal no retry can change (the starter, a motor, no such
+                // circuit) is answered once a window, as a request naming nothing is;
+                // any other may pass on a retry once the state it needed comes.
+                if why.reason.lasts() {
+                    self.remember(key, now);
+                }
+                self.refuse(
+                    model,
+                    now,
+                    format!("{who}: {name} {state_name} refused: {why}"),
+                )
+            }
         }
     }
 }
