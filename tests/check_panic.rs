@@ -86,6 +86,12 @@ fn a_panic_in_the_headless_check_mid_run_stops_the_motor_through_the_gate_audite
     let tap = Tap::start(to_sim, from_sim, wire.clone());
     let dir = tempfile::tempdir().unwrap();
     let reports = dir.path().join("reports");
+    // The audit log is the logbook's; this one, not the one beside the config file.
+    let logbook = dir.path().join("logbook.sqlite");
+    vpx_efis::logbook::set_target(Some(vpx_efis::logbook::Target {
+        path: logbook.clone(),
+        aircraft: None,
+    }));
     let h = HeadlessCheck {
         port: Some(tap.slave_path.parse().unwrap()),
         baud: 57_600,
@@ -175,12 +181,9 @@ fn a_panic_in_the_headless_check_mid_run_stops_the_motor_through_the_gate_audite
     );
 
     // The audit log has the hook's stops, said as the panic's, and sent.
-    let day = std::fs::read_dir(&reports)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .find(|p| p.to_string_lossy().ends_with(".jsonl"))
-        .expect("an audit log");
-    let text = std::fs::read_to_string(day).unwrap();
+    let text = vpx_efis::logbook::jsonl::all_audit_lines(&logbook)
+        .expect("an audit log")
+        .join("\n");
     let panic_stops: Vec<&str> = text
         .lines()
         .filter(|l| l.contains(r#""origin":"panic""#))

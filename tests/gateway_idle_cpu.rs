@@ -120,14 +120,11 @@ fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
         "{lines:?}"
     );
     // Its audit log has the stops it sent at connect and at SIGINT, said as its own.
-    let day = std::fs::read_dir(home.path().join("reports"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .find(|p| p.to_string_lossy().ends_with(".jsonl"))
-        .expect("an audit log");
-    let text = std::fs::read_to_string(day).unwrap();
+    // (In the logbook beside its config file, read back as `log --jsonl` gives it.)
+    let audit =
+        vpx_efis::logbook::jsonl::all_audit_lines(&home.path().join("logbook.sqlite")).unwrap();
     assert!(
-        text.lines().count() >= 3 && text.lines().all(|l| l.contains(r#""origin":"page""#)),
-        "{text}"
+        audit.len() >= 3 && audit.iter().all(|l| l.contains(r#""origin":"page""#)),
+        "{audit:?}"
     );
 }
