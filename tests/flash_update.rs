@@ -164,7 +164,7 @@ fn a_full_update_leaves_the_image_in_flash_and_the_unit_back_with_the_flag() {
 
 /// Corrupts the FLASH_PROG of the image's 4th page: the injection is made once the 3rd
 /// page's 'P' has come back, well before the 4th page's frame is written.
-fn corrupt_fourth_page(rig: &PtyUnit, byte128: u8) -> (flash::Outcome, Seen) {
+fn corrupt_fourth_page(rig: &PtyUnit, byte128: u8) -> (flash::UpdateReport, Seen) {
     let img = image(byte128);
     let mut p = port(&rig.path);
     let mut seen = Seen::default();

@@ -202,7 +202,7 @@ pub enum Found {
 
 /// A finished update.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Outcome {
+pub struct UpdateReport {
     /// The bootloader's VERSION reply (§7.5.7).
     pub boot_version: u16,
     /// VERSION from the rebooted unit.
@@ -348,7 +348,7 @@ pub fn update<P: Port + ?Sized>(
     found: Found,
     opts: &Options,
     on: &mut dyn FnMut(Event<'_>),
-) -> Result<Outcome, UpdateError> {
+) -> Result<UpdateReport, UpdateError> {
     let mut s = Session::new(port, opts, on);
     let entered_here = matches!(found, Found::Running(_));
     if let Err(f) = s.check_cancel("before anything was sent") {
@@ -434,7 +434,7 @@ pub fn update<P: Port + ?Sized>(
         Some(false) => s.note("SYSTEM_STATUS does NOT report the Software Update flag"),
         None => s.note("no SYSTEM_STATUS seen after the restart"),
     }
-    Ok(Outcome {
+    Ok(UpdateReport {
         boot_version,
         version,
         passes,
