@@ -13,7 +13,7 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
 
-use super::probe::{EraseEnd, Probes};
+use super::diagnostics::{Diagnostics, EraseEnd};
 use super::view::{Dialog, Field, Page, SetupView, Tone, missing_summary};
 use super::{form, write};
 use crate::backup::{self, Backup, Provenance};
@@ -71,7 +71,7 @@ pub struct SetupFlow {
     queue: write::WriteQueue,
     /// The page a batch came from; `None` for a backup being applied.
     batch_page: Option<Option<Page>>,
-    probes: Probes,
+    diagnostics: Diagnostics,
     /// The backup file the app is writing, or reading, for this flow.
     writing: Option<String>,
     reading: Option<String>,
@@ -106,7 +106,7 @@ impl SetupFlow {
 
     /// When the app must tick for a setup timeout.
     pub fn next_deadline(&self) -> Option<Instant> {
-        [self.queue.next_deadline(), self.probes.next_deadline()]
+        [self.queue.next_deadline(), self.diagnostics.next_deadline()]
             .into_iter()
             .flatten()
             .min()
@@ -255,8 +255,8 @@ impl SetupFlow {
         out: &mut SetupEffects,
     ) {
         match field {
-            Field::Ping => out.send.push(self.probes.ping(sv, now)),
-            Field::Version => out.send.push(self.probes.version(sv, now)),
+            Field::Ping => out.send.push(self.diagnostics.ping(sv, now)),
+            Field::Version => out.send.push(self.diagnostics.version(sv, now)),
             Field::SaveBackup => self.save_backup(sv, model, wall, out),
             Field::LoadBackup => self.load_backup(sv, out),
             Field::Reread => reread(sv, out),
@@ -429,7 +429,7 @@ impl SetupFlow {
             }
             (Dialog::Erase { .. }, SetupKey::Char('y')) => {
                 sv.dialog = Dialog::None;
-                out.send.push(self.probes.erase(sv, now));
+                out.send.push(self.diagnostics.erase(sv, now));
                 say(sv, Tone::Info, "EEPROM_ERASE sent");
             }
             (Dialog::Disarm { .. }, SetupKey::Char('y')) => {
@@ -491,7 +491,7 @@ impl SetupFlow {
         self.on_screen = on_screen;
         let mut out = SetupEffects::default();
         self.tick_into(sv, model, now, &mut out);
-        self.probe_tick(sv, model, now, &mut out);
+        self.diagnostics_tick(sv, model, now, &mut out);
         if on_screen {
             reload_forms(sv, model);
         }
@@ -519,14 +519,14 @@ impl SetupFlow {
         sv.writes = self.queue.lines();
     }
 
-    fn probe_tick(
+    fn diagnostics_tick(
         &mut self,
         sv: &mut SetupView,
         model: &Model,
         now: Instant,
         out: &mut SetupEffects,
     ) {
-        let (again, erase_end) = self.probes.tick(model, sv, now);
+        let (again, erase_end) = self.diagnostics.tick(model, sv, now);
         out.send.extend(again);
         match erase_end {
             Some(EraseEnd::Answered(code)) if code != 0 => {
