@@ -14,7 +14,7 @@ use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 use crate::link::RxItem;
-use crate::protocol::Direction;
+use crate::protocol::Crossing;
 use crate::protocol::Packet;
 use crate::protocol::describe::{describe, node_label};
 use crate::protocol::message::{
@@ -50,7 +50,7 @@ pub struct Entry {
     /// Position in the whole session (not the ring): stable while the ring rolls.
     pub seq: u64,
     pub at: Instant,
-    pub dir: Direction,
+    pub dir: Crossing,
     pub what: What,
     pub raw: Vec<u8>,
     /// The lower-cased search text, built the first time a search looks at this entry:
@@ -183,7 +183,7 @@ impl TypeStat {
 /// The rate the ICD gives a message, and how to judge it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Expected {
-    pub dir: Direction,
+    pub dir: Crossing,
     pub name: &'static str,
     pub hz: f64,
     /// Silence longer than this is "missing".
@@ -203,35 +203,35 @@ pub enum ExpectKind {
 /// The broadcasts whose rates the ICD specifies.
 pub const EXPECTED: &[Expected] = &[
     Expected {
-        dir: Direction::Rx,
+        dir: Crossing::Rx,
         name: SystemStatus::NAME,
         hz: 1.0,
         missing_after: COMM_LOST_AFTER,
         kind: ExpectKind::Always,
     },
     Expected {
-        dir: Direction::Rx,
+        dir: Crossing::Rx,
         name: DeviceStatus::NAME,
         hz: 1.0,
         missing_after: COMM_LOST_AFTER,
         kind: ExpectKind::Always,
     },
     Expected {
-        dir: Direction::Rx,
+        dir: Crossing::Rx,
         name: FlapTrimStatus::NAME,
         hz: 10.0,
         missing_after: FLAP_TRIM_STALE_AFTER,
         kind: ExpectKind::Always,
     },
     Expected {
-        dir: Direction::Rx,
+        dir: Crossing::Rx,
         name: FaultStatus::NAME,
         hz: 1.0,
         missing_after: FAULT_STATUS_QUIET_AFTER,
         kind: ExpectKind::WhileFault,
     },
     Expected {
-        dir: Direction::Tx,
+        dir: Crossing::Tx,
         name: ExternalData::NAME,
         hz: 1.0,
         missing_after: COMM_LOST_AFTER,
@@ -268,7 +268,7 @@ pub enum KindFilter {
 pub struct TrafficView {
     /// Paused: the list shows entries before this sequence number only.
     pub frozen_at: Option<u64>,
-    pub dir: Option<Direction>,
+    pub dir: Option<Crossing>,
     pub kind: KindFilter,
     pub search: String,
     /// The search line is being typed.
@@ -323,16 +323,16 @@ impl TrafficLog {
             RxItem::BadLength => What::BadLength,
             RxItem::UnknownMessage => What::UnknownMessage,
         };
-        self.push(at, Direction::Rx, what, raw);
+        self.push(at, Crossing::Rx, what, raw);
     }
 
     /// One write to the unit.
     pub fn note_tx(&mut self, at: Instant, packet: Option<&Packet>, raw: &[u8]) {
         let what = packet.map_or(What::RawTx, |p| What::Packet(*p));
-        self.push(at, Direction::Tx, what, raw);
+        self.push(at, Crossing::Tx, what, raw);
     }
 
-    fn push(&mut self, at: Instant, dir: Direction, what: What, raw: &[u8]) {
+    fn push(&mut self, at: Instant, dir: Crossing, what: What, raw: &[u8]) {
         self.origin.get_or_insert(at);
         let entry = Entry {
             seq: self.next_seq,
@@ -348,8 +348,8 @@ impl TrafficLog {
         }
         if let What::Packet(p) = &entry.what {
             let map = match dir {
-                Direction::Rx => &mut self.rx,
-                Direction::Tx => &mut self.tx,
+                Crossing::Rx => &mut self.rx,
+                Crossing::Tx => &mut self.tx,
             };
             let s = map.entry(p.message.name()).or_insert(TypeStat {
                 count: 0,
@@ -382,17 +382,17 @@ impl TrafficLog {
         self.entries.iter()
     }
 
-    pub fn stat(&self, dir: Direction, name: &str) -> Option<&TypeStat> {
+    pub fn stat(&self, dir: Crossing, name: &str) -> Option<&TypeStat> {
         match dir {
-            Direction::Rx => self.rx.get(name),
-            Direction::Tx => self.tx.get(name),
+            Crossing::Rx => self.rx.get(name),
+            Crossing::Tx => self.tx.get(name),
         }
     }
 
     /// Every type seen, received first, each direction by name.
-    pub fn seen(&self) -> Vec<(Direction, &'static str, &TypeStat)> {
-        let rx = self.rx.iter().map(|(n, s)| (Direction::Rx, *n, s));
-        let tx = self.tx.iter().map(|(n, s)| (Direction::Tx, *n, s));
+    pub fn seen(&self) -> Vec<(Crossing, &'static str, &TypeStat)> {
+        let rx = self.rx.iter().map(|(n, s)| (Crossing::Rx, *n, s));
+        let tx = self.tx.iter().map(|(n, s)| (Crossing::Tx, *n, s));
         rx.chain(tx).collect()
     }
 
@@ -425,7 +425,7 @@ impl TrafficLog {
     }
 
     /// How `name` in `dir` is doing against the ICD at `now`.
-    pub fn health(&self, dir: Direction, name: &str, now: Instant) -> Health {
+    pub fn health(&self, dir: Crossing, name: &str, now: Instant) -> Health {
         let Some(exp) = EXPECTED.iter().find(|e| e.dir == dir && e.name == name) else {
             return Health::NoRate;
         };
@@ -498,7 +498,7 @@ mod tests {
         assert_eq!(log.entries().len(), TRAFFIC_LEN);
         assert_eq!(log.entries().next().unwrap().seq, 10);
         assert_eq!(
-            log.stat(Direction::Rx, "PING").unwrap().count,
+            log.stat(Crossing::Rx, "PING").unwrap().count,
             TRAFFIC_LEN as u64 + 10
         );
     }
@@ -526,29 +526,29 @@ mod tests {
             log.note_rx(s(i as f64), &RxItem::Packet(sys()), &[1]);
         }
         assert_eq!(
-            log.health(Direction::Rx, SystemStatus::NAME, s(6.5)),
+            log.health(Crossing::Rx, SystemStatus::NAME, s(6.5)),
             Health::Ok
         );
         // Then every two seconds: slow; then nothing: missing.
         log.note_rx(s(8.0), &RxItem::Packet(sys()), &[1]);
         log.note_rx(s(10.0), &RxItem::Packet(sys()), &[1]);
         assert_eq!(
-            log.health(Direction::Rx, SystemStatus::NAME, s(10.5)),
+            log.health(Crossing::Rx, SystemStatus::NAME, s(10.5)),
             Health::Slow
         );
         assert_eq!(
-            log.health(Direction::Rx, SystemStatus::NAME, s(13.0)),
+            log.health(Crossing::Rx, SystemStatus::NAME, s(13.0)),
             Health::Missing
         );
         // DEVICE_STATUS never came: missing; FAULT_STATUS never came: quiet.
         assert_eq!(
-            log.health(Direction::Rx, DeviceStatus::NAME, s(3.0)),
+            log.health(Crossing::Rx, DeviceStatus::NAME, s(3.0)),
             Health::Missing
         );
         assert_eq!(
-            log.health(Direction::Rx, FaultStatus::NAME, s(3.0)),
+            log.health(Crossing::Rx, FaultStatus::NAME, s(3.0)),
             Health::Quiet
         );
-        assert_eq!(log.health(Direction::Rx, "PING", s(3.0)), Health::NoRate);
+        assert_eq!(log.health(Crossing::Rx, "PING", s(3.0)), Health::NoRate);
     }
 }

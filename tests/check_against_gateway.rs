@@ -13,7 +13,7 @@ use vpx_efis::check::state::{CheckView, MotorFinding, Outcome as Found, Step};
 use vpx_efis::check::{CheckFlow, Command, Options};
 use vpx_efis::control::run::Refused;
 use vpx_efis::control::run_state::ReleaseMode;
-use vpx_efis::control::{Controller, Direction, KeyContext, Outcome, Selected, StreamerConfig};
+use vpx_efis::control::{Controller, Direction, Handled, KeyContext, Selected, StreamerConfig};
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Motor, Setting, Source, TrimKind};
 use vpx_efis::protocol::decoder::{Decoder, Event};
 use vpx_efis::protocol::message::{Message, Packet};
@@ -113,7 +113,7 @@ impl Rig {
     }
 
     /// A key on the device list with the pitch trim's row selected.
-    fn key(&mut self, c: char, kind: KeyEventKind, setup: bool) -> Outcome {
+    fn key(&mut self, c: char, kind: KeyEventKind, setup: bool) -> Handled {
         let ctx = KeyContext {
             selected: Some(Selected {
                 id: PITCH.device_id(),

@@ -305,7 +305,7 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
     };
     let key = |c| KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE);
     let shift_y = KeyEvent::new(KeyCode::Char('Y'), KeyModifiers::SHIFT);
-    let clear = |o: &vpx_efis::control::Outcome| {
+    let clear = |o: &vpx_efis::control::Handled| {
         o.packets
             .iter()
             .filter(|p| p.message == Message::DeviceClear(DeviceClear { device_id: LANDING }))

@@ -41,8 +41,8 @@ fn fast() -> Options {
     }
 }
 
-/// For a probe that must find the unit: the same, with time for a first answer from
-/// a sim thread just started on a loaded machine (the probe returns at the answer,
+/// For a detection that must find the unit: the same, with time for a first answer from
+/// a sim thread just started on a loaded machine (detection returns at the answer,
 /// so this costs nothing when it comes at once).
 fn answering() -> Options {
     Options {
@@ -115,7 +115,7 @@ fn a_full_update_leaves_the_image_in_flash_and_the_unit_back_with_the_flag() {
     assert_eq!(img.page_count(), 12);
     let mut p = port(&rig.path);
     let mut seen = Seen::default();
-    let found = flash::probe(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
     let Found::Running(v) = found else {
         panic!("a fresh sim runs its software: {found:?}")
     };
@@ -164,11 +164,11 @@ fn a_full_update_leaves_the_image_in_flash_and_the_unit_back_with_the_flag() {
 
 /// Corrupts the FLASH_PROG of the image's 4th page: the injection is made once the 3rd
 /// page's 'P' has come back, well before the 4th page's frame is written.
-fn corrupt_fourth_page(rig: &PtyUnit, byte128: u8) -> (flash::Outcome, Seen) {
+fn corrupt_fourth_page(rig: &PtyUnit, byte128: u8) -> (flash::UpdateReport, Seen) {
     let img = image(byte128);
     let mut p = port(&rig.path);
     let mut seen = Seen::default();
-    let found = flash::probe(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
     let armed = AtomicBool::new(true);
     let out = flash::update(&mut p, &img, found, &fast(), &mut |e| {
         if let Event::Progress(pr) = e
@@ -226,7 +226,7 @@ fn a_link_dropped_mid_update_leaves_the_unit_in_its_bootloader_and_a_rerun_resum
     let mut seen = Seen::default();
     {
         let mut p = port(&rig.path);
-        let found = flash::probe(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
+        let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
         let armed = AtomicBool::new(true);
         let err = flash::update(&mut p, &img, found, &fast(), &mut |e| {
             if let Event::Progress(pr) = e
@@ -261,7 +261,7 @@ fn a_link_dropped_mid_update_leaves_the_unit_in_its_bootloader_and_a_rerun_resum
 
     let mut again = Seen::default();
     let mut p = port(&rig.path);
-    let found = flash::probe(&mut p, &fast(), &mut |e| again.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &fast(), &mut |e| again.take(&e)).unwrap();
     assert_eq!(found, Found::Bootloader, "{}", again.dump());
     let out = flash::update(&mut p, &img, found, &fast(), &mut |e| again.take(&e))
         .unwrap_or_else(|e| panic!("{e}\n{}", again.dump()));
@@ -288,7 +288,7 @@ fn an_interrupt_mid_update_finishes_the_page_never_exits_and_a_rerun_resumes() {
         ..fast()
     };
     let mut p = port(&rig.path);
-    let found = flash::probe(&mut p, &opts, &mut |e| seen.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &opts, &mut |e| seen.take(&e)).unwrap();
     let err = flash::update(&mut p, &img, found, &opts, &mut |e| {
         // Pressed while page 3's frame is on its way, before its answer.
         if let Event::Sent { what, .. } = e
@@ -331,7 +331,7 @@ fn an_interrupt_mid_update_finishes_the_page_never_exits_and_a_rerun_resumes() {
     // The re-run, as the advice says.
     let mut again = Seen::default();
     let mut p = port(&rig.path);
-    let found = flash::probe(&mut p, &fast(), &mut |e| again.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &fast(), &mut |e| again.take(&e)).unwrap();
     assert_eq!(found, Found::Bootloader, "{}", again.dump());
     flash::update(&mut p, &img, found, &fast(), &mut |e| again.take(&e))
         .unwrap_or_else(|e| panic!("{e}\n{}", again.dump()));
@@ -351,7 +351,7 @@ fn an_interrupt_before_the_erase_gives_the_unit_its_software_back() {
         ..fast()
     };
     let mut p = port(&rig.path);
-    let found = flash::probe(&mut p, &opts, &mut |e| seen.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &opts, &mut |e| seen.take(&e)).unwrap();
     let err = flash::update(&mut p, &img, found, &opts, &mut |e| {
         if let Event::Sent { what, .. } = e
             && what.starts_with("SIGNATURE")
@@ -475,7 +475,7 @@ fn the_scripted_bootloader_with_the_right_signature_takes_a_whole_update() {
     let mut p = port(&s.path);
     let img = flash::parse_hex(&to_hex_text(0, &[0xFF; 300])).unwrap();
     let mut seen = Seen::default();
-    let found = flash::probe(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
     flash::update(&mut p, &img, found, &fast(), &mut |e| seen.take(&e))
         .unwrap_or_else(|e| panic!("{e}\n{}", seen.dump()));
     assert!(
@@ -493,7 +493,7 @@ fn a_wrong_signature_stops_before_erase_and_returns_the_unit_to_its_software() {
     let mut p = port(&s.path);
     let img = image(0x11);
     let mut seen = Seen::default();
-    let found = flash::probe(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
     assert!(matches!(found, Found::Running(_)));
     let err = flash::update(&mut p, &img, found, &fast(), &mut |e| seen.take(&e))
         .expect_err("a wrong signature must stop the update");
@@ -517,7 +517,7 @@ fn a_wrong_signature_on_a_unit_found_in_its_bootloader_does_not_exit() {
     let s = scripted([0x00, 0x00, 0x00], true);
     let mut p = port(&s.path);
     let mut seen = Seen::default();
-    let found = flash::probe(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
+    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
     assert_eq!(found, Found::Bootloader);
     let err = flash::update(&mut p, &image(0x11), found, &fast(), &mut |e| seen.take(&e))
         .expect_err("a wrong signature must stop the update");

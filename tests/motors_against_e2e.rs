@@ -21,7 +21,7 @@ use vpx_efis::link;
 use vpx_efis::model::{Motor, Source, TrimKind};
 use vpx_efis::protocol::device::{FLAPS, TRIM_P};
 use vpx_efis::protocol::message::Message;
-use vpx_efis::protocol::{Direction as Dir, Packet};
+use vpx_efis::protocol::{Crossing as Dir, Packet};
 use vpx_efis::traffic::What;
 use vpx_efis::ui::state::ReleaseMode;
 

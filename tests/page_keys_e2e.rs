@@ -157,7 +157,7 @@ fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
         let m = rig.app.model();
         m.traffic
             .entries()
-            .filter(|e| e.dir == vpx_efis::link::Direction::Tx && e.at > last_repeat)
+            .filter(|e| e.dir == vpx_efis::link::Crossing::Tx && e.at > last_repeat)
             .find(|e| {
                 Packet::parse_bytes(&e.raw)
                     .is_ok_and(|p| matches!(p.message, Message::TrimMove(m) if !m.on))

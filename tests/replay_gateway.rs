@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use vpx_efis::app::Capture;
 use vpx_efis::cmd::gateway::{BridgeOptions, run_bridge};
-use vpx_efis::link::Direction;
+use vpx_efis::link::Crossing;
 use vpx_efis::xfsp::gateway::GatewayConfig;
 use vpx_efis::xfsp::net::Target;
 
@@ -39,7 +39,7 @@ fn the_gateway_records_both_directions_flushed_while_running() {
     std::thread::sleep(Duration::from_millis(2500));
     let running = Capture::from_bytes("gw", &std::fs::read(&path).unwrap()).unwrap();
     assert!(
-        running.records.iter().any(|r| r.dir == Direction::Rx),
+        running.records.iter().any(|r| r.dir == Crossing::Rx),
         "nothing flushed while running"
     );
     assert!(
@@ -54,7 +54,7 @@ fn the_gateway_records_both_directions_flushed_while_running() {
     assert_eq!(done.problem, None);
     assert!(done.records.len() >= running.records.len());
     assert!(
-        done.records.iter().any(|r| r.dir == Direction::Tx),
+        done.records.iter().any(|r| r.dir == Crossing::Tx),
         "the bridge's queries"
     );
 }

@@ -158,7 +158,7 @@ fn a_cut_capture_replays_up_to_the_cut_with_its_message_on_screen() {
         let received: usize = c
             .records
             .iter()
-            .filter(|r| r.dir == vpx_efis::link::Direction::Rx)
+            .filter(|r| r.dir == vpx_efis::link::Crossing::Rx)
             .map(|r| r.bytes.len())
             .sum();
         let mut app = App::replay(c, AppOptions::default(), 1.0, true);
@@ -247,7 +247,7 @@ fn decode_reads_a_capture_with_times_and_directions() {
 
 #[test]
 fn at_the_end_of_a_replay_the_bytes_held_back_are_scanned_again() {
-    use vpx_efis::link::{Direction, Record};
+    use vpx_efis::link::{Crossing, Record};
     // PING response, cnt 1, ack 1 (E7^7E^10^00^01^00^01^01^01 = 0x89, inverted 0x76).
     let ping_ack = vec![0xE7, 0x7E, 0x10, 0x00, 0x01, 0x00, 0x01, 0x01, 0x01, 0x76];
     // The capture ends on a DEVICE_STATUS header claiming its own 66 bytes, inside
@@ -264,12 +264,12 @@ fn at_the_end_of_a_replay_the_bytes_held_back_are_scanned_again() {
         name: "tail.vpxcap".into(),
         records: vec![
             Record {
-                dir: Direction::Rx,
+                dir: Crossing::Rx,
                 offset: Duration::ZERO,
                 bytes: ping_ack,
             },
             Record {
-                dir: Direction::Rx,
+                dir: Crossing::Rx,
                 offset: Duration::from_millis(100),
                 bytes: tail,
             },

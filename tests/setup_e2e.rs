@@ -449,7 +449,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
     rig.until("the erase answered", Duration::from_secs(4), |app| {
         matches!(
             app.view().setup.erase,
-            vpx_efis::setup::view::Probe::Answered { .. }
+            vpx_efis::setup::view::Diagnostic::Answered { .. }
         )
     });
     assert_eq!(
@@ -488,7 +488,7 @@ fn a_failed_erase_is_said_plainly_and_not_shown_as_factory_settings() {
     rig.until("the erase answered", Duration::from_secs(4), |app| {
         matches!(
             app.view().setup.erase,
-            vpx_efis::setup::view::Probe::Answered { .. }
+            vpx_efis::setup::view::Diagnostic::Answered { .. }
         )
     });
     let (_, said) = rig.app.view().setup.message.clone().expect("a message");

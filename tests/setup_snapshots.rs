@@ -24,7 +24,7 @@ use common::configured;
 use common::screen::text;
 
 use vpx_efis::setup::view::{
-    Dialog, Field, Forms, FromUnit, Held, Page, Probe, SetupView, Tone, WriteLine, WriteStatus,
+    Diagnostic, Dialog, Field, Forms, FromUnit, Held, Page, SetupView, Tone, WriteLine, WriteStatus,
 };
 use vpx_efis::ui;
 use vpx_efis::ui::state::{Screen, ViewState};
@@ -301,12 +301,12 @@ fn diagnostics_page_with_a_ping_time_and_a_silent_version() {
     let t0 = Instant::now();
     let m = unit(t0);
     let mut v = view(&m, Page::Diagnostics, 4);
-    v.setup.ping = Probe::Answered {
+    v.setup.ping = Diagnostic::Answered {
         after: Duration::from_micros(12_400),
     };
     insta::assert_snapshot!("answered", text(&render(&m, &v, t0, 80, 24)));
-    v.setup.ping = Probe::NoAnswer;
-    v.setup.version = Probe::Waiting { attempt: 2, of: 3 };
+    v.setup.ping = Diagnostic::NoAnswer;
+    v.setup.version = Diagnostic::Waiting { attempt: 2, of: 3 };
     let buf = render(&m, &v, t0, 80, 24);
     insta::assert_snapshot!("silent", text(&buf));
     assert_eq!(fg(&buf, "no answer"), Color::Red);

@@ -11,7 +11,7 @@ use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::Color;
 
-use vpx_efis::link::{Direction, RxItem};
+use vpx_efis::link::{Crossing, RxItem};
 use vpx_efis::model::{Model, Source};
 use vpx_efis::protocol::Packet;
 use vpx_efis::protocol::message::{
@@ -186,7 +186,7 @@ fn normal_rates_against_the_icd_with_colours() {
     let (model, now) = session();
     let log = &model.traffic;
     assert_eq!(
-        log.health(Direction::Rx, SystemStatus::NAME, now),
+        log.health(Crossing::Rx, SystemStatus::NAME, now),
         Health::Ok
     );
     let buf = draw(&model, now, 140, 40);
@@ -233,7 +233,7 @@ fn list_rows(buf: &Buffer) -> Vec<String> {
 #[test]
 fn filtered_by_direction_and_type_shows_only_those_and_says_so() {
     let (mut model, now) = session();
-    model.traffic.view.dir = Some(Direction::Rx);
+    model.traffic.view.dir = Some(Crossing::Rx);
     model.traffic.view.kind = KindFilter::Message(DeviceStatus::NAME);
     let buf = draw(&model, now, 140, 40);
     insta::assert_snapshot!(lines(&buf).join("\n"));
@@ -251,7 +251,7 @@ fn filtered_by_direction_and_type_shows_only_those_and_says_so() {
 
     // Only what we sent: the two requests, in cyan.
     model.traffic.view.kind = KindFilter::All;
-    model.traffic.view.dir = Some(Direction::Tx);
+    model.traffic.view.dir = Some(Crossing::Tx);
     let buf = draw(&model, now, 140, 40);
     let rows = list_rows(&buf);
     assert_eq!(rows.len(), 2, "{rows:#?}");
@@ -314,7 +314,7 @@ fn search_highlights_matches_and_pause_holds_the_list_while_counting() {
     let first_ping = model
         .traffic
         .entries()
-        .find(|e| e.name() == "PING" && e.dir == Direction::Rx)
+        .find(|e| e.name() == "PING" && e.dir == Crossing::Rx)
         .map(|e| e.seq);
     model.traffic.view.cursor = first_ping;
     let buf = draw(&model, now, 140, 40);
@@ -329,7 +329,7 @@ fn search_highlights_matches_and_pause_holds_the_list_while_counting() {
             .any(|l| l.contains("search ack flag 1 1 match(es)"))
     );
     // The held-back PING is not listed, but its count is.
-    assert_eq!(model.traffic.stat(Direction::Rx, "PING").unwrap().count, 2);
+    assert_eq!(model.traffic.stat(Crossing::Rx, "PING").unwrap().count, 2);
     assert_eq!(
         list_rows(&buf)
             .iter()

@@ -14,7 +14,7 @@ use vpx_efis::protocol::message::{
     DeviceStatus, FaultStatus, FlapFlags, FlapTrimStatus, Message, Packet, SignedTenths,
     SystemStatus, Tenths,
 };
-use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig, Step};
+use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig, TickOutput};
 use vpx_efis::xfsp::publish::{CAS_UNIT_COMM_LOST, LIFETIME};
 use vpx_efis::xfsp::{
     Body, Boolean, Bus, CasLevel, CertLevel, Confidence, EcbState, Expire, Message as XMessage,
@@ -116,7 +116,7 @@ fn flap_trim(m: &mut Model, at: Instant, flap: u8, pitch: Option<u8>) {
     m.apply_packet(at, &Packet::from_vpx(3, ft));
 }
 
-fn params(step: &Step) -> Vec<Parameter> {
+fn params(step: &TickOutput) -> Vec<Parameter> {
     step.datagrams
         .iter()
         .flat_map(|d| {
@@ -374,7 +374,7 @@ fn forwarded_air_data_is_valid_only_while_fresh() {
         ],
     );
     assert!(gw.receive(&d, &mut m, &mut ctl, t0 + ms(100)).is_empty());
-    let ext = |s: &Step| {
+    let ext = |s: &TickOutput| {
         s.to_unit.iter().find_map(|p| match p.message {
             Message::ExternalData(e) => Some(e),
             _ => None,

@@ -37,7 +37,7 @@ pub(super) fn link_sink(
                 // model never lags the capture by one frame (a replay sought to any
                 // instant then shows what the live page showed).
                 LinkEvent::Bytes {
-                    dir: link::Direction::Tx,
+                    dir: link::Crossing::Tx,
                     ..
                 } => None,
                 LinkEvent::Bytes { at, dir, bytes } => {
@@ -60,7 +60,7 @@ pub(super) fn link_sink(
                     Some(Wake::Data)
                 }
                 LinkEvent::Tx { at, packet, raw } => {
-                    record::on_bytes(&recorder, &mut m, at, link::Direction::Tx, &raw);
+                    record::on_bytes(&recorder, &mut m, at, link::Crossing::Tx, &raw);
                     m.traffic.note_tx(at, packet.as_ref(), &raw);
                     if let Some(p) = packet {
                         m.note_sent(at, &p);

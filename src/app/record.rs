@@ -11,7 +11,7 @@ use std::path::Path;
 use std::sync::{Arc, Mutex, Weak};
 use std::time::{Duration, Instant};
 
-use crate::link::{CaptureWriter, Direction};
+use crate::link::{CaptureWriter, Crossing};
 use crate::model::{LogLevel, Model};
 
 /// Well inside the one second the capture format promises.
@@ -81,7 +81,7 @@ impl Recorder {
     }
 
     /// Appends bytes; after a write error the recorder stops and says why once.
-    pub fn record(&self, at: Instant, dir: Direction, bytes: &[u8]) -> Result<(), String> {
+    pub fn record(&self, at: Instant, dir: Crossing, bytes: &[u8]) -> Result<(), String> {
         let mut s = self.lock();
         let State::Recording {
             writer,
@@ -141,7 +141,7 @@ pub(super) fn on_bytes(
     recorder: &Option<Recorder>,
     model: &mut Model,
     at: Instant,
-    dir: Direction,
+    dir: Crossing,
     bytes: &[u8],
 ) {
     if let Some(r) = recorder

@@ -31,7 +31,7 @@ use super::{
 };
 use crate::control::Action;
 use crate::link::{
-    CaptureError, Connector, Direction, Link, LinkEvent, PipeWriter, Record, parse_capture,
+    CaptureError, Connector, Crossing, Link, LinkEvent, PipeWriter, Record, parse_capture,
     pipe_pair,
 };
 use crate::model::{Connection, Model, Source};
@@ -246,14 +246,14 @@ fn retimer(
         }
         LinkEvent::Bytes {
             at,
-            dir: Direction::Rx,
+            dir: Crossing::Rx,
             bytes,
         } => {
             let at = lock_any(&shared.stamps).pop_front().unwrap_or(at);
             *lock_any(&shared.current) = Some(at);
             inner(LinkEvent::Bytes {
                 at,
-                dir: Direction::Rx,
+                dir: Crossing::Rx,
                 bytes,
             });
             shared.clock().consumed_rx += 1;
@@ -325,7 +325,7 @@ fn feed(shared: &Shared, records: Vec<Record>, mut pipe: PipeWriter, sink: &Shar
         };
         let at = zero + rec.offset;
         match rec.dir {
-            Direction::Rx => {
+            Crossing::Rx => {
                 for piece in rec.bytes.chunks(CHUNK) {
                     lock_any(&shared.stamps).push_back(at);
                     shared.clock().delivered_rx += 1;
@@ -334,12 +334,12 @@ fn feed(shared: &Shared, records: Vec<Record>, mut pipe: PipeWriter, sink: &Shar
                     }
                 }
             }
-            Direction::Tx => {
+            Crossing::Tx => {
                 // What we sent goes in after everything received before it.
                 wait_consumed(shared);
                 sink(LinkEvent::Bytes {
                     at,
-                    dir: Direction::Tx,
+                    dir: Crossing::Tx,
                     bytes: rec.bytes.clone(),
                 });
                 let mut sent = Vec::new();

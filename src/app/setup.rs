@@ -12,7 +12,7 @@ use super::{App, Flow, lock};
 use crate::control::{Action, KeyContext, Selected, StopReason, keymap};
 use crate::model::{CircuitKind, CircuitState, Model, Motor};
 use crate::protocol::message::{Message, Packet};
-use crate::setup::flow::{Effects, SetupKey};
+use crate::setup::flow::{SetupEffects, SetupKey};
 use crate::setup::view::{Dialog, Tone};
 use crate::ui::state::Screen;
 
@@ -104,13 +104,13 @@ impl App {
                 self.setup
                     .key(key, &mut self.view.setup, &mut model, now, wall)
             }
-            None => Effects::default(),
+            None => SetupEffects::default(),
         };
         self.apply_setup(out, now)
     }
 
     /// Does what the setup flow asked for, and hands back what came of the files.
-    fn apply_setup(&mut self, out: Effects, now: Instant) -> Flow {
+    fn apply_setup(&mut self, out: SetupEffects, now: Instant) -> Flow {
         if let Some(file) = &out.write_backup {
             let result = crate::files::write_atomically(&file.path, file.content.as_bytes());
             let shared = self.model.clone();

@@ -9,7 +9,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind};
 
 use super::{App, Flow, lock};
 use crate::control::StopReason;
-use crate::protocol::Direction;
+use crate::protocol::Crossing;
 use crate::traffic::{KindFilter, TrafficLog};
 use crate::ui::state::Screen;
 
@@ -54,9 +54,9 @@ impl App {
             }
             KeyCode::Char('d') => {
                 log.view.dir = match log.view.dir {
-                    None => Some(Direction::Rx),
-                    Some(Direction::Rx) => Some(Direction::Tx),
-                    Some(Direction::Tx) => None,
+                    None => Some(Crossing::Rx),
+                    Some(Crossing::Rx) => Some(Crossing::Tx),
+                    Some(Crossing::Tx) => None,
                 }
             }
             KeyCode::Char('m') => cycle_kind(log, 1),

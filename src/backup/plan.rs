@@ -43,7 +43,7 @@ use super::writer::normalize_name;
 
 /// One write of a restore.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Step {
+pub enum RestoreWrite {
     /// A message the unit answers with SPEC_ACK. `untie` marks the step-1 writes that
     /// clear the wig-wag or the secondary alternator for a moment.
     Spec { message: Message, untie: bool },
@@ -52,9 +52,9 @@ pub enum Step {
     Enable { device_id: u8, shown: bool },
 }
 
-impl Step {
-    fn spec(message: impl Into<Message>) -> Step {
-        Step::Spec {
+impl RestoreWrite {
+    fn spec(message: impl Into<Message>) -> RestoreWrite {
+        RestoreWrite::Spec {
             message: message.into(),
             untie: false,
         }
@@ -63,8 +63,8 @@ impl Step {
     /// The message this step sends.
     pub fn message(&self) -> Message {
         match *self {
-            Step::Spec { message, .. } => message,
-            Step::Enable { device_id, shown } => Message::DeviceEnable(DeviceEnable {
+            RestoreWrite::Spec { message, .. } => message,
+            RestoreWrite::Enable { device_id, shown } => Message::DeviceEnable(DeviceEnable {
                 device_id,
                 flag: if shown {
                     EnableFlag::Enabled
@@ -76,22 +76,22 @@ impl Step {
     }
 }
 
-impl fmt::Display for Step {
+impl fmt::Display for RestoreWrite {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Step::Spec {
+            RestoreWrite::Spec {
                 message: Message::WigWagSpec(_),
                 untie: true,
             } => write!(f, "WIG_WAG_SPEC with no devices (for a moment, to untie)"),
-            Step::Spec {
+            RestoreWrite::Spec {
                 message: Message::SystemSpec(_),
                 untie: true,
             } => write!(
                 f,
                 "SYSTEM_SPEC with no secondary alternator (for a moment, to untie)"
             ),
-            Step::Spec { message, .. } => write!(f, "{}", setting_name(message)),
-            Step::Enable { shown, .. } => write!(
+            RestoreWrite::Spec { message, .. } => write!(f, "{}", setting_name(message)),
+            RestoreWrite::Enable { shown, .. } => write!(
                 f,
                 "{} ({})",
                 setting_name(&self.message()),
@@ -114,7 +114,7 @@ pub struct PlanError {
 
 /// The writes that take a unit holding `current` to `target`, in an order the §6.2
 /// rules accept (module doc). `target` should have passed `validate::whole_config`.
-pub fn plan(current: &UnitConfig, target: &UnitConfig) -> Result<Vec<Step>, PlanError> {
+pub fn plan(current: &UnitConfig, target: &UnitConfig) -> Result<Vec<RestoreWrite>, PlanError> {
     let direct = tied(current, target, false);
     let tied_steps = match simulate(current, &direct) {
         Ok(()) => direct,
@@ -126,18 +126,18 @@ pub fn plan(current: &UnitConfig, target: &UnitConfig) -> Result<Vec<Step>, Plan
     };
     let mut steps = tied_steps;
     if current.flap != target.flap {
-        steps.push(Step::spec(target.flap));
+        steps.push(RestoreWrite::spec(target.flap));
     }
     if current.pitch_trim != target.pitch_trim {
-        steps.push(Step::spec(target.pitch_trim));
+        steps.push(RestoreWrite::spec(target.pitch_trim));
     }
     if current.roll_trim != target.roll_trim {
-        steps.push(Step::spec(target.roll_trim));
+        steps.push(RestoreWrite::spec(target.roll_trim));
     }
     for id in 0..target.names.len() {
         let want = normalize_name(&target.names[id]);
         if normalize_name(&current.names[id]) != want {
-            steps.push(Step::spec(DeviceName {
+            steps.push(RestoreWrite::spec(DeviceName {
                 device_id: id as u8,
                 name: want,
             }));
@@ -146,7 +146,7 @@ pub fn plan(current: &UnitConfig, target: &UnitConfig) -> Result<Vec<Step>, Plan
     for id in 0..target.enabled.len() as u8 {
         let i = id as usize;
         if enable_flag_allowed(id) && current.enabled[i] != target.enabled[i] {
-            steps.push(Step::Enable {
+            steps.push(RestoreWrite::Enable {
                 device_id: id,
                 shown: target.enabled[i],
             });
@@ -157,7 +157,7 @@ pub fn plan(current: &UnitConfig, target: &UnitConfig) -> Result<Vec<Step>, Plan
 }
 
 /// Steps 1–3 of the module doc; step 1 only when `untie`.
-fn tied(current: &UnitConfig, target: &UnitConfig, untie: bool) -> Vec<Step> {
+fn tied(current: &UnitConfig, target: &UnitConfig, untie: bool) -> Vec<RestoreWrite> {
     let mut steps = Vec::new();
     let mut wig_wag = current.wig_wag;
     let mut system = current.system;
@@ -169,7 +169,7 @@ fn tied(current: &UnitConfig, target: &UnitConfig, untie: bool) -> Vec<Step> {
                 device_two: None,
                 ..target.wig_wag
             };
-            steps.push(Step::Spec {
+            steps.push(RestoreWrite::Spec {
                 message: wig_wag.into(),
                 untie: true,
             });
@@ -179,7 +179,7 @@ fn tied(current: &UnitConfig, target: &UnitConfig, untie: bool) -> Vec<Step> {
                 secondary_alternator: None,
                 ..target.system
             };
-            steps.push(Step::Spec {
+            steps.push(RestoreWrite::Spec {
                 message: system.into(),
                 untie: true,
             });
@@ -189,20 +189,20 @@ fn tied(current: &UnitConfig, target: &UnitConfig, untie: bool) -> Vec<Step> {
         let i = id as usize;
         if current.devices[i] != target.devices[i] {
             let spec: DeviceSpec = target.devices[i];
-            steps.push(Step::spec(spec));
+            steps.push(RestoreWrite::spec(spec));
         }
     }
     if system != target.system {
-        steps.push(Step::spec(target.system));
+        steps.push(RestoreWrite::spec(target.system));
     }
     if wig_wag != target.wig_wag {
-        steps.push(Step::spec(target.wig_wag));
+        steps.push(RestoreWrite::spec(target.wig_wag));
     }
     steps
 }
 
 /// Runs `steps` through the unit's rules on a copy of `current`.
-fn simulate(current: &UnitConfig, steps: &[Step]) -> Result<(), PlanError> {
+fn simulate(current: &UnitConfig, steps: &[RestoreWrite]) -> Result<(), PlanError> {
     let mut sim = current.clone();
     for step in steps {
         let m = step.message();
@@ -237,12 +237,12 @@ mod tests {
         c.devices[id as usize].switch_id = SwitchId::Input(n);
     }
 
-    fn names(steps: &[Step]) -> Vec<String> {
+    fn names(steps: &[RestoreWrite]) -> Vec<String> {
         steps.iter().map(|s| s.to_string()).collect()
     }
 
     /// Applies a plan the way the unit would, refusing as the unit would.
-    fn run(current: &UnitConfig, steps: &[Step]) -> UnitConfig {
+    fn run(current: &UnitConfig, steps: &[RestoreWrite]) -> UnitConfig {
         let mut sim = current.clone();
         for s in steps {
             match s.message() {
@@ -333,7 +333,7 @@ mod tests {
         assert!(validate::whole_config(&target).is_empty());
         let steps = plan(&cur, &target).unwrap();
         assert_eq!(run(&cur, &steps), target);
-        assert!(matches!(steps[0], Step::Spec { untie: true, .. }));
+        assert!(matches!(steps[0], RestoreWrite::Spec { untie: true, .. }));
     }
 
     #[test]

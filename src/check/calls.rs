@@ -29,7 +29,7 @@ pub enum Command {
 
 /// What the caller must do after the flow moved.
 #[derive(Debug, Default, Clone, PartialEq)]
-pub struct Effects {
+pub struct CheckEffects {
     /// To queue on the link, in this order, before letting go of the controller.
     pub packets: Vec<Packet>,
     /// Each result as it came, in words, for a headless run to print.
@@ -44,9 +44,9 @@ pub struct Effects {
     pub open_loads: Option<LoadsToOpen>,
 }
 
-impl Effects {
+impl CheckEffects {
     /// Adds what a later call in the same turn gave back, after this call's own.
-    pub fn absorb(&mut self, later: Effects) {
+    pub fn absorb(&mut self, later: CheckEffects) {
         self.packets.extend(later.packets);
         self.progress.extend(later.progress);
         self.ended |= later.ended;

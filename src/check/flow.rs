@@ -11,7 +11,7 @@
 
 use std::time::Instant;
 
-use super::calls::{Command, Effects};
+use super::calls::{CheckEffects, Command};
 use super::plan::{self, Choices};
 use super::state::{CheckView, Interruption, LeftBehind, Prompt, Step};
 use super::step::{
@@ -79,7 +79,7 @@ pub(super) enum Phase {
     Confirm,
     /// A step's item under test.
     Testing(Box<dyn StepRun>),
-    /// Waiting for the app to open the load file (`Effects::open_loads`).
+    /// Waiting for the app to open the load file (`CheckEffects::open_loads`).
     Loads,
     /// Interrupted: waiting to see `Powered` go off before the list of what is left
     /// is final.
@@ -244,8 +244,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Effects {
-        let mut out = Effects::default();
+    ) -> CheckEffects {
+        let mut out = CheckEffects::default();
         if cmd == Command::NobodyToAnswer {
             self.shared.nobody_to_answer = true;
         }
@@ -278,7 +278,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Effects,
+        out: &mut CheckEffects,
     ) {
         let rows = view.plan.len() + view.excluded.len();
         match cmd {
@@ -331,7 +331,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Effects,
+        out: &mut CheckEffects,
     ) {
         self.replan(view, model, now);
         if let Err(why) = plan::ready(model, now) {
@@ -440,7 +440,7 @@ impl CheckFlow {
 
     /// Step 5: the builder's load file with the currents just measured, or its
     /// template written for next time. The flow touches no file: it asks the app to
-    /// open it (`Effects::open_loads`) and goes on in [`CheckFlow::loads_opened`].
+    /// open it (`CheckEffects::open_loads`) and goes on in [`CheckFlow::loads_opened`].
     /// Whether it waits for the app to open the file.
     fn loads(&mut self, view: &mut CheckView, cx: &mut CallContext) -> bool {
         let Some(path) = self.opts.loads_file.clone() else {
@@ -460,7 +460,7 @@ impl CheckFlow {
         true
     }
 
-    /// The app opened the load file the flow asked for (`Effects::open_loads`): the
+    /// The app opened the load file the flow asked for (`CheckEffects::open_loads`): the
     /// analysis with the currents just measured, or the template written, or why
     /// neither; then the report.
     pub fn loads_opened(
@@ -470,10 +470,10 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Effects {
+    ) -> CheckEffects {
         use super::state::LoadsView;
         use crate::loads::disk::Opened;
-        let mut effects = Effects::default();
+        let mut effects = CheckEffects::default();
         let (Phase::Loads, Some(path)) = (&self.phase, self.opts.loads_file.clone()) else {
             return effects;
         };
@@ -598,8 +598,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Effects {
-        let mut out = Effects::default();
+    ) -> CheckEffects {
+        let mut out = CheckEffects::default();
         if matches!(self.phase, Phase::Confirm) {
             self.replan(view, model, now);
             if self.opts.yes && plan::ready(model, now).is_ok() {
@@ -708,8 +708,8 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-    ) -> Effects {
-        let mut out = Effects::default();
+    ) -> CheckEffects {
+        let mut out = CheckEffects::default();
         if !matches!(self.phase, Phase::Done) {
             self.interrupt(cause, may_wait, view, model, ctl, now, &mut out);
         }
@@ -725,7 +725,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Effects,
+        out: &mut CheckEffects,
     ) {
         let reason = cause.stop_reason();
         if matches!(self.phase, Phase::Confirm) {
@@ -772,7 +772,7 @@ impl CheckFlow {
         model: &Model,
         ctl: &mut Controller,
         now: Instant,
-        out: &mut Effects,
+        out: &mut CheckEffects,
     ) {
         let link_failed = model.link.write_errors > self.write_errors_at_start
             || !matches!(model.connection, Connection::Connected { .. });
@@ -884,7 +884,7 @@ impl CheckFlow {
     }
 }
 
-fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut Effects) {
+fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut CheckEffects) {
     out.packets.extend(ctl.stop(now, reason));
 }
 

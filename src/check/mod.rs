@@ -25,7 +25,7 @@ mod timing;
 pub mod trend;
 pub mod words;
 
-pub use calls::{Command, Effects, LoadsToOpen};
+pub use calls::{CheckEffects, Command, LoadsToOpen};
 pub use circuits::judge as judge_current;
 pub use flow::{Cause, CheckFlow, Options};
 pub use motors::judge as judge_motor;

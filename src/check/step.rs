@@ -7,7 +7,7 @@
 use std::collections::BTreeSet;
 use std::time::{Instant, SystemTime};
 
-use super::calls::{Command, Effects};
+use super::calls::{CheckEffects, Command};
 use super::state::{CheckView, LeftBehind, Mark, Step};
 use super::timing::Timing;
 use crate::control::{Controller, Refusal, StopReason, device_power, put_back_off};
@@ -128,7 +128,7 @@ pub(super) struct CallContext<'a> {
     pub model: &'a Model,
     pub ctl: &'a mut Controller,
     pub now: Instant,
-    pub out: &'a mut Effects,
+    pub out: &'a mut CheckEffects,
 }
 
 impl CallContext<'_> {

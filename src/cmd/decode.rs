@@ -16,7 +16,7 @@ use std::time::Duration;
 use clap::Args;
 use serde_json::{Map, Value, json};
 
-use crate::protocol::Direction;
+use crate::protocol::Crossing;
 use crate::protocol::describe::{describe, node_label, to_json};
 use crate::protocol::frame::{FrameRef, HEADER_LEN, MessageId, checksum};
 use crate::protocol::{Decoder, DecoderStats, Event, Packet, message};
@@ -27,7 +27,7 @@ pub struct Record {
     /// Offset from the start of the capture, when the capture knows it.
     pub time: Option<Duration>,
     /// Which way the bytes went, when the capture knows it.
-    pub direction: Option<Direction>,
+    pub direction: Option<Crossing>,
     pub bytes: Vec<u8>,
 }
 
@@ -92,10 +92,10 @@ fn hex(bytes: &[u8]) -> String {
     s
 }
 
-fn direction_label(d: Direction) -> &'static str {
+fn direction_label(d: Crossing) -> &'static str {
     match d {
-        Direction::Rx => "rx",
-        Direction::Tx => "tx",
+        Crossing::Rx => "rx",
+        Crossing::Tx => "tx",
     }
 }
 
@@ -119,7 +119,7 @@ impl<W: Write> Writer<W> {
     fn line(
         &mut self,
         time: Option<Duration>,
-        dir: Option<Direction>,
+        dir: Option<Crossing>,
         line: Line<'_>,
     ) -> io::Result<()> {
         if self.json {
@@ -309,7 +309,7 @@ pub fn decode(source: &mut dyn RecordSource, json: bool, out: impl Write) -> io:
     let mut w = Writer { out, json };
     // At most three (none, rx, tx), in order of first appearance so the end-of-capture
     // lines come out in a stable order; each with the time of its last record.
-    let mut decoders: Vec<(Option<Direction>, Decoder, Option<Duration>)> = Vec::new();
+    let mut decoders: Vec<(Option<Crossing>, Decoder, Option<Duration>)> = Vec::new();
     let mut undecodable = 0u64;
     while let Some(rec) = source.next_record()? {
         let i = match decoders.iter().position(|(d, _, _)| *d == rec.direction) {
@@ -479,17 +479,17 @@ mod tests {
         let recs = vec![
             Record {
                 time: Some(Duration::from_millis(0)),
-                direction: Some(Direction::Tx),
+                direction: Some(Crossing::Tx),
                 bytes: PING_REQ[..4].to_vec(),
             },
             Record {
                 time: Some(Duration::from_millis(5)),
-                direction: Some(Direction::Rx),
+                direction: Some(Crossing::Rx),
                 bytes: PING_ACK.to_vec(),
             },
             Record {
                 time: Some(Duration::from_millis(7)),
-                direction: Some(Direction::Tx),
+                direction: Some(Crossing::Tx),
                 bytes: PING_REQ[4..].to_vec(),
             },
         ];

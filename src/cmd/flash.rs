@@ -7,7 +7,7 @@
 //!    port;
 //! 2. the file's hardware (name suffix or `--force-hardware`) is known, or refused;
 //! 3. the support log is opened (a log that cannot be written stops us here);
-//! 4. the port is opened and the unit probed with VERSION (QUERY_PORT only if VERSION
+//! 4. the port is opened and the unit detected with VERSION (QUERY_PORT only if VERSION
 //!    gets no answer); a hardware mismatch is refused here, before any bootloader frame;
 //! 5. the §7.3 precautions are printed, with the image's size and coverage, always;
 //!    then the person confirms (`--yes` skips only the question; without a terminal
@@ -136,7 +136,7 @@ pub fn run(args: FlashArgs) -> anyhow::Result<()> {
     let mut port = open_raw(&port_path, args.port.baud)?;
     let mut opts = Options::default();
 
-    let found = flash::probe(&mut port, &opts, &mut |e| log.event(&e)).map_err(|e| {
+    let found = flash::detect(&mut port, &opts, &mut |e| log.event(&e)).map_err(|e| {
         log.line(&format!("-- stopped: {e}"));
         anyhow::anyhow!("{e}")
     })?;

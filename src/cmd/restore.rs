@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, bail};
 use clap::Args;
 
-use crate::backup::{self, Step, normalized};
+use crate::backup::{self, RestoreWrite, normalized};
 use crate::cmd::backup::{connect, progress_bar, read_with_progress};
 use crate::cmd::common::PortArgs;
 use crate::exchange::{ANSWER_TIMEOUT, TRIES};
@@ -323,7 +323,7 @@ fn erase(client: &mut UnitClient) -> anyhow::Result<()> {
 fn write_steps(
     client: &mut UnitClient,
     current: &UnitConfig,
-    steps: &[Step],
+    steps: &[RestoreWrite],
     erased: bool,
 ) -> anyhow::Result<()> {
     let bar = progress_bar(steps.len() as u64, "writing");
@@ -332,24 +332,25 @@ fn write_steps(
     let mut held = current.clone();
     for (i, step) in steps.iter().enumerate() {
         bar.set_position(i as u64);
-        let result: Result<(), String> =
-            match *step {
-                Step::Spec { message, .. } => client
-                    .send_spec(message, ANSWER_TIMEOUT, TRIES)
-                    .map_err(|e| match e {
-                        SpecError::Refused { error, .. } => {
-                            format!("{e}. {}", validate::explain(error, &held, &message))
-                        }
-                        e => e.to_string(),
-                    }),
-                Step::Enable { device_id, shown } => match client.set_enable(device_id, shown) {
+        let result: Result<(), String> = match *step {
+            RestoreWrite::Spec { message, .. } => client
+                .send_spec(message, ANSWER_TIMEOUT, TRIES)
+                .map_err(|e| match e {
+                    SpecError::Refused { error, .. } => {
+                        format!("{e}. {}", validate::explain(error, &held, &message))
+                    }
+                    e => e.to_string(),
+                }),
+            RestoreWrite::Enable { device_id, shown } => {
+                match client.set_enable(device_id, shown) {
                     Ok(true) => Ok(()),
                     Ok(false) => Err(format!(
                         "the unit did not store {step}: read back, it still holds the other value"
                     )),
                     Err(e) => Err(e.to_string()),
-                },
-            };
+                }
+            }
+        };
         if let Err(why) = result {
             bar.finish_and_clear();
             bail!(failure_report(steps, i, &why, erased));
@@ -367,7 +368,7 @@ fn write_steps(
 
 /// "Stopped at …; applied: …; not applied: …", with a warning when a setting was only
 /// cleared for a moment and its real value never written.
-pub fn failure_report(steps: &[Step], failed: usize, why: &str, erased: bool) -> String {
+pub fn failure_report(steps: &[RestoreWrite], failed: usize, why: &str, erased: bool) -> String {
     let (applied, not_applied) = steps.split_at(failed);
     let mut out = format!("restore stopped at {}: {why}", steps[failed]);
     out.push_str(&format!(
@@ -386,7 +387,7 @@ pub fn failure_report(steps: &[Step], failed: usize, why: &str, erased: bool) ->
         out.push_str(&format!("\n  {s}"));
     }
     for s in applied {
-        if let Step::Spec {
+        if let RestoreWrite::Spec {
             message,
             untie: true,
         } = s

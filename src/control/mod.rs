@@ -51,7 +51,7 @@ pub use streamer::{
 
 /// What a key did.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct Outcome {
+pub struct Handled {
     /// To send on the link, in order.
     pub packets: Vec<Packet>,
     /// The action for the app to carry out (selection, sort, overlays, views, quit).
@@ -256,13 +256,13 @@ impl Controller {
         ctx: &KeyContext,
         model: &Model,
         now: Instant,
-    ) -> Outcome {
+    ) -> Handled {
         // The model's verdict comes first (the streamer applies its own timeouts on
         // every call): a key must not keep alive a run that already had to end. No
         // resend here: a move just before this key's stop would be noise.
-        let mut out = Outcome {
+        let mut out = Handled {
             packets: self.check_model(model, now),
-            ..Outcome::default()
+            ..Handled::default()
         };
         out.notice = self.take_notice();
         self.handle_mapped(keymap::map(&key, ctx), ctx, model, now, &mut out);
@@ -446,7 +446,7 @@ impl Controller {
         ctx: &KeyContext,
         model: &Model,
         now: Instant,
-        out: &mut Outcome,
+        out: &mut Handled,
     ) {
         // A second reset is confirmed by the very next key, or not at all (a key's
         // release report is not a key).
@@ -611,10 +611,10 @@ impl Controller {
     /// nothing but quit or toggle help. A motor key is only remembered as held, so
     /// its repeats cannot start the motor once the page is shown again; a run is
     /// stopped (it should already have been, by [`StopReason::PageHidden`]).
-    pub fn handle_key_hidden(&mut self, key: KeyEvent, ctx: &KeyContext, now: Instant) -> Outcome {
-        let mut out = Outcome {
+    pub fn handle_key_hidden(&mut self, key: KeyEvent, ctx: &KeyContext, now: Instant) -> Handled {
+        let mut out = Handled {
             packets: self.stop(now, StopReason::PageHidden),
-            ..Outcome::default()
+            ..Handled::default()
         };
         out.notice = self.take_notice();
         match keymap::map(&key, ctx) {

@@ -11,6 +11,6 @@ pub mod whole;
 pub use hardware::{HardwareError, check_hardware, file_hardware, hardware_from_file_name};
 pub use hex::{HexError, Image, load_hex, parse_hex};
 pub use updater::{
-    Event, Found, Left, Options, Outcome, Port, Progress, Stream, UpdateError, probe, update,
+    Event, Found, Left, Options, Port, Progress, Stream, UpdateError, UpdateReport, detect, update,
 };
 pub use whole::Coverage;

@@ -3,7 +3,7 @@
 //! callback for the support log.
 //!
 //! ```text
-//! probe:   VERSION (main protocol) ── answered ──▶ Found::Running(version)
+//! detect:  VERSION (main protocol) ── answered ──▶ Found::Running(version)
 //!             └─ silent ─▶ QUERY_PORT ── "VP_AVRBOOT" ──▶ Found::Bootloader (resume)
 //! update:  [SOFTWARE_UPDATE] ▶ SERIAL_CONF "!!!" ▶ QUERY_PORT "VP_AVRBOOT"
 //!          ▶ SIGNATURE 01 98 1E ▶ VERSION ▶ FLASH_ERASE "e"
@@ -15,7 +15,7 @@
 //!
 //! * **Address unit**: page numbers, as [`crate::protocol::bootloader`] decides (icd-reading
 //!   R24); every address sent is logged as page and byte address.
-//! * **Probe order.** VERSION first, so a unit running its software never sees a
+//! * **Detection order.** VERSION first, so a unit running its software never sees a
 //!   bootloader frame unless an update was decided; QUERY_PORT only when VERSION gets
 //!   no answer. Each protocol ignores the other's frames (`0xE7 0x7E` vs `0x69 0x96`).
 //! * **Resume** means: a unit found answering QUERY_PORT is taken from there (no
@@ -202,7 +202,7 @@ pub enum Found {
 
 /// A finished update.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Outcome {
+pub struct UpdateReport {
     /// The bootloader's VERSION reply (§7.5.7).
     pub boot_version: u16,
     /// VERSION from the rebooted unit.
@@ -308,7 +308,7 @@ struct Session<'a, P: Port + ?Sized> {
 
 /// Finds out what the unit is running: its software (VERSION answers) or its
 /// bootloader (QUERY_PORT answers). Sends nothing that changes the unit.
-pub fn probe<P: Port + ?Sized>(
+pub fn detect<P: Port + ?Sized>(
     port: &mut P,
     opts: &Options,
     on: &mut dyn FnMut(Event<'_>),
@@ -341,14 +341,14 @@ pub fn probe<P: Port + ?Sized>(
     }
 }
 
-/// Writes `image` into the unit found by [`probe`], verifies it, and restarts the unit.
+/// Writes `image` into the unit found by [`detect`], verifies it, and restarts the unit.
 pub fn update<P: Port + ?Sized>(
     port: &mut P,
     image: &Image,
     found: Found,
     opts: &Options,
     on: &mut dyn FnMut(Event<'_>),
-) -> Result<Outcome, UpdateError> {
+) -> Result<UpdateReport, UpdateError> {
     let mut s = Session::new(port, opts, on);
     let entered_here = matches!(found, Found::Running(_));
     if let Err(f) = s.check_cancel("before anything was sent") {
@@ -434,7 +434,7 @@ pub fn update<P: Port + ?Sized>(
         Some(false) => s.note("SYSTEM_STATUS does NOT report the Software Update flag"),
         None => s.note("no SYSTEM_STATUS seen after the restart"),
     }
-    Ok(Outcome {
+    Ok(UpdateReport {
         boot_version,
         version,
         passes,

@@ -20,7 +20,7 @@
 use std::io::{self, Read, Write};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
-use super::connection::Direction;
+use super::connection::Crossing;
 
 pub const MAGIC: &[u8; 8] = b"VPXCAP1\n";
 pub const MAX_RECORD: usize = 4096;
@@ -29,7 +29,7 @@ const FLUSH_EVERY: Duration = Duration::from_secs(1);
 /// One record of a capture.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Record {
-    pub dir: Direction,
+    pub dir: Crossing,
     pub offset: Duration,
     pub bytes: Vec<u8>,
 }
@@ -58,7 +58,7 @@ impl<W: Write> CaptureWriter<W> {
     }
 
     /// Appends bytes seen at `at`; long chunks are split into several records.
-    pub fn record(&mut self, at: Instant, dir: Direction, bytes: &[u8]) -> io::Result<()> {
+    pub fn record(&mut self, at: Instant, dir: Crossing, bytes: &[u8]) -> io::Result<()> {
         let offset = at.saturating_duration_since(self.start).as_micros() as u64;
         for chunk in bytes.chunks(MAX_RECORD) {
             self.out.write_all(&[dir_byte(dir)])?;
@@ -79,10 +79,10 @@ impl<W: Write> CaptureWriter<W> {
     }
 }
 
-fn dir_byte(d: Direction) -> u8 {
+fn dir_byte(d: Crossing) -> u8 {
     match d {
-        Direction::Rx => b'R',
-        Direction::Tx => b'T',
+        Crossing::Rx => b'R',
+        Crossing::Tx => b'T',
     }
 }
 
@@ -132,8 +132,8 @@ pub fn parse_capture(data: &[u8]) -> (Vec<Record>, Option<CaptureError>, Option<
             );
         }
         let dir = match rest[0] {
-            b'R' => Direction::Rx,
-            b'T' => Direction::Tx,
+            b'R' => Crossing::Rx,
+            b'T' => Crossing::Tx,
             b => {
                 let what = format!("unknown direction byte {b:#04x}");
                 return (
@@ -211,11 +211,11 @@ mod tests {
             let mut w = CaptureWriter::new(&mut buf, t0).unwrap();
             w.record(
                 t0 + Duration::from_millis(5),
-                Direction::Rx,
+                Crossing::Rx,
                 &[0xE7, 0x7E, 1],
             )
             .unwrap();
-            w.record(t0 + Duration::from_millis(7), Direction::Tx, &[9, 8])
+            w.record(t0 + Duration::from_millis(7), Crossing::Tx, &[9, 8])
                 .unwrap();
             w.flush(t0).unwrap();
         }
@@ -235,7 +235,7 @@ mod tests {
         assert_eq!(
             recs[1],
             Record {
-                dir: Direction::Tx,
+                dir: Crossing::Tx,
                 offset: Duration::from_millis(7),
                 bytes: vec![9, 8]
             }

@@ -24,7 +24,7 @@ pub const RECONNECT_INTERVAL: Duration = Duration::from_millis(500);
 /// One byte on the ICD's line (§3.2.1: 57600 baud, 8N1, ten bits a byte): 173.6 µs.
 const LINE_BYTE_TIME: Duration = Duration::from_nanos(1_000_000_000 * 10 / 57_600);
 
-pub use crate::protocol::Direction;
+pub use crate::protocol::Crossing;
 
 /// What the decoder made of received bytes.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -56,7 +56,7 @@ pub enum LinkEvent {
     /// Raw bytes in either direction, as they crossed the wire (for recording).
     Bytes {
         at: Instant,
-        dir: Direction,
+        dir: Crossing,
         bytes: Vec<u8>,
     },
     /// One decoded item with the bytes it was made from.
@@ -202,7 +202,7 @@ fn writer_loop(rx: Receiver<Outgoing>, sink: Sink) {
             Ok(()) => {
                 sink(LinkEvent::Bytes {
                     at,
-                    dir: Direction::Tx,
+                    dir: Crossing::Tx,
                     bytes: bytes.clone(),
                 });
                 sink(LinkEvent::Tx {
@@ -288,7 +288,7 @@ fn read_until_failure(
                 let at = Instant::now();
                 sink(LinkEvent::Bytes {
                     at,
-                    dir: Direction::Rx,
+                    dir: Crossing::Rx,
                     bytes: buf[..n].to_vec(),
                 });
                 decode_chunk(decoder, &buf[..n], at, sink);

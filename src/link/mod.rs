@@ -19,7 +19,7 @@ mod tcp;
 
 pub use address::PortAddr;
 pub use capture::{CaptureError, CaptureWriter, Record, is_capture, parse_capture, read_capture};
-pub use connection::{Connector, Direction, Link, LinkEvent, LinkHandle, RxItem, SendError};
+pub use connection::{Connector, Crossing, Link, LinkEvent, LinkHandle, RxItem, SendError};
 pub use open::{RawPort, check_port, open_raw, port_connector};
 pub use pipe::{PipeEnd, PipeReader, PipeWriter, duplex_pipe, pipe_connector, pipe_pair};
 #[cfg(unix)]

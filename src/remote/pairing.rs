@@ -32,7 +32,7 @@
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
-use super::signing::{self, Claim, Refusal, Verifier};
+use super::signing::{self, BadSignature, Claim, Verifier};
 
 /// Wrong attempts in a row before pairing locks.
 pub const MAX_WRONG: u32 = 5;
@@ -70,7 +70,7 @@ pub enum PairResult {
 pub enum Denied {
     /// No such session (never paired, ended or revoked).
     NotPaired,
-    Signature(Refusal),
+    Signature(BadSignature),
 }
 
 #[derive(Debug)]

@@ -193,7 +193,7 @@ async fn gate(Ctx(s): Ctx<Server>, req: HttpRequest, next: Next) -> Response {
             return error(StatusCode::UNAUTHORIZED, "not paired");
         }
         let Some(claim) = claim_of(req.headers()) else {
-            return unsigned(&s, &signing::Refusal::Malformed.to_string());
+            return unsigned(&s, &signing::BadSignature::Malformed.to_string());
         };
         let (parts, body) = req.into_parts();
         let Ok(body) = axum::body::to_bytes(body, MAX_BODY).await else {

@@ -65,7 +65,7 @@ pub struct Claim {
 
 /// Why a signed request was refused, in the words the phone gets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
-pub enum Refusal {
+pub enum BadSignature {
     #[error("unsigned or malformed signature")]
     Malformed,
     #[error("bad signature")]
@@ -159,11 +159,11 @@ pub fn check_mac(
     method: &str,
     path: &str,
     body: &[u8],
-) -> Result<(), Refusal> {
+) -> Result<(), BadSignature> {
     if claim.mac.len() != MAC_HEX {
-        return Err(Refusal::Malformed);
+        return Err(BadSignature::Malformed);
     }
-    let tag = unhex(&claim.mac).ok_or(Refusal::Malformed)?;
+    let tag = unhex(&claim.mac).ok_or(BadSignature::Malformed)?;
     let mut m = hmac(key);
     m.update(&canonical(
         &claim.session,
@@ -173,7 +173,7 @@ pub fn check_mac(
         path,
         body,
     ));
-    m.verify_slice(&tag).map_err(|_| Refusal::BadMac)
+    m.verify_slice(&tag).map_err(|_| BadSignature::BadMac)
 }
 
 /// The counters a session has taken: the highest, and which of the
@@ -236,16 +236,16 @@ impl Verifier {
         path: &str,
         body: &[u8],
         now_ms: u64,
-    ) -> Result<(), Refusal> {
+    ) -> Result<(), BadSignature> {
         check_mac(&self.key, claim, method, path, body)?;
         if claim.time_ms.saturating_add(MAX_AGE.as_millis() as u64) < now_ms {
-            return Err(Refusal::Stale);
+            return Err(BadSignature::Stale);
         }
         if claim.time_ms > now_ms.saturating_add(MAX_AHEAD.as_millis() as u64) {
-            return Err(Refusal::Ahead);
+            return Err(BadSignature::Ahead);
         }
         if !self.replay.fresh(claim.counter) {
-            return Err(Refusal::Replayed);
+            return Err(BadSignature::Replayed);
         }
         self.replay.take(claim.counter);
         Ok(())
@@ -267,7 +267,7 @@ mod tests {
         }
     }
 
-    fn verify(v: &mut Verifier, c: &Claim, body: &[u8], now: u64) -> Result<(), Refusal> {
+    fn verify(v: &mut Verifier, c: &Claim, body: &[u8], now: u64) -> Result<(), BadSignature> {
         v.verify(c, "POST", "/api/x", body, now)
     }
 
@@ -291,7 +291,7 @@ mod tests {
         assert_eq!(verify(&mut v, &c, b"{}", 10_050), Ok(()));
         assert_eq!(
             verify(&mut v, &c, b"{}", 10_060),
-            Err(Refusal::Replayed),
+            Err(BadSignature::Replayed),
             "the same request again"
         );
     }
@@ -300,14 +300,17 @@ mod tests {
     fn a_request_older_than_max_age_is_stale_on_the_fake_clock() {
         let mut v = Verifier::new(KEY);
         let c = claim(1, 10_000, b"");
-        assert_eq!(verify(&mut v, &c, b"", 15_001), Err(Refusal::Stale));
+        assert_eq!(verify(&mut v, &c, b"", 15_001), Err(BadSignature::Stale));
         assert_eq!(
             verify(&mut v, &c, b"", 15_000),
             Ok(()),
             "5 s exactly is taken"
         );
         let ahead = claim(2, 20_001, b"");
-        assert_eq!(verify(&mut v, &ahead, b"", 18_000), Err(Refusal::Ahead));
+        assert_eq!(
+            verify(&mut v, &ahead, b"", 18_000),
+            Err(BadSignature::Ahead)
+        );
     }
 
     #[test]
@@ -323,19 +326,19 @@ mod tests {
         for n in [3, 4, 5, 70] {
             assert_eq!(
                 verify(&mut v, &claim(n, 1000, b""), b"", 1000),
-                Err(Refusal::Replayed),
+                Err(BadSignature::Replayed),
                 "{n} again"
             );
         }
         // 6 is more than REPLAY_WINDOW below 70: too old to tell, refused.
         assert_eq!(
             verify(&mut v, &claim(6, 1000, b""), b"", 1000),
-            Err(Refusal::Replayed)
+            Err(BadSignature::Replayed)
         );
         assert_eq!(verify(&mut v, &claim(69, 1000, b""), b"", 1000), Ok(()));
         assert_eq!(
             verify(&mut v, &claim(0, 1000, b""), b"", 1000),
-            Err(Refusal::Replayed),
+            Err(BadSignature::Replayed),
             "0 is never a counter"
         );
     }
@@ -346,28 +349,28 @@ mod tests {
         let c = claim(1, 1000, b"{\"on\":true}");
         assert_eq!(
             verify(&mut v, &c, b"{\"on\":true}", 1000),
-            Err(Refusal::BadMac)
+            Err(BadSignature::BadMac)
         );
         let mut v = Verifier::new(KEY);
         assert_eq!(
             verify(&mut v, &c, b"{\"on\":false}", 1000),
-            Err(Refusal::BadMac)
+            Err(BadSignature::BadMac)
         );
         assert_eq!(
             v.verify(&c, "POST", "/api/y", b"{\"on\":true}", 1000),
-            Err(Refusal::BadMac)
+            Err(BadSignature::BadMac)
         );
         let mut short = c.clone();
         short.mac.truncate(32);
         assert_eq!(
             verify(&mut v, &short, b"{\"on\":true}", 1000),
-            Err(Refusal::Malformed)
+            Err(BadSignature::Malformed)
         );
         let mut upper = c.clone();
         upper.mac = "zz".repeat(32);
         assert_eq!(
             verify(&mut v, &upper, b"{\"on\":true}", 1000),
-            Err(Refusal::Malformed)
+            Err(BadSignature::Malformed)
         );
         // A refused request burns no counter: the right one still passes.
         assert_eq!(verify(&mut v, &c, b"{\"on\":true}", 1000), Ok(()));

@@ -5,7 +5,7 @@
 //!
 //! No I/O: the app maps the terminal's keys to [`SetupKey`], hands in the model it
 //! has locked, `now`, and the wall-clock time a backup is stamped with; it carries out
-//! the [`Effects`] and hands back what came of them ([`SetupFlow::backup_written`],
+//! the [`SetupEffects`] and hands back what came of them ([`SetupFlow::backup_written`],
 //! [`SetupFlow::backup_read`]). Motor keys go to its controller before anything
 //! comes here.
 
@@ -13,7 +13,7 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
 
-use super::probe::{EraseEnd, Probes};
+use super::diagnostics::{Diagnostics, EraseEnd};
 use super::view::{Dialog, Field, Page, SetupView, Tone, missing_summary};
 use super::{form, write};
 use crate::backup::{self, Backup, Provenance};
@@ -44,7 +44,7 @@ pub enum SetupKey {
 
 /// What the app must do after the flow moved; the flow does none of it itself.
 #[derive(Debug, Default, Clone, PartialEq)]
-pub struct Effects {
+pub struct SetupEffects {
     /// Requests to put on the wire, in this order, each with its own command number.
     pub send: Vec<Message>,
     /// Ask the unit for every spec, name and enable flag again (the connect queries).
@@ -71,7 +71,7 @@ pub struct SetupFlow {
     queue: write::WriteQueue,
     /// The page a batch came from; `None` for a backup being applied.
     batch_page: Option<Option<Page>>,
-    probes: Probes,
+    diagnostics: Diagnostics,
     /// The backup file the app is writing, or reading, for this flow.
     writing: Option<String>,
     reading: Option<String>,
@@ -106,7 +106,7 @@ impl SetupFlow {
 
     /// When the app must tick for a setup timeout.
     pub fn next_deadline(&self) -> Option<Instant> {
-        [self.queue.next_deadline(), self.probes.next_deadline()]
+        [self.queue.next_deadline(), self.diagnostics.next_deadline()]
             .into_iter()
             .flatten()
             .min()
@@ -120,8 +120,8 @@ impl SetupFlow {
         model: &mut Model,
         now: Instant,
         wall: SystemTime,
-    ) -> Effects {
-        let mut out = Effects::default();
+    ) -> SetupEffects {
+        let mut out = SetupEffects::default();
         if sv.dialog != Dialog::None {
             self.dialog_key(key, sv, model, now, wall, &mut out);
             return out;
@@ -189,7 +189,7 @@ impl SetupFlow {
         sv: &mut SetupView,
         model: &mut Model,
         now: Instant,
-        out: &mut Effects,
+        out: &mut SetupEffects,
     ) {
         if self.queue.busy() {
             return say(sv, Tone::Bad, BUSY);
@@ -237,10 +237,10 @@ impl SetupFlow {
         sv: &mut SetupView,
         model: &mut Model,
         now: Instant,
-    ) -> Effects {
+    ) -> SetupEffects {
         self.queue.start(messages);
         self.batch_page = Some(None);
-        let mut out = Effects::default();
+        let mut out = SetupEffects::default();
         self.tick_into(sv, model, now, &mut out);
         out
     }
@@ -252,11 +252,11 @@ impl SetupFlow {
         model: &Model,
         now: Instant,
         wall: SystemTime,
-        out: &mut Effects,
+        out: &mut SetupEffects,
     ) {
         match field {
-            Field::Ping => out.send.push(self.probes.ping(sv, now)),
-            Field::Version => out.send.push(self.probes.version(sv, now)),
+            Field::Ping => out.send.push(self.diagnostics.ping(sv, now)),
+            Field::Version => out.send.push(self.diagnostics.version(sv, now)),
             Field::SaveBackup => self.save_backup(sv, model, wall, out),
             Field::LoadBackup => self.load_backup(sv, out),
             Field::Reread => reread(sv, out),
@@ -271,7 +271,7 @@ impl SetupFlow {
     }
 
     /// Asks the app for the backup file's text; [`Self::backup_read`] checks it.
-    fn load_backup(&mut self, sv: &mut SetupView, out: &mut Effects) {
+    fn load_backup(&mut self, sv: &mut SetupView, out: &mut SetupEffects) {
         if self.queue.busy() {
             return say(sv, Tone::Bad, BUSY);
         }
@@ -283,7 +283,7 @@ impl SetupFlow {
         self.reading = Some(file);
     }
 
-    /// The text of the backup file [`Effects::read_backup`] asked for, or why it could
+    /// The text of the backup file [`SetupEffects::read_backup`] asked for, or why it could
     /// not be read: checked against the unit, and what applying it changes put in a
     /// dialog for the person to confirm.
     pub fn backup_read(
@@ -372,7 +372,7 @@ impl SetupFlow {
         sv: &mut SetupView,
         model: &Model,
         wall: SystemTime,
-        out: &mut Effects,
+        out: &mut SetupEffects,
     ) {
         match backup_file(&sv.file, model, wall) {
             Ok(file) => {
@@ -383,7 +383,7 @@ impl SetupFlow {
         }
     }
 
-    /// How writing the file of [`Effects::write_backup`] went.
+    /// How writing the file of [`SetupEffects::write_backup`] went.
     pub fn backup_written(&mut self, result: io::Result<()>, sv: &mut SetupView, model: &Model) {
         let Some(file) = self.writing.take() else {
             return;
@@ -411,7 +411,7 @@ impl SetupFlow {
         model: &mut Model,
         now: Instant,
         wall: SystemTime,
-        out: &mut Effects,
+        out: &mut SetupEffects,
     ) {
         match (sv.dialog.clone(), key) {
             (_, SetupKey::Esc | SetupKey::Char('n')) => {
@@ -429,7 +429,7 @@ impl SetupFlow {
             }
             (Dialog::Erase { .. }, SetupKey::Char('y')) => {
                 sv.dialog = Dialog::None;
-                out.send.push(self.probes.erase(sv, now));
+                out.send.push(self.diagnostics.erase(sv, now));
                 say(sv, Tone::Info, "EEPROM_ERASE sent");
             }
             (Dialog::Disarm { .. }, SetupKey::Char('y')) => {
@@ -475,7 +475,7 @@ impl SetupFlow {
         selected: Option<u8>,
         model: &mut Model,
         now: Instant,
-    ) -> Effects {
+    ) -> SetupEffects {
         if on_screen && !self.on_screen {
             // Arriving from the device list: always the Device page, never where the
             // screens were left, so keys typed from memory land where they are meant.
@@ -489,9 +489,9 @@ impl SetupFlow {
             }
         }
         self.on_screen = on_screen;
-        let mut out = Effects::default();
+        let mut out = SetupEffects::default();
         self.tick_into(sv, model, now, &mut out);
-        self.probe_tick(sv, model, now, &mut out);
+        self.diagnostics_tick(sv, model, now, &mut out);
         if on_screen {
             reload_forms(sv, model);
         }
@@ -503,7 +503,7 @@ impl SetupFlow {
         sv: &mut SetupView,
         model: &mut Model,
         now: Instant,
-        out: &mut Effects,
+        out: &mut SetupEffects,
     ) {
         out.send.extend(self.queue.tick(model, now));
         if self.queue.settled()
@@ -519,8 +519,14 @@ impl SetupFlow {
         sv.writes = self.queue.lines();
     }
 
-    fn probe_tick(&mut self, sv: &mut SetupView, model: &Model, now: Instant, out: &mut Effects) {
-        let (again, erase_end) = self.probes.tick(model, sv, now);
+    fn diagnostics_tick(
+        &mut self,
+        sv: &mut SetupView,
+        model: &Model,
+        now: Instant,
+        out: &mut SetupEffects,
+    ) {
+        let (again, erase_end) = self.diagnostics.tick(model, sv, now);
         out.send.extend(again);
         match erase_end {
             Some(EraseEnd::Answered(code)) if code != 0 => {
@@ -565,7 +571,7 @@ fn goto_page(sv: &mut SetupView, page: Page) {
     sv.message = None;
 }
 
-fn reread(sv: &mut SetupView, out: &mut Effects) {
+fn reread(sv: &mut SetupView, out: &mut SetupEffects) {
     out.reread_all = true;
     say(
         sv,

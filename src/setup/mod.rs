@@ -7,9 +7,9 @@
 //! The request/answer/retry/re-read machinery underneath is [`crate::exchange`],
 //! which other flows share.
 
+pub mod diagnostics;
 pub mod flow;
 pub mod form;
-pub mod probe;
 pub mod view;
 pub mod write;
 

@@ -736,7 +736,7 @@ pub enum Dialog {
 
 /// A request whose answer is timed: PING, VERSION, EEPROM_ERASE.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub enum Probe {
+pub enum Diagnostic {
     #[default]
     Idle,
     Waiting {
@@ -764,9 +764,9 @@ pub struct SetupView {
     pub writes: Vec<WriteLine>,
     pub message: Option<(Tone, String)>,
     pub dialog: Dialog,
-    pub ping: Probe,
-    pub version: Probe,
-    pub erase: Probe,
+    pub ping: Diagnostic,
+    pub version: Diagnostic,
+    pub erase: Diagnostic,
     /// The backup file path.
     pub file: String,
 }

@@ -14,7 +14,7 @@ use ratatui::widgets::{Block, Borders, Paragraph, Row, Table};
 use super::state::ViewState;
 use super::{MIN_HEIGHT, MIN_WIDTH, theme, title_bar, too_small, values};
 use crate::model::Model;
-use crate::protocol::Direction;
+use crate::protocol::Crossing;
 use crate::traffic::{EXPECTED, Entry, ExpectKind, Health, KindFilter, TrafficLog, What, hex};
 
 /// The longest the rate table grows, so the list keeps most of the screen.
@@ -52,7 +52,7 @@ pub fn render(frame: &mut Frame, model: &Model, view: &ViewState, now: Instant) 
 /// Style of an entry's name: errors red, dropped bytes yellow, what we sent cyan.
 pub fn entry_style(e: &Entry) -> Style {
     match e.what {
-        What::Packet(_) | What::RawTx if e.dir == Direction::Tx => theme::info(),
+        What::Packet(_) | What::RawTx if e.dir == Crossing::Tx => theme::info(),
         What::Packet(_) | What::RawTx => Style::new(),
         What::Dropped => theme::caution(),
         _ => theme::alert(),
@@ -85,15 +85,15 @@ fn health_word(h: Health, kind: Option<ExpectKind>) -> &'static str {
     }
 }
 
-fn dir_label(d: Direction) -> &'static str {
+fn dir_label(d: Crossing) -> &'static str {
     match d {
-        Direction::Rx => "rx",
-        Direction::Tx => "tx",
+        Crossing::Rx => "rx",
+        Crossing::Tx => "tx",
     }
 }
 
 struct RateRow {
-    dir: Direction,
+    dir: Crossing,
     name: &'static str,
     icd: String,
     health: Health,
@@ -229,7 +229,7 @@ fn render_list(frame: &mut Frame, area: Rect, log: &TrafficLog) {
                 Span::raw(format!("{t:>9.3}")),
                 Span::styled(
                     dir_label(e.dir),
-                    if e.dir == Direction::Tx {
+                    if e.dir == Crossing::Tx {
                         theme::info()
                     } else {
                         theme::label()
@@ -303,8 +303,8 @@ fn render_status(frame: &mut Frame, area: Rect, log: &TrafficLog, view: &ViewSta
     }
     let dir = match v.dir {
         None => "both ways",
-        Some(Direction::Rx) => "rx only",
-        Some(Direction::Tx) => "tx only",
+        Some(Crossing::Rx) => "rx only",
+        Some(Crossing::Tx) => "tx only",
     };
     let kind = match v.kind {
         KindFilter::All => "all messages".to_string(),

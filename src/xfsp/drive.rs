@@ -36,7 +36,7 @@ use crate::control::{Controller, Direction, How, StopReason, TARGET_MARGIN};
 use crate::model::{LogLevel, Model, Motor};
 use crate::protocol::message::Packet;
 
-use super::scale::Axis;
+use super::scale::Travel;
 
 /// How long a request is held without a repeat: one 1 Hz period plus 200 ms of jitter.
 pub const REQUEST_HOLD: Duration = Duration::from_millis(1200);
@@ -256,7 +256,7 @@ impl MotorDrive {
             }
             // Whatever happens next, this target has had its answer.
             self.slot(motor).latched = Some(req.target);
-            let Some((axis, pos)) = position(model, motor, now) else {
+            let Some((travel, pos)) = position(model, motor, now) else {
                 self.counts.refused += 1;
                 model.log(
                     now,
@@ -269,10 +269,10 @@ impl MotorDrive {
                 );
                 continue;
             };
-            let raw_target = axis.to_raw(req.target);
-            let Some(direction) = axis
+            let raw_target = travel.to_raw(req.target);
+            let Some(direction) = travel
                 .direction(motor, pos, raw_target)
-                .filter(|&d| axis.remaining(motor, d, pos, raw_target) > TARGET_MARGIN)
+                .filter(|&d| travel.remaining(motor, d, pos, raw_target) > TARGET_MARGIN)
             else {
                 self.counts.taken += 1;
                 model.log(
@@ -336,10 +336,10 @@ impl MotorDrive {
 }
 
 /// The live position of `motor` and its scale, if the unit reports both.
-fn position(model: &Model, motor: Motor, now: Instant) -> Option<(Axis, u8)> {
+fn position(model: &Model, motor: Motor, now: Instant) -> Option<(Travel, u8)> {
     let ft = model.live_flap_trim(now)?;
-    let axis = Axis::for_motor(motor, ft)?;
-    Some((axis, endpoints::position(motor, ft)))
+    let travel = Travel::for_motor(motor, ft)?;
+    Some((travel, endpoints::position(motor, ft)))
 }
 
 fn log_stop(model: &mut Model, now: Instant, motor: Motor, why: &str) {

@@ -208,7 +208,7 @@ impl Default for GatewayConfig {
 
 /// What one tick produced.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Step {
+pub struct TickOutput {
     /// For the VP-X, in order.
     pub to_unit: Vec<Packet>,
     /// For the network, in order.
@@ -314,7 +314,7 @@ impl Gateway {
 
     /// Everything due at `now`: the motor stream, EXTERNAL_DATA at 1 Hz, and the
     /// published parameters packed into datagrams.
-    pub fn tick(&mut self, model: &mut Model, ctl: &mut Controller, now: Instant) -> Step {
+    pub fn tick(&mut self, model: &mut Model, ctl: &mut Controller, now: Instant) -> TickOutput {
         let mut to_unit = self.drive.tick(ctl, model, now);
         if let Some(d) = self.air.due(now) {
             to_unit.push(Packet::request(ctl.next_cnt(), d));
@@ -339,7 +339,7 @@ impl Gateway {
         }
         self.stats.datagrams_built += datagrams.len() as u64;
         self.last_tick = now;
-        Step { to_unit, datagrams }
+        TickOutput { to_unit, datagrams }
     }
 
     /// When [`tick`](Self::tick) must next be called.

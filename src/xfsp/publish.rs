@@ -61,7 +61,7 @@ use super::expire::Expire;
 use super::format::{Bus, CasMsg, Value};
 use super::idents::{self, Ident};
 use super::param::Parameter;
-use super::scale::Axis;
+use super::scale::Travel;
 
 /// Every item is re-sent at least this often (the draft's status rates are 1 Hz).
 pub const REFRESH: Duration = Duration::from_secs(1);
@@ -453,8 +453,8 @@ impl Publisher {
                 (Motor::Trim(TrimKind::Roll), idents::RTRIMPOS),
             ] {
                 let a = ft.axis(motor.axis());
-                if let Some(axis) = Axis::for_motor(motor, ft).filter(|_| a.enabled) {
-                    out.push(self.param(ident, 0, Value::Sint(axis.to_scale(a.position))));
+                if let Some(travel) = Travel::for_motor(motor, ft).filter(|_| a.enabled) {
+                    out.push(self.param(ident, 0, Value::Sint(travel.to_scale(a.position))));
                 }
             }
         }

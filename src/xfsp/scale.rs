@@ -32,7 +32,7 @@ pub const FULL_SCALE: i32 = 100_000;
 
 /// One motor's travel in raw counts: the zero point and the two ends.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Axis {
+pub struct Travel {
     zero: i32,
     /// Raw count at +[`FULL_SCALE`].
     positive: i32,
@@ -40,21 +40,21 @@ pub struct Axis {
     negative: Option<i32>,
 }
 
-impl Axis {
-    /// The axis from the endpoints FLAP_TRIM_STATUS carries, or `None` when they do not
+impl Travel {
+    /// The travel from the endpoints FLAP_TRIM_STATUS carries, or `None` when they do not
     /// describe any travel.
-    pub fn for_motor(motor: Motor, ft: &FlapTrimStatus) -> Option<Axis> {
+    pub fn for_motor(motor: Motor, ft: &FlapTrimStatus) -> Option<Travel> {
         let a = ft.axis(motor.axis());
         let (zero, positive, negative) = match (motor, a.neutral) {
             (Motor::Trim(TrimKind::Pitch), Some(neutral)) => (neutral, a.up, Some(a.down)),
             (Motor::Trim(TrimKind::Roll), Some(neutral)) => (neutral, a.down, Some(a.up)),
             _ => (a.up, a.down, None),
         };
-        Axis::new(zero, positive, negative)
+        Travel::new(zero, positive, negative)
     }
 
     /// Both sides must have travel, in opposite directions from the zero point.
-    pub fn new(zero: u8, positive: u8, negative: Option<u8>) -> Option<Axis> {
+    pub fn new(zero: u8, positive: u8, negative: Option<u8>) -> Option<Travel> {
         let (zero, positive) = (i32::from(zero), i32::from(positive));
         let negative = negative.map(i32::from);
         if positive == zero {
@@ -65,7 +65,7 @@ impl Axis {
         {
             return None;
         }
-        Some(Axis {
+        Some(Travel {
             zero,
             positive,
             negative,
@@ -161,7 +161,7 @@ mod tests {
 
     #[test]
     fn flaps_up_is_zero_and_down_is_full_scale_either_way_round() {
-        let a = Axis::new(40, 200, None).unwrap();
+        let a = Travel::new(40, 200, None).unwrap();
         assert_eq!(a.to_scale(40), 0);
         assert_eq!(a.to_scale(200), FULL_SCALE);
         assert_eq!(a.to_scale(120), 50_000);
@@ -172,7 +172,7 @@ mod tests {
         );
         assert_eq!(a.direction(Motor::Flaps, 40, 120), Some(Direction::Down));
         // A sensor wired the other way round: up is the high count.
-        let b = Axis::new(200, 40, None).unwrap();
+        let b = Travel::new(200, 40, None).unwrap();
         assert_eq!(b.to_scale(120), 50_000);
         assert_eq!(b.to_raw(FULL_SCALE), 40);
         assert_eq!(b.direction(Motor::Flaps, 200, 120), Some(Direction::Down));
@@ -186,14 +186,14 @@ mod tests {
     #[test]
     fn trims_scale_each_side_by_its_own_span() {
         // Pitch: neutral 100, nose-up endpoint 200, nose-down endpoint 50.
-        let p = Axis::new(100, 200, Some(50)).unwrap();
+        let p = Travel::new(100, 200, Some(50)).unwrap();
         assert_eq!(p.to_scale(150), 50_000);
         assert_eq!(p.to_scale(75), -50_000);
         assert_eq!(p.to_scale(0), -FULL_SCALE, "clamped");
         assert_eq!(p.to_raw(-FULL_SCALE), 50);
         assert_eq!(p.direction(PITCH, 100, 50), Some(Direction::Down));
         // Roll: up endpoint (left) 30 is negative, down endpoint (right) 230 positive.
-        let r = Axis::new(130, 230, Some(30)).unwrap();
+        let r = Travel::new(130, 230, Some(30)).unwrap();
         assert_eq!(r.to_scale(30), -FULL_SCALE);
         assert_eq!(r.direction(ROLL, 130, 30), Some(Direction::Left));
         assert_eq!(r.direction(ROLL, 130, 131), Some(Direction::Right));
@@ -202,10 +202,10 @@ mod tests {
 
     #[test]
     fn unconfigured_endpoints_give_no_scale() {
-        assert_eq!(Axis::new(0, 0, None), None);
-        assert_eq!(Axis::new(100, 200, Some(100)), None);
+        assert_eq!(Travel::new(0, 0, None), None);
+        assert_eq!(Travel::new(100, 200, Some(100)), None);
         assert_eq!(
-            Axis::new(100, 200, Some(150)),
+            Travel::new(100, 200, Some(150)),
             None,
             "both ends on one side"
         );
@@ -213,7 +213,7 @@ mod tests {
 
     #[test]
     fn remaining_goes_to_zero_at_the_target_and_negative_past_it() {
-        let a = Axis::new(200, 40, None).unwrap();
+        let a = Travel::new(200, 40, None).unwrap();
         assert_eq!(a.remaining(Motor::Flaps, Direction::Down, 150, 120), 30);
         assert_eq!(a.remaining(Motor::Flaps, Direction::Down, 118, 120), -2);
     }
@@ -223,7 +223,7 @@ mod tests {
         fn raw_to_scale_and_back_is_within_one_count(
             zero in 0u8..=255, pos in 0u8..=255, neg in 0u8..=255, raw in 0u8..=255, flaps in any::<bool>(),
         ) {
-            let Some(a) = Axis::new(zero, pos, (!flaps).then_some(neg)) else { return Ok(()) };
+            let Some(a) = Travel::new(zero, pos, (!flaps).then_some(neg)) else { return Ok(()) };
             let lo = if flaps { zero } else { neg };
             let (lo, hi) = (lo.min(pos), lo.max(pos));
             prop_assume!((lo..=hi).contains(&raw));

@@ -115,7 +115,7 @@ impl Default for Decoder {
     }
 }
 
-enum Step {
+enum Scan {
     /// The candidate's first byte was plain garbage (or the candidate gave way); the
     /// run of skipped bytes goes on.
     Garbage,
@@ -274,16 +274,16 @@ impl Decoder {
                 }
             };
             match Self::candidate(stats, data, start, input, on_event, skip_from) {
-                Step::Garbage => at = start + 1,
-                Step::Reported(next) => {
+                Scan::Garbage => at = start + 1,
+                Scan::Reported(next) => {
                     at = next;
                     skip_from = next;
                 }
-                Step::Incomplete => {
+                Scan::Incomplete => {
                     Self::skip(stats, between(data, skip_from, start), on_event);
                     return start;
                 }
-                Step::Truncated => return data.len(),
+                Scan::Truncated => return data.len(),
             }
         }
     }
@@ -298,10 +298,10 @@ impl Decoder {
         input: Input,
         on_event: &mut impl FnMut(Event<'a>),
         skip_from: usize,
-    ) -> Step {
+    ) -> Scan {
         let rest = data.get(start..).unwrap_or_default();
         if rest.get(1).is_some_and(|&x| x != SYNC2) {
-            return Step::Garbage;
+            return Scan::Garbage;
         }
         let after_sync = rest.get(1..).unwrap_or_default();
         let total = if rest.len() < HEADER_LEN {
@@ -315,7 +315,7 @@ impl Decoder {
                     stats.bad_length += 1;
                     stats.skipped_bytes += 1;
                     on_event(Event::BadLength(rest.get(..HEADER_LEN).unwrap_or(rest)));
-                    return Step::Reported(start + 1);
+                    return Scan::Reported(start + 1);
                 }
             }
         };
@@ -323,18 +323,18 @@ impl Decoder {
             // Incomplete. Rule 2: every intact frame in the held bytes lies within
             // the bytes this candidate claims.
             if holds_known_frame(after_sync) {
-                return Step::Garbage;
+                return Scan::Garbage;
             }
             return match input {
-                Input::MoreMayCome => Step::Incomplete,
+                Input::MoreMayCome => Scan::Incomplete,
                 // It can never complete. Give it up one byte, unless nothing intact
                 // follows: then it is the frame the input was cut in.
-                Input::Ended if holds_any_frame(after_sync) => Step::Garbage,
+                Input::Ended if holds_any_frame(after_sync) => Scan::Garbage,
                 Input::Ended => {
                     Self::skip(stats, between(data, skip_from, start), on_event);
                     stats.truncated_bytes += rest.len() as u64;
                     on_event(Event::Truncated(rest));
-                    Step::Truncated
+                    Scan::Truncated
                 }
             };
         };
@@ -347,14 +347,14 @@ impl Decoder {
         if inner_starts.is_some_and(|b| b.iter().fold(false, |any, &x| any | (x == SYNC1)))
             && holds_known_frame(frame.get(1..).unwrap_or_default())
         {
-            return Step::Garbage;
+            return Scan::Garbage;
         }
         if !checksum_holds(frame) {
             Self::skip(stats, between(data, skip_from, start), on_event);
             stats.bad_checksum += 1;
             stats.skipped_bytes += 1;
             on_event(Event::BadChecksum(frame));
-            return Step::Reported(start + 1);
+            return Scan::Reported(start + 1);
         }
         Self::skip(stats, between(data, skip_from, start), on_event);
         if message::lookup(id_of(frame)).is_some() {
@@ -364,7 +364,7 @@ impl Decoder {
             stats.unknown_message += 1;
             on_event(Event::UnknownMessage(frame));
         }
-        Step::Reported(start + total)
+        Scan::Reported(start + total)
     }
 
     fn skip<'a>(stats: &mut DecoderStats, bytes: &'a [u8], on_event: &mut impl FnMut(Event<'a>)) {

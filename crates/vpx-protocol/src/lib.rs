@@ -18,11 +18,11 @@ extern crate alloc;
 
 pub mod bootloader;
 pub mod config;
+pub mod crossing;
 pub mod decoder;
 pub mod defaults;
 pub mod describe;
 pub mod device;
-pub mod direction;
 /// Errors of frames and payloads.
 pub mod error;
 pub mod fault;
@@ -31,8 +31,8 @@ pub mod message;
 pub mod names;
 pub mod validate;
 
+pub use crossing::Crossing;
 pub use decoder::{Decoder, DecoderStats, Event};
-pub use direction::Direction;
 pub use error::{Error, LenRule, Result};
 pub use fault::FaultCode;
 pub use frame::{FrameHeader, FrameRef, MessageId, Node, checksum};

@@ -2,7 +2,7 @@
 //! SPEC_ACK (ICD Tables 19, 20), judged against the unit's current [`UnitConfig`].
 //!
 //! Three users: the virtual unit answers SPEC_ACK with them, the setup screens refuse a
-//! value before sending it and say why ([`explain`], [`Refusal`]), and restore checks a
+//! value before sending it and say why ([`explain`], [`Invalid`]), and restore checks a
 //! backup as a whole before writing anything ([`whole_config`]).
 //!
 //! Each function runs its checks in the order its doc lists and reports the first that
@@ -55,7 +55,7 @@ use super::message::*;
 /// field at fault
 /// (as named in our message types), and a sentence for a person.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Refusal {
+pub struct Invalid {
     /// The SPEC_ACK code the unit sends (ICD Table 20).
     pub error: SpecAckError,
     /// The payload field at fault, as named in our message types.
@@ -64,14 +64,14 @@ pub struct Refusal {
     pub reason: String,
 }
 
-impl fmt::Display for Refusal {
+impl fmt::Display for Invalid {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}: {}", self.field, self.reason)
     }
 }
 
-fn refuse(error: SpecAckError, field: &'static str, reason: String) -> Refusal {
-    Refusal {
+fn refuse(error: SpecAckError, field: &'static str, reason: String) -> Invalid {
+    Invalid {
         error,
         field,
         reason,
@@ -141,11 +141,11 @@ pub fn device_spec(cfg: &UnitConfig, spec: &DeviceSpec) -> Result<(), SpecAckErr
 }
 
 /// [`device_spec`] with the reason in words.
-pub fn check_device_spec(cfg: &UnitConfig, spec: &DeviceSpec) -> Result<(), Refusal> {
+pub fn check_device_spec(cfg: &UnitConfig, spec: &DeviceSpec) -> Result<(), Invalid> {
     device_spec_inner(cfg, spec, Cross::Check)
 }
 
-fn device_spec_inner(cfg: &UnitConfig, spec: &DeviceSpec, cross: Cross) -> Result<(), Refusal> {
+fn device_spec_inner(cfg: &UnitConfig, spec: &DeviceSpec, cross: Cross) -> Result<(), Invalid> {
     use SpecAckError::*;
     let id = spec.device_id;
     let info = match id {
@@ -300,7 +300,7 @@ pub fn system_spec(cfg: &UnitConfig, spec: &SystemSpec) -> Result<(), SpecAckErr
 }
 
 /// [`system_spec`] with the reason in words.
-pub fn check_system_spec(cfg: &UnitConfig, spec: &SystemSpec) -> Result<(), Refusal> {
+pub fn check_system_spec(cfg: &UnitConfig, spec: &SystemSpec) -> Result<(), Invalid> {
     use SpecAckError::*;
     if let OvervoltageLimit::Unknown(n) = spec.overvoltage_limit {
         return Err(refuse(
@@ -374,7 +374,7 @@ pub fn trim_spec(cfg: &UnitConfig, spec: &TrimSpec) -> Result<(), SpecAckError> 
 }
 
 /// [`trim_spec`] with the reason in words.
-pub fn check_trim_spec(_cfg: &UnitConfig, spec: &TrimSpec) -> Result<(), Refusal> {
+pub fn check_trim_spec(_cfg: &UnitConfig, spec: &TrimSpec) -> Result<(), Invalid> {
     use SpecAckError::*;
     match spec.trim_type {
         TrimType::Unknown(n) => Err(refuse(
@@ -427,7 +427,7 @@ pub fn flap_spec(cfg: &UnitConfig, spec: &FlapSpec) -> Result<(), SpecAckError> 
 }
 
 /// [`flap_spec`] with the reason in words.
-pub fn check_flap_spec(_cfg: &UnitConfig, spec: &FlapSpec) -> Result<(), Refusal> {
+pub fn check_flap_spec(_cfg: &UnitConfig, spec: &FlapSpec) -> Result<(), Invalid> {
     use SpecAckError::*;
     if spec.midpoint_1 != 0 && spec.midpoint_2 != 0 {
         let p = [spec.up, spec.midpoint_1, spec.midpoint_2, spec.down];
@@ -500,11 +500,11 @@ pub fn wig_wag_spec(cfg: &UnitConfig, spec: &WigWagSpec) -> Result<(), SpecAckEr
 }
 
 /// [`wig_wag_spec`] with the reason in words.
-pub fn check_wig_wag_spec(cfg: &UnitConfig, spec: &WigWagSpec) -> Result<(), Refusal> {
+pub fn check_wig_wag_spec(cfg: &UnitConfig, spec: &WigWagSpec) -> Result<(), Invalid> {
     wig_wag_inner(cfg, spec, Cross::Check)
 }
 
-fn wig_wag_inner(cfg: &UnitConfig, spec: &WigWagSpec, sec_alt: Cross) -> Result<(), Refusal> {
+fn wig_wag_inner(cfg: &UnitConfig, spec: &WigWagSpec, sec_alt: Cross) -> Result<(), Invalid> {
     use SpecAckError::*;
     let devices = [
         ("device_one", spec.device_one),
@@ -596,7 +596,7 @@ pub fn device_name(cfg: &UnitConfig, name: &DeviceName) -> Result<(), SpecAckErr
 }
 
 /// [`device_name`] with the reason in words.
-pub fn check_device_name(_cfg: &UnitConfig, name: &DeviceName) -> Result<(), Refusal> {
+pub fn check_device_name(_cfg: &UnitConfig, name: &DeviceName) -> Result<(), Invalid> {
     if device::device(name.device_id).is_none() {
         return Err(refuse(
             SpecAckError::InvalidDevice,
@@ -629,7 +629,7 @@ pub fn device_enable(_cfg: &UnitConfig, e: &DeviceEnable) -> Result<(), SpecAckE
 
 /// Judges any message the unit answers with SPEC_ACK (DEVICE_SPEC, SYSTEM_SPEC,
 /// TRIM_SPEC, FLAP_SPEC, WIG_WAG_SPEC, DEVICE_NAME). `None` for every other message.
-pub fn check(cfg: &UnitConfig, message: &Message) -> Option<Result<(), Refusal>> {
+pub fn check(cfg: &UnitConfig, message: &Message) -> Option<Result<(), Invalid>> {
     Some(match message {
         Message::DeviceSpec(m) => check_device_spec(cfg, m),
         Message::SystemSpec(m) => check_system_spec(cfg, m),
@@ -748,7 +748,7 @@ fn breaker_range(sent: &Message) -> String {
 /// enable flags hold nothing that can be wrong.
 pub fn whole_config(cfg: &UnitConfig) -> Vec<ConfigProblem> {
     let mut out = Vec::new();
-    let mut push = |prefix: String, r: Refusal| {
+    let mut push = |prefix: String, r: Invalid| {
         out.push(ConfigProblem {
             field: format!("{prefix}.{}", r.field),
             error: r.error,

@@ -106,7 +106,7 @@ impl App {
             &mut CheckView,
             &crate::model::Model,
             &mut crate::control::Controller,
-        ) -> crate::check::Effects,
+        ) -> crate::check::CheckEffects,
     ) {
         let Some(flow) = self.check.flow.as_mut() else {
             return;

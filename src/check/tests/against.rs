@@ -11,7 +11,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use super::{PITCH, Rig, pitch_at, pitch_ctx};
 use crate::check::state::{MotorFinding, Outcome as Found, Step};
 use crate::control::run_state::ReleaseMode;
-use crate::control::{Controller, Direction, Outcome, StopReason, StreamerConfig};
+use crate::control::{Controller, Direction, Handled, StopReason, StreamerConfig};
 use crate::protocol::message::Message;
 
 const STOPPED: &str =
@@ -31,7 +31,7 @@ impl Rig {
         self.unit.snapshot(self.now).pitch_trim_position
     }
 
-    fn key(&mut self, c: char, kind: KeyEventKind, setup: bool) -> Outcome {
+    fn key(&mut self, c: char, kind: KeyEventKind, setup: bool) -> Handled {
         let key = KeyEvent::new_with_kind(KeyCode::Char(c), KeyModifiers::NONE, kind);
         let out = self
             .ctl

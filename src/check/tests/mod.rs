@@ -241,7 +241,7 @@ impl Rig {
 
     /// What a call gave back: its progress and packets; a load file to open is
     /// opened here, as the app does, and the flow told in the same turn.
-    fn take(&mut self, mut out: crate::check::Effects) {
+    fn take(&mut self, mut out: crate::check::CheckEffects) {
         if let Some(req) = out.open_loads.take() {
             let opened = crate::loads::disk::open_or_create(&req.path, &req.circuits);
             out.absorb(self.flow.loads_opened(
@@ -2601,7 +2601,7 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
 }
 
 /// The flow writes no file. Reaching the load analysis it asks the app to
-/// open the load file (`Effects::open_loads`, with the circuits its template lists)
+/// open the load file (`CheckEffects::open_loads`, with the circuits its template lists)
 /// and waits, the file untouched; handed the result, it goes on to the report.
 #[test]
 fn the_load_analysis_asks_the_app_to_open_the_file_and_writes_nothing_itself() {

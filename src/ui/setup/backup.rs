@@ -6,7 +6,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Row, Table};
 
-use crate::setup::view::{Field, Probe, SetupView};
+use crate::setup::view::{Diagnostic, Field, SetupView};
 use crate::ui::theme;
 
 pub fn render(frame: &mut Frame, area: Rect, sv: &SetupView) {
@@ -23,14 +23,14 @@ pub fn render(frame: &mut Frame, area: Rect, sv: &SetupView) {
                 Field::File if f == sv.field() => Span::raw(format!("{}▏", sv.file)),
                 Field::File => Span::raw(sv.file.clone()),
                 Field::Erase => match sv.erase {
-                    Probe::Waiting { .. } => {
+                    Diagnostic::Waiting { .. } => {
                         Span::styled("waiting for the unit…", theme::caution())
                     }
-                    Probe::Answered { .. } => {
+                    Diagnostic::Answered { .. } => {
                         Span::styled("erased: factory settings", theme::caution())
                     }
-                    Probe::NoAnswer => Span::styled("no answer", theme::alert()),
-                    Probe::Idle => Span::styled("asks first", theme::label()),
+                    Diagnostic::NoAnswer => Span::styled("no answer", theme::alert()),
+                    Diagnostic::Idle => Span::styled("asks first", theme::label()),
                 },
                 _ => Span::styled("Enter", theme::label()),
             };

@@ -8,18 +8,21 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Row, Table};
 
 use crate::model::Model;
-use crate::setup::view::{Field, Probe, SetupView};
+use crate::setup::view::{Diagnostic, Field, SetupView};
 use crate::ui::theme;
 
-fn probe(p: &Probe, answered: impl FnOnce(std::time::Duration) -> String) -> Span<'static> {
+fn diagnostic(
+    p: &Diagnostic,
+    answered: impl FnOnce(std::time::Duration) -> String,
+) -> Span<'static> {
     match p {
-        Probe::Idle => Span::styled("not asked yet: Enter", theme::unknown()),
-        Probe::Waiting { attempt, of } if *of > 1 => {
+        Diagnostic::Idle => Span::styled("not asked yet: Enter", theme::unknown()),
+        Diagnostic::Waiting { attempt, of } if *of > 1 => {
             Span::styled(format!("waiting (try {attempt}/{of})"), theme::caution())
         }
-        Probe::Waiting { .. } => Span::styled("waiting…", theme::caution()),
-        Probe::Answered { after } => Span::styled(answered(*after), theme::on_off(true)),
-        Probe::NoAnswer => Span::styled("no answer", theme::alert()),
+        Diagnostic::Waiting { .. } => Span::styled("waiting…", theme::caution()),
+        Diagnostic::Answered { after } => Span::styled(answered(*after), theme::on_off(true)),
+        Diagnostic::NoAnswer => Span::styled("no answer", theme::alert()),
     }
 }
 
@@ -31,12 +34,12 @@ pub fn render(frame: &mut Frame, area: Rect, model: &Model, sv: &SetupView, now:
         .iter()
         .map(|&f| {
             let value = match f {
-                Field::Ping => probe(&sv.ping, |d| {
+                Field::Ping => diagnostic(&sv.ping, |d| {
                     format!("{:.1} ms round trip", d.as_secs_f64() * 1000.0)
                 }),
                 _ => match (&sv.version, version) {
-                    (Probe::Waiting { .. } | Probe::NoAnswer, _) | (_, None) => {
-                        probe(&sv.version, |_| String::new())
+                    (Diagnostic::Waiting { .. } | Diagnostic::NoAnswer, _) | (_, None) => {
+                        diagnostic(&sv.version, |_| String::new())
                     }
                     (_, Some(v)) => Span::styled(
                         format!(

@@ -1,11 +1,11 @@
 //! The diagnostics page's timed requests: PING (answered at once or not at all),
 //! VERSION (asked up to three times) and EEPROM_ERASE (one long wait). Each is a
 //! [`Try`] judged against what the model heard after it was sent; the view's
-//! [`Probe`] says where it stands.
+//! [`Diagnostic`] says where it stands.
 
 use std::time::{Duration, Instant};
 
-use super::view::{Probe, SetupView};
+use super::view::{Diagnostic, SetupView};
 use crate::exchange::{ANSWER_TIMEOUT, TRIES, Try, Verdict};
 use crate::model::Model;
 use crate::protocol::message::{EepromErase, Message, Ping, Version};
@@ -25,20 +25,20 @@ pub enum EraseEnd {
 
 /// The requests in flight.
 #[derive(Debug, Default)]
-pub struct Probes {
+pub struct Diagnostics {
     ping: Option<Try>,
     version: Option<Try>,
     erase: Option<Try>,
 }
 
-fn waiting(t: &Try) -> Probe {
-    Probe::Waiting {
+fn waiting(t: &Try) -> Diagnostic {
+    Diagnostic::Waiting {
         attempt: t.attempt,
         of: t.of(),
     }
 }
 
-impl Probes {
+impl Diagnostics {
     /// Starts a PING; returns what to send.
     pub fn ping(&mut self, view: &mut SetupView, now: Instant) -> Message {
         let t = Try::with(now, PING_TIMEOUT, 1);
@@ -85,13 +85,13 @@ impl Probes {
             let reply = model.last_ping_reply.filter(|&r| r >= t.sent_at);
             match t.judge(reply.is_some(), now) {
                 Verdict::Answered => {
-                    view.ping = Probe::Answered {
+                    view.ping = Diagnostic::Answered {
                         after: reply.unwrap_or(now) - t.sent_at,
                     };
                     self.ping = None;
                 }
                 Verdict::NoAnswer => {
-                    view.ping = Probe::NoAnswer;
+                    view.ping = Diagnostic::NoAnswer;
                     self.ping = None;
                 }
                 Verdict::Resend | Verdict::Waiting => {}
@@ -102,7 +102,7 @@ impl Probes {
             let reply = model.version.map(|v| v.at).filter(|&r| r >= sent);
             match t.judge(reply.is_some(), now) {
                 Verdict::Answered => {
-                    view.version = Probe::Answered {
+                    view.version = Diagnostic::Answered {
                         after: reply.unwrap_or(now) - sent,
                     };
                     self.version = None;
@@ -112,7 +112,7 @@ impl Probes {
                     out.push(Version::REQUEST.into());
                 }
                 Verdict::NoAnswer => {
-                    view.version = Probe::NoAnswer;
+                    view.version = Diagnostic::NoAnswer;
                     self.version = None;
                 }
                 Verdict::Waiting => {}
@@ -126,14 +126,14 @@ impl Probes {
             match t.judge(reply.is_some(), now) {
                 Verdict::Answered => {
                     let (at, code) = reply.unwrap_or((now, 0));
-                    view.erase = Probe::Answered {
+                    view.erase = Diagnostic::Answered {
                         after: at - t.sent_at,
                     };
                     self.erase = None;
                     erase_end = Some(EraseEnd::Answered(code));
                 }
                 Verdict::NoAnswer => {
-                    view.erase = Probe::NoAnswer;
+                    view.erase = Diagnostic::NoAnswer;
                     self.erase = None;
                     erase_end = Some(EraseEnd::NoAnswer);
                 }
@@ -162,18 +162,18 @@ mod tests {
             scenario: "t".into(),
         });
         let mut v = SetupView::default();
-        let mut p = Probes::default();
+        let mut p = Diagnostics::default();
         assert_eq!(p.version(&mut v, t0), Version::REQUEST.into());
-        assert_eq!(v.version, Probe::Waiting { attempt: 1, of: 3 });
+        assert_eq!(v.version, Diagnostic::Waiting { attempt: 1, of: 3 });
         assert_eq!(p.tick(&m, &mut v, ms(t0, 999)).0, vec![]);
         assert_eq!(
             p.tick(&m, &mut v, ms(t0, 1000)).0,
             vec![Version::REQUEST.into()]
         );
-        assert_eq!(v.version, Probe::Waiting { attempt: 2, of: 3 });
+        assert_eq!(v.version, Diagnostic::Waiting { attempt: 2, of: 3 });
         p.tick(&m, &mut v, ms(t0, 2000));
         p.tick(&m, &mut v, ms(t0, 3000));
-        assert_eq!(v.version, Probe::NoAnswer);
+        assert_eq!(v.version, Diagnostic::NoAnswer);
         assert_eq!(p.next_deadline(), None);
 
         p.ping(&mut v, ms(t0, 4000));
@@ -181,7 +181,7 @@ mod tests {
         p.tick(&m, &mut v, ms(t0, 4020));
         assert_eq!(
             v.ping,
-            Probe::Answered {
+            Diagnostic::Answered {
                 after: Duration::from_millis(12)
             }
         );
@@ -195,7 +195,7 @@ mod tests {
         p.tick(&m, &mut v, ms(t0, 5040));
         assert_eq!(
             v.version,
-            Probe::Answered {
+            Diagnostic::Answered {
                 after: Duration::from_millis(30)
             }
         );
@@ -208,11 +208,11 @@ mod tests {
             scenario: "t".into(),
         });
         let mut v = SetupView::default();
-        let mut p = Probes::default();
+        let mut p = Diagnostics::default();
         p.erase(&mut v, t0);
         assert_eq!(p.tick(&m, &mut v, ms(t0, 2999)).1, None);
         assert_eq!(p.tick(&m, &mut v, ms(t0, 3000)).1, Some(EraseEnd::NoAnswer));
-        assert_eq!(v.erase, Probe::NoAnswer);
+        assert_eq!(v.erase, Diagnostic::NoAnswer);
         p.erase(&mut v, ms(t0, 4000));
         m.apply_packet(
             ms(t0, 4500),

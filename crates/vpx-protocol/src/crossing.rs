@@ -5,7 +5,7 @@
 /// Which way a frame crossed the serial line, as the EFIS sees it (ICD Table 1, bytes 6 and
 /// 7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub enum Direction {
+pub enum Crossing {
     /// From the unit to us.
     Rx,
     /// From us to the unit.
