@@ -2,10 +2,6 @@
 //! import only downward, and no two of them import each other, directly or round a
 //! circle. It reads `src/` as text (every `crate::x` path, `use crate::{a, b}` groups
 //! included, comments left out) and names the file and line of each import it refuses.
-//!
-//! Imports that break the rule today are listed in [`DEBT`], each once, so that the
-//! list can only shrink: a new one fails the test with its file and line, and one that
-//! has been mended fails it too until its line in the list goes.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -50,12 +46,6 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("wiring", &["app"]),
     ("one file per subcommand", &["cmd"]),
     ("the command line", &["cli"]),
-];
-
-/// Imports that break the layering today, as `from -> to`. Mend one, then remove
-/// its line here.
-const DEBT: &[&str] = &[
-    // Empty: every import runs down the layers.
 ];
 
 /// One import of another top-level module: where it is, and what it names.
@@ -332,18 +322,12 @@ fn the_sketch_in_lib_rs_names_every_module() {
 fn the_layers_hold() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let found = breaches(&imports(&src));
-    let debt: BTreeSet<&str> = DEBT.iter().copied().collect();
-    let new: Vec<&String> = found
-        .keys()
-        .filter(|k| !debt.contains(k.as_str()))
-        .collect();
-    let mended: Vec<&&str> = debt.iter().filter(|d| !found.contains_key(**d)).collect();
+    let all: Vec<&String> = found.keys().collect();
     assert!(
-        new.is_empty(),
+        all.is_empty(),
         "imports against the layers (see LAYERS in tests/layers.rs):\n{}",
-        report(&found, &new)
+        report(&found, &all)
     );
-    assert!(mended.is_empty(), "mended, so remove from DEBT: {mended:?}");
 }
 
 #[test]
@@ -410,9 +394,6 @@ fn modules_with_children_live_in_mod_rs() {
     );
 }
 
-/// Files that are still over [`MAX_CODE_LINES`]; the list can only shrink.
-const TOO_LONG: &[&str] = &[];
-
 /// No file holds more than this many lines of code before its tests.
 const MAX_CODE_LINES: usize = 1000;
 
@@ -456,19 +437,7 @@ fn no_file_is_over_a_thousand_lines_of_code() {
             long.push((rel, n));
         }
     }
-    let new: Vec<_> = long
-        .iter()
-        .filter(|(f, _)| !TOO_LONG.contains(&f.as_str()))
-        .collect();
-    assert!(new.is_empty(), "split these: {new:?}");
-    let mended: Vec<_> = TOO_LONG
-        .iter()
-        .filter(|f| !long.iter().any(|(l, _)| l == *f))
-        .collect();
-    assert!(
-        mended.is_empty(),
-        "under {MAX_CODE_LINES} lines now: remove from TOO_LONG: {mended:?}"
-    );
+    assert!(long.is_empty(), "split these: {long:?}");
 }
 
 #[test]
