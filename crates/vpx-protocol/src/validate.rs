@@ -790,6 +790,19 @@ mod tests {
         verdict.map_err(|r| r.error)
     }
 
+    /// Judges each spec on `c` with `check`: the SPEC_ACK code it must get. A failure
+    /// names the spec.
+    #[track_caller]
+    fn judge<M: fmt::Debug>(
+        check: fn(&UnitConfig, &M) -> Result<(), Invalid>,
+        c: &UnitConfig,
+        cases: &[(M, Result<(), SpecAckError>)],
+    ) {
+        for (spec, want) in cases {
+            assert_eq!(code(check(c, spec)), *want, "{spec:?}");
+        }
+    }
+
     fn dev(id: u8, cb: u8, sw: SwitchId, cf: bool) -> DeviceSpec {
         DeviceSpec {
             device_id: id,
@@ -872,60 +885,26 @@ mod tests {
 
     #[test]
     fn breaker_within_appendix_b_amps() {
-        let c = cfg();
-        assert_eq!(
-            code(check_device_spec(&c, &dev(4, 5, on(1), false))),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(4, 6, on(1), false))),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(4, 0, on(1), false))),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(0x11, 10, on(1), false))),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(0x11, 11, on(1), false))),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(0x17, 15, on(1), false))),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(0x17, 16, on(1), false))),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(0x1A, 4, on(1), false))),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(0x1B, 3, on(1), false))),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(EFIS, 6, on(1), true))),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(STARTER, 10, SwitchId::AlwaysOn, false)
-            )),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(STARTER, 11, SwitchId::AlwaysOn, false)
-            )),
-            Err(InvalidBreaker)
+        judge(
+            check_device_spec,
+            &cfg(),
+            &[
+                (dev(4, 5, on(1), false), Ok(())),
+                (dev(4, 6, on(1), false), Err(InvalidBreaker)),
+                (dev(4, 0, on(1), false), Err(InvalidBreaker)),
+                (dev(0x11, 10, on(1), false), Ok(())),
+                (dev(0x11, 11, on(1), false), Err(InvalidBreaker)),
+                (dev(0x17, 15, on(1), false), Ok(())),
+                (dev(0x17, 16, on(1), false), Err(InvalidBreaker)),
+                (dev(0x1A, 4, on(1), false), Err(InvalidBreaker)),
+                (dev(0x1B, 3, on(1), false), Err(InvalidBreaker)),
+                (dev(EFIS, 6, on(1), true), Err(InvalidBreaker)),
+                (dev(STARTER, 10, SwitchId::AlwaysOn, false), Ok(())),
+                (
+                    dev(STARTER, 11, SwitchId::AlwaysOn, false),
+                    Err(InvalidBreaker),
+                ),
+            ],
         );
     }
 
@@ -954,51 +933,34 @@ mod tests {
 
     #[test]
     fn unknown_switch_is_invalid() {
-        let c = cfg();
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(4, 2, SwitchId::Unknown(12), false)
-            )),
-            Err(InvalidSwitch)
+        judge(
+            check_device_spec,
+            &cfg(),
+            &[
+                (dev(4, 2, SwitchId::Unknown(12), false), Err(InvalidSwitch)),
+                (
+                    dev(4, 2, SwitchId::from_byte(254), false),
+                    Err(InvalidSwitch),
+                ),
+                (dev(4, 2, SwitchId::Off, false), Ok(())),
+                (dev(4, 2, on(1), false), Ok(())),
+                (dev(4, 2, on(10), false), Ok(())),
+                (dev(4, 2, SwitchId::AlwaysOn, false), Ok(())),
+                (dev(4, 2, SwitchId::from_byte(255), false), Ok(())),
+            ],
         );
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(4, 2, SwitchId::from_byte(254), false)
-            )),
-            Err(InvalidSwitch)
-        );
-        for sw in [
-            SwitchId::Off,
-            on(1),
-            on(10),
-            SwitchId::AlwaysOn,
-            SwitchId::from_byte(255),
-        ] {
-            assert_eq!(
-                code(check_device_spec(&c, &dev(4, 2, sw, false))),
-                Ok(()),
-                "{sw:?}"
-            );
-        }
     }
 
     #[test]
     fn starter_switch_is_not_assignable() {
-        let c = cfg();
-        for sw in [SwitchId::Off, on(3)] {
-            assert_eq!(
-                code(check_device_spec(&c, &dev(STARTER, 5, sw, false))),
-                Err(InvalidSwitch)
-            );
-        }
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(STARTER, 5, SwitchId::AlwaysOn, false)
-            )),
-            Ok(())
+        judge(
+            check_device_spec,
+            &cfg(),
+            &[
+                (dev(STARTER, 5, SwitchId::Off, false), Err(InvalidSwitch)),
+                (dev(STARTER, 5, on(3), false), Err(InvalidSwitch)),
+                (dev(STARTER, 5, SwitchId::AlwaysOn, false), Ok(())),
+            ],
         );
     }
 
@@ -1008,16 +970,13 @@ mod tests {
         let r = check_device_spec(&c, &dev(EFIS, 5, SwitchId::Off, false)).unwrap_err();
         assert_eq!(r.error, InvalidSwitch);
         assert!(r.reason.contains("Table 13 note 4"), "{}", r.reason);
-        assert_eq!(
-            code(check_device_spec(&c, &dev(EFIS, 5, on(2), false))),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(EFIS, 2, SwitchId::AlwaysOn, true)
-            )),
-            Ok(())
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(EFIS, 5, on(2), false), Ok(())),
+                (dev(EFIS, 2, SwitchId::AlwaysOn, true), Ok(())),
+            ],
         );
     }
 
@@ -1025,20 +984,16 @@ mod tests {
     fn wig_wag_device_keeps_a_switch() {
         let mut c = with_switch(cfg(), 8, on(4));
         c.wig_wag = ww(Some(8), None);
-        for sw in [SwitchId::Off, SwitchId::AlwaysOn] {
-            assert_eq!(
-                code(check_device_spec(&c, &dev(8, 2, sw, false))),
-                Err(WigWagConfig)
-            );
-        }
-        assert_eq!(
-            code(check_device_spec(&c, &dev(8, 2, on(5), false))),
-            Ok(())
-        );
-        // Not a wig-wag device: the same change is fine.
-        assert_eq!(
-            code(check_device_spec(&c, &dev(9, 2, SwitchId::Off, false))),
-            Ok(())
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(8, 2, SwitchId::Off, false), Err(WigWagConfig)),
+                (dev(8, 2, SwitchId::AlwaysOn, false), Err(WigWagConfig)),
+                (dev(8, 2, on(5), false), Ok(())),
+                // Not a wig-wag device: the same change is fine.
+                (dev(9, 2, SwitchId::Off, false), Ok(())),
+            ],
         );
     }
 
@@ -1047,18 +1002,16 @@ mod tests {
         let mut c = with_switch(cfg(), FIELD_PRI, on(2));
         c = with_switch(c, 12, on(3));
         c.system.secondary_alternator = Some(12);
-        assert_eq!(
-            code(check_device_spec(&c, &dev(12, 2, on(2), false))),
-            Err(SecAltConfig)
-        );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(12, 2, on(4), false))),
-            Ok(())
-        );
-        // A pin that is not the secondary alternator may share the primary's switch.
-        assert_eq!(
-            code(check_device_spec(&c, &dev(13, 2, on(2), false))),
-            Ok(())
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(12, 2, on(2), false), Err(SecAltConfig)),
+                (dev(12, 2, on(4), false), Ok(())),
+                // A pin that is not the secondary alternator may share the primary's
+                // switch.
+                (dev(13, 2, on(2), false), Ok(())),
+            ],
         );
     }
 
@@ -1066,22 +1019,23 @@ mod tests {
     fn primary_alternator_cannot_take_secondary_switch() {
         let mut c = with_switch(cfg(), 12, on(3));
         c.system.secondary_alternator = Some(12);
-        assert_eq!(
-            code(check_device_spec(&c, &dev(FIELD_PRI, 5, on(3), false))),
-            Err(SecAltConfig)
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(FIELD_PRI, 5, on(3), false), Err(SecAltConfig)),
+                (dev(FIELD_PRI, 5, on(1), false), Ok(())),
+            ],
         );
-        assert_eq!(
-            code(check_device_spec(&c, &dev(FIELD_PRI, 5, on(1), false))),
-            Ok(())
-        );
+        // Both always on means both run at once.
         let c = with_switch(c, 12, SwitchId::AlwaysOn);
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(FIELD_PRI, 5, SwitchId::AlwaysOn, false)
-            )),
-            Err(SecAltConfig),
-            "both always on means both run at once"
+        judge(
+            check_device_spec,
+            &c,
+            &[(
+                dev(FIELD_PRI, 5, SwitchId::AlwaysOn, false),
+                Err(SecAltConfig),
+            )],
         );
     }
 
@@ -1091,16 +1045,13 @@ mod tests {
         let mut c = cfg();
         c.system.secondary_alternator = Some(12);
         assert_eq!(c.devices[FIELD_PRI as usize].switch_id, SwitchId::Off);
-        assert_eq!(
-            code(check_device_spec(&c, &dev(12, 2, SwitchId::Off, false))),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(FIELD_PRI, 5, SwitchId::Off, false)
-            )),
-            Ok(())
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(12, 2, SwitchId::Off, false), Ok(())),
+                (dev(FIELD_PRI, 5, SwitchId::Off, false), Ok(())),
+            ],
         );
         assert_eq!(code(check_system_spec(&cfg(), &c.system)), Ok(()));
     }
@@ -1108,28 +1059,15 @@ mod tests {
     /// Decision: current fault where Table 40 has no support → OutOfRange.
     #[test]
     fn current_fault_only_where_supported() {
-        let c = cfg();
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(FIELD_PRI, 5, SwitchId::Off, true)
-            )),
-            Err(OutOfRange)
-        );
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(STARTER, 5, SwitchId::AlwaysOn, true)
-            )),
-            Err(OutOfRange)
-        );
-        assert_eq!(code(check_device_spec(&c, &dev(4, 2, on(1), true))), Ok(()));
-        assert_eq!(
-            code(check_device_spec(
-                &c,
-                &dev(FIELD_PRI, 5, SwitchId::Off, false)
-            )),
-            Ok(())
+        judge(
+            check_device_spec,
+            &cfg(),
+            &[
+                (dev(FIELD_PRI, 5, SwitchId::Off, true), Err(OutOfRange)),
+                (dev(STARTER, 5, SwitchId::AlwaysOn, true), Err(OutOfRange)),
+                (dev(4, 2, on(1), true), Ok(())),
+                (dev(FIELD_PRI, 5, SwitchId::Off, false), Ok(())),
+            ],
         );
     }
 
@@ -1144,21 +1082,14 @@ mod tests {
 
     #[test]
     fn overvoltage_limit_is_0_or_1() {
-        let c = cfg();
-        assert_eq!(
-            code(check_system_spec(
-                &c,
-                &sys(OvervoltageLimit::Unknown(2), None)
-            )),
-            Err(OutOfRange)
-        );
-        assert_eq!(
-            code(check_system_spec(&c, &sys(OvervoltageLimit::V32, None))),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_system_spec(&c, &sys(OvervoltageLimit::V16, None))),
-            Ok(())
+        judge(
+            check_system_spec,
+            &cfg(),
+            &[
+                (sys(OvervoltageLimit::Unknown(2), None), Err(OutOfRange)),
+                (sys(OvervoltageLimit::V32, None), Ok(())),
+                (sys(OvervoltageLimit::V16, None), Ok(())),
+            ],
         );
     }
 
@@ -1185,28 +1116,23 @@ mod tests {
     fn wig_wag_device_cannot_be_secondary_alternator() {
         let mut c = with_switch(cfg(), 8, on(4));
         c.wig_wag = ww(Some(7), Some(8));
-        assert_eq!(
-            code(check_system_spec(&c, &sys(OvervoltageLimit::V16, Some(8)))),
-            Err(WigWagConfig)
-        );
-        assert_eq!(
-            code(check_system_spec(&c, &sys(OvervoltageLimit::V16, Some(9)))),
-            Ok(())
+        judge(
+            check_system_spec,
+            &c,
+            &[
+                (sys(OvervoltageLimit::V16, Some(8)), Err(WigWagConfig)),
+                (sys(OvervoltageLimit::V16, Some(9)), Ok(())),
+            ],
         );
     }
 
     #[test]
     fn secondary_alternator_not_on_primary_switch() {
         let c = with_switch(with_switch(cfg(), FIELD_PRI, on(2)), 12, on(2));
-        assert_eq!(
-            code(check_system_spec(&c, &sys(OvervoltageLimit::V16, Some(12)))),
-            Err(SecAltConfig)
-        );
+        let spec = sys(OvervoltageLimit::V16, Some(12));
+        assert_eq!(code(check_system_spec(&c, &spec)), Err(SecAltConfig));
         let c = with_switch(c, 12, on(3));
-        assert_eq!(
-            code(check_system_spec(&c, &sys(OvervoltageLimit::V16, Some(12)))),
-            Ok(())
-        );
+        assert_eq!(code(check_system_spec(&c, &spec)), Ok(()));
     }
 
     // ---- TRIM_SPEC
@@ -1228,10 +1154,15 @@ mod tests {
 
     #[test]
     fn trim_speed_0_to_300() {
-        let c = cfg();
-        assert_eq!(code(check_trim_spec(&c, &pitch(60, 300))), Ok(()));
-        assert_eq!(code(check_trim_spec(&c, &pitch(60, 0))), Ok(()));
-        assert_eq!(code(check_trim_spec(&c, &pitch(60, 301))), Err(OutOfRange));
+        judge(
+            check_trim_spec,
+            &cfg(),
+            &[
+                (pitch(60, 300), Ok(())),
+                (pitch(60, 0), Ok(())),
+                (pitch(60, 301), Err(OutOfRange)),
+            ],
+        );
     }
 
     /// Decision: roll trim ignores power and speed (Table 15 notes 5, 6), so they are
@@ -1278,47 +1209,21 @@ mod tests {
 
     #[test]
     fn flap_max_speed_and_endpoint_duration() {
-        let c = cfg();
         let ok = flap(10, 0, 0, 200);
-        assert_eq!(
-            code(check_flap_spec(
-                &c,
-                &FlapSpec {
-                    max_speed: 500,
-                    ..ok
-                }
-            )),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_flap_spec(
-                &c,
-                &FlapSpec {
-                    max_speed: 501,
-                    ..ok
-                }
-            )),
-            Err(OutOfRange)
-        );
-        assert_eq!(
-            code(check_flap_spec(
-                &c,
-                &FlapSpec {
-                    endpoint_duration: Tenths(300),
-                    ..ok
-                }
-            )),
-            Ok(())
-        );
-        assert_eq!(
-            code(check_flap_spec(
-                &c,
-                &FlapSpec {
-                    endpoint_duration: Tenths(301),
-                    ..ok
-                }
-            )),
-            Err(OutOfRange)
+        let speed = |max_speed| FlapSpec { max_speed, ..ok };
+        let duration = |tenths| FlapSpec {
+            endpoint_duration: Tenths(tenths),
+            ..ok
+        };
+        judge(
+            check_flap_spec,
+            &cfg(),
+            &[
+                (speed(500), Ok(())),
+                (speed(501), Err(OutOfRange)),
+                (duration(300), Ok(())),
+                (duration(301), Err(OutOfRange)),
+            ],
         );
     }
 
