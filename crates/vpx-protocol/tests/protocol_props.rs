@@ -13,7 +13,8 @@
 //!   payload length can express (icd-reading R9).
 
 // The codec's no-panic lints (Cargo.toml) are for the library. clippy.toml lifts them
-// in #[test] functions only; this file's helpers index their own fixtures too.
+// inside #[test] functions, not in the helpers beside them, which index their own
+// fixtures here.
 #![allow(clippy::indexing_slicing, clippy::unwrap_used)]
 
 use proptest::prelude::*;

@@ -13,8 +13,9 @@
 //! patterns, 16-bit values with both bytes non-zero, negative signed values.
 
 // The codec's no-panic lints (Cargo.toml) are for the library. clippy.toml lifts them
-// in #[test] functions only; this file's helpers index their own fixtures too.
-#![allow(clippy::indexing_slicing, clippy::unwrap_used)]
+// inside #[test] functions, not in the helpers beside them, which index their own
+// fixtures here.
+#![allow(clippy::indexing_slicing)]
 
 use vpx_protocol::device::DEVICE_COUNT;
 use vpx_protocol::message::*;
