@@ -456,33 +456,27 @@ mod tests {
     /// E7^7E^10^00^01^01^00^01^00 = 0x88, inverted = 0x77.
     const PING: [u8; 10] = [0xE7, 0x7E, 0x10, 0x00, 0x01, 0x01, 0x00, 0x01, 0x00, 0x77];
 
+    /// An event in a word and its length (the whole bytes of a frame).
+    fn word(e: Event<'_>) -> String {
+        match e {
+            Event::Frame(f) => format!("frame {:02X?}", f.as_bytes()),
+            Event::Skipped(b) => format!("skip {}", b.len()),
+            Event::BadChecksum(b) => format!("badsum {}", b.len()),
+            Event::BadLength(b) => format!("badlen {}", b.len()),
+            Event::UnknownMessage(b) => format!("unknown {}", b.len()),
+            Event::Truncated(b) => format!("truncated {}", b.len()),
+        }
+    }
+
     fn collect(dec: &mut Decoder, bytes: &[u8]) -> Vec<String> {
         let mut out = Vec::new();
-        dec.push(bytes, |e| {
-            out.push(match e {
-                Event::Frame(f) => format!("frame {:02X?}", f.as_bytes()),
-                Event::Skipped(b) => format!("skip {}", b.len()),
-                Event::BadChecksum(b) => format!("badsum {}", b.len()),
-                Event::BadLength(b) => format!("badlen {}", b.len()),
-                Event::UnknownMessage(b) => format!("unknown {}", b.len()),
-                Event::Truncated(b) => format!("truncated {}", b.len()),
-            })
-        });
+        dec.push(bytes, |e| out.push(word(e)));
         out
     }
 
     fn finish(dec: &mut Decoder) -> Vec<String> {
         let mut out = Vec::new();
-        dec.finish(|e| {
-            out.push(match e {
-                Event::Frame(f) => format!("frame {:02X?}", f.as_bytes()),
-                Event::Skipped(b) => format!("skip {}", b.len()),
-                Event::BadChecksum(b) => format!("badsum {}", b.len()),
-                Event::BadLength(b) => format!("badlen {}", b.len()),
-                Event::UnknownMessage(b) => format!("unknown {}", b.len()),
-                Event::Truncated(b) => format!("truncated {}", b.len()),
-            })
-        });
+        dec.finish(|e| out.push(word(e)));
         out
     }
 

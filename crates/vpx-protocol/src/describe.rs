@@ -538,37 +538,25 @@ fn polarity(p: Polarity) -> &'static str {
     }
 }
 
+/// A table value in its words, or its byte where the table does not list it.
+fn named(words: Option<&str>, byte: u8) -> String {
+    words.map_or_else(|| format!("unknown ({byte})"), String::from)
+}
+
 fn trim_type(t: TrimType) -> String {
-    match t {
-        TrimType::Pitch => "pitch".into(),
-        TrimType::Roll => "roll".into(),
-        TrimType::Unknown(n) => format!("unknown ({n})"),
-    }
+    named(t.words(), t.to_byte())
 }
 
 fn wig_wag_mode(m: WigWagModeSetting) -> String {
-    match m {
-        WigWagModeSetting::Auto => "auto".into(),
-        WigWagModeSetting::Steady => "steady".into(),
-        WigWagModeSetting::Unknown(n) => format!("unknown ({n})"),
-    }
+    named(m.words(), m.to_byte())
 }
 
 fn overvoltage(o: OvervoltageLimit) -> String {
-    match o {
-        OvervoltageLimit::V16 => "16 V".into(),
-        OvervoltageLimit::V32 => "32 V".into(),
-        OvervoltageLimit::Unknown(n) => format!("unknown ({n})"),
-    }
+    named(o.words(), o.to_byte())
 }
 
 fn enable_flag(f: EnableFlag) -> String {
-    match f {
-        EnableFlag::Disabled => "0 (disabled)".into(),
-        EnableFlag::Enabled => "1 (enabled)".into(),
-        EnableFlag::Query => "2 (query)".into(),
-        EnableFlag::Unknown(n) => format!("{n} (unknown)"),
-    }
+    format!("{} ({})", f.to_byte(), f.words().unwrap_or("unknown"))
 }
 
 fn trim_direction(t: TrimType, d: TrimDirection) -> String {
@@ -582,11 +570,7 @@ fn trim_direction(t: TrimType, d: TrimDirection) -> String {
 }
 
 fn flap_direction(d: FlapDirection) -> String {
-    match d {
-        FlapDirection::Up => "up".into(),
-        FlapDirection::Down => "down".into(),
-        FlapDirection::Unknown(n) => format!("unknown ({n})"),
-    }
+    named(d.words(), d.to_byte())
 }
 
 fn fault_name(c: super::fault::FaultCode) -> String {

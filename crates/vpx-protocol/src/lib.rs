@@ -1,17 +1,5 @@
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(any(feature = "std", test)), no_std)]
-// Nothing the crate is given can make it panic: no indexing, unwrap, expect or panic
-// outside the tests (as in the xfsp crate).
-#![cfg_attr(
-    not(test),
-    deny(
-        clippy::indexing_slicing,
-        clippy::unwrap_used,
-        clippy::expect_used,
-        clippy::panic
-    )
-)]
-#![warn(missing_docs)]
 
 // The crate uses only `core` and `alloc` (strings, vectors), with or without `std`.
 extern crate alloc;

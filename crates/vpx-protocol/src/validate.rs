@@ -136,11 +136,6 @@ enum Cross {
 /// 5. The secondary alternator may not take the primary's switch, nor the primary the
 ///    secondary's (note 6) → `SecAltConfig`.
 /// 6. Current fault only where Table 40 supports it → `OutOfRange`.
-pub fn device_spec(cfg: &UnitConfig, spec: &DeviceSpec) -> Result<(), SpecAckError> {
-    check_device_spec(cfg, spec).map_err(|r| r.error)
-}
-
-/// [`device_spec`] with the reason in words.
 pub fn check_device_spec(cfg: &UnitConfig, spec: &DeviceSpec) -> Result<(), Invalid> {
     device_spec_inner(cfg, spec, Cross::Check)
 }
@@ -295,11 +290,6 @@ fn factory_breaker(id: u8) -> u8 {
 /// 2. Secondary alternator on pins 4–25, 27–28 or disabled (note 3) → `InvalidDevice`.
 /// 3. Not a current wig-wag device (note 4) → `WigWagConfig`.
 /// 4. Not on the primary alternator's switch (note 5) → `SecAltConfig`.
-pub fn system_spec(cfg: &UnitConfig, spec: &SystemSpec) -> Result<(), SpecAckError> {
-    check_system_spec(cfg, spec).map_err(|r| r.error)
-}
-
-/// [`system_spec`] with the reason in words.
 pub fn check_system_spec(cfg: &UnitConfig, spec: &SystemSpec) -> Result<(), Invalid> {
     use SpecAckError::*;
     if let OvervoltageLimit::Unknown(n) = spec.overvoltage_limit {
@@ -369,11 +359,6 @@ pub const TRIM_SPEED_MAX: u16 = 300;
 ///    then speed 0–300 → `OutOfRange`.
 ///
 /// Endpoints and neutral take any byte (note 4: the sensor's own 0–255).
-pub fn trim_spec(cfg: &UnitConfig, spec: &TrimSpec) -> Result<(), SpecAckError> {
-    check_trim_spec(cfg, spec).map_err(|r| r.error)
-}
-
-/// [`trim_spec`] with the reason in words.
 pub fn check_trim_spec(_cfg: &UnitConfig, spec: &TrimSpec) -> Result<(), Invalid> {
     use SpecAckError::*;
     match spec.trim_type {
@@ -422,11 +407,6 @@ pub const FLAP_ENDPOINT_DURATION_MAX: u16 = 300;
 ///    one direction, rising or falling (note 4) → `BadOrder`.
 /// 2. Breaker 1–10 A → `InvalidBreaker`.
 /// 3. Max speed 0–500, then endpoint duration 0–300 tenths → `OutOfRange`.
-pub fn flap_spec(cfg: &UnitConfig, spec: &FlapSpec) -> Result<(), SpecAckError> {
-    check_flap_spec(cfg, spec).map_err(|r| r.error)
-}
-
-/// [`flap_spec`] with the reason in words.
 pub fn check_flap_spec(_cfg: &UnitConfig, spec: &FlapSpec) -> Result<(), Invalid> {
     use SpecAckError::*;
     if spec.midpoint_1 != 0 && spec.midpoint_2 != 0 {
@@ -495,11 +475,6 @@ pub const WIG_WAG_SPEED_MAX: u8 = 200;
 /// 3. Neither is the secondary alternator (note 2) → `SecAltConfig`.
 /// 4. Each is on a switch 1–10 (note 1) → `BadConfig`.
 /// 5. Warm-up 5–60 s, then speed 0–200 → `OutOfRange`.
-pub fn wig_wag_spec(cfg: &UnitConfig, spec: &WigWagSpec) -> Result<(), SpecAckError> {
-    check_wig_wag_spec(cfg, spec).map_err(|r| r.error)
-}
-
-/// [`wig_wag_spec`] with the reason in words.
 pub fn check_wig_wag_spec(cfg: &UnitConfig, spec: &WigWagSpec) -> Result<(), Invalid> {
     wig_wag_inner(cfg, spec, Cross::Check)
 }
@@ -591,11 +566,6 @@ fn wig_wag_inner(cfg: &UnitConfig, spec: &WigWagSpec, sec_alt: Cross) -> Result<
 
 /// DEVICE_NAME, ICD Table 21: device id 0–30 → `InvalidDevice`. The 16 name bytes are
 /// "0–255", so none is refused.
-pub fn device_name(cfg: &UnitConfig, name: &DeviceName) -> Result<(), SpecAckError> {
-    check_device_name(cfg, name).map_err(|r| r.error)
-}
-
-/// [`device_name`] with the reason in words.
 pub fn check_device_name(_cfg: &UnitConfig, name: &DeviceName) -> Result<(), Invalid> {
     if device::device(name.device_id).is_none() {
         return Err(refuse(
@@ -815,6 +785,24 @@ mod tests {
         UnitConfig::default()
     }
 
+    /// The SPEC_ACK code alone, what the unit sends.
+    fn code(verdict: Result<(), Invalid>) -> Result<(), SpecAckError> {
+        verdict.map_err(|r| r.error)
+    }
+
+    /// Judges each spec on `c` with `check`: the SPEC_ACK code it must get. A failure
+    /// names the spec.
+    #[track_caller]
+    fn judge<M: fmt::Debug>(
+        check: fn(&UnitConfig, &M) -> Result<(), Invalid>,
+        c: &UnitConfig,
+        cases: &[(M, Result<(), SpecAckError>)],
+    ) {
+        for (spec, want) in cases {
+            assert_eq!(code(check(c, spec)), *want, "{spec:?}");
+        }
+    }
+
     fn dev(id: u8, cb: u8, sw: SwitchId, cf: bool) -> DeviceSpec {
         DeviceSpec {
             device_id: id,
@@ -880,58 +868,43 @@ mod tests {
         let c = cfg();
         for id in [0, 29, 30, 31, 200, 255] {
             assert_eq!(
-                device_spec(&c, &dev(id, 2, SwitchId::Off, false)),
+                code(check_device_spec(&c, &dev(id, 2, SwitchId::Off, false))),
                 Err(InvalidDevice),
                 "id {id}"
             );
         }
         for id in 1..=28u8 {
             let spec = c.devices[id as usize];
-            assert_eq!(device_spec(&c, &spec), Ok(()), "factory spec of {id}");
+            assert_eq!(
+                code(check_device_spec(&c, &spec)),
+                Ok(()),
+                "factory spec of {id}"
+            );
         }
     }
 
     #[test]
     fn breaker_within_appendix_b_amps() {
-        let c = cfg();
-        assert_eq!(device_spec(&c, &dev(4, 5, on(1), false)), Ok(()));
-        assert_eq!(
-            device_spec(&c, &dev(4, 6, on(1), false)),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            device_spec(&c, &dev(4, 0, on(1), false)),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(device_spec(&c, &dev(0x11, 10, on(1), false)), Ok(()));
-        assert_eq!(
-            device_spec(&c, &dev(0x11, 11, on(1), false)),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(device_spec(&c, &dev(0x17, 15, on(1), false)), Ok(()));
-        assert_eq!(
-            device_spec(&c, &dev(0x17, 16, on(1), false)),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            device_spec(&c, &dev(0x1A, 4, on(1), false)),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            device_spec(&c, &dev(0x1B, 3, on(1), false)),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            device_spec(&c, &dev(EFIS, 6, on(1), true)),
-            Err(InvalidBreaker)
-        );
-        assert_eq!(
-            device_spec(&c, &dev(STARTER, 10, SwitchId::AlwaysOn, false)),
-            Ok(())
-        );
-        assert_eq!(
-            device_spec(&c, &dev(STARTER, 11, SwitchId::AlwaysOn, false)),
-            Err(InvalidBreaker)
+        judge(
+            check_device_spec,
+            &cfg(),
+            &[
+                (dev(4, 5, on(1), false), Ok(())),
+                (dev(4, 6, on(1), false), Err(InvalidBreaker)),
+                (dev(4, 0, on(1), false), Err(InvalidBreaker)),
+                (dev(0x11, 10, on(1), false), Ok(())),
+                (dev(0x11, 11, on(1), false), Err(InvalidBreaker)),
+                (dev(0x17, 15, on(1), false), Ok(())),
+                (dev(0x17, 16, on(1), false), Err(InvalidBreaker)),
+                (dev(0x1A, 4, on(1), false), Err(InvalidBreaker)),
+                (dev(0x1B, 3, on(1), false), Err(InvalidBreaker)),
+                (dev(EFIS, 6, on(1), true), Err(InvalidBreaker)),
+                (dev(STARTER, 10, SwitchId::AlwaysOn, false), Ok(())),
+                (
+                    dev(STARTER, 11, SwitchId::AlwaysOn, false),
+                    Err(InvalidBreaker),
+                ),
+            ],
         );
     }
 
@@ -941,10 +914,14 @@ mod tests {
     fn fifteen_amp_pins_accept_their_factory_two_amps_only() {
         let c = cfg();
         for id in [0x17, 0x18, 0x19] {
-            assert_eq!(device_spec(&c, &dev(id, 2, on(1), false)), Ok(()), "{id}");
+            assert_eq!(
+                code(check_device_spec(&c, &dev(id, 2, on(1), false))),
+                Ok(()),
+                "{id}"
+            );
             for cb in [0, 1, 3, 4] {
                 assert_eq!(
-                    device_spec(&c, &dev(id, cb, on(1), false)),
+                    code(check_device_spec(&c, &dev(id, cb, on(1), false))),
                     Err(InvalidBreaker),
                     "{id} {cb} A"
                 );
@@ -956,38 +933,34 @@ mod tests {
 
     #[test]
     fn unknown_switch_is_invalid() {
-        let c = cfg();
-        assert_eq!(
-            device_spec(&c, &dev(4, 2, SwitchId::Unknown(12), false)),
-            Err(InvalidSwitch)
+        judge(
+            check_device_spec,
+            &cfg(),
+            &[
+                (dev(4, 2, SwitchId::Unknown(12), false), Err(InvalidSwitch)),
+                (
+                    dev(4, 2, SwitchId::from_byte(254), false),
+                    Err(InvalidSwitch),
+                ),
+                (dev(4, 2, SwitchId::Off, false), Ok(())),
+                (dev(4, 2, on(1), false), Ok(())),
+                (dev(4, 2, on(10), false), Ok(())),
+                (dev(4, 2, SwitchId::AlwaysOn, false), Ok(())),
+                (dev(4, 2, SwitchId::from_byte(255), false), Ok(())),
+            ],
         );
-        assert_eq!(
-            device_spec(&c, &dev(4, 2, SwitchId::from_byte(254), false)),
-            Err(InvalidSwitch)
-        );
-        for sw in [
-            SwitchId::Off,
-            on(1),
-            on(10),
-            SwitchId::AlwaysOn,
-            SwitchId::from_byte(255),
-        ] {
-            assert_eq!(device_spec(&c, &dev(4, 2, sw, false)), Ok(()), "{sw:?}");
-        }
     }
 
     #[test]
     fn starter_switch_is_not_assignable() {
-        let c = cfg();
-        for sw in [SwitchId::Off, on(3)] {
-            assert_eq!(
-                device_spec(&c, &dev(STARTER, 5, sw, false)),
-                Err(InvalidSwitch)
-            );
-        }
-        assert_eq!(
-            device_spec(&c, &dev(STARTER, 5, SwitchId::AlwaysOn, false)),
-            Ok(())
+        judge(
+            check_device_spec,
+            &cfg(),
+            &[
+                (dev(STARTER, 5, SwitchId::Off, false), Err(InvalidSwitch)),
+                (dev(STARTER, 5, on(3), false), Err(InvalidSwitch)),
+                (dev(STARTER, 5, SwitchId::AlwaysOn, false), Ok(())),
+            ],
         );
     }
 
@@ -997,10 +970,13 @@ mod tests {
         let r = check_device_spec(&c, &dev(EFIS, 5, SwitchId::Off, false)).unwrap_err();
         assert_eq!(r.error, InvalidSwitch);
         assert!(r.reason.contains("Table 13 note 4"), "{}", r.reason);
-        assert_eq!(device_spec(&c, &dev(EFIS, 5, on(2), false)), Ok(()));
-        assert_eq!(
-            device_spec(&c, &dev(EFIS, 2, SwitchId::AlwaysOn, true)),
-            Ok(())
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(EFIS, 5, on(2), false), Ok(())),
+                (dev(EFIS, 2, SwitchId::AlwaysOn, true), Ok(())),
+            ],
         );
     }
 
@@ -1008,12 +984,17 @@ mod tests {
     fn wig_wag_device_keeps_a_switch() {
         let mut c = with_switch(cfg(), 8, on(4));
         c.wig_wag = ww(Some(8), None);
-        for sw in [SwitchId::Off, SwitchId::AlwaysOn] {
-            assert_eq!(device_spec(&c, &dev(8, 2, sw, false)), Err(WigWagConfig));
-        }
-        assert_eq!(device_spec(&c, &dev(8, 2, on(5), false)), Ok(()));
-        // Not a wig-wag device: the same change is fine.
-        assert_eq!(device_spec(&c, &dev(9, 2, SwitchId::Off, false)), Ok(()));
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(8, 2, SwitchId::Off, false), Err(WigWagConfig)),
+                (dev(8, 2, SwitchId::AlwaysOn, false), Err(WigWagConfig)),
+                (dev(8, 2, on(5), false), Ok(())),
+                // Not a wig-wag device: the same change is fine.
+                (dev(9, 2, SwitchId::Off, false), Ok(())),
+            ],
+        );
     }
 
     #[test]
@@ -1021,29 +1002,40 @@ mod tests {
         let mut c = with_switch(cfg(), FIELD_PRI, on(2));
         c = with_switch(c, 12, on(3));
         c.system.secondary_alternator = Some(12);
-        assert_eq!(
-            device_spec(&c, &dev(12, 2, on(2), false)),
-            Err(SecAltConfig)
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(12, 2, on(2), false), Err(SecAltConfig)),
+                (dev(12, 2, on(4), false), Ok(())),
+                // A pin that is not the secondary alternator may share the primary's
+                // switch.
+                (dev(13, 2, on(2), false), Ok(())),
+            ],
         );
-        assert_eq!(device_spec(&c, &dev(12, 2, on(4), false)), Ok(()));
-        // A pin that is not the secondary alternator may share the primary's switch.
-        assert_eq!(device_spec(&c, &dev(13, 2, on(2), false)), Ok(()));
     }
 
     #[test]
     fn primary_alternator_cannot_take_secondary_switch() {
         let mut c = with_switch(cfg(), 12, on(3));
         c.system.secondary_alternator = Some(12);
-        assert_eq!(
-            device_spec(&c, &dev(FIELD_PRI, 5, on(3), false)),
-            Err(SecAltConfig)
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(FIELD_PRI, 5, on(3), false), Err(SecAltConfig)),
+                (dev(FIELD_PRI, 5, on(1), false), Ok(())),
+            ],
         );
-        assert_eq!(device_spec(&c, &dev(FIELD_PRI, 5, on(1), false)), Ok(()));
+        // Both always on means both run at once.
         let c = with_switch(c, 12, SwitchId::AlwaysOn);
-        assert_eq!(
-            device_spec(&c, &dev(FIELD_PRI, 5, SwitchId::AlwaysOn, false)),
-            Err(SecAltConfig),
-            "both always on means both run at once"
+        judge(
+            check_device_spec,
+            &c,
+            &[(
+                dev(FIELD_PRI, 5, SwitchId::AlwaysOn, false),
+                Err(SecAltConfig),
+            )],
         );
     }
 
@@ -1053,30 +1045,29 @@ mod tests {
         let mut c = cfg();
         c.system.secondary_alternator = Some(12);
         assert_eq!(c.devices[FIELD_PRI as usize].switch_id, SwitchId::Off);
-        assert_eq!(device_spec(&c, &dev(12, 2, SwitchId::Off, false)), Ok(()));
-        assert_eq!(
-            device_spec(&c, &dev(FIELD_PRI, 5, SwitchId::Off, false)),
-            Ok(())
+        judge(
+            check_device_spec,
+            &c,
+            &[
+                (dev(12, 2, SwitchId::Off, false), Ok(())),
+                (dev(FIELD_PRI, 5, SwitchId::Off, false), Ok(())),
+            ],
         );
-        assert_eq!(system_spec(&cfg(), &c.system), Ok(()));
+        assert_eq!(code(check_system_spec(&cfg(), &c.system)), Ok(()));
     }
 
     /// Decision: current fault where Table 40 has no support → OutOfRange.
     #[test]
     fn current_fault_only_where_supported() {
-        let c = cfg();
-        assert_eq!(
-            device_spec(&c, &dev(FIELD_PRI, 5, SwitchId::Off, true)),
-            Err(OutOfRange)
-        );
-        assert_eq!(
-            device_spec(&c, &dev(STARTER, 5, SwitchId::AlwaysOn, true)),
-            Err(OutOfRange)
-        );
-        assert_eq!(device_spec(&c, &dev(4, 2, on(1), true)), Ok(()));
-        assert_eq!(
-            device_spec(&c, &dev(FIELD_PRI, 5, SwitchId::Off, false)),
-            Ok(())
+        judge(
+            check_device_spec,
+            &cfg(),
+            &[
+                (dev(FIELD_PRI, 5, SwitchId::Off, true), Err(OutOfRange)),
+                (dev(STARTER, 5, SwitchId::AlwaysOn, true), Err(OutOfRange)),
+                (dev(4, 2, on(1), true), Ok(())),
+                (dev(FIELD_PRI, 5, SwitchId::Off, false), Ok(())),
+            ],
         );
     }
 
@@ -1091,13 +1082,15 @@ mod tests {
 
     #[test]
     fn overvoltage_limit_is_0_or_1() {
-        let c = cfg();
-        assert_eq!(
-            system_spec(&c, &sys(OvervoltageLimit::Unknown(2), None)),
-            Err(OutOfRange)
+        judge(
+            check_system_spec,
+            &cfg(),
+            &[
+                (sys(OvervoltageLimit::Unknown(2), None), Err(OutOfRange)),
+                (sys(OvervoltageLimit::V32, None), Ok(())),
+                (sys(OvervoltageLimit::V16, None), Ok(())),
+            ],
         );
-        assert_eq!(system_spec(&c, &sys(OvervoltageLimit::V32, None)), Ok(()));
-        assert_eq!(system_spec(&c, &sys(OvervoltageLimit::V16, None)), Ok(()));
     }
 
     #[test]
@@ -1105,14 +1098,14 @@ mod tests {
         let c = with_switch(cfg(), FIELD_PRI, on(1));
         for id in [0, 1, 2, 3, 26, 29, 30, 31, 254] {
             assert_eq!(
-                system_spec(&c, &sys(OvervoltageLimit::V16, Some(id))),
+                code(check_system_spec(&c, &sys(OvervoltageLimit::V16, Some(id)))),
                 Err(InvalidDevice),
                 "{id}"
             );
         }
         for id in (4..=25).chain(27..=28) {
             assert_eq!(
-                system_spec(&c, &sys(OvervoltageLimit::V16, Some(id))),
+                code(check_system_spec(&c, &sys(OvervoltageLimit::V16, Some(id)))),
                 Ok(()),
                 "{id}"
             );
@@ -1123,28 +1116,23 @@ mod tests {
     fn wig_wag_device_cannot_be_secondary_alternator() {
         let mut c = with_switch(cfg(), 8, on(4));
         c.wig_wag = ww(Some(7), Some(8));
-        assert_eq!(
-            system_spec(&c, &sys(OvervoltageLimit::V16, Some(8))),
-            Err(WigWagConfig)
-        );
-        assert_eq!(
-            system_spec(&c, &sys(OvervoltageLimit::V16, Some(9))),
-            Ok(())
+        judge(
+            check_system_spec,
+            &c,
+            &[
+                (sys(OvervoltageLimit::V16, Some(8)), Err(WigWagConfig)),
+                (sys(OvervoltageLimit::V16, Some(9)), Ok(())),
+            ],
         );
     }
 
     #[test]
     fn secondary_alternator_not_on_primary_switch() {
         let c = with_switch(with_switch(cfg(), FIELD_PRI, on(2)), 12, on(2));
-        assert_eq!(
-            system_spec(&c, &sys(OvervoltageLimit::V16, Some(12))),
-            Err(SecAltConfig)
-        );
+        let spec = sys(OvervoltageLimit::V16, Some(12));
+        assert_eq!(code(check_system_spec(&c, &spec)), Err(SecAltConfig));
         let c = with_switch(c, 12, on(3));
-        assert_eq!(
-            system_spec(&c, &sys(OvervoltageLimit::V16, Some(12))),
-            Ok(())
-        );
+        assert_eq!(code(check_system_spec(&c, &spec)), Ok(()));
     }
 
     // ---- TRIM_SPEC
@@ -1153,19 +1141,28 @@ mod tests {
     fn trim_power_40_to_90_or_factory_100() {
         let c = cfg();
         for p in [40, 65, 90, 100] {
-            assert_eq!(trim_spec(&c, &pitch(p, 100)), Ok(()), "{p}");
+            assert_eq!(code(check_trim_spec(&c, &pitch(p, 100))), Ok(()), "{p}");
         }
         for p in [0, 39, 91, 99, 101, 255] {
-            assert_eq!(trim_spec(&c, &pitch(p, 100)), Err(OutOfRange), "{p}");
+            assert_eq!(
+                code(check_trim_spec(&c, &pitch(p, 100))),
+                Err(OutOfRange),
+                "{p}"
+            );
         }
     }
 
     #[test]
     fn trim_speed_0_to_300() {
-        let c = cfg();
-        assert_eq!(trim_spec(&c, &pitch(60, 300)), Ok(()));
-        assert_eq!(trim_spec(&c, &pitch(60, 0)), Ok(()));
-        assert_eq!(trim_spec(&c, &pitch(60, 301)), Err(OutOfRange));
+        judge(
+            check_trim_spec,
+            &cfg(),
+            &[
+                (pitch(60, 300), Ok(())),
+                (pitch(60, 0), Ok(())),
+                (pitch(60, 301), Err(OutOfRange)),
+            ],
+        );
     }
 
     /// Decision: roll trim ignores power and speed (Table 15 notes 5, 6), so they are
@@ -1177,7 +1174,7 @@ mod tests {
             trim_type: TrimType::Roll,
             ..pitch(0, 1000)
         };
-        assert_eq!(trim_spec(&c, &roll), Ok(()));
+        assert_eq!(code(check_trim_spec(&c, &roll)), Ok(()));
     }
 
     #[test]
@@ -1186,7 +1183,7 @@ mod tests {
             trim_type: TrimType::Unknown(2),
             ..pitch(60, 100)
         };
-        assert_eq!(trim_spec(&cfg(), &t), Err(OutOfRange));
+        assert_eq!(code(check_trim_spec(&cfg(), &t)), Err(OutOfRange));
     }
 
     // ---- FLAP_SPEC
@@ -1199,68 +1196,42 @@ mod tests {
                 circuit_breaker: cb,
                 ..flap(10, 0, 0, 200)
             };
-            assert_eq!(flap_spec(&c, &f), Err(InvalidBreaker), "{cb}");
+            assert_eq!(code(check_flap_spec(&c, &f)), Err(InvalidBreaker), "{cb}");
         }
         for cb in [1, 10] {
             let f = FlapSpec {
                 circuit_breaker: cb,
                 ..flap(10, 0, 0, 200)
             };
-            assert_eq!(flap_spec(&c, &f), Ok(()), "{cb}");
+            assert_eq!(code(check_flap_spec(&c, &f)), Ok(()), "{cb}");
         }
     }
 
     #[test]
     fn flap_max_speed_and_endpoint_duration() {
-        let c = cfg();
         let ok = flap(10, 0, 0, 200);
-        assert_eq!(
-            flap_spec(
-                &c,
-                &FlapSpec {
-                    max_speed: 500,
-                    ..ok
-                }
-            ),
-            Ok(())
-        );
-        assert_eq!(
-            flap_spec(
-                &c,
-                &FlapSpec {
-                    max_speed: 501,
-                    ..ok
-                }
-            ),
-            Err(OutOfRange)
-        );
-        assert_eq!(
-            flap_spec(
-                &c,
-                &FlapSpec {
-                    endpoint_duration: Tenths(300),
-                    ..ok
-                }
-            ),
-            Ok(())
-        );
-        assert_eq!(
-            flap_spec(
-                &c,
-                &FlapSpec {
-                    endpoint_duration: Tenths(301),
-                    ..ok
-                }
-            ),
-            Err(OutOfRange)
+        let speed = |max_speed| FlapSpec { max_speed, ..ok };
+        let duration = |tenths| FlapSpec {
+            endpoint_duration: Tenths(tenths),
+            ..ok
+        };
+        judge(
+            check_flap_spec,
+            &cfg(),
+            &[
+                (speed(500), Ok(())),
+                (speed(501), Err(OutOfRange)),
+                (duration(300), Ok(())),
+                (duration(301), Err(OutOfRange)),
+            ],
         );
     }
 
     #[test]
     fn flap_midpoints_in_order_either_direction() {
         let c = cfg();
-        assert_eq!(flap_spec(&c, &flap(10, 50, 100, 200)), Ok(()));
-        assert_eq!(flap_spec(&c, &flap(200, 100, 50, 10)), Ok(()));
+        assert_eq!(code(check_flap_spec(&c, &flap(10, 50, 100, 200))), Ok(()));
+        assert_eq!(code(check_flap_spec(&c, &flap(200, 100, 50, 10))), Ok(()));
         for (u, m1, m2, d) in [
             (10, 100, 50, 200), // midpoints swapped
             (200, 50, 100, 10), // swapped, falling
@@ -1271,7 +1242,7 @@ mod tests {
             (100, 50, 60, 100), // up == down
         ] {
             assert_eq!(
-                flap_spec(&c, &flap(u, m1, m2, d)),
+                code(check_flap_spec(&c, &flap(u, m1, m2, d))),
                 Err(BadOrder),
                 "{u} {m1} {m2} {d}"
             );
@@ -1282,9 +1253,9 @@ mod tests {
     #[test]
     fn flap_single_midpoint_is_not_ordered() {
         let c = cfg();
-        assert_eq!(flap_spec(&c, &flap(10, 250, 0, 200)), Ok(()));
-        assert_eq!(flap_spec(&c, &flap(10, 0, 5, 200)), Ok(()));
-        assert_eq!(flap_spec(&c, &defaults_flap()), Ok(()));
+        assert_eq!(code(check_flap_spec(&c, &flap(10, 250, 0, 200))), Ok(()));
+        assert_eq!(code(check_flap_spec(&c, &flap(10, 0, 5, 200))), Ok(()));
+        assert_eq!(code(check_flap_spec(&c, &defaults_flap())), Ok(()));
     }
 
     fn defaults_flap() -> FlapSpec {
@@ -1303,33 +1274,36 @@ mod tests {
         let c = ww_cfg();
         for id in [0, 1, 2, 3, 29, 30, 31, 100] {
             assert_eq!(
-                wig_wag_spec(&c, &ww(Some(id), None)),
+                code(check_wig_wag_spec(&c, &ww(Some(id), None))),
                 Err(InvalidDevice),
                 "{id}"
             );
             assert_eq!(
-                wig_wag_spec(&c, &ww(Some(5), Some(id))),
+                code(check_wig_wag_spec(&c, &ww(Some(5), Some(id)))),
                 Err(InvalidDevice),
                 "two = {id}"
             );
         }
-        assert_eq!(wig_wag_spec(&c, &ww(None, None)), Ok(()));
-        assert_eq!(wig_wag_spec(&c, &ww(Some(5), None)), Ok(()));
-        assert_eq!(wig_wag_spec(&c, &ww(Some(5), Some(6))), Ok(()));
+        assert_eq!(code(check_wig_wag_spec(&c, &ww(None, None))), Ok(()));
+        assert_eq!(code(check_wig_wag_spec(&c, &ww(Some(5), None))), Ok(()));
+        assert_eq!(code(check_wig_wag_spec(&c, &ww(Some(5), Some(6)))), Ok(()));
         let c = with_switch(with_switch(c, 4, on(9)), 28, on(10));
-        assert_eq!(wig_wag_spec(&c, &ww(Some(4), Some(28))), Ok(()));
+        assert_eq!(code(check_wig_wag_spec(&c, &ww(Some(4), Some(28)))), Ok(()));
     }
 
     #[test]
     fn wig_wag_device_two_needs_device_one() {
-        assert_eq!(wig_wag_spec(&ww_cfg(), &ww(None, Some(6))), Err(BadConfig));
+        assert_eq!(
+            code(check_wig_wag_spec(&ww_cfg(), &ww(None, Some(6)))),
+            Err(BadConfig)
+        );
     }
 
     /// Decision: one pin cannot be both wig-wag devices.
     #[test]
     fn wig_wag_devices_differ() {
         assert_eq!(
-            wig_wag_spec(&ww_cfg(), &ww(Some(5), Some(5))),
+            code(check_wig_wag_spec(&ww_cfg(), &ww(Some(5), Some(5)))),
             Err(BadConfig)
         );
     }
@@ -1338,28 +1312,37 @@ mod tests {
     fn wig_wag_devices_need_switch_1_to_10() {
         let c = ww_cfg();
         assert_eq!(
-            wig_wag_spec(&c, &ww(Some(7), None)),
+            code(check_wig_wag_spec(&c, &ww(Some(7), None))),
             Err(BadConfig),
             "switch 0"
         );
-        assert_eq!(wig_wag_spec(&c, &ww(Some(5), Some(7))), Err(BadConfig));
+        assert_eq!(
+            code(check_wig_wag_spec(&c, &ww(Some(5), Some(7)))),
+            Err(BadConfig)
+        );
         let c = with_switch(c, 7, SwitchId::AlwaysOn);
         assert_eq!(
-            wig_wag_spec(&c, &ww(Some(7), None)),
+            code(check_wig_wag_spec(&c, &ww(Some(7), None))),
             Err(BadConfig),
             "switch 11"
         );
         let c = with_switch(c, 7, on(10));
-        assert_eq!(wig_wag_spec(&c, &ww(Some(7), None)), Ok(()));
+        assert_eq!(code(check_wig_wag_spec(&c, &ww(Some(7), None))), Ok(()));
     }
 
     #[test]
     fn wig_wag_device_not_secondary_alternator() {
         let mut c = ww_cfg();
         c.system.secondary_alternator = Some(6);
-        assert_eq!(wig_wag_spec(&c, &ww(Some(5), Some(6))), Err(SecAltConfig));
-        assert_eq!(wig_wag_spec(&c, &ww(Some(6), None)), Err(SecAltConfig));
-        assert_eq!(wig_wag_spec(&c, &ww(Some(5), None)), Ok(()));
+        assert_eq!(
+            code(check_wig_wag_spec(&c, &ww(Some(5), Some(6)))),
+            Err(SecAltConfig)
+        );
+        assert_eq!(
+            code(check_wig_wag_spec(&c, &ww(Some(6), None))),
+            Err(SecAltConfig)
+        );
+        assert_eq!(code(check_wig_wag_spec(&c, &ww(Some(5), None))), Ok(()));
     }
 
     #[test]
@@ -1377,14 +1360,14 @@ mod tests {
                 speed: s,
                 ..ww(Some(5), None)
             };
-            assert_eq!(wig_wag_spec(&c, &spec), want, "{w} {s}");
+            assert_eq!(code(check_wig_wag_spec(&c, &spec)), want, "{w} {s}");
         }
         // Disabled wig-wag still carries a warm-up and speed the unit judges.
         let spec = WigWagSpec {
             warm_up_period: 0,
             ..ww(None, None)
         };
-        assert_eq!(wig_wag_spec(&c, &spec), Err(OutOfRange));
+        assert_eq!(code(check_wig_wag_spec(&c, &spec)), Err(OutOfRange));
     }
 
     // ---- DEVICE_NAME / DEVICE_ENABLE
@@ -1397,13 +1380,13 @@ mod tests {
                 device_id: id,
                 name: [0xFF; 16],
             };
-            assert_eq!(device_name(&c, &n), Ok(()), "{id}");
+            assert_eq!(code(check_device_name(&c, &n)), Ok(()), "{id}");
         }
         let n = DeviceName {
             device_id: 31,
             name: [0; 16],
         };
-        assert_eq!(device_name(&c, &n), Err(InvalidDevice));
+        assert_eq!(code(check_device_name(&c, &n)), Err(InvalidDevice));
     }
 
     #[test]
@@ -1568,7 +1551,7 @@ mod tests {
                 ..super::super::defaults::device_spec(5)
             };
             assert_eq!(
-                device_spec(&c, &spec),
+                code(check_device_spec(&c, &spec)),
                 Err(SpecAckError::InvalidDevice),
                 "device {id}"
             );

@@ -12,6 +12,11 @@
 //! - FAULT_STATUS codes are a prefix of `Some`s followed by `None`s, which is all a
 //!   payload length can express (icd-reading R9).
 
+// The codec's no-panic lints (Cargo.toml) are for the library. clippy.toml lifts them
+// inside #[test] functions, not in the helpers beside them, which index their own
+// fixtures here.
+#![allow(clippy::indexing_slicing, clippy::unwrap_used)]
+
 use proptest::prelude::*;
 use vpx_protocol::decoder::DecoderStats;
 use vpx_protocol::describe::{describe, to_json};
@@ -360,6 +365,34 @@ fn quiet_garbage() -> impl Strategy<Value = Vec<u8>> {
     )
 }
 
+/// `stream` with each packet's frame, then each false header, put in at its place.
+fn spliced(
+    mut stream: Vec<u8>,
+    frames: &[(prop::sample::Index, Packet)],
+    headers: &[(prop::sample::Index, Vec<u8>)],
+) -> Vec<u8> {
+    for (at, p) in frames {
+        let i = at.index(stream.len() + 1);
+        stream.splice(i..i, p.to_bytes());
+    }
+    for (at, h) in headers {
+        let i = at.index(stream.len() + 1);
+        stream.splice(i..i, h.iter().copied());
+    }
+    stream
+}
+
+/// The whole frames among `events`, in order.
+fn frames_of(events: &[Seen]) -> Vec<Vec<u8>> {
+    events
+        .iter()
+        .filter_map(|s| match s {
+            Seen::Frame(f) => Some(f.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
 /// Cuts `bytes` at the given positions (taken modulo the length).
 fn split_at(bytes: &[u8], cuts: &[prop::sample::Index]) -> Vec<Vec<u8>> {
     let mut at: Vec<usize> = cuts.iter().map(|i| i.index(bytes.len() + 1)).collect();
@@ -539,14 +572,7 @@ proptest! {
         garbage += tail.len();
 
         let (seen, stats, pending) = feed(&split_at(&stream, &cuts));
-        let got: Vec<Vec<u8>> = seen
-            .iter()
-            .filter_map(|s| match s {
-                Seen::Frame(f) => Some(f.clone()),
-                _ => None,
-            })
-            .collect();
-        prop_assert_eq!(got, frames.clone());
+        prop_assert_eq!(frames_of(&seen), frames.clone());
         prop_assert!(
             seen.iter().all(|s| matches!(s, Seen::Frame(_) | Seen::Skipped(_))),
             "{:?}", seen
@@ -566,11 +592,7 @@ proptest! {
     ) {
         // Real frames dropped into the noise give the decoder something to find;
         // sync pairs make candidate headers likely.
-        let mut stream = bytes;
-        for (at, p) in &sprinkle {
-            let i = at.index(stream.len() + 1);
-            stream.splice(i..i, p.to_bytes());
-        }
+        let stream = spliced(bytes, &sprinkle, &[]);
         let (seen, stats, pending) = feed(&split_at(&stream, &cuts));
 
         let mut frame_bytes = 0u64;
@@ -624,16 +646,8 @@ proptest! {
         headers in prop::collection::vec((any::<prop::sample::Index>(), false_header()), 0..4),
         cuts in prop::collection::vec(any::<prop::sample::Index>(), 1..24),
     ) {
-        let mut stream = bytes;
-        for (at, p) in &sprinkle {
-            let i = at.index(stream.len() + 1);
-            stream.splice(i..i, p.to_bytes());
-        }
-        for (at, h) in &headers {
-            let i = at.index(stream.len() + 1);
-            stream.splice(i..i, h.iter().copied());
-        }
-        let whole = feed_to_end(&[stream.clone()]);
+        let stream = spliced(bytes, &sprinkle, &headers);
+        let whole = feed_to_end(std::slice::from_ref(&stream));
         let split = feed_to_end(&split_at(&stream, &cuts));
         prop_assert_eq!(whole, split);
     }
@@ -679,14 +693,7 @@ proptest! {
         let (events, pending, end, stats) = feed_to_end(&chunks);
         // Every intact frame comes out, in order, while the stream is still live: none
         // waits for the end of the input.
-        let got: Vec<Vec<u8>> = events
-            .iter()
-            .filter_map(|s| match s {
-                Seen::Frame(f) => Some(f.clone()),
-                _ => None,
-            })
-            .collect();
-        prop_assert_eq!(&got, &frames);
+        prop_assert_eq!(&frames_of(&events), &frames);
         prop_assert!(end.iter().all(|s| matches!(s, Seen::Skipped(_) | Seen::Truncated(_))), "{:?}", end);
         prop_assert!(!events.iter().chain(&end).any(|s| matches!(s, Seen::Unknown(_))));
         // Every byte accounted for, and only what is not a frame dropped.
@@ -715,15 +722,7 @@ proptest! {
         // Noise, real frames and false headers anywhere, and the stream cut short
         // anywhere in its last 80 bytes. After the last read, the held bytes hold no
         // intact known frame; after `finish` nothing is held and every byte is counted.
-        let mut stream = bytes;
-        for (at, p) in &sprinkle {
-            let i = at.index(stream.len() + 1);
-            stream.splice(i..i, p.to_bytes());
-        }
-        for (at, h) in &headers {
-            let i = at.index(stream.len() + 1);
-            stream.splice(i..i, h.iter().copied());
-        }
+        let mut stream = spliced(bytes, &sprinkle, &headers);
         stream.truncate(stream.len().saturating_sub(cut_last));
         let chunks = split_at(&stream, &cuts);
         let mut dec = Decoder::new();

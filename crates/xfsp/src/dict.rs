@@ -62,6 +62,23 @@ macro_rules! open_enum {
 }
 pub(crate) use open_enum;
 
+/// Defines a bit-flag newtype over the raw integer, so bits the draft does not name
+/// survive a round trip; its named bits are constants in an `impl` beside it.
+macro_rules! flag_set {
+    ($(#[$meta:meta])* pub struct $name:ident(pub $repr:ty);) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+        pub struct $name(pub $repr);
+
+        impl $name {
+            /// Whether flag bit `bit` (one of the constants of this type) is set.
+            pub fn has(self, bit: $repr) -> bool {
+                self.0 & bit != 0
+            }
+        }
+    };
+}
+
 open_enum! {
     /// Table 1, msg-class.
     pub enum MsgClass: u8 {
@@ -158,10 +175,11 @@ open_enum! {
     }
 }
 
-/// Table 10, fms-waypoint: a kind in the low five bits plus component bits
-/// GS (0x80), DME (0x40), TACAN (0x20), which the table mixes into the same octet.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct FmsWaypoint(pub u8);
+flag_set! {
+    /// Table 10, fms-waypoint: a kind in the low five bits plus component bits
+    /// GS (0x80), DME (0x40), TACAN (0x20), which the table mixes into the same octet.
+    pub struct FmsWaypoint(pub u8);
+}
 
 impl FmsWaypoint {
     /// Table 10: `GS`, a glideslope component (0x80).
@@ -174,10 +192,6 @@ impl FmsWaypoint {
     /// The waypoint type of Table 10 in the low five bits.
     pub fn kind(self) -> FmsWaypointKind {
         FmsWaypointKind::from(self.0 & 0x1F)
-    }
-    /// Whether component bit `bit` (one of the constants above) is set.
-    pub fn has(self, bit: u8) -> bool {
-        self.0 & bit != 0
     }
 }
 
@@ -230,9 +244,10 @@ open_enum! {
     }
 }
 
-/// Table 12, fms-flag (16 bits): leg type in the low byte, flag bits in the high byte.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct FmsFlags(pub u16);
+flag_set! {
+    /// Table 12, fms-flag (16 bits): leg type in the low byte, flag bits in the high byte.
+    pub struct FmsFlags(pub u16);
+}
 
 impl FmsFlags {
     /// Table 12 `FLYOVER` (%x01.00): if not present, fly by.
@@ -254,10 +269,6 @@ impl FmsFlags {
     pub fn leg_type(self) -> LegType {
         LegType::from((self.0 & 0xFF) as u8)
     }
-    /// Whether flag bit `bit` (one of the constants above) is set.
-    pub fn has(self, bit: u16) -> bool {
-        self.0 & bit != 0
-    }
 }
 
 open_enum! {
@@ -278,9 +289,10 @@ open_enum! {
     }
 }
 
-/// Table 16, cas-msgflag (16 bits on the wire, see [`super::format::CasMsg`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct CasFlags(pub u16);
+flag_set! {
+    /// Table 16, cas-msgflag (16 bits on the wire, see [`super::format::CasMsg`]).
+    pub struct CasFlags(pub u16);
+}
 
 impl CasFlags {
     /// Table 16 `AUTO` (%x01): the item is automatically checked/unchecked.
@@ -325,18 +337,14 @@ impl EcbState {
     }
 }
 
-/// Table 20, ecb-flag.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct EcbFlags(pub u8);
+flag_set! {
+    /// Table 20, ecb-flag.
+    pub struct EcbFlags(pub u8);
+}
 
 impl EcbFlags {
     /// Table 20 `INPUTVOLTS` (%x01): the `involts` field carries a valid reading.
     pub const INPUTVOLTS: u8 = 0x01;
-
-    /// Whether flag bit `bit` (one of the constants above) is set.
-    pub fn has(self, bit: u8) -> bool {
-        self.0 & bit != 0
-    }
 }
 
 open_enum! {
@@ -410,21 +418,17 @@ open_enum! {
     }
 }
 
-/// Table 28, msg-cmd-updstat-flag (32 bits on the wire: UPDATE's fixed part is 56
-/// bytes only if `progflags` is a uint32).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct UpdateFlags(pub u32);
+flag_set! {
+    /// Table 28, msg-cmd-updstat-flag (32 bits on the wire: UPDATE's fixed part is 56
+    /// bytes only if `progflags` is a uint32).
+    pub struct UpdateFlags(pub u32);
+}
 
 impl UpdateFlags {
     /// Table 28 `SUCCESS` (%x01): the update is complete and successful.
     pub const SUCCESS: u32 = 0x01;
     /// Table 28 `ERROR` (%x02): error during the update.
     pub const ERROR: u32 = 0x02;
-
-    /// Whether flag bit `bit` (one of the constants above) is set.
-    pub fn has(self, bit: u32) -> bool {
-        self.0 & bit != 0
-    }
 }
 
 /// Table 30, afcs-servo (32 bits: SERVO is 8 bytes = int32 position + this).
@@ -458,63 +462,53 @@ mod tests {
     use proptest::prelude::*;
 
     /// Every open enum must give back exactly the raw value it was built from, known
-    /// or not, and every named value must map to its named variant.
-    macro_rules! dictionary_round_trip {
-        ($($test:ident: $ty:ident => $repr:ty),+ $(,)?) => {$(
-            proptest! {
+    /// or not, and every named value must map to its named variant; no two names of
+    /// one dictionary share a value, and the dictionary has as many names as its table
+    /// has rows.
+    macro_rules! dictionary {
+        ($($test:ident: $ty:ident => $repr:ty, $rows:literal;)+) => {$(
+            mod $test {
+                use super::*;
+
+                proptest! {
+                    #[test]
+                    fn round_trips(raw in any::<$repr>()) {
+                        let v = $ty::from(raw);
+                        prop_assert_eq!(<$repr>::from(v), raw);
+                        let named = $ty::ALL.iter().any(|k| k.raw() == raw);
+                        prop_assert_eq!(matches!(v, $ty::Unknown(_)), !named);
+                        prop_assert_eq!(v.spec_name().is_some(), named);
+                    }
+                }
+
                 #[test]
-                fn $test(raw in any::<$repr>()) {
-                    let v = $ty::from(raw);
-                    prop_assert_eq!(<$repr>::from(v), raw);
-                    let named = $ty::ALL.iter().any(|k| k.raw() == raw);
-                    prop_assert_eq!(matches!(v, $ty::Unknown(_)), !named);
-                    prop_assert_eq!(v.spec_name().is_some(), named);
+                fn names_are_distinct_and_complete() {
+                    let mut raw: Vec<$repr> = $ty::ALL.iter().map(|k| k.raw()).collect();
+                    raw.sort_unstable();
+                    raw.dedup();
+                    assert_eq!(raw.len(), $ty::ALL.len(), "a value named twice");
+                    assert_eq!(raw.len(), $rows, "rows of the table");
                 }
             }
         )+};
     }
 
-    dictionary_round_trip! {
-        msg_class: MsgClass => u8,
-        msg_op: MsgOp => u8,
-        cert_level: CertLevel => u8,
-        tcid: Tcid => u16,
-        confidence: Confidence => u8,
-        boolean: Boolean => u32,
-        fms_waypoint_kind: FmsWaypointKind => u8,
-        fms_container: FmsContainer => u8,
-        leg_type: LegType => u8,
-        cas_level: CasLevel => u8,
-        ecb_state: EcbState => u8,
-        units: Units => u16,
-        scb_state: ScbState => u8,
-    }
-
-    #[test]
-    fn named_values_are_distinct_within_each_dictionary() {
-        fn distinct(mut v: Vec<u32>) -> bool {
-            v.sort_unstable();
-            v.windows(2).all(|w| w[0] != w[1])
-        }
-        assert!(distinct(
-            Units::ALL.iter().map(|x| x.raw().into()).collect()
-        ));
-        assert!(distinct(
-            EcbState::ALL.iter().map(|x| x.raw().into()).collect()
-        ));
-        assert!(distinct(
-            ScbState::ALL.iter().map(|x| x.raw().into()).collect()
-        ));
-        assert!(distinct(
-            CasLevel::ALL.iter().map(|x| x.raw().into()).collect()
-        ));
-        assert!(distinct(
-            Confidence::ALL.iter().map(|x| x.raw().into()).collect()
-        ));
-        assert_eq!(EcbState::ALL.len(), 18, "Table 19 has 18 rows");
-        assert_eq!(Units::ALL.len(), 41, "Table 22 has 41 rows");
-        assert_eq!(ScbState::ALL.len(), 18, "Table 25 has 18 rows");
-        assert_eq!(LegType::ALL.len(), 24);
+    // Rows counted in the draft: Table 10 less its GS, DME and TACAN bits, Table 12's
+    // leg types with NONE.
+    dictionary! {
+        msg_class: MsgClass => u8, 3;
+        msg_op: MsgOp => u8, 3;
+        cert_level: CertLevel => u8, 6;
+        tcid: Tcid => u16, 1;
+        confidence: Confidence => u8, 10;
+        boolean: Boolean => u32, 2;
+        fms_waypoint_kind: FmsWaypointKind => u8, 11;
+        fms_container: FmsContainer => u8, 13;
+        leg_type: LegType => u8, 24;
+        cas_level: CasLevel => u8, 12;
+        ecb_state: EcbState => u8, 18;
+        units: Units => u16, 41;
+        scb_state: ScbState => u8, 18;
     }
 
     #[test]

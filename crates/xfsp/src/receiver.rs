@@ -256,30 +256,35 @@ mod tests {
         assert!(!serial_newer(7, 7));
     }
 
+    /// Checks `(source, number)` in turn, each against the verdict it must get and why.
+    #[track_caller]
+    fn verdicts(r: &mut Receiver, steps: &[(u16, u16, Verdict, &str)]) {
+        for &(src, num, want, why) in steps {
+            assert_eq!(
+                r.check(src, num, *T0),
+                want,
+                "source {src} number {num}: {why}"
+            );
+        }
+    }
+
     #[test]
     fn in_order_fresh_duplicates_and_late_ones() {
         let mut r = Receiver::default();
-        assert_eq!(r.check(1, 65534, *T0), Verdict::Fresh);
-        assert_eq!(r.check(1, 65535, *T0), Verdict::Fresh);
-        assert_eq!(
-            r.check(1, 2, *T0),
-            Verdict::Fresh,
-            "skipping 0 and 1 across the wrap"
+        verdicts(
+            &mut r,
+            &[
+                (1, 65534, Verdict::Fresh, "the first"),
+                (1, 65535, Verdict::Fresh, "the next"),
+                (1, 2, Verdict::Fresh, "skipping 0 and 1 across the wrap"),
+                (1, 2, Verdict::Duplicate, "the same again"),
+                (1, 65535, Verdict::Duplicate, "seen before the wrap"),
+                (1, 0, Verdict::OutOfOrder, "skipped, now late"),
+                (1, 0, Verdict::Duplicate, "the late one again"),
+                (2, 0, Verdict::Fresh, "sources are independent"),
+                (1, 3, Verdict::Fresh, "on from the newest"),
+            ],
         );
-        assert_eq!(r.check(1, 2, *T0), Verdict::Duplicate);
-        assert_eq!(
-            r.check(1, 65535, *T0),
-            Verdict::Duplicate,
-            "seen before the wrap"
-        );
-        assert_eq!(r.check(1, 0, *T0), Verdict::OutOfOrder, "skipped, now late");
-        assert_eq!(r.check(1, 0, *T0), Verdict::Duplicate, "the late one again");
-        assert_eq!(
-            r.check(2, 0, *T0),
-            Verdict::Fresh,
-            "sources are independent"
-        );
-        assert_eq!(r.check(1, 3, *T0), Verdict::Fresh);
         assert_eq!(
             r.stats(),
             RxStats {
@@ -296,18 +301,15 @@ mod tests {
     #[test]
     fn a_jump_beyond_the_window_clears_it() {
         let mut r = Receiver::default();
-        r.check(9, 100, *T0);
-        assert_eq!(r.check(9, 1000, *T0), Verdict::Fresh);
-        assert_eq!(
-            r.check(9, 100, *T0),
-            Verdict::OutOfOrder,
-            "out of the 64 window"
-        );
-        assert_eq!(r.check(9, 30_000, *T0), Verdict::Fresh);
-        assert_eq!(
-            r.check(9, 62_768, *T0),
-            Verdict::OutOfOrder,
-            "32768 ahead is not newer"
+        verdicts(
+            &mut r,
+            &[
+                (9, 100, Verdict::Fresh, "the first"),
+                (9, 1000, Verdict::Fresh, "a jump ahead"),
+                (9, 100, Verdict::OutOfOrder, "out of the 64 window"),
+                (9, 30_000, Verdict::Fresh, "another jump ahead"),
+                (9, 62_768, Verdict::OutOfOrder, "32768 ahead is not newer"),
+            ],
         );
     }
 

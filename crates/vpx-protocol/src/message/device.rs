@@ -259,24 +259,12 @@ impl Payload for WigWagSpec {
     }
 }
 
-/// DEVICE_SPEC_QUERY — ICD Table 18. 0 → FLAP_SPEC, 29/30 → TRIM_SPEC, 253 →
-/// SYSTEM_SPEC, 254 → WIG_WAG_SPEC, others → DEVICE_SPEC (icd-reading R13).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct DeviceSpecQuery {
-    /// Table 18 byte 1: 0–30, 253 (system) or 254 (wig-wag).
-    pub device_id: u8,
-}
-
-impl Payload for DeviceSpecQuery {
-    const ID: MessageId = MessageId::new(0x11, 0x05);
-    const NAME: &'static str = "DEVICE_SPEC_QUERY";
-    const LEN: LenRule = LenRule::Exact(1);
-    fn parse_payload(p: &[u8]) -> Result<Self> {
-        let p = exact::<Self, 1>(p)?;
-        Ok(DeviceSpecQuery { device_id: p[0] })
-    }
-    fn emit_payload(&self, w: &mut Writer) {
-        w.u8(self.device_id);
+device_id_message! {
+    /// DEVICE_SPEC_QUERY — ICD Table 18. 0 → FLAP_SPEC, 29/30 → TRIM_SPEC, 253 →
+    /// SYSTEM_SPEC, 254 → WIG_WAG_SPEC, others → DEVICE_SPEC (icd-reading R13).
+    DeviceSpecQuery = 0x11 / 0x05 "DEVICE_SPEC_QUERY" {
+        /// Table 18 byte 1: 0–30, 253 (system) or 254 (wig-wag).
+        device_id
     }
 }
 
@@ -377,23 +365,11 @@ impl Payload for DeviceName {
     }
 }
 
-/// DEVICE_NAME_QUERY — ICD Table 22; answered with DEVICE_NAME.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct DeviceNameQuery {
-    /// Table 22 byte 1: device id, 0–30.
-    pub device_id: u8,
-}
-
-impl Payload for DeviceNameQuery {
-    const ID: MessageId = MessageId::new(0x11, 0x08);
-    const NAME: &'static str = "DEVICE_NAME_QUERY";
-    const LEN: LenRule = LenRule::Exact(1);
-    fn parse_payload(p: &[u8]) -> Result<Self> {
-        let p = exact::<Self, 1>(p)?;
-        Ok(DeviceNameQuery { device_id: p[0] })
-    }
-    fn emit_payload(&self, w: &mut Writer) {
-        w.u8(self.device_id);
+device_id_message! {
+    /// DEVICE_NAME_QUERY — ICD Table 22; answered with DEVICE_NAME.
+    DeviceNameQuery = 0x11 / 0x08 "DEVICE_NAME_QUERY" {
+        /// Table 22 byte 1: device id, 0–30.
+        device_id
     }
 }
 

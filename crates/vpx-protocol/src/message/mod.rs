@@ -4,6 +4,39 @@
 //! ICD and never panics; `emit` writes the payload. [`Message`] is the sum of them all
 //! and [`Packet`] is a message with its frame header.
 
+/// A message whose whole payload is one device id byte: the struct (its doc, then its
+/// byte's doc) and its [`Payload`]. DEVICE_SPEC_QUERY, DEVICE_NAME_QUERY and
+/// DEVICE_CLEAR are laid out alike; their ids, names and meanings stay with each.
+macro_rules! device_id_message {
+    (
+        $(#[$doc:meta])*
+        $name:ident = $major:literal / $minor:literal $icd:literal {
+            $(#[$field_doc:meta])*
+            device_id
+        }
+    ) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub struct $name {
+            $(#[$field_doc])*
+            pub device_id: u8,
+        }
+
+        impl $crate::message::Payload for $name {
+            const ID: $crate::frame::MessageId = $crate::frame::MessageId::new($major, $minor);
+            const NAME: &'static str = $icd;
+            const LEN: $crate::error::LenRule = $crate::error::LenRule::Exact(1);
+            fn parse_payload(p: &[u8]) -> $crate::error::Result<Self> {
+                let [device_id] = $crate::message::exact::<Self, 1>(p)?;
+                Ok($name { device_id })
+            }
+            fn emit_payload(&self, w: &mut $crate::message::Writer) {
+                w.u8(self.device_id);
+            }
+        }
+    };
+}
+
 mod data;
 mod device;
 mod fault;

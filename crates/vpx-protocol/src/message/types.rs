@@ -3,12 +3,14 @@
 
 use alloc::{format, string::String};
 
+/// An enum over one byte of an ICD table: each row's name, byte and words, and an
+/// `Unknown(u8)` that keeps any byte the table does not list.
 macro_rules! byte_enum {
-    ($(#[$m:meta])* $name:ident { $($(#[$vm:meta])* $v:ident = $n:expr),+ $(,)? }) => {
+    ($(#[$m:meta])* $name:ident { $($v:ident = $n:literal => $words:literal),+ $(,)? }) => {
         $(#[$m])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
         pub enum $name {
-            $($(#[$vm])* $v,)+
+            $(#[doc = concat!(stringify!($n), ": ", $words, ".")] $v,)+
             /// A byte the ICD table does not list, kept as it was.
             Unknown(u8),
         }
@@ -27,6 +29,13 @@ macro_rules! byte_enum {
                     $name::Unknown(n) => n,
                 }
             }
+            /// The words of the value's row; `None` for a byte the table does not list.
+            pub fn words(self) -> Option<&'static str> {
+                match self {
+                    $($name::$v => Some($words),)+
+                    $name::Unknown(_) => None,
+                }
+            }
         }
     };
 }
@@ -34,161 +43,119 @@ macro_rules! byte_enum {
 byte_enum! {
     /// VERSION hardware version (ICD Table 11 note 1).
     HardwareVersion {
-        /// 1: VP-X (Gen 1).
-        VpxGen1 = 1,
-        /// 2: VP-X Pro.
-        VpxPro = 2,
-        /// 3: VP-X Sport.
-        VpxSport = 3,
+        VpxGen1 = 1 => "VP-X (Gen 1)",
+        VpxPro = 2 => "VP-X Pro",
+        VpxSport = 3 => "VP-X Sport",
     }
 }
 
 impl HardwareVersion {
     /// The product name of ICD Table 11 note 1, e.g. `VP-X Pro`.
     pub fn name(self) -> String {
-        match self {
-            HardwareVersion::VpxGen1 => "VP-X (Gen 1)".into(),
-            HardwareVersion::VpxPro => "VP-X Pro".into(),
-            HardwareVersion::VpxSport => "VP-X Sport".into(),
-            HardwareVersion::Unknown(n) => format!("unknown hardware {n}"),
-        }
+        self.words().map_or_else(
+            || format!("unknown hardware {}", self.to_byte()),
+            String::from,
+        )
     }
 }
 
 byte_enum! {
     /// SYSTEM_SPEC overvoltage limit (ICD Table 14).
     OvervoltageLimit {
-        /// 0: 16 volts.
-        V16 = 0,
-        /// 1: 32 volts.
-        V32 = 1,
+        V16 = 0 => "16 V",
+        V32 = 1 => "32 V",
     }
 }
 
 byte_enum! {
     /// Trim type: TRIM_SPEC flag bit and TRIM_MOVE byte (ICD Tables 15, 30).
     TrimType {
-        /// 0: pitch.
-        Pitch = 0,
-        /// 1: roll.
-        Roll = 1,
+        Pitch = 0 => "pitch",
+        Roll = 1 => "roll",
     }
 }
 
 byte_enum! {
     /// TRIM_MOVE direction (ICD Table 30 note 2): pitch down/up, roll right/left.
     TrimDirection {
-        /// 0: pitch down or roll right.
-        DownOrRight = 0,
-        /// 1: pitch up or roll left.
-        UpOrLeft = 1,
+        DownOrRight = 0 => "pitch down or roll right",
+        UpOrLeft = 1 => "pitch up or roll left",
     }
 }
 
 byte_enum! {
     /// FLAP_MOVE direction (ICD Table 31).
     FlapDirection {
-        /// 0: up.
-        Up = 0,
-        /// 1: down.
-        Down = 1,
+        Up = 0 => "up",
+        Down = 1 => "down",
     }
 }
 
 byte_enum! {
     /// Wig-wag mode: WIG_WAG_MODE byte and SYSTEM_STATUS misc bit (ICD Tables 24, 32).
+    /// Auto engages the wig-wag as WIG_WAG_SPEC configures it (§6.4.4); steady keeps
+    /// the lights on.
     WigWagModeSetting {
-        /// 0: auto, the wig-wag engages as WIG_WAG_SPEC configures it (§6.4.4).
-        Auto = 0,
-        /// 1: steady, the lights stay on.
-        Steady = 1,
+        Auto = 0 => "auto",
+        Steady = 1 => "steady",
     }
 }
 
 byte_enum! {
-    /// DEVICE_ENABLE flag (ICD Table 23).
+    /// DEVICE_ENABLE flag (ICD Table 23); 2 asks the unit for the current state.
     EnableFlag {
-        /// 0: disabled.
-        Disabled = 0,
-        /// 1: enabled.
-        Enabled = 1,
-        /// 2: asks the unit for the current state.
-        Query = 2,
+        Disabled = 0 => "disabled",
+        Enabled = 1 => "enabled",
+        Query = 2 => "query",
     }
 }
 
 byte_enum! {
-    /// SPEC_ACK error codes (ICD Table 20; icd-reading R11: 0x01–0x09).
+    /// SPEC_ACK error codes, in the words of ICD Table 20 (icd-reading R11: 0x01–0x09).
+    /// 0x05, 0x07, 0x08 and 0x09 are the ICD's SPEC_ACK_BAD_CONFIG, SPEC_ACK_BAD_ORDER,
+    /// SPEC_ACK_WIG_WAG_CONFIG and SPEC_ACK_SEC_ALT_CONFIG.
     SpecAckError {
-        /// 0x01: parameter value out of range.
-        OutOfRange = 0x01,
-        /// 0x02: invalid device identifier.
-        InvalidDevice = 0x02,
-        /// 0x03: invalid circuit breaker value.
-        InvalidBreaker = 0x03,
-        /// 0x04: invalid switch ID.
-        InvalidSwitch = 0x04,
-        /// 0x05: invalid configuration (SPEC_ACK_BAD_CONFIG).
-        BadConfig = 0x05,
-        /// 0x06: EEPROM write failure.
-        EepromWrite = 0x06,
-        /// 0x07: parameters out of order (SPEC_ACK_BAD_ORDER).
-        BadOrder = 0x07,
-        /// 0x08: wig-wag configuration error (SPEC_ACK_WIG_WAG_CONFIG).
-        WigWagConfig = 0x08,
-        /// 0x09: secondary alternator configuration error (SPEC_ACK_SEC_ALT_CONFIG).
-        SecAltConfig = 0x09,
+        OutOfRange = 0x01 => "Parameter value out of range",
+        InvalidDevice = 0x02 => "Invalid device identifier",
+        InvalidBreaker = 0x03 => "Invalid circuit breaker value",
+        InvalidSwitch = 0x04 => "Invalid switch ID",
+        BadConfig = 0x05 => "Invalid configuration",
+        EepromWrite = 0x06 => "EEPROM write failure",
+        BadOrder = 0x07 => "Parameters out of order",
+        WigWagConfig = 0x08 => "Wig-Wag configuration error",
+        SecAltConfig = 0x09 => "Secondary alternator configuration error",
     }
 }
 
 impl SpecAckError {
     /// The words of ICD Table 20.
     pub fn description(self) -> String {
-        match self {
-            SpecAckError::OutOfRange => "Parameter value out of range".into(),
-            SpecAckError::InvalidDevice => "Invalid device identifier".into(),
-            SpecAckError::InvalidBreaker => "Invalid circuit breaker value".into(),
-            SpecAckError::InvalidSwitch => "Invalid switch ID".into(),
-            SpecAckError::BadConfig => "Invalid configuration".into(),
-            SpecAckError::EepromWrite => "EEPROM write failure".into(),
-            SpecAckError::BadOrder => "Parameters out of order".into(),
-            SpecAckError::WigWagConfig => "Wig-Wag configuration error".into(),
-            SpecAckError::SecAltConfig => "Secondary alternator configuration error".into(),
-            SpecAckError::Unknown(n) => format!("Unknown error code {n:#04x}"),
-        }
+        self.words().map_or_else(
+            || format!("Unknown error code {:#04x}", self.to_byte()),
+            String::from,
+        )
     }
 }
 
 byte_enum! {
-    /// SYSTEM_STATUS data integrity error codes (ICD Table 25).
+    /// SYSTEM_STATUS data integrity error codes, in the words of ICD Table 25.
     DataIntegrityCode {
-        /// 0x01: general EEPROM error.
-        GeneralEeprom = 0x01,
-        /// 0x02: system configuration error.
-        SystemConfig = 0x02,
-        /// 0x03: device configuration error.
-        DeviceConfig = 0x03,
-        /// 0x04: flap configuration error.
-        FlapConfig = 0x04,
-        /// 0x05: trim configuration error.
-        TrimConfig = 0x05,
-        /// 0x06: wig-wag configuration error.
-        WigWagConfig = 0x06,
+        GeneralEeprom = 0x01 => "General EEPROM error",
+        SystemConfig = 0x02 => "System configuration error",
+        DeviceConfig = 0x03 => "Device configuration error",
+        FlapConfig = 0x04 => "Flap configuration error",
+        TrimConfig = 0x05 => "Trim configuration error",
+        WigWagConfig = 0x06 => "Wig-wag configuration error",
     }
 }
 
 impl DataIntegrityCode {
     /// The words of ICD Table 25.
     pub fn description(self) -> String {
-        match self {
-            DataIntegrityCode::GeneralEeprom => "General EEPROM error".into(),
-            DataIntegrityCode::SystemConfig => "System configuration error".into(),
-            DataIntegrityCode::DeviceConfig => "Device configuration error".into(),
-            DataIntegrityCode::FlapConfig => "Flap configuration error".into(),
-            DataIntegrityCode::TrimConfig => "Trim configuration error".into(),
-            DataIntegrityCode::WigWagConfig => "Wig-wag configuration error".into(),
-            DataIntegrityCode::Unknown(n) => format!("Unknown data integrity code {n:#04x}"),
-        }
+        self.words().map_or_else(
+            || format!("Unknown data integrity code {:#04x}", self.to_byte()),
+            String::from,
+        )
     }
 }
 

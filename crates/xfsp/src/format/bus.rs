@@ -82,40 +82,22 @@ impl Bus {
         Self::from_tenths(self.draw_amps)
     }
 
+    /// Table 18 in its order: a struct expression evaluates its fields as written.
     pub(crate) fn read(r: &mut Reader<'_>) -> Option<Bus> {
-        let state = r.u8()?.into();
-        let flags = EcbFlags(r.u8()?);
-        let mut v = [0i16; 11];
-        for slot in &mut v {
-            *slot = r.i16()?;
-        }
-        let [
-            in_volts,
-            draw_amps,
-            max_amps,
-            caution_high_amps,
-            caution_low_amps,
-            min_amps,
-            out_volts,
-            max_volts,
-            caution_high_volts,
-            caution_low_volts,
-            min_volts,
-        ] = v;
         Some(Bus {
-            state,
-            flags,
-            in_volts,
-            draw_amps,
-            max_amps,
-            caution_high_amps,
-            caution_low_amps,
-            min_amps,
-            out_volts,
-            max_volts,
-            caution_high_volts,
-            caution_low_volts,
-            min_volts,
+            state: r.u8()?.into(),
+            flags: EcbFlags(r.u8()?),
+            in_volts: r.i16()?,
+            draw_amps: r.i16()?,
+            max_amps: r.i16()?,
+            caution_high_amps: r.i16()?,
+            caution_low_amps: r.i16()?,
+            min_amps: r.i16()?,
+            out_volts: r.i16()?,
+            max_volts: r.i16()?,
+            caution_high_volts: r.i16()?,
+            caution_low_volts: r.i16()?,
+            min_volts: r.i16()?,
             label: r.rest().to_vec(),
         })
     }

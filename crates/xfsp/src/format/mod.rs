@@ -410,30 +410,17 @@ mod tests {
 
     #[test]
     fn wrong_length_is_a_specific_error() {
-        assert_eq!(
-            Value::parse(FormatId::Uint, &[1, 2, 3]),
-            Err(Error::BadLength {
-                format: FormatId::Uint,
-                len: 3,
-                need: LengthRule::Exactly(4)
-            })
-        );
-        assert_eq!(
-            Value::parse(FormatId::Bus, &[0; 23]),
-            Err(Error::BadLength {
-                format: FormatId::Bus,
-                len: 23,
-                need: LengthRule::AtLeast(24)
-            })
-        );
-        assert_eq!(
-            Value::parse(FormatId::DBase, &[0; 93]),
-            Err(Error::BadLength {
-                format: FormatId::DBase,
-                len: 93,
-                need: LengthRule::Exactly(92)
-            })
-        );
+        for (format, len, need) in [
+            (FormatId::Uint, 3, LengthRule::Exactly(4)),
+            (FormatId::Bus, 23, LengthRule::AtLeast(24)),
+            (FormatId::DBase, 93, LengthRule::Exactly(92)),
+        ] {
+            assert_eq!(
+                Value::parse(format, &vec![0x5A; len]),
+                Err(Error::BadLength { format, len, need }),
+                "{format:?}"
+            );
+        }
     }
 
     #[test]
