@@ -12,8 +12,6 @@
 //! The rig needs a pseudo-terminal, which only Unix has: elsewhere this bench is empty.
 #![cfg_attr(not(unix), allow(unused_imports, dead_code))]
 
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -21,39 +19,10 @@ use vpx_efis::app::{App, AppOptions};
 use vpx_efis::link;
 use vpx_efis::model::{Model, Setting, Source};
 
-/// `vpx-efis sim --pty` as a child process, killed (by its own id) on drop.
-struct SimProcess {
-    child: Child,
-    path: String,
-}
-
-impl SimProcess {
-    fn start(extra: &[&str]) -> SimProcess {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-            .args(["sim", "--pty", "--scenario", "install"])
-            .args(extra)
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("run vpx-efis sim");
-        let mut path = String::new();
-        BufReader::new(child.stdout.take().unwrap())
-            .read_line(&mut path)
-            .unwrap();
-        SimProcess {
-            child,
-            path: path.trim().to_string(),
-        }
-    }
-}
-
-impl Drop for SimProcess {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
+// `vpx-efis sim` as its own process, as the tests start it.
+#[path = "../tests/common/process.rs"]
+#[allow(dead_code)]
+mod process;
 
 /// What the device list needs before it is whole: live device states and every
 /// setting the page reads at connect.
@@ -64,15 +33,15 @@ fn named_and_configured(m: &Model, now: Instant) -> bool {
 /// One connect: a fresh sim, then the page opens its port; the time until the list
 /// is whole.
 fn connect_once(extra: &[&str]) -> Duration {
-    let sim = SimProcess::start(extra);
+    let sim = process::sim(&[&["--pty", "--scenario", "install"][..], extra].concat());
     // The unit is up and broadcasting before the page comes, as in an aircraft.
     std::thread::sleep(Duration::from_millis(300));
     let opened = Instant::now();
     let mut app = App::new(
         Source::Serial {
-            path: sim.path.clone(),
+            path: sim.line.clone(),
         },
-        link::serial_connector(sim.path.clone().into(), 57_600),
+        link::serial_connector(sim.line.clone().into(), 57_600),
         AppOptions::default(),
     );
     let end = opened + Duration::from_secs(10);

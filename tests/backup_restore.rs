@@ -12,15 +12,17 @@ use std::time::{Duration, Instant};
 use serialport::TTYPort;
 use vpx_efis::exchange::TRIES;
 use vpx_efis::link::request::query_answers;
-use vpx_efis::link::{
-    RequestError, SpecError, UnitClient, open_pty_pair, serial_connector, serve_line,
-};
+use vpx_efis::link::{RequestError, SpecError, UnitClient, open_pty_pair, serial_connector};
 use vpx_efis::protocol::config::UnitConfig;
 use vpx_efis::protocol::message::{
     DeviceName, DeviceSpec, DeviceSpecQuery, FlapSpec, Message, SpecAckError, SwitchId, SystemSpec,
     Tenths, TrimSpec, WigWagSpec,
 };
 use vpx_efis::sim::{self, SimCommand, SimHandle, SimOptions};
+
+#[path = "common/tcp_unit.rs"]
+mod tcp_unit;
+use tcp_unit::unit_over_tcp;
 
 /// Far above what any command here needs on a loaded two-core machine; reaching it
 /// means a hang, which is the failure these tests exist to catch.
@@ -59,6 +61,13 @@ impl Bench {
         self.dir.path().join(name)
     }
 
+    /// `vpx-efis backup` of the unit into the file `name` of the bench's folder.
+    fn backup(&self, name: &str) -> PathBuf {
+        let file = self.file(name);
+        ok(&self.vpx(&["backup", file.to_str().unwrap()]));
+        file
+    }
+
     /// Runs `vpx-efis ARGS --port <slave>` with no terminal on stdin.
     fn vpx(&self, args: &[&str]) -> Output {
         let mut all: Vec<&str> = args.to_vec();
@@ -92,6 +101,13 @@ fn run(args: &[&str]) -> Output {
         std::thread::sleep(Duration::from_millis(20));
     }
     child.wait_with_output().unwrap()
+}
+
+/// `text`, as the program printed or wrote it, holds `words`; else the test fails
+/// showing all of it.
+#[track_caller]
+fn assert_says(text: &str, words: &str) {
+    assert!(text.contains(words), "no {words:?} in:\n{text}");
 }
 
 fn stderr(o: &Output) -> String {
@@ -138,8 +154,7 @@ fn first_pin_with(cfg: &UnitConfig, f: impl Fn(&DeviceSpec) -> bool) -> u8 {
 #[test]
 fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
     let b = bench("demo", |_, _| {});
-    let first = b.file("first.toml");
-    ok(&b.vpx(&["backup", first.to_str().unwrap()]));
+    let first = b.backup("first.toml");
     let original = b.config();
 
     // Change the unit the way someone at the setup screens might, including a change
@@ -187,8 +202,7 @@ fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
     }
     assert!(c.set_enable(6, !original.enabled[6]).unwrap());
     c.close();
-    let changed = b.file("changed.toml");
-    ok(&b.vpx(&["backup", changed.to_str().unwrap()]));
+    let changed = b.backup("changed.toml");
     assert_ne!(
         settings_of(&first),
         settings_of(&changed),
@@ -212,10 +226,9 @@ fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
             "the diff should say {words:?}:\n{listed}"
         );
     }
-    assert!(stderr(&out).contains("verified"), "{}", stderr(&out));
+    assert_says(&stderr(&out), "verified");
 
-    let again = b.file("again.toml");
-    ok(&b.vpx(&["backup", again.to_str().unwrap()]));
+    let again = b.backup("again.toml");
     assert_eq!(settings_of(&first), settings_of(&again));
     assert_eq!(b.config(), original);
 }
@@ -223,14 +236,13 @@ fn backup_then_change_the_unit_then_restore_then_backup_gives_the_same_file() {
 #[test]
 fn restore_with_erase_first_erases_then_imports() {
     let b = bench("demo", |_, _| {});
-    let file = b.file("demo.toml");
-    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let file = b.backup("demo.toml");
     let original = b.config();
     let writes_before = b.sim.stats().eeprom_writes;
 
     let out = b.vpx(&["restore", "--yes", "--erase-first", file.to_str().unwrap()]);
     ok(&out);
-    assert!(stderr(&out).contains("EEPROM erased"), "{}", stderr(&out));
+    assert_says(&stderr(&out), "EEPROM erased");
     assert_eq!(b.config(), original);
     // Everything that differs from the factory defaults was written again, so an
     // erase really happened in between.
@@ -240,24 +252,18 @@ fn restore_with_erase_first_erases_then_imports() {
 #[test]
 fn an_unchanged_unit_gets_no_writes() {
     let b = bench("demo", |_, _| {});
-    let file = b.file("demo.toml");
-    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let file = b.backup("demo.toml");
     let writes = b.sim.stats().eeprom_writes;
     let out = b.vpx(&["restore", "--yes", file.to_str().unwrap()]);
     ok(&out);
-    assert!(
-        stdout(&out).contains("nothing to write"),
-        "{}",
-        stdout(&out)
-    );
+    assert_says(&stdout(&out), "nothing to write");
     assert_eq!(b.sim.stats().eeprom_writes, writes);
 }
 
 #[test]
 fn without_a_terminal_or_yes_the_restore_asks_nobody_and_writes_nothing() {
     let b = bench("demo", |_, _| {});
-    let file = b.file("demo.toml");
-    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let file = b.backup("demo.toml");
     let text = std::fs::read_to_string(&file)
         .unwrap()
         .replace("warm_up_s = 5", "warm_up_s = 9");
@@ -265,16 +271,8 @@ fn without_a_terminal_or_yes_the_restore_asks_nobody_and_writes_nothing() {
     let writes = b.sim.stats().eeprom_writes;
     let out = b.vpx(&["restore", file.to_str().unwrap()]);
     assert!(!out.status.success());
-    assert!(
-        stdout(&out).contains("wig-wag warm-up: 5 s → 9 s"),
-        "{}",
-        stdout(&out)
-    );
-    assert!(
-        stderr(&out).contains("Run again with --yes"),
-        "{}",
-        stderr(&out)
-    );
+    assert_says(&stdout(&out), "wig-wag warm-up: 5 s → 9 s");
+    assert_says(&stderr(&out), "Run again with --yes");
     assert_eq!(b.sim.stats().eeprom_writes, writes);
 }
 
@@ -283,8 +281,7 @@ fn without_a_terminal_or_yes_the_restore_asks_nobody_and_writes_nothing() {
 #[test]
 fn bad_files_are_refused_by_field_and_nothing_is_sent() {
     let b = bench("demo", |_, _| {});
-    let good = b.file("good.toml");
-    ok(&b.vpx(&["backup", good.to_str().unwrap()]));
+    let good = b.backup("good.toml");
     let text = std::fs::read_to_string(&good).unwrap();
     let frames_before = b.sim.stats().wire.rx_frames;
     let writes = b.sim.stats().eeprom_writes;
@@ -493,8 +490,7 @@ fn a_refused_setting_stops_the_restore_and_says_what_was_and_was_not_applied() {
         o.eeprom = Some(dir.join("eeprom/unit.json"))
     });
     std::fs::create_dir(b.dir.path().join("eeprom")).unwrap();
-    let file = b.file("demo.toml");
-    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let file = b.backup("demo.toml");
     let flap_now = b.config().flap.endpoint_duration.0 as f64 / 10.0;
     let text = std::fs::read_to_string(&file)
         .unwrap()
@@ -560,10 +556,9 @@ fn a_silent_unit_is_a_timeout_not_a_hang() {
         "{:?}",
         start.elapsed()
     );
-    assert!(
-        stderr(&out).contains("the unit did not answer VERSION after 3 tries"),
-        "{}",
-        stderr(&out)
+    assert_says(
+        &stderr(&out),
+        "the unit did not answer VERSION after 3 tries",
     );
     assert!(!file.exists());
     assert_eq!(
@@ -586,7 +581,7 @@ fn a_missing_port_is_reported_without_waiting() {
     ]);
     assert!(!out.status.success());
     assert!(start.elapsed() < Duration::from_secs(10));
-    assert!(stderr(&out).contains("no such port"), "{}", stderr(&out));
+    assert_says(&stderr(&out), "no such port");
 }
 
 #[test]
@@ -615,16 +610,16 @@ fn restore_with_sim_goes_to_the_built_in_unit_and_says_so() {
     let file = dir.path().join("sim.toml");
     ok(&run(&["backup", file.to_str().unwrap()]));
     let text = std::fs::read_to_string(&file).unwrap();
-    assert!(text.contains("simulated = true"), "{text}");
-    assert!(
-        text.contains("from = \"the built-in virtual VP-X (scenario demo)\""),
-        "{text}"
+    assert_says(&text, "simulated = true");
+    assert_says(
+        &text,
+        "from = \"the built-in virtual VP-X (scenario demo)\"",
     );
     let out = run(&["restore", "--sim", "--yes", file.to_str().unwrap()]);
     ok(&out);
     let err = stderr(&out);
-    assert!(err.contains("THE VIRTUAL VP-X, not an aircraft"), "{err}");
-    assert!(err.contains("SIMULATED"), "{err}");
+    assert_says(&err, "THE VIRTUAL VP-X, not an aircraft");
+    assert_says(&err, "SIMULATED");
     // A port given as a flag and --sim contradict each other.
     let out = run(&[
         "restore",
@@ -634,14 +629,13 @@ fn restore_with_sim_goes_to_the_built_in_unit_and_says_so() {
         file.to_str().unwrap(),
     ]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(stderr(&out).contains("contradict"), "{}", stderr(&out));
+    assert_says(&stderr(&out), "contradict");
 }
 
 #[test]
 fn a_backup_says_when_from_what_and_by_what_and_restore_shows_it_before_asking() {
     let b = bench("demo", |_, _| {});
-    let file = b.file("made.toml");
-    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let file = b.backup("made.toml");
     let text = std::fs::read_to_string(&file).unwrap();
     let (backup, made) = vpx_efis::backup::load_made(&file).unwrap();
     let made = made.expect("a [made] section");
@@ -655,7 +649,7 @@ fn a_backup_says_when_from_what_and_by_what_and_restore_shows_it_before_asking()
         "{}",
         made.at
     );
-    assert!(text.contains("software = \"2.1\""), "{text}");
+    assert_says(&text, "software = \"2.1\"");
     assert_eq!(backup.version.software_major, 2);
 
     // Change one thing so there is something to confirm; nobody is there to confirm.
@@ -666,10 +660,7 @@ fn a_backup_says_when_from_what_and_by_what_and_restore_shows_it_before_asking()
     let shown = err
         .find(&format!("The backup was made {} from {}", made.at, b.path))
         .unwrap_or_else(|| panic!("provenance not shown: {err}"));
-    assert!(
-        err.contains("a VP-X Pro software 2.1, by vpx-efis 0.1.0"),
-        "{err}"
-    );
+    assert_says(&err, "a VP-X Pro software 2.1, by vpx-efis 0.1.0");
     let asked = err
         .find("Run again with --yes")
         .expect("the refusal to ask");
@@ -679,29 +670,17 @@ fn a_backup_says_when_from_what_and_by_what_and_restore_shows_it_before_asking()
 #[test]
 fn a_backup_from_before_provenance_still_restores_and_says_it_cannot_tell() {
     let b = bench("demo", |_, _| {});
-    let file = b.file("old.toml");
-    ok(&b.vpx(&["backup", file.to_str().unwrap()]));
+    let file = b.backup("old.toml");
     std::fs::write(&file, settings_of(&file)).unwrap();
     assert!(!std::fs::read_to_string(&file).unwrap().contains("[made]"));
     let out = b.vpx(&["restore", "--yes", file.to_str().unwrap()]);
     ok(&out);
-    assert!(
-        stderr(&out).contains("does not say when or from what it was made"),
-        "{}",
-        stderr(&out)
-    );
+    assert_says(&stderr(&out), "does not say when or from what it was made");
 }
 
 #[test]
 fn backup_and_restore_over_tcp_bring_a_changed_unit_back() {
-    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
-    let line = serve_line(listener, |_| {}).unwrap();
-    let addr = format!("tcp://{}", line.local_addr);
-    let sim = sim::spawn(
-        SimOptions::new(sim::load_scenario("demo").unwrap()),
-        Box::new(line.reader),
-        Box::new(line.writer),
-    );
+    let (sim, addr) = unit_over_tcp("demo");
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("tcp.toml");
     ok(&run(&["backup", "--port", &addr, file.to_str().unwrap()]));
@@ -729,6 +708,6 @@ fn backup_and_restore_over_tcp_bring_a_changed_unit_back() {
 
     let out = run(&["restore", "--port", &addr, "--yes", file.to_str().unwrap()]);
     ok(&out);
-    assert!(stderr(&out).contains("verified"), "{}", stderr(&out));
+    assert_says(&stderr(&out), "verified");
     assert_eq!(sim.stats().config, original);
 }

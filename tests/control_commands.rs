@@ -4,7 +4,11 @@
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
-use vpx_efis::control::{Action, Controller, KeyContext, Selected, command};
+#[path = "common/selection.rs"]
+mod selection;
+use selection::selected;
+
+use vpx_efis::control::{Action, Controller, command};
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Source, TrimKind};
 use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS, FLAPS, STARTER, TRIM_P, TRIM_R};
 use vpx_efis::protocol::fault::FaultCode;
@@ -224,15 +228,7 @@ fn the_controller_sends_commands_and_shows_refusals() {
     let t0 = Instant::now();
     let m = model(t0, &[], false);
     let mut ctl = Controller::default();
-    let ctx = |id, kind| KeyContext {
-        selected: Some(Selected {
-            id,
-            kind,
-            state: CircuitState::Off,
-        }),
-        overlay_open: false,
-        past_endpoints: false,
-    };
+    let ctx = |id, kind| selected(id, kind, CircuitState::Off);
     let o = ctl.handle_key(
         KeyEvent::new(KeyCode::Char('o'), KeyModifiers::NONE),
         &ctx(7, CircuitKind::Device),
@@ -294,15 +290,8 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
         ),
     );
     let mut ctl = Controller::default();
-    let ctx = KeyContext {
-        selected: Some(Selected {
-            id: LANDING,
-            kind: CircuitKind::Device,
-            state: CircuitState::Fault(FaultCode::ShortCircuit),
-        }),
-        overlay_open: false,
-        past_endpoints: false,
-    };
+    let short = CircuitState::Fault(FaultCode::ShortCircuit);
+    let ctx = selected(LANDING, CircuitKind::Device, short);
     let key = |c| KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE);
     let shift_y = KeyEvent::new(KeyCode::Char('Y'), KeyModifiers::SHIFT);
     let clear = |o: &vpx_efis::control::Handled| {
@@ -407,7 +396,7 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
     );
 }
 
-/// Issue 35, item 5: a circuit's refusals reach the phone and the network as well as
+/// A circuit's refusals reach the phone and the network as well as
 /// the page, so they name no key: a faulted circuit is to be reset first (a motor's
 /// words: `flaps_and_trims_are_not_switched_with_device_power`).
 #[test]

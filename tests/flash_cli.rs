@@ -38,6 +38,25 @@ fn flash(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// `vpx-efis flash --port UNIT --yes --force-image FILE`: the update with no question
+/// asked, whether or not the image is a whole program.
+fn flash_forced(rig: &PtyUnit, file: &Path) -> Output {
+    flash(&[
+        "--port",
+        &rig.path,
+        "--yes",
+        "--force-image",
+        file.to_str().unwrap(),
+    ])
+}
+
+/// `text`, as the program printed or wrote it, holds `words`; else the test fails
+/// showing all of it.
+#[track_caller]
+fn assert_says(text: &str, words: &str) {
+    assert!(text.contains(words), "no {words:?} in:\n{text}");
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -61,20 +80,14 @@ fn a_full_update_from_the_command_line_writes_the_image_and_a_log_beside_it() {
     let data = bytes();
     let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0x400, &data));
     // Five pages and a bit at 0x400, no reset vector: not a whole program.
-    let o = flash(&[
-        "--port",
-        &rig.path,
-        "--yes",
-        "--force-image",
-        file.to_str().unwrap(),
-    ]);
+    let o = flash_forced(&rig, &file);
     let err = stderr(&o);
     assert!(o.status.success(), "{err}");
     assert!(
         err.contains("6 pages"),
         "image size and pages are shown: {err}"
     );
-    assert!(err.contains("software 2.1"), "{err}");
+    assert_says(&err, "software 2.1");
     let flash = rig.sim.flash();
     assert_eq!(&flash[0x400..0x400 + data.len()], &data[..]);
     assert!(flash[..0x400].iter().all(|&b| b == 0xFF));
@@ -98,23 +111,14 @@ fn a_full_update_from_the_command_line_writes_the_image_and_a_log_beside_it() {
             .any(|l| l.contains("Z +") && l.contains(" RX 50")),
         "{log}"
     );
-    assert!(
-        log.contains("SYSTEM_STATUS reports the Software Update flag"),
-        "{log}"
-    );
+    assert_says(&log, "SYSTEM_STATUS reports the Software Update flag");
 }
 
 #[test]
 fn a_file_for_other_hardware_is_refused_before_anything_reaches_the_bootloader() {
     let rig = start();
     let file = write_hex(rig.dir.path(), "cu_3.hex", &to_hex_text(0, &bytes()));
-    let o = flash(&[
-        "--port",
-        &rig.path,
-        "--yes",
-        "--force-image",
-        file.to_str().unwrap(),
-    ]);
+    let o = flash_forced(&rig, &file);
     let err = stderr(&o);
     assert!(!o.status.success());
     assert!(
@@ -123,10 +127,7 @@ fn a_file_for_other_hardware_is_refused_before_anything_reaches_the_bootloader()
     );
     untouched(&rig);
     let log = log_beside(&rig, "cu_3.hex");
-    assert!(
-        log.contains("refused before anything was sent to the bootloader"),
-        "{log}"
-    );
+    assert_says(&log, "refused before anything was sent to the bootloader");
 }
 
 #[test]
@@ -136,7 +137,7 @@ fn force_hardware_lets_an_unsuffixed_file_through_only_for_the_units_hardware() 
     let f = file.to_str().unwrap();
     let risk = ["--port", &rig.path, "--yes", "--force-image"];
     let o = flash(&[&risk[..], &[f]].concat());
-    assert!(stderr(&o).contains("--force-hardware"), "{}", stderr(&o));
+    assert_says(&stderr(&o), "--force-hardware");
     let o = flash(&[&risk[..], &["--force-hardware", "3", f]].concat());
     assert!(!o.status.success());
     untouched(&rig);
@@ -150,7 +151,7 @@ fn without_a_terminal_or_yes_nothing_is_sent_to_the_bootloader() {
     let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0, &bytes()));
     let o = flash(&["--port", &rig.path, "--force-image", file.to_str().unwrap()]);
     assert!(!o.status.success());
-    assert!(stderr(&o).contains("--yes"), "{}", stderr(&o));
+    assert_says(&stderr(&o), "--yes");
     untouched(&rig);
 }
 
@@ -168,7 +169,7 @@ fn a_damaged_file_is_refused_with_its_line_before_the_port_is_opened() {
     ]);
     let err = stderr(&o);
     assert!(!o.status.success());
-    assert!(err.contains("line 3:"), "{err}");
+    assert_says(&err, "line 3:");
     assert!(!dir.path().join("cu_2.hex.log").exists());
 }
 
@@ -178,7 +179,7 @@ fn without_a_port_flash_says_how_to_try_it_on_the_virtual_unit() {
     let file = write_hex(dir.path(), "cu_2.hex", &to_hex_text(0, &bytes()));
     let o = flash(&["--yes", file.to_str().unwrap()]);
     assert!(!o.status.success());
-    assert!(stderr(&o).contains("vpx-efis sim --pty"), "{}", stderr(&o));
+    assert_says(&stderr(&o), "vpx-efis sim --pty");
 }
 
 /// SIGTERM mid-update: flash finishes the page in progress, leaves the unit in its
@@ -213,7 +214,7 @@ fn a_signal_mid_update_stops_at_a_safe_point_and_exits_128_plus_n() {
     let o = child.wait_with_output().unwrap();
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(143), "{err}");
-    assert!(err.contains("SIGTERM"), "{err}");
+    assert_says(&err, "SIGTERM");
     assert!(rig.sim.stats().in_bootloader, "left in its bootloader");
 }
 
@@ -299,31 +300,22 @@ fn force_image_flashes_an_image_that_cannot_be_whole_with_a_warning() {
         "cu_2.hex",
         ":040000000C947200EA\n:00000001FF\n",
     );
-    let o = flash(&[
-        "--port",
-        &rig.path,
-        "--yes",
-        "--force-image",
-        file.to_str().unwrap(),
-    ]);
+    let o = flash_forced(&rig, &file);
     let err = stderr(&o);
     assert!(o.status.success(), "{err}");
     assert!(
         err.contains("WARNING (--force-image)") && err.contains("it holds 4 bytes of data"),
         "{err}"
     );
-    assert!(
-        err.contains("covers: 4 bytes of data, 1 of 992 program pages (0.1 %), reset vector given"),
-        "{err}"
+    assert_says(
+        &err,
+        "covers: 4 bytes of data, 1 of 992 program pages (0.1 %), reset vector given",
     );
     let flash = rig.sim.flash();
     assert_eq!(&flash[..4], &[0x0C, 0x94, 0x72, 0x00]);
     assert!(flash[4..].iter().all(|&b| b == 0xFF));
     let log = log_beside(&rig, "cu_2.hex");
-    assert!(
-        log.contains("flashed with --force-image although it holds 4 bytes"),
-        "{log}"
-    );
+    assert_says(&log, "flashed with --force-image although it holds 4 bytes");
 }
 
 /// `--yes` skips only the question. The §7.3 precautions are printed on

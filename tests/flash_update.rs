@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use vpx_efis::flash::hex::to_hex_text;
-use vpx_efis::flash::{self, Event, Found, Image, Left, Options};
+use vpx_efis::flash::{self, Event, Found, Image, Left, Options, UpdateError, UpdateReport};
 use vpx_efis::link::{PtyPair, open_pty_pair, open_serial};
 use vpx_efis::protocol::bootloader::{
     BootCommand, BootCommandDecoder, BootResponse, PAGE_SIZE, SIGNATURE,
@@ -108,20 +108,117 @@ impl Seen {
     }
 }
 
+/// One run of the updater: what it found, what the update came to, and all it reported.
+struct Run {
+    found: Found,
+    result: Result<UpdateReport, UpdateError>,
+    seen: Seen,
+}
+
+impl Run {
+    fn done(self) -> (UpdateReport, Seen) {
+        let Run { result, seen, .. } = self;
+        (
+            result.unwrap_or_else(|e| panic!("{e}\n{}", seen.dump())),
+            seen,
+        )
+    }
+
+    fn stopped(self, why: &str) -> (UpdateError, Seen) {
+        let Run { result, seen, .. } = self;
+        match result {
+            Ok(r) => panic!("{why}: {r:?}\n{}", seen.dump()),
+            Err(e) => (e, seen),
+        }
+    }
+}
+
+/// Detects the unit on `path` with `detect` and updates it to `img` with `opts`, as
+/// `vpx-efis flash` does, `during` seeing each event of the update as it comes. The
+/// port is closed on return, as by a pulled cable if the update did not end.
+fn flash_unit(
+    path: &str,
+    img: &Image,
+    detect: &Options,
+    opts: &Options,
+    mut during: impl FnMut(&Event<'_>),
+) -> Run {
+    let mut p = port(path);
+    let mut seen = Seen::default();
+    let found = flash::detect(&mut p, detect, &mut |e| seen.take(&e))
+        .unwrap_or_else(|e| panic!("{e}\n{}", seen.dump()));
+    let result = flash::update(&mut p, img, found, opts, &mut |e| {
+        during(&e);
+        seen.take(&e)
+    });
+    Run {
+        found,
+        result,
+        seen,
+    }
+}
+
+/// The re-run an interrupted update advises: it finds the unit in its bootloader and
+/// finishes, with `img` in flash.
+fn rerun(rig: &PtyUnit, img: &Image) -> (UpdateReport, Seen) {
+    let run = flash_unit(&rig.path, img, &fast(), &fast(), |_| {});
+    assert_eq!(run.found, Found::Bootloader, "{}", run.seen.dump());
+    let done = run.done();
+    assert!(rig.sim.flash() == img.to_flash());
+    assert!(!rig.sim.stats().in_bootloader);
+    done
+}
+
+/// An update stopped partway: the unit is left in its bootloader, never sent EXIT into
+/// a half-written image, and the error says `what` and how to resume.
+fn left_in_its_bootloader(rig: &PtyUnit, err: &UpdateError, seen: &Seen, what: &str) {
+    assert_eq!(
+        err.left,
+        Left::InBootloader {
+            flash_changed: true
+        },
+        "{err}"
+    );
+    let text = err.to_string();
+    assert!(text.contains(what), "{text}");
+    assert!(text.contains("run the same command again"), "{text}");
+    assert!(
+        !seen.sent_any("EXIT"),
+        "never EXIT into a half-written image: {}",
+        seen.dump()
+    );
+    assert!(rig.sim.stats().in_bootloader);
+}
+
+/// An update of `img` cancelled (Ctrl-C) when the updater sends the command whose
+/// description starts with `at`.
+fn interrupted_at(rig: &PtyUnit, img: &Image, at: &str) -> (UpdateError, Seen) {
+    let cancel = Arc::new(AtomicBool::new(false));
+    let opts = Options {
+        cancel: Some(cancel.clone()),
+        ..fast()
+    };
+    let run = flash_unit(&rig.path, img, &opts, &opts, |e| {
+        if let Event::Sent { what, .. } = e
+            && what.starts_with(at)
+        {
+            cancel.store(true, Ordering::SeqCst);
+        }
+    });
+    run.stopped("an interrupted update is not a success")
+}
+
 #[test]
 fn a_full_update_leaves_the_image_in_flash_and_the_unit_back_with_the_flag() {
     let rig = start_sim();
     let img = image(0x33);
     assert_eq!(img.page_count(), 12);
-    let mut p = port(&rig.path);
-    let mut seen = Seen::default();
-    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
-    let Found::Running(v) = found else {
-        panic!("a fresh sim runs its software: {found:?}")
+    let run = flash_unit(&rig.path, &img, &answering(), &fast(), |_| {});
+    let Found::Running(v) = run.found else {
+        panic!("a fresh sim runs its software: {:?}", run.found)
     };
     assert_eq!(v.hardware_version, HardwareVersion::VpxPro);
-    let out = flash::update(&mut p, &img, found, &fast(), &mut |e| seen.take(&e))
-        .unwrap_or_else(|e| panic!("{e}\n{}", seen.dump()));
+    let (out, seen) = run.done();
 
     assert!(
         rig.sim.flash() == img.to_flash(),
@@ -164,13 +261,10 @@ fn a_full_update_leaves_the_image_in_flash_and_the_unit_back_with_the_flag() {
 
 /// Corrupts the FLASH_PROG of the image's 4th page: the injection is made once the 3rd
 /// page's 'P' has come back, well before the 4th page's frame is written.
-fn corrupt_fourth_page(rig: &PtyUnit, byte128: u8) -> (flash::UpdateReport, Seen) {
+fn corrupt_fourth_page(rig: &PtyUnit, byte128: u8) -> (UpdateReport, Seen) {
     let img = image(byte128);
-    let mut p = port(&rig.path);
-    let mut seen = Seen::default();
-    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
     let armed = AtomicBool::new(true);
-    let out = flash::update(&mut p, &img, found, &fast(), &mut |e| {
+    let (out, seen) = flash_unit(&rig.path, &img, &answering(), &fast(), |e| {
         if let Event::Progress(pr) = e
             && pr.programmed == 3
             && armed.swap(false, Ordering::SeqCst)
@@ -180,9 +274,8 @@ fn corrupt_fourth_page(rig: &PtyUnit, byte128: u8) -> (flash::UpdateReport, Seen
             // before the next frame is written (else the sim may read it first).
             let _ = rig.sim.stats();
         }
-        seen.take(&e)
     })
-    .unwrap_or_else(|e| panic!("{e}\n{}", seen.dump()));
+    .done();
     assert!(
         rig.sim.flash() == img.to_flash(),
         "flash differs from the image:\n{}",
@@ -223,54 +316,30 @@ fn corruption_that_cleared_bits_is_repaired_by_a_second_erase_pass() {
 fn a_link_dropped_mid_update_leaves_the_unit_in_its_bootloader_and_a_rerun_resumes() {
     let rig = start_sim();
     let img = image(0x42);
-    let mut seen = Seen::default();
-    {
-        let mut p = port(&rig.path);
-        let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
-        let armed = AtomicBool::new(true);
-        let err = flash::update(&mut p, &img, found, &fast(), &mut |e| {
-            if let Event::Progress(pr) = e
-                && pr.programmed == 5
-                && armed.swap(false, Ordering::SeqCst)
-            {
-                // Nothing comes back for 4 s: the unit hears us, we do not hear it.
-                rig.sim.inject(SimCommand::Silent(Duration::from_secs(4)));
-                let _ = rig.sim.stats();
-            }
-            seen.take(&e)
-        })
-        .expect_err("an update whose answers stop must not succeed");
-        assert_eq!(
-            err.left,
-            Left::InBootloader {
-                flash_changed: true
-            },
-            "{err}"
-        );
-        let text = err.to_string();
-        assert!(text.contains("STILL IN ITS BOOTLOADER"), "{text}");
-        assert!(text.contains("run the same command again"), "{text}");
-        // Never EXIT into a half-written image.
-        assert!(!seen.sent_any("EXIT"), "{}", seen.dump());
-        // The port is closed here, like a pulled cable.
-    }
-    let st = rig.sim.stats();
-    assert!(st.in_bootloader);
+    let armed = AtomicBool::new(true);
+    let (err, seen) = flash_unit(&rig.path, &img, &answering(), &fast(), |e| {
+        if let Event::Progress(pr) = e
+            && pr.programmed == 5
+            && armed.swap(false, Ordering::SeqCst)
+        {
+            // Nothing comes back for 4 s: the unit hears us, we do not hear it.
+            rig.sim.inject(SimCommand::Silent(Duration::from_secs(4)));
+            let _ = rig.sim.stats();
+        }
+    })
+    .stopped("an update whose answers stop must not succeed");
+    left_in_its_bootloader(&rig, &err, &seen, "STILL IN ITS BOOTLOADER");
     assert!(rig.sim.flash() != img.to_flash());
     std::thread::sleep(Duration::from_millis(3500));
 
-    let mut again = Seen::default();
-    let mut p = port(&rig.path);
-    let found = flash::detect(&mut p, &fast(), &mut |e| again.take(&e)).unwrap();
-    assert_eq!(found, Found::Bootloader, "{}", again.dump());
-    let out = flash::update(&mut p, &img, found, &fast(), &mut |e| again.take(&e))
-        .unwrap_or_else(|e| panic!("{e}\n{}", again.dump()));
+    let (out, again) = rerun(&rig, &img);
     // A resumed unit is not sent SOFTWARE_UPDATE: it is already in its bootloader.
     assert!(!again.sent_any("SOFTWARE_UPDATE"), "{}", again.dump());
-    assert!(rig.sim.flash() == img.to_flash());
-    let st = rig.sim.stats();
-    assert!(!st.in_bootloader);
-    assert_eq!(st.boot.erases, 2, "the resume starts over from the erase");
+    assert_eq!(
+        rig.sim.stats().boot.erases,
+        2,
+        "the resume starts over from the erase"
+    );
     assert_eq!(out.version.hardware_version, HardwareVersion::VpxPro);
 }
 
@@ -281,37 +350,14 @@ fn a_link_dropped_mid_update_leaves_the_unit_in_its_bootloader_and_a_rerun_resum
 fn an_interrupt_mid_update_finishes_the_page_never_exits_and_a_rerun_resumes() {
     let rig = start_sim();
     let img = image(0x24);
-    let mut seen = Seen::default();
-    let cancel = Arc::new(AtomicBool::new(false));
-    let opts = Options {
-        cancel: Some(cancel.clone()),
-        ..fast()
-    };
-    let mut p = port(&rig.path);
-    let found = flash::detect(&mut p, &opts, &mut |e| seen.take(&e)).unwrap();
-    let err = flash::update(&mut p, &img, found, &opts, &mut |e| {
-        // Pressed while page 3's frame is on its way, before its answer.
-        if let Event::Sent { what, .. } = e
-            && what.starts_with("FLASH_PROG page 3 ")
-        {
-            cancel.store(true, Ordering::SeqCst);
-        }
-        seen.take(&e)
-    })
-    .expect_err("an interrupted update is not a success");
-    assert_eq!(
-        err.left,
-        Left::InBootloader {
-            flash_changed: true
-        },
-        "{err}"
+    // Pressed while page 3's frame is on its way, before its answer.
+    let (err, seen) = interrupted_at(&rig, &img, "FLASH_PROG page 3 ");
+    left_in_its_bootloader(
+        &rig,
+        &err,
+        &seen,
+        "interrupted after programming page 3 (4 of 12)",
     );
-    let text = err.to_string();
-    assert!(
-        text.contains("interrupted after programming page 3 (4 of 12)"),
-        "{text}"
-    );
-    assert!(text.contains("run the same command again"), "{text}");
     let progs = seen
         .sent
         .iter()
@@ -319,24 +365,12 @@ fn an_interrupt_mid_update_finishes_the_page_never_exits_and_a_rerun_resumes() {
         .count();
     assert_eq!(progs, 4, "pages 0-3 and nothing after:\n{}", seen.dump());
     assert!(!seen.sent_any("FLASH_READ"), "{}", seen.dump());
-    assert!(
-        !seen.sent_any("EXIT"),
-        "never EXIT into a half-written image"
+    assert_eq!(
+        rig.sim.stats().boot.pages_programmed,
+        4,
+        "page 3 was finished, not cut"
     );
-    let st = rig.sim.stats();
-    assert!(st.in_bootloader);
-    assert_eq!(st.boot.pages_programmed, 4, "page 3 was finished, not cut");
-    drop(p);
-
-    // The re-run, as the advice says.
-    let mut again = Seen::default();
-    let mut p = port(&rig.path);
-    let found = flash::detect(&mut p, &fast(), &mut |e| again.take(&e)).unwrap();
-    assert_eq!(found, Found::Bootloader, "{}", again.dump());
-    flash::update(&mut p, &img, found, &fast(), &mut |e| again.take(&e))
-        .unwrap_or_else(|e| panic!("{e}\n{}", again.dump()));
-    assert!(rig.sim.flash() == img.to_flash());
-    assert!(!rig.sim.stats().in_bootloader);
+    rerun(&rig, &img);
 }
 
 #[test]
@@ -344,23 +378,7 @@ fn an_interrupt_before_the_erase_gives_the_unit_its_software_back() {
     let rig = start_sim();
     let img = image(0x25);
     let before = rig.sim.flash();
-    let mut seen = Seen::default();
-    let cancel = Arc::new(AtomicBool::new(false));
-    let opts = Options {
-        cancel: Some(cancel.clone()),
-        ..fast()
-    };
-    let mut p = port(&rig.path);
-    let found = flash::detect(&mut p, &opts, &mut |e| seen.take(&e)).unwrap();
-    let err = flash::update(&mut p, &img, found, &opts, &mut |e| {
-        if let Event::Sent { what, .. } = e
-            && what.starts_with("SIGNATURE")
-        {
-            cancel.store(true, Ordering::SeqCst);
-        }
-        seen.take(&e)
-    })
-    .expect_err("an interrupted update is not a success");
+    let (err, seen) = interrupted_at(&rig, &img, "SIGNATURE");
     assert_eq!(err.left, Left::BackToOldSoftware, "{err}\n{}", seen.dump());
     assert!(!seen.sent_any("FLASH_ERASE"), "{}", seen.dump());
     assert!(seen.sent_any("EXIT"), "{}", seen.dump());
@@ -472,12 +490,8 @@ fn the_scripted_bootloader_with_the_right_signature_takes_a_whole_update() {
     // Guards the double itself: with the VP-X's signature it must let an update through,
     // so the wrong-signature test below fails for the signature and nothing else.
     let s = scripted(SIGNATURE, false);
-    let mut p = port(&s.path);
     let img = flash::parse_hex(&to_hex_text(0, &[0xFF; 300])).unwrap();
-    let mut seen = Seen::default();
-    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
-    flash::update(&mut p, &img, found, &fast(), &mut |e| seen.take(&e))
-        .unwrap_or_else(|e| panic!("{e}\n{}", seen.dump()));
+    flash_unit(&s.path, &img, &answering(), &fast(), |_| {}).done();
     assert!(
         s.commands
             .lock()
@@ -490,13 +504,9 @@ fn the_scripted_bootloader_with_the_right_signature_takes_a_whole_update() {
 fn a_wrong_signature_stops_before_erase_and_returns_the_unit_to_its_software() {
     // The ATmega2560's signature in forward order: the VP-X sends it reversed.
     let s = scripted([0x1E, 0x98, 0x01], false);
-    let mut p = port(&s.path);
-    let img = image(0x11);
-    let mut seen = Seen::default();
-    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
-    assert!(matches!(found, Found::Running(_)));
-    let err = flash::update(&mut p, &img, found, &fast(), &mut |e| seen.take(&e))
-        .expect_err("a wrong signature must stop the update");
+    let run = flash_unit(&s.path, &image(0x11), &answering(), &fast(), |_| {});
+    assert!(matches!(run.found, Found::Running(_)));
+    let (err, _) = run.stopped("a wrong signature must stop the update");
     assert!(err.reason.contains("1E 98 01"), "{err}");
     assert_eq!(err.left, Left::BackToOldSoftware, "{err}");
     let cmds = s.commands.lock().unwrap().clone();
@@ -515,12 +525,9 @@ fn a_wrong_signature_stops_before_erase_and_returns_the_unit_to_its_software() {
 fn a_wrong_signature_on_a_unit_found_in_its_bootloader_does_not_exit() {
     // Found there, the flash may be half written by an earlier run: no EXIT.
     let s = scripted([0x00, 0x00, 0x00], true);
-    let mut p = port(&s.path);
-    let mut seen = Seen::default();
-    let found = flash::detect(&mut p, &answering(), &mut |e| seen.take(&e)).unwrap();
-    assert_eq!(found, Found::Bootloader);
-    let err = flash::update(&mut p, &image(0x11), found, &fast(), &mut |e| seen.take(&e))
-        .expect_err("a wrong signature must stop the update");
+    let run = flash_unit(&s.path, &image(0x11), &answering(), &fast(), |_| {});
+    assert_eq!(run.found, Found::Bootloader);
+    let (err, _) = run.stopped("a wrong signature must stop the update");
     assert_eq!(
         err.left,
         Left::InBootloader {

@@ -178,17 +178,8 @@ impl Rig {
     fn screen(&mut self) -> String {
         let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
         self.app.draw(&mut term, Instant::now()).unwrap();
-        let buf = term.backend().buffer().clone();
-        (0..buf.area.height)
-            .map(|y| {
-                (0..buf.area.width)
-                    .map(|x| buf[(x, y)].symbol().to_string())
-                    .collect::<String>()
-                    .trim()
-                    .to_string()
-            })
-            .collect::<Vec<_>>()
-            .join(" ")
+        let drawn = common::screen::text(term.backend().buffer());
+        drawn.lines().map(str::trim).collect::<Vec<_>>().join(" ")
     }
 }
 
@@ -406,7 +397,7 @@ impl Rig {
     }
 }
 
-/// Issue 31, item 1: the check, run from the page against `sim --pty` as its own
+/// The check, run from the page against `sim --pty` as its own
 /// process, finds a reversed motor parked at the endpoint its first run backs away
 /// from, by probing: the pitch trim of `install` at its down endpoint 220 (run up
 /// first), and the flaps of `reversed-flaps` at their up endpoint 20 (run down

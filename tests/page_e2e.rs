@@ -115,15 +115,7 @@ fn hold_trim_up(rig: &mut Rig, mode: ReleaseMode) {
         "trim up moved the position from {before} to {}",
         stats.pitch_trim_position
     );
-    assert_eq!(
-        stats.pitch_trim_starvations, 0,
-        "the page streamed fast enough"
-    );
-    assert_eq!(
-        stats.pitch_trim_late, 0,
-        "no gap over 250 ms between TRIM_MOVEs (the unit forgives 300)"
-    );
-    assert!(!stats.pitch_trim_running, "the motor stopped after release");
+    page_rig::assert_the_trim_stopped_by_its_message(&rig.sim);
 
     let moves: Vec<(Instant, TrimMove)> = rig
         .sent(from)

@@ -190,9 +190,7 @@ fn x_default_repeat_is_one_run_and_stops_within_150_ms_of_the_last_repeat() {
          at worst {:?} apart)",
         hold.worst_delivery
     );
-    assert_eq!(rig.sim.stats().pitch_trim_starvations, 0);
-    assert_eq!(rig.sim.stats().pitch_trim_late, 0, "no gap over 250 ms");
-    assert!(!rig.sim.stats().pitch_trim_running);
+    page_rig::assert_the_trim_stopped_by_its_message(&rig.sim);
 
     // The page says what it now uses.
     rig.app

@@ -63,14 +63,5 @@ fn a_panic_while_trim_runs_sends_the_stop_and_nothing_restarts_it() {
         moves[first_stop..].iter().all(|(_, on)| !on),
         "a move was resent after the panic's stop: {moves:?}"
     );
-    let s = rig.sim.stats();
-    assert!(!s.pitch_trim_running, "the unit stopped the motor");
-    assert_eq!(
-        s.pitch_trim_starvations, 0,
-        "stopped by the message, not by starving"
-    );
-    assert_eq!(
-        s.pitch_trim_late, 0,
-        "no gap over 250 ms between move messages"
-    );
+    page_rig::assert_the_trim_stopped_by_its_message(&rig.sim);
 }

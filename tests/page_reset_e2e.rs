@@ -78,19 +78,36 @@ impl Page {
         panic!("could not select device {id}");
     }
 
+    /// Device `id` (`name`) shorted, then reset from the page: its row shows `state`,
+    /// and no fault, within `limit` of the reset.
+    fn reset_shows(&mut self, id: u8, name: &str, state: CircuitState, limit: Duration) {
+        self.fault(id);
+        let (sent, shown) = self.reset_until(id, name, state);
+        let took = shown - sent;
+        println!("{name}: reset sent, {state:?} shown {took:?} later");
+        assert!(took <= limit, "{name}: {took:?}");
+        let row = self.row(name);
+        let word = match state {
+            CircuitState::On => " ON ",
+            CircuitState::Off => " OFF ",
+            other => panic!("a reset ends ON or OFF, not {other:?}"),
+        };
+        assert!(
+            row.contains(word) && !row.contains("SHORT_CIRCUIT"),
+            "{name}: {row}"
+        );
+    }
+
     /// The row of device `name` as the page draws it now.
     fn row(&mut self, name: &str) -> String {
         let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
         self.app.draw(&mut term, Instant::now()).unwrap();
-        let buf = term.backend().buffer().clone();
-        (0..buf.area.height)
-            .map(|y| {
-                (0..buf.area.width)
-                    .map(|x| buf[(x, y)].symbol().to_string())
-                    .collect::<String>()
-            })
+        let drawn = common::screen::text(term.backend().buffer());
+        drawn
+            .lines()
             .find(|l| l.contains(name))
             .unwrap_or_default()
+            .to_string()
     }
 
     fn resets_sent(&self) -> u64 {
@@ -178,15 +195,11 @@ fn a_cleared_fault_with_its_switch_on_shows_on_within_1_2_s() {
             .live_devices(now)
             .is_some_and(|d| d.on[TAXI as usize])
     });
-    p.fault(TAXI);
-    let (sent, on) = p.reset_until(TAXI, "Taxi Light", CircuitState::On);
-    let took = on - sent;
-    println!("Taxi Light: reset sent, ON shown {took:?} later");
-    assert!(took <= Duration::from_millis(1200), "{took:?}");
-    let row = p.row("Taxi Light");
-    assert!(
-        row.contains(" ON ") && !row.contains("SHORT_CIRCUIT"),
-        "{row}"
+    p.reset_shows(
+        TAXI,
+        "Taxi Light",
+        CircuitState::On,
+        Duration::from_millis(1200),
     );
 }
 
@@ -195,14 +208,10 @@ fn a_cleared_fault_with_its_switch_on_shows_on_within_1_2_s() {
 #[test]
 fn a_cleared_fault_with_its_switch_off_shows_off_once_fault_status_is_overdue() {
     let mut p = Page::new();
-    p.fault(LANDING);
-    let (sent, off) = p.reset_until(LANDING, "Landing Lt", CircuitState::Off);
-    let took = off - sent;
-    println!("Landing Lt: reset sent, OFF shown {took:?} later");
-    assert!(took <= Duration::from_millis(1600), "{took:?}");
-    let row = p.row("Landing Lt");
-    assert!(
-        row.contains(" OFF ") && !row.contains("SHORT_CIRCUIT"),
-        "{row}"
+    p.reset_shows(
+        LANDING,
+        "Landing Lt",
+        CircuitState::Off,
+        Duration::from_millis(1600),
     );
 }

@@ -13,12 +13,11 @@ use std::time::{Duration, Instant};
 
 use vpx_efis::link;
 use vpx_efis::protocol::message::{Message, TrimType};
-use vpx_efis::protocol::{Decoder, Event as DecEvent, Packet};
 use vpx_efis::sim::{self, Scenario, SimHandle, SimOptions};
 
 mod page_rig;
 use page_rig::terminal::{Term, find, page};
-use page_rig::{SCENARIO, Tap, Wire};
+use page_rig::{SCENARIO, Tap, Wire, packets};
 
 struct Bench {
     sim: SimHandle,
@@ -45,21 +44,12 @@ fn bench() -> Bench {
 
 /// Pitch TRIM_MOVEs the page put on the wire: (when, on).
 fn pitch_moves(wire: &Wire) -> Vec<(Instant, bool)> {
-    let wire = wire.lock().unwrap();
-    let mut dec = Decoder::new();
-    let mut out = Vec::new();
-    for (at, bytes) in wire.iter() {
-        dec.push(bytes, |e| {
-            if let DecEvent::Frame(f) = e
-                && let Ok(p) = Packet::parse(&f)
-                && let Message::TrimMove(m) = p.message
-                && m.trim_type == TrimType::Pitch
-            {
-                out.push((*at, m.on));
-            }
-        });
-    }
-    out
+    (packets(&wire.lock().unwrap()).into_iter())
+        .filter_map(|(at, p)| match p.message {
+            Message::TrimMove(m) if m.trim_type == TrimType::Pitch => Some((at, m.on)),
+            _ => None,
+        })
+        .collect()
 }
 
 fn wait_exit(child: &mut Child, limit: Duration) -> (std::process::ExitStatus, Instant) {
@@ -140,16 +130,7 @@ fn signal_during_a_trim_run(signal: libc::c_int, status: i32) {
             .all(|(_, on)| !on),
         "a move after the stop: {moves:?}"
     );
-    let s = b.sim.stats();
-    assert!(!s.pitch_trim_running, "the unit's motor stopped");
-    assert_eq!(
-        s.pitch_trim_starvations, 0,
-        "stopped by the message, not by the unit's 250 ms cut-off"
-    );
-    assert_eq!(
-        s.pitch_trim_late, 0,
-        "no gap over 250 ms between move messages"
-    );
+    page_rig::assert_the_trim_stopped_by_its_message(&b.sim);
 
     // The terminal was given back.
     let after = term.output()[screen_before..].to_vec();

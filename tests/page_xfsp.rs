@@ -1,31 +1,29 @@
 //! The gateway inside the page (`vpx-efis --xfsp`): the real `App` with the built-in
 //! virtual VP-X publishes its circuits to a UDP peer on 127.0.0.1.
 
-use std::net::UdpSocket;
-
 mod common;
 use std::time::{Duration, Instant};
 
+use common::xfsp_peer::PagePeer;
 use vpx_efis::app::{App, AppOptions, builtin_sim};
+use vpx_efis::sim::SimHandle;
 use vpx_efis::xfsp::gateway::GatewayConfig;
-use vpx_efis::xfsp::net::Target;
 use vpx_efis::xfsp::{Body, EcbState, Message, Value, idents};
+
+/// The page on the built-in VP-X playing `scenario`, its gateway set by `cfg` and
+/// publishing to `peer`.
+fn page_publishing_to(peer: &PagePeer, scenario: &str, cfg: GatewayConfig) -> (App, SimHandle) {
+    let (source, connector, sim) = builtin_sim(scenario).unwrap();
+    let mut app = App::new(source, connector, AppOptions::default());
+    app.enable_xfsp(&peer.target(), "127.0.0.1".parse().unwrap(), cfg)
+        .unwrap();
+    (app, sim)
+}
 
 #[test]
 fn the_page_publishes_its_circuits_on_xfsp() {
-    let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
-    peer.set_read_timeout(Some(Duration::from_millis(50)))
-        .unwrap();
-    let target = Target::parse(&peer.local_addr().unwrap().to_string()).unwrap();
-
-    let (source, connector, sim) = builtin_sim("demo").unwrap();
-    let mut app = App::new(source, connector, AppOptions::default());
-    app.enable_xfsp(
-        &target,
-        "127.0.0.1".parse().unwrap(),
-        GatewayConfig::default(),
-    )
-    .unwrap();
+    let peer = PagePeer::new();
+    let (mut app, sim) = page_publishing_to(&peer, "demo", GatewayConfig::default());
 
     // The demo's EFIS (device 2, named "EFIS 1") is always on.
     let end = Instant::now() + Duration::from_secs(8);
@@ -37,7 +35,7 @@ fn the_page_publishes_its_circuits_on_xfsp() {
             "no ECBSTAT ON for the EFIS reached the peer"
         );
         app.pump_until(Instant::now() + Duration::from_millis(50));
-        while let Ok(n) = peer.recv(&mut buf) {
+        while let Ok(n) = peer.sock.recv(&mut buf) {
             let Ok(m) = Message::parse(&buf[..n]) else {
                 continue;
             };
@@ -77,18 +75,8 @@ fn the_page_with_xfsp_sleeps_between_deadlines_when_most_pins_are_disabled() {
     use ratatui::Terminal;
     use ratatui::backend::TestBackend;
 
-    let peer = UdpSocket::bind("127.0.0.1:0").unwrap();
-    peer.set_read_timeout(Some(Duration::from_millis(20)))
-        .unwrap();
-    let target = Target::parse(&peer.local_addr().unwrap().to_string()).unwrap();
-    let (source, connector, sim) = builtin_sim("disabled-pins").unwrap();
-    let mut app = App::new(source, connector, AppOptions::default());
-    app.enable_xfsp(
-        &target,
-        "127.0.0.1".parse().unwrap(),
-        GatewayConfig::default(),
-    )
-    .unwrap();
+    let peer = PagePeer::new();
+    let (mut app, sim) = page_publishing_to(&peer, "disabled-pins", GatewayConfig::default());
     // Connect, ask for every enable flag, name and spec (about a second), settle.
     let end = Instant::now() + Duration::from_secs(10);
     while app.model().enabled.iter().flatten().count() < 25 {
@@ -126,7 +114,10 @@ fn the_page_with_xfsp_sleeps_between_deadlines_when_most_pins_are_disabled() {
     }
     // It is still publishing all the while.
     let mut buf = [0u8; 2048];
-    assert!(peer.recv(&mut buf).is_ok(), "no datagram reached the peer");
+    assert!(
+        peer.sock.recv(&mut buf).is_ok(),
+        "no datagram reached the peer"
+    );
     app.shutdown();
     sim.stop();
 }
@@ -139,15 +130,12 @@ fn the_page_takes_network_commands_only_with_xfsp_control() {
     use vpx_efis::xfsp::gateway::Control;
 
     for control in [Control::Off, Control::Any] {
-        let mut peer = common::xfsp_peer::PagePeer::new();
-        let (source, connector, sim) = builtin_sim("demo").unwrap();
-        let mut app = App::new(source, connector, AppOptions::default());
+        let mut peer = PagePeer::new();
         let cfg = GatewayConfig {
             control: control.clone(),
             ..GatewayConfig::default()
         };
-        app.enable_xfsp(&peer.target(), "127.0.0.1".parse().unwrap(), cfg)
-            .unwrap();
+        let (mut app, sim) = page_publishing_to(&peer, "demo", cfg);
         // The EFIS published; the page's address learned from it.
         peer.wait_for_page(
             Duration::from_secs(8),

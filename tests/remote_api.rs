@@ -16,8 +16,10 @@ use page_rig::*;
 use std::io::{BufRead, BufReader};
 use std::time::{Duration, Instant};
 
+use crossterm::event::{KeyCode, KeyEventKind};
 use serde_json::{Value, json};
 use vpx_efis::app::AppOptions;
+use vpx_efis::check::state::Step;
 use vpx_efis::model::LogLevel;
 use vpx_efis::protocol::message::{Message, Packet, TrimType};
 
@@ -27,13 +29,17 @@ fn ms(n: u64) -> Duration {
 
 /// The page against the sim with the remote on 127.0.0.1 (a free port); its base URL.
 fn rig_with_remote(logbook: Option<std::path::PathBuf>) -> (Rig, String) {
-    let mut rig = Rig::with_options(AppOptions {
+    with_remote(Rig::with_options(AppOptions {
         logbook: logbook.map(|path| vpx_efis::logbook::Target {
             path,
             aircraft: None,
         }),
         ..AppOptions::default()
-    });
+    }))
+}
+
+/// `rig` with the remote started on 127.0.0.1 (a free port), and its base URL.
+fn with_remote(mut rig: Rig) -> (Rig, String) {
     rig.app
         .start_remote(Some("127.0.0.1:0".parse().unwrap()), Instant::now())
         .expect("the remote starts");
@@ -41,6 +47,106 @@ fn rig_with_remote(logbook: Option<std::path::PathBuf>) -> (Rig, String) {
     let url = rig.app.remote_url().unwrap();
     let base = split_pairing_url(&url).0;
     (rig, base)
+}
+
+/// Opens the installation check at the page, `skip`ping those steps, with its reports
+/// and load file in `dir`.
+fn open_check(rig: &mut Rig, dir: &std::path::Path, skip: Vec<Step>) {
+    rig.app.set_check_report_dir(Some(dir.to_path_buf()));
+    let options = vpx_efis::check::Options {
+        skip,
+        loads_file: Some(dir.join("loads.toml")),
+        ..vpx_efis::check::Options::default()
+    };
+    rig.app.open_check(options, Instant::now());
+    rig.app.pump_until(Instant::now() + ms(100));
+}
+
+/// Pumps the page until the check the phone's state shows is `what` (`want` says
+/// when), and returns it.
+fn check_on_the_phone(
+    rig: &mut Rig,
+    phone: &Phone,
+    what: &str,
+    want: impl Fn(&Value) -> bool,
+) -> Value {
+    let end = Instant::now() + Duration::from_secs(30);
+    loop {
+        rig.app.pump_until(Instant::now() + ms(50));
+        let c = phone.get("/api/state").body["check"].clone();
+        if want(&c) {
+            return c;
+        }
+        assert!(Instant::now() < end, "the phone never showed {what}: {c}");
+    }
+}
+
+/// The phone's signed POST of `body` to `path`, while the page's loop runs.
+fn post(rig: &mut Rig, phone: &Phone, path: &str, body: Option<Value>) -> Answer {
+    let (p, path) = (phone.clone(), path.to_string());
+    during(rig, move || p.post(&path, body))
+}
+
+/// The phone's switch for circuit `id`, while the page's loop runs.
+fn power(rig: &mut Rig, phone: &Phone, id: u8, on: bool) -> Answer {
+    let path = format!("/api/device/{id}/power");
+    post(rig, phone, &path, Some(json!({ "on": on })))
+}
+
+/// The phone's pitch trim button held up (pressed, or a renewal), while the page's
+/// loop runs.
+fn pitch_up(rig: &mut Rig, phone: &Phone) -> Answer {
+    post(
+        rig,
+        phone,
+        "/api/motor/pitch",
+        Some(json!({"direction": "up"})),
+    )
+}
+
+/// The phone's pitch trim button let go, while the page's loop runs.
+fn pitch_stop(rig: &mut Rig, phone: &Phone) -> Answer {
+    post(rig, phone, "/api/motor/pitch", Some(json!({"stop": true})))
+}
+
+/// The phone answers the check with `answer`, while the page's loop runs.
+fn answer_check(rig: &mut Rig, phone: &Phone, answer: &str) -> Answer {
+    post(
+        rig,
+        phone,
+        "/api/check/answer",
+        Some(json!({ "answer": answer })),
+    )
+}
+
+/// Device `id` in a state from `/api/state` or the events stream.
+fn device(st: &Value, id: u64) -> Value {
+    st["devices"]
+        .as_array()
+        .and_then(|ds| ds.iter().find(|d| d["id"] == id))
+        .cloned()
+        .unwrap_or_else(|| panic!("no device {id} in {st}"))
+}
+
+/// What refused requests must leave behind, from wire position `from` and log line
+/// `log_before` on: no command on the wire, nothing logged as the remote's, and no
+/// motor running.
+fn nothing_was_done(rig: &mut Rig, from: usize, log_before: usize) {
+    rig.app.pump_until(Instant::now() + ms(600));
+    assert_eq!(
+        commands_sent(rig, from),
+        vec![],
+        "a command reached the wire"
+    );
+    let logged = log_lines(rig);
+    assert!(
+        !logged[log_before..]
+            .iter()
+            .any(|l| l.starts_with("remote:")),
+        "{:?}",
+        &logged[log_before..]
+    );
+    assert!(rig.app.motor_run().is_none(), "a motor runs");
 }
 
 /// The QR code's key now.
@@ -283,24 +389,11 @@ fn every_route_without_a_session_is_401_and_changes_nothing() {
             );
         }
     }
-    rig.app.pump_until(Instant::now() + ms(600));
-    assert_eq!(
-        commands_sent(&rig, from),
-        vec![],
-        "a command reached the wire"
-    );
-    assert!(
-        !log_lines(&rig)[log_before..]
-            .iter()
-            .any(|l| l.starts_with("remote:")),
-        "{:?}",
-        &log_lines(&rig)[log_before..]
-    );
+    nothing_was_done(&mut rig, from, log_before);
     let after = rig.app.model().circuits(Instant::now());
     let states =
         |c: &[vpx_efis::model::Circuit]| c.iter().map(|c| (c.id, c.state)).collect::<Vec<_>>();
     assert_eq!(states(&state_before), states(&after));
-    assert!(rig.app.motor_run().is_none());
     // The page itself is served without a session, and holds no data.
     let page = Ask::default().get(&format!("{base}/"));
     assert_eq!(page.status, 200);
@@ -314,13 +407,7 @@ fn the_state_is_live_and_an_event_follows_a_change() {
     assert_eq!(st["comm_lost"], false);
     let volts = st["bus_volts"].as_f64().expect("bus volts, a number");
     assert!((10.0..=16.0).contains(&volts), "{volts}");
-    let nav = st["devices"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|d| d["id"] == 4)
-        .cloned()
-        .expect("Nav Lt");
+    let nav = device(&st, 4);
     assert_eq!(nav["name"], "Nav Lt");
     assert_eq!(nav["state"], "ON");
     assert_eq!(nav["switchable"], true);
@@ -368,9 +455,7 @@ fn the_state_is_live_and_an_event_follows_a_change() {
         .recv_timeout(Duration::from_secs(2))
         .expect("an event at once");
     assert_eq!(first.1["comm_lost"], false);
-    let url = format!("{base}/api/device/4/power");
-    let p = phone.clone();
-    let a = during(&mut rig, move || p.post(&url, Some(json!({"on": false}))));
+    let a = power(&mut rig, &phone, 4, false);
     assert_eq!(a.status, 200, "{a:?}");
     assert!(
         a.body["sent"].as_str().unwrap().contains("Nav Lt off"),
@@ -384,13 +469,7 @@ fn the_state_is_live_and_an_event_follows_a_change() {
         rig.app.pump_until(Instant::now() + ms(20));
         while let Ok((at, st)) = rx.try_recv() {
             heartbeats.push(at);
-            let nav = st["devices"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .find(|d| d["id"] == 4)
-                .cloned()
-                .unwrap();
+            let nav = device(&st, 4);
             if nav["state"] == "OFF" {
                 off = Some(st);
             }
@@ -421,11 +500,7 @@ fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
     let (mut rig, base) = rig_with_remote(Some(dir.path().join("logbook.sqlite")));
     let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
-    let call = |rig: &mut Rig, path: &str, body: Option<Value>| {
-        let url = format!("{base}{path}");
-        let p = phone.clone();
-        during(rig, move || p.post(&url, body))
-    };
+    let call = |rig: &mut Rig, path: &str, body| post(rig, &phone, path, body);
     // The starter is only reset: control's words, as the key gets them.
     let now = Instant::now();
     let starter = vpx_efis::control::device_power(&rig.app.model(), now, 1, true)
@@ -500,7 +575,7 @@ fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
 fn a_replayed_or_altered_signed_request_is_refused_and_sends_nothing() {
     let (mut rig, base) = rig_with_remote(None);
     let phone = pair(&mut rig, &base);
-    let power = phone.request("POST", "/api/device/9/power", Some(&json!({"on": false})));
+    let gps_off = phone.request("POST", "/api/device/9/power", Some(&json!({"on": false})));
     let renew = phone.request(
         "POST",
         "/api/motor/pitch",
@@ -508,7 +583,7 @@ fn a_replayed_or_altered_signed_request_is_refused_and_sends_nothing() {
     );
     let held_back = phone.request("POST", "/api/device/4/power", Some(&json!({"on": false})));
     let b = base.clone();
-    let (p, r) = (power.clone(), renew.clone());
+    let (p, r) = (gps_off.clone(), renew.clone());
     let first = during(&mut rig, move || {
         (common::phone::send(&b, &p), common::phone::send(&b, &r))
     });
@@ -520,12 +595,12 @@ fn a_replayed_or_altered_signed_request_is_refused_and_sends_nothing() {
     rig.app.pump_until(Instant::now() + ms(300));
     let from = rig.wire_len();
     let log_before = log_lines(&rig).len();
-    let mut altered = power.clone();
+    let mut altered = gps_off.clone();
     altered.body = br#"{"on":true}"#.to_vec();
-    let mut moved = power.clone();
+    let mut moved = gps_off.clone();
     moved.path = "/api/device/4/power".into();
     let cases = [
-        (power.clone(), "replayed counter"),
+        (gps_off.clone(), "replayed counter"),
         (renew.clone(), "replayed counter"),
         (altered, "bad signature"),
         (moved, "bad signature"),
@@ -551,32 +626,14 @@ fn a_replayed_or_altered_signed_request_is_refused_and_sends_nothing() {
         (a.status, a.body["error"].clone()),
         (401, json!("stale request"))
     );
-    rig.app.pump_until(Instant::now() + ms(600));
-    assert_eq!(
-        commands_sent(&rig, from),
-        vec![],
-        "a replay reached the wire"
-    );
-    assert!(
-        !log_lines(&rig)[log_before..]
-            .iter()
-            .any(|l| l.starts_with("remote:")),
-        "{:?}",
-        &log_lines(&rig)[log_before..]
-    );
-    assert!(
-        rig.app.motor_run().is_none(),
-        "a replayed renewal runs nothing"
-    );
+    // A replayed renewal runs nothing either.
+    nothing_was_done(&mut rig, from, log_before);
     // The phone itself goes on.
-    let p = phone.clone();
-    let a = during(&mut rig, move || {
-        p.post("/api/device/9/power", Some(json!({"on": true})))
-    });
+    let a = power(&mut rig, &phone, 9, true);
     assert_eq!(a.status, 200, "{a:?}");
 }
 
-/// Issue 35 item 4: against the `demo` and `install` scenarios the phone lists what
+/// Against the `demo` and `install` scenarios the phone lists what
 /// the page lists (enabled devices, by name, ICD Appendix A), and the flaps and trims
 /// only under MOTORS. Checked against the page's own list, and against the scenario
 /// files read here: every pin they disable is absent, every name they give present.
@@ -584,20 +641,15 @@ fn a_replayed_or_altered_signed_request_is_refused_and_sends_nothing() {
 fn the_phone_lists_what_the_page_lists_and_motors_only_under_motors() {
     for name in ["demo", "install"] {
         let scenario = vpx_efis::sim::load_scenario(name).unwrap();
-        let mut rig = Rig::with_sim(
+        let (mut rig, base) = with_remote(Rig::with_sim(
             AppOptions::default(),
             vpx_efis::sim::SimOptions::new(scenario),
-        );
-        rig.app
-            .start_remote(Some("127.0.0.1:0".parse().unwrap()), Instant::now())
-            .expect("the remote starts");
-        rig.ready();
+        ));
         // The enable flags read (ICD Table 23: devices 4–28 have one), as on a page
         // that has finished connecting.
         rig.until("the enable flags", Duration::from_secs(10), |app, _| {
             app.model().enabled[4..=28].iter().all(Option::is_some)
         });
-        let base = split_pairing_url(&rig.app.remote_url().unwrap()).0;
         let phone = pair(&mut rig, &base);
         let st = phone.get("/api/state").body;
         let listed: Vec<(u64, String)> = st["devices"]
@@ -625,33 +677,7 @@ fn the_phone_lists_what_the_page_lists_and_motors_only_under_motors() {
             .map(|c| (u64::from(c.id), c.name.trim().to_string()))
             .collect();
         assert_eq!(listed, page, "{name}: the phone's list is not the page's");
-        let toml: toml::Table = std::fs::read_to_string(format!(
-            "{}/assets/scenarios/{name}.toml",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap()
-        .parse()
-        .unwrap();
-        for d in toml["device"].as_array().unwrap() {
-            let id = d["id"].as_integer().unwrap() as u64;
-            let on_phone = listed.iter().find(|(i, _)| *i == id);
-            if d.get("enabled").and_then(|e| e.as_bool()) == Some(false) {
-                assert!(on_phone.is_none(), "{name}: disabled pin {id} listed");
-            } else if let Some(n) = d.get("name").and_then(|n| n.as_str()) {
-                assert_eq!(
-                    on_phone.map(|(_, n)| n.as_str()),
-                    Some(n),
-                    "{name}: device {id}"
-                );
-            }
-        }
-        // Flaps 0x00, pitch trim 0x1D, roll trim 0x1E (ICD Table 40): never a row.
-        for motor in [0x00, 0x1D, 0x1E] {
-            assert!(
-                !listed.iter().any(|(i, _)| *i == motor),
-                "{name}: motor {motor:#04x} listed as a circuit: {listed:?}"
-            );
-        }
+        ScenarioDevices::read(name).assert_listed(name, &listed);
         assert!(st["motors"]["flaps"].is_object());
     }
 }
@@ -673,11 +699,7 @@ fn a_lease_left_to_expire_is_stopped_on_the_wire_within_300_ms_and_a_tick() {
     let (mut rig, base) = rig_with_remote(Some(dir.path().join("logbook.sqlite")));
     let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
-    let url = format!("{base}/api/motor/pitch");
-    let p = phone.clone();
-    let a = during(&mut rig, move || {
-        p.post(&url, Some(json!({"direction": "up"})))
-    });
+    let a = pitch_up(&mut rig, &phone);
     assert_eq!((a.status, a.body), (200, json!({"lease_ms": 300})));
     let stop = wait_for_stop(&mut rig, from);
     let moves = pitch_moves(&rig, from);
@@ -719,9 +741,8 @@ fn an_explicit_stop_is_on_the_wire_within_150_ms_and_renewals_keep_the_run() {
     let (mut rig, base) = rig_with_remote(None);
     let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
-    let url = format!("{base}/api/motor/pitch");
     // Held for a second: a renewal every 100 ms, as the phone page sends them.
-    let (p, u) = (phone.clone(), url.clone());
+    let (p, u) = (phone.clone(), format!("{base}/api/motor/pitch"));
     let renewals = during(&mut rig, move || {
         let t0 = Instant::now();
         let mut answers = Vec::new();
@@ -742,9 +763,8 @@ fn an_explicit_stop_is_on_the_wire_within_150_ms_and_renewals_keep_the_run() {
     );
     assert!(moves.len() >= 6, "{moves:?}");
     assert!(rig.app.motor_run().is_some());
-    let p = phone.clone();
     let asked = Instant::now();
-    let a = during(&mut rig, move || p.post(&url, Some(json!({"stop": true}))));
+    let a = pitch_stop(&mut rig, &phone);
     assert_eq!((a.status, a.body), (200, json!({"stopped": true})));
     let stop = wait_for_stop(&mut rig, from);
     let took = stop.saturating_duration_since(asked);
@@ -759,45 +779,22 @@ fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
     let dir = tempfile::tempdir().unwrap();
     let (mut rig, base) = rig_with_remote(None);
     let phone = pair(&mut rig, &base);
-    let state_url = format!("{base}/api/state");
-    let answer_url = format!("{base}/api/check/answer");
-    let answer = |rig: &mut Rig, a: &str| {
-        let (p, u, body) = (phone.clone(), answer_url.clone(), json!({ "answer": a }));
-        during(rig, move || p.post(&u, Some(body)))
-    };
-    assert_eq!(phone.get(&state_url).body["check"], Value::Null);
-    rig.app.set_check_report_dir(Some(dir.path().to_path_buf()));
-    let options = vpx_efis::check::Options {
-        skip: vec![vpx_efis::check::state::Step::Motors],
-        loads_file: Some(dir.path().join("loads.toml")),
-        ..vpx_efis::check::Options::default()
-    };
-    rig.app.open_check(options, Instant::now());
-    rig.app.pump_until(Instant::now() + ms(100));
+    let answer = |rig: &mut Rig, a: &str| answer_check(rig, &phone, a);
+    assert_eq!(phone.get("/api/state").body["check"], Value::Null);
+    open_check(&mut rig, dir.path(), vec![Step::Motors]);
     // Before power: confirmed at the laptop, not from the phone.
-    assert_eq!(phone.get(&state_url).body["check"], Value::Null);
+    assert_eq!(phone.get("/api/state").body["check"], Value::Null);
     let a = answer(&mut rig, "go_on");
     assert_eq!(
         (a.status, a.body),
         (409, json!({"refused": "go_on is not offered now"}))
     );
-    rig.key(
-        crossterm::event::KeyCode::Enter,
-        crossterm::event::KeyEventKind::Press,
-    );
-    // The first DO NOW with a skip on offer.
-    let end = Instant::now() + Duration::from_secs(10);
-    let check = loop {
-        rig.app.pump_until(Instant::now() + ms(50));
-        let c = phone.get(&state_url).body["check"].clone();
-        if c["answers"]
+    rig.key(KeyCode::Enter, KeyEventKind::Press);
+    let check = check_on_the_phone(&mut rig, &phone, "a DO NOW with a skip on offer", |c| {
+        c["answers"]
             .as_array()
             .is_some_and(|a| a.iter().any(|x| x["id"] == "skip"))
-        {
-            break c;
-        }
-        assert!(Instant::now() < end, "no prompt with skip: {c}");
-    };
+    });
     assert!(
         check["prompt"].as_str().is_some_and(|p| !p.is_empty()),
         "{check}"
@@ -809,7 +806,7 @@ fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
     let a = answer(&mut rig, "skip");
     assert_eq!((a.status, a.body), (200, json!({"answered": true})));
     rig.app.pump_until(Instant::now() + ms(200));
-    let after = phone.get(&state_url).body["check"].clone();
+    let after = phone.get("/api/state").body["check"].clone();
     assert_ne!(after, check, "the skip did not move the check on");
     assert!(
         log_lines(&rig).iter().any(|l| l == "remote: check: skip"),
@@ -855,13 +852,9 @@ fn any_other_command_from_the_remote_stops_its_run_first() {
     let (mut rig, base) = rig_with_remote(None);
     let phone = pair(&mut rig, &base);
     let from = rig.wire_len();
-    let (p, u) = (phone.clone(), format!("{base}/api/motor/pitch"));
-    let a = during(&mut rig, move || {
-        p.post(&u, Some(json!({"direction": "up"})))
-    });
+    let a = pitch_up(&mut rig, &phone);
     assert_eq!(a.status, 200);
-    let (p, u) = (phone.clone(), format!("{base}/api/device/9/power"));
-    let a = during(&mut rig, move || p.post(&u, Some(json!({"on": false}))));
+    let a = power(&mut rig, &phone, 9, false);
     assert_eq!(a.status, 200, "{a:?}");
     rig.app.pump_until(Instant::now() + ms(200));
     let sent = commands_sent(&rig, from);
@@ -913,36 +906,11 @@ fn a_light_is_asked_is_it_lit_on_the_phone_and_the_answer_reaches_the_report() {
     let dir = tempfile::tempdir().unwrap();
     let (mut rig, base) = rig_with_remote(None);
     let phone = pair(&mut rig, &base);
-    let state_url = format!("{base}/api/state");
-    let answer_url = format!("{base}/api/check/answer");
-    rig.app.set_check_report_dir(Some(dir.path().to_path_buf()));
-    let options = vpx_efis::check::Options {
-        skip: vec![
-            vpx_efis::check::state::Step::Switches,
-            vpx_efis::check::state::Step::Motors,
-        ],
-        loads_file: Some(dir.path().join("loads.toml")),
-        ..vpx_efis::check::Options::default()
-    };
-    rig.app.open_check(options, Instant::now());
-    rig.app.pump_until(Instant::now() + ms(100));
-    rig.key(
-        crossterm::event::KeyCode::Enter,
-        crossterm::event::KeyEventKind::Press,
-    );
-    // Skip from the phone until a light is on and the check asks about it.
-    let end = Instant::now() + Duration::from_secs(30);
-    let check = loop {
-        rig.app.pump_until(Instant::now() + ms(50));
-        let c = phone.get(&state_url).body["check"].clone();
-        if c["lit_question"] == "Is it lit?" {
-            break c;
-        }
-        assert!(
-            Instant::now() < end,
-            "never asked whether a light is lit: {c}"
-        );
-    };
+    open_check(&mut rig, dir.path(), vec![Step::Switches, Step::Motors]);
+    rig.key(KeyCode::Enter, KeyEventKind::Press);
+    let check = check_on_the_phone(&mut rig, &phone, "whether a light is lit", |c| {
+        c["lit_question"] == "Is it lit?"
+    });
     let ids: Vec<&str> = check["answers"]
         .as_array()
         .unwrap()
@@ -950,10 +918,7 @@ fn a_light_is_asked_is_it_lit_on_the_phone_and_the_answer_reaches_the_report() {
         .filter_map(|a| a["id"].as_str())
         .collect();
     assert!(!ids.iter().any(|i| i.starts_with("lit_")), "{check}");
-    let (p, u) = (phone.clone(), answer_url.clone());
-    let a = during(&mut rig, move || {
-        p.post(&u, Some(json!({ "answer": "lit_no" })))
-    });
+    let a = answer_check(&mut rig, &phone, "lit_no");
     assert_eq!((a.status, a.body), (200, json!({"answered": true})));
     rig.app.pump_until(Instant::now() + ms(100));
     let answered: Vec<bool> = rig
@@ -967,10 +932,7 @@ fn a_light_is_asked_is_it_lit_on_the_phone_and_the_answer_reaches_the_report() {
     assert!(log_lines(&rig).iter().any(|l| l == "remote: check: lit_no"));
     // Stopped here, the report (INCOMPLETE) still says what was seen, beside the current.
     for _ in 0..2 {
-        rig.key(
-            crossterm::event::KeyCode::Esc,
-            crossterm::event::KeyEventKind::Press,
-        );
+        rig.key(KeyCode::Esc, KeyEventKind::Press);
         rig.app.pump_until(Instant::now() + ms(100));
     }
     let report = std::fs::read_dir(dir.path())

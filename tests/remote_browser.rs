@@ -9,16 +9,13 @@
 //! loaded machine's cores. The page in a terminal needs a pseudo-terminal: Unix only.
 #![cfg(unix)]
 
-use std::io::{Read, Write};
+use std::io::Write;
 use std::process::ChildStdin;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use serde_json::json;
-use serialport::SerialPort;
 use vpx_efis::protocol::message::{DevicePower, Message, TrimMove};
-use vpx_efis::protocol::{Decoder, Event as DecEvent, Packet};
 
 mod common;
 use common::process::{Kill, Sim, sim};
@@ -27,10 +24,8 @@ mod webdriver;
 use webdriver::{Browser, free_port};
 
 // The page in a real terminal, as the keys' end-to-end tests run it.
-#[path = "page_rig/terminal.rs"]
-#[allow(dead_code)]
-mod terminal;
-use terminal::Term;
+mod page_rig;
+use page_rig::terminal::{self, Term};
 
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
 
@@ -91,80 +86,32 @@ fn wall_ms(t: SystemTime) -> f64 {
     t.duration_since(UNIX_EPOCH).unwrap().as_secs_f64() * 1000.0
 }
 
-type Wire = Arc<Mutex<Vec<(SystemTime, Vec<u8>)>>>;
+type Wire = page_rig::Recorded<SystemTime>;
 
 /// The sim's pty on one side, a fresh pty whose slave the page opens on the other, and
-/// a record of what the page sends.
+/// a record of what the page sends, timed by the wall clock the browser reads.
 struct Tap {
-    stop: Arc<AtomicBool>,
     wire: Wire,
-    slave_path: String,
-    threads: Vec<std::thread::JoinHandle<()>>,
+    joined: page_rig::Tap,
 }
 
 impl Tap {
     fn start(sim_path: &str) -> Tap {
-        let mut sim_in = serialport::new(sim_path, 57_600)
+        let sim_in = serialport::new(sim_path, 57_600)
             .timeout(Duration::from_millis(20))
             .open_native()
             .expect("open the sim's pty");
-        let mut sim_out = sim_in.try_clone_native().expect("clone the sim's pty");
-        let pty = vpx_efis::link::open_pty_pair().expect("a pty for the page");
-        let mut page_in = pty.master.try_clone_native().expect("clone master");
-        let mut page_out = pty.master;
-        page_in.set_timeout(Duration::from_millis(20)).unwrap();
-        let stop = Arc::new(AtomicBool::new(false));
+        let sim_out = sim_in.try_clone_native().expect("clone the sim's pty");
         let wire: Wire = Arc::default();
-        let (s, w) = (stop.clone(), wire.clone());
-        let slave = pty.slave;
-        let up = std::thread::spawn(move || {
-            let _keep_slave_open = slave;
-            let mut buf = [0u8; 512];
-            while !s.load(Ordering::SeqCst) {
-                if let Ok(n) = page_in.read(&mut buf)
-                    && n > 0
-                {
-                    w.lock()
-                        .unwrap()
-                        .push((SystemTime::now(), buf[..n].to_vec()));
-                    let _ = sim_out.write_all(&buf[..n]);
-                }
-            }
-        });
-        let s = stop.clone();
-        let down = std::thread::spawn(move || {
-            let mut buf = [0u8; 512];
-            while !s.load(Ordering::SeqCst) {
-                if let Ok(n) = sim_in.read(&mut buf)
-                    && n > 0
-                {
-                    let _ = page_out.write_all(&buf[..n]);
-                }
-            }
-        });
-        Tap {
-            stop,
-            wire,
-            slave_path: pty.path,
-            threads: vec![up, down],
-        }
+        let joined = page_rig::Tap::between(sim_out, sim_in, wire.clone(), SystemTime::now);
+        Tap { wire, joined }
     }
 
     /// Every message the page sent, with when it reached the wire.
     fn sent(&self) -> Vec<(SystemTime, Message)> {
-        let wire = self.wire.lock().unwrap();
-        let mut dec = Decoder::new();
-        let mut out = Vec::new();
-        for (at, bytes) in wire.iter() {
-            dec.push(bytes, |e| {
-                if let DecEvent::Frame(f) = e
-                    && let Ok(p) = Packet::parse(&f)
-                {
-                    out.push((*at, p.message));
-                }
-            });
-        }
-        out
+        (page_rig::packets(&self.wire.lock().unwrap()).into_iter())
+            .map(|(at, p)| (at, p.message))
+            .collect()
     }
 
     fn trim_moves(&self) -> Vec<(SystemTime, TrimMove)> {
@@ -174,15 +121,6 @@ impl Tap {
                 _ => None,
             })
             .collect()
-    }
-}
-
-impl Drop for Tap {
-    fn drop(&mut self) {
-        self.stop.store(true, Ordering::SeqCst);
-        for t in self.threads.drain(..) {
-            let _ = t.join();
-        }
     }
 }
 
@@ -197,6 +135,8 @@ struct Hangar {
     _page: Kill,
     _sim: Kill,
     _dir: tempfile::TempDir,
+    // These tests measure real time, so they take turns.
+    _turn: MutexGuard<'static, ()>,
 }
 
 impl Hangar {
@@ -205,9 +145,17 @@ impl Hangar {
         Hangar::open_with(None)
     }
 
+    /// As [`Hangar::open`], with the browser paired.
+    fn paired() -> Option<Hangar> {
+        let h = Hangar::open()?;
+        h.pair();
+        Some(h)
+    }
+
     /// As [`Hangar::open`], the sim on a built-in scenario (`demo`, `install`) when
     /// one is named, else on [`SCENARIO`].
     fn open_with(built_in: Option<&str>) -> Option<Hangar> {
+        let turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
         let browser = Browser::start()?;
         let dir = tempfile::tempdir().unwrap();
         let scenario = dir.path().join("remote.toml");
@@ -220,7 +168,7 @@ impl Hangar {
         } = sim(&["--pty", "--scenario", scenario]);
         let tap = Tap::start(&path);
         let link = dir.path().join("vpx-serial");
-        std::os::unix::fs::symlink(&tap.slave_path, &link).unwrap();
+        std::os::unix::fs::symlink(&tap.joined.slave_path, &link).unwrap();
         let port = free_port();
         let remote = format!("127.0.0.1:{port}");
         let (term, slave) = Term::open();
@@ -237,6 +185,7 @@ impl Hangar {
             _page: page,
             _sim: sim,
             _dir: dir,
+            _turn: turn,
         })
     }
 
@@ -358,6 +307,19 @@ impl Hangar {
         );
     }
 
+    /// Waits until the trim has run a while (three moves on the wire).
+    fn wait_for_the_trim_to_run(&self) {
+        let start = Instant::now();
+        while trim_on(&self.tap.trim_moves()).len() < 3 {
+            assert!(
+                start.elapsed() < Duration::from_secs(3),
+                "the trim never ran: {:?}",
+                self.tap.trim_moves()
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
     fn seen(&self, what: &str) -> Option<f64> {
         let v = self.browser.exec(
             "const e = (window.__seen || []).find((e) => e[0] === arguments[0]); \
@@ -396,6 +358,18 @@ fn trim_on(moves: &[(SystemTime, TrimMove)]) -> Vec<SystemTime> {
         .collect()
 }
 
+/// The first stop after the run began, checked to be its end: nothing ran after it.
+fn the_stop(moves: &[(SystemTime, TrimMove)]) -> SystemTime {
+    let stop = *trim_off(moves)
+        .first()
+        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    assert!(
+        trim_on(moves).iter().all(|t| *t < stop),
+        "the trim ran again after its stop: {moves:?}"
+    );
+    stop
+}
+
 /// The stops after the run began (the page also sends one when it connects).
 fn trim_off(moves: &[(SystemTime, TrimMove)]) -> Vec<SystemTime> {
     let Some(began) = trim_on(moves).first().copied() else {
@@ -412,9 +386,9 @@ fn trim_off(moves: &[(SystemTime, TrimMove)]) -> Vec<SystemTime> {
 /// shows on the phone within a second or two.
 #[test]
 fn opening_the_url_pairs_and_the_list_is_live() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(mut h) = Hangar::open() else { return };
-    h.pair();
+    let Some(mut h) = Hangar::paired() else {
+        return;
+    };
     let url = h.browser.url();
     assert!(
         !url.contains("#k="),
@@ -443,7 +417,6 @@ fn opening_the_url_pairs_and_the_list_is_live() {
 /// phone says it was paired the weaker way.
 #[test]
 fn typing_the_words_pairs_and_the_phone_says_it_is_weaker() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let Some(h) = Hangar::open() else { return };
     let words = h.pairing_words();
     h.browser.goto(&h.base);
@@ -481,7 +454,6 @@ fn typing_the_words_pairs_and_the_phone_says_it_is_weaker() {
 /// refused, and the phone says so, with the seconds left.
 #[test]
 fn five_wrong_codes_lock_pairing_in_words() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let Some(h) = Hangar::open() else { return };
     let words = h.pairing_words();
     let wrong = "zoo zoo zoo zoo zoo";
@@ -528,9 +500,7 @@ fn five_wrong_codes_lock_pairing_in_words() {
 /// A tap on "Turn ON" puts DEVICE_POWER on the wire and the phone shows the circuit on.
 #[test]
 fn a_tap_switches_a_circuit() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(h) = Hangar::open() else { return };
-    h.pair();
+    let Some(h) = Hangar::paired() else { return };
     h.wait_row_state("Landing Lt", "OFF", Duration::from_secs(5));
     h.browser.click("#devices .device[data-id='17'] button.act");
     h.wait_row_state("Landing Lt", "ON", Duration::from_secs(4));
@@ -574,7 +544,6 @@ fn a_tap_switches_a_circuit() {
 /// the standard; and signing a request takes well under 1 ms on the phone.
 #[test]
 fn the_pages_sha256_and_hmac_match_rfc_4231_and_signing_is_fast() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let Some(h) = Hangar::open() else { return };
     h.browser.goto(&h.base);
     h.browser.wait_for(
@@ -684,7 +653,7 @@ fn replay(base: &str, req: &serde_json::Value, body: Option<&str>) -> (u16, Stri
     (status, words)
 }
 
-/// Issue 36's listener: Chromium at phone size pairs by the QR code's URL and
+/// A listener on the WiFi: Chromium at phone size pairs by the QR code's URL and
 /// switches a circuit; every request it made, captured whole (method, path, headers,
 /// body), is sent again from a plain HTTP client: refused, and nothing reaches the
 /// unit; altered (another state, another device), refused. The phone still works
@@ -692,7 +661,6 @@ fn replay(base: &str, req: &serde_json::Value, body: Option<&str>) -> (u16, Stri
 /// nothing.
 #[test]
 fn a_listener_replaying_what_the_phone_sent_is_refused_and_nothing_reaches_the_unit() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     let Some(h) = Hangar::open() else { return };
     h.browser.cdp(
         "Page.addScriptToEvaluateOnNewDocument",
@@ -780,36 +748,22 @@ fn a_listener_replaying_what_the_phone_sent_is_refused_and_nothing_reaches_the_u
     );
 }
 
-/// Issue 35 item 4, on the phone: against the `demo` and `install` scenarios the
+/// On the phone, against the `demo` and `install` scenarios the
 /// list holds the enabled devices by name (every name the scenario file gives, no pin
 /// it disables) and no flap or trim row; the motors fitted show under MOTORS only.
 #[test]
 fn the_phone_lists_the_enabled_devices_by_name_and_motors_only_under_motors() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
     for name in ["demo", "install"] {
         let Some(h) = Hangar::open_with(Some(name)) else {
             return;
         };
         h.pair();
-        let toml: toml::Table = std::fs::read_to_string(format!(
-            "{}/assets/scenarios/{name}.toml",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap()
-        .parse()
-        .unwrap();
-        let devices = toml["device"].as_array().unwrap();
-        // Wait until the enable flags are read: no disabled pin left on the list.
-        let disabled: Vec<i64> = (devices.iter())
-            .filter(|d| d.get("enabled").and_then(|e| e.as_bool()) == Some(false))
-            .map(|d| d["id"].as_integer().unwrap())
-            .collect();
-        // ... and the names read: the page's connect reads both (until then it shows
-        // a pin's own name, as the page does).
-        let names: Vec<(i64, String)> = (devices.iter())
-            .filter_map(|d| Some((d["id"].as_integer()?, d.get("name")?.as_str()?.to_string())))
-            .collect();
-        let names_js = serde_json::to_string(&names).unwrap();
+        let file = page_rig::ScenarioDevices::read(name);
+        // Wait until the enable flags are read (no disabled pin left on the list) and
+        // the names: the page's connect reads both (until then it shows a pin's own
+        // name, as the page does).
+        let disabled = &file.disabled;
+        let names_js = serde_json::to_string(&file.names).unwrap();
         h.browser.wait_for(
             "the disabled pins gone from the list and the names read",
             &format!(
@@ -828,31 +782,17 @@ fn the_phone_lists_the_enabled_devices_by_name_and_motors_only_under_motors() {
               r.querySelector('button.act').textContent])",
             json!([]),
         );
-        let rows: Vec<(i64, String, String)> = (rows.as_array().unwrap().iter())
+        let rows: Vec<(u64, String, String)> = (rows.as_array().unwrap().iter())
             .map(|r| {
                 (
-                    r[0].as_i64().unwrap(),
+                    r[0].as_u64().unwrap(),
                     r[1].as_str().unwrap().to_string(),
                     r[2].as_str().unwrap().to_string(),
                 )
             })
             .collect();
-        for d in devices {
-            let id = d["id"].as_integer().unwrap();
-            let row = rows.iter().find(|r| r.0 == id);
-            if disabled.contains(&id) {
-                assert!(row.is_none(), "{name}: disabled pin {id} listed: {rows:?}");
-            } else if let Some(n) = d.get("name").and_then(|n| n.as_str()) {
-                assert_eq!(row.map(|r| r.1.as_str()), Some(n), "{name}: device {id}");
-            }
-        }
-        // Flaps 0x00, pitch trim 0x1D, roll trim 0x1E (ICD Table 40).
-        for motor in [0x00, 0x1D, 0x1E] {
-            assert!(
-                !rows.iter().any(|r| r.0 == motor),
-                "{name}: motor {motor:#04x} listed as a circuit: {rows:?}"
-            );
-        }
+        let listed: Vec<(u64, String)> = rows.iter().map(|r| (r.0, r.1.clone())).collect();
+        file.assert_listed(name, &listed);
         let cards = h.browser.exec(
             "return [...document.querySelectorAll('#motors .motor:not(.hidden)')].map((m) => \
              m.dataset.motor)",
@@ -862,7 +802,7 @@ fn the_phone_lists_the_enabled_devices_by_name_and_motors_only_under_motors() {
             .into_iter()
             .zip(["flaps", "pitch", "roll"])
             .filter(|(t, _)| {
-                toml.get(*t)
+                (file.toml.get(*t))
                     .and_then(|s| s.as_table())
                     .is_some_and(|s| s.get("enabled").and_then(|e| e.as_bool()) != Some(false))
             })
@@ -877,9 +817,9 @@ fn the_phone_lists_the_enabled_devices_by_name_and_motors_only_under_motors() {
 /// and the answers it offers, and an answer from the phone moves the check on.
 #[test]
 fn the_check_prompts_on_the_phone_and_takes_its_answers() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(mut h) = Hangar::open() else { return };
-    h.pair();
+    let Some(mut h) = Hangar::paired() else {
+        return;
+    };
     assert!(h.browser.text("#check").is_empty(), "no check yet");
     // At the laptop: hide the remote's overlay, open the check, and confirm that
     // the aircraft is safe to power (given where the list of circuits is shown).
@@ -924,9 +864,7 @@ fn the_check_prompts_on_the_phone_and_takes_its_answers() {
 /// the event against the tap's clock of the byte: the same wall clock).
 #[test]
 fn a_held_trim_button_stops_within_150_ms_of_pointerup() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(h) = Hangar::open() else { return };
-    h.pair();
+    let Some(h) = Hangar::paired() else { return };
     h.watch_pointer();
     h.browser
         .touch_hold("#motor-pitch-up", Duration::from_millis(800));
@@ -935,16 +873,13 @@ fn a_held_trim_button_stops_within_150_ms_of_pointerup() {
     let down = h.seen("pointerdown").expect("the page saw pointerdown");
     let moves = h.tap.trim_moves();
     let on = trim_on(&moves);
-    let off = trim_off(&moves);
     assert!(!on.is_empty(), "the trim never ran: {moves:?}");
     assert!(
         wall_ms(on[0]) - down < 400.0,
         "the run began {:.0} ms after the touch",
         wall_ms(on[0]) - down
     );
-    let stop = *off
-        .first()
-        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    let stop = the_stop(&moves);
     let after = wall_ms(stop) - up;
     assert!(
         (0.0..=150.0).contains(&after),
@@ -955,10 +890,6 @@ fn a_held_trim_button_stops_within_150_ms_of_pointerup() {
             .map(|(t, m)| ((wall_ms(*t) - down).round(), m.on))
             .collect::<Vec<_>>()
     );
-    assert!(
-        on.iter().all(|t| *t < stop),
-        "the trim ran again after its stop: {moves:?}"
-    );
     eprintln!("stop on the wire {after:.0} ms after pointerup");
 }
 
@@ -966,9 +897,7 @@ fn a_held_trim_button_stops_within_150_ms_of_pointerup() {
 /// the run stops at once (the keys' "another key"), before either finger lifts.
 #[test]
 fn another_touch_stops_a_run() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(h) = Hangar::open() else { return };
-    h.pair();
+    let Some(h) = Hangar::paired() else { return };
     h.watch_pointer();
     let hold = h.browser.origin("#motor-pitch-up");
     let other = h.browser.origin("#bus-volts");
@@ -1012,9 +941,7 @@ fn another_touch_stops_a_run() {
     assert_eq!(downs.len(), 2, "two fingers down: {downs:?}");
     let up = h.seen("pointerup").expect("a finger lifted");
     let moves = h.tap.trim_moves();
-    let stop = *trim_off(&moves)
-        .first()
-        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    let stop = the_stop(&moves);
     let why = h
         .browser
         .exec("return document.body.dataset.lastStop || null", json!([]));
@@ -1025,10 +952,6 @@ fn another_touch_stops_a_run() {
          (the page's reason: {why})",
         up - wall_ms(stop)
     );
-    assert!(
-        trim_on(&moves).iter().all(|t| *t < stop),
-        "the trim ran again after its stop: {moves:?}"
-    );
     eprintln!("stop on the wire {after:.0} ms after the second finger");
 }
 
@@ -1038,19 +961,9 @@ fn another_touch_stops_a_run() {
 /// end the run (219 ms after pagehide with the page's stops taken out).
 #[test]
 fn leaving_the_page_mid_run_stops_it() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(h) = Hangar::open() else { return };
-    h.pair();
+    let Some(h) = Hangar::paired() else { return };
     h.browser.touch_down("#motor-pitch-up");
-    let start = Instant::now();
-    while trim_on(&h.tap.trim_moves()).len() < 3 {
-        assert!(
-            start.elapsed() < Duration::from_secs(3),
-            "the trim never ran: {:?}",
-            h.tap.trim_moves()
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    h.wait_for_the_trim_to_run();
     h.browser.exec(
         "window.addEventListener('pagehide', () => \
          localStorage.setItem('pagehide', String(Date.now())))",
@@ -1060,9 +973,7 @@ fn leaving_the_page_mid_run_stops_it() {
     h.browser.goto("about:blank");
     std::thread::sleep(Duration::from_millis(800));
     let moves = h.tap.trim_moves();
-    let stop = *trim_off(&moves)
-        .first()
-        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    let stop = the_stop(&moves);
     // Back on the page's origin to read when it saw pagehide.
     h.browser.goto(&h.base);
     let hidden = h
@@ -1077,10 +988,6 @@ fn leaving_the_page_mid_run_stops_it() {
     // it follows the leaving is asserted above; here, that it is not late.
     let after = wall_ms(stop) - hidden;
     assert!(after <= 150.0, "stop {after:.0} ms after pagehide");
-    assert!(
-        trim_on(&moves).iter().all(|t| *t < stop),
-        "the trim ran again after its stop: {moves:?}"
-    );
     eprintln!("stop on the wire {after:.0} ms after pagehide");
     let _ = h.browser.cmd("DELETE", "/actions", None);
 }
@@ -1090,28 +997,16 @@ fn leaving_the_page_mid_run_stops_it() {
 /// once, by the page's stop, well before the server's 300 ms lease would end it.
 #[test]
 fn hiding_the_tab_mid_run_stops_the_run() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(h) = Hangar::open() else { return };
-    h.pair();
+    let Some(h) = Hangar::paired() else { return };
     h.watch_pointer();
     h.browser.touch_down("#motor-pitch-down");
-    let start = Instant::now();
-    while trim_on(&h.tap.trim_moves()).len() < 3 {
-        assert!(
-            start.elapsed() < Duration::from_secs(3),
-            "the trim never ran: {:?}",
-            h.tap.trim_moves()
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    h.wait_for_the_trim_to_run();
     let hidden_from = SystemTime::now();
     let first = h.browser.open_other_tab();
     let hidden_by = SystemTime::now();
     std::thread::sleep(Duration::from_millis(800));
     let moves = h.tap.trim_moves();
-    let stop = *trim_off(&moves)
-        .first()
-        .unwrap_or_else(|| panic!("no stop on the wire: {moves:?}"));
+    let stop = the_stop(&moves);
     assert!(
         stop >= hidden_from,
         "stopped {:.0} ms before the tab was hidden (the page's reason: {}); TRIM_MOVEs \
@@ -1134,10 +1029,6 @@ fn hiding_the_tab_mid_run_stops_the_run() {
     let why = h
         .browser
         .exec("return document.body.dataset.lastStop || null", json!([]));
-    assert!(
-        trim_on(&moves).iter().all(|t| *t < stop),
-        "the trim ran again after its stop: {moves:?}"
-    );
     // The tab lost focus, then was hidden: the page stops at the first of the two.
     // Within 150 ms of it, so the page sent the stop (the server's lease would have
     // taken 300 ms and more).
@@ -1175,9 +1066,7 @@ fn hiding_the_tab_mid_run_stops_the_run() {
 /// shows the last numbers as current.
 #[test]
 fn a_silent_laptop_blanks_the_phone_after_2_5_s() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(h) = Hangar::open() else { return };
-    h.pair();
+    let Some(h) = Hangar::paired() else { return };
     h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
     let pid = h._page.0.id() as libc::pid_t;
     // SAFETY: signals our own child.
@@ -1211,9 +1100,9 @@ fn a_silent_laptop_blanks_the_phone_after_2_5_s() {
 /// COMMUNICATION LOST and blanks the values, then shows them again when it is back.
 #[test]
 fn a_quiet_unit_shows_communication_lost() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(mut h) = Hangar::open() else { return };
-    h.pair();
+    let Some(mut h) = Hangar::paired() else {
+        return;
+    };
     h.wait_row_state("EFIS", "ON", Duration::from_secs(5));
     h.console("silent 6");
     h.browser.wait_for(
@@ -1245,9 +1134,9 @@ fn a_quiet_unit_shows_communication_lost() {
 /// ON, OFF and FAULT, the values, the buttons, the banners, the notice.
 #[test]
 fn every_text_meets_wcag_contrast_light_and_dark() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(mut h) = Hangar::open() else { return };
-    h.pair();
+    let Some(mut h) = Hangar::paired() else {
+        return;
+    };
     h.console("switch 2 on");
     h.console("fault 5 8");
     h.browser.wait_for(
@@ -1316,9 +1205,9 @@ fn every_text_meets_wcag_contrast_light_and_dark() {
 #[test]
 #[ignore = "writes the guide's screenshots; run by scripts/screenshots"]
 fn readme_screenshots() {
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|p| p.into_inner());
-    let Some(mut h) = Hangar::open() else { return };
-    h.pair();
+    let Some(mut h) = Hangar::paired() else {
+        return;
+    };
     // The lights on, one of them faulted: the three states a row can show.
     h.console("switch 2 on");
     h.console("switch 7 on");

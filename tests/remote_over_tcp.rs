@@ -1,4 +1,4 @@
-//! Issue 35 item 8: the walk-around remote where most of our users are, on Windows.
+//! The walk-around remote where most of our users are, on Windows.
 //! The page (the App, pumped here as its own loop does) against `vpx-efis sim --tcp`
 //! as a second process, `--remote` on 127.0.0.1, a phone in Rust (`common::phone`,
 //! signing every request as the phone's page does): paired by the QR code's key, a

@@ -327,7 +327,7 @@ fn decoded(buf: &Buffer, term: Term) -> Vec<String> {
         .collect()
 }
 
-/// Issue 35 item 6: a decoder reads the URL off the drawn cells in the dark and light
+/// A decoder reads the URL off the drawn cells in the dark and light
 /// themes and without colour, on dark and light terminals, at 80x24 and 120x40.
 #[test]
 fn a_qr_decoder_reads_the_url_off_the_drawn_cells_in_every_theme_and_size() {

@@ -60,12 +60,7 @@ fn switches_worked_on_standard_input_go_through_the_wiring() {
         line,
     } = sim(&["--pty", "--scenario", "install"]);
     let mut c = sim_common::Client::open(&line, Duration::from_millis(20));
-    let inputs = |c: &mut sim_common::Client| {
-        c.next("SYSTEM_STATUS", |m| match m {
-            Message::SystemStatus(s) => Some(s.switches.switch),
-            _ => None,
-        })
-    };
+    let inputs = |c: &mut sim_common::Client| c.system_status().switches.switch;
     assert_eq!(inputs(&mut c), [false; 10], "install: every switch off");
     // Switch 5 is crossed with 6, and 7 is dead; 2 is wired right.
     stdin

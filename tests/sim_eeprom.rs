@@ -60,10 +60,7 @@ fn a_corrupt_file_gives_defaults_data_integrity_and_a_log_line() {
         scenario("[[device]]\nid = 9\nswitch = 3\nbreaker = 4\n"),
         |o| o.eeprom = Some(file.clone()),
     );
-    let s = c.next("SYSTEM_STATUS", |m| match m {
-        Message::SystemStatus(s) => Some(*s),
-        _ => None,
-    });
+    let s = c.system_status();
     assert!(s.faults.data_integrity_failure);
     assert_eq!(
         s.data_integrity_code,

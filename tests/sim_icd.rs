@@ -203,10 +203,7 @@ fn s8_2_5_configure_system_parameters() {
 #[test]
 fn s8_3_1_monitor_system_status() {
     let (_sim, mut c) = aircraft();
-    let s = c.next("SYSTEM_STATUS", |m| match m {
-        Message::SystemStatus(s) => Some(*s),
-        _ => None,
-    });
+    let s = c.system_status();
     assert!(s.switches.switch[1], "switch 2 is closed in the scenario");
     assert!(!s.switches.switch[0]);
     assert!(s.main_bus_volts.value() > 11.0);
@@ -251,16 +248,10 @@ fn s8_3_3_monitor_fault_status() {
     );
     // Cleared: FAULT_STATUS stops (icd-reading R9).
     c.send(DeviceClear { device_id: 9 });
-    c.next("SYSTEM_STATUS", |m| {
-        matches!(m, Message::SystemStatus(_)).then_some(())
-    });
-    c.next("SYSTEM_STATUS", |m| {
-        matches!(m, Message::SystemStatus(_)).then_some(())
-    });
+    c.system_status();
+    c.system_status();
     let since = c.log.len();
-    c.next("SYSTEM_STATUS", |m| {
-        matches!(m, Message::SystemStatus(_)).then_some(())
-    });
+    c.system_status();
     assert!(
         !c.log[since..]
             .iter()
@@ -354,10 +345,7 @@ fn names_enables_and_eeprom_erase() {
         c.request(EepromErase { response_code: 0 }),
         Message::EepromErase(EepromErase { response_code: 0 })
     );
-    let s = c.next("SYSTEM_STATUS", |m| match m {
-        Message::SystemStatus(s) => Some(*s),
-        _ => None,
-    });
+    let s = c.system_status();
     assert!(s.faults.data_integrity_failure);
     assert_eq!(
         s.data_integrity_code,

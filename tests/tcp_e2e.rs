@@ -9,14 +9,16 @@ use std::time::{Duration, Instant};
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use vpx_efis::app::{App, AppOptions};
 use vpx_efis::flash::hex::to_hex_text;
-use vpx_efis::link::{self, PortAddr, serve_line};
+use vpx_efis::link::{self, PortAddr};
 use vpx_efis::model::{Connection, Source};
 use vpx_efis::protocol::bootloader::PAGE_SIZE;
-use vpx_efis::sim::{self, SimOptions};
 
 mod common;
+#[path = "common/tcp_unit.rs"]
+mod tcp_unit;
 use common::app::until;
 use common::process::{EXE, Sim};
+use tcp_unit::unit_over_tcp;
 
 /// `vpx-efis sim --tcp ADDR` as a child process; killed when dropped.
 struct SimProcess {
@@ -160,14 +162,7 @@ fn the_page_reconnects_when_the_tcp_peer_closes_and_comes_back() {
 
 #[test]
 fn flash_over_tcp_programs_and_verifies_the_image() {
-    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
-    let line = serve_line(listener, |_| {}).unwrap();
-    let addr = format!("tcp://{}", line.local_addr);
-    let unit = sim::spawn(
-        SimOptions::new(sim::load_scenario("demo").unwrap()),
-        Box::new(line.reader),
-        Box::new(line.writer),
-    );
+    let (unit, addr) = unit_over_tcp("demo");
     let dir = tempfile::tempdir().unwrap();
     let data: Vec<u8> = (0..3 * PAGE_SIZE + 5).map(|i| (i * 7 + 3) as u8).collect();
     let file = dir.path().join("cu_2.hex");

@@ -7,7 +7,7 @@
 //! they are skipped elsewhere.
 
 use std::net::UdpSocket;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -108,11 +108,11 @@ fn the_headless_check_over_tcp_writes_its_reports_and_the_load_template() {
     );
 }
 
-/// `backup` over TCP writes the unit's settings to a file of the OS's kind of path, in
-/// a folder with a space in its name (as "My Documents" has).
-#[test]
-fn backup_over_tcp_writes_the_file_where_asked() {
-    let (_sim, addr) = sim_tcp("install");
+/// `backup` of the `install` unit over TCP, to a file of the OS's kind of path in a
+/// folder with a space in its name (as "My Documents" has). Returns the sim, its
+/// address, the config folder and the backup file.
+fn backup_over_tcp() -> (Kill, String, tempfile::TempDir, PathBuf) {
+    let (sim, addr) = sim_tcp("install");
     let home = tempfile::tempdir().unwrap();
     let dir = home.path().join("N123AB backups");
     std::fs::create_dir(&dir).unwrap();
@@ -123,6 +123,12 @@ fn backup_over_tcp_writes_the_file_where_asked() {
         home.path(),
     );
     assert!(o.status.success(), "{}", text(&o));
+    (sim, addr, home, file)
+}
+
+#[test]
+fn backup_over_tcp_writes_the_file_where_asked() {
+    let (_sim, _, _home, file) = backup_over_tcp();
     let toml = std::fs::read_to_string(&file).unwrap();
     assert!(toml.contains("Landing Lt"), "{toml}");
 }
@@ -132,17 +138,7 @@ fn backup_over_tcp_writes_the_file_where_asked() {
 /// verifies it, and a backup taken after it reads 2 A.
 #[test]
 fn restore_over_tcp_changes_a_breaker() {
-    let (_sim, addr) = sim_tcp("install");
-    let home = tempfile::tempdir().unwrap();
-    let dir = home.path().join("N123AB backups");
-    std::fs::create_dir(&dir).unwrap();
-    let file = dir.join("unit.toml");
-    os_path(&file);
-    let o = run(
-        &["backup", "--port", &addr, file.to_str().unwrap()],
-        home.path(),
-    );
-    assert!(o.status.success(), "{}", text(&o));
+    let (_sim, addr, home, file) = backup_over_tcp();
     let nav = "[devices.5A-1]\nname = \"Nav Lt\"\nshow_on_page = true\nbreaker_amps = ";
     let backup = std::fs::read_to_string(&file).unwrap();
     assert!(backup.contains(&format!("{nav}3\n")), "{backup}");
@@ -159,7 +155,7 @@ fn restore_over_tcp_changes_a_breaker() {
     assert!(o.status.success(), "{t}");
     assert!(t.contains("Nav Lt") && t.contains("3 A → 2 A"), "{t}");
     assert!(t.contains("verified"), "{t}");
-    let after = dir.join("after.toml");
+    let after = file.with_file_name("after.toml");
     let o = run(
         &["backup", "--port", &addr, after.to_str().unwrap()],
         home.path(),

@@ -1,4 +1,4 @@
-//! Wires against breakers, end to end (issue 37): `vpx-efis sim --pty --scenario
+//! Wires against breakers, end to end: `vpx-efis sim --pty --scenario
 //! wires` as a process of its own, and `vpx-efis wires`, `backup`, `restore` and
 //! `check` as others, or the page's `App` on the sim's pty for setup.
 //!
@@ -241,6 +241,15 @@ fn from_a_backup_only_breaker_against_wire_is_judged() {
     assert_eq!(nav["drop_limit_volts"], 0.5);
 }
 
+/// `vpx-efis restore --port PORT BACKUP --yes --loads LOADS`.
+fn restore(home: &Path, port: &str, backup: &str, loads: &Path) -> Output {
+    let loads = loads.to_str().unwrap();
+    vpx(
+        home,
+        &["restore", "--port", port, backup, "--yes", "--loads", loads],
+    )
+}
+
 #[test]
 fn restore_lists_each_breaker_over_its_wire_and_writes_nothing_unasked() {
     let dir = tempfile::tempdir().unwrap();
@@ -260,18 +269,7 @@ fn restore_lists_each_breaker_over_its_wire_and_writes_nothing_unasked() {
     let b = backup.to_str().unwrap();
 
     // --yes does not answer it, and with no terminal nobody can: nothing written.
-    let o = vpx(
-        dir.path(),
-        &[
-            "restore",
-            "--port",
-            &port,
-            b,
-            "--yes",
-            "--loads",
-            loads.to_str().unwrap(),
-        ],
-    );
+    let o = restore(dir.path(), &port, b, &loads);
     assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
     assert!(
         out(&o).contains(&format!(
@@ -294,18 +292,7 @@ fn restore_lists_each_breaker_over_its_wire_and_writes_nothing_unasked() {
 
     // With the wire corrected (20 AWG: 7.5 A), the same backup is written.
     let fixed = write(dir.path(), "fixed.toml", &corrected());
-    let o = vpx(
-        dir.path(),
-        &[
-            "restore",
-            "--port",
-            &port,
-            b,
-            "--yes",
-            "--loads",
-            fixed.to_str().unwrap(),
-        ],
-    );
+    let o = restore(dir.path(), &port, b, &fixed);
     assert!(o.status.success(), "{}{}", out(&o), err(&o));
     assert!(!out(&o).contains("would not protect"), "{}", out(&o));
     let o = wires_json(dir.path(), &port, fixed.to_str().unwrap());

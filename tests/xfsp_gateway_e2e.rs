@@ -11,14 +11,18 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use vpx_efis::cmd::gateway::{BridgeOptions, run_bridge};
-use vpx_efis::link::open_pty_pair;
 use vpx_efis::sim::{self, SimCommand, SimHandle, SimOptions};
 use vpx_efis::xfsp::format::latin1;
 use vpx_efis::xfsp::gateway::{Control, GatewayConfig};
 use vpx_efis::xfsp::net::{Target, XfspNet};
+mod common;
+use common::rig::PtyUnit;
+#[path = "common/xfsp_request.rs"]
+mod xfsp_request;
+
 use vpx_efis::xfsp::{
-    Body, Bus, CasLevel, CertLevel, Confidence, EcbState, Message, MsgKind, Parameter, Sender,
-    Value, idents,
+    Body, CasLevel, CertLevel, Confidence, EcbState, Message, MsgKind, Parameter, Sender, Value,
+    idents,
 };
 
 const GW: u16 = 0x5650;
@@ -142,16 +146,9 @@ fn ecb_is(p: &Parameter, unit: u16, state: EcbState) -> bool {
         && matches!(&p.value, Value::Bus(b) if b.state == state)
 }
 
+/// A person's request for circuit `unit` in `state`.
 fn ecb_request(unit: u16, state: EcbState) -> Parameter {
-    Parameter::new(
-        idents::ECBSTAT,
-        Value::Bus(Bus {
-            state,
-            ..Bus::default()
-        }),
-    )
-    .unit(unit)
-    .confidence(Confidence::UserSel)
+    xfsp_request::ecb_request(unit, state, Confidence::UserSel)
 }
 
 fn wait_sim(sim: &SimHandle, limit: Duration, mut ok: impl FnMut(&sim::SimStats) -> bool) -> bool {
@@ -173,30 +170,45 @@ fn commanded() -> GatewayConfig {
     }
 }
 
+/// The bridge's options: the unit on `port` (None: the built-in one playing
+/// `scenario`), publishing to `target` on 127.0.0.1.
+fn bridge_to(
+    port: Option<&str>,
+    scenario: &str,
+    target: Target,
+    gateway: GatewayConfig,
+) -> BridgeOptions {
+    BridgeOptions {
+        port: port.map(|p| p.to_string().into()),
+        baud: 57_600,
+        scenario: scenario.into(),
+        target,
+        iface: Ipv4Addr::LOCALHOST,
+        gateway,
+        record: None,
+        logbook: None,
+    }
+}
+
+/// The `install` unit on a pty, its flaps parked at 200, short of their down endpoint.
+fn install_with_flaps_at_200() -> PtyUnit {
+    let mut scenario = sim::load_scenario("install").unwrap();
+    scenario.flap.as_mut().unwrap().position = Some(200);
+    PtyUnit::start(SimOptions::new(scenario))
+}
+
 fn secs(n: u64) -> Duration {
     Duration::from_secs(n)
 }
 
 #[test]
 fn the_vpx_on_the_network_over_a_pty_and_udp() {
-    let pty = open_pty_pair().unwrap();
-    let reader = pty.master.try_clone_native().unwrap();
-    let sim = sim::spawn(
-        SimOptions::new(sim::load_scenario("hangar").unwrap()),
-        Box::new(reader),
-        Box::new(pty.master),
-    );
+    let PtyUnit {
+        sim, path, slave, ..
+    } = PtyUnit::start(SimOptions::new(sim::load_scenario("hangar").unwrap()));
     let mut peer = Peer::new();
-    let bridge = Bridge::start(BridgeOptions {
-        port: Some(pty.path.clone().into()),
-        baud: 57_600,
-        scenario: "hangar".into(),
-        target: Target::Unicast(peer.addr()),
-        iface: Ipv4Addr::LOCALHOST,
-        gateway: commanded(),
-        record: None,
-        logbook: None,
-    });
+    let target = Target::Unicast(peer.addr());
+    let bridge = Bridge::start(bridge_to(Some(&path), "hangar", target, commanded()));
 
     // Hangar: the EFIS is on switch 1, which is open.
     assert!(
@@ -261,7 +273,7 @@ fn the_vpx_on_the_network_over_a_pty_and_udp() {
     }));
     drop(bridge);
     sim.stop();
-    drop(pty.slave);
+    drop(slave);
 }
 
 #[test]
@@ -283,16 +295,7 @@ fn multicast_pinned_to_loopback_reaches_a_listener_on_the_same_host() {
             return;
         }
     };
-    let _bridge = Bridge::start(BridgeOptions {
-        port: None,
-        baud: 57_600,
-        scenario: "demo".into(),
-        target,
-        iface: Ipv4Addr::LOCALHOST,
-        gateway: GatewayConfig::default(),
-        record: None,
-        logbook: None,
-    });
+    let _bridge = Bridge::start(bridge_to(None, "demo", target, GatewayConfig::default()));
     let end = Instant::now() + secs(8);
     let mut seen = false;
     while Instant::now() < end && !seen {
@@ -351,33 +354,19 @@ fn drive(
 
 /// Over real parts: the `install` scenario's pitch trim has its leads
 /// swapped. Sent nose-down from neutral (PTRIMREQ −80000, raw 201 from 125), it runs
-/// nose-up, against its command: the gateway stops it within a few counts (it ran to
-/// the unit's run cap before, some 250 counts, far past the endpoint at 30), with the
+/// nose-up, against its command: the gateway stops it within a few counts (not at
+/// the unit's run cap, some 250 counts, far past the endpoint at 30), with the
 /// stop on the wire (no starved stream, no move late) and the reason on its standard
 /// error. The flaps, wired right and parked at 200, sent to their down endpoint 220
 /// (FLAPREQ 100000) stop just before it, by the endpoint rule, not past it.
 #[test]
 fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_wire() {
-    let mut scenario = sim::load_scenario("install").unwrap();
-    scenario.flap.as_mut().unwrap().position = Some(200);
-    let pty = open_pty_pair().unwrap();
-    let reader = pty.master.try_clone_native().unwrap();
-    let sim = sim::spawn(
-        SimOptions::new(scenario),
-        Box::new(reader),
-        Box::new(pty.master),
-    );
+    let PtyUnit {
+        sim, path, slave, ..
+    } = install_with_flaps_at_200();
     let mut peer = Peer::new();
-    let bridge = Bridge::start(BridgeOptions {
-        port: Some(pty.path.clone().into()),
-        baud: 57_600,
-        scenario: "install".into(),
-        target: Target::Unicast(peer.addr()),
-        iface: Ipv4Addr::LOCALHOST,
-        gateway: commanded(),
-        record: None,
-        logbook: None,
-    });
+    let target = Target::Unicast(peer.addr());
+    let bridge = Bridge::start(bridge_to(Some(&path), "install", target, commanded()));
     assert!(
         peer.wait_for(secs(8), |p| p.ident == idents::PTRIMPOS),
         "no PTRIMPOS published; bridge said {:#?}",
@@ -456,7 +445,7 @@ fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_w
     );
     drop(bridge);
     sim.stop();
-    drop(pty.slave);
+    drop(slave);
 }
 
 /// Over real parts: the bridge started without `--xfsp-control` publishes
@@ -466,28 +455,16 @@ fn network_motor_runs_keep_to_their_endpoints_and_a_reversed_trim_stops_on_the_w
 /// the listed source's command goes through.
 #[test]
 fn network_commands_reach_the_unit_only_when_allowed_and_only_from_listed_sources() {
-    let pty = open_pty_pair().unwrap();
-    let reader = pty.master.try_clone_native().unwrap();
-    let mut scenario = sim::load_scenario("install").unwrap();
-    scenario.flap.as_mut().unwrap().position = Some(200);
-    let sim = sim::spawn(
-        SimOptions::new(scenario),
-        Box::new(reader),
-        Box::new(pty.master),
-    );
+    let PtyUnit {
+        sim, path, slave, ..
+    } = install_with_flaps_at_200();
     let mut peer = Peer::new();
-    let opts = |control: Control, to: SocketAddrV4| BridgeOptions {
-        port: Some(pty.path.clone().into()),
-        baud: 57_600,
-        scenario: "install".into(),
-        target: Target::Unicast(to),
-        iface: Ipv4Addr::LOCALHOST,
-        gateway: GatewayConfig {
+    let opts = |control: Control, to: SocketAddrV4| {
+        let gateway = GatewayConfig {
             control,
             ..GatewayConfig::default()
-        },
-        record: None,
-        logbook: None,
+        };
+        bridge_to(Some(&path), "install", Target::Unicast(to), gateway)
     };
     let bridge = Bridge::start(opts(Control::Off, peer.addr()));
     assert!(
@@ -578,7 +555,7 @@ fn network_commands_reach_the_unit_only_when_allowed_and_only_from_listed_source
     );
     drop(bridge);
     sim.stop();
-    drop(pty.slave);
+    drop(slave);
 }
 
 /// Stops the bridge and returns everything it said, its closing counts included.
@@ -600,16 +577,8 @@ fn stop(mut bridge: Bridge) -> Vec<String> {
 #[test]
 fn three_hundred_sources_do_not_make_an_old_message_fresh_again() {
     let mut peer = Peer::new();
-    let bridge = Bridge::start(BridgeOptions {
-        port: None,
-        baud: 57_600,
-        scenario: "demo".into(),
-        target: Target::Unicast(peer.addr()),
-        iface: Ipv4Addr::LOCALHOST,
-        gateway: GatewayConfig::default(),
-        record: None,
-        logbook: None,
-    });
+    let target = Target::Unicast(peer.addr());
+    let bridge = Bridge::start(bridge_to(None, "demo", target, GatewayConfig::default()));
     assert!(
         peer.wait_for(secs(8), |_| true),
         "nothing published: {:#?}",

@@ -59,20 +59,148 @@ neutral = 125
 position = 120
 "#;
 
-pub type Wire = Arc<Mutex<Vec<(Instant, Vec<u8>)>>>;
+/// What a tap recorded of what the page sent: each read, with its time.
+pub type Recorded<T> = Arc<Mutex<Vec<(T, Vec<u8>)>>>;
 
-/// Joins a pty's master to the sim's pipe end and records what the page sends.
+pub type Wire = Recorded<Instant>;
+
+/// A built-in scenario's devices as its file writes them (`assets/scenarios`), for
+/// the lists a person sees: the pins it disables, and the names it gives the others.
+pub struct ScenarioDevices {
+    pub disabled: Vec<u64>,
+    pub names: Vec<(u64, String)>,
+    /// The whole file, for what else it says.
+    pub toml: toml::Table,
+}
+
+impl ScenarioDevices {
+    pub fn read(name: &str) -> ScenarioDevices {
+        let path = format!(
+            "{}/assets/scenarios/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let toml: toml::Table = std::fs::read_to_string(&path)
+            .unwrap()
+            .parse()
+            .unwrap_or_else(|e| panic!("{path}: {e}"));
+        let mut out = ScenarioDevices {
+            disabled: Vec::new(),
+            names: Vec::new(),
+            toml: toml.clone(),
+        };
+        for d in toml["device"].as_array().unwrap() {
+            let id = d["id"].as_integer().unwrap() as u64;
+            if d.get("enabled").and_then(|e| e.as_bool()) == Some(false) {
+                out.disabled.push(id);
+            } else if let Some(n) = d.get("name").and_then(|n| n.as_str()) {
+                out.names.push((id, n.to_string()));
+            }
+        }
+        out
+    }
+
+    /// A list of circuits (id, name), as `what` shows it, against the file: no
+    /// disabled pin, every name given, and no flaps 0x00, pitch trim 0x1D or roll
+    /// trim 0x1E (ICD Table 40), which are motors, not circuits.
+    pub fn assert_listed(&self, what: &str, listed: &[(u64, String)]) {
+        let on_list = |id: u64| listed.iter().find(|(i, _)| *i == id);
+        for &id in &self.disabled {
+            assert!(on_list(id).is_none(), "{what}: disabled pin {id} listed");
+        }
+        for (id, name) in &self.names {
+            assert_eq!(
+                on_list(*id).map(|(_, n)| n),
+                Some(name),
+                "{what}: device {id}"
+            );
+        }
+        for motor in [0x00, 0x1D, 0x1E] {
+            assert!(
+                on_list(motor).is_none(),
+                "{what}: motor {motor:#04x} listed as a circuit: {listed:?}"
+            );
+        }
+    }
+}
+
+/// The unit's account of a pitch trim run the page ended: stopped by the page's stop
+/// message, not by the unit's own 250 ms cut-off, and never more than 250 ms between
+/// move messages (the unit forgives 300).
+pub fn assert_the_trim_stopped_by_its_message(sim: &SimHandle) {
+    let s = sim.stats();
+    assert!(!s.pitch_trim_running, "the unit's motor still runs");
+    assert_eq!(
+        s.pitch_trim_starvations, 0,
+        "stopped by the unit's 250 ms cut-off, not by the message"
+    );
+    assert_eq!(
+        s.pitch_trim_late, 0,
+        "a gap over 250 ms between move messages"
+    );
+}
+
+/// The packets in what a tap recorded, each with the time of the read that ended it.
+pub fn packets<T: Copy>(recorded: &[(T, Vec<u8>)]) -> Vec<(T, Packet)> {
+    let mut dec = Decoder::new();
+    let mut out = Vec::new();
+    for (at, bytes) in recorded {
+        dec.push(bytes, |e| {
+            if let DecEvent::Frame(f) = e {
+                out.push((
+                    *at,
+                    Packet::parse(&f).expect("the page sends only valid frames"),
+                ));
+            }
+        });
+    }
+    out
+}
+
+/// A pty for the page, its master joined to the unit, recording what the page sends;
+/// stopped (its threads joined) when unplugged or dropped.
 pub struct Tap {
     pub stop: Arc<AtomicBool>,
     pub threads: Vec<JoinHandle<()>>,
     pub slave_path: String,
 }
 
+/// One end of the sim's pipe, shared with the taps that come after this one.
+struct Shared<T>(Arc<Mutex<T>>);
+
+impl<T: Read> Read for Shared<T> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        self.0.lock().unwrap().read(buf)
+    }
+}
+
+impl<T: Write> Write for Shared<T> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.lock().unwrap().write(buf)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.0.lock().unwrap().flush()
+    }
+}
+
 impl Tap {
+    /// On the sim's pipe ends, kept for the tap plugged in after this one.
     pub fn start(
         to_sim: Arc<Mutex<PipeWriter>>,
         from_sim: Arc<Mutex<PipeReader>>,
         wire: Wire,
+    ) -> Tap {
+        Tap::between(Shared(to_sim), Shared(from_sim), wire, Instant::now)
+    }
+
+    /// A new pty whose master is joined to the unit's `to_unit` and `from_unit`, which
+    /// must time out now and then so that the tap can stop; each read of what the page
+    /// sends is recorded in `wire` at `clock()`.
+    pub fn between<T: Send + 'static>(
+        mut to_unit: impl Write + Send + 'static,
+        mut from_unit: impl Read + Send + 'static,
+        wire: Recorded<T>,
+        clock: fn() -> T,
     ) -> Tap {
         let pty = link::open_pty_pair().expect("pty");
         let stop = Arc::new(AtomicBool::new(false));
@@ -88,10 +216,8 @@ impl Tap {
                 if let Ok(n) = master_in.read(&mut buf)
                     && n > 0
                 {
-                    wire.lock()
-                        .unwrap()
-                        .push((Instant::now(), buf[..n].to_vec()));
-                    let _ = to_sim.lock().unwrap().write_all(&buf[..n]);
+                    wire.lock().unwrap().push((clock(), buf[..n].to_vec()));
+                    let _ = to_unit.write_all(&buf[..n]);
                 }
             }
         });
@@ -99,8 +225,7 @@ impl Tap {
         let down = std::thread::spawn(move || {
             let mut buf = [0u8; 512];
             while !s.load(Ordering::SeqCst) {
-                let r = from_sim.lock().unwrap().read(&mut buf);
-                if let Ok(n) = r
+                if let Ok(n) = from_unit.read(&mut buf)
                     && n > 0
                 {
                     let _ = master_out.write_all(&buf[..n]);
@@ -116,8 +241,14 @@ impl Tap {
 
     /// Closes every handle on the master: the page's reads fail, like a pulled cable.
     pub fn unplug(self) {
+        drop(self);
+    }
+}
+
+impl Drop for Tap {
+    fn drop(&mut self) {
         self.stop.store(true, Ordering::SeqCst);
-        for t in self.threads {
+        for t in self.threads.drain(..) {
             let _ = t.join();
         }
     }
@@ -229,20 +360,7 @@ impl Rig {
 
     /// Every packet the page sent since `from` (an index into the wire log).
     pub fn sent(&self, from: usize) -> Vec<(Instant, Packet)> {
-        let wire = self.wire.lock().unwrap();
-        let mut dec = Decoder::new();
-        let mut out = Vec::new();
-        for (at, bytes) in &wire[from..] {
-            dec.push(bytes, |e| {
-                if let DecEvent::Frame(f) = e {
-                    out.push((
-                        *at,
-                        Packet::parse(&f).expect("the page sends only valid frames"),
-                    ));
-                }
-            });
-        }
-        out
+        packets(&self.wire.lock().unwrap()[from..])
     }
 
     pub fn wire_len(&self) -> usize {

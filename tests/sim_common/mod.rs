@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 
 use serialport::{SerialPort, TTYPort};
 use vpx_efis::protocol::decoder::{Decoder, Event};
+use vpx_efis::protocol::message::SystemStatus;
 use vpx_efis::protocol::{Message, Packet};
 use vpx_efis::sim::{self, Scenario, SimHandle, SimOptions};
 
@@ -133,6 +134,14 @@ impl Client {
     pub fn next<T>(&mut self, what: &str, f: impl Fn(&Message) -> Option<T>) -> T {
         self.seen = self.log.len();
         self.wait_for(what, |p| f(&p.message))
+    }
+
+    /// The next SYSTEM_STATUS broadcast.
+    pub fn system_status(&mut self) -> SystemStatus {
+        self.next("SYSTEM_STATUS", |m| match m {
+            Message::SystemStatus(s) => Some(*s),
+            _ => None,
+        })
     }
 
     /// Waits until `n` raw bytes have arrived after index `from` of `raw`.
