@@ -166,11 +166,7 @@ fn a_page_that_cannot_be_seen_switches_no_further_circuit_on() {
 
 /// The Markdown report in `dir`, the only one there, with its CSV beside it.
 fn the_report(dir: &Path) -> String {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("no report folder {}: {e}", dir.display()))
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
+    let names = common::files::names_in(dir);
     assert_eq!(names.len(), 2, "{names:?}");
     assert!(
         names[0].starts_with("vpx-check-") && names[0].ends_with(".csv"),
@@ -182,20 +178,7 @@ fn the_report(dir: &Path) -> String {
 
 /// What every report of a check stopped mid-circuit must say.
 fn says_incomplete_and_what_was_left(md: &str, cause: &str, circuit: &str) {
-    assert!(
-        md.contains(&format!(
-            "**Result: INCOMPLETE.** The check was interrupted ({cause})"
-        )),
-        "{md}"
-    );
-    let after = md
-        .split("## Interrupted\n\n")
-        .nth(1)
-        .expect("an Interrupted section");
-    assert!(
-        after.starts_with(&format!("The check stopped: {cause}.\n")),
-        "{after}"
-    );
+    let after = common::report::interrupted(md, cause);
     // The page could not wait to see the circuit off: it says it sent the off and
     // that it was not confirmed, naming the circuit.
     assert!(
