@@ -152,19 +152,22 @@ fn every_command_from_every_origin_leaves_its_line() {
     // Written off the page's thread: within moments of each command.
     let lines = audit_lines(&audit);
     let all = format!("{lines:#?}");
-    assert!(
-        has(
-            &lines,
+    for (origin, command, what) in [
+        (
             "key",
             "DEVICE_POWER: device 4 5A-1, power state off",
-            |_| true
+            "Nav Lt off by key",
         ),
-        "Nav Lt off by key: {all}"
-    );
-    assert!(
-        has(&lines, "key", "DEVICE_CLEAR", |_| true),
-        "GPS 1 reset: {all}"
-    );
+        ("key", "DEVICE_CLEAR", "GPS 1 reset"),
+        (
+            "xfsp",
+            "DEVICE_POWER: device 4 5A-1, power state on",
+            "Nav Lt on from the network",
+        ),
+        ("check", "DEVICE_POWER", "the check"),
+    ] {
+        assert!(has(&lines, origin, command, |_| true), "{what}: {all}");
+    }
     assert!(
         has(&lines, "key", "TRIM_MOVE", |l| l["run"] == "start"),
         "the run's start: {all}"
@@ -186,19 +189,6 @@ fn every_command_from_every_origin_leaves_its_line() {
             .count(),
         2,
         "a run is two lines, not one per resend: {all}"
-    );
-    assert!(
-        has(
-            &lines,
-            "xfsp",
-            "DEVICE_POWER: device 4 5A-1, power state on",
-            |_| true
-        ),
-        "Nav Lt on from the network: {all}"
-    );
-    assert!(
-        has(&lines, "check", "DEVICE_POWER", |_| true),
-        "the check: {all}"
     );
     assert!(
         lines
