@@ -25,8 +25,11 @@ use common::screen::text;
 const SCENARIO: &str = include_str!("data/scenario-setup.toml");
 
 impl Rig {
-    fn new() -> Rig {
-        Rig::with_eeprom(None)
+    /// The page on the setup screen of device `id`, the unit's settings all heard.
+    fn on_setup_of(id: u8) -> Rig {
+        let mut rig = Rig::with_eeprom(None);
+        rig.open_setup_on(id);
+        rig
     }
 
     fn with_eeprom(eeprom: Option<std::path::PathBuf>) -> Rig {
@@ -113,8 +116,7 @@ fn fg_of(buf: &Buffer, needle: &str) -> Color {
 
 #[test]
 fn an_edited_breaker_reaches_the_sim_and_is_saved_only_after_its_spec_ack() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.key(KeyCode::Down); // breaker
     rig.keys("4");
     rig.key(KeyCode::Down);
@@ -171,8 +173,7 @@ fn an_edited_breaker_reaches_the_sim_and_is_saved_only_after_its_spec_ack() {
 
 #[test]
 fn refusals_are_in_words_whether_from_the_unit_or_before_sending() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     let before = rig.sim.stats().config.devices[9];
 
     // Typed past the pin's range: refused here, nothing goes out.
@@ -231,8 +232,7 @@ fn refusals_are_in_words_whether_from_the_unit_or_before_sending() {
 
 #[test]
 fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.sim.inject(SimCommand::Silent(Duration::from_secs(6)));
     rig.key(KeyCode::Down);
     rig.keys("3");
@@ -287,8 +287,7 @@ fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going(
 
 #[test]
 fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_carries() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.key(KeyCode::Tab);
     rig.key(KeyCode::Tab);
     assert_eq!(rig.app.view().setup.page, Page::Flaps);
@@ -348,8 +347,7 @@ fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_car
 
 #[test]
 fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("unit.toml");
     rig.key(KeyCode::BackTab);
@@ -493,8 +491,7 @@ impl Rig {
 
 #[test]
 fn a_breaker_whose_spec_ack_is_lost_is_unknown_then_reread_and_shown_as_the_unit_holds_it() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.sim.inject(SimCommand::DropSpecAcks(true));
     let queries_before = rig.sent("DEVICE_SPEC_QUERY");
     rig.key(KeyCode::Down); // breaker 2 A → 4 A
@@ -556,8 +553,7 @@ fn a_breaker_whose_spec_ack_is_lost_is_unknown_then_reread_and_shown_as_the_unit
 
 #[test]
 fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answers() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.sim.inject(SimCommand::DropSpecAcks(true));
     for _ in 0..4 {
         rig.key(KeyCode::Down); // the name
@@ -604,8 +600,7 @@ fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answe
 
 #[test]
 fn a_flap_spec_whose_spec_ack_is_lost_is_reread_and_the_list_shows_the_units_breaker() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.key(KeyCode::Tab);
     rig.key(KeyCode::Tab);
     assert_eq!(rig.app.view().setup.page, Page::Flaps);
