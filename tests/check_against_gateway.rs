@@ -146,6 +146,17 @@ impl Rig {
         seen
     }
 
+    /// Fails unless one line of the event log holds every one of `words`.
+    fn assert_said(&self, words: &[&str]) {
+        let events = &self.model.events;
+        assert!(
+            events
+                .iter()
+                .any(|e| words.iter().all(|w| e.text.contains(w))),
+            "no event with {words:?}: {events:#?}"
+        );
+    }
+
     fn trim_moves_since(&self, from: usize) -> Vec<bool> {
         self.sent[from..]
             .iter()
@@ -169,13 +180,7 @@ fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
     let hi = *seen.iter().max().unwrap();
     assert!((131..=134).contains(&hi), "went down to {hi}");
     assert!(drive.running(&r.ctl).is_none());
-    assert!(
-        r.model.events.iter().any(|e| e
-            .text
-            .contains("it moved down when asked up: its leads or its sensor")),
-        "{:?}",
-        r.model.events
-    );
+    r.assert_said(&["it moved down when asked up: its leads or its sensor"]);
     let out = r.key('u', KeyEventKind::Press, false);
     assert!(out.packets.is_empty());
     assert!(out.notice.unwrap().contains("press u again"));
@@ -186,14 +191,7 @@ fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
     other.request(PITCH, -50_000, 0x43, None, r.now);
     let p = other.tick(&mut r.ctl, &mut r.model, r.now);
     assert!(p.is_empty(), "{p:?}");
-    assert!(
-        r.model
-            .events
-            .iter()
-            .any(|e| e.text.contains("0x0043") && e.text.contains("not run on a network request")),
-        "{:?}",
-        r.model.events
-    );
+    r.assert_said(&["0x0043", "not run on a network request"]);
 }
 
 /// The XFSp gateway's drive, the same reversed trim parked at 220: a network run
@@ -209,16 +207,8 @@ fn the_gateway_probes_a_network_run_near_the_endpoint_behind_it() {
     let most = *seen.iter().max().unwrap();
     assert!(most <= 221, "past 220 to {most}: {seen:?}");
     assert!(drive.running(&r.ctl).is_none());
-    let events: Vec<&str> = r.model.events.iter().map(|e| e.text.as_str()).collect();
-    for said in [
-        "pitch trim near its down endpoint: trying a short run first",
-        "it moved down when asked up: its leads or its sensor",
-    ] {
-        assert!(
-            events.iter().any(|e| e.contains(said)),
-            "no {said:?} in {events:?}"
-        );
-    }
+    r.assert_said(&["pitch trim near its down endpoint: trying a short run first"]);
+    r.assert_said(&["it moved down when asked up: its leads or its sensor"]);
     let moves = r.trim_moves_since(from);
     assert!(moves[0] && !moves.last().unwrap(), "{moves:?}");
     assert_eq!(r.ctl.against().seen(PITCH), Some(Direction::Up));
@@ -310,12 +300,5 @@ fn a_reversal_the_check_finds_by_probing_is_refused_to_keys_remote_and_network()
     assert!(drive.running(&r.ctl).is_none());
     r.run_watching(500, PITCH);
     assert!(r.trim_moves_since(from).is_empty(), "a refused run moved");
-    assert!(
-        r.model
-            .events
-            .iter()
-            .any(|e| e.text.contains("0x0044") && e.text.contains("is at its down endpoint")),
-        "{:?}",
-        r.model.events
-    );
+    r.assert_said(&["0x0044", "is at its down endpoint"]);
 }

@@ -89,6 +89,13 @@ impl Rig {
         self.until(what, limit, |app| f(&app.view().setup.writes[0].status));
     }
 
+    /// [`Rig::until_first_write`] saved, within 3 s.
+    fn until_saved(&mut self, what: &str) {
+        self.until_first_write(what, Duration::from_secs(3), |s| {
+            matches!(s, WriteStatus::Saved { .. })
+        });
+    }
+
     fn status(&self, i: usize) -> WriteStatus {
         self.app.view().setup.writes[i].status.clone()
     }
@@ -129,9 +136,7 @@ fn an_edited_breaker_reaches_the_sim_and_is_saved_only_after_its_spec_ack() {
         WriteStatus::Sending { attempt: 1, of: 3 },
         "not saved before the unit answered"
     );
-    rig.until_first_write("saved", Duration::from_secs(3), |s| {
-        matches!(s, WriteStatus::Saved { .. })
-    });
+    rig.until_saved("saved");
     assert_eq!(
         rig.status(0),
         WriteStatus::Saved {
@@ -374,9 +379,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
     rig.key(KeyCode::Down);
     rig.keys("4");
     rig.key(KeyCode::Enter);
-    rig.until_first_write("the edit saved", Duration::from_secs(3), |s| {
-        matches!(s, WriteStatus::Saved { .. })
-    });
+    rig.until_saved("the edit saved");
     assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 4);
     rig.key(KeyCode::BackTab);
     rig.key(KeyCode::Down);
@@ -392,9 +395,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
         d => panic!("{d:?} {:?}", rig.app.view().setup.message),
     }
     rig.keys("y");
-    rig.until_first_write("the backup applied", Duration::from_secs(3), |s| {
-        matches!(s, WriteStatus::Saved { .. })
-    });
+    rig.until_saved("the backup applied");
     assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 2);
 
     // EEPROM_ERASE: Esc sends nothing, y erases and the page re-reads.
@@ -737,9 +738,7 @@ fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answ
     // Now the breaker goes out with the unit's switch kept.
     rig.keys("3");
     rig.key(KeyCode::Enter);
-    rig.until_first_write("saved", Duration::from_secs(3), |s| {
-        matches!(s, WriteStatus::Saved { .. })
-    });
+    rig.until_saved("saved");
     let cfg = rig.sim.stats().config;
     assert_eq!(cfg.devices[9].circuit_breaker, 3);
     assert_eq!(cfg.devices[9].switch_id, SwitchId::Input(2), "switch kept");

@@ -166,6 +166,12 @@ fn fg(buf: &Buffer, needle: &str) -> Color {
     panic!("{needle:?} is not on screen:\n{}", text(buf));
 }
 
+/// `change` made to the forms of the view's page, not yet sent.
+fn edit(v: &mut ViewState, change: impl FnOnce(&mut Forms)) {
+    change(&mut v.setup.forms);
+    v.setup.edited[v.setup.page.index()] = true;
+}
+
 fn select(v: &mut ViewState, field: Field) {
     v.setup.field = v
         .setup
@@ -186,8 +192,7 @@ fn device_page_80x24() {
 #[test]
 fn device_page_edited_and_refused_by_the_unit_in_red() {
     let (m, mut v, t0) = on(Page::Device);
-    v.setup.forms.device.circuit_breaker = 9;
-    v.setup.edited[Page::Device.index()] = true;
+    edit(&mut v, |f| f.device.circuit_breaker = 9);
     select(&mut v, Field::Breaker);
     v.setup.writes = vec![WriteLine {
         what: "DEVICE_SPEC for 5A-1".into(),
@@ -238,8 +243,7 @@ fn device_page_saved_is_green_sending_is_yellow_no_answer_is_red() {
 #[test]
 fn system_page() {
     let (m, mut v, t0) = on(Page::System);
-    v.setup.forms.system.secondary_alternator = Some(7);
-    v.setup.edited[Page::System.index()] = true;
+    edit(&mut v, |f| f.system.secondary_alternator = Some(7));
     v.setup.writes = vec![WriteLine {
         what: "SYSTEM_SPEC".into(),
         status: WriteStatus::Refused {
@@ -258,8 +262,7 @@ fn system_page() {
 #[test]
 fn flaps_page_with_the_live_position_and_a_capture() {
     let (m, mut v, t0) = on(Page::Flaps);
-    v.setup.forms.flap.midpoint_1 = 57;
-    v.setup.edited[Page::Flaps.index()] = true;
+    edit(&mut v, |f| f.flap.midpoint_1 = 57);
     select(&mut v, Field::FlapMid1);
     v.setup.message = Some((
         Tone::Good,
@@ -379,8 +382,7 @@ fn device_page_refused_by_the_unit_on_a_5a_pin_says_table_20_once_with_1_to_5_a(
     let t2 = t0 + Duration::from_millis(40);
     apply(&mut m, t2, held);
     q.tick(&mut m, t2);
-    v.setup.forms.device = sent;
-    v.setup.edited[Page::Device.index()] = true;
+    edit(&mut v, |f| f.device = sent);
     select(&mut v, Field::Breaker);
     v.setup.writes = q.lines();
     let buf = render(&m, &v, t2, 120, 30);
@@ -400,8 +402,7 @@ fn device_page_refused_by_the_unit_on_a_5a_pin_says_table_20_once_with_1_to_5_a(
 fn a_breaker_left_unknown_shows_a_question_mark_on_the_setup_page_and_in_the_list() {
     use vpx_efis::model::Setting;
     let (mut m, mut v, t0) = on(Page::Device);
-    v.setup.forms.device.circuit_breaker = 4;
-    v.setup.edited[Page::Device.index()] = true;
+    edit(&mut v, |f| f.device.circuit_breaker = 4);
     m.mark_unknown(Setting::DeviceSpec(4), t0);
     v.setup.writes = vec![WriteLine {
         what: "DEVICE_SPEC for 5A-1".into(),
@@ -509,15 +510,15 @@ fn disarm_confirmations_name_the_consequence() {
     st.main_bus_volts = SignedTenths(142);
     apply(&mut m, t0, st);
     let mut v = view(&m, Page::System, 4);
-    v.setup.forms.system.overvoltage_limit = OvervoltageLimit::V32;
-    v.setup.edited[Page::System.index()] = true;
+    edit(&mut v, |f| {
+        f.system.overvoltage_limit = OvervoltageLimit::V32
+    });
     let consequences = form::disarms(&[v.setup.forms.system.into()], &m, t0);
     v.setup.dialog = Dialog::Disarm { consequences };
     insta::assert_snapshot!("overvoltage_100x30", text(&render(&m, &v, t0, 100, 30)));
     insta::assert_snapshot!("overvoltage_80x24", text(&render(&m, &v, t0, 80, 24)));
     let mut v = view(&m, Page::Flaps, 4);
-    v.setup.forms.flap.enabled = false;
-    v.setup.edited[Page::Flaps.index()] = true;
+    edit(&mut v, |f| f.flap.enabled = false);
     let consequences = form::disarms(&[v.setup.forms.flap.into()], &m, t0);
     v.setup.dialog = Dialog::Disarm { consequences };
     insta::assert_snapshot!("flaps_80x24", text(&render(&m, &v, t0, 80, 24)));

@@ -257,7 +257,10 @@ fn filtered_by_direction_and_type_shows_only_those_and_says_so() {
     model.traffic.view.kind = KindFilter::All;
     model.traffic.view.dir = Some(Crossing::Tx);
     let (buf, rows) = listed(&model, now);
-    assert_eq!(rows.len(), 2, "{rows:#?}");
+    assert!(
+        rows.len() == 2 && rows.iter().all(|r| r.contains(" tx ")),
+        "{rows:#?}"
+    );
     assert_eq!(cell(&buf, "cnt 2", "VERSION").fg, Color::Cyan);
 }
 
