@@ -895,24 +895,20 @@ fn a_stale_link_never_looks_current() {
 
 #[test]
 fn a_tight_breaker_is_amber_and_says_so() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, 69)], (20, 128, 120));
-    let buf = render(&circuits(), &m, now, 80, 24);
-    assert!(
-        plain_text(&buf).contains("86 % ≥ 80 %: tight"),
-        "{}",
-        plain_text(&buf)
-    );
-    assert_eq!(cell(&buf, "Now ON", "86 %").fg, Color::Yellow);
-    assert_eq!(cell(&buf, "Now ON", "█").fg, Color::Yellow);
-    // Within the breaker, the same bar is green and says so.
-    let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, 30)], (20, 128, 120));
-    let buf = render(&circuits(), &m, now, 80, 24);
-    assert_eq!(cell(&buf, "Now ON", "█").fg, Color::Green);
-    assert!(
-        plain_text(&buf).contains("38 % within"),
-        "{}",
-        plain_text(&buf)
-    );
+    // Landing Lt on its 8 A breaker: 6.9 A is tight; within it, the same bar is green
+    // and says so.
+    for (tenths, percent, words, colour) in [
+        (69, "86 %", "86 % ≥ 80 %: tight", Color::Yellow),
+        (30, "38 %", "38 % within", Color::Green),
+    ] {
+        let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, tenths)], (20, 128, 120));
+        let buf = render(&circuits(), &m, now, 80, 24);
+        let t = plain_text(&buf);
+        assert!(t.contains(words), "no {words:?} in\n{t}");
+        for mark in [percent, "█"] {
+            assert_eq!(cell(&buf, "Now ON", mark).fg, colour, "{mark} of {words:?}");
+        }
+    }
 }
 
 #[test]

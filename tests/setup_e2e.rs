@@ -89,6 +89,16 @@ impl Rig {
         self.until(what, limit, |app| f(&app.view().setup.writes[0].status));
     }
 
+    /// Tab to the setup page `page`.
+    fn tab_to(&mut self, page: Page) {
+        for _ in 0..8 {
+            if self.app.view().setup.page != page {
+                self.key(KeyCode::Tab);
+            }
+        }
+        assert_eq!(self.app.view().setup.page, page);
+    }
+
     /// [`Rig::until_first_write`] saved, within 3 s.
     fn until_saved(&mut self, what: &str) {
         self.until_first_write(what, Duration::from_secs(3), |s| {
@@ -98,10 +108,6 @@ impl Rig {
 
     fn status(&self, i: usize) -> WriteStatus {
         self.app.view().setup.writes[i].status.clone()
-    }
-
-    fn sent(&self, name: &str) -> u64 {
-        self.app.model().link.tx.get(name).map_or(0, |s| s.count)
     }
 
     fn render(&mut self) -> Buffer {
@@ -293,9 +299,7 @@ fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going(
 #[test]
 fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_carries() {
     let mut rig = Rig::on_setup_of(9);
-    rig.key(KeyCode::Tab);
-    rig.key(KeyCode::Tab);
-    assert_eq!(rig.app.view().setup.page, Page::Flaps);
+    rig.tab_to(Page::Flaps);
     rig.until("live flap position", Duration::from_secs(2), |app| {
         app.model().live_flap_trim(Instant::now()).is_some()
     });
@@ -602,9 +606,7 @@ fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answe
 #[test]
 fn a_flap_spec_whose_spec_ack_is_lost_is_reread_and_the_list_shows_the_units_breaker() {
     let mut rig = Rig::on_setup_of(9);
-    rig.key(KeyCode::Tab);
-    rig.key(KeyCode::Tab);
-    assert_eq!(rig.app.view().setup.page, Page::Flaps);
+    rig.tab_to(Page::Flaps);
     rig.sim.inject(SimCommand::DropSpecAcks(true));
     for _ in 0..9 {
         rig.key(KeyCode::Down); // the flap breaker, 7 A
