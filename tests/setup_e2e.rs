@@ -503,12 +503,7 @@ fn a_breaker_whose_spec_ack_is_lost_is_unknown_then_reread_and_shown_as_the_unit
     rig.keys("4");
     rig.key(KeyCode::Enter);
     rig.until("three tries", Duration::from_secs(5), |app| {
-        app.model()
-            .link
-            .tx
-            .get("DEVICE_SPEC")
-            .map_or(0, |s| s.count)
-            == 3
+        common::app::sent(app, "DEVICE_SPEC") == 3
     });
     rig.until_first_write("the write to end", Duration::from_secs(3), |s| {
         !matches!(s, WriteStatus::Sending { .. })
@@ -693,12 +688,7 @@ fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answ
     );
     // The connect set (33 DEVICE_SPEC_QUERYs) is lost; the re-reads follow it.
     rig.until("a re-read", Duration::from_secs(6), |app| {
-        app.model()
-            .link
-            .tx
-            .get("DEVICE_SPEC_QUERY")
-            .map_or(0, |s| s.count)
-            > 33
+        common::app::sent(app, "DEVICE_SPEC_QUERY") > 33
     });
     assert!(
         connected.elapsed() < Duration::from_secs(6),

@@ -107,7 +107,7 @@ impl Rig {
 
     /// How many frames of the message `name` the page has written.
     pub fn sent(&self, name: &str) -> u64 {
-        self.app.model().link.tx.get(name).map_or(0, |s| s.count)
+        super::app::sent(&self.app, name)
     }
 
     /// A press of `code`.
