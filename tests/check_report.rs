@@ -17,7 +17,7 @@ use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{HardwareVersion, SwitchId, Version};
 
 mod common;
-use common::check_view::{Circuit, left_alone, motor_result};
+use common::check_view::{Circuit, motor_result, suggested, the_starter};
 use common::files::names_in;
 
 /// 2026-12-01T18:30:12Z.
@@ -84,15 +84,10 @@ fn finished() -> CheckView {
             (Motor::Trim(TrimKind::Pitch), Duration::from_secs(4)),
         ],
         excluded: vec![
-            left_alone(
-                (0x01, "Starter", "Starter", 5, SwitchId::AlwaysOn),
-                "never touched: the starter",
-                false,
-            ),
-            left_alone(
+            the_starter(0x01),
+            suggested(
                 (0x17, "Pitot heat", "15A-1", 10, SwitchId::Input(7)),
-                "suggested: the name has \"pitot\"",
-                true,
+                "the name has \"pitot\"",
             ),
         ],
         switches: vec![

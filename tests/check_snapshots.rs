@@ -29,7 +29,7 @@ use vpx_efis::ui::state::{MotorRun, ViewState};
 mod themes;
 
 mod common;
-use common::check_view::{left_alone, motor_result};
+use common::check_view::{motor_result, never_touched, suggested, the_starter};
 use common::screen::{find, plain_text};
 
 mod aircraft {
@@ -145,20 +145,14 @@ const MOTORS: [Motor; 3] = [
 
 fn excluded() -> Vec<Excluded> {
     vec![
-        left_alone(
-            (0, "Starter", "Starter", 5, SwitchId::AlwaysOn),
-            "never touched: the starter",
-            false,
-        ),
-        left_alone(
+        the_starter(0),
+        never_touched(
             (2, "Alternator", "Field_Pri", 5, SwitchId::Input(1)),
-            "never touched: an alternator field",
-            false,
+            "an alternator field",
         ),
-        left_alone(
+        suggested(
             (7, "Pitot Heat", "5A-4", 5, SwitchId::Input(7)),
-            "suggested: the name has \"pitot\"",
-            true,
+            "the name has \"pitot\"",
         ),
     ]
 }

@@ -195,13 +195,8 @@ fn every_command_from_every_origin_leaves_its_line() {
         "queries are no commands: {all}"
     );
     // The same actions, in the page's event log with their origin.
-    let events: Vec<String> = rig
-        .app
-        .model()
-        .events
-        .iter()
-        .map(|e| e.text.clone())
-        .collect();
+    let model = rig.app.model();
+    let events: Vec<&str> = model.events.iter().map(|e| e.text.as_str()).collect();
     for words in [
         "key: Nav Lt off (DEVICE_POWER sent)",
         "key: GPS 1 reset (DEVICE_CLEAR sent)",
@@ -213,6 +208,7 @@ fn every_command_from_every_origin_leaves_its_line() {
             "{words:?} not in the event log: {events:#?}"
         );
     }
+    drop(model);
     let Rig { app, sim, .. } = rig;
     app.shutdown();
     sim.stop();

@@ -8,9 +8,25 @@ use vpx_efis::protocol::message::SwitchId;
 /// A circuit as the check lists it: id, name, pin, breaker in amps, switch.
 pub type Circuit = (u8, &'static str, &'static str, u8, SwitchId);
 
-/// `c` left alone by the check for `why`; the person may take it back into the check
-/// only if `may_include` (a suggestion, not a rule).
-pub fn left_alone(c: Circuit, why: &str, may_include: bool) -> Excluded {
+/// The starter, pin `id`, on a 5 A breaker and always on: left alone by every check.
+pub fn the_starter(id: u8) -> Excluded {
+    never_touched(
+        (id, "Starter", "Starter", 5, SwitchId::AlwaysOn),
+        "the starter",
+    )
+}
+
+/// `c` left alone by the check's rule, being `what`.
+pub fn never_touched(c: Circuit, what: &str) -> Excluded {
+    left_alone(c, format!("never touched: {what}"), false)
+}
+
+/// `c` left out on the check's suggestion, for `why`: the person may take it back.
+pub fn suggested(c: Circuit, why: &str) -> Excluded {
+    left_alone(c, format!("suggested: {why}"), true)
+}
+
+fn left_alone(c: Circuit, why: String, may_include: bool) -> Excluded {
     let (id, name, pin, breaker, switch) = c;
     Excluded {
         id,
@@ -18,7 +34,7 @@ pub fn left_alone(c: Circuit, why: &str, may_include: bool) -> Excluded {
         pin,
         breaker: Some(breaker),
         switch: Some(switch),
-        why: why.into(),
+        why,
         may_include,
     }
 }
