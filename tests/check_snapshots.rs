@@ -1113,9 +1113,13 @@ fn circuit_rows_show_the_longest_pin_whole() {
     let (m, now) = aircraft::idle();
     for (w, h) in [(80, 24), (120, 40)] {
         let t = screen(&circuits_long_pins(), &m, now, w, h);
-        assert!(t.contains(" Field_Pri never touched"), "{t}");
-        assert!(t.contains("Starter       Starter   never touched"), "{t}");
-        assert!(t.contains("Alternator    Field_Pri never touched"), "{t}");
+        for row in [
+            " Field_Pri never touched",
+            "Starter       Starter   never touched",
+            "Alternator    Field_Pri never touched",
+        ] {
+            assert!(t.contains(row), "{w}×{h}: no {row:?} in\n{t}");
+        }
         assert!(!t.contains("Field…") && !t.contains("Start…"), "{t}");
     }
 }
