@@ -20,7 +20,7 @@ use ratatui::buffer::Buffer;
 #[cfg(unix)]
 use ratatui::layout::Rect;
 use vpx_efis::model::{Model, Source};
-use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS};
+use vpx_efis::protocol::device::EFIS;
 use vpx_efis::protocol::message::{
     DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FaultStatus, FlapTrimStatus,
     SignedTenths, SwitchId, SwitchInputs, SystemStatus, Tenths,
@@ -61,14 +61,7 @@ fn flap_trim(i: u64) -> FlapTrimStatus {
 }
 
 fn fault() -> FaultStatus {
-    let mut f = FaultStatus {
-        faulted: [false; DEVICE_COUNT],
-        system_fault: false,
-        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-    };
-    f.faulted[EFIS as usize] = true;
-    f.codes[EFIS as usize] = Some(FaultCode::OverCurrent);
-    f
+    configured::faults(&[(EFIS, FaultCode::OverCurrent)], false)
 }
 
 /// One second of what the unit broadcasts (ICD Table 6), the busier case with a fault:

@@ -129,6 +129,34 @@ impl Rig {
         out
     }
 
+    /// `ticks` of 10 ms of a network run of the pitch trim nose up through `drive`:
+    /// PTRIMREQ +50000 (toward 30) from 0x42, repeated at 4 Hz; the trim's positions
+    /// meanwhile.
+    fn network_run_up(&mut self, drive: &mut MotorDrive, ticks: u32) -> Vec<u8> {
+        let mut seen = Vec::new();
+        for i in 0..ticks {
+            if i % 25 == 0 {
+                let renewal = Some(Duration::from_millis(600));
+                drive.request(PITCH, 50_000, 0x42, renewal, self.now);
+            }
+            let p = drive.tick(&mut self.ctl, &mut self.model, self.now);
+            self.send(p);
+            seen.extend(self.run_watching(10, PITCH));
+        }
+        seen
+    }
+
+    /// Fails unless one line of the event log holds every one of `words`.
+    fn assert_said(&self, words: &[&str]) {
+        let events = &self.model.events;
+        assert!(
+            events
+                .iter()
+                .any(|e| words.iter().all(|w| e.text.contains(w))),
+            "no event with {words:?}: {events:#?}"
+        );
+    }
+
     fn trim_moves_since(&self, from: usize) -> Vec<bool> {
         self.sent[from..]
             .iter()
@@ -148,26 +176,11 @@ impl Rig {
 fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
     let mut r = rig(128);
     let mut drive = MotorDrive::default();
-    let mut seen = Vec::new();
-    for i in 0..200 {
-        if i % 25 == 0 {
-            // PTRIMREQ +50000: nose up, toward 30 (raw ~78), repeated at 4 Hz.
-            drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
-        }
-        let p = drive.tick(&mut r.ctl, &mut r.model, r.now);
-        r.send(p);
-        seen.extend(r.run_watching(10, PITCH));
-    }
+    let seen = r.network_run_up(&mut drive, 200);
     let hi = *seen.iter().max().unwrap();
     assert!((131..=134).contains(&hi), "went down to {hi}");
     assert!(drive.running(&r.ctl).is_none());
-    assert!(
-        r.model.events.iter().any(|e| e
-            .text
-            .contains("it moved down when asked up: its leads or its sensor")),
-        "{:?}",
-        r.model.events
-    );
+    r.assert_said(&["it moved down when asked up: its leads or its sensor"]);
     let out = r.key('u', KeyEventKind::Press, false);
     assert!(out.packets.is_empty());
     assert!(out.notice.unwrap().contains("press u again"));
@@ -178,14 +191,7 @@ fn the_gateway_stops_a_network_run_and_shares_what_it_saw() {
     other.request(PITCH, -50_000, 0x43, None, r.now);
     let p = other.tick(&mut r.ctl, &mut r.model, r.now);
     assert!(p.is_empty(), "{p:?}");
-    assert!(
-        r.model
-            .events
-            .iter()
-            .any(|e| e.text.contains("0x0043") && e.text.contains("not run on a network request")),
-        "{:?}",
-        r.model.events
-    );
+    r.assert_said(&["0x0043", "not run on a network request"]);
 }
 
 /// The XFSp gateway's drive, the same reversed trim parked at 220: a network run
@@ -197,36 +203,18 @@ fn the_gateway_probes_a_network_run_near_the_endpoint_behind_it() {
     let mut drive = MotorDrive::default();
     let from = r.sent.len();
     let mut seen = vec![r.pitch_pos()];
-    for i in 0..150 {
-        if i % 25 == 0 {
-            drive.request(PITCH, 50_000, 0x42, Some(Duration::from_millis(600)), r.now);
-        }
-        let p = drive.tick(&mut r.ctl, &mut r.model, r.now);
-        r.send(p);
-        seen.extend(r.run_watching(10, PITCH));
-    }
+    seen.extend(r.network_run_up(&mut drive, 150));
     let most = *seen.iter().max().unwrap();
     assert!(most <= 221, "past 220 to {most}: {seen:?}");
     assert!(drive.running(&r.ctl).is_none());
-    let events: Vec<&str> = r.model.events.iter().map(|e| e.text.as_str()).collect();
-    assert!(
-        events
-            .iter()
-            .any(|e| e.contains("pitch trim near its down endpoint: trying a short run first")),
-        "{events:?}"
-    );
-    assert!(
-        events
-            .iter()
-            .any(|e| e.contains("it moved down when asked up: its leads or its sensor")),
-        "{events:?}"
-    );
+    r.assert_said(&["pitch trim near its down endpoint: trying a short run first"]);
+    r.assert_said(&["it moved down when asked up: its leads or its sensor"]);
     let moves = r.trim_moves_since(from);
     assert!(moves[0] && !moves.last().unwrap(), "{moves:?}");
     assert_eq!(r.ctl.against().seen(PITCH), Some(Direction::Up));
 }
 
-/// Issue 31, item 1: the check finds the reversed pitch trim, parked at its down
+/// The check finds the reversed pitch trim, parked at its down
 /// endpoint 220, by probing (its first run, up, goes down past nothing: the probe
 /// shows its way). That finding is recorded as for any run: afterwards the first
 /// press of `u` at the keys is refused with nothing on the wire, and so are the
@@ -312,12 +300,5 @@ fn a_reversal_the_check_finds_by_probing_is_refused_to_keys_remote_and_network()
     assert!(drive.running(&r.ctl).is_none());
     r.run_watching(500, PITCH);
     assert!(r.trim_moves_since(from).is_empty(), "a refused run moved");
-    assert!(
-        r.model
-            .events
-            .iter()
-            .any(|e| e.text.contains("0x0044") && e.text.contains("is at its down endpoint")),
-        "{:?}",
-        r.model.events
-    );
+    r.assert_said(&["0x0044", "is at its down endpoint"]);
 }

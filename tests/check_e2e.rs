@@ -67,6 +67,33 @@ impl Rig {
         }
     }
 
+    /// [`Rig::options`], the steps `skip` skipped.
+    fn skipping(&self, skip: &[Step]) -> Options {
+        Options {
+            skip: skip.to_vec(),
+            ..self.options()
+        }
+    }
+
+    /// The headless check of the `install` scenario on this rig's port, `options`
+    /// (on top of the rig's) said yes to, its report in `report` in the rig's folder.
+    /// The rig's page is closed first: one program on the port at a time.
+    fn headless(self, options: Options, report: Option<&str>) -> (HeadlessCheck, Closed) {
+        let h = HeadlessCheck {
+            port: Some(self.path.parse().unwrap()),
+            baud: 57_600,
+            scenario: "install".into(),
+            options: Options {
+                yes: true,
+                ..options
+            },
+            report: report.map(|r| self.dir.path().join(r)),
+        };
+        let Rig { app, sim, dir, .. } = self;
+        app.shutdown();
+        (h, Closed { sim, dir })
+    }
+
     /// The person moves a flap or trim switch one way for a while, then lets go.
     fn hold_motor_switch(&mut self, motor: MotorId, direction: MotorDirection) {
         self.sim.inject(SimCommand::MotorSwitch {
@@ -123,6 +150,12 @@ impl Rig {
             });
         }
     }
+}
+
+/// What is left of a rig once its page is closed: the unit and the test's folder.
+struct Closed {
+    sim: SimHandle,
+    dir: tempfile::TempDir,
 }
 
 /// The install scenario's six faults, as the list of what is left to fix says them.
@@ -279,10 +312,7 @@ fn the_install_scenario_finds_each_injected_fault_and_puts_everything_back() {
 
 /// Starts a check of the circuits only and waits until Landing Lt (17) is on.
 fn landing_light_on(r: &mut Rig) {
-    let opts = Options {
-        skip: vec![Step::Switches, Step::Motors, Step::Loads],
-        ..r.options()
-    };
+    let opts = r.skipping(&[Step::Switches, Step::Motors, Step::Loads]);
     r.app.open_check(opts, Instant::now());
     r.key(KeyCode::Enter);
     let at = r
@@ -380,10 +410,7 @@ fn a_fault_mid_step_stops_the_check_and_the_circuit_goes_back_off() {
 #[test]
 fn quit_mid_motor_run_puts_the_stop_on_the_wire() {
     let mut r = Rig::new();
-    let opts = Options {
-        skip: vec![Step::Switches, Step::Circuits, Step::Loads],
-        ..r.options()
-    };
+    let opts = r.skipping(&[Step::Switches, Step::Circuits, Step::Loads]);
     let before = r.sim.stats().flap_starvations;
     r.app.open_check(opts, Instant::now());
     r.key(KeyCode::Enter);
@@ -421,69 +448,42 @@ fn headless_check_prints_results_and_exits_by_what_it_found() {
     let (_tx, lines) = unbounded();
     let (_ttx, terminations) = unbounded();
     let mut out = Vec::new();
-    let h = HeadlessCheck {
-        port: Some(r.path.parse().unwrap()),
-        baud: 57_600,
-        scenario: "install".into(),
-        options: Options {
-            skip: vec![Step::Switches, Step::Motors],
-            yes: true,
-            choices: vpx_efis::check::Choices {
-                exclude: vec!["Landing Lt".into(), "5A-2".into()],
-                include: vec![],
-                excluded_here: vec![],
-            },
-            ..r.options()
+    let options = Options {
+        choices: vpx_efis::check::Choices {
+            exclude: vec!["Landing Lt".into(), "5A-2".into()],
+            ..Default::default()
         },
-        report: Some(r.dir.path().join("reports")),
+        ..r.skipping(&[Step::Switches, Step::Motors])
     };
-    // The page of the rig is closed first: one program on the port at a time.
-    let Rig { app, sim, dir, .. } = r;
-    app.shutdown();
+    let (h, Closed { sim, dir }) = r.headless(options, Some("reports"));
     let end = run_headless_with(h, &lines, &terminations, &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
     assert_eq!(end, CheckEnd::Failed, "{text}");
-    assert!(
-        text.contains("✗ FAIL Beacon (5A-3): no current while on"),
-        "{text}"
-    );
-    assert!(text.contains("✓ PASS Nav Lt (5A-1): draws"), "{text}");
-    assert!(
-        text.contains("Landing Lt: excluded by you (--exclude)"),
-        "{text}"
-    );
-    assert!(
-        text.contains("Strobe Lt: excluded by you (--exclude)"),
-        "{text}"
-    );
+    for said in [
+        "✗ FAIL Beacon (5A-3): no current while on",
+        "✓ PASS Nav Lt (5A-1): draws",
+        "Landing Lt: excluded by you (--exclude)",
+        "Strobe Lt: excluded by you (--exclude)",
+        "– Switch inputs: skipped",
+        "Left to fix:\n  - Beacon (5A-3)",
+        "  - Beacon: flip switch 3 to the other position and back",
+    ] {
+        assert!(text.contains(said), "no {said:?} in\n{text}");
+    }
     assert!(
         !text.contains("Landing Lt (10A-1)"),
         "never powered: {text}"
     );
-    assert!(text.contains("– Switch inputs: skipped"), "{text}");
-    assert!(text.contains("Left to fix:\n  - Beacon (5A-3)"), "{text}");
-    assert!(
-        text.contains("  - Beacon: flip switch 3 to the other position and back"),
-        "{text}"
-    );
     assert!(!sim.stats().powered[6], "Beacon back off");
     // The check's own files; the audit log of what was sent lives beside them.
-    let reports: Vec<_> = std::fs::read_dir(dir.path().join("reports"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            p.file_name()
-                .unwrap()
-                .to_string_lossy()
-                .starts_with("vpx-check-")
-        })
+    let folder = dir.path().join("reports");
+    let reports: Vec<String> = common::files::names_in(&folder)
+        .into_iter()
+        .filter(|n| n.starts_with("vpx-check-"))
         .collect();
     assert_eq!(reports.len(), 2, "Markdown and CSV: {reports:?}");
-    let md = reports
-        .iter()
-        .find(|p| p.extension().unwrap() == "md")
-        .unwrap();
-    let md = std::fs::read_to_string(md).unwrap();
+    let md = reports.iter().find(|n| n.ends_with(".md")).unwrap();
+    let md = std::fs::read_to_string(folder.join(md)).unwrap();
     assert!(md.contains("Beacon"), "{md}");
     assert!(text.contains("Report written: "), "{text}");
 }
@@ -493,19 +493,8 @@ fn headless_check_stopped_by_a_signal_puts_back_and_exits_interrupted() {
     let r = Rig::new();
     let (_tx, lines) = unbounded();
     let (ttx, terminations) = unbounded();
-    let h = HeadlessCheck {
-        port: Some(r.path.parse().unwrap()),
-        baud: 57_600,
-        scenario: "install".into(),
-        options: Options {
-            skip: vec![Step::Switches, Step::Motors],
-            yes: true,
-            ..r.options()
-        },
-        report: None,
-    };
-    let Rig { app, sim, .. } = r;
-    app.shutdown();
+    let options = r.skipping(&[Step::Switches, Step::Motors]);
+    let (h, Closed { sim, dir: _dir }) = r.headless(options, None);
     // SIGTERM once the Nav Lt (the first circuit the check switches on) is on.
     let stats = std::sync::Arc::new(sim);
     let watcher = {
@@ -547,23 +536,14 @@ fn headless_check_refuses_an_exclude_that_names_no_circuit() {
     let r = Rig::new();
     let (_tx, lines) = unbounded();
     let (_ttx, terminations) = unbounded();
-    let h = HeadlessCheck {
-        port: Some(r.path.parse().unwrap()),
-        baud: 57_600,
-        scenario: "install".into(),
-        options: Options {
-            yes: true,
-            choices: vpx_efis::check::Choices {
-                exclude: vec!["Pitot Heeat".into()],
-                include: vec![],
-                excluded_here: vec![],
-            },
-            ..r.options()
+    let options = Options {
+        choices: vpx_efis::check::Choices {
+            exclude: vec!["Pitot Heeat".into()],
+            ..Default::default()
         },
-        report: None,
+        ..r.options()
     };
-    let Rig { app, sim, .. } = r;
-    app.shutdown();
+    let (h, Closed { sim, dir: _dir }) = r.headless(options, None);
     let mut out = Vec::new();
     let e = run_headless_with(h, &lines, &terminations, &mut out).unwrap_err();
     let words = e.to_string();
@@ -589,10 +569,7 @@ fn a_reversed_trim_parked_near_its_endpoint_never_passes_it() {
         assert!(pitch.reversed && pitch.up == 30 && pitch.down == 220);
         pitch.position = Some(35);
     });
-    let opts = Options {
-        skip: vec![Step::Switches, Step::Circuits, Step::Loads],
-        ..r.options()
-    };
+    let opts = r.skipping(&[Step::Switches, Step::Circuits, Step::Loads]);
     let before = r.sim.stats();
     assert_eq!(before.pitch_trim_position, 35);
     r.app.open_check(opts, Instant::now());
@@ -649,19 +626,8 @@ fn headless_a_motor_pause_after_stdin_ended_is_said_and_skipped() {
     let (tx, lines) = unbounded::<String>();
     drop(tx);
     let (_ttx, terminations) = unbounded();
-    let h = HeadlessCheck {
-        port: Some(r.path.parse().unwrap()),
-        baud: 57_600,
-        scenario: "install".into(),
-        options: Options {
-            skip: vec![Step::Switches, Step::Circuits, Step::Loads],
-            yes: true,
-            ..r.options()
-        },
-        report: None,
-    };
-    let Rig { app, sim, .. } = r;
-    app.shutdown();
+    let options = r.skipping(&[Step::Switches, Step::Circuits, Step::Loads]);
+    let (h, Closed { sim, dir: _dir }) = r.headless(options, None);
     // The unit falls silent for 1.6 s as the check is confirmed: the flaps' first
     // run stops on a stale position and pauses, as does what follows while it is
     // silent; never long enough (2.5 s) to lose communication.

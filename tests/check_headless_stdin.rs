@@ -14,26 +14,41 @@ use std::time::{Duration, Instant};
 mod common;
 use common::process::{EXE, Kill, lines, sim_tcp};
 
-/// `vpx-efis check --port ADDR ARGS…` with `stdin`, its config folder in `home`, and
-/// its stdout lines on a channel.
-fn check(
-    addr: &str,
-    args: &[&str],
-    stdin: Stdio,
-    home: &std::path::Path,
-) -> (Kill, mpsc::Receiver<String>) {
+/// A `vpx-efis check` running against `vpx-efis sim --tcp` with the install scenario.
+/// Dropped in field order: the check, the unit, then its folder.
+struct Check {
+    child: Kill,
+    /// Its standard output, a line at a time.
+    rx: mpsc::Receiver<String>,
+    _sim: Kill,
+    /// Its config folder, its reports in `reports/` there.
+    _home: tempfile::TempDir,
+}
+
+/// `vpx-efis check --port ADDR ARGS… --report DIR` with `stdin`.
+fn check(args: &[&str], stdin: Stdio) -> Check {
+    let (sim, addr) = sim_tcp("install");
+    let home = tempfile::tempdir().unwrap();
+    let reports = home.path().join("reports");
     let mut child = Command::new(EXE)
-        .args(["check", "--port", addr])
+        .args(["check", "--port", &addr])
         .args(args)
-        .env("XDG_CONFIG_HOME", home)
-        .env("APPDATA", home)
+        .arg("--report")
+        .arg(&reports)
+        .env("XDG_CONFIG_HOME", home.path())
+        .env("APPDATA", home.path())
         .stdin(stdin)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
         .expect("run vpx-efis check");
     let rx = lines(child.stdout.take().unwrap());
-    (Kill(child), rx)
+    Check {
+        child: Kill(child),
+        rx,
+        _sim: sim,
+        _home: home,
+    }
 }
 
 /// Lines until one contains `what` (that one included), or a failure naming them.
@@ -77,20 +92,12 @@ const NOBODY: &str = "Standard input is at its end (no terminal, /dev/null, a cl
 /// ends at once (exit 2), instead of waiting a day on a closed pipe.
 #[test]
 fn without_yes_and_nobody_to_answer_nothing_is_switched_on() {
-    let (_sim, addr) = sim_tcp("install");
-    let home = tempfile::tempdir().unwrap();
-    let reports = home.path().join("reports");
-    let (mut child, rx) = check(
-        &addr,
-        &["--report", reports.to_str().unwrap()],
-        // A pipe whose writer is gone at once: a closed pipe, as cron gives.
-        Stdio::piped(),
-        home.path(),
-    );
-    drop(child.0.stdin.take());
+    // A pipe whose writer is gone at once: a closed pipe, as cron gives.
+    let mut c = check(&[], Stdio::piped());
+    drop(c.child.0.stdin.take());
     let started = Instant::now();
-    let text = to_the_end(&rx, Duration::from_secs(20)).join("\n");
-    let status = child.0.wait().unwrap();
+    let text = to_the_end(&c.rx, Duration::from_secs(20)).join("\n");
+    let status = c.child.0.wait().unwrap();
     assert_eq!(status.code(), Some(2), "{text}");
     assert!(
         started.elapsed() < Duration::from_secs(15),
@@ -117,26 +124,9 @@ fn without_yes_and_nobody_to_answer_nothing_is_switched_on() {
 /// the unit's broadcasts (it spun a core at 100 % before).
 #[test]
 fn a_headless_check_with_stdin_at_its_end_is_idle_and_skips_the_switches() {
-    let secs: u64 = std::env::var("IDLE_CPU_SECS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(3);
-    let (_sim, addr) = sim_tcp("install");
-    let home = tempfile::tempdir().unwrap();
-    let reports = home.path().join("reports");
-    let (child, rx) = check(
-        &addr,
-        &[
-            "--yes",
-            "--skip",
-            "motors,loads",
-            "--report",
-            reports.to_str().unwrap(),
-        ],
-        Stdio::null(),
-        home.path(),
-    );
-    let before = until(&rx, "Confirmed:", Duration::from_secs(20)).join("\n");
+    let secs = common::cpu::idle_secs(3);
+    let c = check(&["--yes", "--skip", "motors,loads"], Stdio::null());
+    let before = until(&c.rx, "Confirmed:", Duration::from_secs(20)).join("\n");
     assert!(
         before.contains(&format!(
             "{NOBODY} The switch step, which needs a person to flip each switch and say \
@@ -148,42 +138,32 @@ fn a_headless_check_with_stdin_at_its_end_is_idle_and_skips_the_switches() {
         !before.contains("It will not ask you to flip"),
         "the plan knows the switches are skipped: {before}"
     );
-    let skipped = until(&rx, "Switch inputs", Duration::from_secs(5));
+    let skipped = until(&c.rx, "Switch inputs", Duration::from_secs(5));
     assert_eq!(
         skipped.last().map(String::as_str),
         Some("– Switch inputs: skipped"),
         "{skipped:?}"
     );
-    measure(&child, secs);
+    measure(&c.child, secs);
     // The circuits step goes on by itself: the first circuit is judged.
-    until(&rx, "EFIS (EFIS)", Duration::from_secs(15));
+    until(&c.rx, "EFIS (EFIS)", Duration::from_secs(15));
 }
 
-#[cfg(target_os = "linux")]
+/// The check's share of a core over `secs` seconds: 1 % at most. Measured where the
+/// OS lets a test read another process's CPU time (Linux).
 fn measure(child: &Kill, secs: u64) {
-    let pid = child.0.id();
-    let cpu0 = common::cpu::process_cpu_time(pid).unwrap();
-    let wall0 = Instant::now();
-    std::thread::sleep(Duration::from_secs(secs));
-    let cpu = common::cpu::process_cpu_time(pid).unwrap() - cpu0;
-    let share = cpu.as_secs_f64() / wall0.elapsed().as_secs_f64();
-    eprintln!(
-        "headless check, stdin at its end: {cpu:?} CPU in {secs} s = {:.2} % of a core",
-        share * 100.0
-    );
-    assert!(
-        share <= 0.01,
-        "the headless check used {:.1} % of a core",
-        share * 100.0
-    );
-}
-
-#[cfg(not(target_os = "linux"))]
-fn measure(_child: &Kill, _secs: u64) {
-    eprintln!(
-        "skipped: the CPU share of the headless check ({})",
-        common::cpu::process_cpu_time(0).unwrap_err()
-    );
+    match common::cpu::share_of_a_core(child.0.id(), secs) {
+        Ok(share) => {
+            let percent = share * 100.0;
+            eprintln!("headless check, stdin at its end: {percent:.2} % of a core in {secs} s");
+            assert!(
+                share <= 0.01,
+                "the headless check used {percent:.1} % of a core"
+            );
+        }
+        Err(why) if cfg!(target_os = "linux") => panic!("{why}"),
+        Err(why) => eprintln!("skipped: the CPU share of the headless check ({why})"),
+    }
 }
 
 /// "Is it lit?" headless: the question is printed, the light held on past its
@@ -192,23 +172,10 @@ fn measure(_child: &Kill, _secs: u64) {
 /// that cannot come.
 #[test]
 fn a_headless_check_holds_a_light_on_until_the_typed_answer() {
-    let (_sim, addr) = sim_tcp("install");
-    let home = tempfile::tempdir().unwrap();
-    let reports = home.path().join("reports");
-    let (mut child, rx) = check(
-        &addr,
-        &[
-            "--yes",
-            "--skip",
-            "switches,motors,loads",
-            "--report",
-            reports.to_str().unwrap(),
-        ],
-        Stdio::piped(),
-        home.path(),
-    );
-    let mut stdin = child.0.stdin.take().unwrap();
-    let asked = until(&rx, "Nav Lt: is it lit?", Duration::from_secs(30));
+    let args = ["--yes", "--skip", "switches,motors,loads"];
+    let mut c = check(&args, Stdio::piped());
+    let mut stdin = c.child.0.stdin.take().unwrap();
+    let asked = until(&c.rx, "Nav Lt: is it lit?", Duration::from_secs(30));
     assert_eq!(
         asked.last().unwrap(),
         "  Nav Lt: is it lit? Type y (lit), n (not lit) or s (skip the question); it \
@@ -217,21 +184,22 @@ fn a_headless_check_holds_a_light_on_until_the_typed_answer() {
     let asked_at = Instant::now();
     // Measured within the unit's two broadcasts, and then held: nothing more for
     // 7 s (the check kept a circuit on for 5 s at most before).
-    let measured = until(&rx, "Nav Lt (5A-1)", Duration::from_secs(6));
+    let measured = until(&c.rx, "Nav Lt (5A-1)", Duration::from_secs(6));
     assert!(measured.last().unwrap().contains("draws"), "{measured:?}");
-    let quiet = rx.recv_timeout(Duration::from_secs(7).saturating_sub(asked_at.elapsed()));
+    let quiet =
+        c.rx.recv_timeout(Duration::from_secs(7).saturating_sub(asked_at.elapsed()));
     assert!(quiet.is_err(), "said while the light was held: {quiet:?}");
     use std::io::Write as _;
     writeln!(stdin, "y").unwrap();
-    let answered = until(&rx, "Nav Lt: you saw", Duration::from_secs(3));
+    let answered = until(&c.rx, "Nav Lt: you saw", Duration::from_secs(3));
     assert_eq!(
         answered.last().unwrap(),
         "  Nav Lt: you saw it lit; switched back off at your answer"
     );
     // The next light is asked; standard input closes: nobody can answer it.
-    until(&rx, "is it lit?", Duration::from_secs(30));
+    until(&c.rx, "is it lit?", Duration::from_secs(30));
     drop(stdin);
-    let rest = to_the_end(&rx, Duration::from_secs(40)).join("\n");
+    let rest = to_the_end(&c.rx, Duration::from_secs(40)).join("\n");
     assert!(rest.contains(NOBODY), "{rest}");
     assert!(
         rest.contains("not asked if it is lit: nobody could answer (standard input ended)"),

@@ -95,15 +95,6 @@ impl Rig {
     }
 }
 
-/// How many DEVICE_POWER the page has written.
-fn powers_sent(app: &App) -> u64 {
-    app.model()
-        .link
-        .tx
-        .get("DEVICE_POWER")
-        .map_or(0, |s| s.count)
-}
-
 fn prompt(app: &App) -> String {
     app.check_view()
         .prompt
@@ -127,11 +118,15 @@ fn a_page_that_cannot_be_seen_switches_no_further_circuit_on() {
     let waiting = v.current.unwrap();
     assert_eq!(waiting, first + 1, "{:?}", v.prompt);
     let id = usize::from(v.circuits[waiting].id);
-    let sent = powers_sent(&r.app);
+    let sent = r.sent("DEVICE_POWER");
     let quiet = |r: &mut Rig, what: &str| {
         let end = Instant::now() + Duration::from_millis(2500);
         r.until(what, Duration::from_secs(5), |_| Instant::now() >= end);
-        assert_eq!(powers_sent(&r.app), sent, "{what}: a DEVICE_POWER went out");
+        assert_eq!(
+            r.sent("DEVICE_POWER"),
+            sent,
+            "{what}: a DEVICE_POWER went out"
+        );
         let on = r.app.model().live_devices(Instant::now()).unwrap().on;
         assert!(!on[id], "{what}: device {id} on");
     };
@@ -156,7 +151,7 @@ fn a_page_that_cannot_be_seen_switches_no_further_circuit_on() {
             .live_devices(Instant::now())
             .is_some_and(|d| d.on[id])
     });
-    assert_eq!(powers_sent(&r.app), sent + 1);
+    assert_eq!(r.sent("DEVICE_POWER"), sent + 1);
     r.key_with(KeyCode::Esc, KeyModifiers::NONE);
     r.until("the check to end", Duration::from_secs(20), |app| {
         app.check_finished()
@@ -166,11 +161,7 @@ fn a_page_that_cannot_be_seen_switches_no_further_circuit_on() {
 
 /// The Markdown report in `dir`, the only one there, with its CSV beside it.
 fn the_report(dir: &Path) -> String {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("no report folder {}: {e}", dir.display()))
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
+    let names = common::files::names_in(dir);
     assert_eq!(names.len(), 2, "{names:?}");
     assert!(
         names[0].starts_with("vpx-check-") && names[0].ends_with(".csv"),
@@ -182,20 +173,7 @@ fn the_report(dir: &Path) -> String {
 
 /// What every report of a check stopped mid-circuit must say.
 fn says_incomplete_and_what_was_left(md: &str, cause: &str, circuit: &str) {
-    assert!(
-        md.contains(&format!(
-            "**Result: INCOMPLETE.** The check was interrupted ({cause})"
-        )),
-        "{md}"
-    );
-    let after = md
-        .split("## Interrupted\n\n")
-        .nth(1)
-        .expect("an Interrupted section");
-    assert!(
-        after.starts_with(&format!("The check stopped: {cause}.\n")),
-        "{after}"
-    );
+    let after = common::report::interrupted(md, cause);
     // The page could not wait to see the circuit off: it says it sent the off and
     // that it was not confirmed, naming the circuit.
     assert!(

@@ -3,18 +3,22 @@
 //! are pinned as snapshots (the guide's sample is the first), and what a builder
 //! and an inspector look for is asserted line by line.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use vpx_efis::check::report::{self, About};
 use vpx_efis::check::state::{
-    CheckView, CircuitFinding, CircuitResult, Excluded, Input, Interruption, LeftBehind, LoadsView,
-    MotorFinding, MotorResult, NotFollowed, Outcome, Planned, Step, SwitchFinding, SwitchResult,
+    CheckView, CircuitFinding, CircuitResult, Input, Interruption, LeftBehind, LoadsView,
+    MotorFinding, NotFollowed, Outcome, Planned, Step, SwitchFinding, SwitchResult,
 };
 use vpx_efis::loads;
 use vpx_efis::model::{Motor, TrimKind};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{HardwareVersion, SwitchId, Version};
+
+mod common;
+use common::check_view::{Circuit, motor_result, suggested, the_starter};
+use common::files::names_in;
 
 /// 2026-12-01T18:30:12Z.
 fn when() -> SystemTime {
@@ -36,8 +40,7 @@ fn about() -> About {
     }
 }
 
-/// id, name, pin, breaker, switch.
-const CIRCUITS: [(u8, &str, &str, u8, SwitchId); 6] = [
+const CIRCUITS: [Circuit; 6] = [
     (0x02, "EFIS 1", "EFIS", 5, SwitchId::AlwaysOn),
     (0x04, "Nav Lt", "5A-1", 3, SwitchId::Input(2)),
     (0x05, "Strobe", "5A-2", 3, SwitchId::Input(2)),
@@ -58,54 +61,7 @@ fn result(i: usize, outcome: Outcome<CircuitFinding>) -> CircuitResult {
     }
 }
 
-const LOAD_FILE: &str = r#"
-alternator_amps = 25
-battery_amp_hours = 17
-
-[circuit.EFIS]
-name = "EFIS 1"
-ground = true
-taxi = true
-take_off = true
-cruise_day = true
-cruise_night = true
-landing = true
-emergency = true
-
-[circuit.5A-1]
-name = "Nav Lt"
-cruise_night = true
-landing = true
-emergency = true
-
-[circuit.5A-2]
-name = "Strobe"
-amps = 1.8
-taxi = true
-take_off = true
-cruise_day = true
-cruise_night = true
-landing = true
-
-[circuit.5A-7]
-name = "Taxi Light"
-amps = 3.5
-taxi = true
-
-[circuit.10A-1]
-name = "Landing Lt"
-amps = 7
-take_off = true
-landing = true
-
-[circuit.15A-1]
-name = "Pitot heat"
-amps = 9
-take_off = true
-cruise_day = true
-cruise_night = true
-landing = true
-"#;
+const LOAD_FILE: &str = include_str!("data/loads-25a-alternator.toml");
 
 /// A check that ran to the end and found one fault of each kind.
 fn finished() -> CheckView {
@@ -128,24 +84,11 @@ fn finished() -> CheckView {
             (Motor::Trim(TrimKind::Pitch), Duration::from_secs(4)),
         ],
         excluded: vec![
-            Excluded {
-                id: 0x01,
-                name: "Starter".into(),
-                pin: "Starter",
-                breaker: Some(5),
-                switch: Some(SwitchId::AlwaysOn),
-                why: "never touched: the starter".into(),
-                may_include: false,
-            },
-            Excluded {
-                id: 0x17,
-                name: "Pitot heat".into(),
-                pin: "15A-1",
-                breaker: Some(10),
-                switch: Some(SwitchId::Input(7)),
-                why: "suggested: the name has \"pitot\"".into(),
-                may_include: true,
-            },
+            the_starter(0x01),
+            suggested(
+                (0x17, "Pitot heat", "15A-1", 10, SwitchId::Input(7)),
+                "the name has \"pitot\"",
+            ),
         ],
         switches: vec![
             SwitchResult {
@@ -207,16 +150,16 @@ fn finished() -> CheckView {
             result(5, Outcome::Skipped("skipped by you".into())),
         ],
         motors: vec![
-            MotorResult {
-                motor: Motor::Flaps,
-                positions: vec![20, 60, 20, 20],
-                outcome: Outcome::Found(MotorFinding::Moves),
-            },
-            MotorResult {
-                motor: Motor::Trim(TrimKind::Pitch),
-                positions: vec![128, 110, 128, 128],
-                outcome: Outcome::Found(MotorFinding::Reversed),
-            },
+            motor_result(
+                Motor::Flaps,
+                &[20, 60, 20, 20],
+                Outcome::Found(MotorFinding::Moves),
+            ),
+            motor_result(
+                Motor::Trim(TrimKind::Pitch),
+                &[128, 110, 128, 128],
+                Outcome::Found(MotorFinding::Reversed),
+            ),
         ],
         to_cycle: vec![(0x12, "Boost pump".into(), SwitchId::Input(5))],
         ..CheckView::default()
@@ -324,15 +267,13 @@ fn a_finished_check_reports_every_result_and_what_is_left_to_fix() {
     ] {
         assert!(md.lines().any(|l| l == line), "no line {line:?} in\n{md}");
     }
-    assert!(
-        md.contains("| Taxi Light | 5A-7 | 4.3 A | measured (typed 3.5 A) |"),
-        "{md}"
-    );
-    assert!(md.contains("| Strobe | 5A-2 | 1.8 A | typed |"), "{md}");
-    assert!(
-        md.contains("- Battery: 17 Ah rated × 0.8 usable = 13.6 Ah"),
-        "{md}"
-    );
+    for said in [
+        "| Taxi Light | 5A-7 | 4.3 A | measured (typed 3.5 A) |",
+        "| Strobe | 5A-2 | 1.8 A | typed |",
+        "- Battery: 17 Ah rated × 0.8 usable = 13.6 Ah",
+    ] {
+        assert!(md.contains(said), "no {said:?} in\n{md}");
+    }
     assert!(!md.contains("INCOMPLETE"));
     assert!(!md.contains("## Interrupted"));
 }
@@ -416,18 +357,7 @@ fn the_reports_print_on_paper() {
 fn an_interrupted_check_says_incomplete_and_what_it_left_in_which_state() {
     let md = report::markdown(&interrupted(), &about());
     insta::assert_snapshot!("interrupted_markdown", md);
-    assert!(
-        md.contains("**Result: INCOMPLETE.** The check was interrupted (communication lost)"),
-        "{md}"
-    );
-    let after = md
-        .split("## Interrupted\n\n")
-        .nth(1)
-        .expect("an Interrupted section");
-    assert!(
-        after.starts_with("The check stopped: communication lost.\n"),
-        "{after}"
-    );
+    let after = common::report::interrupted(&md, "communication lost");
     assert!(
         after.contains("| Landing Lt | 10A-1 | unknown: ON when the link went |"),
         "{after}"
@@ -535,15 +465,6 @@ fn the_csv_has_a_row_for_each_measurement() {
     );
 }
 
-fn entries(dir: &Path) -> Vec<String> {
-    let mut e: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    e.sort();
-    e
-}
-
 #[test]
 fn the_files_are_named_with_the_time_and_never_replace_an_earlier_report() {
     let dir = tempfile::tempdir().unwrap();
@@ -566,7 +487,7 @@ fn the_files_are_named_with_the_time_and_never_replace_an_earlier_report() {
         dir.path().join("vpx-check-2026-12-01T1830Z-2.md")
     );
     assert_eq!(
-        entries(dir.path()),
+        names_in(dir.path()),
         [
             "vpx-check-2026-12-01T1830Z-2.csv",
             "vpx-check-2026-12-01T1830Z-2.md",
@@ -589,7 +510,7 @@ fn a_missing_folder_is_made_and_a_failed_write_leaves_no_file() {
     let w = vpx_efis::app::write_report(&missing, &finished(), &about()).unwrap();
     assert_eq!(w.markdown, missing.join("vpx-check-2026-12-01T1830Z.md"));
     assert_eq!(
-        entries(&missing),
+        names_in(&missing),
         [
             "vpx-check-2026-12-01T1830Z.csv",
             "vpx-check-2026-12-01T1830Z.md"
@@ -605,7 +526,7 @@ fn a_missing_folder_is_made_and_a_failed_write_leaves_no_file() {
         e.to_string().starts_with("cannot make the report folder "),
         "{e}"
     );
-    assert_eq!(entries(other.path()), ["checks"]);
+    assert_eq!(names_in(other.path()), ["checks"]);
 }
 
 /// Every section a report may have, in the order the writer writes them.

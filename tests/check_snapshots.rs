@@ -29,6 +29,7 @@ use vpx_efis::ui::state::{MotorRun, ViewState};
 mod themes;
 
 mod common;
+use common::check_view::{motor_result, never_touched, suggested, the_starter};
 use common::screen::{find, plain_text};
 
 mod aircraft {
@@ -99,6 +100,12 @@ mod aircraft {
         (a.model, a.t0 + Duration::from_millis(10_300))
     }
 
+    /// Ten seconds of the unit with nothing on but the EFIS, flaps up, trims near
+    /// neutral.
+    pub fn idle() -> (Model, Instant) {
+        live(0, &[EFIS_ON], (20, 128, 120))
+    }
+
     /// The same unit, silent for the last 5.3 s: every live value stale.
     pub fn stale(word: u16, on: &[(u8, u16)]) -> (Model, Instant) {
         let (m, now) = live(word, on, (20, 128, 120));
@@ -138,33 +145,15 @@ const MOTORS: [Motor; 3] = [
 
 fn excluded() -> Vec<Excluded> {
     vec![
-        Excluded {
-            id: 0,
-            name: "Starter".into(),
-            pin: "Starter",
-            breaker: Some(5),
-            switch: Some(SwitchId::AlwaysOn),
-            why: "never touched: the starter".into(),
-            may_include: false,
-        },
-        Excluded {
-            id: 2,
-            name: "Alternator".into(),
-            pin: "Field_Pri",
-            breaker: Some(5),
-            switch: Some(SwitchId::Input(1)),
-            why: "never touched: an alternator field".into(),
-            may_include: false,
-        },
-        Excluded {
-            id: 7,
-            name: "Pitot Heat".into(),
-            pin: "5A-4",
-            breaker: Some(5),
-            switch: Some(SwitchId::Input(7)),
-            why: "suggested: the name has \"pitot\"".into(),
-            may_include: true,
-        },
+        the_starter(0),
+        never_touched(
+            (2, "Alternator", "Field_Pri", 5, SwitchId::Input(1)),
+            "an alternator field",
+        ),
+        suggested(
+            (7, "Pitot Heat", "5A-4", 5, SwitchId::Input(7)),
+            "the name has \"pitot\"",
+        ),
     ]
 }
 
@@ -364,27 +353,15 @@ fn finished_circuits() -> Vec<CircuitResult> {
 }
 
 fn motors() -> CheckView {
+    let mut motors = finished_motors();
+    // The roll trim under test, half way through its runs.
+    motors[2].positions = vec![120, 131];
+    motors[2].outcome = Outcome::NotRun;
     CheckView {
         step: Step::Motors,
         switches: finished_switches(),
         circuits: finished_circuits(),
-        motors: vec![
-            MotorResult {
-                motor: Motor::Flaps,
-                positions: vec![20, 56, 20, 20],
-                outcome: Outcome::Found(MotorFinding::Moves),
-            },
-            MotorResult {
-                motor: Motor::Trim(TrimKind::Pitch),
-                positions: vec![128, 118, 140, 128],
-                outcome: Outcome::Found(MotorFinding::Reversed),
-            },
-            MotorResult {
-                motor: Motor::Trim(TrimKind::Roll),
-                positions: vec![120, 131],
-                outcome: Outcome::NotRun,
-            },
-        ],
+        motors,
         current: Some(2),
         prompt: Some(Prompt {
             todo: "Keep clear of the ailerons: roll trim runs left, then right.".into(),
@@ -397,22 +374,19 @@ fn motors() -> CheckView {
 }
 
 fn finished_motors() -> Vec<MotorResult> {
+    let found = |f| Outcome::Found(f);
     vec![
-        MotorResult {
-            motor: Motor::Flaps,
-            positions: vec![20, 56, 20, 20],
-            outcome: Outcome::Found(MotorFinding::Moves),
-        },
-        MotorResult {
-            motor: Motor::Trim(TrimKind::Pitch),
-            positions: vec![128, 118, 140, 128],
-            outcome: Outcome::Found(MotorFinding::Reversed),
-        },
-        MotorResult {
-            motor: Motor::Trim(TrimKind::Roll),
-            positions: vec![120, 120, 120, 120],
-            outcome: Outcome::Found(MotorFinding::NoMovement),
-        },
+        motor_result(Motor::Flaps, &[20, 56, 20, 20], found(MotorFinding::Moves)),
+        motor_result(
+            Motor::Trim(TrimKind::Pitch),
+            &[128, 118, 140, 128],
+            found(MotorFinding::Reversed),
+        ),
+        motor_result(
+            Motor::Trim(TrimKind::Roll),
+            &[120, 120, 120, 120],
+            found(MotorFinding::NoMovement),
+        ),
     ]
 }
 
@@ -429,38 +403,7 @@ fn to_cycle() -> Vec<(u8, String, SwitchId)> {
 
 /// The builder's load file for the aircraft: a small alternator, so take-off and
 /// landing are tight.
-const LOAD_FILE: &str = r#"
-alternator_amps = 18
-battery_amp_hours = 10
-
-[circuit.EFIS]
-name = "EFIS"
-amps = 2.4
-ground = true
-taxi = true
-take_off = true
-cruise_day = true
-cruise_night = true
-landing = true
-emergency = true
-
-[circuit.5A-1]
-name = "Nav Lt"
-cruise_night = true
-landing = true
-emergency = true
-
-[circuit.10A-1]
-name = "Landing Lt"
-taxi = true
-take_off = true
-landing = true
-
-[circuit.15A-1]
-name = "Fuel Pump"
-take_off = true
-landing = true
-"#;
+const LOAD_FILE: &str = include_str!("data/loads-18a-alternator.toml");
 
 fn analysed() -> LoadsView {
     let file = loads::file::parse(LOAD_FILE).unwrap();
@@ -705,152 +648,100 @@ fn circuits_is_it_lit() -> CheckView {
 
 /// Each state, with the motor run the page is streaming while it is drawn.
 #[allow(clippy::type_complexity)]
-fn every_state() -> Vec<(
-    &'static str,
-    CheckView,
-    Model,
-    ViewState,
-    Instant,
-    Option<MotorRun>,
-)> {
-    let p = page(Palette::Terminal);
+fn every_state() -> Vec<(&'static str, CheckView, Model, Instant, Option<MotorRun>)> {
     let on6 = [EFIS_ON, (0x11, 61), (0x12, 38)];
     let (live6, t6) = aircraft::live(SW6, &on6, (20, 128, 120));
     let (stale6, ts) = aircraft::stale(SW6, &on6);
     let landing = [EFIS_ON, (0x11, 69)];
     let (lc, tc) = aircraft::live(0, &landing, (20, 128, 120));
     let (lm, tm) = aircraft::live(0, &[EFIS_ON], (20, 117, 133));
-    let (idle, ti) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (idle, ti) = aircraft::idle();
     let roll_right = MotorRun {
         motor: Motor::Trim(TrimKind::Roll),
         direction: "right",
     };
     vec![
-        ("confirm", confirm(), idle.clone(), p.clone(), ti),
-        ("switches", switches(), live6, p.clone(), t6),
-        (
-            "switches_link_stale",
-            switches(),
-            stale6.clone(),
-            p.clone(),
-            ts,
-        ),
-        ("circuits", circuits(), lc.clone(), p.clone(), tc),
-        (
-            "circuits_trend",
-            circuits_trend(),
-            lc.clone(),
-            p.clone(),
-            tc,
-        ),
-        ("done_trend", done_trend(), idle.clone(), p.clone(), ti),
-        (
-            "circuits_is_it_lit",
-            circuits_is_it_lit(),
-            lc,
-            p.clone(),
-            tc,
-        ),
-        (
-            "circuits_link_stale",
-            circuits(),
-            stale6.clone(),
-            p.clone(),
-            ts,
-        ),
-        ("motors", motors(), lm, p.clone(), tm),
-        ("motors_link_stale", motors(), stale6.clone(), p.clone(), ts),
-        ("loads", loads(), idle.clone(), p.clone(), ti),
-        ("done", done(), idle.clone(), p.clone(), ti),
+        ("confirm", confirm(), idle.clone(), ti),
+        ("switches", switches(), live6, t6),
+        ("switches_link_stale", switches(), stale6.clone(), ts),
+        ("circuits", circuits(), lc.clone(), tc),
+        ("circuits_trend", circuits_trend(), lc.clone(), tc),
+        ("done_trend", done_trend(), idle.clone(), ti),
+        ("circuits_is_it_lit", circuits_is_it_lit(), lc, tc),
+        ("circuits_link_stale", circuits(), stale6.clone(), ts),
+        ("motors", motors(), lm, tm),
+        ("motors_link_stale", motors(), stale6.clone(), ts),
+        ("loads", loads(), idle.clone(), ti),
+        ("done", done(), idle.clone(), ti),
         (
             "done_scrolled_to_end",
             done_scrolled_to_end(),
             idle.clone(),
-            p.clone(),
             ti,
         ),
         (
             "done_report_not_written",
             done_report_not_written(),
             idle.clone(),
-            p.clone(),
             ti,
         ),
-        (
-            "done_load_analysis",
-            done_load_analysis(),
-            idle.clone(),
-            p.clone(),
-            ti,
-        ),
+        ("done_load_analysis", done_load_analysis(), idle.clone(), ti),
         (
             "circuits_paused_unseen",
             circuits_paused_unseen(),
             idle.clone(),
-            p.clone(),
             ti,
         ),
-        (
-            "circuits_long_pins",
-            circuits_long_pins(),
-            idle.clone(),
-            p.clone(),
-            ti,
-        ),
-        ("done_all_passed", all_passed(), idle.clone(), p.clone(), ti),
-        (
-            "done_no_load_file",
-            no_load_file(),
-            idle.clone(),
-            p.clone(),
-            ti,
-        ),
-        (
-            "interrupted_comm_lost",
-            interrupted(),
-            stale6,
-            p.clone(),
-            ts,
-        ),
-        ("interrupted_quit_clean", quit_clean(), idle, p, ti),
+        ("circuits_long_pins", circuits_long_pins(), idle.clone(), ti),
+        ("done_all_passed", all_passed(), idle.clone(), ti),
+        ("done_no_load_file", no_load_file(), idle.clone(), ti),
+        ("interrupted_comm_lost", interrupted(), stale6, ts),
+        ("interrupted_quit_clean", quit_clean(), idle, ti),
     ]
     .into_iter()
     // The motors step is drawn while the page streams roll trim right.
-    .map(|(name, v, m, p, now)| (name, v, m, p, now, (name == "motors").then_some(roll_right)))
+    .map(|(name, v, m, now)| (name, v, m, now, (name == "motors").then_some(roll_right)))
     .collect()
 }
 
-fn render(view: &CheckView, m: &Model, page: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
-    render_running(view, m, page, None, now, w, h)
+/// `view` drawn at `w`×`h` on a page in the terminal's own palette.
+fn render(view: &CheckView, m: &Model, now: Instant, w: u16, h: u16) -> Buffer {
+    render_running(view, m, None, now, w, h)
 }
 
+/// [`render`]'s text.
+fn screen(view: &CheckView, m: &Model, now: Instant, w: u16, h: u16) -> String {
+    plain_text(&render(view, m, now, w, h))
+}
+
+/// [`render`] while the page streams the motor run `running`.
 fn render_running(
     view: &CheckView,
     m: &Model,
-    page: &ViewState,
     running: Option<MotorRun>,
     now: Instant,
     w: u16,
     h: u16,
 ) -> Buffer {
+    let page = page(Palette::Terminal);
     let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    term.draw(|f| check::render(f, f.area(), view, m, page, running, now))
+    term.draw(|f| check::render(f, f.area(), view, m, &page, running, now))
         .unwrap();
     term.backend().buffer().clone()
 }
 
 #[test]
 fn every_step_at_80x24() {
-    for (name, v, m, p, now, run) in every_state() {
-        let buf = render_running(&v, &m, &p, run, now, 80, 24);
+    for (name, v, m, now, run) in every_state() {
+        let buf = render_running(&v, &m, run, now, 80, 24);
         insta::assert_snapshot!(format!("{name}_80x24"), plain_text(&buf));
     }
 }
 
 #[test]
 fn every_step_at_160x50() {
-    for (name, v, m, p, now, run) in every_state() {
-        let buf = render_running(&v, &m, &p, run, now, 160, 50);
+    for (name, v, m, now, run) in every_state() {
+        let buf = render_running(&v, &m, run, now, 160, 50);
         insta::assert_snapshot!(format!("{name}_160x50"), plain_text(&buf));
     }
 }
@@ -859,36 +750,19 @@ fn every_step_at_160x50() {
 /// snapshots above and the palette changes none of it).
 #[test]
 fn every_step_in_every_theme() {
-    for (name, v, m, p, now, run) in every_state() {
-        let buf = render_running(&v, &m, &p, run, now, 80, 24);
-        for palette in themes::PALETTES {
-            let painted = themes::painted(&buf, palette);
-            assert_eq!(
-                plain_text(&painted),
-                plain_text(&buf),
-                "painting changes no text"
-            );
-            insta::assert_snapshot!(
-                format!("theme_{}_{name}", palette.name().replace(' ', "_")),
-                themes::colour_map(&painted)
-            );
-        }
+    for (name, v, m, now, run) in every_state() {
+        let buf = render_running(&v, &m, run, now, 80, 24);
+        themes::assert_every_palette("check_snapshots", name, &buf);
     }
 }
 
 #[test]
 fn every_step_meets_wcag_contrast_in_both_themes() {
     let mut failures = Vec::new();
-    for (name, v, m, p, now, run) in every_state() {
+    for (name, v, m, now, run) in every_state() {
         for (w, h) in [(80, 24), (120, 40), (160, 50)] {
-            let buf = render_running(&v, &m, &p, run, now, w, h);
-            for palette in [Palette::Dark, Palette::Light] {
-                failures.extend(themes::contrast_failures(
-                    &format!("{name} {w}x{h}"),
-                    &themes::painted(&buf, palette),
-                    palette,
-                ));
-            }
+            let buf = render_running(&v, &m, run, now, w, h);
+            failures.extend(themes::contrast_in_both(&format!("{name} {w}x{h}"), &buf));
         }
     }
     themes::assert_contrast(failures);
@@ -904,8 +778,8 @@ fn cell(buf: &Buffer, on_line: &str, needle: &str) -> ratatui::buffer::Cell {
 /// its symbol and word, so without colour (mono) nothing is lost.
 #[test]
 fn marks_have_their_colour_and_always_their_word() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
-    let buf = render(&done(), &m, &page(Palette::Terminal), now, 160, 50);
+    let (m, now) = aircraft::idle();
+    let buf = render(&done(), &m, now, 160, 50);
     let t = plain_text(&buf);
     for (line, badge, word, dark, light) in [
         ("Nav Lt", "✓ PASS", Color::Green, 40, 22),
@@ -942,8 +816,8 @@ fn marks_have_their_colour_and_always_their_word() {
 /// drawn as a caution; a steady one keeps the plain style.
 #[test]
 fn a_current_changed_since_the_last_check_says_so_in_words_and_caution() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
-    let buf = render(&done_trend(), &m, &page(Palette::Terminal), now, 160, 50);
+    let (m, now) = aircraft::idle();
+    let buf = render(&done_trend(), &m, now, 160, 50);
     let t = plain_text(&buf);
     assert!(
         t.contains("last check 5.6 A, +23 %: changed since the last check"),
@@ -963,7 +837,7 @@ fn a_current_changed_since_the_last_check_says_so_in_words_and_caution() {
 #[test]
 fn the_input_under_test_is_on_a_badge_reversed_without_colour() {
     let (m, now) = aircraft::live(SW6, &[EFIS_ON, (0x11, 61), (0x12, 38)], (20, 128, 120));
-    let buf = render(&switches(), &m, &page(Palette::Terminal), now, 80, 24);
+    let buf = render(&switches(), &m, now, 80, 24);
     let badge = cell(&buf, "▶ 6●◀", "▶ 6●◀");
     assert_eq!(badge.bg, Color::Gray, "{}", plain_text(&buf));
     let mono = themes::painted(&buf, Palette::Mono);
@@ -988,13 +862,12 @@ fn the_input_under_test_is_on_a_badge_reversed_without_colour() {
 fn a_stale_link_never_looks_current() {
     let on6 = [EFIS_ON, (0x11, 61), (0x12, 38)];
     let (m, now) = aircraft::stale(SW6, &on6);
-    let p = page(Palette::Terminal);
     for (name, v) in [
         ("switches", switches()),
         ("circuits", circuits()),
         ("motors", motors()),
     ] {
-        let t = plain_text(&render(&v, &m, &p, now, 80, 24));
+        let t = screen(&v, &m, now, 80, 24);
         assert!(
             t.contains("C O M M U N I C A T I O N   L O S T"),
             "{name}:\n{t}"
@@ -1006,40 +879,36 @@ fn a_stale_link_never_looks_current() {
             );
         }
     }
-    let t = plain_text(&render(&switches(), &m, &p, now, 80, 24));
+    let t = screen(&switches(), &m, now, 80, 24);
     assert!(t.contains("inputs unknown: no live status"), "{t}");
-    let t = plain_text(&render(&circuits(), &m, &p, now, 80, 24));
+    let t = screen(&circuits(), &m, now, 80, 24);
     assert!(t.contains("no live DEVICE_STATUS: current unknown"), "{t}");
-    let t = plain_text(&render(&motors(), &m, &p, now, 80, 24));
+    let t = screen(&motors(), &m, now, 80, 24);
     assert!(t.contains("position unknown"), "{t}");
 }
 
 #[test]
 fn a_tight_breaker_is_amber_and_says_so() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, 69)], (20, 128, 120));
-    let buf = render(&circuits(), &m, &page(Palette::Terminal), now, 80, 24);
-    assert!(
-        plain_text(&buf).contains("86 % ≥ 80 %: tight"),
-        "{}",
-        plain_text(&buf)
-    );
-    assert_eq!(cell(&buf, "Now ON", "86 %").fg, Color::Yellow);
-    assert_eq!(cell(&buf, "Now ON", "█").fg, Color::Yellow);
-    // Within the breaker, the same bar is green and says so.
-    let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, 30)], (20, 128, 120));
-    let buf = render(&circuits(), &m, &page(Palette::Terminal), now, 80, 24);
-    assert_eq!(cell(&buf, "Now ON", "█").fg, Color::Green);
-    assert!(
-        plain_text(&buf).contains("38 % within"),
-        "{}",
-        plain_text(&buf)
-    );
+    // Landing Lt on its 8 A breaker: 6.9 A is tight; within it, the same bar is green
+    // and says so.
+    for (tenths, percent, words, colour) in [
+        (69, "86 %", "86 % ≥ 80 %: tight", Color::Yellow),
+        (30, "38 %", "38 % within", Color::Green),
+    ] {
+        let (m, now) = aircraft::live(0, &[EFIS_ON, (0x11, tenths)], (20, 128, 120));
+        let buf = render(&circuits(), &m, now, 80, 24);
+        let t = plain_text(&buf);
+        assert!(t.contains(words), "no {words:?} in\n{t}");
+        for mark in [percent, "█"] {
+            assert_eq!(cell(&buf, "Now ON", mark).fg, colour, "{mark} of {words:?}");
+        }
+    }
 }
 
 #[test]
 fn once_stopped_the_check_asks_nothing_more() {
     let (m, now) = aircraft::stale(SW6, &[EFIS_ON]);
-    let buf = render(&interrupted(), &m, &page(Palette::Terminal), now, 80, 24);
+    let buf = render(&interrupted(), &m, now, 80, 24);
     let t = plain_text(&buf);
     assert!(!t.contains("DO NOW"), "{t}");
     assert!(!t.contains("skip step"), "{t}");
@@ -1057,27 +926,20 @@ fn once_stopped_the_check_asks_nothing_more() {
 
 #[test]
 fn too_small_terminal_says_so() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (m, now) = aircraft::idle();
     for (w, h) in [(79, 24), (80, 23)] {
-        let t = plain_text(&render(
-            &switches(),
-            &m,
-            &page(Palette::Terminal),
-            now,
-            w,
-            h,
-        ));
+        let t = screen(&switches(), &m, now, w, h);
         assert!(t.contains("Terminal too small"), "{t}");
         assert!(t.contains(&format!("{w}×{h} now, needs 80×24.")), "{t}");
     }
-    let buf = render(&switches(), &m, &page(Palette::Terminal), now, 60, 20);
+    let buf = render(&switches(), &m, now, 60, 20);
     insta::assert_snapshot!(plain_text(&buf));
 }
 
 /// `draw` paints in the page's palette, and only inside its area.
 #[test]
 fn draw_paints_in_the_pages_theme_inside_its_area_only() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (m, now) = aircraft::idle();
     let mut term = Terminal::new(TestBackend::new(100, 30)).unwrap();
     let area = Rect::new(10, 3, 80, 24);
     term.draw(|f| check::draw(f, area, &done(), &m, &page(Palette::Dark), None, now))
@@ -1102,7 +964,7 @@ fn draw_paints_in_the_pages_theme_inside_its_area_only() {
 /// before the person confirms; one too long even for that says how many are hidden.
 #[test]
 fn a_long_plan_is_all_seen_or_says_what_is_hidden() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (m, now) = aircraft::idle();
     let many = |n: u8| -> CheckView {
         let mut v = confirm();
         v.plan = (0..n)
@@ -1111,20 +973,13 @@ fn a_long_plan_is_all_seen_or_says_what_is_hidden() {
         v
     };
     let v = many(24);
-    let t = plain_text(&render(&v, &m, &page(Palette::Terminal), now, 80, 24));
+    let t = screen(&v, &m, now, 80, 24);
     for i in 0..24 {
         assert!(t.contains(&format!("Circuit {i:02}")), "circuit {i}:\n{t}");
     }
     assert!(!t.contains("not shown"), "{t}");
     insta::assert_snapshot!(t);
-    let t = plain_text(&render(
-        &many(40),
-        &m,
-        &page(Palette::Terminal),
-        now,
-        80,
-        24,
-    ));
+    let t = screen(&many(40), &m, now, 80, 24);
     let shown = (0..40)
         .filter(|i| t.contains(&format!("Circuit {i:02}")))
         .count();
@@ -1136,14 +991,7 @@ fn a_long_plan_is_all_seen_or_says_what_is_hidden() {
         "{shown} shown:\n{t}"
     );
     // At 160×50 the same forty fit.
-    let t = plain_text(&render(
-        &many(40),
-        &m,
-        &page(Palette::Terminal),
-        now,
-        160,
-        50,
-    ));
+    let t = screen(&many(40), &m, now, 160, 50);
     assert!(
         (0..40).all(|i| t.contains(&format!("Circuit {i:02}"))),
         "{t}"
@@ -1154,11 +1002,11 @@ fn a_long_plan_is_all_seen_or_says_what_is_hidden() {
 /// clean installation: no green "nothing left to fix".
 #[test]
 fn a_stopped_check_with_nothing_failed_does_not_read_clean() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (m, now) = aircraft::idle();
     let mut v = quit_clean();
     v.switches
         .retain(|s| !matches!(s.outcome, Outcome::Found(_)));
-    let buf = render(&v, &m, &page(Palette::Terminal), now, 80, 24);
+    let buf = render(&v, &m, now, 80, 24);
     let t = plain_text(&buf);
     assert!(!t.contains("Nothing left to fix"), "{t}");
     assert!(
@@ -1167,8 +1015,8 @@ fn a_stopped_check_with_nothing_failed_does_not_read_clean() {
     );
     assert_eq!(cell(&buf, "Nothing failed", "Nothing").fg, Color::Yellow);
     // Every item run and none failed: then it is green.
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
-    let buf = render(&all_passed(), &m, &page(Palette::Terminal), now, 80, 24);
+    let (m, now) = aircraft::idle();
+    let buf = render(&all_passed(), &m, now, 80, 24);
     assert_eq!(cell(&buf, "Nothing left", "Nothing").fg, Color::Green);
 }
 
@@ -1177,9 +1025,9 @@ fn a_stopped_check_with_nothing_failed_does_not_read_clean() {
 /// much is above; the app's limit is where the screen stops.
 #[test]
 fn the_ended_check_scrolls_to_every_result_and_says_its_keys() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (m, now) = aircraft::idle();
     let p = page(Palette::Terminal);
-    let top = plain_text(&render(&done(), &m, &p, now, 80, 24));
+    let top = screen(&done(), &m, now, 80, 24);
     assert!(top.contains("more lines below"), "{top}");
     assert!(!top.contains("more lines above"), "{top}");
     assert!(top.contains("↑↓ PgUp PgDn Home End  scroll"), "{top}");
@@ -1188,7 +1036,7 @@ fn the_ended_check_scrolls_to_every_result_and_says_its_keys() {
     assert!(max > 20, "{max}");
     let at = |scroll| {
         let v = CheckView { scroll, ..done() };
-        plain_text(&render(&v, &m, &p, now, 80, 24))
+        screen(&v, &m, now, 80, 24)
     };
     let end = at(max);
     assert_eq!(end, at(max + 50), "kept at the end");
@@ -1212,16 +1060,9 @@ fn the_ended_check_scrolls_to_every_result_and_says_its_keys() {
 /// the key that writes it again; the results stay on the screen.
 #[test]
 fn a_report_not_written_says_why_and_the_key_to_write_it_again() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (m, now) = aircraft::idle();
     for (w, h) in [(80, 24), (120, 40)] {
-        let buf = render(
-            &done_report_not_written(),
-            &m,
-            &page(Palette::Terminal),
-            now,
-            w,
-            h,
-        );
+        let buf = render(&done_report_not_written(), &m, now, w, h);
         let t = plain_text(&buf);
         assert!(t.contains("✗ Report NOT written: "), "{t}");
         assert!(t.contains("w: write it again"), "{t}");
@@ -1235,15 +1076,8 @@ fn a_report_not_written_says_why_and_the_key_to_write_it_again() {
 /// chart against the alternator, and the circuits.
 #[test]
 fn the_load_analysis_is_seen_after_the_check() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
-    let t = plain_text(&render(
-        &done_load_analysis(),
-        &m,
-        &page(Palette::Terminal),
-        now,
-        120,
-        40,
-    ));
+    let (m, now) = aircraft::idle();
+    let t = screen(&done_load_analysis(), &m, now, 120, 40);
     for want in [
         "Load analysis",
         "Verdict",
@@ -1264,7 +1098,7 @@ fn the_load_analysis_is_seen_after_the_check() {
                 scroll,
                 ..done_load_analysis()
             };
-            plain_text(&render(&v, &m, &p, now, 80, 24))
+            screen(&v, &m, now, 80, 24)
         })
         .collect();
     for want in ["│ alternator 18 A", "Fuel Pump      15A-1", "emergency"] {
@@ -1276,19 +1110,16 @@ fn the_load_analysis_is_seen_after_the_check() {
 /// 120 columns, and the names beside it are not cut when there is room.
 #[test]
 fn circuit_rows_show_the_longest_pin_whole() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (m, now) = aircraft::idle();
     for (w, h) in [(80, 24), (120, 40)] {
-        let t = plain_text(&render(
-            &circuits_long_pins(),
-            &m,
-            &page(Palette::Terminal),
-            now,
-            w,
-            h,
-        ));
-        assert!(t.contains(" Field_Pri never touched"), "{t}");
-        assert!(t.contains("Starter       Starter   never touched"), "{t}");
-        assert!(t.contains("Alternator    Field_Pri never touched"), "{t}");
+        let t = screen(&circuits_long_pins(), &m, now, w, h);
+        for row in [
+            " Field_Pri never touched",
+            "Starter       Starter   never touched",
+            "Alternator    Field_Pri never touched",
+        ] {
+            assert!(t.contains(row), "{w}×{h}: no {row:?} in\n{t}");
+        }
         assert!(!t.contains("Field…") && !t.contains("Start…"), "{t}");
     }
 }
@@ -1297,9 +1128,9 @@ fn circuit_rows_show_the_longest_pin_whole() {
 /// with the load analysis' warnings apart.
 #[test]
 fn the_summary_counts_as_the_report_does() {
-    let (m, now) = aircraft::live(0, &[EFIS_ON], (20, 128, 120));
+    let (m, now) = aircraft::idle();
     for v in [done(), no_load_file()] {
-        let t = plain_text(&render(&v, &m, &page(Palette::Terminal), now, 160, 50));
+        let t = screen(&v, &m, now, 160, 50);
         let about = vpx_efis::check::report::About {
             when: std::time::UNIX_EPOCH,
             port: "/dev/ttyUSB0".into(),

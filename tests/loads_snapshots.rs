@@ -12,7 +12,6 @@ use ratatui::style::Color;
 use vpx_efis::check::state::LoadsView;
 use vpx_efis::loads::{self, Phase};
 use vpx_efis::ui::check::loads::render;
-use vpx_efis::ui::palette::Palette;
 
 mod themes;
 
@@ -21,62 +20,7 @@ use common::screen::text;
 
 /// The aircraft of `loads::analysis`'s hand-worked test: landing leaves 16 % of a
 /// 32 A alternator.
-const WARNED: &str = r#"
-alternator_amps = 32
-battery_amp_hours = 17
-
-[circuit.EFIS]
-name = "EFIS"
-amps = 3
-ground = true
-taxi = true
-take_off = true
-cruise_day = true
-cruise_night = true
-landing = true
-emergency = true
-
-[circuit.Field_Pri]
-name = "Alternator field"
-amps = 3
-ground = true
-taxi = true
-take_off = true
-cruise_day = true
-cruise_night = true
-landing = true
-
-[circuit.5A-1]
-name = "Nav lights"
-cruise_night = true
-landing = true
-emergency = true
-
-[circuit.10A-1]
-name = "Landing light"
-amps = 7.5
-taxi = true
-take_off = true
-landing = true
-
-[circuit.15A-1]
-name = "Pitot heat"
-amps = 12
-take_off = true
-cruise_day = true
-cruise_night = true
-landing = true
-
-[circuit.Trim_P]
-name = "Pitch trim"
-amps = 1
-taxi = 0.1
-take_off = 0.1
-cruise_day = 0.1
-cruise_night = 0.1
-landing = 0.1
-emergency = 0.1
-"#;
+const WARNED: &str = include_str!("data/loads-32a-alternator.toml");
 
 fn warned() -> LoadsView {
     let file = loads::file::parse(WARNED).unwrap();
@@ -165,14 +109,7 @@ fn every_state_as_text() {
 fn every_state_in_every_theme() {
     for (name, view, first, w, h) in every_state() {
         let buf = draw(view.as_ref(), first, w, h);
-        for palette in themes::PALETTES {
-            let painted = themes::painted(&buf, palette);
-            assert_eq!(text(&painted), text(&buf), "painting changes no text");
-            insta::assert_snapshot!(
-                format!("theme_{}_{name}", palette.name().replace(' ', "_")),
-                themes::colour_map(&painted)
-            );
-        }
+        themes::assert_every_palette("loads_snapshots", name, &buf);
     }
 }
 
@@ -181,13 +118,7 @@ fn every_state_meets_wcag_contrast_in_both_themes() {
     let mut failures = Vec::new();
     for (name, view, first, w, h) in every_state() {
         let buf = draw(view.as_ref(), first, w, h);
-        for palette in [Palette::Dark, Palette::Light] {
-            failures.extend(themes::contrast_failures(
-                name,
-                &themes::painted(&buf, palette),
-                palette,
-            ));
-        }
+        failures.extend(themes::contrast_in_both(name, &buf));
     }
     themes::assert_contrast(failures);
 }

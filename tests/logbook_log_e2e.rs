@@ -1,4 +1,4 @@
-//! Issue 33, shown: two installation checks of one aircraft against `vpx-efis sim
+//! Two installation checks of one aircraft against `vpx-efis sim
 //! --pty` as its own process, the Landing Lt's load changed between them on the sim's
 //! console (`load 17 7.6`) and a backup taken between them. The second report gives
 //! both currents and the change; `log --circuit` shows the two; `log --json` lists the
@@ -7,50 +7,17 @@
 // Needs a pseudo-terminal, which only Unix has.
 #![cfg(unix)]
 
-use std::io::{BufRead, BufReader, Write};
+use std::io::Write;
 use std::path::Path;
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Command, Output, Stdio};
 use std::time::Duration;
 
-/// Ends a child process when the test ends, however it ends.
-struct Kill(Child);
-
-impl Drop for Kill {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
+mod common;
+use common::process::{EXE, sim};
 
 /// Three circuits, the engine stopped, every switch off: EFIS always on, Nav Lt on
 /// switch 2, Landing Lt (device 17, pin 10A-1) on switch 5 drawing 6.1 A of 10 A.
-const SCENARIO: &str = r#"
-description = "logbook: three circuits for two checks"
-
-[electrical]
-battery_volts = 12.6
-
-[[device]]
-id = 2
-name = "EFIS"
-breaker = 5
-switch = 11
-load = 2.8
-
-[[device]]
-id = 4
-name = "Nav Lt"
-breaker = 3
-switch = 2
-load = 1.4
-
-[[device]]
-id = 17
-name = "Landing Lt"
-breaker = 10
-switch = 5
-load = 6.1
-"#;
+const SCENARIO: &str = include_str!("data/scenario-logbook.toml");
 
 /// The unit's other pins, each disabled (the alternator fields and the starter are
 /// not the check's to switch).
@@ -66,7 +33,7 @@ fn scenario_text() -> String {
 
 /// `vpx-efis ARGS` on the aircraft N123AB's logbook in `dir`, its output.
 fn vpx(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
+    Command::new(EXE)
         .env("VPX_EFIS_CONFIG", dir.join("config.toml"))
         .env("VPX_EFIS_LOGBOOK", dir.join("logbook.sqlite"))
         .env("VPX_EFIS_AIRCRAFT", "N123AB")
@@ -145,21 +112,8 @@ fn two_checks_with_a_load_changed_between_them_show_the_change_everywhere() {
     let d = dir.path();
     let scenario = d.join("logbook.toml");
     std::fs::write(&scenario, scenario_text()).unwrap();
-    let mut sim = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(["sim", "--pty", "--scenario"])
-        .arg(&scenario)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run the sim");
-    let mut console = sim.stdin.take().unwrap();
-    let sim_out = sim.stdout.take().unwrap();
-    let _sim = Kill(sim);
-    let mut port = String::new();
-    BufReader::new(sim_out).read_line(&mut port).unwrap();
-    let port = port.trim().to_string();
-    assert!(!port.is_empty(), "the sim did not start");
+    let mut unit = sim(&["--pty", "--scenario", &scenario.to_string_lossy()]);
+    let port = unit.line.clone();
 
     let (first, _) = check(d, &port, "first");
     // No check before it: no column for one.
@@ -180,8 +134,8 @@ fn two_checks_with_a_load_changed_between_them_show_the_change_everywhere() {
         ],
     );
     assert!(backup.status.success(), "{}", text(&backup));
-    writeln!(console, "load 17 7.6").unwrap();
-    console.flush().unwrap();
+    writeln!(unit.console, "load 17 7.6").unwrap();
+    unit.console.flush().unwrap();
     std::thread::sleep(Duration::from_millis(500));
 
     let (second, printed) = check(d, &port, "second");

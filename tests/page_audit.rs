@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEventKind};
 use serde_json::Value;
-use vpx_efis::app::AppOptions;
+use vpx_efis::app::{App, AppOptions};
 use vpx_efis::check::Options;
 use vpx_efis::check::state::Step;
 use vpx_efis::protocol::fault::FaultCode;
@@ -35,6 +35,11 @@ fn audit_lines(path: &Path) -> Vec<Value> {
         .iter()
         .map(|line| serde_json::from_str(line).unwrap_or_else(|e| panic!("not JSON ({e}): {line}")))
         .collect()
+}
+
+/// The page's loop for `ms` milliseconds.
+fn pump(app: &mut App, ms: u64) {
+    app.pump_until(Instant::now() + Duration::from_millis(ms));
 }
 
 fn has(lines: &[Value], origin: &str, command: &str, extra: impl Fn(&Value) -> bool) -> bool {
@@ -79,8 +84,7 @@ fn every_command_from_every_origin_leaves_its_line() {
     rig.key(KeyCode::Char('f'), KeyEventKind::Press);
     let end = Instant::now() + Duration::from_secs(5);
     while rig.sim.stats().powered[4] && Instant::now() < end {
-        rig.app
-            .pump_until(Instant::now() + Duration::from_millis(20));
+        pump(&mut rig.app, 20);
     }
 
     // A reset: GPS 1 (device 9) trips, and `r` resets it.
@@ -101,28 +105,18 @@ fn every_command_from_every_origin_leaves_its_line() {
     let start = Instant::now();
     rig.key(KeyCode::Char('u'), KeyEventKind::Press);
     while start.elapsed() < Duration::from_millis(1200) {
-        rig.app
-            .pump_until(Instant::now() + Duration::from_millis(33));
+        pump(&mut rig.app, 33);
         rig.key(KeyCode::Char('u'), KeyEventKind::Repeat);
     }
     rig.key(KeyCode::Char('u'), KeyEventKind::Release);
-    rig.app
-        .pump_until(Instant::now() + Duration::from_millis(300));
+    pump(&mut rig.app, 300);
 
     // An XFSp command: ECBSTAT ON for Nav Lt from a node on the network.
-    peer.wait_for_page(
-        Duration::from_secs(5),
-        || {
-            rig.app
-                .pump_until(Instant::now() + Duration::from_millis(30))
-        },
-        |_| true,
-    );
+    peer.wait_for_page(Duration::from_secs(5), || pump(&mut rig.app, 30), |_| true);
     peer.ecbstat(0x0777, 4, EcbState::On);
     let end = Instant::now() + Duration::from_secs(5);
     while !rig.sim.stats().powered[4] && Instant::now() < end {
-        rig.app
-            .pump_until(Instant::now() + Duration::from_millis(20));
+        pump(&mut rig.app, 20);
     }
 
     // The check: circuits only, until it has switched something.
@@ -142,29 +136,30 @@ fn every_command_from_every_origin_leaves_its_line() {
             "the check sent nothing: {:#?}",
             audit_lines(&audit)
         );
-        rig.app
-            .pump_until(Instant::now() + Duration::from_millis(50));
+        pump(&mut rig.app, 50);
     }
     rig.key(KeyCode::Esc, KeyEventKind::Press);
-    rig.app
-        .pump_until(Instant::now() + Duration::from_millis(300));
+    pump(&mut rig.app, 300);
 
     // Written off the page's thread: within moments of each command.
     let lines = audit_lines(&audit);
     let all = format!("{lines:#?}");
-    assert!(
-        has(
-            &lines,
+    for (origin, command, what) in [
+        (
             "key",
             "DEVICE_POWER: device 4 5A-1, power state off",
-            |_| true
+            "Nav Lt off by key",
         ),
-        "Nav Lt off by key: {all}"
-    );
-    assert!(
-        has(&lines, "key", "DEVICE_CLEAR", |_| true),
-        "GPS 1 reset: {all}"
-    );
+        ("key", "DEVICE_CLEAR", "GPS 1 reset"),
+        (
+            "xfsp",
+            "DEVICE_POWER: device 4 5A-1, power state on",
+            "Nav Lt on from the network",
+        ),
+        ("check", "DEVICE_POWER", "the check"),
+    ] {
+        assert!(has(&lines, origin, command, |_| true), "{what}: {all}");
+    }
     assert!(
         has(&lines, "key", "TRIM_MOVE", |l| l["run"] == "start"),
         "the run's start: {all}"
@@ -188,19 +183,6 @@ fn every_command_from_every_origin_leaves_its_line() {
         "a run is two lines, not one per resend: {all}"
     );
     assert!(
-        has(
-            &lines,
-            "xfsp",
-            "DEVICE_POWER: device 4 5A-1, power state on",
-            |_| true
-        ),
-        "Nav Lt on from the network: {all}"
-    );
-    assert!(
-        has(&lines, "check", "DEVICE_POWER", |_| true),
-        "the check: {all}"
-    );
-    assert!(
         lines
             .iter()
             .all(|l| l["time"].as_str().is_some_and(|t| t.ends_with('Z'))),
@@ -213,13 +195,8 @@ fn every_command_from_every_origin_leaves_its_line() {
         "queries are no commands: {all}"
     );
     // The same actions, in the page's event log with their origin.
-    let events: Vec<String> = rig
-        .app
-        .model()
-        .events
-        .iter()
-        .map(|e| e.text.clone())
-        .collect();
+    let model = rig.app.model();
+    let events: Vec<&str> = model.events.iter().map(|e| e.text.as_str()).collect();
     for words in [
         "key: Nav Lt off (DEVICE_POWER sent)",
         "key: GPS 1 reset (DEVICE_CLEAR sent)",
@@ -231,6 +208,7 @@ fn every_command_from_every_origin_leaves_its_line() {
             "{words:?} not in the event log: {events:#?}"
         );
     }
+    drop(model);
     let Rig { app, sim, .. } = rig;
     app.shutdown();
     sim.stop();

@@ -21,40 +21,15 @@ mod common;
 use common::rig::Rig;
 use common::screen::text;
 
-const SCENARIO: &str = r#"
-description = "setup e2e: a few devices, flaps fitted"
-[electrical]
-bus_volts = 14.0
-battery_volts = 12.6
-switches = [2]
-[[device]]
-id = 2
-name = "EFIS 1"
-switch = 11
-load = 3.0
-[[device]]
-id = 9
-name = "GPS 1"
-breaker = 2
-switch = 2
-load = 1.0
-[flap]
-enabled = true
-mode = "momentary"
-up = 20
-down = 220
-midpoint_1 = 90
-midpoint_2 = 160
-breaker = 7
-overspeed_position = 60
-max_speed = 100
-endpoint_duration = 0.5
-position = 20
-"#;
+/// A few devices, the flaps fitted.
+const SCENARIO: &str = include_str!("data/scenario-setup.toml");
 
 impl Rig {
-    fn new() -> Rig {
-        Rig::with_eeprom(None)
+    /// The page on the setup screen of device `id`, the unit's settings all heard.
+    fn on_setup_of(id: u8) -> Rig {
+        let mut rig = Rig::with_eeprom(None);
+        rig.open_setup_on(id);
+        rig
     }
 
     fn with_eeprom(eeprom: Option<std::path::PathBuf>) -> Rig {
@@ -108,12 +83,31 @@ impl Rig {
         assert_eq!(self.app.view().setup.forms.device.device_id, id);
     }
 
-    fn status(&self, i: usize) -> WriteStatus {
-        self.app.view().setup.writes[i].status.clone()
+    /// Pumps the page until the first write's status is as `f` wants, or fails after
+    /// `limit` naming `what`.
+    fn until_first_write(&mut self, what: &str, limit: Duration, f: impl Fn(&WriteStatus) -> bool) {
+        self.until(what, limit, |app| f(&app.view().setup.writes[0].status));
     }
 
-    fn sent(&self, name: &str) -> u64 {
-        self.app.model().link.tx.get(name).map_or(0, |s| s.count)
+    /// Tab to the setup page `page`.
+    fn tab_to(&mut self, page: Page) {
+        for _ in 0..8 {
+            if self.app.view().setup.page != page {
+                self.key(KeyCode::Tab);
+            }
+        }
+        assert_eq!(self.app.view().setup.page, page);
+    }
+
+    /// [`Rig::until_first_write`] saved, within 3 s.
+    fn until_saved(&mut self, what: &str) {
+        self.until_first_write(what, Duration::from_secs(3), |s| {
+            matches!(s, WriteStatus::Saved { .. })
+        });
+    }
+
+    fn status(&self, i: usize) -> WriteStatus {
+        self.app.view().setup.writes[i].status.clone()
     }
 
     fn render(&mut self) -> Buffer {
@@ -135,8 +129,7 @@ fn fg_of(buf: &Buffer, needle: &str) -> Color {
 
 #[test]
 fn an_edited_breaker_reaches_the_sim_and_is_saved_only_after_its_spec_ack() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.key(KeyCode::Down); // breaker
     rig.keys("4");
     rig.key(KeyCode::Down);
@@ -149,9 +142,7 @@ fn an_edited_breaker_reaches_the_sim_and_is_saved_only_after_its_spec_ack() {
         WriteStatus::Sending { attempt: 1, of: 3 },
         "not saved before the unit answered"
     );
-    rig.until("saved", Duration::from_secs(3), |app| {
-        matches!(app.view().setup.writes[0].status, WriteStatus::Saved { .. })
-    });
+    rig.until_saved("saved");
     assert_eq!(
         rig.status(0),
         WriteStatus::Saved {
@@ -193,8 +184,7 @@ fn an_edited_breaker_reaches_the_sim_and_is_saved_only_after_its_spec_ack() {
 
 #[test]
 fn refusals_are_in_words_whether_from_the_unit_or_before_sending() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     let before = rig.sim.stats().config.devices[9];
 
     // Typed past the pin's range: refused here, nothing goes out.
@@ -227,11 +217,8 @@ fn refusals_are_in_words_whether_from_the_unit_or_before_sending() {
         ],
         Instant::now(),
     );
-    rig.until("refused by the unit", Duration::from_secs(3), |app| {
-        matches!(
-            app.view().setup.writes[0].status,
-            WriteStatus::Refused { by_unit: true, .. }
-        )
+    rig.until_first_write("refused by the unit", Duration::from_secs(3), |s| {
+        matches!(s, WriteStatus::Refused { by_unit: true, .. })
     });
     match rig.status(0) {
         WriteStatus::Refused { why, .. } => {
@@ -256,8 +243,7 @@ fn refusals_are_in_words_whether_from_the_unit_or_before_sending() {
 
 #[test]
 fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.sim.inject(SimCommand::Silent(Duration::from_secs(6)));
     rig.key(KeyCode::Down);
     rig.keys("3");
@@ -271,8 +257,8 @@ fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going(
     assert!(t.elapsed() < Duration::from_millis(50));
     assert_eq!(rig.app.view().setup.page, Page::System);
     assert!(matches!(rig.status(0), WriteStatus::Sending { .. }));
-    rig.until("no answer", Duration::from_secs(5), |app| {
-        app.view().setup.writes[0].status == WriteStatus::NoAnswer
+    rig.until_first_write("no answer", Duration::from_secs(5), |s| {
+        *s == WriteStatus::NoAnswer
     });
     let took = start.elapsed();
     assert!(
@@ -290,15 +276,10 @@ fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going(
             .model()
             .is_unknown(vpx_efis::model::Setting::DeviceSpec(9))
     );
-    rig.until(
+    rig.until_first_write(
         "the re-read after the silence",
         Duration::from_secs(12),
-        |app| {
-            matches!(
-                app.view().setup.writes[0].status,
-                WriteStatus::ReadBack { .. }
-            )
-        },
+        |s| matches!(s, WriteStatus::ReadBack { .. }),
     );
     assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 3);
     assert_eq!(
@@ -317,11 +298,8 @@ fn a_silent_unit_is_retried_three_times_then_no_answer_and_the_page_keeps_going(
 
 #[test]
 fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_carries() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
-    rig.key(KeyCode::Tab);
-    rig.key(KeyCode::Tab);
-    assert_eq!(rig.app.view().setup.page, Page::Flaps);
+    let mut rig = Rig::on_setup_of(9);
+    rig.tab_to(Page::Flaps);
     rig.until("live flap position", Duration::from_secs(2), |app| {
         app.model().live_flap_trim(Instant::now()).is_some()
     });
@@ -378,8 +356,7 @@ fn a_flap_position_run_to_and_captured_on_the_setup_screen_is_what_flap_spec_car
 
 #[test]
 fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("unit.toml");
     rig.key(KeyCode::BackTab);
@@ -406,9 +383,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
     rig.key(KeyCode::Down);
     rig.keys("4");
     rig.key(KeyCode::Enter);
-    rig.until("the edit saved", Duration::from_secs(3), |app| {
-        matches!(app.view().setup.writes[0].status, WriteStatus::Saved { .. })
-    });
+    rig.until_saved("the edit saved");
     assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 4);
     rig.key(KeyCode::BackTab);
     rig.key(KeyCode::Down);
@@ -424,9 +399,7 @@ fn a_backup_saved_from_the_setup_screen_restores_an_edit_and_erase_asks_first() 
         d => panic!("{d:?} {:?}", rig.app.view().setup.message),
     }
     rig.keys("y");
-    rig.until("the backup applied", Duration::from_secs(3), |app| {
-        matches!(app.view().setup.writes[0].status, WriteStatus::Saved { .. })
-    });
+    rig.until_saved("the backup applied");
     assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 2);
 
     // EEPROM_ERASE: Esc sends nothing, y erases and the page re-reads.
@@ -508,7 +481,8 @@ fn row_with(buf: &Buffer, needle: &str) -> String {
 }
 
 impl Rig {
-    fn back_to_devices(&mut self) {
+    /// Esc back to the device list, drawn.
+    fn back_to_devices(&mut self) -> Buffer {
         for _ in 0..3 {
             if self.app.view().screen == Screen::Devices {
                 break;
@@ -516,31 +490,23 @@ impl Rig {
             self.key(KeyCode::Esc);
         }
         assert_eq!(self.app.view().screen, Screen::Devices);
+        self.render()
     }
 }
 
 #[test]
 fn a_breaker_whose_spec_ack_is_lost_is_unknown_then_reread_and_shown_as_the_unit_holds_it() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.sim.inject(SimCommand::DropSpecAcks(true));
     let queries_before = rig.sent("DEVICE_SPEC_QUERY");
     rig.key(KeyCode::Down); // breaker 2 A → 4 A
     rig.keys("4");
     rig.key(KeyCode::Enter);
     rig.until("three tries", Duration::from_secs(5), |app| {
-        app.model()
-            .link
-            .tx
-            .get("DEVICE_SPEC")
-            .map_or(0, |s| s.count)
-            == 3
+        common::app::sent(app, "DEVICE_SPEC") == 3
     });
-    rig.until("the write to end", Duration::from_secs(3), |app| {
-        !matches!(
-            app.view().setup.writes[0].status,
-            WriteStatus::Sending { .. }
-        )
+    rig.until_first_write("the write to end", Duration::from_secs(3), |s| {
+        !matches!(s, WriteStatus::Sending { .. })
     });
     // The unit stored it; only its answers were lost.
     assert_eq!(rig.sim.stats().config.devices[9].circuit_breaker, 4);
@@ -552,11 +518,8 @@ fn a_breaker_whose_spec_ack_is_lost_is_unknown_then_reread_and_shown_as_the_unit
             .contains("DEVICE_SPEC for 5A-6: the write went unanswered")),
         "the breaker was marked unknown"
     );
-    rig.until("the re-read's answer", Duration::from_secs(3), |app| {
-        matches!(
-            app.view().setup.writes[0].status,
-            WriteStatus::ReadBack { .. }
-        )
+    rig.until_first_write("the re-read's answer", Duration::from_secs(3), |s| {
+        matches!(s, WriteStatus::ReadBack { .. })
     });
     assert!(rig.sent("DEVICE_SPEC_QUERY") > queries_before);
     assert_eq!(
@@ -583,17 +546,14 @@ fn a_breaker_whose_spec_ack_is_lost_is_unknown_then_reread_and_shown_as_the_unit
         "{screen}"
     );
     assert!(!screen.contains("? A"), "{screen}");
-    rig.back_to_devices();
-    let buf = rig.render();
-    let row = row_with(&buf, "GPS 1");
+    let row = row_with(&rig.back_to_devices(), "GPS 1");
     assert!(row.contains(" 4A "), "device list CB column: {row}");
     assert!(!row.contains("2A"), "{row}");
 }
 
 #[test]
 fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answers() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
+    let mut rig = Rig::on_setup_of(9);
     rig.sim.inject(SimCommand::DropSpecAcks(true));
     for _ in 0..4 {
         rig.key(KeyCode::Down); // the name
@@ -603,14 +563,14 @@ fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answe
     }
     rig.keys("Nav 2");
     rig.key(KeyCode::Enter);
-    rig.until("the third try", Duration::from_secs(5), |app| {
-        app.view().setup.writes[0].status == WriteStatus::Sending { attempt: 3, of: 3 }
+    rig.until_first_write("the third try", Duration::from_secs(5), |s| {
+        *s == WriteStatus::Sending { attempt: 3, of: 3 }
     });
     // The line goes quiet as the last try times out: the first re-reads are lost too.
     rig.sim
         .inject(SimCommand::Silent(Duration::from_millis(1800)));
-    rig.until("no answer", Duration::from_secs(3), |app| {
-        app.view().setup.writes[0].status == WriteStatus::NoAnswer
+    rig.until_first_write("no answer", Duration::from_secs(3), |s| {
+        *s == WriteStatus::NoAnswer
     });
     assert!(
         rig.app
@@ -622,11 +582,8 @@ fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answe
     assert!(row_with(&buf, "Name").contains("? re-reading…"), "{screen}");
     assert!(!row_with(&buf, "Name").contains("GPS 1"), "{screen}");
     assert_eq!(fg_of(&buf, "no answer after 3 tries"), Color::Red);
-    rig.until("the re-read's answer", Duration::from_secs(8), |app| {
-        matches!(
-            app.view().setup.writes[0].status,
-            WriteStatus::ReadBack { .. }
-        )
+    rig.until_first_write("the re-read's answer", Duration::from_secs(8), |s| {
+        matches!(s, WriteStatus::ReadBack { .. })
     });
     assert!(rig.sent("DEVICE_NAME_QUERY") >= 1);
     assert_eq!(&rig.sim.stats().config.names[9][..6], b"Nav 2\0");
@@ -636,20 +593,15 @@ fn a_name_written_while_the_unit_falls_silent_shows_unknown_until_the_unit_answe
         "{}",
         text(&buf)
     );
-    rig.back_to_devices();
-    let buf = rig.render();
-    let screen = text(&buf);
+    let screen = text(&rig.back_to_devices());
     assert!(screen.contains("Nav 2"), "{screen}");
     assert!(!screen.contains("GPS 1"), "{screen}");
 }
 
 #[test]
 fn a_flap_spec_whose_spec_ack_is_lost_is_reread_and_the_list_shows_the_units_breaker() {
-    let mut rig = Rig::new();
-    rig.open_setup_on(9);
-    rig.key(KeyCode::Tab);
-    rig.key(KeyCode::Tab);
-    assert_eq!(rig.app.view().setup.page, Page::Flaps);
+    let mut rig = Rig::on_setup_of(9);
+    rig.tab_to(Page::Flaps);
     rig.sim.inject(SimCommand::DropSpecAcks(true));
     for _ in 0..9 {
         rig.key(KeyCode::Down); // the flap breaker, 7 A
@@ -657,11 +609,8 @@ fn a_flap_spec_whose_spec_ack_is_lost_is_reread_and_the_list_shows_the_units_bre
     rig.key(KeyCode::Right);
     assert_eq!(rig.app.view().setup.forms.flap.circuit_breaker, 8);
     rig.key(KeyCode::Enter);
-    rig.until("the re-read's answer", Duration::from_secs(8), |app| {
-        matches!(
-            app.view().setup.writes[0].status,
-            WriteStatus::ReadBack { .. }
-        )
+    rig.until_first_write("the re-read's answer", Duration::from_secs(8), |s| {
+        matches!(s, WriteStatus::ReadBack { .. })
     });
     assert_eq!(rig.sent("FLAP_SPEC"), 3);
     assert_eq!(rig.sim.stats().config.flap.circuit_breaker, 8);
@@ -739,12 +688,7 @@ fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answ
     );
     // The connect set (33 DEVICE_SPEC_QUERYs) is lost; the re-reads follow it.
     rig.until("a re-read", Duration::from_secs(6), |app| {
-        app.model()
-            .link
-            .tx
-            .get("DEVICE_SPEC_QUERY")
-            .map_or(0, |s| s.count)
-            > 33
+        common::app::sent(app, "DEVICE_SPEC_QUERY") > 33
     });
     assert!(
         connected.elapsed() < Duration::from_secs(6),
@@ -777,22 +721,16 @@ fn connected_to_a_silent_unit_the_device_page_writes_nothing_until_the_unit_answ
     );
     assert!(row_with(&buf, "Switch").contains("switch 2"), "{screen}");
     assert!(row_with(&buf, "Name").contains("GPS 1"), "{screen}");
-    for label in [
-        "Circuit breaker",
-        "Switch",
-        "Current fault",
-        "Name",
-        "Shown",
-    ] {
-        assert!(!row_with(&buf, label).contains("not yet read"), "{screen}");
+    // Every setting the unit holds for the pin, all but which pin it is.
+    for field in &Page::Device.fields()[1..] {
+        let row = row_with(&buf, field.label());
+        assert!(!row.contains("not yet read"), "{screen}");
     }
     assert_eq!(rig.sent("DEVICE_SPEC"), 0);
     // Now the breaker goes out with the unit's switch kept.
     rig.keys("3");
     rig.key(KeyCode::Enter);
-    rig.until("saved", Duration::from_secs(3), |app| {
-        matches!(app.view().setup.writes[0].status, WriteStatus::Saved { .. })
-    });
+    rig.until_saved("saved");
     let cfg = rig.sim.stats().config;
     assert_eq!(cfg.devices[9].circuit_breaker, 3);
     assert_eq!(cfg.devices[9].switch_id, SwitchId::Input(2), "switch kept");

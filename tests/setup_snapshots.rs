@@ -108,6 +108,14 @@ fn unit(t0: Instant) -> Model {
     m
 }
 
+/// The unit of [`unit`] heard at `t0`, and the setup view on `page` for 5A-1 (pin 4).
+fn on(page: Page) -> (Model, ViewState, Instant) {
+    let t0 = Instant::now();
+    let m = unit(t0);
+    let v = view(&m, page, 4);
+    (m, v, t0)
+}
+
 /// The setup view on `page` with every form showing what the unit holds.
 fn view(m: &Model, page: Page, device: u8) -> ViewState {
     let held = Held::from_model(m, device);
@@ -158,6 +166,12 @@ fn fg(buf: &Buffer, needle: &str) -> Color {
     panic!("{needle:?} is not on screen:\n{}", text(buf));
 }
 
+/// `change` made to the forms of the view's page, not yet sent.
+fn edit(v: &mut ViewState, change: impl FnOnce(&mut Forms)) {
+    change(&mut v.setup.forms);
+    v.setup.edited[v.setup.page.index()] = true;
+}
+
 fn select(v: &mut ViewState, field: Field) {
     v.setup.field = v
         .setup
@@ -170,20 +184,15 @@ fn select(v: &mut ViewState, field: Field) {
 
 #[test]
 fn device_page_80x24() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::Device, 4);
+    let (m, mut v, t0) = on(Page::Device);
     select(&mut v, Field::Name);
     insta::assert_snapshot!(text(&render(&m, &v, t0, 80, 24)));
 }
 
 #[test]
 fn device_page_edited_and_refused_by_the_unit_in_red() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::Device, 4);
-    v.setup.forms.device.circuit_breaker = 9;
-    v.setup.edited[Page::Device.index()] = true;
+    let (m, mut v, t0) = on(Page::Device);
+    edit(&mut v, |f| f.device.circuit_breaker = 9);
     select(&mut v, Field::Breaker);
     v.setup.writes = vec![WriteLine {
         what: "DEVICE_SPEC for 5A-1".into(),
@@ -202,9 +211,7 @@ fn device_page_edited_and_refused_by_the_unit_in_red() {
 
 #[test]
 fn device_page_saved_is_green_sending_is_yellow_no_answer_is_red() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::Device, 4);
+    let (m, mut v, t0) = on(Page::Device);
     v.setup.writes = vec![
         WriteLine {
             what: "DEVICE_SPEC for 5A-1".into(),
@@ -235,11 +242,8 @@ fn device_page_saved_is_green_sending_is_yellow_no_answer_is_red() {
 
 #[test]
 fn system_page() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::System, 4);
-    v.setup.forms.system.secondary_alternator = Some(7);
-    v.setup.edited[Page::System.index()] = true;
+    let (m, mut v, t0) = on(Page::System);
+    edit(&mut v, |f| f.system.secondary_alternator = Some(7));
     v.setup.writes = vec![WriteLine {
         what: "SYSTEM_SPEC".into(),
         status: WriteStatus::Refused {
@@ -257,11 +261,8 @@ fn system_page() {
 
 #[test]
 fn flaps_page_with_the_live_position_and_a_capture() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::Flaps, 4);
-    v.setup.forms.flap.midpoint_1 = 57;
-    v.setup.edited[Page::Flaps.index()] = true;
+    let (m, mut v, t0) = on(Page::Flaps);
+    edit(&mut v, |f| f.flap.midpoint_1 = 57);
     select(&mut v, Field::FlapMid1);
     v.setup.message = Some((
         Tone::Good,
@@ -278,9 +279,7 @@ fn flaps_page_with_the_live_position_and_a_capture() {
 
 #[test]
 fn pitch_and_roll_trim_pages() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::PitchTrim, 4);
+    let (m, mut v, t0) = on(Page::PitchTrim);
     select(&mut v, Field::TrimNeutral);
     insta::assert_snapshot!("pitch", text(&render(&m, &v, t0, 80, 24)));
     let mut v = view(&m, Page::RollTrim, 4);
@@ -290,17 +289,13 @@ fn pitch_and_roll_trim_pages() {
 
 #[test]
 fn wig_wag_page() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let v = view(&m, Page::WigWag, 4);
+    let (m, v, t0) = on(Page::WigWag);
     insta::assert_snapshot!(text(&render(&m, &v, t0, 80, 24)));
 }
 
 #[test]
 fn diagnostics_page_with_a_ping_time_and_a_silent_version() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::Diagnostics, 4);
+    let (m, mut v, t0) = on(Page::Diagnostics);
     v.setup.ping = Diagnostic::Answered {
         after: Duration::from_micros(12_400),
     };
@@ -314,9 +309,7 @@ fn diagnostics_page_with_a_ping_time_and_a_silent_version() {
 
 #[test]
 fn backup_page() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::Backup, 4);
+    let (m, mut v, t0) = on(Page::Backup);
     select(&mut v, Field::File);
     v.setup.message = Some((Tone::Good, "backup written to n123ab.toml".into()));
     insta::assert_snapshot!(text(&render(&m, &v, t0, 80, 24)));
@@ -324,9 +317,7 @@ fn backup_page() {
 
 #[test]
 fn erase_confirmation_names_what_is_lost_and_offers_a_backup() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::Backup, 4);
+    let (m, mut v, t0) = on(Page::Backup);
     v.setup.field = 4;
     v.setup.dialog = Dialog::Erase {
         missing: vec![],
@@ -347,9 +338,7 @@ fn erase_confirmation_names_what_is_lost_and_offers_a_backup() {
 
 #[test]
 fn load_confirmation_shows_the_differences() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let mut v = view(&m, Page::Backup, 4);
+    let (m, mut v, t0) = on(Page::Backup);
     v.setup.field = 2;
     v.setup.dialog = Dialog::Load {
         file: "n123ab.toml".into(),
@@ -393,8 +382,7 @@ fn device_page_refused_by_the_unit_on_a_5a_pin_says_table_20_once_with_1_to_5_a(
     let t2 = t0 + Duration::from_millis(40);
     apply(&mut m, t2, held);
     q.tick(&mut m, t2);
-    v.setup.forms.device = sent;
-    v.setup.edited[Page::Device.index()] = true;
+    edit(&mut v, |f| f.device = sent);
     select(&mut v, Field::Breaker);
     v.setup.writes = q.lines();
     let buf = render(&m, &v, t2, 120, 30);
@@ -413,11 +401,8 @@ fn device_page_refused_by_the_unit_on_a_5a_pin_says_table_20_once_with_1_to_5_a(
 #[test]
 fn a_breaker_left_unknown_shows_a_question_mark_on_the_setup_page_and_in_the_list() {
     use vpx_efis::model::Setting;
-    let t0 = Instant::now();
-    let mut m = unit(t0);
-    let mut v = view(&m, Page::Device, 4);
-    v.setup.forms.device.circuit_breaker = 4;
-    v.setup.edited[Page::Device.index()] = true;
+    let (mut m, mut v, t0) = on(Page::Device);
+    edit(&mut v, |f| f.device.circuit_breaker = 4);
     m.mark_unknown(Setting::DeviceSpec(4), t0);
     v.setup.writes = vec![WriteLine {
         what: "DEVICE_SPEC for 5A-1".into(),
@@ -448,9 +433,7 @@ fn a_breaker_left_unknown_shows_a_question_mark_on_the_setup_page_and_in_the_lis
 
 #[test]
 fn a_setting_heard_long_ago_is_shown_with_its_age() {
-    let t0 = Instant::now();
-    let m = unit(t0);
-    let v = view(&m, Page::System, 4);
+    let (m, v, t0) = on(Page::System);
     let fresh = text(&render(&m, &v, t0 + Duration::from_secs(60), 120, 30));
     let row = fresh.lines().find(|l| l.contains("Overvoltage")).unwrap();
     assert!(
@@ -496,14 +479,9 @@ fn a_pin_never_heard_since_connect_shows_nothing_as_the_units() {
     let screen = text(&buf);
     insta::assert_snapshot!(screen);
     assert!(screen.contains("try again when it answers"), "{screen}");
-    for label in [
-        "Circuit breaker",
-        "Switch",
-        "Current fault",
-        "Name",
-        "Shown",
-    ] {
-        let row = screen.lines().find(|l| l.contains(label)).unwrap();
+    // Every setting the unit holds for the pin, all but which pin it is.
+    for field in &Page::Device.fields()[1..] {
+        let row = screen.lines().find(|l| l.contains(field.label())).unwrap();
         assert!(row.contains("? not yet read from the unit"), "{row}");
     }
     let row = screen.lines().find(|l| l.contains("Switch")).unwrap();
@@ -532,15 +510,15 @@ fn disarm_confirmations_name_the_consequence() {
     st.main_bus_volts = SignedTenths(142);
     apply(&mut m, t0, st);
     let mut v = view(&m, Page::System, 4);
-    v.setup.forms.system.overvoltage_limit = OvervoltageLimit::V32;
-    v.setup.edited[Page::System.index()] = true;
+    edit(&mut v, |f| {
+        f.system.overvoltage_limit = OvervoltageLimit::V32
+    });
     let consequences = form::disarms(&[v.setup.forms.system.into()], &m, t0);
     v.setup.dialog = Dialog::Disarm { consequences };
     insta::assert_snapshot!("overvoltage_100x30", text(&render(&m, &v, t0, 100, 30)));
     insta::assert_snapshot!("overvoltage_80x24", text(&render(&m, &v, t0, 80, 24)));
     let mut v = view(&m, Page::Flaps, 4);
-    v.setup.forms.flap.enabled = false;
-    v.setup.edited[Page::Flaps.index()] = true;
+    edit(&mut v, |f| f.flap.enabled = false);
     let consequences = form::disarms(&[v.setup.forms.flap.into()], &m, t0);
     v.setup.dialog = Dialog::Disarm { consequences };
     insta::assert_snapshot!("flaps_80x24", text(&render(&m, &v, t0, 80, 24)));
@@ -553,9 +531,7 @@ fn typing_refused_in_words() {
     use std::time::SystemTime;
     use vpx_efis::setup::flow::{SetupFlow, SetupKey};
     let wall = SystemTime::UNIX_EPOCH;
-    let t0 = Instant::now();
-    let mut m = unit(t0);
-    let mut v = view(&m, Page::Device, 4);
+    let (mut m, mut v, t0) = on(Page::Device);
     let mut flow = SetupFlow::default();
     flow.tick(&mut v.setup, true, Some(4), &mut m, t0);
     select(&mut v, Field::Switch);

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
-use ratatui::buffer::Buffer;
+use ratatui::buffer::{Buffer, Cell};
 use ratatui::style::Color;
 
 use vpx_efis::link::{Crossing, RxItem};
@@ -167,12 +167,12 @@ fn lines(buf: &Buffer) -> Vec<String> {
 }
 
 /// The cell where `needle` starts on the first line that has `on_line`.
-fn cell(buf: &Buffer, on_line: &str, needle: &str) -> (u16, u16) {
+fn cell<'a>(buf: &'a Buffer, on_line: &str, needle: &str) -> &'a Cell {
     for (y, line) in lines(buf).iter().enumerate() {
         if line.contains(on_line)
             && let Some(i) = line.find(needle)
         {
-            return (line[..i].chars().count() as u16, y as u16);
+            return &buf[(line[..i].chars().count() as u16, y as u16)];
         }
     }
     panic!(
@@ -191,10 +191,7 @@ fn normal_rates_against_the_icd_with_colours() {
     );
     let buf = draw(&model, now, 140, 40);
     insta::assert_snapshot!(format!("{buf:?}"));
-    let fg = |line: &str, word: &str| {
-        let (x, y) = cell(&buf, line, word);
-        buf[(x, y)].fg
-    };
+    let fg = |line: &str, word: &str| cell(&buf, line, word).fg;
     assert_eq!(
         fg("SYSTEM_STATUS", " ok"),
         Color::Reset,
@@ -207,14 +204,17 @@ fn normal_rates_against_the_icd_with_colours() {
     // The newest frame is at the bottom of the list, and what we sent is cyan.
     let all = lines(&buf);
     let last_row = all.iter().rev().nth(2).unwrap();
-    assert!(
-        last_row.contains("6.920") && last_row.contains("FLAP_TRIM_STATUS"),
-        "{last_row}"
-    );
-    assert!(
-        last_row.contains("E7 7E"),
-        "bytes beside the fields: {last_row}"
-    );
+    // Its time, its name, and its bytes beside the fields.
+    for want in ["6.920", "FLAP_TRIM_STATUS", "E7 7E"] {
+        assert!(last_row.contains(want), "no {want:?} in {last_row}");
+    }
+}
+
+/// The page drawn at 140×40, and the rows of its list.
+fn listed(model: &Model, now: Instant) -> (Buffer, Vec<String>) {
+    let buf = draw(model, now, 140, 40);
+    let rows = list_rows(&buf);
+    (buf, rows)
 }
 
 fn list_rows(buf: &Buffer) -> Vec<String> {
@@ -252,11 +252,12 @@ fn filtered_by_direction_and_type_shows_only_those_and_says_so() {
     // Only what we sent: the two requests, in cyan.
     model.traffic.view.kind = KindFilter::All;
     model.traffic.view.dir = Some(Crossing::Tx);
-    let buf = draw(&model, now, 140, 40);
-    let rows = list_rows(&buf);
-    assert_eq!(rows.len(), 2, "{rows:#?}");
-    let (x, y) = cell(&buf, "cnt 2", "VERSION");
-    assert_eq!(buf[(x, y)].fg, Color::Cyan);
+    let (buf, rows) = listed(&model, now);
+    assert!(
+        rows.len() == 2 && rows.iter().all(|r| r.contains(" tx ")),
+        "{rows:#?}"
+    );
+    assert_eq!(cell(&buf, "cnt 2", "VERSION").fg, Color::Cyan);
 }
 
 #[test]
@@ -284,8 +285,10 @@ fn decoder_errors_appear_where_they_happened_in_red_and_yellow() {
         "in time order:\n{}",
         rows[i - 2..=i + 1].join("\n")
     );
-    let (x, y) = cell(&buf, "DROPPED BYTES", "DROPPED BYTES");
-    assert_eq!(buf[(x, y)].fg, Color::Yellow);
+    assert_eq!(
+        cell(&buf, "DROPPED BYTES", "DROPPED BYTES").fg,
+        Color::Yellow
+    );
     // The errors line under the rate table counts them even when scrolled away.
     assert!(
         lines(&buf)
@@ -295,11 +298,9 @@ fn decoder_errors_appear_where_they_happened_in_red_and_yellow() {
     // Errors only.
     model.traffic.view.cursor = None;
     model.traffic.view.kind = KindFilter::Errors;
-    let buf = draw(&model, now, 140, 40);
-    let rows = list_rows(&buf);
+    let (buf, rows) = listed(&model, now);
     assert_eq!(rows.len(), 2, "{rows:#?}");
-    let (x, y) = cell(&buf, "BAD CHECKSUM", "BAD CHECKSUM");
-    assert_eq!(buf[(x, y)].fg, Color::Red);
+    assert_eq!(cell(&buf, "BAD CHECKSUM", "BAD CHECKSUM").fg, Color::Red);
 }
 
 #[test]
@@ -345,14 +346,10 @@ fn search_highlights_matches_and_pause_holds_the_list_while_counting() {
         .map(|e| e.seq);
     model.traffic.view.cursor = version;
     let buf = draw(&model, now, 140, 40);
-    let (x, y) = cell(&buf, "ack flag 1", "PING");
-    assert_eq!(
-        (buf[(x, y)].fg, buf[(x, y)].bg),
-        (Color::Black, Color::Yellow)
-    );
-    let (x, y) = cell(&buf, "ack flag 0", "PING");
+    let hit = cell(&buf, "ack flag 1", "PING");
+    assert_eq!((hit.fg, hit.bg), (Color::Black, Color::Yellow));
     assert_ne!(
-        buf[(x, y)].bg,
+        cell(&buf, "ack flag 0", "PING").bg,
         Color::Yellow,
         "a non-match is not highlighted"
     );

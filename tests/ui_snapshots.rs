@@ -25,7 +25,6 @@ use common::screen::{find, plain_text};
 mod fixtures {
     use super::*;
     use vpx_efis::protocol::Packet;
-    use vpx_efis::protocol::device::DEVICE_COUNT;
     use vpx_efis::protocol::message::{
         DataIntegrityCode, DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag,
         FaultStatus, FlapTrimStatus, MiscFlags, OvervoltageLimit, SignedTenths, SwitchId,
@@ -58,7 +57,7 @@ mod fixtures {
         (0x17, 45),
     ];
 
-    pub use crate::common::configured::Unit;
+    pub use crate::common::configured::{Unit, faults};
 
     pub fn system(amps: u16, volts: i16) -> SystemStatus {
         SystemStatus {
@@ -81,19 +80,6 @@ mod fixtures {
 
     pub fn flap_trim() -> FlapTrimStatus {
         crate::common::configured::flap_trim((20, 128, 120))
-    }
-
-    pub fn faults(devices: &[(u8, FaultCode)], system: bool) -> FaultStatus {
-        let mut f = FaultStatus {
-            faulted: [false; DEVICE_COUNT],
-            system_fault: system,
-            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-        };
-        for &(id, code) in devices {
-            f.faulted[id as usize] = true;
-            f.codes[id as usize] = Some(code);
-        }
-        f
     }
 
     impl Unit {
@@ -359,11 +345,232 @@ fn view_selecting(id: u8) -> ViewState {
     }
 }
 
+/// A state a person can reach on the page: its name, the unit's history with the
+/// moment it is drawn at, the view, and the terminal's size.
+struct State {
+    name: &'static str,
+    unit: fn() -> (Model, Instant),
+    view: ViewState,
+    size: (u16, u16),
+}
+
+impl State {
+    /// Drawn with `view`, the controller as [`control_of`] gives it for this state.
+    fn draw_in(&self, view: &ViewState) -> Buffer {
+        let (m, now) = (self.unit)();
+        let (w, h) = self.size;
+        draw_with(&m, view, &control_of(self.name), now, w, h)
+    }
+}
+
+/// Every state a person can reach, by name: what the snapshots, the themes and the
+/// contrast check go over.
+fn every_state() -> Vec<State> {
+    let help = |v: ViewState| ViewState {
+        overlay: Overlay::Help,
+        ..v
+    };
+    let notice = |words: &str, v: ViewState| ViewState {
+        notice: Some(words.into()),
+        ..v
+    };
+    let s = |name, unit, view, size| State {
+        name,
+        unit,
+        view,
+        size,
+    };
+    let efis = || view_selecting(EFIS);
+    let none = ViewState::default;
+    vec![
+        s("normal_80x24", fixtures::normal, efis(), (80, 24)),
+        s("normal_120x40", fixtures::normal, efis(), (120, 40)),
+        s(
+            "normal_160x50",
+            fixtures::normal,
+            view_selecting(4),
+            (160, 50),
+        ),
+        s(
+            "wide_200x60",
+            fixtures::normal,
+            view_selecting(4),
+            (200, 60),
+        ),
+        s(
+            "faulted_device",
+            fixtures::faulted_device,
+            efis(),
+            (120, 40),
+        ),
+        s("reset_sent", fixtures::reset_sent, efis(), (80, 24)),
+        s("system_fault", fixtures::system_fault, efis(), (120, 40)),
+        s(
+            "dual_alternator",
+            fixtures::dual_alternator,
+            view_selecting(0x13),
+            (120, 40),
+        ),
+        s(
+            "trim_running",
+            fixtures::trim_running,
+            view_selecting(TRIM_P),
+            (120, 40),
+        ),
+        s(
+            "flaps_midpoints",
+            fixtures::flaps_midpoints,
+            view_selecting(FLAPS),
+            (120, 40),
+        ),
+        s("comm_lost_80x24", fixtures::comm_lost, efis(), (80, 24)),
+        s("comm_lost_160x50", fixtures::comm_lost, efis(), (160, 50)),
+        s("help_100x30", fixtures::normal, help(efis()), (100, 30)),
+        s("help_80x24", fixtures::normal, help(efis()), (80, 24)),
+        s("help_replay", fixtures::replay, help(efis()), (120, 40)),
+        s("too_small", fixtures::normal, none(), (60, 20)),
+        s(
+            "alphabetical",
+            fixtures::normal,
+            ViewState {
+                sort: SortOrder::Alphabetical,
+                ..efis()
+            },
+            (120, 40),
+        ),
+        s(
+            "never_connected",
+            fixtures::never_connected,
+            none(),
+            (80, 24),
+        ),
+        s(
+            "connected_silent",
+            fixtures::connected_silent,
+            none(),
+            (80, 24),
+        ),
+        s("port_lost", fixtures::port_lost, efis(), (120, 40)),
+        s("replay", fixtures::replay, none(), (120, 40)),
+        s(
+            "notice",
+            fixtures::normal,
+            notice(REFUSED, efis()),
+            (120, 40),
+        ),
+        s(
+            "moved_against_80x24",
+            fixtures::normal,
+            notice(MOVED_AGAINST, view_selecting(TRIM_P)),
+            (80, 24),
+        ),
+        s(
+            "moved_against_refused_120x40",
+            fixtures::normal,
+            notice(MOVED_AGAINST_REFUSED, view_selecting(TRIM_P)),
+            (120, 40),
+        ),
+        s(
+            "short_terminal_scrolled",
+            fixtures::normal,
+            view_selecting(TRIM_P),
+            (80, 24),
+        ),
+    ]
+}
+
+/// The state `name` of [`every_state`], drawn.
+fn drawn(name: &str) -> Buffer {
+    let state = every_state().into_iter().find(|s| s.name == name);
+    let state = state.unwrap_or_else(|| panic!("no state {name:?}"));
+    state.draw_in(&state.view)
+}
+
+/// How a snapshot holds a screen: its text, or the buffer's Debug form, which lists
+/// every cell's style, for the screens whose meaning is in their colours (Appendix A).
+#[derive(Clone, Copy, Debug)]
+enum Form {
+    Text,
+    Styles,
+}
+
+/// The screens pinned whole: (the snapshot's name, the state, its form).
+const PINNED: [(&str, &str, Form); 20] = [
+    ("normal_80x24", "normal_80x24", Form::Text),
+    ("normal_120x40_styles", "normal_120x40", Form::Styles),
+    ("normal_160x50", "normal_160x50", Form::Text),
+    (
+        "wide_terminal_gives_its_width_to_the_right_hand_panels",
+        "wide_200x60",
+        Form::Text,
+    ),
+    (
+        "faulted_device_names_the_fault_in_red_and_explains_it",
+        "faulted_device",
+        Form::Styles,
+    ),
+    (
+        "a_reset_not_yet_answered_is_said_beside_the_fault_not_shown_as_current",
+        "reset_sent",
+        Form::Styles,
+    ),
+    (
+        "system_fault_and_every_flag_in_words",
+        "system_fault",
+        Form::Text,
+    ),
+    (
+        "dual_alternator_running_green_standby_white",
+        "dual_alternator",
+        Form::Styles,
+    ),
+    (
+        "trim_running_shows_the_run_and_the_release_mode",
+        "trim_running",
+        Form::Text,
+    ),
+    (
+        "flaps_with_midpoints_overspeed_and_inhibit",
+        "flaps_midpoints",
+        Form::Text,
+    ),
+    (
+        "comm_lost_80x24_blanks_every_live_value",
+        "comm_lost_80x24",
+        Form::Styles,
+    ),
+    ("comm_lost_160x50", "comm_lost_160x50", Form::Text),
+    ("help_overlay_lists_every_key", "help_100x30", Form::Text),
+    ("help_overlay_80x24", "help_80x24", Form::Text),
+    ("too_small_terminal_says_so", "too_small", Form::Text),
+    (
+        "alphabetical_sort_keeps_flaps_and_trim_apart",
+        "alphabetical",
+        Form::Text,
+    ),
+    ("never_connected", "never_connected", Form::Text),
+    (
+        "connected_but_silent_is_communication_lost",
+        "connected_silent",
+        Form::Text,
+    ),
+    ("port_lost_says_it_is_reopening", "port_lost", Form::Text),
+    (
+        "short_terminal_scrolls_the_list_to_the_selection_and_says_what_is_hidden",
+        "short_terminal_scrolled",
+        Form::Text,
+    ),
+];
+
 #[test]
-fn normal_80x24() {
-    let (m, now) = fixtures::normal();
-    let buf = draw(&m, &view_selecting(EFIS), now, 80, 24);
-    insta::assert_snapshot!(plain_text(&buf));
+fn every_pinned_screen() {
+    for (snapshot, state, form) in PINNED {
+        let buf = drawn(state);
+        match form {
+            Form::Text => insta::assert_snapshot!(snapshot, plain_text(&buf)),
+            Form::Styles => insta::assert_snapshot!(snapshot, format!("{buf:?}")),
+        }
+    }
 }
 
 /// The detail pane gives the selected circuit's current at the aircraft's last check
@@ -407,17 +614,8 @@ fn the_detail_pane_shows_the_last_check() {
 }
 
 #[test]
-fn normal_160x50() {
-    let (m, now) = fixtures::normal();
-    let buf = draw(&m, &view_selecting(4), now, 160, 50);
-    insta::assert_snapshot!(plain_text(&buf));
-}
-
-#[test]
 fn normal_120x40_styles() {
-    let (m, now) = fixtures::normal();
-    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
-    insta::assert_snapshot!(format!("{buf:?}"));
+    let buf = drawn("normal_120x40");
     // Appendix A colours: green=on, white=off.
     assert_eq!(state_cell(&buf, "Nav Lt", "ON"), Color::Green);
     assert_eq!(state_cell(&buf, "Beacon", "OFF"), Color::White);
@@ -433,9 +631,7 @@ fn normal_120x40_styles() {
 
 #[test]
 fn faulted_device_names_the_fault_in_red_and_explains_it() {
-    let (m, now) = fixtures::faulted_device();
-    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
-    insta::assert_snapshot!(format!("{buf:?}"));
+    let buf = drawn("faulted_device");
     assert_eq!(state_cell(&buf, "EFIS", "SHORT_CIRCUIT"), Color::Red);
     let t = plain_text(&buf);
     assert!(t.contains("Device short circuit."), "{t}");
@@ -450,9 +646,7 @@ fn faulted_device_names_the_fault_in_red_and_explains_it() {
 /// what it waits for, and `r` is dimmed.
 #[test]
 fn a_reset_not_yet_answered_is_said_beside_the_fault_not_shown_as_current() {
-    let (m, now) = fixtures::reset_sent();
-    let buf = draw(&m, &view_selecting(EFIS), now, 80, 24);
-    insta::assert_snapshot!(format!("{buf:?}"));
+    let buf = drawn("reset_sent");
     assert_eq!(
         state_cell(&buf, "EFIS", "SHORT_CIRCUIT · reset sent"),
         Color::Yellow
@@ -479,8 +673,7 @@ fn reset_is_dimmed_unless_faulted_and_starter_cannot_be_switched() {
 #[test]
 fn system_fault_and_every_flag_in_words() {
     let (m, now) = fixtures::system_fault();
-    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
-    insta::assert_snapshot!(plain_text(&buf));
+    let buf = drawn("system_fault");
     // The flags wrap on screen, so their words are checked before wrapping.
     let flags: Vec<String> = ui::system_panel::flags(&m, now)
         .into_iter()
@@ -508,9 +701,7 @@ fn system_fault_and_every_flag_in_words() {
 
 #[test]
 fn dual_alternator_running_green_standby_white() {
-    let (m, now) = fixtures::dual_alternator();
-    let buf = draw(&m, &view_selecting(0x13), now, 120, 40);
-    insta::assert_snapshot!(format!("{buf:?}"));
+    let buf = drawn("dual_alternator");
     assert_eq!(state_cell(&buf, "Alternator ", "ON"), Color::Green);
     assert_eq!(state_cell(&buf, "Alternator 2", "OFF"), Color::White);
     let t = plain_text(&buf);
@@ -520,14 +711,7 @@ fn dual_alternator_running_green_standby_white() {
 
 #[test]
 fn trim_running_shows_the_run_and_the_release_mode() {
-    let (m, now) = fixtures::trim_running();
-    let view = ViewState {
-        selected: Some(TRIM_P),
-        ..Default::default()
-    };
-    let buf = draw_with(&m, &view, &control_of("trim_running"), now, 120, 40);
-    insta::assert_snapshot!(plain_text(&buf));
-    let t = plain_text(&buf);
+    let t = plain_text(&drawn("trim_running"));
     assert!(t.contains("▶ pitch trim up"), "{t}");
     assert!(t.contains("keys: release seen"), "{t}");
     assert!(
@@ -550,9 +734,7 @@ fn roll_trim_row_shows_left_and_right() {
 
 #[test]
 fn flaps_with_midpoints_overspeed_and_inhibit() {
-    let (m, now) = fixtures::flaps_midpoints();
-    let buf = draw(&m, &view_selecting(FLAPS), now, 120, 40);
-    insta::assert_snapshot!(plain_text(&buf));
+    let buf = drawn("flaps_midpoints");
     let t = plain_text(&buf);
     assert!(t.contains("FLAP OVERSPEED ALARM"), "{t}");
     assert!(t.contains("flap down inhibited"), "{t}");
@@ -570,9 +752,7 @@ fn flaps_with_midpoints_overspeed_and_inhibit() {
 
 #[test]
 fn comm_lost_80x24_blanks_every_live_value() {
-    let (m, now) = fixtures::comm_lost();
-    let buf = draw(&m, &view_selecting(EFIS), now, 80, 24);
-    insta::assert_snapshot!(format!("{buf:?}"));
+    let buf = drawn("comm_lost_80x24");
     let t = plain_text(&buf);
     assert!(t.contains("C O M M U N I C A T I O N   L O S T"), "{t}");
     let (x, y) = find(&buf, "C O M M", "C O M M");
@@ -582,13 +762,6 @@ fn comm_lost_80x24_blanks_every_live_value() {
         assert!(!t.contains(stale), "stale {stale:?} still shown:\n{t}");
     }
     assert!(t.contains("-- A") && t.contains("-- V"), "{t}");
-}
-
-#[test]
-fn comm_lost_160x50() {
-    let (m, now) = fixtures::comm_lost();
-    let buf = draw(&m, &view_selecting(EFIS), now, 160, 50);
-    insta::assert_snapshot!(plain_text(&buf));
 }
 
 #[test]
@@ -611,14 +784,7 @@ fn comm_lost_recovers_by_itself_when_data_returns() {
 
 #[test]
 fn help_overlay_lists_every_key() {
-    let (m, now) = fixtures::normal();
-    let view = ViewState {
-        overlay: Overlay::Help,
-        ..view_selecting(EFIS)
-    };
-    let buf = draw(&m, &view, now, 100, 30);
-    insta::assert_snapshot!(plain_text(&buf));
-    let t = plain_text(&buf);
+    let t = plain_text(&drawn("help_100x30"));
     for (key, _) in vpx_efis::control::keymap::HELP {
         assert!(t.contains(key), "help lacks {key:?}:\n{t}");
     }
@@ -630,12 +796,7 @@ fn help_overlay_lists_every_key() {
 
 #[test]
 fn help_overlay_in_replay_adds_the_replay_keys_and_says_read_only() {
-    let (m, now) = fixtures::replay();
-    let view = ViewState {
-        overlay: Overlay::Help,
-        ..view_selecting(EFIS)
-    };
-    let t = plain_text(&draw(&m, &view, now, 120, 40));
+    let t = plain_text(&drawn("help_replay"));
     for (key, what) in ui::help::REPLAY_KEYS {
         assert!(
             t.contains(key) && t.contains(what),
@@ -646,22 +807,9 @@ fn help_overlay_in_replay_adds_the_replay_keys_and_says_read_only() {
 }
 
 #[test]
-fn help_overlay_80x24() {
-    let (m, now) = fixtures::normal();
-    let view = ViewState {
-        overlay: Overlay::Help,
-        ..view_selecting(EFIS)
-    };
-    let buf = draw(&m, &view, now, 80, 24);
-    insta::assert_snapshot!(plain_text(&buf));
-}
-
-#[test]
 fn too_small_terminal_says_so() {
     let (m, now) = fixtures::normal();
-    let buf = draw(&m, &ViewState::default(), now, 60, 20);
-    insta::assert_snapshot!(plain_text(&buf));
-    assert!(plain_text(&buf).contains("needs 80×24"));
+    assert!(plain_text(&drawn("too_small")).contains("needs 80×24"));
     // One column or row short is already too small: the layout is not tried.
     for (w, h) in [(MIN_WIDTH - 1, MIN_HEIGHT), (MIN_WIDTH, MIN_HEIGHT - 1)] {
         assert!(plain_text(&draw(&m, &ViewState::default(), now, w, h)).contains("too small"));
@@ -679,8 +827,6 @@ fn alphabetical_sort_keeps_flaps_and_trim_apart() {
         sort: SortOrder::Alphabetical,
         ..view_selecting(EFIS)
     };
-    let buf = draw(&m, &view, now, 120, 40);
-    insta::assert_snapshot!(plain_text(&buf));
     let names: Vec<String> = ui::ordered_circuits(&m, &view, now)
         .into_iter()
         .map(|c| c.name)
@@ -722,60 +868,42 @@ fn pin_order_keeps_flaps_and_trim_apart() {
     );
 }
 
+/// What the page says of the unit it has not heard, or no longer hears, or reads
+/// from a file.
 #[test]
-fn never_connected() {
-    let (m, now) = fixtures::never_connected();
-    let buf = draw(&m, &ViewState::default(), now, 80, 24);
-    insta::assert_snapshot!(plain_text(&buf));
-    let t = plain_text(&buf);
-    assert!(
-        t.contains("N O   D A T A   Y E T") && t.contains("connecting"),
-        "{t}"
-    );
-}
-
-#[test]
-fn connected_but_silent_is_communication_lost() {
-    let (m, now) = fixtures::connected_silent();
-    let buf = draw(&m, &ViewState::default(), now, 80, 24);
-    insta::assert_snapshot!(plain_text(&buf));
-    assert!(plain_text(&buf).contains("nothing heard"));
-}
-
-#[test]
-fn port_lost_says_it_is_reopening() {
-    let (m, now) = fixtures::port_lost();
-    let buf = draw(&m, &view_selecting(EFIS), now, 120, 40);
-    insta::assert_snapshot!(plain_text(&buf));
-    let t = plain_text(&buf);
-    assert!(
-        t.contains("device disconnected") && t.contains("reopening"),
-        "{t}"
-    );
+fn the_link_state_is_said_in_words() {
+    for (state, words) in [
+        (
+            "never_connected",
+            &["N O   D A T A   Y E T", "connecting"][..],
+        ),
+        ("connected_silent", &["nothing heard"]),
+        ("port_lost", &["device disconnected", "reopening"]),
+    ] {
+        let t = plain_text(&drawn(state));
+        for w in words {
+            assert!(t.contains(w), "{state}: no {w:?} in\n{t}");
+        }
+    }
 }
 
 #[test]
 fn replay_is_labelled() {
-    let (m, now) = fixtures::replay();
-    let buf = draw(&m, &ViewState::default(), now, 120, 40);
-    let (x, y) = find(&buf, "REPLAY", "REPLAY");
-    assert_eq!(buf[(x, y)].bg, Color::Magenta);
-    let (m, now) = fixtures::normal();
-    let buf = draw(&m, &ViewState::default(), now, 120, 40);
-    let (x, y) = find(&buf, "SIMULATED", "SIMULATED");
-    assert_eq!(buf[(x, y)].bg, Color::Magenta);
+    for (state, label) in [("replay", "REPLAY"), ("normal_120x40", "SIMULATED")] {
+        let buf = drawn(state);
+        let (x, y) = find(&buf, label, label);
+        assert_eq!(buf[(x, y)].bg, Color::Magenta, "{state}");
+    }
 }
 
 #[test]
 fn notice_is_shown() {
-    let (m, now) = fixtures::normal();
-    let view = ViewState {
-        notice: Some("reset refused: EFIS is not faulted".into()),
-        ..view_selecting(EFIS)
-    };
-    let t = plain_text(&draw(&m, &view, now, 120, 40));
-    assert!(t.contains("reset refused: EFIS is not faulted"), "{t}");
+    let t = plain_text(&drawn("notice"));
+    assert!(t.contains(REFUSED), "{t}");
 }
+
+/// A reset refused, said on the key row.
+const REFUSED: &str = "reset refused: EFIS is not faulted";
 
 /// A motor that moved against its command, in the words (`control::against`) as the controller gives them.
 const MOVED_AGAINST: &str =
@@ -839,9 +967,7 @@ fn connection_state_kept_on_the_model() {
 
 #[test]
 fn short_terminal_scrolls_the_list_to_the_selection_and_says_what_is_hidden() {
-    let (m, now) = fixtures::normal();
-    let buf = draw(&m, &view_selecting(TRIM_P), now, 80, 24);
-    insta::assert_snapshot!(plain_text(&buf));
+    let buf = drawn("short_terminal_scrolled");
     let t = plain_text(&buf);
     assert!(t.contains("▲"), "{t}");
     let (x, y) = find(&buf, "Trim_P", "▶");
@@ -871,204 +997,6 @@ fn control_of(name: &str) -> ControlState {
     }
 }
 
-/// Every state above, as (name, model, view, now, width, height): what the themes and
-/// the contrast check go over.
-fn every_state() -> Vec<(&'static str, Model, ViewState, Instant, u16, u16)> {
-    let help = |v: ViewState| ViewState {
-        overlay: Overlay::Help,
-        ..v
-    };
-    let mut out = Vec::new();
-    let mut add = |name, (m, now): (Model, Instant), view: ViewState, w, h| {
-        out.push((name, m, view, now, w, h));
-    };
-    add(
-        "normal_80x24",
-        fixtures::normal(),
-        view_selecting(EFIS),
-        80,
-        24,
-    );
-    add(
-        "normal_120x40",
-        fixtures::normal(),
-        view_selecting(EFIS),
-        120,
-        40,
-    );
-    add(
-        "normal_160x50",
-        fixtures::normal(),
-        view_selecting(4),
-        160,
-        50,
-    );
-    add(
-        "wide_200x60",
-        fixtures::normal(),
-        view_selecting(4),
-        200,
-        60,
-    );
-    add(
-        "faulted_device",
-        fixtures::faulted_device(),
-        view_selecting(EFIS),
-        120,
-        40,
-    );
-    add(
-        "reset_sent",
-        fixtures::reset_sent(),
-        view_selecting(EFIS),
-        80,
-        24,
-    );
-    add(
-        "system_fault",
-        fixtures::system_fault(),
-        view_selecting(EFIS),
-        120,
-        40,
-    );
-    add(
-        "dual_alternator",
-        fixtures::dual_alternator(),
-        view_selecting(0x13),
-        120,
-        40,
-    );
-    add(
-        "trim_running",
-        fixtures::trim_running(),
-        ViewState {
-            selected: Some(TRIM_P),
-            ..Default::default()
-        },
-        120,
-        40,
-    );
-    add(
-        "flaps_midpoints",
-        fixtures::flaps_midpoints(),
-        view_selecting(FLAPS),
-        120,
-        40,
-    );
-    add(
-        "comm_lost_80x24",
-        fixtures::comm_lost(),
-        view_selecting(EFIS),
-        80,
-        24,
-    );
-    add(
-        "comm_lost_160x50",
-        fixtures::comm_lost(),
-        view_selecting(EFIS),
-        160,
-        50,
-    );
-    add(
-        "help_100x30",
-        fixtures::normal(),
-        help(view_selecting(EFIS)),
-        100,
-        30,
-    );
-    add(
-        "help_80x24",
-        fixtures::normal(),
-        help(view_selecting(EFIS)),
-        80,
-        24,
-    );
-    add(
-        "help_replay",
-        fixtures::replay(),
-        help(view_selecting(EFIS)),
-        120,
-        40,
-    );
-    add(
-        "too_small",
-        fixtures::normal(),
-        ViewState::default(),
-        60,
-        20,
-    );
-    add(
-        "alphabetical",
-        fixtures::normal(),
-        ViewState {
-            sort: SortOrder::Alphabetical,
-            ..view_selecting(EFIS)
-        },
-        120,
-        40,
-    );
-    add(
-        "never_connected",
-        fixtures::never_connected(),
-        ViewState::default(),
-        80,
-        24,
-    );
-    add(
-        "connected_silent",
-        fixtures::connected_silent(),
-        ViewState::default(),
-        80,
-        24,
-    );
-    add(
-        "port_lost",
-        fixtures::port_lost(),
-        view_selecting(EFIS),
-        120,
-        40,
-    );
-    add("replay", fixtures::replay(), ViewState::default(), 120, 40);
-    add(
-        "notice",
-        fixtures::normal(),
-        ViewState {
-            notice: Some("reset refused: EFIS is not faulted".into()),
-            ..view_selecting(EFIS)
-        },
-        120,
-        40,
-    );
-    add(
-        "moved_against_80x24",
-        fixtures::normal(),
-        ViewState {
-            notice: Some(MOVED_AGAINST.into()),
-            ..view_selecting(TRIM_P)
-        },
-        80,
-        24,
-    );
-    add(
-        "moved_against_refused_120x40",
-        fixtures::normal(),
-        ViewState {
-            notice: Some(MOVED_AGAINST_REFUSED.into()),
-            ..view_selecting(TRIM_P)
-        },
-        120,
-        40,
-    );
-    add(
-        "short_terminal_scrolled",
-        fixtures::normal(),
-        view_selecting(TRIM_P),
-        80,
-        24,
-    );
-    out
-}
-
 /// `view`, with the help overlay saying `palette` was asked for.
 fn in_theme(view: &ViewState, palette: Palette) -> ViewState {
     ViewState {
@@ -1084,19 +1012,10 @@ fn in_theme(view: &ViewState, palette: Palette) -> ViewState {
 /// snapshots above and does not change with the palette).
 #[test]
 fn every_state_in_every_theme() {
-    for (name, m, view, now, w, h) in every_state() {
+    for state in every_state() {
         for palette in themes::PALETTES {
-            let buf = draw_with(&m, &in_theme(&view, palette), &control_of(name), now, w, h);
-            let painted = themes::painted(&buf, palette);
-            assert_eq!(
-                plain_text(&painted),
-                plain_text(&buf),
-                "painting changes no text"
-            );
-            insta::assert_snapshot!(
-                format!("theme_{}_{name}", palette.name().replace(' ', "_")),
-                themes::colour_map(&painted)
-            );
+            let buf = state.draw_in(&in_theme(&state.view, palette));
+            themes::assert_painted("ui_snapshots", state.name, palette, &buf);
         }
     }
 }
@@ -1104,14 +1023,10 @@ fn every_state_in_every_theme() {
 #[test]
 fn every_state_meets_wcag_contrast_in_both_themes() {
     let mut failures = Vec::new();
-    for (name, m, view, now, w, h) in every_state() {
+    for state in every_state() {
         for palette in [Palette::Dark, Palette::Light] {
-            let buf = draw_with(&m, &in_theme(&view, palette), &control_of(name), now, w, h);
-            failures.extend(themes::contrast_failures(
-                name,
-                &themes::painted(&buf, palette),
-                palette,
-            ));
+            let buf = state.draw_in(&in_theme(&state.view, palette));
+            failures.extend(themes::contrast_in(state.name, palette, &buf));
         }
     }
     themes::assert_contrast(failures);
@@ -1208,9 +1123,7 @@ fn contrast_check_names_the_cell_the_state_and_both_colours() {
 /// no name column of blank space, and the flap gauge and plot get the width.
 #[test]
 fn wide_terminal_gives_its_width_to_the_right_hand_panels() {
-    let (m, now) = fixtures::normal();
-    let buf = draw(&m, &view_selecting(4), now, 200, 60);
-    insta::assert_snapshot!(plain_text(&buf));
+    let buf = drawn("wide_200x60");
     let (x, _) = find(&buf, "System", "System");
     assert!(x <= ui::LIST_MAX_WIDTH + 2, "right column starts at {x}");
     let (name_x, _) = find(&buf, "Nav Lt", "Nav Lt");
@@ -1228,15 +1141,9 @@ fn wide_terminal_gives_its_width_to_the_right_hand_panels() {
 /// background instead, each word in its usual colour, legible on any palette.
 #[test]
 fn terminal_theme_uses_only_the_terminals_own_colours_and_underlines_the_selection() {
-    for (name, m, view, now, w, h) in every_state() {
-        let buf = draw_with(
-            &m,
-            &in_theme(&view, Palette::Terminal),
-            &control_of(name),
-            now,
-            w,
-            h,
-        );
+    for state in every_state() {
+        let (name, w) = (state.name, state.size.0);
+        let buf = state.draw_in(&in_theme(&state.view, Palette::Terminal));
         let painted = themes::painted(&buf, Palette::Terminal);
         for (i, cell) in painted.content.iter().enumerate() {
             for c in [cell.fg, cell.bg] {
@@ -1346,13 +1253,16 @@ fn link_errors_80x24_wrap_inside_the_left_column() {
 /// the list's top line to the row above the keys.
 #[test]
 fn no_row_of_the_left_column_crosses_its_edge() {
-    let mut states: Vec<(&str, Model, ViewState, Instant)> = every_state()
+    let mut states: Vec<State> = every_state()
         .into_iter()
-        .filter(|(_, _, v, _, _, _)| v.overlay == Overlay::None)
-        .map(|(name, m, v, now, _, _)| (name, m, v, now))
+        .filter(|s| s.view.overlay == Overlay::None)
         .collect();
-    let (m, now) = link_with_errors();
-    states.push(("link_with_errors", m, view_selecting(EFIS), now));
+    states.push(State {
+        name: "link_with_errors",
+        unit: link_with_errors,
+        view: view_selecting(EFIS),
+        size: (80, 24),
+    });
     let sizes = [
         (80, 24),
         (100, 30),
@@ -1364,9 +1274,13 @@ fn no_row_of_the_left_column_crosses_its_edge() {
         (200, 60),
     ];
     let mut walked = 0;
-    for (name, m, view, now) in &states {
+    for State {
+        name, unit, view, ..
+    } in &states
+    {
+        let (m, now) = unit();
         for (w, h) in sizes {
-            let buf = draw_with(m, view, &control_of(name), *now, w, h);
+            let buf = draw_with(&m, view, &control_of(name), now, w, h);
             let rows: Vec<String> = (0..h)
                 .map(|y| (0..w).map(|x| buf[(x, y)].symbol()).collect())
                 .collect();

@@ -26,3 +26,8 @@ pub fn until(
         app.pump_until(now + Duration::from_millis(20));
     }
 }
+
+/// How many frames of the message `name` the page has written.
+pub fn sent(app: &App, name: &str) -> u64 {
+    app.model().link.tx.get(name).map_or(0, |s| s.count)
+}

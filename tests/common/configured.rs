@@ -6,12 +6,13 @@
 use std::time::{Duration, Instant};
 
 use vpx_efis::model::{Model, Source};
+use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::message::{
-    DeviceEnable, DeviceName, DeviceSpec, EnableFlag, FlapFlags, FlapMode, FlapSpec,
+    DeviceEnable, DeviceName, DeviceSpec, EnableFlag, FaultStatus, FlapFlags, FlapMode, FlapSpec,
     FlapTrimStatus, HardwareVersion, Message, Polarity, SwitchId, SystemSpec, Tenths, TrimFlags,
     TrimSpec, TrimType, Version,
 };
-use vpx_efis::protocol::{Packet, defaults};
+use vpx_efis::protocol::{FaultCode, Packet, defaults};
 
 /// A wired pin: id, name ("" for none), breaker in amps, switch.
 pub type Wired = (u8, &'static str, u8, SwitchId);
@@ -95,6 +96,21 @@ pub fn flap_trim(positions: (u8, u8, u8)) -> FlapTrimStatus {
         roll_trim_neutral: 120,
         ..Default::default()
     }
+}
+
+/// FAULT_STATUS with `devices` faulted, each with its code, and the system fault flag
+/// `system`.
+pub fn faults(devices: &[(u8, FaultCode)], system: bool) -> FaultStatus {
+    let mut f = FaultStatus {
+        faulted: [false; DEVICE_COUNT],
+        system_fault: system,
+        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+    };
+    for &(id, code) in devices {
+        f.faulted[id as usize] = true;
+        f.codes[id as usize] = Some(code);
+    }
+    f
 }
 
 /// Every connect-time answer of a unit wired as `wired`, in the order they are fed:

@@ -1,7 +1,22 @@
 //! A process's own CPU time, for the idle tests: read from the OS's accounting of
 //! that one process, so whatever else loads the machine does not count.
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
+
+/// How many seconds an idle test measures: `IDLE_CPU_SECS`, else `default`.
+pub fn idle_secs(default: u64) -> u64 {
+    let asked = std::env::var("IDLE_CPU_SECS").ok();
+    asked.and_then(|s| s.parse().ok()).unwrap_or(default)
+}
+
+/// The share of a core the running process `pid` uses over the next `secs` seconds.
+pub fn share_of_a_core(pid: u32, secs: u64) -> Result<f64, String> {
+    let cpu0 = process_cpu_time(pid)?;
+    let wall0 = Instant::now();
+    std::thread::sleep(Duration::from_secs(secs));
+    let cpu = process_cpu_time(pid)? - cpu0;
+    Ok(cpu.as_secs_f64() / wall0.elapsed().as_secs_f64())
+}
 
 /// User plus system CPU time of a running process, or why it cannot be read here.
 #[cfg(target_os = "linux")]

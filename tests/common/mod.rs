@@ -3,11 +3,14 @@
 #![allow(dead_code)]
 
 pub mod app;
+pub mod check_view;
 pub mod configured;
 pub mod cpu;
+pub mod files;
 pub mod live_unit;
 pub mod phone;
 pub mod process;
+pub mod report;
 #[cfg(unix)]
 pub mod rig;
 pub mod screen;

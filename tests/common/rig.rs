@@ -105,6 +105,11 @@ impl Rig {
             .pump_until(Instant::now() + Duration::from_millis(ms));
     }
 
+    /// How many frames of the message `name` the page has written.
+    pub fn sent(&self, name: &str) -> u64 {
+        super::app::sent(&self.app, name)
+    }
+
     /// A press of `code`.
     pub fn key(&mut self, code: KeyCode) -> Flow {
         self.key_with(code, KeyModifiers::NONE)

@@ -126,6 +126,48 @@ pub fn assert_contrast(failures: Vec<String>) {
     );
 }
 
+/// `buf` painted in `palette`: the text unchanged, and the colours pinned as the
+/// snapshot `<file>__theme_<palette>_<state>`.
+pub fn assert_painted(file: &str, state: &str, palette: Palette, buf: &Buffer) {
+    let painted = painted(buf, palette);
+    let mut cells = painted.content.iter().zip(&buf.content);
+    assert!(
+        cells.all(|(p, b)| p.symbol() == b.symbol()),
+        "{state}: painting {} changes the text",
+        palette.name()
+    );
+    let name = format!("{file}__theme_{}_{state}", palette.name().replace(' ', "_"));
+    in_snapshots(|| insta::assert_snapshot!(name, colour_map(&painted)));
+}
+
+/// [`assert_painted`] in every palette.
+pub fn assert_every_palette(file: &str, state: &str, buf: &Buffer) {
+    for palette in PALETTES {
+        assert_painted(file, state, palette, buf);
+    }
+}
+
+/// The contrast failures of `buf` painted in `palette`, named `state`.
+pub fn contrast_in(state: &str, palette: Palette, buf: &Buffer) -> Vec<String> {
+    contrast_failures(state, &painted(buf, palette), palette)
+}
+
+/// The contrast failures of `buf` painted in each colour palette, named `state`.
+pub fn contrast_in_both(state: &str, buf: &Buffer) -> Vec<String> {
+    [Palette::Dark, Palette::Light]
+        .into_iter()
+        .flat_map(|palette| contrast_in(state, palette, buf))
+        .collect()
+}
+
+/// Runs `f` with snapshots named in full by their caller, in `tests/snapshots`.
+fn in_snapshots(f: impl FnOnce()) {
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../snapshots");
+    settings.set_prepend_module_to_snapshot(false);
+    settings.bind(f);
+}
+
 thread_local! {
     static FRAMES: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
@@ -145,20 +187,11 @@ pub fn check_themes(file: &str, buf: &Buffer) {
         f.set(f.get() + 1);
         f.get()
     });
-    let mut failures = Vec::new();
-    for palette in [Palette::Dark, Palette::Light] {
-        failures.extend(contrast_failures(&test, &painted(buf, palette), palette));
-    }
-    assert_contrast(failures);
+    assert_contrast(contrast_in_both(&test, buf));
     let name = if n == 1 {
         format!("{file}__light__{test}")
     } else {
         format!("{file}__light__{test}_{n}")
     };
-    let mut settings = insta::Settings::clone_current();
-    settings.set_snapshot_path("../snapshots");
-    settings.set_prepend_module_to_snapshot(false);
-    settings.bind(|| {
-        insta::assert_snapshot!(name, colour_map(&painted(buf, Palette::Light)));
-    });
+    in_snapshots(|| insta::assert_snapshot!(name, colour_map(&painted(buf, Palette::Light))));
 }
