@@ -18,7 +18,7 @@ const STOPPED: &str =
     "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped";
 
 fn rig(at: u8) -> Rig {
-    let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(at, true), Rig::only(&[Step::Motors]));
     r.ctl = Controller::new(StreamerConfig {
         release_mode: ReleaseMode::KeyRelease,
         ..StreamerConfig::default()
@@ -199,7 +199,7 @@ fn a_reversed_trim_held_away_from_the_endpoint_behind_it_never_passes_it() {
             &format!("position = {at}\nreversed = true"),
         );
         assert!(install.contains(&format!("position = {at}\n")));
-        let mut r = Rig::with(&install, Rig::motors_only());
+        let mut r = Rig::with(&install, Rig::only(&[Step::Motors]));
         r.ctl = Controller::new(StreamerConfig {
             release_mode: ReleaseMode::KeyRelease,
             ..StreamerConfig::default()
@@ -232,7 +232,7 @@ fn a_reversed_trim_held_away_from_the_endpoint_behind_it_never_passes_it() {
 /// no gap over 250 ms, to where the person lets go (75 counts in 3 s).
 #[test]
 fn a_trim_wired_right_at_its_endpoint_probes_then_runs_smoothly() {
-    let mut r = Rig::with(&pitch_at(220, false), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(220, false), Rig::only(&[Step::Motors]));
     r.ctl = Controller::new(StreamerConfig {
         release_mode: ReleaseMode::KeyRelease,
         ..StreamerConfig::default()
@@ -360,7 +360,7 @@ fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
 /// (its repeats are not presses); let go, a press after the repeat gap does.
 #[test]
 fn a_held_key_never_confirms_only_a_fresh_press_does() {
-    let mut r = Rig::with(&pitch_at(128, true), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(128, true), Rig::only(&[Step::Motors]));
     r.ctl.against().record(PITCH, Direction::Up);
     let from = r.sent.len();
     let out = r.key('u', KeyEventKind::Press, false);
@@ -399,7 +399,7 @@ fn a_motor_that_never_shows_its_way_is_only_probed_while_held() {
         "position = 205\nstuck = true",
     );
     assert!(install.contains("position = 205\nstuck"));
-    let mut r = Rig::with(&install, Rig::motors_only());
+    let mut r = Rig::with(&install, Rig::only(&[Step::Motors]));
     r.ctl = Controller::new(StreamerConfig {
         release_mode: ReleaseMode::KeyRelease,
         ..StreamerConfig::default()

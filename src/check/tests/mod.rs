@@ -338,9 +338,14 @@ impl Rig {
         self.model.live_devices(self.now).unwrap().on[id as usize]
     }
 
-    fn switches_only() -> Options {
+    /// Only `steps` run: the others are skipped.
+    fn only(steps: &[Step]) -> Options {
         Options {
-            skip: vec![Step::Circuits, Step::Motors, Step::Loads],
+            skip: Step::SKIPPABLE
+                .iter()
+                .map(|&(s, _)| s)
+                .filter(|s| !steps.contains(s))
+                .collect(),
             ..Options::default()
         }
     }
@@ -348,24 +353,7 @@ impl Rig {
     /// The switch step with the motors step after it, so the flap and trim inputs
     /// are asked (with the motors skipped they are not: `plan::unasked`).
     fn switches_then_motors() -> Options {
-        Options {
-            skip: vec![Step::Circuits, Step::Loads],
-            ..Options::default()
-        }
-    }
-
-    fn circuits_only() -> Options {
-        Options {
-            skip: vec![Step::Switches, Step::Motors, Step::Loads],
-            ..Options::default()
-        }
-    }
-
-    fn motors_only() -> Options {
-        Options {
-            skip: vec![Step::Switches, Step::Circuits, Step::Loads],
-            ..Options::default()
-        }
+        Rig::only(&[Step::Switches, Step::Motors])
     }
 
     fn start(&mut self) {
@@ -485,7 +473,7 @@ fn nothing_starts_until_the_settings_are_heard_and_yes_confirms_by_itself() {
 
     let mut r = Rig::new(Options {
         yes: true,
-        ..Rig::circuits_only()
+        ..Rig::only(&[Step::Circuits])
     });
     r.run(20);
     assert_eq!(
@@ -499,7 +487,7 @@ fn nothing_starts_until_the_settings_are_heard_and_yes_confirms_by_itself() {
 
 #[test]
 fn a_switch_that_works_passes_once_its_circuits_followed() {
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     assert_eq!(r.view.step, Step::Switches);
     let inputs: Vec<Input> = r.view.switches.iter().map(|s| s.input).collect();
@@ -637,7 +625,7 @@ fn the_roll_trim_switch_is_asked_left_and_right() {
 
 #[test]
 fn another_input_changing_instead_is_a_crossed_pair() {
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     r.run(100);
     r.flip_on_off(3, 1500); // asked for 2, the person's switch 2 is wired to input 3
@@ -658,7 +646,7 @@ fn circuits_that_do_not_follow_say_why() {
     // Nav Lt held off by an earlier DEVICE_POWER (the check's own put-back), Strobe
     // shorted: flipping switch 2 turns on neither.
     let toml = scenario().replace("name = \"Strobe\"", "name = \"Strobe\"\nshort = true");
-    let mut r = Rig::with(&toml, Rig::switches_only());
+    let mut r = Rig::with(&toml, Rig::only(&[Step::Switches]));
     r.send(vec![Packet::request(
         9,
         crate::protocol::message::DevicePower {
@@ -749,7 +737,7 @@ fn skipping_an_input_and_the_rest_of_the_step() {
 
 #[test]
 fn each_circuit_is_measured_judged_and_put_back() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     r.run_until(40_000, |r| r.view.step == Step::Done);
     // EFIS is on already (always on): measured as it is, nothing sent.
@@ -875,7 +863,7 @@ fn a_draw_of_exactly_80_percent_of_the_breaker_is_tight() {
 
 #[test]
 fn a_unit_that_never_switches_the_circuit_on_is_said_so() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.deaf_to_power = true;
     r.start();
     r.run_until(10_000, |r| r.circuit(4) != &Outcome::NotRun);
@@ -889,7 +877,7 @@ fn a_unit_that_never_switches_the_circuit_on_is_said_so() {
 
 #[test]
 fn skipping_a_circuit_while_it_is_on_still_puts_it_back() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     r.run_until(10_000, |r| {
         r.view.current == r.view.circuits.iter().position(|c| c.id == 4) && r.on(4)
@@ -905,7 +893,7 @@ fn skipping_a_circuit_while_it_is_on_still_puts_it_back() {
 
 #[test]
 fn motors_run_each_way_through_the_controller_and_go_back() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.run_until(20_000, |r| r.view.step == Step::Done);
     for m in &r.view.motors {
@@ -967,7 +955,7 @@ impl Rig {
 /// check found them (20, their up endpoint), and the result says it was skipped.
 #[test]
 fn a_motor_skipped_during_its_first_run_is_run_back() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.past_probes();
     r.run(400);
@@ -993,7 +981,7 @@ fn a_motor_skipped_during_its_first_run_is_run_back() {
 /// flaps, not where the first try was cut.
 #[test]
 fn a_retry_after_a_pause_returns_the_motor_to_where_the_check_found_it() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.past_probes();
     r.run(300);
@@ -1025,7 +1013,7 @@ fn a_retry_after_a_pause_returns_the_motor_to_where_the_check_found_it() {
 fn the_motor_findings_from_positions() {
     use super::motors::judge;
     use crate::control::Direction::{Down, Up};
-    let r = Rig::new(Rig::motors_only());
+    let r = Rig::new(Rig::only(&[Step::Motors]));
     let ft = *r.model.live_flap_trim(r.now).unwrap(); // flaps up 20, down 220
     let f = Motor::Flaps;
     assert_eq!(
@@ -1070,7 +1058,7 @@ fn the_motor_findings_from_positions() {
 
 #[test]
 fn a_motor_fault_mid_run_is_its_finding_and_the_stop_goes_out() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.past_probes();
     r.run(200);
@@ -1116,7 +1104,7 @@ fn landing_light_on(r: &mut Rig) {
 
 #[test]
 fn quit_mid_circuit_switches_it_back_off_and_waits_to_see_it() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     landing_light_on(&mut r);
     r.interrupt(Cause::Quit, true);
     assert_eq!(r.powers(17), vec![true, false]);
@@ -1134,66 +1122,59 @@ fn quit_mid_circuit_switches_it_back_off_and_waits_to_see_it() {
     );
 }
 
+/// The check ends with Landing Lt on and cannot see it go back off (a signal it cannot
+/// wait after, silence, a link that cannot send): its off is sent all the same, and
+/// it is listed as left, in words that say why it is not known off.
 #[test]
-fn quit_that_cannot_wait_says_the_circuit_was_sent_off_unconfirmed() {
-    let mut r = Rig::new(Rig::circuits_only());
-    landing_light_on(&mut r);
-    r.interrupt(Cause::Signal("SIGTERM".into()), false);
-    assert!(r.flow.finished());
-    let i = r.view.interrupted.clone().unwrap();
-    assert_eq!(i.cause, "ended by a signal (SIGTERM)");
-    assert_eq!(
-        i.left,
-        vec![LeftBehind::new(
-            17,
-            "Landing Lt".to_string(),
-            "ON when the check stopped: DEVICE_POWER off sent, not confirmed".to_string()
-        )]
-    );
-    assert_eq!(r.powers(17), vec![true, false]);
-}
-
-#[test]
-fn communication_lost_mid_circuit_leaves_it_unknown() {
-    let mut r = Rig::new(Rig::circuits_only());
-    landing_light_on(&mut r);
-    r.unit
-        .apply(SimCommand::Silent(Duration::from_secs(10)), r.now);
-    r.run_until(4000, |r| r.flow.finished());
-    let i = r.view.interrupted.clone().unwrap();
-    assert_eq!(i.cause, "COMMUNICATION LOST");
-    assert_eq!(
-        i.left,
-        vec![LeftBehind::new(
-            17,
-            "Landing Lt".to_string(),
-            "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)"
-                .to_string()
-        )]
-    );
-    assert_eq!(r.powers(17), vec![true, false], "off is sent all the same");
-}
-
-#[test]
-fn a_link_that_cannot_send_ends_the_check() {
-    let mut r = Rig::new(Rig::circuits_only());
-    landing_light_on(&mut r);
-    r.model.note_write_error(r.now, "Input/output error".into());
-    r.cut = true;
-    r.run(10);
-    assert!(r.flow.finished());
-    let i = r.view.interrupted.clone().unwrap();
-    assert_eq!(i.cause, "the link could not send: Input/output error");
-    assert_eq!(i.left[0].id, 17);
-    assert_eq!(
-        i.left[0].state,
-        "unknown: it was ON; DEVICE_POWER off sent, not confirmed (the link could not send)"
-    );
+fn a_circuit_the_check_cannot_see_off_is_listed_as_left() {
+    type End = fn(&mut Rig);
+    let cases: [(&str, End, &str, &str); 3] = [
+        (
+            "a signal",
+            |r| r.interrupt(Cause::Signal("SIGTERM".into()), false),
+            "ended by a signal (SIGTERM)",
+            "ON when the check stopped: DEVICE_POWER off sent, not confirmed",
+        ),
+        (
+            "communication lost",
+            |r| {
+                r.unit
+                    .apply(SimCommand::Silent(Duration::from_secs(10)), r.now);
+                r.run_until(4000, |r| r.flow.finished());
+            },
+            "COMMUNICATION LOST",
+            "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)",
+        ),
+        (
+            "a link that cannot send",
+            |r| {
+                r.model.note_write_error(r.now, "Input/output error".into());
+                r.cut = true;
+                r.run(10);
+            },
+            "the link could not send: Input/output error",
+            "unknown: it was ON; DEVICE_POWER off sent, not confirmed (the link could not send)",
+        ),
+    ];
+    for (what, end, cause, state) in cases {
+        let mut r = Rig::new(Rig::only(&[Step::Circuits]));
+        landing_light_on(&mut r);
+        end(&mut r);
+        assert!(r.flow.finished(), "{what}");
+        let i = r.view.interrupted.clone().unwrap();
+        assert_eq!(i.cause, cause, "{what}");
+        assert_eq!(
+            i.left,
+            vec![LeftBehind::new(17, "Landing Lt".into(), state.into())],
+            "{what}"
+        );
+        assert_eq!(r.powers(17), vec![true, false], "{what}: the off is sent");
+    }
 }
 
 #[test]
 fn a_fault_elsewhere_mid_step_stops_the_check_and_puts_the_circuit_back() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     landing_light_on(&mut r);
     // EFIS (measured already, on by its switch) faults while Landing Lt is on.
     r.unit.apply(
@@ -1212,85 +1193,88 @@ fn a_fault_elsewhere_mid_step_stops_the_check_and_puts_the_circuit_back() {
     assert_eq!(r.circuit(18), &Outcome::NotRun);
 }
 
+/// The check ends mid motor run (the person quits, a fault elsewhere, a panic): the
+/// run is stopped for that reason, not as a quit the person never asked for; its stop
+/// goes out and nothing after it, and the motor is listed where it was left.
 #[test]
-fn quit_mid_motor_run_sends_its_stop_and_says_where_it_was_left() {
-    let mut r = Rig::new(Rig::motors_only());
-    r.start();
-    r.past_probes();
-    r.run(400);
-    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
-    let before = r.sent.len();
-    r.interrupt(Cause::Quit, true);
-    assert!(r.ctl.running().is_none());
-    assert!(
-        r.sent[before..]
+fn a_check_ended_mid_motor_run_stops_it_for_its_reason() {
+    type End = fn(&mut Rig);
+    let cases: [(&str, End, StopReason, &str); 3] = [
+        (
+            "quit",
+            |r| r.interrupt(Cause::Quit, true),
+            StopReason::Quit,
+            "stopped by you",
+        ),
+        (
+            "a fault elsewhere",
+            |r| {
+                r.unit.apply(
+                    SimCommand::Short {
+                        device: 2,
+                        on: true,
+                    },
+                    r.now,
+                );
+                r.run_until(5000, |r| r.flow.finished());
+            },
+            StopReason::UnitFault,
+            "EFIS faulted (SHORT_CIRCUIT)",
+        ),
+        (
+            "a panic",
+            |r| r.interrupt(Cause::Panic, false),
+            StopReason::Panic,
+            "the program failed",
+        ),
+    ];
+    let flap_moves = |r: &Rig, from: usize| -> Vec<bool> {
+        r.sent[from..]
             .iter()
-            .any(|(_, p)| matches!(p.message, Message::FlapMove(f) if !f.on)),
-        "the stop went out"
-    );
-    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Quit);
-    r.run(300);
-    assert!(
-        r.sent[before..]
-            .iter()
-            .all(|(_, p)| !matches!(p.message, Message::FlapMove(f) if f.on)),
-        "nothing after the stop"
-    );
-    let i = r.view.interrupted.clone().unwrap();
-    assert_eq!(i.left.len(), 1, "{:?}", i.left);
-    assert_eq!(i.left[0].id, 0);
-    assert!(
-        i.left[0].state.contains("it was at 20: not run back"),
-        "{:?}",
-        i.left
-    );
-}
-
-/// A fault elsewhere during a motor run stops the motor for that reason, not as a
-/// quit the person never asked for.
-#[test]
-fn a_fault_elsewhere_mid_motor_run_stops_it_for_that_reason() {
-    // A run long enough for the fault's broadcast to come during it.
-    let mut opts = Rig::motors_only();
-    opts.timing.motor_run = Duration::from_secs(4);
-    let mut r = Rig::new(opts);
-    r.start();
-    r.past_probes();
-    r.run(300);
-    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
-    r.unit.apply(
-        SimCommand::Short {
-            device: 2,
-            on: true,
-        },
-        r.now,
-    );
-    r.run_until(5000, |r| r.flow.finished());
-    assert!(r.ctl.running().is_none());
-    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::UnitFault);
-    assert_eq!(
-        r.view.interrupted.as_ref().unwrap().cause,
-        "EFIS faulted (SHORT_CIRCUIT)"
-    );
-}
-
-#[test]
-fn a_panic_stops_the_motor_with_the_panic_reason() {
-    let mut r = Rig::new(Rig::motors_only());
-    r.start();
-    r.past_probes();
-    r.run(300);
-    r.interrupt(Cause::Panic, false);
-    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Panic);
-    assert_eq!(
-        r.view.interrupted.as_ref().unwrap().cause,
-        "the program failed"
-    );
+            .filter_map(|(_, p)| match p.message {
+                Message::FlapMove(f) => Some(f.on),
+                _ => None,
+            })
+            .collect()
+    };
+    for (what, end, reason, cause) in cases {
+        // A run long enough for the fault's broadcast to come during it.
+        let mut opts = Rig::only(&[Step::Motors]);
+        opts.timing.motor_run = Duration::from_secs(4);
+        let mut r = Rig::new(opts);
+        r.start();
+        r.past_probes();
+        r.run(300);
+        assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps, "{what}");
+        let before = r.sent.len();
+        end(&mut r);
+        assert!(r.ctl.running().is_none(), "{what}");
+        assert_eq!(r.ctl.last_stop().unwrap().reason, reason, "{what}");
+        assert!(
+            flap_moves(&r, before).contains(&false),
+            "{what}: the stop went out"
+        );
+        let stopped = r.sent.len();
+        r.run(300);
+        assert!(
+            !flap_moves(&r, stopped).contains(&true),
+            "{what}: nothing after the stop"
+        );
+        let i = r.view.interrupted.clone().unwrap();
+        assert_eq!(i.cause, cause, "{what}");
+        assert_eq!(i.left.len(), 1, "{what}: {:?}", i.left);
+        assert_eq!(i.left[0].id, 0, "{what}");
+        assert!(
+            i.left[0].state.contains("it was at 20: not run back"),
+            "{what}: {:?}",
+            i.left
+        );
+    }
 }
 
 #[test]
 fn communication_lost_mid_motor_run_is_an_interruption() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.run(300);
     r.unit
@@ -1377,7 +1361,7 @@ impl Rig {
 /// words, and no DEVICE_POWER goes out for it.
 #[test]
 fn a_circuit_the_page_may_not_switch_is_not_switched_and_says_why() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     // EFIS (always on) is measured first, nothing sent; from now on no DEVICE_STATUS.
     r.run_dropping(9000, "DEVICE_STATUS");
@@ -1415,6 +1399,14 @@ fn pitch_at(pos: u8, reversed: bool) -> String {
     )
 }
 
+/// The test aircraft with the flaps at `pos`, between endpoints `up` and `down`.
+fn flaps_at_between(pos: u8, up: u8, down: u8) -> String {
+    scenario().replace(
+        "[flap]\nenabled = true\nup = 20\ndown = 220\nposition = 20",
+        &format!("[flap]\nenabled = true\nup = {up}\ndown = {down}\nposition = {pos}"),
+    )
+}
+
 impl Rig {
     /// Runs `ms` as [`Rig::run`], keeping the unit's own position of `motor` (its
     /// sensor, not what the page heard) every 10 ms.
@@ -1422,14 +1414,29 @@ impl Rig {
         let mut seen = Vec::new();
         for _ in 0..ms / 10 {
             self.run(10);
-            let s = self.unit.snapshot(self.now);
-            seen.push(match motor {
-                Motor::Flaps => s.flap_position,
-                Motor::Trim(TrimKind::Pitch) => s.pitch_trim_position,
-                Motor::Trim(TrimKind::Roll) => s.roll_trim_position,
-            });
+            seen.push(self.unit_at(motor));
         }
         seen
+    }
+
+    /// The unit's own position of `motor`: its sensor, not what the page heard.
+    fn unit_at(&self, motor: Motor) -> u8 {
+        let s = self.unit.snapshot(self.now);
+        match motor {
+            Motor::Flaps => s.flap_position,
+            Motor::Trim(TrimKind::Pitch) => s.pitch_trim_position,
+            Motor::Trim(TrimKind::Roll) => s.roll_trim_position,
+        }
+    }
+
+    /// `motor` was run back to `at`, where the check found it.
+    fn assert_back_at(&self, motor: Motor, at: u8) {
+        let back = self.unit_at(motor);
+        assert!(
+            (i32::from(back) - i32::from(at)).abs() <= super::motors::BACK_WITHIN,
+            "left at {back}, the check found it at {at}; {:?}",
+            self.progress
+        );
     }
 
     /// Starts the check and runs it to its end (at most `limit` × 10 ms), keeping
@@ -1464,7 +1471,7 @@ const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 /// with its stop on the wire, and the trim never passes it.
 #[test]
 fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
-    let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(35, false), Rig::only(&[Step::Motors]));
     let p = r
         .ctl
         .start(
@@ -1537,7 +1544,7 @@ fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_scr
     use crate::control::run_state::ReleaseMode;
     use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
     for setup in [false, true] {
-        let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());
+        let mut r = Rig::with(&pitch_at(35, false), Rig::only(&[Step::Motors]));
         r.ctl = Controller::new(StreamerConfig {
             release_mode: ReleaseMode::KeyRelease,
             ..StreamerConfig::default()
@@ -1578,7 +1585,7 @@ fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_scr
 #[test]
 fn the_first_direction_is_toward_the_side_with_more_room() {
     for (pos, first_down) in [(200u8, false), (60, true)] {
-        let mut r = Rig::with(&pitch_at(pos, false), Rig::motors_only());
+        let mut r = Rig::with(&pitch_at(pos, false), Rig::only(&[Step::Motors]));
         r.start();
         r.run_until(20_000, |r| r.view.step == Step::Done);
         let m = &r.view.motors[1];
@@ -1597,7 +1604,7 @@ fn the_first_direction_is_toward_the_side_with_more_room() {
 #[test]
 fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
     for at in [35, 38] {
-        let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+        let mut r = Rig::with(&pitch_at(at, true), Rig::only(&[Step::Motors]));
         let seen = r.check_watching(PITCH, 2000);
         let lowest = *seen.iter().min().unwrap();
         assert!(
@@ -1614,12 +1621,7 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
             "{:?}",
             r.progress
         );
-        let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
-        assert!(
-            (back - i32::from(at)).abs() <= super::motors::BACK_WITHIN,
-            "from {at}: left at {back}; {m:?} {:?}",
-            r.progress
-        );
+        r.assert_back_at(PITCH, at);
     }
 }
 
@@ -1633,7 +1635,7 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
 #[test]
 fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
     for (at, floor) in [(30u8, 29u8), (31, 30)] {
-        let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+        let mut r = Rig::with(&pitch_at(at, true), Rig::only(&[Step::Motors]));
         let seen = r.check_watching(PITCH, 3000);
         let lowest = *seen.iter().min().unwrap();
         assert!(
@@ -1666,7 +1668,7 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
 /// within a probe or two, runs the rest of the test run, and passes.
 #[test]
 fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
-    let mut r = Rig::with(&pitch_at(30, false), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(30, false), Rig::only(&[Step::Motors]));
     let seen = r.check_watching(PITCH, 3000);
     assert!(*seen.iter().min().unwrap() >= 30, "passed its up endpoint");
     let m = &r.view.motors[1];
@@ -1677,11 +1679,7 @@ fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
         r.progress
     );
     assert!(m.positions[1] >= 40, "the rest of the run was made: {m:?}");
-    let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
-    assert!(
-        (back - 30).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}"
-    );
+    r.assert_back_at(PITCH, 30);
 }
 
 /// Flaps between close endpoints (up 20, down 50) at 38, with 1.5 s runs (30 counts
@@ -1689,11 +1687,8 @@ fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
 /// having moved they pass.
 #[test]
 fn flap_runs_longer_than_their_room_stop_at_both_endpoints() {
-    let toml = scenario().replace(
-        "[flap]\nenabled = true\nup = 20\ndown = 220\nposition = 20",
-        "[flap]\nenabled = true\nup = 20\ndown = 50\nposition = 38",
-    );
-    let mut opts = Rig::motors_only();
+    let toml = flaps_at_between(38, 20, 50);
+    let mut opts = Rig::only(&[Step::Motors]);
     opts.timing.motor_run = Duration::from_millis(1500);
     let mut r = Rig::with(&toml, opts);
     r.start();
@@ -1716,22 +1711,15 @@ fn flap_runs_longer_than_their_room_stop_at_both_endpoints() {
         r.progress
     );
     r.run_until(20_000, |r| r.view.step == Step::Done);
-    let back = i32::from(r.unit.snapshot(r.now).flap_position);
-    assert!(
-        (back - 38).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}"
-    );
+    r.assert_back_at(Motor::Flaps, 38);
 }
 
 /// Endpoints 2 counts apart with the flaps between: no run could show a movement
 /// without reaching one, so none is made, and the line says why.
 #[test]
 fn a_motor_with_no_room_either_way_is_not_run_and_says_why() {
-    let toml = scenario().replace(
-        "[flap]\nenabled = true\nup = 20\ndown = 220\nposition = 20",
-        "[flap]\nenabled = true\nup = 20\ndown = 22\nposition = 21",
-    );
-    let mut r = Rig::with(&toml, Rig::motors_only());
+    let toml = flaps_at_between(21, 20, 22);
+    let mut r = Rig::with(&toml, Rig::only(&[Step::Motors]));
     r.start();
     r.run_until(20_000, |r| r.view.step == Step::Done);
     assert_eq!(
@@ -1755,7 +1743,7 @@ fn a_motor_with_no_room_either_way_is_not_run_and_says_why() {
 /// second for "no live status", and the check waits with the reason in words.
 #[test]
 fn a_stale_position_mid_run_stops_the_motor_and_says_why() {
-    let mut opts = Rig::motors_only();
+    let mut opts = Rig::only(&[Step::Motors]);
     opts.timing.motor_run = Duration::from_millis(2000);
     let mut r = Rig::new(opts);
     r.start();
@@ -1782,16 +1770,7 @@ fn a_stale_position_mid_run_stops_the_motor_and_says_why() {
     // Positions again: retried, it finishes and is put back.
     r.run(300);
     r.cmd(Command::Retry);
-    r.run_until(20_000, |r| r.view.step == Step::Done);
-    assert_eq!(
-        r.view.motors[0].outcome,
-        Outcome::Found(MotorFinding::Moves)
-    );
-    let back = i32::from(flaps_at(&r));
-    assert!(
-        (back - 20).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}"
-    );
+    r.flaps_pass_and_are_back_at_20("retried after the position went stale");
 }
 
 // ===== check-switches: the switch step never powers what is left alone, and says
@@ -1948,7 +1927,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
             include: vec![],
             excluded_here: vec![],
         },
-        ..Rig::switches_only()
+        ..Rig::only(&[Step::Switches])
     });
     assert!(r.view.unasked.iter().any(|u| u.input == Input::Switch(2)));
     r.view.current =
@@ -1967,7 +1946,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
 fn at_four_pm() -> Options {
     Options {
         clock: Some(std::time::UNIX_EPOCH + Duration::from_secs(1_764_000_000)),
-        ..Rig::switches_only()
+        ..Rig::only(&[Step::Switches])
     }
 }
 
@@ -2064,7 +2043,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
                 follow_wait: Duration::from_secs(8),
                 ..Default::default()
             },
-            ..Rig::switches_only()
+            ..Rig::only(&[Step::Switches])
         },
     );
     let stale = crate::protocol::message::DeviceSpec {
@@ -2081,7 +2060,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
                 follow_wait: Duration::from_secs(8),
                 ..Default::default()
             },
-            ..Rig::switches_only()
+            ..Rig::only(&[Step::Switches])
         },
         &mut r.view,
         &r.model,
@@ -2108,7 +2087,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
 fn a_circuit_whose_freshest_spec_names_another_switch_says_which() {
     // The page's spec changes mid-item (the page's minute re-read): Nav Lt is now on
     // switch 5, and it does not follow switch 2.
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     r.run(100);
     let moved = crate::protocol::message::DeviceSpec {
@@ -2137,7 +2116,7 @@ fn a_circuit_whose_freshest_spec_names_another_switch_says_which() {
 
 #[test]
 fn the_steps_after_the_switches_run_once_when_skipped() {
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     r.cmd(Command::SkipStep);
     assert_eq!(r.view.step, Step::Done);
@@ -2179,7 +2158,7 @@ impl Rig {
 /// (focus alone coming back is not enough); then the step ends as it would have.
 #[test]
 fn no_circuit_is_switched_on_while_the_terminal_has_lost_focus() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     // Nav Lt (4) is the first circuit the check switches on.
     r.run_until(3000, |r| r.powers(4) == vec![true]);
@@ -2213,7 +2192,7 @@ fn no_circuit_is_switched_on_while_the_terminal_has_lost_focus() {
 /// skipped, it is skipped with nothing sent.
 #[test]
 fn a_circuit_waiting_for_the_page_waits_again_or_is_skipped() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     let p = r.ctl.set_page_hidden(r.now, true);
     r.send(p);
     r.start();
@@ -2243,7 +2222,7 @@ fn a_circuit_waiting_for_the_page_waits_again_or_is_skipped() {
 /// seen and the person asks; then the motor ends where the check found it.
 #[test]
 fn no_motor_run_starts_while_the_page_is_hidden() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.past_probes();
     // Until the first test run has ended by itself (its stop is on the wire).
@@ -2334,7 +2313,7 @@ fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
             switch_timeout: Duration::from_secs(2),
             ..Default::default()
         },
-        ..Rig::switches_only()
+        ..Rig::only(&[Step::Switches])
     };
     let flip_current = |r: &mut Rig| {
         let v = &r.view;
@@ -2355,31 +2334,39 @@ fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
         r.start();
     };
     let cases: Vec<(&str, Options, Reach)> = vec![
-        ("before power", Rig::switches_only(), |_| {}),
+        ("before power", Rig::only(&[Step::Switches]), |_| {}),
         (
             "switches: waiting for the flip",
-            Rig::switches_only(),
+            Rig::only(&[Step::Switches]),
             start,
         ),
-        ("switches: input changed", Rig::switches_only(), start),
+        (
+            "switches: input changed",
+            Rig::only(&[Step::Switches]),
+            start,
+        ),
         ("switches: timed out", short_switch(), start),
         (
             "circuits: measure, switched on",
-            Rig::circuits_only(),
+            Rig::only(&[Step::Circuits]),
             start,
         ),
         (
             "circuits: measure, as it is",
-            Rig::circuits_only(),
+            Rig::only(&[Step::Circuits]),
             on_already,
         ),
-        ("circuits: put back", Rig::circuits_only(), start),
-        ("circuits: waiting to be seen", Rig::circuits_only(), start),
-        ("stopping", Rig::circuits_only(), start),
-        ("motors: start", Rig::motors_only(), start),
-        ("motors: running", Rig::motors_only(), start),
-        ("motors: settle", Rig::motors_only(), start),
-        ("motors: paused", Rig::motors_only(), start),
+        ("circuits: put back", Rig::only(&[Step::Circuits]), start),
+        (
+            "circuits: waiting to be seen",
+            Rig::only(&[Step::Circuits]),
+            start,
+        ),
+        ("stopping", Rig::only(&[Step::Circuits]), start),
+        ("motors: start", Rig::only(&[Step::Motors]), start),
+        ("motors: running", Rig::only(&[Step::Motors]), start),
+        ("motors: settle", Rig::only(&[Step::Motors]), start),
+        ("motors: paused", Rig::only(&[Step::Motors]), start),
     ];
     for (stage, opts, begin) in cases {
         let mut r = Rig::new(opts);
@@ -2435,7 +2422,7 @@ fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
 /// A check that runs to its end ends once.
 #[test]
 fn a_check_that_finishes_ends_once() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     r.run_until(60_000, |r| r.flow.finished());
     assert_eq!(r.ended, 1);
@@ -2455,7 +2442,7 @@ fn a_check_that_finishes_ends_once() {
 #[test]
 fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     use std::collections::BTreeSet;
-    let mut r = Rig::holding_lights(Rig::circuits_only());
+    let mut r = Rig::holding_lights(Rig::only(&[Step::Circuits]));
     r.start();
     let said = |id: u8| match id {
         4 => Some(false),
