@@ -200,6 +200,11 @@ impl Rig {
     }
 
     fn collect(&mut self) {
+        self.collect_but(None);
+    }
+
+    /// What the unit wrote, into the model, but the messages named `drop`.
+    fn collect_but(&mut self, drop: Option<&str>) {
         let out = self.unit.take_output();
         if self.cut {
             return;
@@ -210,7 +215,10 @@ impl Rig {
                 frames.push(Packet::parse(&f).unwrap());
             }
         });
-        for p in frames {
+        for p in frames
+            .into_iter()
+            .filter(|p| Some(p.message.name()) != drop)
+        {
             self.model.apply_packet(self.now, &p);
         }
     }
@@ -226,10 +234,15 @@ impl Rig {
 
     /// `ms` of the page's loop: unit, model, controller, flow.
     fn run(&mut self, ms: u64) {
+        self.run_but(ms, None);
+    }
+
+    /// [`Rig::run`], but the messages named `drop` are lost on the way from the unit.
+    fn run_but(&mut self, ms: u64, drop: Option<&str>) {
         for _ in 0..ms / 10 {
             self.now += Duration::from_millis(10);
             self.unit.tick(self.now);
-            self.collect();
+            self.collect_but(drop);
             let p = self.ctl.tick(&self.model, self.now);
             self.send(p);
             let out = self
@@ -407,14 +420,7 @@ fn the_plan_never_touches_the_starter_or_the_alternator_fields_and_suggests_pito
 
 #[test]
 fn exclusions_by_name_or_pin_and_a_suggestion_taken_back_on_the_screen() {
-    let mut r = Rig::new(Options {
-        choices: Choices {
-            exclude: vec!["landing lt".into(), "5A-1".into()],
-            include: vec![],
-            excluded_here: vec![],
-        },
-        ..Options::default()
-    });
+    let mut r = Rig::new(excluding(&["landing lt", "5A-1"], Options::default()));
     let planned: Vec<u8> = r.view.plan.iter().map(|p| p.id).collect();
     assert_eq!(planned, vec![2, 5, 18]);
     // Select Pitot Heat among the excluded and take the suggestion back.
@@ -707,10 +713,7 @@ fn circuits_that_do_not_follow_say_why() {
 
 #[test]
 fn skipping_an_input_and_the_rest_of_the_step() {
-    let mut r = Rig::new(Options {
-        skip: vec![Step::Circuits, Step::Motors, Step::Loads],
-        ..Options::default()
-    });
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     r.cmd(Command::SkipItem);
     assert!(matches!(r.switch(Input::Switch(2)), Outcome::Skipped(w) if w == "you skipped it"));
@@ -792,30 +795,11 @@ fn each_circuit_is_measured_judged_and_put_back() {
     assert!(fix[1].contains("A of an 8 A breaker (≥ 80 %)"), "{fix:?}");
     assert!(r.view.any_failed());
     // Each circuit was on no longer than its plan says.
-    let on_at = r
-        .sent
-        .iter()
-        .find(|(_, p)| {
-            p.message
-                == Message::DevicePower(crate::protocol::message::DevicePower {
-                    device_id: 17,
-                    on: true,
-                })
-        })
-        .unwrap()
-        .0;
-    let off_at = r
-        .sent
-        .iter()
-        .find(|(_, p)| {
-            p.message
-                == Message::DevicePower(crate::protocol::message::DevicePower {
-                    device_id: 17,
-                    on: false,
-                })
-        })
-        .unwrap()
-        .0;
+    let sent_at = |on| {
+        let sent = Message::DevicePower(power(17, on));
+        r.sent.iter().find(|(_, p)| p.message == sent).unwrap().0
+    };
+    let (on_at, off_at) = (sent_at(true), sent_at(false));
     assert!(
         off_at - on_at <= Duration::from_secs(5),
         "{:?}",
@@ -1094,6 +1078,18 @@ fn a_motor_fault_mid_run_is_its_finding_and_the_stop_goes_out() {
 
 // ----- interruptions -----
 
+impl Rig {
+    /// EFIS (device 2, not under test) shorts; the check runs until it has ended.
+    fn efis_faults(&mut self) {
+        let short = SimCommand::Short {
+            device: 2,
+            on: true,
+        };
+        self.unit.apply(short, self.now);
+        self.run_until(5000, |r| r.flow.finished());
+    }
+}
+
 /// Runs the circuit step until Landing Lt (17) is on, under test.
 fn landing_light_on(r: &mut Rig) {
     r.start();
@@ -1177,14 +1173,7 @@ fn a_fault_elsewhere_mid_step_stops_the_check_and_puts_the_circuit_back() {
     let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     landing_light_on(&mut r);
     // EFIS (measured already, on by its switch) faults while Landing Lt is on.
-    r.unit.apply(
-        SimCommand::Short {
-            device: 2,
-            on: true,
-        },
-        r.now,
-    );
-    r.run_until(5000, |r| r.flow.finished());
+    r.efis_faults();
     let i = r.view.interrupted.clone().unwrap();
     assert_eq!(i.cause, "EFIS faulted (SHORT_CIRCUIT)");
     assert_eq!(i.left, vec![], "Landing Lt seen back off");
@@ -1209,14 +1198,7 @@ fn a_check_ended_mid_motor_run_stops_it_for_its_reason() {
         (
             "a fault elsewhere",
             |r| {
-                r.unit.apply(
-                    SimCommand::Short {
-                        device: 2,
-                        on: true,
-                    },
-                    r.now,
-                );
-                r.run_until(5000, |r| r.flow.finished());
+                r.efis_faults();
             },
             StopReason::UnitFault,
             "EFIS faulted (SHORT_CIRCUIT)",
@@ -1228,14 +1210,9 @@ fn a_check_ended_mid_motor_run_stops_it_for_its_reason() {
             "the program failed",
         ),
     ];
-    let flap_moves = |r: &Rig, from: usize| -> Vec<bool> {
-        r.sent[from..]
-            .iter()
-            .filter_map(|(_, p)| match p.message {
-                Message::FlapMove(f) => Some(f.on),
-                _ => None,
-            })
-            .collect()
+    // The move messages sent since the `from`th, on or off.
+    let moves_since = |r: &Rig, from: usize| -> Vec<bool> {
+        r.moves()[from..].iter().map(|&(_, on)| on).collect()
     };
     for (what, end, reason, cause) in cases {
         // A run long enough for the fault's broadcast to come during it.
@@ -1246,18 +1223,18 @@ fn a_check_ended_mid_motor_run_stops_it_for_its_reason() {
         r.past_probes();
         r.run(300);
         assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps, "{what}");
-        let before = r.sent.len();
+        let before = r.moves().len();
         end(&mut r);
         assert!(r.ctl.running().is_none(), "{what}");
         assert_eq!(r.ctl.last_stop().unwrap().reason, reason, "{what}");
         assert!(
-            flap_moves(&r, before).contains(&false),
+            moves_since(&r, before).contains(&false),
             "{what}: the stop went out"
         );
-        let stopped = r.sent.len();
+        let stopped = r.moves().len();
         r.run(300);
         assert!(
-            !flap_moves(&r, stopped).contains(&true),
+            !moves_since(&r, stopped).contains(&true),
             "{what}: nothing after the stop"
         );
         let i = r.view.interrupted.clone().unwrap();
@@ -1331,26 +1308,7 @@ impl Rig {
     /// `ms` of the page's loop, as [`Rig::run`], with every message named `drop`
     /// lost on the way from the unit.
     fn run_dropping(&mut self, ms: u64, drop: &str) {
-        for _ in 0..ms / 10 {
-            self.now += Duration::from_millis(10);
-            self.unit.tick(self.now);
-            let out = self.unit.take_output();
-            let mut frames = Vec::new();
-            self.rx.push(&out, |e| {
-                if let Event::Frame(f) = e {
-                    frames.push(Packet::parse(&f).unwrap());
-                }
-            });
-            for p in frames.into_iter().filter(|p| p.message.name() != drop) {
-                self.model.apply_packet(self.now, &p);
-            }
-            let p = self.ctl.tick(&self.model, self.now);
-            self.send(p);
-            let out = self
-                .flow
-                .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
-            self.take(out);
-        }
+        self.run_but(ms, Some(drop));
     }
 }
 
@@ -1397,6 +1355,17 @@ fn pitch_at(pos: u8, reversed: bool) -> String {
         "power = 100\nposition = 125",
         &format!("power = 100\nposition = {pos}\nreversed = {reversed}"),
     )
+}
+
+/// `opts`, with the circuits or motors `names` excluded (`--exclude`).
+fn excluding(names: &[&str], opts: Options) -> Options {
+    Options {
+        choices: Choices {
+            exclude: names.iter().map(|n| n.to_string()).collect(),
+            ..Choices::default()
+        },
+        ..opts
+    }
 }
 
 /// The test aircraft with the flaps at `pos`, between endpoints `up` and `down`.
@@ -1472,20 +1441,21 @@ const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 #[test]
 fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     let mut r = Rig::with(&pitch_at(35, false), Rig::only(&[Step::Motors]));
-    let p = r
-        .ctl
-        .start(
+    // A run of the check's, up for `ms`.
+    let up_for = |r: &mut Rig, ms| {
+        r.ctl.start(
             crate::audit::Origin::Check,
             &r.model,
             PITCH,
             crate::control::Direction::Up,
             crate::control::How::For {
-                length: Duration::from_millis(1500),
+                length: Duration::from_millis(ms),
                 way: None,
             },
             r.now,
         )
-        .unwrap();
+    };
+    let p = up_for(&mut r, 1500).unwrap();
     let t_start = (r.now - r.t0).as_millis();
     r.send(p);
     let seen = r.run_watching(2000, PITCH);
@@ -1502,17 +1472,7 @@ fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     assert!(last.0 - t_start < 500);
     assert_eq!(moves.iter().filter(|(_, on)| !on).count(), 1);
     // And from there it does not start up again: no room.
-    let refused = r.ctl.start(
-        crate::audit::Origin::Check,
-        &r.model,
-        PITCH,
-        crate::control::Direction::Up,
-        crate::control::How::For {
-            length: Duration::from_millis(600),
-            way: None,
-        },
-        r.now,
-    );
+    let refused = up_for(&mut r, 600);
     assert!(
         matches!(&refused, Err(w) if w.words.contains("at its up endpoint")),
         "{refused:?}"
@@ -1888,27 +1848,15 @@ fn an_input_that_also_powers_something_left_alone_is_never_asked() {
 
 #[test]
 fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inputs() {
-    let mut r = Rig::new(Options {
-        choices: Choices {
-            exclude: vec!["Nav Lt".into(), "Flaps".into()],
-            include: vec![],
-            excluded_here: vec![],
-        },
-        ..Rig::switches_then_motors()
-    });
+    let mut r = Rig::new(excluding(&["Nav Lt", "Flaps"], Rig::switches_then_motors()));
     r.start();
-    assert_eq!(
-        skip_words(&r, Input::Switch(2)),
-        "switch 2 also powers Nav Lt (excluded): not asked"
-    );
-    assert_eq!(
-        skip_words(&r, Input::FlapUp),
-        "flap switch UP drives Flaps (excluded): not asked"
-    );
-    assert_eq!(
-        skip_words(&r, Input::FlapDown),
-        "flap switch DOWN drives Flaps (excluded): not asked"
-    );
+    for (input, words) in [
+        (Input::Switch(2), "switch 2 also powers Nav Lt (excluded)"),
+        (Input::FlapUp, "flap switch UP drives Flaps (excluded)"),
+        (Input::FlapDown, "flap switch DOWN drives Flaps (excluded)"),
+    ] {
+        assert_eq!(skip_words(&r, input), format!("{words}: not asked"));
+    }
     // The first input asked is switch 3; the pitch trim's inputs are still asked.
     assert_eq!(
         r.view.switches[r.view.current.unwrap()].input,
@@ -1921,14 +1869,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
             .any(|s| s.input == Input::PitchTrimUp && s.outcome == Outcome::NotRun)
     );
     // Taking the exclusion back on the screen asks switch 2 again.
-    let mut r = Rig::new(Options {
-        choices: Choices {
-            exclude: vec!["Nav Lt".into()],
-            include: vec![],
-            excluded_here: vec![],
-        },
-        ..Rig::only(&[Step::Switches])
-    });
+    let mut r = Rig::new(excluding(&["Nav Lt"], Rig::only(&[Step::Switches])));
     assert!(r.view.unasked.iter().any(|u| u.input == Input::Switch(2)));
     r.view.current =
         Some(r.view.plan.len() + r.view.excluded.iter().position(|e| e.id == 4).unwrap());
@@ -2266,10 +2207,7 @@ fn no_motor_run_starts_while_the_page_is_hidden() {
 /// flipping one runs its motor from the cockpit. The plan says so, in its words.
 #[test]
 fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
-    let mut r = Rig::new(Options {
-        skip: vec![Step::Circuits, Step::Motors, Step::Loads],
-        ..Options::default()
-    });
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     for input in [
         Input::FlapUp,
         Input::FlapDown,
@@ -2280,14 +2218,15 @@ fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
         assert!(u.is_some(), "{input:?} asked");
     }
     r.start();
-    assert_eq!(
-        skip_words(&r, Input::FlapUp),
-        "flap switch UP drives Flaps (the motors step is skipped): not asked"
-    );
-    assert_eq!(
-        skip_words(&r, Input::PitchTrimDown),
-        "pitch trim switch DOWN drives Trim_P (the motors step is skipped): not asked"
-    );
+    for (input, words) in [
+        (Input::FlapUp, "flap switch UP drives Flaps"),
+        (Input::PitchTrimDown, "pitch trim switch DOWN drives Trim_P"),
+    ] {
+        assert_eq!(
+            skip_words(&r, input),
+            format!("{words} (the motors step is skipped): not asked")
+        );
+    }
     // Not skipped, they are asked.
     let r = Rig::new(Rig::switches_then_motors());
     assert!(
@@ -2333,40 +2272,21 @@ fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
         r.run(1500);
         r.start();
     };
+    let [sw, ci, mo] = [Step::Switches, Step::Circuits, Step::Motors].map(|s| Rig::only(&[s]));
     let cases: Vec<(&str, Options, Reach)> = vec![
-        ("before power", Rig::only(&[Step::Switches]), |_| {}),
-        (
-            "switches: waiting for the flip",
-            Rig::only(&[Step::Switches]),
-            start,
-        ),
-        (
-            "switches: input changed",
-            Rig::only(&[Step::Switches]),
-            start,
-        ),
+        ("before power", sw.clone(), |_| {}),
+        ("switches: waiting for the flip", sw.clone(), start),
+        ("switches: input changed", sw.clone(), start),
         ("switches: timed out", short_switch(), start),
-        (
-            "circuits: measure, switched on",
-            Rig::only(&[Step::Circuits]),
-            start,
-        ),
-        (
-            "circuits: measure, as it is",
-            Rig::only(&[Step::Circuits]),
-            on_already,
-        ),
-        ("circuits: put back", Rig::only(&[Step::Circuits]), start),
-        (
-            "circuits: waiting to be seen",
-            Rig::only(&[Step::Circuits]),
-            start,
-        ),
-        ("stopping", Rig::only(&[Step::Circuits]), start),
-        ("motors: start", Rig::only(&[Step::Motors]), start),
-        ("motors: running", Rig::only(&[Step::Motors]), start),
-        ("motors: settle", Rig::only(&[Step::Motors]), start),
-        ("motors: paused", Rig::only(&[Step::Motors]), start),
+        ("circuits: measure, switched on", ci.clone(), start),
+        ("circuits: measure, as it is", ci.clone(), on_already),
+        ("circuits: put back", ci.clone(), start),
+        ("circuits: waiting to be seen", ci.clone(), start),
+        ("stopping", ci.clone(), start),
+        ("motors: start", mo.clone(), start),
+        ("motors: running", mo.clone(), start),
+        ("motors: settle", mo.clone(), start),
+        ("motors: paused", mo.clone(), start),
     ];
     for (stage, opts, begin) in cases {
         let mut r = Rig::new(opts);
@@ -2540,13 +2460,7 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     insta::assert_snapshot!("nav_light_is_it_lit_prompt", nav_prompt.unwrap());
 
     r.run_until(20_000, |r| r.flow.finished());
-    let about = super::report::About {
-        when: std::time::UNIX_EPOCH + Duration::from_secs(1_796_149_812),
-        port: "sim".into(),
-        unit: None,
-        ours: "0".into(),
-        travel: vec![],
-    };
+    let about = super::report::tests::about();
     let md = super::report::markdown(&r.view, &about);
     let row = |name: &str| {
         md[md.find("## Circuits").unwrap()..]
