@@ -9,7 +9,7 @@ use std::time::Duration;
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::{PITCH, Rig, pitch_at, pitch_ctx};
-use crate::check::state::{MotorFinding, Outcome as Found, Step};
+use crate::check::state::{MotorFinding, Step};
 use crate::control::run_state::ReleaseMode;
 use crate::control::{Controller, Direction, Handled, StopReason, StreamerConfig};
 use crate::protocol::message::Message;
@@ -296,13 +296,7 @@ fn the_check_stops_its_run_and_the_keys_then_refuse_it() {
     let lo = *seen.iter().min().unwrap();
     let hi = *seen.iter().max().unwrap();
     assert!(lo >= 123 && hi <= 133, "{lo}..{hi}: {:?}", r.progress);
-    let m = &r.view.motors[1];
-    assert_eq!(
-        m.outcome,
-        Found::Found(MotorFinding::Reversed),
-        "{:?}",
-        r.progress
-    );
+    r.assert_pitch_found(MotorFinding::Reversed);
     assert!(
         r.progress.iter().any(|n| n.contains(
             "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped"
@@ -330,20 +324,8 @@ fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
     r.run_until(20_000, |r| r.view.step == Step::Done);
     assert!(r.trim_moves_since(from).is_empty(), "{:?}", r.progress);
     assert_eq!(r.pitch_pos(), at);
-    let m = &r.view.motors[1];
-    assert_eq!(m.outcome, Found::Found(MotorFinding::Reversed));
-    let refused = r.ctl.start(
-        crate::audit::Origin::Check,
-        &r.model,
-        PITCH,
-        Direction::Up,
-        crate::control::How::For {
-            length: Duration::from_secs(1),
-            way: None,
-        },
-        r.now,
-    );
-    let refused = refused.unwrap_err();
+    r.assert_pitch_found(MotorFinding::Reversed);
+    let refused = r.pitch_up_for(1000).unwrap_err();
     assert_eq!(
         refused.reason,
         crate::control::run::Refused::Against(Direction::Up)

@@ -1434,6 +1434,34 @@ impl Rig {
 
 const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 
+impl Rig {
+    /// A run of the check's: the pitch trim up for `ms`.
+    fn pitch_up_for(&mut self, ms: u64) -> Result<Vec<Packet>, crate::control::run::MotorRefusal> {
+        self.ctl.start(
+            crate::audit::Origin::Check,
+            &self.model,
+            PITCH,
+            crate::control::Direction::Up,
+            crate::control::How::For {
+                length: Duration::from_millis(ms),
+                way: None,
+            },
+            self.now,
+        )
+    }
+
+    /// The pitch trim, the second motor, was found `finding`.
+    fn assert_pitch_found(&self, finding: MotorFinding) {
+        let m = &self.view.motors[1];
+        assert_eq!(
+            m.outcome,
+            Outcome::Found(finding),
+            "{m:?} {:?}",
+            self.progress
+        );
+    }
+}
+
 /// The unit does not stop TRIM_MOVE at the endpoints (Table 15 note
 /// 4), so the page does. A timed run (the check's) of the pitch trim 5 counts from its
 /// up endpoint, heading up for 1.5 s (37 counts at 25 a second), ends at the endpoint
@@ -1441,21 +1469,7 @@ const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 #[test]
 fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     let mut r = Rig::with(&pitch_at(35, false), Rig::only(&[Step::Motors]));
-    // A run of the check's, up for `ms`.
-    let up_for = |r: &mut Rig, ms| {
-        r.ctl.start(
-            crate::audit::Origin::Check,
-            &r.model,
-            PITCH,
-            crate::control::Direction::Up,
-            crate::control::How::For {
-                length: Duration::from_millis(ms),
-                way: None,
-            },
-            r.now,
-        )
-    };
-    let p = up_for(&mut r, 1500).unwrap();
+    let p = r.pitch_up_for(1500).unwrap();
     let t_start = (r.now - r.t0).as_millis();
     r.send(p);
     let seen = r.run_watching(2000, PITCH);
@@ -1472,7 +1486,7 @@ fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     assert!(last.0 - t_start < 500);
     assert_eq!(moves.iter().filter(|(_, on)| !on).count(), 1);
     // And from there it does not start up again: no room.
-    let refused = up_for(&mut r, 600);
+    let refused = r.pitch_up_for(600);
     assert!(
         matches!(&refused, Err(w) if w.words.contains("at its up endpoint")),
         "{refused:?}"
@@ -1603,13 +1617,7 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
             "from {at}: down to {lowest}; {:?}",
             r.progress
         );
-        let m = &r.view.motors[1];
-        assert_eq!(
-            m.outcome,
-            Outcome::Found(MotorFinding::Reversed),
-            "{m:?} {:?}",
-            r.progress
-        );
+        r.assert_pitch_found(MotorFinding::Reversed);
         // Every TRIM_MOVE on is followed by its off: no run ended by starving.
         let moves: Vec<(u128, bool)> = r
             .sent
@@ -1631,13 +1639,8 @@ fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
     let mut r = Rig::with(&pitch_at(30, false), Rig::only(&[Step::Motors]));
     let seen = r.check_watching(PITCH, 3000);
     assert!(*seen.iter().min().unwrap() >= 30, "passed its up endpoint");
+    r.assert_pitch_found(MotorFinding::Moves);
     let m = &r.view.motors[1];
-    assert_eq!(
-        m.outcome,
-        Outcome::Found(MotorFinding::Moves),
-        "{m:?} {:?}",
-        r.progress
-    );
     assert!(m.positions[1] >= 40, "the rest of the run was made: {m:?}");
     r.assert_back_at(PITCH, 30);
 }
