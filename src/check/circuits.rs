@@ -21,7 +21,8 @@ use super::state::{
     Prompt, Step,
 };
 use super::step::{
-    CallContext, Next, Powered, Shared, StepRun, Stopped, put_back, result_line, view_or_model_name,
+    CallContext, Item, Next, Powered, Shared, StepRun, Stopped, put_back, result_line,
+    view_or_model_name,
 };
 use super::words;
 use crate::control::{Refusal, StopReason};
@@ -117,31 +118,6 @@ pub(super) struct CircuitItem {
 }
 
 impl CircuitItem {
-    #[cfg(test)]
-    pub(super) fn stage(&self) -> &'static str {
-        match &self.stage {
-            Stage::Measure {
-                request: Some(_), ..
-            } => "measure, switched on",
-            Stage::Measure { request: None, .. } => "measure, as it is",
-            Stage::Asking { .. } => "asking if it is lit",
-            Stage::PutBack { .. } => "put back",
-            Stage::Waiting => "waiting to be seen",
-        }
-    }
-
-    pub fn deadline(&self) -> Option<Instant> {
-        Some(match &self.stage {
-            Stage::Measure {
-                request: Some(t), ..
-            } => t.deadline().min(self.started + self.on_for),
-            Stage::Measure { request: None, .. } => self.started + self.on_for,
-            Stage::Asking { until, .. } => *until,
-            Stage::PutBack { request } => request.deadline(),
-            Stage::Waiting => return None,
-        })
-    }
-
     /// The check stops here: switch it off if the check switched it on. Returns the
     /// circuit to watch go off, or why the off could not be sent.
     pub fn stop(&self, cx: &mut CallContext) -> Result<Option<Powered>, Refusal> {
@@ -161,6 +137,37 @@ impl CircuitItem {
     }
 }
 
+impl Item for CircuitItem {
+    fn deadline(&self) -> Option<Instant> {
+        Some(match &self.stage {
+            Stage::Measure {
+                request: Some(t), ..
+            } => t.deadline().min(self.started + self.on_for),
+            Stage::Measure { request: None, .. } => self.started + self.on_for,
+            Stage::Asking { until, .. } => *until,
+            Stage::PutBack { request } => request.deadline(),
+            Stage::Waiting => return None,
+        })
+    }
+
+    fn under_test(&self) -> Vec<u8> {
+        vec![self.id]
+    }
+
+    #[cfg(test)]
+    fn stage(&self) -> &'static str {
+        match &self.stage {
+            Stage::Measure {
+                request: Some(_), ..
+            } => "measure, switched on",
+            Stage::Measure { request: None, .. } => "measure, as it is",
+            Stage::Asking { .. } => "asking if it is lit",
+            Stage::PutBack { .. } => "put back",
+            Stage::Waiting => "waiting to be seen",
+        }
+    }
+}
+
 fn state(model: &Model, now: Instant, id: u8) -> CircuitState {
     model
         .circuits(now)
@@ -170,7 +177,166 @@ fn state(model: &Model, now: Instant, id: u8) -> CircuitState {
 }
 
 impl Circuits {
-    fn start_item(
+    /// The prompt while a measured light is held on for its answer, with the time
+    /// left before it goes off unanswered.
+    fn asking_prompt(&mut self, view: &mut CheckView, now: Instant) -> Next {
+        let Some(item) = &self.item else {
+            return Next::Stay;
+        };
+        let Stage::Asking { sent, until } = item.stage else {
+            return Next::Stay;
+        };
+        let name = view.circuits[item.idx].name.clone();
+        let off = if sent {
+            "it goes back off at your answer"
+        } else {
+            "it is on by its switch and stays so"
+        };
+        view.prompt = Some(Prompt {
+            todo: format!("{name} is on and measured.{LIT_QUESTION} ({off}; s: skip the question)"),
+            watching: format!("{name}'s state (DEVICE_STATUS)"),
+            time_left: Some(until.saturating_duration_since(now)),
+            keys: vec![
+                ("y", "lit"),
+                ("n", "not lit"),
+                ("s", "skip"),
+                ("S", "skip step"),
+                ("Esc", "stop"),
+            ],
+        });
+        Next::Stay
+    }
+
+    /// The light's question is over (or was never held): put it back off if the
+    /// check switched it on, else on to the next.
+    fn after_light(
+        &mut self,
+        idx: usize,
+        sent: bool,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        if sent {
+            self.put_back_item(view, cx, shared)
+        } else {
+            Next::From(idx + 1)
+        }
+    }
+
+    fn put_back_item(
+        &mut self,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
+        };
+        if let Err(why) = cx.power_off(item.id) {
+            shared.trouble_ahead = Some(format!(
+                "{} could not be switched back off: {why}",
+                view.circuits[item.idx].name
+            ));
+        }
+        item.stage = Stage::PutBack {
+            request: Try::with(
+                cx.now,
+                shared.timing.power_timeout,
+                shared.timing.power_tries,
+            ),
+        };
+        if let Some(p) = view.prompt.as_mut() {
+            let row = &view.circuits[item.idx];
+            p.todo = format!("Switching {} back off.", row.name);
+            p.keys.retain(|(k, _)| *k != "y" && *k != "n");
+        }
+        Next::Stay
+    }
+
+    /// Circuit `idx` waits, not switched on, because the page cannot be seen (`why`):
+    /// see [`Stage::Waiting`]. Asked again (r) while still unseen, it waits again.
+    fn wait(
+        &mut self,
+        idx: usize,
+        why: &str,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let row = &view.circuits[idx];
+        let (id, name) = (row.id, row.name.clone());
+        let todo = format!(
+            "Paused before switching {name} on: {why}; nothing is switched on while the \
+             page cannot be seen. r: go on; s: skip it."
+        );
+        cx.out.progress.push(format!("  {todo}"));
+        view.prompt = Some(Prompt {
+            todo,
+            watching: format!("{name}'s state (DEVICE_STATUS)"),
+            time_left: None,
+            keys: vec![("r", "go on"), ("s", "skip"), ("Esc", "stop")],
+        });
+        self.item = Some(CircuitItem {
+            idx,
+            id,
+            started: cx.now,
+            stage: Stage::Waiting,
+            on_for: shared.timing.on_for,
+        });
+        Next::Stay
+    }
+
+    /// The page's rule refused to switch the circuit on: that is its line, in
+    /// control's words, and the next circuit.
+    fn not_switched(
+        &mut self,
+        idx: usize,
+        why: Refusal,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+    ) -> Next {
+        let why = format!("not switched: {why}");
+        let row = &mut view.circuits[idx];
+        cx.out
+            .progress
+            .push(format!("– {} ({}): {why}", row.name, row.pin));
+        view.message = Some(format!("{}: {why}", row.name));
+        row.outcome = Outcome::Skipped(why);
+        Next::From(idx + 1)
+    }
+}
+
+fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, cx: &mut CallContext) {
+    let row = &mut view.circuits[idx];
+    let what = format!("{} ({})", row.name, row.pin);
+    let mut words = f.words();
+    let (mark, message) = (f.mark(), format!("{}: {}", row.name, f.words()));
+    row.outcome = Outcome::Found(f);
+    // The headless check's line has the trend too, as the screen's row has.
+    if let Some(t) = view.trend(&view.circuits[idx]).words() {
+        words = format!("{words}; {t}");
+    }
+    cx.out.progress.push(result_line(mark, &what, &words));
+    view.message = Some(message);
+}
+
+/// Step 3: the circuits, one at a time.
+#[derive(Debug, Default)]
+pub(super) struct Circuits {
+    item: Option<CircuitItem>,
+}
+
+impl StepRun for Circuits {
+    fn step(&self) -> Step {
+        Step::Circuits
+    }
+
+    fn skipped_line(&self) -> &'static str {
+        "– Circuits: skipped"
+    }
+
+    fn start(
         &mut self,
         idx: usize,
         view: &mut CheckView,
@@ -243,12 +409,7 @@ impl Circuits {
         Next::Stay
     }
 
-    fn tick_item(
-        &mut self,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
@@ -362,84 +523,7 @@ impl Circuits {
         Next::Stay
     }
 
-    /// The prompt while a measured light is held on for its answer, with the time
-    /// left before it goes off unanswered.
-    fn asking_prompt(&mut self, view: &mut CheckView, now: Instant) -> Next {
-        let Some(item) = &self.item else {
-            return Next::Stay;
-        };
-        let Stage::Asking { sent, until } = item.stage else {
-            return Next::Stay;
-        };
-        let name = view.circuits[item.idx].name.clone();
-        let off = if sent {
-            "it goes back off at your answer"
-        } else {
-            "it is on by its switch and stays so"
-        };
-        view.prompt = Some(Prompt {
-            todo: format!("{name} is on and measured.{LIT_QUESTION} ({off}; s: skip the question)"),
-            watching: format!("{name}'s state (DEVICE_STATUS)"),
-            time_left: Some(until.saturating_duration_since(now)),
-            keys: vec![
-                ("y", "lit"),
-                ("n", "not lit"),
-                ("s", "skip"),
-                ("S", "skip step"),
-                ("Esc", "stop"),
-            ],
-        });
-        Next::Stay
-    }
-
-    /// The light's question is over (or was never held): put it back off if the
-    /// check switched it on, else on to the next.
-    fn after_light(
-        &mut self,
-        idx: usize,
-        sent: bool,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        if sent {
-            self.put_back_item(view, cx, shared)
-        } else {
-            Next::From(idx + 1)
-        }
-    }
-
-    fn put_back_item(
-        &mut self,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        let Some(item) = &mut self.item else {
-            return Next::Stay;
-        };
-        if let Err(why) = cx.power_off(item.id) {
-            shared.trouble_ahead = Some(format!(
-                "{} could not be switched back off: {why}",
-                view.circuits[item.idx].name
-            ));
-        }
-        item.stage = Stage::PutBack {
-            request: Try::with(
-                cx.now,
-                shared.timing.power_timeout,
-                shared.timing.power_tries,
-            ),
-        };
-        if let Some(p) = view.prompt.as_mut() {
-            let row = &view.circuits[item.idx];
-            p.todo = format!("Switching {} back off.", row.name);
-            p.keys.retain(|(k, _)| *k != "y" && *k != "n");
-        }
-        Next::Stay
-    }
-
-    fn command_item(
+    fn command(
         &mut self,
         cmd: Command,
         view: &mut CheckView,
@@ -451,7 +535,7 @@ impl Circuits {
         };
         let idx = item.idx;
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
-            return self.start_item(idx, view, cx, shared);
+            return self.start(idx, view, cx, shared);
         }
         let on_hold = match item.stage {
             Stage::Asking { sent, .. } => Some(sent),
@@ -528,122 +612,6 @@ impl Circuits {
         }
         Next::Stay
     }
-}
-
-impl Circuits {
-    /// Circuit `idx` waits, not switched on, because the page cannot be seen (`why`):
-    /// see [`Stage::Waiting`]. Asked again (r) while still unseen, it waits again.
-    fn wait(
-        &mut self,
-        idx: usize,
-        why: &str,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        let row = &view.circuits[idx];
-        let (id, name) = (row.id, row.name.clone());
-        let todo = format!(
-            "Paused before switching {name} on: {why}; nothing is switched on while the \
-             page cannot be seen. r: go on; s: skip it."
-        );
-        cx.out.progress.push(format!("  {todo}"));
-        view.prompt = Some(Prompt {
-            todo,
-            watching: format!("{name}'s state (DEVICE_STATUS)"),
-            time_left: None,
-            keys: vec![("r", "go on"), ("s", "skip"), ("Esc", "stop")],
-        });
-        self.item = Some(CircuitItem {
-            idx,
-            id,
-            started: cx.now,
-            stage: Stage::Waiting,
-            on_for: shared.timing.on_for,
-        });
-        Next::Stay
-    }
-
-    /// The page's rule refused to switch the circuit on: that is its line, in
-    /// control's words, and the next circuit.
-    fn not_switched(
-        &mut self,
-        idx: usize,
-        why: Refusal,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-    ) -> Next {
-        let why = format!("not switched: {why}");
-        let row = &mut view.circuits[idx];
-        cx.out
-            .progress
-            .push(format!("– {} ({}): {why}", row.name, row.pin));
-        view.message = Some(format!("{}: {why}", row.name));
-        row.outcome = Outcome::Skipped(why);
-        Next::From(idx + 1)
-    }
-}
-
-fn record(view: &mut CheckView, idx: usize, f: CircuitFinding, cx: &mut CallContext) {
-    let row = &mut view.circuits[idx];
-    let what = format!("{} ({})", row.name, row.pin);
-    let mut words = f.words();
-    let (mark, message) = (f.mark(), format!("{}: {}", row.name, f.words()));
-    row.outcome = Outcome::Found(f);
-    // The headless check's line has the trend too, as the screen's row has.
-    if let Some(t) = view.trend(&view.circuits[idx]).words() {
-        words = format!("{words}; {t}");
-    }
-    cx.out.progress.push(result_line(mark, &what, &words));
-    view.message = Some(message);
-}
-
-/// Step 3: the circuits, one at a time.
-#[derive(Debug, Default)]
-pub(super) struct Circuits {
-    item: Option<CircuitItem>,
-}
-
-impl StepRun for Circuits {
-    fn step(&self) -> Step {
-        Step::Circuits
-    }
-
-    fn skipped_line(&self) -> &'static str {
-        "– Circuits: skipped"
-    }
-
-    fn start(
-        &mut self,
-        idx: usize,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        self.start_item(idx, view, cx, shared)
-    }
-
-    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
-        self.tick_item(view, cx, shared)
-    }
-
-    fn command(
-        &mut self,
-        cmd: Command,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        self.command_item(cmd, view, cx, shared)
-    }
-
-    fn deadline(&self) -> Option<Instant> {
-        self.item.as_ref().and_then(CircuitItem::deadline)
-    }
-
-    fn under_test(&self) -> Vec<u8> {
-        self.item.iter().map(|i| i.id).collect()
-    }
 
     fn stop(&mut self, _reason: StopReason, view: &CheckView, cx: &mut CallContext) -> Stopped {
         let Some(item) = &self.item else {
@@ -665,9 +633,8 @@ impl StepRun for Circuits {
         }
     }
 
-    #[cfg(test)]
-    fn stage(&self) -> String {
-        self.item.as_ref().map_or("", CircuitItem::stage).into()
+    fn item(&self) -> Option<&dyn Item> {
+        self.item.as_ref().map(|i| i as &dyn Item)
     }
 }
 

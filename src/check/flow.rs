@@ -96,25 +96,17 @@ pub(super) enum Phase {
 /// steps that run (a step skipped from the start, `--skip`, touches nothing, as the
 /// plan above it says).
 pub fn confirmed_line(view: &CheckView) -> String {
-    let skipped = |s| view.skipped_steps.contains(&s);
-    let circuits = if skipped(Step::Circuits) {
-        "no circuit to power (circuits step skipped)".to_string()
-    } else {
-        format!(
-            "{} to power",
-            words::count(view.plan.len(), "circuit", "circuits")
-        )
-    };
-    let motors = if skipped(Step::Motors) {
-        "no motor to run (motors step skipped)".to_string()
-    } else {
-        format!(
-            "{} to run",
-            words::count(view.planned_motors.len(), "motor", "motors")
-        )
+    let to = |step, n, one, verb| {
+        if view.skipped_steps.contains(&step) {
+            format!("no {one} to {verb} ({one}s step skipped)")
+        } else {
+            format!("{} to {verb}", words::count(n, one, &format!("{one}s")))
+        }
     };
     format!(
-        "Confirmed: {circuits}, {motors}, {} left alone",
+        "Confirmed: {}, {}, {} left alone",
+        to(Step::Circuits, view.plan.len(), "circuit", "power"),
+        to(Step::Motors, view.planned_motors.len(), "motor", "run"),
         view.excluded.len()
     )
 }
@@ -245,41 +237,25 @@ impl CheckFlow {
         ctl: &mut Controller,
         now: Instant,
     ) -> CheckEffects {
-        let mut out = CheckEffects::default();
-        if cmd == Command::NobodyToAnswer {
-            self.shared.nobody_to_answer = true;
-        }
-        if cmd == Command::Stop {
-            if !self.finished() {
-                self.interrupt(Cause::Quit, true, view, model, ctl, now, &mut out);
+        effects(model, ctl, now, |cx| {
+            if cmd == Command::NobodyToAnswer {
+                self.shared.nobody_to_answer = true;
             }
-            return out;
-        }
-        match &mut self.phase {
-            Phase::Confirm => self.confirm_command(cmd, view, model, ctl, now, &mut out),
-            Phase::Testing(_) => {
-                let mut cx = CallContext {
-                    model,
-                    ctl,
-                    now,
-                    out: &mut out,
-                };
-                self.item_command(cmd, view, &mut cx);
+            if cmd == Command::Stop {
+                if !self.finished() {
+                    self.interrupt(Cause::Quit, true, view, cx);
+                }
+                return;
             }
-            Phase::Stopping { .. } | Phase::Done | Phase::Loads => {}
-        }
-        out
+            match &mut self.phase {
+                Phase::Confirm => self.confirm_command(cmd, view, cx),
+                Phase::Testing(_) => self.item_command(cmd, view, cx),
+                Phase::Stopping { .. } | Phase::Done | Phase::Loads => {}
+            }
+        })
     }
 
-    fn confirm_command(
-        &mut self,
-        cmd: Command,
-        view: &mut CheckView,
-        model: &Model,
-        ctl: &mut Controller,
-        now: Instant,
-        out: &mut CheckEffects,
-    ) {
+    fn confirm_command(&mut self, cmd: Command, view: &mut CheckView, cx: &mut CallContext) {
         let rows = view.plan.len() + view.excluded.len();
         match cmd {
             Command::Up => view.current = view.current.map(|c| c.saturating_sub(1)),
@@ -317,41 +293,29 @@ impl CheckFlow {
                         view.message = Some(format!("{}: {}", e.name, e.why));
                     }
                 }
-                self.replan(view, model, now);
+                self.replan(view, cx.model, cx.now);
             }
-            Command::Enter => self.start(view, model, ctl, now, out),
+            Command::Enter => self.start(view, cx),
             _ => {}
         }
     }
 
     /// Starts the steps, once the unit's settings are known and the person confirmed.
-    fn start(
-        &mut self,
-        view: &mut CheckView,
-        model: &Model,
-        ctl: &mut Controller,
-        now: Instant,
-        out: &mut CheckEffects,
-    ) {
+    fn start(&mut self, view: &mut CheckView, cx: &mut CallContext) {
+        let (model, now) = (cx.model, cx.now);
         self.replan(view, model, now);
         if let Err(why) = plan::ready(model, now) {
             view.message = Some(format!("not yet: {why}"));
             return;
         }
         view.message = None;
-        out.progress.push(confirmed_line(view));
+        cx.out.progress.push(confirmed_line(view));
         // Every item gets its line now, so an interruption leaves the ones never
         // reached listed as not run.
         view.switches = super::switches::rows(view, model, now);
         view.circuits = super::circuits::rows(view, model, now);
         view.motors = super::motors::rows(view);
-        let mut cx = CallContext {
-            model,
-            ctl,
-            now,
-            out,
-        };
-        self.enter_step(Step::Switches, view, &mut cx);
+        self.enter_step(Step::Switches, view, cx);
     }
 
     /// Moves to `step` (or the first one after it not skipped) and starts its first item.
@@ -473,70 +437,63 @@ impl CheckFlow {
     ) -> CheckEffects {
         use super::state::LoadsView;
         use crate::loads::disk::Opened;
-        let mut effects = CheckEffects::default();
         let (Phase::Loads, Some(path)) = (&self.phase, self.opts.loads_file.clone()) else {
-            return effects;
+            return CheckEffects::default();
         };
-        let mut cx = CallContext {
-            model,
-            ctl,
-            now,
-            out: &mut effects,
-        };
-        let cx = &mut cx;
-        let loads = match opened {
-            Ok(Opened::Read(file)) => {
-                let (rows, system) = crate::loads::wiring::from_model(
-                    &file.circuits,
-                    cx.model,
-                    cx.now,
-                    &view.measured_amps(),
-                );
-                for r in &rows {
-                    if let Some(w) = r.unprotected_words() {
+        effects(model, ctl, now, |cx| {
+            let loads = match opened {
+                Ok(Opened::Read(file)) => {
+                    let (rows, system) = crate::loads::wiring::from_model(
+                        &file.circuits,
+                        cx.model,
+                        cx.now,
+                        &view.measured_amps(),
+                    );
+                    for r in &rows {
+                        if let Some(w) = r.unprotected_words() {
+                            cx.out.progress.push(format!(
+                                "{} wires: {w}",
+                                super::words::badge(super::state::Mark::Fail)
+                            ));
+                        } else if let Some(w) = r.drop_words() {
+                            cx.out.progress.push(format!(
+                                "{} wires: {w}",
+                                super::words::badge(super::state::Mark::Warn)
+                            ));
+                        }
+                    }
+                    view.wires = Some(super::state::WiresView { rows, system });
+                    let analysis = crate::loads::analyse(&file, &view.measured_amps());
+                    cx.out
+                        .progress
+                        .push(format!("Load analysis ({}):", path.display()));
+                    for phase in crate::loads::Phase::ALL {
                         cx.out.progress.push(format!(
-                            "{} wires: {w}",
-                            super::words::badge(super::state::Mark::Fail)
-                        ));
-                    } else if let Some(w) = r.drop_words() {
-                        cx.out.progress.push(format!(
-                            "{} wires: {w}",
-                            super::words::badge(super::state::Mark::Warn)
+                            "  {}: {:.1} A, {}",
+                            phase.title(),
+                            analysis.phase(phase).amps,
+                            analysis.verdict(phase)
                         ));
                     }
+                    LoadsView::Analysed { path, analysis }
                 }
-                view.wires = Some(super::state::WiresView { rows, system });
-                let analysis = crate::loads::analyse(&file, &view.measured_amps());
-                cx.out
-                    .progress
-                    .push(format!("Load analysis ({}):", path.display()));
-                for phase in crate::loads::Phase::ALL {
+                Ok(Opened::TemplateWritten(p)) => {
                     cx.out.progress.push(format!(
-                        "  {}: {:.1} A, {}",
-                        phase.title(),
-                        analysis.phase(phase).amps,
-                        analysis.verdict(phase)
+                        "– Load analysis: no load file yet; its template, listing every \
+                         circuit, was written to {}: fill it in and run the check again",
+                        p.display()
                     ));
+                    LoadsView::TemplateWritten(p)
                 }
-                LoadsView::Analysed { path, analysis }
-            }
-            Ok(Opened::TemplateWritten(p)) => {
-                cx.out.progress.push(format!(
-                    "– Load analysis: no load file yet; its template, listing every \
-                     circuit, was written to {}: fill it in and run the check again",
-                    p.display()
-                ));
-                LoadsView::TemplateWritten(p)
-            }
-            Err(e) => {
-                cx.out.progress.push(format!("✗ Load analysis: {e}"));
-                LoadsView::Refused(e.to_string())
-            }
-        };
-        view.loads = Some(loads);
-        self.phase = Phase::Done;
-        self.enter_step(next_step(Step::Loads), view, cx);
-        effects
+                Err(e) => {
+                    cx.out.progress.push(format!("✗ Load analysis: {e}"));
+                    LoadsView::Refused(e.to_string())
+                }
+            };
+            view.loads = Some(loads);
+            self.phase = Phase::Done;
+            self.enter_step(next_step(Step::Loads), view, cx);
+        })
     }
 
     fn finish(&mut self, view: &mut CheckView, cx: &mut CallContext) {
@@ -599,47 +556,32 @@ impl CheckFlow {
         ctl: &mut Controller,
         now: Instant,
     ) -> CheckEffects {
-        let mut out = CheckEffects::default();
-        if matches!(self.phase, Phase::Confirm) {
-            self.replan(view, model, now);
-            if self.opts.yes && plan::ready(model, now).is_ok() {
-                self.start(view, model, ctl, now, &mut out);
+        effects(model, ctl, now, |cx| {
+            if matches!(self.phase, Phase::Confirm) {
+                self.replan(view, model, now);
+                if self.opts.yes && plan::ready(model, now).is_ok() {
+                    self.start(view, cx);
+                }
+                return;
             }
-            return out;
-        }
-        if let Some((cause, reason)) = self.trouble(view, model, now) {
-            self.interrupt_with(cause, reason, true, view, model, ctl, now, &mut out);
-            return out;
-        }
-        let mut cx = CallContext {
-            model,
-            ctl,
-            now,
-            out: &mut out,
-        };
-        match &mut self.phase {
-            Phase::Testing(run) => {
-                let next = run.tick(view, &mut cx, &mut self.shared);
-                self.go_on(next, view, &mut cx);
+            if let Some((cause, reason)) = self.trouble(view, model, now) {
+                self.interrupt_with(cause, reason, true, view, cx);
+                return;
             }
-            Phase::Stopping { .. } => self.stopping_tick(view, &mut cx),
-            Phase::Confirm | Phase::Done | Phase::Loads => {}
-        }
-        if let Some(cause) = self.shared.trouble_ahead.take() {
-            // The step already stopped its motor (the controller's own reason stands);
-            // a circuit that will not go back off has no motor running.
-            self.interrupt_with(
-                cause,
-                StopReason::Quit,
-                true,
-                view,
-                model,
-                ctl,
-                now,
-                &mut out,
-            );
-        }
-        out
+            match &mut self.phase {
+                Phase::Testing(run) => {
+                    let next = run.tick(view, cx, &mut self.shared);
+                    self.go_on(next, view, cx);
+                }
+                Phase::Stopping { .. } => self.stopping_tick(view, cx),
+                Phase::Confirm | Phase::Done | Phase::Loads => {}
+            }
+            if let Some(cause) = self.shared.trouble_ahead.take() {
+                // The step already stopped its motor (the controller's own reason
+                // stands); a circuit that will not go back off has no motor running.
+                self.interrupt_with(cause, StopReason::Quit, true, view, cx);
+            }
+        })
     }
 
     /// Something that ends the check, seen in the model: lost communication, a link
@@ -709,84 +651,59 @@ impl CheckFlow {
         ctl: &mut Controller,
         now: Instant,
     ) -> CheckEffects {
-        let mut out = CheckEffects::default();
-        if !matches!(self.phase, Phase::Done) {
-            self.interrupt(cause, may_wait, view, model, ctl, now, &mut out);
-        }
-        out
+        effects(model, ctl, now, |cx| {
+            if !matches!(self.phase, Phase::Done) {
+                self.interrupt(cause, may_wait, view, cx);
+            }
+        })
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn interrupt(
         &mut self,
         cause: Cause,
         may_wait: bool,
         view: &mut CheckView,
-        model: &Model,
-        ctl: &mut Controller,
-        now: Instant,
-        out: &mut CheckEffects,
+        cx: &mut CallContext,
     ) {
         let reason = cause.stop_reason();
         if matches!(self.phase, Phase::Confirm) {
             // Nothing was touched yet.
-            ctl_stop(ctl, now, reason, out);
+            cx.stop_run(reason);
             view.interrupted = Some(Interruption {
                 cause: cause.words(),
                 left: Vec::new(),
             });
-            let mut cx = CallContext {
-                model,
-                ctl,
-                now,
-                out,
-            };
-            self.finish(view, &mut cx);
+            self.finish(view, cx);
             return;
         }
         if let Phase::Stopping { until, .. } = &mut self.phase {
             // A second stop (quit while waiting to see a circuit off): stop waiting.
-            *until = now;
-            let mut cx = CallContext {
-                model,
-                ctl,
-                now,
-                out,
-            };
-            self.stopping_tick(view, &mut cx);
+            *until = cx.now;
+            self.stopping_tick(view, cx);
             return;
         }
-        ctl_stop(ctl, now, reason, out);
-        self.interrupt_with(cause.words(), reason, may_wait, view, model, ctl, now, out);
+        cx.stop_run(reason);
+        self.interrupt_with(cause.words(), reason, may_wait, view, cx);
     }
 
     /// Stops the item under test, puts back what it can, marks the rest not run, and
     /// fills [`Interruption::left`].
-    #[allow(clippy::too_many_arguments)]
     fn interrupt_with(
         &mut self,
         cause: String,
         reason: StopReason,
         may_wait: bool,
         view: &mut CheckView,
-        model: &Model,
-        ctl: &mut Controller,
-        now: Instant,
-        out: &mut CheckEffects,
+        cx: &mut CallContext,
     ) {
+        let (model, now) = (cx.model, cx.now);
         let link_failed = model.link.write_errors > self.write_errors_at_start
             || !matches!(model.connection, Connection::Connected { .. });
         let comm = !model.comm_lost(now) && !link_failed;
         let mut left: Vec<LeftBehind> = Vec::new();
         let mut powered = None;
-        let mut cx = CallContext {
-            model,
-            ctl,
-            now,
-            out,
-        };
         if let Phase::Testing(mut run) = std::mem::replace(&mut self.phase, Phase::Done) {
-            let stopped = run.stop(reason, view, &mut cx);
+            let stopped = run.stop(reason, view, cx);
             powered = stopped.powered;
             left.extend(stopped.left);
         }
@@ -824,9 +741,9 @@ impl CheckFlow {
                     )
                 };
                 left.insert(0, LeftBehind::new(p.id, name, why));
-                self.end_interrupted(cause, left, view, &mut cx);
+                self.end_interrupted(cause, left, view, cx);
             }
-            None => self.end_interrupted(cause, left, view, &mut cx),
+            None => self.end_interrupted(cause, left, view, cx),
         }
     }
 
@@ -884,8 +801,22 @@ impl CheckFlow {
     }
 }
 
-fn ctl_stop(ctl: &mut Controller, now: Instant, reason: StopReason, out: &mut CheckEffects) {
-    out.packets.extend(ctl.stop(now, reason));
+/// One call from the caller (a tick, a command, …): what the flow does in `call`, with
+/// the effects it gathers.
+fn effects(
+    model: &Model,
+    ctl: &mut Controller,
+    now: Instant,
+    call: impl FnOnce(&mut CallContext),
+) -> CheckEffects {
+    let mut out = CheckEffects::default();
+    call(&mut CallContext {
+        model,
+        ctl,
+        now,
+        out: &mut out,
+    });
+    out
 }
 
 /// The step after `step`.

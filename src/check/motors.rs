@@ -30,7 +30,7 @@ use std::time::{Duration, Instant};
 
 use super::calls::Command;
 use super::state::{CheckView, LeftBehind, MotorFinding, MotorResult, Outcome, Prompt, Step};
-use super::step::{CallContext, Next, Shared, StepRun, Stopped, motor_name, result_line};
+use super::step::{CallContext, Item, Next, Shared, StepRun, Stopped, motor_name, result_line};
 use crate::audit::Origin;
 use crate::control::endpoints::{
     self, Way, ends, expected_way, heads_for, opposite, position, room,
@@ -196,25 +196,6 @@ pub(super) struct MotorItem {
 }
 
 impl MotorItem {
-    #[cfg(test)]
-    pub(super) fn stage(&self) -> &'static str {
-        match &self.stage {
-            Stage::Start => "start",
-            Stage::Running { .. } if self.leg == Leg::RunningBack => "running back",
-            Stage::Running { .. } => "running",
-            Stage::Settle { .. } => "settle",
-            Stage::Paused { .. } => "paused",
-        }
-    }
-
-    pub fn deadline(&self) -> Option<Instant> {
-        match self.stage {
-            Stage::Running { since, length } => Some(since + length + Duration::from_millis(50)),
-            Stage::Settle { until } => Some(until),
-            Stage::Start | Stage::Paused { .. } => None,
-        }
-    }
-
     pub fn name(&self) -> String {
         motor_name(self.motor)
     }
@@ -235,211 +216,32 @@ impl MotorItem {
     }
 }
 
-impl Motors {
-    fn start_item(
-        &mut self,
-        idx: usize,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        let motor = view.motors[idx].motor;
-        view.current = Some(idx);
-        view.motors[idx].positions.clear();
-        view.prompt = Some(running_prompt(motor));
-        self.item = Some(MotorItem {
-            idx,
-            motor,
-            dirs: directions(motor),
-            p0: None,
-            leg: Leg::First,
-            starts: [0; 2],
-            moves: [0; 2],
-            ended_at: [None; 2],
-            ran: [Duration::ZERO; 2],
-            stage: Stage::Start,
-            run: shared.timing.motor_run,
-            settle: shared.timing.motor_settle,
-            skipped: false,
-        });
-        self.tick_item(view, cx, shared)
-    }
-
-    fn tick_item(
-        &mut self,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        let Some(item) = &mut self.item else {
-            return Next::Stay;
-        };
-        let now = cx.now;
-        let Some(ft) = cx.model.live_flap_trim(now).copied() else {
-            return Next::Stay;
-        };
-        let pos = position(item.motor, &ft);
-        match item.stage {
-            Stage::Paused { .. } => {}
-            Stage::Start => {
-                item.p0 = Some(pos);
-                view.motors[item.idx].positions.push(pos);
-                let [a, b] = directions(item.motor);
-                item.dirs = match (room(item.motor, a, pos, &ft), room(item.motor, b, pos, &ft)) {
-                    // No room to show a movement either way: not run.
-                    (Some(ra), Some(rb)) if ra.max(rb) <= endpoints::START_ROOM => {
-                        let e = ends(item.motor, &ft).expect("rooms come from endpoints");
-                        let why = format!(
-                            "not run: no room to move it either way (position {pos}, {} \
-                             endpoint {}, {} endpoint {})",
-                            b.name(),
-                            e.up,
-                            a.name(),
-                            e.down
-                        );
-                        let (idx, motor) = (item.idx, item.motor);
-                        cx.out
-                            .progress
-                            .push(format!("– {}: {why}", motor_name(motor)));
-                        view.motors[idx].outcome = Outcome::Skipped(why);
-                        return Next::From(idx + 1);
-                    }
-                    // Toward the side with more room first.
-                    (Some(ra), Some(rb)) if rb > ra => [b, a],
-                    (Some(_), Some(_)) => [a, b],
-                    // No endpoints: away from the nearer end of the sensor first.
-                    _ if at_limit(item.motor, a, pos, &ft) => [b, a],
-                    _ => [a, b],
-                };
-                let d = item.dirs[0];
-                let length = item.run;
-                return self.run(d, length, None, view, cx, shared);
-            }
-            Stage::Running { since, .. } => {
-                if cx.ctl.running().is_some_and(|r| r.motor == item.motor) {
-                    return Next::Stay;
-                }
-                let stop = cx
-                    .ctl
-                    .last_stop()
-                    .filter(|s| s.at >= since && s.motor == item.motor)
-                    .map(|s| (s.reason, s.at, s.driven));
-                let stopped_at = stop.map_or(now, |(_, at, _)| at);
-                if let (Some(k), Some((_, _, driven))) = (item.leg.test(), stop) {
-                    item.ran[k] = driven;
-                }
-                match stop.map(|(r, _, _)| r) {
-                    Some(StopReason::RunDone) | None => {
-                        item.stage = Stage::Settle {
-                            until: now + item.settle,
-                        };
-                    }
-                    // Stopped at its endpoint by the controller: the run is over, for
-                    // as far as it went.
-                    Some(StopReason::AtEndpoint(end)) => {
-                        if let Some(k) = item.leg.test() {
-                            item.ended_at[k] = Some(end);
-                        }
-                        cx.out.progress.push(format!(
-                            "  {} stopped at its endpoint ({end}), position {pos}",
-                            motor_name(item.motor)
-                        ));
-                        item.stage = Stage::Settle {
-                            until: now + item.settle,
-                        };
-                    }
-                    // Moved against its command: stopped by the controller, the
-                    // run over where it went (the other direction's endpoint is
-                    // where it was really heading), which the finding will say.
-                    Some(StopReason::MovedAgainst(asked)) => {
-                        if let Some(k) = item.leg.test() {
-                            item.ended_at[k] = heads_for(item.motor, opposite(asked), &ft);
-                        }
-                        cx.out.progress.push(format!(
-                            "  {}, position {pos}",
-                            crate::control::against::stopped(item.motor, asked)
-                        ));
-                        item.stage = Stage::Settle {
-                            until: now + item.settle,
-                        };
-                    }
-                    Some(StopReason::MotorFault(code)) => {
-                        let code = if code.is_fault() {
-                            code
-                        } else {
-                            item.motor.fault(&ft)
-                        };
-                        shared.known_faults.insert(item.motor.device_id());
-                        let idx = item.idx;
-                        record(view, idx, MotorFinding::Faulted(code), cx);
-                        return Next::From(idx + 1);
-                    }
-                    Some(
-                        r @ (StopReason::CommLost
-                        | StopReason::LinkError
-                        | StopReason::Panic
-                        | StopReason::Quit
-                        | StopReason::MotorStatusLost
-                        | StopReason::PageStalled
-                        | StopReason::Starved),
-                    ) => {
-                        shared.trouble_ahead = Some(format!(
-                            "the {} stopped: {}",
-                            item.motor.name(),
-                            r.describe()
-                        ));
-                    }
-                    Some(r) => {
-                        item.stage = Stage::Paused {
-                            ran: stopped_at.saturating_duration_since(since),
-                        };
-                        let why = format!("The {} stopped: {}", item.motor.name(), r.describe());
-                        return self.pause(&why, view, cx);
-                    }
-                }
-            }
-            Stage::Settle { until } => {
-                if now < until {
-                    return Next::Stay;
-                }
-                view.motors[item.idx].positions.push(pos);
-                if let Some(k) = item.leg.test() {
-                    item.moves[k] = i32::from(pos) - i32::from(item.starts[k]);
-                    item.leg = if k == 0 { Leg::Second } else { Leg::Back };
-                }
-                if item.leg == Leg::Second {
-                    let d = item.dirs[1];
-                    // No longer than the first run's rate says reaches its endpoint.
-                    let rate = item.moves[0].abs() as f32 / item.ran[0].as_secs_f32().max(1e-3);
-                    let length = match room(item.motor, d, pos, &ft) {
-                        Some(r) if item.moves[0].abs() >= MOVED && r > 0 => {
-                            item.run.min(Duration::from_secs_f32(r as f32 / rate))
-                        }
-                        _ => item.run,
-                    };
-                    return self.run(d, length, None, view, cx, shared);
-                }
-                let idx = item.idx;
-                if item.leg == Leg::Back
-                    && view.motors[idx].outcome == Outcome::NotRun
-                    && !item.skipped
-                {
-                    let f = judge_runs(
-                        item.motor,
-                        item.dirs,
-                        item.starts,
-                        item.moves,
-                        item.ended_at,
-                        &ft,
-                    );
-                    record(view, idx, f, cx);
-                }
-                return self.run_back(pos, view, cx, shared);
-            }
+impl Item for MotorItem {
+    fn deadline(&self) -> Option<Instant> {
+        match self.stage {
+            Stage::Running { since, length } => Some(since + length + Duration::from_millis(50)),
+            Stage::Settle { until } => Some(until),
+            Stage::Start | Stage::Paused { .. } => None,
         }
-        Next::Stay
     }
 
+    fn under_test(&self) -> Vec<u8> {
+        vec![self.motor.device_id()]
+    }
+
+    #[cfg(test)]
+    fn stage(&self) -> &'static str {
+        match &self.stage {
+            Stage::Start => "start",
+            Stage::Running { .. } if self.leg == Leg::RunningBack => "running back",
+            Stage::Running { .. } => "running",
+            Stage::Settle { .. } => "settle",
+            Stage::Paused { .. } => "paused",
+        }
+    }
+}
+
+impl Motors {
     /// Runs the motor back toward where it was, once, if it is not there; else the
     /// next motor.
     fn run_back(
@@ -639,8 +441,264 @@ impl Motors {
         cx.out.progress.push(format!("  {why}"));
         Next::Stay
     }
+}
 
-    fn command_item(
+fn running_prompt(motor: Motor) -> Prompt {
+    Prompt {
+        todo: format!(
+            "Running the {} briefly each way, then back: keep clear of it.",
+            motor.name()
+        ),
+        watching: format!("the {} position (FLAP_TRIM_STATUS)", motor.name()),
+        time_left: None,
+        keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
+    }
+}
+
+/// The motor ends its item away from where the check found it: said in the result_line, and
+/// in the result when it was skipped (a finding keeps its words; its positions show
+/// where it ended).
+fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, cx: &mut CallContext) {
+    let words = format!("stopped at position {pos}, it was at {p0}: not run back");
+    cx.out
+        .progress
+        .push(format!("  {}: {words}", motor_name(motor)));
+    let row = &mut view.motors[idx];
+    if row.positions.last() != Some(&pos) {
+        row.positions.push(pos);
+    }
+    if let Outcome::Skipped(why) = &mut row.outcome
+        && !why.contains("not run back")
+    {
+        *why = format!("{why}; {words}");
+    }
+    view.message = Some(format!("{}: {words}", motor_name(motor)));
+}
+
+fn record(view: &mut CheckView, idx: usize, f: MotorFinding, cx: &mut CallContext) {
+    let row = &mut view.motors[idx];
+    let what = motor_name(row.motor);
+    let words = f.words();
+    cx.out.progress.push(result_line(f.mark(), &what, &words));
+    view.message = Some(format!("{what}: {words}"));
+    row.outcome = Outcome::Found(f);
+}
+
+/// Step 4: the motors, one at a time.
+#[derive(Debug, Default)]
+pub(super) struct Motors {
+    item: Option<MotorItem>,
+}
+
+impl StepRun for Motors {
+    fn step(&self) -> Step {
+        Step::Motors
+    }
+
+    fn skipped_line(&self) -> &'static str {
+        "– Motors: skipped"
+    }
+
+    fn start(
+        &mut self,
+        idx: usize,
+        view: &mut CheckView,
+        cx: &mut CallContext,
+        shared: &mut Shared,
+    ) -> Next {
+        let motor = view.motors[idx].motor;
+        view.current = Some(idx);
+        view.motors[idx].positions.clear();
+        view.prompt = Some(running_prompt(motor));
+        self.item = Some(MotorItem {
+            idx,
+            motor,
+            dirs: directions(motor),
+            p0: None,
+            leg: Leg::First,
+            starts: [0; 2],
+            moves: [0; 2],
+            ended_at: [None; 2],
+            ran: [Duration::ZERO; 2],
+            stage: Stage::Start,
+            run: shared.timing.motor_run,
+            settle: shared.timing.motor_settle,
+            skipped: false,
+        });
+        self.tick(view, cx, shared)
+    }
+
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+        let Some(item) = &mut self.item else {
+            return Next::Stay;
+        };
+        let now = cx.now;
+        let Some(ft) = cx.model.live_flap_trim(now).copied() else {
+            return Next::Stay;
+        };
+        let pos = position(item.motor, &ft);
+        match item.stage {
+            Stage::Paused { .. } => {}
+            Stage::Start => {
+                item.p0 = Some(pos);
+                view.motors[item.idx].positions.push(pos);
+                let [a, b] = directions(item.motor);
+                item.dirs = match (room(item.motor, a, pos, &ft), room(item.motor, b, pos, &ft)) {
+                    // No room to show a movement either way: not run.
+                    (Some(ra), Some(rb)) if ra.max(rb) <= endpoints::START_ROOM => {
+                        let e = ends(item.motor, &ft).expect("rooms come from endpoints");
+                        let why = format!(
+                            "not run: no room to move it either way (position {pos}, {} \
+                             endpoint {}, {} endpoint {})",
+                            b.name(),
+                            e.up,
+                            a.name(),
+                            e.down
+                        );
+                        let (idx, motor) = (item.idx, item.motor);
+                        cx.out
+                            .progress
+                            .push(format!("– {}: {why}", motor_name(motor)));
+                        view.motors[idx].outcome = Outcome::Skipped(why);
+                        return Next::From(idx + 1);
+                    }
+                    // Toward the side with more room first.
+                    (Some(ra), Some(rb)) if rb > ra => [b, a],
+                    (Some(_), Some(_)) => [a, b],
+                    // No endpoints: away from the nearer end of the sensor first.
+                    _ if at_limit(item.motor, a, pos, &ft) => [b, a],
+                    _ => [a, b],
+                };
+                let d = item.dirs[0];
+                let length = item.run;
+                return self.run(d, length, None, view, cx, shared);
+            }
+            Stage::Running { since, .. } => {
+                if cx.ctl.running().is_some_and(|r| r.motor == item.motor) {
+                    return Next::Stay;
+                }
+                let stop = cx
+                    .ctl
+                    .last_stop()
+                    .filter(|s| s.at >= since && s.motor == item.motor)
+                    .map(|s| (s.reason, s.at, s.driven));
+                let stopped_at = stop.map_or(now, |(_, at, _)| at);
+                if let (Some(k), Some((_, _, driven))) = (item.leg.test(), stop) {
+                    item.ran[k] = driven;
+                }
+                match stop.map(|(r, _, _)| r) {
+                    Some(StopReason::RunDone) | None => {
+                        item.stage = Stage::Settle {
+                            until: now + item.settle,
+                        };
+                    }
+                    // Stopped at its endpoint by the controller: the run is over, for
+                    // as far as it went.
+                    Some(StopReason::AtEndpoint(end)) => {
+                        if let Some(k) = item.leg.test() {
+                            item.ended_at[k] = Some(end);
+                        }
+                        cx.out.progress.push(format!(
+                            "  {} stopped at its endpoint ({end}), position {pos}",
+                            motor_name(item.motor)
+                        ));
+                        item.stage = Stage::Settle {
+                            until: now + item.settle,
+                        };
+                    }
+                    // Moved against its command: stopped by the controller, the
+                    // run over where it went (the other direction's endpoint is
+                    // where it was really heading), which the finding will say.
+                    Some(StopReason::MovedAgainst(asked)) => {
+                        if let Some(k) = item.leg.test() {
+                            item.ended_at[k] = heads_for(item.motor, opposite(asked), &ft);
+                        }
+                        cx.out.progress.push(format!(
+                            "  {}, position {pos}",
+                            crate::control::against::stopped(item.motor, asked)
+                        ));
+                        item.stage = Stage::Settle {
+                            until: now + item.settle,
+                        };
+                    }
+                    Some(StopReason::MotorFault(code)) => {
+                        let code = if code.is_fault() {
+                            code
+                        } else {
+                            item.motor.fault(&ft)
+                        };
+                        shared.known_faults.insert(item.motor.device_id());
+                        let idx = item.idx;
+                        record(view, idx, MotorFinding::Faulted(code), cx);
+                        return Next::From(idx + 1);
+                    }
+                    Some(
+                        r @ (StopReason::CommLost
+                        | StopReason::LinkError
+                        | StopReason::Panic
+                        | StopReason::Quit
+                        | StopReason::MotorStatusLost
+                        | StopReason::PageStalled
+                        | StopReason::Starved),
+                    ) => {
+                        shared.trouble_ahead = Some(format!(
+                            "the {} stopped: {}",
+                            item.motor.name(),
+                            r.describe()
+                        ));
+                    }
+                    Some(r) => {
+                        item.stage = Stage::Paused {
+                            ran: stopped_at.saturating_duration_since(since),
+                        };
+                        let why = format!("The {} stopped: {}", item.motor.name(), r.describe());
+                        return self.pause(&why, view, cx);
+                    }
+                }
+            }
+            Stage::Settle { until } => {
+                if now < until {
+                    return Next::Stay;
+                }
+                view.motors[item.idx].positions.push(pos);
+                if let Some(k) = item.leg.test() {
+                    item.moves[k] = i32::from(pos) - i32::from(item.starts[k]);
+                    item.leg = if k == 0 { Leg::Second } else { Leg::Back };
+                }
+                if item.leg == Leg::Second {
+                    let d = item.dirs[1];
+                    // No longer than the first run's rate says reaches its endpoint.
+                    let rate = item.moves[0].abs() as f32 / item.ran[0].as_secs_f32().max(1e-3);
+                    let length = match room(item.motor, d, pos, &ft) {
+                        Some(r) if item.moves[0].abs() >= MOVED && r > 0 => {
+                            item.run.min(Duration::from_secs_f32(r as f32 / rate))
+                        }
+                        _ => item.run,
+                    };
+                    return self.run(d, length, None, view, cx, shared);
+                }
+                let idx = item.idx;
+                if item.leg == Leg::Back
+                    && view.motors[idx].outcome == Outcome::NotRun
+                    && !item.skipped
+                {
+                    let f = judge_runs(
+                        item.motor,
+                        item.dirs,
+                        item.starts,
+                        item.moves,
+                        item.ended_at,
+                        &ft,
+                    );
+                    record(view, idx, f, cx);
+                }
+                return self.run_back(pos, view, cx, shared);
+            }
+        }
+        Next::Stay
+    }
+
+    fn command(
         &mut self,
         cmd: Command,
         view: &mut CheckView,
@@ -653,9 +711,7 @@ impl Motors {
         let idx = item.idx;
         match cmd {
             Command::SkipItem => {
-                cx.out
-                    .packets
-                    .extend(cx.ctl.stop(cx.now, StopReason::OtherKey));
+                cx.stop_run(StopReason::OtherKey);
                 if view.motors[idx].outcome == Outcome::NotRun {
                     view.motors[idx].outcome = Outcome::Skipped("you skipped it".into());
                     cx.out
@@ -723,95 +779,6 @@ impl Motors {
             _ => Next::Stay,
         }
     }
-}
-
-fn running_prompt(motor: Motor) -> Prompt {
-    Prompt {
-        todo: format!(
-            "Running the {} briefly each way, then back: keep clear of it.",
-            motor.name()
-        ),
-        watching: format!("the {} position (FLAP_TRIM_STATUS)", motor.name()),
-        time_left: None,
-        keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
-    }
-}
-
-/// The motor ends its item away from where the check found it: said in the result_line, and
-/// in the result when it was skipped (a finding keeps its words; its positions show
-/// where it ended).
-fn not_back(view: &mut CheckView, idx: usize, motor: Motor, pos: u8, p0: u8, cx: &mut CallContext) {
-    let words = format!("stopped at position {pos}, it was at {p0}: not run back");
-    cx.out
-        .progress
-        .push(format!("  {}: {words}", motor_name(motor)));
-    let row = &mut view.motors[idx];
-    if row.positions.last() != Some(&pos) {
-        row.positions.push(pos);
-    }
-    if let Outcome::Skipped(why) = &mut row.outcome
-        && !why.contains("not run back")
-    {
-        *why = format!("{why}; {words}");
-    }
-    view.message = Some(format!("{}: {words}", motor_name(motor)));
-}
-
-fn record(view: &mut CheckView, idx: usize, f: MotorFinding, cx: &mut CallContext) {
-    let row = &mut view.motors[idx];
-    let what = motor_name(row.motor);
-    let words = f.words();
-    cx.out.progress.push(result_line(f.mark(), &what, &words));
-    view.message = Some(format!("{what}: {words}"));
-    row.outcome = Outcome::Found(f);
-}
-
-/// Step 4: the motors, one at a time.
-#[derive(Debug, Default)]
-pub(super) struct Motors {
-    item: Option<MotorItem>,
-}
-
-impl StepRun for Motors {
-    fn step(&self) -> Step {
-        Step::Motors
-    }
-
-    fn skipped_line(&self) -> &'static str {
-        "– Motors: skipped"
-    }
-
-    fn start(
-        &mut self,
-        idx: usize,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        self.start_item(idx, view, cx, shared)
-    }
-
-    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
-        self.tick_item(view, cx, shared)
-    }
-
-    fn command(
-        &mut self,
-        cmd: Command,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        self.command_item(cmd, view, cx, shared)
-    }
-
-    fn deadline(&self) -> Option<Instant> {
-        self.item.as_ref().and_then(MotorItem::deadline)
-    }
-
-    fn under_test(&self) -> Vec<u8> {
-        self.item.iter().map(|i| i.motor.device_id()).collect()
-    }
 
     /// Stopped here for the check's own reason, unless stopped already (by the flow,
     /// or the controller's own tick, whose reason stands); says where it stopped if
@@ -820,7 +787,7 @@ impl StepRun for Motors {
         let Some(item) = &self.item else {
             return Stopped::default();
         };
-        cx.out.packets.extend(cx.ctl.stop(cx.now, reason));
+        cx.stop_run(reason);
         Stopped {
             powered: None,
             left: item
@@ -829,8 +796,7 @@ impl StepRun for Motors {
         }
     }
 
-    #[cfg(test)]
-    fn stage(&self) -> String {
-        self.item.as_ref().map_or("", MotorItem::stage).into()
+    fn item(&self) -> Option<&dyn Item> {
+        self.item.as_ref().map(|i| i as &dyn Item)
     }
 }

@@ -867,13 +867,23 @@ pub fn csv(view: &CheckView, about: &About) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    /// A check at 2026-12-01T18:30:12Z on `/dev/ttyUSB0`, the unit silent.
+    pub(crate) fn about() -> About {
+        About {
+            when: std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812),
+            port: "/dev/ttyUSB0".into(),
+            unit: None,
+            ours: "0.1.0".into(),
+            travel: vec![],
+        }
+    }
 
     #[test]
     fn a_name_is_the_minute_in_utc() {
-        let t = std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812);
-        assert_eq!(stem(t), "vpx-check-2026-12-01T1830Z");
+        assert_eq!(stem(about().when), "vpx-check-2026-12-01T1830Z");
     }
 
     /// The second check's report: each current beside the last check's, with the
@@ -896,13 +906,7 @@ mod tests {
             ],
             ..CheckView::default()
         };
-        let about = About {
-            when: std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812),
-            port: "/dev/ttyUSB0".into(),
-            unit: None,
-            ours: "0.1.0".into(),
-            travel: vec![],
-        };
+        let about = about();
         let first = markdown(&view, &about);
         assert!(!first.contains("Last check"), "{first}");
         view.last_check = Some(LastCheck {

@@ -63,19 +63,42 @@ pub(super) trait StepRun: std::fmt::Debug {
         shared: &mut Shared,
     ) -> Next;
 
+    /// The check stops during this item: stop what it runs (for `reason`), and say
+    /// what it leaves.
+    fn stop(&mut self, reason: StopReason, view: &CheckView, cx: &mut CallContext) -> Stopped;
+
+    /// The item under test, if one is started.
+    fn item(&self) -> Option<&dyn Item>;
+
     /// When the item must be ticked next, if it waits on a clock.
+    fn deadline(&self) -> Option<Instant> {
+        self.item().and_then(Item::deadline)
+    }
+
+    /// The devices whose fault is a finding of this item rather than an interruption.
+    fn under_test(&self) -> Vec<u8> {
+        self.item().map_or_else(Vec::new, Item::under_test)
+    }
+
+    /// The item's own stage, for the tests that stop the check at every stage.
+    #[cfg(test)]
+    fn stage(&self) -> String {
+        self.item().map_or("", Item::stage).into()
+    }
+}
+
+/// What the flow asks of the item under test (a switch input, a circuit, a motor),
+/// whatever its step.
+pub(super) trait Item {
+    /// When it must be ticked next, if it waits on a clock.
     fn deadline(&self) -> Option<Instant>;
 
     /// The devices whose fault is a finding of this item rather than an interruption.
     fn under_test(&self) -> Vec<u8>;
 
-    /// The check stops during this item: stop what it runs (for `reason`), and say
-    /// what it leaves.
-    fn stop(&mut self, reason: StopReason, view: &CheckView, cx: &mut CallContext) -> Stopped;
-
-    /// The item's own stage, for the tests that stop the check at every stage.
+    /// Its own stage, for the tests that stop the check at every stage.
     #[cfg(test)]
-    fn stage(&self) -> String;
+    fn stage(&self) -> &'static str;
 }
 
 /// What an item left when the check stopped during it.
@@ -146,6 +169,12 @@ impl CallContext<'_> {
         let message = put_back_off(self.model, id)?;
         self.send(message);
         Ok(())
+    }
+
+    /// Stops the motor run, if any, for `reason`, its stop on the wire.
+    pub fn stop_run(&mut self, reason: StopReason) {
+        let packets = self.ctl.stop(self.now, reason);
+        self.out.packets.extend(packets);
     }
 
     fn send(&mut self, message: Message) {

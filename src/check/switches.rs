@@ -19,7 +19,7 @@ use super::calls::Command;
 use super::plan;
 use super::state::Step;
 use super::state::{CheckView, Input, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult};
-use super::step::{CallContext, Next, Shared, StepRun, Stopped, circuit_on, result_line};
+use super::step::{CallContext, Item, Next, Shared, StepRun, Stopped, circuit_on, result_line};
 use crate::control::StopReason;
 use crate::model::{CircuitState, Hold, Model, Motor, TrimKind};
 use crate::protocol::message::{SwitchId, SwitchInputs};
@@ -123,31 +123,126 @@ pub(super) struct SwitchItem {
     follow_wait: std::time::Duration,
 }
 
-impl SwitchItem {
-    #[cfg(test)]
-    pub(super) fn stage(&self) -> &'static str {
-        match (self.timed_out, self.changed_at.is_some()) {
-            (true, _) => "timed out",
-            (false, true) => "input changed",
-            (false, false) => "waiting for the flip",
-        }
-    }
-
-    pub fn circuits(&self) -> &[u8] {
-        &self.circuits
-    }
-
-    pub fn deadline(&self) -> Option<Instant> {
+impl Item for SwitchItem {
+    fn deadline(&self) -> Option<Instant> {
         if self.timed_out {
             return None;
         }
         let follow = self.changed_at.map(|at| at + self.follow_wait);
         Some(follow.map_or(self.deadline, |d| d.min(self.deadline)))
     }
+
+    fn under_test(&self) -> Vec<u8> {
+        self.circuits.clone()
+    }
+
+    #[cfg(test)]
+    fn stage(&self) -> &'static str {
+        match (self.timed_out, self.changed_at.is_some()) {
+            (true, _) => "timed out",
+            (false, true) => "input changed",
+            (false, false) => "waiting for the flip",
+        }
+    }
 }
 
-impl Switches {
-    fn start_item(
+/// The input changed: did its circuits follow, and if not, why, from what the page
+/// saw: a fault; the freshest DEVICE_SPEC naming another switch; the circuit changing
+/// with another input during the item; a DEVICE_POWER hold this page sent; and
+/// otherwise a state that did not follow its own input with no hold of this page
+/// known (another display's, which the page cannot see). `wall` gives the time of
+/// day of an instant, when the check has a clock.
+fn follow_finding(
+    item: &SwitchItem,
+    model: &Model,
+    now: Instant,
+    wall: &dyn Fn(Instant) -> Option<std::time::SystemTime>,
+) -> SwitchFinding {
+    let circuits = model.circuits(now);
+    let live = model.live_devices(now).is_some();
+    let missing: Vec<(u8, NotFollowed)> = item
+        .circuits
+        .iter()
+        .filter(|id| !item.followed.contains(id))
+        .map(|&id| {
+            let c = circuits.iter().find(|c| c.id == id);
+            let why = match c.map(|c| (c.state, c.switch)) {
+                Some((CircuitState::Fault(code) | CircuitState::ResetSent(code), _)) => {
+                    NotFollowed::Faulted(code)
+                }
+                Some((_, Some(s))) if Some(s) != input_switch(item.input) => {
+                    NotFollowed::AssignedTo(s)
+                }
+                _ if item.moved_with.contains_key(&id) => {
+                    NotFollowed::FollowedOther(item.moved_with[&id])
+                }
+                _ if item.holds.contains_key(&id) => {
+                    let h = item.holds[&id];
+                    NotFollowed::HeldByPage {
+                        on: h.on,
+                        sent_at: wall(h.at),
+                        ago: now.saturating_duration_since(h.at),
+                    }
+                }
+                _ if live && item.base.is_some() => NotFollowed::NotHeldByPage,
+                _ => NotFollowed::Unexplained,
+            };
+            (id, why)
+        })
+        .collect();
+    if missing.is_empty() && item.circuits.is_empty() {
+        SwitchFinding::Changed
+    } else if missing.is_empty() {
+        SwitchFinding::Passed
+    } else {
+        SwitchFinding::CircuitsDidNotFollow(missing)
+    }
+}
+
+fn input_switch(input: Input) -> Option<SwitchId> {
+    match input {
+        Input::Switch(n) => Some(SwitchId::Input(n)),
+        _ => None,
+    }
+}
+
+fn record(view: &mut CheckView, idx: usize, f: SwitchFinding, cx: &mut CallContext) {
+    let name_of = |id| view.name_of(id);
+    let words = f.words(&name_of);
+    let mark = f.mark();
+    let label = view.switches[idx].input.label();
+    cx.out.progress.push(result_line(mark, &label, &words));
+    view.message = Some(format!("{label}: {words}"));
+    view.switches[idx].outcome = Outcome::Found(f);
+}
+
+/// Step 2: the switch inputs, one at a time.
+#[derive(Debug, Default)]
+pub(super) struct Switches {
+    item: Option<SwitchItem>,
+}
+
+impl StepRun for Switches {
+    fn step(&self) -> Step {
+        Step::Switches
+    }
+
+    fn skipped_line(&self) -> &'static str {
+        "– Switch inputs: skipped"
+    }
+
+    fn says_skip_midway(&self) -> bool {
+        false
+    }
+
+    /// What will not be asked, and why, before the first thing that is.
+    fn begin(&mut self, view: &mut CheckView, cx: &mut CallContext, _shared: &mut Shared) {
+        for u in &view.unasked {
+            cx.out.progress.push(format!("– {}", u.why));
+        }
+    }
+
+    fn start(
         &mut self,
         idx: usize,
         view: &mut CheckView,
@@ -194,15 +289,10 @@ impl Switches {
             shared.timing.switch_timeout.as_secs()
         ));
         self.item = Some(item);
-        self.tick_item(view, cx, shared)
+        self.tick(view, cx, shared)
     }
 
-    fn tick_item(
-        &mut self,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
+    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
         let wall = |at| shared.wall(at);
         let Some(item) = &mut self.item else {
             return Next::Stay;
@@ -313,7 +403,7 @@ impl Switches {
         Next::Stay
     }
 
-    fn command_item(
+    fn command(
         &mut self,
         cmd: Command,
         view: &mut CheckView,
@@ -332,141 +422,10 @@ impl Switches {
                     .push(format!("– {}: skipped", view.switches[idx].input.label()));
                 Next::From(idx + 1)
             }
-            Command::Retry => self.start_item(idx, view, cx, shared),
+            Command::Retry => self.start(idx, view, cx, shared),
             Command::Enter if timed_out => Next::From(idx + 1),
             _ => Next::Stay,
         }
-    }
-}
-
-/// The input changed: did its circuits follow, and if not, why, from what the page
-/// saw: a fault; the freshest DEVICE_SPEC naming another switch; the circuit changing
-/// with another input during the item; a DEVICE_POWER hold this page sent; and
-/// otherwise a state that did not follow its own input with no hold of this page
-/// known (another display's, which the page cannot see). `wall` gives the time of
-/// day of an instant, when the check has a clock.
-fn follow_finding(
-    item: &SwitchItem,
-    model: &Model,
-    now: Instant,
-    wall: &dyn Fn(Instant) -> Option<std::time::SystemTime>,
-) -> SwitchFinding {
-    let circuits = model.circuits(now);
-    let live = model.live_devices(now).is_some();
-    let missing: Vec<(u8, NotFollowed)> = item
-        .circuits
-        .iter()
-        .filter(|id| !item.followed.contains(id))
-        .map(|&id| {
-            let c = circuits.iter().find(|c| c.id == id);
-            let why = match c.map(|c| (c.state, c.switch)) {
-                Some((CircuitState::Fault(code) | CircuitState::ResetSent(code), _)) => {
-                    NotFollowed::Faulted(code)
-                }
-                Some((_, Some(s))) if Some(s) != input_switch(item.input) => {
-                    NotFollowed::AssignedTo(s)
-                }
-                _ if item.moved_with.contains_key(&id) => {
-                    NotFollowed::FollowedOther(item.moved_with[&id])
-                }
-                _ if item.holds.contains_key(&id) => {
-                    let h = item.holds[&id];
-                    NotFollowed::HeldByPage {
-                        on: h.on,
-                        sent_at: wall(h.at),
-                        ago: now.saturating_duration_since(h.at),
-                    }
-                }
-                _ if live && item.base.is_some() => NotFollowed::NotHeldByPage,
-                _ => NotFollowed::Unexplained,
-            };
-            (id, why)
-        })
-        .collect();
-    if missing.is_empty() && item.circuits.is_empty() {
-        SwitchFinding::Changed
-    } else if missing.is_empty() {
-        SwitchFinding::Passed
-    } else {
-        SwitchFinding::CircuitsDidNotFollow(missing)
-    }
-}
-
-fn input_switch(input: Input) -> Option<SwitchId> {
-    match input {
-        Input::Switch(n) => Some(SwitchId::Input(n)),
-        _ => None,
-    }
-}
-
-fn record(view: &mut CheckView, idx: usize, f: SwitchFinding, cx: &mut CallContext) {
-    let name_of = |id| view.name_of(id);
-    let words = f.words(&name_of);
-    let mark = f.mark();
-    let label = view.switches[idx].input.label();
-    cx.out.progress.push(result_line(mark, &label, &words));
-    view.message = Some(format!("{label}: {words}"));
-    view.switches[idx].outcome = Outcome::Found(f);
-}
-
-/// Step 2: the switch inputs, one at a time.
-#[derive(Debug, Default)]
-pub(super) struct Switches {
-    item: Option<SwitchItem>,
-}
-
-impl StepRun for Switches {
-    fn step(&self) -> Step {
-        Step::Switches
-    }
-
-    fn skipped_line(&self) -> &'static str {
-        "– Switch inputs: skipped"
-    }
-
-    fn says_skip_midway(&self) -> bool {
-        false
-    }
-
-    /// What will not be asked, and why, before the first thing that is.
-    fn begin(&mut self, view: &mut CheckView, cx: &mut CallContext, _shared: &mut Shared) {
-        for u in &view.unasked {
-            cx.out.progress.push(format!("– {}", u.why));
-        }
-    }
-
-    fn start(
-        &mut self,
-        idx: usize,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        self.start_item(idx, view, cx, shared)
-    }
-
-    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
-        self.tick_item(view, cx, shared)
-    }
-
-    fn command(
-        &mut self,
-        cmd: Command,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        self.command_item(cmd, view, cx, shared)
-    }
-
-    fn deadline(&self) -> Option<Instant> {
-        self.item.as_ref().and_then(SwitchItem::deadline)
-    }
-
-    fn under_test(&self) -> Vec<u8> {
-        self.item
-            .as_ref()
-            .map_or_else(Vec::new, |i| i.circuits().to_vec())
     }
 
     /// Nothing of a switch input is powered by the check: nothing to stop.
@@ -474,8 +433,7 @@ impl StepRun for Switches {
         Stopped::default()
     }
 
-    #[cfg(test)]
-    fn stage(&self) -> String {
-        self.item.as_ref().map_or("", SwitchItem::stage).into()
+    fn item(&self) -> Option<&dyn Item> {
+        self.item.as_ref().map(|i| i as &dyn Item)
     }
 }

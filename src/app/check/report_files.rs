@@ -92,13 +92,7 @@ mod tests {
     fn a_name_half_taken_moves_both_files_to_the_next_name() {
         let dir = tempfile::tempdir().unwrap();
         let view = CheckView::default();
-        let about = About {
-            when: std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_796_149_812),
-            port: "/dev/ttyUSB0".into(),
-            unit: None,
-            ours: "0.1.0".into(),
-            travel: vec![],
-        };
+        let about = crate::check::report::tests::about();
         // A CSV left alone under the first name (its report deleted), a report alone
         // under the second: the check's pair goes to the third, and neither is touched.
         std::fs::write(dir.path().join("vpx-check-2026-12-01T1830Z.csv"), "old csv").unwrap();

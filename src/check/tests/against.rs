@@ -9,7 +9,7 @@ use std::time::Duration;
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::{PITCH, Rig, pitch_at, pitch_ctx};
-use crate::check::state::{MotorFinding, Outcome as Found, Step};
+use crate::check::state::{MotorFinding, Step};
 use crate::control::run_state::ReleaseMode;
 use crate::control::{Controller, Direction, Handled, StopReason, StreamerConfig};
 use crate::protocol::message::Message;
@@ -18,7 +18,7 @@ const STOPPED: &str =
     "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped";
 
 fn rig(at: u8) -> Rig {
-    let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(at, true), Rig::only(&[Step::Motors]));
     r.ctl = Controller::new(StreamerConfig {
         release_mode: ReleaseMode::KeyRelease,
         ..StreamerConfig::default()
@@ -199,7 +199,7 @@ fn a_reversed_trim_held_away_from_the_endpoint_behind_it_never_passes_it() {
             &format!("position = {at}\nreversed = true"),
         );
         assert!(install.contains(&format!("position = {at}\n")));
-        let mut r = Rig::with(&install, Rig::motors_only());
+        let mut r = Rig::with(&install, Rig::only(&[Step::Motors]));
         r.ctl = Controller::new(StreamerConfig {
             release_mode: ReleaseMode::KeyRelease,
             ..StreamerConfig::default()
@@ -232,7 +232,7 @@ fn a_reversed_trim_held_away_from_the_endpoint_behind_it_never_passes_it() {
 /// no gap over 250 ms, to where the person lets go (75 counts in 3 s).
 #[test]
 fn a_trim_wired_right_at_its_endpoint_probes_then_runs_smoothly() {
-    let mut r = Rig::with(&pitch_at(220, false), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(220, false), Rig::only(&[Step::Motors]));
     r.ctl = Controller::new(StreamerConfig {
         release_mode: ReleaseMode::KeyRelease,
         ..StreamerConfig::default()
@@ -296,13 +296,7 @@ fn the_check_stops_its_run_and_the_keys_then_refuse_it() {
     let lo = *seen.iter().min().unwrap();
     let hi = *seen.iter().max().unwrap();
     assert!(lo >= 123 && hi <= 133, "{lo}..{hi}: {:?}", r.progress);
-    let m = &r.view.motors[1];
-    assert_eq!(
-        m.outcome,
-        Found::Found(MotorFinding::Reversed),
-        "{:?}",
-        r.progress
-    );
+    r.assert_pitch_found(MotorFinding::Reversed);
     assert!(
         r.progress.iter().any(|n| n.contains(
             "pitch trim moved down when asked up: its leads or its sensor may be swapped; stopped"
@@ -330,20 +324,8 @@ fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
     r.run_until(20_000, |r| r.view.step == Step::Done);
     assert!(r.trim_moves_since(from).is_empty(), "{:?}", r.progress);
     assert_eq!(r.pitch_pos(), at);
-    let m = &r.view.motors[1];
-    assert_eq!(m.outcome, Found::Found(MotorFinding::Reversed));
-    let refused = r.ctl.start(
-        crate::audit::Origin::Check,
-        &r.model,
-        PITCH,
-        Direction::Up,
-        crate::control::How::For {
-            length: Duration::from_secs(1),
-            way: None,
-        },
-        r.now,
-    );
-    let refused = refused.unwrap_err();
+    r.assert_pitch_found(MotorFinding::Reversed);
+    let refused = r.pitch_up_for(1000).unwrap_err();
     assert_eq!(
         refused.reason,
         crate::control::run::Refused::Against(Direction::Up)
@@ -360,7 +342,7 @@ fn the_check_refuses_a_motor_the_keys_saw_moving_against_its_command() {
 /// (its repeats are not presses); let go, a press after the repeat gap does.
 #[test]
 fn a_held_key_never_confirms_only_a_fresh_press_does() {
-    let mut r = Rig::with(&pitch_at(128, true), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(128, true), Rig::only(&[Step::Motors]));
     r.ctl.against().record(PITCH, Direction::Up);
     let from = r.sent.len();
     let out = r.key('u', KeyEventKind::Press, false);
@@ -399,7 +381,7 @@ fn a_motor_that_never_shows_its_way_is_only_probed_while_held() {
         "position = 205\nstuck = true",
     );
     assert!(install.contains("position = 205\nstuck"));
-    let mut r = Rig::with(&install, Rig::motors_only());
+    let mut r = Rig::with(&install, Rig::only(&[Step::Motors]));
     r.ctl = Controller::new(StreamerConfig {
         release_mode: ReleaseMode::KeyRelease,
         ..StreamerConfig::default()

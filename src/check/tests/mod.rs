@@ -200,6 +200,11 @@ impl Rig {
     }
 
     fn collect(&mut self) {
+        self.collect_but(None);
+    }
+
+    /// What the unit wrote, into the model, but the messages named `drop`.
+    fn collect_but(&mut self, drop: Option<&str>) {
         let out = self.unit.take_output();
         if self.cut {
             return;
@@ -210,7 +215,10 @@ impl Rig {
                 frames.push(Packet::parse(&f).unwrap());
             }
         });
-        for p in frames {
+        for p in frames
+            .into_iter()
+            .filter(|p| Some(p.message.name()) != drop)
+        {
             self.model.apply_packet(self.now, &p);
         }
     }
@@ -226,10 +234,15 @@ impl Rig {
 
     /// `ms` of the page's loop: unit, model, controller, flow.
     fn run(&mut self, ms: u64) {
+        self.run_but(ms, None);
+    }
+
+    /// [`Rig::run`], but the messages named `drop` are lost on the way from the unit.
+    fn run_but(&mut self, ms: u64, drop: Option<&str>) {
         for _ in 0..ms / 10 {
             self.now += Duration::from_millis(10);
             self.unit.tick(self.now);
-            self.collect();
+            self.collect_but(drop);
             let p = self.ctl.tick(&self.model, self.now);
             self.send(p);
             let out = self
@@ -338,9 +351,14 @@ impl Rig {
         self.model.live_devices(self.now).unwrap().on[id as usize]
     }
 
-    fn switches_only() -> Options {
+    /// Only `steps` run: the others are skipped.
+    fn only(steps: &[Step]) -> Options {
         Options {
-            skip: vec![Step::Circuits, Step::Motors, Step::Loads],
+            skip: Step::SKIPPABLE
+                .iter()
+                .map(|&(s, _)| s)
+                .filter(|s| !steps.contains(s))
+                .collect(),
             ..Options::default()
         }
     }
@@ -348,24 +366,7 @@ impl Rig {
     /// The switch step with the motors step after it, so the flap and trim inputs
     /// are asked (with the motors skipped they are not: `plan::unasked`).
     fn switches_then_motors() -> Options {
-        Options {
-            skip: vec![Step::Circuits, Step::Loads],
-            ..Options::default()
-        }
-    }
-
-    fn circuits_only() -> Options {
-        Options {
-            skip: vec![Step::Switches, Step::Motors, Step::Loads],
-            ..Options::default()
-        }
-    }
-
-    fn motors_only() -> Options {
-        Options {
-            skip: vec![Step::Switches, Step::Circuits, Step::Loads],
-            ..Options::default()
-        }
+        Rig::only(&[Step::Switches, Step::Motors])
     }
 
     fn start(&mut self) {
@@ -419,14 +420,7 @@ fn the_plan_never_touches_the_starter_or_the_alternator_fields_and_suggests_pito
 
 #[test]
 fn exclusions_by_name_or_pin_and_a_suggestion_taken_back_on_the_screen() {
-    let mut r = Rig::new(Options {
-        choices: Choices {
-            exclude: vec!["landing lt".into(), "5A-1".into()],
-            include: vec![],
-            excluded_here: vec![],
-        },
-        ..Options::default()
-    });
+    let mut r = Rig::new(excluding(&["landing lt", "5A-1"], Options::default()));
     let planned: Vec<u8> = r.view.plan.iter().map(|p| p.id).collect();
     assert_eq!(planned, vec![2, 5, 18]);
     // Select Pitot Heat among the excluded and take the suggestion back.
@@ -485,7 +479,7 @@ fn nothing_starts_until_the_settings_are_heard_and_yes_confirms_by_itself() {
 
     let mut r = Rig::new(Options {
         yes: true,
-        ..Rig::circuits_only()
+        ..Rig::only(&[Step::Circuits])
     });
     r.run(20);
     assert_eq!(
@@ -499,7 +493,7 @@ fn nothing_starts_until_the_settings_are_heard_and_yes_confirms_by_itself() {
 
 #[test]
 fn a_switch_that_works_passes_once_its_circuits_followed() {
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     assert_eq!(r.view.step, Step::Switches);
     let inputs: Vec<Input> = r.view.switches.iter().map(|s| s.input).collect();
@@ -637,7 +631,7 @@ fn the_roll_trim_switch_is_asked_left_and_right() {
 
 #[test]
 fn another_input_changing_instead_is_a_crossed_pair() {
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     r.run(100);
     r.flip_on_off(3, 1500); // asked for 2, the person's switch 2 is wired to input 3
@@ -658,7 +652,7 @@ fn circuits_that_do_not_follow_say_why() {
     // Nav Lt held off by an earlier DEVICE_POWER (the check's own put-back), Strobe
     // shorted: flipping switch 2 turns on neither.
     let toml = scenario().replace("name = \"Strobe\"", "name = \"Strobe\"\nshort = true");
-    let mut r = Rig::with(&toml, Rig::switches_only());
+    let mut r = Rig::with(&toml, Rig::only(&[Step::Switches]));
     r.send(vec![Packet::request(
         9,
         crate::protocol::message::DevicePower {
@@ -719,10 +713,7 @@ fn circuits_that_do_not_follow_say_why() {
 
 #[test]
 fn skipping_an_input_and_the_rest_of_the_step() {
-    let mut r = Rig::new(Options {
-        skip: vec![Step::Circuits, Step::Motors, Step::Loads],
-        ..Options::default()
-    });
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     r.cmd(Command::SkipItem);
     assert!(matches!(r.switch(Input::Switch(2)), Outcome::Skipped(w) if w == "you skipped it"));
@@ -749,7 +740,7 @@ fn skipping_an_input_and_the_rest_of_the_step() {
 
 #[test]
 fn each_circuit_is_measured_judged_and_put_back() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     r.run_until(40_000, |r| r.view.step == Step::Done);
     // EFIS is on already (always on): measured as it is, nothing sent.
@@ -804,30 +795,11 @@ fn each_circuit_is_measured_judged_and_put_back() {
     assert!(fix[1].contains("A of an 8 A breaker (≥ 80 %)"), "{fix:?}");
     assert!(r.view.any_failed());
     // Each circuit was on no longer than its plan says.
-    let on_at = r
-        .sent
-        .iter()
-        .find(|(_, p)| {
-            p.message
-                == Message::DevicePower(crate::protocol::message::DevicePower {
-                    device_id: 17,
-                    on: true,
-                })
-        })
-        .unwrap()
-        .0;
-    let off_at = r
-        .sent
-        .iter()
-        .find(|(_, p)| {
-            p.message
-                == Message::DevicePower(crate::protocol::message::DevicePower {
-                    device_id: 17,
-                    on: false,
-                })
-        })
-        .unwrap()
-        .0;
+    let sent_at = |on| {
+        let sent = Message::DevicePower(power(17, on));
+        r.sent.iter().find(|(_, p)| p.message == sent).unwrap().0
+    };
+    let (on_at, off_at) = (sent_at(true), sent_at(false));
     assert!(
         off_at - on_at <= Duration::from_secs(5),
         "{:?}",
@@ -875,7 +847,7 @@ fn a_draw_of_exactly_80_percent_of_the_breaker_is_tight() {
 
 #[test]
 fn a_unit_that_never_switches_the_circuit_on_is_said_so() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.deaf_to_power = true;
     r.start();
     r.run_until(10_000, |r| r.circuit(4) != &Outcome::NotRun);
@@ -889,7 +861,7 @@ fn a_unit_that_never_switches_the_circuit_on_is_said_so() {
 
 #[test]
 fn skipping_a_circuit_while_it_is_on_still_puts_it_back() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     r.run_until(10_000, |r| {
         r.view.current == r.view.circuits.iter().position(|c| c.id == 4) && r.on(4)
@@ -905,7 +877,7 @@ fn skipping_a_circuit_while_it_is_on_still_puts_it_back() {
 
 #[test]
 fn motors_run_each_way_through_the_controller_and_go_back() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.run_until(20_000, |r| r.view.step == Step::Done);
     for m in &r.view.motors {
@@ -967,7 +939,7 @@ impl Rig {
 /// check found them (20, their up endpoint), and the result says it was skipped.
 #[test]
 fn a_motor_skipped_during_its_first_run_is_run_back() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.past_probes();
     r.run(400);
@@ -993,7 +965,7 @@ fn a_motor_skipped_during_its_first_run_is_run_back() {
 /// flaps, not where the first try was cut.
 #[test]
 fn a_retry_after_a_pause_returns_the_motor_to_where_the_check_found_it() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.past_probes();
     r.run(300);
@@ -1025,7 +997,7 @@ fn a_retry_after_a_pause_returns_the_motor_to_where_the_check_found_it() {
 fn the_motor_findings_from_positions() {
     use super::motors::judge;
     use crate::control::Direction::{Down, Up};
-    let r = Rig::new(Rig::motors_only());
+    let r = Rig::new(Rig::only(&[Step::Motors]));
     let ft = *r.model.live_flap_trim(r.now).unwrap(); // flaps up 20, down 220
     let f = Motor::Flaps;
     assert_eq!(
@@ -1070,7 +1042,7 @@ fn the_motor_findings_from_positions() {
 
 #[test]
 fn a_motor_fault_mid_run_is_its_finding_and_the_stop_goes_out() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.past_probes();
     r.run(200);
@@ -1106,6 +1078,18 @@ fn a_motor_fault_mid_run_is_its_finding_and_the_stop_goes_out() {
 
 // ----- interruptions -----
 
+impl Rig {
+    /// EFIS (device 2, not under test) shorts; the check runs until it has ended.
+    fn efis_faults(&mut self) {
+        let short = SimCommand::Short {
+            device: 2,
+            on: true,
+        };
+        self.unit.apply(short, self.now);
+        self.run_until(5000, |r| r.flow.finished());
+    }
+}
+
 /// Runs the circuit step until Landing Lt (17) is on, under test.
 fn landing_light_on(r: &mut Rig) {
     r.start();
@@ -1116,7 +1100,7 @@ fn landing_light_on(r: &mut Rig) {
 
 #[test]
 fn quit_mid_circuit_switches_it_back_off_and_waits_to_see_it() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     landing_light_on(&mut r);
     r.interrupt(Cause::Quit, true);
     assert_eq!(r.powers(17), vec![true, false]);
@@ -1134,76 +1118,62 @@ fn quit_mid_circuit_switches_it_back_off_and_waits_to_see_it() {
     );
 }
 
+/// The check ends with Landing Lt on and cannot see it go back off (a signal it cannot
+/// wait after, silence, a link that cannot send): its off is sent all the same, and
+/// it is listed as left, in words that say why it is not known off.
 #[test]
-fn quit_that_cannot_wait_says_the_circuit_was_sent_off_unconfirmed() {
-    let mut r = Rig::new(Rig::circuits_only());
-    landing_light_on(&mut r);
-    r.interrupt(Cause::Signal("SIGTERM".into()), false);
-    assert!(r.flow.finished());
-    let i = r.view.interrupted.clone().unwrap();
-    assert_eq!(i.cause, "ended by a signal (SIGTERM)");
-    assert_eq!(
-        i.left,
-        vec![LeftBehind::new(
-            17,
-            "Landing Lt".to_string(),
-            "ON when the check stopped: DEVICE_POWER off sent, not confirmed".to_string()
-        )]
-    );
-    assert_eq!(r.powers(17), vec![true, false]);
-}
-
-#[test]
-fn communication_lost_mid_circuit_leaves_it_unknown() {
-    let mut r = Rig::new(Rig::circuits_only());
-    landing_light_on(&mut r);
-    r.unit
-        .apply(SimCommand::Silent(Duration::from_secs(10)), r.now);
-    r.run_until(4000, |r| r.flow.finished());
-    let i = r.view.interrupted.clone().unwrap();
-    assert_eq!(i.cause, "COMMUNICATION LOST");
-    assert_eq!(
-        i.left,
-        vec![LeftBehind::new(
-            17,
-            "Landing Lt".to_string(),
-            "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)"
-                .to_string()
-        )]
-    );
-    assert_eq!(r.powers(17), vec![true, false], "off is sent all the same");
-}
-
-#[test]
-fn a_link_that_cannot_send_ends_the_check() {
-    let mut r = Rig::new(Rig::circuits_only());
-    landing_light_on(&mut r);
-    r.model.note_write_error(r.now, "Input/output error".into());
-    r.cut = true;
-    r.run(10);
-    assert!(r.flow.finished());
-    let i = r.view.interrupted.clone().unwrap();
-    assert_eq!(i.cause, "the link could not send: Input/output error");
-    assert_eq!(i.left[0].id, 17);
-    assert_eq!(
-        i.left[0].state,
-        "unknown: it was ON; DEVICE_POWER off sent, not confirmed (the link could not send)"
-    );
+fn a_circuit_the_check_cannot_see_off_is_listed_as_left() {
+    type End = fn(&mut Rig);
+    let cases: [(&str, End, &str, &str); 3] = [
+        (
+            "a signal",
+            |r| r.interrupt(Cause::Signal("SIGTERM".into()), false),
+            "ended by a signal (SIGTERM)",
+            "ON when the check stopped: DEVICE_POWER off sent, not confirmed",
+        ),
+        (
+            "communication lost",
+            |r| {
+                r.unit
+                    .apply(SimCommand::Silent(Duration::from_secs(10)), r.now);
+                r.run_until(4000, |r| r.flow.finished());
+            },
+            "COMMUNICATION LOST",
+            "unknown: it was ON; DEVICE_POWER off sent, not confirmed (COMMUNICATION LOST)",
+        ),
+        (
+            "a link that cannot send",
+            |r| {
+                r.model.note_write_error(r.now, "Input/output error".into());
+                r.cut = true;
+                r.run(10);
+            },
+            "the link could not send: Input/output error",
+            "unknown: it was ON; DEVICE_POWER off sent, not confirmed (the link could not send)",
+        ),
+    ];
+    for (what, end, cause, state) in cases {
+        let mut r = Rig::new(Rig::only(&[Step::Circuits]));
+        landing_light_on(&mut r);
+        end(&mut r);
+        assert!(r.flow.finished(), "{what}");
+        let i = r.view.interrupted.clone().unwrap();
+        assert_eq!(i.cause, cause, "{what}");
+        assert_eq!(
+            i.left,
+            vec![LeftBehind::new(17, "Landing Lt".into(), state.into())],
+            "{what}"
+        );
+        assert_eq!(r.powers(17), vec![true, false], "{what}: the off is sent");
+    }
 }
 
 #[test]
 fn a_fault_elsewhere_mid_step_stops_the_check_and_puts_the_circuit_back() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     landing_light_on(&mut r);
     // EFIS (measured already, on by its switch) faults while Landing Lt is on.
-    r.unit.apply(
-        SimCommand::Short {
-            device: 2,
-            on: true,
-        },
-        r.now,
-    );
-    r.run_until(5000, |r| r.flow.finished());
+    r.efis_faults();
     let i = r.view.interrupted.clone().unwrap();
     assert_eq!(i.cause, "EFIS faulted (SHORT_CIRCUIT)");
     assert_eq!(i.left, vec![], "Landing Lt seen back off");
@@ -1212,85 +1182,76 @@ fn a_fault_elsewhere_mid_step_stops_the_check_and_puts_the_circuit_back() {
     assert_eq!(r.circuit(18), &Outcome::NotRun);
 }
 
+/// The check ends mid motor run (the person quits, a fault elsewhere, a panic): the
+/// run is stopped for that reason, not as a quit the person never asked for; its stop
+/// goes out and nothing after it, and the motor is listed where it was left.
 #[test]
-fn quit_mid_motor_run_sends_its_stop_and_says_where_it_was_left() {
-    let mut r = Rig::new(Rig::motors_only());
-    r.start();
-    r.past_probes();
-    r.run(400);
-    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
-    let before = r.sent.len();
-    r.interrupt(Cause::Quit, true);
-    assert!(r.ctl.running().is_none());
-    assert!(
-        r.sent[before..]
-            .iter()
-            .any(|(_, p)| matches!(p.message, Message::FlapMove(f) if !f.on)),
-        "the stop went out"
-    );
-    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Quit);
-    r.run(300);
-    assert!(
-        r.sent[before..]
-            .iter()
-            .all(|(_, p)| !matches!(p.message, Message::FlapMove(f) if f.on)),
-        "nothing after the stop"
-    );
-    let i = r.view.interrupted.clone().unwrap();
-    assert_eq!(i.left.len(), 1, "{:?}", i.left);
-    assert_eq!(i.left[0].id, 0);
-    assert!(
-        i.left[0].state.contains("it was at 20: not run back"),
-        "{:?}",
-        i.left
-    );
-}
-
-/// A fault elsewhere during a motor run stops the motor for that reason, not as a
-/// quit the person never asked for.
-#[test]
-fn a_fault_elsewhere_mid_motor_run_stops_it_for_that_reason() {
-    // A run long enough for the fault's broadcast to come during it.
-    let mut opts = Rig::motors_only();
-    opts.timing.motor_run = Duration::from_secs(4);
-    let mut r = Rig::new(opts);
-    r.start();
-    r.past_probes();
-    r.run(300);
-    assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps);
-    r.unit.apply(
-        SimCommand::Short {
-            device: 2,
-            on: true,
-        },
-        r.now,
-    );
-    r.run_until(5000, |r| r.flow.finished());
-    assert!(r.ctl.running().is_none());
-    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::UnitFault);
-    assert_eq!(
-        r.view.interrupted.as_ref().unwrap().cause,
-        "EFIS faulted (SHORT_CIRCUIT)"
-    );
-}
-
-#[test]
-fn a_panic_stops_the_motor_with_the_panic_reason() {
-    let mut r = Rig::new(Rig::motors_only());
-    r.start();
-    r.past_probes();
-    r.run(300);
-    r.interrupt(Cause::Panic, false);
-    assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Panic);
-    assert_eq!(
-        r.view.interrupted.as_ref().unwrap().cause,
-        "the program failed"
-    );
+fn a_check_ended_mid_motor_run_stops_it_for_its_reason() {
+    type End = fn(&mut Rig);
+    let cases: [(&str, End, StopReason, &str); 3] = [
+        (
+            "quit",
+            |r| r.interrupt(Cause::Quit, true),
+            StopReason::Quit,
+            "stopped by you",
+        ),
+        (
+            "a fault elsewhere",
+            |r| {
+                r.efis_faults();
+            },
+            StopReason::UnitFault,
+            "EFIS faulted (SHORT_CIRCUIT)",
+        ),
+        (
+            "a panic",
+            |r| r.interrupt(Cause::Panic, false),
+            StopReason::Panic,
+            "the program failed",
+        ),
+    ];
+    // The move messages sent since the `from`th, on or off.
+    let moves_since = |r: &Rig, from: usize| -> Vec<bool> {
+        r.moves()[from..].iter().map(|&(_, on)| on).collect()
+    };
+    for (what, end, reason, cause) in cases {
+        // A run long enough for the fault's broadcast to come during it.
+        let mut opts = Rig::only(&[Step::Motors]);
+        opts.timing.motor_run = Duration::from_secs(4);
+        let mut r = Rig::new(opts);
+        r.start();
+        r.past_probes();
+        r.run(300);
+        assert_eq!(r.ctl.running().unwrap().motor, Motor::Flaps, "{what}");
+        let before = r.moves().len();
+        end(&mut r);
+        assert!(r.ctl.running().is_none(), "{what}");
+        assert_eq!(r.ctl.last_stop().unwrap().reason, reason, "{what}");
+        assert!(
+            moves_since(&r, before).contains(&false),
+            "{what}: the stop went out"
+        );
+        let stopped = r.moves().len();
+        r.run(300);
+        assert!(
+            !moves_since(&r, stopped).contains(&true),
+            "{what}: nothing after the stop"
+        );
+        let i = r.view.interrupted.clone().unwrap();
+        assert_eq!(i.cause, cause, "{what}");
+        assert_eq!(i.left.len(), 1, "{what}: {:?}", i.left);
+        assert_eq!(i.left[0].id, 0, "{what}");
+        assert!(
+            i.left[0].state.contains("it was at 20: not run back"),
+            "{what}: {:?}",
+            i.left
+        );
+    }
 }
 
 #[test]
 fn communication_lost_mid_motor_run_is_an_interruption() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.run(300);
     r.unit
@@ -1347,26 +1308,7 @@ impl Rig {
     /// `ms` of the page's loop, as [`Rig::run`], with every message named `drop`
     /// lost on the way from the unit.
     fn run_dropping(&mut self, ms: u64, drop: &str) {
-        for _ in 0..ms / 10 {
-            self.now += Duration::from_millis(10);
-            self.unit.tick(self.now);
-            let out = self.unit.take_output();
-            let mut frames = Vec::new();
-            self.rx.push(&out, |e| {
-                if let Event::Frame(f) = e {
-                    frames.push(Packet::parse(&f).unwrap());
-                }
-            });
-            for p in frames.into_iter().filter(|p| p.message.name() != drop) {
-                self.model.apply_packet(self.now, &p);
-            }
-            let p = self.ctl.tick(&self.model, self.now);
-            self.send(p);
-            let out = self
-                .flow
-                .tick(&mut self.view, &self.model, &mut self.ctl, self.now);
-            self.take(out);
-        }
+        self.run_but(ms, Some(drop));
     }
 }
 
@@ -1377,7 +1319,7 @@ impl Rig {
 /// words, and no DEVICE_POWER goes out for it.
 #[test]
 fn a_circuit_the_page_may_not_switch_is_not_switched_and_says_why() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     // EFIS (always on) is measured first, nothing sent; from now on no DEVICE_STATUS.
     r.run_dropping(9000, "DEVICE_STATUS");
@@ -1415,6 +1357,25 @@ fn pitch_at(pos: u8, reversed: bool) -> String {
     )
 }
 
+/// `opts`, with the circuits or motors `names` excluded (`--exclude`).
+fn excluding(names: &[&str], opts: Options) -> Options {
+    Options {
+        choices: Choices {
+            exclude: names.iter().map(|n| n.to_string()).collect(),
+            ..Choices::default()
+        },
+        ..opts
+    }
+}
+
+/// The test aircraft with the flaps at `pos`, between endpoints `up` and `down`.
+fn flaps_at_between(pos: u8, up: u8, down: u8) -> String {
+    scenario().replace(
+        "[flap]\nenabled = true\nup = 20\ndown = 220\nposition = 20",
+        &format!("[flap]\nenabled = true\nup = {up}\ndown = {down}\nposition = {pos}"),
+    )
+}
+
 impl Rig {
     /// Runs `ms` as [`Rig::run`], keeping the unit's own position of `motor` (its
     /// sensor, not what the page heard) every 10 ms.
@@ -1422,14 +1383,29 @@ impl Rig {
         let mut seen = Vec::new();
         for _ in 0..ms / 10 {
             self.run(10);
-            let s = self.unit.snapshot(self.now);
-            seen.push(match motor {
-                Motor::Flaps => s.flap_position,
-                Motor::Trim(TrimKind::Pitch) => s.pitch_trim_position,
-                Motor::Trim(TrimKind::Roll) => s.roll_trim_position,
-            });
+            seen.push(self.unit_at(motor));
         }
         seen
+    }
+
+    /// The unit's own position of `motor`: its sensor, not what the page heard.
+    fn unit_at(&self, motor: Motor) -> u8 {
+        let s = self.unit.snapshot(self.now);
+        match motor {
+            Motor::Flaps => s.flap_position,
+            Motor::Trim(TrimKind::Pitch) => s.pitch_trim_position,
+            Motor::Trim(TrimKind::Roll) => s.roll_trim_position,
+        }
+    }
+
+    /// `motor` was run back to `at`, where the check found it.
+    fn assert_back_at(&self, motor: Motor, at: u8) {
+        let back = self.unit_at(motor);
+        assert!(
+            (i32::from(back) - i32::from(at)).abs() <= super::motors::BACK_WITHIN,
+            "left at {back}, the check found it at {at}; {:?}",
+            self.progress
+        );
     }
 
     /// Starts the check and runs it to its end (at most `limit` × 10 ms), keeping
@@ -1458,27 +1434,42 @@ impl Rig {
 
 const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 
+impl Rig {
+    /// A run of the check's: the pitch trim up for `ms`.
+    fn pitch_up_for(&mut self, ms: u64) -> Result<Vec<Packet>, crate::control::run::MotorRefusal> {
+        self.ctl.start(
+            crate::audit::Origin::Check,
+            &self.model,
+            PITCH,
+            crate::control::Direction::Up,
+            crate::control::How::For {
+                length: Duration::from_millis(ms),
+                way: None,
+            },
+            self.now,
+        )
+    }
+
+    /// The pitch trim, the second motor, was found `finding`.
+    fn assert_pitch_found(&self, finding: MotorFinding) {
+        let m = &self.view.motors[1];
+        assert_eq!(
+            m.outcome,
+            Outcome::Found(finding),
+            "{m:?} {:?}",
+            self.progress
+        );
+    }
+}
+
 /// The unit does not stop TRIM_MOVE at the endpoints (Table 15 note
 /// 4), so the page does. A timed run (the check's) of the pitch trim 5 counts from its
 /// up endpoint, heading up for 1.5 s (37 counts at 25 a second), ends at the endpoint
 /// with its stop on the wire, and the trim never passes it.
 #[test]
 fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
-    let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());
-    let p = r
-        .ctl
-        .start(
-            crate::audit::Origin::Check,
-            &r.model,
-            PITCH,
-            crate::control::Direction::Up,
-            crate::control::How::For {
-                length: Duration::from_millis(1500),
-                way: None,
-            },
-            r.now,
-        )
-        .unwrap();
+    let mut r = Rig::with(&pitch_at(35, false), Rig::only(&[Step::Motors]));
+    let p = r.pitch_up_for(1500).unwrap();
     let t_start = (r.now - r.t0).as_millis();
     r.send(p);
     let seen = r.run_watching(2000, PITCH);
@@ -1495,17 +1486,7 @@ fn a_run_heading_up_5_counts_from_the_up_endpoint_stops_there() {
     assert!(last.0 - t_start < 500);
     assert_eq!(moves.iter().filter(|(_, on)| !on).count(), 1);
     // And from there it does not start up again: no room.
-    let refused = r.ctl.start(
-        crate::audit::Origin::Check,
-        &r.model,
-        PITCH,
-        crate::control::Direction::Up,
-        crate::control::How::For {
-            length: Duration::from_millis(600),
-            way: None,
-        },
-        r.now,
-    );
+    let refused = r.pitch_up_for(600);
     assert!(
         matches!(&refused, Err(w) if w.words.contains("at its up endpoint")),
         "{refused:?}"
@@ -1537,7 +1518,7 @@ fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_scr
     use crate::control::run_state::ReleaseMode;
     use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
     for setup in [false, true] {
-        let mut r = Rig::with(&pitch_at(35, false), Rig::motors_only());
+        let mut r = Rig::with(&pitch_at(35, false), Rig::only(&[Step::Motors]));
         r.ctl = Controller::new(StreamerConfig {
             release_mode: ReleaseMode::KeyRelease,
             ..StreamerConfig::default()
@@ -1578,7 +1559,7 @@ fn a_motor_key_on_the_device_list_stops_at_the_endpoint_but_not_on_the_setup_scr
 #[test]
 fn the_first_direction_is_toward_the_side_with_more_room() {
     for (pos, first_down) in [(200u8, false), (60, true)] {
-        let mut r = Rig::with(&pitch_at(pos, false), Rig::motors_only());
+        let mut r = Rig::with(&pitch_at(pos, false), Rig::only(&[Step::Motors]));
         r.start();
         r.run_until(20_000, |r| r.view.step == Step::Done);
         let m = &r.view.motors[1];
@@ -1597,7 +1578,7 @@ fn the_first_direction_is_toward_the_side_with_more_room() {
 #[test]
 fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
     for at in [35, 38] {
-        let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+        let mut r = Rig::with(&pitch_at(at, true), Rig::only(&[Step::Motors]));
         let seen = r.check_watching(PITCH, 2000);
         let lowest = *seen.iter().min().unwrap();
         assert!(
@@ -1614,12 +1595,7 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
             "{:?}",
             r.progress
         );
-        let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
-        assert!(
-            (back - i32::from(at)).abs() <= super::motors::BACK_WITHIN,
-            "from {at}: left at {back}; {m:?} {:?}",
-            r.progress
-        );
+        r.assert_back_at(PITCH, at);
     }
 }
 
@@ -1633,7 +1609,7 @@ fn a_reversed_motor_near_an_endpoint_is_stopped_there_and_found_reversed() {
 #[test]
 fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
     for (at, floor) in [(30u8, 29u8), (31, 30)] {
-        let mut r = Rig::with(&pitch_at(at, true), Rig::motors_only());
+        let mut r = Rig::with(&pitch_at(at, true), Rig::only(&[Step::Motors]));
         let seen = r.check_watching(PITCH, 3000);
         let lowest = *seen.iter().min().unwrap();
         assert!(
@@ -1641,13 +1617,7 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
             "from {at}: down to {lowest}; {:?}",
             r.progress
         );
-        let m = &r.view.motors[1];
-        assert_eq!(
-            m.outcome,
-            Outcome::Found(MotorFinding::Reversed),
-            "{m:?} {:?}",
-            r.progress
-        );
+        r.assert_pitch_found(MotorFinding::Reversed);
         // Every TRIM_MOVE on is followed by its off: no run ended by starving.
         let moves: Vec<(u128, bool)> = r
             .sent
@@ -1666,22 +1636,13 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
 /// within a probe or two, runs the rest of the test run, and passes.
 #[test]
 fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
-    let mut r = Rig::with(&pitch_at(30, false), Rig::motors_only());
+    let mut r = Rig::with(&pitch_at(30, false), Rig::only(&[Step::Motors]));
     let seen = r.check_watching(PITCH, 3000);
     assert!(*seen.iter().min().unwrap() >= 30, "passed its up endpoint");
+    r.assert_pitch_found(MotorFinding::Moves);
     let m = &r.view.motors[1];
-    assert_eq!(
-        m.outcome,
-        Outcome::Found(MotorFinding::Moves),
-        "{m:?} {:?}",
-        r.progress
-    );
     assert!(m.positions[1] >= 40, "the rest of the run was made: {m:?}");
-    let back = i32::from(r.unit.snapshot(r.now).pitch_trim_position);
-    assert!(
-        (back - 30).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}"
-    );
+    r.assert_back_at(PITCH, 30);
 }
 
 /// Flaps between close endpoints (up 20, down 50) at 38, with 1.5 s runs (30 counts
@@ -1689,11 +1650,8 @@ fn a_motor_parked_at_its_endpoint_probes_then_runs_and_passes() {
 /// having moved they pass.
 #[test]
 fn flap_runs_longer_than_their_room_stop_at_both_endpoints() {
-    let toml = scenario().replace(
-        "[flap]\nenabled = true\nup = 20\ndown = 220\nposition = 20",
-        "[flap]\nenabled = true\nup = 20\ndown = 50\nposition = 38",
-    );
-    let mut opts = Rig::motors_only();
+    let toml = flaps_at_between(38, 20, 50);
+    let mut opts = Rig::only(&[Step::Motors]);
     opts.timing.motor_run = Duration::from_millis(1500);
     let mut r = Rig::with(&toml, opts);
     r.start();
@@ -1716,22 +1674,15 @@ fn flap_runs_longer_than_their_room_stop_at_both_endpoints() {
         r.progress
     );
     r.run_until(20_000, |r| r.view.step == Step::Done);
-    let back = i32::from(r.unit.snapshot(r.now).flap_position);
-    assert!(
-        (back - 38).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}"
-    );
+    r.assert_back_at(Motor::Flaps, 38);
 }
 
 /// Endpoints 2 counts apart with the flaps between: no run could show a movement
 /// without reaching one, so none is made, and the line says why.
 #[test]
 fn a_motor_with_no_room_either_way_is_not_run_and_says_why() {
-    let toml = scenario().replace(
-        "[flap]\nenabled = true\nup = 20\ndown = 220\nposition = 20",
-        "[flap]\nenabled = true\nup = 20\ndown = 22\nposition = 21",
-    );
-    let mut r = Rig::with(&toml, Rig::motors_only());
+    let toml = flaps_at_between(21, 20, 22);
+    let mut r = Rig::with(&toml, Rig::only(&[Step::Motors]));
     r.start();
     r.run_until(20_000, |r| r.view.step == Step::Done);
     assert_eq!(
@@ -1755,7 +1706,7 @@ fn a_motor_with_no_room_either_way_is_not_run_and_says_why() {
 /// second for "no live status", and the check waits with the reason in words.
 #[test]
 fn a_stale_position_mid_run_stops_the_motor_and_says_why() {
-    let mut opts = Rig::motors_only();
+    let mut opts = Rig::only(&[Step::Motors]);
     opts.timing.motor_run = Duration::from_millis(2000);
     let mut r = Rig::new(opts);
     r.start();
@@ -1782,16 +1733,7 @@ fn a_stale_position_mid_run_stops_the_motor_and_says_why() {
     // Positions again: retried, it finishes and is put back.
     r.run(300);
     r.cmd(Command::Retry);
-    r.run_until(20_000, |r| r.view.step == Step::Done);
-    assert_eq!(
-        r.view.motors[0].outcome,
-        Outcome::Found(MotorFinding::Moves)
-    );
-    let back = i32::from(flaps_at(&r));
-    assert!(
-        (back - 20).abs() <= super::motors::BACK_WITHIN,
-        "left at {back}"
-    );
+    r.flaps_pass_and_are_back_at_20("retried after the position went stale");
 }
 
 // ===== check-switches: the switch step never powers what is left alone, and says
@@ -1909,27 +1851,15 @@ fn an_input_that_also_powers_something_left_alone_is_never_asked() {
 
 #[test]
 fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inputs() {
-    let mut r = Rig::new(Options {
-        choices: Choices {
-            exclude: vec!["Nav Lt".into(), "Flaps".into()],
-            include: vec![],
-            excluded_here: vec![],
-        },
-        ..Rig::switches_then_motors()
-    });
+    let mut r = Rig::new(excluding(&["Nav Lt", "Flaps"], Rig::switches_then_motors()));
     r.start();
-    assert_eq!(
-        skip_words(&r, Input::Switch(2)),
-        "switch 2 also powers Nav Lt (excluded): not asked"
-    );
-    assert_eq!(
-        skip_words(&r, Input::FlapUp),
-        "flap switch UP drives Flaps (excluded): not asked"
-    );
-    assert_eq!(
-        skip_words(&r, Input::FlapDown),
-        "flap switch DOWN drives Flaps (excluded): not asked"
-    );
+    for (input, words) in [
+        (Input::Switch(2), "switch 2 also powers Nav Lt (excluded)"),
+        (Input::FlapUp, "flap switch UP drives Flaps (excluded)"),
+        (Input::FlapDown, "flap switch DOWN drives Flaps (excluded)"),
+    ] {
+        assert_eq!(skip_words(&r, input), format!("{words}: not asked"));
+    }
     // The first input asked is switch 3; the pitch trim's inputs are still asked.
     assert_eq!(
         r.view.switches[r.view.current.unwrap()].input,
@@ -1942,14 +1872,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
             .any(|s| s.input == Input::PitchTrimUp && s.outcome == Outcome::NotRun)
     );
     // Taking the exclusion back on the screen asks switch 2 again.
-    let mut r = Rig::new(Options {
-        choices: Choices {
-            exclude: vec!["Nav Lt".into()],
-            include: vec![],
-            excluded_here: vec![],
-        },
-        ..Rig::switches_only()
-    });
+    let mut r = Rig::new(excluding(&["Nav Lt"], Rig::only(&[Step::Switches])));
     assert!(r.view.unasked.iter().any(|u| u.input == Input::Switch(2)));
     r.view.current =
         Some(r.view.plan.len() + r.view.excluded.iter().position(|e| e.id == 4).unwrap());
@@ -1967,7 +1890,7 @@ fn a_circuit_excluded_by_name_takes_its_switch_out_and_an_excluded_motor_its_inp
 fn at_four_pm() -> Options {
     Options {
         clock: Some(std::time::UNIX_EPOCH + Duration::from_secs(1_764_000_000)),
-        ..Rig::switches_only()
+        ..Rig::only(&[Step::Switches])
     }
 }
 
@@ -2064,7 +1987,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
                 follow_wait: Duration::from_secs(8),
                 ..Default::default()
             },
-            ..Rig::switches_only()
+            ..Rig::only(&[Step::Switches])
         },
     );
     let stale = crate::protocol::message::DeviceSpec {
@@ -2081,7 +2004,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
                 follow_wait: Duration::from_secs(8),
                 ..Default::default()
             },
-            ..Rig::switches_only()
+            ..Rig::only(&[Step::Switches])
         },
         &mut r.view,
         &r.model,
@@ -2108,7 +2031,7 @@ fn a_circuit_that_follows_another_switch_names_it() {
 fn a_circuit_whose_freshest_spec_names_another_switch_says_which() {
     // The page's spec changes mid-item (the page's minute re-read): Nav Lt is now on
     // switch 5, and it does not follow switch 2.
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     r.run(100);
     let moved = crate::protocol::message::DeviceSpec {
@@ -2137,7 +2060,7 @@ fn a_circuit_whose_freshest_spec_names_another_switch_says_which() {
 
 #[test]
 fn the_steps_after_the_switches_run_once_when_skipped() {
-    let mut r = Rig::new(Rig::switches_only());
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     r.start();
     r.cmd(Command::SkipStep);
     assert_eq!(r.view.step, Step::Done);
@@ -2179,7 +2102,7 @@ impl Rig {
 /// (focus alone coming back is not enough); then the step ends as it would have.
 #[test]
 fn no_circuit_is_switched_on_while_the_terminal_has_lost_focus() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     // Nav Lt (4) is the first circuit the check switches on.
     r.run_until(3000, |r| r.powers(4) == vec![true]);
@@ -2213,7 +2136,7 @@ fn no_circuit_is_switched_on_while_the_terminal_has_lost_focus() {
 /// skipped, it is skipped with nothing sent.
 #[test]
 fn a_circuit_waiting_for_the_page_waits_again_or_is_skipped() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     let p = r.ctl.set_page_hidden(r.now, true);
     r.send(p);
     r.start();
@@ -2243,7 +2166,7 @@ fn a_circuit_waiting_for_the_page_waits_again_or_is_skipped() {
 /// seen and the person asks; then the motor ends where the check found it.
 #[test]
 fn no_motor_run_starts_while_the_page_is_hidden() {
-    let mut r = Rig::new(Rig::motors_only());
+    let mut r = Rig::new(Rig::only(&[Step::Motors]));
     r.start();
     r.past_probes();
     // Until the first test run has ended by itself (its stop is on the wire).
@@ -2287,10 +2210,7 @@ fn no_motor_run_starts_while_the_page_is_hidden() {
 /// flipping one runs its motor from the cockpit. The plan says so, in its words.
 #[test]
 fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
-    let mut r = Rig::new(Options {
-        skip: vec![Step::Circuits, Step::Motors, Step::Loads],
-        ..Options::default()
-    });
+    let mut r = Rig::new(Rig::only(&[Step::Switches]));
     for input in [
         Input::FlapUp,
         Input::FlapDown,
@@ -2301,14 +2221,15 @@ fn with_the_motors_skipped_their_switch_inputs_are_not_asked() {
         assert!(u.is_some(), "{input:?} asked");
     }
     r.start();
-    assert_eq!(
-        skip_words(&r, Input::FlapUp),
-        "flap switch UP drives Flaps (the motors step is skipped): not asked"
-    );
-    assert_eq!(
-        skip_words(&r, Input::PitchTrimDown),
-        "pitch trim switch DOWN drives Trim_P (the motors step is skipped): not asked"
-    );
+    for (input, words) in [
+        (Input::FlapUp, "flap switch UP drives Flaps"),
+        (Input::PitchTrimDown, "pitch trim switch DOWN drives Trim_P"),
+    ] {
+        assert_eq!(
+            skip_words(&r, input),
+            format!("{words} (the motors step is skipped): not asked")
+        );
+    }
     // Not skipped, they are asked.
     let r = Rig::new(Rig::switches_then_motors());
     assert!(
@@ -2334,7 +2255,7 @@ fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
             switch_timeout: Duration::from_secs(2),
             ..Default::default()
         },
-        ..Rig::switches_only()
+        ..Rig::only(&[Step::Switches])
     };
     let flip_current = |r: &mut Rig| {
         let v = &r.view;
@@ -2354,32 +2275,21 @@ fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
         r.run(1500);
         r.start();
     };
+    let [sw, ci, mo] = [Step::Switches, Step::Circuits, Step::Motors].map(|s| Rig::only(&[s]));
     let cases: Vec<(&str, Options, Reach)> = vec![
-        ("before power", Rig::switches_only(), |_| {}),
-        (
-            "switches: waiting for the flip",
-            Rig::switches_only(),
-            start,
-        ),
-        ("switches: input changed", Rig::switches_only(), start),
+        ("before power", sw.clone(), |_| {}),
+        ("switches: waiting for the flip", sw.clone(), start),
+        ("switches: input changed", sw.clone(), start),
         ("switches: timed out", short_switch(), start),
-        (
-            "circuits: measure, switched on",
-            Rig::circuits_only(),
-            start,
-        ),
-        (
-            "circuits: measure, as it is",
-            Rig::circuits_only(),
-            on_already,
-        ),
-        ("circuits: put back", Rig::circuits_only(), start),
-        ("circuits: waiting to be seen", Rig::circuits_only(), start),
-        ("stopping", Rig::circuits_only(), start),
-        ("motors: start", Rig::motors_only(), start),
-        ("motors: running", Rig::motors_only(), start),
-        ("motors: settle", Rig::motors_only(), start),
-        ("motors: paused", Rig::motors_only(), start),
+        ("circuits: measure, switched on", ci.clone(), start),
+        ("circuits: measure, as it is", ci.clone(), on_already),
+        ("circuits: put back", ci.clone(), start),
+        ("circuits: waiting to be seen", ci.clone(), start),
+        ("stopping", ci.clone(), start),
+        ("motors: start", mo.clone(), start),
+        ("motors: running", mo.clone(), start),
+        ("motors: settle", mo.clone(), start),
+        ("motors: paused", mo.clone(), start),
     ];
     for (stage, opts, begin) in cases {
         let mut r = Rig::new(opts);
@@ -2435,7 +2345,7 @@ fn stopped_at_every_stage_the_check_ends_once_and_says_so() {
 /// A check that runs to its end ends once.
 #[test]
 fn a_check_that_finishes_ends_once() {
-    let mut r = Rig::new(Rig::circuits_only());
+    let mut r = Rig::new(Rig::only(&[Step::Circuits]));
     r.start();
     r.run_until(60_000, |r| r.flow.finished());
     assert_eq!(r.ended, 1);
@@ -2455,7 +2365,7 @@ fn a_check_that_finishes_ends_once() {
 #[test]
 fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     use std::collections::BTreeSet;
-    let mut r = Rig::holding_lights(Rig::circuits_only());
+    let mut r = Rig::holding_lights(Rig::only(&[Step::Circuits]));
     r.start();
     let said = |id: u8| match id {
         4 => Some(false),
@@ -2553,13 +2463,7 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     insta::assert_snapshot!("nav_light_is_it_lit_prompt", nav_prompt.unwrap());
 
     r.run_until(20_000, |r| r.flow.finished());
-    let about = super::report::About {
-        when: std::time::UNIX_EPOCH + Duration::from_secs(1_796_149_812),
-        port: "sim".into(),
-        unit: None,
-        ours: "0".into(),
-        travel: vec![],
-    };
+    let about = super::report::tests::about();
     let md = super::report::markdown(&r.view, &about);
     let row = |name: &str| {
         md[md.find("## Circuits").unwrap()..]

@@ -7,6 +7,7 @@ use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 
 use crate::check::state::{LoadsView, Mark};
+use crate::check::words;
 use crate::loads::analysis::{MARGIN_WARNING_PERCENT, amps_text, minutes_text};
 use crate::loads::{Analysis, Figure, Level, Phase};
 use crate::ui::{theme, wrap};
@@ -39,11 +40,7 @@ pub fn render(buf: &mut Buffer, area: Rect, loads: Option<&LoadsView>, first_cir
         }
         Some(LoadsView::TemplateWritten(path)) => {
             w.line(&[(
-                format!(
-                    "{} {}: no load file yet.",
-                    Mark::Warn.symbol(),
-                    Mark::Warn.word()
-                ),
+                format!("{}: no load file yet.", words::badge(Mark::Warn)),
                 theme::caution(),
             )]);
             w.wrapped(
@@ -60,9 +57,8 @@ pub fn render(buf: &mut Buffer, area: Rect, loads: Option<&LoadsView>, first_cir
         Some(LoadsView::Refused(why)) => {
             w.line(&[(
                 format!(
-                    "{} {}: the load file cannot be used.",
-                    Mark::Fail.symbol(),
-                    Mark::Fail.word()
+                    "{}: the load file cannot be used.",
+                    words::badge(Mark::Fail)
                 ),
                 theme::alert(),
             )]);
@@ -79,8 +75,11 @@ pub fn render(buf: &mut Buffer, area: Rect, loads: Option<&LoadsView>, first_cir
             let chart_rows = Phase::ALL.len() as u16 + 1;
             phase_table(&mut w, analysis);
             for &(id, amps) in &analysis.unlisted {
-                let badge = format!("{} {} ", Mark::Warn.symbol(), Mark::Warn.word());
-                let x = w.put(0, &badge, theme::caution());
+                let x = w.put(
+                    0,
+                    &format!("{} ", words::badge(Mark::Warn)),
+                    theme::caution(),
+                );
                 hanging(
                     &mut w,
                     x,
