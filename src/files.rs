@@ -224,8 +224,8 @@ fn sync_dir(dir: &Path) {
     }
 }
 
-/// A folder's entries by name, sorted: what a test sees left in it.
 #[cfg(test)]
+/// A folder's entries by name, sorted: what a test sees left in it.
 pub(crate) fn entries(dir: &Path) -> Vec<String> {
     let mut e: Vec<String> = std::fs::read_dir(dir)
         .unwrap()

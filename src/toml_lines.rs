@@ -159,21 +159,17 @@ pub fn read_all<T: DeserializeOwned>(text: &str) -> (Option<T>, Keys, Vec<Proble
     }
 }
 
-/// The path of the part of `t` that an error at `span` is about: the table or entry
-/// whose span it is, else the deepest key or entry that holds it.
+/// The path of the part of `t` that an error at `span` is about: the deepest key or
+/// entry that holds its start.
 fn culprit(t: &DeTable<'_>, span: &Range<usize>) -> Option<Vec<String>> {
-    let mut exact = None;
     let mut deepest: Option<Vec<String>> = None;
     parts(t, &mut Vec::new(), &mut |path, spans| {
-        if spans.iter().any(|s| s == span) && exact.is_none() {
-            exact = Some(path.to_vec());
-        }
         let holds = |s: &Range<usize>| s.start <= span.start && span.start < s.end;
         if spans.iter().any(holds) && deepest.as_ref().is_none_or(|d| path.len() > d.len()) {
             deepest = Some(path.to_vec());
         }
     });
-    exact.or(deepest)
+    deepest
 }
 
 /// Calls `each` with the path and spans (key and value) of every key of `t` and every

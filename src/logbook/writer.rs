@@ -542,40 +542,43 @@ fn insert(
                     c.battery_usable
                 ],
             )?;
-            rows(
-                tx,
+            let mut st = tx.prepare_cached(
                 "INSERT INTO check_circuits (entry, device, name, pin, breaker, switch,
                    amps, verdict, finding) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
-                c.circuits.iter().map(|x| {
-                    let (d, n, p, b, s) = (&x.device, &x.name, &x.pin, &x.breaker, &x.switch);
-                    (id, d, n, p, b, s, &x.amps, &x.verdict, &x.finding)
-                }),
             )?;
-            rows(
-                tx,
+            for x in &c.circuits {
+                st.execute(params![
+                    id, x.device, x.name, x.pin, x.breaker, x.switch, x.amps, x.verdict, x.finding
+                ])?;
+            }
+            let mut st = tx.prepare_cached(
                 "INSERT INTO check_switches (entry, input, circuits, verdict, finding)
                  VALUES (?1, ?2, ?3, ?4, ?5)",
-                c.switches
-                    .iter()
-                    .map(|x| (id, &x.input, &x.circuits, &x.verdict, &x.finding)),
             )?;
-            rows(
-                tx,
+            for x in &c.switches {
+                st.execute(params![id, x.input, x.circuits, x.verdict, x.finding])?;
+            }
+            let mut st = tx.prepare_cached(
                 "INSERT INTO check_motors (entry, motor, positions, verdict, finding)
                  VALUES (?1, ?2, ?3, ?4, ?5)",
-                c.motors
-                    .iter()
-                    .map(|x| (id, &x.motor, &x.positions, &x.verdict, &x.finding)),
             )?;
-            rows(
-                tx,
+            for x in &c.motors {
+                st.execute(params![id, x.motor, x.positions, x.verdict, x.finding])?;
+            }
+            let mut st = tx.prepare_cached(
                 "INSERT INTO check_loads (entry, phase, amps, margin_percent,
                    endurance_minutes, level) VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
-                c.loads.iter().map(|x| {
-                    let (e, l) = (&x.endurance_minutes, &x.level);
-                    (id, &x.phase, &x.amps, &x.margin_percent, e, l)
-                }),
             )?;
+            for x in &c.loads {
+                st.execute(params![
+                    id,
+                    x.phase,
+                    x.amps,
+                    x.margin_percent,
+                    x.endurance_minutes,
+                    x.level
+                ])?;
+            }
         }
         What::Backup { path, text } => {
             tx.execute(
@@ -629,19 +632,6 @@ fn insert(
                 params![id, device, name, fault],
             )?;
         }
-    }
-    Ok(())
-}
-
-/// One row of a detail table a line of `rows`.
-fn rows<P: rusqlite::Params>(
-    tx: &Transaction,
-    sql: &str,
-    rows: impl Iterator<Item = P>,
-) -> rusqlite::Result<()> {
-    let mut st = tx.prepare_cached(sql)?;
-    for p in rows {
-        st.execute(p)?;
     }
     Ok(())
 }

@@ -3,79 +3,9 @@
 //! A scenario says what the unit's EEPROM holds when it is fresh (device specs, names,
 //! enables, flap/trim/wig-wag/system specs), what the aircraft around it does (loads,
 //! shorts, switch positions, bus volts) and a timeline of things that happen to it.
-//! `assets/scenarios/README.md` is the same description for people writing one.
-//!
-//! ```toml
-//! description = "one line shown in logs"
-//! loop_after = 60.0            # optional: the timeline starts again every 60 s
-//!
-//! [electrical]                 # all optional
-//! bus_volts = 14.2             # regulated bus volts while an alternator runs
-//! battery_volts = 12.5         # bus volts with no alternator running
-//! aux_battery_volts = 12.7
-//! temperature_c = 31
-//! switches = [1, 3]            # external switch inputs closed at start (1–10)
-//! starter = false              # starter engaged (cranking) at start
-//! rpm = 2400                   # engine RPM the unit sees even without EXTERNAL_DATA
-//! dead_switches = [7]          # wiring fault: input 7 never changes, whatever its switch does
-//! crossed_switches = [[5, 6]]  # wiring fault: switch 5 drives input 6 and 6 drives 5
-//!
-//! [system]                     # SYSTEM_SPEC, ICD Table 14
-//! overvoltage_limit = 16       # 16 or 32
-//! secondary_alternator = 17    # device id, omit for none
-//!
-//! [[device]]                   # DEVICE_SPEC (Table 13) plus the wiring behind the pin
-//! id = 4
-//! name = "Nav Lt"              # DEVICE_NAME, ≤ 16 ASCII bytes
-//! breaker = 3                  # amps; default: Appendix F
-//! switch = 1                   # 0 off, 1–10, 11 always on; default: Appendix F
-//! current_fault = false
-//! enabled = true               # DEVICE_ENABLE (4–28 only)
-//! load = 1.4                   # amps drawn when powered
-//! short = false                # a short: SHORT_CIRCUIT as soon as it is powered
-//! open_circuit = false         # wiring fault: the load is not connected, 0 A while on
-//!
-//! [flap]                       # FLAP_SPEC, Table 16; endpoint_duration in seconds
-//! enabled = true
-//! mode = "momentary"           # or "position"
-//! up = 20
-//! down = 220
-//! midpoint_1 = 90
-//! midpoint_2 = 160
-//! breaker = 7
-//! overspeed_position = 60
-//! max_speed = 100
-//! endpoint_duration = 0.5
-//! position = 20                # where the flaps are at start
-//! reversed = false             # wiring fault: the motor runs the other way
-//! stuck = false                # wiring fault: the motor runs but the position never moves
-//!
-//! [pitch_trim]                 # TRIM_SPEC, Table 15 (also [roll_trim])
-//! enabled = true
-//! up = 30
-//! down = 220
-//! neutral = 125
-//! power = 60
-//! speed = 120
-//! position = 125
-//!
-//! [wig_wag]                    # WIG_WAG_SPEC, Table 17
-//! device_one = 7
-//! device_two = 8
-//! warm_up = 5
-//! speed = 70
-//!
-//! [line]                       # what the wire does to the unit's answers
-//! drop_spec_acks = false       # true: SPEC_ACKs are lost, specs still applied
-//!
-//! [[event]]                    # the timeline; `at` is seconds after power-on
-//! at = 5.0
-//! do = "switch"                # see `EventAction` for every action and its fields
-//! switch = 2
-//! on = true
-//! ```
-//!
-//! Unknown keys are errors, so a typo does not silently give a different aircraft.
+//! Its keys are the fields of [`Scenario`] and its sections; `assets/scenarios/README.md`
+//! describes each for people writing one. Unknown keys are errors, so a typo does not
+//! silently give a different aircraft.
 
 use std::borrow::Cow;
 use std::path::PathBuf;
