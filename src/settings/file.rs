@@ -140,12 +140,7 @@ impl Reader<'_> {
             toml::Value::Boolean(b) => Ok(b.to_string()),
             other => Err(format!(
                 "{} where text or a whole number was expected",
-                match other.type_str() {
-                    "array" => "a list",
-                    "table" => "a section",
-                    "float" => "a decimal number",
-                    _ => "a date",
-                }
+                toml_lines::kind(other)
             )),
         };
         match text.and_then(|t| read(&t)) {
