@@ -128,14 +128,10 @@ impl Default for Electrical {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SystemSection {
-    #[serde(default = "sixteen")]
+    #[serde(default = "byte::<16>")]
     pub overvoltage_limit: u8,
     #[serde(default)]
     pub secondary_alternator: Option<u8>,
-}
-
-fn sixteen() -> u8 {
-    16
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -178,7 +174,7 @@ pub struct FlapSection {
     pub midpoint_1: u8,
     #[serde(default)]
     pub midpoint_2: u8,
-    #[serde(default = "seven")]
+    #[serde(default = "byte::<7>")]
     pub breaker: u8,
     #[serde(default)]
     pub overspeed_position: u8,
@@ -200,8 +196,10 @@ pub struct FlapSection {
 fn yes() -> bool {
     true
 }
-fn seven() -> u8 {
-    7
+
+/// A number's default, written where the field is.
+fn byte<const N: u8>() -> u8 {
+    N
 }
 
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
@@ -222,7 +220,7 @@ pub struct TrimSection {
     pub up: u8,
     pub down: u8,
     pub neutral: u8,
-    #[serde(default = "hundred")]
+    #[serde(default = "byte::<100>")]
     pub power: u8,
     #[serde(default)]
     pub speed: u16,
@@ -249,27 +247,16 @@ pub struct MotorWiring {
     pub stuck: bool,
 }
 
-fn hundred() -> u8 {
-    100
-}
-
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WigWagSection {
     pub device_one: Option<u8>,
     #[serde(default)]
     pub device_two: Option<u8>,
-    #[serde(default = "five")]
+    #[serde(default = "byte::<5>")]
     pub warm_up: u8,
-    #[serde(default = "seventy")]
+    #[serde(default = "byte::<70>")]
     pub speed: u8,
-}
-
-fn five() -> u8 {
-    5
-}
-fn seventy() -> u8 {
-    70
 }
 
 /// One timeline entry: at `at` seconds after power-on, do `action`.
