@@ -225,18 +225,20 @@ fn sync_dir(dir: &Path) {
 }
 
 #[cfg(test)]
+/// A folder's entries by name, sorted: what a test sees left in it.
+pub(crate) fn entries(dir: &Path) -> Vec<String> {
+    let mut e: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    e.sort();
+    e
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use std::time::Duration;
-
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut e: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        e.sort();
-        e
-    }
 
     /// Linux's answer on FAT and exFAT (EPERM), which std calls PermissionDenied.
     fn no_links(_: &Path, _: &Path) -> io::Result<()> {

@@ -6,9 +6,11 @@
 
 use std::collections::BTreeMap;
 use std::fmt;
+use std::ops::Range;
 use std::path::PathBuf;
 
 use serde::de::DeserializeOwned;
+use toml::de::{DeArray, DeTable, DeValue};
 
 /// A value of the file and where it stands in the text.
 pub type Value = toml::Spanned<toml::Value>;
@@ -110,6 +112,133 @@ pub fn parse<T: DeserializeOwned>(text: &str) -> Result<T, Problem> {
     toml::from_str(text).map_err(|e: toml::de::Error| refused(text, &e, ""))
 }
 
+/// Reads `text` as `T`, listing every problem at once. Where serde refuses a key, or
+/// an entry of an array of tables (`[[event]]`), that part is set aside with its
+/// problem and the rest is read again, so one mistake hides no other; a table that
+/// then lacks a key it needs, because that key was set aside, is set aside too,
+/// without a second problem. Gives `T` as read from what remains (`None` if nothing
+/// does: text that is not TOML), the keys of what remains with their lines (for the
+/// problems a reader finds in the values; an entry of an array is a key of its
+/// number, from 0), and the problems in line order.
+pub fn read_all<T: DeserializeOwned>(text: &str) -> (Option<T>, Keys, Vec<Problem>) {
+    let mut root = match DeTable::parse(text) {
+        Ok(root) => root,
+        Err(e) => {
+            return (
+                None,
+                Keys::default(),
+                vec![refused(text, &e, "not valid TOML: ")],
+            );
+        }
+    };
+    let mut problems = Vec::new();
+    let mut emptied: Vec<Vec<String>> = Vec::new();
+    loop {
+        let e = match T::deserialize(toml::de::Deserializer::from(root.clone())) {
+            Ok(t) => {
+                problems.sort_by_key(|p: &Problem| p.line);
+                return (Some(t), Keys::of_table(text, root.get_ref()), problems);
+            }
+            Err(e) => e,
+        };
+        let keys = Keys::of_table(text, root.get_ref());
+        let culprit = e.span().and_then(|s| culprit(root.get_ref(), &s));
+        match culprit {
+            Some(path) if set_aside(root.get_mut(), &path) => {
+                if !emptied.contains(&path) {
+                    problems.push(keys.problem(&path.join("."), e.message().trim()));
+                }
+                emptied.push(path[..path.len() - 1].to_vec());
+            }
+            _ => {
+                problems.push(refused(text, &e, ""));
+                problems.sort_by_key(|p: &Problem| p.line);
+                return (None, keys, problems);
+            }
+        }
+    }
+}
+
+/// The path of the part of `t` that an error at `span` is about: the deepest key or
+/// entry that holds its start.
+fn culprit(t: &DeTable<'_>, span: &Range<usize>) -> Option<Vec<String>> {
+    let mut deepest: Option<Vec<String>> = None;
+    parts(t, &mut Vec::new(), &mut |path, spans| {
+        let holds = |s: &Range<usize>| s.start <= span.start && span.start < s.end;
+        if spans.iter().any(holds) && deepest.as_ref().is_none_or(|d| path.len() > d.len()) {
+            deepest = Some(path.to_vec());
+        }
+    });
+    deepest
+}
+
+/// Calls `each` with the path and spans (key and value) of every key of `t` and every
+/// table entry of an array, outermost first.
+fn parts(t: &DeTable<'_>, at: &mut Vec<String>, each: &mut impl FnMut(&[String], &[Range<usize>])) {
+    for (k, v) in t {
+        at.push(k.get_ref().to_string());
+        each(at, &[k.span(), v.span()]);
+        match v.get_ref() {
+            DeValue::Table(inner) => parts(inner, at, each),
+            DeValue::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    if let DeValue::Table(inner) = item.get_ref() {
+                        at.push(i.to_string());
+                        each(at, &[item.span()]);
+                        parts(inner, at, each);
+                        at.pop();
+                    }
+                }
+            }
+            _ => {}
+        }
+        at.pop();
+    }
+}
+
+/// Takes the key or array entry at `path` out of `t`; false if it has none there.
+fn set_aside(t: &mut DeTable<'_>, path: &[String]) -> bool {
+    let [first, rest @ ..] = path else {
+        return false;
+    };
+    if rest.is_empty() {
+        let key = t.keys().find(|k| k.get_ref() == first).cloned();
+        return key.is_some_and(|k| t.remove(&k).is_some());
+    }
+    let value = t.iter_mut().find(|(k, _)| k.get_ref() == first);
+    match (value.map(|(_, v)| v.get_mut()), rest[0].parse::<usize>()) {
+        (Some(DeValue::Table(inner)), _) => set_aside(inner, rest),
+        (Some(DeValue::Array(items)), Ok(n)) if n < items.len() => {
+            if rest.len() > 1 {
+                let DeValue::Table(inner) = items.as_mut()[n].get_mut() else {
+                    return false;
+                };
+                return set_aside(inner, &rest[1..]);
+            }
+            let mut kept = DeArray::new();
+            for (_, item) in items.iter().enumerate().filter(|(i, _)| *i != n) {
+                kept.push(item.clone());
+            }
+            *items = kept;
+            true
+        }
+        _ => false,
+    }
+}
+
+/// What a value is, in a person's words, for the problem that says what was expected.
+pub fn kind(v: &toml::Value) -> &'static str {
+    match v {
+        toml::Value::String(_) => "text",
+        toml::Value::Integer(_) => "a whole number",
+        toml::Value::Float(_) => "a decimal number",
+        toml::Value::Boolean(_) => "true/false",
+        toml::Value::Datetime(_) => "a date",
+        toml::Value::Array(_) => "a list",
+        toml::Value::Table(_) => "a section",
+    }
+}
+
 /// The 1-based line of a byte offset.
 pub fn line_of(text: &str, offset: usize) -> usize {
     text.as_bytes()[..offset.min(text.len())]
@@ -133,21 +262,30 @@ pub struct Keys(BTreeMap<Vec<String>, usize>);
 impl Keys {
     /// The keys of `text`; none if it is not TOML ([`parse`] or [`table`] says why).
     pub fn of(text: &str) -> Keys {
-        fn walk(text: &str, at: &[String], t: &toml::de::DeTable, out: &mut Keys) {
-            for (k, v) in t {
-                let mut path = at.to_vec();
-                path.push(k.get_ref().to_string());
-                if let toml::de::DeValue::Table(inner) = v.get_ref() {
-                    walk(text, &path, inner, out);
-                }
-                out.0.insert(path, line_of(text, k.span().start));
-            }
+        match DeTable::parse(text) {
+            Ok(root) => Keys::of_table(text, root.get_ref()),
+            Err(_) => Keys::default(),
         }
+    }
+
+    /// The keys of `text` as read into `root`.
+    fn of_table(text: &str, root: &DeTable<'_>) -> Keys {
         let mut out = Keys::default();
-        if let Ok(root) = toml::de::DeTable::parse(text) {
-            walk(text, &[], root.get_ref(), &mut out);
-        }
+        parts(root, &mut Vec::new(), &mut |path, spans| {
+            let first = spans.first().map_or(0, |s| s.start);
+            out.0.insert(path.to_vec(), line_of(text, first));
+        });
         out
+    }
+
+    /// A problem with the part at `path` (dotted, as [`Keys::line`]), named by its keys
+    /// (an array entry's number left out: its line tells which).
+    pub fn problem(&self, path: &str, message: impl Into<String>) -> Problem {
+        let field: Vec<&str> = path
+            .split('.')
+            .filter(|k| k.parse::<usize>().is_err())
+            .collect();
+        Problem::new(self.line(path), field.join("."), message)
     }
 
     /// The line of `path` (dotted), or of the nearest table above it that the text
@@ -226,6 +364,67 @@ mod tests {
         );
         let under = Keys::of("x = 1\n[y]\nz = 2\n").unknown(|p| p[0] == "x");
         assert_eq!(under, vec![(vec!["y".into()], 2)], "not y.z again");
+    }
+
+    #[test]
+    fn read_all_sets_aside_what_is_refused_and_lists_every_problem() {
+        #[derive(Debug, PartialEq, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Doc {
+            top: Option<u8>,
+            #[serde(default)]
+            part: Vec<Part>,
+        }
+        #[derive(Debug, PartialEq, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Part {
+            id: u8,
+            #[serde(default)]
+            size: u8,
+        }
+        let text = "top = \"x\"\n\
+                    [[part]]\nid = 1\nsize = 300\nsiez = 2\n\
+                    [[part]]\nid = \"two\"\n\
+                    [[part]]\nid = 3\n";
+        let (doc, keys, problems) = read_all::<Doc>(text);
+        let got: Vec<(Option<usize>, &str)> = problems
+            .iter()
+            .map(|p| (p.line, p.field.as_str()))
+            .collect();
+        // A part whose needed `id` is refused is set aside once, not again as missing.
+        assert_eq!(
+            got,
+            [
+                (Some(1), "top"),
+                (Some(4), "part.size"),
+                (Some(5), "part.siez"),
+                (Some(7), "part.id"),
+            ],
+            "{problems:?}"
+        );
+        assert!(
+            problems[2].message.contains("unknown field `siez`"),
+            "{problems:?}"
+        );
+        let parts = vec![Part { id: 1, size: 0 }, Part { id: 3, size: 0 }];
+        assert_eq!(
+            doc,
+            Some(Doc {
+                top: None,
+                part: parts
+            })
+        );
+        assert_eq!(
+            keys.line("part.1.id"),
+            Some(9),
+            "what remains, numbered anew"
+        );
+        let (doc, _, problems) = read_all::<Doc>("top = [\n");
+        assert_eq!(
+            (doc, problems.len()),
+            (None, 1),
+            "not TOML: its first mistake"
+        );
     }
 
     #[test]

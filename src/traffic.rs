@@ -532,23 +532,16 @@ mod tests {
         // Then every two seconds: slow; then nothing: missing.
         log.note_rx(s(8.0), &RxItem::Packet(sys()), &[1]);
         log.note_rx(s(10.0), &RxItem::Packet(sys()), &[1]);
-        assert_eq!(
-            log.health(Crossing::Rx, SystemStatus::NAME, s(10.5)),
-            Health::Slow
-        );
-        assert_eq!(
-            log.health(Crossing::Rx, SystemStatus::NAME, s(13.0)),
-            Health::Missing
-        );
-        // DEVICE_STATUS never came: missing; FAULT_STATUS never came: quiet.
-        assert_eq!(
-            log.health(Crossing::Rx, DeviceStatus::NAME, s(3.0)),
-            Health::Missing
-        );
-        assert_eq!(
-            log.health(Crossing::Rx, FaultStatus::NAME, s(3.0)),
-            Health::Quiet
-        );
-        assert_eq!(log.health(Crossing::Rx, "PING", s(3.0)), Health::NoRate);
+        for (name, at, want) in [
+            (SystemStatus::NAME, 10.5, Health::Slow),
+            (SystemStatus::NAME, 13.0, Health::Missing),
+            // DEVICE_STATUS never came: missing; FAULT_STATUS never came: quiet.
+            (DeviceStatus::NAME, 3.0, Health::Missing),
+            (FaultStatus::NAME, 3.0, Health::Quiet),
+            ("PING", 3.0, Health::NoRate),
+        ] {
+            let got = log.health(Crossing::Rx, name, s(at));
+            assert_eq!(got, want, "{name} at {at} s");
+        }
     }
 }

@@ -173,6 +173,7 @@ pub fn save_made(path: &Path, backup: &Backup, made: &Provenance) -> std::io::Re
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::files::entries;
     use crate::protocol::config::UnitConfig;
     use crate::protocol::message::HardwareVersion;
 
@@ -182,15 +183,6 @@ mod tests {
             software_major: major,
             software_minor: minor,
         }
-    }
-
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut e: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        e.sort();
-        e
     }
 
     #[test]

@@ -255,6 +255,18 @@ mod tests {
         sim
     }
 
+    /// The plan from `cur` to `target` (a target the rules take), once running it
+    /// as the unit would has come to hold `target`.
+    fn planned(cur: &UnitConfig, target: &UnitConfig) -> Vec<RestoreWrite> {
+        assert!(
+            validate::whole_config(target).is_empty(),
+            "the rules take it"
+        );
+        let steps = plan(cur, target).unwrap();
+        assert_eq!(&run(cur, &steps), target);
+        steps
+    }
+
     #[test]
     fn nothing_to_do_when_the_unit_already_holds_the_file() {
         let c = UnitConfig::default();
@@ -268,9 +280,8 @@ mod tests {
         cur.wig_wag.device_one = Some(10);
         let mut target = cur.clone();
         target.devices[6].circuit_breaker = 5;
-        let steps = plan(&cur, &target).unwrap();
+        let steps = planned(&cur, &target);
         assert_eq!(names(&steps), ["DEVICE_SPEC for 5A-3"]);
-        assert_eq!(run(&cur, &steps), target);
     }
 
     #[test]
@@ -281,8 +292,7 @@ mod tests {
         let mut target = UnitConfig::default();
         on(&mut target, 11, 5);
         target.wig_wag.device_one = Some(11);
-        assert!(validate::whole_config(&target).is_empty());
-        let steps = plan(&cur, &target).unwrap();
+        let steps = planned(&cur, &target);
         assert_eq!(
             names(&steps),
             [
@@ -292,7 +302,6 @@ mod tests {
                 "WIG_WAG_SPEC",
             ]
         );
-        assert_eq!(run(&cur, &steps), target);
     }
 
     #[test]
@@ -304,8 +313,7 @@ mod tests {
         let mut target = cur.clone();
         on(&mut target, FIELD_PRI, 2);
         on(&mut target, 17, 1);
-        assert!(validate::whole_config(&target).is_empty());
-        let steps = plan(&cur, &target).unwrap();
+        let steps = planned(&cur, &target);
         assert_eq!(
             names(&steps),
             [
@@ -315,7 +323,6 @@ mod tests {
                 "SYSTEM_SPEC",
             ]
         );
-        assert_eq!(run(&cur, &steps), target);
     }
 
     #[test]
@@ -330,9 +337,7 @@ mod tests {
         let mut target = cur.clone();
         target.system.secondary_alternator = Some(5);
         target.wig_wag.device_one = Some(4);
-        assert!(validate::whole_config(&target).is_empty());
-        let steps = plan(&cur, &target).unwrap();
-        assert_eq!(run(&cur, &steps), target);
+        let steps = planned(&cur, &target);
         assert!(matches!(steps[0], RestoreWrite::Spec { untie: true, .. }));
     }
 
@@ -345,7 +350,7 @@ mod tests {
         target.names[0] = *b"Flaps\0\0\0\0\0\0\0\0\0\0\0";
         target.enabled[9] = false;
         on(&mut target, 9, 2);
-        let steps = plan(&cur, &target).unwrap();
+        let steps = planned(&cur, &target);
         assert_eq!(
             names(&steps),
             [
@@ -356,7 +361,6 @@ mod tests {
                 "DEVICE_ENABLE for 5A-6 (hidden)",
             ]
         );
-        assert_eq!(run(&cur, &steps), target);
     }
 
     #[test]

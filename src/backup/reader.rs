@@ -326,6 +326,14 @@ fn kind(v: &toml::Value) -> &'static str {
     }
 }
 
+/// Puts a setting the file gave in its place; one it lacks (or got wrong, then a
+/// problem) leaves the place as it was.
+fn set<T>(slot: &mut T, read: Option<T>) {
+    if let Some(v) = read {
+        *slot = v;
+    }
+}
+
 const POLARITIES: &[(&str, Polarity)] = &[
     ("standard", Polarity::Standard),
     ("inverted", Polarity::Inverted),
@@ -413,53 +421,47 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
                 _ => s.problem(OVERVOLTAGE.key, "must be 16 or 32 (ICD Table 14)".into()),
             }
         }
-        if let Some(p) = s.pin(SECONDARY_ALTERNATOR.key) {
-            cfg.system.secondary_alternator = p;
-        }
+        set(
+            &mut cfg.system.secondary_alternator,
+            s.pin(SECONDARY_ALTERNATOR.key),
+        );
         s.finish();
     }
 
     {
         let mut s = Section::new(t, "flaps", "flaps".into(), problems);
         let f = &mut cfg.flap;
-        if let Some(n) = s.name(FLAP_NAME.key) {
-            cfg.names[FLAPS as usize] = n;
-        }
-        if let Some(v) = s.bool(FLAP_ENABLED.key) {
-            f.enabled = v;
-        }
-        if let Some(v) = s.choice(
-            FLAP_MODE.key,
-            &[
-                ("momentary", FlapMode::Momentary),
-                ("position-based", FlapMode::PositionBased),
-            ],
-        ) {
-            f.mode = v;
-        }
-        if let Some(v) = s.choice(FLAP_POLARITY.key, POLARITIES) {
-            f.polarity = v;
-        }
+        set(&mut cfg.names[FLAPS as usize], s.name(FLAP_NAME.key));
+        set(&mut f.enabled, s.bool(FLAP_ENABLED.key));
+        set(
+            &mut f.mode,
+            s.choice(
+                FLAP_MODE.key,
+                &[
+                    ("momentary", FlapMode::Momentary),
+                    ("position-based", FlapMode::PositionBased),
+                ],
+            ),
+        );
+        set(&mut f.polarity, s.choice(FLAP_POLARITY.key, POLARITIES));
         for (item, slot) in [
             (FLAP_UP, &mut f.up),
             (FLAP_MIDPOINT_1, &mut f.midpoint_1),
             (FLAP_MIDPOINT_2, &mut f.midpoint_2),
             (FLAP_DOWN, &mut f.down),
             (FLAP_OVERSPEED_POSITION, &mut f.overspeed_position),
+            (FLAP_BREAKER, &mut f.circuit_breaker),
         ] {
-            if let Some(v) = s.u8(item.key, item.what) {
-                *slot = v;
-            }
+            set(slot, s.u8(item.key, item.what));
         }
-        if let Some(v) = s.u8(FLAP_BREAKER.key, FLAP_BREAKER.what) {
-            f.circuit_breaker = v;
-        }
-        if let Some(v) = s.u16(FLAP_MAX_SPEED.key, FLAP_MAX_SPEED.what) {
-            f.max_speed = v;
-        }
-        if let Some(v) = s.tenths(FLAP_ENDPOINT_DURATION.key) {
-            f.endpoint_duration = v;
-        }
+        set(
+            &mut f.max_speed,
+            s.u16(FLAP_MAX_SPEED.key, FLAP_MAX_SPEED.what),
+        );
+        set(
+            &mut f.endpoint_duration,
+            s.tenths(FLAP_ENDPOINT_DURATION.key),
+        );
         s.finish();
         // The flap breaker is kept in one value (UnitConfig::apply_flap_spec).
         let flap = cfg.flap;
@@ -472,30 +474,18 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
     ] {
         let mut s = Section::new(t, key, key.into(), problems);
         let mut spec = *cfg.trim(trim_type);
-        if let Some(n) = s.name(TRIM_NAME.key) {
-            cfg.names[id as usize] = n;
-        }
-        if let Some(v) = s.bool(TRIM_ENABLED.key) {
-            spec.enabled = v;
-        }
-        if let Some(v) = s.choice(TRIM_POLARITY.key, POLARITIES) {
-            spec.polarity = v;
-        }
+        set(&mut cfg.names[id as usize], s.name(TRIM_NAME.key));
+        set(&mut spec.enabled, s.bool(TRIM_ENABLED.key));
+        set(&mut spec.polarity, s.choice(TRIM_POLARITY.key, POLARITIES));
         for (item, slot) in [
             (TRIM_UP, &mut spec.up),
             (TRIM_DOWN, &mut spec.down),
             (TRIM_NEUTRAL, &mut spec.neutral),
+            (TRIM_POWER, &mut spec.power),
         ] {
-            if let Some(v) = s.u8(item.key, item.what) {
-                *slot = v;
-            }
+            set(slot, s.u8(item.key, item.what));
         }
-        if let Some(v) = s.u8(TRIM_POWER.key, TRIM_POWER.what) {
-            spec.power = v;
-        }
-        if let Some(v) = s.u16(TRIM_SPEED.key, TRIM_SPEED.what) {
-            spec.speed = v;
-        }
+        set(&mut spec.speed, s.u16(TRIM_SPEED.key, TRIM_SPEED.what));
         s.finish();
         cfg.apply_trim_spec(&spec);
     }
@@ -503,18 +493,13 @@ fn read_file(t: &toml::Table, problems: &mut Vec<Problem>) -> Backup {
     {
         let mut s = Section::new(t, "wig_wag", "wig_wag".into(), problems);
         let w = &mut cfg.wig_wag;
-        if let Some(v) = s.pin(WIG_WAG_ONE.key) {
-            w.device_one = v;
-        }
-        if let Some(v) = s.pin(WIG_WAG_TWO.key) {
-            w.device_two = v;
-        }
-        if let Some(v) = s.u8(WIG_WAG_WARM_UP.key, WIG_WAG_WARM_UP.what) {
-            w.warm_up_period = v;
-        }
-        if let Some(v) = s.u8(WIG_WAG_SPEED.key, WIG_WAG_SPEED.what) {
-            w.speed = v;
-        }
+        set(&mut w.device_one, s.pin(WIG_WAG_ONE.key));
+        set(&mut w.device_two, s.pin(WIG_WAG_TWO.key));
+        set(
+            &mut w.warm_up_period,
+            s.u8(WIG_WAG_WARM_UP.key, WIG_WAG_WARM_UP.what),
+        );
+        set(&mut w.speed, s.u8(WIG_WAG_SPEED.key, WIG_WAG_SPEED.what));
         s.finish();
     }
 
@@ -571,13 +556,9 @@ fn read_devices(t: &toml::Table, cfg: &mut UnitConfig, problems: &mut Vec<Proble
         let path = format!("devices.{name}");
         let mut s = Section::new(devices, name, path, problems);
         let mut spec: DeviceSpec = cfg.devices[id as usize];
-        if let Some(n) = s.name(DEVICE_NAME.key) {
-            cfg.names[id as usize] = n;
-        }
+        set(&mut cfg.names[id as usize], s.name(DEVICE_NAME.key));
         if enable_flag_allowed(id) {
-            if let Some(v) = s.bool(DEVICE_SHOWN.key) {
-                cfg.enabled[id as usize] = v;
-            }
+            set(&mut cfg.enabled[id as usize], s.bool(DEVICE_SHOWN.key));
         } else if s.table.is_some_and(|t| t.contains_key(DEVICE_SHOWN.key)) {
             // Accepted only as the truth, so a hand-written `true` does no harm.
             if s.bool(DEVICE_SHOWN.key) == Some(false) {
@@ -587,15 +568,12 @@ fn read_devices(t: &toml::Table, cfg: &mut UnitConfig, problems: &mut Vec<Proble
                 );
             }
         }
-        if let Some(v) = s.u8(DEVICE_BREAKER.key, DEVICE_BREAKER.what) {
-            spec.circuit_breaker = v;
-        }
-        if let Some(v) = s.switch(DEVICE_SWITCH.key) {
-            spec.switch_id = v;
-        }
-        if let Some(v) = s.bool(DEVICE_CURRENT_FAULT.key) {
-            spec.current_fault = v;
-        }
+        set(
+            &mut spec.circuit_breaker,
+            s.u8(DEVICE_BREAKER.key, DEVICE_BREAKER.what),
+        );
+        set(&mut spec.switch_id, s.switch(DEVICE_SWITCH.key));
+        set(&mut spec.current_fault, s.bool(DEVICE_CURRENT_FAULT.key));
         s.finish();
         cfg.apply_device_spec(&spec);
     }

@@ -121,71 +121,48 @@ pub fn parse_capture(data: &[u8]) -> (Vec<Record>, Option<CaptureError>, Option<
     }
     let start_unix_us = u64::from_be_bytes(data[8..16].try_into().unwrap_or([0; 8]));
     let mut at = 16usize;
-    let mut last_offset = 0u64;
     while at < data.len() {
-        let rest = &data[at..];
-        if rest.len() < 11 {
-            return (
-                records,
-                Some(CaptureError::Truncated { offset: at as u64 }),
-                Some(start_unix_us),
-            );
-        }
-        let dir = match rest[0] {
-            b'R' => Crossing::Rx,
-            b'T' => Crossing::Tx,
-            b => {
-                let what = format!("unknown direction byte {b:#04x}");
-                return (
-                    records,
-                    Some(CaptureError::Corrupt {
-                        offset: at as u64,
-                        what,
-                    }),
-                    Some(start_unix_us),
-                );
+        let last = records.last().map_or(Duration::ZERO, |r: &Record| r.offset);
+        match record_at(&data[at..], at as u64, last) {
+            Ok(record) => {
+                at += 11 + record.bytes.len();
+                records.push(record);
             }
-        };
-        let offset = u64::from_be_bytes(rest[1..9].try_into().unwrap_or([0; 8]));
-        let len = u16::from_be_bytes([rest[9], rest[10]]) as usize;
-        if len == 0 || len > MAX_RECORD {
-            let what = format!("record length {len} is outside 1..={MAX_RECORD}");
-            return (
-                records,
-                Some(CaptureError::Corrupt {
-                    offset: at as u64,
-                    what,
-                }),
-                Some(start_unix_us),
-            );
+            Err(e) => return (records, Some(e), Some(start_unix_us)),
         }
-        if offset < last_offset {
-            let what = "time goes backwards".to_string();
-            return (
-                records,
-                Some(CaptureError::Corrupt {
-                    offset: at as u64,
-                    what,
-                }),
-                Some(start_unix_us),
-            );
-        }
-        if rest.len() < 11 + len {
-            return (
-                records,
-                Some(CaptureError::Truncated { offset: at as u64 }),
-                Some(start_unix_us),
-            );
-        }
-        last_offset = offset;
-        records.push(Record {
-            dir,
-            offset: Duration::from_micros(offset),
-            bytes: rest[11..11 + len].to_vec(),
-        });
-        at += 11 + len;
     }
     (records, None, Some(start_unix_us))
+}
+
+/// The record that starts a capture's `rest` (byte `at` of the file); its time may
+/// not be before the `last` record's.
+fn record_at(rest: &[u8], at: u64, last: Duration) -> Result<Record, CaptureError> {
+    let corrupt = |what: String| CaptureError::Corrupt { offset: at, what };
+    let truncated = CaptureError::Truncated { offset: at };
+    if rest.len() < 11 {
+        return Err(truncated);
+    }
+    let dir = match rest[0] {
+        b'R' => Crossing::Rx,
+        b'T' => Crossing::Tx,
+        b => return Err(corrupt(format!("unknown direction byte {b:#04x}"))),
+    };
+    let offset = Duration::from_micros(u64::from_be_bytes(rest[1..9].try_into().unwrap_or([0; 8])));
+    let len = u16::from_be_bytes([rest[9], rest[10]]) as usize;
+    if len == 0 || len > MAX_RECORD {
+        return Err(corrupt(format!(
+            "record length {len} is outside 1..={MAX_RECORD}"
+        )));
+    }
+    if offset < last {
+        return Err(corrupt("time goes backwards".to_string()));
+    }
+    let bytes = rest.get(11..11 + len).ok_or(truncated)?;
+    Ok(Record {
+        dir,
+        offset,
+        bytes: bytes.to_vec(),
+    })
 }
 
 /// Reads a capture from a reader (whole file into memory: captures are small).

@@ -359,13 +359,20 @@ mod tests {
     use crate::protocol::message::{DevicePower, Ping};
     use std::sync::Mutex;
 
-    fn collecting() -> (
-        Arc<Mutex<Vec<LinkEvent>>>,
-        impl Fn(LinkEvent) + Send + Sync + 'static,
-    ) {
+    /// A link on a pipe, connected: the link, every event it has sent, and the
+    /// unit's end of the pipe.
+    fn connected() -> (Link, Arc<Mutex<Vec<LinkEvent>>>, crate::link::PipeEnd) {
+        let (ours, theirs) = duplex_pipe(Duration::from_millis(20));
         let store = Arc::new(Mutex::new(Vec::new()));
         let s = store.clone();
-        (store, move |e| s.lock().unwrap().push(e))
+        let link = Link::start(pipe_connector(ours, "pipe"), move |e| {
+            s.lock().unwrap().push(e)
+        });
+        assert!(wait_for(&store, |e| matches!(
+            e,
+            LinkEvent::Connected { .. }
+        )));
+        (link, store, theirs)
     }
 
     fn wait_for(store: &Mutex<Vec<LinkEvent>>, pred: impl Fn(&LinkEvent) -> bool) -> bool {
@@ -381,13 +388,7 @@ mod tests {
 
     #[test]
     fn sends_frames_and_decodes_what_arrives() {
-        let (ours, mut theirs) = duplex_pipe(Duration::from_millis(20));
-        let (store, sink) = collecting();
-        let link = Link::start(pipe_connector(ours, "pipe"), sink);
-        assert!(wait_for(&store, |e| matches!(
-            e,
-            LinkEvent::Connected { .. }
-        )));
+        let (link, store, mut theirs) = connected();
         link.handle()
             .send(Packet::request(
                 7,
@@ -425,13 +426,7 @@ mod tests {
 
     #[test]
     fn when_the_port_closes_the_held_bytes_are_scanned_before_the_news() {
-        let (ours, theirs) = duplex_pipe(Duration::from_millis(20));
-        let (store, sink) = collecting();
-        let link = Link::start(pipe_connector(ours, "pipe"), sink);
-        assert!(wait_for(&store, |e| matches!(
-            e,
-            LinkEvent::Connected { .. }
-        )));
+        let (link, store, theirs) = connected();
         // A DEVICE_STATUS header claiming its own 66 bytes (possible, so held), and
         // inside what it claims an intact message of an id the ICD does not define
         // (0x16/0x00, no payload; E7^7E^16^00^01^00^01^00 = 0x8F, inverted 0x70).
@@ -484,13 +479,7 @@ mod tests {
 
     #[test]
     fn a_closed_peer_is_reported_and_sending_then_fails_in_words() {
-        let (ours, theirs) = duplex_pipe(Duration::from_millis(20));
-        let (store, sink) = collecting();
-        let link = Link::start(pipe_connector(ours, "pipe"), sink);
-        assert!(wait_for(&store, |e| matches!(
-            e,
-            LinkEvent::Connected { .. }
-        )));
+        let (link, store, theirs) = connected();
         drop(theirs);
         assert!(wait_for(&store, |e| matches!(
             e,
@@ -515,13 +504,7 @@ mod tests {
         // The unit's reading end is gone but its writing end is not: our reads go on,
         // our writes fail. The stop message that follows a failed write must still be
         // attempted on the port, not dropped as "no open port".
-        let (ours, theirs) = duplex_pipe(Duration::from_millis(20));
-        let (store, sink) = collecting();
-        let link = Link::start(pipe_connector(ours, "pipe"), sink);
-        assert!(wait_for(&store, |e| matches!(
-            e,
-            LinkEvent::Connected { .. }
-        )));
+        let (link, store, theirs) = connected();
         let crate::link::PipeEnd {
             reader,
             writer: _keep_writing_end,

@@ -624,6 +624,11 @@ mod tests {
         (UnitClient::new(pipe_connector(ours, "pipe")).unwrap(), unit)
     }
 
+    /// The unit's SPEC_ACK (ICD Table 19) to command `cnt`, for `device_id`.
+    fn ack(cnt: u8, device_id: u8, error: Option<SpecAckError>) -> Packet {
+        Packet::from_vpx(cnt, SpecAck { device_id, error })
+    }
+
     fn spec(id: u8) -> DeviceSpec {
         DeviceSpec {
             device_id: id,
@@ -705,13 +710,7 @@ mod tests {
                     *f = Some(p.cnt);
                     vec![]
                 }
-                Some(cnt) => vec![Packet::from_vpx(
-                    cnt,
-                    SpecAck {
-                        device_id: 6,
-                        error: None,
-                    },
-                )],
+                Some(cnt) => vec![ack(cnt, 6, None)],
             }
         });
         c.send_spec(spec(6), Duration::from_millis(150), 3).unwrap();
@@ -721,15 +720,8 @@ mod tests {
 
     #[test]
     fn a_refusal_is_reported_in_the_words_of_table_20() {
-        let (mut c, _unit) = client_with(|p| {
-            vec![Packet::from_vpx(
-                p.cnt,
-                SpecAck {
-                    device_id: 6,
-                    error: Some(SpecAckError::InvalidBreaker),
-                },
-            )]
-        });
+        let (mut c, _unit) =
+            client_with(|p| vec![ack(p.cnt, 6, Some(SpecAckError::InvalidBreaker))]);
         let err = c.send_spec(spec(6), ANSWER_TIMEOUT, 1).unwrap_err();
         assert_eq!(
             err.to_string(),
@@ -739,15 +731,7 @@ mod tests {
 
     #[test]
     fn a_spec_ack_for_another_device_is_not_this_ones() {
-        let (mut c, _unit) = client_with(|p| {
-            vec![Packet::from_vpx(
-                p.cnt,
-                SpecAck {
-                    device_id: 7,
-                    error: None,
-                },
-            )]
-        });
+        let (mut c, _unit) = client_with(|p| vec![ack(p.cnt, 7, None)]);
         assert!(matches!(
             c.send_spec(spec(6), Duration::from_millis(100), 1),
             Err(SpecError::Request(RequestError::Timeout { .. }))
@@ -765,13 +749,7 @@ mod tests {
                 Message::FlapSpec(_) => 0xFF,
                 _ => 7,
             };
-            vec![Packet::from_vpx(
-                p.cnt,
-                SpecAck {
-                    device_id: id,
-                    error: None,
-                },
-            )]
+            vec![ack(p.cnt, id, None)]
         });
         c.send_spec(
             crate::protocol::defaults::flap_spec(),

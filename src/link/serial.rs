@@ -279,24 +279,30 @@ mod tests {
 
     #[test]
     fn unix_errors_are_sorted_by_kind_and_errno() {
+        use io::ErrorKind as Io;
         for os in [Os::Linux, Os::MacOs, Os::OtherUnix] {
-            let c = |k, code| classify(k, code, os);
-            assert_eq!(c(K::Io(io::ErrorKind::NotFound), None), Problem::NotFound);
-            assert_eq!(
-                c(K::Io(io::ErrorKind::PermissionDenied), None),
-                Problem::PermissionDenied
-            );
-            // TIOCEXCL's EBUSY and a held flock.
-            assert_eq!(c(K::NoDevice, None), Problem::Busy);
-            assert_eq!(c(K::Io(io::ErrorKind::WouldBlock), None), Problem::Busy);
-            // Kinds serialport leaves Unknown: the errno decides.
-            assert_eq!(c(K::Unknown, Some(6)), Problem::NotFound, "ENXIO");
-            assert_eq!(c(K::Unknown, Some(19)), Problem::NotFound, "ENODEV");
-            assert_eq!(c(K::Unknown, Some(13)), Problem::PermissionDenied, "EACCES");
-            assert_eq!(c(K::Unknown, Some(1)), Problem::PermissionDenied, "EPERM");
-            assert_eq!(c(K::Unknown, Some(16)), Problem::Busy, "EBUSY");
-            assert_eq!(c(K::Unknown, Some(5)), Problem::Other, "EIO");
-            assert_eq!(c(K::InvalidInput, None), Problem::Other);
+            for (kind, code, want, what) in [
+                (K::Io(Io::NotFound), None, Problem::NotFound, "NotFound"),
+                (
+                    K::Io(Io::PermissionDenied),
+                    None,
+                    Problem::PermissionDenied,
+                    "denied",
+                ),
+                // TIOCEXCL's EBUSY and a held flock.
+                (K::NoDevice, None, Problem::Busy, "NoDevice"),
+                (K::Io(Io::WouldBlock), None, Problem::Busy, "WouldBlock"),
+                // Kinds serialport leaves Unknown: the errno decides.
+                (K::Unknown, Some(6), Problem::NotFound, "ENXIO"),
+                (K::Unknown, Some(19), Problem::NotFound, "ENODEV"),
+                (K::Unknown, Some(13), Problem::PermissionDenied, "EACCES"),
+                (K::Unknown, Some(1), Problem::PermissionDenied, "EPERM"),
+                (K::Unknown, Some(16), Problem::Busy, "EBUSY"),
+                (K::Unknown, Some(5), Problem::Other, "EIO"),
+                (K::InvalidInput, None, Problem::Other, "InvalidInput"),
+            ] {
+                assert_eq!(classify(kind, code, os), want, "{what} on {os:?}");
+            }
         }
     }
 
@@ -304,41 +310,52 @@ mod tests {
     /// denied) or Io(Other), with a message in the user's language. The code decides.
     #[test]
     fn windows_errors_are_sorted_by_their_code_not_their_words() {
-        let c = |k, code| classify(k, code, Os::Windows);
-        assert_eq!(
-            c(K::NoDevice, Some(2)),
-            Problem::NotFound,
-            "ERROR_FILE_NOT_FOUND"
-        );
-        assert_eq!(
-            c(K::NoDevice, Some(3)),
-            Problem::NotFound,
-            "ERROR_PATH_NOT_FOUND"
-        );
-        assert_eq!(
-            c(K::Io(io::ErrorKind::Other), Some(123)),
-            Problem::NotFound,
-            "ERROR_INVALID_NAME"
-        );
-        // Another program holds the port.
-        assert_eq!(
-            c(K::NoDevice, Some(5)),
-            Problem::Busy,
-            "ERROR_ACCESS_DENIED"
-        );
-        assert_eq!(
-            c(K::Io(io::ErrorKind::Other), Some(32)),
-            Problem::Busy,
-            "ERROR_SHARING_VIOLATION"
-        );
-        // A driver that fails, or no code at all: not guessed.
-        assert_eq!(c(K::Io(io::ErrorKind::Other), Some(31)), Problem::Other);
-        assert_eq!(c(K::NoDevice, None), Problem::Other);
-        assert_eq!(c(K::Io(io::ErrorKind::NotFound), None), Problem::NotFound);
-        assert_eq!(
-            c(K::Io(io::ErrorKind::PermissionDenied), None),
-            Problem::Busy
-        );
+        use io::ErrorKind as Io;
+        for (kind, code, want, what) in [
+            (
+                K::NoDevice,
+                Some(2),
+                Problem::NotFound,
+                "ERROR_FILE_NOT_FOUND",
+            ),
+            (
+                K::NoDevice,
+                Some(3),
+                Problem::NotFound,
+                "ERROR_PATH_NOT_FOUND",
+            ),
+            (
+                K::Io(Io::Other),
+                Some(123),
+                Problem::NotFound,
+                "ERROR_INVALID_NAME",
+            ),
+            // Another program holds the port.
+            (K::NoDevice, Some(5), Problem::Busy, "ERROR_ACCESS_DENIED"),
+            (
+                K::Io(Io::Other),
+                Some(32),
+                Problem::Busy,
+                "ERROR_SHARING_VIOLATION",
+            ),
+            // A driver that fails, or no code at all: not guessed.
+            (
+                K::Io(Io::Other),
+                Some(31),
+                Problem::Other,
+                "ERROR_GEN_FAILURE",
+            ),
+            (K::NoDevice, None, Problem::Other, "NoDevice, no code"),
+            (K::Io(Io::NotFound), None, Problem::NotFound, "NotFound"),
+            (
+                K::Io(Io::PermissionDenied),
+                None,
+                Problem::Busy,
+                "PermissionDenied",
+            ),
+        ] {
+            assert_eq!(classify(kind, code, Os::Windows), want, "{what}");
+        }
     }
 
     #[test]

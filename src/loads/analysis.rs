@@ -518,17 +518,24 @@ mod tests {
             battery_usable: 1.0,
             circuits: vec![c(LANDING, "Load", Some(amps), [1., 0., 0., 0., 0., 0., 0.])],
         };
-        let a = analyse(&file(8.0), &[]);
-        assert_eq!(a.phase(Phase::Ground).margin_percent, Some(20.0));
-        assert_eq!(a.phase(Phase::Ground).level, Level::Ok);
-        // 8.5 A leaves 15 %.
-        let a = analyse(&file(8.5), &[]);
-        assert_eq!(a.phase(Phase::Ground).margin_percent, Some(15.0));
-        assert_eq!(a.phase(Phase::Ground).level, Level::Warn);
-        // Measured 10.5 A (the typed 8 is replaced) is 0.5 A over: −5 %.
+        for (typed, measured, margin, level) in [
+            (8.0, None, 20.0, Level::Ok),
+            // 8.5 A leaves 15 %.
+            (8.5, None, 15.0, Level::Warn),
+            // Measured 10.5 A (the typed 8 is replaced) is 0.5 A over: −5 %.
+            (8.0, Some(10.5), -5.0, Level::Fail),
+        ] {
+            let measured: Vec<(u8, f32)> = measured.map(|m| (LANDING, m)).into_iter().collect();
+            let a = analyse(&file(typed), &measured);
+            let g = a.phase(Phase::Ground);
+            let got = (g.margin_percent, g.level);
+            assert_eq!(
+                got,
+                (Some(margin), level),
+                "{typed} A, measured {measured:?}"
+            );
+        }
         let a = analyse(&file(8.0), &[(LANDING, 10.5)]);
-        assert_eq!(a.phase(Phase::Ground).margin_percent, Some(-5.0));
-        assert_eq!(a.phase(Phase::Ground).level, Level::Fail);
         assert_eq!(a.verdict(Phase::Ground), "0.5 A over the alternator's 10 A");
         assert_eq!(a.level(), Level::Fail);
         // An empty phase has its whole rating spare.
@@ -544,24 +551,22 @@ mod tests {
             battery_usable: 0.5,
             circuits: vec![c(LANDING, "Load", Some(amps), [0., 0., 0., 0., 0., 0., 1.])],
         };
-        let a = analyse(&file(10.0), &[]);
-        assert_eq!(a.phase(Phase::Emergency).endurance_minutes, Some(30.0));
-        assert_eq!(a.phase(Phase::Emergency).level, Level::Ok);
-        // At 12 A: 5 / 12 h = 25 min.
-        let a = analyse(&file(12.0), &[]);
-        assert_eq!(a.phase(Phase::Emergency).endurance_minutes, Some(25.0));
-        assert_eq!(a.phase(Phase::Emergency).level, Level::Warn);
-        assert_eq!(
-            a.verdict(Phase::Emergency),
-            "endurance 25 min: under 30 min"
-        );
-        // Nothing on in the emergency phase: no endurance to give, nothing drawn.
-        let a = analyse(&file(0.0), &[]);
-        assert_eq!(a.phase(Phase::Emergency).endurance_minutes, None);
-        assert_eq!(
-            a.verdict(Phase::Emergency),
-            "nothing on: no load on the battery"
-        );
+        // At 12 A: 5 / 12 h = 25 min. Nothing on: no endurance to give, nothing drawn.
+        for (amps, endurance, level, verdict) in [
+            (10.0, Some(30.0), Level::Ok, "endurance 30 min"),
+            (
+                12.0,
+                Some(25.0),
+                Level::Warn,
+                "endurance 25 min: under 30 min",
+            ),
+            (0.0, None, Level::Ok, "nothing on: no load on the battery"),
+        ] {
+            let a = analyse(&file(amps), &[]);
+            let e = a.phase(Phase::Emergency);
+            let got = (e.endurance_minutes, e.level, a.verdict(Phase::Emergency));
+            assert_eq!(got, (endurance, level, verdict.to_string()), "{amps} A");
+        }
     }
 
     #[test]

@@ -68,6 +68,7 @@ pub fn open_or_create(path: &Path, circuits: &[Circuit]) -> Result<Opened, FileE
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::files::entries;
     use crate::model::CircuitKind;
     use crate::protocol::device::EFIS;
 
@@ -77,15 +78,6 @@ mod tests {
             "EFIS 1",
             CircuitKind::Device,
         )]
-    }
-
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut e: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        e.sort();
-        e
     }
 
     #[test]

@@ -308,7 +308,10 @@ fn read_circuits(
                     bad(
                         v,
                         "name",
-                        format!("{} where text in quotes was expected", kind(other)),
+                        format!(
+                            "{} where text in quotes was expected",
+                            toml_lines::kind(other)
+                        ),
                     );
                     String::new()
                 }
@@ -353,7 +356,7 @@ fn read_circuits(
             toml::Value::String(s) => Ok(s.clone()),
             other => Err(format!(
                 "{} where text in quotes was expected (\"16 AWG\", \"12 ft\")",
-                kind(other)
+                toml_lines::kind(other)
             )),
         };
         let gauge = rc.wire.as_ref().and_then(|v| {
@@ -394,7 +397,10 @@ fn number(v: &Value) -> Result<f64, String> {
         toml::Value::Integer(i) => Ok(*i as f64),
         toml::Value::Float(f) if f.is_finite() => Ok(*f),
         toml::Value::Float(f) => Err(format!("{f} is no number")),
-        other => Err(format!("{} where a number was expected", kind(other))),
+        other => Err(format!(
+            "{} where a number was expected",
+            toml_lines::kind(other)
+        )),
     }
 }
 
@@ -412,18 +418,7 @@ fn fraction(v: &Value) -> Result<f64, String> {
         toml::Value::Float(f) if (0.0..=1.0).contains(f) => Ok(*f),
         toml::Value::Integer(i) => Err(why(i.to_string())),
         toml::Value::Float(f) => Err(why(f.to_string())),
-        other => Err(why(kind(other).to_string())),
-    }
-}
-
-fn kind(v: &toml::Value) -> &'static str {
-    match v.type_str() {
-        "string" => "text",
-        "integer" | "float" => "a number",
-        "boolean" => "true/false",
-        "array" => "a list",
-        "table" => "a section",
-        _ => "a date",
+        other => Err(why(toml_lines::kind(other).to_string())),
     }
 }
 
@@ -879,7 +874,7 @@ mod tests {
         );
         let p = problem(&at("wire = 22\n"));
         assert!(
-            p.starts_with("line 5: [circuit.5A-3] wire: a number where text in quotes"),
+            p.starts_with("line 5: [circuit.5A-3] wire: a whole number where text in quotes"),
             "{p}"
         );
     }

@@ -86,10 +86,6 @@ impl Phase {
     pub fn index(self) -> usize {
         self as usize
     }
-
-    pub fn from_key(key: &str) -> Option<Phase> {
-        Phase::ALL.into_iter().find(|p| p.key() == key)
-    }
 }
 
 /// For tests: a circuit as the model lists it, with no live values.
@@ -134,9 +130,7 @@ mod tests {
         );
         for (i, p) in Phase::ALL.into_iter().enumerate() {
             assert_eq!(p.index(), i);
-            assert_eq!(Phase::from_key(p.key()), Some(p));
         }
-        assert_eq!(Phase::from_key("takeoff"), None);
         assert!(Phase::Emergency.on_battery());
         assert!(!Phase::CruiseNight.on_battery());
     }

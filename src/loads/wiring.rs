@@ -417,11 +417,13 @@ mod tests {
         }
     }
 
-    fn v14() -> SystemVoltage {
-        SystemVoltage {
+    /// A circuit's row on a 14 V system: its `wire`, its breaker, its current.
+    fn on_14v(wire: WireRun, breaker: u8, amps: Option<f64>) -> Row {
+        let v14 = SystemVoltage {
             system: System::V14,
             note: None,
-        }
+        };
+        row(3, "x".into(), wire, Some(breaker), amps, Some(&v14))
     }
 
     /// A 6 A breaker on 22 AWG: Table 11-3 allows 5 A. The issue's own example.
@@ -442,28 +444,11 @@ mod tests {
             "Strobe Lt's wire is 22 AWG: AC 43.13-1B Table 11-3 allows 5 A; a 6 A breaker \
              would not protect it"
         );
-        let ok = row(
-            0x08,
-            "Strobe Lt".into(),
-            run("22 AWG", None, None),
-            Some(5),
-            None,
-            None,
-        );
+        let ok = on_14v(run("22 AWG", None, None), 5, None);
         assert_eq!(ok.verdict, Verdict::Ok);
         assert_eq!(ok.unprotected_words(), None);
         // 20 AWG allows 7.5 A: a whole-amp breaker of 7 protects it, 8 does not.
-        let b = |a| {
-            row(
-                1,
-                "x".into(),
-                run("20 AWG", None, None),
-                Some(a),
-                None,
-                None,
-            )
-            .verdict
-        };
+        let b = |a| on_14v(run("20 AWG", None, None), a, None).verdict;
         assert_eq!(b(7), Verdict::Ok);
         assert_eq!(b(8), Verdict::Unprotected);
     }
@@ -474,15 +459,7 @@ mod tests {
     /// 0.4984 V, under the limit: the return is what tips it.
     #[test]
     fn a_drop_over_the_limit_counts_the_return_and_gives_the_run_that_would_pass() {
-        let s = v14();
-        let r = row(
-            3,
-            "Nav".into(),
-            run("18 AWG", Some(20.0), Some(6.0)),
-            Some(10),
-            Some(4.0),
-            Some(&s),
-        );
+        let r = on_14v(run("18 AWG", Some(20.0), Some(6.0)), 10, Some(4.0));
         assert_eq!(r.run_feet, Some(26.0));
         assert!(!r.return_assumed);
         assert!((r.drop_volts.unwrap() - 0.64792).abs() < 1e-6);
@@ -491,14 +468,7 @@ mod tests {
         assert!((r.longest_run_feet.unwrap() - 20.064).abs() < 0.001);
         // At the breaker's 10 A: 0.00623 × 26 × 10 = 1.6198 V.
         assert!((r.drop_at_breaker_volts.unwrap() - 1.6198).abs() < 1e-6);
-        let no_return = row(
-            3,
-            "Nav".into(),
-            run("18 AWG", Some(20.0), None),
-            Some(10),
-            Some(4.0),
-            Some(&s),
-        );
+        let no_return = on_14v(run("18 AWG", Some(20.0), None), 10, Some(4.0));
         assert!(no_return.return_assumed);
         assert_eq!(no_return.verdict, Verdict::Ok);
         assert!((no_return.drop_volts.unwrap() - 0.4984).abs() < 1e-6);
@@ -506,36 +476,14 @@ mod tests {
 
     #[test]
     fn unprotected_outranks_drop_and_an_unentered_wire_fails_nothing() {
-        let s = v14();
-        let r = row(
-            3,
-            "x".into(),
-            run("22 AWG", Some(40.0), None),
-            Some(10),
-            Some(4.0),
-            Some(&s),
-        );
+        let r = on_14v(run("22 AWG", Some(40.0), None), 10, Some(4.0));
         assert_eq!(r.verdict, Verdict::Unprotected);
-        let n = row(
-            3,
-            "x".into(),
-            WireRun::default(),
-            Some(15),
-            Some(4.0),
-            Some(&s),
-        );
+        let n = on_14v(WireRun::default(), 15, Some(4.0));
         assert_eq!(n.verdict, Verdict::NotEntered);
         assert!(!n.verdict.fails());
         assert_eq!(n.drop_volts, None);
         // No current measured: no drop verdict, but the drop at the breaker is there.
-        let idle = row(
-            3,
-            "x".into(),
-            run("22 AWG", Some(40.0), None),
-            Some(5),
-            None,
-            Some(&s),
-        );
+        let idle = on_14v(run("22 AWG", Some(40.0), None), 5, None);
         assert_eq!(idle.verdict, Verdict::Ok);
         // 0.0162 × 40 × 5 = 3.24 V.
         assert!((idle.drop_at_breaker_volts.unwrap() - 3.24).abs() < 1e-9);

@@ -102,15 +102,37 @@ pub fn time_of(text: &str) -> Option<SystemTime> {
     Some(UNIX_EPOCH + Duration::from_secs(secs) + Duration::from_millis(ms as u64))
 }
 
-/// The registrations the logbook knows, in order.
-pub fn aircraft(book: &Logbook) -> Result<Vec<String>, Error> {
-    let mut st = book
-        .conn()
-        .prepare("SELECT registration FROM aircraft ORDER BY registration")
-        .map_err(|e| book.error(e))?;
-    st.query_map([], |r| r.get(0))
+/// Reads a row into `$t`, its fields from the statement's columns in the order named.
+macro_rules! row {
+    ($t:ident { $($field:ident),+ $(,)? }) => {
+        |r: &rusqlite::Row<'_>| {
+            let mut column = 0..;
+            Ok($t { $($field: r.get(column.next().unwrap_or_default())?),+ })
+        }
+    };
+}
+
+/// Every row `sql` gives for `params`, each read by `row`.
+fn all<T, P: rusqlite::Params>(
+    book: &Logbook,
+    sql: &str,
+    params: P,
+    row: impl FnMut(&rusqlite::Row<'_>) -> rusqlite::Result<T>,
+) -> Result<Vec<T>, Error> {
+    let mut st = book.conn().prepare(sql).map_err(|e| book.error(e))?;
+    st.query_map(params, row)
         .and_then(Iterator::collect)
         .map_err(|e| book.error(e))
+}
+
+/// The registrations the logbook knows, in order.
+pub fn aircraft(book: &Logbook) -> Result<Vec<String>, Error> {
+    all(
+        book,
+        "SELECT registration FROM aircraft ORDER BY registration",
+        [],
+        |r| r.get(0),
+    )
 }
 
 /// The aircraft's `limit` latest entries, newest first.
@@ -119,82 +141,64 @@ pub fn latest_entries(
     aircraft: Option<&str>,
     limit: usize,
 ) -> Result<Vec<EntryRow>, Error> {
-    let mut st = book
-        .conn()
-        .prepare(
-            "SELECT id, time, aircraft, origin, kind, summary FROM entries
-             WHERE aircraft IS ?1 ORDER BY time DESC, id DESC LIMIT ?2",
-        )
-        .map_err(|e| book.error(e))?;
-    st.query_map(
+    all(
+        book,
+        "SELECT id, time, aircraft, origin, kind, summary FROM entries
+         WHERE aircraft IS ?1 ORDER BY time DESC, id DESC LIMIT ?2",
         params![aircraft, i64::try_from(limit).unwrap_or(i64::MAX)],
-        |r| {
-            Ok(EntryRow {
-                id: r.get(0)?,
-                time: r.get(1)?,
-                aircraft: r.get(2)?,
-                origin: r.get(3)?,
-                kind: r.get(4)?,
-                summary: r.get(5)?,
-            })
-        },
+        row!(EntryRow {
+            id,
+            time,
+            aircraft,
+            origin,
+            kind,
+            summary
+        }),
     )
-    .and_then(Iterator::collect)
-    .map_err(|e| book.error(e))
 }
 
 /// The aircraft's checks, oldest first.
 pub fn checks(book: &Logbook, aircraft: Option<&str>) -> Result<Vec<CheckRow>, Error> {
-    let mut st = book
-        .conn()
-        .prepare(
-            "SELECT e.id, e.time, e.origin, e.summary, c.tally, c.interrupted, c.load_file,
-                    u.hardware || ' ' || u.software
-             FROM entries e JOIN checks c ON c.entry = e.id
-             LEFT JOIN units u ON u.id = e.unit
-             WHERE e.aircraft IS ?1 AND e.kind = 'check'
-             ORDER BY e.time, e.id",
-        )
-        .map_err(|e| book.error(e))?;
-    st.query_map(params![aircraft], |r| {
-        Ok(CheckRow {
-            entry: r.get(0)?,
-            time: r.get(1)?,
-            origin: r.get(2)?,
-            summary: r.get(3)?,
-            tally: r.get(4)?,
-            interrupted: r.get(5)?,
-            load_file: r.get(6)?,
-            unit: r.get(7)?,
-        })
-    })
-    .and_then(Iterator::collect)
-    .map_err(|e| book.error(e))
+    all(
+        book,
+        "SELECT e.id, e.time, e.origin, e.summary, c.tally, c.interrupted, c.load_file,
+                u.hardware || ' ' || u.software
+         FROM entries e JOIN checks c ON c.entry = e.id
+         LEFT JOIN units u ON u.id = e.unit
+         WHERE e.aircraft IS ?1 AND e.kind = 'check'
+         ORDER BY e.time, e.id",
+        params![aircraft],
+        row!(CheckRow {
+            entry,
+            time,
+            origin,
+            summary,
+            tally,
+            interrupted,
+            load_file,
+            unit
+        }),
+    )
 }
 
 /// Every circuit of check `entry`, in device order.
 pub fn check_circuits(book: &Logbook, entry: i64) -> Result<Vec<CircuitRow>, Error> {
-    let mut st = book
-        .conn()
-        .prepare(
-            "SELECT device, name, pin, breaker, switch, amps, verdict, finding
-             FROM check_circuits WHERE entry = ?1 ORDER BY device",
-        )
-        .map_err(|e| book.error(e))?;
-    st.query_map(params![entry], |r| {
-        Ok(CircuitRow {
-            device: r.get(0)?,
-            name: r.get(1)?,
-            pin: r.get(2)?,
-            breaker: r.get(3)?,
-            switch: r.get(4)?,
-            amps: r.get(5)?,
-            verdict: r.get(6)?,
-            finding: r.get(7)?,
-        })
-    })
-    .and_then(Iterator::collect)
-    .map_err(|e| book.error(e))
+    all(
+        book,
+        "SELECT device, name, pin, breaker, switch, amps, verdict, finding
+         FROM check_circuits WHERE entry = ?1 ORDER BY device",
+        params![entry],
+        row!(CircuitRow {
+            device,
+            name,
+            pin,
+            breaker,
+            switch,
+            amps,
+            verdict,
+            finding
+        }),
+    )
 }
 
 /// The circuit named `name` (letter case and the blanks around it ignored, as the
@@ -204,43 +208,35 @@ pub fn circuit_history(
     aircraft: Option<&str>,
     name: &str,
 ) -> Result<Vec<HistoryRow>, Error> {
-    let mut st = book
-        .conn()
-        .prepare(
-            "SELECT e.id, e.time, c.name, c.pin, c.amps, c.verdict, c.finding
-             FROM check_circuits c JOIN entries e ON e.id = c.entry
-             WHERE e.aircraft IS ?1 AND lower(trim(c.name)) = lower(trim(?2))
-             ORDER BY e.time, e.id, c.device",
-        )
-        .map_err(|e| book.error(e))?;
-    st.query_map(params![aircraft, name], |r| {
-        Ok(HistoryRow {
-            entry: r.get(0)?,
-            time: r.get(1)?,
-            name: r.get(2)?,
-            pin: r.get(3)?,
-            amps: r.get(4)?,
-            verdict: r.get(5)?,
-            finding: r.get(6)?,
-        })
-    })
-    .and_then(Iterator::collect)
-    .map_err(|e| book.error(e))
+    all(
+        book,
+        "SELECT e.id, e.time, c.name, c.pin, c.amps, c.verdict, c.finding
+         FROM check_circuits c JOIN entries e ON e.id = c.entry
+         WHERE e.aircraft IS ?1 AND lower(trim(c.name)) = lower(trim(?2))
+         ORDER BY e.time, e.id, c.device",
+        params![aircraft, name],
+        row!(HistoryRow {
+            entry,
+            time,
+            name,
+            pin,
+            amps,
+            verdict,
+            finding
+        }),
+    )
 }
 
 /// The names of every circuit the aircraft's checks measured or listed, for the
 /// error that names the known ones.
 pub fn circuit_names(book: &Logbook, aircraft: Option<&str>) -> Result<Vec<String>, Error> {
-    let mut st = book
-        .conn()
-        .prepare(
-            "SELECT DISTINCT c.name FROM check_circuits c JOIN entries e ON e.id = c.entry
-             WHERE e.aircraft IS ?1 ORDER BY c.name COLLATE NOCASE",
-        )
-        .map_err(|e| book.error(e))?;
-    st.query_map(params![aircraft], |r| r.get(0))
-        .and_then(Iterator::collect)
-        .map_err(|e| book.error(e))
+    all(
+        book,
+        "SELECT DISTINCT c.name FROM check_circuits c JOIN entries e ON e.id = c.entry
+         WHERE e.aircraft IS ?1 ORDER BY c.name COLLATE NOCASE",
+        params![aircraft],
+        |r| r.get(0),
+    )
 }
 
 /// The last check's time and circuits, for the trend (`check::trend`).
@@ -279,49 +275,39 @@ pub fn last_check(book: &Logbook, aircraft: Option<&str>) -> Result<Option<LastC
 /// The settings changed on the aircraft's unit (setup writes and restores), oldest
 /// first.
 pub fn setting_changes(book: &Logbook, aircraft: Option<&str>) -> Result<Vec<SettingRow>, Error> {
-    let mut st = book
-        .conn()
-        .prepare(
-            "SELECT e.time, e.origin, s.setting, s.old, s.new, s.confirmed
-             FROM setting_changes s JOIN entries e ON e.id = s.entry
-             WHERE e.aircraft IS ?1 ORDER BY e.time, e.id, s.rowid",
-        )
-        .map_err(|e| book.error(e))?;
-    st.query_map(params![aircraft], |r| {
-        Ok(SettingRow {
-            time: r.get(0)?,
-            origin: r.get(1)?,
-            setting: r.get(2)?,
-            old: r.get(3)?,
-            new: r.get(4)?,
-            confirmed: r.get(5)?,
-        })
-    })
-    .and_then(Iterator::collect)
-    .map_err(|e| book.error(e))
+    all(
+        book,
+        "SELECT e.time, e.origin, s.setting, s.old, s.new, s.confirmed
+         FROM setting_changes s JOIN entries e ON e.id = s.entry
+         WHERE e.aircraft IS ?1 ORDER BY e.time, e.id, s.rowid",
+        params![aircraft],
+        row!(SettingRow {
+            time,
+            origin,
+            setting,
+            old,
+            new,
+            confirmed
+        }),
+    )
 }
 
 /// The aircraft's firmware updates, oldest first.
 pub fn firmware(book: &Logbook, aircraft: Option<&str>) -> Result<Vec<FirmwareRow>, Error> {
-    let mut st = book
-        .conn()
-        .prepare(
-            "SELECT e.time, f.image_sha256, f.version_before, f.version_after, f.outcome
-             FROM firmware f JOIN entries e ON e.id = f.entry
-             WHERE e.aircraft IS ?1 ORDER BY e.time, e.id",
-        )
-        .map_err(|e| book.error(e))?;
-    st.query_map(params![aircraft], |r| {
-        Ok(FirmwareRow {
-            time: r.get(0)?,
-            sha256: r.get(1)?,
-            before: r.get(2)?,
-            after: r.get(3)?,
-            outcome: r.get(4)?,
-        })
-    })
-    .and_then(Iterator::collect)
-    .map_err(|e| book.error(e))
+    all(
+        book,
+        "SELECT e.time, f.image_sha256, f.version_before, f.version_after, f.outcome
+         FROM firmware f JOIN entries e ON e.id = f.entry
+         WHERE e.aircraft IS ?1 ORDER BY e.time, e.id",
+        params![aircraft],
+        row!(FirmwareRow {
+            time,
+            sha256,
+            before,
+            after,
+            outcome
+        }),
+    )
 }
 
 #[cfg(test)]

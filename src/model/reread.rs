@@ -226,6 +226,17 @@ mod tests {
         }
     }
 
+    /// A model that heard all of a unit ("Landing Lt", sw 2.1), then nothing until
+    /// a status `silent` later: the data's return, and its time.
+    fn back_after(silent: Duration) -> (Model, Instant) {
+        let t0 = Instant::now();
+        let mut m = model();
+        heard_all(&mut m, t0, "Landing Lt", 2);
+        let back = t0 + silent;
+        m.apply_packet(back, &status());
+        (m, back)
+    }
+
     fn name9(m: &Model, now: Instant) -> String {
         m.circuits(now)
             .into_iter()
@@ -281,11 +292,7 @@ mod tests {
 
     #[test]
     fn another_version_after_a_loss_is_another_unit() {
-        let t0 = Instant::now();
-        let mut m = model();
-        heard_all(&mut m, t0, "Landing Lt", 2);
-        let back = t0 + Duration::from_secs(4);
-        m.apply_packet(back, &status());
+        let (mut m, back) = back_after(Duration::from_secs(4));
         m.apply_packet(back, &Packet::from_vpx(1, version(3)));
         let alert = m
             .events
@@ -298,11 +305,7 @@ mod tests {
 
     #[test]
     fn a_re_read_left_unanswered_stops_being_shown_after_the_give_up() {
-        let t0 = Instant::now();
-        let mut m = model();
-        heard_all(&mut m, t0, "Landing Lt", 2);
-        let back = t0 + Duration::from_secs(3);
-        m.apply_packet(back, &status());
+        let (mut m, back) = back_after(Duration::from_secs(3));
         // Only the status comes (names never answered, as from a unit before 2.0).
         let mut t = back;
         while t < back + REREAD_GIVE_UP {

@@ -137,44 +137,29 @@ fn trim_kind(t: TrimType) -> TrimKind {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::message::{DeviceName, DeviceSpec, SwitchId};
+    use crate::protocol::message::DeviceName;
 
     #[test]
     fn each_write_is_read_back_with_its_own_query() {
-        let spec = DeviceSpec {
-            device_id: 9,
-            circuit_breaker: 3,
-            switch_id: SwitchId::Input(2),
-            current_fault: false,
-            switch_raw: None,
-        };
+        let spec = crate::protocol::config::UnitConfig::default().devices[9];
         let s = Setting::written_by(&spec.into()).unwrap();
         assert_eq!(s, Setting::DeviceSpec(9));
         // ICD Table 18: DEVICE_SPEC_QUERY carries the device id.
         assert_eq!(s.query(), DeviceSpecQuery { device_id: 9 }.into());
         let name = Setting::written_by(&DeviceName::new(9, "GPS").unwrap().into()).unwrap();
         assert_eq!(name.query(), DeviceNameQuery { device_id: 9 }.into());
-        // Table 16 note: flaps are device 0; Table 15: roll trim 29, pitch 30.
-        assert_eq!(
-            Setting::Flaps.query(),
-            DeviceSpecQuery { device_id: 0 }.into()
-        );
-        assert_eq!(
-            Setting::Trim(TrimKind::Roll).query(),
-            DeviceSpecQuery { device_id: 29 }.into()
-        );
-        assert_eq!(
-            Setting::Trim(TrimKind::Pitch).query(),
-            DeviceSpecQuery { device_id: 30 }.into()
-        );
-        assert_eq!(
-            Setting::System.query(),
-            DeviceSpecQuery { device_id: 253 }.into()
-        );
-        assert_eq!(
-            Setting::WigWag.query(),
-            DeviceSpecQuery { device_id: 254 }.into()
-        );
+        // Table 16 note: flaps are device 0; Table 15: roll trim 29, pitch 30; Table 18:
+        // the system 253, the wig-wag 254.
+        for (setting, device_id) in [
+            (Setting::Flaps, 0),
+            (Setting::Trim(TrimKind::Roll), 29),
+            (Setting::Trim(TrimKind::Pitch), 30),
+            (Setting::System, 253),
+            (Setting::WigWag, 254),
+        ] {
+            let want: Message = DeviceSpecQuery { device_id }.into();
+            assert_eq!(setting.query(), want, "{setting:?}");
+        }
         // A DEVICE_ENABLE query sets nothing.
         let q = DeviceEnable {
             device_id: 9,

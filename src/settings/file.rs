@@ -81,101 +81,75 @@ pub fn parse(text: &str) -> Result<SettingsFile, Vec<Problem>> {
             ));
         }
     }
-    let read = |key: &str| -> Result<Option<(String, usize)>, Problem> {
-        let Some(v) = raw.get(key) else {
-            return Ok(None);
-        };
-        let line = toml_lines::line(text, v);
-        match v.get_ref() {
-            toml::Value::String(s) => Ok(Some((s.clone(), line))),
-            toml::Value::Integer(i) => Ok(Some((i.to_string(), line))),
-            toml::Value::Boolean(b) => Ok(Some((b.to_string(), line))),
-            other => Err(Problem::new(
-                Some(line),
-                key,
-                format!(
-                    "{} where text or a whole number was expected",
-                    match other.type_str() {
-                        "array" => "a list",
-                        "table" => "a section",
-                        "float" => "a decimal number",
-                        _ => "a date",
-                    }
-                ),
-            )),
-        }
+    let mut r = Reader {
+        text,
+        raw: &raw,
+        problems: &mut problems,
     };
-    fn check<T>(
-        problems: &mut Vec<Problem>,
-        key: &str,
-        got: Result<Option<(String, usize)>, Problem>,
-        f: impl Fn(&str) -> Result<T, String>,
-    ) -> Option<Setting<T>> {
-        let got = match got {
-            Ok(g) => g?,
-            Err(p) => {
-                problems.push(p);
-                return None;
-            }
-        };
-        let (text, line) = got;
-        match f(&text) {
-            Ok(value) => Some(Setting { value, line }),
-            Err(why) => {
-                problems.push(Problem::new(Some(line), key, why));
-                None
-            }
-        }
-    }
-    let p = &mut problems;
     let file = SettingsFile {
-        port: check(p, "port", read("port"), values::port),
-        baud: check(p, "baud", read("baud"), values::baud),
-        theme: check(p, "theme", read("theme"), values::theme),
-        repeat_delay_ms: check(
-            p,
-            "repeat_delay",
-            read("repeat_delay"),
-            values::repeat_delay_ms,
-        ),
-        xfsp: check(p, "xfsp", read("xfsp"), values::xfsp_target),
-        xfsp_iface: check(p, "xfsp_iface", read("xfsp_iface"), values::iface),
-        xfsp_source_id: check(
-            p,
-            "xfsp_source_id",
-            read("xfsp_source_id"),
-            values::source_id,
-        ),
-        xfsp_cert: check(p, "xfsp_cert", read("xfsp_cert"), |t| {
+        port: r.get("port", values::port),
+        baud: r.get("baud", values::baud),
+        theme: r.get("theme", values::theme),
+        repeat_delay_ms: r.get("repeat_delay", values::repeat_delay_ms),
+        xfsp: r.get("xfsp", values::xfsp_target),
+        xfsp_iface: r.get("xfsp_iface", values::iface),
+        xfsp_source_id: r.get("xfsp_source_id", values::source_id),
+        xfsp_cert: r.get("xfsp_cert", |t| {
             t.parse::<u8>()
                 .map_err(|_| format!("{t:?} is not a certification level (0–255)"))
         }),
-        xfsp_control: check(p, "xfsp_control", read("xfsp_control"), values::yes_no),
-        xfsp_control_from: check(
-            p,
-            "xfsp_control_from",
-            read("xfsp_control_from"),
-            values::source_ids,
-        ),
-        logbook: check(p, "logbook", read("logbook"), |t| {
+        xfsp_control: r.get("xfsp_control", values::yes_no),
+        xfsp_control_from: r.get("xfsp_control_from", values::source_ids),
+        logbook: r.get("logbook", |t| {
             if t.trim().is_empty() {
                 Err("an empty path: name the logbook's file, or leave the key out".into())
             } else {
                 Ok(std::path::PathBuf::from(t))
             }
         }),
-        aircraft: check(
-            p,
-            "aircraft",
-            read("aircraft"),
-            crate::logbook::registration,
-        ),
+        aircraft: r.get("aircraft", crate::logbook::registration),
     };
     if problems.is_empty() {
         Ok(file)
     } else {
         problems.sort_by_key(|p| p.line);
         Err(problems)
+    }
+}
+
+/// The file's keys, each read as its flag is.
+struct Reader<'a> {
+    text: &'a str,
+    raw: &'a BTreeMap<String, Value>,
+    problems: &'a mut Vec<Problem>,
+}
+
+impl Reader<'_> {
+    /// `key`'s value as `read` takes its text; `None` where the file lacks it, or
+    /// where it is wrong (then a problem).
+    fn get<T>(
+        &mut self,
+        key: &str,
+        read: impl Fn(&str) -> Result<T, String>,
+    ) -> Option<Setting<T>> {
+        let v = self.raw.get(key)?;
+        let line = toml_lines::line(self.text, v);
+        let text = match v.get_ref() {
+            toml::Value::String(s) => Ok(s.clone()),
+            toml::Value::Integer(i) => Ok(i.to_string()),
+            toml::Value::Boolean(b) => Ok(b.to_string()),
+            other => Err(format!(
+                "{} where text or a whole number was expected",
+                toml_lines::kind(other)
+            )),
+        };
+        match text.and_then(|t| read(&t)) {
+            Ok(value) => Some(Setting { value, line }),
+            Err(why) => {
+                self.problems.push(Problem::new(Some(line), key, why));
+                None
+            }
+        }
     }
 }
 

@@ -414,6 +414,12 @@ mod tests {
         t0 + Duration::from_millis(n)
     }
 
+    /// The motor is at `want`, within a hundredth.
+    #[track_caller]
+    fn at(m: &Motor, want: f32, why: &str) {
+        assert!((m.position - want).abs() < 0.01, "{why} {}", m.position);
+    }
+
     #[test]
     fn a_stream_every_200_ms_runs_on_and_a_400_ms_gap_starves_once() {
         let t0 = Instant::now();
@@ -425,14 +431,14 @@ mod tests {
         m.advance(&g, ms(t0, 800));
         assert!(m.running(ms(t0, 800)));
         assert_eq!(m.starvations, 0);
-        assert!((m.position - 116.0).abs() < 0.01, "{}", m.position);
+        at(&m, 116.0, "");
         // The next message comes 400 ms after the last: the motor stopped at 1100 ms,
         // 300 ms after the last message.
         m.advance(&g, ms(t0, 1200));
         assert!(!m.running(ms(t0, 1200)));
         assert_eq!(m.starvations, 1);
         assert_eq!(m.late, 0, "a stop is a starvation, not a late message");
-        assert!((m.position - 122.0).abs() < 0.01, "{}", m.position);
+        at(&m, 122.0, "");
     }
 
     #[test]
@@ -450,11 +456,7 @@ mod tests {
         m.stream(true, MotorDirection::Down, &g, ms(t0, 1290));
         assert!(m.running(ms(t0, 1290)));
         assert_eq!((m.starvations, m.late), (0, 1));
-        assert!(
-            (m.position - (100.0 + 20.0 * 1.29)).abs() < 0.01,
-            "{}",
-            m.position
-        );
+        at(&m, 100.0 + 20.0 * 1.29, "");
         // 299 ms without a message still runs; at 300 ms it stops.
         m.advance(&g, ms(t0, 1589));
         assert!(m.running(ms(t0, 1589)));
@@ -472,10 +474,7 @@ mod tests {
         m.stream(false, MotorDirection::Up, &g, ms(t0, 100));
         m.advance(&g, ms(t0, 1000));
         assert_eq!(m.starvations, 0);
-        assert!(
-            (m.position - 98.0).abs() < 0.01,
-            "up is toward the smaller number"
-        );
+        at(&m, 98.0, "up is toward the smaller number:");
     }
 
     #[test]
@@ -525,17 +524,13 @@ mod tests {
         let mut m = Motor::new(MotorId::Flap, 100.0, t0);
         m.stream(true, MotorDirection::Down, &g, t0);
         m.advance(&g, ms(t0, 200));
-        assert!(
-            (m.position - 96.0).abs() < 0.01,
-            "down shrinks: {}",
-            m.position
-        );
+        at(&m, 96.0, "down shrinks:");
         // The switch drives it toward `down` (220); it never gets there, so it runs
         // until the sensor's end (0) and stops at the 30 s cap.
         let mut s = Motor::new(MotorId::Flap, 100.0, t0);
         s.switch(Some(MotorDirection::Down), &g, t0);
         s.advance(&g, ms(t0, 2_000));
-        assert!((s.position - 60.0).abs() < 0.01, "{}", s.position);
+        at(&s, 60.0, "");
         assert!(s.running(ms(t0, 2_000)));
         s.advance(&g, ms(t0, 31_000));
         assert_eq!(s.position, 0.0);
@@ -564,7 +559,7 @@ mod tests {
         m.runaway(MotorDirection::Down, &g, t0);
         m.advance(&g, ms(t0, 1000));
         assert_eq!(m.fault, FaultCode::TrimRunaway);
-        assert!((m.position - 110.0).abs() < 0.01);
+        at(&m, 110.0, "");
         assert!(!m.stream(true, MotorDirection::Up, &g, ms(t0, 1000)));
         m.switch(Some(MotorDirection::Up), &g, ms(t0, 1100));
         m.clear();

@@ -78,15 +78,7 @@ pub fn prepare(dir: &Path) -> std::io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn entries(dir: &Path) -> Vec<String> {
-        let mut e: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        e.sort();
-        e
-    }
+    use crate::files::entries;
 
     #[test]
     fn a_name_half_taken_moves_both_files_to_the_next_name() {

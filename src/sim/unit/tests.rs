@@ -72,6 +72,21 @@ impl Bench {
         self.collect();
     }
 
+    /// The cockpit's switch `switch` is turned on or off.
+    fn switch(&mut self, switch: u8, on: bool) {
+        self.apply(SimCommand::Switch { switch, on });
+    }
+
+    /// A short appears on (or leaves) pin `device`.
+    fn short(&mut self, device: u8, on: bool) {
+        self.apply(SimCommand::Short { device, on });
+    }
+
+    /// DEVICE_POWER (ICD Table 24) for `device_id`.
+    fn power(&mut self, device_id: u8, on: bool) -> u8 {
+        self.send(DevicePower { device_id, on })
+    }
+
     fn count(&self, id: MessageId) -> usize {
         self.seen
             .iter()
@@ -232,24 +247,12 @@ fn a_spec_that_does_not_decode_gets_out_of_range_for_its_device() {
 #[test]
 fn device_power_overrides_until_the_switch_is_cycled() {
     let mut b = Bench::new(PINS);
-    b.send(DevicePower {
-        device_id: 9,
-        on: true,
-    });
+    b.power(9, true);
     assert!(b.stats().powered[9], "on although switch 2 is open");
-    b.apply(SimCommand::Switch {
-        switch: 2,
-        on: true,
-    });
-    b.apply(SimCommand::Switch {
-        switch: 2,
-        on: false,
-    });
+    b.switch(2, true);
+    b.switch(2, false);
     assert!(!b.stats().powered[9], "the switch has the last word again");
-    b.send(DevicePower {
-        device_id: 1,
-        on: true,
-    });
+    b.power(1, true);
     assert!(
         !b.stats().powered[1],
         "the starter cannot be switched from outside"
@@ -261,20 +264,11 @@ fn device_power_overrides_until_the_switch_is_cycled() {
 #[test]
 fn a_single_change_of_the_input_ends_a_device_power_hold() {
     let mut b = Bench::new(PINS);
-    b.apply(SimCommand::Switch {
-        switch: 2,
-        on: true,
-    });
+    b.switch(2, true);
     // Held ON while switch 2 is on: only the end of the hold can turn it off.
-    b.send(DevicePower {
-        device_id: 9,
-        on: true,
-    });
+    b.power(9, true);
     assert!(b.stats().powered[9]);
-    b.apply(SimCommand::Switch {
-        switch: 2,
-        on: false,
-    });
+    b.switch(2, false);
     assert!(
         !b.stats().powered[9],
         "one change (on to off) ended the hold: the switch has the word"
@@ -284,14 +278,8 @@ fn a_single_change_of_the_input_ends_a_device_power_hold() {
 #[test]
 fn a_short_faults_the_pin_when_powered_and_clear_brings_back_the_switch_state() {
     let mut b = Bench::new(PINS);
-    b.apply(SimCommand::Short {
-        device: 9,
-        on: true,
-    });
-    b.apply(SimCommand::Switch {
-        switch: 2,
-        on: true,
-    });
+    b.short(9, true);
+    b.switch(2, true);
     let s = b.stats();
     assert!(!s.powered[9]);
     assert_eq!(s.faults[9], FaultCode::ShortCircuit);
@@ -306,15 +294,9 @@ fn a_short_faults_the_pin_when_powered_and_clear_brings_back_the_switch_state() 
     // Clearing while still shorted: faulted again at once (§6.5.1).
     b.send(DeviceClear { device_id: 9 });
     assert_eq!(b.stats().faults[9], FaultCode::ShortCircuit);
-    b.apply(SimCommand::Short {
-        device: 9,
-        on: false,
-    });
+    b.short(9, false);
     // An always-on pin the EFIS switched off comes back on with the clear (note 2).
-    b.send(DevicePower {
-        device_id: 10,
-        on: false,
-    });
+    b.power(10, false);
     b.send(DeviceClear { device_id: 9 });
     let s = b.stats();
     assert!(s.powered[9], "back to switch 2, which is on");
@@ -343,24 +325,15 @@ fn over_current_and_current_fault() {
         device: 9,
         amps: 0.0,
     });
-    b.apply(SimCommand::Switch {
-        switch: 2,
-        on: true,
-    });
+    b.switch(2, true);
     assert_eq!(b.stats().faults[9], FaultCode::CurrentFault);
 }
 
 #[test]
 fn one_alternator_at_a_time_and_over_voltage_trips_the_running_one() {
     let mut b = Bench::new(PINS);
-    b.apply(SimCommand::Switch {
-        switch: 1,
-        on: true,
-    });
-    b.apply(SimCommand::Switch {
-        switch: 4,
-        on: true,
-    });
+    b.switch(1, true);
+    b.switch(4, true);
     let s = b.stats();
     assert!(
         s.powered[3] && !s.powered[23],
@@ -440,10 +413,7 @@ fn wig_wag_flashes_at_and_above_its_speed_after_warm_up_and_steady_stops_it() {
          [[device]]\nid = 18\nswitch = 5\nbreaker = 8\nload = 5\n\
          [wig_wag]\ndevice_one = 17\ndevice_two = 18\nwarm_up = 5\nspeed = 70\n",
     );
-    b.apply(SimCommand::Switch {
-        switch: 5,
-        on: true,
-    });
+    b.switch(5, true);
     let both = |b: &Bench| (b.stats().powered[17], b.stats().powered[18]);
     let patterns = |b: &mut Bench, ias: u16| {
         let mut seen = std::collections::HashSet::new();
@@ -653,7 +623,7 @@ const WIRING: &str = "
 ";
 
 fn person_sets(b: &mut Bench, switch: u8, on: bool) {
-    b.apply(SimCommand::Switch { switch, on });
+    b.switch(switch, on);
 }
 
 #[test]
@@ -676,10 +646,7 @@ fn an_open_circuit_is_on_and_draws_nothing() {
     );
     // Switched on by DEVICE_POWER instead, the same: on, and 0 A.
     person_sets(&mut b, 3, false);
-    b.send(DevicePower {
-        device_id: 6,
-        on: true,
-    });
+    b.power(6, true);
     let d = device_status_bytes(&mut b);
     assert_eq!(d[0], 0b0100_0100);
     assert_eq!(current_tenths(&d, 6), 0);
@@ -756,10 +723,7 @@ fn crossed_switches_close_each_others_input_and_power_each_others_circuits() {
 fn a_switch_change_through_the_wiring_still_ends_a_device_power_hold() {
     let mut b = Bench::new(WIRING);
     // The page switched the taxi light off; cycling its input ends the hold.
-    b.send(DevicePower {
-        device_id: 18,
-        on: false,
-    });
+    b.power(18, false);
     person_sets(&mut b, 5, true);
     assert!(
         b.stats().powered[18],
