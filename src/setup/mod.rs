@@ -13,4 +13,7 @@ pub mod form;
 pub mod view;
 pub mod write;
 
+#[cfg(test)]
+mod testing;
+
 pub use write::{WriteQueue, unit_config};
