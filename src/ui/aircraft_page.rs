@@ -199,15 +199,7 @@ fn as_built(o: &mut String, built: Option<&AsBuilt>) {
     );
     table_head(
         o,
-        [
-            "Pin",
-            "Circuit",
-            "Breaker",
-            "Switch",
-            "Wire",
-            "Run",
-            "Wire against breaker",
-        ],
+        "Pin|Circuit|Breaker|Switch|Wire|Run|Wire against breaker".split('|'),
     );
     for c in &b.circuits {
         let w = c.wire.as_ref();
@@ -254,7 +246,7 @@ fn analysis(o: &mut String, a: Option<&(SystemTime, Analysis)>) {
         a.battery_usable,
         analysis_amps(a.usable_amp_hours())
     );
-    table_head(o, ["Phase", "Total", "Result", "Margin or endurance"]);
+    table_head(o, "Phase|Total|Result|Margin or endurance".split('|'));
     for p in &a.phases {
         let mark = crate::check::state::Mark::of(p.level);
         let _ = writeln!(
@@ -311,13 +303,7 @@ fn checks(o: &mut String, checks: &[CheckEntry]) {
     }
     table_head(
         o,
-        [
-            "When (UTC)",
-            "Result",
-            "By",
-            "Circuits measured",
-            "Changed since the check before",
-        ],
+        "When (UTC)|Result|By|Circuits measured|Changed since the check before".split('|'),
     );
     let mut before: Option<&CheckEntry> = None;
     for c in checks {
@@ -461,17 +447,7 @@ fn settings(o: &mut String, changes: &[SettingChange]) {
     ) {
         return;
     }
-    table_head(
-        o,
-        [
-            "When (UTC)",
-            "Setting",
-            "Was",
-            "Now",
-            "Unit confirmed",
-            "By",
-        ],
-    );
+    table_head(o, "When (UTC)|Setting|Was|Now|Unit confirmed|By".split('|'));
     for c in changes {
         let _ = writeln!(
             o,
@@ -502,7 +478,7 @@ fn firmware(o: &mut String, updates: &[FirmwareUpdate]) {
     }
     table_head(
         o,
-        ["When (UTC)", "Before", "After", "Outcome", "Image SHA-256"],
+        "When (UTC)|Before|After|Outcome|Image SHA-256".split('|'),
     );
     for u in updates {
         let _ = writeln!(
