@@ -148,7 +148,7 @@ impl Diagnostics {
 mod tests {
     use super::*;
     use crate::protocol::message::HardwareVersion;
-    use crate::setup::testing::{hear, model, ms};
+    use crate::setup::tests::{hear, model, ms};
 
     #[test]
     fn version_is_asked_three_times_then_no_answer_and_ping_times_its_answer() {

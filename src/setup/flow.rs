@@ -774,7 +774,7 @@ fn backup_file(file: &str, model: &Model, wall: SystemTime) -> Result<BackupFile
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::setup::testing::{hear, hear_named, model, ms};
+    use crate::setup::tests::{hear, hear_named, model, ms};
 
     use crate::model::Rereader;
     use crate::model::Setting;

@@ -557,7 +557,7 @@ mod tests {
     use super::*;
     use crate::protocol::defaults;
     use crate::protocol::message::{DeviceSpec, FlapTrimStatus, TrimType};
-    use crate::setup::testing::{hear, hear_named, model};
+    use crate::setup::tests::{hear, hear_named, model};
 
     /// The unit reports pin `id` as it leaves the factory: Appendix F's spec, no
     /// name, shown.

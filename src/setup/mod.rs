@@ -14,6 +14,6 @@ pub mod view;
 pub mod write;
 
 #[cfg(test)]
-mod testing;
+mod tests;
 
 pub use write::{WriteQueue, unit_config};

@@ -1,4 +1,5 @@
-//! What the setup tests hear from the unit, on a clock they set.
+//! What the setup tests hear from the unit, on a clock they set: shared by the test
+//! modules of the setup flow.
 
 use std::time::{Duration, Instant};
 

@@ -484,7 +484,7 @@ fn pin_short(id: u8) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::setup::testing::{hear, model, ms};
+    use crate::setup::tests::{hear, model, ms};
 
     use crate::protocol::device::FLAPS;
     use crate::protocol::message::{DeviceEnable, DeviceSpecQuery};
