@@ -19,6 +19,10 @@ use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 #[cfg(unix)]
 use ratatui::layout::Rect;
+#[cfg(unix)]
+use ratatui::text::{Line, Span};
+#[cfg(unix)]
+use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 use vpx_efis::model::{Model, Source};
 use vpx_efis::protocol::device::EFIS;
 use vpx_efis::protocol::message::{
@@ -369,12 +373,114 @@ fn bench(c: &mut Criterion) {
     });
 }
 
+/// Every row of the full frame as a line of styled spans: the most text a frame can
+/// hold, in the characters and styles the page draws.
+#[cfg(unix)]
+fn frame_lines(terminal: &Terminal<TestBackend>) -> Vec<Line<'static>> {
+    let buf = terminal.backend().buffer();
+    (buf.area.top()..buf.area.bottom())
+        .map(|y| {
+            let mut spans: Vec<Span<'static>> = Vec::new();
+            for x in buf.area.left()..buf.area.right() {
+                let cell = &buf[(x, y)];
+                match spans.last_mut() {
+                    Some(s) if s.style == cell.style() => {
+                        s.content.to_mut().push_str(cell.symbol())
+                    }
+                    _ => spans.push(Span::styled(cell.symbol().to_string(), cell.style())),
+                }
+            }
+            Line::from(spans)
+        })
+        .collect()
+}
+
+/// The page's own text writer and panel frame against ratatui's `Paragraph` and
+/// `Block`, in one run so that they are compared on the same machine load: a full
+/// frame's text (as one block of 40 lines, and a line per call: the page makes fewer,
+/// larger calls than that), with `Buffer::set_line` for the cost of no widget at all,
+/// and a panel as large as the frame.
+#[cfg(unix)]
+fn bench_text(c: &mut Criterion<ThreadCpu>) {
+    let (model, now) = configured();
+    let control = vpx_efis::ui::state::ControlState::default();
+    let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
+    terminal
+        .draw(|f| ui::draw(f, &model, &view(), &control, now))
+        .unwrap();
+    let lines = frame_lines(&terminal);
+    let area = Rect::new(0, 0, 120, 40);
+    let rows: Vec<Rect> = area.rows().collect();
+    let block = Paragraph::new(lines.clone());
+    let each: Vec<Paragraph> = lines.iter().map(|l| Paragraph::new(l.clone())).collect();
+    let mut buf = Buffer::empty(area);
+    let mut g = c.benchmark_group("cpu time: text of a full frame");
+    g.bench_function("Paragraph, 40 lines", |b| {
+        b.iter(|| black_box(&block).render(area, &mut buf))
+    });
+    g.bench_function("Paragraph, a line per call", |b| {
+        b.iter(|| {
+            for (p, row) in black_box(&each).iter().zip(&rows) {
+                p.render(*row, &mut buf);
+            }
+        })
+    });
+    g.bench_function("unwrapped::lines, 40 lines", |b| {
+        b.iter(|| ui::unwrapped::lines(&mut buf, area, black_box(&lines)))
+    });
+    g.bench_function("unwrapped::lines, a line per call", |b| {
+        b.iter(|| {
+            for (l, row) in black_box(&lines).iter().zip(&rows) {
+                ui::unwrapped::lines(&mut buf, *row, std::slice::from_ref(l));
+            }
+        })
+    });
+    g.bench_function("Buffer::set_line, 40 lines", |b| {
+        b.iter(|| {
+            for (l, row) in black_box(&lines).iter().zip(&rows) {
+                buf.set_line(row.x, row.y, l, row.width);
+            }
+        })
+    });
+    // The panels' frames together cover the whole frame: one panel as large, with the
+    // device list's titles.
+    let titles = [
+        Line::styled(" Devices ", ui::theme::panel_title()),
+        Line::styled("by pin ", ui::theme::label()),
+    ];
+    let more = Line::styled(" ▲2 more ▼4 more ", ui::theme::caution());
+    g.bench_function("Block, a 120x40 panel", |b| {
+        b.iter(|| {
+            let block = Block::new()
+                .borders(Borders::TOP | Borders::RIGHT)
+                .border_style(ui::theme::border())
+                .title(titles[0].clone())
+                .title(titles[1].clone())
+                .title(more.clone().right_aligned());
+            black_box(block.inner(area));
+            block.render(area, &mut buf)
+        })
+    });
+    g.bench_function("Panel, a 120x40 panel", |b| {
+        b.iter(|| {
+            let panel = ui::panel::Panel {
+                right_side: true,
+                border: ui::theme::border(),
+                titles: &titles,
+                right_title: Some(&more),
+            };
+            black_box(panel.render(area, &mut buf))
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(benches, bench);
 #[cfg(unix)]
 criterion_group! {
     name = cpu;
     config = Criterion::default().with_measurement(ThreadCpu);
-    targets = bench_cpu, bench_widgets
+    targets = bench_cpu, bench_widgets, bench_text
 }
 #[cfg(unix)]
 criterion_main!(benches, cpu);

@@ -219,6 +219,13 @@ mod tests {
         })
     }
 
+    /// A pacer started at `t0` on a unit that has said nothing, and its command numbers.
+    fn started(t0: Instant) -> (Model, QueryPacer, impl FnMut() -> u8) {
+        let mut p = QueryPacer::default();
+        p.start(t0);
+        (model(), p, counter())
+    }
+
     fn counter() -> impl FnMut() -> u8 {
         let mut cnt = 0u8;
         move || {
@@ -269,10 +276,7 @@ mod tests {
     #[test]
     fn four_go_out_at_once_and_an_answer_lets_the_next_one_out() {
         let t0 = Instant::now();
-        let mut m = model();
-        let mut p = QueryPacer::default();
-        let mut cnt = counter();
-        p.start(t0);
+        let (mut m, mut p, mut cnt) = started(t0);
         assert_eq!(
             p.next_deadline(),
             Some(t0),
@@ -315,10 +319,7 @@ mod tests {
     #[test]
     fn an_unanswered_request_gives_its_place_up_after_the_wait() {
         let t0 = Instant::now();
-        let m = model();
-        let mut p = QueryPacer::default();
-        let mut cnt = counter();
-        p.start(t0);
+        let (m, mut p, mut cnt) = started(t0);
         assert_eq!(p.due(t0, &m, &mut cnt).len(), IN_FLIGHT);
         assert!(p.due(t0 + ANSWER_WAIT - ms(1), &m, &mut cnt).is_empty());
         assert_eq!(p.due(t0 + ANSWER_WAIT, &m, &mut cnt).len(), IN_FLIGHT);
@@ -337,10 +338,7 @@ mod tests {
     #[test]
     fn an_answer_heard_before_the_request_does_not_free_its_place() {
         let t0 = Instant::now();
-        let mut m = model();
-        let mut p = QueryPacer::default();
-        let mut cnt = counter();
-        p.start(t0);
+        let (mut m, mut p, mut cnt) = started(t0);
         // Answered in an earlier round (a minute ago).
         m.apply_packet(t0, &enable_answer(4));
         let t1 = t0 + ms(1);

@@ -462,62 +462,58 @@ mod tests {
     #[test]
     fn command_keys() {
         let c = ctx(7, CircuitKind::Device);
-        assert_eq!(
-            map(&plain(KeyCode::Char('o')), &c),
-            Some(Action::PowerOn(7))
-        );
-        assert_eq!(map(&plain(KeyCode::Enter), &c), Some(Action::PowerOn(7)));
-        assert_eq!(
-            map(&plain(KeyCode::Char('f')), &c),
-            Some(Action::PowerOff(7))
-        );
-        assert_eq!(map(&plain(KeyCode::Char('r')), &c), Some(Action::Reset(7)));
-        assert_eq!(
-            map(&key(KeyCode::Char('R'), KeyModifiers::SHIFT), &c),
-            Some(Action::ResetSystemFault)
-        );
-        assert_eq!(
-            map(&key(KeyCode::Char('r'), KeyModifiers::SHIFT), &c),
-            Some(Action::ResetSystemFault),
-            "kitty's base key plus SHIFT"
-        );
-        assert_eq!(
-            map(&plain(KeyCode::Char('w')), &c),
-            Some(Action::ToggleWigWag)
-        );
-        assert_eq!(
-            map(&plain(KeyCode::Char('s')), &c),
-            Some(Action::ToggleSort)
-        );
-        assert_eq!(
-            map(&plain(KeyCode::Char('?')), &c),
-            Some(Action::ToggleHelp)
-        );
-        assert_eq!(map(&plain(KeyCode::Char('q')), &c), Some(Action::Quit));
-        assert_eq!(
-            map(&key(KeyCode::Char('c'), KeyModifiers::CONTROL), &c),
-            Some(Action::Quit)
-        );
-        assert_eq!(
-            map(&plain(KeyCode::Char('t')), &c),
-            Some(Action::TrafficView)
-        );
-        assert_eq!(map(&plain(KeyCode::Char('c')), &c), Some(Action::Setup));
-        assert_eq!(
-            map(&plain(KeyCode::Char('i')), &c),
-            Some(Action::InstallCheck)
-        );
-        assert_eq!(map(&plain(KeyCode::Char('x')), &c), None);
-        assert_eq!(
-            map(&plain(KeyCode::Char('o')), &KeyContext::default()),
-            Some(Action::Unavailable(NOTHING_SELECTED))
+        let (none, shift, ctrl) = (
+            KeyModifiers::NONE,
+            KeyModifiers::SHIFT,
+            KeyModifiers::CONTROL,
         );
         let starter = ctx(STARTER, CircuitKind::Starter);
-        assert_eq!(
-            map(&plain(KeyCode::Char('o')), &starter),
-            Some(Action::PowerOn(STARTER)),
-            "the keymap maps; commands refuses"
-        );
+        let nothing = KeyContext::default();
+        for (code, mods, at, want, why) in [
+            (KeyCode::Char('o'), none, &c, Some(Action::PowerOn(7)), ""),
+            (KeyCode::Enter, none, &c, Some(Action::PowerOn(7)), ""),
+            (KeyCode::Char('f'), none, &c, Some(Action::PowerOff(7)), ""),
+            (KeyCode::Char('r'), none, &c, Some(Action::Reset(7)), ""),
+            (
+                KeyCode::Char('R'),
+                shift,
+                &c,
+                Some(Action::ResetSystemFault),
+                "",
+            ),
+            (
+                KeyCode::Char('r'),
+                shift,
+                &c,
+                Some(Action::ResetSystemFault),
+                "kitty's base key plus SHIFT",
+            ),
+            (KeyCode::Char('w'), none, &c, Some(Action::ToggleWigWag), ""),
+            (KeyCode::Char('s'), none, &c, Some(Action::ToggleSort), ""),
+            (KeyCode::Char('?'), none, &c, Some(Action::ToggleHelp), ""),
+            (KeyCode::Char('q'), none, &c, Some(Action::Quit), ""),
+            (KeyCode::Char('c'), ctrl, &c, Some(Action::Quit), ""),
+            (KeyCode::Char('t'), none, &c, Some(Action::TrafficView), ""),
+            (KeyCode::Char('c'), none, &c, Some(Action::Setup), ""),
+            (KeyCode::Char('i'), none, &c, Some(Action::InstallCheck), ""),
+            (KeyCode::Char('x'), none, &c, None, "unbound"),
+            (
+                KeyCode::Char('o'),
+                none,
+                &nothing,
+                Some(Action::Unavailable(NOTHING_SELECTED)),
+                "nothing selected",
+            ),
+            (
+                KeyCode::Char('o'),
+                none,
+                &starter,
+                Some(Action::PowerOn(STARTER)),
+                "the keymap maps; commands refuses",
+            ),
+        ] {
+            assert_eq!(map(&key(code, mods), at), want, "{code:?} {mods:?} {why}");
+        }
     }
 
     #[test]

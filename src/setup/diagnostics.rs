@@ -147,20 +147,13 @@ impl Diagnostics {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Source;
-    use crate::protocol::Packet;
     use crate::protocol::message::HardwareVersion;
-
-    fn ms(t0: Instant, n: u64) -> Instant {
-        t0 + Duration::from_millis(n)
-    }
+    use crate::setup::tests::{hear, model, ms};
 
     #[test]
     fn version_is_asked_three_times_then_no_answer_and_ping_times_its_answer() {
         let t0 = Instant::now();
-        let mut m = Model::new(Source::Simulated {
-            scenario: "t".into(),
-        });
+        let mut m = model();
         let mut v = SetupView::default();
         let mut p = Diagnostics::default();
         assert_eq!(p.version(&mut v, t0), Version::REQUEST.into());
@@ -177,7 +170,7 @@ mod tests {
         assert_eq!(p.next_deadline(), None);
 
         p.ping(&mut v, ms(t0, 4000));
-        m.apply_packet(ms(t0, 4012), &Packet::from_vpx(1, Ping { ack: true }));
+        hear(&mut m, ms(t0, 4012), Ping { ack: true });
         p.tick(&m, &mut v, ms(t0, 4020));
         assert_eq!(
             v.ping,
@@ -191,7 +184,7 @@ mod tests {
             software_major: 2,
             software_minor: 1,
         };
-        m.apply_packet(ms(t0, 5030), &Packet::from_vpx(1, answer));
+        hear(&mut m, ms(t0, 5030), answer);
         p.tick(&m, &mut v, ms(t0, 5040));
         assert_eq!(
             v.version,
@@ -204,9 +197,7 @@ mod tests {
     #[test]
     fn an_erase_ends_in_its_response_code_or_no_answer() {
         let t0 = Instant::now();
-        let mut m = Model::new(Source::Simulated {
-            scenario: "t".into(),
-        });
+        let mut m = model();
         let mut v = SetupView::default();
         let mut p = Diagnostics::default();
         p.erase(&mut v, t0);
@@ -214,10 +205,7 @@ mod tests {
         assert_eq!(p.tick(&m, &mut v, ms(t0, 3000)).1, Some(EraseEnd::NoAnswer));
         assert_eq!(v.erase, Diagnostic::NoAnswer);
         p.erase(&mut v, ms(t0, 4000));
-        m.apply_packet(
-            ms(t0, 4500),
-            &Packet::from_vpx(1, EepromErase { response_code: 2 }),
-        );
+        hear(&mut m, ms(t0, 4500), EepromErase { response_code: 2 });
         assert_eq!(
             p.tick(&m, &mut v, ms(t0, 4510)).1,
             Some(EraseEnd::Answered(2))

@@ -774,23 +774,17 @@ fn backup_file(file: &str, model: &Model, wall: SystemTime) -> Result<BackupFile
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::time::Duration;
+    use crate::setup::tests::{hear, hear_named, model, ms};
 
     use crate::model::Rereader;
-    use crate::model::{Setting, Source};
-    use crate::protocol::Packet;
+    use crate::model::Setting;
     use crate::protocol::message::{
-        DeviceEnable, DeviceName, DeviceSpec, DeviceSpecQuery, EnableFlag, OvervoltageLimit,
-        SpecAck, SwitchId,
+        DeviceName, DeviceSpec, DeviceSpecQuery, OvervoltageLimit, SpecAck, SwitchId,
     };
     use crate::setup::view::WriteStatus;
 
     /// The wall-clock time backups are stamped with in these tests.
     const WALL: SystemTime = SystemTime::UNIX_EPOCH;
-
-    fn ms(t0: Instant, n: u64) -> Instant {
-        t0 + Duration::from_millis(n)
-    }
 
     fn held(cb: u8) -> DeviceSpec {
         DeviceSpec {
@@ -809,9 +803,7 @@ mod tests {
     #[test]
     fn a_spec_never_heard_is_not_written_until_the_unit_reports_it() {
         let t0 = Instant::now();
-        let mut m = Model::new(Source::Simulated {
-            scenario: "t".into(),
-        });
+        let mut m = model();
         let mut sv = SetupView::default();
         let mut flow = SetupFlow::default();
         let mut rereader = Rereader::default();
@@ -870,21 +862,8 @@ mod tests {
             current_fault: true,
             switch_raw: None,
         };
-        m.apply_packet(ms(t0, 3500), &Packet::from_vpx(1, unit));
-        m.apply_packet(
-            ms(t0, 3500),
-            &Packet::from_vpx(1, DeviceName::new(9, "Strobe").unwrap()),
-        );
-        m.apply_packet(
-            ms(t0, 3500),
-            &Packet::from_vpx(
-                1,
-                DeviceEnable {
-                    device_id: 9,
-                    flag: EnableFlag::Enabled,
-                },
-            ),
-        );
+        hear(&mut m, ms(t0, 3500), unit);
+        hear_named(&mut m, ms(t0, 3500), 9, "Strobe");
         flow.tick(&mut sv, true, Some(9), &mut m, ms(t0, 3600));
         assert_eq!(sv.forms.device, unit, "the form shows what the unit holds");
         assert_eq!(sv.forms.name, "Strobe");
@@ -906,24 +885,9 @@ mod tests {
     #[test]
     fn a_typed_breaker_whose_acks_are_lost_ends_showing_what_the_unit_holds() {
         let t0 = Instant::now();
-        let mut m = Model::new(Source::Simulated {
-            scenario: "t".into(),
-        });
-        m.apply_packet(t0, &Packet::from_vpx(1, held(4)));
-        m.apply_packet(
-            t0,
-            &Packet::from_vpx(1, DeviceName::new(9, "Landing Lt").unwrap()),
-        );
-        m.apply_packet(
-            t0,
-            &Packet::from_vpx(
-                1,
-                DeviceEnable {
-                    device_id: 9,
-                    flag: EnableFlag::Enabled,
-                },
-            ),
-        );
+        let mut m = model();
+        hear(&mut m, t0, held(4));
+        hear_named(&mut m, t0, 9, "Landing Lt");
         let mut sv = SetupView::default();
         let mut flow = SetupFlow::default();
         let mut rereader = Rereader::default();
@@ -950,7 +914,7 @@ mod tests {
                         queries += 1;
                         // The first re-read is lost on the line; the second answered.
                         if queries == 2 {
-                            m.apply_packet(now, &Packet::from_vpx(1, held(3)));
+                            hear(&mut m, now, held(3));
                         }
                     }
                     other => panic!("unexpected {other:?}"),
@@ -978,15 +942,13 @@ mod tests {
             "the form follows the unit again"
         );
         // A SPEC_ACK arriving late, for nothing in flight, changes nothing.
-        m.apply_packet(
+        hear(
+            &mut m,
             ms(t0, 6100),
-            &Packet::from_vpx(
-                1,
-                SpecAck {
-                    device_id: 9,
-                    error: None,
-                },
-            ),
+            SpecAck {
+                device_id: 9,
+                error: None,
+            },
         );
         assert!(
             flow.tick(&mut sv, true, Some(9), &mut m, ms(t0, 6200))
@@ -1001,44 +963,37 @@ mod tests {
         use crate::protocol::Payload;
         use crate::protocol::defaults;
         use crate::protocol::message::{SignedTenths, SystemSpec, SystemStatus, TrimType};
-        let mut m = Model::new(Source::Simulated {
-            scenario: "t".into(),
-        });
+        let mut m = model();
         for id in 1..=28u8 {
             let mut spec = defaults::device_spec(id);
             if id == 4 {
                 spec.current_fault = true;
             }
-            m.apply_packet(t0, &Packet::from_vpx(1, spec));
-            m.apply_packet(t0, &Packet::from_vpx(1, DeviceName::new(id, "").unwrap()));
-            let shown = DeviceEnable {
-                device_id: id,
-                flag: EnableFlag::Enabled,
-            };
-            m.apply_packet(t0, &Packet::from_vpx(1, shown));
+            hear(&mut m, t0, spec);
+            hear_named(&mut m, t0, id, "");
         }
         for id in [0, 29, 30] {
-            m.apply_packet(t0, &Packet::from_vpx(1, DeviceName::new(id, "").unwrap()));
+            hear(&mut m, t0, DeviceName::new(id, "").unwrap());
         }
-        m.apply_packet(t0, &Packet::from_vpx(1, defaults::wig_wag_spec()));
+        hear(&mut m, t0, defaults::wig_wag_spec());
         let system = SystemSpec {
             overvoltage_limit: limit,
             secondary_alternator: None,
         };
-        m.apply_packet(t0, &Packet::from_vpx(1, system));
+        hear(&mut m, t0, system);
         let mut flap = defaults::flap_spec();
         flap.enabled = true;
-        m.apply_packet(t0, &Packet::from_vpx(1, flap));
+        hear(&mut m, t0, flap);
         for t in [TrimType::Pitch, TrimType::Roll] {
             let mut trim = defaults::trim_spec(t);
             trim.enabled = true;
             trim.power = 60;
-            m.apply_packet(t0, &Packet::from_vpx(1, trim));
+            hear(&mut m, t0, trim);
         }
         if let Some(v) = bus {
             let mut st = SystemStatus::parse(&[0u8; 12]).unwrap();
             st.main_bus_volts = SignedTenths((v * 10.0).round() as i16);
-            m.apply_packet(t0, &Packet::from_vpx(1, st));
+            hear(&mut m, t0, st);
         }
         m
     }
@@ -1225,10 +1180,7 @@ mod tests {
         }];
         let t0 = Instant::now();
         let mut m = armed_unit(t0, OvervoltageLimit::V16, Some(14.2));
-        m.apply_packet(
-            t0,
-            &Packet::from_vpx(1, DeviceName::new(strobe, "Strobe Lt").unwrap()),
-        );
+        hear(&mut m, t0, DeviceName::new(strobe, "Strobe Lt").unwrap());
         let (mut sv, mut flow) = (SetupView::default(), SetupFlow::default());
         flow.tick(&mut sv, true, Some(strobe), &mut m, t0);
         flow.set_wires(wires.clone());
@@ -1318,10 +1270,7 @@ mod tests {
     #[test]
     fn typing_in_setup_is_refused_or_done_in_words() {
         let (t0, mut m, mut sv, mut flow) = opened_on(4);
-        m.apply_packet(
-            t0,
-            &Packet::from_vpx(1, DeviceName::new(4, "Nav Lt").unwrap()),
-        );
+        hear(&mut m, t0, DeviceName::new(4, "Nav Lt").unwrap());
         flow.tick(&mut sv, true, Some(4), &mut m, t0);
         for (page, field) in [
             (Page::Device, Field::Switch),
@@ -1361,27 +1310,27 @@ mod tests {
             .iter()
             .position(|&f| f == Field::Name)
             .unwrap();
-        typed(&mut flow, &mut sv, &mut m, t0, "é");
-        assert_eq!(sv.forms.name, "Nav Lt");
-        assert_eq!(
-            said(&sv),
+        for (erased, text, name, refused) in [
             (
-                Tone::Bad,
-                "'é' not taken: names are ASCII only (ICD Table 21)".into()
-            )
-        );
-        for _ in 0..6 {
-            flow.key(SetupKey::Backspace, &mut sv, &mut m, t0, WALL);
+                0,
+                "é",
+                "Nav Lt",
+                "'é' not taken: names are ASCII only (ICD Table 21)",
+            ),
+            (
+                6,
+                "Landing Light Left",
+                "Landing Light Le",
+                "'t' not taken: names are at most 16 characters (ICD Table 21)",
+            ),
+        ] {
+            for _ in 0..erased {
+                flow.key(SetupKey::Backspace, &mut sv, &mut m, t0, WALL);
+            }
+            typed(&mut flow, &mut sv, &mut m, t0, text);
+            assert_eq!(sv.forms.name, name, "typed {text:?}");
+            assert_eq!(said(&sv), (Tone::Bad, refused.into()), "typed {text:?}");
         }
-        typed(&mut flow, &mut sv, &mut m, t0, "Landing Light Left");
-        assert_eq!(sv.forms.name, "Landing Light Le");
-        assert_eq!(
-            said(&sv),
-            (
-                Tone::Bad,
-                "'t' not taken: names are at most 16 characters (ICD Table 21)".into()
-            )
-        );
         // ←/→ over a typed name replaces it, and says so.
         flow.key(SetupKey::Right, &mut sv, &mut m, t0, WALL);
         let (tone, words) = said(&sv);
@@ -1422,7 +1371,7 @@ mod tests {
             software_major: 2,
             software_minor: 1,
         };
-        m.apply_packet(t0, &Packet::from_vpx(1, version));
+        hear(&mut m, t0, version);
         sv.file = "unit.toml".into();
         sv.page = Page::Backup;
         (t0, m, sv, flow)

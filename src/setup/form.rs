@@ -555,28 +555,16 @@ pub fn check(cfg: &UnitConfig, messages: &[Message]) -> Result<(), (usize, Strin
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Source;
-    use crate::protocol::Packet;
     use crate::protocol::defaults;
     use crate::protocol::message::{DeviceSpec, FlapTrimStatus, TrimType};
-
-    fn model() -> Model {
-        Model::new(Source::Simulated {
-            scenario: "t".into(),
-        })
-    }
+    use crate::setup::tests::{hear, hear_named, model};
 
     /// The unit reports pin `id` as it leaves the factory: Appendix F's spec, no
     /// name, shown.
     fn factory_pin(m: &mut Model, id: u8) {
         let t = Instant::now();
-        m.apply_packet(t, &Packet::from_vpx(1, defaults::device_spec(id)));
-        m.apply_packet(t, &Packet::from_vpx(1, DeviceName::new(id, "").unwrap()));
-        let shown = DeviceEnable {
-            device_id: id,
-            flag: EnableFlag::Enabled,
-        };
-        m.apply_packet(t, &Packet::from_vpx(1, shown));
+        hear(m, t, defaults::device_spec(id));
+        hear_named(m, t, id, "");
     }
 
     /// Connected while the unit was silent: nothing of pin 9 heard. The form's
@@ -609,7 +597,7 @@ mod tests {
             current_fault: true,
             switch_raw: None,
         };
-        m.apply_packet(t0, &Packet::from_vpx(1, held));
+        hear(&mut m, t0, held);
         load(&mut f, Page::Device, &m, false);
         assert_eq!(f.device, held, "the unit's switch, not Appendix F's off");
         assert!(f.from_unit.device && !f.from_unit.name);
@@ -621,20 +609,7 @@ mod tests {
         );
         // The name and flag arrive while the page is edited: they fill in, the
         // edited breaker stays, and now only the spec goes out, with the unit's switch.
-        m.apply_packet(
-            t0,
-            &Packet::from_vpx(1, DeviceName::new(9, "GPS 1").unwrap()),
-        );
-        m.apply_packet(
-            t0,
-            &Packet::from_vpx(
-                1,
-                DeviceEnable {
-                    device_id: 9,
-                    flag: EnableFlag::Enabled,
-                },
-            ),
-        );
+        hear_named(&mut m, t0, 9, "GPS 1");
         load(&mut f, Page::Device, &m, true);
         assert_eq!(f.name, "GPS 1");
         assert_eq!(f.device.circuit_breaker, 4, "the edit is kept");
@@ -719,21 +694,8 @@ mod tests {
             current_fault: true,
             switch_raw: None,
         };
-        m.apply_packet(t0, &Packet::from_vpx(1, spec));
-        m.apply_packet(
-            t0,
-            &Packet::from_vpx(1, DeviceName::new(9, "GPS 1").unwrap()),
-        );
-        m.apply_packet(
-            t0,
-            &Packet::from_vpx(
-                1,
-                DeviceEnable {
-                    device_id: 9,
-                    flag: EnableFlag::Enabled,
-                },
-            ),
-        );
+        hear(&mut m, t0, spec);
+        hear_named(&mut m, t0, 9, "GPS 1");
         let mut f = Forms::default();
         select_device(&mut f, 9, &m);
         assert_eq!(f.name, "GPS 1");
@@ -761,9 +723,9 @@ mod tests {
     fn capture_takes_the_live_position_into_the_selected_field() {
         let t0 = Instant::now();
         let mut m = model();
-        m.apply_packet(t0, &Packet::from_vpx(1, defaults::flap_spec()));
+        hear(&mut m, t0, defaults::flap_spec());
         for t in [TrimType::Pitch, TrimType::Roll] {
-            m.apply_packet(t0, &Packet::from_vpx(1, defaults::trim_spec(t)));
+            hear(&mut m, t0, defaults::trim_spec(t));
         }
         let mut f = Forms::default();
         for page in [Page::Flaps, Page::PitchTrim, Page::RollTrim] {
@@ -779,7 +741,7 @@ mod tests {
             roll_trim_position: 140,
             ..<FlapTrimStatus as crate::protocol::Payload>::parse(&[0u8; 18]).unwrap()
         };
-        m.apply_packet(t0, &Packet::from_vpx(1, ft));
+        hear(&mut m, t0, ft);
         assert!(
             capture(&mut f, Page::Flaps, Field::FlapMaxSpeed, &m, t0)
                 .unwrap_err()

@@ -13,4 +13,7 @@ pub mod form;
 pub mod view;
 pub mod write;
 
+#[cfg(test)]
+mod tests;
+
 pub use write::{WriteQueue, unit_config};

@@ -484,25 +484,13 @@ fn pin_short(id: u8) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::time::Duration;
+    use crate::setup::tests::{hear, model, ms};
 
-    use crate::model::Source;
-    use crate::protocol::Packet;
     use crate::protocol::device::FLAPS;
     use crate::protocol::message::{DeviceEnable, DeviceSpecQuery};
     use crate::protocol::message::{
         DeviceName, DeviceSpec, FlapSpec, SpecAck, SpecAckError, SwitchId, TrimSpec,
     };
-
-    fn model() -> Model {
-        Model::new(Source::Simulated {
-            scenario: "t".into(),
-        })
-    }
-
-    fn hear(m: &mut Model, at: Instant, msg: impl Into<Message>) {
-        m.apply_packet(at, &Packet::from_vpx(1, msg));
-    }
 
     fn spec9() -> DeviceSpec {
         DeviceSpec {
@@ -530,10 +518,6 @@ mod tests {
         let mut q = WriteQueue::default();
         q.start(vec![written.into()]);
         (m, q)
-    }
-
-    fn ms(t0: Instant, n: u64) -> Instant {
-        t0 + Duration::from_millis(n)
     }
 
     #[test]

@@ -161,6 +161,26 @@ pub fn html(page: &Page) -> String {
     o
 }
 
+/// A section's heading, then `nothing` when it is `empty`; whether there is more to say.
+fn section(o: &mut String, title: &str, empty: bool, nothing: &str) -> bool {
+    let _ = writeln!(o, "<h2>{title}</h2>");
+    if empty {
+        let _ = writeln!(o, "<p>{nothing}</p>");
+    }
+    !empty
+}
+
+/// A table's opening and its head row; [`TABLE_END`] closes it.
+fn table_head<'a>(o: &mut String, heads: impl IntoIterator<Item = &'a str>) {
+    o.push_str("<table>\n<thead><tr>");
+    for h in heads {
+        let _ = write!(o, "<th>{}</th>", escape(h));
+    }
+    o.push_str("</tr></thead>\n<tbody>\n");
+}
+
+const TABLE_END: &str = "</tbody>\n</table>\n";
+
 fn dash<T>(v: Option<T>, f: impl Fn(T) -> String) -> String {
     v.map_or_else(|| "—".into(), f)
 }
@@ -177,9 +197,9 @@ fn as_built(o: &mut String, built: Option<&AsBuilt>) {
          then, each held against its breaker (AC 43.13-1B Table 11-3).</p>",
         minute(b.when)
     );
-    o.push_str(
-        "<table>\n<thead><tr><th>Pin</th><th>Circuit</th><th>Breaker</th><th>Switch</th>\
-         <th>Wire</th><th>Run</th><th>Wire against breaker</th></tr></thead>\n<tbody>\n",
+    table_head(
+        o,
+        "Pin|Circuit|Breaker|Switch|Wire|Run|Wire against breaker".split('|'),
     );
     for c in &b.circuits {
         let w = c.wire.as_ref();
@@ -202,7 +222,7 @@ fn as_built(o: &mut String, built: Option<&AsBuilt>) {
             escape(&verdict),
         );
     }
-    o.push_str("</tbody>\n</table>\n");
+    o.push_str(TABLE_END);
     for c in &b.circuits {
         if let Some(t) = c.wire.as_ref().and_then(wiring::Row::unprotected_words) {
             let _ = writeln!(o, "<p class=\"changed\">✗ {}.</p>", escape(&t));
@@ -226,10 +246,7 @@ fn analysis(o: &mut String, a: Option<&(SystemTime, Analysis)>) {
         a.battery_usable,
         analysis_amps(a.usable_amp_hours())
     );
-    o.push_str(
-        "<table>\n<thead><tr><th>Phase</th><th>Total</th><th>Result</th>\
-         <th>Margin or endurance</th></tr></thead>\n<tbody>\n",
-    );
+    table_head(o, "Phase|Total|Result|Margin or endurance".split('|'));
     for p in &a.phases {
         let mark = crate::check::state::Mark::of(p.level);
         let _ = writeln!(
@@ -242,12 +259,13 @@ fn analysis(o: &mut String, a: Option<&(SystemTime, Analysis)>) {
             escape(&a.verdict(p.phase))
         );
     }
-    o.push_str("</tbody>\n</table>\n");
-    o.push_str("<table>\n<thead><tr><th>Circuit</th><th>Pin</th><th>Current</th><th>From</th>");
-    for p in Phase::ALL {
-        let _ = write!(o, "<th>{}</th>", escape(p.title()));
-    }
-    o.push_str("</tr></thead>\n<tbody>\n");
+    o.push_str(TABLE_END);
+    table_head(
+        o,
+        ["Circuit", "Pin", "Current", "From"]
+            .into_iter()
+            .chain(Phase::ALL.map(Phase::title)),
+    );
     for r in &a.rows {
         let _ = write!(
             o,
@@ -276,18 +294,16 @@ fn analysis(o: &mut String, a: Option<&(SystemTime, Analysis)>) {
         }
         o.push_str("</tr>\n");
     }
-    o.push_str("</tbody>\n</table>\n");
+    o.push_str(TABLE_END);
 }
 
 fn checks(o: &mut String, checks: &[CheckEntry]) {
-    o.push_str("<h2>The checks</h2>\n");
-    if checks.is_empty() {
-        o.push_str("<p>No check is recorded.</p>\n");
+    if !section(o, "The checks", checks.is_empty(), "No check is recorded.") {
         return;
     }
-    o.push_str(
-        "<table>\n<thead><tr><th>When (UTC)</th><th>Result</th><th>By</th>\
-         <th>Circuits measured</th><th>Changed since the check before</th></tr></thead>\n<tbody>\n",
+    table_head(
+        o,
+        "When (UTC)|Result|By|Circuits measured|Changed since the check before".split('|'),
     );
     let mut before: Option<&CheckEntry> = None;
     for c in checks {
@@ -314,7 +330,7 @@ fn checks(o: &mut String, checks: &[CheckEntry]) {
         );
         before = Some(c);
     }
-    o.push_str("</tbody>\n</table>\n");
+    o.push_str(TABLE_END);
 }
 
 fn last_of(c: &CheckEntry) -> trend::LastCheck {
@@ -328,9 +344,12 @@ fn last_of(c: &CheckEntry) -> trend::LastCheck {
 /// of its latest check), a column per check, each figure with its change against
 /// the check before and the words when the trend rule marks it.
 fn currents(o: &mut String, checks: &[CheckEntry]) {
-    o.push_str("<h2>Each circuit's current at each check</h2>\n");
-    if checks.iter().all(|c| c.readings.is_empty()) {
-        o.push_str("<p>No current is recorded.</p>\n");
+    if !section(
+        o,
+        "Each circuit's current at each check",
+        checks.iter().all(|c| c.readings.is_empty()),
+        "No current is recorded.",
+    ) {
         return;
     }
     let _ = writeln!(
@@ -356,11 +375,13 @@ fn currents(o: &mut String, checks: &[CheckEntry]) {
     }
     for (part, chunk) in checks.chunks(CHECKS_PER_TABLE).enumerate() {
         let start = part * CHECKS_PER_TABLE;
-        o.push_str("<table>\n<thead><tr><th>Circuit</th>");
-        for c in chunk {
-            let _ = write!(o, "<th>{}</th>", minute(c.when));
-        }
-        o.push_str("</tr></thead>\n<tbody>\n");
+        let when: Vec<String> = chunk.iter().map(|c| minute(c.when)).collect();
+        table_head(
+            o,
+            ["Circuit"]
+                .into_iter()
+                .chain(when.iter().map(String::as_str)),
+        );
         for (name, pin) in &names {
             let _ = write!(
                 o,
@@ -413,20 +434,20 @@ fn currents(o: &mut String, checks: &[CheckEntry]) {
             }
             o.push_str("</tr>\n");
         }
-        o.push_str("</tbody>\n</table>\n");
+        o.push_str(TABLE_END);
     }
 }
 
 fn settings(o: &mut String, changes: &[SettingChange]) {
-    o.push_str("<h2>Settings changed</h2>\n");
-    if changes.is_empty() {
-        o.push_str("<p>No setting change is recorded.</p>\n");
+    if !section(
+        o,
+        "Settings changed",
+        changes.is_empty(),
+        "No setting change is recorded.",
+    ) {
         return;
     }
-    o.push_str(
-        "<table>\n<thead><tr><th>When (UTC)</th><th>Setting</th><th>Was</th><th>Now</th>\
-         <th>Unit confirmed</th><th>By</th></tr></thead>\n<tbody>\n",
-    );
+    table_head(o, "When (UTC)|Setting|Was|Now|Unit confirmed|By".split('|'));
     for c in changes {
         let _ = writeln!(
             o,
@@ -443,18 +464,21 @@ fn settings(o: &mut String, changes: &[SettingChange]) {
             escape(&c.by)
         );
     }
-    o.push_str("</tbody>\n</table>\n");
+    o.push_str(TABLE_END);
 }
 
 fn firmware(o: &mut String, updates: &[FirmwareUpdate]) {
-    o.push_str("<h2>Firmware updates</h2>\n");
-    if updates.is_empty() {
-        o.push_str("<p>No firmware update is recorded.</p>\n");
+    if !section(
+        o,
+        "Firmware updates",
+        updates.is_empty(),
+        "No firmware update is recorded.",
+    ) {
         return;
     }
-    o.push_str(
-        "<table>\n<thead><tr><th>When (UTC)</th><th>Before</th><th>After</th>\
-         <th>Outcome</th><th>Image SHA-256</th></tr></thead>\n<tbody>\n",
+    table_head(
+        o,
+        "When (UTC)|Before|After|Outcome|Image SHA-256".split('|'),
     );
     for u in updates {
         let _ = writeln!(
@@ -467,7 +491,7 @@ fn firmware(o: &mut String, updates: &[FirmwareUpdate]) {
             escape(&u.sha256)
         );
     }
-    o.push_str("</tbody>\n</table>\n");
+    o.push_str(TABLE_END);
 }
 
 #[cfg(test)]

@@ -114,22 +114,19 @@ mod tests {
 
     #[test]
     fn component_widths_scale_like_xparsecolor() {
-        assert_eq!(
-            parse(b"\x1b]11;rgb:fd/f6/e3\x07").background,
-            Some(Rgb(0xfd, 0xf6, 0xe3))
-        );
-        assert_eq!(
-            parse(b"\x1b]11;rgb:f/8/0\x07").background,
-            Some(Rgb(255, 136, 0))
-        );
-        assert_eq!(
-            parse(b"\x1b]11;rgb:2b2b/2c2c/2e2e\x1b\\").background,
-            Some(Rgb(0x2b, 0x2c, 0x2e))
-        );
-        assert_eq!(
-            parse(b"\x1b]11;rgba:ffff/ffff/ffff/ffff\x07").background,
-            Some(Rgb(255, 255, 255))
-        );
+        for (bytes, want) in [
+            (&b"\x1b]11;rgb:fd/f6/e3\x07"[..], Rgb(0xfd, 0xf6, 0xe3)),
+            (b"\x1b]11;rgb:f/8/0\x07", Rgb(255, 136, 0)),
+            (b"\x1b]11;rgb:2b2b/2c2c/2e2e\x1b\\", Rgb(0x2b, 0x2c, 0x2e)),
+            (b"\x1b]11;rgba:ffff/ffff/ffff/ffff\x07", Rgb(255, 255, 255)),
+        ] {
+            assert_eq!(
+                parse(bytes).background,
+                Some(want),
+                "{}",
+                bytes.escape_ascii()
+            );
+        }
     }
 
     #[test]

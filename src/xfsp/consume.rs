@@ -100,34 +100,17 @@ pub struct Forwarded {
 /// The latest sample of each input and the 1 Hz EXTERNAL_DATA schedule.
 #[derive(Debug, Clone, Default)]
 pub struct AirData {
-    samples: [Option<AirSample>; 5],
+    /// In [`AirInput`]'s order, which is EXTERNAL_DATA's.
+    samples: [Option<AirSample>; AirInput::ALL.len()],
     /// Set once anything has been heard: a gateway on a network with no air data
     /// never starts claiming to be the VP-X's air-data source.
     next_send: Option<Instant>,
 }
 
 impl AirData {
-    fn slot(&mut self, input: AirInput) -> &mut Option<AirSample> {
-        let [ias, gs, alt, fuel, rpm] = &mut self.samples;
-        match input {
-            AirInput::Ias => ias,
-            AirInput::GroundSpeed => gs,
-            AirInput::PressureAltitude => alt,
-            AirInput::FuelPressure => fuel,
-            AirInput::Rpm => rpm,
-        }
-    }
-
     /// The last sample of `input`, fresh or not.
     pub fn sample(&self, input: AirInput) -> Option<AirSample> {
-        let [ias, gs, alt, fuel, rpm] = self.samples;
-        match input {
-            AirInput::Ias => ias,
-            AirInput::GroundSpeed => gs,
-            AirInput::PressureAltitude => alt,
-            AirInput::FuelPressure => fuel,
-            AirInput::Rpm => rpm,
-        }
+        self.samples[input as usize]
     }
 
     /// Takes a parameter if it is one of the five; returns which.
@@ -138,7 +121,7 @@ impl AirData {
         }
         let value = p.value.as_i64()?;
         let life = p.expire.duration().map_or(MAX_AGE, |d| d.min(MAX_AGE));
-        *self.slot(input) = Some(AirSample {
+        self.samples[input as usize] = Some(AirSample {
             value,
             at: now,
             life,

@@ -596,6 +596,13 @@ mod tests {
         m.apply_packet(at, &Packet::from_vpx(1, d));
     }
 
+    /// A unit whose 1 Hz broadcasts were heard at `at`, and a publisher started then.
+    fn heard(at: Instant) -> (Model, Publisher) {
+        let mut m = model();
+        status(&mut m, at);
+        (m, Publisher::new(CertLevel::Experimental, 0x5650, at))
+    }
+
     fn flaps_live(m: &mut Model, at: Instant) {
         let ft = FlapTrimStatus {
             flap: FlapFlags {
@@ -658,10 +665,8 @@ mod tests {
     #[test]
     fn disabled_circuits_leave_no_deadline_in_the_past() {
         let t0 = Instant::now();
-        let mut m = model();
-        status(&mut m, t0);
+        let (mut m, mut p) = heard(t0);
         flaps_live(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
         // Before the DEVICE_ENABLE replies every pin is published once…
         let first = p.poll(&m, t0);
         let ecb = |ps: &[Parameter]| ps.iter().filter(|p| p.ident == idents::ECBSTAT).count();
@@ -687,9 +692,7 @@ mod tests {
     #[test]
     fn a_circuit_that_returns_is_published_at_once() {
         let t0 = Instant::now();
-        let mut m = model();
-        status(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
+        let (mut m, mut p) = heard(t0);
         p.poll(&m, t0);
         disable(&mut m, t0 + ms(10), 7);
         p.poll(&m, t0 + ms(20));
@@ -714,9 +717,7 @@ mod tests {
     #[test]
     fn master_caution_reset_holds_until_a_new_caution() {
         let t0 = Instant::now();
-        let mut m = model();
-        status(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
+        let (mut m, mut p) = heard(t0);
         p.poll(&m, t0);
         fault(&mut m, t0 + ms(200), &[(5, FaultCode::OverCurrent)]);
         let ps = p.poll(&m, t0 + ms(200));
@@ -752,9 +753,7 @@ mod tests {
     #[test]
     fn a_caution_that_clears_and_returns_raises_the_master_again() {
         let t0 = Instant::now();
-        let mut m = model();
-        status(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
+        let (mut m, mut p) = heard(t0);
         fault(&mut m, t0, &[(5, FaultCode::OverCurrent)]);
         p.poll(&m, t0);
         assert!(p.master_active(Master::Caution));
@@ -774,9 +773,7 @@ mod tests {
     #[test]
     fn a_short_circuit_raises_master_warning_which_resets_the_same_way() {
         let t0 = Instant::now();
-        let mut m = model();
-        status(&mut m, t0);
-        let mut p = Publisher::new(CertLevel::Experimental, 0x5650, t0);
+        let (mut m, mut p) = heard(t0);
         let ps = p.poll(&m, t0);
         assert_eq!(master(&ps, Master::Warning), Some(false));
         assert_eq!(master(&ps, Master::Caution), Some(false));

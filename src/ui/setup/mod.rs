@@ -7,9 +7,8 @@ pub mod backup;
 pub mod device;
 pub mod diagnostics;
 pub mod dialog;
-pub mod flaps;
+pub mod motor;
 pub mod system;
-pub mod trim;
 pub mod wig_wag;
 
 use std::time::Instant;
@@ -56,8 +55,9 @@ pub fn render(
     match sv.page {
         Page::Device => device::render(frame, body, model, sv, &view.wires, now),
         Page::System => system::render(frame, body, model, sv, now),
-        Page::Flaps => flaps::render(frame, body, model, view, running, now),
-        Page::PitchTrim | Page::RollTrim => trim::render(frame, body, model, view, running, now),
+        Page::Flaps | Page::PitchTrim | Page::RollTrim => {
+            motor::render(frame, body, model, view, running, now)
+        }
         Page::WigWag => wig_wag::render(frame, body, model, sv, now),
         Page::Diagnostics => diagnostics::render(frame, body, model, sv, now),
         Page::Backup => backup::render(frame, body, sv),
@@ -174,16 +174,14 @@ pub fn render_form(
                 None if setting.is_some() => Span::styled(view::NOT_READ_HOLDS, theme::unknown()),
                 None => Span::styled("?", theme::unknown()),
             };
-            let row = Row::new(vec![
-                Line::styled(f.label(), theme::label()),
-                Line::styled(value, value_style),
-                Line::from(holds_cell),
-            ]);
-            if f == selected {
-                row.style(theme::selected_row())
-            } else {
-                row
-            }
+            field_row(
+                vec![
+                    Line::styled(f.label(), theme::label()),
+                    Line::styled(value, value_style),
+                    Line::from(holds_cell),
+                ],
+                f == selected,
+            )
         })
         .collect();
     let table = Table::new(
@@ -202,6 +200,56 @@ pub fn render_form(
     )];
     lines.extend(extra);
     frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), help);
+}
+
+/// One field's row, highlighted when it is the selected one.
+fn field_row(cells: Vec<Line<'static>>, selected: bool) -> Row<'static> {
+    let row = Row::new(cells);
+    if selected {
+        row.style(theme::selected_row())
+    } else {
+        row
+    }
+}
+
+/// A page of actions rather than settings (diagnostics, backup): its title, each
+/// field's label beside `value` (what Enter does, or what came back), then `help`.
+fn render_actions(
+    frame: &mut Frame,
+    area: Rect,
+    sv: &SetupView,
+    title: &'static str,
+    value: impl Fn(Field) -> Span<'static>,
+    help: Vec<Line<'static>>,
+) {
+    let fields = sv.page.fields();
+    let rows: Vec<Row> = fields
+        .iter()
+        .map(|&f| {
+            field_row(
+                vec![
+                    Line::styled(f.label(), theme::label()),
+                    Line::from(value(f)),
+                ],
+                f == sv.field(),
+            )
+        })
+        .collect();
+    let [heading, table, help_area] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Length(fields.len() as u16),
+        Constraint::Fill(1),
+    ])
+    .areas(area);
+    frame.render_widget(
+        Paragraph::new(Line::styled(title, theme::panel_title())),
+        heading,
+    );
+    frame.render_widget(
+        Table::new(rows, [Constraint::Length(22), Constraint::Fill(1)]),
+        table,
+    );
+    frame.render_widget(Paragraph::new(help), help_area);
 }
 
 /// A write's status in words and its colour: green only when acknowledged.
@@ -231,7 +279,10 @@ pub fn status_span(s: &WriteStatus) -> Span<'static> {
             theme::alert(),
         ),
         WriteStatus::NoAnswer => Span::styled(
-            "no answer after 3 tries: what the unit holds is unknown, re-reading…",
+            format!(
+                "no answer after {} tries: what the unit holds is unknown, re-reading…",
+                crate::exchange::TRIES
+            ),
             theme::alert(),
         ),
         WriteStatus::AckedUnread => Span::styled(

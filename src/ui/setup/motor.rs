@@ -1,5 +1,6 @@
-//! The flaps page: every FLAP_SPEC field (ICD Table 16), the live position, and the
-//! motor run from here to calibrate the endpoints.
+//! The flaps and the pitch and roll trim pages: every FLAP_SPEC or TRIM_SPEC field
+//! (ICD Tables 16 and 15), the live position, and the motor run from here to calibrate
+//! the endpoints.
 
 use std::time::Instant;
 
@@ -11,14 +12,13 @@ use crate::model::{Model, Motor};
 use crate::ui::state::{MotorRun, ViewState};
 use crate::ui::theme;
 
-/// The live position line and the motor's run, shared with the trim pages.
-pub fn live_lines(
+/// The live position line and the motor's run.
+fn live_lines(
     model: &Model,
     running: Option<MotorRun>,
     motor: Motor,
     now: Instant,
 ) -> Vec<Line<'static>> {
-    let mut out = Vec::new();
     let live = model.live_flap_trim(now).map(|ft| {
         let a = ft.axis(motor.axis());
         (a.position, a.enabled, a.motor_running)
@@ -48,8 +48,7 @@ pub fn live_lines(
             theme::caution(),
         ));
     }
-    out.push(Line::from(spans));
-    out
+    vec![Line::from(spans)]
 }
 
 pub fn render(
@@ -60,6 +59,9 @@ pub fn render(
     running: Option<MotorRun>,
     now: Instant,
 ) {
-    let extra = live_lines(model, running, Motor::Flaps, now);
+    let extra = match view.setup.page.motor() {
+        Some(motor) => live_lines(model, running, motor, now),
+        None => Vec::new(),
+    };
     super::render_form(frame, area, model, &view.setup, now, extra);
 }
