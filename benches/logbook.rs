@@ -5,7 +5,7 @@
 //!   for aircraft picked across the list;
 //! - one circuit's current at every check of an aircraft (`log --circuit`).
 //!
-//! Issue 33 asks for the first under 100 ms. The queries are the schema's reference
+//! The first should take under 100 ms. The queries are the schema's reference
 //! ones (`entries_aircraft_time`, `check_circuits_name`); the set-up prints how long
 //! the year took to write.
 

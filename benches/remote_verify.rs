@@ -1,4 +1,4 @@
-//! The laptop's cost of one signed request from the phone (issue 36: under 50 µs):
+//! The laptop's cost of one signed request from the phone (under 50 µs):
 //! the verifier's whole check of a typical command (MAC in constant time, age,
 //! counter), and of a refused forgery, which costs the same MAC.
 

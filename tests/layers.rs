@@ -527,7 +527,7 @@ fn nothing_but_app_imports_ui() {
     assert!(wrong.is_empty(), "only app draws: {wrong:#?}");
 }
 
-/// Where a way to the unit's wire may be held (issue 31, item 2): the link itself, the
+/// Where a way to the unit's wire may be held: the link itself, the
 /// virtual unit, `control` (which decides every motor's stop), and the app's stop gate,
 /// which every command and the panic's emergency stop go through, in order, audited.
 const WIRE_HOLDERS: &[&str] = &["link/", "sim/", "control/", "app/stop_gate.rs"];
@@ -593,7 +593,7 @@ mod tests {
     assert_eq!(around_the_gate(planted), vec![2, 9]);
 }
 
-/// Issue 31: every motor run, from every origin, goes through `control`'s one entry.
+/// Every motor run, from every origin, goes through `control`'s one entry.
 /// So outside `control` (the virtual unit and the codecs aside) no code but tests:
 /// builds a TRIM_MOVE or FLAP_MOVE, holds a `MotorStreamer` (its stateless
 /// `emergency_stop_packets` is for the stop gate and the panic paths), or records a

@@ -1,4 +1,4 @@
-//! Setup asks before a breaker goes over its wire (issue 37), end to end: the page's
+//! Setup asks before a breaker goes over its wire, end to end: the page's
 //! `App` on the pty of `vpx-efis sim --pty --scenario wires` run as a process of its
 //! own, the load file beside the config file as the page reads it when setup opens.
 //! The strobe (10A-1) is wired in 22 AWG, for which AC 43.13-1B Table 11-3 allows a

@@ -1,4 +1,4 @@
-//! The page with the load file's wires (issue 37): the device list marks a breaker
+//! The page with the load file's wires: the device list marks a breaker
 //! over its wire with a symbol and a word, and the detail pane gives the selected
 //! circuit's wire and verdict, at 80×24 and 120×40. The figures are hand-worked from
 //! AC 43.13-1B: 22 AWG allows a 5 A breaker (Table 11-3), so the strobe's 6 A is

@@ -547,7 +547,7 @@ mod tests {
 
     const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 
-    /// Review item 2: flaps at their up endpoint running down read one count of noise
+    /// Flaps at their up endpoint running down read one count of noise
     /// (20, 19, 20) before they move: the run goes on.
     #[test]
     fn one_count_of_noise_at_the_endpoint_behind_does_not_stop_a_run() {
@@ -558,7 +558,7 @@ mod tests {
         assert!(seen.iter().all(|r| r.is_ok()), "{seen:?}");
     }
 
-    /// Review item 1: a run down whose motor really goes up (leads swapped) is stopped
+    /// A run down whose motor really goes up (leads swapped) is stopped
     /// the moment its position reaches the up endpoint, without waiting for the
     /// counts that would show its way anywhere else: from 31, at 30. That is moving
     /// against its command; a run whose way the caller gave stops there as at an
@@ -582,7 +582,7 @@ mod tests {
         assert_eq!(seen[2], Err(StopReason::AtEndpoint(30)));
     }
 
-    /// Issue 27.1: asked up from neutral, a pitch trim with swapped leads goes down
+    /// Asked up from neutral, a pitch trim with swapped leads goes down
     /// (the position grows): stopped once it has gone MOVED (3) counts, not at the
     /// down endpoint 220; one count of noise the wrong way does not stop it.
     #[test]
@@ -607,8 +607,7 @@ mod tests {
         assert!(seen.iter().all(Result::is_ok), "{seen:?}");
     }
 
-    /// Issue 31: the XFSp gateway's own rule (gone 3 counts from the nearest it came
-    /// to its target) made the watch's, for every origin. Asked up (shrinking) from
+    /// Gone 3 counts back from the nearest it came to its target, for every origin. Asked up (shrinking) from
     /// 128, a trim that goes to 120 and then turns back is stopped at 123, three
     /// counts from the farthest it got, though still 5 short of where it started
     /// (the rule from the start alone waited for 131). Two counts back is noise.
@@ -622,9 +621,9 @@ mod tests {
         assert!(seen.iter().all(Result::is_ok), "{seen:?}");
     }
 
-    /// Issue 27.1, the reproduced bug: at the down endpoint 220, `u` on a motor that
-    /// goes down was taken as moving away from it. Now a run that in fact goes further
-    /// past the endpoint is stopped beyond the one count of noise.
+    /// At the down endpoint 220, `u` on a motor that goes down is not taken as moving
+    /// away from it: a run that in fact goes further past the endpoint is stopped
+    /// beyond the one count of noise.
     #[test]
     fn at_an_endpoint_a_run_going_further_past_it_is_stopped_within_the_noise() {
         let seen = watch(PITCH, Direction::Up, &[220, 221, 222]);

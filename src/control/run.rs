@@ -237,7 +237,7 @@ mod tests {
 
     const PITCH: Motor = Motor::Trim(TrimKind::Pitch);
 
-    /// Issue 35, item 5: a refusal's words fit where it was asked from. Only the
+    /// A refusal's words fit where it was asked from. Only the
     /// page's keys are told of keys; the phone of its buttons and the laptop's page;
     /// the network that it cannot confirm; the check where a person can.
     #[test]

@@ -1,5 +1,5 @@
 //! The aircraft's logbook: every check, change and update, kept in one SQLite file
-//! for the life of the aircraft (issue 33).
+//! for the life of the aircraft.
 //!
 //! - [`schema`]: the tables, their version and the migrations.
 //! - [`record`]: what is recorded, as plain data; [`writer`]: the thread that writes

@@ -1,4 +1,4 @@
-//! Pairing (issue 36): an offer shown on the page, sessions for the phones that took
+//! Pairing: an offer shown on the page, sessions for the phones that took
 //! it, and a lock after too many wrong attempts. On the caller's clocks, so tests
 //! drive the lock and the verifier on fake ones.
 //!

@@ -1,4 +1,4 @@
-//! Signed requests (issue 36): what a listener on the hangar's WiFi sees must not let
+//! Signed requests: what a listener on the hangar's WiFi sees must not let
 //! it act.
 //!
 //! The phone holds a key that never crossed the network (the QR code's URL carries it

@@ -1,4 +1,4 @@
-//! Issue 27.1: a motor that moves against its command is stopped within a few counts,
+//! A motor that moves against its command is stopped within a few counts,
 //! whoever runs it (the device list's keys, the setup screens' capture, the
 //! installation check, the XFSp gateway), and then refused to every origin until the
 //! person confirms a run at the keys (`control::against`). On the fake clock, against
