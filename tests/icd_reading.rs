@@ -5,7 +5,10 @@
 //!   in the Rust sources and the README names an entry that the file has;
 //! * nothing cites the old notes outside the repository any more;
 //! * every file and every test the entries name exists, so an entry cannot point at
-//!   code that has moved or a test that was renamed.
+//!   code that has moved or a test that was renamed, nor a table's row that is gone.
+
+#[path = "common/cited_rows.rs"]
+mod cited_rows;
 
 use std::collections::BTreeSet;
 use std::fs;
@@ -260,5 +263,6 @@ fn every_file_and_test_the_document_names_exists() {
             }
         }
     }
+    missing.extend(cited_rows::missing(&root(), &doc));
     assert!(missing.is_empty(), "{}", missing.join("\n"));
 }

@@ -3,6 +3,9 @@
 //! it, and the bootloader's commands) has a row, and every file and test the table
 //! names exists, so a renamed test or a moved file cannot leave it pointing nowhere.
 
+#[path = "common/cited_rows.rs"]
+mod cited_rows;
+
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
@@ -57,7 +60,7 @@ fn check_item(root: &Path, item: &str) -> Option<String> {
 }
 
 fn problems(root: &Path, text: &str) -> Vec<String> {
-    let mut found = Vec::new();
+    let mut found = cited_rows::missing(root, text);
     for (_, items) in rows(text) {
         for item in items {
             found.extend(check_item(root, &item));
@@ -108,11 +111,14 @@ fn every_message_the_codec_knows_has_a_row_and_every_name_in_the_table_exists() 
 #[test]
 fn a_name_that_does_not_exist_is_found() {
     let text = "| PING | `tests/sim_icd.rs::s8_1_1_ping`, `tests/sim_icd.rs::no_such_test`, \
-                `src/no_such_file.rs` |\n";
+                `src/no_such_file.rs`, \
+                `crates/vpx-protocol/tests/protocol_vectors.rs::every_vector_parses_and_emits_as_its_icd_table_says` \
+                (rows \"PING request\" and \"PING sideways\") |\n";
     let found = problems(&root(), text);
     assert_eq!(
         found,
         [
+            "crates/vpx-protocol/tests/protocol_vectors.rs: no row \"PING sideways\"",
             "tests/sim_icd.rs: no function no_such_test",
             "src/no_such_file.rs: no such file"
         ]

@@ -1,6 +1,6 @@
 //! A motor that moves against its command: one rule for every run, whoever starts it
 //! (the device list's keys, the setup screens' endpoint capture, the installation
-//! check, the XFSp gateway, any later remote).
+//! check, the XFSp gateway, the phone remote).
 //!
 //! An aircraft being checked is, by definition, not yet known to be wired right: a
 //! motor's leads or its position sensor may be swapped. Such a motor, asked up, runs
