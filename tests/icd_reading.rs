@@ -263,6 +263,6 @@ fn every_file_and_test_the_document_names_exists() {
             }
         }
     }
-    missing.extend(cited_rows::missing(&root(), &doc));
+    missing.extend(cited_rows::missing(root(), &doc));
     assert!(missing.is_empty(), "{}", missing.join("\n"));
 }
