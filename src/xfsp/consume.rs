@@ -110,7 +110,7 @@ pub struct AirData {
 impl AirData {
     /// The last sample of `input`, fresh or not.
     pub fn sample(&self, input: AirInput) -> Option<AirSample> {
-        self.samples[input as usize]
+        self.samples.get(input as usize).copied().flatten()
     }
 
     /// Takes a parameter if it is one of the five; returns which.
@@ -121,7 +121,8 @@ impl AirData {
         }
         let value = p.value.as_i64()?;
         let life = p.expire.duration().map_or(MAX_AGE, |d| d.min(MAX_AGE));
-        self.samples[input as usize] = Some(AirSample {
+        let slot = self.samples.get_mut(input as usize)?;
+        *slot = Some(AirSample {
             value,
             at: now,
             life,
@@ -200,6 +201,13 @@ mod tests {
 
     fn ms(n: u64) -> Duration {
         Duration::from_millis(n)
+    }
+
+    #[test]
+    fn each_input_holds_its_own_slot_in_external_data_order() {
+        for (i, input) in AirInput::ALL.into_iter().enumerate() {
+            assert_eq!(input as usize, i, "{input:?}");
+        }
     }
 
     #[test]
