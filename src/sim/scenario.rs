@@ -55,31 +55,22 @@ pub const BUILT_IN: &[(&str, &str)] = &[
 
 /// A whole scenario; see the module documentation for the file format.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct Scenario {
-    #[serde(default)]
     pub description: String,
     /// The timeline restarts every this many seconds (the events fire again).
-    #[serde(default)]
     pub loop_after: Option<f64>,
-    #[serde(default)]
     pub electrical: Electrical,
-    #[serde(default)]
     pub system: Option<SystemSection>,
-    #[serde(default, rename = "device")]
+    #[serde(rename = "device")]
     pub devices: Vec<DeviceSection>,
-    #[serde(default)]
     pub flap: Option<FlapSection>,
-    #[serde(default)]
     pub pitch_trim: Option<TrimSection>,
-    #[serde(default)]
     pub roll_trim: Option<TrimSection>,
-    #[serde(default)]
     pub wig_wag: Option<WigWagSection>,
     /// What the line does to the unit's answers.
-    #[serde(default)]
     pub line: LineSection,
-    #[serde(default, rename = "event")]
+    #[serde(rename = "event")]
     pub events: Vec<Event>,
 }
 
