@@ -5,19 +5,24 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
-use vpx_efis::remote::signing::{Claim, Verifier, sign};
+use vpx_efis::remote::signing::{Claim, Request, Verifier, sign};
 
 const KEY: [u8; 16] = *b"0123456789abcdef";
 const SESSION: &str = "00112233445566778899aabbccddeeff";
 const PATH: &str = "/api/device/17/power";
 const BODY: &[u8] = b"{\"on\":true}";
+const REQUEST: Request = Request {
+    method: "POST",
+    path: PATH,
+    body: BODY,
+};
 
 fn claim(counter: u64) -> Claim {
     Claim {
         session: SESSION.into(),
         counter,
         time_ms: 1_000,
-        mac: sign(&KEY, SESSION, counter, 1_000, "POST", PATH, BODY),
+        mac: sign(&KEY, SESSION, counter, 1_000, REQUEST),
     }
 }
 
@@ -35,7 +40,7 @@ fn verify(c: &mut Criterion) {
                 v = Verifier::new(&KEY);
             }
             fresh += 1;
-            black_box(v.verify(black_box(c), "POST", PATH, BODY, 1_050))
+            black_box(v.verify(black_box(c), REQUEST, 1_050))
         })
     });
     let forged = Claim {
@@ -44,7 +49,7 @@ fn verify(c: &mut Criterion) {
     };
     c.bench_function("remote: refuse a forged command", |b| {
         let mut v = Verifier::new(&KEY);
-        b.iter(|| black_box(v.verify(black_box(&forged), "POST", PATH, BODY, 1_050)))
+        b.iter(|| black_box(v.verify(black_box(&forged), REQUEST, 1_050)))
     });
 }
 

@@ -32,7 +32,7 @@
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
-use super::signing::{self, BadSignature, Claim, Verifier};
+use super::signing::{self, BadSignature, Claim, Request, Verifier};
 
 /// Wrong attempts in a row before pairing locks.
 pub const MAX_WRONG: u32 = 5;
@@ -183,7 +183,7 @@ impl Pairing {
         let signed_by = |key: &[u8]| {
             claim.session.is_empty()
                 && claim.counter == 0
-                && signing::check_mac(key, claim, "POST", "/api/pair", body).is_ok()
+                && signing::check_mac(key, claim, Request::new("POST", "/api/pair", body)).is_ok()
         };
         // Both are checked whatever the first gave, so the time taken says nothing.
         let (scanned, typed) = (signed_by(&self.offer.key), signed_by(&self.offer.typed));
@@ -216,20 +216,13 @@ impl Pairing {
     }
 
     /// Checks a session's signed request at `now_ms` (the laptop's clock).
-    pub fn verify(
-        &mut self,
-        claim: &Claim,
-        method: &str,
-        path: &str,
-        body: &[u8],
-        now_ms: u64,
-    ) -> Result<How, Denied> {
+    pub fn verify(&mut self, claim: &Claim, req: Request, now_ms: u64) -> Result<How, Denied> {
         let s = self
             .sessions
             .get_mut(&claim.session)
             .ok_or(Denied::NotPaired)?;
         s.verifier
-            .verify(claim, method, path, body, now_ms)
+            .verify(claim, req, now_ms)
             .map_err(Denied::Signature)?;
         Ok(s.how)
     }
@@ -270,7 +263,7 @@ mod tests {
             session: String::new(),
             counter: 0,
             time_ms: 0,
-            mac: signing::sign(key, "", 0, 0, "POST", "/api/pair", body),
+            mac: signing::sign(key, "", 0, 0, Request::new("POST", "/api/pair", body)),
         }
     }
 
@@ -317,16 +310,22 @@ mod tests {
             session: session.clone(),
             counter: 1,
             time_ms: 100,
-            mac: signing::sign(&key, &session, 1, 100, "GET", "/api/state", b""),
+            mac: signing::sign(
+                &key,
+                &session,
+                1,
+                100,
+                Request::new("GET", "/api/state", b""),
+            ),
         };
         assert_eq!(
-            p.verify(&claim, "GET", "/api/state", b"", 150),
+            p.verify(&claim, Request::new("GET", "/api/state", b""), 150),
             Ok(How::Scanned)
         );
         let mut other = claim.clone();
         other.session = "0".repeat(32);
         assert_eq!(
-            p.verify(&other, "GET", "/api/state", b"", 150),
+            p.verify(&other, Request::new("GET", "/api/state", b""), 150),
             Err(Denied::NotPaired)
         );
     }

@@ -203,13 +203,8 @@ async fn gate(Ctx(s): Ctx<Server>, req: HttpRequest, next: Next) -> Response {
             .uri
             .path_and_query()
             .map_or(path.as_str(), |p| p.as_str());
-        let verdict = s.shared.pairing().verify(
-            &claim,
-            parts.method.as_str(),
-            target,
-            &body,
-            s.shared.now_ms(),
-        );
+        let asked = signing::Request::new(parts.method.as_str(), target, &body);
+        let verdict = s.shared.pairing().verify(&claim, asked, s.shared.now_ms());
         match verdict {
             Ok(_) => {}
             Err(Denied::NotPaired) => return error(StatusCode::UNAUTHORIZED, "not paired"),

@@ -78,22 +78,31 @@ pub enum BadSignature {
     Replayed,
 }
 
+/// The request a MAC covers besides the claim's session, counter and time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Request<'a> {
+    pub method: &'a str,
+    /// As sent, query included.
+    pub path: &'a str,
+    pub body: &'a [u8],
+}
+
+impl<'a> Request<'a> {
+    pub fn new(method: &'a str, path: &'a str, body: &'a [u8]) -> Request<'a> {
+        Request { method, path, body }
+    }
+}
+
 /// The bytes the MAC covers: a version tag, then one field a line, then the body.
-/// The method is upper case; the path is as sent, query included.
-pub fn canonical(
-    session: &str,
-    counter: u64,
-    time_ms: u64,
-    method: &str,
-    path: &str,
-    body: &[u8],
-) -> Vec<u8> {
+/// The method is upper case.
+pub fn canonical(session: &str, counter: u64, time_ms: u64, req: Request) -> Vec<u8> {
     let mut out = format!(
-        "vpx-efis/1\n{session}\n{counter}\n{time_ms}\n{}\n{path}\n",
-        method.to_ascii_uppercase()
+        "vpx-efis/1\n{session}\n{counter}\n{time_ms}\n{}\n{}\n",
+        req.method.to_ascii_uppercase(),
+        req.path
     )
     .into_bytes();
-    out.extend_from_slice(body);
+    out.extend_from_slice(req.body);
     out
 }
 
@@ -119,18 +128,10 @@ pub fn sha256(data: &[u8]) -> [u8; 32] {
 }
 
 /// The MAC a phone sends for a request, in lowercase hex.
-pub fn sign(
-    key: &[u8],
-    session: &str,
-    counter: u64,
-    time_ms: u64,
-    method: &str,
-    path: &str,
-    body: &[u8],
-) -> String {
+pub fn sign(key: &[u8], session: &str, counter: u64, time_ms: u64, req: Request) -> String {
     hex(&hmac_sha256(
         key,
-        &canonical(session, counter, time_ms, method, path, body),
+        &canonical(session, counter, time_ms, req),
     ))
 }
 
@@ -153,13 +154,7 @@ fn unhex(s: &str) -> Option<Vec<u8>> {
 }
 
 /// Checks only the MAC: exactly [`MAC_HEX`] hex digits, equal in constant time.
-pub fn check_mac(
-    key: &[u8],
-    claim: &Claim,
-    method: &str,
-    path: &str,
-    body: &[u8],
-) -> Result<(), BadSignature> {
+pub fn check_mac(key: &[u8], claim: &Claim, req: Request) -> Result<(), BadSignature> {
     if claim.mac.len() != MAC_HEX {
         return Err(BadSignature::Malformed);
     }
@@ -169,9 +164,7 @@ pub fn check_mac(
         &claim.session,
         claim.counter,
         claim.time_ms,
-        method,
-        path,
-        body,
+        req,
     ));
     m.verify_slice(&tag).map_err(|_| BadSignature::BadMac)
 }
@@ -229,15 +222,8 @@ impl Verifier {
     /// Checks a request at `now_ms` on the laptop's clock: the MAC first (so nothing
     /// else is learnt without the key), then its age, then its counter; takes the
     /// counter only when all pass.
-    pub fn verify(
-        &mut self,
-        claim: &Claim,
-        method: &str,
-        path: &str,
-        body: &[u8],
-        now_ms: u64,
-    ) -> Result<(), BadSignature> {
-        check_mac(&self.key, claim, method, path, body)?;
+    pub fn verify(&mut self, claim: &Claim, req: Request, now_ms: u64) -> Result<(), BadSignature> {
+        check_mac(&self.key, claim, req)?;
         if claim.time_ms.saturating_add(MAX_AGE.as_millis() as u64) < now_ms {
             return Err(BadSignature::Stale);
         }
@@ -263,12 +249,18 @@ mod tests {
             session: "s1".into(),
             counter,
             time_ms,
-            mac: sign(KEY, "s1", counter, time_ms, "POST", "/api/x", body),
+            mac: sign(
+                KEY,
+                "s1",
+                counter,
+                time_ms,
+                Request::new("POST", "/api/x", body),
+            ),
         }
     }
 
     fn verify(v: &mut Verifier, c: &Claim, body: &[u8], now: u64) -> Result<(), BadSignature> {
-        v.verify(c, "POST", "/api/x", body, now)
+        v.verify(c, Request::new("POST", "/api/x", body), now)
     }
 
     /// RFC 4231 §4.2 (test case 1) and §4.3 (test case 2), written from the RFC.
@@ -357,7 +349,7 @@ mod tests {
             Err(BadSignature::BadMac)
         );
         assert_eq!(
-            v.verify(&c, "POST", "/api/y", b"{\"on\":true}", 1000),
+            v.verify(&c, Request::new("POST", "/api/y", b"{\"on\":true}"), 1000),
             Err(BadSignature::BadMac)
         );
         let mut short = c.clone();

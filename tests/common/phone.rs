@@ -128,7 +128,13 @@ pub struct Phone {
 
 /// Signs `POST /api/pair` with `key` and sends it: a phone, or the refusal.
 pub fn pair_with(base: &str, key: &[u8], origin: Option<&str>) -> Result<Phone, Answer> {
-    let mac = signing::sign(key, "", 0, 0, "POST", "/api/pair", b"");
+    let mac = signing::sign(
+        key,
+        "",
+        0,
+        0,
+        signing::Request::new("POST", "/api/pair", b""),
+    );
     let mut req = agent()
         .post(format!("{base}/api/pair"))
         .header(H_COUNTER, "0")
@@ -188,7 +194,8 @@ impl Phone {
         let mut i = self.inner.lock().unwrap();
         i.counter += 1;
         let time = i.laptop_ms + i.at.elapsed().as_millis() as u64;
-        let mac = signing::sign(&i.key, &i.session, i.counter, time, method, &path, &body);
+        let asked = signing::Request::new(method, &path, &body);
+        let mac = signing::sign(&i.key, &i.session, i.counter, time, asked);
         let mut headers = vec![
             (H_SESSION.to_string(), i.session.clone()),
             (H_COUNTER.to_string(), i.counter.to_string()),
