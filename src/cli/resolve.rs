@@ -288,11 +288,11 @@ fn resolve_with(
                 if m.value_source("port") == Some(ValueSource::CommandLine) {
                     return Err(UsageError("--replay and --port contradict each other: a replay is read-only and needs no unit".into()).into());
                 }
-                page.port.port = None;
+                page.link.port.port = None;
             } else {
-                r.port(&mut page.port)?;
+                r.port(&mut page.link.port)?;
             }
-            r.xfsp(&mut page.xfsp, false);
+            r.xfsp(&mut page.link.xfsp, false);
             r.theme(&mut page.theme);
             r.repeat_delay(&mut page.repeat_delay);
         }
@@ -302,8 +302,8 @@ fn resolve_with(
         Some(Command::Restore(a)) => r.port(&mut a.port)?,
         Some(Command::Flash(a)) => r.flash_port(&mut a.port),
         Some(Command::Gateway(a)) => {
-            r.port(&mut a.port)?;
-            r.xfsp(&mut a.xfsp, true);
+            r.port(&mut a.link.port)?;
+            r.xfsp(&mut a.link.xfsp, true);
         }
         Some(Command::Config(a)) => {
             r.port(&mut a.port)?;

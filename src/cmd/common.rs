@@ -3,6 +3,7 @@
 //! `config`), and the words `--theme` takes.
 
 use std::net::Ipv4Addr;
+use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
@@ -40,6 +41,21 @@ impl LogbookArgs {
             aircraft: self.aircraft.clone(),
         })
     }
+}
+
+/// The unit's link as the page and `gateway` take it: its port, the XFSp bridge, and a
+/// capture of the serial line.
+#[derive(Debug, Clone, Args)]
+pub struct LinkArgs {
+    #[command(flatten)]
+    pub port: PortArgs,
+
+    #[command(flatten)]
+    pub xfsp: XfspArgs,
+
+    /// Record every byte in both directions to a capture file.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Args)]

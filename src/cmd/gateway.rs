@@ -17,7 +17,7 @@ use std::time::Duration;
 use clap::Args;
 
 use crate::app::{App, AppOptions, Recorder, Terminated};
-use crate::cmd::common::{PortArgs, XfspArgs};
+use crate::cmd::common::LinkArgs;
 use crate::link::{Connector, PortAddr, port_connector};
 use crate::model::{LogEntry, LogLevel, Model, Source};
 use crate::sim::SimHandle;
@@ -46,19 +46,19 @@ pub struct BridgeOptions {
 impl BridgeOptions {
     pub fn from_args(args: &GatewayArgs) -> anyhow::Result<BridgeOptions> {
         // The bridge is always on the network: no --xfsp means the default group.
-        let mut xfsp = crate::app::XfspOptions::from(args.xfsp.clone());
+        let mut xfsp = crate::app::XfspOptions::from(args.link.xfsp.clone());
         xfsp.xfsp
             .get_or_insert_with(|| crate::xfsp::net::DEFAULT_TARGET.to_string());
         let (target, iface, gateway) =
             crate::app::xfsp_setup(&xfsp)?.ok_or_else(|| anyhow::anyhow!("no XFSp target"))?;
         Ok(BridgeOptions {
-            port: args.port.port.clone(),
-            baud: args.port.baud,
-            scenario: args.port.scenario.clone(),
+            port: args.link.port.port.clone(),
+            baud: args.link.port.baud,
+            scenario: args.link.port.scenario.clone(),
             target,
             iface,
             gateway,
-            record: args.record.clone(),
+            record: args.link.record.clone(),
             logbook: crate::logbook::target(),
         })
     }
@@ -67,12 +67,7 @@ impl BridgeOptions {
 #[derive(Debug, Args)]
 pub struct GatewayArgs {
     #[command(flatten)]
-    pub port: PortArgs,
-    #[command(flatten)]
-    pub xfsp: XfspArgs,
-    /// Record every serial byte to a capture file.
-    #[arg(long, value_name = "FILE")]
-    pub record: Option<PathBuf>,
+    pub link: LinkArgs,
 }
 
 pub fn run(args: GatewayArgs) -> anyhow::Result<()> {

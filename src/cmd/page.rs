@@ -5,20 +5,13 @@ use std::path::PathBuf;
 use clap::Args;
 
 use crate::app::PageOptions;
-use crate::cmd::common::{PortArgs, XfspArgs};
+use crate::cmd::common::LinkArgs;
 use crate::settings::values::Theme as Requested;
 
 #[derive(Debug, Clone, Args)]
 pub struct PageArgs {
     #[command(flatten)]
-    pub port: PortArgs,
-
-    #[command(flatten)]
-    pub xfsp: XfspArgs,
-
-    /// Record every byte in both directions to a capture file.
-    #[arg(long, value_name = "FILE")]
-    pub record: Option<PathBuf>,
+    pub link: LinkArgs,
 
     /// Drive the page from a capture file instead of a unit (read-only). A port set in
     /// the environment or the config file is ignored; one given as a flag is refused.
@@ -57,11 +50,11 @@ pub struct PageArgs {
 impl From<PageArgs> for PageOptions {
     fn from(a: PageArgs) -> Self {
         PageOptions {
-            port: a.port.port,
-            baud: a.port.baud,
-            scenario: a.port.scenario,
-            xfsp: a.xfsp.into(),
-            record: a.record,
+            port: a.link.port.port,
+            baud: a.link.port.baud,
+            scenario: a.link.port.scenario,
+            xfsp: a.link.xfsp.into(),
+            record: a.link.record,
             replay: a.replay,
             speed: a.speed,
             max_run: a.max_run,
