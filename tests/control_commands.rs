@@ -10,7 +10,7 @@ use selection::selected;
 
 use vpx_efis::control::{Action, Controller, command};
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Source, TrimKind};
-use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS, FLAPS, STARTER, TRIM_P, TRIM_R};
+use vpx_efis::protocol::device::{EFIS, FLAPS, STARTER, TRIM_P, TRIM_R};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
     DeviceClear, DevicePower, DeviceStatus, FaultStatus, FlapTrimStatus, Message, MiscFlags,
@@ -48,15 +48,10 @@ fn model(at: Instant, faults: &[(u8, FaultCode)], system_fault: bool) -> Model {
 
 /// FAULT_STATUS with `faults` and the system fault flag.
 fn fault_status(faults: &[(u8, FaultCode)], system_fault: bool) -> Packet {
-    let mut f = FaultStatus {
-        faulted: [false; DEVICE_COUNT],
+    let f = FaultStatus {
         system_fault,
-        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+        ..FaultStatus::with_faults(faults)
     };
-    for &(id, code) in faults {
-        f.faulted[id as usize] = true;
-        f.codes[id as usize] = Some(code);
-    }
     Packet::from_vpx(0, f)
 }
 

@@ -17,9 +17,8 @@ use vpx_efis::loads::LoadCircuit;
 use vpx_efis::loads::wire::Wire;
 use vpx_efis::loads::wiring::WireRun;
 use vpx_efis::model::{Model, Source};
-use vpx_efis::protocol::FaultCode;
 use vpx_efis::protocol::Packet;
-use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS};
+use vpx_efis::protocol::device::EFIS;
 use vpx_efis::protocol::message::{
     DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FaultStatus, HardwareVersion,
     OvervoltageLimit, SignedTenths, SwitchId, SwitchInputs, SystemSpec, SystemStatus, Tenths,
@@ -115,15 +114,7 @@ fn unit() -> (Model, Instant) {
         d.current[id as usize] = Tenths(tenths);
     }
     apply(&mut m, d.into());
-    apply(
-        &mut m,
-        FaultStatus {
-            faulted: [false; DEVICE_COUNT],
-            system_fault: false,
-            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-        }
-        .into(),
-    );
+    apply(&mut m, FaultStatus::with_faults(&[]).into());
     (m, t0 + Duration::from_millis(300))
 }
 

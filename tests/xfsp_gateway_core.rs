@@ -8,7 +8,6 @@ use proptest::prelude::*;
 use vpx_efis::audit::Origin;
 use vpx_efis::control::{Controller, Direction, How, KeyContext, StopReason};
 use vpx_efis::model::{Model, Motor, Source, TrimKind};
-use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
     DeviceStatus, FaultStatus, FlapFlags, FlapTrimStatus, Message, Packet, SignedTenths,
@@ -78,13 +77,7 @@ fn status(m: &mut Model, at: Instant, on: &[u8]) {
 }
 
 fn fault(m: &mut Model, at: Instant, id: u8, code: FaultCode) {
-    let mut f = FaultStatus {
-        faulted: [false; DEVICE_COUNT],
-        system_fault: false,
-        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-    };
-    f.faulted[id as usize] = true;
-    f.codes[id as usize] = Some(code);
+    let f = FaultStatus::with_faults(&[(id, code)]);
     m.apply_packet(at, &Packet::from_vpx(2, f));
 }
 
