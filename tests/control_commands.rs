@@ -4,6 +4,9 @@
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+#[path = "common/events.rs"]
+#[allow(dead_code)]
+mod events;
 #[path = "common/selection.rs"]
 mod selection;
 use selection::selected;
@@ -359,14 +362,8 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
         m.note_sent(t + Duration::from_millis(500), p);
     }
     // Both resets are in the event log.
-    let resets: Vec<&str> = m
-        .events
-        .iter()
-        .map(|e| e.text.as_str())
-        .filter(|t| t.contains("reset sent"))
-        .collect();
     assert_eq!(
-        resets,
+        events::containing(&m, "reset sent"),
         [
             "Landing Lt: reset sent (DEVICE_CLEAR), the 1st this session",
             "Landing Lt: reset sent after it faulted again (DEVICE_CLEAR), the 2nd this session"

@@ -78,18 +78,10 @@ fn a_recorded_session_replays_to_the_same_frames_at_the_same_instants() {
         view.selected = ui::ordered_circuits(&model, &view, now)
             .first()
             .map(|c| c.id);
-        let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
-        term.draw(|f| {
-            ui::draw(
-                f,
-                &model,
-                &view,
-                &vpx_efis::ui::state::ControlState::default(),
-                now,
-            )
-        })
-        .unwrap();
-        frames.push((now - start, term.backend().buffer().clone()));
+        // As `ui::draw` draws it: rendered, then painted in the view's palette.
+        let mut buf = common::screen::rendered(&model, &view, now, 120, 40);
+        view.theme.palette.paint(&mut buf);
+        frames.push((now - start, buf));
     }
     live.shutdown();
     sim.stop();

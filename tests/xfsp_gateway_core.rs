@@ -15,6 +15,9 @@ use vpx_efis::protocol::message::{
 };
 use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig, TickOutput};
 
+#[path = "common/events.rs"]
+#[allow(dead_code)]
+mod events;
 #[path = "common/xfsp_request.rs"]
 mod xfsp_request;
 use vpx_efis::xfsp::publish::{CAS_UNIT_COMM_LOST, LIFETIME};
@@ -1387,12 +1390,7 @@ fn without_control_commands_are_refused_logged_once_and_counted() {
     let s = gw.stats();
     assert_eq!(s.commands_not_allowed, 24, "3 commands x 8 datagrams");
     assert_eq!((s.commands_taken, s.commands_refused), (0, 0));
-    let said: Vec<&str> = m
-        .events
-        .iter()
-        .map(|e| e.text.as_str())
-        .filter(|t| t.contains("refused: commands from the network are off"))
-        .collect();
+    let said = events::containing(&m, "refused: commands from the network are off");
     assert_eq!(said.len(), 1, "one line per source per 10 s: {said:?}");
     assert!(
         said[0].starts_with("XFSp 0x0042 (USERSEL): ECBSTAT refused"),
