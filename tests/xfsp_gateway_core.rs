@@ -10,14 +10,16 @@ use vpx_efis::control::{Controller, Direction, How, KeyContext, StopReason};
 use vpx_efis::model::{Model, Motor, Source, TrimKind};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
-    DeviceStatus, FaultStatus, FlapFlags, FlapTrimStatus, Message, Packet, SignedTenths,
-    SystemStatus, Tenths,
+    DeviceStatus, FaultStatus, Message, Packet, SignedTenths, SystemStatus, Tenths,
 };
 use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig, TickOutput};
 
 #[path = "common/events.rs"]
 #[allow(dead_code)]
 mod events;
+#[path = "common/live_unit.rs"]
+#[allow(dead_code)]
+mod live_unit;
 #[path = "common/xfsp_request.rs"]
 mod xfsp_request;
 use vpx_efis::xfsp::publish::{CAS_UNIT_COMM_LOST, LIFETIME};
@@ -96,16 +98,7 @@ fn pitch(m: &mut Model, at: Instant, pos: u8) {
 }
 
 fn flap_trim(m: &mut Model, at: Instant, flap: u8, pitch: Option<u8>) {
-    let mut ft = FlapTrimStatus {
-        flap: FlapFlags {
-            enabled: true,
-            ..Default::default()
-        },
-        flap_position: flap,
-        flap_up: 40,
-        flap_down: 200,
-        ..Default::default()
-    };
+    let mut ft = live_unit::flaps_at(flap);
     if let Some(pitch) = pitch {
         ft.pitch_trim.enabled = true;
         ft.pitch_trim_position = pitch;
