@@ -63,18 +63,9 @@ fn capture() -> Vec<u8> {
             current[d] = Tenths(((d as u16) * 7 + v) % 150);
         }
         push(&mut out, DeviceStatus { on, current }.into(), s);
-        let mut faulted = [false; 31];
-        let mut codes = [Some(FaultCode::NoFault); 31];
-        faulted[9] = true;
-        codes[9] = Some(FaultCode::ShortCircuit);
         push(
             &mut out,
-            FaultStatus {
-                faulted,
-                system_fault: false,
-                codes,
-            }
-            .into(),
+            FaultStatus::with_faults(&[(9, FaultCode::ShortCircuit)]).into(),
             s,
         );
         for t in 0..10u8 {

@@ -9,10 +9,14 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 #[cfg(unix)]
+use criterion::BenchmarkGroup;
+#[cfg(unix)]
 use criterion::Throughput;
 #[cfg(unix)]
 use criterion::measurement::{Measurement, ValueFormatter};
 use criterion::{Criterion, criterion_group, criterion_main};
+#[cfg(unix)]
+use ratatui::Frame;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 #[cfg(unix)]
@@ -33,7 +37,7 @@ use vpx_efis::protocol::{FaultCode, Message, Packet};
 #[cfg(unix)]
 use vpx_efis::ui;
 use vpx_efis::ui::palette::{Palette, ThemeChoice, Why};
-use vpx_efis::ui::state::ViewState;
+use vpx_efis::ui::state::{ControlState, ViewState};
 
 fn system(i: u64) -> SystemStatus {
     SystemStatus {
@@ -206,18 +210,69 @@ fn view() -> ViewState {
     }
 }
 
+/// The configured unit's page on a 120×40 test terminal, in [`view`], no motor key held.
+struct Page {
+    model: Model,
+    now: Instant,
+    view: ViewState,
+    control: ControlState,
+    terminal: Terminal<TestBackend>,
+}
+
+impl Page {
+    fn new() -> Page {
+        let (model, now) = configured();
+        Page {
+            model,
+            now,
+            view: view(),
+            control: ControlState::default(),
+            terminal: Terminal::new(TestBackend::new(120, 40)).unwrap(),
+        }
+    }
+
+    /// Draws the whole page over the terminal's previous frame, as the page does.
+    fn draw(&mut self) {
+        let Page {
+            model,
+            now,
+            view,
+            control,
+            terminal,
+        } = self;
+        terminal
+            .draw(|f| vpx_efis::ui::draw(f, black_box(model), view, control, *now))
+            .unwrap();
+    }
+
+    /// Draws the whole page after a clear, so that every cell differs: a full redraw,
+    /// not an empty diff.
+    fn draw_in_full(&mut self) {
+        self.terminal.clear().unwrap();
+        self.draw();
+    }
+}
+
 #[cfg(unix)]
 fn bench_cpu(c: &mut Criterion<ThreadCpu>) {
-    let (model, now) = configured();
-    let view = view();
-    let control = vpx_efis::ui::state::ControlState::default();
-    let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
+    let mut page = Page::new();
     c.bench_function("cpu time: render 120x40 full frame", |b| {
+        b.iter(|| page.draw_in_full())
+    });
+}
+
+/// `draw`, one widget, benchmarked as `name` in `g`: drawn over `terminal`'s previous
+/// frame, like the page.
+#[cfg(unix)]
+fn widget(
+    g: &mut BenchmarkGroup<ThreadCpu>,
+    terminal: &mut Terminal<TestBackend>,
+    name: &str,
+    draw: impl Fn(&mut Frame),
+) {
+    g.bench_function(name, |b| {
         b.iter(|| {
-            terminal.clear().unwrap();
-            terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, &control, now))
-                .unwrap();
+            terminal.draw(|f| draw(f)).unwrap();
         })
     });
 }
@@ -226,144 +281,81 @@ fn bench_cpu(c: &mut Criterion<ThreadCpu>) {
 /// points at its widget. Drawn over the terminal's previous frame, like the page.
 #[cfg(unix)]
 fn bench_widgets(c: &mut Criterion<ThreadCpu>) {
-    let (model, now) = configured();
-    let view = view();
-    let control = vpx_efis::ui::state::ControlState::default();
+    let Page {
+        model,
+        now,
+        view,
+        control,
+        mut terminal,
+    } = Page::new();
     let rows = ui::ordered_circuits(&model, &view, now);
     let selected = rows.iter().find(|c| Some(c.id) == view.selected).cloned();
-    let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
     let mut g = c.benchmark_group("cpu time: widget");
     let left = Rect::new(0, 1, 66, 26);
     let right = Rect::new(66, 1, 54, 38);
-    g.bench_function("title bar", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| ui::title_bar::render(f, Rect::new(0, 0, 120, 1), &model, now))
-                .unwrap();
-        })
+    let t = &mut terminal;
+    widget(&mut g, t, "title bar", |f| {
+        ui::title_bar::render(f, Rect::new(0, 0, 120, 1), &model, now)
     });
-    g.bench_function("device list", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| ui::device_list::render(f, left, black_box(&rows), &view, false))
-                .unwrap();
-        })
+    widget(&mut g, t, "device list", |f| {
+        ui::device_list::render(f, left, black_box(&rows), &view, false)
     });
     g.bench_function("ordering the rows", |b| {
         b.iter(|| ui::ordered_circuits(black_box(&model), &view, now))
     });
-    g.bench_function("detail", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| {
-                    ui::detail::render(
-                        f,
-                        Rect::new(0, 27, 66, 12),
-                        &model,
-                        selected.as_ref(),
-                        None,
-                        None,
-                    )
-                })
-                .unwrap();
-        })
+    widget(&mut g, t, "detail", |f| {
+        let area = Rect::new(0, 27, 66, 12);
+        ui::detail::render(f, area, &model, selected.as_ref(), None, None)
     });
-    g.bench_function("system panel", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| ui::system_panel::render(f, Rect { height: 7, ..right }, &model, now))
-                .unwrap();
-        })
+    widget(&mut g, t, "system panel", |f| {
+        ui::system_panel::render(f, Rect { height: 7, ..right }, &model, now)
     });
-    g.bench_function("switches", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| ui::switches::render(f, Rect { height: 3, ..right }, &model, now))
-                .unwrap();
-        })
+    widget(&mut g, t, "switches", |f| {
+        ui::switches::render(f, Rect { height: 3, ..right }, &model, now)
     });
-    g.bench_function("flaps and trim", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| ui::motors::render(f, Rect { height: 5, ..right }, &model, &control, now))
-                .unwrap();
-        })
+    widget(&mut g, t, "flaps and trim", |f| {
+        ui::motors::render(f, Rect { height: 5, ..right }, &model, &control, now)
     });
-    g.bench_function("plot", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| {
-                    ui::plot::render(
-                        f,
-                        Rect {
-                            height: 14,
-                            ..right
-                        },
-                        &model,
-                        now,
-                    )
-                })
-                .unwrap();
-        })
+    widget(&mut g, t, "plot", |f| {
+        ui::plot::render(
+            f,
+            Rect {
+                height: 14,
+                ..right
+            },
+            &model,
+            now,
+        )
     });
-    g.bench_function("events", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| ui::events::render(f, Rect { height: 4, ..right }, &model, now))
-                .unwrap();
-        })
+    widget(&mut g, t, "events", |f| {
+        ui::events::render(f, Rect { height: 4, ..right }, &model, now)
     });
-    g.bench_function("link", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| ui::link_health::render(f, Rect { height: 4, ..right }, &model, now))
-                .unwrap();
-        })
+    widget(&mut g, t, "link", |f| {
+        ui::link_health::render(f, Rect { height: 4, ..right }, &model, now)
     });
     g.bench_function("palette: paint 120x40", |b| {
         let mut buf = Buffer::empty(Rect::new(0, 0, 120, 40));
         b.iter(|| Palette::Dark.paint(black_box(&mut buf)))
     });
-    g.bench_function("baseline: draw nothing", |b| {
-        b.iter(|| {
-            terminal.draw(|_| {}).unwrap();
-        })
-    });
+    widget(&mut g, t, "baseline: draw nothing", |_| {});
     g.finish();
 }
 
 fn bench(c: &mut Criterion) {
-    let (model, now) = configured();
-    let view = view();
-    let control = vpx_efis::ui::state::ControlState::default();
-    let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
+    let mut page = Page::new();
     c.bench_function("render 120x40 full frame", |b| {
-        b.iter(|| {
-            // Clearing first makes every cell differ, so this is a full redraw, not
-            // an empty diff.
-            terminal.clear().unwrap();
-            terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, &control, now))
-                .unwrap();
-        })
+        b.iter(|| page.draw_in_full())
     });
-
-    c.bench_function("render 120x40 unchanged frame", |b| {
-        b.iter(|| {
-            terminal
-                .draw(|f| vpx_efis::ui::draw(f, black_box(&model), &view, &control, now))
-                .unwrap();
-        })
-    });
+    c.bench_function("render 120x40 unchanged frame", |b| b.iter(|| page.draw()));
     c.bench_function("baseline: clear and draw nothing 120x40", |b| {
         b.iter(|| {
-            terminal.clear().unwrap();
-            terminal.draw(|_| {}).unwrap();
+            page.terminal.clear().unwrap();
+            page.terminal.draw(|_| {}).unwrap();
         })
     });
     let packets = second(7);
-    let mut m = model.clone();
-    let base = now;
+    let mut m = page.model.clone();
+    let base = page.now;
     c.bench_function("apply one second of broadcasts", |b| {
         b.iter(|| {
             for (dt, p) in &packets {
@@ -402,13 +394,9 @@ fn frame_lines(terminal: &Terminal<TestBackend>) -> Vec<Line<'static>> {
 /// and a panel as large as the frame.
 #[cfg(unix)]
 fn bench_text(c: &mut Criterion<ThreadCpu>) {
-    let (model, now) = configured();
-    let control = vpx_efis::ui::state::ControlState::default();
-    let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
-    terminal
-        .draw(|f| ui::draw(f, &model, &view(), &control, now))
-        .unwrap();
-    let lines = frame_lines(&terminal);
+    let mut page = Page::new();
+    page.draw();
+    let lines = frame_lines(&page.terminal);
     let area = Rect::new(0, 0, 120, 40);
     let rows: Vec<Rect> = area.rows().collect();
     let block = Paragraph::new(lines.clone());

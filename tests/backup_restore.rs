@@ -6,7 +6,7 @@
 #![cfg(unix)]
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Output, Stdio};
 use std::time::{Duration, Instant};
 
 use serialport::TTYPort;
@@ -20,6 +20,9 @@ use vpx_efis::protocol::message::{
 };
 use vpx_efis::sim::{self, SimCommand, SimHandle, SimOptions};
 
+#[path = "common/process.rs"]
+#[allow(dead_code)]
+mod process;
 #[path = "common/tcp_unit.rs"]
 mod tcp_unit;
 use tcp_unit::unit_over_tcp;
@@ -81,13 +84,7 @@ impl Bench {
 }
 
 fn run(args: &[&str]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .args(args)
-        // Whatever the person running the tests has configured stays out of them.
-        .env("VPX_EFIS_CONFIG", "/nonexistent/vpx-efis-test-config.toml")
-        .env_remove("VPX_EFIS_PORT")
-        .env_remove("VPX_EFIS_BAUD")
-        .stdin(Stdio::null())
+    let mut child = process::vpx(args, process::NO_CONFIG)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()

@@ -3,23 +3,20 @@
 //! from flags, the environment and the config file show where they came from.
 
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
+
+#[path = "common/process.rs"]
+#[allow(dead_code)]
+mod process;
 
 fn vpx(args: &[&str], env: &[(&str, &str)], config: &Path) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_vpx-efis"));
-    c.args(args)
-        .env("VPX_EFIS_CONFIG", config)
-        .env_remove("VPX_EFIS_PORT")
-        .env_remove("VPX_EFIS_BAUD")
-        .stdin(Stdio::null());
-    for (k, v) in env {
-        c.env(k, v);
-    }
+    let mut c = process::vpx(args, config);
+    c.envs(env.iter().copied());
     c.output().unwrap()
 }
 
 fn no_config() -> std::path::PathBuf {
-    "/nonexistent/vpx-efis-test-config.toml".into()
+    process::NO_CONFIG.into()
 }
 
 fn err(o: &Output) -> String {

@@ -6,9 +6,13 @@
 //! there); the expected lines and counts below are worked out by hand from the bytes.
 
 use std::io::Write;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 
 use serde_json::Value;
+
+#[path = "common/process.rs"]
+#[allow(dead_code)]
+mod process;
 
 /// 00 55 AA: noise before anything (3 bytes).
 const NOISE: &[u8] = &[0x00, 0x55, 0xAA];
@@ -86,9 +90,7 @@ fn capture() -> Vec<u8> {
 }
 
 fn run(args: &[&str], stdin: &[u8]) -> (bool, String, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .arg("decode")
-        .args(args)
+    let mut child = process::vpx(&[&["decode"], args].concat(), process::NO_CONFIG)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())

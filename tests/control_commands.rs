@@ -4,13 +4,16 @@
 use std::time::{Duration, Instant};
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+#[path = "common/events.rs"]
+#[allow(dead_code)]
+mod events;
 #[path = "common/selection.rs"]
 mod selection;
 use selection::selected;
 
 use vpx_efis::control::{Action, Controller, command};
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Source, TrimKind};
-use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS, FLAPS, STARTER, TRIM_P, TRIM_R};
+use vpx_efis::protocol::device::{EFIS, FLAPS, STARTER, TRIM_P, TRIM_R};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
     DeviceClear, DevicePower, DeviceStatus, FaultStatus, FlapTrimStatus, Message, MiscFlags,
@@ -48,15 +51,10 @@ fn model(at: Instant, faults: &[(u8, FaultCode)], system_fault: bool) -> Model {
 
 /// FAULT_STATUS with `faults` and the system fault flag.
 fn fault_status(faults: &[(u8, FaultCode)], system_fault: bool) -> Packet {
-    let mut f = FaultStatus {
-        faulted: [false; DEVICE_COUNT],
+    let f = FaultStatus {
         system_fault,
-        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+        ..FaultStatus::with_faults(faults)
     };
-    for &(id, code) in faults {
-        f.faulted[id as usize] = true;
-        f.codes[id as usize] = Some(code);
-    }
     Packet::from_vpx(0, f)
 }
 
@@ -364,14 +362,8 @@ fn a_circuit_that_faults_again_after_a_reset_needs_a_confirmed_second_reset() {
         m.note_sent(t + Duration::from_millis(500), p);
     }
     // Both resets are in the event log.
-    let resets: Vec<&str> = m
-        .events
-        .iter()
-        .map(|e| e.text.as_str())
-        .filter(|t| t.contains("reset sent"))
-        .collect();
     assert_eq!(
-        resets,
+        events::containing(&m, "reset sent"),
         [
             "Landing Lt: reset sent (DEVICE_CLEAR), the 1st this session",
             "Landing Lt: reset sent after it faulted again (DEVICE_CLEAR), the 2nd this session"

@@ -17,7 +17,7 @@ use vpx_efis::control::{
     StreamerConfig,
 };
 use vpx_efis::model::{CircuitKind, CircuitState, Model, Motor, Source, TrimKind};
-use vpx_efis::protocol::device::{DEVICE_COUNT, FLAPS, TRIM_P, TRIM_R};
+use vpx_efis::protocol::device::{FLAPS, TRIM_P, TRIM_R};
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::frame::Node;
 use vpx_efis::protocol::message::{
@@ -392,13 +392,7 @@ fn endings(mode: ReleaseMode, start: Instant) -> Vec<Ending> {
     let press = |c| Ev::Key(key(KeyCode::Char(c), KeyEventKind::Press));
     let released = held_key(mode, KeyCode::Char('u'), start, ms(1500), DELAY, RATE);
     let last_key_event = released.last().unwrap().0;
-    let mut fault = FaultStatus {
-        faulted: [false; DEVICE_COUNT],
-        system_fault: false,
-        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-    };
-    fault.faulted[FLAPS as usize] = true;
-    fault.codes[FLAPS as usize] = Some(FaultCode::FlapRunaway);
+    let fault = FaultStatus::with_faults(&[(FLAPS, FaultCode::FlapRunaway)]);
     let cap = start + ms(10_000);
     vec![
         match mode {

@@ -4,13 +4,14 @@
 #![cfg(unix)]
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Output, Stdio};
 
 use vpx_efis::flash::hex::to_hex_text;
 use vpx_efis::protocol::bootloader::PAGE_SIZE;
 use vpx_efis::sim::{self, SimOptions};
 
 mod common;
+use common::process;
 use common::rig::PtyUnit;
 
 fn start() -> PtyUnit {
@@ -30,10 +31,7 @@ fn write_hex(dir: &Path, name: &str, text: &str) -> PathBuf {
 }
 
 fn flash(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .arg("flash")
-        .args(args)
-        .stdin(Stdio::null())
+    process::vpx(&[&["flash"], args].concat(), process::NO_CONFIG)
         .output()
         .unwrap()
 }
@@ -191,16 +189,9 @@ fn a_signal_mid_update_stops_at_a_safe_point_and_exits_128_plus_n() {
     // Many pages, so the update is still running when the signal comes.
     let data: Vec<u8> = (0..400 * PAGE_SIZE).map(|i| (i * 7 + 3) as u8).collect();
     let file = write_hex(rig.dir.path(), "cu_2.hex", &to_hex_text(0x400, &data));
-    let child = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .arg("flash")
-        .args([
-            "--port",
-            &rig.path,
-            "--yes",
-            "--force-image",
-            file.to_str().unwrap(),
-        ])
-        .stdin(Stdio::null())
+    let args = ["flash", "--port", &rig.path, "--yes", "--force-image"];
+    let child = process::vpx(&args, process::NO_CONFIG)
+        .arg(&file)
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();

@@ -44,10 +44,7 @@ fn ecb_units(peer: &UdpSocket, for_: Duration) -> (usize, BTreeSet<u16>) {
 
 #[test]
 fn the_headless_gateway_is_idle_against_a_unit_with_most_pins_disabled() {
-    let secs: u64 = std::env::var("IDLE_CPU_SECS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(4);
+    let secs = common::cpu::idle_secs(4);
     let (_sim, path) = sim_pty("disabled-pins");
 
     let peer = UdpSocket::bind("127.0.0.1:0").unwrap();

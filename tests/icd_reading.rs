@@ -9,6 +9,9 @@
 
 #[path = "common/cited_rows.rs"]
 mod cited_rows;
+#[path = "common/files.rs"]
+#[allow(dead_code)]
+mod files;
 
 use std::collections::BTreeSet;
 use std::fs;
@@ -128,24 +131,6 @@ fn stale_citations(text: &str) -> Vec<String> {
         .collect()
 }
 
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(read) = fs::read_dir(dir) else {
-        return;
-    };
-    for entry in read.flatten() {
-        let path = entry.path();
-        let name = entry.file_name();
-        if path.is_dir() {
-            // Build output, not sources.
-            if name != "target" {
-                rust_files(&path, out);
-            }
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
-}
-
 /// Every problem with the citations in the sources, as `path: problem`.
 fn citation_problems(ids: &BTreeSet<String>, files: &[(String, String)]) -> Vec<String> {
     let mut problems = Vec::new();
@@ -166,10 +151,10 @@ fn citation_problems(ids: &BTreeSet<String>, files: &[(String, String)]) -> Vec<
 }
 
 fn sources() -> Vec<(String, String)> {
-    let mut paths = Vec::new();
-    for dir in SOURCE_DIRS {
-        rust_files(&root().join(dir), &mut paths);
-    }
+    let mut paths: Vec<PathBuf> = SOURCE_DIRS
+        .iter()
+        .flat_map(|dir| files::below(&root().join(dir), "rs"))
+        .collect();
     paths.push(root().join("README.md"));
     let this = root().join("tests").join("icd_reading.rs");
     paths

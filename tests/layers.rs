@@ -7,6 +7,10 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
 
+#[path = "common/files.rs"]
+#[allow(dead_code)]
+mod files;
+
 /// The layers, lowest first. A module may import its own layer's modules and those
 /// below it; never one above. The two codecs are crates of their own
 /// (`crates/vpx-protocol`, `crates/xfsp`), below everything here.
@@ -173,25 +177,19 @@ fn crate_paths(code: &str) -> Vec<(usize, String)> {
     found
 }
 
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<_> = fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|e| e.expect("directory entry").path())
-        .collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            rust_files(&p, out);
-        } else if p.extension().is_some_and(|e| e == "rs") {
-            out.push(p);
-        }
-    }
+/// The program's sources: `src/`.
+fn src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+/// The Rust files below `dir`, sorted.
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    files::below(dir, "rs")
 }
 
 /// Every import of one top-level module by another, under `src`.
 fn imports(src: &Path) -> Vec<Import> {
-    let mut files = Vec::new();
-    rust_files(src, &mut files);
+    let files = rust_files(src);
     let mut out = Vec::new();
     for path in files {
         let rel = path.strip_prefix(src).expect("under src");
@@ -273,7 +271,7 @@ fn report(found: &BTreeMap<String, Vec<Import>>, keys: &[&String]) -> String {
 
 #[test]
 fn every_top_level_module_has_a_layer() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = src();
     let mut missing = Vec::new();
     for e in fs::read_dir(&src).expect("src") {
         let p = e.expect("entry").path();
@@ -320,7 +318,7 @@ fn the_sketch_in_lib_rs_names_every_module() {
 
 #[test]
 fn the_layers_hold() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = src();
     let found = breaches(&imports(&src));
     let all: Vec<&String> = found.keys().collect();
     assert!(
@@ -379,10 +377,7 @@ fn source_roots() -> Vec<PathBuf> {
 /// never `foo.rs` beside `foo/`, so that a reader finds a module in one place.
 #[test]
 fn modules_with_children_live_in_mod_rs() {
-    let mut files = Vec::new();
-    for root in source_roots() {
-        rust_files(&root, &mut files);
-    }
+    let files: Vec<PathBuf> = source_roots().iter().flat_map(|r| rust_files(r)).collect();
     let beside: Vec<String> = files
         .iter()
         .filter(|f| f.with_extension("").is_dir())
@@ -420,10 +415,7 @@ fn code_lines(text: &str) -> usize {
 #[test]
 fn no_file_is_over_a_thousand_lines_of_code() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut files = Vec::new();
-    for src in source_roots() {
-        rust_files(&src, &mut files);
-    }
+    let files: Vec<PathBuf> = source_roots().iter().flat_map(|r| rust_files(r)).collect();
     let mut long = Vec::new();
     for file in files {
         let rel = file.strip_prefix(root).expect("under the root");
@@ -489,12 +481,10 @@ fn flow_io_lines(code: &str) -> Vec<(usize, &'static str)> {
 
 #[test]
 fn the_flows_read_no_clock_file_stdin_or_terminal() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = src();
     let mut found = Vec::new();
     for flow in ["check", "setup"] {
-        let mut files = Vec::new();
-        rust_files(&src.join(flow), &mut files);
-        for file in files {
+        for file in rust_files(&src.join(flow)) {
             let rel = file.strip_prefix(&src).expect("under src");
             if rel.components().any(|c| c.as_os_str() == "tests") {
                 continue;
@@ -518,7 +508,7 @@ fn flow_io_is_found_in_code_and_not_in_its_tests() {
 /// line that needs a word of it (a theme's name) takes it from where `ui` does.
 #[test]
 fn nothing_but_app_imports_ui() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = src();
     let wrong: Vec<String> = imports(&src)
         .into_iter()
         .filter(|i| i.to == "ui" && i.from != "ui" && i.from != "app")
@@ -549,11 +539,9 @@ fn around_the_gate(code: &str) -> Vec<usize> {
 /// from following the panic's stop, and would miss the audit log.
 #[test]
 fn nothing_writes_to_a_link_around_the_stop_gate() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
+    let src = src();
     let mut found = Vec::new();
-    for file in files {
+    for file in rust_files(&src) {
         let rel = file.strip_prefix(&src).expect("under src");
         let rel = rel.to_string_lossy().replace('\\', "/");
         if WIRE_HOLDERS.iter().any(|h| rel.starts_with(h)) || rel.contains("/tests/") {
@@ -625,11 +613,9 @@ fn motor_run_lines(code: &str) -> Vec<(usize, &'static str)> {
 
 #[test]
 fn motor_runs_are_assembled_only_in_control() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
+    let src = src();
     let mut found: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    for file in files {
+    for file in rust_files(&src) {
         let rel = file.strip_prefix(&src).expect("under src");
         let top = top_module(rel).unwrap_or_default();
         if ["control", "sim", "protocol"].contains(&top.as_str())

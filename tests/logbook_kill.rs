@@ -15,7 +15,7 @@ mod page_rig;
 use std::time::{Duration, Instant};
 
 use common::process::{Kill, sim_pty};
-use page_rig::terminal::{Term, find, page};
+use page_rig::terminal::{Term, page};
 use rusqlite::{Connection, OpenFlags};
 
 type Row = (i64, String, String, String, String);
@@ -57,15 +57,8 @@ fn a_kill_in_the_middle_of_a_check_leaves_the_logbook_whole() {
     let pid = child.id();
     let child = Kill(child);
     let wait_for = |term: &Term, what: &[u8], from: usize| {
-        let start = Instant::now();
-        while find(&term.output()[from..], what).is_none() {
-            assert!(
-                start.elapsed() < Duration::from_secs(20),
-                "the page never showed {:?}",
-                String::from_utf8_lossy(what),
-            );
-            std::thread::sleep(Duration::from_millis(20));
-        }
+        let words = String::from_utf8_lossy(what);
+        term.wait_for(&words, &[what], from, Duration::from_secs(20));
     };
     // The unit's names read: the check can plan.
     wait_for(&term, b"Nav Lt", 0);

@@ -9,11 +9,11 @@
 
 use std::io::Write;
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 use std::time::Duration;
 
 mod common;
-use common::process::{EXE, sim};
+use common::process::{self, sim};
 
 /// Three circuits, the engine stopped, every switch off: EFIS always on, Nav Lt on
 /// switch 2, Landing Lt (device 17, pin 10A-1) on switch 5 drawing 6.1 A of 10 A.
@@ -33,13 +33,10 @@ fn scenario_text() -> String {
 
 /// `vpx-efis ARGS` on the aircraft N123AB's logbook in `dir`, its output.
 fn vpx(dir: &Path, args: &[&str]) -> Output {
-    Command::new(EXE)
-        .env("VPX_EFIS_CONFIG", dir.join("config.toml"))
+    process::vpx(args, dir.join("config.toml"))
         .env("VPX_EFIS_LOGBOOK", dir.join("logbook.sqlite"))
         .env("VPX_EFIS_AIRCRAFT", "N123AB")
         .env("NO_COLOR", "1")
-        .args(args)
-        .stdin(Stdio::null())
         .output()
         .expect("run vpx-efis")
 }

@@ -24,6 +24,10 @@ use vpx_efis::model::{Model, Motor, Source, TrimKind};
 use vpx_efis::sim::{self, SimOptions};
 use vpx_efis::ui::state::ReleaseMode;
 
+#[path = "common/live_unit.rs"]
+#[allow(dead_code)]
+mod live_unit;
+
 fn ms(n: u64) -> Duration {
     Duration::from_millis(n)
 }
@@ -144,7 +148,7 @@ fn air_data() {
 
 #[test]
 fn motor_drive() {
-    use vpx_efis::protocol::message::{DeviceStatus, FlapFlags, FlapTrimStatus, Packet};
+    use vpx_efis::protocol::message::{DeviceStatus, Packet};
     use vpx_efis::protocol::{device::DEVICE_COUNT, message::Tenths};
     use vpx_efis::xfsp::drive::MotorDrive;
     let t0 = Instant::now();
@@ -157,17 +161,7 @@ fn motor_drive() {
             current: [Tenths(0); DEVICE_COUNT],
         };
         m.apply_packet(at, &Packet::from_vpx(1, d));
-        let ft = FlapTrimStatus {
-            flap: FlapFlags {
-                enabled: true,
-                ..Default::default()
-            },
-            flap_position: pos,
-            flap_up: 40,
-            flap_down: 200,
-            ..Default::default()
-        };
-        m.apply_packet(at, &Packet::from_vpx(3, ft));
+        m.apply_packet(at, &Packet::from_vpx(3, live_unit::flaps_at(pos)));
     };
     feed(&mut m, t0, 40);
     drive.request(Motor::Flaps, 100_000, 1, Some(ms(600)), t0);

@@ -86,26 +86,21 @@ fn hold_trim_up(rig: &mut Rig, mode: ReleaseMode) {
     let from = rig.wire_len();
     let start = Instant::now();
     rig.key(KeyCode::Char('u'), KeyEventKind::Press);
-    match mode {
-        ReleaseMode::AutoRepeat => {
-            // A typical terminal: first repeat after ~500 ms, then ~30 per second.
-            rig.app.pump_until(start + Duration::from_millis(500));
-            while start.elapsed() < Duration::from_secs(2) {
-                rig.key(KeyCode::Char('u'), KeyEventKind::Press);
-                rig.app
-                    .pump_until(Instant::now() + Duration::from_millis(33));
-            }
-        }
-        ReleaseMode::KeyRelease => {
-            // A kitty-protocol terminal: Repeat events while held, then a release.
-            rig.app.pump_until(start + Duration::from_millis(500));
-            while start.elapsed() < Duration::from_secs(2) {
-                rig.key(KeyCode::Char('u'), KeyEventKind::Repeat);
-                rig.app
-                    .pump_until(Instant::now() + Duration::from_millis(33));
-            }
-            rig.key(KeyCode::Char('u'), KeyEventKind::Release);
-        }
+    // Held, a typical terminal repeats the press, a kitty-protocol terminal sends
+    // Repeat events and a release at the end; both first after ~500 ms, then ~30 a
+    // second.
+    let repeat = match mode {
+        ReleaseMode::AutoRepeat => KeyEventKind::Press,
+        ReleaseMode::KeyRelease => KeyEventKind::Repeat,
+    };
+    rig.app.pump_until(start + Duration::from_millis(500));
+    while start.elapsed() < Duration::from_secs(2) {
+        rig.key(KeyCode::Char('u'), repeat);
+        rig.app
+            .pump_until(Instant::now() + Duration::from_millis(33));
+    }
+    if mode == ReleaseMode::KeyRelease {
+        rig.key(KeyCode::Char('u'), KeyEventKind::Release);
     }
     let let_go = Instant::now();
     rig.app.pump_until(let_go + Duration::from_millis(600));
@@ -335,16 +330,8 @@ fn a_second_r_after_the_circuit_faulted_again_sends_nothing_until_y() {
     // `Y` confirms: the reset goes out.
     rig.key(KeyCode::Char('Y'), KeyEventKind::Press);
     wait_clears(&mut rig, from, 1, "confirmed second reset");
-    let log: Vec<String> = rig
-        .app
-        .model()
-        .events
-        .iter()
-        .map(|e| e.text.clone())
-        .filter(|t| t.contains("reset sent"))
-        .collect();
     assert_eq!(
-        log,
+        common::events::containing(&rig.app.model(), "reset sent"),
         [
             "Nav Lt: reset sent (DEVICE_CLEAR), the 1st this session",
             "Nav Lt: reset sent after it faulted again (DEVICE_CLEAR), the 2nd this session"

@@ -18,7 +18,7 @@ mod page_rig;
 
 use common::cpu::process_cpu_time;
 use common::process::{Kill, sim_pty};
-use page_rig::terminal::{Term, find, page};
+use page_rig::terminal::{Term, page};
 
 /// A unit with nothing fitted that could change: every switchable pin 4–28 disabled,
 /// no flaps, no trims, the engine stopped and no switch on.
@@ -64,15 +64,8 @@ fn idle(scenario: &str, shown: &[u8], secs: u64) -> Option<Idle> {
         return None;
     }
     let child = Kill(child);
-    let start = Instant::now();
-    while find(&term.output(), shown).is_none() {
-        assert!(
-            start.elapsed() < Duration::from_secs(10),
-            "{scenario}: the page never showed its device list: {}",
-            String::from_utf8_lossy(&term.output())
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    let what = format!("{scenario}'s device list");
+    term.wait_for(&what, &[shown], 0, Duration::from_secs(10));
     // Past the connect requests and the first redraws.
     std::thread::sleep(Duration::from_millis(1500));
     let drawn0 = term.written();
@@ -106,12 +99,9 @@ fn idle(scenario: &str, shown: &[u8], secs: u64) -> Option<Idle> {
     })
 }
 
+/// Long enough that the OS's 10 ms accounting tick is a tenth of the allowance.
 fn secs() -> u64 {
-    std::env::var("IDLE_CPU_SECS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        // Long enough that the OS's 10 ms accounting tick is a tenth of the allowance.
-        .unwrap_or(10)
+    common::cpu::idle_secs(10)
 }
 
 fn assert_idle(what: &str, scenario: &str, shown: &[u8]) {

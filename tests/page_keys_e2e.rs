@@ -32,6 +32,26 @@ fn trim_moves(rig: &Rig, from: usize) -> Vec<(Instant, TrimMove)> {
         .collect()
 }
 
+/// The pitch trim's moves since `from` hold a stop within `limit` of `cause` (at
+/// `since`), and nothing after the stop.
+#[track_caller]
+fn assert_stopped_within(rig: &Rig, from: usize, cause: &str, since: Instant, limit: Duration) {
+    let moves = trim_moves(rig, from);
+    let (stop_at, _) = *moves
+        .iter()
+        .find(|(_, m)| !m.on)
+        .unwrap_or_else(|| panic!("no stop after {cause}: {moves:?}"));
+    assert!(
+        stop_at - since <= limit,
+        "stop {:?} after {cause}",
+        stop_at - since
+    );
+    assert!(
+        moves.last().is_some_and(|(_, m)| !m.on),
+        "nothing after the stop: {moves:?}"
+    );
+}
+
 /// Repeats 40 ms apart delivered at worst this far apart: the machine woke the test's
 /// own thread within 20 ms, and will have woken the page's as promptly.
 const QUIET_DELIVERY: Duration = Duration::from_millis(60);
@@ -301,20 +321,7 @@ fn a_page_too_small_to_see_ignores_keys_and_a_shrink_stops_the_run() {
             .pump_until(Instant::now() + Duration::from_millis(33));
         rig.key(KeyCode::Char('u'), KeyEventKind::Repeat);
     }
-    let moves = trim_moves(&rig, from);
-    let (stop_at, _) = *moves
-        .iter()
-        .find(|(_, m)| !m.on)
-        .expect("a stop after the shrink");
-    assert!(
-        stop_at - shrunk <= Duration::from_millis(100),
-        "stop {:?} after the shrink",
-        stop_at - shrunk
-    );
-    assert!(
-        moves.last().is_some_and(|(_, m)| !m.on),
-        "nothing after the stop: {moves:?}"
-    );
+    assert_stopped_within(&rig, from, "the shrink", shrunk, Duration::from_millis(100));
     assert!(rig.app.motor_run().is_none());
     assert!(!rig.sim.stats().pitch_trim_running);
     assert_eq!(rig.app.view().selected, Some(30), "the selection stays");
@@ -337,18 +344,6 @@ fn a_stalled_page_loop_stops_the_motor_stream() {
     // The loop stalls while the key is still held (no release ever comes).
     let stalled = Instant::now();
     std::thread::sleep(Duration::from_millis(1500));
-    let moves = trim_moves(&rig, from);
-    let (stop_at, _) = *moves
-        .iter()
-        .find(|(_, m)| !m.on)
-        .expect("a stop while the loop stalled");
-    assert!(
-        stop_at - stalled <= vpx_efis::app::LOOP_STALL + Duration::from_millis(125 + 150),
-        "stop {:?} after the stall",
-        stop_at - stalled
-    );
-    assert!(
-        moves.last().is_some_and(|(_, m)| !m.on),
-        "nothing after the stop: {moves:?}"
-    );
+    let limit = vpx_efis::app::LOOP_STALL + Duration::from_millis(125 + 150);
+    assert_stopped_within(&rig, from, "the stall", stalled, limit);
 }

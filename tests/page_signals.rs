@@ -74,15 +74,8 @@ fn signal_during_a_trim_run(signal: libc::c_int, status: i32) {
 
     // The device list is up once the scenario's names are on the screen (drawn as
     // changes, so looked for one by one).
-    let start = Instant::now();
-    while find(&term.output(), b"Nav Lt").is_none() || find(&term.output(), b"GPS 1").is_none() {
-        assert!(
-            start.elapsed() < Duration::from_secs(10),
-            "the page never drew its device list: {}",
-            String::from_utf8_lossy(&term.output())
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    let names: &[&[u8]] = &[b"Nav Lt", b"GPS 1"];
+    term.wait_for("its device list", names, 0, Duration::from_secs(10));
     std::thread::sleep(Duration::from_millis(300));
     // Motors sort last and only the pitch trim is fitted: `j` stops on its row.
     term.typed(&[b'j'; 50]);

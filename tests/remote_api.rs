@@ -38,6 +38,13 @@ fn rig_with_remote(logbook: Option<std::path::PathBuf>) -> (Rig, String) {
     }))
 }
 
+/// [`rig_with_remote`] and a phone paired with it.
+fn paired(logbook: Option<std::path::PathBuf>) -> (Rig, String, Phone) {
+    let (mut rig, base) = rig_with_remote(logbook);
+    let phone = pair(&mut rig, &base);
+    (rig, base, phone)
+}
+
 /// `rig` with the remote started on 127.0.0.1 (a free port), and its base URL.
 fn with_remote(mut rig: Rig) -> (Rig, String) {
     rig.app
@@ -222,12 +229,7 @@ fn commands_sent(rig: &Rig, from: usize) -> Vec<(Instant, Packet)> {
 }
 
 fn log_lines(rig: &Rig) -> Vec<String> {
-    rig.app
-        .model()
-        .events
-        .iter()
-        .map(|e| e.text.clone())
-        .collect()
+    common::events::texts(&rig.app.model())
 }
 
 #[test]
@@ -401,8 +403,7 @@ fn every_route_without_a_session_is_401_and_changes_nothing() {
 
 #[test]
 fn the_state_is_live_and_an_event_follows_a_change() {
-    let (mut rig, base) = rig_with_remote(None);
-    let phone = pair(&mut rig, &base);
+    let (mut rig, base, phone) = paired(None);
     let st = phone.get(&format!("{base}/api/state")).body;
     assert_eq!(st["comm_lost"], false);
     let volts = st["bus_volts"].as_f64().expect("bus volts, a number");
@@ -485,20 +486,13 @@ fn the_state_is_live_and_an_event_follows_a_change() {
     }
     let worst = heartbeats.windows(2).map(|w| w[1] - w[0]).max().unwrap();
     assert!(worst <= ms(1300), "an events gap of {worst:?}");
-    assert!(
-        log_lines(&rig)
-            .iter()
-            .any(|l| l.starts_with("remote: Nav Lt off")),
-        "{:?}",
-        log_lines(&rig)
-    );
+    common::events::assert_a_line_starts(&rig.app.model(), "remote: Nav Lt off");
 }
 
 #[test]
 fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut rig, base) = rig_with_remote(Some(dir.path().join("logbook.sqlite")));
-    let phone = pair(&mut rig, &base);
+    let (mut rig, _, phone) = paired(Some(dir.path().join("logbook.sqlite")));
     let from = rig.wire_len();
     let call = |rig: &mut Rig, path: &str, body| post(rig, &phone, path, body);
     // The starter is only reset: control's words, as the key gets them.
@@ -533,24 +527,16 @@ fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
     let sent = commands_sent(&rig, from);
     assert_eq!(sent.len(), 1, "{sent:?}");
     assert!(matches!(sent[0].1.message, Message::DevicePower(p) if p.device_id == 9 && !p.on));
-    let log = log_lines(&rig);
+    let m = rig.app.model();
+    common::events::assert_a_line_starts(&m, "remote: Starter on refused: ");
+    common::events::assert_a_line_starts(&m, "remote: GPS 1 off (DEVICE_POWER sent)");
     assert!(
-        log.iter()
-            .any(|l| l.starts_with("remote: Starter on refused: ")),
-        "{log:?}"
-    );
-    assert!(
-        log.iter()
-            .any(|l| l.starts_with("remote: GPS 1 off (DEVICE_POWER sent)")),
-        "{log:?}"
-    );
-    let entries = rig.app.model().events.clone();
-    assert!(
-        entries
+        m.events
             .iter()
             .any(|e| e.level == LogLevel::Warning
                 && e.text.starts_with("remote: GPS 1 reset refused"))
     );
+    drop(m);
     drop(rig);
     let audit: Vec<Value> =
         vpx_efis::logbook::jsonl::all_audit_lines(&dir.path().join("logbook.sqlite"))
@@ -573,8 +559,7 @@ fn power_and_clear_are_refused_in_controls_own_words_and_audited() {
 /// back longer than the signing window, refused as stale. The phone goes on working.
 #[test]
 fn a_replayed_or_altered_signed_request_is_refused_and_sends_nothing() {
-    let (mut rig, base) = rig_with_remote(None);
-    let phone = pair(&mut rig, &base);
+    let (mut rig, base, phone) = paired(None);
     let gps_off = phone.request("POST", "/api/device/9/power", Some(&json!({"on": false})));
     let renew = phone.request(
         "POST",
@@ -696,8 +681,7 @@ fn pitch_moves(rig: &Rig, from: usize) -> Vec<(Instant, bool)> {
 #[test]
 fn a_lease_left_to_expire_is_stopped_on_the_wire_within_300_ms_and_a_tick() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut rig, base) = rig_with_remote(Some(dir.path().join("logbook.sqlite")));
-    let phone = pair(&mut rig, &base);
+    let (mut rig, _, phone) = paired(Some(dir.path().join("logbook.sqlite")));
     let from = rig.wire_len();
     let a = pitch_up(&mut rig, &phone);
     assert_eq!((a.status, a.body), (200, json!({"lease_ms": 300})));
@@ -738,8 +722,7 @@ fn wait_for_stop(rig: &mut Rig, from: usize) -> Instant {
 
 #[test]
 fn an_explicit_stop_is_on_the_wire_within_150_ms_and_renewals_keep_the_run() {
-    let (mut rig, base) = rig_with_remote(None);
-    let phone = pair(&mut rig, &base);
+    let (mut rig, base, phone) = paired(None);
     let from = rig.wire_len();
     // Held for a second: a renewal every 100 ms, as the phone page sends them.
     let (p, u) = (phone.clone(), format!("{base}/api/motor/pitch"));
@@ -777,8 +760,7 @@ fn an_explicit_stop_is_on_the_wire_within_150_ms_and_renewals_keep_the_run() {
 #[test]
 fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut rig, base) = rig_with_remote(None);
-    let phone = pair(&mut rig, &base);
+    let (mut rig, _, phone) = paired(None);
     let answer = |rig: &mut Rig, a: &str| answer_check(rig, &phone, a);
     assert_eq!(phone.get("/api/state").body["check"], Value::Null);
     open_check(&mut rig, dir.path(), vec![Step::Motors]);
@@ -817,8 +799,7 @@ fn the_check_is_answered_from_the_phone_only_with_what_it_offers_now() {
 
 #[test]
 fn stopping_the_remote_closes_its_socket_and_ends_every_session() {
-    let (mut rig, base) = rig_with_remote(None);
-    let phone = pair(&mut rig, &base);
+    let (mut rig, base, phone) = paired(None);
     assert_eq!(phone.get(&format!("{base}/api/state")).status, 200);
     let addr = base.trim_start_matches("http://").to_string();
     // The overlay is shown: p stops the remote.
@@ -849,8 +830,7 @@ fn stopping_the_remote_closes_its_socket_and_ends_every_session() {
 
 #[test]
 fn any_other_command_from_the_remote_stops_its_run_first() {
-    let (mut rig, base) = rig_with_remote(None);
-    let phone = pair(&mut rig, &base);
+    let (mut rig, _, phone) = paired(None);
     let from = rig.wire_len();
     let a = pitch_up(&mut rig, &phone);
     assert_eq!(a.status, 200);
@@ -904,8 +884,7 @@ fn bound_to_every_address_the_origin_is_the_address_the_phone_used() {
 #[test]
 fn a_light_is_asked_is_it_lit_on_the_phone_and_the_answer_reaches_the_report() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut rig, base) = rig_with_remote(None);
-    let phone = pair(&mut rig, &base);
+    let (mut rig, _, phone) = paired(None);
     open_check(&mut rig, dir.path(), vec![Step::Switches, Step::Motors]);
     rig.key(KeyCode::Enter, KeyEventKind::Press);
     let check = check_on_the_phone(&mut rig, &phone, "whether a light is lit", |c| {

@@ -23,13 +23,6 @@ use common::phone::Phone;
 use common::process::{Kill, sim_pty};
 use page_rig::terminal::{Term, find, page};
 
-fn secs() -> u64 {
-    std::env::var("IDLE_CPU_SECS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(10)
-}
-
 /// A port nobody listens on now.
 fn free_port() -> u16 {
     std::net::TcpListener::bind("127.0.0.1:0")
@@ -100,7 +93,7 @@ fn the_page_is_idle_with_a_phone_listening_to_its_events() {
     let cpu0 = process_cpu_time(pid).unwrap();
     let heard0 = heard.load(Ordering::SeqCst);
     let wall0 = Instant::now();
-    let secs = secs();
+    let secs = common::cpu::idle_secs(10);
     std::thread::sleep(Duration::from_secs(secs));
     let cpu = process_cpu_time(pid).unwrap() - cpu0;
     let wall = wall0.elapsed();
@@ -196,17 +189,13 @@ fn off_the_remote_has_no_thread_and_no_socket() {
         }
     };
     let remote_thread = || threads(pid).iter().any(|t| t == "remote");
-    wait("no device list", &|| {
-        find(&term.output(), b"EFIS").is_some()
-    });
+    term.wait_for("the device list", &[b"EFIS"], 0, Duration::from_secs(10));
     std::thread::sleep(Duration::from_millis(500));
     assert!(!remote_thread(), "{:?}", threads(pid));
     assert_eq!(listening(pid), 0, "the page listens with the remote off");
     term.typed(b"p");
     wait("no remote thread after p", &remote_thread);
-    wait("the pairing URL", &|| {
-        find(&term.output(), b"/#k=").is_some()
-    });
+    term.wait_for("the pairing URL", &[b"/#k="], 0, Duration::from_secs(10));
     assert_eq!(listening(pid), 1, "the remote listens on one socket");
     term.typed(b"p");
     wait("the remote thread stayed after p", &|| !remote_thread());

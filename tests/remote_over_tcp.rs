@@ -116,15 +116,6 @@ fn a_phone_pairs_switches_a_circuit_and_runs_a_trim_against_sim_tcp() {
     assert_eq!((a.status, a.body), (200, json!({"stopped": true})));
     app.pump_until(Instant::now() + Duration::from_millis(100));
     assert!(app.motor_run().is_none(), "let go, the trim stopped");
-    let log: Vec<String> = app.model().events.iter().map(|e| e.text.clone()).collect();
-    assert!(
-        log.iter()
-            .any(|l| l.starts_with("remote: pitch trim up running")),
-        "{log:?}"
-    );
-    assert!(
-        log.iter()
-            .any(|l| l.starts_with("remote: pitch trim up stopped")),
-        "{log:?}"
-    );
+    common::events::assert_a_line_starts(&app.model(), "remote: pitch trim up running");
+    common::events::assert_a_line_starts(&app.model(), "remote: pitch trim up stopped");
 }

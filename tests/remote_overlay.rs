@@ -17,7 +17,7 @@ use vpx_efis::ui;
 use vpx_efis::ui::palette::Palette;
 use vpx_efis::ui::palette::rgb;
 use vpx_efis::ui::remote::qr_rows;
-use vpx_efis::ui::state::{ControlState, Overlay, RemoteView, ViewState};
+use vpx_efis::ui::state::{Overlay, RemoteView, ViewState};
 
 mod themes;
 
@@ -69,11 +69,7 @@ fn draw(view: &ViewState, w: u16, h: u16) -> Buffer {
     let model = Model::new(Source::Simulated {
         scenario: "demo".into(),
     });
-    let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
-    terminal
-        .draw(|f| ui::render(f, &model, view, &ControlState::default(), Instant::now()))
-        .unwrap();
-    terminal.backend().buffer().clone()
+    common::screen::rendered(&model, view, Instant::now(), w, h)
 }
 
 /// The QR code's cells: every cell on xterm white, as (x, y).

@@ -2,7 +2,6 @@
 //! draws the same frames at the same instants; a capture cut at any byte replays up to
 //! the cut and says so; a corrupt one is refused in words.
 
-use std::process::Command;
 use std::time::{Duration, Instant};
 
 use ratatui::Terminal;
@@ -15,6 +14,7 @@ use vpx_efis::protocol::message::{Payload, SystemStatus};
 use vpx_efis::ui::{self, state::ViewState};
 
 mod common;
+use common::process;
 use common::screen::text;
 
 #[test]
@@ -78,18 +78,10 @@ fn a_recorded_session_replays_to_the_same_frames_at_the_same_instants() {
         view.selected = ui::ordered_circuits(&model, &view, now)
             .first()
             .map(|c| c.id);
-        let mut term = Terminal::new(TestBackend::new(120, 40)).unwrap();
-        term.draw(|f| {
-            ui::draw(
-                f,
-                &model,
-                &view,
-                &vpx_efis::ui::state::ControlState::default(),
-                now,
-            )
-        })
-        .unwrap();
-        frames.push((now - start, term.backend().buffer().clone()));
+        // As `ui::draw` draws it: rendered, then painted in the view's palette.
+        let mut buf = common::screen::rendered(&model, &view, now, 120, 40);
+        view.theme.palette.paint(&mut buf);
+        frames.push((now - start, buf));
     }
     live.shutdown();
     sim.stop();
@@ -214,8 +206,7 @@ fn a_corrupt_capture_is_refused_in_words_never_a_panic() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bad.vpxcap");
     std::fs::write(&path, &bad_dir).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .arg("--replay")
+    let out = process::vpx(&["--replay"], process::NO_CONFIG)
         .arg(&path)
         .output()
         .unwrap();
@@ -226,8 +217,7 @@ fn a_corrupt_capture_is_refused_in_words_never_a_panic() {
 
 #[test]
 fn decode_reads_a_capture_with_times_and_directions() {
-    let out = Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .arg("decode")
+    let out = process::vpx(&["decode"], process::NO_CONFIG)
         .arg(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/assets/captures/normal.vpxcap"

@@ -4,8 +4,6 @@
 
 use std::time::{Duration, Instant};
 
-use ratatui::Terminal;
-use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::Color;
 
@@ -26,7 +24,6 @@ use common::screen::text;
 use vpx_efis::setup::view::{
     Diagnostic, Dialog, Field, Forms, FromUnit, Held, Page, SetupView, Tone, WriteLine, WriteStatus,
 };
-use vpx_efis::ui;
 use vpx_efis::ui::state::{Screen, ViewState};
 
 fn apply(m: &mut Model, at: Instant, msg: impl Into<Message>) {
@@ -143,10 +140,7 @@ fn view(m: &Model, page: Page, device: u8) -> ViewState {
 }
 
 fn render(m: &Model, v: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
-    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    term.draw(|f| ui::render(f, m, v, &vpx_efis::ui::state::ControlState::default(), now))
-        .unwrap();
-    let buf = term.backend().buffer().clone();
+    let buf = common::screen::rendered(m, v, now, w, h);
     themes::check_themes("setup_snapshots", &buf);
     buf
 }

@@ -4,13 +4,12 @@
 #![cfg(unix)]
 
 use std::io::Write;
-use std::process::Command;
 use std::time::Duration;
 
 mod common;
 mod sim_common;
 
-use common::process::{EXE, sim};
+use common::process::{self, sim};
 use vpx_efis::protocol::message::*;
 
 #[test]
@@ -39,10 +38,12 @@ fn sim_pty_prints_its_path_first_and_answers_on_it() {
 
 #[test]
 fn an_unknown_scenario_is_a_clear_error() {
-    let out = Command::new(EXE)
-        .args(["sim", "--pty", "--scenario", "nonesuch"])
-        .output()
-        .unwrap();
+    let out = process::vpx(
+        &["sim", "--pty", "--scenario", "nonesuch"],
+        process::NO_CONFIG,
+    )
+    .output()
+    .unwrap();
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("nonesuch") && err.contains("demo"), "{err}");

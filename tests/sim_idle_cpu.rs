@@ -36,10 +36,7 @@ fn idle_share(extra: &[&str], secs: u64) -> (f64, usize) {
 
 #[test]
 fn the_paced_sim_is_idle_while_nothing_changes() {
-    let secs: u64 = std::env::var("IDLE_CPU_SECS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(4);
+    let secs = common::cpu::idle_secs(4);
     let (paced, frames) = idle_share(&[], secs);
     let (unpaced, _) = idle_share(&["--no-pace"], secs);
     eprintln!(

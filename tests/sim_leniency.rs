@@ -87,6 +87,13 @@ impl Bench {
         self.collect();
     }
 
+    /// SOFTWARE_UPDATE (0x10/0x02, ICD §6.1.3, count `cnt`, no payload): the unit restarts
+    /// into its bootloader; what it wrote before is forgotten.
+    fn restart_in_bootloader(&mut self, cnt: u8) {
+        self.feed(&frame(0x10, 0x02, cnt, &[]));
+        self.raw.clear();
+    }
+
     /// Lets `ms` pass in 10 ms ticks.
     fn run(&mut self, ms: u64) {
         for _ in 0..ms / 10 {
@@ -207,7 +214,7 @@ fn data_integrity_clears_after_a_warm_reset_and_after_an_update() {
     b.run(1_100);
     assert!(flag(&b));
     // A software update restarts the processor: cleared too.
-    b.feed(&frame(0x10, 0x02, 7, &[]));
+    b.restart_in_bootloader(7);
     assert!(b.stats().in_bootloader);
     update_one_page(&mut b, 0x70);
     b.run(1_100);
@@ -268,15 +275,14 @@ fn a_stop_is_honoured_whatever_its_direction_or_trim_type_byte() {
 fn exit_without_programming_does_not_claim_a_software_update() {
     // Table 24 note 1: the flag says the software "was updated".
     let mut b = Bench::new("");
-    b.feed(&frame(0x10, 0x02, 1, &[]));
-    b.raw.clear();
+    b.restart_in_bootloader(1);
     b.feed(&[0x69, 0x96, b'Q', 0x00, 0x00]);
     b.feed(&[0x69, 0x96, b'X', 0x00, 0x00]);
     assert_eq!(b.raw, b"VP_AVRBOOTx");
     b.run(1_100);
     assert!(!b.system_status().misc.software_update);
     // Table 36's upper-case 'P' programs a page like §7.5.3's 'p'; then it was updated.
-    b.feed(&frame(0x10, 0x02, 2, &[]));
+    b.restart_in_bootloader(2);
     update_one_page(&mut b, b'P');
     assert_eq!(b.stats().boot.pages_programmed, 1);
     b.run(1_100);
@@ -288,8 +294,7 @@ fn the_bootloader_answers_erase_program_and_read_only_after_serial_conf() {
     // Decision (sim::bootloader): FLASH_ERASE, FLASH_PROG and FLASH_READ before a good
     // SERIAL_CONF are refused with silence; QUERY_PORT is answered at any time.
     let mut b = Bench::new("");
-    b.feed(&frame(0x10, 0x02, 1, &[]));
-    b.raw.clear();
+    b.restart_in_bootloader(1);
     b.feed(&[0x69, 0x96, b'E', 0x00, 0x00]);
     b.feed(&[0x69, 0x96, b'R', 0x02, 0x00, 0x00, 0x00, 0x00, 0x01]);
     b.feed(&[0x69, 0x96, b'Q', 0x00, 0x00]);

@@ -3,7 +3,6 @@
 //! away and comes back on the same port, and `flash` through a TCP line to the virtual
 //! unit's bootloader.
 
-use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
@@ -17,7 +16,7 @@ mod common;
 #[path = "common/tcp_unit.rs"]
 mod tcp_unit;
 use common::app::until;
-use common::process::{EXE, Sim};
+use common::process::{self, NO_CONFIG, Sim};
 use tcp_unit::unit_over_tcp;
 
 /// `vpx-efis sim --tcp ADDR` as a child process; killed when dropped.
@@ -167,21 +166,10 @@ fn flash_over_tcp_programs_and_verifies_the_image() {
     let data: Vec<u8> = (0..3 * PAGE_SIZE + 5).map(|i| (i * 7 + 3) as u8).collect();
     let file = dir.path().join("cu_2.hex");
     std::fs::write(&file, to_hex_text(0x200, &data)).unwrap();
-    let o = Command::new(EXE)
-        // A small image, not a whole program: --force-image takes that risk (the refusal
-        // itself is tested in flash_cli), so the test stays about the TCP path.
-        .args([
-            "flash",
-            "--port",
-            &addr,
-            "--yes",
-            "--force-image",
-            file.to_str().unwrap(),
-        ])
-        .env("VPX_EFIS_CONFIG", "/nonexistent/vpx-efis-test-config.toml")
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
+    // A small image, not a whole program: --force-image takes that risk (the refusal
+    // itself is tested in flash_cli), so the test stays about the TCP path.
+    let args = ["flash", "--port", &addr, "--yes", "--force-image"];
+    let o = process::vpx(&args, NO_CONFIG).arg(&file).output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
     assert!(

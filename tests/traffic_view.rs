@@ -6,8 +6,6 @@
 
 use std::time::{Duration, Instant};
 
-use ratatui::Terminal;
-use ratatui::backend::TestBackend;
 use ratatui::buffer::{Buffer, Cell};
 use ratatui::style::Color;
 
@@ -22,7 +20,7 @@ use vpx_efis::traffic::{Health, KindFilter};
 mod common;
 mod themes;
 
-use vpx_efis::ui::{self, state::Screen, state::ViewState};
+use vpx_efis::ui::{state::Screen, state::ViewState};
 
 fn system() -> SystemStatus {
     SystemStatus {
@@ -140,18 +138,7 @@ fn traffic_view() -> ViewState {
 }
 
 fn draw(model: &Model, now: Instant, w: u16, h: u16) -> Buffer {
-    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    term.draw(|f| {
-        ui::render(
-            f,
-            model,
-            &traffic_view(),
-            &vpx_efis::ui::state::ControlState::default(),
-            now,
-        )
-    })
-    .unwrap();
-    let buf = term.backend().buffer().clone();
+    let buf = common::screen::rendered(model, &traffic_view(), now, w, h);
     themes::check_themes("traffic_view", &buf);
     buf
 }

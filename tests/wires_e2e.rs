@@ -18,9 +18,9 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
-use common::process::sim_pty;
+use common::process::{self, sim_pty};
 
 const WRONG: &str = r#"
 [circuit.5A-1]
@@ -48,11 +48,7 @@ fn corrected() -> String {
 
 /// `vpx-efis ARGS` with no terminal on stdin and a config file that is not there.
 fn vpx(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vpx-efis"))
-        .env("VPX_EFIS_CONFIG", dir.join("config.toml"))
-        .env_remove("VPX_EFIS_PORT")
-        .args(args)
-        .stdin(Stdio::null())
+    process::vpx(args, dir.join("config.toml"))
         .output()
         .expect("run vpx-efis")
 }

@@ -8,8 +8,6 @@
 
 use std::time::{Duration, Instant};
 
-use ratatui::Terminal;
-use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::Color;
 
@@ -17,18 +15,17 @@ use vpx_efis::loads::LoadCircuit;
 use vpx_efis::loads::wire::Wire;
 use vpx_efis::loads::wiring::WireRun;
 use vpx_efis::model::{Model, Source};
-use vpx_efis::protocol::FaultCode;
 use vpx_efis::protocol::Packet;
-use vpx_efis::protocol::device::{DEVICE_COUNT, EFIS};
+use vpx_efis::protocol::device::EFIS;
 use vpx_efis::protocol::message::{
     DeviceEnable, DeviceName, DeviceSpec, DeviceStatus, EnableFlag, FaultStatus, HardwareVersion,
     OvervoltageLimit, SignedTenths, SwitchId, SwitchInputs, SystemSpec, SystemStatus, Tenths,
     Version,
 };
-use vpx_efis::ui::state::{ControlState, ViewState};
+use vpx_efis::ui::state::ViewState;
 
 mod common;
-use common::screen::{find, plain_text};
+use common::screen::{find, plain_text, rendered};
 
 const NAV: u8 = 4; // 5A-1
 const STROBE: u8 = 0x11; // 10A-1
@@ -115,15 +112,7 @@ fn unit() -> (Model, Instant) {
         d.current[id as usize] = Tenths(tenths);
     }
     apply(&mut m, d.into());
-    apply(
-        &mut m,
-        FaultStatus {
-            faulted: [false; DEVICE_COUNT],
-            system_fault: false,
-            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-        }
-        .into(),
-    );
+    apply(&mut m, FaultStatus::with_faults(&[]).into());
     (m, t0 + Duration::from_millis(300))
 }
 
@@ -161,12 +150,18 @@ fn view(selected: u8) -> ViewState {
     }
 }
 
-fn draw(model: &Model, view: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
-    let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
-    terminal
-        .draw(|f| vpx_efis::ui::render(f, model, view, &ControlState::default(), now))
-        .unwrap();
-    terminal.backend().buffer().clone()
+/// The unit's page, `w`×`h`, with circuit `selected` selected: the buffer and its
+/// text.
+fn screen_of(selected: u8, w: u16, h: u16) -> (Buffer, String) {
+    let (m, now) = unit();
+    let buf = rendered(&m, &view(selected), now, w, h);
+    let screen = plain_text(&buf);
+    (buf, screen)
+}
+
+/// `screen`'s words with single spaces, so that a phrase wrapped or padded is found.
+fn flat(screen: &str) -> String {
+    screen.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// The list line of the row whose name starts with `name` (the first line holding it).
@@ -184,26 +179,21 @@ fn colour(buf: &Buffer, on_line: &str, needle: &str) -> Color {
 
 #[test]
 fn the_list_marks_an_unprotected_wire_and_the_detail_names_it_80x24() {
-    let (m, now) = unit();
-    let buf = draw(&m, &view(STROBE), now, 80, 24);
-    let screen = plain_text(&buf);
+    let (buf, screen) = screen_of(STROBE, 80, 24);
     insta::assert_snapshot!(screen);
     // A symbol and a word on the strobe's row, in the fault colour; on no other row.
     assert!(line_of(&screen, "10A-1").contains("⚠WIRE"), "{screen}");
     assert!(!line_of(&screen, "5A-1").contains("⚠WIRE"), "{screen}");
     assert!(!line_of(&screen, "10A-2").contains("⚠WIRE"), "{screen}");
     assert_eq!(colour(&buf, "10A-1", "⚠WIRE"), Color::Red);
-    let flat: String = screen.split_whitespace().collect::<Vec<_>>().join(" ");
-    assert!(flat.contains("⚠ UNPROTECTED"), "{screen}");
+    assert!(flat(&screen).contains("⚠ UNPROTECTED"), "{screen}");
 }
 
 #[test]
 fn the_detail_gives_the_drop_and_the_run_that_would_pass_120x40() {
-    let (m, now) = unit();
-    let buf = draw(&m, &view(NAV), now, 120, 40);
-    let screen = plain_text(&buf);
+    let (_, screen) = screen_of(NAV, 120, 40);
     insta::assert_snapshot!(screen);
-    let flat: String = screen.split_whitespace().collect::<Vec<_>>().join(" ");
+    let flat = flat(&screen);
     assert!(flat.contains("wire 22 AWG"), "{screen}");
     assert!(flat.contains("run 34.0 ft"), "{screen}");
     assert!(flat.contains("allows 5 A"), "{screen}");
@@ -219,15 +209,14 @@ fn the_detail_gives_the_drop_and_the_run_that_would_pass_120x40() {
 
 #[test]
 fn the_detail_of_a_right_wire_and_of_one_not_entered() {
-    let (m, now) = unit();
-    let screen = plain_text(&draw(&m, &view(LANDING), now, 120, 40));
-    let flat: String = screen.split_whitespace().collect::<Vec<_>>().join(" ");
+    let (_, screen) = screen_of(LANDING, 120, 40);
+    let flat = flat(&screen);
     // 16 AWG allows 15 A (Table 11-3) over its 8 A breaker; off, so no drop now.
     assert!(
         flat.contains("wire 16 AWG run 12.0 ft (ground at load) allows 15 A ✓ ok"),
         "{screen}"
     );
-    let screen = plain_text(&draw(&m, &view(EFIS), now, 120, 40));
+    let (_, screen) = screen_of(EFIS, 120, 40);
     assert!(
         screen.contains("wire not entered (the load file's wire lines)"),
         "{screen}"

@@ -8,14 +8,18 @@ use proptest::prelude::*;
 use vpx_efis::audit::Origin;
 use vpx_efis::control::{Controller, Direction, How, KeyContext, StopReason};
 use vpx_efis::model::{Model, Motor, Source, TrimKind};
-use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::fault::FaultCode;
 use vpx_efis::protocol::message::{
-    DeviceStatus, FaultStatus, FlapFlags, FlapTrimStatus, Message, Packet, SignedTenths,
-    SystemStatus, Tenths,
+    DeviceStatus, FaultStatus, Message, Packet, SignedTenths, SystemStatus, Tenths,
 };
 use vpx_efis::xfsp::gateway::{Control, Gateway, GatewayConfig, TickOutput};
 
+#[path = "common/events.rs"]
+#[allow(dead_code)]
+mod events;
+#[path = "common/live_unit.rs"]
+#[allow(dead_code)]
+mod live_unit;
 #[path = "common/xfsp_request.rs"]
 mod xfsp_request;
 use vpx_efis::xfsp::publish::{CAS_UNIT_COMM_LOST, LIFETIME};
@@ -78,13 +82,7 @@ fn status(m: &mut Model, at: Instant, on: &[u8]) {
 }
 
 fn fault(m: &mut Model, at: Instant, id: u8, code: FaultCode) {
-    let mut f = FaultStatus {
-        faulted: [false; DEVICE_COUNT],
-        system_fault: false,
-        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-    };
-    f.faulted[id as usize] = true;
-    f.codes[id as usize] = Some(code);
+    let f = FaultStatus::with_faults(&[(id, code)]);
     m.apply_packet(at, &Packet::from_vpx(2, f));
 }
 
@@ -100,16 +98,7 @@ fn pitch(m: &mut Model, at: Instant, pos: u8) {
 }
 
 fn flap_trim(m: &mut Model, at: Instant, flap: u8, pitch: Option<u8>) {
-    let mut ft = FlapTrimStatus {
-        flap: FlapFlags {
-            enabled: true,
-            ..Default::default()
-        },
-        flap_position: flap,
-        flap_up: 40,
-        flap_down: 200,
-        ..Default::default()
-    };
+    let mut ft = live_unit::flaps_at(flap);
     if let Some(pitch) = pitch {
         ft.pitch_trim.enabled = true;
         ft.pitch_trim_position = pitch;
@@ -1394,12 +1383,7 @@ fn without_control_commands_are_refused_logged_once_and_counted() {
     let s = gw.stats();
     assert_eq!(s.commands_not_allowed, 24, "3 commands x 8 datagrams");
     assert_eq!((s.commands_taken, s.commands_refused), (0, 0));
-    let said: Vec<&str> = m
-        .events
-        .iter()
-        .map(|e| e.text.as_str())
-        .filter(|t| t.contains("refused: commands from the network are off"))
-        .collect();
+    let said = events::containing(&m, "refused: commands from the network are off");
     assert_eq!(said.len(), 1, "one line per source per 10 s: {said:?}");
     assert!(
         said[0].starts_with("XFSp 0x0042 (USERSEL): ECBSTAT refused"),

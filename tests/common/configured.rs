@@ -6,7 +6,6 @@
 use std::time::{Duration, Instant};
 
 use vpx_efis::model::{Model, Source};
-use vpx_efis::protocol::device::DEVICE_COUNT;
 use vpx_efis::protocol::message::{
     DeviceEnable, DeviceName, DeviceSpec, EnableFlag, FaultStatus, FlapFlags, FlapMode, FlapSpec,
     FlapTrimStatus, HardwareVersion, Message, Polarity, SwitchId, SystemSpec, Tenths, TrimFlags,
@@ -101,16 +100,10 @@ pub fn flap_trim(positions: (u8, u8, u8)) -> FlapTrimStatus {
 /// FAULT_STATUS with `devices` faulted, each with its code, and the system fault flag
 /// `system`.
 pub fn faults(devices: &[(u8, FaultCode)], system: bool) -> FaultStatus {
-    let mut f = FaultStatus {
-        faulted: [false; DEVICE_COUNT],
+    FaultStatus {
         system_fault: system,
-        codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-    };
-    for &(id, code) in devices {
-        f.faulted[id as usize] = true;
-        f.codes[id as usize] = Some(code);
+        ..FaultStatus::with_faults(devices)
     }
-    f
 }
 
 /// Every connect-time answer of a unit wired as `wired`, in the order they are fed:

@@ -61,6 +61,21 @@ pub fn mid_travel(pitch_fault: FaultCode, pitch_position: u8) -> FlapTrimStatus 
     }
 }
 
+/// The flaps alone fitted (no trim), still at `position`, their up endpoint 40 and
+/// down 200.
+pub fn flaps_at(position: u8) -> FlapTrimStatus {
+    FlapTrimStatus {
+        flap: FlapFlags {
+            enabled: true,
+            ..Default::default()
+        },
+        flap_position: position,
+        flap_up: 40,
+        flap_down: 200,
+        ..Default::default()
+    }
+}
+
 /// What the virtual unit is doing, so a loop can feed the model as the link's reader
 /// does.
 #[derive(Clone, Copy, PartialEq)]

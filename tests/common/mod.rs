@@ -6,6 +6,7 @@ pub mod app;
 pub mod check_view;
 pub mod configured;
 pub mod cpu;
+pub mod events;
 pub mod files;
 pub mod live_unit;
 pub mod phone;

@@ -10,6 +10,23 @@ use std::sync::{Arc, Mutex, mpsc};
 /// The program under test.
 pub const EXE: &str = env!("CARGO_BIN_EXE_vpx-efis");
 
+/// A config file that is not there: the program's defaults.
+pub const NO_CONFIG: &str = "/nonexistent/vpx-efis-test-config.toml";
+
+/// `vpx-efis ARGS…` as a script runs it: standard input at its end (no terminal,
+/// nobody to answer) and none of the settings of whoever runs the tests: its config
+/// file is `config` (which need not exist), `VPX_EFIS_PORT` and `VPX_EFIS_BAUD` unset.
+/// The caller adds what else it needs, and runs it.
+pub fn vpx(args: &[&str], config: impl AsRef<Path>) -> Command {
+    let mut c = Command::new(EXE);
+    c.args(args)
+        .env("VPX_EFIS_CONFIG", config.as_ref())
+        .env_remove("VPX_EFIS_PORT")
+        .env_remove("VPX_EFIS_BAUD")
+        .stdin(Stdio::null());
+    c
+}
+
 /// A child process, killed and reaped when dropped.
 pub struct Kill(pub Child);
 

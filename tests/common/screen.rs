@@ -1,7 +1,25 @@
 //! A drawn frame read back as text, a line per row: what a snapshot holds and what a
 //! failure's message shows.
 
+use std::time::Instant;
+
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
+use vpx_efis::model::Model;
+use vpx_efis::ui;
+use vpx_efis::ui::state::{ControlState, ViewState};
+
+/// The page for `model` and `view` at `now`, rendered on a `w`×`h` test terminal with
+/// no motor key held (the controller at rest), in the page's colour words: before a
+/// palette paints them (`ui::render`, not `ui::draw`).
+pub fn rendered(model: &Model, view: &ViewState, now: Instant, w: u16, h: u16) -> Buffer {
+    let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+    terminal
+        .draw(|f| ui::render(f, model, view, &ControlState::default(), now))
+        .unwrap();
+    terminal.backend().buffer().clone()
+}
 
 /// Every cell's symbol as drawn, no-break spaces kept.
 pub fn text(buf: &Buffer) -> String {

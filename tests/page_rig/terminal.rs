@@ -8,6 +8,7 @@ use std::os::fd::{FromRawFd, OwnedFd};
 use std::os::unix::process::CommandExt;
 use std::process::{Child, Command, Stdio};
 use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
 /// The terminal the page runs in: the master side, with everything the page wrote.
 pub struct Term {
@@ -71,6 +72,27 @@ impl Term {
 
     pub fn output(&self) -> Vec<u8> {
         self.screen.lock().unwrap().clone()
+    }
+
+    /// Waits until the page has written every one of `words` since byte `from` (it
+    /// draws changes, so each is looked for on its own); fails after `limit`, naming
+    /// `what` and showing all it wrote.
+    #[track_caller]
+    pub fn wait_for(&self, what: &str, words: &[&[u8]], from: usize, limit: Duration) {
+        let end = Instant::now() + limit;
+        loop {
+            let out = self.output();
+            let since = out.get(from..).unwrap_or_default();
+            if words.iter().all(|w| find(since, w).is_some()) {
+                return;
+            }
+            assert!(
+                Instant::now() < end,
+                "the page never showed {what} in {limit:?}: {}",
+                String::from_utf8_lossy(&out)
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
     }
 
     /// How many bytes the page has written so far.

@@ -546,6 +546,26 @@ pub struct FaultStatus {
 }
 
 impl FaultStatus {
+    /// FAULT_STATUS (ICD Table 28) with each device of `faults` faulted with its code,
+    /// every other device's code NO FAULT (Table 43, 0x00), and no system fault: all
+    /// 31 codes present, as the unit sends them. An id past device 30 has no bit or
+    /// code in the table and is left out.
+    pub fn with_faults(faults: &[(u8, FaultCode)]) -> FaultStatus {
+        let mut f = FaultStatus {
+            faulted: [false; DEVICE_COUNT],
+            system_fault: false,
+            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
+        };
+        for &(id, code) in faults {
+            let id = usize::from(id);
+            if let (Some(bit), Some(c)) = (f.faulted.get_mut(id), f.codes.get_mut(id)) {
+                *bit = true;
+                *c = Some(code);
+            }
+        }
+        f
+    }
+
     /// The number of codes carried: up to and including the last `Some`.
     fn codes_len(&self) -> usize {
         self.codes
@@ -678,5 +698,27 @@ mod tests {
             "bytes 6, 7, 8"
         );
         assert_eq!(ft.position(Axis::RollTrim), 13);
+    }
+
+    /// Devices 9 and 30 faulted, written by hand from Table 28: device 9 is bit 1 of
+    /// byte 2, device 30 bit 6 of byte 4 (its MSB, the system fault, clear); bytes 5–35
+    /// are the 31 codes, 0x00 but 0x07 (SHORT_CIRCUIT) for 9 and 0x0E (TRIM_RUNAWAY)
+    /// for 30 (Table 43). Device 31 has no place and is left out.
+    #[test]
+    fn with_faults_sets_each_listed_device_s_bit_and_code_of_table_28() {
+        let f = FaultStatus::with_faults(&[
+            (9, FaultCode::ShortCircuit),
+            (30, FaultCode::TrimRunaway),
+            (31, FaultCode::OverCurrent),
+        ]);
+        let mut payload = [0u8; 35];
+        payload[1] = 0b0000_0010;
+        payload[3] = 0b0100_0000;
+        payload[4 + 9] = 0x07;
+        payload[4 + 30] = 0x0E;
+        assert_eq!(&f.emit()[..], &payload[..]);
+        assert!(!f.system_fault);
+        assert_eq!(FaultStatus::with_faults(&[]).emit()[..4], [0, 0, 0, 0]);
+        assert_eq!(FaultStatus::with_faults(&[]).emit().len(), 35);
     }
 }
