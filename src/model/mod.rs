@@ -922,13 +922,7 @@ mod tests {
         let mut m = Model::new(Source::Simulated {
             scenario: "t".into(),
         });
-        let mut f = FaultStatus {
-            faulted: [false; DEVICE_COUNT],
-            system_fault: false,
-            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-        };
-        f.faulted[5] = true;
-        f.codes[5] = Some(FaultCode::ShortCircuit);
+        let f = FaultStatus::with_faults(&[(5, FaultCode::ShortCircuit)]);
         let (s, d) = status_packets(&[], 0);
         m.apply_packet(t0, &s);
         m.apply_packet(t0, &d);

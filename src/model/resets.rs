@@ -186,7 +186,6 @@ impl Model {
 mod tests {
     use super::*;
     use crate::model::{CircuitState, Source};
-    use crate::protocol::device::DEVICE_COUNT;
     use crate::protocol::message::{
         DeviceClear, DeviceStatus, FaultStatus, Packet, SignedTenths, SystemStatus, Tenths,
     };
@@ -216,15 +215,11 @@ mod tests {
 
     /// FAULT_STATUS listing `faulted` as shorted.
     fn faults(m: &mut Model, at: Instant, faulted: &[u8]) {
-        let mut f = FaultStatus {
-            faulted: [false; DEVICE_COUNT],
-            system_fault: false,
-            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-        };
-        for &id in faulted {
-            f.faulted[id as usize] = true;
-            f.codes[id as usize] = Some(FaultCode::ShortCircuit);
-        }
+        let shorted: Vec<_> = faulted
+            .iter()
+            .map(|&id| (id, FaultCode::ShortCircuit))
+            .collect();
+        let f = FaultStatus::with_faults(&shorted);
         m.apply_packet(at, &Packet::from_vpx(2, f));
     }
 

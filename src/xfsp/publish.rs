@@ -564,7 +564,6 @@ impl Publisher {
 mod tests {
     use super::*;
     use crate::model::Source;
-    use crate::protocol::device::DEVICE_COUNT;
     use crate::protocol::message::{
         DeviceEnable, DeviceStatus, EnableFlag, FaultStatus, FlapFlags, FlapTrimStatus, Packet,
         SignedTenths, SystemStatus, Tenths,
@@ -626,16 +625,7 @@ mod tests {
     }
 
     fn fault(m: &mut Model, at: Instant, faults: &[(u8, FaultCode)]) {
-        let mut f = FaultStatus {
-            faulted: [false; DEVICE_COUNT],
-            system_fault: false,
-            codes: [Some(FaultCode::NoFault); DEVICE_COUNT],
-        };
-        for &(id, code) in faults {
-            f.faulted[id as usize] = true;
-            f.codes[id as usize] = Some(code);
-        }
-        m.apply_packet(at, &Packet::from_vpx(5, f));
+        m.apply_packet(at, &Packet::from_vpx(5, FaultStatus::with_faults(faults)));
     }
 
     /// Drives `p` the way a main loop does, from `from` to `until`: poll, then sleep to
