@@ -29,7 +29,7 @@ use crate::protocol::device::{
 };
 use crate::protocol::message::{
     DeviceEnable, DeviceNameQuery, DeviceSpecQuery, DeviceStatus, DeviceStatusQuery, EepromErase,
-    EnableFlag, Message, SpecAck, SpecAckError, SystemStatus, TrimType, Version,
+    EnableFlag, Message, SpecAckError, SystemStatus, TrimType, Version,
 };
 use crate::protocol::{Error as WireError, Packet};
 
@@ -141,6 +141,18 @@ impl UnitClient {
         timeout: Duration,
         tries: u8,
     ) -> Result<Message, RequestError> {
+        self.ask(message, |m| matches(m).then_some(*m), timeout, tries)
+    }
+
+    /// [`Self::request`], answered with what `pick` takes from the first reply it
+    /// takes anything from.
+    fn ask<T>(
+        &mut self,
+        message: impl Into<Message>,
+        pick: impl Fn(&Message) -> Option<T>,
+        timeout: Duration,
+        tries: u8,
+    ) -> Result<T, RequestError> {
         let message = message.into();
         let what = request_name(&message);
         let mut try_ = Try::with(Instant::now(), timeout, tries);
@@ -176,9 +188,9 @@ impl UnitClient {
                     Ok(Inbound::Packet(p)) => {
                         if p.src == crate::protocol::Node::Vpx
                             && sent.contains(&p.cnt)
-                            && matches(&p.message)
+                            && let Some(answer) = pick(&p.message)
                         {
-                            return Ok(p.message);
+                            return Ok(answer);
                         }
                     }
                     Ok(Inbound::Malformed { cnt, error }) if sent.contains(&cnt) => {
@@ -224,22 +236,21 @@ impl UnitClient {
     ) -> Result<(), SpecError> {
         let spec = spec.into();
         let want = spec_ack_id(&spec);
-        let reply = self.request(
+        let refused = self.ask(
             spec,
-            |m| matches!(m, Message::SpecAck(a) if want.is_none_or(|id| a.device_id == id)),
+            |m| match m {
+                Message::SpecAck(a) if want.is_none_or(|id| a.device_id == id) => Some(a.error),
+                _ => None,
+            },
             timeout,
             tries,
         )?;
-        match reply {
-            Message::SpecAck(SpecAck { error: None, .. }) => Ok(()),
-            Message::SpecAck(SpecAck {
-                error: Some(error), ..
-            }) => Err(SpecError::Refused {
+        match refused {
+            None => Ok(()),
+            Some(error) => Err(SpecError::Refused {
                 what: setting_name(&spec),
                 error,
             }),
-            // `request` only returns what the matcher accepted.
-            _ => unreachable!("send_spec's matcher accepts only SPEC_ACK"),
         }
     }
 
@@ -247,30 +258,30 @@ impl UnitClient {
     pub fn version(&mut self) -> Result<Version, RequestError> {
         // The unit answers with the hardware field set; our own request (hardware 0)
         // can never be mistaken for it because only packets from the unit count.
-        match self.request(
+        self.ask(
             Version::REQUEST,
-            |m| matches!(m, Message::Version(_)),
+            |m| match m {
+                Message::Version(v) => Some(*v),
+                _ => None,
+            },
             ANSWER_TIMEOUT,
             TRIES,
-        )? {
-            Message::Version(v) => Ok(v),
-            _ => unreachable!("matcher accepts only VERSION"),
-        }
+        )
     }
 
     /// EEPROM_ERASE (ICD §6.1.4): returns the unit's result code, 0 meaning success.
     /// Sent once: the unit takes long to answer (see [`ERASE_TIMEOUT`]) and a second
     /// erase while the first runs would gain nothing.
     pub fn erase_eeprom(&mut self) -> Result<u8, RequestError> {
-        match self.request(
+        self.ask(
             EepromErase { response_code: 0 },
-            |m| matches!(m, Message::EepromErase(_)),
+            |m| match m {
+                Message::EepromErase(e) => Some(e.response_code),
+                _ => None,
+            },
             ERASE_TIMEOUT,
             1,
-        )? {
-            Message::EepromErase(e) => Ok(e.response_code),
-            _ => unreachable!("matcher accepts only EEPROM_ERASE"),
-        }
+        )
     }
 
     /// DEVICE_SPEC_QUERY for `id` (ICD §6.2.6). The answer's type depends on the id
@@ -287,47 +298,48 @@ impl UnitClient {
 
     /// DEVICE_NAME_QUERY for `id` (ICD §6.2.9): the stored 16 bytes.
     pub fn query_name(&mut self, id: u8) -> Result<[u8; 16], RequestError> {
-        match self.request(
+        self.ask(
             DeviceNameQuery { device_id: id },
-            move |m| matches!(m, Message::DeviceName(n) if n.device_id == id),
+            move |m| match m {
+                Message::DeviceName(n) if n.device_id == id => Some(n.name),
+                _ => None,
+            },
             ANSWER_TIMEOUT,
             TRIES,
-        )? {
-            Message::DeviceName(n) => Ok(n.name),
-            _ => unreachable!("matcher accepts only DEVICE_NAME"),
-        }
+        )
     }
 
     /// DEVICE_ENABLE with flag 2 for `id` (ICD §6.2.10): whether the page shows it.
     pub fn query_enable(&mut self, id: u8) -> Result<bool, RequestError> {
-        match self.request(
+        self.ask(
             DeviceEnable {
                 device_id: id,
                 flag: EnableFlag::Query,
             },
-            move |m| {
-                matches!(m, Message::DeviceEnable(e) if e.device_id == id
-                    && matches!(e.flag, EnableFlag::Enabled | EnableFlag::Disabled))
+            move |m| match m {
+                Message::DeviceEnable(e) if e.device_id == id => match e.flag {
+                    EnableFlag::Enabled => Some(true),
+                    EnableFlag::Disabled => Some(false),
+                    _ => None,
+                },
+                _ => None,
             },
             ANSWER_TIMEOUT,
             TRIES,
-        )? {
-            Message::DeviceEnable(e) => Ok(e.flag == EnableFlag::Enabled),
-            _ => unreachable!("matcher accepts only DEVICE_ENABLE"),
-        }
+        )
     }
 
     /// DEVICE_STATUS_QUERY (ICD Table 2): every circuit's on/off and current now.
     pub fn device_status(&mut self) -> Result<DeviceStatus, RequestError> {
-        match self.request(
+        self.ask(
             DeviceStatusQuery,
-            |m| matches!(m, Message::DeviceStatus(_)),
+            |m| match m {
+                Message::DeviceStatus(s) => Some(*s),
+                _ => None,
+            },
             ANSWER_TIMEOUT,
             TRIES,
-        )? {
-            Message::DeviceStatus(s) => Ok(s),
-            _ => unreachable!("matcher accepts only DEVICE_STATUS"),
-        }
+        )
     }
 
     /// The next SYSTEM_STATUS the unit broadcasts (1 Hz, ICD Table 24), waiting up to
@@ -571,7 +583,7 @@ pub fn setting_name(m: &Message) -> String {
 mod tests {
     use super::*;
     use crate::link::{PipeEnd, duplex_pipe, pipe_connector};
-    use crate::protocol::message::{DeviceSpec, Ping, SwitchId};
+    use crate::protocol::message::{DeviceSpec, Ping, SpecAck, SwitchId};
     use crate::protocol::{Decoder, Event};
     use std::io::{Read, Write};
 
