@@ -78,7 +78,7 @@ pub mod writer;
 use std::path::Path;
 
 pub use diff::{Change, diff};
-pub use plan::{PlanError, RestoreWrite, plan};
+pub use plan::{RestoreWrite, plan};
 pub use provenance::Provenance;
 pub use reader::{from_toml, from_toml_made};
 pub use writer::{normalized, to_toml, to_toml_made};
