@@ -33,8 +33,6 @@
 
 use std::time::SystemTime;
 
-use serde_json::{Value, json};
-
 use crate::protocol::describe::describe;
 use crate::protocol::message::{EnableFlag, Message, Packet, TrimType};
 
@@ -94,8 +92,8 @@ pub fn is_command(m: &Message) -> bool {
 }
 
 /// One line of the audit log: a command as it went, or a motor run's start or end.
-/// The logbook keeps it in `commands` ([`crate::logbook::schema`]); [`Line::to_json`]
-/// is the JSON object the audit files had, one a line (`vpx-efis log --jsonl`).
+/// The logbook keeps it in `commands` ([`crate::logbook::schema`]);
+/// [`crate::logbook::jsonl`] gives it back as the JSON object the audit files had.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Line {
     pub at: SystemTime,
@@ -112,34 +110,6 @@ pub struct Line {
     pub run_origin: Option<&'static str>,
     pub moves: Option<u64>,
     pub seconds: Option<f64>,
-}
-
-impl Line {
-    /// The audit file's JSON object, keys in its order.
-    pub fn to_json(&self) -> Value {
-        let mut v = json!({
-            "time": crate::utc::utc_text(self.at),
-            "origin": self.origin,
-            "command": self.command,
-        });
-        if let Some(f) = &self.frame {
-            v["frame"] = f.as_str().into();
-        }
-        v["result"] = self.result.as_str().into();
-        if let Some(r) = &self.run {
-            v["run"] = r.as_str().into();
-        }
-        if let Some(o) = self.run_origin {
-            v["run_origin"] = o.into();
-        }
-        if let Some(m) = self.moves {
-            v["moves"] = m.into();
-        }
-        if let Some(s) = self.seconds {
-            v["seconds"] = s.into();
-        }
-        v
-    }
 }
 
 /// A command as the stop gate saw it, before it becomes [`Line`]s.
@@ -317,8 +287,8 @@ mod tests {
     #[test]
     fn a_run_is_two_lines() {
         let mut lines = Lines::default();
-        let mut l: Vec<Value> = Vec::new();
-        let mut take = |lines: &mut Lines, i| l.extend(lines.take(i).iter().map(Line::to_json));
+        let mut l: Vec<Line> = Vec::new();
+        let mut take = |lines: &mut Lines, i| l.extend(lines.take(i));
         let power = Packet::request(
             7,
             DevicePower {
@@ -370,12 +340,9 @@ mod tests {
         );
         take(&mut lines, item(Origin::Remote, flap(true), Ok(())));
         l.extend(
-            lines
-                .close(SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1_796_000_002))
-                .iter()
-                .map(Line::to_json),
+            lines.close(SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1_796_000_002)),
         );
-        let runs: Vec<&str> = l.iter().map(|v| v["run"].as_str().unwrap_or("-")).collect();
+        let runs: Vec<&str> = l.iter().map(|v| v.run.as_deref().unwrap_or("-")).collect();
         assert_eq!(
             runs,
             [
@@ -390,50 +357,30 @@ mod tests {
             ],
             "{l:#?}"
         );
-        assert_eq!(l[0]["origin"], "key");
-        assert_eq!(l[0]["result"], "sent");
-        assert_eq!(l[0]["time"], "2026-11-30T00:53:20.000Z");
-        assert!(
-            l[0]["command"]
-                .as_str()
-                .unwrap()
-                .starts_with("DEVICE_POWER: "),
-            "{l:#?}"
-        );
+        assert_eq!(l[0].origin, "key");
+        assert_eq!(l[0].result, "sent");
+        assert_eq!(crate::utc::utc_text(l[0].at), "2026-11-30T00:53:20.000Z");
+        assert!(l[0].command.starts_with("DEVICE_POWER: "), "{l:#?}");
         // The whole frame as sent: sync E7 7E, DEVICE_POWER's id 13 00, command number
         // 07, then (after the header's other bytes) the payload: device 5, 1 for on.
-        let frame = l[0]["frame"].as_str().unwrap();
+        let frame = l[0].frame.as_deref().unwrap();
         assert!(frame.starts_with("e77e130007"), "{frame}");
         assert_eq!(&frame[frame.len() - 6..frame.len() - 2], "0501", "{frame}");
-        assert_eq!(l[2]["moves"], 10);
-        assert!(l[2].get("frame").is_none(), "a run's summary has no frame");
-        assert_eq!(
-            (l[4]["moves"].as_u64(), l[4]["origin"].as_str()),
-            (Some(3), Some("check"))
-        );
-        assert_eq!(l[5]["result"], "refused: the emergency stop has gone out");
-        assert_eq!(l[7]["origin"], "remote");
-        assert_eq!(l[7]["result"], "no stop recorded before the log closed");
-        assert_eq!(l[7]["seconds"], 2.0);
-        let keys: Vec<&str> = l[4]
-            .as_object()
-            .unwrap()
-            .keys()
-            .map(String::as_str)
-            .collect();
-        assert_eq!(
-            keys,
-            [
-                "command",
-                "frame",
-                "moves",
-                "origin",
-                "result",
-                "run",
-                "run_origin",
-                "seconds",
-                "time"
-            ]
+        assert_eq!(l[2].moves, Some(10));
+        assert!(l[2].frame.is_none(), "a run's summary has no frame");
+        assert_eq!((l[4].moves, l[4].origin), (Some(3), "check"));
+        assert_eq!(l[5].result, "refused: the emergency stop has gone out");
+        assert_eq!(l[7].origin, "remote");
+        assert_eq!(l[7].result, "no stop recorded before the log closed");
+        assert_eq!(l[7].seconds, Some(2.0));
+        // A run's stop carries every field: the frame, the run, whose run, moves, time.
+        let stop = &l[4];
+        assert!(
+            stop.frame.is_some()
+                && stop.run.is_some()
+                && stop.run_origin.is_some()
+                && stop.seconds.is_some(),
+            "{stop:#?}"
         );
     }
 }

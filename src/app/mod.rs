@@ -56,15 +56,14 @@ pub use check::{
 pub use gateway::xfsp_setup;
 pub use options::{PageOptions, XfspOptions};
 pub use page::{App, AppOptions, Flow, Wake};
-pub use queries::{QueryPacer, connect_queries};
+pub use queries::QueryPacer;
 pub use record::Recorder;
 pub use replay::Capture;
 pub use runner::{builtin_sim, run};
-pub use signals::{StopFlag, Terminated, Termination, listen as listen_for_termination, stop_flag};
+pub use signals::{StopFlag, Terminated, Termination, stop_flag};
 pub use stop_gate::StopGate;
 pub use terminal::{
-    TerminalGuard, clear_emergency_stop, install_panic_hook, panicked, restore as restore_terminal,
-    set_emergency_stop,
+    TerminalGuard, clear_emergency_stop, install_panic_hook, panicked, set_emergency_stop,
 };
 
 fn lock(m: &Mutex<Model>) -> MutexGuard<'_, Model> {

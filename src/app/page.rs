@@ -119,7 +119,7 @@ pub struct App {
     /// The controller's state the last frame showed (read from it when drawing).
     pub(super) drawn_control: ControlState,
     pub(super) gateway: Option<gateway::PageGateway>,
-    /// `--record`: the link sink writes every byte here (the app keeps it to flush).
+    /// `--record`: the link sink writes every byte here.
     pub(super) recorder: Option<Recorder>,
     /// `--replay`: the page is read-only and runs on the capture's clock.
     pub(super) replay: Option<replay::Replay>,
@@ -251,11 +251,6 @@ impl App {
             // A replay runs no motors: nothing to say about key repeats.
             repeat: self.replay.is_none().then(|| c.repeat_timing()),
         })
-    }
-
-    /// Wake-ups from the link, for a select loop.
-    pub fn wakes(&self) -> &Receiver<Wake> {
-        &self.wake_rx
     }
 
     /// Queues `packets` for `origin` (the audit log records the commands among them).

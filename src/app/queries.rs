@@ -105,11 +105,6 @@ fn connect_asks() -> Vec<Ask> {
     q
 }
 
-/// The connect-time requests, in the order they go out.
-pub fn connect_queries() -> Vec<Message> {
-    connect_asks().into_iter().map(Ask::message).collect()
-}
-
 /// The connect-time requests let out as answers come back, with their own command
 /// numbers; again every [`REFRESH_EVERY`].
 #[derive(Debug, Default)]
@@ -247,7 +242,7 @@ mod tests {
 
     #[test]
     fn connect_asks_for_everything_the_page_shows() {
-        let q = connect_queries();
+        let q: Vec<Message> = connect_asks().into_iter().map(Ask::message).collect();
         let count = |name: &str| q.iter().filter(|m| m.name() == name).count();
         assert_eq!(q.len(), 91);
         assert_eq!(count("VERSION"), 1);

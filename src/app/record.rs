@@ -101,14 +101,6 @@ impl Recorder {
         }
         Ok(())
     }
-
-    /// Writes whatever is buffered now (on quit).
-    pub fn flush(&self) {
-        if let State::Recording { writer, dirty, .. } = &mut *self.lock() {
-            let _ = writer.flush(Instant::now());
-            *dirty = false;
-        }
-    }
 }
 
 fn flush_loop(state: Weak<Mutex<State>>) {

@@ -78,7 +78,7 @@ pub mod writer;
 use std::path::Path;
 
 pub use diff::{Change, diff};
-pub use plan::{PlanError, RestoreWrite, plan};
+pub use plan::{RestoreWrite, plan};
 pub use provenance::Provenance;
 pub use reader::{from_toml, from_toml_made};
 pub use writer::{normalized, to_toml, to_toml_made};
@@ -100,17 +100,13 @@ pub struct Backup {
 /// What a backup file is called in what is said of it.
 const KIND: &str = "backup file";
 
-/// Reads and checks a backup file as a whole (see [`from_toml`]).
-pub fn load(path: &Path) -> Result<Backup, FileError> {
-    load_made(path).map(|(b, _)| b)
-}
-
-/// [`load`], and where the backup came from if the file says.
+/// Reads and checks a backup file as a whole (see [`from_toml_made`]), and where the
+/// backup came from if the file says.
 pub fn load_made(path: &Path) -> Result<(Backup, Option<Provenance>), FileError> {
     read_made(path, std::fs::read_to_string(path))
 }
 
-/// [`load`] of a file someone else read: its text, or why it could not be read.
+/// [`load_made`] of a file someone else read: its text, or why it could not be read.
 pub fn read(path: &Path, text: std::io::Result<String>) -> Result<Backup, FileError> {
     read_made(path, text).map(|(b, _)| b)
 }
@@ -159,13 +155,9 @@ pub fn software_note(backup: &Version, unit: &Version) -> Option<String> {
     })
 }
 
-/// Writes a backup so that an interrupted write leaves either the old file or the new
-/// one, never half of one ([`crate::files::write_atomically`]).
-pub fn save(path: &Path, backup: &Backup) -> std::io::Result<()> {
-    crate::files::write_atomically(path, to_toml(backup).as_bytes())
-}
-
-/// [`save`] with the `[made]` section: when, from what, by which program.
+/// Writes a backup with its `[made]` section (when, from what, by which program) so
+/// that an interrupted write leaves either the old file or the new one, never half of
+/// one ([`crate::files::write_atomically`]).
 pub fn save_made(path: &Path, backup: &Backup, made: &Provenance) -> std::io::Result<()> {
     crate::files::write_atomically(path, to_toml_made(backup, made).as_bytes())
 }
@@ -173,7 +165,6 @@ pub fn save_made(path: &Path, backup: &Backup, made: &Provenance) -> std::io::Re
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::files::entries;
     use crate::protocol::config::UnitConfig;
     use crate::protocol::message::HardwareVersion;
 
@@ -183,20 +174,6 @@ mod tests {
             software_major: major,
             software_minor: minor,
         }
-    }
-
-    #[test]
-    fn save_replaces_the_file_and_leaves_no_temporary_behind() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("unit.toml");
-        std::fs::write(&path, "old").unwrap();
-        let b = Backup {
-            version: v(HardwareVersion::VpxPro, 1, 2),
-            config: UnitConfig::default(),
-        };
-        save(&path, &b).unwrap();
-        assert_eq!(entries(dir.path()), ["unit.toml"]);
-        assert_eq!(load(&path).unwrap(), b);
     }
 
     #[test]
@@ -245,7 +222,7 @@ mod tests {
         std::fs::write(&path, &bad).unwrap();
         // Lines found in the text, not by the reader.
         let line = |start: &str| 1 + bad.lines().position(|l| l.starts_with(start)).unwrap();
-        let err = load(&path).unwrap_err().to_string();
+        let err = load_made(&path).unwrap_err().to_string();
         let at = format!("backup file {}, ", path.display());
         let want = [
             format!(

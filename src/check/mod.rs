@@ -25,11 +25,10 @@ mod timing;
 pub mod trend;
 pub mod words;
 
-pub use calls::{CheckEffects, Command, LoadsToOpen};
-pub use circuits::judge as judge_current;
+pub use calls::{CheckEffects, Command};
 pub use flow::{Cause, CheckFlow, Options};
 pub use motors::judge as judge_motor;
-pub use plan::{Choices, SUGGEST_EXCLUDING};
+pub use plan::Choices;
 pub use timing::Timing;
 
 #[cfg(test)]

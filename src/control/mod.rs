@@ -43,7 +43,7 @@ use crate::protocol::message::Packet;
 pub use against::Against;
 pub use commands::{Refusal, command, device_power, motor_check, put_back_off, reset, switchable};
 pub use keymap::{Action, KeyContext, KeyPhase, Selected};
-pub use release::{release_mode, release_mode_here};
+pub use release::release_mode_here;
 pub use streamer::{
     Direction, MAX_WIRE_INTERVAL, MotorStreamer, RESEND_PERIOD, StopReason, StopRecord,
     StreamerConfig,
@@ -228,11 +228,6 @@ impl Controller {
 
     pub fn release_mode(&self) -> ReleaseMode {
         self.streamer.release_mode()
-    }
-
-    /// Set once the app knows whether the terminal reports key releases.
-    pub fn set_release_mode(&mut self, now: Instant, mode: ReleaseMode) -> Vec<Packet> {
-        self.streamer.set_release_mode(now, mode)
     }
 
     pub fn streamer(&self) -> &MotorStreamer {

@@ -439,14 +439,6 @@ impl MotorStreamer {
             })
     }
 
-    /// Switching modes forgets the held key: the two modes judge "held" differently.
-    pub fn set_release_mode(&mut self, now: Instant, mode: ReleaseMode) -> Vec<Packet> {
-        let out = self.stop(now, StopReason::OtherKey);
-        self.config.release_mode = mode;
-        self.held = None;
-        out
-    }
-
     /// The next command number, shared by every request the page sends so the unit's
     /// echoes (icd-reading R14) can be told apart.
     pub fn next_cnt(&mut self) -> u8 {

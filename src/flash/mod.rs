@@ -8,9 +8,9 @@ pub mod hex;
 pub mod updater;
 pub mod whole;
 
-pub use hardware::{HardwareError, check_hardware, file_hardware, hardware_from_file_name};
-pub use hex::{HexError, Image, load_hex, parse_hex};
+pub use hardware::{check_hardware, file_hardware};
+pub use hex::{Image, load_hex, parse_hex};
 pub use updater::{
-    Event, Found, Left, Options, Port, Progress, Stream, UpdateError, UpdateReport, detect, update,
+    Event, Found, Left, Options, Port, Progress, UpdateError, UpdateReport, detect, update,
 };
 pub use whole::Coverage;

@@ -51,7 +51,7 @@
 //!   FLASH_ERASE (a chip erase of the ATmega2560 page by page is about 4.6 s), SOFTWARE_UPDATE
 //!   sent up to 3 times, 20 s for the rebooted unit to answer VERSION.
 
-use std::io::{self, Read, Write};
+use std::io::{Read, Write};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -96,26 +96,6 @@ impl Port for serialport::TTYPort {
             .map(|n| n as usize)
     }
 }
-
-/// Any `Read + Write` (an in-process pipe, a test double) as a [`Port`].
-pub struct Stream<T>(pub T);
-
-impl<T: Read> Read for Stream<T> {
-    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
-        self.0.read(buf)
-    }
-}
-
-impl<T: Write> Write for Stream<T> {
-    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        self.0.write(buf)
-    }
-    fn flush(&mut self) -> io::Result<()> {
-        self.0.flush()
-    }
-}
-
-impl<T: Read + Write> Port for Stream<T> {}
 
 /// Timeouts and bounds; see the module documentation for why these values.
 #[derive(Debug, Clone)]

@@ -17,7 +17,7 @@
 //! pulled cable loses at most the last second. A reader stops cleanly at a record
 //! cut short by such a crash and says where.
 
-use std::io::{self, Read, Write};
+use std::io::{self, Write};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use super::connection::Crossing;
@@ -96,8 +96,6 @@ pub enum CaptureError {
     Truncated { offset: u64 },
     #[error("the capture is corrupt at byte {offset}: {what}")]
     Corrupt { offset: u64, what: String },
-    #[error("cannot read the capture: {0}")]
-    Io(String),
 }
 
 /// Whether bytes start like a capture (so `decode` can tell captures from raw bytes).
@@ -163,18 +161,6 @@ fn record_at(rest: &[u8], at: u64, last: Duration) -> Result<Record, CaptureErro
         offset,
         bytes: bytes.to_vec(),
     })
-}
-
-/// Reads a capture from a reader (whole file into memory: captures are small).
-pub fn read_capture(mut r: impl Read) -> Result<(Vec<Record>, Option<CaptureError>), CaptureError> {
-    let mut data = Vec::new();
-    r.read_to_end(&mut data)
-        .map_err(|e| CaptureError::Io(e.to_string()))?;
-    let (records, err, _) = parse_capture(&data);
-    if let Some(CaptureError::NotACapture) = err {
-        return Err(CaptureError::NotACapture);
-    }
-    Ok((records, err))
 }
 
 #[cfg(test)]
@@ -249,8 +235,8 @@ mod tests {
             "{err:?}"
         );
         assert_eq!(
-            read_capture(&b"hello world, not a capture"[..]).unwrap_err(),
-            CaptureError::NotACapture
+            parse_capture(b"hello world, not a capture").1,
+            Some(CaptureError::NotACapture)
         );
     }
 }

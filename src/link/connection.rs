@@ -87,7 +87,6 @@ pub enum SendError {
 
 enum Outgoing {
     Packet(Packet),
-    Raw(Vec<u8>),
     Port(Option<Box<dyn Write + Send>>),
     Shutdown,
 }
@@ -103,13 +102,6 @@ impl LinkHandle {
     pub fn send(&self, packet: Packet) -> Result<(), SendError> {
         self.tx
             .send(Outgoing::Packet(packet))
-            .map_err(|_| SendError::Closed)
-    }
-
-    /// Queues raw bytes (e.g. a bootloader frame, or test garbage).
-    pub fn send_raw(&self, bytes: Vec<u8>) -> Result<(), SendError> {
-        self.tx
-            .send(Outgoing::Raw(bytes))
             .map_err(|_| SendError::Closed)
     }
 }
@@ -191,7 +183,6 @@ fn writer_loop(rx: Receiver<Outgoing>, sink: Sink) {
                 let n = p.emit_into(&mut frame);
                 (Some(p), frame[..n].to_vec())
             }
-            Outgoing::Raw(b) => (None, b),
         };
         let at = Instant::now();
         let result = match port.as_mut() {

@@ -18,7 +18,7 @@ mod serial;
 mod tcp;
 
 pub use address::PortAddr;
-pub use capture::{CaptureError, CaptureWriter, Record, is_capture, parse_capture, read_capture};
+pub use capture::{CaptureError, CaptureWriter, Record, is_capture, parse_capture};
 pub use connection::{Connector, Crossing, Link, LinkEvent, LinkHandle, RxItem, SendError};
 pub use open::{RawPort, check_port, open_raw, port_connector};
 pub use pipe::{PipeEnd, PipeReader, PipeWriter, duplex_pipe, pipe_connector, pipe_pair};
@@ -27,7 +27,4 @@ pub use pty::{PtyPair, open_pty_pair};
 pub use pty::{PtyUnit, open_pty_unit};
 pub use request::{RequestError, SpecError, UnitClient};
 pub use serial::{OpenError, PortInfo, list_ports, open_serial, serial_connector};
-pub use tcp::{
-    CONNECT_TIMEOUT, LineWriter, SILENCE_LIMIT, TcpLine, TcpOpenError, open_tcp, serve_line,
-    tcp_connector,
-};
+pub use tcp::{TcpLine, TcpOpenError, serve_line};

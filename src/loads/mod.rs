@@ -24,8 +24,8 @@ pub mod guess;
 pub mod wire;
 pub mod wiring;
 
-pub use analysis::{Analysis, Figure, Level, PhaseTotal, Row, analyse};
-pub use file::{LoadCircuit, LoadFile};
+pub use analysis::{Analysis, Figure, Level, analyse};
+pub use file::LoadCircuit;
 
 /// The phases of flight the analysis adds up, in the order they are flown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -54,11 +54,6 @@ impl Verdict {
             Verdict::NotEntered => "not entered",
         }
     }
-
-    /// Whether `wires` exits 1 for it.
-    pub fn fails(self) -> bool {
-        matches!(self, Verdict::Unprotected | Verdict::Drop)
-    }
 }
 
 /// One circuit's wire against its breaker and its current.
@@ -480,7 +475,6 @@ mod tests {
         assert_eq!(r.verdict, Verdict::Unprotected);
         let n = on_14v(WireRun::default(), 15, Some(4.0));
         assert_eq!(n.verdict, Verdict::NotEntered);
-        assert!(!n.verdict.fails());
         assert_eq!(n.drop_volts, None);
         // No current measured: no drop verdict, but the drop at the breaker is there.
         let idle = on_14v(run("22 AWG", Some(40.0), None), 5, None);

@@ -16,8 +16,7 @@ pub struct Which<'a> {
 }
 
 /// Calls `each` with every audit line chosen by `which`, oldest first, each one
-/// JSON object without its line break, exactly as [`crate::audit::Line::to_json`]
-/// writes it. Stops at `each`'s first error (a closed pipe) and returns it. Gives
+/// JSON object without its line break, keys as the audit files had them. Stops at `each`'s first error (a closed pipe) and returns it. Gives
 /// how many lines went.
 pub fn audit_lines(
     book: &Logbook,

@@ -20,7 +20,7 @@ pub mod schema;
 pub mod writer;
 
 pub use record::{Entry, What};
-pub use writer::{Recorder, RecorderThread, record_now};
+pub use writer::{Recorder, record_now};
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;

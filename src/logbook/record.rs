@@ -203,9 +203,4 @@ impl Unit {
             self.names.join("\n")
         )
     }
-
-    /// "VP-X Pro 1.4".
-    pub fn version_text(&self) -> String {
-        format!("{} {}", self.hardware, self.software)
-    }
 }

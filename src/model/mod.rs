@@ -28,11 +28,9 @@ mod rereader;
 mod resets;
 mod setting;
 pub use hold::{Hold, Holds};
-pub use reread::{REREAD_GIVE_UP, Reread};
-pub use rereader::{
-    CONNECT_GRACE, REREAD_BATCH, REREAD_BATCH_GAP, REREAD_GAP, REREAD_MAX_GAP, Rereader,
-};
-pub use resets::{AfterReset, RESET_SETTLE, ResetsSent, reset_sent_words};
+pub use reread::Reread;
+pub use rereader::{REREAD_BATCH, REREAD_BATCH_GAP, Rereader};
+pub use resets::{AfterReset, ResetsSent, reset_sent_words};
 pub use setting::Setting;
 #[cfg(test)]
 pub(crate) use setting::factory_answer;
@@ -102,17 +100,6 @@ pub struct MessageStat {
     pub count: u64,
     pub first: Instant,
     pub last: Instant,
-}
-
-impl MessageStat {
-    /// Average rate over the span seen, in messages per second.
-    pub fn rate_hz(&self) -> Option<f64> {
-        let span = self
-            .last
-            .saturating_duration_since(self.first)
-            .as_secs_f64();
-        (self.count > 1 && span > 0.0).then(|| (self.count - 1) as f64 / span)
-    }
 }
 
 #[derive(Debug, Clone, Default, PartialEq, Eq)]

@@ -30,7 +30,7 @@ impl Setting {
     /// Every setting the page reads at connect and a backup holds: DEVICE_SPEC of pins
     /// 1–28, FLAP_SPEC, both TRIM_SPECs, SYSTEM_SPEC, WIG_WAG_SPEC, the DEVICE_NAME of
     /// every device 0–30 and DEVICE_ENABLE of pins 4–28 (the same set as
-    /// `app::queries::connect_queries` asks for and `setup::unit_config` needs).
+    /// `app::queries` asks for at connect and `setup::write::unit_config` needs).
     pub fn all() -> impl Iterator<Item = Setting> {
         let specs = (1..TRIM_R).map(Setting::DeviceSpec);
         let motors = [

@@ -16,4 +16,4 @@ pub mod write;
 #[cfg(test)]
 mod tests;
 
-pub use write::{WriteQueue, unit_config};
+pub use write::WriteQueue;

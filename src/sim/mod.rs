@@ -71,8 +71,8 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::{Receiver, Sender, bounded, select, unbounded};
 
-pub use scenario::{MotorDirection, MotorId, MotorWiring, Scenario, load_scenario};
-pub use unit::{SimCommand, SimStats, Unit, UnitOptions, WireStats};
+pub use scenario::{MotorDirection, MotorId, Scenario, load_scenario};
+pub use unit::{SimCommand, SimStats, Unit, UnitOptions};
 
 use eeprom::{Eeprom, LoadOutcome};
 

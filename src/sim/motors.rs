@@ -7,7 +7,7 @@
 //!   "at least 4Hz", an interval of 250 ms at most, so a message exactly 250 ms after
 //!   the last (or a few ms later, through a USB adapter's jitter) must keep the motor
 //!   running. Decision: each "on" message keeps it running for [`STREAM_TIMEOUT`]
-//!   (300 ms, the 250 ms the EFIS is held to plus [`STREAM_MARGIN`]); when nothing
+//!   (300 ms, the 250 ms the EFIS is held to plus 50 ms of margin); when nothing
 //!   comes in that time the motor stops at that instant and a **starvation** is
 //!   counted: the real unit's runaway protection. A message that keeps the run going
 //!   but came more than [`STREAM_INTERVAL`] (250 ms) after the one before is counted
@@ -35,10 +35,9 @@ use crate::protocol::FaultCode;
 /// The longest interval the EFIS may leave between two TRIM_MOVE / FLAP_MOVE
 /// messages (ICD §6.4.2 "at least 4Hz", icd-reading R19). A longer one is *late*.
 pub const STREAM_INTERVAL: Duration = Duration::from_millis(250);
-/// How much later than [`STREAM_INTERVAL`] the unit still keeps a run going: an EFIS
-/// streaming at exactly 4 Hz must not stutter on a few ms of line or scheduler jitter.
-pub const STREAM_MARGIN: Duration = Duration::from_millis(50);
-/// A streamed move lasts this long after the last "on" message.
+/// A streamed move lasts this long after the last "on" message: 50 ms later than
+/// [`STREAM_INTERVAL`], so an EFIS streaming at exactly 4 Hz does not stutter on a few
+/// ms of line or scheduler jitter.
 pub const STREAM_TIMEOUT: Duration = Duration::from_millis(300);
 /// How long an uncommanded run lasts before the unit faults the motor.
 pub const RUNAWAY_DETECT: Duration = Duration::from_millis(500);
@@ -155,11 +154,6 @@ impl Motor {
     /// The 0–255 byte FLAP_TRIM_STATUS carries.
     pub fn position_byte(&self) -> u8 {
         self.position.round().clamp(0.0, 255.0) as u8
-    }
-
-    /// Direction of travel while driven.
-    pub fn direction(&self) -> Option<MotorDirection> {
-        self.drive.map(|d| d.dir)
     }
 
     pub fn switch_held(&self) -> Option<MotorDirection> {

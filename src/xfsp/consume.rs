@@ -57,17 +57,6 @@ impl AirInput {
     pub fn from_ident(ident: Ident) -> Option<AirInput> {
         AirInput::ALL.into_iter().find(|a| a.ident() == ident)
     }
-
-    /// The draft's name.
-    pub fn name(self) -> &'static str {
-        match self {
-            AirInput::Ias => "IAS",
-            AirInput::GroundSpeed => "GROUNDSPEED",
-            AirInput::PressureAltitude => "P-ALT",
-            AirInput::FuelPressure => "FUELPRES",
-            AirInput::Rpm => "ENGRPM",
-        }
-    }
 }
 
 /// One value heard on the network.

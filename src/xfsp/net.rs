@@ -15,12 +15,12 @@
 //!   listens.
 //!
 //! Received datagrams go through a bounded channel; when the consumer falls behind,
-//! the newest are dropped and counted (a flood cannot exhaust memory).
+//! the newest are dropped (a flood cannot exhaust memory).
 
 use std::io;
 use std::net::{Ipv4Addr, SocketAddr, SocketAddrV4, UdpSocket};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -93,8 +93,6 @@ pub struct XfspNet {
     socket: UdpSocket,
     dest: Option<SocketAddr>,
     incoming: Receiver<Datagram>,
-    dropped: Arc<AtomicU64>,
-    send_errors: AtomicU64,
     stop: Arc<AtomicBool>,
     thread: Option<JoinHandle<()>>,
 }
@@ -128,9 +126,8 @@ impl XfspNet {
         let reader = socket.try_clone()?;
         let (tx, incoming) = bounded(QUEUE);
         let stop = Arc::new(AtomicBool::new(false));
-        let dropped = Arc::new(AtomicU64::new(0));
         let thread = {
-            let (stop, dropped) = (stop.clone(), dropped.clone());
+            let stop = stop.clone();
             std::thread::Builder::new()
                 .name("xfsp-rx".into())
                 .spawn(move || {
@@ -144,10 +141,7 @@ impl XfspNet {
                                     bytes: buf.get(..n).unwrap_or_default().to_vec(),
                                 };
                                 match tx.try_send(d) {
-                                    Ok(()) => {}
-                                    Err(TrySendError::Full(_)) => {
-                                        dropped.fetch_add(1, Ordering::Relaxed);
-                                    }
+                                    Ok(()) | Err(TrySendError::Full(_)) => {}
                                     // Nobody is listening any more.
                                     Err(TrySendError::Disconnected(_)) => return,
                                 }
@@ -164,8 +158,6 @@ impl XfspNet {
             socket,
             dest,
             incoming,
-            dropped,
-            send_errors: AtomicU64::new(0),
             stop,
             thread: Some(thread),
         })
@@ -180,30 +172,20 @@ impl XfspNet {
         self.socket.local_addr()
     }
 
-    /// Sends each datagram to the target; errors are counted, and the first returned.
+    /// Sends each datagram to the target; returns the first error.
     pub fn send_all(&self, datagrams: &[Vec<u8>]) -> io::Result<()> {
         let Some(dest) = self.dest else {
             return Err(io::Error::other("this socket only listens"));
         };
         let mut first = Ok(());
         for d in datagrams {
-            if let Err(e) = self.socket.send_to(d, dest) {
-                self.send_errors.fetch_add(1, Ordering::Relaxed);
-                if first.is_ok() {
-                    first = Err(e);
-                }
+            if let Err(e) = self.socket.send_to(d, dest)
+                && first.is_ok()
+            {
+                first = Err(e);
             }
         }
         first
-    }
-
-    /// Datagrams dropped because the main loop fell behind.
-    pub fn dropped(&self) -> u64 {
-        self.dropped.load(Ordering::Relaxed)
-    }
-
-    pub fn send_errors(&self) -> u64 {
-        self.send_errors.load(Ordering::Relaxed)
     }
 }
 

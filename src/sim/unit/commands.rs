@@ -34,8 +34,6 @@ pub enum SimCommand {
     /// The unit's name for a device changes, as if set from another display (stored
     /// in its EEPROM, and nothing on the wire says so).
     Rename(DeviceName),
-    /// These bytes go out on the wire as they are.
-    Garbage(Vec<u8>),
     /// This many pseudo-random bytes go out on the wire.
     GarbageRandom(usize),
     /// The running alternator's regulator now holds this many volts.
@@ -166,7 +164,6 @@ impl Unit {
                 ));
                 self.drop_spec_acks = on;
             }
-            SimCommand::Garbage(bytes) => self.emit_raw(&bytes, now),
             SimCommand::GarbageRandom(n) => {
                 let bytes: Vec<u8> = (0..n).map(|_| self.rng.next() as u8).collect();
                 self.emit_raw(&bytes, now);
