@@ -16,6 +16,10 @@ use std::time::{Duration, Instant};
 pub const ANSWER_TIMEOUT: Duration = Duration::from_secs(1);
 /// Sends of one request before "no answer", the first included.
 pub const TRIES: u8 = 3;
+/// EEPROM_ERASE rewrites the whole EEPROM of an ATmega2560 before it answers (4 KiB
+/// at about 3.4 ms a byte is ~14 s), so its answer may take far longer than any
+/// other's. It is sent once: a second erase while the first runs would gain nothing.
+pub const ERASE_TIMEOUT: Duration = Duration::from_secs(20);
 
 /// One request in flight: which send this is and when it went out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -22,7 +22,7 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, unbounded};
 
 use super::connection::{Connector, Link, LinkEvent, RxItem};
-use crate::exchange::{ANSWER_TIMEOUT, TRIES, Try, Verdict};
+use crate::exchange::{ANSWER_TIMEOUT, ERASE_TIMEOUT, TRIES, Try, Verdict};
 use crate::protocol::config::UnitConfig;
 use crate::protocol::device::{
     self, DEVICE_COUNT, FLAPS, SYSTEM_SPEC_ID, TRIM_P, TRIM_R, WIG_WAG_SPEC_ID, enable_flag_allowed,
@@ -35,9 +35,6 @@ use crate::protocol::{Error as WireError, Packet};
 
 /// How long [`UnitClient::new`] waits for the port to open.
 pub const CONNECT_TIMEOUT: Duration = Duration::from_secs(3);
-/// EEPROM_ERASE rewrites the whole EEPROM of an ATmega2560 (4 KiB at about 3.4 ms a
-/// byte is ~14 s), so its answer may take far longer than any other.
-pub const ERASE_TIMEOUT: Duration = Duration::from_secs(20);
 
 /// Why a request got no usable answer.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]

@@ -6,14 +6,12 @@
 use std::time::{Duration, Instant};
 
 use super::view::{Diagnostic, SetupView};
-use crate::exchange::{ANSWER_TIMEOUT, TRIES, Try, Verdict};
+use crate::exchange::{ANSWER_TIMEOUT, ERASE_TIMEOUT, TRIES, Try, Verdict};
 use crate::model::Model;
 use crate::protocol::message::{EepromErase, Message, Ping, Version};
 
 /// PING is answered at once or not at all.
 pub const PING_TIMEOUT: Duration = Duration::from_secs(1);
-/// EEPROM_ERASE rewrites the whole EEPROM before it answers.
-pub const ERASE_TIMEOUT: Duration = Duration::from_secs(3);
 
 /// How an EEPROM_ERASE ended, for the app to re-read the unit and say so.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -194,6 +192,9 @@ mod tests {
         );
     }
 
+    /// A whole erase of the ATmega2560's 4 KiB EEPROM at 3.4 ms a byte takes ~14 s:
+    /// an answer then is still the erase's, and the wait ends only at 20 s, once,
+    /// never sent again.
     #[test]
     fn an_erase_ends_in_its_response_code_or_no_answer() {
         let t0 = Instant::now();
@@ -201,13 +202,23 @@ mod tests {
         let mut v = SetupView::default();
         let mut p = Diagnostics::default();
         p.erase(&mut v, t0);
-        assert_eq!(p.tick(&m, &mut v, ms(t0, 2999)).1, None);
-        assert_eq!(p.tick(&m, &mut v, ms(t0, 3000)).1, Some(EraseEnd::NoAnswer));
-        assert_eq!(v.erase, Diagnostic::NoAnswer);
-        p.erase(&mut v, ms(t0, 4000));
-        hear(&mut m, ms(t0, 4500), EepromErase { response_code: 2 });
+        assert_eq!(p.tick(&m, &mut v, ms(t0, 14_000)), (vec![], None));
+        hear(&mut m, ms(t0, 14_100), EepromErase { response_code: 0 });
         assert_eq!(
-            p.tick(&m, &mut v, ms(t0, 4510)).1,
+            p.tick(&m, &mut v, ms(t0, 14_110)).1,
+            Some(EraseEnd::Answered(0))
+        );
+        p.erase(&mut v, ms(t0, 30_000));
+        assert_eq!(p.tick(&m, &mut v, ms(t0, 49_999)), (vec![], None));
+        assert_eq!(
+            p.tick(&m, &mut v, ms(t0, 50_000)).1,
+            Some(EraseEnd::NoAnswer)
+        );
+        assert_eq!(v.erase, Diagnostic::NoAnswer);
+        p.erase(&mut v, ms(t0, 60_000));
+        hear(&mut m, ms(t0, 60_500), EepromErase { response_code: 2 });
+        assert_eq!(
+            p.tick(&m, &mut v, ms(t0, 60_510)).1,
             Some(EraseEnd::Answered(2))
         );
     }
