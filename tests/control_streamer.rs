@@ -187,8 +187,8 @@ impl Loop {
                         self.ctl.on_focus_gained(now);
                         Vec::new()
                     }
-                    Ev::LinkError => self.ctl.on_link_error(now),
-                    Ev::Quit => self.ctl.on_quit(now),
+                    Ev::LinkError => self.ctl.stop(now, StopReason::LinkError),
+                    Ev::Quit => self.ctl.stop(now, StopReason::Quit),
                     Ev::Unit(c) => {
                         self.unit = match c {
                             UnitChange::Healthy => Unit::Healthy,

@@ -414,7 +414,7 @@ fn a_network_run_ends_on_a_key_at_the_page() {
 fn a_network_run_ends_on_a_link_error() {
     let mut r = rig(60, StreamerConfig::default());
     let (why, _) = r.run_acting(ms(1000), |r| {
-        let p = r.ctl.on_link_error(r.now);
+        let p = r.ctl.stop(r.now, StopReason::LinkError);
         r.wire(p);
     });
     assert_eq!(why, StopReason::LinkError);

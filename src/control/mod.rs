@@ -15,8 +15,9 @@
 //!
 //! - call [`Controller::tick`] at `next_deadline()` and after applying received
 //!   packets to the model (so a motor fault stops the run as soon as it is heard);
-//! - call [`Controller::on_link_error`] when a write fails, [`Controller::on_focus_lost`]
-//!   on `Event::FocusLost`, [`Controller::on_quit`] before leaving;
+//! - call [`Controller::stop`] with its [`StopReason`] when a write fails
+//!   (`LinkError`) and before leaving (`Quit`), and [`Controller::on_focus_lost`] on
+//!   `Event::FocusLost`;
 //! - install a panic hook and a drop guard that write
 //!   [`MotorStreamer::emergency_stop_packets`].
 
@@ -760,10 +761,6 @@ impl Controller {
             .filter(|k| self.streamer.leased() && self.streamer.running_key() == Some(*k))
     }
 
-    pub fn on_link_error(&mut self, now: Instant) -> Vec<Packet> {
-        self.stop(now, StopReason::LinkError)
-    }
-
     pub fn on_focus_lost(&mut self, now: Instant) -> Vec<Packet> {
         self.unfocused = true;
         self.stop(now, StopReason::FocusLost)
@@ -773,10 +770,6 @@ impl Controller {
     pub fn on_focus_gained(&mut self, now: Instant) {
         self.unfocused = false;
         self.streamer.focus_gained(now);
-    }
-
-    pub fn on_quit(&mut self, now: Instant) -> Vec<Packet> {
-        self.stop(now, StopReason::Quit)
     }
 
     pub fn next_deadline(&self) -> Option<Instant> {
