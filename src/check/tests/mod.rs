@@ -1419,6 +1419,17 @@ impl Rig {
         seen
     }
 
+    /// The TRIM_MOVEs sent from `from` on, as (time since start, on).
+    fn timed_trim_moves_since(&self, from: usize) -> Vec<(Duration, bool)> {
+        self.sent[from..]
+            .iter()
+            .filter_map(|(at, p)| match p.message {
+                Message::TrimMove(t) => Some((*at, t.on)),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The move messages sent, as (ms since start, on).
     fn moves(&self) -> Vec<(u128, bool)> {
         self.sent
@@ -1619,14 +1630,7 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
         );
         r.assert_pitch_found(MotorFinding::Reversed);
         // Every TRIM_MOVE on is followed by its off: no run ended by starving.
-        let moves: Vec<(u128, bool)> = r
-            .sent
-            .iter()
-            .filter_map(|(at, p)| match p.message {
-                Message::TrimMove(t) => Some((at.as_millis(), t.on)),
-                _ => None,
-            })
-            .collect();
+        let moves = r.timed_trim_moves_since(0);
         assert!(!moves.is_empty() && !moves.last().unwrap().1, "{moves:?}");
         assert_eq!(r.unit.snapshot(r.now).pitch_trim_starvations, 0);
     }
