@@ -338,12 +338,22 @@ impl StepRun for Circuits {
         };
         if light {
             // Only a person looking can say a lamp shines: asked while it is on, and
-            // it stays on until answered, up to the cap.
+            // it stays on until answered, up to the cap. One on by its switch is not
+            // held (it stays on after the check goes on): asked while it is measured.
             todo.push_str(LIT_QUESTION);
+            let wait = if was_on {
+                "it is on by its switch, so the check goes on once it is measured, answered \
+                 or not"
+                    .to_string()
+            } else {
+                format!(
+                    "it stays on until you answer, {} s at most",
+                    c.shared.timing.lit_for.as_secs()
+                )
+            };
             c.cx.out.progress.push(format!(
-                "  {name}: is it lit? Type y (lit), n (not lit) or s (skip the question); it \
-                 stays on until you answer, {} s at most.",
-                c.shared.timing.lit_for.as_secs()
+                "  {name}: is it lit? Type y (lit), n (not lit) or s (skip the question); \
+                 {wait}."
             ));
         } else if lights::is_light(&name) {
             c.view.lit.retain(|l| l.id != id);
@@ -439,6 +449,12 @@ impl StepRun for Circuits {
                         until: item.started + c.shared.timing.lit_for,
                     };
                     return self.asking_prompt(c.view, now);
+                }
+                if asking && !sent {
+                    // On by its switch, not held: the question ends with the measurement,
+                    // so a later answer is not kept for this light.
+                    let asked_for = now.saturating_duration_since(item.started);
+                    end_lit(idx, None, LitEnd::Cap(asked_for), false, c.view, c.cx);
                 }
                 return self.after_light(idx, sent, c);
             }

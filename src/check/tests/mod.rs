@@ -2508,6 +2508,48 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     );
 }
 
+/// A light on by its own switch is not held for "Is it lit?": the check goes on once
+/// it is measured. So the question says that, rather than promise to wait a minute,
+/// and it ends with the measurement, recorded as not answered and left on; an answer
+/// typed after it is not kept for that light.
+#[test]
+fn a_light_on_by_its_switch_is_asked_only_while_it_is_measured() {
+    let mut r = Rig::holding_lights(Rig::only(&[Step::Circuits]));
+    // Switch 2 powers Nav Lt and Strobe: both on before the check.
+    r.flip(2, true);
+    r.run(2000);
+    r.start();
+    r.run_until(15_000, |r| {
+        r.view.current.is_some_and(|i| r.view.circuits[i].id == 17)
+    });
+    let nav: Vec<&String> = r
+        .progress
+        .iter()
+        .filter(|l| l.starts_with("  Nav Lt: "))
+        .collect();
+    assert_eq!(nav.len(), 2, "{:?}", r.progress);
+    assert!(
+        nav[0].contains("is it lit?")
+            && nav[0].contains("on by its switch, so the check goes on once it is measured")
+            && !nav[0].contains("until you answer"),
+        "{}",
+        nav[0]
+    );
+    assert!(
+        nav[1].starts_with("  Nav Lt: no answer in ")
+            && nav[1].ends_with(" s; left on by its switch"),
+        "{}",
+        nav[1]
+    );
+    let a = r.view.lit_answer(4).expect("Nav Lt's question ended");
+    assert_eq!((a.lit, a.switched), (None, false));
+    assert!(
+        matches!(a.ended, super::state::LitEnd::Cap(d) if d <= Duration::from_secs(5)),
+        "{a:?}"
+    );
+    assert_eq!(r.view.lit_answer(5).map(|a| a.lit), Some(None));
+}
+
 /// The flow writes no file. Reaching the load analysis it asks the app to
 /// open the load file (`CheckEffects::open_loads`, with the circuits its template lists)
 /// and waits, the file untouched; handed the result, it goes on to the report.
