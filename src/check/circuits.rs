@@ -94,9 +94,10 @@ enum Stage {
         /// `None`: it was on already, nothing sent.
         request: Option<Try>,
     },
-    /// A light measured and still on, held so until the person says whether it is
-    /// lit, or `until` (the cap, [`super::Timing::lit_for`] after it was switched on).
-    Asking { sent: bool, until: Instant },
+    /// A light the check switched on, measured and still on, held so until the person
+    /// says whether it is lit, or `until` (the cap, [`super::Timing::lit_for`] after
+    /// it was switched on). A light on by its switch is not held.
+    Asking { until: Instant },
     /// DEVICE_POWER off sent, waiting to see it off.
     PutBack { request: Try },
     /// The page could not be seen (the terminal too small, or not focused) when the
@@ -125,14 +126,12 @@ impl CircuitItem {
             Stage::Measure {
                 request: Some(_), ..
             }
-            | Stage::Asking { sent: true, .. }
+            | Stage::Asking { .. }
             | Stage::PutBack { .. } => {
                 cx.power_off(self.id)?;
                 Ok(Some(Powered { id: self.id }))
             }
-            Stage::Measure { request: None, .. }
-            | Stage::Asking { sent: false, .. }
-            | Stage::Waiting => Ok(None),
+            Stage::Measure { request: None, .. } | Stage::Waiting => Ok(None),
         }
     }
 }
@@ -183,32 +182,20 @@ impl Circuits {
         let Some(item) = &self.item else {
             return Next::Stay;
         };
-        let Stage::Asking { sent, until } = item.stage else {
+        let Stage::Asking { until } = item.stage else {
             return Next::Stay;
         };
         let name = view.circuits[item.idx].name.clone();
-        let off = if sent {
-            "it goes back off at your answer"
-        } else {
-            "it is on by its switch and stays so"
-        };
         view.prompt = Some(Prompt {
-            todo: format!("{name} is on and measured.{LIT_QUESTION} ({off}; s: skip the question)"),
+            todo: format!(
+                "{name} is on and measured.{LIT_QUESTION} (it goes back off at your answer; \
+                 s: skip the question)"
+            ),
             watching: format!("{name}'s state (DEVICE_STATUS)"),
             time_left: Some(until.saturating_duration_since(now)),
             keys: keys(true),
         });
         Next::Stay
-    }
-
-    /// The light's question is over (or was never held): put it back off if the
-    /// check switched it on, else on to the next.
-    fn after_light(&mut self, idx: usize, sent: bool, c: &mut Call) -> Next {
-        if sent {
-            self.put_back_item(c)
-        } else {
-            Next::From(idx + 1)
-        }
     }
 
     fn put_back_item(&mut self, c: &mut Call) -> Next {
@@ -445,7 +432,6 @@ impl StepRun for Circuits {
                 // by its switch is not held: it stays on after the check moves on.
                 if asking && lit_on && sent && now < item.started + c.shared.timing.lit_for {
                     item.stage = Stage::Asking {
-                        sent,
                         until: item.started + c.shared.timing.lit_for,
                     };
                     return self.asking_prompt(c.view, now);
@@ -456,18 +442,23 @@ impl StepRun for Circuits {
                     let asked_for = now.saturating_duration_since(item.started);
                     end_lit(idx, None, LitEnd::Cap(asked_for), false, c.view, c.cx);
                 }
-                return self.after_light(idx, sent, c);
+                // Put back off if the check switched it on, else on to the next.
+                return if sent {
+                    self.put_back_item(c)
+                } else {
+                    Next::From(idx + 1)
+                };
             }
-            Stage::Asking { sent, until } => {
-                let (sent, until) = (*sent, *until);
+            Stage::Asking { until } => {
+                let until = *until;
                 if now >= until {
                     let held = until.saturating_duration_since(item.started);
-                    end_lit(idx, None, LitEnd::Cap(held), sent, c.view, c.cx);
-                    return self.after_light(idx, sent, c);
+                    end_lit(idx, None, LitEnd::Cap(held), true, c.view, c.cx);
+                    return self.put_back_item(c);
                 }
                 if let CircuitState::Fault(_) | CircuitState::Off = st {
                     // It went off by itself (a fault, or its switch): nothing to hold.
-                    return self.after_light(idx, sent, c);
+                    return self.put_back_item(c);
                 }
             }
             Stage::Waiting => {}
@@ -511,10 +502,7 @@ impl StepRun for Circuits {
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
             return self.start(idx, c);
         }
-        let on_hold = match item.stage {
-            Stage::Asking { sent, .. } => Some(sent),
-            _ => None,
-        };
+        let on_hold = matches!(item.stage, Stage::Asking { .. });
         let sent_on = matches!(
             item.stage,
             Stage::Measure {
@@ -531,20 +519,20 @@ impl StepRun for Circuits {
                     idx,
                     Some(lit),
                     LitEnd::Answer,
-                    on_hold.unwrap_or(sent_on),
+                    on_hold || sent_on,
                     c.view,
                     c.cx,
                 );
-                if let Some(sent) = on_hold {
-                    return self.after_light(idx, sent, c);
+                if on_hold {
+                    return self.put_back_item(c);
                 }
             }
             return Next::Stay;
         }
         if cmd == Command::NobodyToAnswer {
-            if let Some(sent) = on_hold {
-                end_lit(idx, None, LitEnd::NobodyToAnswer, sent, c.view, c.cx);
-                return self.after_light(idx, sent, c);
+            if on_hold {
+                end_lit(idx, None, LitEnd::NobodyToAnswer, true, c.view, c.cx);
+                return self.put_back_item(c);
             }
             if matches!(item.stage, Stage::Measure { .. }) && asks_lit(c.view, idx) {
                 end_lit(idx, None, LitEnd::NobodyToAnswer, sent_on, c.view, c.cx);
@@ -555,10 +543,9 @@ impl StepRun for Circuits {
             return Next::Stay;
         }
         match &item.stage {
-            Stage::Asking { sent, .. } => {
-                let sent = *sent;
-                end_lit(idx, None, LitEnd::Skipped, sent, c.view, c.cx);
-                return self.after_light(idx, sent, c);
+            Stage::Asking { .. } => {
+                end_lit(idx, None, LitEnd::Skipped, true, c.view, c.cx);
+                return self.put_back_item(c);
             }
             Stage::Measure { request, .. } => {
                 let sent = request.is_some();
