@@ -238,26 +238,23 @@ mod tests {
     /// The edges of "over 20 % and at least 0.3 A", worked by hand in tenths.
     #[test]
     fn a_change_is_marked_over_20_percent_and_from_three_tenths() {
-        for (then, now, marked) in [
-            // 5.0 A -> 6.0 A is exactly +20 %: not over it.
-            (50, 60, false),
-            (50, 61, true),
+        // Each row: from `then`, to `not` is not marked, to `marked` is.
+        for (then, not, marked) in [
+            // 5.0 A -> 6.0 A is exactly +20 %: not over it; 6.1 A is.
+            (50, 60, 61),
             // Down as well as up: 5.0 -> 4.0 is -20 %, -> 3.9 is -22 %.
-            (50, 40, false),
-            (50, 39, true),
-            // 1.0 A -> 1.3 A: +30 % and 0.3 A, marked; 1.2 A is +20 %, not.
-            (10, 13, true),
-            (10, 12, false),
+            (50, 40, 39),
+            // 1.0 A -> 1.2 A is +20 %, not; 1.3 A: +30 % and 0.3 A, marked.
+            (10, 12, 13),
             // 0.5 A -> 0.7 A: +40 % but 0.2 A, the unit's resolution: not marked.
-            (5, 7, false),
-            (5, 8, true),
-            // From 0 A, any change of 0.3 A or more; to 0 A (a load gone) too.
-            (0, 2, false),
-            (0, 3, true),
-            (61, 0, true),
-            (61, 61, false),
+            (5, 7, 8),
+            // From 0 A, any change of 0.3 A or more.
+            (0, 2, 3),
+            // No change is not marked; to 0 A (a load gone) is.
+            (61, 61, 0),
         ] {
-            assert_eq!(changed(then, now), marked, "{then} -> {now}");
+            assert!(!changed(then, not), "{then} -> {not}");
+            assert!(changed(then, marked), "{then} -> {marked}");
         }
     }
 
