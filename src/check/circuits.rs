@@ -293,7 +293,6 @@ impl StepRun for Circuits {
     fn start(&mut self, idx: usize, c: &mut Call) -> Next {
         let id = c.view.circuits[idx].id;
         let name = c.view.circuits[idx].name.clone();
-        c.view.current = Some(idx);
         let now = c.cx.now;
         let st = state(c.cx.model, now, id);
         if let CircuitState::Fault(code) = st {

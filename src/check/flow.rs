@@ -380,6 +380,8 @@ impl CheckFlow {
             let Some(idx) = view.next_not_run(step, from) else {
                 return false;
             };
+            // The item under test is the selected row, whatever its step.
+            view.current = Some(idx);
             let shared = &mut self.shared;
             match run.start(idx, &mut Call { view, cx, shared }) {
                 Next::Stay => {

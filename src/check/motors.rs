@@ -481,7 +481,6 @@ pub(super) struct Motors {
 impl StepRun for Motors {
     fn start(&mut self, idx: usize, c: &mut Call) -> Next {
         let motor = c.view.motors[idx].motor;
-        c.view.current = Some(idx);
         c.view.motors[idx].positions.clear();
         c.view.prompt = Some(running_prompt(motor));
         self.item = Some(MotorItem {

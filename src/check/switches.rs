@@ -253,7 +253,6 @@ impl StepRun for Switches {
         };
         let names: Vec<String> = item.circuits.iter().map(|&i| c.view.name_of(i)).collect();
         let label = item.input.label();
-        c.view.current = Some(idx);
         c.view.prompt = Some(Prompt {
             todo: if names.is_empty() {
                 format!("Move the {label} on, then back off.")
