@@ -143,11 +143,13 @@ const MOTORS: [Motor; 3] = [
     Motor::Trim(TrimKind::Roll),
 ];
 
+/// The ids are the ICD's (Table 40): the starter 0x01, the primary alternator field 0x03.
 fn excluded() -> Vec<Excluded> {
+    use vpx_efis::protocol::device::{FIELD_PRI, STARTER};
     vec![
-        the_starter(0),
+        the_starter(STARTER),
         never_touched(
-            (2, "Alternator", "Field_Pri", 5, SwitchId::Input(1)),
+            (FIELD_PRI, "Alternator", "Field_Pri", 5, SwitchId::Input(1)),
             "an alternator field",
         ),
         suggested(

@@ -18,10 +18,10 @@ use super::calls::Command;
 use super::lights;
 use super::state::{
     BreakerLoad, CheckView, CircuitFinding, CircuitResult, LeftBehind, LitAnswer, LitEnd, Outcome,
-    Prompt, Step,
+    Prompt,
 };
 use super::step::{
-    CallContext, Item, Next, Powered, Shared, StepRun, Stopped, put_back, result_line,
+    Call, CallContext, Item, Next, Powered, StepRun, Stopped, put_back, result_line,
     view_or_model_name,
 };
 use super::words;
@@ -94,9 +94,10 @@ enum Stage {
         /// `None`: it was on already, nothing sent.
         request: Option<Try>,
     },
-    /// A light measured and still on, held so until the person says whether it is
-    /// lit, or `until` (the cap, [`super::Timing::lit_for`] after it was switched on).
-    Asking { sent: bool, until: Instant },
+    /// A light the check switched on, measured and still on, held so until the person
+    /// says whether it is lit, or `until` (the cap, [`super::Timing::lit_for`] after
+    /// it was switched on). A light on by its switch is not held.
+    Asking { until: Instant },
     /// DEVICE_POWER off sent, waiting to see it off.
     PutBack { request: Try },
     /// The page could not be seen (the terminal too small, or not focused) when the
@@ -125,14 +126,12 @@ impl CircuitItem {
             Stage::Measure {
                 request: Some(_), ..
             }
-            | Stage::Asking { sent: true, .. }
+            | Stage::Asking { .. }
             | Stage::PutBack { .. } => {
                 cx.power_off(self.id)?;
                 Ok(Some(Powered { id: self.id }))
             }
-            Stage::Measure { request: None, .. }
-            | Stage::Asking { sent: false, .. }
-            | Stage::Waiting => Ok(None),
+            Stage::Measure { request: None, .. } | Stage::Waiting => Ok(None),
         }
     }
 }
@@ -183,71 +182,41 @@ impl Circuits {
         let Some(item) = &self.item else {
             return Next::Stay;
         };
-        let Stage::Asking { sent, until } = item.stage else {
+        let Stage::Asking { until } = item.stage else {
             return Next::Stay;
         };
         let name = view.circuits[item.idx].name.clone();
-        let off = if sent {
-            "it goes back off at your answer"
-        } else {
-            "it is on by its switch and stays so"
-        };
         view.prompt = Some(Prompt {
-            todo: format!("{name} is on and measured.{LIT_QUESTION} ({off}; s: skip the question)"),
+            todo: format!(
+                "{name} is on and measured.{LIT_QUESTION} (it goes back off at your answer; \
+                 s: skip the question)"
+            ),
             watching: format!("{name}'s state (DEVICE_STATUS)"),
             time_left: Some(until.saturating_duration_since(now)),
-            keys: vec![
-                ("y", "lit"),
-                ("n", "not lit"),
-                ("s", "skip"),
-                ("S", "skip step"),
-                ("Esc", "stop"),
-            ],
+            keys: keys(true),
         });
         Next::Stay
     }
 
-    /// The light's question is over (or was never held): put it back off if the
-    /// check switched it on, else on to the next.
-    fn after_light(
-        &mut self,
-        idx: usize,
-        sent: bool,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        if sent {
-            self.put_back_item(view, cx, shared)
-        } else {
-            Next::From(idx + 1)
-        }
-    }
-
-    fn put_back_item(
-        &mut self,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
+    fn put_back_item(&mut self, c: &mut Call) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
-        if let Err(why) = cx.power_off(item.id) {
-            shared.trouble_ahead = Some(format!(
+        if let Err(why) = c.cx.power_off(item.id) {
+            c.shared.trouble_ahead = Some(format!(
                 "{} could not be switched back off: {why}",
-                view.circuits[item.idx].name
+                c.view.circuits[item.idx].name
             ));
         }
         item.stage = Stage::PutBack {
             request: Try::with(
-                cx.now,
-                shared.timing.power_timeout,
-                shared.timing.power_tries,
+                c.cx.now,
+                c.shared.timing.power_timeout,
+                c.shared.timing.power_tries,
             ),
         };
-        if let Some(p) = view.prompt.as_mut() {
-            let row = &view.circuits[item.idx];
+        if let Some(p) = c.view.prompt.as_mut() {
+            let row = &c.view.circuits[item.idx];
             p.todo = format!("Switching {} back off.", row.name);
             p.keys.retain(|(k, _)| *k != "y" && *k != "n");
         }
@@ -256,22 +225,15 @@ impl Circuits {
 
     /// Circuit `idx` waits, not switched on, because the page cannot be seen (`why`):
     /// see [`Stage::Waiting`]. Asked again (r) while still unseen, it waits again.
-    fn wait(
-        &mut self,
-        idx: usize,
-        why: &str,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        let row = &view.circuits[idx];
+    fn wait(&mut self, idx: usize, why: &str, c: &mut Call) -> Next {
+        let row = &c.view.circuits[idx];
         let (id, name) = (row.id, row.name.clone());
         let todo = format!(
             "Paused before switching {name} on: {why}; nothing is switched on while the \
              page cannot be seen. r: go on; s: skip it."
         );
-        cx.out.progress.push(format!("  {todo}"));
-        view.prompt = Some(Prompt {
+        c.cx.out.progress.push(format!("  {todo}"));
+        c.view.prompt = Some(Prompt {
             todo,
             watching: format!("{name}'s state (DEVICE_STATUS)"),
             time_left: None,
@@ -280,9 +242,9 @@ impl Circuits {
         self.item = Some(CircuitItem {
             idx,
             id,
-            started: cx.now,
+            started: c.cx.now,
             stage: Stage::Waiting,
-            on_for: shared.timing.on_for,
+            on_for: c.shared.timing.on_for,
         });
         Next::Stay
     }
@@ -328,94 +290,92 @@ pub(super) struct Circuits {
 }
 
 impl StepRun for Circuits {
-    fn step(&self) -> Step {
-        Step::Circuits
-    }
-
-    fn skipped_line(&self) -> &'static str {
-        "– Circuits: skipped"
-    }
-
-    fn start(
-        &mut self,
-        idx: usize,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        let id = view.circuits[idx].id;
-        let name = view.circuits[idx].name.clone();
-        view.current = Some(idx);
-        let now = cx.now;
-        let st = state(cx.model, now, id);
+    fn start(&mut self, idx: usize, c: &mut Call) -> Next {
+        let id = c.view.circuits[idx].id;
+        let name = c.view.circuits[idx].name.clone();
+        let now = c.cx.now;
+        let st = state(c.cx.model, now, id);
         if let CircuitState::Fault(code) = st {
             // Faulted before the check touched it: that is its finding.
-            shared.known_faults.insert(id);
-            record(view, idx, CircuitFinding::Faulted(code), cx);
+            c.shared.known_faults.insert(id);
+            record(c.view, idx, CircuitFinding::Faulted(code), c.cx);
             return Next::From(idx + 1);
         }
         let was_on = st == CircuitState::On;
-        if !was_on && let Some(unseen) = cx.ctl.unseen() {
-            return self.wait(idx, &unseen.describe(), view, cx, shared);
+        if !was_on && let Some(unseen) = c.cx.ctl.unseen() {
+            return self.wait(idx, &unseen.describe(), c);
         }
-        if !was_on && let Err(why) = cx.power_on(id) {
+        if !was_on && let Err(why) = c.cx.power_on(id) {
             // Refused by the page's own rule: nothing sent, and the words say why.
-            return self.not_switched(idx, why, view, cx);
+            return self.not_switched(idx, why, c.view, c.cx);
         }
-        let request = (!was_on)
-            .then(|| Try::with(now, shared.timing.power_timeout, shared.timing.power_tries));
-        let light = lights::is_light(&name) && !shared.nobody_to_answer;
+        let request = (!was_on).then(|| {
+            Try::with(
+                now,
+                c.shared.timing.power_timeout,
+                c.shared.timing.power_tries,
+            )
+        });
+        let light = lights::is_light(&name) && !c.shared.nobody_to_answer;
         let mut todo = if was_on {
             format!("{name} is on already: measuring it as it is.")
         } else {
             format!("Switching {name} on to measure it, then back off.")
         };
-        let mut keys = vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")];
         if light {
             // Only a person looking can say a lamp shines: asked while it is on, and
-            // it stays on until answered, up to the cap.
+            // it stays on until answered, up to the cap. One on by its switch is not
+            // held (it stays on after the check goes on): asked while it is measured.
             todo.push_str(LIT_QUESTION);
-            keys.splice(0..0, [("y", "lit"), ("n", "not lit")]);
-            cx.out.progress.push(format!(
-                "  {name}: is it lit? Type y (lit), n (not lit) or s (skip the question); it \
-                 stays on until you answer, {} s at most.",
-                shared.timing.lit_for.as_secs()
+            let wait = if was_on {
+                "it is on by its switch, so the check goes on once it is measured, answered \
+                 or not"
+                    .to_string()
+            } else {
+                format!(
+                    "it stays on until you answer, {} s at most",
+                    c.shared.timing.lit_for.as_secs()
+                )
+            };
+            c.cx.out.progress.push(format!(
+                "  {name}: is it lit? Type y (lit), n (not lit) or s (skip the question); \
+                 {wait}."
             ));
         } else if lights::is_light(&name) {
-            view.lit.retain(|l| l.id != id);
-            view.lit.push(LitAnswer {
+            c.view.lit.retain(|l| l.id != id);
+            c.view.lit.push(LitAnswer {
                 id,
                 lit: None,
                 ended: LitEnd::NobodyToAnswer,
                 switched: !was_on,
             });
         }
-        view.prompt = Some(Prompt {
+        c.view.prompt = Some(Prompt {
             todo,
             watching: format!("{name}'s state and current (DEVICE_STATUS, once a second)"),
-            time_left: Some(shared.timing.on_for),
-            keys,
+            time_left: Some(c.shared.timing.on_for),
+            keys: keys(light),
         });
         self.item = Some(CircuitItem {
             idx,
             id,
             started: now,
             stage: Stage::Measure {
-                statuses_at_send: cx.statuses(),
+                statuses_at_send: c.cx.statuses(),
                 request,
             },
-            on_for: shared.timing.on_for,
+            on_for: c.shared.timing.on_for,
         });
         Next::Stay
     }
 
-    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+    fn tick(&mut self, c: &mut Call) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
-        let (idx, id, now) = (item.idx, item.id, cx.now);
-        let st = state(cx.model, now, id);
-        if let Some(p) = view.prompt.as_mut() {
+        let (idx, id, now) = (item.idx, item.id, c.cx.now);
+        let st = state(c.cx.model, now, id);
+        if let Some(p) = c.view.prompt.as_mut() {
             p.time_left = item.deadline().map(|d| d.saturating_duration_since(now));
         }
         match &mut item.stage {
@@ -424,14 +384,14 @@ impl StepRun for Circuits {
                 request,
             } => {
                 let finding = if let CircuitState::Fault(code) = st {
-                    shared.known_faults.insert(id);
+                    c.shared.known_faults.insert(id);
                     Some(CircuitFinding::Faulted(code))
-                } else if cx.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
-                    let current = cx
-                        .model
-                        .live_devices(now)
-                        .map_or(Tenths(0), |d| d.current[id as usize]);
-                    Some(judge(current, view.circuits[idx].breaker))
+                } else if c.cx.statuses() >= *statuses_at_send + 2 && st == CircuitState::On {
+                    let current =
+                        c.cx.model
+                            .live_devices(now)
+                            .map_or(Tenths(0), |d| d.current[id as usize]);
+                    Some(judge(current, c.view.circuits[idx].breaker))
                 } else if now >= item.started + item.on_for {
                     Some(CircuitFinding::DidNotSwitch)
                 } else {
@@ -439,16 +399,16 @@ impl StepRun for Circuits {
                         .as_mut()
                         .map(|t| t.judge(st == CircuitState::On, now))
                     {
-                        Some(Verdict::Resend) => match cx.power_on(id) {
+                        Some(Verdict::Resend) => match c.cx.power_on(id) {
                             Ok(()) => None,
                             Err(why) => {
                                 // The first on went out: put it back all the same.
                                 let why = format!("not switched: {why}");
-                                view.circuits[idx].outcome = Outcome::Skipped(why.clone());
-                                cx.out
+                                c.view.circuits[idx].outcome = Outcome::Skipped(why.clone());
+                                c.cx.out
                                     .progress
-                                    .push(format!("– {}: {why}", view.circuits[idx].name));
-                                return self.put_back_item(view, cx, shared);
+                                    .push(format!("– {}: {why}", c.view.circuits[idx].name));
+                                return self.put_back_item(c);
                             }
                         },
                         Some(Verdict::NoAnswer) => Some(CircuitFinding::DidNotSwitch),
@@ -465,29 +425,39 @@ impl StepRun for Circuits {
                         | CircuitFinding::NearBreaker { .. }
                         | CircuitFinding::NoCurrent
                 );
-                record(view, idx, f, cx);
-                let asking = asks_lit(view, idx);
+                record(c.view, idx, f, c.cx);
+                let asking = asks_lit(c.view, idx);
                 // Measured: held on until the person answers, up to the cap. A light on
                 // by its switch is not held: it stays on after the check moves on.
-                if asking && lit_on && sent && now < item.started + shared.timing.lit_for {
+                if asking && lit_on && sent && now < item.started + c.shared.timing.lit_for {
                     item.stage = Stage::Asking {
-                        sent,
-                        until: item.started + shared.timing.lit_for,
+                        until: item.started + c.shared.timing.lit_for,
                     };
-                    return self.asking_prompt(view, now);
+                    return self.asking_prompt(c.view, now);
                 }
-                return self.after_light(idx, sent, view, cx, shared);
+                if asking && !sent {
+                    // On by its switch, not held: the question ends with the measurement,
+                    // so a later answer is not kept for this light.
+                    let asked_for = now.saturating_duration_since(item.started);
+                    end_lit(idx, None, LitEnd::Cap(asked_for), false, c.view, c.cx);
+                }
+                // Put back off if the check switched it on, else on to the next.
+                return if sent {
+                    self.put_back_item(c)
+                } else {
+                    Next::From(idx + 1)
+                };
             }
-            Stage::Asking { sent, until } => {
-                let (sent, until) = (*sent, *until);
+            Stage::Asking { until } => {
+                let until = *until;
                 if now >= until {
                     let held = until.saturating_duration_since(item.started);
-                    end_lit(idx, None, LitEnd::Cap(held), sent, view, cx);
-                    return self.after_light(idx, sent, view, cx, shared);
+                    end_lit(idx, None, LitEnd::Cap(held), true, c.view, c.cx);
+                    return self.put_back_item(c);
                 }
                 if let CircuitState::Fault(_) | CircuitState::Off = st {
                     // It went off by itself (a fault, or its switch): nothing to hold.
-                    return self.after_light(idx, sent, view, cx, shared);
+                    return self.put_back_item(c);
                 }
             }
             Stage::Waiting => {}
@@ -499,21 +469,21 @@ impl StepRun for Circuits {
                 );
                 match request.judge(off, now) {
                     Verdict::Answered => {
-                        put_back(id, view, cx.model, now);
+                        put_back(id, c.view, c.cx.model, now);
                         return Next::From(idx + 1);
                     }
                     Verdict::Resend => {
-                        if let Err(why) = cx.power_off(id) {
-                            shared.trouble_ahead = Some(format!(
+                        if let Err(why) = c.cx.power_off(id) {
+                            c.shared.trouble_ahead = Some(format!(
                                 "{} could not be switched back off: {why}",
-                                view.circuits[idx].name
+                                c.view.circuits[idx].name
                             ));
                         }
                     }
                     Verdict::NoAnswer => {
-                        shared.trouble_ahead = Some(format!(
+                        c.shared.trouble_ahead = Some(format!(
                             "{} did not switch back off",
-                            view.circuits[idx].name
+                            c.view.circuits[idx].name
                         ));
                     }
                     Verdict::Waiting => {}
@@ -523,24 +493,15 @@ impl StepRun for Circuits {
         Next::Stay
     }
 
-    fn command(
-        &mut self,
-        cmd: Command,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
+    fn command(&mut self, cmd: Command, c: &mut Call) -> Next {
         let Some(item) = &self.item else {
             return Next::Stay;
         };
         let idx = item.idx;
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
-            return self.start(idx, view, cx, shared);
+            return self.start(idx, c);
         }
-        let on_hold = match item.stage {
-            Stage::Asking { sent, .. } => Some(sent),
-            _ => None,
-        };
+        let on_hold = matches!(item.stage, Stage::Asking { .. });
         let sent_on = matches!(
             item.stage,
             Stage::Measure {
@@ -551,29 +512,29 @@ impl StepRun for Circuits {
         if let Command::Lit(lit) = cmd {
             // While it is on: what the person saw. Measured, it goes off now.
             if matches!(item.stage, Stage::Measure { .. } | Stage::Asking { .. })
-                && asks_lit(view, idx)
+                && asks_lit(c.view, idx)
             {
                 end_lit(
                     idx,
                     Some(lit),
                     LitEnd::Answer,
-                    on_hold.unwrap_or(sent_on),
-                    view,
-                    cx,
+                    on_hold || sent_on,
+                    c.view,
+                    c.cx,
                 );
-                if let Some(sent) = on_hold {
-                    return self.after_light(idx, sent, view, cx, shared);
+                if on_hold {
+                    return self.put_back_item(c);
                 }
             }
             return Next::Stay;
         }
         if cmd == Command::NobodyToAnswer {
-            if let Some(sent) = on_hold {
-                end_lit(idx, None, LitEnd::NobodyToAnswer, sent, view, cx);
-                return self.after_light(idx, sent, view, cx, shared);
+            if on_hold {
+                end_lit(idx, None, LitEnd::NobodyToAnswer, true, c.view, c.cx);
+                return self.put_back_item(c);
             }
-            if matches!(item.stage, Stage::Measure { .. }) && asks_lit(view, idx) {
-                end_lit(idx, None, LitEnd::NobodyToAnswer, sent_on, view, cx);
+            if matches!(item.stage, Stage::Measure { .. }) && asks_lit(c.view, idx) {
+                end_lit(idx, None, LitEnd::NobodyToAnswer, sent_on, c.view, c.cx);
             }
             return Next::Stay;
         }
@@ -581,21 +542,20 @@ impl StepRun for Circuits {
             return Next::Stay;
         }
         match &item.stage {
-            Stage::Asking { sent, .. } => {
-                let sent = *sent;
-                end_lit(idx, None, LitEnd::Skipped, sent, view, cx);
-                return self.after_light(idx, sent, view, cx, shared);
+            Stage::Asking { .. } => {
+                end_lit(idx, None, LitEnd::Skipped, true, c.view, c.cx);
+                return self.put_back_item(c);
             }
             Stage::Measure { request, .. } => {
                 let sent = request.is_some();
-                if view.circuits[idx].outcome == Outcome::NotRun {
-                    view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
-                    cx.out
+                if c.view.circuits[idx].outcome == Outcome::NotRun {
+                    c.view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
+                    c.cx.out
                         .progress
-                        .push(format!("– {}: skipped", view.circuits[idx].name));
+                        .push(format!("– {}: skipped", c.view.circuits[idx].name));
                 }
                 if sent {
-                    return self.put_back_item(view, cx, shared);
+                    return self.put_back_item(c);
                 } else {
                     return Next::From(idx + 1);
                 }
@@ -603,10 +563,10 @@ impl StepRun for Circuits {
             // Already going back off: the skip takes effect once it is.
             Stage::PutBack { .. } => {}
             Stage::Waiting => {
-                view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
-                cx.out
+                c.view.circuits[idx].outcome = Outcome::Skipped("you skipped it".into());
+                c.cx.out
                     .progress
-                    .push(format!("– {}: skipped", view.circuits[idx].name));
+                    .push(format!("– {}: skipped", c.view.circuits[idx].name));
                 return Next::From(idx + 1);
             }
         }
@@ -640,6 +600,15 @@ impl StepRun for Circuits {
 
 /// The question put to the person for a light while it is on.
 const LIT_QUESTION: &str = " Is it lit? y: yes, n: no.";
+
+/// The keys while a circuit is under test: y and n too while a light's question is open.
+fn keys(light: bool) -> Vec<(&'static str, &'static str)> {
+    let mut keys = vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")];
+    if light {
+        keys.splice(0..0, [("y", "lit"), ("n", "not lit")]);
+    }
+    keys
+}
 
 /// Whether light `idx`'s question is still open: a light, asked, not yet ended.
 fn asks_lit(view: &CheckView, idx: usize) -> bool {

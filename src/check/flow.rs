@@ -15,7 +15,7 @@ use super::calls::{CheckEffects, Command};
 use super::plan::{self, Choices};
 use super::state::{CheckView, Interruption, LeftBehind, Prompt, Step};
 use super::step::{
-    CallContext, Next, Powered, Shared, StepRun, circuit_on, put_back, view_or_model_name,
+    Call, CallContext, Next, Powered, Shared, StepRun, circuit_on, put_back, view_or_model_name,
 };
 use super::timing::Timing;
 use super::words;
@@ -78,7 +78,7 @@ impl Cause {
 pub(super) enum Phase {
     Confirm,
     /// A step's item under test.
-    Testing(Box<dyn StepRun>),
+    Testing(Step, Box<dyn StepRun>),
     /// Waiting for the app to open the load file (`CheckEffects::open_loads`).
     Loads,
     /// Interrupted: waiting to see `Powered` go off before the list of what is left
@@ -160,10 +160,10 @@ impl CheckFlow {
     pub(super) fn stage(&self) -> String {
         match &self.phase {
             Phase::Confirm => "before power".into(),
-            Phase::Testing(run) => {
+            Phase::Testing(step, run) => {
                 let step = Step::SKIPPABLE
                     .iter()
-                    .find(|(s, _)| *s == run.step())
+                    .find(|(s, _)| s == step)
                     .map_or("", |(_, word)| word);
                 format!("{step}: {}", run.stage())
             }
@@ -182,7 +182,7 @@ impl CheckFlow {
     pub fn next_deadline(&self) -> Option<Instant> {
         match &self.phase {
             Phase::Confirm | Phase::Done | Phase::Loads => None,
-            Phase::Testing(run) => run.deadline(),
+            Phase::Testing(_, run) => run.deadline(),
             Phase::Stopping { until, .. } => Some(*until),
         }
     }
@@ -249,7 +249,7 @@ impl CheckFlow {
             }
             match &mut self.phase {
                 Phase::Confirm => self.confirm_command(cmd, view, cx),
-                Phase::Testing(_) => self.item_command(cmd, view, cx),
+                Phase::Testing(..) => self.item_command(cmd, view, cx),
                 Phase::Stopping { .. } | Phase::Done | Phase::Loads => {}
             }
         })
@@ -337,7 +337,7 @@ impl CheckFlow {
                             return;
                         }
                     } else {
-                        cx.out.progress.push("– Load analysis: skipped".into());
+                        cx.out.progress.push(skipped_line(step));
                     }
                     None
                 }
@@ -348,9 +348,10 @@ impl CheckFlow {
             };
             if let Some(mut run) = run {
                 if !skipped {
-                    run.begin(view, cx, &mut self.shared);
+                    let shared = &mut self.shared;
+                    run.begin(&mut Call { view, cx, shared });
                 }
-                if self.next_item(run, 0, view, cx) {
+                if self.next_item(step, run, 0, view, cx) {
                     return;
                 }
             }
@@ -363,25 +364,28 @@ impl CheckFlow {
     /// Whether one is under test now; if not, the step is over.
     fn next_item(
         &mut self,
+        step: Step,
         mut run: Box<dyn StepRun>,
         mut from: usize,
         view: &mut CheckView,
         cx: &mut CallContext,
     ) -> bool {
-        let step = run.step();
         loop {
             if self.opts.skip.contains(&step) {
                 let any = view.skip_rest(step, "step skipped");
                 if from == 0 || (any && run.says_skip_midway()) {
-                    cx.out.progress.push(run.skipped_line().into());
+                    cx.out.progress.push(skipped_line(step));
                 }
             }
             let Some(idx) = view.next_not_run(step, from) else {
                 return false;
             };
-            match run.start(idx, view, cx, &mut self.shared) {
+            // The item under test is the selected row, whatever its step.
+            view.current = Some(idx);
+            let shared = &mut self.shared;
+            match run.start(idx, &mut Call { view, cx, shared }) {
                 Next::Stay => {
-                    self.phase = Phase::Testing(run);
+                    self.phase = Phase::Testing(step, run);
                     return true;
                 }
                 Next::From(i) => from = i,
@@ -393,11 +397,10 @@ impl CheckFlow {
     /// next step.
     fn go_on(&mut self, next: Next, view: &mut CheckView, cx: &mut CallContext) {
         let Next::From(from) = next else { return };
-        let Phase::Testing(run) = std::mem::replace(&mut self.phase, Phase::Done) else {
+        let Phase::Testing(step, run) = std::mem::replace(&mut self.phase, Phase::Done) else {
             return;
         };
-        let step = run.step();
-        if !self.next_item(run, from, view, cx) {
+        if !self.next_item(step, run, from, view, cx) {
             self.enter_step(next_step(step), view, cx);
         }
     }
@@ -540,8 +543,9 @@ impl CheckFlow {
                 self.item_command(Command::SkipItem, view, cx);
             }
             _ => {
-                if let Phase::Testing(run) = &mut self.phase {
-                    let next = run.command(cmd, view, cx, &mut self.shared);
+                if let Phase::Testing(_, run) = &mut self.phase {
+                    let shared = &mut self.shared;
+                    let next = run.command(cmd, &mut Call { view, cx, shared });
                     self.go_on(next, view, cx);
                 }
             }
@@ -569,8 +573,9 @@ impl CheckFlow {
                 return;
             }
             match &mut self.phase {
-                Phase::Testing(run) => {
-                    let next = run.tick(view, cx, &mut self.shared);
+                Phase::Testing(_, run) => {
+                    let shared = &mut self.shared;
+                    let next = run.tick(&mut Call { view, cx, shared });
                     self.go_on(next, view, cx);
                 }
                 Phase::Stopping { .. } => self.stopping_tick(view, cx),
@@ -633,7 +638,7 @@ impl CheckFlow {
     /// or motor under test, or the circuits the switch under test powers.
     fn under_test(&self) -> Vec<u8> {
         match &self.phase {
-            Phase::Testing(run) => run.under_test(),
+            Phase::Testing(_, run) => run.under_test(),
             _ => Vec::new(),
         }
     }
@@ -702,7 +707,7 @@ impl CheckFlow {
         let comm = !model.comm_lost(now) && !link_failed;
         let mut left: Vec<LeftBehind> = Vec::new();
         let mut powered = None;
-        if let Phase::Testing(mut run) = std::mem::replace(&mut self.phase, Phase::Done) {
+        if let Phase::Testing(_, mut run) = std::mem::replace(&mut self.phase, Phase::Done) {
             let stopped = run.stop(reason, view, cx);
             powered = stopped.powered;
             left.extend(stopped.left);
@@ -817,6 +822,11 @@ fn effects(
         out: &mut out,
     });
     out
+}
+
+/// The line a headless run prints when `step` is skipped.
+fn skipped_line(step: Step) -> String {
+    format!("– {}: skipped", step.title())
 }
 
 /// The step after `step`.

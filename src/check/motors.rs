@@ -29,8 +29,8 @@
 use std::time::{Duration, Instant};
 
 use super::calls::Command;
-use super::state::{CheckView, LeftBehind, MotorFinding, MotorResult, Outcome, Prompt, Step};
-use super::step::{CallContext, Item, Next, Shared, StepRun, Stopped, motor_name, result_line};
+use super::state::{CheckView, LeftBehind, MotorFinding, MotorResult, Outcome, Prompt};
+use super::step::{Call, CallContext, Item, Next, StepRun, Stopped, motor_name, result_line};
 use crate::audit::Origin;
 use crate::control::endpoints::{
     self, Way, ends, expected_way, heads_for, opposite, position, room,
@@ -244,13 +244,7 @@ impl Item for MotorItem {
 impl Motors {
     /// Runs the motor back toward where it was, once, if it is not there; else the
     /// next motor.
-    fn run_back(
-        &mut self,
-        pos: u8,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
+    fn run_back(&mut self, pos: u8, c: &mut Call) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
@@ -273,7 +267,7 @@ impl Motors {
             {
                 // Not back, and no run left that would bring it: say where it is.
                 let motor = item.motor;
-                not_back(view, idx, motor, pos, p0, cx);
+                not_back(c.view, idx, motor, pos, p0, c.cx);
             }
             return Next::From(idx + 1);
         }
@@ -285,26 +279,18 @@ impl Motors {
         };
         let ratio = back.abs() as f32 / moved.abs() as f32;
         let length = ran.mul_f32(ratio).min(item.run * 2);
-        self.run(dir, length, Way::of(back), view, cx, shared)
+        self.run(dir, length, Way::of(back), c)
     }
 
     /// Runs the motor `d` for `length`; `way` is which way the check expects the
     /// position to go when it knows better than the direction (the run back, after it
     /// saw the motor go), so the run keeps off the endpoint it will really reach.
-    fn run(
-        &mut self,
-        d: Direction,
-        length: Duration,
-        way: Option<Way>,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
+    fn run(&mut self, d: Direction, length: Duration, way: Option<Way>, c: &mut Call) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
-        let now = cx.now;
-        if let Some(ft) = cx.model.live_flap_trim(now)
+        let now = c.cx.now;
+        if let Some(ft) = c.cx.model.live_flap_trim(now)
             && let Some(k) = item.leg.test()
             && way.is_none()
         {
@@ -319,12 +305,13 @@ impl Motors {
             }
         }
         let how = How::For { length, way };
-        match cx
+        match c
+            .cx
             .ctl
-            .start(Origin::Check, cx.model, item.motor, d, how, now)
+            .start(Origin::Check, c.cx.model, item.motor, d, how, now)
         {
             Ok(p) => {
-                cx.out.packets.extend(p);
+                c.cx.out.packets.extend(p);
                 if let Some(k) = item.leg.test() {
                     // As planned; the run's stop says how long it drove the motor.
                     item.ran[k] = length;
@@ -343,49 +330,50 @@ impl Motors {
                             item.motor.name(),
                             unseen.describe()
                         );
-                        return self.pause(&why, view, cx);
+                        return self.pause(&why, c.view, c.cx);
                     }
                     // Seen moving against its command (by this check's first run, or
                     // before it): no test run is made until the person confirms one at
                     // the page's keys; the finding is that, and the run back goes the
                     // way it was seen to go.
                     Refused::Against(asked) if item.leg.test().is_some() => {
-                        if view.motors[idx].outcome == Outcome::NotRun {
+                        if c.view.motors[idx].outcome == Outcome::NotRun {
                             if item.leg == Leg::First {
-                                cx.out.progress.push(format!(
+                                c.cx.out.progress.push(format!(
                                     "  {}: not run",
                                     crate::control::against::words(item.motor, asked)
                                 ));
                             }
-                            record(view, idx, MotorFinding::Reversed, cx);
+                            record(c.view, idx, MotorFinding::Reversed, c.cx);
                         }
                         item.leg = Leg::Back;
-                        return match cx
+                        return match c
+                            .cx
                             .model
                             .live_flap_trim(now)
                             .map(|ft| position(item.motor, ft))
                         {
-                            Some(pos) => self.run_back(pos, view, cx, shared),
+                            Some(pos) => self.run_back(pos, c),
                             None => Next::From(idx + 1),
                         };
                     }
                     Refused::Model(StopReason::MotorFault(code)) => {
-                        shared.known_faults.insert(item.motor.device_id());
-                        record(view, idx, MotorFinding::Faulted(code), cx);
+                        c.shared.known_faults.insert(item.motor.device_id());
+                        record(c.view, idx, MotorFinding::Faulted(code), c.cx);
                     }
                     Refused::Model(StopReason::CommLost) => {
-                        shared.trouble_ahead = Some("COMMUNICATION LOST".into());
+                        c.shared.trouble_ahead = Some("COMMUNICATION LOST".into());
                         return Next::Stay;
                     }
                     // No position to go by (none fresh enough to keep it off its
                     // endpoint, or none at all): it waits, as a run cut short does,
                     // for the person to try again or skip it (which runs it back).
                     Refused::Model(StopReason::MotorStatusLost) | Refused::PositionStale => {
-                        return self.pause(&why.words, view, cx);
+                        return self.pause(&why.words, c.view, c.cx);
                     }
-                    _ if view.motors[idx].outcome == Outcome::NotRun => {
-                        view.motors[idx].outcome = Outcome::Skipped(why.words.clone());
-                        cx.out.progress.push(format!(
+                    _ if c.view.motors[idx].outcome == Outcome::NotRun => {
+                        c.view.motors[idx].outcome = Outcome::Skipped(why.words.clone());
+                        c.cx.out.progress.push(format!(
                             "– {}: {}",
                             motor_name(item.motor),
                             why.words
@@ -394,21 +382,21 @@ impl Motors {
                     _ => {}
                 }
                 // A run back that could not be made leaves it where it is: said so.
-                let pos = cx
-                    .model
-                    .live_flap_trim(now)
-                    .map(|ft| position(item.motor, ft));
+                let pos =
+                    c.cx.model
+                        .live_flap_trim(now)
+                        .map(|ft| position(item.motor, ft));
                 if item.leg == Leg::RunningBack
                     && let (Some(p0), Some(pos)) = (item.p0, pos)
                     && (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN
                 {
                     let motor = item.motor;
-                    cx.out.progress.push(format!(
+                    c.cx.out.progress.push(format!(
                         "  {}: not run back: {}",
                         motor_name(motor),
                         why.words
                     ));
-                    not_back(view, idx, motor, pos, p0, cx);
+                    not_back(c.view, idx, motor, pos, p0, c.cx);
                 }
                 return Next::From(idx + 1);
             }
@@ -491,25 +479,10 @@ pub(super) struct Motors {
 }
 
 impl StepRun for Motors {
-    fn step(&self) -> Step {
-        Step::Motors
-    }
-
-    fn skipped_line(&self) -> &'static str {
-        "– Motors: skipped"
-    }
-
-    fn start(
-        &mut self,
-        idx: usize,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        let motor = view.motors[idx].motor;
-        view.current = Some(idx);
-        view.motors[idx].positions.clear();
-        view.prompt = Some(running_prompt(motor));
+    fn start(&mut self, idx: usize, c: &mut Call) -> Next {
+        let motor = c.view.motors[idx].motor;
+        c.view.motors[idx].positions.clear();
+        c.view.prompt = Some(running_prompt(motor));
         self.item = Some(MotorItem {
             idx,
             motor,
@@ -521,19 +494,19 @@ impl StepRun for Motors {
             ended_at: [None; 2],
             ran: [Duration::ZERO; 2],
             stage: Stage::Start,
-            run: shared.timing.motor_run,
-            settle: shared.timing.motor_settle,
+            run: c.shared.timing.motor_run,
+            settle: c.shared.timing.motor_settle,
             skipped: false,
         });
-        self.tick(view, cx, shared)
+        self.tick(c)
     }
 
-    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
+    fn tick(&mut self, c: &mut Call) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
-        let now = cx.now;
-        let Some(ft) = cx.model.live_flap_trim(now).copied() else {
+        let now = c.cx.now;
+        let Some(ft) = c.cx.model.live_flap_trim(now).copied() else {
             return Next::Stay;
         };
         let pos = position(item.motor, &ft);
@@ -541,7 +514,7 @@ impl StepRun for Motors {
             Stage::Paused { .. } => {}
             Stage::Start => {
                 item.p0 = Some(pos);
-                view.motors[item.idx].positions.push(pos);
+                c.view.motors[item.idx].positions.push(pos);
                 let [a, b] = directions(item.motor);
                 item.dirs = match (room(item.motor, a, pos, &ft), room(item.motor, b, pos, &ft)) {
                     // No room to show a movement either way: not run.
@@ -556,10 +529,10 @@ impl StepRun for Motors {
                             e.down
                         );
                         let (idx, motor) = (item.idx, item.motor);
-                        cx.out
+                        c.cx.out
                             .progress
                             .push(format!("– {}: {why}", motor_name(motor)));
-                        view.motors[idx].outcome = Outcome::Skipped(why);
+                        c.view.motors[idx].outcome = Outcome::Skipped(why);
                         return Next::From(idx + 1);
                     }
                     // Toward the side with more room first.
@@ -571,17 +544,17 @@ impl StepRun for Motors {
                 };
                 let d = item.dirs[0];
                 let length = item.run;
-                return self.run(d, length, None, view, cx, shared);
+                return self.run(d, length, None, c);
             }
             Stage::Running { since, .. } => {
-                if cx.ctl.running().is_some_and(|r| r.motor == item.motor) {
+                if c.cx.ctl.running().is_some_and(|r| r.motor == item.motor) {
                     return Next::Stay;
                 }
-                let stop = cx
-                    .ctl
-                    .last_stop()
-                    .filter(|s| s.at >= since && s.motor == item.motor)
-                    .map(|s| (s.reason, s.at, s.driven));
+                let stop =
+                    c.cx.ctl
+                        .last_stop()
+                        .filter(|s| s.at >= since && s.motor == item.motor)
+                        .map(|s| (s.reason, s.at, s.driven));
                 let stopped_at = stop.map_or(now, |(_, at, _)| at);
                 if let (Some(k), Some((_, _, driven))) = (item.leg.test(), stop) {
                     item.ran[k] = driven;
@@ -598,7 +571,7 @@ impl StepRun for Motors {
                         if let Some(k) = item.leg.test() {
                             item.ended_at[k] = Some(end);
                         }
-                        cx.out.progress.push(format!(
+                        c.cx.out.progress.push(format!(
                             "  {} stopped at its endpoint ({end}), position {pos}",
                             motor_name(item.motor)
                         ));
@@ -613,7 +586,7 @@ impl StepRun for Motors {
                         if let Some(k) = item.leg.test() {
                             item.ended_at[k] = heads_for(item.motor, opposite(asked), &ft);
                         }
-                        cx.out.progress.push(format!(
+                        c.cx.out.progress.push(format!(
                             "  {}, position {pos}",
                             crate::control::against::stopped(item.motor, asked)
                         ));
@@ -627,9 +600,9 @@ impl StepRun for Motors {
                         } else {
                             item.motor.fault(&ft)
                         };
-                        shared.known_faults.insert(item.motor.device_id());
+                        c.shared.known_faults.insert(item.motor.device_id());
                         let idx = item.idx;
-                        record(view, idx, MotorFinding::Faulted(code), cx);
+                        record(c.view, idx, MotorFinding::Faulted(code), c.cx);
                         return Next::From(idx + 1);
                     }
                     Some(
@@ -641,7 +614,7 @@ impl StepRun for Motors {
                         | StopReason::PageStalled
                         | StopReason::Starved),
                     ) => {
-                        shared.trouble_ahead = Some(format!(
+                        c.shared.trouble_ahead = Some(format!(
                             "the {} stopped: {}",
                             item.motor.name(),
                             r.describe()
@@ -652,7 +625,7 @@ impl StepRun for Motors {
                             ran: stopped_at.saturating_duration_since(since),
                         };
                         let why = format!("The {} stopped: {}", item.motor.name(), r.describe());
-                        return self.pause(&why, view, cx);
+                        return self.pause(&why, c.view, c.cx);
                     }
                 }
             }
@@ -660,7 +633,7 @@ impl StepRun for Motors {
                 if now < until {
                     return Next::Stay;
                 }
-                view.motors[item.idx].positions.push(pos);
+                c.view.motors[item.idx].positions.push(pos);
                 if let Some(k) = item.leg.test() {
                     item.moves[k] = i32::from(pos) - i32::from(item.starts[k]);
                     item.leg = if k == 0 { Leg::Second } else { Leg::Back };
@@ -675,11 +648,11 @@ impl StepRun for Motors {
                         }
                         _ => item.run,
                     };
-                    return self.run(d, length, None, view, cx, shared);
+                    return self.run(d, length, None, c);
                 }
                 let idx = item.idx;
                 if item.leg == Leg::Back
-                    && view.motors[idx].outcome == Outcome::NotRun
+                    && c.view.motors[idx].outcome == Outcome::NotRun
                     && !item.skipped
                 {
                     let f = judge_runs(
@@ -690,39 +663,33 @@ impl StepRun for Motors {
                         item.ended_at,
                         &ft,
                     );
-                    record(view, idx, f, cx);
+                    record(c.view, idx, f, c.cx);
                 }
-                return self.run_back(pos, view, cx, shared);
+                return self.run_back(pos, c);
             }
         }
         Next::Stay
     }
 
-    fn command(
-        &mut self,
-        cmd: Command,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
+    fn command(&mut self, cmd: Command, c: &mut Call) -> Next {
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
         let idx = item.idx;
         match cmd {
             Command::SkipItem => {
-                cx.stop_run(StopReason::OtherKey);
-                if view.motors[idx].outcome == Outcome::NotRun {
-                    view.motors[idx].outcome = Outcome::Skipped("you skipped it".into());
-                    cx.out
+                c.cx.stop_run(StopReason::OtherKey);
+                if c.view.motors[idx].outcome == Outcome::NotRun {
+                    c.view.motors[idx].outcome = Outcome::Skipped("you skipped it".into());
+                    c.cx.out
                         .progress
                         .push(format!("– {}: skipped", motor_name(item.motor)));
                 }
                 item.skipped = true;
-                let pos = cx
-                    .model
-                    .live_flap_trim(cx.now)
-                    .map(|ft| position(item.motor, ft));
+                let pos =
+                    c.cx.model
+                        .live_flap_trim(c.cx.now)
+                        .map(|ft| position(item.motor, ft));
                 // A test run cut short by this skip (or paused before it) counts
                 // for as far as it went, so the run back knows the way and the rate.
                 if let Some(pos) = pos
@@ -730,7 +697,7 @@ impl StepRun for Motors {
                 {
                     let ran = match item.stage {
                         Stage::Running { since, length } => {
-                            cx.now.saturating_duration_since(since).min(length)
+                            c.cx.now.saturating_duration_since(since).min(length)
                         }
                         Stage::Paused { ran } => ran,
                         Stage::Settle { .. } => item.run,
@@ -743,13 +710,13 @@ impl StepRun for Motors {
                 match pos {
                     Some(pos) if item.p0.is_some() && item.leg != Leg::RunningBack => {
                         item.leg = Leg::Back;
-                        self.run_back(pos, view, cx, shared)
+                        self.run_back(pos, c)
                     }
                     Some(pos) if let Some(p0) = item.p0 => {
                         // Skipped during the run back: it stays where it is.
                         if (i32::from(p0) - i32::from(pos)).abs() > BACK_WITHIN {
                             let motor = item.motor;
-                            not_back(view, idx, motor, pos, p0, cx);
+                            not_back(c.view, idx, motor, pos, p0, c.cx);
                         }
                         Next::From(idx + 1)
                     }
@@ -760,18 +727,18 @@ impl StepRun for Motors {
                 // The same item again, from where it paused: where it started (p0),
                 // the first direction and a run already measured are kept, so the
                 // run back still goes to where the check found it.
-                view.prompt = Some(running_prompt(item.motor));
+                c.view.prompt = Some(running_prompt(item.motor));
                 if let Some(k) = item.leg.test() {
                     let (d, length) = (item.dirs[k], item.run);
-                    self.run(d, length, None, view, cx, shared)
+                    self.run(d, length, None, c)
                 } else {
-                    let pos = cx
-                        .model
-                        .live_flap_trim(cx.now)
-                        .map(|ft| position(item.motor, ft));
+                    let pos =
+                        c.cx.model
+                            .live_flap_trim(c.cx.now)
+                            .map(|ft| position(item.motor, ft));
                     item.leg = Leg::Back;
                     match pos {
-                        Some(pos) => self.run_back(pos, view, cx, shared),
+                        Some(pos) => self.run_back(pos, c),
                         None => Next::From(idx + 1),
                     }
                 }

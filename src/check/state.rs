@@ -416,7 +416,8 @@ pub struct LitAnswer {
 pub enum LitEnd {
     /// The person's answer.
     Answer,
-    /// No answer within the cap ([`super::Timing::lit_for`]).
+    /// No answer within the cap ([`super::Timing::lit_for`]), or, for a light on by
+    /// its switch (not held), while it was measured.
     Cap(std::time::Duration),
     /// The person went on (s) without answering.
     Skipped,

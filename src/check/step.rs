@@ -8,7 +8,7 @@ use std::collections::BTreeSet;
 use std::time::{Instant, SystemTime};
 
 use super::calls::{CheckEffects, Command};
-use super::state::{CheckView, LeftBehind, Mark, Step};
+use super::state::{CheckView, LeftBehind, Mark};
 use super::timing::Timing;
 use crate::control::{Controller, Refusal, StopReason, device_power, put_back_off};
 use crate::model::{Model, Motor};
@@ -27,41 +27,23 @@ pub(super) enum Next {
 /// not done yet, ticks and commands the item under test, and on `Next::From` starts
 /// the next one; the step never moves the check on by itself.
 pub(super) trait StepRun: std::fmt::Debug {
-    /// Which step this is.
-    fn step(&self) -> Step;
-
-    /// The line a headless run prints when the step is skipped.
-    fn skipped_line(&self) -> &'static str;
-
-    /// Whether that line is also said when the person skips the rest of the step
-    /// midway (the switch inputs say each skipped input instead).
+    /// Whether the step's skipped line is also said when the person skips the rest of
+    /// the step midway (the switch inputs say each skipped input instead).
     fn says_skip_midway(&self) -> bool {
         true
     }
 
     /// Before the first item, when the step is not skipped.
-    fn begin(&mut self, _view: &mut CheckView, _io: &mut CallContext, _shared: &mut Shared) {}
+    fn begin(&mut self, _c: &mut Call) {}
 
     /// Starts item `idx` (its row is not done yet).
-    fn start(
-        &mut self,
-        idx: usize,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next;
+    fn start(&mut self, idx: usize, c: &mut Call) -> Next;
 
     /// Time passed or packets arrived.
-    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next;
+    fn tick(&mut self, c: &mut Call) -> Next;
 
     /// A command from the person for the item under test (not Stop, not SkipStep).
-    fn command(
-        &mut self,
-        cmd: Command,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next;
+    fn command(&mut self, cmd: Command, c: &mut Call) -> Next;
 
     /// The check stops during this item: stop what it runs (for `reason`), and say
     /// what it leaves.
@@ -144,6 +126,14 @@ impl Shared {
             clock.checked_sub(self.made_at - at)
         }
     }
+}
+
+/// What one call into a step is lent: the view it changes, the model, controller and
+/// effects ([`CallContext`]), and what the flow keeps between calls ([`Shared`]).
+pub(super) struct Call<'c, 'a> {
+    pub view: &'c mut CheckView,
+    pub cx: &'c mut CallContext<'a>,
+    pub shared: &'c mut Shared,
 }
 
 /// What the calls share: the model, the controller and where the packets go.

@@ -17,9 +17,8 @@ use std::time::Instant;
 
 use super::calls::Command;
 use super::plan;
-use super::state::Step;
 use super::state::{CheckView, Input, NotFollowed, Outcome, Prompt, SwitchFinding, SwitchResult};
-use super::step::{CallContext, Item, Next, Shared, StepRun, Stopped, circuit_on, result_line};
+use super::step::{Call, CallContext, Item, Next, StepRun, Stopped, circuit_on, result_line};
 use crate::control::StopReason;
 use crate::model::{CircuitState, Hold, Model, Motor, TrimKind};
 use crate::protocol::message::{SwitchId, SwitchInputs};
@@ -223,39 +222,25 @@ pub(super) struct Switches {
 }
 
 impl StepRun for Switches {
-    fn step(&self) -> Step {
-        Step::Switches
-    }
-
-    fn skipped_line(&self) -> &'static str {
-        "– Switch inputs: skipped"
-    }
-
     fn says_skip_midway(&self) -> bool {
         false
     }
 
     /// What will not be asked, and why, before the first thing that is.
-    fn begin(&mut self, view: &mut CheckView, cx: &mut CallContext, _shared: &mut Shared) {
-        for u in &view.unasked {
-            cx.out.progress.push(format!("– {}", u.why));
+    fn begin(&mut self, c: &mut Call) {
+        for u in &c.view.unasked {
+            c.cx.out.progress.push(format!("– {}", u.why));
         }
     }
 
-    fn start(
-        &mut self,
-        idx: usize,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
-        let row = &mut view.switches[idx];
+    fn start(&mut self, idx: usize, c: &mut Call) -> Next {
+        let row = &mut c.view.switches[idx];
         row.outcome = Outcome::NotRun;
         let item = SwitchItem {
             idx,
             input: row.input,
             circuits: row.circuits.clone(),
-            deadline: cx.now + shared.timing.switch_timeout,
+            deadline: c.cx.now + c.shared.timing.switch_timeout,
             base: None,
             changed_at: None,
             returned: false,
@@ -264,12 +249,11 @@ impl StepRun for Switches {
             holds: BTreeMap::new(),
             others: Vec::new(),
             timed_out: false,
-            follow_wait: shared.timing.follow_wait,
+            follow_wait: c.shared.timing.follow_wait,
         };
-        let names: Vec<String> = item.circuits.iter().map(|&i| view.name_of(i)).collect();
+        let names: Vec<String> = item.circuits.iter().map(|&i| c.view.name_of(i)).collect();
         let label = item.input.label();
-        view.current = Some(idx);
-        view.prompt = Some(Prompt {
+        c.view.prompt = Some(Prompt {
             todo: if names.is_empty() {
                 format!("Move the {label} on, then back off.")
             } else {
@@ -280,28 +264,28 @@ impl StepRun for Switches {
             } else {
                 format!("{label} and {}", names.join(", "))
             },
-            time_left: Some(shared.timing.switch_timeout),
+            time_left: Some(c.shared.timing.switch_timeout),
             keys: vec![("s", "skip"), ("S", "skip step"), ("Esc", "stop")],
         });
-        cx.out.progress.push(format!(
+        c.cx.out.progress.push(format!(
             "Switch inputs: {} (you have {} s)",
-            view.prompt.as_ref().map_or("", |p| p.todo.as_str()),
-            shared.timing.switch_timeout.as_secs()
+            c.view.prompt.as_ref().map_or("", |p| p.todo.as_str()),
+            c.shared.timing.switch_timeout.as_secs()
         ));
         self.item = Some(item);
-        self.tick(view, cx, shared)
+        self.tick(c)
     }
 
-    fn tick(&mut self, view: &mut CheckView, cx: &mut CallContext, shared: &mut Shared) -> Next {
-        let wall = |at| shared.wall(at);
+    fn tick(&mut self, c: &mut Call) -> Next {
+        let wall = |at| c.shared.wall(at);
         let Some(item) = &mut self.item else {
             return Next::Stay;
         };
         if item.timed_out {
             return Next::Stay;
         }
-        let now = cx.now;
-        let Some(sys) = cx.model.live_system(now) else {
+        let now = c.cx.now;
+        let Some(sys) = c.cx.model.live_system(now) else {
             return Next::Stay;
         };
         let cur = sys.switches;
@@ -309,7 +293,7 @@ impl StepRun for Switches {
             let on = item
                 .circuits
                 .iter()
-                .map(|&id| (id, circuit_on(cx.model, now, id).unwrap_or(false)))
+                .map(|&id| (id, circuit_on(c.cx.model, now, id).unwrap_or(false)))
                 .collect();
             item.base = Some((cur, on));
             return Next::Stay;
@@ -337,10 +321,10 @@ impl StepRun for Switches {
             .into_iter()
             .find(|&i| i != item.input && i.is_on(&cur) != i.is_on(base));
         for (id, was) in base_on {
-            if let Some(h) = cx.model.hold(*id) {
+            if let Some(h) = c.cx.model.hold(*id) {
                 item.holds.insert(*id, h);
             }
-            if circuit_on(cx.model, now, *id).is_none_or(|on| on == *was) {
+            if circuit_on(c.cx.model, now, *id).is_none_or(|on| on == *was) {
                 continue;
             }
             match (this_away, other_away) {
@@ -353,15 +337,15 @@ impl StepRun for Switches {
                 (false, None) => {}
             }
         }
-        if let Some(p) = view.prompt.as_mut() {
+        if let Some(p) = c.view.prompt.as_mut() {
             p.time_left = Some(item.deadline.saturating_duration_since(now));
         }
         let all_followed = item.followed.len() == item.circuits.len();
         let finding = match item.changed_at {
             Some(at)
-                if item.returned && (all_followed || now >= at + shared.timing.follow_wait) =>
+                if item.returned && (all_followed || now >= at + c.shared.timing.follow_wait) =>
             {
-                Some(follow_finding(item, cx.model, now, &wall))
+                Some(follow_finding(item, c.cx.model, now, &wall))
             }
             None if item.others.iter().any(|(_, back)| *back) => Some(SwitchFinding::OtherChanged(
                 item.others.iter().map(|(i, _)| *i).collect(),
@@ -370,12 +354,12 @@ impl StepRun for Switches {
         };
         if let Some(f) = finding {
             let idx = item.idx;
-            record(view, idx, f, cx);
+            record(c.view, idx, f, c.cx);
             return Next::From(idx + 1);
         }
         if now >= item.deadline {
             let f = if item.changed_at.is_some() {
-                follow_finding(item, cx.model, now, &wall)
+                follow_finding(item, c.cx.model, now, &wall)
             } else if !item.others.is_empty() {
                 SwitchFinding::OtherChanged(item.others.iter().map(|(i, _)| *i).collect())
             } else {
@@ -384,8 +368,8 @@ impl StepRun for Switches {
             item.timed_out = true;
             let idx = item.idx;
             let label = item.input.label();
-            record(view, idx, f, cx);
-            view.prompt = Some(Prompt {
+            record(c.view, idx, f, c.cx);
+            c.view.prompt = Some(Prompt {
                 todo: format!("Time is up for {label}. r: try it again; Enter: go on to the next."),
                 watching: String::new(),
                 time_left: None,
@@ -396,33 +380,27 @@ impl StepRun for Switches {
                     ("Esc", "stop"),
                 ],
             });
-            cx.out
+            c.cx.out
                 .progress
                 .push(format!("  {label}: time is up (r: retry, Enter: next)"));
         }
         Next::Stay
     }
 
-    fn command(
-        &mut self,
-        cmd: Command,
-        view: &mut CheckView,
-        cx: &mut CallContext,
-        shared: &mut Shared,
-    ) -> Next {
+    fn command(&mut self, cmd: Command, c: &mut Call) -> Next {
         let Some(item) = &self.item else {
             return Next::Stay;
         };
         let (idx, timed_out) = (item.idx, item.timed_out);
         match cmd {
             Command::SkipItem => {
-                view.switches[idx].outcome = Outcome::Skipped("you skipped it".into());
-                cx.out
+                c.view.switches[idx].outcome = Outcome::Skipped("you skipped it".into());
+                c.cx.out
                     .progress
-                    .push(format!("– {}: skipped", view.switches[idx].input.label()));
+                    .push(format!("– {}: skipped", c.view.switches[idx].input.label()));
                 Next::From(idx + 1)
             }
-            Command::Retry => self.start(idx, view, cx, shared),
+            Command::Retry => self.start(idx, c),
             Command::Enter if timed_out => Next::From(idx + 1),
             _ => Next::Stay,
         }

@@ -238,72 +238,121 @@ mod tests {
     /// The edges of "over 20 % and at least 0.3 A", worked by hand in tenths.
     #[test]
     fn a_change_is_marked_over_20_percent_and_from_three_tenths() {
-        // 5.0 A -> 6.0 A is exactly +20 %: not over it.
-        assert!(!changed(50, 60));
-        assert!(changed(50, 61));
-        // Down as well as up: 5.0 -> 4.0 is -20 %, -> 3.9 is -22 %.
-        assert!(!changed(50, 40));
-        assert!(changed(50, 39));
-        // 1.0 A -> 1.3 A: +30 % and 0.3 A, marked; 1.2 A is +20 %, not.
-        assert!(changed(10, 13));
-        assert!(!changed(10, 12));
-        // 0.5 A -> 0.7 A: +40 % but 0.2 A, the unit's resolution: not marked.
-        assert!(!changed(5, 7));
-        assert!(changed(5, 8));
-        // From 0 A, any change of 0.3 A or more; to 0 A (a load gone) too.
-        assert!(!changed(0, 2));
-        assert!(changed(0, 3));
-        assert!(changed(61, 0));
-        assert!(!changed(61, 61));
+        // Each row: from `then`, to `not` is not marked, to `marked` is.
+        for (then, not, marked) in [
+            // 5.0 A -> 6.0 A is exactly +20 %: not over it; 6.1 A is.
+            (50, 60, 61),
+            // Down as well as up: 5.0 -> 4.0 is -20 %, -> 3.9 is -22 %.
+            (50, 40, 39),
+            // 1.0 A -> 1.2 A is +20 %, not; 1.3 A: +30 % and 0.3 A, marked.
+            (10, 12, 13),
+            // 0.5 A -> 0.7 A: +40 % but 0.2 A, the unit's resolution: not marked.
+            (5, 7, 8),
+            // From 0 A, any change of 0.3 A or more.
+            (0, 2, 3),
+            // No change is not marked; to 0 A (a load gone) is.
+            (61, 61, 0),
+        ] {
+            assert!(!changed(then, not), "{then} -> {not}");
+            assert!(changed(then, marked), "{then} -> {marked}");
+        }
     }
+
+    /// Each row: the circuit now (pin, name, tenths), the words its trend gives and
+    /// whether it is marked changed.
+    type Row<'a> = (&'a str, &'a str, Option<u16>, Option<&'a str>, bool);
+
+    #[track_caller]
+    fn says(last: Option<&LastCheck>, rows: &[Row]) {
+        for &(pin, name, now, words, marked) in rows {
+            let t = trend(last, pin, name, now);
+            assert_eq!(t.words().as_deref(), words, "{pin} {name} {now:?}");
+            assert_eq!(t.changed(), marked, "{pin} {name} {now:?}");
+        }
+    }
+
+    const CHANGED: &str = ": changed since the last check";
 
     #[test]
     fn the_words_give_both_currents_and_the_change() {
         let l = last(&[("J5-3", "Landing Lt", Some(61))]);
-        let t = trend(Some(&l), "J5-3", "Landing Lt", Some(70));
-        assert_eq!(t.words().unwrap(), "last check 6.1 A, +15 %");
-        assert!(!t.changed());
-        let t = trend(Some(&l), "J5-3", "Landing Lt", Some(75));
-        assert_eq!(
-            t.words().unwrap(),
-            "last check 6.1 A, +23 %: changed since the last check"
+        says(
+            Some(&l),
+            &[
+                (
+                    "J5-3",
+                    "Landing Lt",
+                    Some(70),
+                    Some("last check 6.1 A, +15 %"),
+                    false,
+                ),
+                (
+                    "J5-3",
+                    "Landing Lt",
+                    Some(75),
+                    Some(&format!("last check 6.1 A, +23 %{CHANGED}")),
+                    true,
+                ),
+                (
+                    "J5-3",
+                    "Landing Lt",
+                    Some(0),
+                    Some(&format!("last check 6.1 A, −100 %{CHANGED}")),
+                    true,
+                ),
+                // No reading now: the last one, alone.
+                ("J5-3", "Landing Lt", None, Some("last check 6.1 A"), false),
+            ],
         );
-        assert!(t.changed());
-        let t = trend(Some(&l), "J5-3", "Landing Lt", Some(0));
-        assert_eq!(
-            t.words().unwrap(),
-            "last check 6.1 A, −100 %: changed since the last check"
-        );
-        // No reading now: the last one, alone.
-        let t = trend(Some(&l), "J5-3", "Landing Lt", None);
-        assert_eq!(t.words().unwrap(), "last check 6.1 A");
-        assert!(!t.changed());
     }
 
     #[test]
     fn from_0_a_the_change_is_in_amps() {
         let l = last(&[("J5-3", "Taxi Lt", Some(0))]);
-        let t = trend(Some(&l), "J5-3", "Taxi Lt", Some(20));
-        assert_eq!(
-            t.words().unwrap(),
-            "last check 0 A, +2.0 A: changed since the last check"
+        says(
+            Some(&l),
+            &[
+                (
+                    "J5-3",
+                    "Taxi Lt",
+                    Some(20),
+                    Some(&format!("last check 0 A, +2.0 A{CHANGED}")),
+                    true,
+                ),
+                (
+                    "J5-3",
+                    "Taxi Lt",
+                    Some(0),
+                    Some("last check 0 A, +0.0 A"),
+                    false,
+                ),
+            ],
         );
-        let t = trend(Some(&l), "J5-3", "Taxi Lt", Some(0));
-        assert_eq!(t.words().unwrap(), "last check 0 A, +0.0 A");
-        assert!(!t.changed());
     }
 
     #[test]
     fn no_last_check_says_nothing_and_marks_nothing() {
-        let t = trend(None, "J5-3", "Landing Lt", Some(70));
-        assert_eq!(t.words(), None);
-        assert!(!t.changed());
+        says(None, &[("J5-3", "Landing Lt", Some(70), None, false)]);
         let l = last(&[("J5-3", "Landing Lt", None)]);
-        let t = trend(Some(&l), "J5-3", "Landing Lt", Some(70));
-        assert_eq!(t.words().unwrap(), "not measured at the last check");
-        assert!(!t.changed());
-        let t = trend(Some(&l), "J6-1", "Strobe", Some(70));
-        assert_eq!(t.words().unwrap(), "not in the last check");
+        says(
+            Some(&l),
+            &[
+                (
+                    "J5-3",
+                    "Landing Lt",
+                    Some(70),
+                    Some("not measured at the last check"),
+                    false,
+                ),
+                (
+                    "J6-1",
+                    "Strobe",
+                    Some(70),
+                    Some("not in the last check"),
+                    false,
+                ),
+            ],
+        );
     }
 
     /// The decision: the same name follows the load to another pin; another name on
@@ -311,19 +360,31 @@ mod tests {
     #[test]
     fn a_moved_circuit_is_followed_by_name_and_a_renamed_pin_is_not_compared() {
         let l = last(&[("J5-3", "Landing Lt", Some(61)), ("J6-1", "Pump", Some(40))]);
-        let t = trend(Some(&l), "J5-9", " landing lt ", Some(80));
-        assert_eq!(
-            t.words().unwrap(),
-            "last check 6.1 A (then on pin J5-3), +31 %: changed since the last check"
+        says(
+            Some(&l),
+            &[
+                (
+                    "J5-9",
+                    " landing lt ",
+                    Some(80),
+                    Some(&format!(
+                        "last check 6.1 A (then on pin J5-3), +31 %{CHANGED}"
+                    )),
+                    true,
+                ),
+                (
+                    "J6-1",
+                    "Strobe",
+                    Some(20),
+                    Some("this pin was \"Pump\" at the last check (4.0 A): not compared"),
+                    false,
+                ),
+            ],
         );
-        assert!(t.changed());
-        let t = trend(Some(&l), "J6-1", "Strobe", Some(20));
         assert_eq!(
-            t.words().unwrap(),
-            "this pin was \"Pump\" at the last check (4.0 A): not compared"
+            trend(Some(&l), "J6-1", "Strobe", Some(20)).then_tenths(),
+            None
         );
-        assert!(!t.changed());
-        assert_eq!(t.then_tenths(), None);
     }
 
     #[test]

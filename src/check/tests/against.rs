@@ -60,13 +60,11 @@ impl Rig {
         (seen, notices)
     }
 
+    /// The TRIM_MOVEs sent from `from` on: each one's on.
     fn trim_moves_since(&self, from: usize) -> Vec<bool> {
-        self.sent[from..]
-            .iter()
-            .filter_map(|(_, p)| match p.message {
-                Message::TrimMove(t) => Some(t.on),
-                _ => None,
-            })
+        self.timed_trim_moves_since(from)
+            .into_iter()
+            .map(|(_, on)| on)
             .collect()
     }
 }
@@ -250,13 +248,7 @@ fn a_trim_wired_right_at_its_endpoint_probes_then_runs_smoothly() {
     assert!(last <= 160, "only to {last}");
     assert_eq!(r.ctl.last_stop().unwrap().reason, StopReason::Released);
     // At most a few probes' stops before the run streams on, then one stop at the end.
-    let moves: Vec<(Duration, bool)> = r.sent[from..]
-        .iter()
-        .filter_map(|(at, p)| match p.message {
-            Message::TrimMove(t) => Some((*at, t.on)),
-            _ => None,
-        })
-        .collect();
+    let moves = r.timed_trim_moves_since(from);
     let stops = moves.iter().filter(|(_, on)| !on).count();
     assert!((2..=4).contains(&stops), "{moves:?}");
     let resumed = moves.iter().rposition(|(_, on)| !on).unwrap();
@@ -412,13 +404,7 @@ fn a_motor_that_never_shows_its_way_is_only_probed_while_held() {
             .handle_key(key(KeyEventKind::Repeat), &ctx, &r.model, r.now);
         r.send(out.packets);
     }
-    let ons: Vec<(Duration, bool)> = r.sent[from..]
-        .iter()
-        .filter_map(|(at, p)| match p.message {
-            Message::TrimMove(t) => Some((*at, t.on)),
-            _ => None,
-        })
-        .collect();
+    let ons = r.timed_trim_moves_since(from);
     // 5 counts from the endpoint behind it, each probe runs 220 ms (5.5 counts at
     // the fastest motor's 25 a second), then is stopped until the next: 2 s held
     // makes several, and none ran longer.

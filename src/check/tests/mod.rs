@@ -1419,6 +1419,17 @@ impl Rig {
         seen
     }
 
+    /// The TRIM_MOVEs sent from `from` on, as (time since start, on).
+    fn timed_trim_moves_since(&self, from: usize) -> Vec<(Duration, bool)> {
+        self.sent[from..]
+            .iter()
+            .filter_map(|(at, p)| match p.message {
+                Message::TrimMove(t) => Some((*at, t.on)),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The move messages sent, as (ms since start, on).
     fn moves(&self) -> Vec<(u128, bool)> {
         self.sent
@@ -1619,14 +1630,7 @@ fn a_reversed_motor_parked_at_its_endpoint_is_probed_not_driven_past_it() {
         );
         r.assert_pitch_found(MotorFinding::Reversed);
         // Every TRIM_MOVE on is followed by its off: no run ended by starving.
-        let moves: Vec<(u128, bool)> = r
-            .sent
-            .iter()
-            .filter_map(|(at, p)| match p.message {
-                Message::TrimMove(t) => Some((at.as_millis(), t.on)),
-                _ => None,
-            })
-            .collect();
+        let moves = r.timed_trim_moves_since(0);
         assert!(!moves.is_empty() && !moves.last().unwrap().1, "{moves:?}");
         assert_eq!(r.unit.snapshot(r.now).pitch_trim_starvations, 0);
     }
@@ -2502,6 +2506,48 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
             .any(|l| l.contains(",Strobe,") && l.contains("seen lit; you saw it lit, yet")),
         "{csv}"
     );
+}
+
+/// A light on by its own switch is not held for "Is it lit?": the check goes on once
+/// it is measured. So the question says that, rather than promise to wait a minute,
+/// and it ends with the measurement, recorded as not answered and left on; an answer
+/// typed after it is not kept for that light.
+#[test]
+fn a_light_on_by_its_switch_is_asked_only_while_it_is_measured() {
+    let mut r = Rig::holding_lights(Rig::only(&[Step::Circuits]));
+    // Switch 2 powers Nav Lt and Strobe: both on before the check.
+    r.flip(2, true);
+    r.run(2000);
+    r.start();
+    r.run_until(15_000, |r| {
+        r.view.current.is_some_and(|i| r.view.circuits[i].id == 17)
+    });
+    let nav: Vec<&String> = r
+        .progress
+        .iter()
+        .filter(|l| l.starts_with("  Nav Lt: "))
+        .collect();
+    assert_eq!(nav.len(), 2, "{:?}", r.progress);
+    assert!(
+        nav[0].contains("is it lit?")
+            && nav[0].contains("on by its switch, so the check goes on once it is measured")
+            && !nav[0].contains("until you answer"),
+        "{}",
+        nav[0]
+    );
+    assert!(
+        nav[1].starts_with("  Nav Lt: no answer in ")
+            && nav[1].ends_with(" s; left on by its switch"),
+        "{}",
+        nav[1]
+    );
+    let a = r.view.lit_answer(4).expect("Nav Lt's question ended");
+    assert_eq!((a.lit, a.switched), (None, false));
+    assert!(
+        matches!(a.ended, super::state::LitEnd::Cap(d) if d <= Duration::from_secs(5)),
+        "{a:?}"
+    );
+    assert_eq!(r.view.lit_answer(5).map(|a| a.lit), Some(None));
 }
 
 /// The flow writes no file. Reaching the load analysis it asks the app to
