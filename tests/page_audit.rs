@@ -136,6 +136,11 @@ fn every_command_from_every_origin_leaves_its_line() {
             "the check sent nothing: {:#?}",
             audit_lines(&audit)
         );
+        // Nav Lt, on from the network, is held for "is it lit?" until answered.
+        let asked = rig.app.check_view().prompt.as_ref();
+        if asked.is_some_and(|p| p.todo.contains("lit?")) {
+            rig.key(KeyCode::Char('y'), KeyEventKind::Press);
+        }
         pump(&mut rig.app, 50);
     }
     rig.key(KeyCode::Esc, KeyEventKind::Press);

@@ -94,10 +94,9 @@ enum Stage {
         /// `None`: it was on already, nothing sent.
         request: Option<Try>,
     },
-    /// A light the check switched on, measured and still on, held so until the person
-    /// says whether it is lit, or `until` (the cap, [`super::Timing::lit_for`] after
-    /// it was switched on). A light on by its switch is not held.
-    Asking { until: Instant },
+    /// A light measured and still on, held so until the person says whether it is
+    /// lit, or `until` (the cap, [`super::Timing::lit_for`] after it was switched on).
+    Asking { sent: bool, until: Instant },
     /// DEVICE_POWER off sent, waiting to see it off.
     PutBack { request: Try },
     /// The page could not be seen (the terminal too small, or not focused) when the
@@ -126,12 +125,14 @@ impl CircuitItem {
             Stage::Measure {
                 request: Some(_), ..
             }
-            | Stage::Asking { .. }
+            | Stage::Asking { sent: true, .. }
             | Stage::PutBack { .. } => {
                 cx.power_off(self.id)?;
                 Ok(Some(Powered { id: self.id }))
             }
-            Stage::Measure { request: None, .. } | Stage::Waiting => Ok(None),
+            Stage::Measure { request: None, .. }
+            | Stage::Asking { sent: false, .. }
+            | Stage::Waiting => Ok(None),
         }
     }
 }
@@ -182,20 +183,32 @@ impl Circuits {
         let Some(item) = &self.item else {
             return Next::Stay;
         };
-        let Stage::Asking { until } = item.stage else {
+        let Stage::Asking { sent, until } = item.stage else {
             return Next::Stay;
         };
         let name = view.circuits[item.idx].name.clone();
+        let off = if sent {
+            "it goes back off at your answer"
+        } else {
+            "it is on by its switch and stays so"
+        };
         view.prompt = Some(Prompt {
-            todo: format!(
-                "{name} is on and measured.{LIT_QUESTION} (it goes back off at your answer; \
-                 s: skip the question)"
-            ),
+            todo: format!("{name} is on and measured.{LIT_QUESTION} ({off}; s: skip the question)"),
             watching: format!("{name}'s state (DEVICE_STATUS)"),
             time_left: Some(until.saturating_duration_since(now)),
             keys: keys(true),
         });
         Next::Stay
+    }
+
+    /// The light's question is over (or was never held): put it back off if the
+    /// check switched it on, else on to the next.
+    fn after_light(&mut self, idx: usize, sent: bool, c: &mut Call) -> Next {
+        if sent {
+            self.put_back_item(c)
+        } else {
+            Next::From(idx + 1)
+        }
     }
 
     fn put_back_item(&mut self, c: &mut Call) -> Next {
@@ -324,22 +337,14 @@ impl StepRun for Circuits {
         };
         if light {
             // Only a person looking can say a lamp shines: asked while it is on, and
-            // it stays on until answered, up to the cap. One on by its switch is not
-            // held (it stays on after the check goes on): asked while it is measured.
+            // the check waits for the answer, up to the cap. One on by its own switch
+            // is held too: the person may be walking to it, and an answer typed late
+            // must not be taken for the next light asked.
             todo.push_str(LIT_QUESTION);
-            let wait = if was_on {
-                "it is on by its switch, so the check goes on once it is measured, answered \
-                 or not"
-                    .to_string()
-            } else {
-                format!(
-                    "it stays on until you answer, {} s at most",
-                    c.shared.timing.lit_for.as_secs()
-                )
-            };
             c.cx.out.progress.push(format!(
-                "  {name}: is it lit? Type y (lit), n (not lit) or s (skip the question); \
-                 {wait}."
+                "  {name}: is it lit? Type y (lit), n (not lit) or s (skip the question); it \
+                 stays on until you answer, {} s at most.",
+                c.shared.timing.lit_for.as_secs()
             ));
         } else if lights::is_light(&name) {
             c.view.lit.retain(|l| l.id != id);
@@ -427,37 +432,28 @@ impl StepRun for Circuits {
                 );
                 record(c.view, idx, f, c.cx);
                 let asking = asks_lit(c.view, idx);
-                // Measured: held on until the person answers, up to the cap. A light on
-                // by its switch is not held: it stays on after the check moves on.
-                if asking && lit_on && sent && now < item.started + c.shared.timing.lit_for {
+                // Measured: held on until the person answers, up to the cap; one the
+                // check switched on goes back off at the answer, one on by its switch
+                // stays so.
+                if asking && lit_on && now < item.started + c.shared.timing.lit_for {
                     item.stage = Stage::Asking {
+                        sent,
                         until: item.started + c.shared.timing.lit_for,
                     };
                     return self.asking_prompt(c.view, now);
                 }
-                if asking && !sent {
-                    // On by its switch, not held: the question ends with the measurement,
-                    // so a later answer is not kept for this light.
-                    let asked_for = now.saturating_duration_since(item.started);
-                    end_lit(idx, None, LitEnd::Cap(asked_for), false, c.view, c.cx);
-                }
-                // Put back off if the check switched it on, else on to the next.
-                return if sent {
-                    self.put_back_item(c)
-                } else {
-                    Next::From(idx + 1)
-                };
+                return self.after_light(idx, sent, c);
             }
-            Stage::Asking { until } => {
-                let until = *until;
+            Stage::Asking { sent, until } => {
+                let (sent, until) = (*sent, *until);
                 if now >= until {
                     let held = until.saturating_duration_since(item.started);
-                    end_lit(idx, None, LitEnd::Cap(held), true, c.view, c.cx);
-                    return self.put_back_item(c);
+                    end_lit(idx, None, LitEnd::Cap(held), sent, c.view, c.cx);
+                    return self.after_light(idx, sent, c);
                 }
                 if let CircuitState::Fault(_) | CircuitState::Off = st {
                     // It went off by itself (a fault, or its switch): nothing to hold.
-                    return self.put_back_item(c);
+                    return self.after_light(idx, sent, c);
                 }
             }
             Stage::Waiting => {}
@@ -501,7 +497,10 @@ impl StepRun for Circuits {
         if matches!(item.stage, Stage::Waiting) && matches!(cmd, Command::Retry | Command::Enter) {
             return self.start(idx, c);
         }
-        let on_hold = matches!(item.stage, Stage::Asking { .. });
+        let on_hold = match item.stage {
+            Stage::Asking { sent, .. } => Some(sent),
+            _ => None,
+        };
         let sent_on = matches!(
             item.stage,
             Stage::Measure {
@@ -518,20 +517,20 @@ impl StepRun for Circuits {
                     idx,
                     Some(lit),
                     LitEnd::Answer,
-                    on_hold || sent_on,
+                    on_hold.unwrap_or(sent_on),
                     c.view,
                     c.cx,
                 );
-                if on_hold {
-                    return self.put_back_item(c);
+                if let Some(sent) = on_hold {
+                    return self.after_light(idx, sent, c);
                 }
             }
             return Next::Stay;
         }
         if cmd == Command::NobodyToAnswer {
-            if on_hold {
-                end_lit(idx, None, LitEnd::NobodyToAnswer, true, c.view, c.cx);
-                return self.put_back_item(c);
+            if let Some(sent) = on_hold {
+                end_lit(idx, None, LitEnd::NobodyToAnswer, sent, c.view, c.cx);
+                return self.after_light(idx, sent, c);
             }
             if matches!(item.stage, Stage::Measure { .. }) && asks_lit(c.view, idx) {
                 end_lit(idx, None, LitEnd::NobodyToAnswer, sent_on, c.view, c.cx);
@@ -542,9 +541,10 @@ impl StepRun for Circuits {
             return Next::Stay;
         }
         match &item.stage {
-            Stage::Asking { .. } => {
-                end_lit(idx, None, LitEnd::Skipped, true, c.view, c.cx);
-                return self.put_back_item(c);
+            Stage::Asking { sent, .. } => {
+                let sent = *sent;
+                end_lit(idx, None, LitEnd::Skipped, sent, c.view, c.cx);
+                return self.after_light(idx, sent, c);
             }
             Stage::Measure { request, .. } => {
                 let sent = request.is_some();

@@ -2508,46 +2508,46 @@ fn each_light_is_asked_if_it_is_lit_and_the_report_says_where_that_disagrees() {
     );
 }
 
-/// A light on by its own switch is not held for "Is it lit?": the check goes on once
-/// it is measured. So the question says that, rather than promise to wait a minute,
-/// and it ends with the measurement, recorded as not answered and left on; an answer
-/// typed after it is not kept for that light.
+/// A light on by its own switch is held for "Is it lit?" as one the check switched on
+/// is: the person may still be walking to it, and an answer typed late must not be
+/// taken for the next light asked. Its answer is its own, and nothing is switched.
 #[test]
-fn a_light_on_by_its_switch_is_asked_only_while_it_is_measured() {
+fn a_light_on_by_its_switch_is_held_for_its_own_answer_and_left_on() {
     let mut r = Rig::holding_lights(Rig::only(&[Step::Circuits]));
-    // Switch 2 powers Nav Lt and Strobe: both on before the check.
+    // Switch 2 powers Nav Lt (4) and Strobe (5): both on before the check.
     r.flip(2, true);
     r.run(2000);
     r.start();
     r.run_until(15_000, |r| {
-        r.view.current.is_some_and(|i| r.view.circuits[i].id == 17)
+        r.view.current.is_some_and(|i| r.view.circuits[i].id == 4)
     });
-    let nav: Vec<&String> = r
+    let asked = r
         .progress
         .iter()
-        .filter(|l| l.starts_with("  Nav Lt: "))
-        .collect();
-    assert_eq!(nav.len(), 2, "{:?}", r.progress);
-    assert!(
-        nav[0].contains("is it lit?")
-            && nav[0].contains("on by its switch, so the check goes on once it is measured")
-            && !nav[0].contains("until you answer"),
-        "{}",
-        nav[0]
+        .find(|l| l.starts_with("  Nav Lt: is it lit?"))
+        .expect("Nav Lt is asked");
+    assert!(asked.contains("until you answer, 60 s at most"), "{asked}");
+    // Half a minute on, still asking Nav Lt: nothing recorded for it, nothing moved on.
+    r.run(30_000);
+    assert_eq!(
+        r.view.current.map(|i| r.view.circuits[i].id),
+        Some(4),
+        "{:?}",
+        r.progress
     );
-    assert!(
-        nav[1].starts_with("  Nav Lt: no answer in ")
-            && nav[1].ends_with(" s; left on by its switch"),
-        "{}",
-        nav[1]
+    assert!(r.view.lit_answer(4).is_none());
+    r.cmd(Command::Lit(true));
+    r.run(500);
+    let a = r.view.lit_answer(4).expect("Nav Lt answered");
+    assert_eq!(
+        (a.lit, a.switched, a.ended),
+        (Some(true), false, super::state::LitEnd::Answer)
     );
-    let a = r.view.lit_answer(4).expect("Nav Lt's question ended");
-    assert_eq!((a.lit, a.switched), (None, false));
+    assert_eq!(r.powers(4), Vec::<bool>::new(), "nothing sent for Nav Lt");
     assert!(
-        matches!(a.ended, super::state::LitEnd::Cap(d) if d <= Duration::from_secs(5)),
-        "{a:?}"
+        r.view.lit_answer(5).is_none(),
+        "Strobe not answered by Nav Lt's y"
     );
-    assert_eq!(r.view.lit_answer(5).map(|a| a.lit), Some(None));
 }
 
 /// The flow writes no file. Reaching the load analysis it asks the app to
