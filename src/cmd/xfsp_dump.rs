@@ -145,14 +145,8 @@ fn param_line(h: &Header, p: &ParamView<'_>, json: bool) -> String {
     let name = idents::lookup(ph.ident, ph.format)
         .or_else(|| idents::lookup_ident(ph.ident))
         .map_or_else(|| format!("{:#x}", ph.ident.0), |i| i.name.to_string());
-    let confidence = ph
-        .confidence
-        .spec_name()
-        .map_or_else(|| u8::from(ph.confidence).to_string(), str::to_string);
-    let cert = ph
-        .cert()
-        .spec_name()
-        .map_or_else(|| u8::from(ph.cert()).to_string(), str::to_string);
+    let confidence = named(ph.confidence.spec_name(), u8::from(ph.confidence));
+    let cert = named(ph.cert().spec_name(), u8::from(ph.cert()));
     let format = ph
         .format
         .spec_name()
@@ -192,12 +186,15 @@ fn param_line(h: &Header, p: &ParamView<'_>, json: bool) -> String {
     }
 }
 
+/// A value's name in the draft, or its number where the draft names none.
+fn named(name: Option<&str>, raw: impl std::fmt::Display) -> String {
+    name.map_or_else(|| raw.to_string(), str::to_string)
+}
+
 fn bus_text(b: &Bus) -> String {
     format!(
         "{} draw {:.1} A max {:.1} A out {:.1} V{} {:?}",
-        b.state
-            .spec_name()
-            .map_or_else(|| u8::from(b.state).to_string(), str::to_string),
+        named(b.state.spec_name(), u8::from(b.state)),
         b.draw_amps_a(),
         Bus::from_tenths(b.max_amps),
         b.out_volts_v(),
@@ -213,9 +210,7 @@ fn bus_text(b: &Bus) -> String {
 fn cas_text(c: &CasMsg) -> String {
     format!(
         "{} {:?}",
-        c.level
-            .spec_name()
-            .map_or_else(|| u8::from(c.level).to_string(), str::to_string),
+        named(c.level.spec_name(), u8::from(c.level)),
         latin1(&c.label)
     )
 }
