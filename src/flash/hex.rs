@@ -309,18 +309,35 @@ mod tests {
         assert_eq!(img.span(), (0x10010, 0x10011));
     }
 
+    /// A damaged record is refused by its line, in the error and in its words.
     #[test]
-    fn a_bad_checksum_names_its_line() {
-        let e = parse_hex(&text(&[":0400000001020304F2", ":0400040001020304F3", EOF])).unwrap_err();
-        assert!(matches!(e, HexError::BadRecord { line: 2, .. }), "{e}");
-        assert!(e.to_string().starts_with("line 2:"), "{e}");
-        assert!(e.to_string().contains("checksum"), "{e}");
-    }
-
-    #[test]
-    fn garbage_lines_are_refused() {
-        let e = parse_hex(&text(&[":0400000001020304F2", "hello", EOF])).unwrap_err();
-        assert!(matches!(e, HexError::BadRecord { line: 2, .. }), "{e}");
+    fn a_damaged_record_is_refused_by_its_line() {
+        type Expected = fn(&HexError) -> bool;
+        let cases: [(&str, &[&str], Expected); 3] = [
+            (
+                "a bad checksum",
+                &[":0400000001020304F2", ":0400040001020304F3", EOF],
+                |e| {
+                    matches!(e, HexError::BadRecord { line: 2, .. })
+                        && e.to_string().contains("checksum")
+                },
+            ),
+            (
+                "a line that is no record",
+                &[":0400000001020304F2", "hello", EOF],
+                |e| matches!(e, HexError::BadRecord { line: 2, .. }),
+            ),
+            (
+                "a segment record that wraps",
+                &[":020000021000EC", ":02FFFF00556645", EOF],
+                |e| matches!(e, HexError::SegmentWrap { line: 2, .. }),
+            ),
+        ];
+        for (what, lines, expected) in cases {
+            let e = parse_hex(&text(lines)).expect_err(what);
+            assert!(expected(&e), "{what}: {e:?}");
+            assert!(e.to_string().starts_with("line 2:"), "{what}: {e}");
+        }
     }
 
     #[test]
@@ -370,12 +387,6 @@ mod tests {
                 address: 0x40000
             }
         );
-    }
-
-    #[test]
-    fn a_segment_record_that_wraps_is_refused() {
-        let e = parse_hex(&text(&[":020000021000EC", ":02FFFF00556645", EOF])).unwrap_err();
-        assert!(matches!(e, HexError::SegmentWrap { line: 2, .. }), "{e}");
     }
 
     #[test]

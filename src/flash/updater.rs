@@ -783,11 +783,7 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
         for (page, data) in image.pages() {
             self.program(page, data)?;
             progress.programmed += 1;
-            (self.on)(Event::Progress(progress));
-            self.check_cancel(&format!(
-                "after programming page {page} ({} of {})",
-                progress.programmed, progress.pages
-            ))?;
+            self.page_done(progress, "programming", page, progress.programmed)?;
         }
         for (page, data) in image.pages() {
             let mut ok = self.verify(page, data)?;
@@ -809,17 +805,29 @@ impl<'a, P: Port + ?Sized> Session<'a, P> {
                 return Ok(Some(page));
             }
             progress.verified += 1;
-            (self.on)(Event::Progress(progress));
-            self.check_cancel(&format!(
-                "after verifying page {page} ({} of {})",
-                progress.verified, progress.pages
-            ))?;
+            self.page_done(progress, "verifying", page, progress.verified)?;
         }
         Ok(None)
     }
 
     /// A stop asked for from outside, between two steps: never in the middle of a
     /// command, so the page in progress is whole.
+    /// A page programmed or verified: says how far the pass is, then stops here if
+    /// the person cancelled.
+    fn page_done(
+        &mut self,
+        progress: Progress,
+        doing: &str,
+        page: impl std::fmt::Display,
+        done: usize,
+    ) -> Result<(), Fail> {
+        (self.on)(Event::Progress(progress));
+        self.check_cancel(&format!(
+            "after {doing} page {page} ({done} of {})",
+            progress.pages
+        ))
+    }
+
     fn check_cancel(&mut self, at: &str) -> Result<(), Fail> {
         if self
             .opts
